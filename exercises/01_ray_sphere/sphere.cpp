@@ -1,0 +1,52 @@
+// Lesson 01 exercise: ray–sphere intersection.
+// Replace each `throw NotImplemented(...)` with your code. The tasks, hints
+// and the tests that grade them are in README.md beside this file; the
+// declarations and their contracts are in lib/illum/geometry/sphere.hpp.
+#include "illum/geometry/sphere.hpp"
+
+#include <cmath>
+
+#include "illum/core/error.hpp"
+
+namespace illum {
+
+// Task 1. Store the centre and radius; refuse a radius that is zero,
+// negative, NaN or infinite, and a centre that is not finite, by throwing
+// std::invalid_argument (use illum::require).
+Sphere::Sphere(const Point3& center_, double radius_) : center(center_), radius(radius_) {
+  throw NotImplemented("Sphere::Sphere", "validate the radius (r > 0, finite) and the centre (finite)");
+}
+
+// Task 2. The notes' quadratic: ΔP = Pc − P0 (erratum 1), B = −2 ω·ΔP,
+// C = |ΔP|² − r², discriminant B² − 4C, s = (−B ± √disc)/2.
+template <class T>
+SphereRoots<T> sphere_roots_notes(const glm::vec<3, T>& origin, const glm::vec<3, T>& direction,
+                                  const glm::vec<3, T>& center, T radius) {
+  throw NotImplemented("sphere_roots_notes",
+                       "substitute P0 + sω into |P − Pc|² = r² and solve the quadratic (lesson 01, eq. 1.3)");
+}
+
+// Task 3. The stable form: the discriminant from the distance between the
+// centre and the line, and the smaller root from Vieta's product s1·s2 = C.
+template <class T>
+SphereRoots<T> sphere_roots_stable(const glm::vec<3, T>& origin, const glm::vec<3, T>& direction,
+                                   const glm::vec<3, T>& center, T radius) {
+  throw NotImplemented("sphere_roots_stable",
+                       "compute r² − d² as (r − d)(r + d) with d = |ΔP − (ω·ΔP)ω|, then q and C/q (lesson 01, §4)");
+}
+
+template SphereRoots<float> sphere_roots_notes(const glm::vec3&, const glm::vec3&, const glm::vec3&, float);
+template SphereRoots<double> sphere_roots_notes(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, double);
+template SphereRoots<float> sphere_roots_stable(const glm::vec3&, const glm::vec3&, const glm::vec3&, float);
+template SphereRoots<double> sphere_roots_stable(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
+                                                 double);
+
+// Task 4. The nearest hit inside ray.range: check the direction is unit
+// length, take the stable roots, try the near root then the far one, and
+// fill in the point, the outward normal and whether the origin is inside.
+std::optional<SphereHit> intersect(const Ray& ray, const Sphere& sphere) {
+  throw NotImplemented("intersect(Ray, Sphere)",
+                       "take the nearest root inside ray.range; the normal is (P − Pc)/r (lesson 01, §5)");
+}
+
+}  // namespace illum

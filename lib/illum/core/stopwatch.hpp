@@ -1,0 +1,38 @@
+#pragma once
+// Timing for studies and benchmarks (never for tests: tests count work instead).
+#include <chrono>
+#include <cstdint>
+
+namespace illum {
+
+class Stopwatch {
+ public:
+  Stopwatch() : start_(std::chrono::steady_clock::now()) {}
+  void restart() { start_ = std::chrono::steady_clock::now(); }
+  double seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+  }
+
+ private:
+  std::chrono::steady_clock::time_point start_;
+};
+
+// Keeps the compiler from removing a computation whose result is unused.
+template <class T>
+inline void do_not_optimize(const T& value) {
+  asm volatile("" : : "r,m"(value) : "memory");
+}
+
+// Nanoseconds per call of `call(i)`, for i = 0, 1, 2, …: the loop doubles its
+// length until it runs for at least `min_seconds`, then reports the mean.
+template <class F>
+double nanoseconds_per_call(F&& call, double min_seconds = 0.05) {
+  for (std::uint64_t n = 64;; n *= 2) {
+    Stopwatch watch;
+    for (std::uint64_t i = 0; i < n; ++i) call(i);
+    const double t = watch.seconds();
+    if (t >= min_seconds || n >= (std::uint64_t{1} << 40)) return 1e9 * t / static_cast<double>(n);
+  }
+}
+
+}  // namespace illum

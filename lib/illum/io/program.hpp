@@ -1,0 +1,44 @@
+#pragma once
+// What every illum program shares: --help, --out DIR, --quick, --seed, and
+// errors reported as one clear line with exit code 1 (2 for bad flags).
+//
+//   int main(int argc, char** argv) {
+//     illum::ProgramInfo info{"lesson01", "Ray and sphere", "Renders ... and runs the study."};
+//     return illum::run_program(argc, argv, info, {}, [](const illum::ProgramOptions& o) { ... });
+//   }
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace illum {
+
+struct ProgramInfo {
+  std::string id;           // "lesson01": also the default output folder out/lesson01
+  std::string title;        // "Ray and sphere"
+  std::string description;  // what the program does, for --help
+};
+
+struct ProgramOptions {
+  std::filesystem::path out;  // --out, default out/<id>
+  bool quick = false;         // --quick: small sizes, for the tests
+  std::uint64_t seed = 1;     // --seed, for every random choice
+  int threads = 0;            // --threads, 0 = all cores (OpenMP's default)
+};
+
+// Parses the shared flags (and any that `add_options` registers), then runs
+// `body`. An exception from `body` is printed as "<id>: error: <what>" and
+// the exit code is 1.
+int run_program(int argc, char** argv, const ProgramInfo& info,
+                const std::function<void(CLI::App&)>& add_options,
+                const std::function<void(const ProgramOptions&)>& body);
+
+// Progress of long work on stderr ("lesson01: study 3/12"), overwritten in place
+// when stderr is a terminal, one line per step otherwise.
+void report_progress(const std::string& id, const std::string& what, int done, int total);
+
+}  // namespace illum
