@@ -26,17 +26,20 @@ SphereRoots<T> sphere_roots_notes(const glm::vec<3, T>& origin, const glm::vec<3
                        "substitute P0 + sω into |P − Pc|² = r² and solve the quadratic (lesson 01, eq. 1.3)");
 }
 
-// Task 3. The stable form: the discriminant from the distance between the
-// centre and the line, and the smaller root from Vieta's product s1·s2 = C.
+// Task 3. The stable form: the discriminant over four as r² − |ΔP − (ω·ΔP)ω|²
+// (the distance from the centre to the line), and the root of smaller
+// magnitude from Vieta's product s1·s2 = C.
 template <class T>
 SphereRoots<T> sphere_roots_stable(const glm::vec<3, T>& origin, const glm::vec<3, T>& direction,
                                    const glm::vec<3, T>& center, T radius) {
-  throw NotImplemented("sphere_roots_stable",
-                       "compute r² − d² as (r − d)(r + d) with d = |ΔP − (ω·ΔP)ω|, then q and C/q (lesson 01, §4)");
+  throw NotImplemented(
+      "sphere_roots_stable",
+      "r² − |ΔP − (ω·ΔP)ω|² is the discriminant over four; then q = b + sign(b)√· and C/q (lesson 01, §4)");
 }
 
 template SphereRoots<float> sphere_roots_notes(const glm::vec3&, const glm::vec3&, const glm::vec3&, float);
-template SphereRoots<double> sphere_roots_notes(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, double);
+template SphereRoots<double> sphere_roots_notes(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
+                                                double);
 template SphereRoots<float> sphere_roots_stable(const glm::vec3&, const glm::vec3&, const glm::vec3&, float);
 template SphereRoots<double> sphere_roots_stable(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
                                                  double);

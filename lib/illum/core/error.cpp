@@ -14,8 +14,6 @@ InputError::InputError(const std::string& file, const std::string& field, const 
 NotImplemented::NotImplemented(std::string exercise, std::string hint)
     : exercise_(std::move(exercise)), hint_(std::move(hint)) {}
 
-std::string NotImplemented::message() const {
-  return "NotImplemented: " + exercise_ + " — " + hint_;
-}
+std::string NotImplemented::message() const { return "NotImplemented: " + exercise_ + " — " + hint_; }
 
 }  // namespace illum

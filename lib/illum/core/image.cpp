@@ -23,8 +23,8 @@ namespace illum {
 
 Image::Image(int width, int height, Color fill) : width_(width), height_(height) {
   if (width <= 0 || height <= 0)
-    throw std::invalid_argument("Image: width and height must be positive, got " +
-                                std::to_string(width) + "x" + std::to_string(height));
+    throw std::invalid_argument("Image: width and height must be positive, got " + std::to_string(width) +
+                                "x" + std::to_string(height));
   pixels_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), fill);
 }
 

@@ -15,9 +15,9 @@ constexpr double unit_tolerance = 1e-9;
 inline bool is_unit(const Vec3& v) { return std::abs(dot(v, v) - 1.0) <= unit_tolerance; }
 
 struct Ray {
-  Point3 origin;                      // P0
-  Vec3 direction;                     // ω, unit length (checked by the constructor)
-  Interval range = Interval::ahead(); // the parameters s that count as hits
+  Point3 origin;                       // P0
+  Vec3 direction;                      // ω, unit length (checked by the constructor)
+  Interval range = Interval::ahead();  // the parameters s that count as hits
 
   // Throws std::invalid_argument when the direction is not unit length or
   // any coordinate is NaN or infinite.

@@ -32,15 +32,12 @@ SphereRoots<T> sphere_roots_stable(const glm::vec<3, T>& origin, const glm::vec<
   const glm::vec<3, T> delta = center - origin;  // ΔP = Pc − P0
   const T b_half = glm::dot(direction, delta);   // −B/2: parameter of the point nearest Pc
   // The discriminant over four is r² − d², with d the distance from Pc to the
-  // line. Computing d² from the perpendicular vector avoids |ΔP|² − (ω·ΔP)²,
-  // two huge numbers that cancel when the sphere is far away.
+  // line. Taking d² from the perpendicular vector ΔP − (ω·ΔP)ω avoids
+  // |ΔP|² − (ω·ΔP)², two huge numbers that cancel when the sphere is far away.
   const glm::vec<3, T> perpendicular = delta - b_half * direction;
-  const T d = glm::length(perpendicular);
-  const T quarter_discriminant = (radius - d) * (radius + d);
+  const T quarter_discriminant = radius * radius - glm::dot(perpendicular, perpendicular);
   if (quarter_discriminant < T(0)) return {};
-  // C = |ΔP|² − r², factored so that an origin near the surface keeps its digits.
-  const T distance = glm::length(delta);
-  const T c = (distance - radius) * (distance + radius);
+  const T c = glm::dot(delta, delta) - radius * radius;  // C = |ΔP|² − r²
   const T root = std::sqrt(quarter_discriminant);
   // The root of larger magnitude has no cancellation; Vieta (s1·s2 = C) gives the other.
   const T q = b_half + std::copysign(root, b_half);
@@ -51,14 +48,16 @@ SphereRoots<T> sphere_roots_stable(const glm::vec<3, T>& origin, const glm::vec<
 }
 
 template SphereRoots<float> sphere_roots_notes(const glm::vec3&, const glm::vec3&, const glm::vec3&, float);
-template SphereRoots<double> sphere_roots_notes(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, double);
+template SphereRoots<double> sphere_roots_notes(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
+                                                double);
 template SphereRoots<float> sphere_roots_stable(const glm::vec3&, const glm::vec3&, const glm::vec3&, float);
 template SphereRoots<double> sphere_roots_stable(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
                                                  double);
 
 std::optional<SphereHit> intersect(const Ray& ray, const Sphere& sphere) {
   require(is_unit(ray.direction), "intersect(Ray, Sphere): the ray direction must be unit length");
-  const SphereRoots<double> roots = sphere_roots_stable(ray.origin, ray.direction, sphere.center, sphere.radius);
+  const SphereRoots<double> roots =
+      sphere_roots_stable(ray.origin, ray.direction, sphere.center, sphere.radius);
   if (roots.count == 0) return std::nullopt;
   // The nearer root first; if it lies before the range (origin inside the
   // sphere, or the sphere behind), the farther one may still count.

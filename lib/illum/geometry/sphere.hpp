@@ -9,9 +9,10 @@
 //   It loses digits twice: in B² − 4C when the sphere is far away and small
 //   (two huge, nearly equal numbers are subtracted), and in −B + √disc for
 //   the root near zero.
-// * sphere_roots_stable: the discriminant from the distance between the
-//   sphere's centre and the ray (no subtraction of huge numbers), and the
-//   small root from Vieta's product s_near·s_far = C (no cancellation).
+// * sphere_roots_stable: the discriminant as r² − d², with d² the squared
+//   length of the vector from the line to the centre (no subtraction of huge
+//   numbers), and the small root from Vieta's product s_near·s_far = C (no
+//   cancellation). It costs no square root more than the notes' form.
 #include <optional>
 
 #include "illum/core/ray.hpp"
@@ -51,9 +52,9 @@ SphereRoots<T> sphere_roots_stable(const glm::vec<3, T>& origin, const glm::vec<
                                    const glm::vec<3, T>& center, T radius);
 
 struct SphereHit {
-  double s = 0;         // ray parameter of the hit, inside ray.range
-  Point3 point;         // P0 + sω
-  Vec3 normal;          // outward unit normal (P − Pc)/r at the hit
+  double s = 0;              // ray parameter of the hit, inside ray.range
+  Point3 point;              // P0 + sω
+  Vec3 normal;               // outward unit normal (P − Pc)/r at the hit
   bool from_inside = false;  // the ray's origin lies strictly inside the sphere
 };
 

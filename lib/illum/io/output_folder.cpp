@@ -33,7 +33,8 @@ void OutputFolder::plot(const PlotSpec& spec, const std::string& name, const std
   entries_.push_back({"script", name + ".gp", "gnuplot script for " + name + ".png"});
 }
 
-void OutputFolder::text(const std::string& file_name, const std::string& contents, const std::string& caption) {
+void OutputFolder::text(const std::string& file_name, const std::string& contents,
+                        const std::string& caption) {
   write_text_file(path(file_name), contents);
   entries_.push_back({"text", file_name, caption});
 }

@@ -53,8 +53,8 @@ std::string gnuplot_script(const PlotSpec& spec, const std::string& png_name) {
 bool draw_plot(const std::filesystem::path& folder, const std::string& name, const PlotSpec& spec) {
   const std::string png = name + ".png";
   write_text_file(folder / (name + ".gp"), gnuplot_script(spec, png));
-  const std::string command = "cd " + shell_quoted(folder.string()) + " && gnuplot " +
-                              shell_quoted(name + ".gp") + " 2>/dev/null";
+  const std::string command =
+      "cd " + shell_quoted(folder.string()) + " && gnuplot " + shell_quoted(name + ".gp") + " 2>/dev/null";
   if (std::system(command.c_str()) != 0) {
     std::cerr << "warning: gnuplot could not draw " << (folder / png).string()
               << " (install gnuplot-nox); the script is left in " << name << ".gp\n";

@@ -7,8 +7,8 @@
 namespace illum {
 
 struct PlotSeries {
-  std::string csv;    // file name of the data, in the plot's folder
-  int x_column = 1;   // 1-based column numbers, as gnuplot counts
+  std::string csv;   // file name of the data, in the plot's folder
+  int x_column = 1;  // 1-based column numbers, as gnuplot counts
   int y_column = 2;
   std::string title;
   std::string filter;  // optional gnuplot condition on the row, e.g. "strcol(1) eq 'notes'"

@@ -2,9 +2,9 @@
 
 #include <iostream>
 
-#include <CLI/CLI.hpp>
 #include <omp.h>
 #include <unistd.h>
+#include <CLI/CLI.hpp>
 
 #include "illum/core/error.hpp"
 
