@@ -33,6 +33,7 @@ struct SceneHit {
 SceneHit nearest_hit(Ray ray, const std::vector<Sphere>& spheres, WorkCounters& counters) {
   SceneHit nearest;
   ++counters.rays_cast;
+  ++counters.primary_rays;
   for (std::size_t k = 0; k < spheres.size(); ++k) {
     ++counters.intersection_tests;
     if (auto hit = intersect(ray, spheres[k])) {
@@ -208,6 +209,10 @@ void run_study(OutputFolder& out, bool quick, std::uint64_t seed) {
   const int per_point = quick ? 64 : 2000;
   const int steps = quick ? 5 : 17;  // half-decades from 1 to 1e8
   Rng rng(seed);
+  // The summary pivots the full table: one row per decade of distance/radius
+  // (sphere moving away), the max error of each method, and the median cost.
+  Table summary({"distance_over_radius", "notes_float", "stable_float", "notes_double", "stable_double"});
+  std::vector<std::vector<double>> cost(std::size(methods));
   Table table({"sweep", "distance", "radius", "distance_over_radius", "form", "precision", "median_rel_error",
                "max_rel_error", "ns_per_test"});
   for (const char* sweep : {"moving_away", "shrinking"}) {
@@ -216,7 +221,9 @@ void run_study(OutputFolder& out, bool quick, std::uint64_t seed) {
       const bool away = sweep[0] == 'm';
       const double distance = away ? ratio : 1.0, radius = away ? 1.0 : 1.0 / ratio;
       const std::vector<Case> cases = make_cases(distance, radius, per_point, rng);
-      for (const Method& m : methods) {
+      std::vector<Table::Cell> summary_row{ratio};
+      for (std::size_t mi = 0; mi < std::size(methods); ++mi) {
+        const Method& m = methods[mi];
         std::vector<double> errors;
         errors.reserve(cases.size());
         for (const Case& c : cases) errors.push_back(relative_error(c, m));
@@ -224,13 +231,27 @@ void run_study(OutputFolder& out, bool quick, std::uint64_t seed) {
         const double ns = quick ? 0.0 : nanoseconds_per_root_pair(cases, m);
         table.add_row({std::string(sweep), distance, radius, ratio, std::string(m.form),
                        std::string(m.precision), errors[errors.size() / 2], errors.back(), ns});
+        summary_row.push_back(errors.back());
+        cost[mi].push_back(ns);
       }
+      if (away && k % 2 == 0) summary.add_row(summary_row);
       report_progress("lesson01", std::string("study (") + sweep + ")", k + 1, steps);
     }
   }
   out.table(table, "study_precision",
             "Relative error of the nearer root (1 = wrong hit/miss) and cost, notes' form vs stable form, "
             "float vs double");
+
+  std::vector<Table::Cell> cost_row{std::string("median ns per test")};
+  for (auto& c : cost) {
+    std::sort(c.begin(), c.end());
+    cost_row.push_back(c[c.size() / 2]);
+  }
+  summary.add_row(cost_row);
+  out.table(summary, "study_summary",
+            "Max relative error of the nearer root per decade of distance/radius (1 = a wrong hit/miss "
+            "verdict), and the median cost per test",
+            2);
 
   PlotSpec spec;
   spec.title = "Ray–sphere: nearer root, max relative error (sphere moving away, r = 1)";
