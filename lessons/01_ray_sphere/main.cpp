@@ -19,72 +19,21 @@
 #include "illum/geometry/sphere_exact.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
+#include "illum/io/sphere_scene.hpp"
 
 namespace illum {
 namespace {
 
-struct SceneHit {
-  SphereHit hit;
-  int sphere = -1;
-};
-
-// The nearest hit among all spheres: each test shrinks the ray's range, so a
-// farther sphere can no longer return a hit behind a nearer one.
-SceneHit nearest_hit(Ray ray, const std::vector<Sphere>& spheres, WorkCounters& counters) {
-  SceneHit nearest;
-  ++counters.rays_cast;
-  ++counters.primary_rays;
-  for (std::size_t k = 0; k < spheres.size(); ++k) {
-    ++counters.intersection_tests;
-    if (auto hit = intersect(ray, spheres[k])) {
-      ++counters.hits;
-      nearest = {*hit, static_cast<int>(k)};
-      ray.range.hi = hit->s;
-    }
-  }
-  return nearest;
-}
-
 void render_scene(OutputFolder& out, bool quick) {
-  const int width = quick ? 96 : 480, height = quick ? 64 : 320;
-  const std::vector<Sphere> spheres = {Sphere({0.0, -100.5, -1.0}, 100.0),  // the ground: a huge sphere
-                                       Sphere({0.0, 0.0, -1.2}, 0.5), Sphere({-1.05, -0.1, -1.5}, 0.4),
-                                       Sphere({1.1, 0.05, -1.9}, 0.55), Sphere({0.35, -0.38, -0.55}, 0.12)};
-  const PinholeCamera camera({0.0, 0.35, 0.9}, {0.0, -0.05, -1.3}, {0.0, 1.0, 0.0}, 50.0, width, height);
-
-  Image silhouette(width, height), normals(width, height), depth(width, height);
-  std::vector<double> s_of(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), -1.0);
-  WorkCounters total;
-#pragma omp parallel
-  {
-    WorkCounters counters;
-#pragma omp for schedule(dynamic, 4)
-    for (int j = 0; j < height; ++j)
-      for (int i = 0; i < width; ++i) {
-        const SceneHit h = nearest_hit(camera.pixel_ray(i, j), spheres, counters);
-        if (h.sphere < 0) continue;
-        silhouette.at(i, j) = Color(1.0);
-        normals.at(i, j) = 0.5 * (h.hit.normal + Vec3(1.0));  // the classic normal-to-RGB map
-        s_of[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i)] =
-            h.hit.s;
-      }
-#pragma omp critical
-    total += counters;
-  }
-  // Depth: near is bright, far is dark, over the range of distances seen.
-  double near = infinity, far = 0;
-  for (double s : s_of)
-    if (s >= 0) near = std::min(near, s), far = std::max(far, s);
-  for (int j = 0; j < height; ++j)
-    for (int i = 0; i < width; ++i) {
-      const double s =
-          s_of[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i)];
-      if (s >= 0) depth.at(i, j) = colormap_viridis(1.0 - (s - near) / (far - near));
-    }
-  out.image(silhouette, "silhouette", "Silhouette: white where a primary ray hits a sphere");
-  out.image(normals, "normals", "Outward normals (P − Pc)/r mapped to RGB as (n + 1)/2");
-  out.image(depth, "depth", "Depth: the ray parameter s of the nearest hit, near bright, far dark");
-  out.text("render_counts.txt", total.summary() + "\n", "Work counted while rendering the three images");
+  const SphereScene scene = load_sphere_scene("spheres");  // scenes/spheres.json, compiled in
+  const SpherePreview preview = render_sphere_preview(scene, quick ? 96 : 0, quick ? 64 : 0);
+  out.image(preview.silhouette, "silhouette", "Silhouette: white where a primary ray hits a sphere");
+  out.image(preview.normals, "normals", "Outward normals (P − Pc)/r mapped to RGB as (n + 1)/2");
+  out.image(preview.depth, "depth", "Depth: the ray parameter s of the nearest hit, near bright, far dark");
+  out.image(preview.shaded, "shaded",
+            "Each sphere's colour times a Lambert term for a fixed light direction");
+  out.text("render_counts.txt", preview.counters.summary() + "\n",
+           "Work counted while rendering the preview images");
 }
 
 // One sphere of radius 1 at distance `distance`, seen in single precision

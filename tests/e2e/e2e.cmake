@@ -5,3 +5,9 @@ foreach(program IN LISTS ILLUM_LESSON_PROGRAMS)
                    --run $<TARGET_FILE:${program}> --out ${CMAKE_BINARY_DIR}/test-out/${program})
   set_tests_properties(e2e_${program} PROPERTIES FIXTURES_SETUP lesson_outputs LABELS e2e)
 endforeach()
+
+# The command line refuses a bad scene with one clear line and writes nothing.
+add_test(NAME e2e_illum_render_bad_scene
+         COMMAND ${CMAKE_COMMAND} -DILLUM=$<TARGET_FILE:illum_cli> -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/e2e/bad_radius.json
+                 -DOUT=${CMAKE_BINARY_DIR}/test-out/illum-bad -P ${CMAKE_CURRENT_SOURCE_DIR}/e2e/expect_refusal.cmake)
+add_test(NAME e2e_illum_render COMMAND illum_cli render spheres --quick --out ${CMAKE_BINARY_DIR}/test-out/illum-render)

@@ -1,0 +1,106 @@
+#include "illum/io/json_reader.hpp"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "illum/core/error.hpp"
+
+namespace illum {
+
+JsonReader::JsonReader(std::shared_ptr<const Document> doc, const nlohmann::json* node, std::string path)
+    : doc_(std::move(doc)), node_(node), path_(std::move(path)) {}
+
+JsonReader JsonReader::parse_text(const std::string& text, const std::string& file_name) {
+  auto doc = std::make_shared<Document>();
+  doc->file = file_name;
+  try {
+    doc->root = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(file_name, "(file)", "(not JSON)", std::string("cannot parse JSON: ") + e.what());
+  }
+  const nlohmann::json* root = &doc->root;
+  return JsonReader(std::move(doc), root, "");
+}
+
+JsonReader JsonReader::parse_file(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string(), "(file)", "(unreadable)", "cannot open the file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_text(text.str(), file.string());
+}
+
+void JsonReader::fail(const std::string& problem) const {
+  std::string value = node_->dump();
+  if (value.size() > 80) value = value.substr(0, 77) + "...";
+  throw InputError(file(), path_.empty() ? "(root)" : path_, value, problem);
+}
+
+bool JsonReader::has(const std::string& key) const { return node_->is_object() && node_->contains(key); }
+
+JsonReader JsonReader::at(const std::string& key) const {
+  if (!node_->is_object()) fail("expected an object with a field '" + key + "'");
+  const auto it = node_->find(key);
+  const std::string child = path_.empty() ? key : path_ + "." + key;
+  if (it == node_->end()) throw InputError(file(), child, "(missing)", "this field is required");
+  return JsonReader(doc_, &*it, child);
+}
+
+JsonReader JsonReader::at(std::size_t index) const {
+  if (!node_->is_array() || index >= node_->size())
+    fail("expected an array with an element " + std::to_string(index));
+  return JsonReader(doc_, &(*node_)[index], path_ + "[" + std::to_string(index) + "]");
+}
+
+std::size_t JsonReader::size() const {
+  if (!node_->is_array()) fail("expected an array");
+  return node_->size();
+}
+
+double JsonReader::number() const {
+  // nlohmann-json reads NaN and Infinity only as strings or null; both are refused here.
+  if (!node_->is_number()) fail("expected a number");
+  const double x = node_->get<double>();
+  if (!std::isfinite(x)) fail("the number must be finite");
+  return x;
+}
+
+double JsonReader::positive_number() const {
+  const double x = number();
+  if (!(x > 0)) fail("must be positive");
+  return x;
+}
+
+int JsonReader::integer(int lo, int hi) const {
+  if (!node_->is_number_integer()) fail("expected an integer");
+  const auto x = node_->get<long long>();
+  if (x < lo || x > hi) fail("must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return static_cast<int>(x);
+}
+
+std::string JsonReader::string() const {
+  if (!node_->is_string()) fail("expected a string");
+  return node_->get<std::string>();
+}
+
+bool JsonReader::boolean() const {
+  if (!node_->is_boolean()) fail("expected true or false");
+  return node_->get<bool>();
+}
+
+Vec3 JsonReader::vec3() const {
+  if (!node_->is_array() || node_->size() != 3) fail("expected three numbers [x, y, z]");
+  return {at(0).number(), at(1).number(), at(2).number()};
+}
+
+Vec3 JsonReader::vec3_in(double lo, double hi) const {
+  const Vec3 v = vec3();
+  for (int k = 0; k < 3; ++k)
+    if (!(v[k] >= lo && v[k] < hi))
+      at(static_cast<std::size_t>(k))
+          .fail("must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + ")");
+  return v;
+}
+
+}  // namespace illum

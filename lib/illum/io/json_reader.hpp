@@ -1,0 +1,61 @@
+#pragma once
+// Reading a JSON file field by field, so that every error names the file,
+// the field's path ("spheres[2].radius") and the offending value
+// (DESIGN.md: "a clear error naming the file, field and value").
+//
+//   const JsonReader root = JsonReader::parse_file("scenes/spheres.json");
+//   for (std::size_t i = 0; i < root.at("spheres").size(); ++i) {
+//     const JsonReader s = root.at("spheres").at(i);
+//     double r = s.at("radius").positive_number();   // InputError if ≤ 0, NaN, or not a number
+//   }
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "illum/core/vec.hpp"
+
+namespace illum {
+
+class JsonReader {
+ public:
+  // Reads and parses the file; throws InputError naming the file (and the
+  // parser's line and column) when it cannot be read or is not JSON.
+  static JsonReader parse_file(const std::filesystem::path& file);
+  // Parses text as if it came from `file_name` (for tests and embedded scenes).
+  static JsonReader parse_text(const std::string& text, const std::string& file_name);
+
+  const std::string& file() const { return doc_->file; }
+  const std::string& path() const { return path_; }  // "" for the root, then "a.b[2].c"
+  const nlohmann::json& json() const { return *node_; }
+
+  bool has(const std::string& key) const;
+  JsonReader at(const std::string& key) const;  // a required member of an object
+  JsonReader at(std::size_t index) const;       // an element of an array
+  std::size_t size() const;                     // of an array (an error for anything else)
+
+  double number() const;           // finite
+  double positive_number() const;  // finite and > 0
+  int integer(int lo, int hi) const;
+  std::string string() const;
+  bool boolean() const;
+  Vec3 vec3() const;                         // [x, y, z], finite
+  Vec3 vec3_in(double lo, double hi) const;  // every component in [lo, hi)
+
+  // Throws InputError(file, path, value-as-JSON, problem).
+  [[noreturn]] void fail(const std::string& problem) const;
+
+ private:
+  struct Document {
+    std::string file;
+    nlohmann::json root;
+  };
+  JsonReader(std::shared_ptr<const Document> doc, const nlohmann::json* node, std::string path);
+  std::shared_ptr<const Document> doc_;
+  const nlohmann::json* node_;
+  std::string path_;
+};
+
+}  // namespace illum

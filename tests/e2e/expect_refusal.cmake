@@ -1,0 +1,17 @@
+# Runs `illum render SCENE --out OUT` on a bad scene and checks that it fails
+# with a message naming the file, the field and the value, and writes nothing.
+file(REMOVE_RECURSE ${OUT})
+execute_process(COMMAND ${ILLUM} render ${SCENE} --out ${OUT} RESULT_VARIABLE status ERROR_VARIABLE err)
+if(status EQUAL 0)
+  message(FATAL_ERROR "illum accepted the bad scene ${SCENE}")
+endif()
+foreach(expected "bad_radius.json" "spheres[1].radius" "-0.5" "must be positive")
+  string(FIND "${err}" "${expected}" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "the error message does not mention '${expected}':\n${err}")
+  endif()
+endforeach()
+if(EXISTS ${OUT})
+  message(FATAL_ERROR "illum wrote ${OUT} although the scene was refused")
+endif()
+message(STATUS "refused as expected: ${err}")
