@@ -7,6 +7,7 @@
 //     resource (a font, a script) that fails to load,
 //   - a script error on the page,
 //   - a deck with no slides.
+// Content taller than its slide is printed as a warning (it does not fail).
 //
 //   node tests/slides/check_decks.mjs [--timeout SECONDS] PATH...
 //
@@ -85,6 +86,11 @@ function inspectPage() {
       const at = text.indexOf('ParseError');
       problems.push({ slide: where, reason: `KaTeX text: ${JSON.stringify(text.slice(at, at + 120))}` });
     }
+    // Content taller than the slide is cut off when presenting: a warning, not a failure.
+    const section = slide.querySelector('section');
+    if (section && section.scrollHeight > section.clientHeight + 2)
+      problems.push({ slide: where, warning: true,
+        reason: `content overflows the slide by ${section.scrollHeight - section.clientHeight}px` });
     for (const img of slide.querySelectorAll('img')) {
       if (!img.complete || img.naturalWidth === 0)
         problems.push({ slide: where, reason: `image failed to load: ${img.getAttribute('src')}` });
@@ -110,6 +116,7 @@ async function loadBackgrounds(backgrounds) {
 
 async function checkDeck(browser, deck, timeoutMs) {
   const problems = [];
+  const warnings = [];
   const add = (slide, reason) => problems.push({ deck, slide, reason });
   const page = await browser.newPage();
   try {
@@ -132,10 +139,13 @@ async function checkDeck(browser, deck, timeoutMs) {
     await page.goto(pathToFileURL(deck).href, { waitUntil: 'load', timeout: timeoutMs });
     const { count, problems: found, backgrounds } = await page.evaluate(inspectPage);
     if (count === 0) add('-', 'the deck has no slides (is it a Marp deck with `marp: true`?)');
-    for (const p of found) add(p.slide, p.reason);
+    for (const p of found) {
+      if (p.warning) warnings.push({ deck, slide: p.slide, reason: p.reason });
+      else add(p.slide, p.reason);
+    }
     for (const b of await page.evaluate(loadBackgrounds, backgrounds))
       add(b.slide, `background image failed to load: ${b.src}`);
-    return { slides: count, problems };
+    return { slides: count, problems, warnings };
   } finally {
     await page.close().catch(() => {});
   }
@@ -180,6 +190,7 @@ async function main() {
       if (result.problems.length) console.log(`FAIL ${name}: ${result.slides} slides, ${result.problems.length} problem(s)`);
       else console.log(`ok   ${name}: ${result.slides} slides`);
       all.push(...result.problems);
+      for (const w of result.warnings || []) console.log(`  warning: ${name} slide ${w.slide}: ${w.reason}`);
     }
   } finally {
     if (browser) await browser.close().catch(() => {});
