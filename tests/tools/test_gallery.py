@@ -1,0 +1,458 @@
+#!/usr/bin/env python3
+"""Unit tests of the main job's Python side: tools/gallery (output checks, the
+index page, link checks, atomic writes), tools/check_outputs.py and
+tools/main_job.py, against the fake lesson program in tests/slides/fixtures/.
+
+    python3 tests/tools/test_gallery.py        (ctest: gallery_tools)
+"""
+from __future__ import annotations
+
+import contextlib
+import io
+import json
+import os
+import shutil
+import struct
+import subprocess
+import sys
+import tempfile
+import unittest
+import zlib
+from pathlib import Path
+
+SOURCE = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(SOURCE / "tools"))
+
+import check_outputs  # noqa: E402
+import main_job  # noqa: E402
+from gallery import fsutil, index, outputs  # noqa: E402
+
+FAKE_LESSON = SOURCE / "tests" / "slides" / "fixtures" / "fake_lesson.py"
+
+
+def make_png(width: int = 3, height: int = 2) -> bytes:
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    raw = b"".join(b"\x00" + b"\x10\x20\x30" * width for _ in range(height))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+GOOD_MD = "| n | error |\n|---|---:|\n| 1 | 0.5 |\n| 2 | 0.25 |\n"
+GOOD_CSV = "n,error\n1,0.5\n2,0.25\n"
+
+
+class TempDirTest(unittest.TestCase):
+    def setUp(self) -> None:
+        self._tmp = tempfile.TemporaryDirectory(prefix="illum-gallery-test-")
+        self.tmp = Path(self._tmp.name)
+
+    def tearDown(self) -> None:
+        self._tmp.cleanup()
+
+    def write(self, rel: str, data: bytes | str) -> Path:
+        path = self.tmp / rel
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(data if isinstance(data, bytes) else data.encode())
+        return path
+
+    def write_lesson_output(self, folder: str, manifest: dict, files: dict[str, bytes | str]) -> Path:
+        for name, data in files.items():
+            self.write(f"{folder}/{name}", data)
+        self.write(f"{folder}/manifest.json", json.dumps(manifest))
+        return self.tmp / folder
+
+
+# --- single-file checks -------------------------------------------------------------
+
+
+class PngCheck(TempDirTest):
+    def test_good_png_passes_and_reports_its_size(self):
+        p = self.write("a.png", make_png(7, 5))
+        self.assertEqual(outputs.check_png(p), [])
+        self.assertEqual(outputs.png_size(p), (7, 5))
+
+    def test_wrong_signature_is_named(self):
+        p = self.write("a.png", b"GIF89a" + make_png()[6:])
+        [problem] = outputs.check_png(p)
+        self.assertIn("not a PNG", problem)
+
+    def test_zero_size_is_rejected(self):
+        problems = outputs.check_png(self.write("a.png", make_png(0, 4)))
+        self.assertTrue(any("0x4" in p for p in problems), problems)
+
+    def test_truncated_png_is_caught_by_the_missing_iend(self):
+        problems = outputs.check_png(self.write("a.png", make_png()[:-12]))
+        self.assertTrue(any("IEND" in p for p in problems), problems)
+
+    def test_corrupt_ihdr_crc_is_caught(self):
+        data = bytearray(make_png())
+        data[30] ^= 0xFF
+        problems = outputs.check_png(self.write("a.png", bytes(data)))
+        self.assertTrue(any("CRC" in p for p in problems), problems)
+
+
+class HdrCheck(TempDirTest):
+    def test_radiance_header_passes(self):
+        p = self.write("a.hdr", b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 2\n" + bytes(8))
+        self.assertEqual(outputs.check_hdr(p), [])
+
+    def test_other_format_fails(self):
+        [problem] = outputs.check_hdr(self.write("a.hdr", b"P6\n1 1\n255\n\0\0\0"))
+        self.assertIn("#?RADIANCE", problem)
+
+    def test_bad_resolution_line_fails(self):
+        [problem] = outputs.check_hdr(self.write("a.hdr", b"#?RADIANCE\n\n1x2\n" + bytes(8)))
+        self.assertIn("resolution", problem)
+
+
+class CsvCheck(TempDirTest):
+    def test_good_csv_passes(self):
+        self.assertEqual(outputs.check_csv(self.write("t.csv", GOOD_CSV)), [])
+
+    def test_quoted_commas_are_one_field(self):
+        self.assertEqual(outputs.check_csv(self.write("t.csv", 'name,value\n"a, b",1\n')), [])
+
+    def test_ragged_row_names_its_line(self):
+        [problem] = outputs.check_csv(self.write("t.csv", "a,b\n1,2\n3\n"))
+        self.assertIn("line 3 has 1 fields, the header has 2", problem)
+
+    def test_header_only_fails(self):
+        [problem] = outputs.check_csv(self.write("t.csv", "a,b\n"))
+        self.assertIn("no data rows", problem)
+
+    def test_blank_file_fails(self):
+        self.assertTrue(outputs.check_csv(self.write("t.csv", "\n")))
+
+
+class MarkdownTables(TempDirTest):
+    def test_good_table_parses_with_alignment(self):
+        tables, problems = outputs.parse_markdown_tables(GOOD_MD)
+        self.assertEqual(problems, [])
+        self.assertEqual(tables[0].header, ["n", "error"])
+        self.assertEqual(tables[0].align, ["", "right"])
+        self.assertEqual(tables[0].rows, [["1", "0.5"], ["2", "0.25"]])
+
+    def test_escaped_pipe_stays_in_its_cell(self):
+        tables, problems = outputs.parse_markdown_tables("| a | b |\n|---|---|\n| x \\| y | z |\n")
+        self.assertEqual(problems, [])
+        self.assertEqual(tables[0].rows, [["x | y", "z"]])
+
+    def test_missing_separator_is_reported(self):
+        problems = outputs.check_markdown_table(self.write("t.md", "| a | b |\n| 1 | 2 |\n"))
+        self.assertTrue(any("separator" in p for p in problems), problems)
+
+    def test_row_with_wrong_cell_count_is_reported(self):
+        problems = outputs.check_markdown_table(self.write("t.md", "| a | b |\n|---|---|\n| 1 |\n"))
+        self.assertTrue(any("1 cells, the header has 2" in p for p in problems), problems)
+
+    def test_file_without_table_fails(self):
+        [problem] = outputs.check_markdown_table(self.write("t.md", "just words\n"))
+        self.assertIn("no Markdown table", problem)
+
+    def test_prose_around_a_table_is_fine(self):
+        self.assertEqual(outputs.check_markdown_table(self.write("t.md", "Intro\n\n" + GOOD_MD + "\nDone.\n")), [])
+
+
+# --- manifests and whole folders ----------------------------------------------------
+
+
+class Manifests(TempDirTest):
+    def manifest(self, **overrides):
+        data = {"id": "lesson07", "title": "Primary rays",
+                "outputs": [{"kind": "image", "file": "a.png", "caption": "A"}]}
+        data.update(overrides)
+        return data
+
+    def test_missing_manifest(self):
+        with self.assertRaisesRegex(outputs.ManifestError, "not found"):
+            outputs.load_manifest(self.tmp)
+
+    def test_invalid_json(self):
+        self.write("manifest.json", "{nope")
+        with self.assertRaisesRegex(outputs.ManifestError, "not valid JSON"):
+            outputs.load_manifest(self.tmp)
+
+    def test_unknown_kind_and_escaping_path_are_named(self):
+        self.write("manifest.json", json.dumps(self.manifest(outputs=[
+            {"kind": "video", "file": "a.mp4"}, {"kind": "image", "file": "../x.png"}])))
+        with self.assertRaises(outputs.ManifestError) as ctx:
+            outputs.load_manifest(self.tmp)
+        self.assertIn("unknown kind 'video'", str(ctx.exception))
+        self.assertIn("plain name inside the output folder", str(ctx.exception))
+
+    def test_good_folder_has_no_problems(self):
+        folder = self.write_lesson_output("o", self.manifest(outputs=[
+            {"kind": "image", "file": "a.png", "caption": "A"},
+            {"kind": "table", "file": "t.csv", "caption": "T"},
+            {"kind": "markdown", "file": "t.md", "caption": "T"},
+        ]), {"a.png": make_png(), "t.csv": GOOD_CSV, "t.md": GOOD_MD})
+        self.assertEqual(outputs.check_output_folder(folder, "lesson07"), [])
+
+    def test_folder_problems_are_all_reported(self):
+        folder = self.write_lesson_output("o", self.manifest(id="lesson08", outputs=[
+            {"kind": "image", "file": "a.png", "caption": ""},
+            {"kind": "image", "file": "a.png", "caption": ""},
+            {"kind": "image", "file": "gone.png", "caption": ""},
+            {"kind": "image", "file": "pic.jpg", "caption": ""},
+            {"kind": "text", "file": "empty.txt", "caption": ""},
+        ]), {"a.png": make_png(), "pic.jpg": b"x", "empty.txt": b"", "b.png.tmp-123": b"x"})
+        problems = "\n".join(outputs.check_output_folder(folder, "lesson07"))
+        for expected in ("expected 'lesson07'", "listed twice", "gone.png: listed in manifest.json",
+                         "needs a .png file", "empty.txt: empty file", "temporary files left behind"):
+            self.assertIn(expected, problems)
+
+
+# --- check_outputs.py against the fake lesson program --------------------------------
+
+
+class CheckOutputsProgram(TempDirTest):
+    def setUp(self):
+        super().setUp()
+        (self.tmp / "bin").mkdir()
+        self.program = self.tmp / "bin" / "lesson01"
+        self.program.symlink_to(FAKE_LESSON)
+
+    def run_check(self, program: Path, env: dict | None = None) -> tuple[int, str]:
+        old = dict(os.environ)
+        os.environ.update(env or {})
+        buffer = io.StringIO()
+        try:
+            with contextlib.redirect_stdout(buffer):
+                code = check_outputs.main(["--run", str(program), "--out", str(self.tmp / "out" / "lesson01")])
+        finally:
+            os.environ.clear()
+            os.environ.update(old)
+        return code, buffer.getvalue()
+
+    def test_good_program_passes(self):
+        code, text = self.run_check(self.program)
+        self.assertEqual(code, 0, text)
+        self.assertIn("OK: lesson01", text)
+
+    def test_stale_files_are_cleared_first(self):
+        stale = self.write("out/lesson01/old.png", b"stale")
+        code, text = self.run_check(self.program)
+        self.assertEqual(code, 0, text)
+        self.assertFalse(stale.exists())
+
+    def test_each_broken_output_fails_with_its_reason(self):
+        cases = {
+            "png-signature": "not a PNG",
+            "png-empty-size": "both must be non-zero",
+            "csv-ragged": "fields, the header has 3",
+            "md-table": "separator",
+            "missing-file": "missing.png: listed in manifest.json",
+            "hdr": "#?RADIANCE",
+            "exit": "exited with code 1",
+        }
+        for what, reason in cases.items():
+            with self.subTest(what):
+                code, text = self.run_check(self.program, {"FAKE_LESSON_BREAK": what})
+                self.assertEqual(code, 1, text)
+                self.assertIn(reason, text)
+
+    def test_help_and_unknown_flags_are_checked(self):
+        sloppy = self.write("bin/lesson02", "#!/bin/sh\n"
+                            "case \"$1\" in --help) echo 'usage: lesson02 [--out DIR]'; exit 0;; esac\n"
+                            "[ \"$1\" = --quick ] || exit 0\n"
+                            f"exec {sys.executable} {FAKE_LESSON} \"$@\"\n")
+        sloppy.chmod(0o755)
+        code, text = self.run_check(sloppy)
+        self.assertEqual(code, 1, text)
+        self.assertIn("--help does not mention --quick", text)
+        self.assertIn("an unknown flag must be an error", text)
+
+    def test_refuses_to_clear_a_source_tree(self):
+        self.assertIsNotNone(check_outputs.safe_to_clear(SOURCE))
+        self.assertIsNone(check_outputs.safe_to_clear(self.tmp))
+
+
+# --- the index page ------------------------------------------------------------------
+
+
+class IndexPage(TempDirTest):
+    def setUp(self):
+        super().setUp()
+        self.source = self.tmp / "src"
+        self.out = self.tmp / "src" / "out"
+        self.write("src/lessons/01_ray_sphere/README.md", "# Ray and sphere (text)\n")
+        self.write("src/exercises/01_ray_sphere/README.md", "# Exercise\n")
+        self.write("src/slides/01_ray_sphere.md", "---\nmarp: true\n---\n# x\n")
+        self.write("src/slides/README.md", "# not a deck\n")
+        self.write("src/lessons/02_polygons/main.cpp", "int main() {}\n")
+        self.write("src/slides/03_orientation.md", "# deck only\n")
+        self.write("src/out/slides/01_ray_sphere.html", "<html></html>")
+        self.write_lesson_output("src/out/lesson01", {
+            "id": "lesson01", "title": "Ray & sphere",
+            "outputs": [
+                {"kind": "image", "file": "silhouette.png", "caption": "Hits <b>"},
+                {"kind": "table", "file": "study.csv", "caption": "Study"},
+                {"kind": "markdown", "file": "study.md", "caption": "Study"},
+                {"kind": "plot", "file": "study.png", "caption": "Study plot"},
+                {"kind": "script", "file": "study.gp", "caption": "script"},
+                {"kind": "hdr", "file": "radiance.hdr", "caption": "HDR"},
+                {"kind": "table", "file": "only csv.csv", "caption": "CSV alone"},
+                {"kind": "image", "file": "never.png", "caption": "missing"},
+            ]}, {"silhouette.png": make_png(), "study.csv": GOOD_CSV, "study.md": GOOD_MD,
+                 "study.png": make_png(8, 4), "study.gp": "plot 1\n", "radiance.hdr": b"#?RADIANCE\n\n-Y 1 +X 1\n0000",
+                 "only csv.csv": "a,b\n<x>,2\n"})
+        self.write("src/out/lesson05/manifest.json", "{broken")
+
+    def page(self) -> str:
+        target = index.write_index(self.source, self.out)
+        self.assertEqual(target, self.out / "index.html")
+        return target.read_text()
+
+    def test_lessons_are_discovered_from_every_source(self):
+        lessons = index.discover_lessons(self.source, self.out)
+        self.assertEqual([l.number for l in lessons], ["01", "02", "03", "05"])
+        by = {l.number: l for l in lessons}
+        self.assertEqual(by["01"].title, "Ray & sphere")  # the manifest wins
+        self.assertEqual(by["02"].title, "Polygons")  # from the folder name
+        self.assertEqual(by["03"].title, "Orientation")  # from the deck's name
+        self.assertIsNotNone(by["05"].manifest_error)
+        self.assertEqual(by["01"].deck_html, self.out / "slides" / "01_ray_sphere.html")
+        self.assertIsNone(by["03"].deck_html)
+
+    def test_page_shows_outputs_and_links(self):
+        html = self.page()
+        self.assertIn("Ray &amp; sphere", html)
+        self.assertIn('<a href="lesson01/silhouette.png"><img src="lesson01/silhouette.png"', html)
+        self.assertIn("Hits &lt;b&gt;", html)
+        self.assertIn('<th class="right">error</th>', html)  # the Markdown table, rendered
+        self.assertIn('<td class="right">0.25</td>', html)
+        self.assertIn('<a href="lesson01/study.csv">CSV</a>', html)
+        self.assertIn('<a href="lesson01/study.gp">gnuplot script</a>', html)
+        self.assertIn('href="lesson01/radiance.hdr"', html)
+        self.assertIn('href="lesson01/only%20csv.csv"', html)
+        self.assertIn("<td>&lt;x&gt;</td>", html)  # a CSV without Markdown, rendered and escaped
+        self.assertIn("never.png</code> <span class=\"note\">(listed in manifest.json but missing)", html)
+        self.assertIn('href="slides/01_ray_sphere.html"', html)
+        self.assertIn('href="../lessons/01_ray_sphere/README.md"', html)
+        self.assertIn('href="../exercises/01_ray_sphere/README.md"', html)
+        self.assertIn('href="../slides/03_orientation.md"', html)  # deck not built: its source
+        self.assertIn("no lesson text yet", html)
+        self.assertIn('class="error"', html)  # lesson 05's broken manifest, shown, not fatal
+        self.assertIn("No outputs yet", html)
+
+    def test_page_is_self_contained_and_every_link_resolves(self):
+        self.page()
+        html = (self.out / "index.html").read_text()
+        self.assertNotIn("http://", html)
+        self.assertNotIn("https://", html)
+        self.assertNotIn("<link", html)
+        self.assertNotIn("<script", html)
+        self.assertEqual(index.check_links(self.out / "index.html"), [])
+
+    def test_index_outside_the_source_tree_links_back_into_it(self):
+        out = self.tmp / "build" / "test-out"
+        shutil.copytree(self.out / "lesson01", out / "lesson01")
+        html = index.write_index(self.source, out).read_text()
+        self.assertIn('href="../../src/lessons/01_ray_sphere/README.md"', html)
+        self.assertEqual(index.check_links(out / "index.html"), [])
+
+    def test_link_check_finds_broken_links_and_external_assets(self):
+        page = self.write("p/index.html", '<a href="#top">x</a><a href="gone.html">y</a><img src="ok.png">'
+                          '<img src="https://example.org/x.png"><a href="https://example.org">fine</a>'
+                          '<h1 id="top"></h1><a href="#nowhere">z</a>')
+        self.write("p/ok.png", make_png())
+        problems = "\n".join(index.check_links(page))
+        self.assertIn("gone.html", problems)
+        self.assertIn("external asset", problems)
+        self.assertIn("'nowhere'", problems)
+        self.assertNotIn("ok.png", problems)
+        self.assertNotIn("#top", problems)
+        self.assertEqual(len(index.check_links(page)), 3)
+
+    def test_markdown_table_html_escapes_cells(self):
+        html = index.markdown_table_html("| a<b |\n|:-:|\n| <script> |\n")
+        self.assertIn('<th class="center">a&lt;b</th>', html)
+        self.assertIn("&lt;script&gt;", html)
+        self.assertEqual(index.markdown_table_html("no table"), "")
+
+
+class AtomicWrites(TempDirTest):
+    def test_write_replaces_and_leaves_no_temporary(self):
+        target = self.tmp / "sub" / "f.txt"
+        fsutil.atomic_write_text(target, "one")
+        fsutil.atomic_write_text(target, "two")
+        self.assertEqual(target.read_text(), "two")
+        self.assertEqual(sorted(p.name for p in target.parent.iterdir()), ["f.txt"])
+
+    def test_failed_write_keeps_the_old_file(self):
+        target = self.tmp / "f.txt"
+        fsutil.atomic_write_text(target, "old")
+
+        class Boom(Exception):
+            pass
+
+        original = os.fsync
+
+        def fail(_fd):
+            raise Boom()
+
+        os.fsync = fail
+        try:
+            with self.assertRaises(Boom):
+                fsutil.atomic_write_text(target, "new")
+        finally:
+            os.fsync = original
+        self.assertEqual(target.read_text(), "old")
+        self.assertEqual([p.name for p in self.tmp.iterdir()], ["f.txt"])
+
+
+# --- main_job.py ----------------------------------------------------------------------
+
+
+class MainJob(TempDirTest):
+    def run_job(self, *args: str) -> tuple[int, str]:
+        result = subprocess.run([sys.executable, str(SOURCE / "tools" / "main_job.py"), *args],
+                                capture_output=True, text=True)
+        return result.returncode, result.stdout + result.stderr
+
+    def test_runs_every_lesson_program_then_writes_the_index(self):
+        (self.tmp / "bin").mkdir()
+        for nn in ("01", "04"):
+            (self.tmp / "bin" / f"lesson{nn}").symlink_to(FAKE_LESSON)
+        self.write("bin/lesson_helper.txt", "not a program")
+        out = self.tmp / "out"
+        code, text = self.run_job("--bin", str(self.tmp / "bin"), "--out", str(out), "--quick",
+                                  "--only", "lessons,index", "--check-links")
+        self.assertEqual(code, 0, text)
+        self.assertIn("[2/2]", text)
+        for nn in ("01", "04"):
+            self.assertEqual(outputs.check_output_folder(out / f"lesson{nn}", f"lesson{nn}"), [])
+        html = (out / "index.html").read_text()
+        self.assertIn('id="lesson04"', html)
+        self.assertIn("Quick run", html)
+
+    def test_a_failing_lesson_stops_the_job_and_is_named(self):
+        (self.tmp / "bin").mkdir()
+        (self.tmp / "bin" / "lesson03").symlink_to(FAKE_LESSON)
+        env = dict(os.environ, FAKE_LESSON_BREAK="exit")
+        result = subprocess.run([sys.executable, str(SOURCE / "tools" / "main_job.py"), "--bin",
+                                 str(self.tmp / "bin"), "--out", str(self.tmp / "out")],
+                                capture_output=True, text=True, env=env)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("lesson03 failed (exit code 1)", result.stderr)
+        self.assertFalse((self.tmp / "out" / "index.html").exists())
+
+    def test_an_empty_bin_folder_is_an_error(self):
+        (self.tmp / "bin").mkdir()
+        code, text = self.run_job("--bin", str(self.tmp / "bin"), "--out", str(self.tmp / "out"))
+        self.assertEqual(code, 1)
+        self.assertIn("no lessonNN programs", text)
+
+    def test_program_discovery_ignores_other_files(self):
+        (self.tmp / "bin").mkdir()
+        for name in ("lesson01", "lesson12", "lesson1", "lesson01.old", "illum"):
+            p = self.write(f"bin/{name}", "#!/bin/sh\n")
+            p.chmod(0o755)
+        self.write("bin/lesson09", "#!/bin/sh\n")  # not executable
+        self.assertEqual([p.name for p in main_job.find_programs(self.tmp / "bin")], ["lesson01", "lesson12"])
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=1)

@@ -1,0 +1,391 @@
+"""out/index.html: one self-contained page that shows every lesson's outputs.
+
+Lessons are discovered, never listed: a lesson number NN appears when any of
+lessons/NN_*/, exercises/NN_*/, slides/NN_*.md or OUT/lessonNN/manifest.json
+exists. Per lesson the page shows its title (from the manifest), images and
+plots as thumbnails linking to full size, tables rendered from their Markdown
+with a link to the CSV, every other file as a link, and links to the built
+deck, the lesson text and the exercise (relative paths into the source tree).
+
+The page has inline CSS only and no external assets. `check_links` verifies
+that every local href/src in a written page resolves.
+"""
+from __future__ import annotations
+
+import csv
+import html
+import io
+import os
+import re
+from dataclasses import dataclass, field
+from html.parser import HTMLParser
+from pathlib import Path
+from urllib.parse import quote, unquote, urlsplit
+
+from .fsutil import atomic_write_text
+from .outputs import Manifest, ManifestError, Output, load_manifest, parse_markdown_tables, png_size
+
+_NN_DIR = re.compile(r"^(\d\d)_[A-Za-z0-9_\-]+$")
+_NN_DECK = re.compile(r"^(\d\d)_[A-Za-z0-9_\-]+\.md$")
+_PROGRAM_DIR = re.compile(r"^lesson(\d\d)$")
+
+
+@dataclass
+class Lesson:
+    number: str  # "01"
+    slug: str = ""  # "01_ray_sphere" (from the lesson folder or the deck), or ""
+    title: str = ""
+    output_dir: Path | None = None  # OUT/lessonNN
+    manifest: Manifest | None = None
+    manifest_error: str | None = None
+    lesson_readme: Path | None = None
+    exercise_readme: Path | None = None
+    deck_source: Path | None = None
+    deck_html: Path | None = None  # OUT/slides/NN_topic.html when it was built
+
+    @property
+    def id(self) -> str:
+        return f"lesson{self.number}"
+
+
+def _first_heading(readme: Path) -> str:
+    try:
+        for line in readme.read_text(encoding="utf-8").splitlines():
+            if line.startswith("# "):
+                return line[2:].strip()
+    except (OSError, UnicodeDecodeError):
+        pass
+    return ""
+
+
+def _title_from_slug(slug: str) -> str:
+    words = slug[3:].replace("_", " ").replace("-", " ").strip()
+    return words[:1].upper() + words[1:] if words else ""
+
+
+def discover_lessons(source: Path, out: Path, slides_dir: Path | None = None) -> list[Lesson]:
+    """Every lesson found in the source tree or the output folder, by number."""
+    source, out = Path(source), Path(out)
+    slides_dir = Path(slides_dir) if slides_dir else source / "slides"
+    lessons: dict[str, Lesson] = {}
+
+    def get(nn: str) -> Lesson:
+        return lessons.setdefault(nn, Lesson(nn))
+
+    for folder_name, attr in (("lessons", "lesson_readme"), ("exercises", "exercise_readme")):
+        base = source / folder_name
+        if base.is_dir():
+            for d in sorted(base.iterdir()):
+                m = _NN_DIR.match(d.name)
+                if d.is_dir() and m:
+                    lesson = get(m.group(1))
+                    lesson.slug = lesson.slug or d.name  # lessons/ first, then exercises/
+                    if (d / "README.md").is_file():
+                        setattr(lesson, attr, d / "README.md")
+    if slides_dir.is_dir():
+        for f in sorted(slides_dir.iterdir()):
+            m = _NN_DECK.match(f.name)
+            if f.is_file() and m:
+                lesson = get(m.group(1))
+                lesson.deck_source = f
+                lesson.slug = lesson.slug or f.stem
+                built = out / "slides" / (f.stem + ".html")
+                if built.is_file():
+                    lesson.deck_html = built
+    if out.is_dir():
+        for d in sorted(out.iterdir()):
+            m = _PROGRAM_DIR.match(d.name)
+            if d.is_dir() and m and (d / "manifest.json").exists():
+                get(m.group(1))
+    for nn, lesson in lessons.items():
+        folder = out / f"lesson{nn}"
+        if (folder / "manifest.json").exists():
+            lesson.output_dir = folder
+            try:
+                lesson.manifest = load_manifest(folder)
+            except ManifestError as e:
+                lesson.manifest_error = str(e)
+        lesson.title = ((lesson.manifest.title if lesson.manifest else "")
+                        or (_first_heading(lesson.lesson_readme) if lesson.lesson_readme else "")
+                        or _title_from_slug(lesson.slug) or f"Lesson {nn}")
+    return [lessons[nn] for nn in sorted(lessons)]
+
+
+# --- HTML --------------------------------------------------------------------------
+
+CSS = """
+:root { --fg:#1d2330; --muted:#5b6475; --line:#dde2ea; --bg:#f6f7f9; --card:#fff; --accent:#1f5fbf; }
+* { box-sizing: border-box; }
+body { margin:0; font:15px/1.5 system-ui,-apple-system,"Segoe UI",Roboto,sans-serif; color:var(--fg); background:var(--bg); }
+header, main, footer { max-width: 1180px; margin: 0 auto; padding: 0 20px; }
+header { padding-top: 28px; }
+header h1 { margin: 0 0 4px; font-size: 28px; }
+header p { margin: 0; color: var(--muted); }
+nav.toc { margin: 16px 0 8px; display:flex; flex-wrap:wrap; gap:6px 14px; }
+nav.toc a { text-decoration:none; color:var(--accent); }
+a { color: var(--accent); }
+section.lesson { background:var(--card); border:1px solid var(--line); border-radius:10px; padding:18px 22px; margin:22px 0; }
+section.lesson h2 { margin:0 0 6px; font-size:21px; }
+section.lesson h2 .num { color:var(--muted); font-weight:500; margin-right:8px; }
+ul.links { list-style:none; padding:0; margin:0 0 14px; display:flex; flex-wrap:wrap; gap:4px 18px; }
+ul.links .missing { color:var(--muted); }
+h3 { font-size:15px; text-transform:uppercase; letter-spacing:.04em; color:var(--muted); margin:18px 0 8px; }
+.figures { display:grid; grid-template-columns:repeat(auto-fill,minmax(220px,1fr)); gap:14px; }
+figure { margin:0; }
+.figures figure { border:1px solid var(--line); border-radius:8px; padding:8px; background:#fbfcfd; }
+.figures img { display:block; width:100%; height:180px; object-fit:contain; background:#eef0f3; border-radius:4px; }
+.figures img.pixel { image-rendering: pixelated; }
+figcaption { font-size:13px; color:var(--muted); margin-top:6px; }
+figcaption code, li code { font-size:12px; }
+.table-wrap { overflow-x:auto; margin-bottom:14px; }
+table { border-collapse:collapse; font-size:13px; font-variant-numeric: tabular-nums; }
+th, td { border:1px solid var(--line); padding:3px 9px; text-align:left; }
+th { background:#eef1f5; }
+td.right, th.right { text-align:right; } td.center, th.center { text-align:center; }
+ul.files { margin:0; padding-left:18px; }
+.note { color:var(--muted); font-style:italic; }
+.error { border-left:4px solid #c0392b; background:#fdf0ee; padding:8px 12px; white-space:pre-wrap; font-family:ui-monospace,monospace; font-size:13px; }
+footer { color:var(--muted); font-size:13px; padding-bottom:30px; }
+"""
+
+_KIND_LABEL = {
+    "hdr": "Radiance HDR image (linear radiance)",
+    "script": "script",
+    "text": "text",
+    "table": "CSV table",
+    "markdown": "Markdown table",
+    "image": "image",
+    "plot": "plot",
+}
+
+
+def href(target: Path, base: Path) -> str:
+    """A URL for `target` relative to the folder `base`, with each segment escaped."""
+    rel = os.path.relpath(Path(target).resolve(), Path(base).resolve())
+    return "/".join(quote(part) for part in Path(rel).parts)
+
+
+def _e(text: str) -> str:
+    return html.escape(text, quote=True)
+
+
+def markdown_table_html(text: str, caption_html: str = "") -> str:
+    """The first Markdown pipe table in `text` as an HTML table ('' if there is none)."""
+    tables, _ = parse_markdown_tables(text)
+    if not tables:
+        return ""
+    t = tables[0]
+
+    def cls(i: int) -> str:
+        a = t.align[i] if i < len(t.align) else ""
+        return f' class="{a}"' if a in ("right", "center") else ""
+
+    head = "".join(f"<th{cls(i)}>{_e(c)}</th>" for i, c in enumerate(t.header))
+    body = "".join("<tr>" + "".join(f"<td{cls(i)}>{_e(c)}</td>" for i, c in enumerate(row)) + "</tr>\n"
+                   for row in t.rows)
+    cap = f"<caption>{caption_html}</caption>" if caption_html else ""
+    return f'<table>{cap}<thead><tr>{head}</tr></thead>\n<tbody>\n{body}</tbody></table>'
+
+
+def csv_table_html(text: str, max_rows: int = 40) -> str:
+    rows = [r for r in csv.reader(io.StringIO(text)) if r]
+    if not rows:
+        return ""
+    head = "".join(f"<th>{_e(c)}</th>" for c in rows[0])
+    body = "".join("<tr>" + "".join(f"<td>{_e(c)}</td>" for c in r) + "</tr>\n" for r in rows[1:max_rows + 1])
+    more = ""
+    if len(rows) - 1 > max_rows:
+        more = f'<tr><td colspan="{len(rows[0])}" class="note">… {len(rows) - 1 - max_rows} more rows in the CSV</td></tr>'
+    return f"<table><thead><tr>{head}</tr></thead>\n<tbody>\n{body}{more}</tbody></table>"
+
+
+def _read(path: Path) -> str:
+    try:
+        return path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return ""
+
+
+def _lesson_links(lesson: Lesson, out: Path, source: Path) -> str:
+    items = []
+
+    def link(path: Path | None, label: str, missing: str) -> None:
+        if path is not None and path.exists():
+            items.append(f'<li><a href="{href(path, out)}">{_e(label)}</a></li>')
+        else:
+            items.append(f'<li class="missing">{_e(missing)}</li>')
+
+    if lesson.deck_html:
+        link(lesson.deck_html, "Slides", "")
+    elif lesson.deck_source:
+        link(lesson.deck_source, "Slides (Markdown source; deck not built)", "")
+    else:
+        items.append('<li class="missing">no slides yet</li>')
+    link(lesson.lesson_readme, "Lesson text", "no lesson text yet")
+    link(lesson.exercise_readme, "Exercise", "no exercise text yet")
+    if lesson.output_dir is not None:
+        link(lesson.output_dir / "manifest.json", "manifest.json", "")
+    return '<ul class="links">' + "".join(items) + "</ul>"
+
+
+def _outputs_html(lesson: Lesson, out: Path) -> str:
+    manifest, folder = lesson.manifest, lesson.output_dir
+    assert manifest is not None and folder is not None
+    by_file = {o.file: o for o in manifest.outputs}
+    present = [o for o in manifest.outputs if (folder / o.file).is_file()]
+    absent = [o for o in manifest.outputs if not (folder / o.file).is_file()]
+    used: set[str] = set()
+    figures, tables, files = [], [], []
+
+    def sibling(o: Output, suffix: str, kinds: tuple[str, ...]) -> Output | None:
+        name = str(Path(o.file).with_suffix(suffix))
+        s = by_file.get(name)
+        return s if s is not None and s.kind in kinds and (folder / s.file).is_file() else None
+
+    for o in present:
+        if o.kind in ("image", "plot"):
+            url = href(folder / o.file, out)
+            size = png_size(folder / o.file)
+            dims = f' width="{size[0]}" height="{size[1]}"' if size else ""
+            pixel = ' class="pixel"' if size and max(size) <= 400 and o.kind == "image" else ""
+            extra = ""
+            script = sibling(o, ".gp", ("script",)) if o.kind == "plot" else None
+            if script:
+                used.add(script.file)
+                extra = f' · <a href="{href(folder / script.file, out)}">gnuplot script</a>'
+            figures.append(
+                f'<figure><a href="{url}"><img src="{url}" alt="{_e(o.caption or o.file)}"{dims}{pixel} '
+                f'loading="lazy"></a><figcaption>{_e(o.caption)} <code>{_e(o.file)}</code>{extra}</figcaption>'
+                f"</figure>")
+            used.add(o.file)
+    for o in present:
+        if o.file in used:
+            continue
+        if o.kind == "markdown":
+            csv_out = sibling(o, ".csv", ("table",))
+            links = [f'<a href="{href(folder / o.file, out)}">Markdown</a>']
+            if csv_out:
+                used.add(csv_out.file)
+                links.insert(0, f'<a href="{href(folder / csv_out.file, out)}">CSV</a>')
+            cap = f"{_e(o.caption)} <code>{_e(o.stem)}</code> · " + " · ".join(links)
+            table = markdown_table_html(_read(folder / o.file))
+            if table:
+                tables.append(f'<figure><figcaption>{cap}</figcaption><div class="table-wrap">{table}</div></figure>')
+                used.add(o.file)
+        elif o.kind == "table" and sibling(o, ".md", ("markdown",)) is None:
+            table = csv_table_html(_read(folder / o.file))
+            cap = f'{_e(o.caption)} · <a href="{href(folder / o.file, out)}">CSV</a>'
+            if table:
+                tables.append(f'<figure><figcaption>{cap}</figcaption><div class="table-wrap">{table}</div></figure>')
+                used.add(o.file)
+    for o in present:
+        if o.file in used:
+            continue
+        label = _KIND_LABEL.get(o.kind, o.kind)
+        caption = f" — {_e(o.caption)}" if o.caption else ""
+        files.append(f'<li><a href="{href(folder / o.file, out)}"><code>{_e(o.file)}</code></a>{caption} '
+                     f'<span class="note">({_e(label)})</span></li>')
+    for o in absent:
+        files.append(f'<li><code>{_e(o.file)}</code> <span class="note">(listed in manifest.json but missing)</span></li>')
+
+    parts = []
+    if figures:
+        parts.append('<h3>Figures</h3><div class="figures">' + "\n".join(figures) + "</div>")
+    if tables:
+        parts.append("<h3>Tables</h3>" + "\n".join(tables))
+    if files:
+        parts.append('<h3>Other files</h3><ul class="files">' + "\n".join(files) + "</ul>")
+    return "\n".join(parts) or '<p class="note">The manifest lists no outputs.</p>'
+
+
+def render_index(lessons: list[Lesson], out: Path, source: Path, note: str = "") -> str:
+    """The whole page, for a file written at out/index.html."""
+    out, source = Path(out), Path(source)
+    toc = " ".join(f'<a href="#{l.id}">{l.number} · {_e(l.title)}</a>' for l in lessons)
+    sections = []
+    for lesson in lessons:
+        body = [f'<section class="lesson" id="{lesson.id}">',
+                f'<h2><span class="num">{lesson.number}</span>{_e(lesson.title)}</h2>',
+                _lesson_links(lesson, out, source)]
+        if lesson.manifest_error:
+            body.append(f'<div class="error">{_e(lesson.manifest_error)}</div>')
+        elif lesson.manifest:
+            body.append(_outputs_html(lesson, out))
+        else:
+            body.append(f'<p class="note">No outputs yet: build and run <code>bin/lesson{lesson.number}</code> '
+                        "(the main job, <code>cmake --build --preset release --target gallery</code>, runs them all).</p>")
+        body.append("</section>")
+        sections.append("\n".join(body))
+    if not sections:
+        sections.append('<p class="note">No lessons found.</p>')
+    readme = source / "README.md"
+    readme_link = f' · <a href="{href(readme, out)}">README</a>' if readme.is_file() else ""
+    return f"""<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<title>illum — lessons and outputs</title>
+<style>{CSS}</style>
+</head>
+<body>
+<header>
+<h1>illum — global illumination, step by step</h1>
+<p>Every lesson's reference run, its slides, lesson text and exercise.{_e(' ' + note) if note else ''}</p>
+<nav class="toc">{toc}</nav>
+</header>
+<main>
+{chr(10).join(sections)}
+</main>
+<footer>Written by <code>tools/main_job.py</code>{readme_link}. Thumbnails link to full-size files; paths to lesson texts and exercises point into the source tree.</footer>
+</body>
+</html>
+"""
+
+
+def write_index(source: Path, out: Path, slides_dir: Path | None = None, note: str = "") -> Path:
+    out = Path(out)
+    lessons = discover_lessons(source, out, slides_dir)
+    target = out / "index.html"
+    atomic_write_text(target, render_index(lessons, out, Path(source), note))
+    return target
+
+
+# --- link check --------------------------------------------------------------------
+
+
+class _Links(HTMLParser):
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=True)
+        self.refs: list[tuple[str, str, str]] = []  # (tag, attribute, value)
+        self.ids: set[str] = set()
+
+    def handle_starttag(self, tag, attrs):
+        for name, value in attrs:
+            if name == "id" and value:
+                self.ids.add(value)
+            if name in ("href", "src") and value is not None:
+                self.refs.append((tag, name, value))
+
+
+def check_links(page: Path) -> list[str]:
+    """Problems with a page's links: local href/src that do not resolve, and
+    external assets (the page must be self-contained)."""
+    page = Path(page)
+    parser = _Links()
+    parser.feed(page.read_text(encoding="utf-8"))
+    problems = []
+    for tag, attr, value in parser.refs:
+        parts = urlsplit(value)
+        if parts.scheme or value.startswith("//"):
+            if attr == "src" or tag == "link":
+                problems.append(f"<{tag} {attr}={value!r}>: an external asset; the page must be self-contained")
+            continue
+        if not parts.path:
+            if parts.fragment and parts.fragment not in parser.ids:
+                problems.append(f"<{tag} {attr}={value!r}>: no element with id {parts.fragment!r} in the page")
+            continue
+        target = (page.parent / unquote(parts.path)).resolve()
+        if not target.exists():
+            problems.append(f"<{tag} {attr}={value!r}>: {target} does not exist")
+    return problems

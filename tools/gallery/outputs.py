@@ -1,0 +1,337 @@
+"""A lesson program's output folder: its manifest.json and checks of each file.
+
+Every lesson program writes `manifest.json` into its --out folder:
+
+    {"id": "lesson01", "title": "Ray and sphere",
+     "outputs": [{"kind": "image", "file": "silhouette.png", "caption": "..."}, ...]}
+
+Each check below returns a list of problems (empty = fine) written for a
+person: what is wrong and, where it helps, what a good file looks like.
+"""
+from __future__ import annotations
+
+import csv
+import io
+import json
+import re
+import struct
+import zlib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+KINDS = ("image", "hdr", "table", "markdown", "plot", "script", "text")
+# The extension each kind must have (None: any).
+KIND_EXTENSIONS = {
+    "image": (".png",),
+    "plot": (".png",),
+    "hdr": (".hdr",),
+    "table": (".csv",),
+    "markdown": (".md",),
+    "script": None,
+    "text": None,
+}
+
+PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+PNG_IEND = b"\x00\x00\x00\x00IEND\xaeB`\x82"
+
+
+class ManifestError(Exception):
+    """manifest.json is missing, is not JSON or does not have the expected shape."""
+
+
+@dataclass
+class Output:
+    kind: str
+    file: str
+    caption: str = ""
+
+    @property
+    def stem(self) -> str:
+        return Path(self.file).stem
+
+    @property
+    def suffix(self) -> str:
+        return Path(self.file).suffix.lower()
+
+
+@dataclass
+class Manifest:
+    id: str
+    title: str
+    outputs: list[Output] = field(default_factory=list)
+
+
+def load_manifest(folder: Path | str) -> Manifest:
+    """Reads and validates <folder>/manifest.json; raises ManifestError with the reason."""
+    path = Path(folder) / "manifest.json"
+    if not path.is_file():
+        raise ManifestError(f"{path}: not found (the program must write it last, via OutputFolder::finish())")
+    try:
+        data = json.loads(path.read_text(encoding="utf-8"))
+    except (UnicodeDecodeError, json.JSONDecodeError) as e:
+        raise ManifestError(f"{path}: not valid JSON: {e}") from None
+    if not isinstance(data, dict):
+        raise ManifestError(f"{path}: the top level must be an object, found {type(data).__name__}")
+    problems = []
+    for key in ("id", "title"):
+        if not isinstance(data.get(key), str) or not data.get(key).strip():
+            problems.append(f'"{key}" must be a non-empty string, found {data.get(key)!r}')
+    outputs = data.get("outputs")
+    if not isinstance(outputs, list):
+        problems.append(f'"outputs" must be a list, found {type(outputs).__name__}')
+        outputs = []
+    parsed = []
+    for i, entry in enumerate(outputs):
+        where = f"outputs[{i}]"
+        if not isinstance(entry, dict):
+            problems.append(f"{where} must be an object")
+            continue
+        kind, file, caption = entry.get("kind"), entry.get("file"), entry.get("caption", "")
+        if kind not in KINDS:
+            problems.append(f'{where}: unknown kind {kind!r} (expected one of {", ".join(KINDS)})')
+            continue
+        if not isinstance(file, str) or not file:
+            problems.append(f'{where}: "file" must be a non-empty string')
+            continue
+        if not isinstance(caption, str):
+            problems.append(f'{where}: "caption" must be a string')
+            continue
+        if Path(file).is_absolute() or ".." in Path(file).parts or "\\" in file:
+            problems.append(f"{where}: file {file!r} must be a plain name inside the output folder")
+            continue
+        parsed.append(Output(kind, file, caption))
+    if problems:
+        raise ManifestError(f"{path}:\n  " + "\n  ".join(problems))
+    return Manifest(data["id"], data["title"], parsed)
+
+
+# --- checks of single files --------------------------------------------------------
+
+
+def check_png(path: Path) -> list[str]:
+    data = Path(path).read_bytes()
+    if not data.startswith(PNG_SIGNATURE):
+        return [f"{path.name}: not a PNG (the first 8 bytes are {data[:8]!r}, not the PNG signature)"]
+    if len(data) < 8 + 25:
+        return [f"{path.name}: truncated PNG ({len(data)} bytes, too short for an IHDR chunk)"]
+    length, chunk = struct.unpack(">I4s", data[8:16])
+    if chunk != b"IHDR" or length != 13:
+        return [f"{path.name}: the first PNG chunk is {chunk!r} of length {length}, expected IHDR of length 13"]
+    width, height = struct.unpack(">II", data[16:24])
+    problems = []
+    if width == 0 or height == 0:
+        problems.append(f"{path.name}: PNG has size {width}x{height}; both must be non-zero")
+    (crc,) = struct.unpack(">I", data[29:33])
+    if zlib.crc32(data[12:29]) & 0xFFFFFFFF != crc:
+        problems.append(f"{path.name}: the IHDR chunk's CRC does not match (corrupt file)")
+    if not data.endswith(PNG_IEND):
+        problems.append(f"{path.name}: PNG does not end with an IEND chunk (truncated: was it written atomically?)")
+    return problems
+
+
+def png_size(path: Path) -> tuple[int, int] | None:
+    """(width, height) from the IHDR chunk, or None if the file is not a PNG."""
+    with open(path, "rb") as f:
+        head = f.read(24)
+    if len(head) < 24 or not head.startswith(PNG_SIGNATURE) or head[12:16] != b"IHDR":
+        return None
+    return struct.unpack(">II", head[16:24])
+
+
+_HDR_RESOLUTION = re.compile(rb"^[-+][YX] (\d+) [-+][XY] (\d+)$")
+
+
+def check_hdr(path: Path) -> list[str]:
+    data = Path(path).read_bytes()
+    if not data.startswith(b"#?RADIANCE") and not data.startswith(b"#?RGBE"):
+        return [f"{path.name}: not a Radiance HDR file (it must start with '#?RADIANCE')"]
+    # Header lines, a blank line, then the resolution line ("-Y h +X w").
+    end = data.find(b"\n\n")
+    if end < 0:
+        return [f"{path.name}: the Radiance header never ends (no blank line)"]
+    line_end = data.find(b"\n", end + 2)
+    resolution = data[end + 2 : line_end if line_end >= 0 else len(data)].strip()
+    m = _HDR_RESOLUTION.match(resolution)
+    if not m:
+        return [f"{path.name}: bad resolution line {resolution[:40]!r} (expected e.g. '-Y 240 +X 320')"]
+    if int(m.group(1)) == 0 or int(m.group(2)) == 0:
+        return [f"{path.name}: image size is zero ({resolution.decode()})"]
+    if line_end < 0 or line_end + 1 >= len(data):
+        return [f"{path.name}: no pixel data after the resolution line"]
+    return []
+
+
+def check_csv(path: Path) -> list[str]:
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        return [f"{path.name}: not UTF-8 text"]
+    try:
+        rows = list(csv.reader(io.StringIO(text)))
+    except csv.Error as e:
+        return [f"{path.name}: not valid CSV: {e}"]
+    rows_with_line = [(i + 1, r) for i, r in enumerate(rows)]
+    problems = []
+    blank = [n for n, r in rows_with_line if not r]
+    if blank:
+        problems.append(f"{path.name}: blank line(s) at {', '.join(map(str, blank[:5]))}")
+    rows_with_line = [(n, r) for n, r in rows_with_line if r]
+    if not rows_with_line:
+        return [f"{path.name}: empty (a CSV needs a header line and at least one row)"]
+    _, header = rows_with_line[0]
+    if any(not h.strip() for h in header):
+        problems.append(f"{path.name}: the header {header!r} has an empty column name")
+    if len(rows_with_line) < 2:
+        problems.append(f"{path.name}: only a header, no data rows")
+    for n, row in rows_with_line[1:]:
+        if len(row) != len(header):
+            problems.append(f"{path.name}: line {n} has {len(row)} fields, the header has {len(header)}")
+            break
+    return problems
+
+
+def split_table_row(line: str) -> list[str]:
+    """The cells of a Markdown table row '| a | b |' (pipes escaped as \\| stay in the cell)."""
+    body = line.strip()
+    if body.startswith("|"):
+        body = body[1:]
+    if body.endswith("|") and not body.endswith("\\|"):
+        body = body[:-1]
+    cells, current, i = [], "", 0
+    while i < len(body):
+        if body[i] == "\\" and i + 1 < len(body) and body[i + 1] == "|":
+            current += "|"
+            i += 2
+            continue
+        if body[i] == "|":
+            cells.append(current.strip())
+            current = ""
+        else:
+            current += body[i]
+        i += 1
+    cells.append(current.strip())
+    return cells
+
+
+_SEPARATOR_CELL = re.compile(r"^:?-{1,}:?$")
+
+
+@dataclass
+class MarkdownTable:
+    header: list[str]
+    align: list[str]  # "left", "right", "center" or "" per column
+    rows: list[list[str]]
+
+
+def parse_markdown_tables(text: str) -> tuple[list[MarkdownTable], list[str]]:
+    """Every pipe table in `text` and the problems found (line numbers are 1-based)."""
+    tables, problems = [], []
+    lines = text.splitlines()
+    i = 0
+    while i < len(lines):
+        if not lines[i].lstrip().startswith("|"):
+            i += 1
+            continue
+        start = i
+        block = []
+        while i < len(lines) and lines[i].lstrip().startswith("|"):
+            block.append(lines[i])
+            i += 1
+        if len(block) < 2:
+            problems.append(f"line {start + 1}: a table row with no separator line ('|---|---|') after it")
+            continue
+        header = split_table_row(block[0])
+        separator = split_table_row(block[1])
+        if not all(_SEPARATOR_CELL.match(c.replace(" ", "")) for c in separator):
+            problems.append(f"line {start + 2}: expected the separator line ('|---|---|'), found {block[1].strip()!r}")
+            continue
+        if len(separator) != len(header):
+            problems.append(
+                f"line {start + 2}: the separator has {len(separator)} columns, the header has {len(header)}")
+            continue
+        align = []
+        for c in separator:
+            c = c.replace(" ", "")
+            align.append("center" if c.startswith(":") and c.endswith(":") else
+                         "right" if c.endswith(":") else "left" if c.startswith(":") else "")
+        rows = []
+        for k, line in enumerate(block[2:]):
+            cells = split_table_row(line)
+            if not line.rstrip().endswith("|"):
+                problems.append(f"line {start + 3 + k}: a table row must end with '|'")
+            if len(cells) != len(header):
+                problems.append(f"line {start + 3 + k}: {len(cells)} cells, the header has {len(header)}")
+            rows.append(cells)
+        if not rows:
+            problems.append(f"line {start + 1}: a table with a header but no rows")
+        if not block[0].rstrip().endswith("|"):
+            problems.append(f"line {start + 1}: the header row must end with '|'")
+        tables.append(MarkdownTable(header, align, rows))
+    return tables, problems
+
+
+def check_markdown_table(path: Path) -> list[str]:
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        return [f"{path.name}: not UTF-8 text"]
+    tables, problems = parse_markdown_tables(text)
+    problems = [f"{path.name}: {p}" for p in problems]
+    if not tables and not problems:
+        problems.append(f"{path.name}: no Markdown table found (expected '| a | b |', '|---|---|', rows)")
+    return problems
+
+
+def check_text(path: Path) -> list[str]:
+    try:
+        Path(path).read_text(encoding="utf-8")
+    except UnicodeDecodeError:
+        return [f"{path.name}: not UTF-8 text"]
+    return []
+
+
+CHECKS = {
+    "image": check_png,
+    "plot": check_png,
+    "hdr": check_hdr,
+    "table": check_csv,
+    "markdown": check_markdown_table,
+    "script": check_text,
+    "text": check_text,
+}
+
+
+def check_output_folder(folder: Path | str, expected_id: str | None = None) -> list[str]:
+    """Every problem with a lesson program's output folder (empty list: all good)."""
+    folder = Path(folder)
+    try:
+        manifest = load_manifest(folder)
+    except ManifestError as e:
+        return [str(e)]
+    problems = []
+    if expected_id is not None and manifest.id != expected_id:
+        problems.append(f'manifest.json: "id" is {manifest.id!r}, expected {expected_id!r} (the program\'s name)')
+    if not manifest.outputs:
+        problems.append("manifest.json: lists no outputs")
+    seen = set()
+    for out in manifest.outputs:
+        if out.file in seen:
+            problems.append(f"manifest.json: {out.file} is listed twice")
+            continue
+        seen.add(out.file)
+        allowed = KIND_EXTENSIONS[out.kind]
+        if allowed and out.suffix not in allowed:
+            problems.append(f"{out.file}: kind '{out.kind}' needs a {' or '.join(allowed)} file")
+            continue
+        path = folder / out.file
+        if not path.is_file():
+            problems.append(f"{out.file}: listed in manifest.json ({out.kind}) but not written")
+            continue
+        if path.stat().st_size == 0:
+            problems.append(f"{out.file}: empty file")
+            continue
+        problems.extend(CHECKS[out.kind](path))
+    leftovers = sorted(p.name for p in folder.rglob("*.tmp-*"))
+    if leftovers:
+        problems.append(f"temporary files left behind (an atomic write never finished): {', '.join(leftovers)}")
+    return problems

@@ -1,0 +1,133 @@
+#!/usr/bin/env python3
+"""The main job: every lesson's reference run, the slides and OUT/index.html.
+
+    tools/main_job.py --bin build/release/bin --out out [--quick]
+
+Steps (all by default; pick some with --only):
+  lessons  runs every BIN/lessonNN with --out OUT/lessonNN (and --quick); the
+           first failure stops the job with the program's exit code and name;
+  slides   builds every slides/NN_*.md deck to OUT/slides/NN_*.html (Marp);
+  index    writes OUT/index.html, linking every lesson's outputs, deck, lesson
+           text and exercise; --check-links then verifies every local link.
+
+Lessons, programs and decks are discovered, never listed. Every file is
+written atomically. `cmake --build --preset release --target gallery` runs it.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from gallery.decks import DeckError, build_decks, find_decks  # noqa: E402
+from gallery.index import check_links, write_index  # noqa: E402
+
+SOURCE = Path(__file__).resolve().parent.parent
+STEPS = ("lessons", "slides", "index")
+PROGRAM = re.compile(r"^lesson(\d\d)$")
+
+
+class JobError(Exception):
+    pass
+
+
+def say(message: str) -> None:
+    print(f"main_job: {message}", flush=True)
+
+
+def find_programs(bin_dir: Path) -> list[Path]:
+    if not bin_dir.is_dir():
+        return []
+    return sorted(p for p in bin_dir.iterdir()
+                  if PROGRAM.match(p.name) and p.is_file() and os.access(p, os.X_OK))
+
+
+def run_lessons(bin_dir: Path, out: Path, quick: bool) -> None:
+    programs = find_programs(bin_dir)
+    if not programs:
+        raise JobError(f"no lessonNN programs in {bin_dir} (build them first: cmake --build --preset release)")
+    for i, program in enumerate(programs, 1):
+        cmd = [str(program), "--out", str(out / program.name)] + (["--quick"] if quick else [])
+        say(f"[{i}/{len(programs)}] {' '.join(cmd)}")
+        start = time.monotonic()
+        # Output passes straight through: progress on stderr stays visible.
+        code = subprocess.call(cmd, cwd=out, stdin=subprocess.DEVNULL)
+        if code != 0:
+            raise JobError(f"{program.name} failed (exit code {code}); its messages are above. "
+                           f"Re-run it alone with: {' '.join(cmd)}")
+        say(f"{program.name} done in {time.monotonic() - start:.1f} s")
+
+
+def run_slides(source: Path, slides_dir: Path, out: Path) -> None:
+    decks = find_decks(slides_dir)
+    if not decks:
+        say(f"no decks (NN_*.md) in {slides_dir}")
+        return
+    say(f"building {len(decks)} deck(s) from {slides_dir} into {out / 'slides'}")
+    start = time.monotonic()
+    try:
+        built = build_decks(source, decks, out / "slides")
+    except DeckError as e:
+        raise JobError(str(e)) from None
+    for path in built:
+        say(f"  {path}")
+    say(f"slides done in {time.monotonic() - start:.1f} s")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter,
+                                     epilog=__doc__.split("\n\n", 1)[1])
+    parser.add_argument("--bin", type=Path, help="the build's bin/ folder (needed by the lessons step)")
+    parser.add_argument("--out", type=Path, required=True, help="the output folder (e.g. out)")
+    parser.add_argument("--quick", action="store_true", help="run each lesson with --quick")
+    parser.add_argument("--only", default=",".join(STEPS),
+                        help=f"comma-separated steps to run, of {','.join(STEPS)} (default: all)")
+    parser.add_argument("--source", type=Path, default=SOURCE, help="the source tree (default: this checkout)")
+    parser.add_argument("--slides", type=Path, help="the folder of NN_*.md decks (default: SOURCE/slides)")
+    parser.add_argument("--check-links", action="store_true",
+                        help="after writing index.html, fail if any local link or image in it does not resolve")
+    args = parser.parse_args(argv)
+
+    steps = [s.strip() for s in args.only.split(",") if s.strip()]
+    unknown = [s for s in steps if s not in STEPS]
+    if unknown:
+        parser.error(f"unknown step(s) {', '.join(unknown)}; choose from {', '.join(STEPS)}")
+    if "lessons" in steps and args.bin is None:
+        parser.error("--bin is needed to run the lessons (or leave them out with --only slides,index)")
+    source = args.source.resolve()
+    out = args.out.resolve()
+    slides_dir = (args.slides or source / "slides").resolve()
+    out.mkdir(parents=True, exist_ok=True)
+    start = time.monotonic()
+    try:
+        if "lessons" in steps:
+            run_lessons(args.bin.resolve(), out, args.quick)
+        if "slides" in steps:
+            run_slides(source, slides_dir, out)
+        if "index" in steps:
+            note = "(Quick run: small sizes.)" if args.quick else ""
+            index = write_index(source, out, slides_dir, note)
+            problems = check_links(index)
+            if problems:
+                message = f"{index} has {len(problems)} broken link(s):\n  " + "\n  ".join(problems)
+                if args.check_links:
+                    raise JobError(message)
+                say("warning: " + message)
+            elif args.check_links:
+                say("every local link and image in index.html resolves")
+            say(f"wrote {index}")
+    except JobError as e:
+        print(f"main_job: error: {e}", file=sys.stderr, flush=True)
+        return 1
+    say(f"finished in {time.monotonic() - start:.1f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
