@@ -157,6 +157,50 @@ class ReportTest(unittest.TestCase):
         self.assertIn("boom", next(root.iter("error")).text)
 
 
+FAKE_PROGRAM = """#!/usr/bin/env python3
+# Stands in for a doctest program: lists two tests, reports the first, then dies.
+import os, signal, sys, time
+out = next(a.split("=", 1)[1] for a in sys.argv if a.startswith("--out="))
+with open(out, "w") as f:
+    if "--list-test-cases" in sys.argv:
+        f.write(LISTED)
+        sys.exit(0)
+    f.write(FIRST + "\\n")
+    f.flush()
+print("student debug output on stdout")
+if MODE == "crash":
+    os.kill(os.getpid(), signal.SIGSEGV)
+time.sleep(30)
+"""
+
+
+class RunnerTest(unittest.TestCase):
+    """A crashing or hanging program still gives a result for every listed test."""
+
+    def run_fake(self, mode: str, timeout: float) -> "object":
+        from grading.runner import run_suite
+
+        with tempfile.TemporaryDirectory() as folder:
+            program = Path(folder) / "tests_lesson01"
+            shebang, body = FAKE_PROGRAM.split("\n", 1)
+            constants = (f"LISTED = {(LISTING[0] + chr(10) + LISTING[2] + chr(10))!r}\n"
+                         f"FIRST = {RUN[0]!r}\nMODE = {mode!r}\n")
+            program.write_text(shebang + "\n" + constants + body)
+            program.chmod(0o755)
+            return run_suite(program, "lesson01", timeout=timeout)
+
+    def test_crash(self) -> None:
+        run = self.run_fake("crash", timeout=20)
+        self.assertEqual([r.status for r in run.results], ["passed", "not run"])
+        self.assertIn("SIGSEGV", run.problem)
+        self.assertIn("SIGSEGV", run.results[1].output())
+
+    def test_timeout(self) -> None:
+        run = self.run_fake("hang", timeout=1.5)
+        self.assertEqual([r.status for r in run.results], ["passed", "not run"])
+        self.assertIn("did not finish", run.results[1].note)
+
+
 class ExitCodeTest(unittest.TestCase):
     def test_exit_codes(self) -> None:
         self.assertEqual(reports.exit_code(sample_run()), 1)
