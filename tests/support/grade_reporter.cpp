@@ -1,1 +1,270 @@
-// Placeholder: the grading reporter is registered here.
+// The grading reporter: `--reporters=illum-grade` makes a test program write
+// one JSON object per line (to stdout, or to the file named by doctest's
+// `--out`), which tools/grade turns into a score table, Gradescope's
+// results.json and JUnit XML.
+//
+// Two kinds of line:
+//   {"event":"test_case", "suite", "name", "file", "line", "description",
+//    "passed", "skipped", "seconds", "asserts", "asserts_failed",
+//    "failures":[{"kind", "file", "line", "expression", "expansion",
+//                 "context", "exception", "message", "not_implemented"}],
+//    "not_implemented_only"}
+//     for every test case that ran (or was skipped by a skip decorator);
+//   {"event":"listed", "suite", "name", "file", "line", "description"}
+//     for every test case of `--list-test-cases`, so that the driver knows
+//     which tests should have run even when the program crashes half-way.
+//
+// A failure is "not_implemented" when it was caused by an exercise stub: the
+// exception, translated by the translator in test_main.cpp, reads
+// "NotImplemented: <exercise> — <hint>". "not_implemented_only" says every
+// failure of the test case was of that kind, which is what the integrity
+// check demands of a grading test run on the stubs.
+#include <doctest/doctest.h>
+
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace {
+
+using nlohmann::json;
+
+// The prefix our exception translator gives every stub's exception.
+constexpr std::string_view not_implemented_prefix = "NotImplemented: ";
+
+std::string str(const doctest::String& s) { return std::string(s.c_str(), s.size()); }
+std::string str(const char* s) { return s != nullptr ? std::string(s) : std::string(); }
+
+// doctest wraps the exception text of an assertion in double quotes; the
+// record keeps the text itself.
+std::string unquote(std::string text) {
+  if (text.size() >= 2 && text.front() == '"' && text.back() == '"') text = text.substr(1, text.size() - 2);
+  return text;
+}
+
+bool is_not_implemented(const std::string& exception) {
+  return std::string_view(exception).starts_with(not_implemented_prefix);
+}
+
+// INFO(), CAPTURE() and the message of CHECK_MESSAGE() are "contexts": the
+// explanation a failure message gives, so they go into the record.
+std::string active_contexts() {
+  std::ostringstream out;
+  const int n = doctest::IReporter::get_num_active_contexts();
+  const doctest::IContextScope* const* contexts = doctest::IReporter::get_active_contexts();
+  for (int i = 0; i < n; ++i) {
+    if (i > 0) out << '\n';
+    contexts[i]->stringify(&out);
+  }
+  return out.str();
+}
+
+// Contexts that were live when an exception left the test case body; doctest
+// stringified them while unwinding.
+std::string stringified_contexts() {
+  std::string out;
+  const int n = doctest::IReporter::get_num_stringified_contexts();
+  const doctest::String* contexts = doctest::IReporter::get_stringified_contexts();
+  for (int i = 0; i < n; ++i) {
+    if (i > 0) out += '\n';
+    out += str(contexts[i]);
+  }
+  return out;
+}
+
+// One line explaining a failed assertion, in the words of doctest's console
+// reporter (which we cannot call: it lives in the doctest implementation unit).
+std::string describe(const doctest::AssertData& a) {
+  namespace at = doctest::assertType;
+  std::string text = std::string(doctest::assertString(a.m_at)) + "( " + str(a.m_expr);
+  if ((a.m_at & at::is_throws_as) != 0) text += std::string(", ") + str(a.m_exception_type);
+  if ((a.m_at & at::is_throws_with) != 0) text += ", \"" + std::string(a.m_exception_string.c_str()) + "\"";
+  text += " ) ";
+  if ((a.m_at & at::is_throws) != 0) {
+    text += "did NOT throw at all";
+  } else if ((a.m_at & (at::is_throws_as | at::is_throws_with)) != 0) {
+    text += a.m_threw ? "threw a DIFFERENT exception: " + unquote(str(a.m_exception))
+                      : std::string("did NOT throw at all");
+  } else if (a.m_threw) {
+    text += "THREW exception: " + unquote(str(a.m_exception));
+  } else {
+    text += "is NOT correct; values: " + std::string(doctest::assertString(a.m_at)) + "( " + str(a.m_decomp) + " )";
+  }
+  return text;
+}
+
+class GradeReporter : public doctest::IReporter {
+ public:
+  explicit GradeReporter(const doctest::ContextOptions& options) : options_(options) {}
+
+  void report_query(const doctest::QueryData& query) override {
+    // Only the listing of test cases is meaningful to the driver; other
+    // queries (--count, --list-test-suites, --version) write nothing.
+    if (!options_.list_test_cases) return;
+    for (unsigned i = 0; i < query.num_data; ++i) {
+      json record = identify(*query.data[i]);
+      record["event"] = "listed";
+      write(record);
+    }
+  }
+
+  void test_run_start() override {}
+  void test_run_end(const doctest::TestRunStats&) override {}
+
+  void test_case_start(const doctest::TestCaseData& test) override {
+    test_ = &test;
+    failures_ = json::array();
+    subcases_.clear();
+  }
+  void test_case_reenter(const doctest::TestCaseData&) override { subcases_.clear(); }
+
+  void test_case_end(const doctest::CurrentTestCaseStats& stats) override {
+    if (test_ == nullptr) return;
+    namespace reason = doctest::TestCaseFailureReason;
+    // Failures that no assertion or exception explains (a timeout, a test
+    // that should have failed) are recorded too: they are not NotImplemented.
+    if ((stats.failure_flags & reason::Timeout) != 0) add_failure("timeout", "the test case exceeded its timeout");
+    if ((stats.failure_flags & reason::ShouldHaveFailedButDidnt) != 0)
+      add_failure("decorator", "the test case should have failed but did not");
+    if ((stats.failure_flags & reason::DidntFailExactlyNumTimes) != 0)
+      add_failure("decorator", "the test case did not fail the expected number of times");
+    if ((stats.failure_flags & reason::TooManyFailedAsserts) != 0)
+      add_failure("aborted", "too many failed assertions (--abort-after)");
+
+    json record = identify(*test_);
+    record["event"] = "test_case";
+    record["passed"] = stats.testCaseSuccess;
+    record["skipped"] = false;
+    record["seconds"] = stats.seconds;
+    record["asserts"] = stats.numAssertsCurrentTest;
+    record["asserts_failed"] = stats.numAssertsFailedCurrentTest;
+    bool only_not_implemented = !stats.testCaseSuccess && !failures_.empty();
+    for (const json& failure : failures_) only_not_implemented = only_not_implemented && failure["not_implemented"];
+    record["failures"] = failures_;
+    record["not_implemented_only"] = only_not_implemented;
+    write(record);
+    test_ = nullptr;
+  }
+
+  void test_case_exception(const doctest::TestCaseException& e) override {
+    json failure = location_of_test();
+    failure["kind"] = e.is_crash ? "crash" : "exception";
+    failure["exception"] = str(e.error_string);
+    failure["context"] = stringified_contexts();
+    failure["message"] = (e.is_crash ? "the test crashed: " : "uncaught exception: ") + str(e.error_string);
+    failure["not_implemented"] = !e.is_crash && is_not_implemented(str(e.error_string));
+    failures_.push_back(std::move(failure));
+  }
+
+  void subcase_start(const doctest::SubcaseSignature& subcase) override { subcases_.push_back(str(subcase.m_name)); }
+  void subcase_end() override {
+    if (!subcases_.empty()) subcases_.pop_back();
+  }
+
+  void log_assert(const doctest::AssertData& a) override {
+    // WARN-level checks never fail a test; passing checks are only logged with -s.
+    if (!a.m_failed || (a.m_at & doctest::assertType::is_warn) != 0) return;
+    json failure;
+    failure["kind"] = "assert";
+    failure["file"] = str(a.m_file);
+    failure["line"] = a.m_line;
+    failure["expression"] = str(a.m_expr);
+    failure["expansion"] = str(a.m_decomp);
+    const std::string exception = a.m_threw ? unquote(str(a.m_exception)) : std::string();
+    failure["exception"] = exception;
+    failure["context"] = active_contexts();
+    failure["subcases"] = subcases_;
+    failure["message"] = describe(a);
+    failure["not_implemented"] = a.m_threw && is_not_implemented(exception);
+    const std::lock_guard<std::mutex> lock(mutex_);
+    failures_.push_back(std::move(failure));
+  }
+
+  void log_message(const doctest::MessageData& m) override {
+    // MESSAGE() and WARN-level messages are informative; FAIL() and FAIL_CHECK() fail the test.
+    if ((m.m_severity & doctest::assertType::is_warn) != 0) return;
+    json failure;
+    failure["kind"] = "message";
+    failure["file"] = str(m.m_file);
+    failure["line"] = m.m_line;
+    failure["expression"] = "";
+    failure["expansion"] = "";
+    failure["exception"] = "";
+    failure["context"] = active_contexts();
+    failure["subcases"] = subcases_;
+    failure["message"] = str(m.m_string);
+    failure["not_implemented"] = false;
+    const std::lock_guard<std::mutex> lock(mutex_);
+    failures_.push_back(std::move(failure));
+  }
+
+  void test_case_skipped(const doctest::TestCaseData& test) override {
+    // doctest also calls this for every test that the filters (-ts=lessonNN)
+    // leave out; only a skip decorator is worth a record.
+    if (!test.m_skip || options_.no_skip) return;
+    json record = identify(test);
+    record["event"] = "test_case";
+    record["passed"] = false;
+    record["skipped"] = true;
+    record["seconds"] = 0.0;
+    record["asserts"] = 0;
+    record["asserts_failed"] = 0;
+    record["failures"] = json::array();
+    record["not_implemented_only"] = false;
+    write(record);
+  }
+
+ private:
+  static json identify(const doctest::TestCaseData& test) {
+    json record;
+    record["suite"] = str(test.m_test_suite);
+    record["name"] = str(test.m_name);
+    record["file"] = str(test.m_file);
+    record["line"] = test.m_line;
+    record["description"] = str(test.m_description);
+    return record;
+  }
+
+  json location_of_test() const {
+    json failure;
+    failure["file"] = test_ != nullptr ? str(test_->m_file) : std::string();
+    failure["line"] = test_ != nullptr ? test_->m_line : 0;
+    failure["expression"] = "";
+    failure["expansion"] = "";
+    failure["subcases"] = subcases_;
+    return failure;
+  }
+
+  void add_failure(const char* kind, const char* message) {
+    json failure = location_of_test();
+    failure["kind"] = kind;
+    failure["exception"] = "";
+    failure["context"] = "";
+    failure["message"] = message;
+    failure["not_implemented"] = false;
+    failures_.push_back(std::move(failure));
+  }
+
+  // One line per record, flushed at once: if the program crashes or is
+  // killed on a timeout, every finished test case is still on file.
+  void write(const json& record) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    // Invalid UTF-8 in a message (a student's bytes) must not abort the dump.
+    *options_.cout << record.dump(-1, ' ', false, json::error_handler_t::replace) << '\n';
+    options_.cout->flush();
+  }
+
+  const doctest::ContextOptions& options_;
+  const doctest::TestCaseData* test_ = nullptr;
+  json failures_ = json::array();
+  std::vector<std::string> subcases_;
+  std::mutex mutex_;  // asserts may be logged from several threads
+};
+
+}  // namespace
+
+DOCTEST_REGISTER_REPORTER("illum-grade", 1, GradeReporter);

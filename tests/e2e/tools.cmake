@@ -1,0 +1,3 @@
+# Unit tests of the grading driver's pure parts (tools/grading/), standard library only.
+add_test(NAME tools_grade_py COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_grade.py)
+set_tests_properties(tools_grade_py PROPERTIES LABELS grading ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)

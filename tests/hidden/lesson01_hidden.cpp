@@ -1,0 +1,42 @@
+// An instructor's hidden test for lesson 01 (see README.md beside this file).
+// Students never see this file: the student edition leaves tests/hidden/ out,
+// and the autograder reports these tests as hidden.
+#include <doctest/doctest.h>
+
+#include <optional>
+
+#include "illum/core/ray.hpp"
+#include "illum/geometry/sphere.hpp"
+
+TEST_SUITE("lesson01") {
+  TEST_CASE("hidden: an off-centre ray meets the unit sphere where the 3-4-5 triangle says") {
+    // Hand calculation. The ray x = 0.6, y = 0, z = −5 + s runs parallel to
+    // the z axis at distance d = 0.6 from the centre of the unit sphere. It
+    // enters where x² + z² = 1, i.e. z = −√(1 − 0.36) = −0.8 (the 0.6–0.8–1
+    // right triangle), so s = 5 − 0.8 = 4.2, and the outward normal there is
+    // the point itself divided by r = 1: (0.6, 0, −0.8).
+    const illum::Sphere sphere({0.0, 0.0, 0.0}, 1.0);
+    const illum::Ray ray({0.6, 0.0, -5.0}, {0.0, 0.0, 1.0});
+    const std::optional<illum::SphereHit> hit = illum::intersect(ray, sphere);
+    REQUIRE_MESSAGE(hit.has_value(), "the ray passes 0.6 from the centre of a sphere of radius 1: it must hit");
+    CHECK_MESSAGE(hit->s == doctest::Approx(4.2).epsilon(1e-12),
+                  "the nearer root is s = 5 − √(r² − d²) = 5 − 0.8");
+    CHECK(hit->point.x == doctest::Approx(0.6).epsilon(1e-12));
+    CHECK(hit->point.z == doctest::Approx(-0.8).epsilon(1e-12));
+    CHECK_MESSAGE(hit->normal.x == doctest::Approx(0.6).epsilon(1e-12), "the normal is (P − Pc)/r");
+    CHECK_MESSAGE(hit->normal.z == doctest::Approx(-0.8).epsilon(1e-12), "the normal points out, towards the ray");
+    CHECK_MESSAGE(!hit->from_inside, "the origin (0.6, 0, −5) lies outside the sphere");
+  }
+
+  TEST_CASE("hidden: from the centre, the only hit ahead is the far root, one radius away") {
+    // From the centre both roots are ±r; the near one (−2) lies behind the
+    // ray, so the hit is the far one at s = r = 2, seen from inside.
+    const illum::Sphere sphere({1.0, 2.0, 3.0}, 2.0);
+    const illum::Ray ray({1.0, 2.0, 3.0}, {0.0, 1.0, 0.0});
+    const std::optional<illum::SphereHit> hit = illum::intersect(ray, sphere);
+    REQUIRE_MESSAGE(hit.has_value(), "a ray from the centre always leaves the sphere");
+    CHECK_MESSAGE(hit->s == doctest::Approx(2.0).epsilon(1e-12), "the near root −r is behind the ray; take the far one");
+    CHECK(hit->point.y == doctest::Approx(4.0).epsilon(1e-12));
+    CHECK_MESSAGE(hit->from_inside, "the origin is the centre, strictly inside");
+  }
+}

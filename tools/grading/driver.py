@@ -1,0 +1,166 @@
+"""The command line of ``tools/grade`` (see docs/grading.md).
+
+    tools/grade [--student] [--results FILE] [--junit FILE] [--hidden DIR]
+                [--build-dir DIR] [NN ...]
+    tools/grade --check-integrity --build-dir DIR
+    tools/grade --pack-autograder FILE.zip [--hidden DIR] [NN ...]
+
+Exit status: 0 every test passed, 1 some failed, 2 the code could not be
+built (or the command was wrong).
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+import traceback
+from pathlib import Path
+
+from . import build, project, reports
+from .integrity import check_build
+from .reports import GradeRun
+from .runner import run_suite
+
+
+def parse_arguments(argv: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(
+        prog="tools/grade",
+        description="Build illum with your exercise code, run the lessons' grading tests and score them.",
+        epilog="Exit status: 0 all tests passed, 1 some failed, 2 could not build. See docs/grading.md.")
+    parser.add_argument("lessons", nargs="*", metavar="NN",
+                        help="lessons to grade (default: every lesson with exercises for --student, "
+                             "every lesson with tests otherwise)")
+    parser.add_argument("--student", action="store_true",
+                        help="build the named lessons' exercise units from exercises/ (your code)")
+    parser.add_argument("--results", type=Path, metavar="FILE", help="write Gradescope's results.json here")
+    parser.add_argument("--junit", type=Path, metavar="FILE", help="write JUnit XML here")
+    parser.add_argument("--hidden", type=Path, metavar="DIR",
+                        help="an instructor's folder of extra test files, reported as hidden")
+    parser.add_argument("--build-dir", type=Path, metavar="DIR",
+                        help="build tree (default build/grade-student or build/grade-reference)")
+    parser.add_argument("--check-integrity", action="store_true",
+                        help="check an already-built tree (--build-dir): every grading test passes on the "
+                             "reference and fails with NotImplemented on the stubs")
+    parser.add_argument("--pack-autograder", type=Path, metavar="FILE.zip",
+                        help="write Gradescope's autograder zip for the named lessons")
+    args = parser.parse_args(argv)
+    if args.check_integrity and args.pack_autograder:
+        parser.error("--check-integrity and --pack-autograder are separate commands")
+    if args.check_integrity and not args.build_dir:
+        parser.error("--check-integrity needs --build-dir DIR (an already-built tree)")
+    try:
+        args.lessons = sorted(set(project.normalize_lesson(text) for text in args.lessons))
+    except ValueError as error:
+        parser.error(str(error))
+    if args.hidden is not None and not any(args.hidden.glob("*.cpp")):
+        parser.error(f"--hidden {args.hidden}: no .cpp test files there")
+    return args
+
+
+class UsageError(Exception):
+    """A command that cannot be carried out as asked (exit status 2)."""
+
+
+def choose_lessons(args: argparse.Namespace, root: Path) -> list[str]:
+    """The lessons to grade; a student can only be graded on lessons with exercises."""
+    exercises = project.exercise_lessons(root)
+    if args.student or args.pack_autograder:
+        if not exercises:
+            raise UsageError("no lesson has exercises in exercises/NN_*/")
+        unknown = [nn for nn in args.lessons if nn not in exercises]
+        if unknown:
+            raise UsageError(f"lesson(s) {', '.join(unknown)} have no exercises; "
+                             f"lessons with exercises: {', '.join(exercises)}")
+        return args.lessons or exercises
+    return args.lessons or sorted(set(project.test_lessons(root)) | set(exercises))
+
+
+def grade(args: argparse.Namespace, root: Path) -> int:
+    start = time.monotonic()
+    lessons = choose_lessons(args, root)
+    build_dir = args.build_dir or root / "build" / ("grade-student" if args.student else "grade-reference")
+    run = GradeRun(lessons=lessons, student=args.student)
+    tested = set(project.test_lessons(root))
+    has_hidden = bool(project.hidden_sources(root, args.hidden))
+
+    step = build.configure(root, build_dir, lessons if args.student else [], args.hidden)
+    if step.ok:
+        targets = ["illum"] + [f"tests_lesson{nn}" for nn in lessons if nn in tested]
+        targets += ["tests_hidden"] if has_hidden else []
+        step = build.build(build_dir, targets)
+    if not step.ok:
+        run.build_failed, run.build_output = True, step.output
+    else:
+        bin_dir = build_dir / "bin"
+        for lesson in lessons:
+            suites = [run_suite(bin_dir / f"tests_lesson{lesson}", f"lesson{lesson}")] if lesson in tested else []
+            if has_hidden:
+                suites.append(run_suite(bin_dir / "tests_hidden", f"lesson{lesson}", hidden=True))
+            for suite in suites:
+                # A doctest::skip() test is switched off by its author: it neither scores nor costs.
+                for skipped in (r for r in suite.results if r.skipped):
+                    print(f"skipped, not graded: lesson{lesson}: {skipped.name}", file=sys.stderr)
+                run.results.extend(r for r in suite.results if not r.skipped)
+                if suite.problem:
+                    run.problems.append(suite.problem)
+                    if suite.output.strip():
+                        print(suite.output[-4000:], file=sys.stderr)
+    run.seconds = time.monotonic() - start
+
+    details = reports.failure_report(run, root)
+    if details:
+        print(details + "\n")
+    print(reports.score_table(run))
+    if args.results:
+        reports.write_results_json(args.results, run, root)
+    if args.junit:
+        reports.write_junit(args.junit, run, root)
+    return reports.exit_code(run)
+
+
+def check_integrity(args: argparse.Namespace, root: Path) -> int:
+    if project.is_student_edition(root):
+        print("tools/grade: --check-integrity needs the reference solutions, which the student edition "
+              "does not have", file=sys.stderr)
+        return reports.EXIT_NOT_BUILT
+    report = check_build(args.build_dir)
+    for line in report.checked:
+        print(f"ok       {line}")
+    for line in report.offenders:
+        print(f"OFFENDER {line}")
+    print("grading integrity: " + ("passed" if report.ok else f"FAILED ({len(report.offenders)} problem(s))"))
+    return reports.EXIT_PASSED if report.ok else reports.EXIT_FAILED
+
+
+def pack(args: argparse.Namespace, root: Path) -> int:
+    from .autograder import pack_autograder
+
+    if project.is_student_edition(root):
+        print("tools/grade: pack the autograder from the instructors' tree, not the student edition",
+              file=sys.stderr)
+        return reports.EXIT_NOT_BUILT
+    lessons = choose_lessons(args, root)
+    names = pack_autograder(root, args.pack_autograder, lessons, args.hidden)
+    hidden = [n for n in names if n.startswith("hidden-tests/")]
+    print(f"wrote {args.pack_autograder}: {len(names)} files, lessons {', '.join(lessons)}, "
+          f"{len(hidden)} hidden test file(s)")
+    return reports.EXIT_PASSED
+
+
+def main(argv: list[str] | None = None) -> int:
+    args = parse_arguments(sys.argv[1:] if argv is None else argv)
+    root = project.ROOT
+    try:
+        if args.check_integrity:
+            return check_integrity(args, root)
+        if args.pack_autograder:
+            return pack(args, root)
+        return grade(args, root)
+    except Exception as error:  # noqa: BLE001 -- the autograder must still get a results.json
+        text = f"tools/grade: {error}" if isinstance(error, UsageError) else traceback.format_exc()
+        print(text, file=sys.stderr)
+        if args.results and not args.check_integrity and not args.pack_autograder:
+            failed = GradeRun(lessons=args.lessons, build_failed=True,
+                              build_output="The grader itself failed (not your code):\n" + text)
+            reports.write_results_json(args.results, failed)
+        return reports.EXIT_NOT_BUILT

@@ -1,0 +1,116 @@
+"""The grading integrity check: grading tests are tested, not assumed.
+
+For every ``tests_lessonNN`` of an already-built tree, suite ``lessonNN``:
+
+* has at least one test;
+* passes entirely on the reference (``tests_lessonNN``);
+* fails entirely on the stubs (``tests_lessonNN_stubs``), and every failure
+  is a ``NotImplemented`` -- a test that fails on the stubs for another
+  reason (a wrong expectation that happens to fail, a crash) would also fail
+  a correct student for that reason, or pass a wrong one;
+* lives in its own lesson's program (a test in suite lesson02 placed in
+  tests/01_*/ would never be graded).
+
+The instructor's hidden tests (``tests_hidden`` / ``tests_hidden_stubs``)
+are held to the same rules, suite by suite.
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .results import TestResult
+from .runner import list_suites, run_suite
+
+_PROGRAM = re.compile(r"tests_lesson(\d\d)")
+
+
+@dataclass
+class IntegrityReport:
+    checked: list[str] = field(default_factory=list)    # one line per suite that is fine
+    offenders: list[str] = field(default_factory=list)  # one line per problem
+
+    @property
+    def ok(self) -> bool:
+        return not self.offenders and bool(self.checked)
+
+
+def grading_programs(bin_dir: Path) -> dict[str, Path]:
+    """lesson -> tests_lessonNN program found in a build's bin/."""
+    programs = {}
+    if bin_dir.is_dir():
+        for path in sorted(bin_dir.iterdir()):
+            match = _PROGRAM.fullmatch(path.name)
+            if match and path.is_file():
+                programs[match.group(1)] = path
+    return programs
+
+
+def check_pair(label: str, reference: list[TestResult], stubs: list[TestResult],
+               require_tests: bool = True) -> list[str]:
+    """The problems of one suite, given its results on the reference and on the stubs."""
+    problems = []
+    if require_tests and not reference:
+        problems.append(f"{label}: the suite has no test; every lesson needs at least one grading test")
+    for test in reference:
+        if not test.passed:
+            reason = test.output().splitlines()[1:2] or [test.status]
+            problems.append(f"{label}: \"{test.name}\" ({test.file}:{test.line}) does not pass on the reference: "
+                            f"{reason[0].strip()}")
+    stub_by_key = {t.key: t for t in stubs}
+    for test in reference:
+        stub = stub_by_key.get(test.key)
+        if stub is None:
+            problems.append(f"{label}: \"{test.name}\" did not report on the stubs")
+        elif stub.passed:
+            problems.append(f"{label}: \"{test.name}\" ({test.file}:{test.line}) PASSES on the stubs: "
+                            "it must call into an exercise unit")
+        elif not stub.not_implemented_only:
+            detail = next((f.describe() for f in stub.failures if not f.not_implemented), stub.note or stub.status)
+            problems.append(f"{label}: \"{test.name}\" ({test.file}:{test.line}) fails on the stubs for a reason "
+                            f"other than NotImplemented: {detail.splitlines()[0]}")
+    return problems
+
+
+def check_build(build_dir: Path) -> IntegrityReport:
+    """Runs the integrity check on every grading program of a built tree."""
+    report = IntegrityReport()
+    bin_dir = build_dir / "bin"
+    programs = grading_programs(bin_dir)
+    if not programs:
+        report.offenders.append(f"no tests_lessonNN program in {bin_dir}; build the tree first")
+        return report
+    for lesson, program in programs.items():
+        suite = f"lesson{lesson}"
+        stubs_program = program.with_name(program.name + "_stubs")
+        reference = run_suite(program, suite)
+        stubs = run_suite(stubs_program, suite)
+        for run in (reference, stubs):
+            if run.problem:
+                report.offenders.append(f"{suite}: {run.problem}")
+        problems = check_pair(f"{program.name} [{suite}]", reference.results, stubs.results)
+        for test in list_suites(program):
+            if test.lesson and test.lesson != lesson:
+                problems.append(f"{program.name}: \"{test.name}\" ({test.file}:{test.line}) is in suite "
+                                f"{test.suite}, which this program never grades; move it to tests/{test.lesson}_*/")
+        report.offenders.extend(problems)
+        if not problems and not reference.problem and not stubs.problem:
+            report.checked.append(f"{suite}: {len(reference.results)} grading test(s) pass on the reference "
+                                  "and fail on the stubs with NotImplemented")
+    hidden, hidden_stubs = bin_dir / "tests_hidden", bin_dir / "tests_hidden_stubs"
+    if hidden.is_file():
+        if not hidden_stubs.is_file():
+            report.offenders.append("tests_hidden exists but tests_hidden_stubs does not; build it")
+        else:
+            lessons = sorted({t.lesson for t in list_suites(hidden) if t.lesson})
+            for lesson in lessons:
+                suite = f"lesson{lesson}"
+                reference, stubs = run_suite(hidden, suite), run_suite(hidden_stubs, suite)
+                problems = [f"{suite}: {r.problem}" for r in (reference, stubs) if r.problem]
+                problems += check_pair(f"tests_hidden [{suite}]", reference.results, stubs.results)
+                report.offenders.extend(problems)
+                if not problems:
+                    report.checked.append(f"{suite} (hidden): {len(reference.results)} test(s) pass on the reference "
+                                          "and fail on the stubs with NotImplemented")
+    return report

@@ -1,0 +1,203 @@
+"""Test results as the ``illum-grade`` doctest reporter writes them.
+
+The reporter (tests/support/grade_reporter.cpp) writes one JSON object per
+line: ``"event": "test_case"`` for a test that ran (or was skipped by a
+decorator) and ``"event": "listed"`` for each test of ``--list-test-cases``.
+The listing tells us which tests *should* have run, so a program that
+crashes or hangs half-way still yields a result for every test.
+"""
+from __future__ import annotations
+
+import json
+import re
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Iterable
+
+# "points=3" in a doctest description decorator gives a test more weight:
+#   TEST_CASE("..." * doctest::description("points=3"))
+_POINTS = re.compile(r"\bpoints\s*=\s*([0-9]+(?:\.[0-9]+)?)")
+
+
+def points_of(description: str) -> float:
+    """The weight of a test: 1 unless its description says ``points=N``."""
+    match = _POINTS.search(description or "")
+    return float(match.group(1)) if match else 1.0
+
+
+@dataclass
+class Failure:
+    """One reason a test failed: a failed assertion, an exception, a crash..."""
+
+    kind: str
+    message: str
+    file: str = ""
+    line: int = 0
+    context: str = ""
+    exception: str = ""
+    subcases: list[str] = field(default_factory=list)
+    not_implemented: bool = False
+
+    @staticmethod
+    def from_json(data: dict[str, Any]) -> "Failure":
+        return Failure(
+            kind=str(data.get("kind", "")),
+            message=str(data.get("message", "")),
+            file=str(data.get("file", "")),
+            line=int(data.get("line", 0) or 0),
+            context=str(data.get("context", "")),
+            exception=str(data.get("exception", "")),
+            subcases=[str(s) for s in data.get("subcases", []) or []],
+            not_implemented=bool(data.get("not_implemented", False)),
+        )
+
+    def describe(self, root: Path | None = None) -> str:
+        """A few lines a student can act on: where, what, and the test's explanation."""
+        where = f"{_short_path(self.file, root)}:{self.line}: " if self.file else ""
+        if self.not_implemented:
+            text = f"{where}not implemented yet: {self.exception}"
+        else:
+            text = f"{where}{self.message}"
+        if self.subcases:
+            text += "\n  in subcase: " + " / ".join(self.subcases)
+        if self.context:
+            text += "\n  " + self.context.replace("\n", "\n  ")
+        return text
+
+
+@dataclass
+class TestResult:
+    """The outcome of one grading test case."""
+
+    suite: str
+    name: str
+    file: str = ""
+    line: int = 0
+    passed: bool = False
+    skipped: bool = False
+    ran: bool = True  # False when the program died before reaching the test
+    hidden: bool = False
+    points: float = 1.0
+    seconds: float = 0.0
+    failures: list[Failure] = field(default_factory=list)
+    not_implemented_only: bool = False
+    note: str = ""  # why the test has no result of its own (crash, timeout)
+
+    @property
+    def lesson(self) -> str:
+        """The two digits of the suite name ``lessonNN`` (empty for other suites)."""
+        match = re.fullmatch(r"lesson(\d\d)", self.suite)
+        return match.group(1) if match else ""
+
+    @property
+    def key(self) -> tuple[str, str, str, int]:
+        """Identifies a test across the listing and the run (names alone may repeat)."""
+        return (self.suite, self.name, self.file, self.line)
+
+    @property
+    def score(self) -> float:
+        return self.points if self.passed else 0.0
+
+    @property
+    def status(self) -> str:
+        if self.passed:
+            return "passed"
+        if self.skipped:
+            return "skipped"
+        if not self.ran:
+            return "not run"
+        return "failed"
+
+    def output(self, root: Path | None = None) -> str:
+        """What the student reads about this test: empty when it passed."""
+        if self.passed:
+            return ""
+        lines = [f"{_short_path(self.file, root)}:{self.line}: test case \"{self.name}\""] if self.file else []
+        if self.skipped:
+            lines.append("skipped by a doctest::skip() decorator")
+        if self.note:
+            lines.append(self.note)
+        lines.extend(f.describe(root) for f in self.failures)
+        return "\n".join(lines)
+
+    @staticmethod
+    def from_json(data: dict[str, Any], hidden: bool = False) -> "TestResult":
+        return TestResult(
+            suite=str(data.get("suite", "")),
+            name=str(data.get("name", "")),
+            file=str(data.get("file", "")),
+            line=int(data.get("line", 0) or 0),
+            passed=bool(data.get("passed", False)),
+            skipped=bool(data.get("skipped", False)),
+            ran=data.get("event") == "test_case",
+            hidden=hidden,
+            points=points_of(str(data.get("description", ""))),
+            seconds=float(data.get("seconds", 0.0) or 0.0),
+            failures=[Failure.from_json(f) for f in data.get("failures", []) or []],
+            not_implemented_only=bool(data.get("not_implemented_only", False)),
+        )
+
+
+def parse_lines(lines: Iterable[str]) -> list[dict[str, Any]]:
+    """The reporter's records; lines that are not JSON objects are skipped.
+
+    A test that crashes can leave a half-written last line, and nothing
+    else may be in the file, but a stray line must not cost the other results.
+    """
+    records: list[dict[str, Any]] = []
+    for line in lines:
+        line = line.strip()
+        if not line.startswith("{"):
+            continue
+        try:
+            record = json.loads(line)
+        except json.JSONDecodeError:
+            continue
+        if isinstance(record, dict):
+            records.append(record)
+    return records
+
+
+def merge(listed: list[dict[str, Any]], ran: list[dict[str, Any]], hidden: bool = False,
+          why_missing: str = "") -> list[TestResult]:
+    """One result per listed test, in listing order.
+
+    A listed test without a run record did not run: the program crashed, hung
+    or was killed first. It fails with ``why_missing`` as its explanation.
+    Run records that were not listed (should not happen) are kept too.
+    """
+    by_key = {}
+    for record in ran:
+        if record.get("event") == "test_case":
+            result = TestResult.from_json(record, hidden)
+            by_key.setdefault(result.key, result)
+    results: list[TestResult] = []
+    seen: set[tuple[str, str, str, int]] = set()
+    for record in listed:
+        if record.get("event") != "listed":
+            continue
+        expected = TestResult.from_json(record, hidden)
+        if expected.key in seen:
+            continue
+        seen.add(expected.key)
+        if expected.key in by_key:
+            actual = by_key[expected.key]
+            actual.points = expected.points
+            results.append(actual)
+        else:
+            expected.passed = False
+            expected.ran = False
+            expected.note = f"did not run: {why_missing}" if why_missing else "did not run"
+            results.append(expected)
+    results.extend(r for k, r in by_key.items() if k not in seen)
+    return results
+
+
+def _short_path(file: str, root: Path | None) -> str:
+    """A source path relative to the tree's root, as a student sees the tree."""
+    if root is None or not file:
+        return file
+    try:
+        return str(Path(file).resolve().relative_to(root.resolve()))
+    except ValueError:
+        return file
