@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "illum/core/error.hpp"
+#include "illum/core/parallel.hpp"
 #include "illum/io/embedded_scenes.hpp"
 
 namespace illum {
@@ -65,40 +66,44 @@ SpherePreview render_sphere_preview(const SphereScene& scene, int width, int hei
       Image(width, height), Image(width, height), Image(width, height), Image(width, height), {}};
   std::vector<double> s_of(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), -1.0);
   const Vec3 light = normalize(Vec3(-0.5, 1.0, 0.6));  // a fixed direction, for the shaded preview only
+  ExceptionCollector errors;  // a stub's NotImplemented must reach the caller, not terminate
 #pragma omp parallel
   {
     WorkCounters counters;
 #pragma omp for schedule(dynamic, 4)
     for (int j = 0; j < height; ++j)
-      for (int i = 0; i < width; ++i) {
-        Ray ray = camera.pixel_ray(i, j);
-        ++counters.rays_cast;
-        ++counters.primary_rays;
-        // The nearest hit: each hit shrinks the ray's range, so a farther
-        // sphere can no longer return a hit behind a nearer one.
-        int nearest = -1;
-        SphereHit best;
-        for (std::size_t k = 0; k < spheres.size(); ++k) {
-          ++counters.intersection_tests;
-          if (const auto hit = intersect(ray, spheres[k])) {
-            ++counters.hits;
-            best = *hit;
-            nearest = static_cast<int>(k);
-            ray.range.hi = hit->s;
+      errors.run([&] {
+        for (int i = 0; i < width; ++i) {
+          Ray ray = camera.pixel_ray(i, j);
+          ++counters.rays_cast;
+          ++counters.primary_rays;
+          // The nearest hit: each hit shrinks the ray's range, so a farther
+          // sphere can no longer return a hit behind a nearer one.
+          int nearest = -1;
+          SphereHit best;
+          for (std::size_t k = 0; k < spheres.size(); ++k) {
+            ++counters.intersection_tests;
+            if (const auto hit = intersect(ray, spheres[k])) {
+              ++counters.hits;
+              best = *hit;
+              nearest = static_cast<int>(k);
+              ray.range.hi = hit->s;
+            }
           }
+          if (nearest < 0) continue;
+          out.silhouette.at(i, j) = Color(1.0);
+          out.normals.at(i, j) = 0.5 * (best.normal + Vec3(1.0));  // the classic normal-to-RGB map
+          const double lambert = std::max(0.0, dot(best.normal, light));
+          out.shaded.at(i, j) =
+              scene.spheres[static_cast<std::size_t>(nearest)].color * (0.15 + 0.85 * lambert);
+          s_of[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i)] =
+              best.s;
         }
-        if (nearest < 0) continue;
-        out.silhouette.at(i, j) = Color(1.0);
-        out.normals.at(i, j) = 0.5 * (best.normal + Vec3(1.0));  // the classic normal-to-RGB map
-        const double lambert = std::max(0.0, dot(best.normal, light));
-        out.shaded.at(i, j) =
-            scene.spheres[static_cast<std::size_t>(nearest)].color * (0.15 + 0.85 * lambert);
-        s_of[static_cast<std::size_t>(j) * static_cast<std::size_t>(width) + static_cast<std::size_t>(i)] =
-            best.s;
-      }
+      });
 #pragma omp critical
     out.counters += counters;
   }
+  errors.rethrow_if_any();
   // Depth over the range of distances seen: near is bright, far is dark.
   double near = infinity, far = 0;
   for (double s : s_of)
