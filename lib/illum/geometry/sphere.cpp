@@ -51,16 +51,14 @@ SphereRoots<T> sphere_roots_stable(const glm::vec<3, T>& origin, const glm::vec<
 }
 
 template SphereRoots<float> sphere_roots_notes(const glm::vec3&, const glm::vec3&, const glm::vec3&, float);
-template SphereRoots<double> sphere_roots_notes(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
-                                                double);
+template SphereRoots<double> sphere_roots_notes(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&, double);
 template SphereRoots<float> sphere_roots_stable(const glm::vec3&, const glm::vec3&, const glm::vec3&, float);
 template SphereRoots<double> sphere_roots_stable(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
                                                  double);
 
 std::optional<SphereHit> intersect(const Ray& ray, const Sphere& sphere) {
   require(is_unit(ray.direction), "intersect(Ray, Sphere): the ray direction must be unit length");
-  const SphereRoots<double> roots =
-      sphere_roots_stable(ray.origin, ray.direction, sphere.center, sphere.radius);
+  const SphereRoots<double> roots = sphere_roots_stable(ray.origin, ray.direction, sphere.center, sphere.radius);
   if (roots.count == 0) return std::nullopt;
   // The nearer root first; if it lies before the range (origin inside the
   // sphere, or the sphere behind), the farther one may still count.

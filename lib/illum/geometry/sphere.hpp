@@ -51,9 +51,9 @@ SphereRoots<T> sphere_roots_stable(const glm::vec<3, T>& origin, const glm::vec<
                                    const glm::vec<3, T>& center, T radius);
 
 struct SphereHit {
-  double s = 0;              // ray parameter of the hit, inside ray.range
-  Point3 point;              // P0 + sω
-  Vec3 normal;               // outward unit normal (P − Pc)/r at the hit
+  double s = 0;         // ray parameter of the hit, inside ray.range
+  Point3 point;         // P0 + sω
+  Vec3 normal;          // outward unit normal (P − Pc)/r at the hit
   bool from_inside = false;  // the ray's origin lies strictly inside the sphere
 };
 
