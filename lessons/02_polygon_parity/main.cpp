@@ -101,6 +101,9 @@ Image render_scene(int width, int height) {
 
   const PinholeCamera camera(Point3(0, 1.2, 8.5), Point3(0, -0.2, 0), up, 45.0, width, height);
   Image image(width, height);
+  // One call outside the parallel loop, so that an error (or an exercise's
+  // NotImplemented) reaches run_program instead of terminating an OpenMP thread.
+  (void)intersect(camera.pixel_ray(0, 0), shapes[0].polygon);
 #pragma omp parallel for schedule(dynamic, 4)
   for (int j = 0; j < height; ++j)
     for (int i = 0; i < width; ++i) {

@@ -213,6 +213,9 @@ int main(int argc, char** argv) {
       rays.push_back(Ray::toward(origin, target - origin));
     }
     Table water({"method", "rays", "cracks_0_hits", "double_hits", "ns_per_ray_triangle_test"});
+    // One call outside the parallel loop, so that an error (or an exercise's
+    // NotImplemented) reaches run_program instead of terminating an OpenMP thread.
+    (void)intersect(rays[0], mesh[0]);
     for (int method = 0; method < 2; ++method) {
       std::int64_t cracks = 0, doubles = 0;
 #pragma omp parallel for reduction(+ : cracks, doubles) schedule(dynamic, 16)
