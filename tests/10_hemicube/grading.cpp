@@ -259,6 +259,35 @@ TEST_SUITE("lesson10") {
     }
   }
 
+  TEST_CASE("hard case: a floating block whose silhouette edges pass exactly through pixel centres") {
+    // A closed room with a block inside: every row still sums to one. From the floor patch
+    // centred at (0.375, 0.125, 0) the top face's pixel centre (−0.1875, 0.5625) looks exactly
+    // along the block's vertical edge x = 0.3, y = 0.35, where a front face and a back face
+    // meet at the same depth: the front face must win, or the pixel would count for nobody.
+    std::vector<Patch> scene = closed_cube(4);
+    const Point3 lo(0.3, 0.35, 0.25), hi(0.65, 0.7, 0.6);
+    auto corner = [&](int x, int y, int z) {
+      return Point3(x ? hi.x : lo.x, y ? hi.y : lo.y, z ? hi.z : lo.z);
+    };
+    // Outward faces, counter-clockwise seen from outside.
+    const int faces[6][4][3] = {
+        {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}},
+        {{0, 0, 0}, {0, 0, 1}, {0, 1, 1}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 0}, {1, 1, 1}, {1, 0, 1}},
+        {{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}}, {{0, 1, 0}, {0, 1, 1}, {1, 1, 1}, {1, 1, 0}}};
+    for (const auto& f : faces) {
+      std::vector<Point3> v;
+      for (const auto& c : f) v.push_back(corner(c[0], c[1], c[2]));
+      scene.push_back(make_patch(v));
+      INFO("block face normals point away from the block's centre");
+      REQUIRE(dot(scene.back().normal, scene.back().centroid - 0.5 * (lo + hi)) > 0);
+    }
+    const FormFactorMatrix f = hemicube_form_factors(scene, 16);
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      INFO("row " << i);
+      CHECK(f.row_sum(i) == doctest::Approx(1.0).epsilon(1e-12));
+    }
+  }
+
   TEST_CASE("a tilted quad anywhere above the patch converges to Lambert's contour formula") {
     const std::vector<Point3> quad{{0.3, -0.2, 0.5}, {1.1, 0.1, 0.9}, {0.9, 0.9, 1.3}, {0.1, 0.6, 0.9}};
     // make_patch takes the vertices counter-clockwise seen from the front; face the origin.

@@ -52,6 +52,24 @@ const std::int32_t* HemicubeBuffers::face_items(HemicubeFace f) const {
   return items.data() + face_offset(resolution, f);
 }
 
+bool hemicube_pixel(const Vec3& d, int resolution, HemicubeFace& face, int& col, int& row) {
+  if (!(d.z >= 0) || (d.x == 0 && d.y == 0 && d.z == 0)) return false;
+  // The face whose axis has the largest component (the top face wins ties with d.z).
+  const double ax = std::abs(d.x), ay = std::abs(d.y);
+  if (d.z >= ax && d.z >= ay)
+    face = HemicubeFace::top;
+  else if (ax >= ay)
+    face = d.x > 0 ? HemicubeFace::pos_x : HemicubeFace::neg_x;
+  else
+    face = d.y > 0 ? HemicubeFace::pos_y : HemicubeFace::neg_y;
+  const Vec3 f = to_face(face, d);
+  const int height = HemicubeBuffers::face_height(resolution, face);
+  col = std::clamp(static_cast<int>((f.x / f.z + 1.0) * 0.5 * resolution), 0, resolution - 1);
+  row = std::clamp(static_cast<int>((f.y / f.z + (face == HemicubeFace::top ? 1.0 : 0.0)) * 0.5 * resolution),
+                   0, height - 1);
+  return true;
+}
+
 Hemicube::Hemicube(int resolution, DeltaRule rule) : deltas_(make_hemicube_deltas(resolution, rule)) {}
 
 void Hemicube::form_factor_row(const std::vector<Patch>& patches, std::size_t i, double* row,
@@ -112,11 +130,15 @@ void Hemicube::form_factor_row(const std::vector<Patch>& patches, std::size_t i,
     // d < 0: the eye is in front of the patch. Otherwise we see its back,
     // which still hides what lies behind it but receives nothing.
     const std::int32_t item = d < 0 ? static_cast<std::int32_t>(j) : kBackFacePixel;
+    // A back face meets a front face at a silhouette edge, where both project onto the
+    // same side of the edge with the same depth: a ray exactly through the edge would
+    // tie. Pushing back faces a relative 1e-9 further makes the front face win the tie.
+    const double plane_d = d < 0 ? d : d * (1.0 + 1e-9);
     for (int k = 0; k < 5; ++k) {
       const auto f = static_cast<HemicubeFace>(k);
       for (std::size_t v = 0; v < nv; ++v) buffers.face[v] = to_face(f, buffers.local[v]);
-      rasterize_polygon(buffers.face.data(), static_cast<int>(nv), to_face(f, n_local), d, item, targets[k],
-                        buffers.raster);
+      rasterize_polygon(buffers.face.data(), static_cast<int>(nv), to_face(f, n_local), plane_d, item,
+                        targets[k], buffers.raster);
     }
   }
 

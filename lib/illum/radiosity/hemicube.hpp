@@ -51,6 +51,11 @@ struct HemicubeBuffers {
   }
 };
 
+// The face and pixel (column, row) that the direction `d`, given in the
+// hemicube's frame (z along the receiver's normal), passes through; false
+// when d points below the base plane. Used to draw the faces unfolded.
+bool hemicube_pixel(const Vec3& d, int resolution, HemicubeFace& face, int& col, int& row);
+
 class Hemicube {
  public:
   // Pixels along the top face's side (even, ≥ 2); side faces are
