@@ -208,7 +208,7 @@ int main(int argc, char** argv) {
     };
     const std::vector<Config> configs{
         {"near quad", {{0.3, -0.2, 0.5}, {0.1, 0.6, 0.9}, {0.9, 0.9, 1.3}, {1.1, 0.1, 0.9}}},
-        {"wall strip", {{0.8, -0.3, 0}, {0.8, -0.3, 0.6}, {0.8, 0.5, 0.6}, {0.8, 0.5, 0}}},
+        {"wall strip", {{0.83, -0.31, 0}, {0.83, -0.31, 0.61}, {0.83, 0.47, 0.61}, {0.83, 0.47, 0}}},
         {"small far square", facing_square(Point3(0.7, 0.4, 2.5), 0.06)}};
     Table accuracy({"config", "rule", "resolution", "hemicube", "exact", "relative_error"});
     std::vector<double> mean_error(resolutions.size(), 0.0);
