@@ -1,0 +1,407 @@
+// Lesson 10: the hemicube. Draws the five item-buffer faces of one placement
+// in a room, the delta form factors, and measures the hemicube's errors:
+// against closed forms vs resolution and time, the aliasing of small patches
+// and what a random rotation does to it, and the point-sampling error for
+// nearby patches. Finally times full matrices of a ~2,000-patch room.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <omp.h>
+
+#include "illum/core/error.hpp"
+#include "illum/core/image.hpp"
+#include "illum/core/random.hpp"
+#include "illum/core/stopwatch.hpp"
+#include "illum/io/output_folder.hpp"
+#include "illum/io/program.hpp"
+#include "illum/radiosity/hemicube.hpp"
+
+using namespace illum;
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// --- closed forms (Howell's catalogue) and Lambert's contour formula -----------------
+
+// B-3: differential area to a parallel rectangle a × b with a corner above it at height c.
+double parallel_corner(double a, double b, double c) {
+  const double A = a / c, B = b / c, sa = std::sqrt(1 + A * A), sb = std::sqrt(1 + B * B);
+  return (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2 * kPi);
+}
+
+// B-4: differential area to a perpendicular rectangle of height a, width b at distance c.
+double perpendicular_corner(double a, double b, double c) {
+  const double X = a / b, Y = c / b, s = std::sqrt(X * X + Y * Y);
+  return (std::atan(1 / Y) - Y / s * std::atan(1 / s)) / (2 * kPi);
+}
+
+// C-11: two directly opposed parallel rectangles a × b at distance c (area to area).
+double parallel_rectangles(double a, double b, double c) {
+  const double X = a / c, Y = b / c, sx = std::sqrt(1 + X * X), sy = std::sqrt(1 + Y * Y);
+  return 2 / (kPi * X * Y) *
+         (std::log(std::sqrt((1 + X * X) * (1 + Y * Y) / (1 + X * X + Y * Y))) + X * sy * std::atan(X / sy) +
+          Y * sx * std::atan(Y / sx) - X * std::atan(X) - Y * std::atan(Y));
+}
+
+// Point at p with normal n to a convex polygon above its tangent plane.
+double lambert_contour(const Point3& p, const Vec3& n, const std::vector<Point3>& polygon) {
+  double sum = 0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const Vec3 r0 = normalize(polygon[k] - p), r1 = normalize(polygon[(k + 1) % polygon.size()] - p);
+    const Vec3 c = cross(r0, r1);
+    sum += std::atan2(length(c), dot(r0, r1)) * dot(n, c) / length(c);
+  }
+  return std::abs(sum) / (2 * kPi);
+}
+
+// --- scenes ------------------------------------------------------------------------------
+
+// The six faces of the box [lo, hi], meshed m × m, normals inwards (a room) or outwards (a block).
+void add_box(std::vector<Patch>& patches, const Point3& lo, const Point3& hi, int m, bool inward,
+             int first_surface) {
+  const double q[6][4][3] = {
+      {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}},
+      {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}, {{1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}},
+      {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}}, {{0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}}};
+  for (int f = 0; f < 6; ++f) {
+    Point3 c[4];
+    for (int k = 0; k < 4; ++k) c[k] = lo + (hi - lo) * Vec3(q[f][k][0], q[f][k][1], q[f][k][2]);
+    auto face = inward ? mesh_quad(c[0], c[1], c[2], c[3], m, m, Color(0.5), Color(0.0), first_surface + f)
+                       : mesh_quad(c[0], c[3], c[2], c[1], m, m, Color(0.5), Color(0.0), first_surface + f);
+    patches.insert(patches.end(), face.begin(), face.end());
+  }
+}
+
+// A closed unit room meshed m × m per wall with a floating block meshed k × k per face:
+// every direction from every patch hits a front face, so every row sums to one.
+std::vector<Patch> room_with_block(int m, int k) {
+  std::vector<Patch> patches;
+  add_box(patches, Point3(0), Point3(1), m, true, 0);
+  add_box(patches, Point3(0.3, 0.35, 0.25), Point3(0.65, 0.7, 0.6), k, false, 6);
+  return patches;
+}
+
+// A small square of side s centred at c facing the origin.
+std::vector<Point3> facing_square(const Point3& c, double s) {
+  const Vec3 n = normalize(-c);
+  const Vec3 u = normalize(cross(std::abs(n.z) < 0.9 ? Vec3(0, 0, 1) : Vec3(1, 0, 0), n));
+  const Vec3 v = cross(n, u);
+  const double h = 0.5 * s;
+  return {c - h * u - h * v, c + h * u - h * v, c + h * u + h * v, c - h * u + h * v};
+}
+
+Patch receiver_at_origin(double half = 0.01) {
+  return make_patch({{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}});
+}
+
+// --- pictures ----------------------------------------------------------------------------
+
+// The hemicube unfolded as a cross: image coordinates (u, v) ∈ [−2, 2]², the top face in
+// the middle, each side face folded out with its base (z = 0) at the outer edge.
+template <class Shade>
+Image unfolded(int pixels, Shade&& shade) {
+  Image img(pixels, pixels, Color(1.0));
+  for (int py = 0; py < pixels; ++py)
+    for (int px = 0; px < pixels; ++px) {
+      const double u = -2 + 4 * (px + 0.5) / pixels, v = 2 - 4 * (py + 0.5) / pixels;
+      Vec3 d;
+      if (std::abs(u) <= 1 && std::abs(v) <= 1)
+        d = Vec3(u, v, 1);
+      else if (u > 1 && std::abs(v) <= 1)
+        d = Vec3(1, v, 2 - u);
+      else if (u < -1 && std::abs(v) <= 1)
+        d = Vec3(-1, v, 2 + u);
+      else if (v > 1 && std::abs(u) <= 1)
+        d = Vec3(u, 1, 2 - v);
+      else if (v < -1 && std::abs(u) <= 1)
+        d = Vec3(u, -1, 2 + v);
+      else
+        continue;
+      img.at(px, py) = shade(d);
+    }
+  return img;
+}
+
+Color patch_colour(const Patch& p, std::int32_t item) {
+  static const Color surface[7] = {{0.8, 0.8, 0.8}, {0.6, 0.6, 0.7}, {0.8, 0.15, 0.1}, {0.15, 0.7, 0.2},
+                                   {0.2, 0.3, 0.8}, {0.8, 0.7, 0.2}, {0.9, 0.5, 0.1}};
+  std::uint32_t h = static_cast<std::uint32_t>(item) * 2654435761u;
+  h ^= h >> 15;
+  const double shade = 0.55 + 0.45 * (h % 1000) / 1000.0;
+  return surface[std::clamp(p.surface, 0, 6)] * shade;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const ProgramInfo info{
+      "lesson10", "The hemicube",
+      "Draws a hemicube's five item-buffer faces and its delta form factors, measures the "
+      "hemicube's error against closed forms vs resolution and time, aliasing and random "
+      "rotation, point sampling near patches, and times full matrices of a 2,000-patch room."};
+  return run_program(argc, argv, info, {}, [&](const ProgramOptions& options) {
+    OutputFolder out(options.out, info.id, info.title);
+    const bool quick = options.quick;
+    require(std::abs(parallel_rectangles(1, 1, 1) - 0.19982) < 1e-4, "C-11 closed form check failed");
+
+    // 1. The five faces of one placement, as false colours per patch.
+    {
+      const auto room = room_with_block(quick ? 6 : 12, quick ? 2 : 4);
+      std::size_t receiver = 0;  // the floor patch nearest (0.25, 0.3)
+      for (std::size_t j = 0; j < room.size(); ++j)
+        if (room[j].surface == 0 && length(room[j].centroid - Point3(0.25, 0.3, 0)) <
+                                        length(room[receiver].centroid - Point3(0.25, 0.3, 0)))
+          receiver = j;
+      const int res = 64;
+      const Hemicube hemicube(res);
+      HemicubeBuffers buffers;
+      std::vector<double> row(room.size());
+      // The room's floor normal is +z, so the hemicube's frame is the tangent basis of +z, unrotated.
+      hemicube.form_factor_row(room, receiver, row.data(), buffers);
+      const Image faces = unfolded(512, [&](const Vec3& d) {
+        HemicubeFace f;
+        int col, r;
+        if (!hemicube_pixel(d, res, f, col, r)) return Color(1.0);
+        const std::int32_t item = buffers.face_items(f)[static_cast<std::size_t>(r) * res + col];
+        if (item == kEmptyPixel) return Color(0.0);
+        if (item == kBackFacePixel) return Color(0.1);
+        return patch_colour(room[static_cast<std::size_t>(item)], item);
+      });
+      out.image(
+          faces, "item_buffer",
+          "The five item-buffer faces of one hemicube (64 pixels across) on the floor of a room with a "
+          "floating block, unfolded: top face in the middle, side faces folded out; one false colour per "
+          "patch (walls tinted by surface).");
+
+      const int dres = 16;
+      const HemicubeDeltas deltas = make_hemicube_deltas(dres);
+      const double top_max = *std::max_element(deltas.top.begin(), deltas.top.end());
+      const Image map = unfolded(512, [&](const Vec3& d) {
+        HemicubeFace f;
+        int col, r;
+        if (!hemicube_pixel(d, dres, f, col, r)) return Color(1.0);
+        const std::size_t p = static_cast<std::size_t>(r) * dres + col;
+        return colormap_viridis((f == HemicubeFace::top ? deltas.top[p] : deltas.side[p]) / top_max);
+      });
+      out.image(
+          map, "delta_form_factors",
+          "Delta form factors of a 16-pixel hemicube, unfolded, divided by the largest (the top face's "
+          "centre): pixels near the normal are worth most; side pixels near the base are worth nothing.");
+    }
+
+    // 2. Error against closed forms vs resolution (and the deltas' rule).
+    std::vector<int> resolutions;
+    if (quick)
+      resolutions = {4, 8, 16, 32, 64};
+    else {
+      for (int r = 4; r <= 64; r += 2) resolutions.push_back(r);
+      for (int r : {80, 96, 100, 128, 150, 160, 192, 200, 256, 384, 512}) resolutions.push_back(r);
+    }
+    struct Config {
+      std::string name;
+      std::vector<Point3> polygon;
+    };
+    const std::vector<Config> configs{
+        {"near quad", {{0.3, -0.2, 0.5}, {0.1, 0.6, 0.9}, {0.9, 0.9, 1.3}, {1.1, 0.1, 0.9}}},
+        {"wall strip", {{0.83, -0.31, 0}, {0.83, -0.31, 0.61}, {0.83, 0.47, 0.61}, {0.83, 0.47, 0}}},
+        {"small far square", facing_square(Point3(0.7, 0.4, 2.5), 0.06)}};
+    Table accuracy({"config", "rule", "resolution", "hemicube", "exact", "relative_error"});
+    std::vector<double> mean_error(resolutions.size(), 0.0);
+    for (std::size_t r = 0; r < resolutions.size(); ++r) {
+      for (const Config& c : configs) {
+        Patch target = make_patch(c.polygon);
+        if (dot(target.normal, target.centroid) > 0)
+          target = make_patch(std::vector<Point3>(c.polygon.rbegin(), c.polygon.rend()));
+        const std::vector<Patch> patches{receiver_at_origin(), target};
+        const double exact = lambert_contour(Point3(0), Vec3(0, 0, 1), c.polygon);
+        for (DeltaRule rule : {DeltaRule::exact, DeltaRule::midpoint}) {
+          if (rule == DeltaRule::midpoint && c.name != "near quad") continue;
+          const Hemicube hemicube(resolutions[r], rule);
+          HemicubeBuffers buffers;
+          double row[2];
+          hemicube.form_factor_row(patches, 0, row, buffers);
+          const double error = std::abs(row[1] - exact) / exact;
+          if (rule == DeltaRule::exact) mean_error[r] += error / configs.size();
+          accuracy.add_row({c.name, std::string(rule == DeltaRule::exact ? "exact" : "midpoint"),
+                            std::int64_t{resolutions[r]}, row[1], exact, error});
+        }
+      }
+    }
+    out.table(accuracy, "accuracy", "Hemicube factor from a point vs Lambert's closed form, by resolution.");
+    PlotSpec acc_plot{"Hemicube error vs resolution",
+                      "resolution (pixels across the top face)",
+                      "relative error",
+                      true,
+                      true,
+                      {}};
+    for (const Config& c : configs)
+      acc_plot.series.push_back({"accuracy.csv", 3, 6, c.name + " (exact deltas)",
+                                 "strcol(1) eq '" + c.name + "' && strcol(2) eq 'exact'", "linespoints"});
+    acc_plot.series.push_back({"accuracy.csv", 3, 6, "near quad (midpoint deltas, the notes)",
+                               "strcol(1) eq 'near quad' && strcol(2) eq 'midpoint'", "linespoints"});
+    out.plot(acc_plot, "accuracy",
+             "Relative error vs resolution: the small far square's error jumps about "
+             "(aliasing); the big patches' error falls roughly as 1/resolution.");
+
+    // 3. Aliasing along a line, and a random rotation about the normal.
+    {
+      const int res = 32;
+      const int steps = quick ? 40 : 200;
+      Table line({"offset", "fixed_ratio", "rotated_ratio"});
+      Rng rng(options.seed, 10);
+      for (int s = 0; s <= steps; ++s) {
+        const double offset = 0.4 * s / steps;
+        const auto square = facing_square(Point3(0.5 + offset, 0.3, 2.5), 0.06);
+        const std::vector<Patch> patches{receiver_at_origin(), make_patch(square)};
+        const double exact = lambert_contour(Point3(0), Vec3(0, 0, 1), square);
+        const Hemicube hemicube(res);
+        HemicubeBuffers buffers;
+        double fixed[2], rotated[2];
+        hemicube.form_factor_row(patches, 0, fixed, buffers);
+        hemicube.form_factor_row(patches, 0, rotated, buffers, 2 * kPi * rng.uniform());
+        line.add_row({offset, fixed[1] / exact, rotated[1] / exact});
+      }
+      out.table(line, "aliasing_line", "A 0.06-wide square at height 2.5 slid sideways: hemicube / exact.");
+      out.plot(PlotSpec{"Small patch slid sideways (resolution 32)",
+                        "offset",
+                        "hemicube / exact",
+                        false,
+                        false,
+                        {{"aliasing_line.csv", 1, 2, "fixed orientation", "", "linespoints"},
+                         {"aliasing_line.csv", 1, 3, "random rotation per estimate", "", "points"}}},
+               "aliasing_line",
+               "Fixed orientation: the estimate jumps between 0 and whole pixels as the patch crosses pixel "
+               "centres, the same way every time; a random rotation turns the pattern into noise.");
+
+      Table rotation({"resolution", "fixed_error", "rotated_rms_error", "rotated_mean_error"});
+      const auto square = facing_square(Point3(0.7, 0.4, 2.5), 0.06);
+      const std::vector<Patch> patches{receiver_at_origin(), make_patch(square)};
+      const double exact = lambert_contour(Point3(0), Vec3(0, 0, 1), square);
+      const int rotations = quick ? 16 : 256;
+      for (int res : quick ? std::vector<int>{8, 16, 32} : std::vector<int>{8, 16, 32, 64, 128, 256}) {
+        const Hemicube hemicube(res);
+        HemicubeBuffers buffers;
+        double row[2];
+        hemicube.form_factor_row(patches, 0, row, buffers);
+        const double fixed = std::abs(row[1] - exact) / exact;
+        double sum = 0, sum2 = 0;
+        for (int k = 0; k < rotations; ++k) {
+          hemicube.form_factor_row(patches, 0, row, buffers, 2 * kPi * rng.uniform());
+          const double e = (row[1] - exact) / exact;
+          sum += row[1];
+          sum2 += e * e;
+        }
+        rotation.add_row({std::int64_t{res}, fixed, std::sqrt(sum2 / rotations),
+                          std::abs(sum / rotations - exact) / exact});
+      }
+      out.table(
+          rotation, "rotation",
+          "Small far square: error of the fixed hemicube, RMS error of one randomly rotated estimate, and "
+          "error of the mean of all rotated estimates.");
+      out.plot(PlotSpec{"Random rotation: aliasing becomes noise",
+                        "resolution",
+                        "relative error",
+                        true,
+                        true,
+                        {{"rotation.csv", 1, 2, "fixed orientation", "", "linespoints"},
+                         {"rotation.csv", 1, 3, "one random rotation (RMS)", "", "linespoints"},
+                         {"rotation.csv", 1, 4, "mean of the random rotations", "", "linespoints"}}},
+               "rotation", "Errors for the small far square with and without random rotation.");
+    }
+
+    // 4. Point sampling: the hemicube measures the factor from the centroid, not the area average.
+    {
+      Table near({"configuration", "distance", "area_to_area", "centroid_exact", "hemicube_centroid",
+                  "hemicube_8x8_average"});
+      const int res = quick ? 64 : 200;
+      const Hemicube hemicube(res);
+      HemicubeBuffers buffers;
+      auto subdivided = [&](const Patch& target, const std::vector<Patch>& parts) {
+        // Place the hemicube on each of the receiver's sub-patches; area-weight their rows.
+        double total = 0, area = 0;
+        for (const Patch& part : parts) {
+          const std::vector<Patch> pair{part, target};
+          double row[2];
+          hemicube.form_factor_row(pair, 0, row, buffers);
+          total += part.area * row[1];
+          area += part.area;
+        }
+        return total / area;
+      };
+      const auto receiver_parts =
+          mesh_quad({-0.5, -0.5, 0}, {0.5, -0.5, 0}, {0.5, 0.5, 0}, {-0.5, 0.5, 0}, 8, 8, Color(0.5));
+      const Patch receiver = receiver_at_origin(0.5);
+      for (double h : {0.05, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0}) {
+        const Patch target = make_patch({{-0.5, -0.5, h}, {-0.5, 0.5, h}, {0.5, 0.5, h}, {0.5, -0.5, h}});
+        const std::vector<Patch> pair{receiver, target};
+        double row[2];
+        hemicube.form_factor_row(pair, 0, row, buffers);
+        near.add_row({std::string("parallel squares"), h, parallel_rectangles(1, 1, h),
+                      4 * parallel_corner(0.5, 0.5, h), row[1], subdivided(target, receiver_parts)});
+      }
+      const Patch wall = make_patch({{0.5, -0.5, 0}, {0.5, -0.5, 1}, {0.5, 0.5, 1}, {0.5, 0.5, 0}});
+      const std::vector<Patch> pair{receiver, wall};
+      double row[2];
+      hemicube.form_factor_row(pair, 0, row, buffers);
+      // Two unit squares at right angles sharing an edge: 0.2000438 (Howell C-14 with X = Y = 1).
+      near.add_row({std::string("perpendicular, shared edge"), 0.0, 0.2000438,
+                    2 * perpendicular_corner(1, 0.5, 0.5), row[1], subdivided(wall, receiver_parts)});
+      out.table(
+          near, "point_sampling",
+          "Unit squares: the exact area-to-area factor, the exact factor from the receiver's centroid, the "
+          "hemicube at the centroid, and the hemicube averaged over 8 × 8 sub-patches.",
+          5);
+      out.plot(PlotSpec{"Point sampling fails for near patches (parallel unit squares)",
+                        "distance",
+                        "form factor",
+                        true,
+                        false,
+                        {{"point_sampling.csv", 2, 3, "exact, area to area",
+                          "strcol(1) eq 'parallel squares'", "linespoints"},
+                         {"point_sampling.csv", 2, 5, "hemicube at the centroid",
+                          "strcol(1) eq 'parallel squares'", "linespoints"},
+                         {"point_sampling.csv", 2, 6, "hemicube on 8x8 sub-patches",
+                          "strcol(1) eq 'parallel squares'", "linespoints"}}},
+               "point_sampling", "Near patches: the centroid's factor overestimates the area average.");
+    }
+
+    // 5. Full matrices of a closed room with a floating block (~2,000 patches), and the time.
+    {
+      const auto room = quick ? room_with_block(4, 1) : room_with_block(18, 3);
+      Table timing({"patches", "resolution", "threads", "seconds", "microseconds_per_row",
+                    "max_row_sum_error", "mean_relative_error_of_three_configs"});
+      std::vector<int> list = quick ? std::vector<int>{16, 32} : std::vector<int>{50, 100, 150, 200};
+      for (std::size_t k = 0; k < list.size(); ++k) {
+        report_progress(info.id, "room matrices", static_cast<int>(k), static_cast<int>(list.size()));
+        Stopwatch watch;
+        const FormFactorMatrix f = hemicube_form_factors(room, list[k]);
+        const double seconds = watch.seconds();
+        double worst = 0;
+        for (std::size_t i = 0; i < f.size(); ++i) worst = std::max(worst, std::abs(f.row_sum(i) - 1));
+        double err = std::nan("");
+        for (std::size_t r = 0; r < resolutions.size(); ++r)
+          if (resolutions[r] == list[k]) err = mean_error[r];
+        timing.add_row({static_cast<std::int64_t>(room.size()), std::int64_t{list[k]},
+                        std::int64_t{omp_get_max_threads()}, seconds, 1e6 * seconds / room.size(), worst,
+                        err});
+      }
+      report_progress(info.id, "room matrices", static_cast<int>(list.size()), static_cast<int>(list.size()));
+      out.table(timing, "timing",
+                "Whole form-factor matrices of a closed room with a floating block: time, and the largest "
+                "deviation of a row sum from 1 (the room is closed).");
+      out.plot(PlotSpec{"Time per hemicube placement",
+                        "resolution",
+                        "microseconds per row",
+                        true,
+                        true,
+                        {{"timing.csv", 2, 5, "room with block", "", "linespoints"}}},
+               "timing", "Time per row grows with the pixel count (resolution²) plus a per-patch cost.");
+    }
+    out.finish();
+  });
+}

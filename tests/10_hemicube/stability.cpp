@@ -1,0 +1,60 @@
+// Lesson 10 stability tests (not graded): the hemicube far from the origin,
+// at tiny and huge scales, and on triangles.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "illum/radiosity/hemicube.hpp"
+
+using namespace illum;
+
+namespace {
+
+// The cube [o, o + s]³ meshed m × m per face, normals inwards.
+std::vector<Patch> cube_at(const Point3& o, double s, int m) {
+  std::vector<Patch> box;
+  const double q[6][4][3] = {
+      {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}, {{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}},
+      {{0, 0, 0}, {0, 1, 0}, {0, 1, 1}, {0, 0, 1}}, {{1, 0, 0}, {1, 0, 1}, {1, 1, 1}, {1, 1, 0}},
+      {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}}, {{0, 1, 0}, {1, 1, 0}, {1, 1, 1}, {0, 1, 1}}};
+  for (const auto& f : q) {
+    Point3 c[4];
+    for (int k = 0; k < 4; ++k) c[k] = o + s * Vec3(f[k][0], f[k][1], f[k][2]);
+    const auto face = mesh_quad(c[0], c[1], c[2], c[3], m, m, Color(0.5));
+    box.insert(box.end(), face.begin(), face.end());
+  }
+  return box;
+}
+
+}  // namespace
+
+TEST_SUITE("stability") {
+  TEST_CASE("hard case: a closed cube far from the origin, tiny and huge, still sums to one") {
+    for (const auto& [origin, size] : std::vector<std::pair<Point3, double>>{
+             {Point3(1e4, -2e4, 3e3), 1.0}, {Point3(0.0), 1e-3}, {Point3(-5e3, 0, 0), 1e4}}) {
+      const auto cube = cube_at(origin, size, 3);
+      const FormFactorMatrix f = hemicube_form_factors(cube, 20, true, 11);
+      double worst = 0;
+      for (std::size_t i = 0; i < f.size(); ++i) worst = std::max(worst, std::abs(f.row_sum(i) - 1));
+      INFO("cube of side " << size << " at (" << origin.x << ", " << origin.y << ", " << origin.z << ")");
+      CHECK(worst < 1e-9);
+    }
+  }
+
+  TEST_CASE("hard case: a tetrahedron meshed into triangles is closed too") {
+    const Point3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0), d(0, 0, 1);
+    std::vector<Patch> tet;
+    // Counter-clockwise seen from inside: normals inwards.
+    for (const auto& [p, q, r] :
+         std::vector<std::array<Point3, 3>>{{a, b, c}, {a, d, b}, {a, c, d}, {b, d, c}}) {
+      const auto face = mesh_triangle(p, q, r, 4, Color(0.5));
+      tet.insert(tet.end(), face.begin(), face.end());
+    }
+    const Point3 inside(0.2, 0.2, 0.2);
+    for (const Patch& p : tet) REQUIRE(dot(p.normal, inside - p.centroid) > 0);
+    const FormFactorMatrix f = hemicube_form_factors(tet, 32);
+    for (std::size_t i = 0; i < f.size(); ++i) CHECK(f.row_sum(i) == doctest::Approx(1.0).epsilon(1e-12));
+  }
+}
