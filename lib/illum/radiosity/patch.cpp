@@ -12,15 +12,17 @@ Patch make_patch(std::vector<Point3> vertices, Color reflectance, Color emission
                  double planarity_tolerance) {
   require(vertices.size() >= 3, "make_patch: a patch needs at least three vertices");
   for (const Point3& v : vertices) require(is_finite(v), "make_patch: vertex coordinates must be finite");
-  // Newell's method: the vector area of a planar polygon, robust for any vertex order.
-  Vec3 vector_area(0.0);
-  Point3 mean(0.0);
+  // Newell's method: the vector area of a planar polygon, robust for any
+  // vertex order. It runs on coordinates relative to the vertices' mean: on
+  // absolute coordinates the cross products of far-away vertices cancel
+  // (a unit patch at 1e6 from the origin loses about 12 digits).
   const std::size_t n = vertices.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    vector_area += 0.5 * cross(vertices[i], vertices[(i + 1) % n]);
-    mean += vertices[i];
-  }
+  Point3 mean(0.0);
+  for (const Point3& v : vertices) mean += v;
   mean /= static_cast<double>(n);
+  Vec3 vector_area(0.0);
+  for (std::size_t i = 0; i < n; ++i)
+    vector_area += 0.5 * cross(vertices[i] - mean, vertices[(i + 1) % n] - mean);
   const double area = length(vector_area);
   double size = 0;
   for (const Point3& v : vertices) size = std::max(size, length(v - mean));
