@@ -95,7 +95,8 @@ BezierPatch::BezierPatch(int degree_u, int degree_v, const std::vector<Point3>& 
           "BezierPatch: all control points lie on one line; the patch has no area and no normal");
 }
 
-BezierPatch BezierPatch::bilinear(const Point3& p00, const Point3& p10, const Point3& p01, const Point3& p11) {
+BezierPatch BezierPatch::bilinear(const Point3& p00, const Point3& p10, const Point3& p01,
+                                  const Point3& p11) {
   return BezierPatch(1, 1, {p00, p10, p01, p11});
 }
 
@@ -137,7 +138,8 @@ std::array<BezierPatch, 4> BezierPatch::subdivide() const {
   for (int half = 0; half < 2; ++half) {  // then split each half in v: each column i
     const BezierPatch& source = half == 0 ? low_u : high_u;
     for (int i = 0; i <= degree_u_; ++i)
-      split_half(&source.points_[i], degree_v_, stride, &quarters[half].points_[i], &quarters[2 + half].points_[i]);
+      split_half(&source.points_[i], degree_v_, stride, &quarters[half].points_[i],
+                 &quarters[2 + half].points_[i]);
   }
   return quarters;
 }

@@ -27,8 +27,8 @@ struct BoundingBall {
 class ImplicitSurface {
  public:
   virtual ~ImplicitSurface() = default;
-  virtual double value(const Point3& p) const = 0;    // F(P)
-  virtual Vec3 gradient(const Point3& p) const = 0;   // ∇F(P), the (unnormalised) normal
+  virtual double value(const Point3& p) const = 0;           // F(P)
+  virtual Vec3 gradient(const Point3& p) const = 0;          // ∇F(P), the (unnormalised) normal
   virtual double distance_bound(const Point3& p) const = 0;  // G(P)
   virtual double lipschitz() const = 0;                      // L for G
   virtual BoundingBall bounds() const = 0;

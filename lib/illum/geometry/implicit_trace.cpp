@@ -8,10 +8,14 @@ namespace illum {
 
 const char* to_string(ImplicitMethod method) {
   switch (method) {
-    case ImplicitMethod::bisection: return "bisection";
-    case ImplicitMethod::newton: return "newton";
-    case ImplicitMethod::safeguarded_newton: return "safeguarded newton";
-    case ImplicitMethod::sphere_tracing: return "sphere tracing";
+    case ImplicitMethod::bisection:
+      return "bisection";
+    case ImplicitMethod::newton:
+      return "newton";
+    case ImplicitMethod::safeguarded_newton:
+      return "safeguarded newton";
+    case ImplicitMethod::sphere_tracing:
+      return "sphere tracing";
   }
   return "unknown";
 }

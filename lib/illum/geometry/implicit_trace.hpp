@@ -22,9 +22,9 @@ enum class ImplicitMethod { bisection, newton, safeguarded_newton, sphere_tracin
 const char* to_string(ImplicitMethod method);
 
 struct ImplicitOptions {
-  double tolerance = 1e-9;   // the accuracy knob, passed to the root finder
-  int max_iterations = 500;  // per root finder
-  double march_step = 0.05;  // bracket search step (bisection, Newton, safeguarded Newton)
+  double tolerance = 1e-9;        // the accuracy knob, passed to the root finder
+  int max_iterations = 500;       // per root finder
+  double march_step = 0.05;       // bracket search step (bisection, Newton, safeguarded Newton)
   bool newton_uses_march = true;  // false: Newton starts at the bounding-ball entry
 };
 

@@ -27,11 +27,11 @@ struct RayPlanes {
 };
 
 struct PatchHit {
-  double s = 0;        // ray parameter, inside ray.range
+  double s = 0;         // ray parameter, inside ray.range
   double u = 0, v = 0;  // patch parameters, in [0, 1]
-  Point3 point;        // S(u, v)
-  Vec3 normal;         // (∂S/∂u × ∂S/∂v)/|…|, orientation as parametrised
-  int iterations = 0;  // Newton steps taken
+  Point3 point;         // S(u, v)
+  Vec3 normal;          // (∂S/∂u × ∂S/∂v)/|…|, orientation as parametrised
+  int iterations = 0;   // Newton steps taken
 };
 
 struct PatchOptions {
@@ -68,7 +68,7 @@ std::optional<PatchHit> patch_newton(const BezierPatch& patch, const Ray& ray, c
 // pruning sub-patches whose box the ray misses, start patch_newton (on the
 // whole patch) at the centre of every surviving leaf, keep the smallest s.
 // Throws std::invalid_argument for max_depth outside 0..12 or bad options.
-std::optional<PatchHit> intersect_patch(const Ray& ray, const BezierPatch& patch, const PatchOptions& options = {},
-                                        PatchStats* stats = nullptr);
+std::optional<PatchHit> intersect_patch(const Ray& ray, const BezierPatch& patch,
+                                        const PatchOptions& options = {}, PatchStats* stats = nullptr);
 
 }  // namespace illum

@@ -10,7 +10,8 @@ namespace illum {
 namespace {
 
 void check_common(double tolerance, int max_iterations) {
-  require(std::isfinite(tolerance) && tolerance > 0.0, "root finding: the tolerance must be positive and finite");
+  require(std::isfinite(tolerance) && tolerance > 0.0,
+          "root finding: the tolerance must be positive and finite");
   require(max_iterations >= 1, "root finding: max_iterations must be at least 1");
 }
 
