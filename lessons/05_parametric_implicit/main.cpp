@@ -7,6 +7,7 @@
 // tolerance tightens, for the four implicit methods and for Newton on a patch.
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <numbers>
 #include <optional>
 #include <sstream>
@@ -48,17 +49,34 @@ Color shade(const Vec3& normal, const Vec3& direction, const Color& albedo) {
   return albedo * (0.12 + 0.88 * std::max(0.0, dot(n, light)));
 }
 
+// Runs body(y) for every row in parallel. An exception (a stub's
+// NotImplemented, a bad argument) cannot leave an OpenMP region, so the first
+// one is kept and rethrown after the loop, where run_program reports it.
+template <class Body>
+void parallel_rows(int height, Body&& body) {
+  std::exception_ptr error;
+#pragma omp parallel for schedule(dynamic)
+  for (int y = 0; y < height; ++y) {
+    try {
+      body(y);
+    } catch (...) {
+#pragma omp critical(lesson05_error)
+      if (!error) error = std::current_exception();
+    }
+  }
+  if (error) std::rethrow_exception(error);
+}
+
 Image render_implicit(const PinholeCamera& camera, const ImplicitSurface& surface, ImplicitMethod method,
                       const ImplicitOptions& options, const Color& albedo) {
   Image image(camera.width(), camera.height(), background);
-#pragma omp parallel for schedule(dynamic)
-  for (int y = 0; y < camera.height(); ++y) {
+  parallel_rows(camera.height(), [&](int y) {
     for (int x = 0; x < camera.width(); ++x) {
       const Ray ray = camera.pixel_ray(x, y);
       if (const auto hit = intersect_implicit(ray, surface, method, options))
         image.at(x, y) = shade(hit->normal, ray.direction, albedo);
     }
-  }
+  });
   return image;
 }
 
@@ -79,8 +97,7 @@ Image render_patches(const PinholeCamera& camera, const std::vector<BezierPatch>
                      const PatchOptions& options) {
   const Color albedo[] = {Color(0.85, 0.55, 0.25), Color(0.35, 0.65, 0.9)};
   Image image(camera.width(), camera.height(), background);
-#pragma omp parallel for schedule(dynamic)
-  for (int y = 0; y < camera.height(); ++y) {
+  parallel_rows(camera.height(), [&](int y) {
     for (int x = 0; x < camera.width(); ++x) {
       const Ray ray = camera.pixel_ray(x, y);
       std::optional<PatchHit> best;
@@ -98,7 +115,7 @@ Image render_patches(const PinholeCamera& camera, const std::vector<BezierPatch>
         image.at(x, y) = shade(best->normal, ray.direction, albedo[which % 2] * (odd ? 0.75 : 1.0));
       }
     }
-  }
+  });
   return image;
 }
 
@@ -113,9 +130,8 @@ Image render_newton_failures(const PinholeCamera& camera, const Torus& torus, in
   newton_options.max_iterations = 50;
   ImplicitOptions reference_options;
   reference_options.march_step = 0.005;
-  int n_fail = 0, n_wrong = 0;
-#pragma omp parallel for schedule(dynamic) reduction(+ : n_fail, n_wrong)
-  for (int y = 0; y < camera.height(); ++y) {
+  std::vector<int> row_fail(camera.height(), 0), row_wrong(camera.height(), 0);
+  parallel_rows(camera.height(), [&](int y) {
     for (int x = 0; x < camera.width(); ++x) {
       const Ray ray = camera.pixel_ray(x, y);
       const auto reference =
@@ -123,17 +139,21 @@ Image render_newton_failures(const PinholeCamera& camera, const Torus& torus, in
       const auto newton_hit = intersect_implicit(ray, torus, ImplicitMethod::newton, newton_options);
       if (reference && !newton_hit) {
         image.at(x, y) = Color(0.9, 0.1, 0.1);
-        ++n_fail;
+        ++row_fail[y];
       } else if (newton_hit && (!reference || std::abs(newton_hit->s - reference->s) > 1e-6)) {
         image.at(x, y) = Color(1.0, 0.6, 0.1);
-        ++n_wrong;
+        ++row_wrong[y];
       } else if (reference) {
         image.at(x, y) = shade(reference->normal, ray.direction, Color(0.7));
       }
     }
+  });
+  failures = 0;
+  wrong = 0;
+  for (int y = 0; y < camera.height(); ++y) {
+    failures += row_fail[y];
+    wrong += row_wrong[y];
   }
-  failures = n_fail;
-  wrong = n_wrong;
   return image;
 }
 
