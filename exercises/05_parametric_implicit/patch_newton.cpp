@@ -1,0 +1,35 @@
+// Lesson 05 exercise, part 2: rays against Bézier patches by two planes and Newton.
+// Replace each `throw NotImplemented(...)` with your code. The tasks, hints
+// and the tests that grade them are in README.md beside this file; the
+// declarations and their contracts are in lib/illum/geometry/patch_newton.hpp.
+#include "illum/geometry/patch_newton.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "illum/core/error.hpp"
+
+namespace illum {
+
+// Task 5. Two unit normals N₁, N₂ perpendicular to ω and to each other
+// (N₁ × N₂ = ω), and d_i = −N_i·P0 so that both planes contain the ray.
+RayPlanes ray_planes(const Ray& ray) {
+  throw NotImplemented("ray_planes", "cross ω with the axis least aligned with it (lesson 05, §7)");
+}
+
+// Task 6. Newton in (u, v) on F = (N₁·S + d₁, N₂·S + d₂): solve J Δ = −F,
+// give up when det J ≈ 0 or (u, v) runs off the square, accept when |F| ≤ tolerance.
+std::optional<PatchHit> patch_newton(const BezierPatch& patch, const Ray& ray, const RayPlanes& planes,
+                                     Vec2 start, double tolerance, int max_iterations) {
+  throw NotImplemented("patch_newton", "J = [N₁·S_u N₁·S_v; N₂·S_u N₂·S_v], Cramer's rule (lesson 05, §8)");
+}
+
+// Task 7. Subdivide the patch, prune sub-patches whose control-point box the
+// ray misses, start patch_newton at every surviving leaf's centre, keep the nearest.
+std::optional<PatchHit> intersect_patch(const Ray& ray, const BezierPatch& patch, const PatchOptions& options,
+                                        PatchStats* stats) {
+  throw NotImplemented("intersect_patch",
+                       "convex hull property: a ray that misses the box misses the patch (lesson 05, §9)");
+}
+
+}  // namespace illum

@@ -1,0 +1,74 @@
+#pragma once
+// Ray–parametric-patch intersection, lesson 05 ("Intersección con Superf.
+// Paramétricas"), the way the notes set it up: the ray is the line where
+// two planes π₁ and π₂ meet, so a point S(u, v) of the patch is on the ray
+// exactly when it lies on both planes,
+//   F₁(u, v) = N₁·S(u, v) + d₁ = 0,   F₂(u, v) = N₂·S(u, v) + d₂ = 0,
+// two equations in two unknowns, solved by Newton's method in (u, v):
+//   J Δ = −F,  J = [N₁·S_u  N₁·S_v; N₂·S_u  N₂·S_v],  (u, v) ← (u, v) + Δ.
+// Newton needs a start near the root: the patch is subdivided (de Casteljau)
+// and the sub-patches whose control-point boxes the ray misses are pruned
+// (convex hull property); each surviving leaf starts Newton at its centre.
+#include <optional>
+
+#include "illum/core/ray.hpp"
+#include "illum/core/vec.hpp"
+#include "illum/geometry/bezier_patch.hpp"
+
+namespace illum {
+
+// Two planes N·P + d = 0 whose intersection is the ray's line: N₁, N₂ and ω
+// form a right-handed orthonormal frame (N₁ × N₂ = ω).
+struct RayPlanes {
+  Vec3 n1;
+  double d1 = 0;
+  Vec3 n2;
+  double d2 = 0;
+};
+
+struct PatchHit {
+  double s = 0;         // ray parameter, inside ray.range
+  double u = 0, v = 0;  // patch parameters, in [0, 1]
+  Point3 point;         // S(u, v)
+  Vec3 normal;          // (∂S/∂u × ∂S/∂v)/|…|, orientation as parametrised
+  int iterations = 0;   // Newton steps taken
+};
+
+struct PatchOptions {
+  int max_depth = 4;         // subdivision levels before Newton starts (4^depth leaves at most)
+  double tolerance = 1e-12;  // stop when |F₁|, |F₂| ≤ tolerance (distances to the planes)
+  int max_iterations = 30;   // Newton steps per start
+};
+
+// What the search did, for the studies.
+struct PatchStats {
+  long boxes_tested = 0;
+  long newton_starts = 0;
+  long newton_iterations = 0;
+};
+
+// The planes π₁, π₂ through the ray (lesson 05, §7): N₁ ⟂ ω built from the
+// coordinate axis least aligned with ω, N₂ = ω × N₁, and d_i = −N_i·P0.
+RayPlanes ray_planes(const Ray& ray);
+
+// Newton's method in (u, v) from `start`. A hit when max(|F₁|, |F₂|) ≤
+// tolerance within max_iterations, with (u, v) in [0, 1]² (up to 1e-9,
+// then clamped) and s = ω·(S − P0) inside ray.range. Nothing when Newton
+// leaves the parameter square by more than ½, when J is singular
+// (|det J| = |ω·(S_u × S_v)| ≤ 1e-12·|S_u||S_v|: the ray runs along the
+// surface, the patch is seen edge-on, or the edge there is collapsed), or
+// when it does not converge. At a point where S_u × S_v = 0 (a collapsed
+// edge) the normal is taken a little way into the patch. Throws
+// std::invalid_argument for a non-finite start, tolerance ≤ 0 or
+// max_iterations < 1.
+std::optional<PatchHit> patch_newton(const BezierPatch& patch, const Ray& ray, const RayPlanes& planes,
+                                     Vec2 start, double tolerance, int max_iterations);
+
+// The nearest hit of the ray with the patch: subdivide to options.max_depth,
+// pruning sub-patches whose box the ray misses, start patch_newton (on the
+// whole patch) at the centre of every surviving leaf, keep the smallest s.
+// Throws std::invalid_argument for max_depth outside 0..12 or bad options.
+std::optional<PatchHit> intersect_patch(const Ray& ray, const BezierPatch& patch,
+                                        const PatchOptions& options = {}, PatchStats* stats = nullptr);
+
+}  // namespace illum
