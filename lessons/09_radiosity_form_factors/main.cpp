@@ -52,7 +52,7 @@ void cube_figure(OutputFolder& out, int n, bool quick) {
   const std::vector<Patch> patches = mesh_cube_interior(n);
   const FormFactorMatrix exact = closed_form_rectangle_matrix(patches);
   Table table(
-      {"method", "patches", "seconds", "max |F - F_exact|", "max |row sum - 1|", "reciprocity error"});
+      {"method", "patches", "seconds", "max abs(F - F_exact)", "max abs(row sum - 1)", "reciprocity error"});
   struct Variant {
     std::string name;
     ContourOptions options;
@@ -124,7 +124,7 @@ int main(int argc, char** argv) {
         const double min_time = quick ? 0.0 : 0.02;
 
         // --- B = πI ------------------------------------------------------------
-        Table exitance({"method", "knob", "B", "|B - pi I|"});
+        Table exitance({"method", "knob", "B", "abs(B - pi I)"});
         const double radiance = 1.0;
         auto lambertian = [&](double, double) { return radiance; };
         for (int n : {1, 2, 3, 4, 6, 8}) {
