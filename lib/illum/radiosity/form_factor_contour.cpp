@@ -1,0 +1,156 @@
+// Exercise unit of lesson 09 (exercises/09_radiosity_form_factors/form_factor_contour.cpp is its stub).
+#include "illum/radiosity/form_factor_contour.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "illum/core/error.hpp"
+#include "illum/radiosity/form_factor_analytic.hpp"
+#include "illum/radiosity/gauss_legendre.hpp"
+
+namespace illum {
+
+namespace {
+
+// K(u) with K'(u) = ½ ln(u² + h²): ½u ln(u² + h²) − u + h·atan(u/h).
+double log_primitive(double u, double h) {
+  const double r2 = u * u + h * h;
+  double value = -u;
+  if (u != 0) value += 0.5 * u * std::log(r2);
+  if (h > 0) value += h * std::atan(u / h);
+  return value;
+}
+
+// H(u) with H''(u) = ½ ln(u² + d²): ¼(u² − d²) ln(u² + d²) + d u atan(u/d) − ¾u².
+double log_second_primitive(double u, double d) {
+  const double r2 = u * u + d * d;
+  double value = -0.75 * u * u;
+  if (r2 > 0) value += 0.25 * (u * u - d * d) * std::log(r2);
+  if (d > 0) value += d * u * std::atan(u / d);
+  return value;
+}
+
+// ∫_0^{L_q} ln |x − (b + τ v)| dτ in closed form (v unit).
+double inner_log_integral(const Point3& x, const Point3& b, const Vec3& v, double lq) {
+  const Vec3 w = x - b;
+  const double along = dot(w, v);
+  const double h = length(w - along * v);
+  return log_primitive(lq - along, h) - log_primitive(-along, h);
+}
+
+// ∫∫ ln r dσ dτ over two parallel edges: with the common direction u, the
+// integrand depends only on the difference of the coordinates along u and on
+// the fixed distance d between the lines, so four values of H do it. Exact for
+// collinear, overlapping and coincident edges too (d = 0).
+double parallel_edges_log_integral(const Point3& a, const Vec3& ep, const Point3& b, const Vec3& eq) {
+  const double lp = length(ep);
+  const Vec3 u = ep / lp;
+  const Vec3 w = b - a;
+  const double along = dot(w, u);
+  const double d = length(w - along * u);
+  const double q_end = along + dot(eq, u);
+  const double q1 = std::min(along, q_end), q2 = std::max(along, q_end);
+  return log_second_primitive(lp - q1, d) - log_second_primitive(-q1, d) - log_second_primitive(lp - q2, d) +
+         log_second_primitive(-q2, d);
+}
+
+// The parameter σ ∈ [0, L_p] of the point of edge p closest to edge q, and the distance.
+void closest_point_on_edge(const Point3& a, const Vec3& ep, const Point3& b, const Vec3& eq, double& sigma,
+                           double& distance) {
+  // Minimise |a + s ep − b − t eq|² over s, t ∈ [0, 1] (non-parallel edges).
+  const Vec3 w = a - b;
+  const double aa = dot(ep, ep), bb = dot(ep, eq), cc = dot(eq, eq), dd = dot(ep, w), ee = dot(eq, w);
+  const double det = aa * cc - bb * bb;
+  double s = std::clamp((bb * ee - cc * dd) / det, 0.0, 1.0);
+  double t = std::clamp((bb * s + ee) / cc, 0.0, 1.0);
+  s = std::clamp((bb * t - dd) / aa, 0.0, 1.0);
+  sigma = s * std::sqrt(aa);
+  distance = length(w + s * ep - t * eq);
+}
+
+// ∫_0^{L_p} g(σ) dσ with g the closed-form inner integral.
+double edge_pair_log_integral(const Point3& a, const Vec3& ep, const Point3& b, const Vec3& eq, bool parallel,
+                              const ContourOptions& options, const QuadratureRule& rule) {
+  const double lp = length(ep), lq = length(eq);
+  const Vec3 u = ep / lp, v = eq / lq;
+  auto g = [&](double sigma) { return inner_log_integral(a + sigma * u, b, v, lq); };
+  double sigma_star = 0, distance = 0;
+  if (!parallel && options.graded_near_edges) closest_point_on_edge(a, ep, b, eq, sigma_star, distance);
+  if (parallel || !options.graded_near_edges || distance >= lp) {
+    double sum = 0;
+    for (std::size_t k = 0; k < rule.nodes.size(); ++k) sum += rule.weights[k] * g(rule.nodes[k] * lp);
+    return sum * lp;
+  }
+  // The integrand behaves like (σ − σ*) ln|σ − σ*| near σ*: split there and
+  // grade each side with σ = σ* ± ℓ t³ (dσ = 3ℓt² dt), which makes it smooth.
+  double sum = 0;
+  for (const double side : {-1.0, 1.0}) {
+    const double ell = side < 0 ? sigma_star : lp - sigma_star;
+    if (ell <= 0) continue;
+    for (std::size_t k = 0; k < rule.nodes.size(); ++k) {
+      const double t = rule.nodes[k];
+      sum += rule.weights[k] * 3 * ell * t * t * g(sigma_star + side * ell * t * t * t);
+    }
+  }
+  return sum;
+}
+
+// Largest distance of a polygon's vertices from a plane, on its positive side.
+double height_above(const SmallPolygon& polygon, const Point3& origin, const Vec3& normal) {
+  double h = 0;
+  for (int k = 0; k < polygon.size; ++k) h = std::max(h, dot(normal, polygon[k] - origin));
+  return h;
+}
+
+}  // namespace
+
+double polygon_polygon_form_factor(const Patch& from, const Patch& to, const ContourOptions& options) {
+  require(options.order >= 1 && options.order <= max_gauss_legendre_order,
+          "polygon_polygon_form_factor: the quadrature order must be in 1 … 64");
+  // Only the part of each patch in front of the other exchanges energy.
+  const SmallPolygon pi = clip_polygon_to_half_space(from.vertices, to.centroid, to.normal);
+  const SmallPolygon pj = clip_polygon_to_half_space(to.vertices, from.centroid, from.normal);
+  if (pi.size == 0 || pj.size == 0) return 0.0;
+  // Coplanar (F_ii included) or touching the other's plane only: every cos is zero.
+  const double size = std::sqrt(std::max(from.area, to.area));  // a length scale for the tolerance
+  if (height_above(pi, to.centroid, to.normal) <= 1e-12 * size ||
+      height_above(pj, from.centroid, from.normal) <= 1e-12 * size)
+    return 0.0;
+  const QuadratureRule& rule = gauss_legendre(options.order);
+  // Edge vectors and lengths once per polygon, not once per edge pair.
+  std::array<Vec3, SmallPolygon::capacity> ei, ej;
+  std::array<double, SmallPolygon::capacity> li, lj;
+  for (int p = 0; p < pi.size; ++p) {
+    const auto k = static_cast<std::size_t>(p);
+    ei[k] = pi[(p + 1) % pi.size] - pi[p];
+    li[k] = length(ei[k]);
+  }
+  for (int q = 0; q < pj.size; ++q) {
+    const auto k = static_cast<std::size_t>(q);
+    ej[k] = pj[(q + 1) % pj.size] - pj[q];
+    lj[k] = length(ej[k]);
+  }
+  double sum = 0;
+  for (int p = 0; p < pi.size; ++p) {
+    const auto kp = static_cast<std::size_t>(p);
+    if (li[kp] == 0) continue;
+    for (int q = 0; q < pj.size; ++q) {
+      const auto kq = static_cast<std::size_t>(q);
+      if (lj[kq] == 0) continue;
+      const double scale = li[kp] * lj[kq];
+      const double cosine = dot(ei[kp], ej[kq]) / scale;
+      if (std::abs(cosine) <= 1e-14) continue;  // perpendicular edges: dx_i · dx_j = 0
+      const bool parallel = std::abs(cosine) >= 1 - 1e-14 || length(cross(ei[kp], ej[kq])) <= 1e-12 * scale;
+      const double integral =
+          parallel && options.exact_parallel_edges
+              ? parallel_edges_log_integral(pi[p], ei[kp], pj[q], ej[kq])
+              : edge_pair_log_integral(pi[p], ei[kp], pj[q], ej[kq], parallel, options, rule);
+      sum += cosine * integral;
+    }
+  }
+  return sum / (2 * std::numbers::pi * from.area);
+}
+
+}  // namespace illum

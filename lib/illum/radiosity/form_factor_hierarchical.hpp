@@ -1,0 +1,27 @@
+#pragma once
+// Hierarchical decomposition (lesson 09, "Descomposición jerárquica"): F_ij is
+// the average over patch i of the point factor F_{dA→A_j},
+//   F_ij = (1/A_i) ∫_{A_i} F_{dA→A_j} dA,
+// estimated on a piece of patch i by the point factor at the piece's centroid.
+// A piece is split in four (quads through their edge midpoints, triangles by
+// their midpoints, other polygons into a fan around the centroid) and the
+// estimate is trusted when the children's area-weighted mean agrees with it
+// within the tolerance; otherwise each child is refined the same way.
+#include "illum/radiosity/patch.hpp"
+
+namespace illum {
+
+struct HierarchicalResult {
+  double value = 0;       // the estimate of F_ij
+  long evaluations = 0;   // point factors computed
+  int deepest_level = 0;  // how many times the finest piece was split
+};
+
+// Exercise 4. F from `from` to the front side of `to` (no occlusion) by
+// adaptive subdivision of `from`, refining while the parent and children
+// estimates differ by more than `tolerance`, at most `max_depth` levels.
+// Throws std::invalid_argument when tolerance ≤ 0 or max_depth is outside 0 … 20.
+HierarchicalResult form_factor_hierarchical(const Patch& from, const Patch& to, double tolerance,
+                                            int max_depth = 12);
+
+}  // namespace illum
