@@ -1,0 +1,80 @@
+#pragma once
+// The hemicube (Cohen & Greenberg 1985), lesson 10 ("Método del Hemicubo"):
+// form factors from a patch to every other patch by drawing the scene onto
+// the five faces of a unit half-cube placed at the patch's centroid, each
+// pixel an item buffer cell worth its delta form factor.
+//
+//   for every patch i:                      (the notes' algorithm)
+//     clear the item buffers (item −1, depth ∞)
+//     place the hemicube at the centroid of i, top face along its normal
+//     draw every other patch onto the five faces with a z-buffer
+//     F_ij = Σ ΔF_p over the pixels p that show patch j
+//
+// The hemicube treats patch i as a point (its centroid), so F_ij is the
+// differential-area-to-patch factor; it is accurate when patch j is far
+// compared to the size of i, and it aliases when j covers few pixels.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "illum/radiosity/form_factor_matrix.hpp"
+#include "illum/radiosity/hemicube_deltas.hpp"
+#include "illum/radiosity/hemicube_raster.hpp"
+#include "illum/radiosity/patch.hpp"
+
+namespace illum {
+
+// The five faces, in the order their pixels are stored.
+enum class HemicubeFace { top = 0, pos_x = 1, neg_x = 2, pos_y = 3, neg_y = 4 };
+
+// Item values other than patch indices.
+inline constexpr std::int32_t kEmptyPixel = -1;     // nothing seen: the ray escapes
+inline constexpr std::int32_t kBackFacePixel = -2;  // the back of a patch: it occludes, receives nothing
+
+// Per-thread scratch of the hemicube: the item and depth buffers of the five
+// faces, one after the other (top: res × res, then each side: res × res/2,
+// rows from the patch's plane upwards), and the rasteriser's scratch. Sized
+// by the first form_factor_row call; reused without allocation afterwards.
+struct HemicubeBuffers {
+  int resolution = 0;
+  std::vector<std::int32_t> items;
+  std::vector<double> inv_depth;
+  std::vector<Vec3> local;  // one patch's vertices in the hemicube's frame
+  std::vector<Vec3> face;   // the same, permuted into one face's view frame
+  RasterScratch raster;
+
+  // The item buffer of one face (after form_factor_row) and its size.
+  const std::int32_t* face_items(HemicubeFace f) const;
+  static int face_width(int resolution) { return resolution; }
+  static int face_height(int resolution, HemicubeFace f) {
+    return f == HemicubeFace::top ? resolution : resolution / 2;
+  }
+};
+
+class Hemicube {
+ public:
+  // Pixels along the top face's side (even, ≥ 2); side faces are
+  // resolution × resolution/2. Precomputes the delta form factors.
+  explicit Hemicube(int resolution, DeltaRule rule = DeltaRule::exact);
+  int resolution() const { return deltas_.resolution; }
+  const HemicubeDeltas& deltas() const { return deltas_; }
+
+  // Row i of the form-factor matrix: row[j] = F_ij estimated by placing the
+  // hemicube at patches[i].centroid oriented by patches[i].normal; row has
+  // patches.size() entries; row[i] = 0. If rotation_angle != 0, the hemicube
+  // is rotated by that angle (radians) about the normal (trades aliasing for
+  // noise). Thread-safe with one HemicubeBuffers per thread. Throws
+  // std::invalid_argument when i is out of range or row is null.
+  void form_factor_row(const std::vector<Patch>& patches, std::size_t i, double* row,
+                       HemicubeBuffers& buffers, double rotation_angle = 0.0) const;
+
+ private:
+  HemicubeDeltas deltas_;
+};
+
+// Every row, in parallel (OpenMP), optionally with a random rotation per
+// patch from `seed` (the same matrix whatever the number of threads).
+FormFactorMatrix hemicube_form_factors(const std::vector<Patch>& patches, int resolution,
+                                       bool random_rotation = false, std::uint64_t seed = 1);
+
+}  // namespace illum

@@ -1,0 +1,146 @@
+#include "illum/radiosity/hemicube_raster.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace illum {
+
+namespace {
+
+// Signed distance-like value of p to frustum plane k: ≥ 0 inside.
+inline double plane_value(int k, const Vec3& p, const FaceTarget& t) {
+  switch (k) {
+    case 0:
+      return p.z - t.near;  // near plane
+    case 1:
+      return p.z + p.x;  // a ≥ −w
+    case 2:
+      return p.z - p.x;  // a ≤ w
+    case 3:
+      return p.z - p.y;  // b ≤ w
+    default:
+      return t.side ? p.y : p.z + p.y;  // b ≥ 0 (the patch's plane) or b ≥ −w
+  }
+}
+
+// Sutherland–Hodgman against one plane. The crossing point is always
+// interpolated from the inside endpoint towards the outside one, so that
+// two polygons sharing the edge compute the same point.
+int clip_against(int k, const std::vector<Vec3>& in, int count, std::vector<Vec3>& out, const FaceTarget& t) {
+  int n = 0;
+  Vec3 prev = in[count - 1];
+  double dp = plane_value(k, prev, t);
+  for (int v = 0; v < count; ++v) {
+    const Vec3 cur = in[v];
+    const double dc = plane_value(k, cur, t);
+    if (dc >= 0) {
+      if (dp < 0) out[n++] = cur + (dc / (dc - dp)) * (prev - cur);
+      out[n++] = cur;
+    } else if (dp >= 0) {
+      out[n++] = prev + (dp / (dp - dc)) * (cur - prev);
+    }
+    prev = cur;
+    dp = dc;
+  }
+  return n;
+}
+
+}  // namespace
+
+unsigned frustum_outcode(const Vec3& p, const FaceTarget& target) {
+  unsigned code = 0;
+  for (int k = 0; k < 5; ++k)
+    if (plane_value(k, p, target) < 0) code |= 1u << k;
+  return code;
+}
+
+int rasterize_polygon(const Vec3* vertices, int count, const Vec3& plane_normal, double plane_d,
+                      std::int32_t item, const FaceTarget& t, RasterScratch& s) {
+  if (count < 3) return 0;
+  unsigned all = ~0u, any = 0;
+  for (int v = 0; v < count; ++v) {
+    const unsigned c = frustum_outcode(vertices[v], t);
+    all &= c;
+    any |= c;
+  }
+  if (all != 0) return 0;  // every vertex outside one plane: nothing to draw
+
+  // 1. Clip (only against the planes some vertex is outside of). Each plane
+  // adds at most one vertex to a convex polygon.
+  const std::size_t capacity = static_cast<std::size_t>(count) + 6;
+  if (s.clip_a.size() < capacity) s.clip_a.resize(capacity), s.clip_b.resize(capacity);
+  std::copy(vertices, vertices + count, s.clip_a.begin());
+  int n = count;
+  for (int k = 0; k < 5 && n >= 3; ++k)
+    if (any & (1u << k)) {
+      n = clip_against(k, s.clip_a, n, s.clip_b, t);
+      std::swap(s.clip_a, s.clip_b);
+    }
+  if (n < 3) return 0;
+
+  // 2. Project to pixel coordinates.
+  const double half_w = 0.5 * t.width;
+  const double y_offset = t.side ? 0.0 : 1.0;
+  for (int v = 0; v < n; ++v) {
+    Vec3& p = s.clip_a[v];
+    p = Vec3((p.x / p.z + 1.0) * half_w, (p.y / p.z + y_offset) * half_w, 0.0);
+  }
+
+  // 3. Spans: for each row whose centre Y = r + ½ lies in [Y_low, Y_high) of
+  // an edge, the edge's X there. A convex polygon has a left and a right edge.
+  if (static_cast<int>(s.span_left.size()) < t.height) {
+    s.span_left.resize(t.height);
+    s.span_right.resize(t.height);
+  }
+  double y_low = s.clip_a[0].y, y_high = y_low;
+  for (int v = 1; v < n; ++v)
+    y_low = std::min(y_low, s.clip_a[v].y), y_high = std::max(y_high, s.clip_a[v].y);
+  const int row_begin = std::max(0, static_cast<int>(std::ceil(y_low - 0.5)));
+  const int row_end = std::min(t.height, static_cast<int>(std::ceil(y_high - 0.5)));
+  if (row_begin >= row_end) return 0;
+  std::fill(s.span_left.begin() + row_begin, s.span_left.begin() + row_end,
+            std::numeric_limits<double>::infinity());
+  std::fill(s.span_right.begin() + row_begin, s.span_right.begin() + row_end,
+            -std::numeric_limits<double>::infinity());
+  for (int v = 0; v < n; ++v) {
+    Vec3 p0 = s.clip_a[v], p1 = s.clip_a[(v + 1) % n];
+    if (p0.y == p1.y) continue;          // horizontal edges cover no row centre on their own
+    if (p0.y > p1.y) std::swap(p0, p1);  // walk every edge upwards, whichever polygon it belongs to
+    const int r0 = std::max(row_begin, static_cast<int>(std::ceil(p0.y - 0.5)));
+    const int r1 = std::min(row_end, static_cast<int>(std::ceil(p1.y - 0.5)));
+    const double slope = (p1.x - p0.x) / (p1.y - p0.y);
+    for (int r = r0; r < r1; ++r) {
+      const double x = p0.x + (r + 0.5 - p0.y) * slope;
+      s.span_left[r] = std::min(s.span_left[r], x);
+      s.span_right[r] = std::max(s.span_right[r], x);
+    }
+  }
+
+  // 4. 1/w on the plane n·p = d along the direction (a', b', 1) is (n·(a', b', 1))/d,
+  // with a' = 2X/res − 1 and b' = 2Y/res − 1 (top) or 2Y/res (sides): affine in (X, Y).
+  const double scale = 2.0 / t.width;
+  const double ka = plane_normal.x / plane_d * scale, kb = plane_normal.y / plane_d * scale;
+  const double k0 = (plane_normal.z - plane_normal.x - (t.side ? 0.0 : plane_normal.y)) / plane_d;
+  int written = 0;
+  for (int r = row_begin; r < row_end; ++r) {
+    if (!(s.span_left[r] < s.span_right[r])) continue;  // an empty or degenerate span
+    const int c0 = std::max(0, static_cast<int>(std::ceil(s.span_left[r] - 0.5)));
+    const int c1 = std::min(t.width, static_cast<int>(std::ceil(s.span_right[r] - 0.5)));
+    if (c0 >= c1) continue;
+    std::int32_t* items = t.items + static_cast<std::ptrdiff_t>(r) * t.width;
+    double* depth = t.inv_depth + static_cast<std::ptrdiff_t>(r) * t.width;
+    const double row_term = kb * (r + 0.5) + k0;
+    for (int c = c0; c < c1; ++c) {
+      const double inv_w = ka * (c + 0.5) + row_term;
+      if (inv_w > depth[c]) {
+        depth[c] = inv_w;
+        items[c] = item;
+        ++written;
+      }
+    }
+  }
+  return written;
+}
+
+}  // namespace illum
