@@ -71,7 +71,8 @@ ChosenSolution chosen_solution(std::size_t n, std::uint64_t seed, double rho_max
     }
   }
   for (std::size_t i = 0; i < n; ++i) {
-    s.exact.push_back(Color(1.0 + 0.04 * rng.uniform(), 1.0 + 0.04 * rng.uniform(), 1.0 + 0.04 * rng.uniform()));
+    s.exact.push_back(
+        Color(1.0 + 0.04 * rng.uniform(), 1.0 + 0.04 * rng.uniform(), 1.0 + 0.04 * rng.uniform()));
     const Color rho(rho_max * rng.uniform(), rho_max * rng.uniform(), rho_max);
     s.patches.push_back(square(2.0 * static_cast<double>(i), 1, rho, Color(0.0)));
   }
@@ -110,7 +111,8 @@ TEST_SUITE("lesson11") {
     REQUIRE(b.size() == 3);
     for (int i = 0; i < 3; ++i) {
       INFO("B_" << i + 1 << ": Cramer gives cofactor/det = " << cramer_b[i]);
-      for (int c = 0; c < 3; ++c) CHECK(b[static_cast<std::size_t>(i)][c] == doctest::Approx(cramer_b[i]).epsilon(1e-13));
+      for (int c = 0; c < 3; ++c)
+        CHECK(b[static_cast<std::size_t>(i)][c] == doctest::Approx(cramer_b[i]).epsilon(1e-13));
     }
     INFO("the notes print the limit as 1.16745 .27123 .37736");
     CHECK(std::abs(b[0].r - 1.16745) < 0.5e-5);
@@ -153,7 +155,8 @@ TEST_SUITE("lesson11") {
       b = next;
       jacobi_sweep(ex.patches, ex.form_factors, b, next);
     }
-    for (int i = 0; i < 3; ++i) CHECK(next[static_cast<std::size_t>(i)].b == doctest::Approx(cramer_b[i]).epsilon(1e-12));
+    for (int i = 0; i < 3; ++i)
+      CHECK(next[static_cast<std::size_t>(i)].b == doctest::Approx(cramer_b[i]).epsilon(1e-12));
   }
 
   TEST_CASE("Jacobi contracts the error by at most max ρ per sweep") {
@@ -181,7 +184,8 @@ TEST_SUITE("lesson11") {
     CHECK(b[1].r == doctest::Approx(0.2));
     CHECK(b[2].r == doctest::Approx(0.32));
     for (int k = 0; k < 100; ++k) gauss_seidel_sweep(ex.patches, ex.form_factors, b);
-    for (int i = 0; i < 3; ++i) CHECK(b[static_cast<std::size_t>(i)].r == doctest::Approx(cramer_b[i]).epsilon(1e-12));
+    for (int i = 0; i < 3; ++i)
+      CHECK(b[static_cast<std::size_t>(i)].r == doctest::Approx(cramer_b[i]).epsilon(1e-12));
   }
 
   TEST_CASE("over-relaxed Gauss-Seidel converges to the chosen solution; ω outside (0, 2) is refused") {
@@ -212,7 +216,8 @@ TEST_SUITE("lesson11") {
     CHECK(r[1].r == doctest::Approx(0.23));
     CHECK(r[2].r == doctest::Approx(0.0));
     for (int k = 0; k < 300; ++k) southwell_step(ex.patches, ex.form_factors, b, r);
-    for (int i = 0; i < 3; ++i) CHECK(b[static_cast<std::size_t>(i)].r == doctest::Approx(cramer_b[i]).epsilon(1e-12));
+    for (int i = 0; i < 3; ++i)
+      CHECK(b[static_cast<std::size_t>(i)].r == doctest::Approx(cramer_b[i]).epsilon(1e-12));
   }
 
   TEST_CASE("the three-patch progressive table matches the notes' table, value by value") {
@@ -276,7 +281,9 @@ TEST_SUITE("lesson11") {
     // F_10 = 0.25, so by reciprocity F_01 = F_10·A_1/A_0 = 1.
     const double row[2] = {0.25, 0.0};
     shoot(patches, 1, row, state);
-    INFO("ΔB_0 = ρ_0 F_10 (A_1/A_0) Δ_1 = 0.5 · 0.25 · 4 · 0.5 = 0.25 (the notes' ρ_shooter F_10 Δ would give 0.0375)");
+    INFO(
+        "ΔB_0 = ρ_0 F_10 (A_1/A_0) Δ_1 = 0.5 · 0.25 · 4 · 0.5 = 0.25 (the notes' ρ_shooter F_10 Δ would give "
+        "0.0375)");
     CHECK(state.radiosity[0].r == doctest::Approx(1.25));
     CHECK(state.unshot[0].r == doctest::Approx(1.25));
     CHECK(state.unshot[1].r == doctest::Approx(0.0));
@@ -302,7 +309,8 @@ TEST_SUITE("lesson11") {
   TEST_CASE("the ambient term by hand") {
     // Areas 1 and 3, ρ = 0.5 and 0.1: ρ_avg = (0.5 + 0.3)/4 = 0.2, R = 1/(1 − 0.2) = 1.25.
     // Δ = (0.4, 0): ambient = 1.25 · (0.4 · 1)/4 = 0.125.
-    std::vector<Patch> patches = {square(0, 1, Color(0.5), Color(0.0)), square(2, std::sqrt(3.0), Color(0.1), Color(0.0))};
+    std::vector<Patch> patches = {square(0, 1, Color(0.5), Color(0.0)),
+                                  square(2, std::sqrt(3.0), Color(0.1), Color(0.0))};
     const Color ambient = ambient_term(patches, {Color(0.4), Color(0.0)});
     CHECK(ambient.r == doctest::Approx(0.125));
     CHECK(ambient.b == doctest::Approx(0.125));

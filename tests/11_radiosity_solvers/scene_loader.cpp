@@ -52,7 +52,8 @@ TEST_SUITE("io") {
     CHECK(s.patches[5].emission == Color(1.0));
     CHECK(s.patches[5].surface == 1);
     CHECK(s.patches[0].normal.y == doctest::Approx(1.0));  // counter-clockwise seen from +y
-    const RadiosityScene tri = parse_radiosity_scene(scene_with(R"("white")", "[[0,1,0],[1,1,0],[0,1,1]]"), "t", 0.3);
+    const RadiosityScene tri =
+        parse_radiosity_scene(scene_with(R"("white")", "[[0,1,0],[1,1,0],[0,1,1]]"), "t", 0.3);
     CHECK(tri.surfaces[1].patch_count == 25);  // longest edge √2: ceil(1.414/0.3) = 5 divisions, 5² triangles
   }
 
@@ -60,7 +61,8 @@ TEST_SUITE("io") {
     std::string m = error_of(scene_with(R"({"reflectance": [0.5, -0.1, 0.5]})", good_quad),
                              "surfaces[1].material.reflectance[1]");
     CHECK(m.find("negative") != std::string::npos);
-    m = error_of(scene_with(R"({"reflectance": [0.5, 0.5, 1.0]})", good_quad), "surfaces[1].material.reflectance[2]");
+    m = error_of(scene_with(R"({"reflectance": [0.5, 0.5, 1.0]})", good_quad),
+                 "surfaces[1].material.reflectance[2]");
     CHECK(m.find("below 1") != std::string::npos);
     CHECK(m.find("1.0") != std::string::npos);
   }
@@ -71,23 +73,25 @@ TEST_SUITE("io") {
                                    "surfaces[1].polygon[1][1]");
     CHECK(m.find("expected a number") != std::string::npos);
     CHECK(m.find("NaN") != std::string::npos);
-    CHECK(error_of(scene_with(R"("white")", "[[0,1,0],[1,1e999,0],[1,1,1],[0,1,1]]"), "(document)").find("overflow") !=
-          std::string::npos);
+    CHECK(error_of(scene_with(R"("white")", "[[0,1,0],[1,1e999,0],[1,1,1],[0,1,1]]"), "(document)")
+              .find("overflow") != std::string::npos);
   }
 
   TEST_CASE("degenerate, non-planar and non-convex polygons are refused") {
-    CHECK(error_of(scene_with(R"("white")", "[[0,1,0],[1,1,0],[2,1,0]]"), "surfaces[1].polygon").find("degenerate") !=
-          std::string::npos);
+    CHECK(error_of(scene_with(R"("white")", "[[0,1,0],[1,1,0],[2,1,0]]"), "surfaces[1].polygon")
+              .find("degenerate") != std::string::npos);
     CHECK(error_of(scene_with(R"("white")", "[[0,1,0],[1,1,0],[1,1.01,1],[0,1,1]]"), "surfaces[1].polygon[0]")
               .find("not planar") != std::string::npos);
     CHECK(error_of(scene_with(R"("white")", "[[0,1,0],[1,1,0],[0.2,1,0.2],[0,1,1]]"), "surfaces[1].polygon")
               .find("convex") != std::string::npos);
-    CHECK(error_of(scene_with(R"("white")", "[[0,1,0],[1,1,0]]"), "surfaces[1].polygon").find("3 (triangle)") !=
-          std::string::npos);
+    CHECK(
+        error_of(scene_with(R"("white")", "[[0,1,0],[1,1,0]]"), "surfaces[1].polygon").find("3 (triangle)") !=
+        std::string::npos);
   }
 
   TEST_CASE("emission on a zero-area surface is refused with its own message") {
-    const std::string m = error_of(scene_with(R"("lamp")", "[[0,1,0],[1,1,0],[1,1,0]]"), "surfaces[1].polygon");
+    const std::string m =
+        error_of(scene_with(R"("lamp")", "[[0,1,0],[1,1,0],[1,1,0]]"), "surfaces[1].polygon");
     CHECK(m.find("emission on a zero-area surface") != std::string::npos);
   }
 
@@ -104,7 +108,8 @@ TEST_SUITE("io") {
 
   TEST_CASE("a missing file and a bad patch size are reported") {
     CHECK_THROWS_AS(load_radiosity_scene("/nonexistent/scene.json", 10.0), InputError);
-    CHECK_THROWS_AS(parse_radiosity_scene(scene_with(R"("white")", good_quad), "t", 0.0), std::invalid_argument);
+    CHECK_THROWS_AS(parse_radiosity_scene(scene_with(R"("white")", good_quad), "t", 0.0),
+                    std::invalid_argument);
   }
 }
 
@@ -125,8 +130,8 @@ TEST_SUITE("stability") {
         CHECK(p.centroid.y == doctest::Approx(548.0));
         light_area += p.area;
       } else if (name.find("block") != std::string::npos) {
-        const Point3 block_centre = name.find("short") != std::string::npos ? Point3(185.5, 82.5, 169)
-                                                                            : Point3(368.5, 165, 351.25);
+        const Point3 block_centre =
+            name.find("short") != std::string::npos ? Point3(185.5, 82.5, 169) : Point3(368.5, 165, 351.25);
         CHECK(dot(p.normal, p.centroid - block_centre) > 0.0);
       } else {
         CHECK(dot(p.normal, room_centre - p.centroid) > 0.0);
@@ -140,7 +145,8 @@ TEST_SUITE("stability") {
   }
 
   TEST_CASE("hard case: the published red wall quad is not planar and is refused") {
-    const std::string text = R"({"surfaces": [{"name": "left wall", "material": {"reflectance": [0.63, 0.065, 0.05]},
+    const std::string text =
+        R"({"surfaces": [{"name": "left wall", "material": {"reflectance": [0.63, 0.065, 0.05]},
       "polygon": [[552.8, 0, 0], [549.6, 0, 559.2], [556, 548.8, 559.2], [556, 548.8, 0]]}]})";
     CHECK_THROWS_WITH_AS(parse_radiosity_scene(text, "red.json", 100.0), doctest::Contains("not planar"),
                          InputError);

@@ -57,7 +57,8 @@ class SceneReader {
       const std::string p = path + "[" + std::to_string(k) + "]";
       if (rho[k] < 0.0) fail(p, value[k], "reflectance must not be negative");
       if (rho[k] >= 1.0)
-        fail(p, value[k], "reflectance must be below 1 (a surface cannot reflect more light than it receives)");
+        fail(p, value[k],
+             "reflectance must be below 1 (a surface cannot reflect more light than it receives)");
     }
     return rho;
   }
@@ -131,11 +132,13 @@ RadiosityScene parse_radiosity_scene(std::string_view json_text, const std::stri
   if (root.contains("materials")) {
     const json& m = root["materials"];
     if (!m.is_object()) reader.fail("materials", m, "expected an object of named materials");
-    for (const auto& [name, value] : m.items()) materials.emplace_back(name, reader.material(value, "materials." + name));
+    for (const auto& [name, value] : m.items())
+      materials.emplace_back(name, reader.material(value, "materials." + name));
   }
 
   const json& surfaces = reader.field(root, "", "surfaces");
-  if (!surfaces.is_array() || surfaces.empty()) reader.fail("surfaces", surfaces, "expected a non-empty array");
+  if (!surfaces.is_array() || surfaces.empty())
+    reader.fail("surfaces", surfaces, "expected a non-empty array");
   for (std::size_t s = 0; s < surfaces.size(); ++s) {
     const std::string path = "surfaces[" + std::to_string(s) + "]";
     const json& value = surfaces[s];
@@ -150,7 +153,8 @@ RadiosityScene parse_radiosity_scene(std::string_view json_text, const std::stri
       surface.material = mat.get<std::string>();
       const auto it = std::find_if(materials.begin(), materials.end(),
                                    [&](const auto& m) { return m.first == surface.material; });
-      if (it == materials.end()) reader.fail(path + ".material", mat, "unknown material (not in \"materials\")");
+      if (it == materials.end())
+        reader.fail(path + ".material", mat, "unknown material (not in \"materials\")");
       material = it->second;
     } else {
       material = reader.material(mat, path + ".material");
@@ -177,8 +181,9 @@ RadiosityScene parse_radiosity_scene(std::string_view json_text, const std::stri
     const double size = longest_edge(surface.polygon);
     if (!(area > 1e-12 * size * size)) {
       if (surface.emission != Color(0.0))
-        reader.fail(ppath, poly,
-                    "emission on a zero-area surface: it would emit no power, so the light it stands for is lost");
+        reader.fail(
+            ppath, poly,
+            "emission on a zero-area surface: it would emit no power, so the light it stands for is lost");
       reader.fail(ppath, poly, "degenerate polygon (zero area: repeated or collinear vertices)");
     }
     const Vec3 normal = vector_area / area;
@@ -211,8 +216,8 @@ RadiosityScene parse_radiosity_scene(std::string_view json_text, const std::stri
       patches = mesh_quad(p[0], p[1], p[2], p[3], nu, nv, surface.reflectance, surface.emission,
                           static_cast<int>(s));
     } else {
-      patches = mesh_triangle(p[0], p[1], p[2], divisions(longest_edge(p), max_patch_edge), surface.reflectance,
-                              surface.emission, static_cast<int>(s));
+      patches = mesh_triangle(p[0], p[1], p[2], divisions(longest_edge(p), max_patch_edge),
+                              surface.reflectance, surface.emission, static_cast<int>(s));
     }
     surface.first_patch = scene.patches.size();
     surface.patch_count = patches.size();

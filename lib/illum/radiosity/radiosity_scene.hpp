@@ -34,11 +34,11 @@ struct RadiosityCamera {
 
 struct RadiositySurface {
   std::string name;
-  std::string material;          // the material's name ("" when given inline)
-  std::vector<Point3> polygon;   // 3 or 4 vertices
+  std::string material;         // the material's name ("" when given inline)
+  std::vector<Point3> polygon;  // 3 or 4 vertices
   Color reflectance{0.0};
   Color emission{0.0};
-  std::size_t first_patch = 0;   // its patches are patches[first_patch, first_patch + patch_count)
+  std::size_t first_patch = 0;  // its patches are patches[first_patch, first_patch + patch_count)
   std::size_t patch_count = 0;
 };
 

@@ -26,7 +26,8 @@ std::vector<double> gaussian_elimination(std::vector<double> a, std::vector<doub
       throw std::invalid_argument("gaussian_elimination: the matrix is singular (no usable pivot in column " +
                                   std::to_string(k) + ")");
     if (p != k) {
-      std::swap_ranges(a.begin() + static_cast<std::ptrdiff_t>(k * n), a.begin() + static_cast<std::ptrdiff_t>(k * n + n),
+      std::swap_ranges(a.begin() + static_cast<std::ptrdiff_t>(k * n),
+                       a.begin() + static_cast<std::ptrdiff_t>(k * n + n),
                        a.begin() + static_cast<std::ptrdiff_t>(p * n));
       std::swap(b[k], b[p]);
     }
@@ -72,7 +73,7 @@ void jacobi_sweep(const std::vector<Patch>& patches, const FormFactorMatrix& f, 
   require(b.size() == patches.size(), "jacobi_sweep: one radiosity per patch");
   const std::size_t n = patches.size();
   next.resize(n);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= 256)
   for (std::ptrdiff_t ii = 0; ii < static_cast<std::ptrdiff_t>(n); ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const double* row = f.row(i);
@@ -101,8 +102,8 @@ void gauss_seidel_sweep(const std::vector<Patch>& patches, const FormFactorMatri
   }
 }
 
-std::size_t southwell_step(const std::vector<Patch>& patches, const FormFactorMatrix& f, std::vector<Color>& b,
-                           std::vector<Color>& residual) {
+std::size_t southwell_step(const std::vector<Patch>& patches, const FormFactorMatrix& f,
+                           std::vector<Color>& b, std::vector<Color>& residual) {
   check_radiosity_system(patches, f);
   require(b.size() == patches.size() && residual.size() == patches.size(),
           "southwell_step: one radiosity and one residual per patch");
@@ -133,7 +134,8 @@ ProgressiveState progressive_start(const std::vector<Patch>& patches) {
 }
 
 std::size_t choose_shooter(const std::vector<Patch>& patches, const std::vector<Color>& unshot) {
-  require(!patches.empty() && unshot.size() == patches.size(), "choose_shooter: one unshot radiosity per patch");
+  require(!patches.empty() && unshot.size() == patches.size(),
+          "choose_shooter: one unshot radiosity per patch");
   std::size_t best = 0;
   double most = -1;
   for (std::size_t i = 0; i < patches.size(); ++i) {
@@ -164,7 +166,8 @@ void shoot(const std::vector<Patch>& patches, std::size_t i, const double* form_
 }
 
 Color ambient_term(const std::vector<Patch>& patches, const std::vector<Color>& unshot) {
-  require(!patches.empty() && unshot.size() == patches.size(), "ambient_term: one unshot radiosity per patch");
+  require(!patches.empty() && unshot.size() == patches.size(),
+          "ambient_term: one unshot radiosity per patch");
   double area = 0;
   Color rho_area(0.0), unshot_area(0.0);
   for (std::size_t i = 0; i < patches.size(); ++i) {
@@ -180,7 +183,8 @@ Color ambient_term(const std::vector<Patch>& patches, const std::vector<Color>& 
 std::vector<Color> display_radiosity(const std::vector<Patch>& patches, const ProgressiveState& state) {
   const Color ambient = ambient_term(patches, state.unshot);
   std::vector<Color> shown(state.radiosity.size());
-  for (std::size_t i = 0; i < shown.size(); ++i) shown[i] = state.radiosity[i] + patches[i].reflectance * ambient;
+  for (std::size_t i = 0; i < shown.size(); ++i)
+    shown[i] = state.radiosity[i] + patches[i].reflectance * ambient;
   return shown;
 }
 

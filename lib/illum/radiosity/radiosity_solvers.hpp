@@ -42,8 +42,8 @@ void gauss_seidel_sweep(const std::vector<Patch>& patches, const FormFactorMatri
 // 0, and update every other residual:
 //   δ = r_i / (1 − ρ_i F_ii),  b_i += δ,  r_j += ρ_j F_ji δ (j ≠ i),  r_i = 0.
 // `residual` must hold E − M·b on entry (for b = 0: r = E). Returns i.
-std::size_t southwell_step(const std::vector<Patch>& patches, const FormFactorMatrix& f, std::vector<Color>& b,
-                           std::vector<Color>& residual);
+std::size_t southwell_step(const std::vector<Patch>& patches, const FormFactorMatrix& f,
+                           std::vector<Color>& b, std::vector<Color>& residual);
 
 // Progressive refinement ("refinamiento progresivo"): B and the unshot
 // radiosity Δ, both E at the start (the notes' "Inicio").

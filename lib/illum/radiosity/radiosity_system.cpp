@@ -38,7 +38,8 @@ void check_form_factors(const FormFactorMatrix& f, double tolerance) {
       sum += x;
     }
     if (sum > 1.0 + tolerance)
-      throw std::invalid_argument("form factors: row " + std::to_string(i) + " sums to " + std::to_string(sum) +
+      throw std::invalid_argument("form factors: row " + std::to_string(i) + " sums to " +
+                                  std::to_string(sum) +
                                   " > 1: a patch cannot send out more than all its energy");
   }
 }
@@ -47,13 +48,14 @@ std::vector<Color> radiosity_residual(const std::vector<Patch>& patches, const F
                                       const std::vector<Color>& b) {
   require(b.size() == patches.size() && f.size() == patches.size(),
           "radiosity_residual: one radiosity and one matrix row per patch");
-  std::vector<Color> r(b.size());
-#pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t ii = 0; ii < static_cast<std::ptrdiff_t>(b.size()); ++ii) {
+  const std::size_t n = b.size();
+  std::vector<Color> r(n);
+#pragma omp parallel for schedule(static) if (n >= 256)  // threads cost more than they save on small scenes
+  for (std::ptrdiff_t ii = 0; ii < static_cast<std::ptrdiff_t>(n); ++ii) {
     const auto i = static_cast<std::size_t>(ii);
     const double* row = f.row(i);
     Color gathered(0.0);
-    for (std::size_t j = 0; j < b.size(); ++j) gathered += row[j] * b[j];
+    for (std::size_t j = 0; j < n; ++j) gathered += row[j] * b[j];
     r[i] = patches[i].emission + patches[i].reflectance * gathered - b[i];
   }
   return r;

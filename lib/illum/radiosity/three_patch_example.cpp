@@ -52,6 +52,9 @@ std::string notes_number(double value, int decimals) {
     while (s.back() == '0') s.pop_back();
     if (s.back() == '.') s.push_back('0');
   }
+  if (s.size() > 2 && s.compare(s.size() - 2, 2, ".0") == 0 && std::abs(value) >= 1)
+    s.resize(s.size() - 2);  // "1"
+
   if (s.rfind("0.", 0) == 0) s.erase(0, 1);  // ".2572", as the notes write it
   if (s.rfind("-0.", 0) == 0) s.erase(1, 1);
   return s;

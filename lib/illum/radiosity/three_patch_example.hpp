@@ -34,7 +34,7 @@ struct ThreePatchRow {
 std::vector<ThreePatchRow> three_patch_progressive_rows(int steps);
 
 // A number the way the notes print it: no leading zero before the point
-// (".2572"), trailing zeros dropped but one digit kept (".0", "1"), rounded
+// (".2572"), trailing zeros dropped (zero is ".0", one is "1"), rounded
 // to at most `decimals` decimals.
 std::string notes_number(double value, int decimals);
 
