@@ -1,0 +1,80 @@
+#pragma once
+// Lesson 11: solving the radiosity system M·B = E (exercise unit:
+// radiosity_solvers.cpp). Every solver works on all three RGB channels at
+// once: a Color holds one radiosity per channel, and glm multiplies Colors
+// channel by channel, so ρ_i * gathered is the per-channel product.
+#include <cstddef>
+#include <vector>
+
+#include "illum/core/vec.hpp"
+#include "illum/radiosity/form_factor_matrix.hpp"
+#include "illum/radiosity/patch.hpp"
+
+namespace illum {
+
+// Task 1. Solves A·x = b (A is n × n, row-major, n = b.size()) by Gaussian
+// elimination with partial pivoting: at column k, swap up the row with the
+// largest |A_ik| (i ≥ k), eliminate below it, then back-substitute.
+// Throws std::invalid_argument when A is not n × n or is singular to working
+// precision (the best pivot is ≤ n·ε·max|A|).
+std::vector<double> gaussian_elimination(std::vector<double> a, std::vector<double> b);
+
+// Task 2. The exact reference: builds M = I − diag(ρ)·F for each channel
+// (erratum 4) and solves M·B = E by gaussian_elimination. Checks its input
+// with check_radiosity_system and check_form_factors. O(n³).
+std::vector<Color> solve_direct(const std::vector<Patch>& patches, const FormFactorMatrix& f);
+
+// Task 3. One Jacobi sweep: every new value from the old ones only,
+//   next_i = (E_i + ρ_i Σ_{j≠i} F_ij b_j) / (1 − ρ_i F_ii).
+// `next` is resized to fit; `b` is not changed.
+void jacobi_sweep(const std::vector<Patch>& patches, const FormFactorMatrix& f, const std::vector<Color>& b,
+                  std::vector<Color>& next);
+
+// Task 4. One Gauss–Seidel sweep in place, i = 0 … n−1, each row using the
+// values already updated in this sweep, with over-relaxation ω ∈ (0, 2):
+//   b_i ← (1 − ω) b_i + ω (E_i + ρ_i Σ_{j≠i} F_ij b_j) / (1 − ρ_i F_ii).
+// ω = 1 is plain Gauss–Seidel. Throws std::invalid_argument for ω ∉ (0, 2).
+void gauss_seidel_sweep(const std::vector<Patch>& patches, const FormFactorMatrix& f, std::vector<Color>& b,
+                        double omega = 1.0);
+
+// Task 5. One Southwell step: relax the row i with the largest residual
+// (largest |r_i.r| + |r_i.g| + |r_i.b|, first on ties) so that r_i becomes
+// 0, and update every other residual:
+//   δ = r_i / (1 − ρ_i F_ii),  b_i += δ,  r_j += ρ_j F_ji δ (j ≠ i),  r_i = 0.
+// `residual` must hold E − M·b on entry (for b = 0: r = E). Returns i.
+std::size_t southwell_step(const std::vector<Patch>& patches, const FormFactorMatrix& f,
+                           std::vector<Color>& b, std::vector<Color>& residual);
+
+// Progressive refinement ("refinamiento progresivo"): B and the unshot
+// radiosity Δ, both E at the start (the notes' "Inicio").
+struct ProgressiveState {
+  std::vector<Color> radiosity;  // B
+  std::vector<Color> unshot;     // Δ
+  std::size_t shots = 0;
+};
+
+// Task 6a. B = Δ = E. Checks the patches (reflectance in [0, 1), E ≥ 0).
+ProgressiveState progressive_start(const std::vector<Patch>& patches);
+
+// Task 6b. The patch with the most unshot power A_i (Δ_i.r + Δ_i.g + Δ_i.b),
+// first on ties (erratum 8: power, not radiosity, once areas differ).
+std::size_t choose_shooter(const std::vector<Patch>& patches, const std::vector<Color>& unshot);
+
+// Task 6c. Shoots patch i's unshot radiosity through its form-factor row
+// F_i· (row[j] = F_ij, j = 0 … n−1): with Δ = Δ_i, set Δ_i = 0, then for every j
+//   ΔB_j = ρ_j F_ji Δ = ρ_j F_ij (A_i / A_j) Δ    (erratum 8)
+//   B_j += ΔB_j,  Δ_j += ΔB_j.
+// Only row i is needed: the hemicube placed on the shooter gives it.
+void shoot(const std::vector<Patch>& patches, std::size_t i, const double* form_factor_row,
+           ProgressiveState& state);
+
+// Task 7. The ambient term of Cohen et al. (1988), for display only:
+//   ρ_avg = Σ ρ_i A_i / Σ A_i,  R = 1 / (1 − ρ_avg),
+//   ambient = R Σ Δ_i A_i / Σ A_i           (per channel).
+// Display B_i + ρ_i · ambient; never feed it back into the solution.
+Color ambient_term(const std::vector<Patch>& patches, const std::vector<Color>& unshot);
+
+// B_i + ρ_i · ambient_term(Δ): what progressive refinement shows on screen.
+std::vector<Color> display_radiosity(const std::vector<Patch>& patches, const ProgressiveState& state);
+
+}  // namespace illum

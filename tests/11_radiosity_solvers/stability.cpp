@@ -1,0 +1,39 @@
+// Stability checks of lesson 11 on the real scene (suite "stability", not
+// graded): Jacobi's contraction bound sweep by sweep on the Cornell box with
+// hemicube form factors, at the published reflectances and scaled to 0.99.
+#include <doctest/doctest.h>
+
+#include <filesystem>
+
+#include "illum/radiosity/hemicube.hpp"
+#include "illum/radiosity/radiosity_scene.hpp"
+#include "illum/radiosity/radiosity_solvers.hpp"
+#include "illum/radiosity/radiosity_system.hpp"
+
+using namespace illum;
+
+TEST_SUITE("stability") {
+  TEST_CASE("hard case: Jacobi on the Cornell box contracts by at most max ρ per sweep, up to ρ = 0.99") {
+    const auto file =
+        std::filesystem::path(__FILE__).parent_path().parent_path().parent_path() / "scenes" / "cornell.json";
+    const RadiosityScene scene = load_radiosity_scene(file, 200.0);
+    const FormFactorMatrix f = hemicube_form_factors(scene.patches, 32);
+    for (double rho_max : {0.78, 0.99}) {
+      std::vector<Patch> patches = scene.patches;
+      const double factor = rho_max / max_reflectance(patches);
+      for (Patch& p : patches) p.reflectance *= factor;
+      const std::vector<Color> exact = solve_direct(patches, f);
+      std::vector<Color> b(patches.size(), Color(0.0)), next;
+      double error = max_difference(b, exact);
+      for (int sweep = 1; sweep <= 40; ++sweep) {
+        jacobi_sweep(patches, f, b, next);
+        const double new_error = max_difference(next, exact);
+        INFO("ρ_max = " << rho_max << ", sweep " << sweep << ": ‖K‖∞ = max_i ρ_i Σ_j F_ij ≤ ρ_max");
+        CHECK(new_error <= rho_max * error * (1 + 1e-9) + 1e-12);
+        error = new_error;
+        b.swap(next);
+      }
+      CHECK(max_norm(radiosity_residual(patches, f, b)) < 1e-3 * max_norm(emissions(patches)));
+    }
+  }
+}
