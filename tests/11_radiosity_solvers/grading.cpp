@@ -204,7 +204,7 @@ TEST_SUITE("lesson11") {
   TEST_CASE("Southwell relaxes the largest residual first: two steps by hand") {
     const ThreePatchExample ex = three_patch_example();
     std::vector<Color> b(3, Color(0.0)), r = emissions(ex.patches);
-    CHECK(southwell_step(ex.patches, ex.form_factors, b, r) == 0);
+    REQUIRE_MESSAGE(southwell_step(ex.patches, ex.form_factors, b, r) == 0, "the largest residual is r1 = E1 = 1");
     INFO("step 1 relaxes row 1 (r = E): B = (1, 0, 0), r = (0, K21, K31) = (0, 0.2, 0.3)");
     CHECK(b[0].r == doctest::Approx(1.0));
     CHECK(r[1].r == doctest::Approx(0.2));
