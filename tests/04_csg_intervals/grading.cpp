@@ -245,6 +245,28 @@ TEST_SUITE("lesson04") {
                   "at x = 0.85 > 0.8 the ray crosses both spheres, but never both at once");
   }
 
+  TEST_CASE("a cut ball: a sphere ∩ a half-space, whose span reaches -∞") {
+    // Unit ball (tag 1) ∩ half-space z <= 0.5 (tag 2): a ball with its cap sliced off.
+    const CsgTree cut(csg_intersection(csg_solid(SolidSphere(Point3(0), 1.0), 1),
+                                       csg_solid(SolidHalfSpace(Vec3(0, 0, 1), 0.5), 2)));
+    const auto flat = intersect(Ray(Point3(0.3, 0, 5), Vec3(0, 0, -1)), cut);
+    REQUIRE(flat.has_value());
+    CHECK_MESSAGE(flat->s == doctest::Approx(4.5),
+                  "at x = 0.3 the plane z = 0.5 lies inside the ball (0.09 + 0.25 < 1): the cut face is hit");
+    CHECK(flat->surface == 2);
+    check_vec(flat->normal, Vec3(0, 0, 1));
+    // At x = 0.95 the plane point is outside the ball (0.9025 + 0.25 > 1), so the
+    // ray enters through the sphere, at z = √(1 − 0.95²), below the cut.
+    const auto round = intersect(Ray(Point3(0.95, 0, 5), Vec3(0, 0, -1)), cut);
+    REQUIRE(round.has_value());
+    const double z = std::sqrt(1.0 - 0.95 * 0.95);
+    CHECK(round->s == doctest::Approx(5.0 - z).epsilon(1e-12));
+    CHECK(round->surface == 1);
+    check_vec(round->normal, Vec3(0.95, 0, z));
+    CHECK_MESSAGE(!intersect(Ray(Point3(-5, 0, 0.7), Vec3(1, 0, 0)), cut).has_value(),
+                  "a horizontal ray at z = 0.7 passes through the removed cap only");
+  }
+
   TEST_CASE("hard case: a ray starting inside the composite leaves through the far surface") {
     // Cube [−1,1]³ (tag 1) ∪ sphere centre (2,0,0) radius 1.5 (tag 2), ray from the origin along +x.
     const CsgTree solid(csg_union(csg_solid(SolidBox(Point3(-1), Point3(1)), 1),

@@ -87,7 +87,7 @@ int CsgTree::flatten(const CsgNode& node, int level) {
     return index;
   }
   require(node.left != nullptr && node.right != nullptr, "CsgTree: an inner node has an empty (null) child");
-  nodes_.push_back({false, node.op, -1, -1, 0, node.left->primitive, SolidBounds{}, 0});
+  nodes_.push_back({false, node.op, -1, -1, 0, node.primitive, SolidBounds{}, 0});  // primitive unused
   const int left = flatten(*node.left, level + 1);
   const int right = flatten(*node.right, level + 1);
   Node& n = nodes_[index];  // re-fetched: the vector may have grown
