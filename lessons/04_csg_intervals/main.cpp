@@ -11,6 +11,7 @@
 #include <cmath>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "illum/core/image.hpp"
@@ -251,6 +252,7 @@ void depth_study(OutputFolder& out, int width, int height, bool quick) {
   Table table({"depth", "primitives", "pruning", "tests_per_ray", "box_tests_per_ray", "ns_per_ray",
                "hits_differing"});
   const int max_level = 6;
+  std::array<std::vector<std::vector<Table::Cell>>, 2> grouped;  // [0] without pruning, [1] with
   for (int level = 1; level <= max_level; ++level) {
     // 2^level balls on a grid, united as a balanced tree (rows first, then columns).
     const int n = 1 << level, columns = 1 << ((level + 1) / 2), rows = n / columns;
@@ -292,12 +294,16 @@ void depth_study(OutputFolder& out, int width, int height, bool quick) {
                               quick ? 0.002 : 0.05));
       }
       const double per_ray = 1.0 / static_cast<double>(rays.size());
-      table.add_row({std::int64_t{tree.depth()}, std::int64_t{n}, std::string(prune ? "on" : "off"),
-                     per_ray * static_cast<double>(counters.work.intersection_tests),
-                     per_ray * static_cast<double>(counters.box_tests), ns, differing});
+      grouped[prune ? 1 : 0].push_back({std::int64_t{tree.depth()}, std::int64_t{n},
+                                        std::string(prune ? "on" : "off"),
+                                        per_ray * static_cast<double>(counters.work.intersection_tests),
+                                        per_ray * static_cast<double>(counters.box_tests), ns, differing});
     }
     report_progress("lesson04", "depth study", level, max_level);
   }
+  // All "off" rows first, then all "on" rows, so each plotted series is one unbroken line.
+  for (auto& group : grouped)
+    for (auto& row : group) table.add_row(std::move(row));
   out.table(table, "depth_cost",
             "Cost per camera ray of a balanced union of 2^k balls: primitive tests, box tests and time, with "
             "and without bounding-box pruning; hits_differing counts rays whose hit changed (must be 0).");
