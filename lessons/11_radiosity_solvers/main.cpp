@@ -17,6 +17,7 @@
 #include <CLI/CLI.hpp>
 
 #include "illum/core/stopwatch.hpp"
+#include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/radiosity/hemicube.hpp"
@@ -33,8 +34,11 @@ namespace {
 
 const char* kId = "lesson11";
 
-fs::path default_scene() {
-  return fs::path(__FILE__).parent_path().parent_path().parent_path() / "scenes" / "cornell.json";
+// A shipped scene by name ("cornell" = scenes/cornell.json, compiled in), or a file.
+RadiosityScene load_scene(const std::string& scene, double max_patch_edge) {
+  if (const auto text = embedded_scene(scene))
+    return parse_radiosity_scene(*text, "scenes/" + scene + ".json", max_patch_edge);
+  return load_radiosity_scene(scene, max_patch_edge);
 }
 
 // Scales every reflectance so that the largest channel in the scene is rho_max.
@@ -158,10 +162,13 @@ int main(int argc, char** argv) {
       "The notes' three-patch progressive table; direct, Jacobi, Gauss-Seidel (SOR), Southwell and "
       "progressive refinement on the Cornell box at several reflectance scales; the box after 1, "
       "10, 100 shots; a ~2,000-patch box by progressive refinement with hemicube rows on demand."};
-  fs::path scene_file = default_scene();
+  std::string scene_file = "cornell";
   return run_program(
       argc, argv, info,
-      [&](CLI::App& app) { app.add_option("--scene", scene_file, "Radiosity scene (JSON)"); },
+      [&](CLI::App& app) {
+        app.add_option("--scene", scene_file, "A radiosity scene: a JSON file, or a shipped scene's name")
+            ->capture_default_str();
+      },
       [&](const ProgramOptions& options) {
         OutputFolder out(options.out, info.id, info.title);
         const bool quick = options.quick;
@@ -179,7 +186,7 @@ int main(int argc, char** argv) {
         // 2. The study: every solver on the Cornell box, several reflectance scales.
         const double study_edge = quick ? 220.0 : 75.0;
         const int study_resolution = quick ? 32 : 96;
-        const RadiosityScene study_scene = load_radiosity_scene(scene_file, study_edge);
+        const RadiosityScene study_scene = load_scene(scene_file, study_edge);
         report_progress(
             kId, "hemicube form factors for " + std::to_string(study_scene.patches.size()) + " patches", 0,
             1);
@@ -357,10 +364,10 @@ int main(int argc, char** argv) {
         //    is below 1% of the emitted power.
         const std::size_t target = quick ? 300 : 2000;
         double edge = 120.0;
-        RadiosityScene big = load_radiosity_scene(scene_file, edge);
+        RadiosityScene big = load_scene(scene_file, edge);
         while (big.patches.size() < target) {
           edge *= 0.97;
-          big = load_radiosity_scene(scene_file, edge);
+          big = load_scene(scene_file, edge);
         }
         const int resolution = quick ? 32 : 128;
         const Hemicube hemicube(resolution);
