@@ -228,6 +228,18 @@ def _lesson_links(lesson: Lesson, out: Path, source: Path) -> str:
     return '<ul class="links">' + "".join(items) + "</ul>"
 
 
+# Tables longer than this are shown folded, so that one long study does not
+# push the next lesson's figures several screens down.
+FOLD_ROWS = 20
+
+
+def _table_figure(caption_html: str, table_html: str, rows: int) -> str:
+    body = f'<div class="table-wrap">{table_html}</div>'
+    if rows > FOLD_ROWS:
+        body = f"<details><summary>{rows} rows: show the table</summary>{body}</details>"
+    return f"<figure><figcaption>{caption_html}</figcaption>{body}</figure>"
+
+
 def _outputs_html(lesson: Lesson, out: Path) -> str:
     manifest, folder = lesson.manifest, lesson.output_dir
     assert manifest is not None and folder is not None
@@ -268,9 +280,10 @@ def _outputs_html(lesson: Lesson, out: Path) -> str:
                 used.add(csv_out.file)
                 links.insert(0, f'<a href="{href(folder / csv_out.file, out)}">CSV</a>')
             cap = f"{_e(o.caption)} <code>{_e(o.stem)}</code> · " + " · ".join(links)
-            table = markdown_table_html(_read(folder / o.file))
+            text = _read(folder / o.file)
+            table = markdown_table_html(text)
             if table:
-                tables.append(f'<figure><figcaption>{cap}</figcaption><div class="table-wrap">{table}</div></figure>')
+                tables.append(_table_figure(cap, table, text.count("\n") - 2))
                 used.add(o.file)
         elif o.kind == "table" and sibling(o, ".md", ("markdown",)) is None:
             table = csv_table_html(_read(folder / o.file))
