@@ -1,8 +1,10 @@
 // Lesson 10: the hemicube. Draws the five item-buffer faces of one placement
 // in a room, the delta form factors, and measures the hemicube's errors:
-// against closed forms vs resolution and time, the aliasing of small patches
-// and what a random rotation does to it, and the point-sampling error for
-// nearby patches. Finally times full matrices of a ~2,000-patch room.
+// against closed forms vs resolution, the aliasing of small patches and what
+// a random rotation does to it, the point-sampling error for nearby patches,
+// and the price: error (fixed and randomly rotated) against resolution and the
+// time of one placement, for patches and a whole row with exact factors. Finally times full matrices of a
+// ~2,000-patch room.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -99,6 +101,219 @@ Patch receiver_at_origin(double half = 0.01) {
   return make_patch({{-half, -half, 0}, {half, -half, 0}, {half, half, 0}, {-half, half, 0}});
 }
 
+// --- the resolution study: error against exact factors vs resolution and time ---------------
+
+// p turned by `angle` about the z axis. A factor from the origin with normal z does not change.
+Point3 rotate_z(const Point3& p, double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  return {c * p.x - s * p.y, s * p.x + c * p.y, p.z};
+}
+
+// One configuration: the hemicube is placed on patches[receiver]; exact[j] is the exact factor
+// from its centroid to patch j (0 for the receiver and for patches it cannot see).
+struct StudyCase {
+  std::string name;  // no commas: gnuplot splits the CSV's rows on them
+  std::vector<Patch> patches;
+  std::size_t receiver = 0;
+  std::vector<double> exact;
+};
+
+// A point receiver at the origin (normal z) and one convex polygon, turned to face it.
+// `exact` comes from Howell's catalogue and is checked against Lambert's contour formula.
+StudyCase point_case(const std::string& name, const std::vector<Point3>& polygon, double exact) {
+  const double lambert = lambert_contour(Point3(0), Vec3(0, 0, 1), polygon);
+  require(std::abs(exact - lambert) <= 1e-12 * exact, "closed form and contour integral disagree");
+  Patch target = make_patch(polygon);
+  if (dot(target.normal, target.centroid) > 0)
+    target = make_patch(std::vector<Point3>(polygon.rbegin(), polygon.rend()));
+  return {name, {receiver_at_origin(), target}, 0, {0.0, exact}};
+}
+
+// Errors of one row against the exact factors, over the patches the receiver sees.
+struct RowError {
+  double max_abs = 0, mean_abs = 0, max_rel = 0, mean_rel = 0;
+};
+
+RowError row_error(const std::vector<double>& row, const std::vector<double>& exact) {
+  RowError e;
+  int seen = 0;
+  for (std::size_t j = 0; j < row.size(); ++j) {
+    if (exact[j] <= 0) continue;
+    const double abs_error = std::abs(row[j] - exact[j]), rel_error = abs_error / exact[j];
+    e.max_abs = std::max(e.max_abs, abs_error);
+    e.max_rel = std::max(e.max_rel, rel_error);
+    e.mean_abs += abs_error;
+    e.mean_rel += rel_error;
+    ++seen;
+  }
+  e.mean_abs /= seen;
+  e.mean_rel /= seen;
+  return e;
+}
+
+// Least-squares slope of log y against log x over the points with x ≥ x_min and y > 0.
+double log_log_slope(const std::vector<double>& x, const std::vector<double>& y, double x_min = 0) {
+  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    if (x[k] < x_min || !(y[k] > 0)) continue;
+    const double lx = std::log(x[k]), ly = std::log(y[k]);
+    n += 1;
+    sx += lx;
+    sy += ly;
+    sxx += lx * lx;
+    sxy += lx * ly;
+  }
+  return n < 2 ? std::nan("") : (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+// Sweeps the resolution for configurations with exact factors and records, per placement, the
+// error without and with a random rotation about the normal, and the time.
+void resolution_study(OutputFolder& out, const std::string& id, bool quick, std::uint64_t seed) {
+  std::vector<StudyCase> cases;
+  // A large parallel rectangle [−0.4, 0.8] × [−0.3, 0.6] at height 0.5: Howell's B-3 for the four
+  // rectangles that meet above the receiver. Turning it about the normal leaves the factor unchanged
+  // but decides whether its edges run along the pixel rows of the top face.
+  auto parallel_rectangle = [](const std::string& name, double turn) {
+    const double x0 = 0.4, x1 = 0.8, y0 = 0.3, y1 = 0.6, h = 0.5;
+    const double exact = parallel_corner(x1, y1, h) + parallel_corner(x0, y1, h) +
+                         parallel_corner(x1, y0, h) + parallel_corner(x0, y0, h);
+    std::vector<Point3> polygon{{-x0, -y0, h}, {x1, -y0, h}, {x1, y1, h}, {-x0, y1, h}};
+    for (Point3& p : polygon) p = rotate_z(p, turn);
+    return point_case(name, polygon, exact);
+  };
+  cases.push_back(parallel_rectangle("near parallel rectangle", 0.4));
+  {
+    // A wall 0.9 wide and 0.8 high standing on the receiver's plane at distance 0.6: Howell's B-4
+    // for the two rectangles either side of the foot of the perpendicular.
+    const double d = 0.6, y0 = 0.5, y1 = 0.4, h = 0.8, turn = 0.3;
+    const double exact = perpendicular_corner(h, y0, d) + perpendicular_corner(h, y1, d);
+    std::vector<Point3> polygon{{d, -y0, 0}, {d, y1, 0}, {d, y1, h}, {d, -y0, h}};
+    for (Point3& p : polygon) p = rotate_z(p, turn);
+    cases.push_back(point_case("perpendicular rectangle", polygon, exact));
+  }
+  {
+    // 0.06 wide at distance 2.6: a seventh of a pixel at resolution 32. Lambert's contour formula.
+    const auto square = facing_square(Point3(0.7, 0.4, 2.5), 0.06);
+    cases.push_back(
+        point_case("small far square", square, lambert_contour(Point3(0), Vec3(0, 0, 1), square)));
+  }
+  {
+    // A whole row: a floor patch of an empty unit room meshed m × m per wall. Nothing occludes in a
+    // convex room, so the exact row is Lambert's formula from the receiver's centroid to every patch.
+    const int m = quick ? 4 : 8;
+    StudyCase room{"room row " + std::to_string(m) + "x" + std::to_string(m) + " per wall", {}, 0, {}};
+    add_box(room.patches, Point3(0), Point3(1), m, true, 0);
+    const Point3 spot(0.3, 0.4, 0);
+    for (std::size_t j = 0; j < room.patches.size(); ++j)
+      if (room.patches[j].surface == 0 &&
+          length(room.patches[j].centroid - spot) < length(room.patches[room.receiver].centroid - spot))
+        room.receiver = j;
+    const Patch& r = room.patches[room.receiver];
+    double total = 0;
+    for (std::size_t j = 0; j < room.patches.size(); ++j) {
+      const auto& v = room.patches[j].vertices;
+      const bool above = std::any_of(v.begin(), v.end(),
+                                     [&](const Point3& p) { return dot(p - r.centroid, r.normal) > 1e-12; });
+      room.exact.push_back(j != room.receiver && above ? lambert_contour(r.centroid, r.normal, v) : 0.0);
+      total += room.exact.back();
+    }
+    require(std::abs(total - 1) < 1e-12, "the exact row of a closed room must sum to one");
+    cases.push_back(std::move(room));
+  }
+  // The same rectangle unturned: its edges lie along pixel rows and columns, so a whole row of pixels
+  // falls in or out at once (plotted without the rotated series, which matches the turned one).
+  cases.push_back(parallel_rectangle("near parallel rectangle on pixel rows", 0.0));
+
+  const std::vector<int> resolutions = quick ? std::vector<int>{8, 16, 32, 64}
+                                             : std::vector<int>{8, 12, 16, 24, 32, 48, 64, 96, 128, 192, 256};
+  const int rotations = quick ? 8 : 64;
+  const double min_seconds = quick ? 0.002 : 0.03;
+  Table table({"config", "targets", "resolution", "microseconds", "max_abs_error", "mean_abs_error",
+               "max_rel_error", "mean_rel_error", "rotated_rms_rel_error", "rotated_mean_rel_error"});
+  Table rates({"config", "error_slope_fixed", "error_slope_rotated_rms", "error_slope_rotated_mean",
+               "time_slope_res_ge_64"});
+  Rng rng(seed, 11);
+  const int total = static_cast<int>(cases.size() * resolutions.size());
+  int done = 0;
+  for (const StudyCase& c : cases) {
+    const std::size_t n = c.patches.size();
+    const auto targets = std::count_if(c.exact.begin(), c.exact.end(), [](double f) { return f > 0; });
+    std::vector<double> row(n), mean(n), xs, fixed_errors, rms_errors, mean_errors, times;
+    for (int res : resolutions) {
+      report_progress(id, "resolution study", done++, total);
+      const Hemicube hemicube(res);
+      HemicubeBuffers buffers;
+      hemicube.form_factor_row(c.patches, c.receiver, row.data(), buffers);
+      const RowError fixed = row_error(row, c.exact);
+      // One placement, timed on one thread: transform, clip and draw every patch, then read the row.
+      const double ns = nanoseconds_per_call(
+          [&](std::uint64_t) {
+            hemicube.form_factor_row(c.patches, c.receiver, row.data(), buffers);
+            do_not_optimize(row[0]);
+          },
+          min_seconds);
+      // Random rotations: the RMS of one estimate's error, and the error of their mean.
+      double sum2 = 0;
+      std::fill(mean.begin(), mean.end(), 0.0);
+      for (int k = 0; k < rotations; ++k) {
+        hemicube.form_factor_row(c.patches, c.receiver, row.data(), buffers, 2 * kPi * rng.uniform());
+        const double e = row_error(row, c.exact).mean_rel;
+        sum2 += e * e;
+        for (std::size_t j = 0; j < n; ++j) mean[j] += row[j] / rotations;
+      }
+      const double rms = std::sqrt(sum2 / rotations), of_mean = row_error(mean, c.exact).mean_rel;
+      table.add_row({c.name, static_cast<std::int64_t>(targets), std::int64_t{res}, 1e-3 * ns, fixed.max_abs,
+                     fixed.mean_abs, fixed.max_rel, fixed.mean_rel, rms, of_mean});
+      xs.push_back(res);
+      fixed_errors.push_back(fixed.mean_rel);
+      rms_errors.push_back(rms);
+      mean_errors.push_back(of_mean);
+      times.push_back(ns);
+    }
+    rates.add_row({c.name, log_log_slope(xs, fixed_errors), log_log_slope(xs, rms_errors),
+                   log_log_slope(xs, mean_errors), log_log_slope(xs, times, 64)});
+  }
+  report_progress(id, "resolution study", total, total);
+  out.table(table, "resolution_study",
+            "Hemicube rows against exact factors, by resolution: time per placement (one thread, µs), "
+            "max and mean absolute and relative error over the patches the receiver sees (fixed "
+            "orientation), the RMS of the mean relative error of one randomly rotated placement, and the "
+            "mean relative error of the average of " +
+                std::to_string(rotations) + " rotated placements.",
+            3);
+  out.table(rates, "resolution_study_rates",
+            "Least-squares log-log slopes against resolution: of the mean relative error (fixed, one "
+            "rotated estimate RMS, mean of the rotated), and of the time per placement for resolution ≥ 64.",
+            3);
+
+  PlotSpec by_res{"Hemicube error vs resolution",
+                  "resolution (pixels across the top face)",
+                  "mean relative error",
+                  true,
+                  true,
+                  {},
+                  1000,
+                  600};
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const std::string filter = "strcol(1) eq '" + cases[k].name + "'",
+                      colour = " lc " + std::to_string(k + 1);
+    by_res.series.push_back({"resolution_study.csv", 3, 8, cases[k].name, filter, "linespoints" + colour});
+    if (k + 1 < cases.size())
+      by_res.series.push_back({"resolution_study.csv", 3, 9, cases[k].name + ", rotated (RMS)", filter,
+                               "linespoints dt 2" + colour});
+  }
+  out.plot(by_res, "resolution_study",
+           "Mean relative error vs resolution: the large near patches fall steadily, the small far square "
+           "jumps about (aliasing); a random rotation turns the jumps into noise of about the same size.");
+  PlotSpec by_time = by_res;
+  by_time.title = "Hemicube error vs time per placement";
+  by_time.x_label = "time per placement (µs, one thread)";
+  for (PlotSeries& series : by_time.series) series.x_column = 4;
+  out.plot(by_time, "resolution_study_time",
+           "Mean relative error vs the time of one placement: each point is one resolution; the time grows "
+           "as resolution² once the pixels dominate.");
+}
+
 // --- pictures ----------------------------------------------------------------------------
 
 // The hemicube unfolded as a cross: image coordinates (u, v) ∈ [−2, 2]², the top face in
@@ -142,8 +357,8 @@ int main(int argc, char** argv) {
   const ProgramInfo info{
       "lesson10", "The hemicube",
       "Draws a hemicube's five item-buffer faces and its delta form factors, measures the "
-      "hemicube's error against closed forms vs resolution and time, aliasing and random "
-      "rotation, point sampling near patches, and times full matrices of a 2,000-patch room."};
+      "hemicube's error against closed forms vs resolution and time (fixed and randomly "
+      "rotated), aliasing, point sampling near patches, and times full matrices of a 2,000-patch room."};
   return run_program(argc, argv, info, {}, [&](const ProgramOptions& options) {
     OutputFolder out(options.out, info.id, info.title);
     const bool quick = options.quick;
@@ -370,7 +585,10 @@ int main(int argc, char** argv) {
                "point_sampling", "Near patches: the centroid's factor overestimates the area average.");
     }
 
-    // 5. Full matrices of a closed room with a floating block (~2,000 patches), and the time.
+    // 5. Error against exact factors vs resolution and time, with and without random rotation.
+    resolution_study(out, info.id, quick, options.seed);
+
+    // 6. Full matrices of a closed room with a floating block (~2,000 patches), and the time.
     {
       const auto room = quick ? room_with_block(4, 1) : room_with_block(18, 3);
       Table timing({"patches", "resolution", "threads", "seconds", "microseconds_per_row",
