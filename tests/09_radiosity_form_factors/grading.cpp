@@ -16,6 +16,7 @@
 #include "illum/radiosity/form_factor_hierarchical.hpp"
 #include "illum/radiosity/form_factor_matrix.hpp"
 #include "illum/radiosity/form_factor_sampling.hpp"
+#include "illum/radiosity/form_factor_scene.hpp"
 #include "illum/radiosity/patch.hpp"
 #include "illum/radiosity/radiosity_equation.hpp"
 
@@ -312,6 +313,28 @@ TEST_SUITE("lesson09") {
       for (std::size_t j = 0; j < n; ++j) row += m[i * n + j] * b;
       INFO("hard case: ρ = 0.99, B = 100; row ", i);
       CHECK(row == doctest::Approx(e).epsilon(1e-8));
+    }
+  }
+
+  TEST_CASE("the matrix builder: reusing translated pairs gives the pair-by-pair contour values") {
+    // A box 1 × 2 × 3 meshed 3 × 3 per face: patches of different shapes on
+    // different faces, so reuse must only join pairs that are true translates.
+    // Each entry is compared with the contour integral of that very pair, and
+    // the box is closed, so every row sums to 1 (erratum 5).
+    std::vector<Patch> box = mesh_cube_interior(3);
+    for (Patch& p : box) {
+      for (Point3& v : p.vertices) v *= Vec3(1, 2, 3);
+      p = make_patch(p.vertices, p.reflectance);
+    }
+    const std::size_t n = box.size();
+    for (const PairReuse reuse : {PairReuse::none, PairReuse::translates}) {
+      const FormFactorMatrix f = contour_form_factor_matrix(box, {}, reuse);
+      for (std::size_t i = 0; i < n; ++i) {
+        INFO("reuse ", reuse == PairReuse::translates ? "of translates" : "none", ", row ", i);
+        CHECK(f.row_sum(i) == doctest::Approx(1.0).epsilon(1e-10));
+        for (std::size_t j = 0; j < n; ++j)
+          CHECK(f(i, j) == doctest::Approx(polygon_polygon_form_factor(box[i], box[j])).epsilon(1e-12));
+      }
     }
   }
 

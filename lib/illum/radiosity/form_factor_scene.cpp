@@ -1,6 +1,14 @@
 #include "illum/radiosity/form_factor_scene.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdint>
+#include <exception>
+#include <functional>
+#include <map>
+#include <unordered_map>
+#include <utility>
 
 #include "illum/core/error.hpp"
 #include "illum/radiosity/rectangle_form_factors.hpp"
@@ -31,28 +39,121 @@ bool coplanar(const Patch& a, const Patch& b) {
   return dot(a.normal, b.normal) > 1 - 1e-12 && std::abs(dot(a.normal, b.centroid - a.centroid)) < 1e-12;
 }
 
+// Runs body(k) for k in [0, count) in parallel. An exception cannot leave an
+// OpenMP region (it would terminate the program), so the first one is kept
+// and rethrown here: a stub's NotImplemented reaches the caller.
+template <class Body>
+void parallel_for(long count, long chunk, Body body) {
+  std::exception_ptr error;
+#pragma omp parallel for schedule(dynamic, chunk)
+  for (long k = 0; k < count; ++k) {
+    try {
+      body(k);
+    } catch (...) {
+#pragma omp critical(illum_form_factor_scene_error)
+      if (!error) error = std::current_exception();
+    }
+  }
+  if (error) std::rethrow_exception(error);
+}
+
 template <class PairFunction>
 FormFactorMatrix fill_matrix(const std::vector<Patch>& patches, PairFunction pair) {
   const std::size_t n = patches.size();
   FormFactorMatrix f(n);
-  const auto rows = static_cast<long>(n);
-#pragma omp parallel for schedule(dynamic, 4)
-  for (long ii = 0; ii < rows; ++ii) {
-    const auto i = static_cast<std::size_t>(ii);
+  // Rows in parallel; row i has n − 1 − i pairs, so small dynamic chunks even out the triangle.
+  parallel_for(static_cast<long>(n), 4, [&](long row) {
+    const auto i = static_cast<std::size_t>(row);
     for (std::size_t j = i + 1; j < n; ++j) {
       if (coplanar(patches[i], patches[j])) continue;  // F = 0: the contour formula would waste work
       const double fij = pair(patches[i], patches[j]);
       f(i, j) = fij;
       f(j, i) = patches[i].area * fij / patches[j].area;  // reciprocity A_i F_ij = A_j F_ji
     }
+  });
+  return f;
+}
+
+// A pair of patches up to a translation: the shapes of both (ids of their
+// vertex lists taken relative to their first vertex) and the offset from the
+// first vertex of `from` to that of `to`, rounded to a multiple of a quantum.
+struct TranslatedPair {
+  int from_shape = 0, to_shape = 0;
+  std::array<std::int64_t, 3> offset{};
+  bool operator==(const TranslatedPair&) const = default;
+};
+
+struct TranslatedPairHash {
+  std::size_t operator()(const TranslatedPair& key) const {
+    std::size_t h = std::hash<int>()(key.from_shape) * 0x9e3779b97f4a7c15ULL ^ std::hash<int>()(key.to_shape);
+    for (const std::int64_t c : key.offset) h = h * 0x100000001b3ULL ^ std::hash<std::int64_t>()(c);
+    return h;
   }
+};
+
+// The contour matrix computing each class of translated pairs once (PairReuse::translates).
+FormFactorMatrix matrix_reusing_translates(const std::vector<Patch>& patches, const ContourOptions& options) {
+  const std::size_t n = patches.size();
+  FormFactorMatrix f(n);
+  if (n == 0) return f;
+  // Coordinates are compared after rounding to 10⁻¹² of the scene's bounding-box diagonal.
+  Point3 lo = patches[0].vertices[0], hi = lo;
+  for (const Patch& p : patches)
+    for (const Point3& v : p.vertices) {
+      lo = glm::min(lo, v);
+      hi = glm::max(hi, v);
+    }
+  const double quantum = 1e-12 * length(hi - lo);
+  auto rounded = [&](const Vec3& v) {
+    return std::array<std::int64_t, 3>{std::llround(v.x / quantum), std::llround(v.y / quantum),
+                                       std::llround(v.z / quantum)};
+  };
+  // 1. The shape of each patch: its vertices relative to the first one.
+  std::map<std::vector<std::int64_t>, int> shape_ids;
+  std::vector<int> shape(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::vector<std::int64_t> key;
+    for (const Point3& v : patches[i].vertices) {
+      const auto c = rounded(v - patches[i].vertices[0]);
+      key.insert(key.end(), c.begin(), c.end());
+    }
+    shape[i] = shape_ids.try_emplace(std::move(key), static_cast<int>(shape_ids.size())).first->second;
+  }
+  // 2. Group the pairs i < j into classes of translates; the first pair met represents its class.
+  std::unordered_map<TranslatedPair, int, TranslatedPairHash> class_of;
+  std::vector<std::pair<std::size_t, std::size_t>> representative;
+  std::vector<int> pair_class(n * n, -1);  // −1: coplanar, F = 0
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      if (coplanar(patches[i], patches[j])) continue;
+      const TranslatedPair key{shape[i], shape[j], rounded(patches[j].vertices[0] - patches[i].vertices[0])};
+      const auto [it, inserted] = class_of.try_emplace(key, static_cast<int>(representative.size()));
+      if (inserted) representative.emplace_back(i, j);
+      pair_class[i * n + j] = it->second;
+    }
+  // 3. The contour integral once per class, in parallel.
+  std::vector<double> value(representative.size());
+  parallel_for(static_cast<long>(representative.size()), 16, [&](long k) {
+    const auto [i, j] = representative[static_cast<std::size_t>(k)];
+    value[static_cast<std::size_t>(k)] = polygon_polygon_form_factor(patches[i], patches[j], options);
+  });
+  // 4. Every pair takes its class's value; F_ji by reciprocity as before.
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j) {
+      const int c = pair_class[i * n + j];
+      if (c < 0) continue;
+      const double fij = value[static_cast<std::size_t>(c)];
+      f(i, j) = fij;
+      f(j, i) = patches[i].area * fij / patches[j].area;
+    }
   return f;
 }
 
 }  // namespace
 
-FormFactorMatrix contour_form_factor_matrix(const std::vector<Patch>& patches,
-                                            const ContourOptions& options) {
+FormFactorMatrix contour_form_factor_matrix(const std::vector<Patch>& patches, const ContourOptions& options,
+                                            PairReuse reuse) {
+  if (reuse == PairReuse::translates) return matrix_reusing_translates(patches, options);
   return fill_matrix(
       patches, [&](const Patch& a, const Patch& b) { return polygon_polygon_form_factor(a, b, options); });
 }

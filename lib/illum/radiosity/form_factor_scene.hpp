@@ -14,12 +14,24 @@ namespace illum {
 // 3: y = 1, 4: z = 0, 5: z = 1). Reflectance 0.5 everywhere, no emission.
 std::vector<Patch> mesh_cube_interior(int n);
 
+// Whether the matrix builder may reuse one pair's form factor for another.
+//   none:       polygon_polygon_form_factor is called for every pair i < j.
+//   translates: F depends only on the two polygons, so a pair that is a
+//               translate of an earlier one (same two shapes, same offset
+//               between them) gets that pair's value. A uniform mesh is full
+//               of such pairs (the cube: ~41 000 distinct pairs of 311 000).
+//               Shapes and offsets are compared after rounding to 10⁻¹² of
+//               the scene's size, so pairs that differ only by the rounding
+//               of the mesh's vertices count as equal.
+enum class PairReuse { none, translates };
+
 // F_ij for every pair by polygon_polygon_form_factor, computing only i < j
 // and filling F_ji = A_i F_ij / A_j (reciprocity), with coplanar pairs set
-// to zero without work. Rows in parallel (OpenMP, dynamic schedule). No
+// to zero without work. Pairs in parallel (OpenMP, dynamic schedule). No
 // occlusion: exact for convex enclosures only.
 FormFactorMatrix contour_form_factor_matrix(const std::vector<Patch>& patches,
-                                            const ContourOptions& options = {});
+                                            const ContourOptions& options = {},
+                                            PairReuse reuse = PairReuse::none);
 
 // The same matrix from the closed forms for axis-aligned rectangles (the
 // exact reference for the cube).
