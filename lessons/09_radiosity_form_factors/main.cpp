@@ -190,11 +190,11 @@ int main(int argc, char** argv) {
           }
           report_progress(info.id, "study " + pair.name, 1, 1);
         }
-        // Point to polygon: the receiver under a corner of the unit square at height 1 (B-5).
+        // Point to polygon: the receiver under a corner of the unit square at height 1 (B-3).
         const Point3 x(0, 0, 0);
         const Vec3 up(0, 0, 1);
         const double corner_exact = (2 * (1 / std::sqrt(2.0)) * std::atan(1 / std::sqrt(2.0))) /
-                                    (2 * pi);  // Howell B-5, a = b = c = 1
+                                    (2 * pi);  // Howell B-3, a = b = c = 1
         {
           double seconds = 0;
           const double f =
@@ -230,7 +230,7 @@ int main(int argc, char** argv) {
         }
         out.table(
             study, "study",
-            "Error against the closed forms (C-11 parallel squares, C-14 squares sharing an edge, B-5 point "
+            "Error against the closed forms (C-11 parallel squares, C-14 squares sharing an edge, B-3 point "
             "under a corner) and time per estimate; Monte Carlo errors are RMS over 8 seeds");
         PlotSpec by_time{
             "Form factors: error vs time", "seconds per estimate", "|error|", true, true, {}, 1000, 620};

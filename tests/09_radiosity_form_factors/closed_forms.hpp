@@ -36,7 +36,7 @@ inline double coaxial_discs(double r1, double r2, double h) {
   return 0.5 * (X - std::sqrt(X * X - 4 * (R2 / R1) * (R2 / R1)));
 }
 
-// Howell B-5 (dA to a parallel rectangle a × b, the element below one corner at distance c).
+// Howell B-3: dA to a parallel rectangle a × b, the element below one corner at distance c.
 inline double point_to_parallel_rectangle_corner(double a, double b, double c) {
   const double A = a / c, B = b / c, sa = std::sqrt(1 + A * A), sb = std::sqrt(1 + B * B);
   return (A / sa * std::atan(B / sa) + B / sb * std::atan(A / sb)) / (2 * pi);
@@ -44,7 +44,8 @@ inline double point_to_parallel_rectangle_corner(double a, double b, double c) {
 
 // dA at the origin (normal +z) to the rectangle x = d, y ∈ [0, b], z ∈ [0, c]
 // facing it: (d/π)∫∫ z/(d² + y² + z²)² dz dy done by hand,
-// F = (1/2π)[atan B − atan(B/√(1 + C²))/√(1 + C²)], B = b/d, C = c/d (Howell B-3).
+// F = (1/2π)[atan B − atan(B/√(1 + C²))/√(1 + C²)], B = b/d, C = c/d. Howell B-4: a rectangle
+// perpendicular to dA's plane with one edge in it; dA's perpendicular meets it at a corner.
 inline double point_to_perpendicular_rectangle(double b, double c, double d) {
   const double B = b / d, C = c / d, s = std::sqrt(1 + C * C);
   return (std::atan(B) - std::atan(B / s) / s) / (2 * pi);

@@ -141,7 +141,7 @@ TEST_SUITE("lesson09") {
     CHECK_THROWS_AS(clip_polygon_to_half_space(square, {0, 0, 0}, Vec3(0.0)), std::invalid_argument);
   }
 
-  TEST_CASE("point to polygon: a parallel rectangle above a corner, against Howell B-5") {
+  TEST_CASE("point to polygon: a parallel rectangle above a corner, against Howell B-3") {
     for (const auto& [a, b, c] : {std::tuple{1.0, 1.0, 1.0}, {2.0, 0.5, 1.5}, {3.0, 1.0, 0.2}}) {
       const Patch rect = ceiling_rect(0, a, 0, b, c);
       INFO("a = ", a, ", b = ", b, ", c = ", c);
@@ -164,7 +164,7 @@ TEST_SUITE("lesson09") {
 
   TEST_CASE("hard case: polygon crossing the receiver's tangent plane is clipped") {
     // The wall x = 1, y ∈ [0, 2], z ∈ [−0.7, 1.3] reaches below the horizon of
-    // the receiver at the origin. Only its part z ≥ 0 is seen: Howell B-3 with c = 1.3.
+    // the receiver at the origin. Only its part z ≥ 0 is seen: Howell B-4 with c = 1.3.
     const Patch wall = wall_x(1, 0, 2, -0.7, 1.3, false);
     const double expected = point_to_perpendicular_rectangle(2, 1.3, 1);
     const double f = point_polygon_form_factor({0, 0, 0}, up, wall);
