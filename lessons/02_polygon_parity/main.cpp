@@ -5,6 +5,7 @@
 // square under three boundary rules (half-open, closed, open) and counts the
 // points each rule claims 0, 1 or 2+ times; and measures the cost of the
 // parity test against the number of vertices.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -237,7 +238,7 @@ int main(int argc, char** argv) {
               "Grid points of [0,4)² claimed 0, 1 or 2+ times by the 11 pieces of the tiling");
 
     report_progress(info.id, "cost study", 2, 3);
-    Table cost({"vertices", "ns_per_parity_query", "ns_per_vertex", "ns_per_ray_polygon_hit_test"});
+    Table cost({"vertices", "ns per parity query", "ns per vertex", "ns per ray-polygon test"});
     Rng rng(options.seed);
     const int max_vertices = quick ? 256 : 8192;
     const double min_seconds = quick ? 0.002 : 0.05;
@@ -248,10 +249,18 @@ int main(int argc, char** argv) {
       for (Vec2& q : queries) q = Vec2(rng.uniform(-1, 1), rng.uniform(-1, 1));
       for (const Vec2& q : queries)
         rays.push_back(Ray::toward(Point3(0.1, -0.2, 3), Point3(q, 0) - Point3(0.1, -0.2, 3)));
-      const double ns = nanoseconds_per_call(
-          [&](std::uint64_t i) { do_not_optimize(inside_parity(p, queries[i & 1023])); }, min_seconds);
-      const double ns_ray = nanoseconds_per_call(
-          [&](std::uint64_t i) { do_not_optimize(intersect(rays[i & 1023], p).has_value()); }, min_seconds);
+      // The best of three runs: other work on the machine only ever adds
+      // time, so the minimum is the cost of the query itself (one thread).
+      double ns = infinity, ns_ray = infinity;
+      for (int run = 0; run < 3; ++run) {
+        ns = std::min(ns, nanoseconds_per_call(
+                              [&](std::uint64_t i) { do_not_optimize(inside_parity(p, queries[i & 1023])); },
+                              min_seconds));
+        ns_ray = std::min(
+            ns_ray, nanoseconds_per_call(
+                        [&](std::uint64_t i) { do_not_optimize(intersect(rays[i & 1023], p).has_value()); },
+                        min_seconds));
+      }
       cost.add_row({std::int64_t{n}, ns, ns / n, ns_ray});
     }
     out.table(cost, "parity_cost",

@@ -12,8 +12,10 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include <omp.h>
 #include <CLI/CLI.hpp>
 
 #include "illum/core/stopwatch.hpp"
@@ -82,74 +84,121 @@ struct SolverSummary {
   double sweeps_to_1e3 = NAN, sweeps_to_1e6 = NAN, seconds_to_1e6 = NAN, worst_ratio = NAN;
 };
 
-// Runs one solver on (patches, f) and appends its history to `history`.
-// Work is counted in sweeps: one sweep = n row operations (n Southwell
-// steps or n shots cost as much as one Jacobi sweep).
+// One solver advanced one unit of work at a time from its start: a sweep
+// (Jacobi, Gauss–Seidel, SOR) or a step (one Southwell relaxation, one
+// shot). It can restart, so that one run can be timed several times; every
+// buffer is allocated and touched by restart(), outside the timed work.
+class SolverRun {
+ public:
+  SolverRun(std::string solver, const std::vector<Patch>& patches, const FormFactorMatrix& f)
+      : solver_(std::move(solver)), patches_(patches), f_(f) {
+    restart();
+  }
+
+  void restart() {
+    const std::size_t n = patches_.size();
+    b_.assign(n, Color(0.0));
+    next_.assign(n, Color(0.0));
+    if (solver_ == "southwell") residual_ = emissions(patches_);  // r = E − M·0
+    if (solver_ == "progressive") state_ = progressive_start(patches_);
+  }
+
+  void advance() {
+    if (solver_ == "jacobi") {
+      jacobi_sweep(patches_, f_, b_, next_);
+      b_.swap(next_);
+    } else if (solver_ == "gauss-seidel") {
+      gauss_seidel_sweep(patches_, f_, b_, 1.0);
+    } else if (solver_ == "sor-1.2") {
+      gauss_seidel_sweep(patches_, f_, b_, 1.2);
+    } else if (solver_ == "southwell") {
+      southwell_step(patches_, f_, b_, residual_);
+    } else {  // progressive refinement, rows from the precomputed matrix
+      const std::size_t i = choose_shooter(patches_, state_.unshot);
+      shoot(patches_, i, f_.row(i), state_);
+    }
+  }
+
+  // Units per sweep: one sweep = n row operations (n Southwell steps or n
+  // shots cost as much as one Jacobi sweep).
+  bool sweeps() const { return solver_ == "jacobi" || solver_ == "gauss-seidel" || solver_ == "sor-1.2"; }
+  double units_per_sweep() const { return sweeps() ? 1.0 : static_cast<double>(patches_.size()); }
+  // Where to record: every sweep; for steps at 1, 2, 4, … then every n/4.
+  bool due(std::size_t unit) const {
+    return sweeps() || (unit & (unit - 1)) == 0 || unit % std::max<std::size_t>(1, patches_.size() / 4) == 0;
+  }
+  const std::vector<Color>& radiosity() const { return solver_ == "progressive" ? state_.radiosity : b_; }
+  // What the method shows: progressive refinement adds the ambient term.
+  std::vector<Color> shown() const {
+    return solver_ == "progressive" ? display_radiosity(patches_, state_) : radiosity();
+  }
+
+ private:
+  std::string solver_;
+  const std::vector<Patch>& patches_;
+  const FormFactorMatrix& f_;
+  std::vector<Color> b_, next_, residual_;
+  ProgressiveState state_;
+};
+
+// Runs one solver on (patches, f) until the error is below 1e-9 (or
+// max_sweeps) and appends its history to `history`: residual and error
+// at each record point, and the seconds of solver work up to it. The
+// iteration is deterministic, so it is run three times and each unit of
+// work (sweep or step) counts with its best time of the three: other work
+// on the machine only ever adds time. The residuals and errors computed for
+// the table are not the solver's work and are not timed.
 SolverSummary run_solver(const std::string& solver, const std::string& scale,
                          const std::vector<Patch>& patches, const FormFactorMatrix& f,
                          const std::vector<Color>& exact, int max_sweeps, Table& history) {
-  const std::size_t n = patches.size();
   const double exact_norm = max_norm(exact), e_norm = max_norm(emissions(patches));
-  SolverSummary summary;
-  double seconds = 0, previous_error = 1.0;
-  auto record = [&](double sweeps, const std::vector<Color>& b, const std::vector<Color>* shown) {
+  SolverRun run(solver, patches, f);
+  struct Point {
+    double sweeps, residual, error, display_error, seconds;
+  };
+  std::vector<Point> points;
+  std::vector<double> unit_seconds;  // the time of each unit of work, best of three
+  const auto max_units = static_cast<std::size_t>(max_sweeps * run.units_per_sweep());
+  while (unit_seconds.size() < max_units) {
+    Stopwatch watch;
+    run.advance();
+    unit_seconds.push_back(watch.seconds());
+    const std::size_t units = unit_seconds.size();
+    if (!run.due(units)) continue;
+    const std::vector<Color>& b = run.radiosity();
     const double error = max_difference(b, exact) / exact_norm;
-    const double residual = max_norm(radiosity_residual(patches, f, b)) / e_norm;
-    const double display_error = shown ? max_difference(*shown, exact) / exact_norm : error;
-    history.add_row({solver, scale, sweeps, seconds, residual, error, display_error});
-    if (std::isnan(summary.sweeps_to_1e3) && error < 1e-3) summary.sweeps_to_1e3 = sweeps;
-    if (std::isnan(summary.sweeps_to_1e6) && error < 1e-6) {
-      summary.sweeps_to_1e6 = sweeps;
-      summary.seconds_to_1e6 = seconds;
-    }
-    return error;
-  };
-  std::vector<Color> b(n, Color(0.0)), next;
-  if (solver == "jacobi" || solver == "gauss-seidel" || solver == "sor-1.2") {
-    summary.worst_ratio = 0;
-    for (int sweep = 1; sweep <= max_sweeps; ++sweep) {
-      Stopwatch watch;
-      if (solver == "jacobi") {
-        jacobi_sweep(patches, f, b, next);
-        b.swap(next);
-      } else {
-        gauss_seidel_sweep(patches, f, b, solver == "jacobi" ? 1.0 : (solver == "sor-1.2" ? 1.2 : 1.0));
-      }
-      seconds += watch.seconds();
-      const double error = record(sweep, b, nullptr);
-      if (solver == "jacobi" && previous_error > 1e-13)
-        summary.worst_ratio = std::max(summary.worst_ratio, error / previous_error);
-      previous_error = error;
-      if (error < 1e-9) break;
-    }
-    if (solver != "jacobi") summary.worst_ratio = NAN;
-    return summary;
+    points.push_back({static_cast<double>(units) / run.units_per_sweep(),
+                      max_norm(radiosity_residual(patches, f, b)) / e_norm, error,
+                      max_difference(run.shown(), exact) / exact_norm, 0.0});
+    if (error < 1e-9) break;
   }
-  // Step-by-step solvers: record at 1, 2, 4, … steps, then every n/4 steps.
-  const std::size_t max_steps = static_cast<std::size_t>(max_sweeps) * n;
-  auto due = [&](std::size_t step) {
-    return (step & (step - 1)) == 0 || step % std::max<std::size_t>(1, n / 4) == 0;
-  };
-  if (solver == "southwell") {
-    std::vector<Color> r = emissions(patches);
-    for (std::size_t step = 1; step <= max_steps; ++step) {
+  for (int repeat = 1; repeat < 3; ++repeat) {
+    run.restart();
+    for (double& seconds : unit_seconds) {
       Stopwatch watch;
-      southwell_step(patches, f, b, r);
-      seconds += watch.seconds();
-      if (due(step) && record(static_cast<double>(step) / static_cast<double>(n), b, nullptr) < 1e-9) break;
+      run.advance();
+      seconds = std::min(seconds, watch.seconds());
     }
-  } else {  // progressive refinement, rows from the precomputed matrix
-    ProgressiveState state = progressive_start(patches);
-    for (std::size_t step = 1; step <= max_steps; ++step) {
-      Stopwatch watch;
-      const std::size_t i = choose_shooter(patches, state.unshot);
-      shoot(patches, i, f.row(i), state);
-      seconds += watch.seconds();
-      if (due(step)) {
-        const std::vector<Color> shown = display_radiosity(patches, state);
-        if (record(static_cast<double>(step) / static_cast<double>(n), state.radiosity, &shown) < 1e-9) break;
-      }
+  }
+  double seconds = 0;
+  for (std::size_t unit = 1, k = 0; unit <= unit_seconds.size(); ++unit) {
+    seconds += unit_seconds[unit - 1];
+    if (run.due(unit)) points[k++].seconds = seconds;
+  }
+  SolverSummary summary;
+  double previous_error = 1.0;  // B = 0 is off by |B*| everywhere: relative error 1
+  if (solver == "jacobi") summary.worst_ratio = 0;
+  for (const Point& p : points) {
+    history.add_row({solver, scale, p.sweeps, p.seconds, p.residual, p.error, p.display_error});
+    if (std::isnan(summary.sweeps_to_1e3) && p.error < 1e-3) summary.sweeps_to_1e3 = p.sweeps;
+    if (std::isnan(summary.sweeps_to_1e6) && p.error < 1e-6) {
+      summary.sweeps_to_1e6 = p.sweeps;
+      summary.seconds_to_1e6 = p.seconds;
     }
+    // Jacobi: e(k+1)/e(k) ≤ max ρ (lesson 11, section 3), once e is above rounding.
+    if (solver == "jacobi" && previous_error > 1e-13)
+      summary.worst_ratio = std::max(summary.worst_ratio, p.error / previous_error);
+    previous_error = p.error;
   }
   return summary;
 }
@@ -219,13 +268,25 @@ int main(int argc, char** argv) {
         const std::vector<std::string> solvers = {"jacobi", "gauss-seidel", "sor-1.2", "southwell",
                                                   "progressive"};
         std::vector<Color> exact_published;
+        std::vector<double> direct_seconds;
         int done = 0;
+        // Every solver is timed on one thread, so that seconds compare the
+        // methods' work. Jacobi's sweep is the one that parallelizes; the
+        // jacobi_threads table below measures what a second thread buys.
+        const int threads = omp_get_max_threads();
+        omp_set_num_threads(1);
         for (double rho : scales) {
           const std::vector<Patch> patches = with_max_reflectance(study_scene.patches, rho);
           const std::string label = fixed(rho, 3);
-          Stopwatch watch;
-          const std::vector<Color> exact = solve_direct(patches, f);
-          direct_table.add_row({label, static_cast<std::int64_t>(patches.size()), watch.seconds()});
+          std::vector<Color> exact;
+          double seconds = INFINITY;
+          for (int repeat = 0; repeat < 3; ++repeat) {  // best of three, like the iterative solvers
+            Stopwatch watch;
+            exact = solve_direct(patches, f);
+            seconds = std::min(seconds, watch.seconds());
+          }
+          direct_seconds.push_back(seconds);
+          direct_table.add_row({label, static_cast<std::int64_t>(patches.size()), seconds});
           if (rho == 0.78) exact_published = exact;
           const int max_sweeps = quick ? 300 : 3000;
           for (const std::string& solver : solvers) {
@@ -243,6 +304,24 @@ int main(int argc, char** argv) {
             }
           }
         }
+        // Jacobi's sweep on 1 thread and on all of them, timed as in the study
+        // (each sweep alone, best of three, after the untimed residual and
+        // error bookkeeping, while the other threads wait): on a shared
+        // machine a parallel sweep waits at its barrier for a thread that
+        // the system has not scheduled.
+        Table jacobi_threads({"threads", "ms per Jacobi sweep"});
+        for (int t : {1, threads}) {
+          omp_set_num_threads(t);
+          Table scratch(history.columns());
+          const SolverSummary s =
+              run_solver("jacobi", "0.780", with_max_reflectance(study_scene.patches, 0.78), f,
+                         exact_published, 40, scratch);
+          jacobi_threads.add_row({std::int64_t{t}, 1e3 * s.seconds_to_1e6 / s.sweeps_to_1e6});
+          if (t == threads) break;  // with one thread, one row
+        }
+        omp_set_num_threads(threads);
+        out.table(jacobi_threads, "jacobi_threads",
+                  "Jacobi's sweep (published reflectances) on one thread and on all, best of three");
         // The published box is open at the front and its colours absorb, so
         // Jacobi contracts faster than max ρ. Closing it with a front wall
         // (z = 0, facing +z) and making every patch reflect ρ brings the
@@ -278,7 +357,7 @@ int main(int argc, char** argv) {
                      true,
                      {}};
           for (double rho : scales)
-            j.series.push_back({"closed_history.csv", 3, 6, "rho_max = " + fixed(rho, 3),
+            j.series.push_back({"closed_history.csv", 3, 6, "max rho = " + fixed(rho, 3),
                                 "strcol(2) eq '" + fixed(rho, 3) + "'", "lines"});
           out.plot(j, "jacobi_closed_scales",
                    "Jacobi's error per sweep in the closed box: slopes near log(max rho)");
@@ -293,50 +372,67 @@ int main(int argc, char** argv) {
                   "Jacobi's sweeps grow like 1/(1 - rho); its error shrinks by at most rho per sweep");
         out.table(direct_table, "direct_time",
                   "Time of the direct solution (Gaussian elimination, three channels)");
+        // Per scale, the four views: residual and error, per sweep and per
+        // second. The direct solution is the reference (error 0): in the time
+        // plots it is the vertical line at the seconds it took.
+        Table direct_marks({"rho_max", "seconds", "level"});
+        for (std::size_t k = 0; k < scales.size(); ++k)
+          for (double level : {1e-10, 1.0})
+            direct_marks.add_row({fixed(scales[k], 3), direct_seconds[k], level});
+        out.table(direct_marks, "direct_marks",
+                  "The direct solve's time, as a vertical line in the time plots");
         {
-          PlotSpec spec{"Error against the direct solution, Cornell box, rho_max = 0.78 (published)",
-                        "work (sweeps)",
-                        "relative error (max norm)",
-                        false,
-                        true,
-                        {}};
-          for (const std::string& s : solvers)
-            spec.series.push_back(
-                {"solver_history.csv", 3, 6, s, "strcol(1) eq '" + s + "' && strcol(2) eq '0.780'"});
-          spec.series.push_back({"solver_history.csv", 3, 7, "progressive + ambient (display)",
-                                 "strcol(1) eq 'progressive' && strcol(2) eq '0.780'"});
-          out.plot(spec, "error_vs_sweeps", "Error vs work for every solver (published reflectances)");
-          PlotSpec t{"Error against the direct solution vs time, rho_max = 0.78 (published)",
-                     "seconds",
-                     "relative error",
-                     true,
-                     true,
-                     {}};
-          for (const std::string& s : solvers)
-            t.series.push_back(
-                {"solver_history.csv", 4, 6, s, "strcol(1) eq '" + s + "' && strcol(2) eq '0.780'"});
-          out.plot(t, "error_vs_time", "Error vs time for every solver (published reflectances)");
-          PlotSpec r{"Residual vs work, rho_max = 0.78 (published)",
-                     "work (sweeps)",
-                     "relative residual",
-                     false,
-                     true,
-                     {}};
-          for (const std::string& s : solvers)
-            r.series.push_back(
-                {"solver_history.csv", 3, 5, s, "strcol(1) eq '" + s + "' && strcol(2) eq '0.780'"});
-          out.plot(r, "residual_vs_sweeps", "Residual vs work for every solver (published reflectances)");
+          struct View {
+            const char* name;
+            const char* x_label;
+            int x_column;
+            const char* y_label;
+            int y_column;
+          };
+          const View views[] = {{"residual_vs_sweeps", "work (sweeps)", 3, "relative residual (max norm)", 5},
+                                {"residual_vs_time", "seconds", 4, "relative residual (max norm)", 5},
+                                {"error_vs_sweeps", "work (sweeps)", 3, "relative error (max norm)", 6},
+                                {"error_vs_time", "seconds", 4, "relative error (max norm)", 6}};
+          for (double rho : scales) {
+            const std::string label = fixed(rho, 3);
+            const std::string suffix = "_rho" + fixed(100 * rho, 0);
+            const std::string where = "strcol(2) eq '" + label + "'";
+            const std::string which = rho == 0.78 ? " (published)" : "";
+            for (const View& v : views) {
+              const bool time = v.x_column == 4;
+              PlotSpec spec{std::string(v.name[0] == 'r' ? "Residual" : "Error") + " vs " +
+                                (time ? "time" : "work") + ", Cornell box, max rho = " + label + which,
+                            v.x_label,
+                            v.y_label,
+                            time,
+                            true,
+                            {}};
+              for (const std::string& s : solvers)
+                spec.series.push_back({"solver_history.csv", v.x_column, v.y_column, s,
+                                       "strcol(1) eq '" + s + "' && " + where});
+              if (v.y_column == 6)
+                spec.series.push_back({"solver_history.csv", v.x_column, 7, "progressive + ambient (display)",
+                                       "strcol(1) eq 'progressive' && " + where});
+              if (time)
+                spec.series.push_back({"direct_marks.csv", 2, 3, "direct (the reference)",
+                                       "strcol(1) eq '" + label + "'", "lines"});
+              out.plot(spec, std::string(v.name) + suffix,
+                       std::string(v.name[0] == 'r' ? "Residual" : "Error") + " vs " +
+                           (time ? "seconds (best of three)" : "sweeps") +
+                           " for every solver, rho_max = " + label + which);
+            }
+          }
           PlotSpec j{"Jacobi at several reflectance scales", "sweeps", "relative error", false, true, {}};
           for (double rho : scales)
-            j.series.push_back({"solver_history.csv", 3, 6, "rho_max = " + fixed(rho, 3),
+            j.series.push_back({"solver_history.csv", 3, 6, "max rho = " + fixed(rho, 3),
                                 "strcol(1) eq 'jacobi' && strcol(2) eq '" + fixed(rho, 3) + "'", "lines"});
           out.plot(j, "jacobi_scales", "Jacobi's error per sweep: a straight line of slope log(rho) at most");
         }
 
         // 3. Images: flat patch colours after 1, 10, 100 shots and at convergence.
         const int size = quick ? 96 : 384;
-        const std::vector<int> items = patch_item_buffer(study_scene, size, size);
-        const double exposure = exposure_for(study_scene.patches, exact_published);
+        const std::vector<int> items = lesson11::patch_item_buffer(study_scene, size, size);
+        const double exposure = lesson11::exposure_for(study_scene.patches, exact_published);
         {
           ProgressiveState state = progressive_start(study_scene.patches);
           for (std::size_t shots : {std::size_t{1}, std::size_t{10}, std::size_t{100}}) {
@@ -345,18 +441,18 @@ int main(int argc, char** argv) {
               shoot(study_scene.patches, i, f.row(i), state);
             }
             const std::string name = "cornell_shots_" + std::to_string(shots);
-            out.image(
-                flat_patch_image(items, size, size, display_radiosity(study_scene.patches, state), exposure),
-                name,
-                "Progressive refinement after " + std::to_string(shots) +
-                    " shots, with the ambient term (display only)");
+            out.image(lesson11::flat_patch_image(items, size, size,
+                                                 display_radiosity(study_scene.patches, state), exposure),
+                      name,
+                      "Progressive refinement after " + std::to_string(shots) +
+                          " shots, with the ambient term (display only)");
             if (shots == 10)
-              out.image(flat_patch_image(items, size, size, state.radiosity, exposure),
+              out.image(lesson11::flat_patch_image(items, size, size, state.radiosity, exposure),
                         "cornell_shots_10_no_ambient",
                         "After 10 shots without the ambient term: unlit patches stay black");
           }
-          out.image(flat_patch_image(items, size, size, exact_published, exposure), "cornell_converged",
-                    "The converged solution (direct), one flat colour per patch");
+          out.image(lesson11::flat_patch_image(items, size, size, exact_published, exposure),
+                    "cornell_converged", "The converged solution (direct), one flat colour per patch");
         }
 
         // 4. The figure: ~2,000 patches, progressive refinement, hemicube rows
@@ -405,9 +501,9 @@ int main(int argc, char** argv) {
                     true,
                     {{"figure_history.csv", 1, 3, "unshot fraction", "", "lines"}}};
         out.plot(fp, "figure_unshot", "Unshot power vs shots (hemicube rows on demand)");
-        const std::vector<int> big_items = patch_item_buffer(big, size, size);
-        out.image(flat_patch_image(big_items, size, size, display_radiosity(big.patches, state),
-                                   exposure_for(big.patches, state.radiosity)),
+        const std::vector<int> big_items = lesson11::patch_item_buffer(big, size, size);
+        out.image(lesson11::flat_patch_image(big_items, size, size, display_radiosity(big.patches, state),
+                                             lesson11::exposure_for(big.patches, state.radiosity)),
                   "cornell_progressive_figure",
                   "The figure's solution: flat patch colours, ambient term added for display");
         std::cout << "Study: " << study_scene.patches.size() << " patches, hemicube " << study_resolution

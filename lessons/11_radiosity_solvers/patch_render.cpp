@@ -8,7 +8,7 @@
 #include "illum/core/error.hpp"
 #include "illum/core/pinhole_camera.hpp"
 
-namespace illum {
+namespace illum::lesson11 {
 
 std::optional<double> hit_convex_polygon(const Ray& ray, const std::vector<Point3>& polygon,
                                          const Vec3& normal) {
@@ -87,4 +87,4 @@ double exposure_for(const std::vector<Patch>& patches, const std::vector<Color>&
   return levels[k] > 0 ? 0.85 / levels[k] : 1.0;
 }
 
-}  // namespace illum
+}  // namespace illum::lesson11

@@ -3,6 +3,8 @@
 // casting one ray per pixel against the scene's surfaces (brute force, 17
 // polygons) and then against the patches of the surface hit. Not an
 // exercise: the lesson is about solving for B, not about drawing it.
+// Lesson-local, so in namespace illum::lesson11: the library's namespace
+// illum holds only lib/illum/ code.
 #include <optional>
 #include <vector>
 
@@ -10,7 +12,7 @@
 #include "illum/core/ray.hpp"
 #include "illum/radiosity/radiosity_scene.hpp"
 
-namespace illum {
+namespace illum::lesson11 {
 
 // Parameter s of the hit of `ray` with a planar convex polygon (either side),
 // or nothing: the plane hit s = (N·(V0 − P0))/(N·ω) (erratum 2's sign), then
@@ -29,4 +31,4 @@ Image flat_patch_image(const std::vector<int>& items, int width, int height,
 // brightest channel to 0.85 (the light itself saturates to white).
 double exposure_for(const std::vector<Patch>& patches, const std::vector<Color>& radiosity);
 
-}  // namespace illum
+}  // namespace illum::lesson11
