@@ -250,8 +250,15 @@ TEST_SUITE("lesson02") {
   }
 
   TEST_CASE("hard case: a polygon seen edge-on is not hit") {
-    // The ray runs inside the square's plane z = 0, straight through it.
     const Polygon sq = square(0, 0, 2, 2);
+    // Positive control: the same ray tilted just out of the plane, from
+    // (−1, 1, 0.01) towards the centre (1, 1, 0), crosses z = 0 inside the
+    // square at distance |(2, 0, −0.01)| = √4.0001. A test that never hits
+    // would pass the edge-on check below, but not this one.
+    const auto grazing = intersect(Ray::toward(Point3(-1, 1, 0.01), Vec3(2, 0, -0.01)), sq);
+    REQUIRE_MESSAGE(grazing.has_value(), "a ray 0.29° out of the plane still crosses it at the centre");
+    CHECK(grazing->s == doctest::Approx(std::sqrt(4.0001)).epsilon(1e-12));
+    // The ray runs inside the square's plane z = 0, straight through it.
     CHECK_MESSAGE(!intersect(Ray(Point3(-1, 1, 0), Vec3(1, 0, 0)), sq).has_value(),
                   "N·ω = 0 and the origin is in the plane: in-plane, drawn as nothing");
   }

@@ -219,6 +219,15 @@ TEST_SUITE("lesson03") {
 
   TEST_CASE("hard case: a ray in the triangle's plane misses it") {
     const Triangle tri(Point3(0, 0, 5), Point3(4, 0, 5), Point3(0, 4, 5));
+    // Positive control: the same ray tilted just out of the plane, from
+    // (−1, 1, 5.01) towards (1, 1, 5), crosses z = 5 inside the triangle
+    // (1 + 1 < 4) at distance |(2, 0, −0.01)| = √4.0001, with barycentrics
+    // λb = x/4 = 0.25, λc = y/4 = 0.25, λa = 0.5.
+    const auto grazing = intersect(Ray::toward(Point3(-1, 1, 5.01), Vec3(2, 0, -0.01)), tri);
+    REQUIRE_MESSAGE(grazing.has_value(), "a ray 0.29° out of the plane still crosses it inside the triangle");
+    CHECK(grazing->s == doctest::Approx(std::sqrt(4.0001)).epsilon(1e-12));
+    CHECK(grazing->barycentric.x == doctest::Approx(0.5).epsilon(1e-9));
+    // In the plane itself the triangle has no area seen from the ray.
     CHECK_MESSAGE(!intersect(Ray(Point3(-1, 1, 5), Vec3(1, 0, 0)), tri).has_value(),
                   "edge-on: the triangle has no area seen from the ray");
   }

@@ -117,6 +117,17 @@ TEST_SUITE("lesson05") {
     const Torus torus(Point3(0.0), 2.0, 0.5);
     const Ray rays[] = {Ray(Point3(0.0, 0.0, 5.0), Vec3(0.0, 0.0, -1.0)),
                         Ray::toward(Point3(0.3, 0.0, 4.0), Vec3(-0.6, 0.0, -8.0))};
+    // Positive control: the vertical ray x = R = 2 runs down the tube's centre
+    // circle and meets its top at z = r = 0.5, s = 4.5, where the normal is +z
+    // (cos θ = 1). A method that never hits would pass the misses below.
+    const Ray over_tube(Point3(2.0, 0.0, 5.0), Vec3(0.0, 0.0, -1.0));
+    for (ImplicitMethod method : all_methods) {
+      INFO("method: " << std::string(to_string(method)));
+      const std::optional<ImplicitHit> hit = intersect_implicit(over_tube, torus, method);
+      REQUIRE_MESSAGE(hit, "the ray x = R, y = 0 passes through the tube");
+      CHECK_MESSAGE(std::abs(hit->s - 4.5) <= allowed_error(method, ImplicitOptions{}.tolerance, 1.0),
+                    "the tube's top ρ = R, z = r is met at s = 5 − 0.5");
+    }
     for (const Ray& ray : rays) {
       for (ImplicitMethod method : all_methods) {
         INFO("method: " << std::string(to_string(method)));

@@ -243,6 +243,11 @@ TEST_SUITE("lesson05") {
   }
 
   TEST_CASE("intersect_patch: misses beside the patch and behind the origin") {
+    // Positive control: straight down onto (0.5, 0.5), where z = uv = 0.25, so
+    // s = 5 − 0.25 = 4.75. An intersector that always missed would pass the rest.
+    const std::optional<PatchHit> hit = intersect_patch(Ray(Point3(0.5, 0.5, 5), Vec3(0, 0, -1)), saddle());
+    REQUIRE_MESSAGE(hit, "(0.5, 0.5) is inside the parameter square: the ray hits the saddle");
+    CHECK(std::abs(hit->s - 4.75) <= 1e-10);
     CHECK_MESSAGE(!intersect_patch(Ray(Point3(2, 2, 5), Vec3(0, 0, -1)), saddle()),
                   "(2, 2) is outside the square: the box test prunes the whole patch");
     CHECK_MESSAGE(!intersect_patch(Ray(Point3(0.5, 0.5, 5), Vec3(0, 0, 1)), saddle()),
@@ -250,6 +255,9 @@ TEST_SUITE("lesson05") {
     Ray limited(Point3(0.5, 0.5, 5), Vec3(0, 0, -1));
     limited.range = Interval(0.0, 4.0);
     CHECK_MESSAGE(!intersect_patch(limited, saddle()), "the hit at s = 4.75 lies beyond the range's end");
+    limited.range = Interval(0.0, 5.0);
+    CHECK_MESSAGE(intersect_patch(limited, saddle()),
+                  "with the range [0, 5] the hit at s = 4.75 counts again");
   }
 
   TEST_CASE("patch_newton converges in a few steps and refuses bad input") {

@@ -34,6 +34,18 @@ TEST_SUITE("lesson05") {
     // The ray y = 1 grazes the unit sphere at s = 3: f(s) = (s − 3)² ≥ 0 touches
     // zero without changing sign (a double root).
     const ImplicitSphere sphere(Point3(0.0), 1.0);
+    // Positive control: the ray y = 0.5 cuts the sphere where (s − 3)² + 0.25 = 1,
+    // first at s = 3 − √0.75; on [0, 3] f goes from 8.25 to −0.75, a sign change.
+    // A finder that always answered "no sign change" would fail here.
+    const Ray secant_ray(Point3(-3.0, 0.5, 0.0), Vec3(1.0, 0.0, 0.0));  // AlongRay keeps a reference
+    const AlongRay secant(sphere, secant_ray);
+    const RootResult cut = bisection(secant, {0.0, 3.0}, 1e-12, 200);
+    REQUIRE_MESSAGE(cut.converged(), "f(0) = 8.25 > 0 > f(3) = −0.75: [0, 3] brackets the entry point");
+    CHECK(std::abs(cut.s - (3.0 - std::sqrt(0.75))) <= 1e-12);
+    const RootResult safe_cut = safeguarded_newton(secant, {0.0, 3.0}, 1e-12, 200);
+    REQUIRE(safe_cut.converged());
+    CHECK(std::abs(safe_cut.s - (3.0 - std::sqrt(0.75))) <= 1e-12);
+    // The tangent ray: the double root is invisible to a bracket.
     const Ray ray(Point3(-3.0, 1.0, 0.0), Vec3(1.0, 0.0, 0.0));
     const AlongRay f(sphere, ray);
     const RootResult r = bisection(f, {0.0, 6.0}, 1e-12, 200);
@@ -128,6 +140,16 @@ TEST_SUITE("lesson05") {
 
   TEST_CASE("sphere tracing reports a miss when the ray passes by") {
     const ImplicitSphere sphere(Point3(0.0, 0.0, 5.0), 1.0);
+    // Positive control: the parallel ray at x = 0.5 meets the sphere at
+    // z = 5 − √(1 − 0.25); a march that always reported a miss fails here.
+    const Ray through(Point3(0.5, 0.0, 0.0), Vec3(0.0, 0.0, 1.0));  // DistanceAlongRay keeps a reference
+    const DistanceAlongRay inside(sphere, through);
+    const RootResult hit = sphere_trace(inside, {0.0, 20.0}, 1.0, 1e-9, 1000);
+    REQUIRE_MESSAGE(hit.converged(), "0.5 from the centre of a unit sphere: the ray hits it");
+    // Stopped where the distance is ≤ 1e−9, at most 1e−9/cos θ before the hit, cos θ = √0.75.
+    const double exact = 5.0 - std::sqrt(0.75);
+    CHECK(hit.s <= exact + 1e-14);
+    CHECK(exact - hit.s <= 1e-9 / std::sqrt(0.75) + 1e-14);
     const Ray ray(Point3(2.0, 0.0, 0.0), Vec3(0.0, 0.0, 1.0));  // 2 from the centre, radius 1
     const DistanceAlongRay g(sphere, ray);
     const RootResult r = sphere_trace(g, {0.0, 20.0}, 1.0, 1e-9, 1000);

@@ -46,6 +46,23 @@ Patch disc_polygon(int n, double r, double z, bool facing_down) {
   return make_patch(v);
 }
 
+// The same regular n-gon cut into `pieces` fan sectors (centre, then n/pieces + 1
+// consecutive vertices), so that many sides fit the clipper's 63-vertex
+// polygons. Form factors add up over a split target: F(n-gon) = Σ F(sector).
+std::vector<Patch> disc_sectors(int n, int pieces, double r, double z, bool facing_down) {
+  std::vector<Patch> sectors;
+  const int per = n / pieces;
+  for (int p = 0; p < pieces; ++p) {
+    std::vector<Point3> v{{0, 0, z}};
+    for (int k = p * per; k <= (p + 1) * per; ++k) {
+      const double t = 2 * pi * k / n * (facing_down ? -1 : 1);
+      v.push_back({r * std::cos(t), r * std::sin(t), z});
+    }
+    sectors.push_back(make_patch(v));
+  }
+  return sectors;
+}
+
 double z_score(double estimate, double mean, double variance_per_sample, int samples) {
   return (estimate - mean) / std::sqrt(variance_per_sample / samples);
 }
@@ -162,6 +179,30 @@ TEST_SUITE("lesson09") {
     CHECK(f >= point_to_coaxial_disc(r * std::cos(pi / n), h));
   }
 
+  TEST_CASE("point to polygon: a regular 720-gon matches the disc (Howell) to within its missing area") {
+    // The n-gon inscribed in the circle of radius r misses the n circular
+    // segments of total area ΔA = πr² − (n/2) r² sin(2π/n) (≈ 1.3e−5 of the
+    // disc for n = 720). The segments lie between radii r cos(π/n) and r,
+    // where the kernel cos φ_i cos φ_j/(π d²) = h²/(π (ρ² + h²)²) decreases
+    // with ρ, so F(disc) − F(n-gon) = ∫_segments kernel lies between
+    // kernel(r)·ΔA and kernel(r cos(π/n))·ΔA: a bracket about 10⁻⁵ of the
+    // deficit wide, far tighter than the 60-gon's disc-to-disc bracket.
+    // The 720-gon is summed over 12 sectors of 60 sides (the clipper takes at most 63 vertices).
+    const int n = 720;
+    const double r = 1.2, h = 0.8;
+    const double missing = pi * r * r - 0.5 * n * r * r * std::sin(2 * pi / n);
+    const auto kernel = [&](double rho) { return h * h / (pi * std::pow(rho * rho + h * h, 2)); };
+    double f = 0;
+    for (const Patch& sector : disc_sectors(n, 12, r, h, true))
+      f += point_polygon_form_factor({0, 0, 0}, up, sector);
+    const double deficit = point_to_coaxial_disc(r, h) - f;
+    INFO("F(720-gon) = " << f << ", disc " << point_to_coaxial_disc(r, h) << ", deficit " << deficit
+                         << " should lie in [" << kernel(r) * missing << ", "
+                         << kernel(r * std::cos(pi / n)) * missing << "]");
+    CHECK(deficit >= kernel(r) * missing - 1e-14);
+    CHECK(deficit <= kernel(r * std::cos(pi / n)) * missing + 1e-14);
+  }
+
   TEST_CASE("hard case: polygon crossing the receiver's tangent plane is clipped") {
     // The wall x = 1, y ∈ [0, 2], z ∈ [−0.7, 1.3] reaches below the horizon of
     // the receiver at the origin. Only its part z ≥ 0 is seen: Howell B-4 with c = 1.3.
@@ -175,15 +216,28 @@ TEST_SUITE("lesson09") {
   TEST_CASE(
       "hard case: coincident point on a vertex, point on the plane (edge-on), polygon seen from behind") {
     const Patch wall = wall_x(1, 0, 2, 0, 1.3, false);
+    // Positive controls first: a form factor that always returned 0 would
+    // pass every check of this test below.
+    INFO("control: from the origin facing up, the perpendicular rectangle b = 2, c = 1.3 at d = 1");
+    REQUIRE(point_polygon_form_factor({0, 0, 0}, up, wall) ==
+            doctest::Approx(point_to_perpendicular_rectangle(2, 1.3, 1)).epsilon(1e-12));
+    INFO("control: from (0, 1, 0), in front of the wall's middle, two rectangles b = 1, c = 1.3 at d = 1");
+    CHECK(point_polygon_form_factor({0, 1, 0}, up, wall) ==
+          doctest::Approx(2 * point_to_perpendicular_rectangle(1, 1.3, 1)).epsilon(1e-12));
+    INFO("control: from (0, 0, 2) facing down the wall is 0.7 to 2 deep: F(c = 2) − F(c = 0.7)");
+    CHECK(point_polygon_form_factor({0, 0, 2}, -up, wall) ==
+          doctest::Approx(point_to_perpendicular_rectangle(2, 2, 1) -
+                          point_to_perpendicular_rectangle(2, 0.7, 1))
+              .epsilon(1e-12));
     INFO("x on a vertex of the target: x lies in its plane, every cos φ_j is 0");
     const double on_vertex = point_polygon_form_factor({1, 0, 0}, up, wall);
     CHECK(std::isfinite(on_vertex));
     CHECK(on_vertex == 0.0);
     INFO("x on the target's plane beyond it: the target is seen edge-on");
     CHECK(point_polygon_form_factor({1, -3, 0.5}, Vec3(0, 1, 0), wall) == 0.0);
-    INFO("x behind the target: one-sided patches receive nothing on their back");
+    INFO("x behind the target (mirror of the control at (0, 1, 0)): a one-sided back receives nothing");
     CHECK(point_polygon_form_factor({2, 1, 0}, up, wall) == 0.0);
-    INFO("a target wholly below the horizon");
+    INFO("a target wholly below the horizon (the control at (0, 0, 2) turned to face up)");
     CHECK(point_polygon_form_factor({0, 0, 2}, up, wall) == 0.0);
   }
 
@@ -230,6 +284,30 @@ TEST_SUITE("lesson09") {
     const double outer = pi * r1 * r1 * coaxial_discs(r1, r2, h);
     CHECK(exchange >= inner);
     CHECK(exchange <= outer);
+  }
+
+  TEST_CASE("contour integral: coaxial 720-gons match the discs (Howell C-40) within their missing area") {
+    // A₁F₁₂ = ∫_{A₁}∫_{A₂} k with k = cos θ₁ cos θ₂/(π d²) = h²/(π d⁴) ≤ 1/(π h²)
+    // (d ≥ h between the parallel planes). The disc pair's exchange exceeds the
+    // inscribed polygons' by the integral over (D₁∖P₁)×D₂ ∪ P₁×(D₂∖P₂), so
+    //   0 ≤ A₁F₁₂(discs) − A₁F₁₂(polygons) ≤ (ΔA₁·πr₂² + A(P₁)·ΔA₂)/(π h²),
+    // ΔA = πr² − (n/2) r² sin(2π/n) the area each polygon misses (≈ 1.3e−5 of its disc).
+    // Each 720-gon is cut into 12 sectors of 60 sides (the clipper takes at most 63 vertices), and
+    // A₁F₁₂ = Σ_k Σ_l A(sector k) F(sector k → sector l); a sector's area is 60 · ½ r² sin(2π/n).
+    const int n = 720, pieces = 12;
+    const double r1 = 0.6, r2 = 1.1, h = 0.9;
+    const std::vector<Patch> a = disc_sectors(n, pieces, r1, 0, false),
+                             b = disc_sectors(n, pieces, r2, h, true);
+    const auto polygon_area = [&](double r) { return 0.5 * n * r * r * std::sin(2 * pi / n); };
+    const double missing1 = pi * r1 * r1 - polygon_area(r1), missing2 = pi * r2 * r2 - polygon_area(r2);
+    const double bound = (missing1 * pi * r2 * r2 + polygon_area(r1) * missing2) / (pi * h * h);
+    const double discs = pi * r1 * r1 * coaxial_discs(r1, r2, h);
+    double exchange = 0;
+    for (const Patch& from : a)
+      for (const Patch& to : b) exchange += polygon_area(r1) / pieces * polygon_polygon_form_factor(from, to);
+    INFO("A₁F₁₂: 720-gons " << exchange << ", discs " << discs << ", allowed deficit [0, " << bound << "]");
+    CHECK(exchange <= discs + 1e-12);
+    CHECK(exchange >= discs - bound - 1e-12);
   }
 
   TEST_CASE("hard case: F_ii = 0 and coplanar neighbours exchange nothing; reciprocity holds") {

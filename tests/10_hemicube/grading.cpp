@@ -331,9 +331,21 @@ TEST_SUITE("lesson10") {
     CHECK_MESSAGE(row[1] == 0, "a coplanar neighbour lies in the base plane: invisible");
     // From the centroid: two B-4 rectangles of height 1, width ½ at distance ½.
     const double point_value = 2 * howell_b4(1, 0.5, 0.5);
-    // The area-to-area factor of two unit squares at right angles sharing an edge (Howell C-14):
-    // 0.2000438; the hemicube measures the centroid's factor instead (point sampling).
-    const double area_value = 0.2000438;
+    // The area-to-area factor of two unit squares at right angles sharing an edge, Howell C-14 with
+    // W = w/l = 1 and H = h/l = 1 (published as 0.20004); the hemicube measures the centroid's factor
+    // instead (point sampling).
+    const auto howell_c14 = [](double W, double H) {
+      const double s = std::sqrt(H * H + W * W);
+      const double a = (1 + W * W) * (1 + H * H) / (1 + W * W + H * H);
+      const double b = W * W * (1 + W * W + H * H) / ((1 + W * W) * (W * W + H * H));
+      const double c = H * H * (1 + H * H + W * W) / ((1 + H * H) * (H * H + W * W));
+      return (W * std::atan(1 / W) + H * std::atan(1 / H) - s * std::atan(1 / s) +
+              0.25 * (std::log(a) + W * W * std::log(b) + H * H * std::log(c))) /
+             (std::numbers::pi * W);
+    };
+    const double area_value = howell_c14(1, 1);
+    CHECK_MESSAGE(std::abs(area_value - 0.20004) < 0.5e-5,
+                  "C-14 as transcribed must give the table's 0.20004");
     INFO("hemicube " << row[2] << ", centroid's exact factor " << point_value << ", area-averaged "
                      << area_value);
     CHECK(std::abs(row[2] - point_value) < 3.0 * 200 * 4.0 / (200.0 * 200 * kPi));
@@ -349,6 +361,26 @@ TEST_SUITE("lesson10") {
   }
 
   TEST_CASE("hard case: a patch seen from behind hides what is behind it and receives nothing") {
+    // Positive controls: a row of zeros would pass both checks at the end.
+    // Alone, the small square at height 2 projects onto [−0.1, 0.1]² of the top
+    // face, exactly 2 × 2 pixels at resolution 20, whose exact deltas add up to
+    // the square's whole form factor (Lambert's formula).
+    const Point3 centre(0.0);
+    const Vec3 up(0, 0, 1);
+    const auto alone = row_of({receiver_at_origin(), ceiling_rect(-0.2, 0.2, -0.2, 0.2, 2)}, 20);
+    const double small_exact =
+        lambert_contour(centre, up, {{-0.2, -0.2, 2}, {0.2, -0.2, 2}, {0.2, 0.2, 2}, {-0.2, 0.2, 2}});
+    REQUIRE_MESSAGE(alone[1] == doctest::Approx(small_exact).epsilon(1e-12),
+                    "with nothing in front, the small square receives its whole form factor");
+    // Turned towards the receiver, the big square at height 1 (±0.6: pixel edges at resolution 10)
+    // hides the small one and receives its whole form factor.
+    const auto facing = row_of(
+        {receiver_at_origin(), ceiling_rect(-0.2, 0.2, -0.2, 0.2, 2), ceiling_rect(-0.6, 0.6, -0.6, 0.6, 1)},
+        10);
+    const double big_exact =
+        lambert_contour(centre, up, {{-0.6, -0.6, 1}, {0.6, -0.6, 1}, {0.6, 0.6, 1}, {-0.6, 0.6, 1}});
+    CHECK(facing[1] == 0);
+    CHECK(facing[2] == doctest::Approx(big_exact).epsilon(1e-12));
     // The same big square, but facing up (away from the receiver).
     const std::vector<Patch> patches{
         receiver_at_origin(), ceiling_rect(-0.2, 0.2, -0.2, 0.2, 2),
@@ -394,6 +426,14 @@ TEST_SUITE("lesson10") {
     std::vector<double> row(cube.size());
     hemicube.form_factor_row(cube, 5, row.data(), buffers);
     const FormFactorMatrix unrotated = hemicube_form_factors(cube, 16);
+    // Inside the closed cube every pixel sees some patch and the exact deltas
+    // sum to 1, so each row sums to 1 (erratum 5): an all-zero row, equal in
+    // every version, fails here.
+    double row_sum = 0, rotated_sum = 0;
+    for (std::size_t j = 0; j < cube.size(); ++j) row_sum += row[j], rotated_sum += f(5, j);
+    CHECK_MESSAGE(row_sum == doctest::Approx(1.0).epsilon(1e-12), "a closed cube: Σ_j F_5j = 1 (erratum 5)");
+    CHECK_MESSAGE(rotated_sum == doctest::Approx(1.0).epsilon(1e-12),
+                  "rotating the hemicube keeps Σ_j F_5j = 1");
     for (std::size_t j = 0; j < cube.size(); ++j) {
       CHECK(unrotated(5, j) == row[j]);
       CHECK(f(5, j) == g(5, j));  // the same seed gives the same matrix

@@ -204,7 +204,8 @@ TEST_SUITE("lesson11") {
   TEST_CASE("Southwell relaxes the largest residual first: two steps by hand") {
     const ThreePatchExample ex = three_patch_example();
     std::vector<Color> b(3, Color(0.0)), r = emissions(ex.patches);
-    REQUIRE_MESSAGE(southwell_step(ex.patches, ex.form_factors, b, r) == 0, "the largest residual is r1 = E1 = 1");
+    REQUIRE_MESSAGE(southwell_step(ex.patches, ex.form_factors, b, r) == 0,
+                    "the largest residual is r1 = E1 = 1");
     INFO("step 1 relaxes row 1 (r = E): B = (1, 0, 0), r = (0, K21, K31) = (0, 0.2, 0.3)");
     CHECK(b[0].r == doctest::Approx(1.0));
     CHECK(r[1].r == doctest::Approx(0.2));
@@ -324,6 +325,25 @@ TEST_SUITE("lesson11") {
 
   TEST_CASE("hard case: no emission anywhere gives B = 0 for every solver") {
     ThreePatchExample ex = three_patch_example();
+    {
+      // Positive controls on the notes' example with E = (1, 0, 0): a solver
+      // that did nothing (B = 0) would pass every check after this block.
+      REQUIRE_MESSAGE(
+          solve_direct(ex.patches, ex.form_factors)[0].r == doctest::Approx(cramer_b[0]).epsilon(1e-13),
+          "with E1 = 1 the direct solution is Cramer's B1 = 0.99/0.848");
+      std::vector<Color> b(3, Color(0.0)), next, r = emissions(ex.patches);
+      jacobi_sweep(ex.patches, ex.form_factors, b, next);
+      CHECK_MESSAGE(next[0].r == doctest::Approx(1.0), "Jacobi's first sweep from 0 gives B = E");
+      gauss_seidel_sweep(ex.patches, ex.form_factors, b, 1.5);
+      CHECK_MESSAGE(b[0].r == doctest::Approx(1.5), "over-relaxed from 0: B1 = (1 − ω)·0 + ω E1 = 1.5");
+      std::vector<Color> relaxed(3, Color(0.0));
+      southwell_step(ex.patches, ex.form_factors, relaxed, r);
+      CHECK_MESSAGE(relaxed[0].r == doctest::Approx(1.0), "Southwell relaxes r1 = E1 = 1 into B1");
+      ProgressiveState state = progressive_start(ex.patches);
+      shoot(ex.patches, choose_shooter(ex.patches, state.unshot), ex.form_factors.row(0), state);
+      CHECK_MESSAGE(state.radiosity[1].r == doctest::Approx(0.2), "shooting Δ1 = 1 gives B2 = K21 = 0.2");
+      CHECK_MESSAGE(ambient_term(ex.patches, state.unshot).r > 0.0, "unshot light gives a positive ambient");
+    }
     ex.patches[0].emission = Color(0.0);
     INFO("M·B = 0 with M invertible has only B = 0");
     CHECK(max_norm(solve_direct(ex.patches, ex.form_factors)) == 0.0);
