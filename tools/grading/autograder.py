@@ -29,7 +29,7 @@ SUBMISSION = "/autograder/submission"
 RESULTS = "/autograder/results"
 
 # Packages of tools/debian-packages.txt that grading does not need.
-NOT_FOR_GRADING = {"chromium", "nodejs", "npm", "gnuplot-nox", "zip"}
+NOT_FOR_GRADING = {"chromium", "nodejs", "npm", "gnuplot-nox", "zip", "libbenchmark-dev"}
 
 
 def debian_packages(root: Path) -> list[str]:
