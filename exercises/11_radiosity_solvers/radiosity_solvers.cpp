@@ -80,13 +80,4 @@ Color ambient_term(const std::vector<Patch>& patches, const std::vector<Color>& 
       "ambient = Σ Δ_i A_i / Σ A_i divided by (1 − ρ_avg), ρ_avg area-weighted (lesson 11, §7)");
 }
 
-// Given: what the screen shows during progressive refinement.
-std::vector<Color> display_radiosity(const std::vector<Patch>& patches, const ProgressiveState& state) {
-  const Color ambient = ambient_term(patches, state.unshot);
-  std::vector<Color> shown(state.radiosity.size());
-  for (std::size_t i = 0; i < shown.size(); ++i)
-    shown[i] = state.radiosity[i] + patches[i].reflectance * ambient;
-  return shown;
-}
-
 }  // namespace illum

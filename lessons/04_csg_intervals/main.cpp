@@ -5,7 +5,6 @@
 //  (a) coincident faces: artefact pixels against the sliver tolerance, and
 //      the thin features that too large a tolerance erases;
 //  (b) cost against tree depth, with and without bounding-box pruning.
-#include <omp.h>
 
 #include <array>
 #include <cmath>
@@ -360,7 +359,6 @@ int main(int argc, char** argv) {
       "artefacts against the sliver tolerance and cost against tree depth with and without "
       "bounding-box pruning."};
   return run_program(argc, argv, info, {}, [&](const ProgramOptions& options) {
-    if (options.threads > 0) omp_set_num_threads(options.threads);
     OutputFolder out(options.out, info.id, info.title);
     const int width = options.quick ? 120 : 480, height = options.quick ? 90 : 360;
     render_gallery(out, width, height);

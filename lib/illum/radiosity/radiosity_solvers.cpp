@@ -180,12 +180,4 @@ Color ambient_term(const std::vector<Patch>& patches, const std::vector<Color>& 
   return interreflection * unshot_area / area;
 }
 
-std::vector<Color> display_radiosity(const std::vector<Patch>& patches, const ProgressiveState& state) {
-  const Color ambient = ambient_term(patches, state.unshot);
-  std::vector<Color> shown(state.radiosity.size());
-  for (std::size_t i = 0; i < shown.size(); ++i)
-    shown[i] = state.radiosity[i] + patches[i].reflectance * ambient;
-  return shown;
-}
-
 }  // namespace illum
