@@ -17,15 +17,9 @@
 #include "illum/core/pinhole_camera.hpp"
 #include "illum/geometry/sphere.hpp"
 #include "illum/io/json_reader.hpp"
+#include "illum/trace/scene.hpp"
 
 namespace illum {
-
-struct CameraSpec {
-  Point3 eye, target;
-  Vec3 up;
-  double vertical_fov_degrees = 45;
-  int width = 0, height = 0;
-};
 
 struct SceneSphere {
   std::string name;

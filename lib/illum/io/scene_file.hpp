@@ -1,0 +1,38 @@
+#pragma once
+// Reading the course's one scene format (docs/scene-format.md) into a Scene,
+// and the ONE place that loads a shipped scene by name.
+//
+//   const Scene scene = load_scene("whitted");            // scenes/whitted.json, compiled in
+//   const Scene mine = load_scene("my_scenes/room.json"); // a file; OBJ paths relative to it
+//
+// Every error is an InputError naming the file, the field's JSON path
+// ("primitives[3].material") and its value, thrown before anything is built.
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "illum/io/json_reader.hpp"
+#include "illum/radiosity/radiosity_scene.hpp"
+#include "illum/trace/scene.hpp"
+
+namespace illum {
+
+// The version this build reads (the file's "format" field).
+inline constexpr int scene_format_version = 1;
+
+// Reads a parsed scene file. OBJ files named by "mesh" primitives are read
+// relative to `base_folder` (the scene file's folder).
+Scene read_scene(const JsonReader& root, const std::filesystem::path& base_folder);
+Scene read_scene(const JsonReader& root);  // base folder: the folder of root.file()
+
+// A file path, or the name of a shipped scene ("cornell" = scenes/cornell.json,
+// also accepted as "cornell.json" or "scenes/cornell.json").
+Scene load_scene(const std::string& file_or_shipped_name);
+
+// The radiosity half (lessons 09–11): the scene's polygons and triangles
+// meshed into patches no longer than max_patch_edge (see radiosity_scene.hpp).
+RadiosityScene load_radiosity_scene(const std::filesystem::path& file, double max_patch_edge);
+RadiosityScene parse_radiosity_scene(std::string_view json_text, const std::string& source,
+                                     double max_patch_edge);
+
+}  // namespace illum
