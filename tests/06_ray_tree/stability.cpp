@@ -12,6 +12,7 @@
 #include "illum/trace/effects_plan.hpp"
 #include "illum/trace/participating_medium.hpp"
 #include "illum/trace/ray_offset.hpp"
+#include "illum/trace/ray_tree.hpp"
 #include "illum/trace/ray_tree_export.hpp"
 #include "illum/trace/ray_tree_render.hpp"
 
