@@ -94,7 +94,7 @@ TEST_SUITE("stability") {
     TraceStats stats;
     const EffectsPlan plan = full_effects(0);
     const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
-    CHECK(shadow_transmission(tracer, p, light_sample(scene, 0).position).r == 1.0);
+    CHECK(shadow_transmission(tracer, p, light_sample(scene, 0, Point3(0.0)).position).r == 1.0);
   }
 }
 

@@ -41,7 +41,7 @@ Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_
   Color own = m.ambient * tracer.scene.ambient_light + m.emission;
   if (!tracer.plan.shadows) return own;
   for (std::size_t l = 0; l < light_count(tracer.scene); ++l) {
-    const LightSample light = light_sample(tracer.scene, l);
+    const LightSample light = light_sample(tracer.scene, l, hit.point);
     const Vec3 to_light = normalize(light.position - hit.point);
     if (!(dot(hit.shading_normal, to_light) > 0.0)) continue;  // behind, or on the tangent plane: no light
     const Color phong = phong_term(hit.shading_normal, to_light, to_viewer, m.diffuse, m.specular, m.phong_exponent);
