@@ -40,7 +40,7 @@ struct Material {
 struct PointLight {
   std::string name;
   Point3 position{0.0};
-  Color intensity{0.0};  // I of the notes: radiant intensity per channel
+  Color intensity{0.0};  // I_p of the notes' illumination model, per channel (no fall-off with distance)
 };
 
 // A planar convex polygon that emits (its material's emission). It is also
