@@ -102,7 +102,8 @@ RenderResult render_whitted(OutputFolder& out, const Scene& scene, bool quick) {
   out.text("whitted_render.txt",
            scene.name + ", " + std::to_string(result.image.width()) + " × " + std::to_string(result.image.height()) +
                ", depth limit " + std::to_string(default_depth) + "\nrender time " + format_number(seconds, 3) +
-               " s\nrays: " + result.stats.rays.summary() + "\nwork: " + result.stats.work.summary() + "\n" +
+               " s\nrays: " + result.stats.rays.summary() + "\nintersection tests: " +
+               std::to_string(result.stats.work.intersection_tests) + "\n" +
                result.plan.summary(),
            "Render time, ray counts and plan of the Whitted image");
   return result;
@@ -117,7 +118,7 @@ void effects_plan_section(OutputFolder& out, bool quick) {
   std::string printed;
   for (const EmbeddedScene& shipped : embedded_scenes()) {
     const Scene scene = load_scene(std::string(shipped.name));
-    const RenderSettings settings{.width = quick ? 48 : 160, .max_depth = default_depth};
+    const RenderSettings settings{.width = quick ? 48 : 120, .max_depth = default_depth};
     RenderSettings without = settings;
     without.use_plan = false;
     Stopwatch watch;
@@ -399,7 +400,7 @@ double rms_difference(const Image& a, const Image& b) {
 }
 
 void depth_study(OutputFolder& out, const Scene& scene, bool quick) {
-  RenderSettings settings{.width = quick ? 48 : 160, .background = whitted_settings(quick).background};
+  RenderSettings settings{.width = quick ? 48 : 120, .background = whitted_settings(quick).background};
   settings.max_depth = 16;
   const Image reference = render_ray_tree(scene, settings).image;
   Table table({"depth_limit", "rms_error", "max_error", "rays", "rays_per_pixel", "tree_nodes_per_pixel",
@@ -424,7 +425,7 @@ void depth_study(OutputFolder& out, const Scene& scene, bool quick) {
     report_progress("lesson06", "depth study", depth + 1, 11);
   }
   out.table(table, "depth_study",
-            "Depth limit 0…10 against a depth-16 reference (Whitted, 160 pixels wide): image error, rays, time, and "
+            "Depth limit 0…10 against a depth-16 reference (Whitted, 120 × 90): image error, rays, time, and "
             "the tree's size per pixel (primary + secondary rays) with the plan, without it, and the worst case "
             "2^(d+1) − 1",
             3);
@@ -445,7 +446,7 @@ void depth_study(OutputFolder& out, const Scene& scene, bool quick) {
 // same rays again through the scene's intersection routines alone. The ratio
 // of the two times is the share of the render spent finding intersections.
 void intersection_share(OutputFolder& out, const Scene& scene, bool quick) {
-  const RenderSettings settings{.width = quick ? 32 : 160, .max_depth = default_depth,
+  const RenderSettings settings{.width = quick ? 32 : 120, .max_depth = default_depth,
                                 .background = whitted_settings(quick).background};
   const PinholeCamera camera = render_camera(scene, settings);
   const EffectsPlan plan = render_plan(scene, settings);

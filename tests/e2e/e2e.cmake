@@ -11,3 +11,8 @@ add_test(NAME e2e_illum_render_bad_scene
          COMMAND ${CMAKE_COMMAND} -DILLUM=$<TARGET_FILE:illum_cli> -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/e2e/bad_radius.json
                  -DOUT=${CMAKE_BINARY_DIR}/test-out/illum-bad -P ${CMAKE_CURRENT_SOURCE_DIR}/e2e/expect_refusal.cmake)
 add_test(NAME e2e_illum_render COMMAND illum_cli render spheres --quick --out ${CMAKE_BINARY_DIR}/test-out/illum-render)
+
+# The ray-tree inspector of the command line: one pixel's tree as JSON, Graphviz and overlay.
+add_test(NAME e2e_illum_trace
+         COMMAND ${CMAKE_COMMAND} -DILLUM=$<TARGET_FILE:illum_cli> -DOUT=${CMAKE_BINARY_DIR}/test-out/illum-trace
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/e2e/expect_trace.cmake)

@@ -5,7 +5,7 @@ execute_process(COMMAND ${ILLUM} render ${SCENE} --out ${OUT} RESULT_VARIABLE st
 if(status EQUAL 0)
   message(FATAL_ERROR "illum accepted the bad scene ${SCENE}")
 endif()
-foreach(expected "bad_radius.json" "spheres[1].radius" "-0.5" "must be positive")
+foreach(expected "bad_radius.json" "primitives[1].radius" "-0.5" "must be positive")
   string(FIND "${err}" "${expected}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "the error message does not mention '${expected}':\n${err}")
