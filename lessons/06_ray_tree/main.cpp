@@ -118,7 +118,7 @@ void effects_plan_section(OutputFolder& out, bool quick) {
   std::string printed;
   for (const EmbeddedScene& shipped : embedded_scenes()) {
     const Scene scene = load_scene(std::string(shipped.name));
-    const RenderSettings settings{.width = quick ? 48 : 120, .max_depth = default_depth};
+    const RenderSettings settings{.width = quick ? 32 : 120, .max_depth = default_depth};
     RenderSettings without = settings;
     without.use_plan = false;
     Stopwatch watch;
@@ -400,7 +400,7 @@ double rms_difference(const Image& a, const Image& b) {
 }
 
 void depth_study(OutputFolder& out, const Scene& scene, bool quick) {
-  RenderSettings settings{.width = quick ? 48 : 120, .background = whitted_settings(quick).background};
+  RenderSettings settings{.width = quick ? 32 : 120, .background = whitted_settings(quick).background};
   settings.max_depth = 16;
   const Image reference = render_ray_tree(scene, settings).image;
   Table table({"depth_limit", "rms_error", "max_error", "rays", "rays_per_pixel", "tree_nodes_per_pixel",
@@ -446,7 +446,7 @@ void depth_study(OutputFolder& out, const Scene& scene, bool quick) {
 // same rays again through the scene's intersection routines alone. The ratio
 // of the two times is the share of the render spent finding intersections.
 void intersection_share(OutputFolder& out, const Scene& scene, bool quick) {
-  const RenderSettings settings{.width = quick ? 32 : 120, .max_depth = default_depth,
+  const RenderSettings settings{.width = quick ? 32 : 160, .max_depth = default_depth,
                                 .background = whitted_settings(quick).background};
   const PinholeCamera camera = render_camera(scene, settings);
   const EffectsPlan plan = render_plan(scene, settings);
@@ -460,7 +460,7 @@ void intersection_share(OutputFolder& out, const Scene& scene, bool quick) {
       }
   double render_seconds = infinity, intersect_seconds = infinity;
   WorkCounters work;
-  for (int run = 0; run < 3; ++run) {  // best of three, each serial
+  for (int run = 0; run < 5; ++run) {  // best of five, each serial
     TraceStats stats;
     const Tracer tracer{.scene = scene, .plan = plan, .background = settings.background, .stats = &stats};
     Stopwatch watch;
@@ -482,7 +482,7 @@ void intersection_share(OutputFolder& out, const Scene& scene, bool quick) {
                  intersect_seconds / render_seconds});
   out.table(table, "intersection_share",
             "Share of the render's time spent in intersection tests (brute force over every primitive, one "
-            "thread, best of three): the same rays cast again through the intersection routines alone",
+            "thread, best of five): the same rays cast again through the intersection routines alone",
             3);
 }
 
