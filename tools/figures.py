@@ -18,6 +18,8 @@ narrows it with shell-quoted options:
     columns="a,b,c"        keep these columns, in this order
     where="column=v1|v2"   keep the rows whose cell in that column is one of
                            the values (several where= options must all hold)
+    row="col=v & col2=w"   keep the rows matching every condition; with several
+                           row= options a row is kept when it matches any one
     table=N                the N-th pipe table of a Markdown file (default 1)
 
 Cells are copied as the program printed them; the tool never rounds.
@@ -174,6 +176,7 @@ class Spec:
     path: str
     columns: list[str] | None = None
     where: list[tuple[str, set[str]]] = field(default_factory=list)
+    rows: list[list[tuple[str, str]]] = field(default_factory=list)
     table: int = 1
 
 
@@ -198,12 +201,20 @@ def parse_spec(text: str) -> Spec:
             if not sep:
                 raise FigureError(f"where='{value}' must read column=value1|value2")
             spec.where.append((column.strip(), {v.strip() for v in values.split("|")}))
+        elif key == "row":
+            conditions = []
+            for part in value.split("&"):
+                column, sep, cell = part.partition("=")
+                if not sep:
+                    raise FigureError(f"row='{value}' must read column=value & column=value")
+                conditions.append((column.strip(), cell.strip()))
+            spec.rows.append(conditions)
         elif key == "table":
             if not value.isdigit() or int(value) < 1:
                 raise FigureError(f"table={value} must be a positive number")
             spec.table = int(value)
         else:
-            raise FigureError(f"unknown figure option '{key}' (columns=, where=, table=)")
+            raise FigureError(f"unknown figure option '{key}' (columns=, where=, row=, table=)")
     return spec
 
 
@@ -220,6 +231,12 @@ def select(table: Table, spec: Spec, source_name: str) -> Table:
         found = {r[c] for r in rows}
         if values - found:
             raise FigureError(f"{source_name}: no row has {column} = {', '.join(sorted(values - found))}")
+    if spec.rows:
+        picks = [[(index(column), cell) for column, cell in conditions] for conditions in spec.rows]
+        for conditions, pick in zip(spec.rows, picks):
+            if not any(all(c < len(r) and r[c] == cell for c, cell in pick) for r in rows):
+                raise FigureError(f"{source_name}: no row has " + " and ".join(f"{a} = {b}" for a, b in conditions))
+        rows = [r for r in rows if any(all(c < len(r) and r[c] == cell for c, cell in pick) for pick in picks)]
     if spec.columns is None:
         return Table(list(table.header), [list(r) for r in rows])
     picks = [index(c) for c in spec.columns]
