@@ -94,7 +94,9 @@ Moments perpendicular_squares_moments(double gap) {
 }
 
 Patch floor_square() { return make_patch({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}); }
-Patch wall_square(double gap) { return make_patch({{0, 0, gap}, {0, 1, gap}, {0, 1, 1 + gap}, {0, 0, 1 + gap}}); }
+Patch wall_square(double gap) {
+  return make_patch({{0, 0, gap}, {0, 1, gap}, {0, 1, 1 + gap}, {0, 0, 1 + gap}});
+}
 
 }  // namespace
 
@@ -105,7 +107,7 @@ TEST_SUITE("claims") {
     const double top = 2 * std::sqrt(2.0) / pi * std::atan(1 / std::sqrt(2.0));
     const double side = (pi / 4 - std::atan(1 / std::sqrt(2.0)) / std::sqrt(2.0)) / pi;
     INFO("top = ", top, ", side = ", side);
-    CHECK(std::abs(top - 0.554126) < 5e-7);   // the six digits the lesson prints
+    CHECK(std::abs(top - 0.554126) < 5e-7);  // the six digits the lesson prints
     CHECK(std::abs(side - 0.111468) < 5e-7);
     CHECK(top + 4 * side == doctest::Approx(1.0).epsilon(1e-15));
     // Not the lesson's old figures, which do not sum to 1.
@@ -140,11 +142,12 @@ TEST_SUITE("claims") {
     const double rho[4][3] = {{0.5, 0.3, 0.7}, {0.8, 0.2, 0.4}, {0.25, 0.6, 0.9}, {0.65, 0.45, 0.1}};
     const double emission[4][3] = {{1, 0.5, 0}, {0, 0, 2}, {0, 0.25, 0}, {0.1, 0, 0}};
     for (int i = 0; i < 4; ++i)
-      patches.push_back(make_patch({{2.0 * i, 0, 0}, {2.0 * i + 1, 0, 0}, {2.0 * i + 1, 1, 0}, {2.0 * i, 1, 0}},
-                                   Color(rho[i][0], rho[i][1], rho[i][2]),
-                                   Color(emission[i][0], emission[i][1], emission[i][2])));
+      patches.push_back(make_patch(
+          {{2.0 * i, 0, 0}, {2.0 * i + 1, 0, 0}, {2.0 * i + 1, 1, 0}, {2.0 * i, 1, 0}},
+          Color(rho[i][0], rho[i][1], rho[i][2]), Color(emission[i][0], emission[i][1], emission[i][2])));
     FormFactorMatrix f(4);
-    const double values[4][4] = {{0, 0.3, 0.2, 0.4}, {0.1, 0, 0.5, 0.2}, {0.35, 0.15, 0, 0.3}, {0.05, 0.6, 0.25, 0}};
+    const double values[4][4] = {
+        {0, 0.3, 0.2, 0.4}, {0.1, 0, 0.5, 0.2}, {0.35, 0.15, 0, 0.3}, {0.05, 0.6, 0.25, 0}};
     for (int i = 0; i < 4; ++i)
       for (int j = 0; j < 4; ++j) f(i, j) = values[i][j];
 
