@@ -36,7 +36,8 @@ verdicts) must not. So:
   differs, when a table has a different shape, when a figure names a
   missing table or column, or when a text quotes a timing by hand outside
   a figure (a number followed by ns, µs, ms or seconds, or by s in a
-  phrase like "3.3 s on");
+  phrase like "3.3 s on"), or cites "erratum N" without linking it to
+  docs/errata.md;
 * the default (refresh) rewrites the figures whose non-timing cells agree,
   which updates their timings and their label, and leaves the others for
   `--update` (listing them);
@@ -77,6 +78,10 @@ LABEL_PREFIX = "*Table "
 HAND_TIMING = re.compile(
     r"(?<![\w.])\d[\d.,]*(?:\s*[–-]\s*\d[\d.,]*)?\s*(?:ns|µs|μs|ms|seconds?|minutes?)\b"
     r"|(?<![\w.])\d[\d.,]*(?:\s*[–-]\s*\d[\d.,]*)?\s?s\b(?=\s+(?:on|while|for|per|in|at)\b|[),;*]|\.(?:\s|$))")
+
+
+# "erratum 4" not already the text of a link ([erratum 4](...)).
+UNLINKED_ERRATUM = re.compile(r"(?<!\[)\b[Ee]rratum \d{1,2}\b(?!\])")
 
 
 class FigureError(Exception):
@@ -354,6 +359,22 @@ def hand_timings(path: Path, lines: list[str], blocks: list[Block]) -> list[str]
     return problems
 
 
+def unlinked_errata(path: Path, lines: list[str]) -> list[str]:
+    if path.as_posix() == "docs/errata.md":
+        return []
+    problems, fence = [], False
+    for i, line in enumerate(lines):
+        if line.lstrip().startswith("```"):
+            fence = not fence
+            continue
+        if fence:
+            continue
+        for m in UNLINKED_ERRATUM.finditer(re.sub(r"`[^`]*`", "", line)):
+            problems.append(f"{path}:{i + 1}: '{m.group(0)}' is not linked: write "
+                            f"[{m.group(0)}](<relative path>/docs/errata.md#{m.group(0).lower().replace(' ', '-')})")
+    return problems
+
+
 def texts(source: Path) -> list[Path]:
     found: list[Path] = []
     for pattern in TEXT_GLOBS:
@@ -375,7 +396,7 @@ def process(source: Path, out: Path, mode: str, log=print) -> int:
             problems.append(str(e))
             continue
         if mode == "check":
-            problems += hand_timings(rel, lines, blocks)
+            problems += hand_timings(rel, lines, blocks) + unlinked_errata(rel, lines)
         changed = False
         for block in reversed(blocks):  # bottom up: earlier line numbers stay valid
             figures += 1

@@ -128,6 +128,14 @@ class FiguresTest(unittest.TestCase):
         self.assertIn("a table with timings typed by hand", joined)
         self.assertNotIn("2s", joined)
 
+    def test_check_flags_an_erratum_cited_without_a_link(self):
+        self.run_mode("update")
+        self.write("exercises/01_x/README.md", "Mind erratum 2. Also [erratum 1](../../docs/errata.md#erratum-1).\n")
+        self.assertEqual(self.run_mode("check"), 1)
+        joined = "\n".join(self.messages)
+        self.assertIn("'erratum 2' is not linked", joined)
+        self.assertNotIn("'erratum 1'", joined)
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=1)
