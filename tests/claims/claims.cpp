@@ -111,7 +111,7 @@ TEST_SUITE("claims") {
     CHECK(std::abs(side - 0.111468) < 5e-7);
     CHECK(top + 4 * side == doctest::Approx(1.0).epsilon(1e-15));
     // Not the lesson's old figures, which do not sum to 1.
-    CHECK(std::abs(0.55415 + 4 * 0.11146 - 1) > 1e-5);
+    CHECK(std::abs(0.55415 + 4 * 0.11146 - 1) > 5e-6);  // 0.99999
 
     // The delta form factors evaluated at pixel centres (the notes' rule)
     // converge to the same shares as O(1/res²): doubling the resolution
@@ -127,8 +127,8 @@ TEST_SUITE("claims") {
       CHECK(std::abs(top_error) < 2e-6 * top * (res == 512 ? 4 : 1));
       CHECK(std::abs(side_error) < 2e-6 * side * (res == 512 ? 4 : 1));
       if (previous_top != 0) {
-        CHECK(previous_top / top_error == doctest::Approx(4.0).epsilon(0.05));
-        CHECK(previous_side / side_error == doctest::Approx(4.0).epsilon(0.05));
+        CHECK(std::abs(previous_top / top_error - 4) < 0.2);
+        CHECK(std::abs(previous_side / side_error - 4) < 0.2);
       }
       previous_top = top_error;
       previous_side = side_error;
@@ -215,6 +215,6 @@ TEST_SUITE("claims") {
     }
     const double slope = (count * sxy - sx * sy) / (count * sxx - sx * sx);
     INFO("log-log slope of the second moment against the gap: ", slope);
-    CHECK(slope == doctest::Approx(-1.0).epsilon(0.05));
+    CHECK(std::abs(slope + 1) < 0.05);
   }
 }
