@@ -99,13 +99,21 @@ RenderResult render_whitted(OutputFolder& out, const Scene& scene, bool quick) {
   RenderResult result = render_ray_tree(scene, whitted_settings(quick));
   const double seconds = watch.seconds();
   out.image(result.image, "whitted", "Whitted's scene by the ray tree, depth limit 5: mirror ball, glass ball, checkered floor");
-  out.text("whitted_render.txt",
+  out.text("whitted_render_log.txt",
            scene.name + ", " + std::to_string(result.image.width()) + " × " + std::to_string(result.image.height()) +
                ", depth limit " + std::to_string(default_depth) + "\nrender time " + format_number(seconds, 3) +
                " s\nrays: " + result.stats.rays.summary() + "\nintersection tests: " +
                std::to_string(result.stats.work.intersection_tests) + "\n" +
                result.plan.summary(),
            "Render time, ray counts and plan of the Whitted image");
+  Table table({"scene", "width", "height", "depth_limit", "primary", "shadow", "reflection", "refraction",
+               "intersection_tests", "render_seconds"});
+  const RayCounts& c = result.stats.rays;
+  table.add_row({scene.name, std::int64_t(result.image.width()), std::int64_t(result.image.height()),
+                 std::int64_t{default_depth}, std::int64_t(c.primary), std::int64_t(c.shadow),
+                 std::int64_t(c.reflection), std::int64_t(c.refraction),
+                 std::int64_t(result.stats.work.intersection_tests), seconds});
+  out.table(table, "whitted_render", "The Whitted render: size, rays by kind, intersection tests and time", 4);
   return result;
 }
 
@@ -476,7 +484,7 @@ void intersection_share(OutputFolder& out, const Scene& scene, bool quick) {
     intersect_seconds = std::min(intersect_seconds, watch.seconds());
   }
   Table table({"scene", "pixels", "rays", "intersection_tests", "render_seconds", "intersection_seconds",
-               "intersection_share"});
+               "time_share_in_intersection"});
   table.add_row({scene.name, std::int64_t(camera.width()) * camera.height(), std::int64_t(rays.size()),
                  std::int64_t(work.intersection_tests), render_seconds, intersect_seconds,
                  intersect_seconds / render_seconds});
