@@ -26,7 +26,10 @@ struct RenderOptions {
   std::vector<int> pixel;  // trace only: X Y
 
   illum::RenderSettings settings() const {
-    return {.width = quick ? 96 : width, .height = quick ? 0 : height, .max_depth = depth, .use_plan = !no_plan,
+    return {.width = quick ? 96 : width,
+            .height = quick ? 0 : height,
+            .max_depth = depth,
+            .use_plan = !no_plan,
             .background = illum::Color(0.35, 0.55, 0.9)};
   }
 };
@@ -34,10 +37,14 @@ struct RenderOptions {
 void add_render_options(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("scene", o.scene, "A scene file (JSON) or the name of a shipped scene")->required();
   cmd.add_option("--out", o.out, "Folder for the outputs")->capture_default_str();
-  cmd.add_option("--width", o.width, "Image width (default: the scene camera's)")->check(CLI::Range(0, 16384));
+  cmd.add_option("--width", o.width, "Image width (default: the scene camera's)")
+      ->check(CLI::Range(0, 16384));
   cmd.add_option("--height", o.height, "Image height (default: in proportion)")->check(CLI::Range(0, 16384));
-  cmd.add_option("--depth", o.depth, "Depth limit of the ray tree")->check(CLI::Range(0, 64))->capture_default_str();
-  cmd.add_flag("--no-plan", o.no_plan, "Trace every kind of ray at every hit (the notes' algorithm as written)");
+  cmd.add_option("--depth", o.depth, "Depth limit of the ray tree")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
+  cmd.add_flag("--no-plan", o.no_plan,
+               "Trace every kind of ray at every hit (the notes' algorithm as written)");
   cmd.add_flag("--quick", o.quick, "A small image (96 pixels wide), for tests");
 }
 
@@ -64,17 +71,17 @@ int trace(const RenderOptions& o) {
   const illum::PinholeCamera camera = illum::render_camera(scene, settings);
   const int x = o.pixel.at(0), y = o.pixel.at(1);
   if (x < 0 || y < 0 || x >= camera.width() || y >= camera.height())
-    throw illum::InputError("command line", "--pixel", std::to_string(x) + " " + std::to_string(y),
-                            "outside the " + std::to_string(camera.width()) + " × " +
-                                std::to_string(camera.height()) + " image");
+    throw illum::InputError(
+        "command line", "--pixel", std::to_string(x) + " " + std::to_string(y),
+        "outside the " + std::to_string(camera.width()) + " × " + std::to_string(camera.height()) + " image");
   const illum::PixelTree pixel = illum::trace_pixel_tree(scene, settings, x, y);
   const illum::RenderResult result = illum::render_ray_tree(scene, settings);
   illum::OutputFolder out(o.out, "illum-trace", "illum trace " + o.scene);
   out.image(result.image, "render", scene.name + ", rendered with the ray tree (lesson 06)");
   illum::write_ray_tree_files(out, scene, pixel, result.image, camera, "ray_tree");
   out.finish();
-  std::cerr << "illum: wrote " << o.out.string() << " (the tree of pixel (" << x << ", " << y << "): "
-            << pixel.tree.nodes.size() << " rays, " << pixel.stats.rays.summary() << ")\n";
+  std::cerr << "illum: wrote " << o.out.string() << " (the tree of pixel (" << x << ", " << y
+            << "): " << pixel.tree.nodes.size() << " rays, " << pixel.stats.rays.summary() << ")\n";
   return 0;
 }
 
@@ -89,7 +96,8 @@ int main(int argc, char** argv) {
   RenderOptions render_options, trace_options;
   auto* render_cmd = app.add_subcommand("render", "Render a scene with the ray tree (lesson 06)");
   add_render_options(*render_cmd, render_options);
-  auto* trace_cmd = app.add_subcommand("trace", "Write one pixel's ray tree: JSON, Graphviz drawing, overlay");
+  auto* trace_cmd =
+      app.add_subcommand("trace", "Write one pixel's ray tree: JSON, Graphviz drawing, overlay");
   add_render_options(*trace_cmd, trace_options);
   trace_cmd->add_option("--pixel", trace_options.pixel, "The pixel X Y (x to the right, y down)")
       ->expected(2)

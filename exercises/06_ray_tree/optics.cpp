@@ -20,8 +20,8 @@ Vec3 reflect(const Vec3& incident, const Vec3& normal) {
 // otherwise T = η I + (η cos θ_i − cos θ_t) N. Refuse a ratio that is not
 // positive and finite with std::invalid_argument (illum::require).
 Refraction refract(const Vec3& incident, const Vec3& normal, double eta_ratio) {
-  throw NotImplemented("refract",
-                       "sin² θ_t = η²(1 − cos² θ_i); ≥ 1 means total internal reflection (lesson 06, eq. 6.6)");
+  throw NotImplemented(
+      "refract", "sin² θ_t = η²(1 − cos² θ_i); ≥ 1 means total internal reflection (lesson 06, eq. 6.6)");
 }
 
 // Task 3. The local model for one light: k_d (N·L) + k_s (R·V)^n with

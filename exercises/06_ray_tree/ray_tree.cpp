@@ -18,8 +18,9 @@ namespace illum {
 // ray goes on from it (another spawn_ray_to) towards the same light.
 Color shadow_transmission(const Tracer& tracer, const SurfaceHit& hit, const Point3& light_position, int node,
                           std::uint32_t light) {
-  throw NotImplemented("shadow_transmission",
-                       "cast spawn_ray_to(hit, light); the ray's range ends before the light (lesson 06, §5.2)");
+  throw NotImplemented(
+      "shadow_transmission",
+      "cast spawn_ray_to(hit, light); the ray's range ends before the light (lesson 06, §5.2)");
 }
 
 // Task 5. I_own = k_a·I_a + emission + Σ_l S_l · I_l · phong_term(N, L, V, …),
@@ -27,7 +28,8 @@ Color shadow_transmission(const Tracer& tracer, const SurfaceHit& hit, const Poi
 // light with N·L ≤ 0 (no shadow ray); with plan.skip_zero_weights, skip one
 // whose phong_term is black too; with plan.shadows off, use no light at all.
 Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_viewer, int node) {
-  throw NotImplemented("own_intensity", "ambient + emission + one shadow-tested Phong term per light (lesson 06, eq. 6.7)");
+  throw NotImplemented("own_intensity",
+                       "ambient + emission + one shadow-tested Phong term per light (lesson 06, eq. 6.7)");
 }
 
 // Task 6. evaluar (rayo): count the ray, find the nearest hit (none: the
@@ -36,8 +38,10 @@ Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_
 // reflection adds k_t to k_r) and the reflected ray, each spawned with
 // spawn_ray and weighed by its k. Return I_own + k_r·I_r + k_t·I_t.
 // Record the ray with record_ray and its result with record_result.
-Color evaluate(const Tracer& tracer, const Ray& ray, int depth, RayKind kind, const Color& weight, int parent) {
-  throw NotImplemented("evaluate", "nearest hit, I_own, then I_r and I_t below the depth limit (lesson 06, eq. 6.9)");
+Color evaluate(const Tracer& tracer, const Ray& ray, int depth, RayKind kind, const Color& weight,
+               int parent) {
+  throw NotImplemented("evaluate",
+                       "nearest hit, I_own, then I_r and I_t below the depth limit (lesson 06, eq. 6.9)");
 }
 
 }  // namespace illum

@@ -7,8 +7,8 @@
 // the depth study and the share of time spent in intersection tests.
 #include <algorithm>
 #include <array>
-#include <iostream>
 #include <cmath>
+#include <iostream>
 #include <numbers>
 #include <optional>
 #include <vector>
@@ -42,7 +42,9 @@ auto timed(const char* section, F&& run) {
   struct Report {
     const char* section;
     Stopwatch& watch;
-    ~Report() { std::cerr << "lesson06: " << section << " took " << format_number(watch.seconds(), 3) << " s\n"; }
+    ~Report() {
+      std::cerr << "lesson06: " << section << " took " << format_number(watch.seconds(), 3) << " s\n";
+    }
   } report{section, watch};
   return run();
 }
@@ -53,8 +55,8 @@ PlotSeries series(const std::string& csv, int x, int y, const std::string& title
   return s;
 }
 
-PlotSpec plot_spec(const std::string& title, const std::string& x_label, const std::string& y_label, bool log_x,
-                   bool log_y) {
+PlotSpec plot_spec(const std::string& title, const std::string& x_label, const std::string& y_label,
+                   bool log_x, bool log_y) {
   PlotSpec spec;
   spec.title = title, spec.x_label = x_label, spec.y_label = y_label, spec.log_x = log_x, spec.log_y = log_y;
   return spec;
@@ -75,35 +77,41 @@ void radiation_model(OutputFolder& out, bool quick) {
         table.add_row({std::string(name), std::string(to_string(method)), std::int64_t{steps}, marched, exact,
                        std::abs(marched - exact) / exact});
       }
-  out.table(table, "radiation_slab",
-            "A ray through a slab, K_t = 0.8, d = 2.5: marching dI/ds = −K_t I + K_a I_e against the closed "
-            "form I₀e^(−K_t d) + (K_a I_e/K_t)(1 − e^(−K_t d)); 'absorbing' has emission and in-scattering off",
-            4);
+  out.table(
+      table, "radiation_slab",
+      "A ray through a slab, K_t = 0.8, d = 2.5: marching dI/ds = −K_t I + K_a I_e against the closed "
+      "form I₀e^(−K_t d) + (K_a I_e/K_t)(1 − e^(−K_t d)); 'absorbing' has emission and in-scattering off",
+      4);
   PlotSpec spec = plot_spec("Transport along a ray through a slab: marching error", "steps",
                             "relative error of I(d)", true, true);
   for (const char* medium : {"absorbing", "glowing"})
     for (const char* method : {"euler", "midpoint"})
-      spec.series.push_back(series("radiation_slab.csv", 3, 6, std::string(medium) + ", " + method,
-                                   std::string("strcol(1) eq '") + medium + "' && strcol(2) eq '" + method + "'"));
+      spec.series.push_back(
+          series("radiation_slab.csv", 3, 6, std::string(medium) + ", " + method,
+                 std::string("strcol(1) eq '") + medium + "' && strcol(2) eq '" + method + "'"));
   out.plot(spec, "radiation_slab", "Marching the transport equation converges to Beer–Lambert's law");
 }
 
 // --- §2 Whitted's scene --------------------------------------------------------
 
 RenderSettings whitted_settings(bool quick, int depth = default_depth) {
-  return {.width = quick ? 96 : 0, .height = quick ? 72 : 0, .max_depth = depth, .background = Color(0.35, 0.55, 0.9)};
+  return {.width = quick ? 96 : 0,
+          .height = quick ? 72 : 0,
+          .max_depth = depth,
+          .background = Color(0.35, 0.55, 0.9)};
 }
 
 RenderResult render_whitted(OutputFolder& out, const Scene& scene, bool quick) {
   Stopwatch watch;
   RenderResult result = render_ray_tree(scene, whitted_settings(quick));
   const double seconds = watch.seconds();
-  out.image(result.image, "whitted", "Whitted's scene by the ray tree, depth limit 5: mirror ball, glass ball, checkered floor");
+  out.image(result.image, "whitted",
+            "Whitted's scene by the ray tree, depth limit 5: mirror ball, glass ball, checkered floor");
   out.text("whitted_render_log.txt",
-           scene.name + ", " + std::to_string(result.image.width()) + " × " + std::to_string(result.image.height()) +
-               ", depth limit " + std::to_string(default_depth) + "\nrender time " + format_number(seconds, 3) +
-               " s\nrays: " + result.stats.rays.summary() + "\nintersection tests: " +
-               std::to_string(result.stats.work.intersection_tests) + "\n" +
+           scene.name + ", " + std::to_string(result.image.width()) + " × " +
+               std::to_string(result.image.height()) + ", depth limit " + std::to_string(default_depth) +
+               "\nrender time " + format_number(seconds, 3) + " s\nrays: " + result.stats.rays.summary() +
+               "\nintersection tests: " + std::to_string(result.stats.work.intersection_tests) + "\n" +
                result.plan.summary(),
            "Render time, ray counts and plan of the Whitted image");
   Table table({"scene", "width", "height", "depth_limit", "primary", "shadow", "reflection", "refraction",
@@ -113,7 +121,8 @@ RenderResult render_whitted(OutputFolder& out, const Scene& scene, bool quick) {
                  std::int64_t{default_depth}, std::int64_t(c.primary), std::int64_t(c.shadow),
                  std::int64_t(c.reflection), std::int64_t(c.refraction),
                  std::int64_t(result.stats.work.intersection_tests), seconds});
-  out.table(table, "whitted_render", "The Whitted render: size, rays by kind, intersection tests and time", 4);
+  out.table(table, "whitted_render", "The Whitted render: size, rays by kind, intersection tests and time",
+            4);
   return result;
 }
 
@@ -145,8 +154,8 @@ void effects_plan_section(OutputFolder& out, bool quick) {
       table.add_row({std::string(shipped.name), std::string(r == &full ? "none" : "plan"),
                      std::int64_t{r->plan.max_depth}, std::int64_t(c.primary), std::int64_t(c.shadow),
                      std::int64_t(c.reflection), std::int64_t(c.refraction), std::int64_t(c.total()),
-                     std::int64_t(r->stats.work.intersection_tests), r == &full ? full_seconds : planned_seconds,
-                     r == &full ? 0.0 : difference});
+                     std::int64_t(r->stats.work.intersection_tests),
+                     r == &full ? full_seconds : planned_seconds, r == &full ? 0.0 : difference});
     }
     printed += "== " + std::string(shipped.name) + " (" + scene.name + ")\n" + planned.plan.summary() +
                "  rays with the plan:    " + planned.stats.rays.summary() + "\n" +
@@ -246,9 +255,12 @@ RehitRates rehit_rates(const OffsetCase& c, Leave leave, int count, std::uint64_
       T first = std::numeric_limits<T>::infinity();  // the nearest root in range
       if (again.count > 0 && again.s_far > t_min) first = again.s_near > t_min ? again.s_near : again.s_far;
       const T chord = T(2) * glm::dot(-normal, w) * radius;
-      if (pass == 0) outgoing += std::isfinite(first) ? 1 : 0;
-      else if (!std::isfinite(first)) ++missed;
-      else inward += first < T(0.5) * chord ? 1 : 0;
+      if (pass == 0)
+        outgoing += std::isfinite(first) ? 1 : 0;
+      else if (!std::isfinite(first))
+        ++missed;
+      else
+        inward += first < T(0.5) * chord ? 1 : 0;
     }
   }
   const double n = std::max(cases, 1);
@@ -257,8 +269,8 @@ RehitRates rehit_rates(const OffsetCase& c, Leave leave, int count, std::uint64_
 
 void offset_study(OutputFolder& out, bool quick, std::uint64_t seed) {
   const int count = quick ? 2000 : 100000;
-  Table table({"precision", "sphere", "distance", "radius", "leave", "outgoing_rehit_rate", "inward_rehit_rate",
-               "inward_missed_rate", "distance_plotted"});
+  Table table({"precision", "sphere", "distance", "radius", "leave", "outgoing_rehit_rate",
+               "inward_rehit_rate", "inward_missed_rate", "distance_plotted"});
   const std::pair<Leave, const char*> methods[] = {{Leave::none, "none (t > 0)"},
                                                    {Leave::fixed_epsilon, "fixed epsilon 1e-4"},
                                                    {Leave::bounded_offset, "bounded offset"}};
@@ -278,13 +290,14 @@ void offset_study(OutputFolder& out, bool quick, std::uint64_t seed) {
             "Secondary rays leaving a sphere, by how they leave: reflected rays that hit their own sphere "
             "again, refracted rays that hit it near t = 0, refracted rays that miss its far side",
             3);
-  PlotSpec spec = plot_spec("Reflected rays that hit their own unit sphere again", "distance of the sphere from the origin (0 plotted at 1)",
-                            "re-hit rate", true, false);
+  PlotSpec spec =
+      plot_spec("Reflected rays that hit their own unit sphere again",
+                "distance of the sphere from the origin (0 plotted at 1)", "re-hit rate", true, false);
   for (const char* precision : {"float", "double"})
     for (const auto& [leave, name] : methods)
-      spec.series.push_back(series("offset_study.csv", 9, 6, std::string(name) + ", " + precision,
-                                   std::string("strcol(1) eq '") + precision + "' && strcol(5) eq '" + name +
-                                       "' && column(4) == 1"));
+      spec.series.push_back(series(
+          "offset_study.csv", 9, 6, std::string(name) + ", " + precision,
+          std::string("strcol(1) eq '") + precision + "' && strcol(5) eq '" + name + "' && column(4) == 1"));
   out.plot(spec, "offset_study", "Re-hit rate of reflected rays: fixed epsilon against the bounded offset");
 }
 
@@ -341,7 +354,8 @@ void trace_photons(const Scene& scene, const PinholeCamera& camera, std::uint64_
         if (miss_distance <= pupil_radii[1] && pixel && pixel->x >= 0 && pixel->y >= 0 &&
             pixel->x < camera.width() && pixel->y < camera.height() &&
             !scene.occluded(Ray(ray.origin, ray.direction, Interval(0.0, s)))) {
-          const auto index = static_cast<std::size_t>(pixel->y) * camera.width() + static_cast<std::size_t>(pixel->x);
+          const auto index =
+              static_cast<std::size_t>(pixel->y) * camera.width() + static_cast<std::size_t>(pixel->x);
           for (int p = 0; p < 2; ++p)
             if (miss_distance <= pupil_radii[p]) ++result.reached[p], result.pixel_hit[p][index] = 1;
         }
@@ -356,11 +370,12 @@ ForwardCount empty_count(std::size_t pixels) {
   return c;
 }
 
-void forward_tracing(OutputFolder& out, const Scene& scene, bool quick, std::uint64_t seed, std::uint64_t most) {
+void forward_tracing(OutputFolder& out, const Scene& scene, bool quick, std::uint64_t seed,
+                     std::uint64_t most) {
   const PinholeCamera camera = render_camera(scene, whitted_settings(quick));
   const std::size_t pixels = static_cast<std::size_t>(camera.width()) * camera.height();
-  Table table({"method", "pupil_radius", "rays_shot", "rays_reaching_the_eye", "pixels_reached", "share_of_pixels",
-               "rays_shot_per_pixel_reached"});
+  Table table({"method", "pupil_radius", "rays_shot", "rays_reaching_the_eye", "pixels_reached",
+               "share_of_pixels", "rays_shot_per_pixel_reached"});
   ForwardCount total = empty_count(pixels);
   std::uint64_t shot = 0;
   for (std::uint64_t n = 1000; n <= (quick ? 10000 : most); n *= 10) {
@@ -369,8 +384,8 @@ void forward_tracing(OutputFolder& out, const Scene& scene, bool quick, std::uin
     std::vector<ForwardCount> parts(chunks, empty_count(pixels));
 #pragma omp parallel for schedule(dynamic, 1)
     for (int c = 0; c < chunks; ++c)
-      trace_photons(scene, camera, shot + extra * c / chunks, extra * (c + 1) / chunks - extra * c / chunks, seed,
-                    parts[static_cast<std::size_t>(c)]);
+      trace_photons(scene, camera, shot + extra * c / chunks, extra * (c + 1) / chunks - extra * c / chunks,
+                    seed, parts[static_cast<std::size_t>(c)]);
     shot = n;
     for (int p = 0; p < 2; ++p) {
       for (const ForwardCount& part : parts) {
@@ -387,15 +402,18 @@ void forward_tracing(OutputFolder& out, const Scene& scene, bool quick, std::uin
   }
   table.add_row({std::string("backward, from the eye"), 0.0, std::int64_t(pixels), std::int64_t(pixels),
                  std::int64_t(pixels), 1.0, 1.0});
-  out.table(table, "forward_tracing",
-            "Forward tracing: photons shot from the light, followed through four bounces, that enter a pupil at "
-            "the eye (radius 4 mm or 10 cm), against the backward tracer's one primary ray per pixel",
-            3);
-  PlotSpec spec = plot_spec("Forward tracing: pixels reached as photons are shot", "photons shot from the light",
-                            "share of the image's pixels reached", true, false);
+  out.table(
+      table, "forward_tracing",
+      "Forward tracing: photons shot from the light, followed through four bounces, that enter a pupil at "
+      "the eye (radius 4 mm or 10 cm), against the backward tracer's one primary ray per pixel",
+      3);
+  PlotSpec spec =
+      plot_spec("Forward tracing: pixels reached as photons are shot", "photons shot from the light",
+                "share of the image's pixels reached", true, false);
   for (const double r : pupil_radii)
-    spec.series.push_back(series("forward_tracing.csv", 3, 6, "pupil radius " + format_number(r, 2) + " m",
-                                 "strcol(1) eq 'forward, from the light' && column(2) == " + format_number(r, 6)));
+    spec.series.push_back(
+        series("forward_tracing.csv", 3, 6, "pupil radius " + format_number(r, 2) + " m",
+               "strcol(1) eq 'forward, from the light' && column(2) == " + format_number(r, 6)));
   out.plot(spec, "forward_tracing", "Share of pixels a forward tracer reaches with N photons");
 }
 
@@ -426,22 +444,28 @@ void depth_study(OutputFolder& out, const Scene& scene, bool quick) {
       worst = std::max({worst, d.r, d.g, d.b});
     }
     const double pixels = static_cast<double>(r.image.pixels().size());
-    const auto tree_nodes = [&](const RayCounts& c) { return (c.primary + c.reflection + c.refraction) / pixels; };
-    table.add_row({std::int64_t{depth}, rms_difference(r.image, reference), worst, std::int64_t(r.stats.rays.total()),
-                   r.stats.rays.total() / pixels, tree_nodes(r.stats.rays), tree_nodes(literal.stats.rays),
-                   std::pow(2.0, depth + 1) - 1.0, seconds});
+    const auto tree_nodes = [&](const RayCounts& c) {
+      return (c.primary + c.reflection + c.refraction) / pixels;
+    };
+    table.add_row({std::int64_t{depth}, rms_difference(r.image, reference), worst,
+                   std::int64_t(r.stats.rays.total()), r.stats.rays.total() / pixels,
+                   tree_nodes(r.stats.rays), tree_nodes(literal.stats.rays), std::pow(2.0, depth + 1) - 1.0,
+                   seconds});
     report_progress("lesson06", "depth study", depth + 1, 11);
   }
-  out.table(table, "depth_study",
-            "Depth limit 0…10 against a depth-16 reference (Whitted, 120 × 90): image error, rays, time, and "
-            "the tree's size per pixel (primary + secondary rays) with the plan, without it, and the worst case "
-            "2^(d+1) − 1",
-            3);
-  PlotSpec error = plot_spec("Ray tree: image error against depth 16", "depth limit", "error (linear RGB)", false, true);
+  out.table(
+      table, "depth_study",
+      "Depth limit 0…10 against a depth-16 reference (Whitted, 120 × 90): image error, rays, time, and "
+      "the tree's size per pixel (primary + secondary rays) with the plan, without it, and the worst case "
+      "2^(d+1) − 1",
+      3);
+  PlotSpec error =
+      plot_spec("Ray tree: image error against depth 16", "depth limit", "error (linear RGB)", false, true);
   error.series.push_back(series("depth_study.csv", 1, 2, "RMS error", "column(2) > 0"));
   error.series.push_back(series("depth_study.csv", 1, 3, "max error", "column(3) > 0"));
   out.plot(error, "depth_error", "Image error against the depth-16 reference, by depth limit");
-  PlotSpec size = plot_spec("Ray tree: size per pixel", "depth limit", "rays of the tree per pixel", false, true);
+  PlotSpec size =
+      plot_spec("Ray tree: size per pixel", "depth limit", "rays of the tree per pixel", false, true);
   size.series.push_back(series("depth_study.csv", 1, 6, "with the effects plan", ""));
   size.series.push_back(series("depth_study.csv", 1, 7, "notes' algorithm, both children always", ""));
   size.series.push_back(series("depth_study.csv", 1, 8, "worst case 2^{d+1} - 1", ""));
@@ -454,7 +478,8 @@ void depth_study(OutputFolder& out, const Scene& scene, bool quick) {
 // same rays again through the scene's intersection routines alone. The ratio
 // of the two times is the share of the render spent finding intersections.
 void intersection_share(OutputFolder& out, const Scene& scene, bool quick) {
-  const RenderSettings settings{.width = quick ? 32 : 160, .max_depth = default_depth,
+  const RenderSettings settings{.width = quick ? 32 : 160,
+                                .max_depth = default_depth,
                                 .background = whitted_settings(quick).background};
   const PinholeCamera camera = render_camera(scene, settings);
   const EffectsPlan plan = render_plan(scene, settings);
@@ -478,8 +503,10 @@ void intersection_share(OutputFolder& out, const Scene& scene, bool quick) {
     work = stats.work;
     watch.restart();
     for (std::size_t k = 0; k < rays.size(); ++k) {
-      if (is_shadow[k] && !plan.shadow_attenuation) do_not_optimize(scene.occluded(rays[k]));
-      else do_not_optimize(scene.intersect(rays[k]).has_value());
+      if (is_shadow[k] && !plan.shadow_attenuation)
+        do_not_optimize(scene.occluded(rays[k]));
+      else
+        do_not_optimize(scene.intersect(rays[k]).has_value());
     }
     intersect_seconds = std::min(intersect_seconds, watch.seconds());
   }
@@ -500,7 +527,8 @@ void intersection_share(OutputFolder& out, const Scene& scene, bool quick) {
 int main(int argc, char** argv) {
   const illum::ProgramInfo info{
       "lesson06", "Lesson 06: the ray tree",
-      "Checks the transport equation on a slab, renders Whitted's scene with the ray tree, prints the effects "
+      "Checks the transport equation on a slab, renders Whitted's scene with the ray tree, prints the "
+      "effects "
       "plan and its ray counts, writes a pixel's ray tree (JSON, Graphviz, overlay), and runs the offset, "
       "forward-tracing, depth and intersection-share studies."};
   std::vector<int> pixel;
@@ -508,8 +536,10 @@ int main(int argc, char** argv) {
   return illum::run_program(
       argc, argv, info,
       [&](CLI::App& app) {
-        app.add_option("--pixel", pixel, "Inspect the ray tree of pixel X Y of the Whitted image")->expected(2);
-        app.add_option("--forward-rays", forward_most, "Most photons of the forward-tracing study (default 1e6)")
+        app.add_option("--pixel", pixel, "Inspect the ray tree of pixel X Y of the Whitted image")
+            ->expected(2);
+        app.add_option("--forward-rays", forward_most,
+                       "Most photons of the forward-tracing study (default 1e6)")
             ->check(CLI::Range(1e3, 1e8));
       },
       [&](const illum::ProgramOptions& options) {
@@ -519,7 +549,8 @@ int main(int argc, char** argv) {
         std::optional<std::array<int, 2>> requested;
         if (!pixel.empty()) {
           if (pixel[0] < 0 || pixel[1] < 0 || pixel[0] >= camera.width() || pixel[1] >= camera.height())
-            throw InputError("command line", "--pixel", std::to_string(pixel[0]) + " " + std::to_string(pixel[1]),
+            throw InputError("command line", "--pixel",
+                             std::to_string(pixel[0]) + " " + std::to_string(pixel[1]),
                              "outside the " + std::to_string(camera.width()) + " × " +
                                  std::to_string(camera.height()) + " image");
           requested = std::array<int, 2>{pixel[0], pixel[1]};
@@ -527,7 +558,8 @@ int main(int argc, char** argv) {
         OutputFolder out(options.out, info.id, info.title);
         const bool quick = options.quick;
         timed("§1 radiation model", [&] { radiation_model(out, quick); });
-        const RenderResult render = timed("§2 Whitted render", [&] { return render_whitted(out, whitted, quick); });
+        const RenderResult render =
+            timed("§2 Whitted render", [&] { return render_whitted(out, whitted, quick); });
         timed("§3 inspector", [&] { inspect_pixel(out, whitted, render, quick, requested); });
         timed("§4 effects plan", [&] { effects_plan_section(out, quick); });
         timed("§5 offset study", [&] { offset_study(out, quick, options.seed); });

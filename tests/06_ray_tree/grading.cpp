@@ -57,7 +57,8 @@ TEST_SUITE("lesson06") {
   TEST_CASE("refract: air into glass (η = 1.5) at 45° follows sin θ_t = sin θ_i / 1.5") {
     const double s = std::sqrt(0.5);
     const Refraction r = refract(Vec3(s, -s, 0), Vec3(0, 1, 0), 1.0 / 1.5);
-    REQUIRE_MESSAGE(!r.total_internal_reflection, "from the thinner medium there is always a transmitted ray");
+    REQUIRE_MESSAGE(!r.total_internal_reflection,
+                    "from the thinner medium there is always a transmitted ray");
     const double sin_t = s / 1.5, cos_t = std::sqrt(1.0 - sin_t * sin_t);  // θ_t ≈ 28.1°
     check_vec(r.direction, Vec3(sin_t, -cos_t, 0));
   }

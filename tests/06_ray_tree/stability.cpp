@@ -30,8 +30,12 @@ namespace {
 Scene balls_on_floor(bool mirror) {
   Scene scene;
   scene.name = mirror ? "balls with a mirror" : "diffuse balls";
-  scene.camera = CameraSpec{.eye = Point3(0, -6, 2.5), .target = Point3(0, 0, 0.7), .up = Vec3(0, 0, 1),
-                            .vertical_fov_degrees = 40, .width = 48, .height = 32};
+  scene.camera = CameraSpec{.eye = Point3(0, -6, 2.5),
+                            .target = Point3(0, 0, 0.7),
+                            .up = Vec3(0, 0, 1),
+                            .vertical_fov_degrees = 40,
+                            .width = 48,
+                            .height = 32};
   scene.ambient_light = Color(0.1);
   Material floor = material("floor"), red = material("red"), ball = material("ball");
   floor.diffuse = Color(0.6), floor.ambient = Color(0.6);
@@ -63,7 +67,8 @@ TEST_SUITE("stability") {
         const Ray in = Ray::toward(ball.center + 5.0 * n, -n + Vec3(0.3 * rng.uniform(-1, 1), 0.3, 0.1));
         const auto hit = intersect_surface(in, ball);
         if (!hit) continue;
-        const Vec3 out = hit->geometric_normal * 2.0 * dot(-in.direction, hit->geometric_normal) + in.direction;
+        const Vec3 out =
+            hit->geometric_normal * 2.0 * dot(-in.direction, hit->geometric_normal) + in.direction;
         if (intersect_surface(spawn_ray(*hit, normalize(out)), ball)) ++rehits;
       }
       INFO("sphere at distance ", distance);
@@ -84,12 +89,12 @@ TEST_SUITE("stability") {
     Scene scene;
     const auto m = add_material(scene, material("white"));
     add_floor(scene, "lamp", 2.0, 0.5, m);
-    scene.area_lights.push_back(AreaLight{.name = "lamp",
-                                          .polygon = {Point3(-0.5, -0.5, 2), Point3(0.5, -0.5, 2),
-                                                      Point3(0.5, 0.5, 2), Point3(-0.5, 0.5, 2)},
-                                          .emission = Color(1.0),
-                                          .material = m,
-                                          .primitive = 0});
+    scene.area_lights.push_back(AreaLight{
+        .name = "lamp",
+        .polygon = {Point3(-0.5, -0.5, 2), Point3(0.5, -0.5, 2), Point3(0.5, 0.5, 2), Point3(-0.5, 0.5, 2)},
+        .emission = Color(1.0),
+        .material = m,
+        .primitive = 0});
     const SurfaceHit p = illum::test::hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), m);
     TraceStats stats;
     const EffectsPlan plan = full_effects(0);
@@ -99,7 +104,8 @@ TEST_SUITE("stability") {
 }
 
 TEST_SUITE("trace") {
-  TEST_CASE("effects plan: a diffuse-only scene spawns no reflection or refraction ray, same image bit for bit") {
+  TEST_CASE(
+      "effects plan: a diffuse-only scene spawns no reflection or refraction ray, same image bit for bit") {
     const Scene scene = balls_on_floor(false);
     const EffectsPlan plan = plan_effects(scene, 5);
     CHECK(!plan.reflection);
@@ -153,7 +159,8 @@ TEST_SUITE("trace") {
     // The pixel where the middle (mirror) ball's centre appears.
     const auto centre = project_to_image(camera, Point3(0, 0.5, 0.8));
     REQUIRE(centre);
-    const PixelTree pixel = trace_pixel_tree(scene, settings, static_cast<int>(centre->x), static_cast<int>(centre->y));
+    const PixelTree pixel =
+        trace_pixel_tree(scene, settings, static_cast<int>(centre->x), static_cast<int>(centre->y));
     CHECK(pixel.tree.nodes.size() == pixel.stats.rays.total());
     CHECK(pixel.tree.count(RayKind::reflection) == pixel.stats.rays.reflection);
     CHECK(pixel.tree.nodes[0].kind == RayKind::primary);
@@ -161,7 +168,8 @@ TEST_SUITE("trace") {
     CHECK(scene.primitives[pixel.tree.nodes[0].primitive].name == "middle");
     CHECK(pixel.stats.rays.reflection >= 1);
     const RenderResult render = render_ray_tree(scene, settings);
-    CHECK_MESSAGE(pixel.color == render.image.at(pixel.x, pixel.y), "the inspector traces what the render traced");
+    CHECK_MESSAGE(pixel.color == render.image.at(pixel.x, pixel.y),
+                  "the inspector traces what the render traced");
     const auto json = nlohmann::json::parse(ray_tree_json(scene, pixel));
     CHECK(json["nodes"] == pixel.tree.nodes.size());
     CHECK(json["tree"]["kind"] == "primary");
@@ -195,6 +203,7 @@ TEST_SUITE("trace") {
     CHECK(m1 / m2 == doctest::Approx(4.0).epsilon(0.02));
     // Emission on: the slab glows towards K_a·I_e/K_t when it is thick.
     const Slab glowing{.extinction = 2.0, .emission = 1.0, .thickness = 50.0};
-    CHECK(march_through_slab(glowing, 0.0, 5000, MarchMethod::midpoint) == doctest::Approx(0.5).epsilon(1e-9));
+    CHECK(march_through_slab(glowing, 0.0, 5000, MarchMethod::midpoint) ==
+          doctest::Approx(0.5).epsilon(1e-9));
   }
 }

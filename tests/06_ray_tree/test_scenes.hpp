@@ -22,10 +22,10 @@ inline void add_sphere(Scene& scene, const std::string& name, const Point3& cent
 
 // The square [−h, h]² of the plane z = z0, normal +z (counter-clockwise seen from above).
 inline void add_floor(Scene& scene, const std::string& name, double z0, double h, std::uint32_t material) {
-  scene.primitives.push_back(
-      Primitive{.name = name,
-                .shape = Polygon({Point3(-h, -h, z0), Point3(h, -h, z0), Point3(h, h, z0), Point3(-h, h, z0)}),
-                .material = material});
+  scene.primitives.push_back(Primitive{
+      .name = name,
+      .shape = Polygon({Point3(-h, -h, z0), Point3(h, -h, z0), Point3(h, h, z0), Point3(-h, h, z0)}),
+      .material = material});
 }
 
 inline void add_light(Scene& scene, const Point3& position, const Color& intensity) {

@@ -39,16 +39,19 @@ bool write_ray_tree_files(OutputFolder& out, const Scene& scene, const PixelTree
   out.text(name + ".json", ray_tree_json(scene, pixel), "The ray tree of " + where + ", node by node (JSON)");
   out.text(name + ".dot", ray_tree_dot(scene, pixel), "The ray tree of " + where + " as a Graphviz graph");
   out.image(ray_tree_overlay(render, camera, pixel), name + "_overlay",
-            "The rays of " + where + " over the image: primary white, reflection cyan, refraction orange, "
-            "shadow yellow (red: blocked)");
+            "The rays of " + where +
+                " over the image: primary white, reflection cyan, refraction orange, "
+                "shadow yellow (red: blocked)");
   const bool have_dot = std::system("command -v dot >/dev/null 2>&1") == 0;
   if (have_dot && run_dot(out.folder(), name, "svg") && run_dot(out.folder(), name, "png")) {
     out.add_file("text", name + ".svg", "The ray tree of " + where + ", drawn by Graphviz (SVG)");
     out.add_file("image", name + ".png", "The ray tree of " + where + ", drawn by Graphviz");
     return true;
   }
-  std::cerr << "warning: " << (have_dot ? "Graphviz's dot failed on " : "Graphviz's dot is not installed "
-                                                                          "(apt-get install graphviz); ")
+  std::cerr << "warning: "
+            << (have_dot ? "Graphviz's dot failed on "
+                         : "Graphviz's dot is not installed "
+                           "(apt-get install graphviz); ")
             << "the tree is in " << (out.folder() / (name + ".dot")).string() << "; draw it with: dot -Tsvg "
             << name << ".dot -o " << name << ".svg\n";
   return false;

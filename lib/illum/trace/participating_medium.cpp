@@ -15,7 +15,8 @@ double march_through_slab(const Slab& slab, double incoming, int steps, MarchMet
   const auto slope = [&](double radiance) { return -slab.extinction * radiance + slab.emission; };
   double radiance = incoming;
   for (int k = 0; k < steps; ++k)
-    radiance += method == MarchMethod::euler ? h * slope(radiance) : h * slope(radiance + 0.5 * h * slope(radiance));
+    radiance +=
+        method == MarchMethod::euler ? h * slope(radiance) : h * slope(radiance + 0.5 * h * slope(radiance));
   return radiance;
 }
 

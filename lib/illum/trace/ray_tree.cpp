@@ -44,7 +44,8 @@ Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_
     const LightSample light = light_sample(tracer.scene, l, hit.point);
     const Vec3 to_light = normalize(light.position - hit.point);
     if (!(dot(hit.shading_normal, to_light) > 0.0)) continue;  // behind, or on the tangent plane: no light
-    const Color phong = phong_term(hit.shading_normal, to_light, to_viewer, m.diffuse, m.specular, m.phong_exponent);
+    const Color phong =
+        phong_term(hit.shading_normal, to_light, to_viewer, m.diffuse, m.specular, m.phong_exponent);
     if (tracer.plan.skip_zero_weights && is_black(phong)) continue;  // k_d = k_s = 0: nothing to light
     own += light.intensity * phong *
            shadow_transmission(tracer, hit, light.position, node, static_cast<std::uint32_t>(l));
@@ -52,7 +53,8 @@ Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_
   return own;
 }
 
-Color evaluate(const Tracer& tracer, const Ray& ray, int depth, RayKind kind, const Color& weight, int parent) {
+Color evaluate(const Tracer& tracer, const Ray& ray, int depth, RayKind kind, const Color& weight,
+               int parent) {
   tracer.stats->rays.count(kind);
   const std::optional<SurfaceHit> hit = tracer.scene.intersect(ray, &tracer.stats->work);
   const int node = record_ray(tracer.tree, kind, ray, depth, weight, parent, hit ? &*hit : nullptr);

@@ -25,13 +25,17 @@ std::string material_name(const Scene& scene, std::uint32_t m) {
 
 nlohmann::json node_json(const Scene& scene, const RayTree& tree, int index) {
   const RayTreeNode& n = tree.nodes[static_cast<std::size_t>(index)];
-  nlohmann::json j{{"kind", to_string(n.kind)}, {"depth", n.depth},         {"origin", triple(n.origin)},
-                   {"direction", triple(n.direction)}, {"local", triple(n.local)}, {"weight", triple(n.weight)},
+  nlohmann::json j{{"kind", to_string(n.kind)},  {"depth", n.depth},
+                   {"origin", triple(n.origin)}, {"direction", triple(n.direction)},
+                   {"local", triple(n.local)},   {"weight", triple(n.weight)},
                    {"color", triple(n.color)}};
   j["hit"] = nullptr;
   if (n.hit)
-    j["hit"] = {{"primitive", primitive_name(scene, n.primitive)}, {"primitive_index", n.primitive},
-                {"t", n.t}, {"point", triple(n.point)}, {"material", material_name(scene, n.material)},
+    j["hit"] = {{"primitive", primitive_name(scene, n.primitive)},
+                {"primitive_index", n.primitive},
+                {"t", n.t},
+                {"point", triple(n.point)},
+                {"material", material_name(scene, n.material)},
                 {"front_face", n.front_face}};
   if (n.kind == RayKind::shadow) {
     j["light"] = n.light;
@@ -84,8 +88,9 @@ std::string ray_tree_dot(const Scene& scene, const PixelTree& pixel) {
       char t[32];
       std::snprintf(t, sizeof t, "%.4g", n.t);
       label += "hit " + dot_escape(primitive_name(scene, n.primitive)) + " at t = " + t + " (" +
-               (n.front_face ? "front" : "back") + ")\\nmaterial " + dot_escape(material_name(scene, n.material)) +
-               "\\nI_own " + short_color(n.local) + "\\ncolour " + short_color(n.color);
+               (n.front_face ? "front" : "back") + ")\\nmaterial " +
+               dot_escape(material_name(scene, n.material)) + "\\nI_own " + short_color(n.local) +
+               "\\ncolour " + short_color(n.color);
       if (n.total_internal_reflection) label += "\\ntotal internal reflection";
     } else {
       label += "miss: background " + short_color(n.color);
@@ -174,8 +179,8 @@ Image ray_tree_overlay(const Image& render, const PinholeCamera& camera, const P
   const Vec2 centre(pixel.x + 0.5, pixel.y + 0.5);
   for (int k = 0; k < 64; ++k) {  // a ring of radius 6 pixels around the inspected pixel
     const double a = 2.0 * std::numbers::pi * k / 64;
-    plot_dot(image, static_cast<int>(centre.x + 6 * std::cos(a)), static_cast<int>(centre.y + 6 * std::sin(a)),
-             Color(1.0, 0.2, 0.9));
+    plot_dot(image, static_cast<int>(centre.x + 6 * std::cos(a)),
+             static_cast<int>(centre.y + 6 * std::sin(a)), Color(1.0, 0.2, 0.9));
   }
   return image;
 }

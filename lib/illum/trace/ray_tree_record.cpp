@@ -8,20 +8,32 @@ namespace illum {
 
 const char* to_string(RayKind kind) {
   switch (kind) {
-    case RayKind::primary: return "primary";
-    case RayKind::reflection: return "reflection";
-    case RayKind::refraction: return "refraction";
-    case RayKind::shadow: return "shadow";
+    case RayKind::primary:
+      return "primary";
+    case RayKind::reflection:
+      return "reflection";
+    case RayKind::refraction:
+      return "refraction";
+    case RayKind::shadow:
+      return "shadow";
   }
   return "?";
 }
 
 void RayCounts::count(RayKind kind) {
   switch (kind) {
-    case RayKind::primary: ++primary; break;
-    case RayKind::reflection: ++reflection; break;
-    case RayKind::refraction: ++refraction; break;
-    case RayKind::shadow: ++shadow; break;
+    case RayKind::primary:
+      ++primary;
+      break;
+    case RayKind::reflection:
+      ++reflection;
+      break;
+    case RayKind::refraction:
+      ++refraction;
+      break;
+    case RayKind::shadow:
+      ++shadow;
+      break;
   }
 }
 
@@ -68,8 +80,13 @@ int RayTree::depth() const {
 int record_ray(RayTree* tree, RayKind kind, const Ray& ray, int depth, const Color& weight, int parent,
                const SurfaceHit* hit) {
   if (!tree) return no_node;
-  RayTreeNode n{.kind = kind, .parent = parent, .depth = depth, .origin = ray.origin,
-                .direction = ray.direction, .range = ray.range, .weight = weight};
+  RayTreeNode n{.kind = kind,
+                .parent = parent,
+                .depth = depth,
+                .origin = ray.origin,
+                .direction = ray.direction,
+                .range = ray.range,
+                .weight = weight};
   if (hit) {
     n.hit = true, n.primitive = hit->primitive, n.material = hit->material, n.t = hit->t;
     n.point = hit->point, n.front_face = hit->front_face;

@@ -30,9 +30,12 @@ RenderResult render_ray_tree(const Scene& scene, const RenderSettings& settings)
 #pragma omp parallel for schedule(dynamic, 1)
   for (int j = 0; j < camera.height(); ++j)
     errors.run([&] {
-      const Tracer tracer{.scene = scene, .plan = result.plan, .background = settings.background,
+      const Tracer tracer{.scene = scene,
+                          .plan = result.plan,
+                          .background = settings.background,
                           .stats = &row_stats[static_cast<std::size_t>(j)]};
-      for (int i = 0; i < camera.width(); ++i) result.image.at(i, j) = evaluate(tracer, camera.pixel_ray(i, j));
+      for (int i = 0; i < camera.width(); ++i)
+        result.image.at(i, j) = evaluate(tracer, camera.pixel_ray(i, j));
     });
   errors.rethrow_if_any();
   for (const TraceStats& s : row_stats) result.stats += s;
@@ -45,8 +48,11 @@ PixelTree trace_pixel_tree(const Scene& scene, const RenderSettings& settings, i
           "trace_pixel_tree: the pixel lies outside the image");
   const EffectsPlan plan = render_plan(scene, settings);
   PixelTree pixel{.x = x, .y = y};
-  const Tracer tracer{
-      .scene = scene, .plan = plan, .background = settings.background, .stats = &pixel.stats, .tree = &pixel.tree};
+  const Tracer tracer{.scene = scene,
+                      .plan = plan,
+                      .background = settings.background,
+                      .stats = &pixel.stats,
+                      .tree = &pixel.tree};
   pixel.color = evaluate(tracer, camera.pixel_ray(x, y));
   return pixel;
 }
