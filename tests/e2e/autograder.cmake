@@ -13,6 +13,6 @@ if(NOT ILLUM_SANITIZE AND NOT EXISTS ${PROJECT_SOURCE_DIR}/STUDENT_EDITION)
   add_test(NAME autograder_e2e
            COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/e2e/autograder_e2e.py
                    --work-dir ${CMAKE_BINARY_DIR}/autograder-e2e)
-  set_tests_properties(autograder_e2e PROPERTIES LABELS "grading;autograder" TIMEOUT 900
+  set_tests_properties(autograder_e2e PROPERTIES LABELS "grading;autograder" TIMEOUT 1800
                        ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 endif()

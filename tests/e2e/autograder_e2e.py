@@ -13,6 +13,9 @@ Gradescope's documented format and the expected score:
   no-compile    a file that does not compile            graded as the stub, and said so
   endless-loop  one function never returns              only the tests that call it fail
   subfolder     "my work/lesson 01/sphere (1).cpp"      max / max, the rename explained
+  broken-hidden an instructor's hidden test that does not compile (added after setup.sh):
+                the visible tests graded, students told the grader is misconfigured, the
+                compiler's output only in an entry hidden from them
 
 Prints the time of setup.sh and of each run. ccache is used when installed,
 so a second run reuses the first one's objects.
@@ -100,6 +103,14 @@ def mutate(text: str, pattern: str, replacement: str, what: str) -> str:
     return changed
 
 
+SECRET = "SECRET_EXPECTED_VALUE_42"
+BROKEN_HIDDEN_TEST = f"""#include <doctest/doctest.h>
+TEST_SUITE("lesson01") {{
+  TEST_CASE("hidden: broken") {{ CHECK({SECRET} == 42); }}
+}}
+"""
+
+
 def submissions() -> dict[str, dict[str, str]]:
     """case -> {path inside the upload: content}."""
     reference = REFERENCE.read_text(encoding="utf-8")
@@ -114,6 +125,7 @@ def submissions() -> dict[str, dict[str, str]]:
         "no-compile": {UNIT: broken},
         "endless-loop": {UNIT: looping},
         "subfolder": {"my work/lesson 01/sphere (1).cpp": reference},
+        "broken-hidden": {UNIT: reference},
     }
 
 
@@ -166,7 +178,7 @@ def main(argv: list[str]) -> int:
     check("the reference scored" in output and "toolchain and libraries found" in output,
           "setup.sh did not show the versions and the reference's score")
 
-    expected_max = None
+    expected_max = visible_max = None
     for case, files in submissions().items():
         submission = ag / "submission"
         if submission.exists():
@@ -174,6 +186,8 @@ def main(argv: list[str]) -> int:
         for relative, text in files.items():
             (submission / relative).parent.mkdir(parents=True, exist_ok=True)
             (submission / relative).write_text(text, encoding="utf-8")
+        if case == "broken-hidden":
+            (ag / "source" / "hidden-tests" / "zz_broken_hidden.cpp").write_text(BROKEN_HIDDEN_TEST, encoding="utf-8")
         status, seconds, output = run(["bash", str(ag / "source" / "run_autograder")], env)
         times[case] = seconds
         results = ag / "results" / "results.json"
@@ -181,6 +195,7 @@ def main(argv: list[str]) -> int:
         if not check(results.exists(), f"{case}: no results.json"):
             print(output[-3000:])
             continue
+        shutil.copyfile(results, work / f"results-{case}.json")  # kept for a look afterwards
         data = json.loads(results.read_text(encoding="utf-8"))
         check_schema(case, data)
         tests = [t for t in data.get("tests", []) if not t["name"].startswith("build")]
@@ -190,6 +205,7 @@ def main(argv: list[str]) -> int:
               "passed", flush=True)
         if case == "stub":
             expected_max = max_score
+            visible_max = sum(t["max_score"] for t in visible)
             check(score == 0, f"stub: score {score}, expected 0")
             check(all("not implemented yet" in t["output"] for t in visible), "stub: a failure is not a NotImplemented")
         elif case in ("correct", "subfolder"):
@@ -217,6 +233,17 @@ def main(argv: list[str]) -> int:
             check(max_score == expected_max, "endless-loop: some tests have no result")
             check(all("notes' form" in t["name"] or "hidden" in t["name"] for t in hung),
                   "endless-loop: a test that does not call sphere_roots_notes timed out")
+        elif case == "broken-hidden":
+            shown = [t for t in data["tests"] if t["visibility"] != "hidden"]
+            secret = [t for t in data["tests"] if SECRET in t["output"]]
+            check(bool(secret) and all(t["visibility"] == "hidden" for t in secret),
+                  "broken-hidden: the compiler's output is not in an entry hidden from students")
+            check(SECRET not in data["output"] and all(SECRET not in t["output"] for t in shown),
+                  "broken-hidden: students can read the hidden test's source")
+            check("misconfigured" in data["output"] and "did not compile" not in data["output"],
+                  "broken-hidden: the students' output does not say the grader is misconfigured")
+            check(score == max_score == visible_max,
+                  f"broken-hidden: score {score}/{max_score}; the {visible_max} visible points should all pass")
     print("\ntimes (s): " + ", ".join(f"{k} {v:.1f}" for k, v in times.items()))
     if failures:
         print(f"autograder e2e: {len(failures)} check(s) failed")

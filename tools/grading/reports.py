@@ -96,7 +96,8 @@ def score_table(run: GradeRun, for_students: bool = False) -> str:
     """
     if run.build_failed:
         return "The build failed: nothing was graded (score 0). The compiler's messages are above."
-    hide = for_students and any(r.hidden for r in run.results)
+    # Any entry hidden from students (a hidden test, or the hidden tests' failed build) hides the total.
+    hide = for_students and (run.hidden_build_failed or any(r.hidden for r in run.results))
     header = ("lesson", "tests passed", "points")
     body = [(label, f"{passed}/{total}", f"{_fmt(points)}/{_fmt(max_points)}")
             for label, passed, total, points, max_points in _rows(run, with_hidden=not hide)]
@@ -122,8 +123,13 @@ def score_table(run: GradeRun, for_students: bool = False) -> str:
 
 
 def _visible_problems(run: GradeRun) -> list[str]:
-    """Problems a student may read: none about the hidden tests' program."""
-    return [p for p in run.problems if "tests_hidden" not in p]
+    """Problems a student may read: none about the hidden tests' program, and
+    the ones of a single test only counted (each test's entry says why)."""
+    problems = [p for p in run.problems if "tests_hidden" not in p]
+    per_test = sum(part.count(': test "') for part in problems)
+    general = [part for p in problems for part in p.split("; ") if ': test "' not in part]
+    lines = [f"{per_test} test(s) crashed or did not finish; their entries say which and why"] if per_test else []
+    return lines + general
 
 
 def failure_report(run: GradeRun, root: Path | None = None) -> str:
@@ -176,7 +182,14 @@ def submission_summary(run: GradeRun) -> str:
     return "\n".join(lines)
 
 
+def _compiler_messages(output: str) -> str:
+    """A build log without make's progress lines, which say nothing about the error."""
+    return "\n".join(line for line in output.splitlines()
+                     if not re.match(r"\[\s*\d+%\]|gmake\[\d+\]: (Entering|Leaving)", line))
+
+
 def _build_entry(name: str, output: str, visibility: str = "visible") -> dict[str, Any]:
+    output = _compiler_messages(output)
     return {"name": name, "score": 0, "max_score": 0, "status": "failed", "output": _truncate(output),
             "output_format": "text", "visibility": visibility}
 
