@@ -399,6 +399,55 @@ class BuildFailureTest(unittest.TestCase):
         self.assertEqual(failed_exercise_files("lib/illum/core/ray.cpp:1:1: error: x"), [])
 
 
+class FallbackTest(unittest.TestCase):
+    """A student file that does not compile is swapped for its stub; the other lessons keep theirs."""
+
+    def test_only_the_broken_file_falls_back(self) -> None:
+        import argparse
+        from unittest import mock
+
+        from grading import build, driver
+
+        with tempfile.TemporaryDirectory() as folder:
+            tree, pristine = Path(folder) / "tree", Path(folder) / "pristine"
+            for lesson, name in (("01_ray_sphere", "sphere.cpp"), ("10_hemicube", "hemicube_deltas.cpp")):
+                (tree / "exercises" / lesson).mkdir(parents=True)
+                (tree / "exercises" / lesson / name).write_text("student's " + name)
+                (pristine / lesson).mkdir(parents=True)
+                (pristine / lesson / name).write_text("stub")
+            outputs = iter([
+                build.StepResult(False, "/x/exercises/01_ray_sphere/sphere.cpp:3:1: error: expected ';'\n"),
+                build.StepResult(True, "")])
+            args = argparse.Namespace(student=True, fallback_stubs=pristine)
+            run = GradeRun(lessons=["01", "10"], student=True)
+            with mock.patch.object(build, "build", side_effect=lambda *a, **k: next(outputs)):
+                step = driver._build_with_fallback(args, run, Path(folder) / "b", tree, ["illum"])
+            self.assertTrue(step.ok)
+            self.assertEqual(list(run.fallbacks), ["exercises/01_ray_sphere/sphere.cpp"])
+            self.assertEqual((tree / "exercises/01_ray_sphere/sphere.cpp").read_text(), "stub")
+            self.assertEqual((tree / "exercises/10_hemicube/hemicube_deltas.cpp").read_text(),
+                             "student's hemicube_deltas.cpp")
+
+    def test_an_error_outside_the_students_files_is_not_papered_over(self) -> None:
+        import argparse
+        from unittest import mock
+
+        from grading import build, driver
+
+        with tempfile.TemporaryDirectory() as folder:
+            pristine = Path(folder) / "pristine" / "01_ray_sphere"
+            pristine.mkdir(parents=True)
+            (pristine / "sphere.cpp").write_text("stub")
+            broken = build.StepResult(False, "/x/exercises/01_ray_sphere/sphere.cpp:3:1: error: a\n"
+                                             "/x/lib/illum/core/ray.cpp:9:1: error: b\n")
+            args = argparse.Namespace(student=True, fallback_stubs=pristine.parent)
+            run = GradeRun(lessons=["01"], student=True)
+            with mock.patch.object(build, "build", return_value=broken):
+                step = driver._build_with_fallback(args, run, Path(folder), Path(folder), ["illum"])
+            self.assertFalse(step.ok)
+            self.assertEqual(run.fallbacks, {})
+
+
 class CommandLineTest(unittest.TestCase):
     """Wrong commands stop before anything is built (exit 2), without a traceback or a file."""
 
