@@ -227,5 +227,6 @@ int registerReporter(const char* name, int priority, bool is_reporter) {
 
 }  // namespace doctest
 
-#define DOCTEST_REGISTER_REPORTER(name, priority, reporter) \
-  [[maybe_unused]] static const int illum_registered_reporter = doctest::registerReporter<reporter>(name, priority, true)
+#define DOCTEST_REGISTER_REPORTER(name, priority, reporter)     \
+  [[maybe_unused]] static const int illum_registered_reporter = \
+      doctest::registerReporter<reporter>(name, priority, true)
