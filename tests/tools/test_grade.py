@@ -177,6 +177,9 @@ class ReportTest(unittest.TestCase):
         output = reports.gradescope_results(run)["output"]
         self.assertIn("used `sphere (1).cpp` as `exercises/01_ray_sphere/sphere.cpp` (taken as sphere.cpp)", output)
         self.assertIn("ignored `notes.txt`: not a C++ file", output)
+        run.submission["expected"] = ["sphere.cpp", "triangle.cpp"]
+        self.assertIn("not in your upload, so graded as the unchanged stub: `triangle.cpp`",
+                      reports.gradescope_results(run)["output"])
         run.submission = {"installed": [], "ignored": [], "notes": [], "expected": ["sphere.cpp"]}
         self.assertIn("Upload `sphere.cpp`", reports.gradescope_results(run)["output"])
 

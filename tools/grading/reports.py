@@ -174,6 +174,10 @@ def submission_summary(run: GradeRun) -> str:
         lines.append(f"- ignored `{ignored['file']}`: {ignored['reason']}")
     for note in info.get("notes", []):
         lines.append(f"- {note}")
+    used = {Path(item["target"]).name for item in info.get("installed", [])}
+    missing = [name for name in info.get("expected", []) if name not in used]
+    if info.get("installed") and missing:
+        lines.append("- not in your upload, so graded as the unchanged stub: " + ", ".join(f"`{m}`" for m in missing))
     if not info.get("installed"):
         expected = ", ".join(f"`{name}`" for name in info.get("expected", []))
         lines.append(f"- **none of your files is an exercise file of lesson(s) {', '.join(run.lessons)}**, so the "
