@@ -260,6 +260,21 @@ class RunnerTest(unittest.TestCase):
         self.assertIn("did not finish within 1 s", run.results[1].output())
         self.assertIn('test "loops"', run.problem)
 
+    def test_no_test_starts_after_the_deadline(self) -> None:
+        from grading import runner
+
+        with tempfile.TemporaryDirectory() as folder:
+            program = Path(folder) / "tests_lesson01"
+            program.write_text(RERUN_PROGRAM)
+            program.chmod(0o755)
+            runner.set_deadline(0.0)
+            try:
+                run = runner.run_suite(program, "lesson01", timeout=30, test_timeout=1.0)
+            finally:
+                runner.set_deadline(None)
+        self.assertEqual([r.status for r in run.results], ["not run"] * 3)
+        self.assertIn("ILLUM_GRADE_DEADLINE", run.results[0].output())
+
     """A crashing or hanging program still gives a result for every listed test."""
 
     def run_fake(self, mode: str, timeout: float) -> "object":

@@ -26,7 +26,7 @@ from pathlib import Path
 from . import build, project, reports
 from .integrity import check_build
 from .reports import GradeRun
-from .runner import run_suite
+from .runner import deadline_from_environment, run_suite
 
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:
@@ -157,6 +157,7 @@ def grade(args: argparse.Namespace, root: Path) -> int:
         # Blame the student only for errors in their own files.
         run.blame_student = bool(args.student and build.failed_exercise_files(step.output))
     else:
+        deadline_from_environment(start)
         bin_dir = build_dir / "bin"
         for lesson in lessons:
             suites = [run_suite(bin_dir / f"tests_lesson{lesson}", f"lesson{lesson}")] if lesson in tested else []

@@ -10,7 +10,11 @@ Limits (Gradescope gives a whole run 10 minutes):
 
 * each test case may run ``ILLUM_GRADE_TEST_TIMEOUT`` seconds (default 60)
   without finishing; then the program is killed;
-* each run of a program may last ``ILLUM_GRADE_TIMEOUT`` seconds (default 600).
+* each run of a program may last ``ILLUM_GRADE_TIMEOUT`` seconds (default 600);
+* all the tests of one ``tools/grade`` run may take ``ILLUM_GRADE_DEADLINE``
+  seconds from its start (default: no limit; run_autograder sets one inside
+  Gradescope's 10 minutes); the tests left when it runs out fail with
+  "did not run", so that results.json is still written in time.
 
 After a crash or a time-out, the test that was running fails with the
 reason, and the program is run again from the next test on (doctest's
@@ -31,6 +35,24 @@ from .results import TestResult, merge, parse_lines
 
 DEFAULT_TIMEOUT = 600.0       # seconds per run of a test program
 DEFAULT_TEST_TIMEOUT = 60.0   # seconds per test case
+
+
+_deadline: float | None = None  # time.monotonic() after which no test starts
+
+
+def set_deadline(seconds_from_now: float | None) -> None:
+    global _deadline
+    _deadline = None if seconds_from_now is None else time.monotonic() + seconds_from_now
+
+
+def deadline_from_environment(start: float) -> None:
+    """ILLUM_GRADE_DEADLINE seconds after ``start`` (a time.monotonic())."""
+    value = os.environ.get("ILLUM_GRADE_DEADLINE")
+    set_deadline(float(value) - (time.monotonic() - start) if value else None)
+
+
+def _remaining() -> float:
+    return float("inf") if _deadline is None else _deadline - time.monotonic()
 
 
 def timeout_seconds() -> float:
@@ -158,8 +180,12 @@ def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | 
     notes: dict[tuple[str, str, str, int], str] = {}
     first = 1
     while first <= max(len(listed), 1):
+        if _remaining() <= 0:
+            problems.append(f"{program.name} -ts={suite}: the time for the whole run (ILLUM_GRADE_DEADLINE) "
+                            "ran out before these tests")
+            break
         arguments = [f"-ts={suite}"] + ([f"--first={first}"] if first > 1 else [])
-        invocation = _run_reporter(program, arguments, timeout, test_timeout)
+        invocation = _run_reporter(program, arguments, min(timeout, max(_remaining(), 1.0)), test_timeout)
         ran.extend(r for r in invocation.records if r.get("event") == "test_case")
         outputs.append(invocation.output)
         if not invocation.problem:
