@@ -393,14 +393,14 @@ void forward_tracing(OutputFolder& out, const Scene& scene, bool quick, std::uin
         for (std::size_t i = 0; i < pixels; ++i) total.pixel_hit[p][i] |= part.pixel_hit[p][i];
       }
       const auto reached = std::count(total.pixel_hit[p].begin(), total.pixel_hit[p].end(), 1);
-      table.add_row({std::string("forward, from the light"), pupil_radii[p], std::int64_t(n),
+      table.add_row({std::string("forward from the light"), pupil_radii[p], std::int64_t(n),
                      std::int64_t(total.reached[p]), std::int64_t(reached), 1.0 * reached / pixels,
                      reached ? 1.0 * n / reached : infinity});
     }
     report_progress("lesson06", "forward tracing", static_cast<int>(std::log10(n)) - 2,
                     static_cast<int>(std::log10(quick ? 10000 : most)) - 2);
   }
-  table.add_row({std::string("backward, from the eye"), 0.0, std::int64_t(pixels), std::int64_t(pixels),
+  table.add_row({std::string("backward from the eye"), 0.0, std::int64_t(pixels), std::int64_t(pixels),
                  std::int64_t(pixels), 1.0, 1.0});
   out.table(
       table, "forward_tracing",
@@ -410,10 +410,10 @@ void forward_tracing(OutputFolder& out, const Scene& scene, bool quick, std::uin
   PlotSpec spec =
       plot_spec("Forward tracing: pixels reached as photons are shot", "photons shot from the light",
                 "share of the image's pixels reached", true, false);
-  for (const double r : pupil_radii)
-    spec.series.push_back(
-        series("forward_tracing.csv", 3, 6, "pupil radius " + format_number(r, 2) + " m",
-               "strcol(1) eq 'forward, from the light' && column(2) == " + format_number(r, 6)));
+  for (const double r : pupil_radii)  // the two radii lie on either side of 0.02
+    spec.series.push_back(series("forward_tracing.csv", 3, 6, "pupil radius " + format_number(r, 2) + " m",
+                                 std::string("strcol(1) eq 'forward from the light' && column(2) ") +
+                                     (r < 0.02 ? "< 0.02" : "> 0.02")));
   out.plot(spec, "forward_tracing", "Share of pixels a forward tracer reaches with N photons");
 }
 

@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include <omp.h>
 #include <nlohmann/json.hpp>
 
 #include "06_ray_tree/test_scenes.hpp"
@@ -120,6 +121,19 @@ TEST_SUITE("trace") {
     CHECK(with.stats.rays.primary == without.stats.rays.primary);
     CHECK(with.stats.rays.shadow < without.stats.rays.shadow);
     CHECK_MESSAGE(with.image.pixels() == without.image.pixels(), "the plan must not change a single bit");
+  }
+
+  TEST_CASE("render: the image and the counts do not depend on the number of threads") {
+    const Scene scene = balls_on_floor(true);
+    const int threads = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const RenderResult one = render_ray_tree(scene, {.max_depth = 4});
+    omp_set_num_threads(3);
+    const RenderResult three = render_ray_tree(scene, {.max_depth = 4});
+    omp_set_num_threads(threads);
+    CHECK(one.image.pixels() == three.image.pixels());
+    CHECK(one.stats.rays.total() == three.stats.rays.total());
+    CHECK(one.stats.work.intersection_tests == three.stats.work.intersection_tests);
   }
 
   TEST_CASE("effects plan: a scene with a mirror keeps its reflection rays") {
