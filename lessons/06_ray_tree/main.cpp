@@ -164,7 +164,7 @@ void effects_plan_section(OutputFolder& out, bool quick) {
   std::cout << printed;
   out.text("effects_plan.txt", printed, "The effects plan of every shipped scene, and its ray counts");
   out.table(table, "effects_plan",
-            "Ray counts by kind with and without the effects plan (depth limit 5, 160 pixels wide); "
+            "Ray counts by kind with and without the effects plan (depth limit 5, 120 pixels wide); "
             "'none' is the notes' algorithm as written, both children at every hit; max_pixel_difference "
             "is the largest change of a pixel channel the plan made",
             4);
