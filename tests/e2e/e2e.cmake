@@ -20,3 +20,8 @@ add_test(NAME e2e_illum_render_missing_obj
                  "-DEXPECT=missing_obj.json;primitives[0].obj;no_such_bunny.obj;cannot open the OBJ file"
                  -DOUT=${CMAKE_BINARY_DIR}/test-out/illum-missing-obj -P ${CMAKE_CURRENT_SOURCE_DIR}/e2e/expect_refusal.cmake)
 add_test(NAME e2e_illum_render COMMAND illum_cli render spheres --quick --out ${CMAKE_BINARY_DIR}/test-out/illum-render)
+
+# The ray-tree inspector of the command line: one pixel's tree as JSON, Graphviz and overlay.
+add_test(NAME e2e_illum_trace
+         COMMAND ${CMAKE_COMMAND} -DILLUM=$<TARGET_FILE:illum_cli> -DOUT=${CMAKE_BINARY_DIR}/test-out/illum-trace
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/e2e/expect_trace.cmake)
