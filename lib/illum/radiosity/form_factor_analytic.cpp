@@ -2,7 +2,6 @@
 #include "illum/radiosity/form_factor_analytic.hpp"
 
 #include <cmath>
-#include <numbers>
 
 #include "illum/core/error.hpp"
 #include "illum/core/ray.hpp"
@@ -53,7 +52,7 @@ double point_polygon_form_factor(const Point3& x, const Vec3& normal, const Patc
     const double gamma = std::atan2(c_length, dot(r0, r1));
     sum += gamma * dot(normal, c) / c_length;
   }
-  return sum / (2 * std::numbers::pi);
+  return sum / (2 * pi);
 }
 
 }  // namespace illum

@@ -2,7 +2,6 @@
 #include "illum/radiosity/form_factor_sampling.hpp"
 
 #include <cmath>
-#include <numbers>
 
 #include "illum/core/error.hpp"
 #include "illum/core/ray.hpp"
@@ -14,7 +13,6 @@ namespace illum {
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
 
 void check_point(const Point3& x, const Vec3& normal, int samples, const char* message) {
   require(is_finite(x) && is_unit(normal) && samples > 0, message);

@@ -2,7 +2,6 @@
 #include "illum/radiosity/radiosity_equation.hpp"
 
 #include <cmath>
-#include <numbers>
 
 #include "illum/core/error.hpp"
 #include "illum/radiosity/gauss_legendre.hpp"
@@ -10,7 +9,6 @@
 namespace illum {
 
 namespace {
-constexpr double pi = std::numbers::pi;
 }
 
 double exitance_from_radiance_quadrature(const RadianceFunction& radiance, int n) {

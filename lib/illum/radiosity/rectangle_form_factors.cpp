@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "illum/core/error.hpp"
 
@@ -10,7 +9,6 @@ namespace illum {
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
 
 // u·ln(u) and friends vanish at 0; a guarded log keeps 0·ln 0 = 0.
 double x_log(double scale, double argument) { return scale == 0 ? 0.0 : scale * std::log(argument); }
