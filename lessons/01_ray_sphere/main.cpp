@@ -82,7 +82,7 @@ std::vector<Case> make_cases(double distance, double radius, int count, Rng& rng
   std::vector<Case> cases;
   for (int k = 0; k < count; ++k) {
     const glm::dvec3 origin(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-    const double z = rng.uniform(-1, 1), phi = 2.0 * 3.141592653589793 * rng.uniform();
+    const double z = rng.uniform(-1, 1), phi = 2.0 * pi * rng.uniform();
     const glm::dvec3 w(std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z);
     const glm::dvec3 helper = std::abs(w.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     const glm::dvec3 perpendicular = glm::normalize(glm::cross(w, helper));
