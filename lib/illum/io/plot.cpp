@@ -83,6 +83,7 @@ std::string curve_clause(const PlotCurve& c, ColumnLookup& column) {
   for (const RowMatch& m : c.where)
     condition += (condition.empty() ? "" : " && ") + ("strcol(" + column(c.table, m.column) + ") eq ") +
                  gnuplot_text(m.equals);
+  if (c.x_positive) condition += (condition.empty() ? "" : " && ") + x + " > 0";
   if (c.y_positive) condition += (condition.empty() ? "" : " && ") + y + " > 0";
   if (!condition.empty()) y = "((" + condition + ") ? " + y + " : 1/0)";
   std::string style = mark_style(c.mark);

@@ -30,6 +30,7 @@ struct PlotCurve {
   std::string x{};              // column names, as in the CSV's header
   std::string y{};
   std::vector<RowMatch> where{};  // every condition must hold
+  bool x_positive = false;        // also drop rows whose x is not > 0 (a zero knob on a log scale)
   bool y_positive = false;        // also drop rows whose y is not > 0 (exact results on a log scale)
   std::string title{};
   PlotMark mark = PlotMark::lines_points;
