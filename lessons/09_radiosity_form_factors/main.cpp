@@ -29,7 +29,7 @@ using namespace illum;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using illum::pi;  // one definition, in illum/core/vec.hpp
 
 Patch floor_square() { return make_patch({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}); }
 Patch ceiling_square() { return make_patch({{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}}); }

@@ -16,7 +16,7 @@ using namespace illum;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using illum::pi;  // one definition, in illum/core/vec.hpp
 
 Polygon flat(std::vector<Vec2> points) {
   std::vector<Point3> p;

@@ -5,9 +5,11 @@
 #include <functional>
 #include <numbers>
 
+#include "illum/core/vec.hpp"
+
 namespace lesson09_test {
 
-constexpr double pi = std::numbers::pi;
+using illum::pi;  // one definition, in illum/core/vec.hpp
 
 // Howell C-11: directly opposed parallel rectangles a × b at distance c.
 inline double parallel_rectangles(double a, double b, double c) {
