@@ -8,6 +8,7 @@
 // and nanoseconds per intersection.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -24,6 +25,8 @@
 #include "illum/io/sphere_scene.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 namespace {
 
 void render_scene(OutputFolder& out, bool quick) {

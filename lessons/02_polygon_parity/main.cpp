@@ -7,6 +7,7 @@
 // parity test against the number of vertices.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,8 @@
 #include "illum/io/program.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 namespace {
 
 // Points of a planar outline, placed in 3D: (u, v) ↦ centre + u·right + v·up.

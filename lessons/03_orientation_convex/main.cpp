@@ -8,6 +8,7 @@
 // and times parity, winding and the convex test against the vertex count.
 // main() calls one function per section of the README.
 #include <cmath>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,8 @@
 #include "illum/io/program.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 namespace {
 
 Polygon flat(const std::vector<Vec2>& points) {

@@ -7,6 +7,7 @@
 // tolerance tightens, for the four implicit methods and for Newton on a patch.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <exception>
 #include <optional>
 #include <sstream>
@@ -26,6 +27,8 @@
 #include "illum/io/program.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 namespace {
 
 const ProgramInfo info{

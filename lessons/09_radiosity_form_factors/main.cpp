@@ -29,7 +29,7 @@ using namespace illum;
 
 namespace {
 
-using illum::pi;  // one definition, in illum/core/vec.hpp
+constexpr double pi = std::numbers::pi;
 
 Patch floor_square() { return make_patch({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}}); }
 Patch ceiling_square() { return make_patch({{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}}); }

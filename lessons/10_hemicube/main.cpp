@@ -7,6 +7,7 @@
 // ~2,000-patch room. main() calls one function per section of the README.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -24,6 +25,8 @@
 #include "illum/radiosity/rectangle_form_factors.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 namespace {
 
 // --- exact references: the library's closed forms and contour formula ----------------------

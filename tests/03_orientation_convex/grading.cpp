@@ -16,7 +16,7 @@ using namespace illum;
 
 namespace {
 
-using illum::pi;  // one definition, in illum/core/vec.hpp
+constexpr double pi = std::numbers::pi;
 
 Polygon flat(std::vector<Vec2> points) {
   std::vector<Point3> p;

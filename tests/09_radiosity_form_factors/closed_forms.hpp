@@ -5,11 +5,9 @@
 #include <functional>
 #include <numbers>
 
-#include "illum/core/vec.hpp"
-
 namespace lesson09_test {
 
-using illum::pi;  // one definition, in illum/core/vec.hpp
+constexpr double pi = std::numbers::pi;
 
 // Howell C-11: directly opposed parallel rectangles a × b at distance c.
 inline double parallel_rectangles(double a, double b, double c) {

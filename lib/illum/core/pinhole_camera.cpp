@@ -1,10 +1,13 @@
 #include "illum/core/pinhole_camera.hpp"
 
 #include <cmath>
+#include <numbers>
 
 #include "illum/core/error.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 
 PinholeCamera::PinholeCamera(const Point3& eye, const Point3& target, const Vec3& up,
                              double vertical_fov_degrees, int width, int height)

@@ -4,14 +4,10 @@
 // illum computes in double throughout (DESIGN.md, "Numbers and errors");
 // a lesson that shows why switches to float explicitly with Vec3f.
 #include <limits>
-#include <numbers>
 
 #include <glm/glm.hpp>
 
 namespace illum {
-
-// π, the one definition every file uses (constants are named like variables).
-inline constexpr double pi = std::numbers::pi;
 
 using Vec2 = glm::dvec2;
 using Vec3 = glm::dvec3;

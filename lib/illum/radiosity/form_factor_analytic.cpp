@@ -2,11 +2,14 @@
 #include "illum/radiosity/form_factor_analytic.hpp"
 
 #include <cmath>
+#include <numbers>
 
 #include "illum/core/error.hpp"
 #include "illum/core/ray.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 
 void SmallPolygon::push_back(const Point3& p) {
   require(size < capacity, "SmallPolygon: more than 64 vertices");

@@ -2,6 +2,7 @@
 #include "illum/radiosity/form_factor_sampling.hpp"
 
 #include <cmath>
+#include <numbers>
 
 #include "illum/core/error.hpp"
 #include "illum/core/ray.hpp"
@@ -10,6 +11,8 @@
 #include "illum/radiosity/visibility.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 
 namespace {
 

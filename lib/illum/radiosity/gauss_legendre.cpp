@@ -2,11 +2,14 @@
 
 #include <array>
 #include <cmath>
+#include <numbers>
 
 #include "illum/core/error.hpp"
 #include "illum/core/vec.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 
 namespace {
 

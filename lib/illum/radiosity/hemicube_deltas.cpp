@@ -1,11 +1,14 @@
 #include "illum/radiosity/hemicube_deltas.hpp"
 
 #include <cmath>
+#include <numbers>
 
 #include "illum/core/error.hpp"
 #include "illum/core/vec.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 
 double top_face_delta(double x, double y, double pixel_area) {
   // eq. 10.2: r² = x² + y² + 1 and cos φ_i = cos φ_p = 1/r, so cos·cos/(π r²) = 1/(π r⁴).

@@ -2,11 +2,14 @@
 #include "illum/radiosity/radiosity_equation.hpp"
 
 #include <cmath>
+#include <numbers>
 
 #include "illum/core/error.hpp"
 #include "illum/radiosity/gauss_legendre.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 
 namespace {
 }
