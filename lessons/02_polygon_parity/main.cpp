@@ -220,7 +220,8 @@ void tiling_study(OutputFolder& out, bool quick) {
     rules.add_row({name, std::int64_t{counts[0] + counts[1] + counts[2]}, std::int64_t{counts[0]},
                    std::int64_t{counts[1]}, std::int64_t{counts[2]}});
   }
-  out.table(rules, "tiling_rules", "Grid points of [0,4)² claimed 0, 1 or 2+ times by the 11 pieces of the tiling");
+  out.table(rules, "tiling_rules",
+            "Grid points of [0,4)² claimed 0, 1 or 2+ times by the 11 pieces of the tiling");
 }
 
 // --- §5–6. Holes and the ray–polygon hit: the rendered scene ------------------------------------
@@ -251,15 +252,20 @@ void parity_cost(OutputFolder& out, bool quick, std::uint64_t seed) {
         3, [&](std::uint64_t i) { do_not_optimize(intersect(rays[i & 1023], p).has_value()); }, min_seconds);
     cost.add_row({std::int64_t{n}, ns, ns / n, ns_ray});
   }
-  out.table(cost, "parity_cost", "Cost of the parity test and of the full ray–polygon test against the vertex count");
+  out.table(cost, "parity_cost",
+            "Cost of the parity test and of the full ray–polygon test against the vertex count");
   out.plot({.title = "Parity test: cost grows linearly with the vertex count",
             .x_label = "vertices n",
             .y_label = "ns per query",
             .log_x = true,
             .log_y = true,
-            .curves = {{.table = "parity_cost.csv", .x = "vertices", .y = "ns per parity query",
+            .curves = {{.table = "parity_cost.csv",
+                        .x = "vertices",
+                        .y = "ns per parity query",
                         .title = "inside\\_parity (2D)"},
-                       {.table = "parity_cost.csv", .x = "vertices", .y = "ns per ray-polygon test",
+                       {.table = "parity_cost.csv",
+                        .x = "vertices",
+                        .y = "ns per ray-polygon test",
                         .title = "ray–polygon (plane + box + parity)"}}},
            "parity_cost", "Nanoseconds per query against the number of vertices (log-log)");
 }

@@ -113,8 +113,9 @@ bool moller_trumbore(const Ray& ray, const Triangle& t) {
 // Kettner's grid, naive and robust, and the count of wrong signs on it.
 void kettner_grid(OutputFolder& out) {
   int naive_wrong = 0, robust_wrong = 0;
-  out.image(kettner_image(false, naive_wrong), "kettner_naive",
-            "Sign of orient2d(p, (12,12), (24,24)) in floating point on a 256×256 grid of ulps near (0.5, 0.5)");
+  out.image(
+      kettner_image(false, naive_wrong), "kettner_naive",
+      "Sign of orient2d(p, (12,12), (24,24)) in floating point on a 256×256 grid of ulps near (0.5, 0.5)");
   out.image(kettner_image(true, robust_wrong), "kettner_robust", "The same grid with the exact predicate");
   Table kettner({"predicate", "points", "wrong_signs"});
   kettner.add_row({std::string("naive"), std::int64_t{65536}, std::int64_t{naive_wrong}});
@@ -156,10 +157,12 @@ void orientation_sign_study(OutputFolder& out, bool quick, Rng& rng) {
     }
     const double seconds = quick ? 0.002 : 0.03;
     const double ns_naive = ns_per_orientation(
-        triples, [](const Vec2& a, const Vec2& b, const Vec2& c) { return orient2d_naive(a, b, c); }, seconds);
+        triples, [](const Vec2& a, const Vec2& b, const Vec2& c) { return orient2d_naive(a, b, c); },
+        seconds);
     const double ns_robust = ns_per_orientation(
         triples, [](const Vec2& a, const Vec2& b, const Vec2& c) { return orient2d_sign(a, b, c); }, seconds);
-    signs.add_row({delta, double(wrong_naive) / samples, double(wrong_robust) / samples, ns_naive, ns_robust});
+    signs.add_row(
+        {delta, double(wrong_naive) / samples, double(wrong_robust) / samples, ns_naive, ns_robust});
   }
   out.table(signs, "orientation_signs",
             "Rate of wrong orientation signs and time per call against the distance δ of c from the line ab");
@@ -201,10 +204,10 @@ void containment_cost(OutputFolder& out, bool quick, std::uint64_t seed) {
     std::vector<Vec2> queries(1024);
     for (Vec2& q : queries) q = Vec2(rng.uniform(-1, 1), rng.uniform(-1, 1));
     const double s = quick ? 0.002 : 0.04;
-    const double t_parity =
-        nanoseconds_per_call([&](std::uint64_t i) { do_not_optimize(inside_parity(p, queries[i & 1023])); }, s);
-    const double t_winding =
-        nanoseconds_per_call([&](std::uint64_t i) { do_not_optimize(winding_number(p, queries[i & 1023])); }, s);
+    const double t_parity = nanoseconds_per_call(
+        [&](std::uint64_t i) { do_not_optimize(inside_parity(p, queries[i & 1023])); }, s);
+    const double t_winding = nanoseconds_per_call(
+        [&](std::uint64_t i) { do_not_optimize(winding_number(p, queries[i & 1023])); }, s);
     const double t_convex = nanoseconds_per_call(
         [&](std::uint64_t i) { do_not_optimize(inside_convex(convex, queries[i & 1023])); }, s);
     cost.add_row({std::int64_t{n}, t_parity, t_winding, t_convex});
@@ -274,7 +277,8 @@ void watertight_study(OutputFolder& out, bool quick, Rng& rng) {
 #pragma omp parallel for reduction(+ : cracks, doubles) schedule(dynamic, 16)
     for (int r = 0; r < ray_count; ++r) {
       int n = 0;
-      for (const Triangle& t : mesh) n += method == 0 ? moller_trumbore(rays[r], t) : intersect(rays[r], t).has_value();
+      for (const Triangle& t : mesh)
+        n += method == 0 ? moller_trumbore(rays[r], t) : intersect(rays[r], t).has_value();
       cracks += n == 0;
       doubles += n >= 2;
     }
@@ -288,7 +292,8 @@ void watertight_study(OutputFolder& out, bool quick, Rng& rng) {
     water.add_row({std::string(method == 0 ? "Möller–Trumbore" : "watertight (exact, tie-broken)"),
                    std::int64_t{ray_count}, cracks, doubles, ns});
   }
-  out.table(water, "watertight", "Rays aimed exactly at a mesh's interior edges and vertices: cracks and double hits");
+  out.table(water, "watertight",
+            "Rays aimed exactly at a mesh's interior edges and vertices: cracks and double hits");
 }
 
 }  // namespace
@@ -305,14 +310,14 @@ int main(int argc, char** argv) {
     const bool quick = options.quick;
     Rng rng(options.seed);  // §2 and §5 draw from it in turn
     report_progress(info.id, "orientation", 0, 4);
-    kettner_grid(out);                               // §1–2
+    kettner_grid(out);  // §1–2
     orientation_sign_study(out, quick, rng);
     report_progress(info.id, "pentagram", 1, 4);
-    pentagram_pictures(out, quick);                  // §3
+    pentagram_pictures(out, quick);  // §3
     report_progress(info.id, "cost study", 2, 4);
-    containment_cost(out, quick, options.seed);      // §4
+    containment_cost(out, quick, options.seed);  // §4
     report_progress(info.id, "watertight", 3, 4);
-    watertight_study(out, quick, rng);               // §5
+    watertight_study(out, quick, rng);  // §5
     report_progress(info.id, "done", 4, 4);
     out.finish();
   });

@@ -231,8 +231,8 @@ void coincident_face_study(OutputFolder& out, int width, int height) {
                 .log_x = true};
   for (const auto& [column, title] : {std::pair{"artefact_percent", "blind hole: removed face showing"},
                                       {"coin_lost_percent", "thin coin (1e-4 thick): pixels lost"}})
-    plot.curves.push_back({.table = "coincident_faces.csv", .x = "tolerance", .y = column, .x_positive = true,
-                           .title = title});
+    plot.curves.push_back(
+        {.table = "coincident_faces.csv", .x = "tolerance", .y = column, .x_positive = true, .title = title});
   out.plot(plot, "coincident_faces",
            "Too small a tolerance shows the removed face; too large erases thin solids.");
 
@@ -286,7 +286,8 @@ void depth_study(OutputFolder& out, int width, int height, bool quick) {
       // best of three runs, since other work on the machine only ever adds time.
       CsgCounters scratch;
       const double ns = best_nanoseconds_per_call(
-          3, [&](std::uint64_t i) { do_not_optimize(intersect(rays[i % rays.size()], tree, options, scratch)); },
+          3,
+          [&](std::uint64_t i) { do_not_optimize(intersect(rays[i % rays.size()], tree, options, scratch)); },
           quick ? 0.002 : 0.05);
       const double per_ray = 1.0 / static_cast<double>(rays.size());
       grouped[prune ? 1 : 0].push_back({std::int64_t{tree.depth()}, std::int64_t{n},
@@ -313,8 +314,11 @@ void depth_study(OutputFolder& out, int width, int height, bool quick) {
                   .log_x = true,
                   .log_y = true};
     for (const auto& [pruning, title] : {std::pair{"off", "no pruning"}, {"on", "bounding-box pruning"}})
-      plot.curves.push_back({.table = "depth_cost.csv", .x = "primitives", .y = y,
-                             .where = {{"pruning", pruning}}, .title = title});
+      plot.curves.push_back({.table = "depth_cost.csv",
+                             .x = "primitives",
+                             .y = y,
+                             .where = {{"pruning", pruning}},
+                             .title = title});
     out.plot(plot, name, caption);
   }
 }

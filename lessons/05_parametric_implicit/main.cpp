@@ -7,8 +7,8 @@
 // tolerance tightens, for the four implicit methods and for Newton on a patch.
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <exception>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -305,8 +305,8 @@ void implicit_study(OutputFolder& out, const ProgramOptions& options) {
                     .log_x = true,
                     .log_y = true};
   for (ImplicitMethod method : methods) {
-    const PlotCurve curve{.table = "implicit_study.csv", .where = {{"method", to_string(method)}},
-                          .title = to_string(method)};
+    const PlotCurve curve{
+        .table = "implicit_study.csv", .where = {{"method", to_string(method)}}, .title = to_string(method)};
     PlotCurve by_iterations = curve, by_time = curve, by_tolerance = curve;
     by_iterations.x = "mean_iterations", by_iterations.y = "max_error";
     by_time.x = "tolerance", by_time.y = "ns_per_ray";
@@ -415,15 +415,16 @@ void patch_accuracy_study(OutputFolder& out, const ProgramOptions& options, Rng&
       table, "patch_study",
       "Bilinear patch, random rays: Newton in (u, v) against the closed-form quadratic, as the tolerance "
       "tightens (subdivision depth 4)");
-  out.plot({.title = "Bilinear patch: Newton error against tolerance",
-            .x_label = "tolerance",
-            .y_label = "|s - s_exact|",
-            .log_x = true,
-            .log_y = true,
-            .curves = {{.table = "patch_study.csv", .x = "tolerance", .y = "max_error", .title = "max error"},
-                       {.table = "patch_study.csv", .x = "tolerance", .y = "median_error",
-                        .title = "median error"}}},
-           "patch_error_vs_tolerance", "Newton on the bilinear patch: error against tolerance, log-log");
+  out.plot(
+      {.title = "Bilinear patch: Newton error against tolerance",
+       .x_label = "tolerance",
+       .y_label = "|s - s_exact|",
+       .log_x = true,
+       .log_y = true,
+       .curves =
+           {{.table = "patch_study.csv", .x = "tolerance", .y = "max_error", .title = "max error"},
+            {.table = "patch_study.csv", .x = "tolerance", .y = "median_error", .title = "median error"}}},
+      "patch_error_vs_tolerance", "Newton on the bilinear patch: error against tolerance, log-log");
 }
 
 // The subdivision depth: too shallow and Newton starts too far from a
@@ -467,7 +468,9 @@ void patch_depth_study(OutputFolder& out, const ProgramOptions& options, Rng& rn
   const PlotSpec depth_plot{.title = "Bicubic patch: subdivision depth",
                             .x_label = "max depth",
                             .y_label = "rays wrong or missed",
-                            .curves = {{.table = "patch_depth_study.csv", .x = "max_depth", .y = "wrong_or_missed",
+                            .curves = {{.table = "patch_depth_study.csv",
+                                        .x = "max_depth",
+                                        .y = "wrong_or_missed",
                                         .title = "wrong or missed (of all rays)"}}};
   out.plot(depth_plot, "patch_depth",
            "Rays whose hit differs from the depth-7 reference, by subdivision depth");
@@ -509,9 +512,13 @@ std::string demos(OutputFolder& out) {
       .title = "Newton near a local minimum (ray 0.01 above the torus)",
       .x_label = "s",
       .y_label = "f(s)",
-      .curves = {{.table = "local_minimum_curve.csv", .x = "s", .y = "f", .title = "f(s)", .mark = PlotMark::lines},
-                 {.table = "local_minimum_newton.csv", .x = "s", .y = "f", .title = "Newton iterates",
-                  .mark = PlotMark::filled_points}}};
+      .curves = {
+          {.table = "local_minimum_curve.csv", .x = "s", .y = "f", .title = "f(s)", .mark = PlotMark::lines},
+          {.table = "local_minimum_newton.csv",
+           .x = "s",
+           .y = "f",
+           .title = "Newton iterates",
+           .mark = PlotMark::filled_points}}};
   out.plot(plot, "local_minimum", "f along a ray that misses the torus, with Newton's iterates");
 
   // (b) Tangent ray: f(s) = (s − 3)² ≥ 0 on the unit sphere, y = 1.
@@ -574,7 +581,8 @@ void implicit_pictures(OutputFolder& out, int width, int height) {
 void missed_hits(OutputFolder& out, int width, int height) {
   const Torus torus(Point3(0.0), 1.0, 0.35);
   int failures = 0, wrong = 0;
-  out.image(render_newton_failures(torus_camera(width, height), torus, failures, wrong), "newton_local_minimum",
+  out.image(render_newton_failures(torus_camera(width, height), torus, failures, wrong),
+            "newton_local_minimum",
             "Plain Newton from the bounding-ball entry: red = no root found although the ray hits, "
             "orange = a farther root");
   out.image(render_thin_feature(width, height, 0.15), "thin_feature",

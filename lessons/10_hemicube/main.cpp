@@ -7,8 +7,8 @@
 // ~2,000-patch room. main() calls one function per section of the README.
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <cstdint>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -135,8 +135,8 @@ StudyCase room_row_case(int m) {
     const auto& v = room.patches[j].vertices;
     const bool above = std::any_of(v.begin(), v.end(),
                                    [&](const Point3& p) { return dot(p - r.centroid, r.normal) > 1e-12; });
-    room.exact.push_back(j != room.receiver && above ? point_polygon_form_factor(r.centroid, r.normal, room.patches[j])
-                                                     : 0.0);
+    room.exact.push_back(
+        j != room.receiver && above ? point_polygon_form_factor(r.centroid, r.normal, room.patches[j]) : 0.0);
     total += room.exact.back();
   }
   require(std::abs(total - 1) < 1e-12, "the exact row of a closed room must sum to one");
@@ -313,9 +313,14 @@ std::vector<double> accuracy_study(OutputFolder& out, const std::vector<int>& re
                 .log_x = true,
                 .log_y = true};
   for (const Config& c : configs)
-    plot.curves.push_back({.table = "accuracy.csv", .x = "resolution", .y = "relative_error",
-                           .where = {{"config", c.name}, {"rule", "exact"}}, .title = c.name + " (exact deltas)"});
-  plot.curves.push_back({.table = "accuracy.csv", .x = "resolution", .y = "relative_error",
+    plot.curves.push_back({.table = "accuracy.csv",
+                           .x = "resolution",
+                           .y = "relative_error",
+                           .where = {{"config", c.name}, {"rule", "exact"}},
+                           .title = c.name + " (exact deltas)"});
+  plot.curves.push_back({.table = "accuracy.csv",
+                         .x = "resolution",
+                         .y = "relative_error",
                          .where = {{"config", "near quad"}, {"rule", "midpoint"}},
                          .title = "near quad (midpoint deltas, the notes)"});
   out.plot(plot, "accuracy",
@@ -345,7 +350,8 @@ void aliasing_line(OutputFolder& out, bool quick, Rng& rng) {
   const PlotCurve curve{.table = "aliasing_line.csv", .x = "offset"};
   PlotCurve fixed = curve, rotated = curve;
   fixed.y = "fixed_ratio", fixed.title = "fixed orientation";
-  rotated.y = "rotated_ratio", rotated.title = "random rotation per estimate", rotated.mark = PlotMark::points;
+  rotated.y = "rotated_ratio", rotated.title = "random rotation per estimate",
+  rotated.mark = PlotMark::points;
   out.plot({.title = "Small patch slid sideways (resolution 32)",
             .x_label = "offset",
             .y_label = "hemicube / exact",
@@ -445,8 +451,11 @@ void point_sampling_study(OutputFolder& out, bool quick) {
   for (const auto& [column, title] : {std::pair{"area_to_area", "exact, area to area"},
                                       {"hemicube_centroid", "hemicube at the centroid"},
                                       {"hemicube_8x8_average", "hemicube on 8x8 sub-patches"}})
-    plot.curves.push_back({.table = "point_sampling.csv", .x = "distance", .y = column,
-                           .where = {{"configuration", "parallel squares"}}, .title = title});
+    plot.curves.push_back({.table = "point_sampling.csv",
+                           .x = "distance",
+                           .y = column,
+                           .where = {{"configuration", "parallel squares"}},
+                           .title = title});
   out.plot(plot, "point_sampling", "Near patches: the centroid's factor overestimates the area average.");
 }
 
@@ -531,8 +540,11 @@ void plot_resolution_study(OutputFolder& out, const std::vector<StudyCase>& case
                   .width = 1000,
                   .height = 600};
   for (std::size_t k = 0; k < cases.size(); ++k) {
-    const PlotCurve fixed{.table = "resolution_study.csv", .x = "resolution", .y = "mean_rel_error",
-                          .where = {{"config", cases[k].name}}, .title = cases[k].name,
+    const PlotCurve fixed{.table = "resolution_study.csv",
+                          .x = "resolution",
+                          .y = "mean_rel_error",
+                          .where = {{"config", cases[k].name}},
+                          .title = cases[k].name,
                           .colour = static_cast<int>(k + 1)};
     by_res.curves.push_back(fixed);
     if (k + 1 == cases.size()) continue;
@@ -572,8 +584,9 @@ void resolution_study(OutputFolder& out, const std::string& id, bool quick, std:
     for (int res : resolutions) {
       report_progress(id, "resolution study", done++, total);
       const ResolutionPoint p = measure_resolution(c, res, rotations, quick ? 0.002 : 0.03, rng);
-      table.add_row({c.name, static_cast<std::int64_t>(targets), std::int64_t{res}, 1e-3 * p.ns, p.fixed.max_abs,
-                     p.fixed.mean_abs, p.fixed.max_rel, p.fixed.mean_rel, p.rotated_rms, p.rotated_mean});
+      table.add_row({c.name, static_cast<std::int64_t>(targets), std::int64_t{res}, 1e-3 * p.ns,
+                     p.fixed.max_abs, p.fixed.mean_abs, p.fixed.max_rel, p.fixed.mean_rel, p.rotated_rms,
+                     p.rotated_mean});
       xs.push_back(res);
       fixed_errors.push_back(p.fixed.mean_rel);
       rms_errors.push_back(p.rotated_rms);
@@ -630,7 +643,9 @@ void room_matrices(OutputFolder& out, const std::string& id, bool quick, const s
             .y_label = "microseconds per row",
             .log_x = true,
             .log_y = true,
-            .curves = {{.table = "timing.csv", .x = "resolution", .y = "microseconds_per_row",
+            .curves = {{.table = "timing.csv",
+                        .x = "resolution",
+                        .y = "microseconds_per_row",
                         .title = "room with block"}}},
            "timing", "Time per row grows with the pixel count (resolution²) plus a per-patch cost.");
 }
@@ -648,15 +663,15 @@ int main(int argc, char** argv) {
     using namespace illum;
     OutputFolder out(options.out, info.id, info.title);
     const bool quick = options.quick;
-    draw_delta_form_factors(out);                                  // §2
-    draw_item_buffer(out, quick);                                  // §4
+    draw_delta_form_factors(out);  // §2
+    draw_item_buffer(out, quick);  // §4
     const std::vector<int> resolutions = accuracy_resolutions(quick);
     const std::vector<double> mean_error = accuracy_study(out, resolutions);  // §5
     Rng rng(options.seed, 10);
     aliasing_line(out, quick, rng);
     rotation_study(out, quick, rng);
     point_sampling_study(out, quick);
-    resolution_study(out, info.id, quick, options.seed);         // §6
+    resolution_study(out, info.id, quick, options.seed);          // §6
     room_matrices(out, info.id, quick, resolutions, mean_error);  // §7
     out.finish();
   });

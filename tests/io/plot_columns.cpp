@@ -18,7 +18,9 @@ std::filesystem::path folder_with(const std::string& header) {
   return folder;
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
 
 }  // namespace
 
@@ -51,8 +53,9 @@ TEST_SUITE("io") {
                                            .colour = 3,
                                            .dashed = true}}};
     const std::string script = illum::gnuplot_script(spec, "t.png", folder);
-    CHECK(contains(script,
-                   "((strcol(1) eq 'it''s' && strcol(3) eq '1' && column(2) > 0 && column(4) > 0) ? column(4) : 1/0)"));
+    CHECK(contains(
+        script,
+        "((strcol(1) eq 'it''s' && strcol(3) eq '1' && column(2) > 0 && column(4) > 0) ? column(4) : 1/0)"));
     CHECK(contains(script, "with points dt 2 lc 3 title"));
   }
 

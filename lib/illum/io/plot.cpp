@@ -67,10 +67,14 @@ std::string gnuplot_text(const std::string& text) {  // a single-quoted gnuplot 
 
 const char* mark_style(PlotMark mark) {
   switch (mark) {
-    case PlotMark::lines: return "lines";
-    case PlotMark::points: return "points";
-    case PlotMark::filled_points: return "points pt 7";
-    case PlotMark::lines_points: break;
+    case PlotMark::lines:
+      return "lines";
+    case PlotMark::points:
+      return "points";
+    case PlotMark::filled_points:
+      return "points pt 7";
+    case PlotMark::lines_points:
+      break;
   }
   return "linespoints";
 }
@@ -89,12 +93,14 @@ std::string curve_clause(const PlotCurve& c, ColumnLookup& column) {
   std::string style = mark_style(c.mark);
   if (c.dashed) style += " dt 2";
   if (c.colour > 0) style += " lc " + std::to_string(c.colour);
-  return quoted(c.table) + " skip 1 using (" + x + "):(" + y + ") with " + style + " title " + quoted(c.title);
+  return quoted(c.table) + " skip 1 using (" + x + "):(" + y + ") with " + style + " title " +
+         quoted(c.title);
 }
 
 }  // namespace
 
-std::string gnuplot_script(const PlotSpec& spec, const std::string& png_name, const std::filesystem::path& folder) {
+std::string gnuplot_script(const PlotSpec& spec, const std::string& png_name,
+                           const std::filesystem::path& folder) {
   std::string s;
   s += "set terminal pngcairo size " + std::to_string(spec.width) + "," + std::to_string(spec.height) +
        " enhanced font 'DejaVu Sans,11'\n";
@@ -115,8 +121,8 @@ std::string gnuplot_script(const PlotSpec& spec, const std::string& png_name, co
     const std::string x = "column(" + std::to_string(p.x_column) + ")";
     std::string y = "column(" + std::to_string(p.y_column) + ")";
     if (!p.filter.empty()) y = "((" + p.filter + ") ? " + y + " : 1/0)";
-    s += (i || !clauses.empty() ? ", \\\n     " : "") + quoted(p.csv) + " skip 1 using (" + x + "):(" + y + ") with " + p.style +
-         " title " + quoted(p.title);
+    s += (i || !clauses.empty() ? ", \\\n     " : "") + quoted(p.csv) + " skip 1 using (" + x + "):(" + y +
+         ") with " + p.style + " title " + quoted(p.title);
   }
   s += "\nset output\n";
   return s;

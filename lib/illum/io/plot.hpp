@@ -26,15 +26,15 @@ struct RowMatch {
 enum class PlotMark { lines_points, lines, points, filled_points };
 
 struct PlotCurve {
-  std::string table{};          // file name of the CSV, in the plot's folder
-  std::string x{};              // column names, as in the CSV's header
+  std::string table{};  // file name of the CSV, in the plot's folder
+  std::string x{};      // column names, as in the CSV's header
   std::string y{};
   std::vector<RowMatch> where{};  // every condition must hold
   bool x_positive = false;        // also drop rows whose x is not > 0 (a zero knob on a log scale)
   bool y_positive = false;        // also drop rows whose y is not > 0 (exact results on a log scale)
   std::string title{};
   PlotMark mark = PlotMark::lines_points;
-  int colour = 0;               // gnuplot's colour index (1, 2, …); 0 = the next in turn
+  int colour = 0;  // gnuplot's colour index (1, 2, …); 0 = the next in turn
   bool dashed = false;
 };
 

@@ -16,7 +16,6 @@ using std::numbers::pi;  // π is the standard's: no file defines its own
 
 namespace {
 
-
 void check_point(const Point3& x, const Vec3& normal, int samples, const char* message) {
   require(is_finite(x) && is_unit(normal) && samples > 0, message);
 }
