@@ -3,11 +3,16 @@
 //
 //   illum scenes                         list the scenes shipped in scenes/
 //   illum render spheres --out out/      render a shipped scene (or a file path)
+#include <algorithm>
 #include <iostream>
+#include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "illum/core/atomic_file.hpp"
 #include "illum/core/error.hpp"
+#include "illum/core/nearest_name.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/sphere_scene.hpp"
@@ -51,24 +56,38 @@ int main(int argc, char** argv) {
   render_cmd->add_option("--height", height, "Image height (default: the scene camera's)")
       ->check(CLI::Range(0, 16384));
   bool quick = false;
-  render_cmd->add_flag("--quick", quick, "A small image (96 × 64), for tests");
+  render_cmd->add_flag("--quick", quick, "A small image (96 × 64), for tests")->disable_flag_override();
 
+  // CLI11 says only "A subcommand is required" for `illum rendr`: name it, and the nearest.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string_view> known;
+    for (const CLI::App* sub : app.get_subcommands({})) known.push_back(sub->get_name());
+    if (std::find(known.begin(), known.end(), argv[1]) == known.end()) {
+      std::cerr << "illum: " << illum::unknown_name_message("subcommand", argv[1], known) << "\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  // As in run_program: a failed command removes every file it wrote.
+  illum::WriteTransaction transaction;
   try {
     if (version->parsed()) std::cout << "illum 0.1.0\n";
     if (list->parsed())
       for (const auto& s : illum::embedded_scenes()) std::cout << s.name << "\n";
-    if (render_cmd->parsed()) return render(scene, out, quick ? 96 : width, quick ? 64 : height);
+    if (render_cmd->parsed()) render(scene, out, quick ? 96 : width, quick ? 64 : height);
   } catch (const illum::NotImplemented& e) {
+    transaction.roll_back();
     std::cerr << "illum: " << e.message() << "\n";
     return 1;
   } catch (const std::exception& e) {
+    transaction.roll_back();
     std::cerr << "illum: error: " << e.what() << "\n";
     return 1;
   }
+  transaction.commit();
   return 0;
 }

@@ -1,17 +1,26 @@
 #include "illum/io/json_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "illum/core/error.hpp"
+#include "illum/core/json_text_check.hpp"
+#include "illum/core/nearest_name.hpp"
 
 namespace illum {
 
 JsonReader::JsonReader(std::shared_ptr<const Document> doc, const nlohmann::json* node, std::string path)
     : doc_(std::move(doc)), node_(node), path_(std::move(path)) {}
 
+void JsonReader::check_text(std::string_view text, const std::string& file_name) {
+  check_json_text(text, file_name, max_depth);
+}
+
 JsonReader JsonReader::parse_text(const std::string& text, const std::string& file_name) {
+  check_text(text, file_name);
   auto doc = std::make_shared<Document>();
   doc->file = file_name;
   try {
@@ -24,6 +33,9 @@ JsonReader JsonReader::parse_text(const std::string& text, const std::string& fi
 }
 
 JsonReader JsonReader::parse_file(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw InputError(file.string(), "(file)", file.string(), "this is a directory, not a JSON file");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string(), "(file)", "(unreadable)", "cannot open the file");
   std::ostringstream text;
@@ -35,6 +47,14 @@ void JsonReader::fail(const std::string& problem) const {
   std::string value = node_->dump();
   if (value.size() > 80) value = value.substr(0, 77) + "...";
   throw InputError(file(), path_.empty() ? "(root)" : path_, value, problem);
+}
+
+void JsonReader::allow_only(std::initializer_list<std::string_view> known) const {
+  if (!node_->is_object()) return;
+  for (const auto& [key, value] : node_->items()) {
+    if (std::find(known.begin(), known.end(), key) != known.end()) continue;
+    at(key).fail(unknown_name_message("field", key, std::vector<std::string_view>(known)));
+  }
 }
 
 bool JsonReader::has(const std::string& key) const { return node_->is_object() && node_->contains(key); }

@@ -9,9 +9,11 @@
 //     double r = s.at("radius").positive_number();   // InputError if ≤ 0, NaN, or not a number
 //   }
 #include <filesystem>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -26,6 +28,14 @@ class JsonReader {
   static JsonReader parse_file(const std::filesystem::path& file);
   // Parses text as if it came from `file_name` (for tests and embedded scenes).
   static JsonReader parse_text(const std::string& text, const std::string& file_name);
+
+  // What the JSON parser's own messages cannot name, checked on the text
+  // before it is parsed (parse_text calls it): nesting deeper than
+  // max_depth, and numbers outside the range of a double (1e999). Throws
+  // InputError with the file, the field's path and the number as written.
+  // It does not recurse, so hostile nesting cannot overflow the stack.
+  static void check_text(std::string_view text, const std::string& file_name);
+  static constexpr int max_depth = 64;
 
   const std::string& file() const { return doc_->file; }
   const std::string& path() const { return path_; }  // "" for the root, then "a.b[2].c"
@@ -43,6 +53,11 @@ class JsonReader {
   bool boolean() const;
   Vec3 vec3() const;                         // [x, y, z], finite
   Vec3 vec3_in(double lo, double hi) const;  // every component in [lo, hi)
+
+  // Refuses (InputError) any member of this object not in `known`, naming
+  // the nearest known name: {"emision": ...} -> "did you mean 'emission'?".
+  // A typo must not leave a field at its silent default.
+  void allow_only(std::initializer_list<std::string_view> known) const;
 
   // Throws InputError(file, path, value-as-JSON, problem).
   [[noreturn]] void fail(const std::string& problem) const;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "illum/core/error.hpp"
+#include "illum/core/memory_budget.hpp"
 #include "illum/core/parallel.hpp"
 #include "illum/io/embedded_scenes.hpp"
 
@@ -11,7 +12,11 @@ namespace illum {
 
 namespace {
 
+// Four Images of Color and the depth buffer of render_sphere_preview.
+constexpr double preview_bytes_per_pixel = 4 * sizeof(Color) + sizeof(double);
+
 CameraSpec read_camera(const JsonReader& c) {
+  c.allow_only({"eye", "target", "up", "vertical_fov_degrees", "width", "height"});
   CameraSpec camera;
   camera.eye = c.at("eye").vec3();
   camera.target = c.at("target").vec3();
@@ -22,6 +27,13 @@ CameraSpec read_camera(const JsonReader& c) {
   camera.vertical_fov_degrees = fov;
   camera.width = c.at("width").integer(1, 16384);
   camera.height = c.at("height").integer(1, 16384);
+  try {
+    check_memory("a " + std::to_string(camera.width) + " × " + std::to_string(camera.height) +
+                     " preview (four images and a depth buffer)",
+                 static_cast<double>(camera.width) * camera.height, preview_bytes_per_pixel);
+  } catch (const std::length_error& e) {
+    c.at("width").fail(e.what());
+  }
   const Vec3 view = camera.target - camera.eye;
   if (length(view) == 0) c.at("target").fail("the target must differ from the eye");
   if (length(cross(view, camera.up)) <= 1e-12 * length(view) * length(camera.up))
@@ -32,12 +44,16 @@ CameraSpec read_camera(const JsonReader& c) {
 }  // namespace
 
 SphereScene read_sphere_scene(const JsonReader& root) {
+  if (!root.json().is_object()) root.fail("expected a JSON object with \"camera\" and \"spheres\"");
+  root.allow_only({"description", "camera", "spheres"});
   SphereScene scene;
   scene.camera = read_camera(root.at("camera"));
   const JsonReader list = root.at("spheres");
   if (list.size() == 0) list.fail("a scene needs at least one sphere");
   for (std::size_t i = 0; i < list.size(); ++i) {
     const JsonReader s = list.at(i);
+    if (!s.json().is_object()) s.fail("expected an object {\"center\", \"radius\", ...}");
+    s.allow_only({"name", "center", "radius", "color"});
     SceneSphere sphere;
     sphere.name = s.has("name") ? s.at("name").string() : "sphere " + std::to_string(i);
     sphere.center = s.at("center").vec3();
@@ -57,6 +73,9 @@ SphereScene load_sphere_scene(const std::string& file_or_name) {
 SpherePreview render_sphere_preview(const SphereScene& scene, int width, int height) {
   if (width <= 0) width = scene.camera.width;
   if (height <= 0) height = scene.camera.height;
+  check_memory("a " + std::to_string(width) + " × " + std::to_string(height) +
+                   " preview (four images and a depth buffer)",
+               static_cast<double>(width) * height, preview_bytes_per_pixel);
   const CameraSpec& c = scene.camera;
   const PinholeCamera camera(c.eye, c.target, c.up, c.vertical_fov_degrees, width, height);
   std::vector<Sphere> spheres;

@@ -9,6 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "illum/core/error.hpp"
+#include "illum/core/json_text_check.hpp"
+#include "illum/core/memory_budget.hpp"
+#include "illum/core/nearest_name.hpp"
 
 namespace illum {
 namespace {
@@ -29,6 +32,14 @@ class SceneReader {
     const auto it = object.find(key);
     if (it == object.end()) fail(join(path, key), json(json::value_t::discarded), "missing required field");
     return *it;
+  }
+
+  // A typo ("emision") must not leave a field at its silent default.
+  void allow_only(const json& object, const std::string& path, const std::vector<std::string_view>& known) const {
+    if (!object.is_object()) return;
+    for (const auto& [key, value] : object.items())
+      if (std::find(known.begin(), known.end(), key) == known.end())
+        fail(join(path, key), value, unknown_name_message("field", key, known));
   }
 
   static std::string join(const std::string& path, const std::string& key) {
@@ -75,6 +86,7 @@ class SceneReader {
   };
 
   Material material(const json& value, const std::string& path) const {
+    allow_only(value, path, {"reflectance", "emission"});
     Material m;
     m.reflectance = reflectance(field(value, path, "reflectance"), path + ".reflectance");
     if (value.contains("emission")) m.emission = emission(value["emission"], path + ".emission");
@@ -92,8 +104,10 @@ double longest_edge(const std::vector<Point3>& polygon) {
   return longest;
 }
 
-int divisions(double edge, double max_patch_edge) {
-  return std::max(1, static_cast<int>(std::ceil(edge / max_patch_edge - 1e-9)));
+// Patches along an edge, in double: a wall far larger than the patch edge
+// must be refused by count (below), never cast to an int that overflows.
+double divisions(double edge, double max_patch_edge) {
+  return std::max(1.0, std::ceil(edge / max_patch_edge - 1e-9));
 }
 
 }  // namespace
@@ -103,6 +117,7 @@ RadiosityScene parse_radiosity_scene(std::string_view json_text, const std::stri
   require(std::isfinite(max_patch_edge) && max_patch_edge > 0.0,
           "load_radiosity_scene: max_patch_edge must be positive and finite");
   SceneReader reader(source);
+  check_json_text(json_text, source, 64);  // depth and 1e999, with the field named
   json root;
   try {
     root = json::parse(json_text);
@@ -110,12 +125,14 @@ RadiosityScene parse_radiosity_scene(std::string_view json_text, const std::stri
     throw InputError(source, "(document)", "(not JSON)", std::string("cannot parse JSON: ") + e.what());
   }
   if (!root.is_object()) reader.fail("(document)", root, "expected a JSON object at the top level");
+  reader.allow_only(root, "", {"name", "notes", "units", "camera", "materials", "surfaces"});
 
   RadiosityScene scene;
   if (root.contains("name") && root["name"].is_string()) scene.name = root["name"].get<std::string>();
   if (root.contains("notes") && root["notes"].is_string()) scene.notes = root["notes"].get<std::string>();
   if (root.contains("camera")) {
     const json& c = root["camera"];
+    reader.allow_only(c, "camera", {"eye", "target", "up", "vertical_fov_degrees"});
     RadiosityCamera camera;
     camera.eye = reader.vec3(reader.field(c, "camera", "eye"), "camera.eye");
     camera.target = reader.vec3(reader.field(c, "camera", "target"), "camera.target");
@@ -124,6 +141,10 @@ RadiosityScene parse_radiosity_scene(std::string_view json_text, const std::stri
         reader.number(reader.field(c, "camera", "vertical_fov_degrees"), "camera.vertical_fov_degrees");
     if (!(camera.vertical_fov_degrees > 0 && camera.vertical_fov_degrees < 180))
       reader.fail("camera.vertical_fov_degrees", c["vertical_fov_degrees"], "must lie in (0, 180) degrees");
+    const Vec3 view = camera.target - camera.eye;
+    if (!(length(view) > 0)) reader.fail("camera.target", c["target"], "the target must differ from the eye");
+    if (!(length(cross(view, camera.up)) > 1e-12 * length(view) * length(camera.up)))
+      reader.fail("camera.up", c["up"], "'up' must not be parallel to the view direction (or zero)");
     scene.camera = camera;
   }
 
@@ -139,9 +160,13 @@ RadiosityScene parse_radiosity_scene(std::string_view json_text, const std::stri
   const json& surfaces = reader.field(root, "", "surfaces");
   if (!surfaces.is_array() || surfaces.empty())
     reader.fail("surfaces", surfaces, "expected a non-empty array");
+  if (static_cast<double>(surfaces.size()) > max_scene_patches)
+    reader.fail("surfaces", json(surfaces.size()), "more surfaces than the most patches a scene may have");
   for (std::size_t s = 0; s < surfaces.size(); ++s) {
     const std::string path = "surfaces[" + std::to_string(s) + "]";
     const json& value = surfaces[s];
+    if (!value.is_object()) reader.fail(path, value, "expected an object {\"material\", \"polygon\"}");
+    reader.allow_only(value, path, {"name", "material", "polygon"});
     RadiositySurface surface;
     surface.name = value.is_object() && value.contains("name") && value["name"].is_string()
                        ? value["name"].get<std::string>()
@@ -196,6 +221,10 @@ RadiosityScene parse_radiosity_scene(std::string_view json_text, const std::stri
         reader.fail(ppath + "[" + std::to_string(k) + "]", poly[k], msg.str());
       }
     }
+    // The one planarity rule: what passed the check above is projected onto
+    // the mean plane, so that no later step (meshing, make_patch) applies a
+    // second, different tolerance to a polygon this loader accepted.
+    for (Point3& v : surface.polygon) v -= dot(v - mean, normal) * normal;
     for (std::size_t k = 0; k < n; ++k) {
       const Vec3 turn = cross(surface.polygon[(k + 1) % n] - surface.polygon[k],
                               surface.polygon[(k + 2) % n] - surface.polygon[(k + 1) % n]);
@@ -205,19 +234,43 @@ RadiosityScene parse_radiosity_scene(std::string_view json_text, const std::stri
     scene.surfaces.push_back(std::move(surface));
   }
 
+  // Patch counts, in double, checked against the stated maximum before
+  // anything is meshed (a 1 km wall meshed at 1 mm would be 10^12 patches).
+  std::vector<std::pair<double, double>> grid(scene.surfaces.size());
+  double total = 0;
+  for (std::size_t s = 0; s < scene.surfaces.size(); ++s) {
+    const auto& p = scene.surfaces[s].polygon;
+    if (p.size() == 4)
+      grid[s] = {divisions(std::max(length(p[1] - p[0]), length(p[2] - p[3])), max_patch_edge),
+                 divisions(std::max(length(p[3] - p[0]), length(p[2] - p[1])), max_patch_edge)};
+    else
+      grid[s] = {divisions(longest_edge(p), max_patch_edge), 0.0};
+    const double count = p.size() == 4 ? grid[s].first * grid[s].second : grid[s].first * grid[s].first;
+    total += count;
+    if (!(total <= max_scene_patches)) {
+      std::ostringstream msg;
+      msg << "meshing with patch edge " << max_patch_edge << " would make " << count
+          << " patches of this surface (" << total << " so far); the most a scene may have is "
+          << max_scene_patches;
+      reader.fail("surfaces[" + std::to_string(s) + "].polygon", surfaces[s]["polygon"], msg.str());
+    }
+  }
+
   // Meshing, only once every surface is valid: no partial output.
   for (std::size_t s = 0; s < scene.surfaces.size(); ++s) {
     RadiositySurface& surface = scene.surfaces[s];
     const auto& p = surface.polygon;
     std::vector<Patch> patches;
-    if (p.size() == 4) {
-      const int nu = divisions(std::max(length(p[1] - p[0]), length(p[2] - p[3])), max_patch_edge);
-      const int nv = divisions(std::max(length(p[3] - p[0]), length(p[2] - p[1])), max_patch_edge);
-      patches = mesh_quad(p[0], p[1], p[2], p[3], nu, nv, surface.reflectance, surface.emission,
-                          static_cast<int>(s));
-    } else {
-      patches = mesh_triangle(p[0], p[1], p[2], divisions(longest_edge(p), max_patch_edge),
-                              surface.reflectance, surface.emission, static_cast<int>(s));
+    try {
+      if (p.size() == 4)
+        patches = mesh_quad(p[0], p[1], p[2], p[3], static_cast<int>(grid[s].first),
+                            static_cast<int>(grid[s].second), surface.reflectance, surface.emission,
+                            static_cast<int>(s));
+      else
+        patches = mesh_triangle(p[0], p[1], p[2], static_cast<int>(grid[s].first), surface.reflectance,
+                                surface.emission, static_cast<int>(s));
+    } catch (const std::invalid_argument& e) {  // a case the checks above missed: still name the field
+      reader.fail("surfaces[" + std::to_string(s) + "].polygon", surfaces[s]["polygon"], e.what());
     }
     surface.first_patch = scene.patches.size();
     surface.patch_count = patches.size();
@@ -227,6 +280,9 @@ RadiosityScene parse_radiosity_scene(std::string_view json_text, const std::stri
 }
 
 RadiosityScene load_radiosity_scene(const std::filesystem::path& file, double max_patch_edge) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw InputError(file.string(), "(file)", file.string(), "this is a directory, not a scene file");
   std::ifstream in(file);
   if (!in) throw InputError(file.string(), "(file)", file.string(), "cannot open the scene file");
   std::ostringstream text;
