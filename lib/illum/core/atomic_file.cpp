@@ -61,6 +61,10 @@ void commit_temporary(const std::filesystem::path& temporary, const std::filesys
   std::lock_guard lock(j.mutex);
   std::error_code ec;
   const auto where = std::filesystem::absolute(path).lexically_normal();
+  if (std::filesystem::is_directory(where, ec)) {
+    std::filesystem::remove(temporary, ec);
+    throw std::runtime_error("cannot write " + path.string() + ": a folder of that name is in the way");
+  }
   if (j.open && !recorded(j.written_files, where)) {
     // First write of this file in this run: keep the old version until the run commits.
     if (std::filesystem::exists(where, ec)) {

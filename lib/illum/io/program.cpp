@@ -34,7 +34,7 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
             const char* end = text.data() + text.size();
             const auto [ptr, ec] = std::from_chars(text.data(), end, value);
             if (text.empty() || ec != std::errc() || ptr != end)
-              return "--seed must be a whole number from 0 to 18446744073709551615, got '" + text + "'";
+              return "must be a whole number from 0 to 18446744073709551615, got '" + text + "'";
             return "";
           },
           "SEED");
