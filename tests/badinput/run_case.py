@@ -55,6 +55,7 @@ def main():
     ap = argparse.ArgumentParser()
     for a in ("--cases", "--case", "--bin", "--scenes", "--work"):
         ap.add_argument(a, required=True)
+    ap.add_argument("--timeout", type=float, default=120, help="seconds before a run counts as a hang")
     args = ap.parse_args()
     case = read_cases(args.cases)[args.case]
 
@@ -85,9 +86,9 @@ def main():
 
     before = snapshot(work)
     try:
-        run = subprocess.run(command, cwd=work, capture_output=True, text=True, timeout=120)
+        run = subprocess.run(command, cwd=work, capture_output=True, text=True, timeout=args.timeout)
     except subprocess.TimeoutExpired:
-        sys.exit(f"FAIL: {args.case}: no answer within 120 s (a hang?): {' '.join(command)}")
+        sys.exit(f"FAIL: {args.case}: no answer within {args.timeout:g} s (a hang?): {' '.join(command)}")
     message = run.stderr + run.stdout
     print(f"$ {' '.join(command)}\nexit {run.returncode}\n{message}")
     failures = []
