@@ -19,6 +19,7 @@
 #include <CLI/CLI.hpp>
 
 #include "illum/core/error.hpp"
+#include "illum/core/memory_budget.hpp"
 #include "illum/core/stopwatch.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
@@ -44,6 +45,9 @@ RadiosityScene load_scene(const std::string& scene, double max_patch_edge) {
   return load_radiosity_scene(scene, max_patch_edge);
 }
 
+// The most patches the study may mesh a scene into (the Cornell box has 616 at its 75 mm edge).
+constexpr double max_study_patches = 6000;
+
 // What this program needs of a scene beyond what the loader checks, refused
 // before anything is written: a camera (for the images), some emission
 // (else there is no light to solve for) and some reflectance (the study
@@ -57,6 +61,14 @@ void check_usable(const RadiosityScene& scene, const std::string& file) {
   if (!(max_reflectance(scene.patches) > 0))
     throw InputError(name, "materials", "(every reflectance 0)",
                      "every reflectance is zero: the study's reflectance scales cannot rescale it");
+  // The study solves the N × N system directly (Gaussian elimination, N³/3
+  // steps) and keeps two N × N matrices: both bound the scene's size.
+  const double n = static_cast<double>(scene.patches.size());
+  if (n > max_study_patches)
+    throw InputError(name, "surfaces", std::to_string(scene.patches.size()) + " patches",
+                     "lesson 11's study meshes a scene into at most " + std::to_string(int(max_study_patches)) +
+                         " patches (it solves the system directly); use a smaller scene");
+  check_memory("the study's two form-factor matrices", 2 * n * n, sizeof(double));
 }
 
 // Scales every reflectance so that the largest channel in the scene is rho_max.

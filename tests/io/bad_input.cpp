@@ -15,6 +15,7 @@
 #include "illum/core/json_text_check.hpp"
 #include "illum/core/memory_budget.hpp"
 #include "illum/core/nearest_name.hpp"
+#include "illum/geometry/implicit_trace.hpp"
 #include "illum/radiosity/radiosity_scene.hpp"
 
 namespace fs = std::filesystem;
@@ -54,9 +55,32 @@ std::string two_quads(const std::string& floor) {
                           {"material": "l", "polygon": [[0, 100, 0], [100, 100, 0], [100, 100, 100], [0, 100, 100]]}]})";
 }
 
+// f(s) = s − root: one sign change, at `root`.
+struct Line : illum::RealFunction {
+  double root;
+  explicit Line(double r) : root(r) {}
+  double value(double s) const override { return s - root; }
+  double derivative(double) const override { return 1.0; }
+};
+
 }  // namespace
 
 TEST_SUITE("io") {
+  TEST_CASE("hard case: a march far from the origin ends although s + step rounds back to s") {
+    // At 1e17 a double's spacing is 16, so s + 1 == s: a loop that adds the
+    // step until it reaches the end never ends. Counted steps do.
+    const double lo = 1e17;
+    const illum::Interval range(lo, lo + 1024);
+    CHECK_FALSE(illum::march_for_sign_change(Line(-1.0), range, 1.0).has_value());
+    const auto hit = illum::march_for_sign_change(Line(lo + 500), range, 1.0);
+    REQUIRE(hit.has_value());
+    CHECK(hit->lo <= lo + 500);
+    CHECK(hit->hi >= lo + 500);
+    // More steps than the stated maximum: refused at once, not marched.
+    CHECK_THROWS_AS(illum::march_for_sign_change(Line(-1.0), illum::Interval(0.0, 1e6), 1e-3),
+                    std::invalid_argument);
+  }
+
   TEST_CASE("bad input: a rolled-back run removes its files and folders and restores old files") {
     const fs::path dir = fresh_folder("rollback");
     illum::write_text_file(dir / "old.txt", "old\n");
