@@ -54,10 +54,12 @@ constexpr double max_study_patches = 6000;
 // rescales it, which a zero cannot be).
 void check_usable(const RadiosityScene& scene, const std::string& file) {
   const std::string name = embedded_scene(file) ? "scenes/" + file + ".json" : file;
-  if (!scene.camera) throw InputError(name, "camera", "(missing)", "lesson 11 draws the scene through its camera");
+  if (!scene.camera)
+    throw InputError(name, "camera", "(missing)", "lesson 11 draws the scene through its camera");
   double emitted = 0;
   for (const Patch& p : scene.patches) emitted += p.area * (p.emission.r + p.emission.g + p.emission.b);
-  if (!(emitted > 0)) throw InputError(name, "materials", "(no emission)", "no surface emits light: nothing to solve");
+  if (!(emitted > 0))
+    throw InputError(name, "materials", "(no emission)", "no surface emits light: nothing to solve");
   if (!(max_reflectance(scene.patches) > 0))
     throw InputError(name, "materials", "(every reflectance 0)",
                      "every reflectance is zero: the study's reflectance scales cannot rescale it");
@@ -66,7 +68,8 @@ void check_usable(const RadiosityScene& scene, const std::string& file) {
   const double n = static_cast<double>(scene.patches.size());
   if (n > max_study_patches)
     throw InputError(name, "surfaces", std::to_string(scene.patches.size()) + " patches",
-                     "lesson 11's study meshes a scene into at most " + std::to_string(int(max_study_patches)) +
+                     "lesson 11's study meshes a scene into at most " +
+                         std::to_string(int(max_study_patches)) +
                          " patches (it solves the system directly); use a smaller scene");
   check_memory("the study's two form-factor matrices", 2 * n * n, sizeof(double));
 }

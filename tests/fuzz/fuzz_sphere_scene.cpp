@@ -14,7 +14,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
-    const illum::SphereScene scene = illum::read_sphere_scene(illum::JsonReader::parse_text(text, "fuzz.json"));
+    const illum::SphereScene scene =
+        illum::read_sphere_scene(illum::JsonReader::parse_text(text, "fuzz.json"));
     // What the loader accepted, the camera must accept too (no later refusal without a field).
     const illum::CameraSpec& c = scene.camera;
     const illum::PinholeCamera camera(c.eye, c.target, c.up, c.vertical_fov_degrees, 4, 3);

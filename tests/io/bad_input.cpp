@@ -180,7 +180,7 @@ TEST_SUITE("io") {
 
   TEST_CASE("bad input: memory checks give what was asked and the limit") {
     CHECK_NOTHROW(illum::check_memory("a small table", 1000, 8));
-    CHECK_THROWS_WITH_AS(illum::check_memory("a huge table", 1e12, 8), doctest::Contains("would need 8000.0 GB"),
-                         std::length_error);
+    CHECK_THROWS_WITH_AS(illum::check_memory("a huge table", 1e12, 8),
+                         doctest::Contains("would need 8000.0 GB"), std::length_error);
   }
 }

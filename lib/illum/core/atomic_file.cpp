@@ -46,8 +46,8 @@ void create_output_directories(const std::filesystem::path& folder) {
   std::lock_guard lock(j.mutex);
   // The missing ancestors, outermost first, so that roll-back removes them innermost first.
   std::vector<std::filesystem::path> missing;
-  for (auto p = std::filesystem::absolute(folder).lexically_normal(); !p.empty() && !std::filesystem::exists(p);
-       p = p.parent_path()) {
+  for (auto p = std::filesystem::absolute(folder).lexically_normal();
+       !p.empty() && !std::filesystem::exists(p); p = p.parent_path()) {
     missing.insert(missing.begin(), p);
     if (p == p.parent_path()) break;
   }
@@ -134,7 +134,8 @@ void WriteTransaction::roll_back() {
   std::lock_guard lock(j.mutex);
   if (!j.open) return;
   std::error_code ec;  // best effort: a roll-back must not throw
-  for (auto it = j.written_files.rbegin(); it != j.written_files.rend(); ++it) std::filesystem::remove(*it, ec);
+  for (auto it = j.written_files.rbegin(); it != j.written_files.rend(); ++it)
+    std::filesystem::remove(*it, ec);
   for (const auto& [backup, original] : j.moved_aside) std::filesystem::rename(backup, original, ec);
   for (auto it = j.created_folders.rbegin(); it != j.created_folders.rend(); ++it)
     std::filesystem::remove(*it, ec);  // only if empty: a folder someone else filled meanwhile stays

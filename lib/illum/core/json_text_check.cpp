@@ -49,9 +49,9 @@ void check_json_text(std::string_view text, const std::string& file_name, int ma
       ++i;
     } else if (c == '{' || c == '[') {
       if (static_cast<int>(levels.size()) >= max_depth)
-        throw InputError(file_name, path_of(levels), "(nested deeper)",
-                         "JSON nested more than " + std::to_string(max_depth) +
-                             " levels deep: no scene needs that many");
+        throw InputError(
+            file_name, path_of(levels), "(nested deeper)",
+            "JSON nested more than " + std::to_string(max_depth) + " levels deep: no scene needs that many");
       levels.push_back({c == '{', c == '{', 0, ""});
       ++i;
     } else if (c == '}' || c == ']') {
@@ -59,14 +59,16 @@ void check_json_text(std::string_view text, const std::string& file_name, int ma
       ++i;
     } else if (c == ',') {
       if (!levels.empty()) {
-        if (levels.back().object) levels.back().expecting_key = true;
-        else ++levels.back().index;
+        if (levels.back().object)
+          levels.back().expecting_key = true;
+        else
+          ++levels.back().index;
       }
       ++i;
     } else if (c == '-' || (c >= '0' && c <= '9')) {
       const std::size_t start = i;
-      while (i < n && (text[i] == '-' || text[i] == '+' || text[i] == '.' || text[i] == 'e' || text[i] == 'E' ||
-                       (text[i] >= '0' && text[i] <= '9')))
+      while (i < n && (text[i] == '-' || text[i] == '+' || text[i] == '.' || text[i] == 'e' ||
+                       text[i] == 'E' || (text[i] >= '0' && text[i] <= '9')))
         ++i;
       const std::string number(text.substr(start, i - start));
       errno = 0;

@@ -19,9 +19,12 @@ double memory_budget_bytes() {
 
 std::string format_bytes(double bytes) {
   char text[64];
-  if (bytes >= 1e9) std::snprintf(text, sizeof text, "%.1f GB", bytes / 1e9);
-  else if (bytes >= 1e6) std::snprintf(text, sizeof text, "%.1f MB", bytes / 1e6);
-  else std::snprintf(text, sizeof text, "%.0f bytes", bytes);
+  if (bytes >= 1e9)
+    std::snprintf(text, sizeof text, "%.1f GB", bytes / 1e9);
+  else if (bytes >= 1e6)
+    std::snprintf(text, sizeof text, "%.1f MB", bytes / 1e6);
+  else
+    std::snprintf(text, sizeof text, "%.0f bytes", bytes);
   return text;
 }
 
@@ -31,9 +34,8 @@ void check_memory(const std::string& what, double count, double bytes_each) {
   if (!(need <= budget)) {  // also refuses NaN
     char numbers[96];
     std::snprintf(numbers, sizeof numbers, "%.6g × %.0f bytes", count, bytes_each);
-    throw std::length_error(what + " (" + numbers + ") would need " + format_bytes(need) +
-                            "; the limit is " + format_bytes(budget) +
-                            " (half this machine's memory, at most 8 GiB)");
+    throw std::length_error(what + " (" + numbers + ") would need " + format_bytes(need) + "; the limit is " +
+                            format_bytes(budget) + " (half this machine's memory, at most 8 GiB)");
   }
 }
 

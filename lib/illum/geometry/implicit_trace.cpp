@@ -31,8 +31,9 @@ std::optional<Interval> march_for_sign_change(const RealFunction& f, Interval ra
   // Steps are counted, not accumulated: far from the origin s + step == s,
   // and a loop waiting for s to reach range.hi would never end.
   const double steps = std::ceil(range.size() / step);
-  require(steps <= max_march_steps, "march_for_sign_change: more steps than max_march_steps (the step is too "
-                                    "small for the range)");
+  require(steps <= max_march_steps,
+          "march_for_sign_change: more steps than max_march_steps (the step is too "
+          "small for the range)");
   const auto count = static_cast<std::int64_t>(steps);
   for (std::int64_t k = 1; k <= count; ++k) {
     const double next = k == count ? range.hi : std::min(range.lo + static_cast<double>(k) * step, range.hi);

@@ -1,6 +1,6 @@
 #pragma once
 // What every illum program shares: --help, --out DIR, --quick, --seed, and
-// errors reported as one clear line with exit code 1 (2 for bad flags).
+// errors reported as one clear line with exit code 1 (CLI11's non-zero code for bad flags).
 //
 //   int main(int argc, char** argv) {
 //     illum::ProgramInfo info{"lesson01", "Ray and sphere", "Renders ... and runs the study."};

@@ -35,7 +35,8 @@ class SceneReader {
   }
 
   // A typo ("emision") must not leave a field at its silent default.
-  void allow_only(const json& object, const std::string& path, const std::vector<std::string_view>& known) const {
+  void allow_only(const json& object, const std::string& path,
+                  const std::vector<std::string_view>& known) const {
     if (!object.is_object()) return;
     for (const auto& [key, value] : object.items())
       if (std::find(known.begin(), known.end(), key) == known.end())
