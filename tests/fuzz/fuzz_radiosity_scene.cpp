@@ -10,7 +10,7 @@
 #include <string_view>
 
 #include "illum/core/error.hpp"
-#include "illum/radiosity/radiosity_scene.hpp"
+#include "illum/io/scene_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);

@@ -16,7 +16,7 @@
 #include "illum/core/memory_budget.hpp"
 #include "illum/core/nearest_name.hpp"
 #include "illum/geometry/implicit_trace.hpp"
-#include "illum/radiosity/radiosity_scene.hpp"
+#include "illum/io/scene_file.hpp"
 
 namespace fs = std::filesystem;
 
@@ -46,13 +46,17 @@ std::string refusal(std::string_view text) {
   return "";
 }
 
-// Two quads facing each other, 100 × 100; `floor` is the floor's polygon.
+// Two quads facing each other, 100 × 100; `floor` is the floor's vertices.
 std::string two_quads(const std::string& floor) {
-  return R"({"materials": {"w": {"reflectance": [0.5, 0.5, 0.5]},
-                           "l": {"reflectance": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
-             "surfaces": [{"material": "w", "polygon": )" +
+  return R"({"format": 1,
+             "camera": {"eye": [50, 50, -200], "target": [50, 50, 50], "up": [0, 1, 0],
+                        "vertical_fov_degrees": 40, "width": 8, "height": 8},
+             "materials": {"w": {"diffuse": [0.5, 0.5, 0.5]},
+                           "l": {"diffuse": [0.5, 0.5, 0.5], "emission": [1, 1, 1]}},
+             "primitives": [{"type": "polygon", "material": "w", "vertices": )" +
          floor + R"(},
-                          {"material": "l", "polygon": [[0, 100, 0], [100, 100, 0], [100, 100, 100], [0, 100, 100]]}]})";
+                            {"type": "polygon", "material": "l",
+                             "vertices": [[0, 100, 0], [100, 100, 0], [100, 100, 100], [0, 100, 100]]}]})";
 }
 
 // f(s) = s − root: one sign change, at `root`.
@@ -154,16 +158,28 @@ TEST_SUITE("io") {
     CHECK(illum::edit_distance("kitten", "sitting") == 3);  // the textbook example
   }
 
-  TEST_CASE("bad input: a quad the loader accepts as planar is meshed, whatever the patch size") {
-    // The fourth vertex is raised by h = 3.6e-4: each vertex lies h/4 = 9e-5 off the
-    // mean plane, within the loader's 1e-6 × 100 = 1e-4. make_patch alone would
-    // refuse it (1e-6 × its 70.7 radius = 7.1e-5): the loader's one rule must win.
-    const std::string text = two_quads("[[0, 0, 0], [0, 0, 100], [100, 0.00036, 100], [100, 0, 0]]");
-    for (double edge : {200.0, 30.0}) {
-      const illum::RadiosityScene s = illum::parse_radiosity_scene(text, "q.json", edge);
-      double area = 0;
-      for (std::size_t i = 0; i < s.surfaces[0].patch_count; ++i) area += s.patches[i].area;
-      CHECK(area == doctest::Approx(1e4).epsilon(1e-9));
+  TEST_CASE("bad input: a nearly planar quad is refused with its field named, or meshed at every size") {
+    // One planarity rule, applied at the loader: whatever it decides, no later
+    // step (meshing, make_patch) may refuse what it accepted, and a refusal
+    // names the vertices. h = 3.6e-4 puts each vertex h/4 = 9e-5 off the mean
+    // plane: within the radiosity check's 1e-6 × 100 but beyond make_patch's
+    // own 1e-6 × 70.7 for a single patch; h = 1e-12 is planar to rounding.
+    for (const char* raised : {"0.00036", "1e-12"}) {
+      const std::string text =
+          two_quads(std::string("[[0, 0, 0], [0, 0, 100], [100, ") + raised + ", 100], [100, 0, 0]]");
+      for (double edge : {200.0, 30.0}) {
+        CAPTURE(raised);
+        CAPTURE(edge);
+        try {
+          const illum::RadiosityScene s = illum::parse_radiosity_scene(text, "q.json", edge);
+          double area = 0;
+          for (std::size_t i = 0; i < s.surfaces[0].patch_count; ++i) area += s.patches[i].area;
+          CHECK(area == doctest::Approx(1e4).epsilon(1e-6));
+        } catch (const illum::InputError& e) {
+          CHECK(e.field().find("primitives[0].vertices") == 0);
+          CHECK(std::string(raised) != "1e-12");  // a planar quad must load
+        }
+      }
     }
   }
 
@@ -173,7 +189,7 @@ TEST_SUITE("io") {
       (void)illum::parse_radiosity_scene(text, "wall.json", 1.0);
       FAIL("a 1e18-patch wall was accepted");
     } catch (const illum::InputError& e) {
-      CHECK(e.field() == "surfaces[0].polygon");
+      CHECK(e.field() == "primitives[0].vertices");
       CHECK(std::string(e.what()).find("1e+18") != std::string::npos);
     }
   }

@@ -61,11 +61,11 @@ struct CsgCounters {
 };
 
 struct CsgHit {
-  double s = 0;          // ray parameter, inside ray.range
-  Point3 point;          // P0 + sω
-  Vec3 normal;           // outward unit normal of the composite solid there
-  bool entering = true;  // false when the ray leaves the solid here (it started inside)
-  int surface = 0;       // tag of the primitive whose surface it is
+  double s = 0;     // ray parameter, inside ray.range
+  Point3 point;     // P0 + sω
+  Vec3 normal;      // outward unit normal of the composite solid there, never flipped towards the ray:
+                    // the ray leaves the solid here exactly when !arrives_at_front(ω, normal)
+  int surface = 0;  // tag of the primitive whose surface it is
 };
 
 // A CSG tree flattened for evaluation: nodes in an array, each inner node

@@ -25,7 +25,7 @@ JsonReader JsonReader::parse_text(const std::string& text, const std::string& fi
   doc->file = file_name;
   try {
     doc->root = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // syntax errors, and numbers such as 1e999 that overflow
     throw InputError(file_name, "(file)", "(not JSON)", std::string("cannot parse JSON: ") + e.what());
   }
   const nlohmann::json* root = &doc->root;
@@ -47,14 +47,6 @@ void JsonReader::fail(const std::string& problem) const {
   std::string value = node_->dump();
   if (value.size() > 80) value = value.substr(0, 77) + "...";
   throw InputError(file(), path_.empty() ? "(root)" : path_, value, problem);
-}
-
-void JsonReader::allow_only(std::initializer_list<std::string_view> known) const {
-  if (!node_->is_object()) return;
-  for (const auto& [key, value] : node_->items()) {
-    if (std::find(known.begin(), known.end(), key) != known.end()) continue;
-    at(key).fail(unknown_name_message("field", key, std::vector<std::string_view>(known)));
-  }
 }
 
 bool JsonReader::has(const std::string& key) const { return node_->is_object() && node_->contains(key); }
@@ -121,6 +113,38 @@ Vec3 JsonReader::vec3_in(double lo, double hi) const {
       at(static_cast<std::size_t>(k))
           .fail("must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + ")");
   return v;
+}
+
+Vec3 JsonReader::color() const {
+  const Vec3 v = vec3();
+  for (int k = 0; k < 3; ++k)
+    if (!(v[k] >= 0.0 && v[k] <= 1.0))
+      at(static_cast<std::size_t>(k)).fail("a colour factor must lie in [0, 1]");
+  return v;
+}
+
+std::vector<std::string> JsonReader::keys() const {
+  if (!node_->is_object()) fail("expected an object");
+  std::vector<std::string> out;
+  for (const auto& item : node_->items()) out.push_back(item.key());
+  return out;
+}
+
+void JsonReader::only_fields(std::initializer_list<std::string_view> known) const {
+  if (!node_->is_object()) fail("expected an object");
+  for (const auto& item : node_->items()) {
+    if (std::find(known.begin(), known.end(), item.key()) != known.end()) continue;
+    // ostringstream rather than string '+': GCC 12 warns falsely (-Wrestrict) on the latter.
+    std::ostringstream problem;
+    problem << "unknown field '" << item.key() << "'";
+    if (const std::string near = nearest_name(item.key(), std::vector<std::string_view>(known)); !near.empty()) {
+      problem << "; did you mean '" << near << "'?";
+    } else {
+      problem << "; known fields:";
+      for (std::string_view k : known) problem << ' ' << k;
+    }
+    at(item.key()).fail(problem.str());
+  }
 }
 
 }  // namespace illum

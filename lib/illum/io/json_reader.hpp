@@ -1,7 +1,7 @@
 #pragma once
 // Reading a JSON file field by field, so that every error names the file,
 // the field's path ("spheres[2].radius") and the offending value
-// (DESIGN.md: "a clear error naming the file, field and value").
+// (docs/architecture.md, "Numbers and errors").
 //
 //   const JsonReader root = JsonReader::parse_file("scenes/spheres.json");
 //   for (std::size_t i = 0; i < root.at("spheres").size(); ++i) {
@@ -14,9 +14,11 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
+#include "illum/core/nearest_name.hpp"  // nearest_name, for "did you mean"
 #include "illum/core/vec.hpp"
 
 namespace illum {
@@ -54,10 +56,13 @@ class JsonReader {
   Vec3 vec3() const;                         // [x, y, z], finite
   Vec3 vec3_in(double lo, double hi) const;  // every component in [lo, hi)
 
-  // Refuses (InputError) any member of this object not in `known`, naming
-  // the nearest known name: {"emision": ...} -> "did you mean 'emission'?".
-  // A typo must not leave a field at its silent default.
-  void allow_only(std::initializer_list<std::string_view> known) const;
+  // The member names of an object, in the file's order as nlohmann-json
+  // keeps it (sorted), for objects whose keys are names ("materials").
+  std::vector<std::string> keys() const;
+  // Throws InputError for a member of this object whose name is not in
+  // `known`, suggesting the nearest known name ("did you mean 'radius'?").
+  void only_fields(std::initializer_list<std::string_view> known) const;
+  Vec3 color() const;  // [r, g, b], each in [0, 1]
 
   // Throws InputError(file, path, value-as-JSON, problem).
   [[noreturn]] void fail(const std::string& problem) const;
@@ -72,5 +77,6 @@ class JsonReader {
   const nlohmann::json* node_;
   std::string path_;
 };
+
 
 }  // namespace illum
