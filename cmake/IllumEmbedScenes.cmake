@@ -1,6 +1,6 @@
 # Embeds every scenes/*.json into the library, so programs find the shipped
 # scenes wherever they run from (illum::embedded_scene("spheres")), and every
-# scenes/*.obj (illum::embedded_file("tetrahedron.obj")), so a shipped scene
+# scenes/*.obj (illum::embedded_file("octahedron.obj")), so a shipped scene
 # may use a shipped mesh.
 function(illum_embed_text tmp list_function files keep_extension)
   file(APPEND ${tmp} "const std::vector<EmbeddedScene>& ${list_function}() {\n"

@@ -4,14 +4,14 @@
 //
 // Every output file is written under a temporary name beside its final name
 // and renamed into place only when complete, so an interrupted or failed run
-// never leaves a truncated image or table behind.
+// never leaves a truncated image or table behind (docs/architecture.md, "Numbers and errors").
 //
 // While a WriteTransaction is open (run_program opens one around a program's
 // body), every folder created and every file renamed into place is recorded;
 // a file that already existed is first moved aside. If the transaction ends
 // without commit() (an exception escaped the body), the run's files and the
 // folders it created are removed and the moved-aside files are put back: a
-// refused run leaves the output folder exactly as it found it.
+// refused run leaves the output folder exactly as it found it (docs/bad-input.md).
 #include <filesystem>
 #include <functional>
 #include <ostream>

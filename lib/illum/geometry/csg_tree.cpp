@@ -155,6 +155,7 @@ std::optional<CsgHit> intersect(const Ray& ray, const CsgTree& tree, const CsgOp
   hit.s = nearest->boundary.s;
   hit.point = ray.at(hit.s);
   hit.normal = nearest->boundary.normal;
+  hit.entering = nearest->entering;
   hit.surface = nearest->boundary.surface;
   return hit;
 }

@@ -8,7 +8,10 @@
 // for a closed solid, the winding's or the parametrisation's normal for an
 // open surface), never flipped towards the ray. SurfaceHit::orient is the one
 // function that turns that normal into the side hit and a normal facing the
-// ray (Ray Tracing in One Weekend's set_face_normal).
+// ray (Ray Tracing in One Weekend's set_face_normal). Two lessons also grade
+// a flag of their own: SphereHit::from_inside (lesson 01: where the origin
+// is, which decides the root) and CsgHit::entering (lesson 04: the span
+// boundary's kind); the tracer reads neither.
 #include <cstdint>
 #include <limits>
 #include <optional>

@@ -19,7 +19,7 @@ const std::vector<EmbeddedScene>& embedded_files();  // name = the file name wit
 std::optional<std::string_view> embedded_scene(std::string_view name);
 
 // Every other file of scenes/ (the OBJ meshes the shipped scenes use), by
-// file name ("tetrahedron.obj"): its text, or nothing.
+// file name ("octahedron.obj"): its text, or nothing.
 std::optional<std::string_view> embedded_file(std::string_view file_name);
 
 }  // namespace illum

@@ -137,7 +137,8 @@ void JsonReader::only_fields(std::initializer_list<std::string_view> known) cons
     // ostringstream rather than string '+': GCC 12 warns falsely (-Wrestrict) on the latter.
     std::ostringstream problem;
     problem << "unknown field '" << item.key() << "'";
-    if (const std::string near = nearest_name(item.key(), std::vector<std::string_view>(known)); !near.empty()) {
+    if (const std::string near = nearest_name(item.key(), std::vector<std::string_view>(known));
+        !near.empty()) {
       problem << "; did you mean '" << near << "'?";
     } else {
       problem << "; known fields:";

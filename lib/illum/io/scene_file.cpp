@@ -443,14 +443,16 @@ Scene read_scene(const JsonReader& root, const fs::path& base_folder) {
 Scene read_scene(const JsonReader& root) { return read_scene(root, fs::path(root.file()).parent_path()); }
 
 OpenedScene open_scene(const std::string& file_or_shipped_name) {
-  // A file that exists wins over a shipped name only when it is a path
-  // (contains a folder); a bare name is a shipped scene first.
-  const bool bare =
-      fs::path(file_or_shipped_name).parent_path().empty() || file_or_shipped_name.rfind("scenes/", 0) == 0;
-  if (const auto name = shipped_name(file_or_shipped_name);
-      name && (bare || !fs::exists(file_or_shipped_name)))
+  // A bare name ("cornell") is a shipped scene; a path that exists on disk is
+  // that file (an edited scenes/cornell.json is read as edited); otherwise a
+  // path naming a shipped scene ("scenes/cornell.json" run from elsewhere)
+  // is the compiled-in copy.
+  const fs::path path(file_or_shipped_name);
+  const bool bare = path.parent_path().empty() && path.extension().empty();
+  const std::optional<std::string> name = shipped_name(file_or_shipped_name);
+  if (name && (bare || !fs::exists(path)))
     return {JsonReader::parse_text(std::string(*embedded_scene(*name)), "scenes/" + *name + ".json"), true};
-  return {JsonReader::parse_file(file_or_shipped_name), false};
+  return {JsonReader::parse_file(path), false};
 }
 
 Scene load_scene(const std::string& file_or_shipped_name) {

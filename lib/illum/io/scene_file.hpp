@@ -25,10 +25,11 @@ inline constexpr int scene_format_version = 1;
 Scene read_scene(const JsonReader& root, const std::filesystem::path& base_folder);
 Scene read_scene(const JsonReader& root);  // base folder: the folder of root.file()
 
-// The parsed file of a scene: a shipped one (scenes/, compiled in) when the
-// argument is a bare name that is shipped ("cornell", "cornell.json",
-// "scenes/cornell.json"), else the file at that path. InputError when
-// neither exists or the file is not JSON.
+// The parsed file of a scene. A bare name ("cornell") is the shipped
+// scenes/cornell.json, compiled in; a path that exists is that file; a path
+// that does not exist but names a shipped scene ("cornell.json",
+// "scenes/cornell.json" run from another folder) is the shipped one.
+// InputError when none of these exists or the file is not JSON.
 struct OpenedScene {
   JsonReader root;
   bool shipped = false;  // OBJ files are then looked up among the shipped files
