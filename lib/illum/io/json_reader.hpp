@@ -78,5 +78,4 @@ class JsonReader {
   std::string path_;
 };
 
-
 }  // namespace illum
