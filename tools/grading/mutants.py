@@ -506,7 +506,9 @@ class Workspace:
 
 def lesson_targets(root: Path, lesson: str) -> list[str]:
     targets = [f"tests_lesson{lesson}"]
-    if project.hidden_sources(root):
+    # The hidden program only when it holds this lesson's suite: linking it costs as much as the lesson's own.
+    if any(f'"lesson{lesson}"' in path.read_text(encoding="utf-8", errors="replace")
+           for path in project.hidden_sources(root)):
         targets.append("tests_hidden")
     return targets
 
@@ -515,7 +517,7 @@ def run_grading(workspace: Workspace, lesson: str, timeout: float) -> tuple[str,
     """('killed' | 'survived' | 'timed out', first failing test) for the built tree."""
     bin_dir = workspace.build / "bin"
     programs = [bin_dir / f"tests_lesson{lesson}"]
-    if (bin_dir / "tests_hidden").exists():
+    if "tests_hidden" in lesson_targets(workspace.root, lesson):
         programs.append(bin_dir / "tests_hidden")
     for program in programs:
         suite = run_suite(program, f"lesson{lesson}", hidden=program.name == "tests_hidden", timeout=timeout)
