@@ -107,6 +107,25 @@ TEST_SUITE("lesson03") {
     CHECK_FALSE(is_convex(flat_polygon({{1, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}, {0, 0}})));
   }
 
+  TEST_CASE("convexity: the sign-change count sees every edge, wherever the loop starts") {
+    // A pentagram turns the same way at every vertex; only the count of sign
+    // changes of the edges' u and v components (4 each: it goes round twice)
+    // rejects it. Turned so that it starts at 30°, its last edge is the one
+    // that completes the fourth change: a count that skips it finds 2.
+    std::vector<Vec2> star;
+    const double degree = std::acos(-1.0) / 180;
+    for (int k = 0; k < 5; ++k) star.push_back({std::cos((30 + 144 * k) * degree), std::sin((30 + 144 * k) * degree)});
+    CHECK_FALSE_MESSAGE(is_convex(flat_polygon(star)), "a pentagram winds twice: u and v change sign 4 times each, "
+                                                       "counting every edge, the closing one included");
+    // A convex hexagon listed from a vertex of its lower chain, with six (not
+    // three or five) vertices: an edge's u must be x[i+1] − x[i] with the
+    // index taken cyclically, ((i + 1) mod n); u changes sign exactly twice.
+    const std::vector<Vec2> hexagon = {{0, -1.3}, {1, -1}, {2, 0}, {1.5, 1}, {-2, 0}, {-1, -1}};
+    CHECK_MESSAGE(is_convex(flat_polygon(hexagon)), "every turn is left (cross products 0.6 … 4.5) and u, v change "
+                                                    "sign twice each: convex");
+    CHECK(ConvexPolygon(flat_polygon(hexagon)).orientation() == 1);
+  }
+
   TEST_CASE("convex test: a clockwise pentagon with coordinates not exact in binary") {
     // Clockwise, vertices on tenths (none exact in binary). Inside ⇔ on the
     // right of every edge (cross product < 0), computed here in long double
