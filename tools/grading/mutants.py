@@ -483,8 +483,8 @@ class Workspace:
         done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace")
         return done.returncode == 0, done.stdout
 
-    def build_targets(self, targets: list[str], timeout: float) -> tuple[bool, str]:
-        command = ["cmake", "--build", str(self.build), "-j", "1", "--target", *targets]
+    def build_targets(self, targets: list[str], timeout: float, jobs: int = 1) -> tuple[bool, str]:
+        command = ["cmake", "--build", str(self.build), "-j", str(jobs), "--target", *targets]
         try:
             done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                                   errors="replace", timeout=timeout)
@@ -633,9 +633,11 @@ def run_lesson(report: LessonReport, workspaces: list[Workspace], timeout_arg: f
     start = time.monotonic()
     targets = lesson_targets(root, report.lesson)
     # Baseline: each worker builds the unmutated tree; the suite must pass on it.
+    # The first build of a tree compiles the whole library: share the cores among the workers.
+    build_jobs = max(1, (os.cpu_count() or 1) // len(workspaces))
     for workspace in workspaces:
         workspace.restore()
-        ok, output = workspace.build_targets(targets, timeout=3600)
+        ok, output = workspace.build_targets(targets, timeout=3600, jobs=build_jobs)
         if not ok:
             report.problem = f"the unmutated tree does not build in {workspace.build}:\n{output[-3000:]}"
             return
