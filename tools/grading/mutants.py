@@ -568,7 +568,9 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
                     "many the grading tests catch (see docs/grading.md).")
     parser.add_argument("--mutants", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("lessons", nargs="*", metavar="NN", help="lessons (default: every lesson with exercises)")
-    parser.add_argument("--sample", type=int, metavar="N", help="run a seeded random sample of N mutants per lesson")
+    parser.add_argument("--sample", type=int, metavar="N",
+                        help="a seeded random sample of N mutants per lesson (those listed as equivalent are then "
+                             "left out of it)")
     parser.add_argument("--seed", type=int, default=1, metavar="S", help="seed of --sample (default 1)")
     parser.add_argument("--jobs", "-j", type=int, default=max(1, (os.cpu_count() or 2) // 2), metavar="J",
                         help="parallel workers, each with its own build tree (default: half the cores)")
@@ -602,12 +604,14 @@ def choose(root: Path, args: argparse.Namespace, equivalents: Equivalents) -> li
         report = LessonReport(lesson)
         every = all_mutants(root, lesson)
         report.generated = len(every)
-        candidates = [m for m in every if equivalents.reason(m) is None]
-        report.equivalent = len(every) - len(candidates)
-        if args.sample is not None and args.sample < len(candidates):
+        report.equivalent = sum(1 for m in every if equivalents.reason(m) is not None)
+        chosen = every
+        if args.sample is not None and args.sample < len(every):
+            # Drawn from every mutant, equivalent or not, so that listing an equivalent
+            # mutant later leaves the rest of a seed's sample as it was (fair before/after runs).
             rng = random.Random(f"{args.seed}:{lesson}")
-            candidates = sorted(rng.sample(candidates, args.sample), key=lambda m: (str(m.unit), m.start))
-        report.mutants = candidates
+            chosen = sorted(rng.sample(every, args.sample), key=lambda m: (str(m.unit), m.start))
+        report.mutants = [m for m in chosen if equivalents.reason(m) is None]
         reports.append(report)
     return reports
 
