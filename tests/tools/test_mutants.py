@@ -110,7 +110,7 @@ class ScoreTest(unittest.TestCase):
             m = mutants.Mutant("99", UNIT, 1, "x", 0, 0, "", "")
             m.status = status
             report.mutants.append(m)
-        self.assertEqual(report.scored, 4)
+        self.assertEqual(report.scored(), 4)
         self.assertAlmostEqual(report.score, 75.0)
 
 

@@ -43,6 +43,7 @@ import os
 import queue
 import random
 import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -52,7 +53,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from . import project
-from .runner import run_suite
 
 EQUIVALENT_FILE = Path("tests") / "mutants" / "equivalent.txt"
 WORK_DIR = Path("build") / "mutants"
@@ -180,6 +180,7 @@ class Mutant:
     source_line: str = ""   # the line before the change (stripped)
     mutated_line: str = ""  # the line after the change (stripped)
     status: str = ""        # killed / survived / timed out / did not build
+    status_without: str = ""  # the same against the suite without the --compare-without files
     seconds: float = 0.0
     failed_test: str = ""   # the first grading test that failed (a killed mutant)
 
@@ -513,21 +514,34 @@ def lesson_targets(root: Path, lesson: str) -> list[str]:
     return targets
 
 
-def run_grading(workspace: Workspace, lesson: str, timeout: float) -> tuple[str, str]:
-    """('killed' | 'survived' | 'timed out', first failing test) for the built tree."""
+_TEST_CASE_LINE = re.compile(r"^TEST CASE:\s+(.*)$", re.M)
+
+
+def run_grading(workspace: Workspace, lesson: str, timeout: float, extra: tuple[str, ...] = ()) -> tuple[str, str]:
+    """('killed' | 'survived' | 'timed out', first failing test) for the built tree.
+
+    A mutant only needs one failing test to be killed, so the suite runs with
+    doctest's --abort-after=1: a wrong program stops at its first failed
+    assertion instead of failing thousands of them (which can take minutes),
+    and a time-out then really means a program that does not finish."""
     bin_dir = workspace.build / "bin"
     programs = [bin_dir / f"tests_lesson{lesson}"]
     if "tests_hidden" in lesson_targets(workspace.root, lesson):
         programs.append(bin_dir / "tests_hidden")
     for program in programs:
-        suite = run_suite(program, f"lesson{lesson}", hidden=program.name == "tests_hidden", timeout=timeout)
-        if "did not finish" in suite.problem:
+        command = [str(program), f"-ts=lesson{lesson}", "--abort-after=1", "--no-version", "--no-colors", *extra]
+        try:
+            done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                  text=True, errors="replace", timeout=timeout)
+        except subprocess.TimeoutExpired:
             return "timed out", ""
-        if suite.problem:
-            return "killed", suite.problem.splitlines()[0]
-        failed = [r for r in suite.results if not r.passed and not r.skipped]
-        if failed:
-            return "killed", failed[0].name
+        if done.returncode != 0:
+            found = _TEST_CASE_LINE.search(done.stdout)
+            if found:
+                return "killed", found.group(1).strip()
+            return "killed", f"{program.name} exited with status {done.returncode}"
+        if not extra and ("test cases:" not in done.stdout or re.search(r"test cases:\s+0 \|", done.stdout)):
+            return "killed", f"{program.name} ran no lesson{lesson} test"
     return "survived", ""
 
 
@@ -545,20 +559,22 @@ class LessonReport:
     baseline_seconds: float = 0.0
     problem: str = ""
 
-    def count(self, status: str) -> int:
-        return sum(1 for m in self.mutants if m.status == status)
+    def count(self, status: str, without: bool = False) -> int:
+        return sum(1 for m in self.mutants if (m.status_without if without else m.status) == status)
 
-    @property
-    def detected(self) -> int:
-        return self.count("killed") + self.count("timed out")
+    def detected(self, without: bool = False) -> int:
+        return self.count("killed", without) + self.count("timed out", without)
 
-    @property
-    def scored(self) -> int:
-        return self.detected + self.count("survived")
+    def scored(self, without: bool = False) -> int:
+        return self.detected(without) + self.count("survived", without)
+
+    def score_of(self, without: bool = False) -> float | None:
+        scored = self.scored(without)
+        return 100.0 * self.detected(without) / scored if scored else None
 
     @property
     def score(self) -> float | None:
-        return 100.0 * self.detected / self.scored if self.scored else None
+        return self.score_of()
 
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:
@@ -578,6 +594,9 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--timeout", type=float, metavar="SECONDS",
                         help="seconds per suite run (default: 10 × the unmutated run, at least 20)")
     parser.add_argument("--list", action="store_true", help="list the mutants (after --sample) and stop")
+    parser.add_argument("--compare-without", metavar="GLOB",
+                        help="also score every mutant against the suite without the test files matching GLOB "
+                             "(doctest --source-file-exclude), e.g. to show what new tests add")
     parser.add_argument("--work-dir", type=Path, metavar="DIR", help=f"workers' trees (default {WORK_DIR})")
     parser.add_argument("--fail-under", type=float, metavar="PERCENT",
                         help="exit 1 if a lesson scores below PERCENT")
@@ -632,7 +651,8 @@ class Progress:
                   file=sys.stderr, flush=True)
 
 
-def run_lesson(report: LessonReport, workspaces: list[Workspace], timeout_arg: float | None) -> None:
+def run_lesson(report: LessonReport, workspaces: list[Workspace], timeout_arg: float | None,
+               compare_without: str | None = None) -> None:
     root = workspaces[0].root
     start = time.monotonic()
     targets = lesson_targets(root, report.lesson)
@@ -672,6 +692,13 @@ def run_lesson(report: LessonReport, workspaces: list[Workspace], timeout_arg: f
                 mutant.status = "did not build"
             else:
                 mutant.status, mutant.failed_test = run_grading(workspace, report.lesson, timeout)
+                mutant.status_without = mutant.status
+                if compare_without and mutant.status != "survived":
+                    # Fewer tests cannot kill what the whole suite lets through: run only if it matters.
+                    mutant.status_without, _ = run_grading(workspace, report.lesson, timeout,
+                                                           (f"--source-file-exclude={compare_without}",))
+            if mutant.status == "did not build":
+                mutant.status_without = mutant.status
             mutant.seconds = time.monotonic() - t
             progress.report(mutant)
         workspace.restore()
@@ -687,20 +714,28 @@ def run_lesson(report: LessonReport, workspaces: list[Workspace], timeout_arg: f
     report.seconds = time.monotonic() - start
 
 
-def summary_table(reports: list[LessonReport]) -> str:
-    lines = ["| lesson | mutants (equivalent) | run | killed | timed out | survived | did not build | score | time |",
-             "|---|---|---|---|---|---|---|---|---|"]
+def summary_table(reports: list[LessonReport], compare_without: str | None = None) -> str:
+    extra = f" score without `{compare_without}` |" if compare_without else ""
+    lines = ["| lesson | mutants (equivalent) | run | killed | timed out | survived | did not build | score |"
+             + extra + " time |",
+             "|---|---|---|---|---|---|---|---|" + ("---|" if compare_without else "") + "---|"]
+
+    def percent(value: float | None) -> str:
+        return "n/a" if value is None else f"**{value:.1f}%**"
+
     for r in reports:
-        score = "n/a" if r.score is None else f"**{r.score:.1f}%**"
-        if r.problem:
-            score = "error"
-        lines.append(f"| {r.lesson} | {r.generated} ({r.equivalent}) | {len(r.mutants)} | {r.count('killed')} | "
-                     f"{r.count('timed out')} | {r.count('survived')} | {r.count('did not build')} | {score} | "
-                     f"{r.seconds:.0f} s |")
+        score = "error" if r.problem else percent(r.score)
+        row = (f"| {r.lesson} | {r.generated} ({r.equivalent}) | {len(r.mutants)} | {r.count('killed')} | "
+               f"{r.count('timed out')} | {r.count('survived')} | {r.count('did not build')} | {score} |")
+        if compare_without:
+            before = r.score_of(without=True)
+            row += (" n/a |" if before is None or r.problem else
+                    f" {before:.1f}% ({r.count('survived', True)} survived) |")
+        lines.append(row + f" {r.seconds:.0f} s |")
     return "\n".join(lines)
 
 
-def markdown_report(reports: list[LessonReport], root: Path, command: str) -> str:
+def markdown_report(reports: list[LessonReport], root: Path, command: str, compare_without: str | None = None) -> str:
     parts = [
         "# Grading power: the mutation report",
         "",
@@ -716,9 +751,12 @@ def markdown_report(reports: list[LessonReport], root: Path, command: str) -> st
         "are left out; *did not build* mutants do not compile and are not scored. *time* is the whole "
         "lesson's run on this machine (two cores, shared).",
         "",
-        summary_table(reports),
+        summary_table(reports, compare_without),
         "",
     ]
+    if compare_without:
+        parts[-1:-1] = ["", f"*score without `{compare_without}`*: the same mutants against the suite without "
+                        f"the test files matching `{compare_without}` (what the score was before those tests)."]
     for r in reports:
         parts.append(f"## Lesson {r.lesson}")
         parts.append("")
@@ -771,17 +809,17 @@ def main(argv: list[str]) -> int:
     for report in reports:
         print(f"tools/grade --mutants: lesson {report.lesson}: {len(report.mutants)} mutant(s) of "
               f"{report.generated}, {jobs} worker(s)", file=sys.stderr, flush=True)
-        run_lesson(report, workspaces, args.timeout)
+        run_lesson(report, workspaces, args.timeout, args.compare_without)
         if report.problem:
             print(f"tools/grade --mutants: lesson {report.lesson}: {report.problem}", file=sys.stderr)
-    print(summary_table(reports))
+    print(summary_table(reports, args.compare_without))
     for r in reports:
         for m in (m for m in r.mutants if m.status == "survived"):
             print(f"survived: {m.unit.as_posix()}:{m.line} {m.operator}: {m.source_line}  =>  {m.mutated_line}")
     if args.report:
-        command = "tools/grade " + " ".join(a for a in (argv if argv[:1] == ["--mutants"] else ["--mutants", *argv]))
+        command = "tools/grade " + shlex.join(argv if "--mutants" in argv else ["--mutants", *argv])
         args.report.parent.mkdir(parents=True, exist_ok=True)
-        args.report.write_text(markdown_report(reports, root, command), encoding="utf-8")
+        args.report.write_text(markdown_report(reports, root, command, args.compare_without), encoding="utf-8")
         print(f"wrote {args.report}", file=sys.stderr)
     if any(r.problem for r in reports):
         return 2
