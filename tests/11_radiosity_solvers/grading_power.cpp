@@ -211,6 +211,27 @@ TEST_SUITE("lesson11") {
                 "ambient = (Σ A_i ΔB_i / Σ A_i) / (1 − Σ A_i ρ_i / Σ A_i)");
   }
 
+  TEST_CASE("hard case: gaussian elimination must pivot on the largest entry of every column, not only the first") {
+    // Column 0 is settled by row 0 (nothing to eliminate). In column 1 the
+    // candidate pivots are 1e−20 (row 1) and 1 (row 2): partial pivoting takes
+    // row 2. Pivoting on 1e−20 instead gives the multiplier 1e20, row 2 becomes
+    // (1 − 1e20, 2 − 1e20) = (−1e20, −1e20) in double, x₂ = 1 and then
+    // x₁ = (1 − x₂)/1e−20 = 0: the answer loses x₁ = 1 entirely.
+    // By hand: x₃ = 1, x₀ = (7 − 5·1)/2 = 1, and the 2 × 2 block
+    // 1e−20 x₁ + x₂ = 1, x₁ + x₂ = 2 gives x₁ = 1/(1 − 1e−20), x₂ = 1 − 1e−20·x₁: both 1 in double.
+    const std::vector<double> a = {2, 0, 0, 5,      //
+                                   0, 1e-20, 1, 0,  //
+                                   0, 1, 1, 0,      //
+                                   0, 0, 0, 1};
+    const std::vector<double> b = {7, 1, 2, 1};
+    const std::vector<double> x = gaussian_elimination(a, b);
+    REQUIRE(x.size() == 4);
+    for (std::size_t i = 0; i < 4; ++i) {
+      INFO("x_", i, ": the pivot of column k is the largest |A_ik| over rows i ≥ k, compared entry by entry");
+      CHECK(x[i] == doctest::Approx(1.0).epsilon(1e-14));
+    }
+  }
+
   TEST_CASE("gaussian elimination: a non-symmetric 4 × 4 system whose second pivot is zero") {
     // Solution chosen first, x* = (1, −2, 3, 0.5); b = A x*, every product exact in binary.
     // Rows 0 and 1 agree in their first two entries up to a factor 2, so once
