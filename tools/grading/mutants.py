@@ -341,7 +341,9 @@ def generate(lesson: str, unit: Path, source: str, stub_lines: set[str]) -> list
                 # `i < n` -> `i < n - 1`: the loop stops one early.
                 condition = tokens[semis[0] + 1:semis[1]]
                 ops = [t for t in condition if t.text in ("<", "<=", "!=") and not t.template]
-                if len(ops) == 1:
+                # Only a plain `i < bound`: in `i < n && more` the "bound" would swallow the rest.
+                compound = any(t.text in ("&&", "||", "?", ",") for t in condition)
+                if len(ops) == 1 and not compound:
                     bound_end = tokens[semis[1] - 1].end
                     bound = source[ops[0].end:bound_end]
                     add("loop bound", ops[0].end, bound_end, f"{bound} - 1", token.line)
