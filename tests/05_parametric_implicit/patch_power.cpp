@@ -8,6 +8,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include "illum/geometry/bezier_patch.hpp"
 #include "illum/geometry/patch_newton.hpp"
@@ -71,6 +72,42 @@ TEST_SUITE("lesson05") {
       CHECK(std::abs(hit->v - 0.25) <= 1e-9);
       CHECK(std::abs(hit->s - (3 * c - c / 8)) <= 1e-9 * c);
     }
+  }
+
+  TEST_CASE("hard case: a ray crossing a wave twice gets the nearer hit, whichever way it runs") {
+    // Heights 0, 1, −1, 0 along u (degree 3), flat in v (degree 1): x = u, y = v,
+    // z = 3u(1 − u)(1 − 2u). A ray at height 0.05 along ±x at y = 0.3 meets it
+    // where 3u(1 − u)(1 − 2u) = 0.05: once near u ≈ 0.017 and once near u ≈ 0.48.
+    // Newton must start inside each sub-patch the ray's box test keeps: started
+    // elsewhere it converges to the other crossing, the farther one.
+    std::vector<Point3> points;
+    const double heights[4] = {0, 1, -1, 0};
+    for (int j = 0; j <= 1; ++j)
+      for (int i = 0; i <= 3; ++i) points.emplace_back(i / 3.0, j, heights[i]);
+    const BezierPatch wave(3, 1, points);
+    // The two roots by bisection on g(u) = 3u(1 − u)(1 − 2u) − 0.05 (g < 0 at 0 and at 0.5, > 0 at 0.2).
+    const auto root = [](double lo, double hi) {
+      const auto g = [](long double u) { return 3 * u * (1 - u) * (1 - 2 * u) - 0.05L; };
+      long double a = lo, b = hi;
+      const bool rising = g(a) < 0;
+      for (int k = 0; k < 200; ++k) {
+        const long double m = (a + b) / 2;
+        ((g(m) < 0) == rising ? a : b) = m;
+      }
+      return static_cast<double>((a + b) / 2);
+    };
+    const double first = root(0.0, 0.2), second = root(0.2, 0.5);
+    REQUIRE(first < 0.05);
+    REQUIRE(second > 0.4);
+    const auto forward = intersect_patch(Ray(Point3(-1, 0.3, 0.05), Vec3(1, 0, 0)), wave);
+    REQUIRE(forward);
+    CHECK_MESSAGE(std::abs(forward->u - first) <= 1e-9, "along +x the nearer crossing is the one at small u");
+    CHECK(std::abs(forward->s - (1 + first)) <= 1e-9);
+    CHECK(std::abs(forward->v - 0.3) <= 1e-9);
+    const auto backward = intersect_patch(Ray(Point3(2, 0.3, 0.05), Vec3(-1, 0, 0)), wave);
+    REQUIRE(backward);
+    CHECK_MESSAGE(std::abs(backward->u - second) <= 1e-9, "along −x the nearer crossing is the one near u ≈ 0.48");
+    CHECK(std::abs(backward->s - (2 - second)) <= 1e-9);
   }
 
   TEST_CASE("patch_newton: one step where F is linear in (u, v), and max_iterations at its bounds") {

@@ -596,6 +596,8 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--timeout", type=float, metavar="SECONDS",
                         help="seconds per suite run (default: 10 × the unmutated run, at least 20)")
     parser.add_argument("--list", action="store_true", help="list the mutants (after --sample) and stop")
+    parser.add_argument("--only", action="append", default=[], metavar="ID",
+                        help="run only the mutant with this id (from --list or a report); repeatable")
     parser.add_argument("--compare-without", metavar="GLOB",
                         help="also score every mutant against the suite without the test files matching GLOB "
                              "(doctest --source-file-exclude), e.g. to show what new tests add")
@@ -633,6 +635,8 @@ def choose(root: Path, args: argparse.Namespace, equivalents: Equivalents) -> li
             rng = random.Random(f"{args.seed}:{lesson}")
             chosen = sorted(rng.sample(every, args.sample), key=lambda m: (str(m.unit), m.start))
         report.mutants = [m for m in chosen if equivalents.reason(m) is None]
+        if args.only:
+            report.mutants = [m for m in report.mutants if m.ident in args.only]
         reports.append(report)
     return reports
 
@@ -773,7 +777,7 @@ def markdown_report(reports: list[LessonReport], root: Path, command: str, compa
             parts += ["No survivor.", ""]
         for m in survivors:
             source = (root / m.unit).read_text(encoding="utf-8")
-            parts += [f"- survived: `{m.unit.as_posix()}:{m.line}` ({m.operator})", "", "  ```diff"]
+            parts += [f"- survived: `{m.unit.as_posix()}:{m.line}` ({m.operator}, id `{m.ident}`)", "", "  ```diff"]
             parts += ["  " + line for line in m.diff(source).rstrip("\n").splitlines()]
             parts += ["  ```", ""]
     return "\n".join(parts).rstrip("\n") + "\n"
@@ -817,7 +821,8 @@ def main(argv: list[str]) -> int:
     print(summary_table(reports, args.compare_without))
     for r in reports:
         for m in (m for m in r.mutants if m.status == "survived"):
-            print(f"survived: {m.unit.as_posix()}:{m.line} {m.operator}: {m.source_line}  =>  {m.mutated_line}")
+            print(f"survived: {m.ident} {m.unit.as_posix()}:{m.line} {m.operator}: {m.source_line}  =>  "
+                  f"{m.mutated_line}")
     if args.report:
         command = "tools/grade " + shlex.join(argv if "--mutants" in argv else ["--mutants", *argv])
         args.report.parent.mkdir(parents=True, exist_ok=True)
