@@ -98,6 +98,14 @@ class EquivalentsTest(unittest.TestCase):
             path.write_text(f"{m.equivalence_key()}\n", encoding="utf-8")
             self.assertEqual(len(mutants.read_equivalents(path).problems), 1)
 
+    def test_an_entry_ignores_trailing_comments(self):
+        m = next(m for m in mutants.generate("99", UNIT, SOURCE, set()) if m.operator == "min/max")
+        with tempfile.TemporaryDirectory() as folder:
+            path = Path(folder) / "equivalent.txt"
+            path.write_text(f"{UNIT.as_posix()}: {m.source_line}  // old comment => {m.mutated_line} // x -- r\n",
+                            encoding="utf-8")
+            self.assertEqual(mutants.read_equivalents(path).reason(m), "r")
+
     def test_the_checked_in_list_parses(self):
         root = Path(__file__).resolve().parents[2]
         self.assertEqual(mutants.read_equivalents(root / mutants.EQUIVALENT_FILE).problems, [])

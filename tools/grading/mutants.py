@@ -193,12 +193,17 @@ class Mutant:
         return source[:self.start] + self.replacement + source[self.end:]
 
     def equivalence_key(self) -> str:
-        return f"{self.unit.as_posix()}: {self.source_line} => {self.mutated_line}"
+        return f"{self.unit.as_posix()}: {_code_only(self.source_line)} => {_code_only(self.mutated_line)}"
 
     def diff(self, source: str) -> str:
         lines = difflib.unified_diff(source.splitlines(keepends=True), self.apply(source).splitlines(keepends=True),
                                      fromfile=f"a/{self.unit.as_posix()}", tofile=f"b/{self.unit.as_posix()}", n=1)
         return "".join(lines)
+
+
+def _code_only(line: str) -> str:
+    """A line without its trailing // comment, so that editing a comment keeps an equivalence entry valid."""
+    return re.sub(r"\s*//.*$", "", line).strip()
 
 
 _RELATIONAL = {"<": "<=", "<=": "<", ">": ">=", ">=": ">", "==": "!=", "!=": "=="}
@@ -428,7 +433,9 @@ def read_equivalents(path: Path) -> Equivalents:
         if not sep or " => " not in key or ": " not in key or not reason.strip():
             result.problems.append(f"{path}:{number}: expected 'file: original => mutated -- reason'")
             continue
-        result.reasons[key.strip()] = reason.strip()
+        unit, _, lines = key.partition(": ")
+        original, _, mutated = lines.partition(" => ")
+        result.reasons[f"{unit.strip()}: {_code_only(original)} => {_code_only(mutated)}"] = reason.strip()
     return result
 
 
