@@ -198,6 +198,19 @@ TEST_SUITE("lesson11") {
     for (std::size_t i = 0; i < n; ++i) check_close(state.radiosity[i], s.exact[i], 1e-10, "progressive limit");
   }
 
+  TEST_CASE("ties: the shooter and Southwell's row are the first of equals") {
+    const GeneralSystem s = general_system();  // areas 1.5, 0.75, 3
+    // Unshot power A_i (ΔB_i.r + ΔB_i.g + ΔB_i.b): 1.5·2 = 0.75·4 = 3·1 = 3, all exact.
+    std::vector<Color> unshot = {Color(1.0, 0.5, 0.5), Color(2.0, 1.0, 1.0), Color(0.5, 0.25, 0.25)};
+    CHECK_MESSAGE(choose_shooter(s.patches, unshot) == 0, "three equal powers: the first patch shoots");
+    unshot[0] = Color(0.0);
+    CHECK_MESSAGE(choose_shooter(s.patches, unshot) == 1, "patches 1 and 2 tie at power 3: the first of them");
+    // Southwell: |r| summed over channels, 0.5 for row 0 and 1 for rows 1 and 2.
+    std::vector<Color> b(n, Color(0.0));
+    std::vector<Color> residual = {Color(0.25, 0.125, 0.125), Color(0.25, 0.25, 0.5), Color(1.0, 0.0, 0.0)};
+    CHECK_MESSAGE(southwell_step(s.patches, s.f, b, residual) == 1, "rows 1 and 2 tie at |r| = 1: the first");
+  }
+
   TEST_CASE("general system: the ambient term weighs ρ and ΔB by area") {
     const GeneralSystem s = general_system();
     const std::vector<Color> unshot = {Color(0.5, 0.25, 1.0), Color(2.0, 0.0, 0.5), Color(0.125, 1.0, 0.25)};
