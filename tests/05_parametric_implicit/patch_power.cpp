@@ -110,6 +110,65 @@ TEST_SUITE("lesson05") {
     CHECK(std::abs(backward->s - (2 - second)) <= 1e-9);
   }
 
+  TEST_CASE("hard case: the same wave turned to run along v, crossed along ±y at u = 0.3") {
+    // Heights 0, 1, −1, 0 along v, flat in u: z = 3v(1 − v)(1 − 2v). The
+    // sub-patches the nearer crossing lies in are now upper halves in v.
+    std::vector<Point3> points;
+    const double heights[4] = {0, 1, -1, 0};
+    for (int j = 0; j <= 3; ++j)
+      for (int i = 0; i <= 1; ++i) points.emplace_back(i, j / 3.0, heights[j]);
+    const BezierPatch wave(1, 3, points);
+    const auto root = [](double lo, double hi) {  // bisection on 3v(1 − v)(1 − 2v) − 0.05
+      const auto g = [](long double v) { return 3 * v * (1 - v) * (1 - 2 * v) - 0.05L; };
+      long double a = lo, b = hi;
+      const bool rising = g(a) < 0;
+      for (int k = 0; k < 200; ++k) {
+        const long double m = (a + b) / 2;
+        ((g(m) < 0) == rising ? a : b) = m;
+      }
+      return static_cast<double>((a + b) / 2);
+    };
+    const double first = root(0.0, 0.2), second = root(0.2, 0.5);
+    const auto forward = intersect_patch(Ray(Point3(0.3, -1, 0.05), Vec3(0, 1, 0)), wave);
+    REQUIRE(forward);
+    CHECK_MESSAGE(std::abs(forward->v - first) <= 1e-9, "along +y the nearer crossing is the one at small v");
+    CHECK(std::abs(forward->u - 0.3) <= 1e-9);
+    const auto backward = intersect_patch(Ray(Point3(0.3, 2, 0.05), Vec3(0, -1, 0)), wave);
+    REQUIRE(backward);
+    CHECK_MESSAGE(std::abs(backward->v - second) <= 1e-9, "along −y the nearer crossing is the one near v ≈ 0.48");
+    CHECK(std::abs(backward->s - (2 - second)) <= 1e-9);
+  }
+
+  TEST_CASE("hard case: oblique rays onto the edges u = 0 and u = 1 report u inside [0, 1]") {
+    // Rays along (±1, 0.3, −1)/|·| aimed at saddle points (e, v, e·v), e = 0 or 1:
+    // Newton stops within 1e−12 of the planes, so its u may lie a hair outside
+    // the square; the contract clamps it (the 1e−9 slack admits the hit).
+    const BezierPatch patch = scaled_saddle(1.0);
+    for (int k = 0; k <= 40; ++k) {
+      const double v = 0.05 + 0.0225 * k;
+      for (double e : {0.0, 1.0}) {
+        const Vec3 w = normalize(Vec3(e == 0.0 ? 1.0 : -1.0, 0.3, -1.0));
+        const Point3 target(e, v, e * v);
+        const Ray ray(target - 2.0 * w, w);
+        INFO("edge u = ", e, ", v = ", v);
+        const std::optional<PatchHit> hit = intersect_patch(ray, patch);
+        REQUIRE(hit);
+        CHECK_MESSAGE((hit->u >= 0.0 && hit->u <= 1.0), "hit.u is clamped to [0, 1]");
+        CHECK(std::abs(hit->u - e) <= 1e-9);
+        CHECK(std::abs(hit->v - v) <= 1e-9);
+      }
+    }
+  }
+
+  TEST_CASE("intersect_patch with max_depth 0: one Newton start at the patch's centre") {
+    PatchOptions options;
+    options.max_depth = 0;
+    const std::optional<PatchHit> hit =
+        intersect_patch(Ray(Point3(0.3, 0.7, 5), Vec3(0, 0, -1)), scaled_saddle(1.0), options);
+    REQUIRE_MESSAGE(hit, "max_depth = 0 is allowed: no subdivision, Newton from (½, ½)");
+    CHECK(std::abs(hit->s - (5 - 0.21)) <= 1e-12);
+  }
+
   TEST_CASE("patch_newton: one step where F is linear in (u, v), and max_iterations at its bounds") {
     // A vertical ray: both planes are vertical, so F₁, F₂ depend on x = u and
     // y = v only, linearly: Newton lands on (0.3, 0.7) in exactly one step.

@@ -183,19 +183,22 @@ class Mutant:
     status_without: str = ""  # the same against the suite without the --compare-without files
     seconds: float = 0.0
     failed_test: str = ""   # the first grading test that failed (a killed mutant)
+    source: str = field(default="", repr=False)  # the unit's text the offsets refer to
 
     @property
     def ident(self) -> str:
         digest = hashlib.sha1(f"{self.unit}:{self.start}:{self.operator}:{self.replacement}".encode()).hexdigest()
         return digest[:8]
 
-    def apply(self, source: str) -> str:
+    def apply(self, source: str | None = None) -> str:
+        source = self.source if source is None else source
         return source[:self.start] + self.replacement + source[self.end:]
 
     def equivalence_key(self) -> str:
         return f"{self.unit.as_posix()}: {_code_only(self.source_line)} => {_code_only(self.mutated_line)}"
 
-    def diff(self, source: str) -> str:
+    def diff(self) -> str:
+        source = self.source
         lines = difflib.unified_diff(source.splitlines(keepends=True), self.apply(source).splitlines(keepends=True),
                                      fromfile=f"a/{self.unit.as_posix()}", tofile=f"b/{self.unit.as_posix()}", n=1)
         return "".join(lines)
@@ -291,7 +294,7 @@ def generate(lesson: str, unit: Path, source: str, stub_lines: set[str]) -> list
     def add(operator: str, start: int, end: int, replacement: str, line: int) -> None:
         if line not in mutable_lines:
             return
-        m = Mutant(lesson, unit, line, operator, start, end, source[start:end], replacement)
+        m = Mutant(lesson, unit, line, operator, start, end, source[start:end], replacement, source=source)
         mutated = m.apply(source)
         first = line_starts[line - 1]
         m.source_line = line_text(line).strip()
@@ -690,7 +693,6 @@ def run_lesson(report: LessonReport, workspaces: list[Workspace], timeout_arg: f
     work: queue.Queue[Mutant] = queue.Queue()
     for mutant in sorted(report.mutants, key=lambda m: (str(m.unit), m.start)):
         work.put(mutant)
-    sources = {unit: (root / unit).read_text(encoding="utf-8") for unit in {m.unit for m in report.mutants}}
 
     def worker(workspace: Workspace) -> None:
         while True:
@@ -699,7 +701,7 @@ def run_lesson(report: LessonReport, workspaces: list[Workspace], timeout_arg: f
             except queue.Empty:
                 break
             t = time.monotonic()
-            workspace.write_unit(mutant.unit, mutant.apply(sources[mutant.unit]))
+            workspace.write_unit(mutant.unit, mutant.apply())
             ok, _ = workspace.build_targets(targets, timeout=max(300.0, timeout))
             if not ok:
                 mutant.status = "did not build"
@@ -783,9 +785,8 @@ def markdown_report(reports: list[LessonReport], root: Path, command: str, compa
         if not survivors:
             parts += ["No survivor.", ""]
         for m in survivors:
-            source = (root / m.unit).read_text(encoding="utf-8")
             parts += [f"- survived: `{m.unit.as_posix()}:{m.line}` ({m.operator}, id `{m.ident}`)", "", "  ```diff"]
-            parts += ["  " + line for line in m.diff(source).rstrip("\n").splitlines()]
+            parts += ["  " + line for line in m.diff().rstrip("\n").splitlines()]
             parts += ["  ```", ""]
     return "\n".join(parts).rstrip("\n") + "\n"
 
