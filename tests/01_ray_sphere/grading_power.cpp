@@ -28,7 +28,8 @@ TEST_SUITE("lesson01") {
     REQUIRE_MESSAGE(at_lo.has_value(), "s = 4 = range.lo belongs to [4, 5]");
     CHECK(at_lo->s == 4.0);
     const auto far_at_hi = illum::intersect(Ray(Point3(0), z, Interval(4.5, 6)), sphere);
-    REQUIRE_MESSAGE(far_at_hi.has_value(), "the near root 4 is before [4.5, 6]; the far root 6 = range.hi counts");
+    REQUIRE_MESSAGE(far_at_hi.has_value(),
+                    "the near root 4 is before [4.5, 6]; the far root 6 = range.hi counts");
     CHECK(far_at_hi->s == 6.0);
     CHECK(far_at_hi->normal == Vec3(0, 0, 1));
     CHECK_FALSE_MESSAGE(illum::intersect(Ray(Point3(0), z, Interval(4.25, 5.75)), sphere).has_value(),
@@ -55,7 +56,8 @@ TEST_SUITE("lesson01") {
     // Sphere of radius 2 at the origin, ray from (0, 2, 0) along +x: the line's
     // distance to the centre is r, a double root at s = 0.
     const Sphere sphere(Point3(0), 2.0);
-    const auto roots = illum::sphere_roots_stable(Point3(0, 2, 0), Vec3(1, 0, 0), sphere.center, sphere.radius);
+    const auto roots =
+        illum::sphere_roots_stable(Point3(0, 2, 0), Vec3(1, 0, 0), sphere.center, sphere.radius);
     CHECK_MESSAGE(roots.count == 1, "r² − d² = 4 − 4 = 0: one double root");
     CHECK(roots.s_near == 0.0);
     CHECK(roots.s_far == 0.0);

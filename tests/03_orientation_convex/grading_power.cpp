@@ -49,7 +49,8 @@ Vec2 kettner_point(int i, int j) {
 }  // namespace
 
 TEST_SUITE("lesson03") {
-  TEST_CASE("hard case: on Kettner's grid the convex test needs the exact predicate, not the plain determinant") {
+  TEST_CASE(
+      "hard case: on Kettner's grid the convex test needs the exact predicate, not the plain determinant") {
     const ConvexPolygon convex(flat_polygon(wedge));
     int wrong = 0, naive_wrong = 0;
     for (int i = 0; i < 64; ++i)
@@ -65,8 +66,9 @@ TEST_SUITE("lesson03") {
     REQUIRE_MESSAGE(naive_wrong > 0, "self-check: the plain determinant must err on this grid");
     INFO("the plain determinant (a.x − q.x)(b.y − q.y) − (a.y − q.y)(b.x − q.x) gets ", naive_wrong,
          " of 4096 points wrong: 12 − q.y and 0.5 + i·2⁻⁵³ − 12 are rounded");
-    CHECK_MESSAGE(wrong == 0, "inside ⇔ q.y > q.x exactly; the side of each edge must come from "
-                              "orient2d_sign_perturbed (lesson 03: never the plain determinant)");
+    CHECK_MESSAGE(wrong == 0,
+                  "inside ⇔ q.y > q.x exactly; the side of each edge must come from "
+                  "orient2d_sign_perturbed (lesson 03: never the plain determinant)");
   }
 
   TEST_CASE("hard case: on Kettner's grid the winding number needs the exact predicate too") {
@@ -83,8 +85,9 @@ TEST_SUITE("lesson03") {
         wrong += winding_number(polygon, q) != truth ? 1 : 0;
       }
     REQUIRE_MESSAGE(naive_wrong > 0, "self-check: the plain determinant must err on this grid");
-    CHECK_MESSAGE(wrong == 0, "winding = 1 ⇔ q.y > q.x exactly (q left of the upward edge (−12,−12)→(24,24)); "
-                              "an upward edge counts when orient2d_sign_perturbed(a, b, q) > 0");
+    CHECK_MESSAGE(wrong == 0,
+                  "winding = 1 ⇔ q.y > q.x exactly (q left of the upward edge (−12,−12)→(24,24)); "
+                  "an upward edge counts when orient2d_sign_perturbed(a, b, q) > 0");
   }
 
   TEST_CASE("convexity: a first vertex in the middle of an edge, counter-clockwise and clockwise") {
@@ -95,7 +98,8 @@ TEST_SUITE("lesson03") {
     const std::vector<Vec2> cw = {{0.5, 0}, {0, 0}, {0, 1}, {1, 1}, {1, 0}};
     for (const auto* loop : {&ccw, &cw}) {
       const Polygon polygon = flat_polygon(*loop);
-      CHECK_MESSAGE(is_convex(polygon), "a straight-on vertex in the middle of an edge keeps a square convex");
+      CHECK_MESSAGE(is_convex(polygon),
+                    "a straight-on vertex in the middle of an edge keeps a square convex");
       const ConvexPolygon convex(polygon);
       CHECK(inside_convex(convex, Vec2(0.3, 0.7)));
       CHECK(inside_convex(convex, Vec2(0.75, 0.25)));
@@ -114,15 +118,18 @@ TEST_SUITE("lesson03") {
     // that completes the fourth change: a count that skips it finds 2.
     std::vector<Vec2> star;
     const double degree = std::acos(-1.0) / 180;
-    for (int k = 0; k < 5; ++k) star.push_back({std::cos((30 + 144 * k) * degree), std::sin((30 + 144 * k) * degree)});
-    CHECK_FALSE_MESSAGE(is_convex(flat_polygon(star)), "a pentagram winds twice: u and v change sign 4 times each, "
-                                                       "counting every edge, the closing one included");
+    for (int k = 0; k < 5; ++k)
+      star.push_back({std::cos((30 + 144 * k) * degree), std::sin((30 + 144 * k) * degree)});
+    CHECK_FALSE_MESSAGE(is_convex(flat_polygon(star)),
+                        "a pentagram winds twice: u and v change sign 4 times each, "
+                        "counting every edge, the closing one included");
     // A convex hexagon listed from a vertex of its lower chain, with six (not
     // three or five) vertices: an edge's u must be x[i+1] − x[i] with the
     // index taken cyclically, ((i + 1) mod n); u changes sign exactly twice.
     const std::vector<Vec2> hexagon = {{0, -1.3}, {1, -1}, {2, 0}, {1.5, 1}, {-2, 0}, {-1, -1}};
-    CHECK_MESSAGE(is_convex(flat_polygon(hexagon)), "every turn is left (cross products 0.6 … 4.5) and u, v change "
-                                                    "sign twice each: convex");
+    CHECK_MESSAGE(is_convex(flat_polygon(hexagon)),
+                  "every turn is left (cross products 0.6 … 4.5) and u, v change "
+                  "sign twice each: convex");
     CHECK(ConvexPolygon(flat_polygon(hexagon)).orientation() == 1);
   }
 
@@ -139,8 +146,9 @@ TEST_SUITE("lesson03") {
         long double worst = 1e9L;
         for (std::size_t k = 0; k < cw.size(); ++k) {
           const Vec2 p = cw[k], r = cw[(k + 1) % cw.size()];
-          const long double cross = (static_cast<long double>(r.x) - p.x) * (static_cast<long double>(q.y) - p.y) -
-                                    (static_cast<long double>(r.y) - p.y) * (static_cast<long double>(q.x) - p.x);
+          const long double cross =
+              (static_cast<long double>(r.x) - p.x) * (static_cast<long double>(q.y) - p.y) -
+              (static_cast<long double>(r.y) - p.y) * (static_cast<long double>(q.x) - p.x);
           worst = std::min(worst, -cross);  // > 0 on the inner (right) side
         }
         if (std::abs(static_cast<double>(worst)) < 1e-9) continue;  // too near an edge to call by hand

@@ -49,9 +49,11 @@ TEST_SUITE("lesson05") {
   TEST_CASE("a hit from the back of the patch (ω·(S_u × S_v) > 0) is a hit, with the parametrised normal") {
     // From below, along +z, onto (0.25, 0.75): z = uv = 0.1875, s = 0.1875 + 2;
     // the normal (−v, −u, 1)/√(u² + v² + 1) keeps its orientation (it faces the other way).
-    const std::optional<PatchHit> hit = intersect_patch(Ray(Point3(0.25, 0.75, -2), Vec3(0, 0, 1)), scaled_saddle(1));
-    REQUIRE_MESSAGE(hit, "det J = ω·(S_u × S_v) is positive from below and negative from above: only |det J| "
-                         "says singular");
+    const std::optional<PatchHit> hit =
+        intersect_patch(Ray(Point3(0.25, 0.75, -2), Vec3(0, 0, 1)), scaled_saddle(1));
+    REQUIRE_MESSAGE(hit,
+                    "det J = ω·(S_u × S_v) is positive from below and negative from above: only |det J| "
+                    "says singular");
     CHECK(std::abs(hit->s - 2.1875) <= 1e-12);
     const double norm = std::sqrt(0.75 * 0.75 + 0.25 * 0.25 + 1.0);
     CHECK(std::abs(hit->normal.x + 0.75 / norm) <= 1e-12);
@@ -106,7 +108,8 @@ TEST_SUITE("lesson05") {
     CHECK(std::abs(forward->v - 0.3) <= 1e-9);
     const auto backward = intersect_patch(Ray(Point3(2, 0.3, 0.05), Vec3(-1, 0, 0)), wave);
     REQUIRE(backward);
-    CHECK_MESSAGE(std::abs(backward->u - second) <= 1e-9, "along −x the nearer crossing is the one near u ≈ 0.48");
+    CHECK_MESSAGE(std::abs(backward->u - second) <= 1e-9,
+                  "along −x the nearer crossing is the one near u ≈ 0.48");
     CHECK(std::abs(backward->s - (2 - second)) <= 1e-9);
   }
 
@@ -135,7 +138,8 @@ TEST_SUITE("lesson05") {
     CHECK(std::abs(forward->u - 0.3) <= 1e-9);
     const auto backward = intersect_patch(Ray(Point3(0.3, 2, 0.05), Vec3(0, -1, 0)), wave);
     REQUIRE(backward);
-    CHECK_MESSAGE(std::abs(backward->v - second) <= 1e-9, "along −y the nearer crossing is the one near v ≈ 0.48");
+    CHECK_MESSAGE(std::abs(backward->v - second) <= 1e-9,
+                  "along −y the nearer crossing is the one near v ≈ 0.48");
     CHECK(std::abs(backward->s - (2 - second)) <= 1e-9);
   }
 
@@ -177,7 +181,8 @@ TEST_SUITE("lesson05") {
     const RayPlanes planes = ray_planes(ray);
     const std::optional<PatchHit> hit = patch_newton(patch, ray, planes, Vec2(0.9, 0.1), 1e-13, 20);
     REQUIRE(hit);
-    CHECK_MESSAGE(hit->iterations == 1, "iterations counts Newton steps taken: one update, then |F| ≤ tolerance");
+    CHECK_MESSAGE(hit->iterations == 1,
+                  "iterations counts Newton steps taken: one update, then |F| ≤ tolerance");
     CHECK(std::abs(hit->u - 0.3) <= 1e-14);
     CHECK(std::abs(hit->v - 0.7) <= 1e-14);
     const std::optional<PatchHit> at_start = patch_newton(patch, ray, planes, Vec2(0.3, 0.7), 1e-13, 20);

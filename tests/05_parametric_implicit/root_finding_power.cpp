@@ -31,8 +31,9 @@ TEST_SUITE("lesson05") {
     const RootResult r = safeguarded_newton(scaled_square(1.0), {0.0, 4.0}, 1e-13, 100);
     REQUIRE(r.converged());
     CHECK(std::abs(r.s - std::sqrt(2.0)) <= 1e-13);
-    CHECK_MESSAGE(r.iterations <= 8, "once the Newton candidate is inside the bracket and shrinks the step, "
-                                     "it must be taken: the digits double at every step");
+    CHECK_MESSAGE(r.iterations <= 8,
+                  "once the Newton candidate is inside the bracket and shrinks the step, "
+                  "it must be taken: the digits double at every step");
   }
 
   TEST_CASE("hard case: Newton's stopping rule is the step, not the residual, on badly scaled functions") {
@@ -42,15 +43,18 @@ TEST_SUITE("lesson05") {
     for (double c : {1e-12, 1e12}) {
       INFO("f(s) = ", c, " · (s² − 2), root √2");
       const RootResult plain = newton(scaled_square(c), 1.0, 1e-10, 60);
-      REQUIRE_MESSAGE(plain.converged(), "stop when the step |f/f'| ≤ tolerance (lesson 05), whatever the scale");
+      REQUIRE_MESSAGE(plain.converged(),
+                      "stop when the step |f/f'| ≤ tolerance (lesson 05), whatever the scale");
       CHECK(std::abs(plain.s - std::sqrt(2.0)) <= 1e-9);
       const RootResult safe = safeguarded_newton(scaled_square(c), {1.0, 2.0}, 1e-10, 100);
-      REQUIRE_MESSAGE(safe.converged(), "safeguarded Newton stops on the step or the bracket width, not on |f|");
+      REQUIRE_MESSAGE(safe.converged(),
+                      "safeguarded Newton stops on the step or the bracket width, not on |f|");
       CHECK(std::abs(safe.s - std::sqrt(2.0)) <= 1e-9);
       const RootResult halving = bisection(scaled_square(c), {1.0, 2.0}, 1e-10, 100);
       REQUIRE_MESSAGE(halving.converged(), "bisection stops on the half width of the bracket, not on |f|");
       CHECK(std::abs(halving.s - std::sqrt(2.0)) <= 1e-10);
-      CHECK_MESSAGE(halving.iterations == 33, "[1, 2] halved until 2^−(k+1) ≤ 1e−10: k = 33, whatever the scale");
+      CHECK_MESSAGE(halving.iterations == 33,
+                    "[1, 2] halved until 2^−(k+1) ≤ 1e−10: k = 33, whatever the scale");
     }
   }
 
@@ -74,7 +78,8 @@ TEST_SUITE("lesson05") {
     const RootResult r = safeguarded_newton(line, {0.0, 4.0}, 1e-12, 50);
     REQUIRE(r.converged());
     CHECK(r.s == 1.0);
-    CHECK_MESSAGE(r.iterations == 1, "the midpoint start is not an iteration; one Newton step lands on the root");
+    CHECK_MESSAGE(r.iterations == 1,
+                  "the midpoint start is not an iteration; one Newton step lands on the root");
     const RootResult budget = safeguarded_newton(line, {0.0, 4.0}, 1e-12, 1);
     CHECK_MESSAGE(budget.converged(), "max_iterations = 1 allows the one step this line needs");
     // A root exactly at either end is returned at once, with no iteration.
@@ -111,4 +116,3 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(miss.iterations == 3, "three steps of length 1 leave [0, 2.5]: the third one is counted");
   }
 }
-

@@ -35,7 +35,8 @@ Patch rectangle(double x, double width, Color rho, Color e) {
 // Cramer's rule on (I − diag(ρ)F) B = E, one channel, in long double.
 std::array<long double, n> cramer(const long double m[n][n], const long double e[n]) {
   const auto det3 = [](const long double a[n][n]) {
-    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) - a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+           a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
            a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
   };
   const long double det = det3(m);
@@ -89,12 +90,15 @@ void check_close(const Color& got, const Color& expected, double tolerance, cons
 }  // namespace
 
 TEST_SUITE("lesson11") {
-  TEST_CASE("general system: the direct solution matches Cramer's rule (unequal areas, F_ii ≠ 0, F not symmetric)") {
+  TEST_CASE(
+      "general system: the direct solution matches Cramer's rule (unequal areas, F_ii ≠ 0, F not "
+      "symmetric)") {
     const GeneralSystem s = general_system();
     const std::vector<Color> b = solve_direct(s.patches, s.f);
     REQUIRE(b.size() == n);
     for (std::size_t i = 0; i < n; ++i) {
-      INFO("patch ", i, ": row i of M is δ_ij − ρ_i F_ij, with F_ii on the diagonal and F_ij (not F_ji) off it");
+      INFO("patch ", i,
+           ": row i of M is δ_ij − ρ_i F_ij, with F_ii on the diagonal and F_ij (not F_ji) off it");
       check_close(b[i], s.exact[i], 1e-12, "B_i");
     }
   }
@@ -137,7 +141,8 @@ TEST_SUITE("lesson11") {
     }
     gauss_seidel_sweep(s.patches, s.f, b, omega);
     for (std::size_t i = 0; i < n; ++i) {
-      INFO("patch ", i, ": B_i ← (1 − ω) B_i + ω (E_i + ρ_i Σ_{j≠i} F_ij B_j)/(1 − ρ_i F_ii), new B_j for j < i");
+      INFO("patch ", i,
+           ": B_i ← (1 − ω) B_i + ω (E_i + ρ_i Σ_{j≠i} F_ij B_j)/(1 − ρ_i F_ii), new B_j for j < i");
       check_close(b[i], expected[i], 1e-14, "Gauss-Seidel sweep");
     }
     for (int sweep = 0; sweep < 200; ++sweep) gauss_seidel_sweep(s.patches, s.f, b, omega);
@@ -158,7 +163,8 @@ TEST_SUITE("lesson11") {
       }
       const std::size_t chosen = southwell_step(s.patches, s.f, b, residual);
       INFO("step ", step);
-      CHECK_MESSAGE(chosen == largest, "Southwell relaxes the patch with the largest |r_i| (summed over channels)");
+      CHECK_MESSAGE(chosen == largest,
+                    "Southwell relaxes the patch with the largest |r_i| (summed over channels)");
       for (std::size_t i = 0; i < n; ++i) {
         INFO("patch ", i, ": relaxing i changes r_j by ρ_j F_ji δ (column i of ρF), r_i becomes 0");
         check_close(residual[i], residual_of(s, b, i), 1e-12, "Southwell's running residual vs E + ρFB − B");
@@ -184,18 +190,21 @@ TEST_SUITE("lesson11") {
       }
       const std::size_t shooter = choose_shooter(s.patches, state.unshot);
       INFO("shot ", shot);
-      CHECK_MESSAGE(shooter == most_power, "the shooter has the largest unshot power A_i ΔB_i, not radiosity");
+      CHECK_MESSAGE(shooter == most_power,
+                    "the shooter has the largest unshot power A_i ΔB_i, not radiosity");
       shoot(s.patches, shooter, s.f.row(shooter), state);
       for (std::size_t j = 0; j < n; ++j) {
         Color gathered(0.0);
         for (std::size_t i = 0; i < n; ++i) gathered += s.f(j, i) * (state.radiosity[i] - state.unshot[i]);
         const Color expected = s.patches[j].emission + s.patches[j].reflectance * gathered;
-        INFO("patch ", j, ": the receiver uses its own ρ_j and F_ji = F_ij A_i/A_j; the shooter's F_ii counts too");
+        INFO("patch ", j,
+             ": the receiver uses its own ρ_j and F_ji = F_ij A_i/A_j; the shooter's F_ii counts too");
         check_close(state.radiosity[j], expected, 1e-12, "B_j vs E_j + ρ_j Σ F_ji (B_i − ΔB_i)");
       }
       if (most < 1e-14) break;
     }
-    for (std::size_t i = 0; i < n; ++i) check_close(state.radiosity[i], s.exact[i], 1e-10, "progressive limit");
+    for (std::size_t i = 0; i < n; ++i)
+      check_close(state.radiosity[i], s.exact[i], 1e-10, "progressive limit");
   }
 
   TEST_CASE("ties: the shooter and Southwell's row are the first of equals") {
@@ -204,7 +213,8 @@ TEST_SUITE("lesson11") {
     std::vector<Color> unshot = {Color(1.0, 0.5, 0.5), Color(2.0, 1.0, 1.0), Color(0.5, 0.25, 0.25)};
     CHECK_MESSAGE(choose_shooter(s.patches, unshot) == 0, "three equal powers: the first patch shoots");
     unshot[0] = Color(0.0);
-    CHECK_MESSAGE(choose_shooter(s.patches, unshot) == 1, "patches 1 and 2 tie at power 3: the first of them");
+    CHECK_MESSAGE(choose_shooter(s.patches, unshot) == 1,
+                  "patches 1 and 2 tie at power 3: the first of them");
     // Southwell: |r| summed over channels, 0.5 for row 0 and 1 for rows 1 and 2.
     std::vector<Color> b(n, Color(0.0));
     std::vector<Color> residual = {Color(0.25, 0.125, 0.125), Color(0.25, 0.25, 0.5), Color(1.0, 0.0, 0.0)};
@@ -224,7 +234,8 @@ TEST_SUITE("lesson11") {
                 "ambient = (Σ A_i ΔB_i / Σ A_i) / (1 − Σ A_i ρ_i / Σ A_i)");
   }
 
-  TEST_CASE("hard case: gaussian elimination must pivot on the largest entry of every column, not only the first") {
+  TEST_CASE(
+      "hard case: gaussian elimination must pivot on the largest entry of every column, not only the first") {
     // Column 0 is settled by row 0 (nothing to eliminate). In column 1 the
     // candidate pivots are 1e−20 (row 1) and 1 (row 2): partial pivoting takes
     // row 2. Pivoting on 1e−20 instead gives the multiplier 1e20, row 2 becomes
@@ -232,10 +243,10 @@ TEST_SUITE("lesson11") {
     // x₁ = (1 − x₂)/1e−20 = 0: the answer loses x₁ = 1 entirely.
     // By hand: x₃ = 1, x₀ = (7 − 5·1)/2 = 1, and the 2 × 2 block
     // 1e−20 x₁ + x₂ = 1, x₁ + x₂ = 2 gives x₁ = 1/(1 − 1e−20), x₂ = 1 − 1e−20·x₁: both 1 in double.
-    const std::vector<double> a = {2, 0, 0, 5,      //
+    const std::vector<double> a = {2, 0,     0, 5,  //
                                    0, 1e-20, 1, 0,  //
-                                   0, 1, 1, 0,      //
-                                   0, 0, 0, 1};
+                                   0, 1,     1, 0,  //
+                                   0, 0,     0, 1};
     const std::vector<double> b = {7, 1, 2, 1};
     const std::vector<double> x = gaussian_elimination(a, b);
     REQUIRE(x.size() == 4);
@@ -250,10 +261,10 @@ TEST_SUITE("lesson11") {
     // Rows 0 and 1 agree in their first two entries up to a factor 2, so once
     // the first column is eliminated (pivot 2, row 1) the entry in the second
     // pivot position is 0: the second column needs a row exchange too.
-    const std::vector<double> a = {1, 2, 0.5, -1,   //
-                                   2, 4, 3, 0.25,   //
-                                   -1, 0.5, 2, 4,   //
-                                   0.5, -3, 1, 2};
+    const std::vector<double> a = {1,   2,   0.5, -1,    //
+                                   2,   4,   3,   0.25,  //
+                                   -1,  0.5, 2,   4,     //
+                                   0.5, -3,  1,   2};
     const double x[4] = {1, -2, 3, 0.5};
     std::vector<double> b(4, 0.0);
     for (std::size_t i = 0; i < 4; ++i)
@@ -261,7 +272,8 @@ TEST_SUITE("lesson11") {
     const std::vector<double> got = gaussian_elimination(a, b);
     REQUIRE(got.size() == 4);
     for (std::size_t i = 0; i < 4; ++i) {
-      INFO("x_", i, ": partial pivoting, elimination of every row below, back substitution over every column");
+      INFO("x_", i,
+           ": partial pivoting, elimination of every row below, back substitution over every column");
       CHECK(got[i] == doctest::Approx(x[i]).epsilon(1e-13));
     }
   }
