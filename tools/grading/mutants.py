@@ -1,7 +1,8 @@
 """``tools/grade --mutants``: how many plausible student bugs do the grading tests catch?
 
     tools/grade --mutants [NN ...] [--sample N] [--seed S] [--jobs J]
-                [--report FILE] [--timeout SECONDS] [--list]
+                [--report FILE] [--timeout SECONDS] [--list] [--only ID ...]
+                [--compare-without GLOB] [--fail-under PERCENT] [--work-dir DIR]
 
 For each named lesson (default: every lesson with exercises) the tool makes
 *mutants* of the lesson's exercise units -- the reference file with one small
