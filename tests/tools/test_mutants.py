@@ -131,7 +131,11 @@ class SyncTest(unittest.TestCase):
             (src / "lib" / "a.cpp").write_text("a")
             (src / "lib" / "b.cpp").write_text("b")
             (src / "build" / "big.o").write_text("o")
+            (src / "node_modules").symlink_to(src / "node_modules")  # a link loop, as a checkout can hold
+            (src / "lib" / "link.cpp").symlink_to("a.cpp")
             mutants.sync_tree(src, dst)
+            self.assertFalse((dst / "node_modules").exists() or (dst / "node_modules").is_symlink())
+            self.assertEqual(str((dst / "lib" / "link.cpp").readlink()), "a.cpp")
             self.assertFalse((dst / "build" / "big.o").exists())
             stamp = (dst / "lib" / "a.cpp").stat().st_mtime_ns
             (src / "lib" / "b.cpp").unlink()

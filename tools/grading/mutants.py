@@ -460,8 +460,19 @@ def sync_tree(source: Path, destination: Path) -> None:
         (destination / relative).mkdir(parents=True, exist_ok=True)
         seen.add(destination / relative)
         for name in files:
+            if relative == Path(".") and name in _COPY_IGNORE:
+                continue  # e.g. a node_modules symlink
             src, dst = here / name, destination / relative / name
             seen.add(dst)
+            if src.is_symlink():  # copied as a link, never followed (it may point anywhere, or nowhere)
+                target = os.readlink(src)
+                if not dst.is_symlink() or os.readlink(dst) != target:
+                    if dst.exists() or dst.is_symlink():
+                        dst.unlink()
+                    os.symlink(target, dst)
+                continue
+            if dst.is_symlink():
+                dst.unlink()
             data = src.read_bytes()
             if not dst.exists() or dst.read_bytes() != data:
                 dst.write_bytes(data)
