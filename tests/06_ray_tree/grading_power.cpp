@@ -8,10 +8,12 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "06_ray_tree/test_scenes.hpp"
 #include "illum/trace/optics.hpp"
 #include "illum/trace/ray_tree.hpp"
+#include "support/throws_containing.hpp"
 
 using namespace illum;
 using illum::test::add_light;
@@ -30,8 +32,8 @@ void check_colour(const Color& got, const Color& want, double eps = 1e-12) {
 
 // The axis-aligned rectangle [x0, x1] × [y0, y1] of the plane z = z0, normal +z
 // (counter-clockwise seen from above).
-void add_rectangle(Scene& scene, const std::string& name, double x0, double x1, double y0, double y1, double z0,
-                   std::uint32_t material) {
+void add_rectangle(Scene& scene, const std::string& name, double x0, double x1, double y0, double y1,
+                   double z0, std::uint32_t material) {
   scene.primitives.push_back(Primitive{
       .name = name,
       .shape = Polygon({Point3(x0, y0, z0), Point3(x1, y0, z0), Point3(x1, y1, z0), Point3(x0, y1, z0)}),
@@ -82,7 +84,8 @@ TEST_SUITE("lesson06") {
     const Color own = own_intensity(tracer, at_origin, Vec3(0, 0, 1));
     INFO("I_own = k_a·I_a = (0.125, 0.25, 0.375): the light on the tangent plane contributes 0");
     check_colour(own, m.ambient * 0.5);
-    CHECK_MESSAGE(stats.rays.shadow == 0, "N·L = 0: the light is on the tangent plane, so no shadow ray is cast");
+    CHECK_MESSAGE(stats.rays.shadow == 0,
+                  "N·L = 0: the light is on the tangent plane, so no shadow ray is cast");
   }
 
   TEST_CASE("effects plan: a surface with k_d = k_s = 0 casts no shadow ray when zero weights are skipped") {
@@ -154,10 +157,32 @@ TEST_SUITE("lesson06") {
     TraceStats stats;
     const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
     const Color c = evaluate(tracer, Ray::toward(Point3(-1, 0, 1), Vec3(1, 0, -1)));
-    INFO("I = I_own(glass) + k_t·I_t = 0 + 0.5·(0.2, 1.0, 0.6): the refracted ray lands at x = √(2/7) on "
-         "the lamp");
+    INFO(
+        "I = I_own(glass) + k_t·I_t = 0 + 0.5·(0.2, 1.0, 0.6): the refracted ray lands at x = √(2/7) on "
+        "the lamp");
     check_colour(c, Color(0.1, 0.5, 0.3));
     CHECK_MESSAGE(stats.rays.refraction == 1,
                   "entering glass (front face) there is always a transmitted ray: η_i/η_t = 1/1.5 < 1");
+  }
+
+  TEST_CASE("refract: a ratio η_i/η_t of 0 is refused, not turned into a ray along −N") {
+    // η_i/η_t = 0 would be an infinitely dense second medium: sin θ_t = 0 whatever θ_i, and
+    // T = 0·I + (0 − 1)·N = −N. No material has η = ∞ (nor η_i = 0): optics.hpp says a ratio
+    // that is not positive and finite throws std::invalid_argument.
+    ILLUM_CHECK_THROWS_CONTAINING(refract(Vec3(0, 0, -1), Vec3(0, 0, 1), 0.0), "refract",
+                                  std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(refract(Vec3(0, 0, -1), Vec3(0, 0, 1), -1.5), "refract",
+                                  std::invalid_argument);
+  }
+
+  TEST_CASE("hard case: R·V = 0 exactly gives no highlight, even with exponent 0") {
+    // N = (0, 0, 1), L = (0, s, s) with s = √½: N·L = s, R = 2sN − L = (0, −s, s) (2s − s = s
+    // exactly). V = (0, s, s): R·V = −s·s + s·s = 0 exactly. optics.hpp: the specular part
+    // is zero when R·V ≤ 0; with n = 0 a test R·V ≥ 0 would give 0⁰ = 1, i.e. k_s.
+    const double s = std::sqrt(0.5);
+    const Color kd(0.5, 0.25, 0.1), ks(0.3, 0.6, 0.9);
+    const Color c = phong_term(Vec3(0, 0, 1), Vec3(0, s, s), Vec3(0, s, s), kd, ks, 0.0);
+    INFO("R·V = 0: the viewer is 90° from the mirror direction, only k_d·(N·L) = k_d·√½ remains");
+    check_colour(c, kd * s);
   }
 }
