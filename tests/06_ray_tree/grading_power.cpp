@@ -18,6 +18,7 @@
 using namespace illum;
 using illum::test::add_light;
 using illum::test::add_material;
+using illum::test::add_sphere;
 using illum::test::hand_hit;
 using illum::test::material;
 
@@ -184,5 +185,29 @@ TEST_SUITE("lesson06") {
     const Color c = phong_term(Vec3(0, 0, 1), Vec3(0, s, s), Vec3(0, s, s), kd, ks, 0.0);
     INFO("R·V = 0: the viewer is 90° from the mirror direction, only k_d·(N·L) = k_d·√½ remains");
     check_colour(c, kd * s);
+  }
+
+  TEST_CASE("own intensity: each light is multiplied by its shadow transmission S_l, not divided by it") {
+    Scene scene;
+    Material m = material("matte");
+    m.diffuse = Color(0.5);  // k_s = 0, k_a = 0: I_own is the diffuse terms alone
+    const auto matte = add_material(scene, m);
+    Material glass = material("glass");
+    glass.transmittance = Color(0.8, 0.5, 0.9);
+    glass.index_of_refraction = 1.5;
+    add_sphere(scene, "glass ball", Point3(0, 0, 2), 0.5, add_material(scene, glass));
+    add_sphere(scene, "opaque ball", Point3(2, 0, 2), 0.5, matte);
+    // Light 1 overhead at (0, 0, 4): N·L = 1, its shadow ray crosses the glass ball twice,
+    // S_1 = k_t² = (0.64, 0.25, 0.81). Light 2 at (4, 0, 4): N·L = 1/√2, but the opaque ball
+    // centred on the segment to it blocks it, S_2 = 0.
+    add_light(scene, Point3(0, 0, 4), Color(2.0));
+    add_light(scene, Point3(4, 0, 4), Color(2.0));
+    const SurfaceHit at_origin = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), matte);
+    const EffectsPlan plan = full_effects(0);  // shadow attenuation on
+    TraceStats stats;
+    const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+    // I_own = I_1·k_d·1·S_1 + I_2·k_d·(1/√2)·0 = 2·0.5·(0.64, 0.25, 0.81) = (0.64, 0.25, 0.81).
+    INFO("I_own = Σ_l S_l·I_l·k_d(N·L): the glass light weighs S = k_t², the blocked light 0");
+    check_colour(own_intensity(tracer, at_origin, Vec3(0, 0, 1)), Color(0.64, 0.25, 0.81));
   }
 }
