@@ -210,4 +210,81 @@ TEST_SUITE("lesson06") {
     INFO("I_own = Σ_l S_l·I_l·k_d(N·L): the glass light weighs S = k_t², the blocked light 0");
     check_colour(own_intensity(tracer, at_origin, Vec3(0, 0, 1)), Color(0.64, 0.25, 0.81));
   }
+
+  TEST_CASE("shadow test: a coloured glass that stops two channels still lets the third through") {
+    // A ball with k_t zero in two channels and 0.5 in the third: after the first surface the
+    // transmission is 0.5 in one channel only. That is not black (black is all three ≤ 0), so
+    // the shadow ray goes on through the second surface: S = 0.5² = 0.25 in that channel.
+    for (int channel = 0; channel < 3; ++channel) {
+      Scene scene;
+      const auto floor = add_material(scene, material("floor"));
+      Material glass = material("coloured glass");
+      glass.transmittance = Color(0.0);
+      glass.transmittance[channel] = 0.5;
+      glass.index_of_refraction = 1.5;
+      add_sphere(scene, "ball", Point3(0, 0, 2), 0.5, add_material(scene, glass));
+      const SurfaceHit p = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), floor);
+      const EffectsPlan plan = full_effects(0);
+      TraceStats stats;
+      const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+      Color want(0.0);
+      want[channel] = 0.25;
+      INFO("channel ", channel, ": k_t = 0.5 there and 0 elsewhere, crossed twice: S = 0.25 in that channel");
+      check_colour(shadow_transmission(tracer, p, Point3(0, 0, 4)), want);
+    }
+  }
+
+  TEST_CASE("ray tree record: weights multiply k_r and k_t, a miss has no I_own, a shadow ray returns 0") {
+    // A mirror floor (k_d = 0.5, k_r = (0.5, 0.25, 0.125)) lit from (0, 0, 4), seen straight down.
+    Scene scene;
+    Material m = material("mirror");
+    m.diffuse = Color(0.5);
+    m.reflectance = Color(0.5, 0.25, 0.125);
+    add_rectangle(scene, "floor", -10, 10, -10, 10, 0.0, add_material(scene, m));
+    add_light(scene, Point3(0, 0, 4), Color(1.0));
+    const Color background(0.2, 0.4, 0.6);
+    const EffectsPlan plan = plan_effects(scene, 1);
+    TraceStats stats;
+    RayTree tree;
+    const Tracer tracer{
+        .scene = scene, .plan = plan, .background = background, .stats = &stats, .tree = &tree};
+    // I = k_d·(N·L = 1) + k_r·background = (0.5 + 0.1, 0.5 + 0.1, 0.5 + 0.075).
+    check_colour(evaluate(tracer, Ray(Point3(0, 0, 2), Vec3(0, 0, -1))), Color(0.6, 0.6, 0.575));
+    const auto find = [&](RayKind kind) {
+      for (const RayTreeNode& node : tree.nodes)
+        if (node.kind == kind) return &node;
+      return static_cast<const RayTreeNode*>(nullptr);
+    };
+    const RayTreeNode* shadow = find(RayKind::shadow);
+    const RayTreeNode* reflected = find(RayKind::reflection);
+    REQUIRE(shadow != nullptr);
+    REQUIRE(reflected != nullptr);
+    INFO("the shadow ray: nothing blocks it, transmission (local) 1; it returns no colour of its own");
+    check_colour(shadow->local, Color(1.0));
+    check_colour(shadow->color, Color(0.0));
+    INFO(
+        "the reflected ray misses: no surface, so I_own = 0, and it returns the background; its path "
+        "weight is 1·k_r = (0.5, 0.25, 0.125)");
+    CHECK_FALSE(reflected->hit);
+    check_colour(reflected->local, Color(0.0));
+    check_colour(reflected->color, background);
+    check_colour(reflected->weight, Color(0.5, 0.25, 0.125));
+
+    // The refracted ray of the oblique glass entry (see above) weighs 1·k_t = 0.5.
+    Scene glass_scene;
+    Material glass = material("glass");
+    glass.transmittance = Color(0.5, 0.25, 0.75);
+    glass.index_of_refraction = 1.5;
+    add_rectangle(glass_scene, "glass plane", -10, 10, -10, 10, 0.0, add_material(glass_scene, glass));
+    const EffectsPlan glass_plan = plan_effects(glass_scene, 1);
+    RayTree glass_tree;
+    const Tracer glass_tracer{.scene = glass_scene, .plan = glass_plan, .stats = &stats, .tree = &glass_tree};
+    evaluate(glass_tracer, Ray::toward(Point3(-1, 0, 1), Vec3(1, 0, -1)));
+    const RayTreeNode* refracted = nullptr;
+    for (const RayTreeNode& node : glass_tree.nodes)
+      if (node.kind == RayKind::refraction) refracted = &node;
+    REQUIRE(refracted != nullptr);
+    INFO("the refracted ray's path weight is 1·k_t = (0.5, 0.25, 0.75)");
+    check_colour(refracted->weight, Color(0.5, 0.25, 0.75));
+  }
 }
