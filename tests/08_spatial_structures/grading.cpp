@@ -347,8 +347,7 @@ TEST_SUITE("lesson08") {
     CHECK(AccelSettings{}.kind == AccelKind::bvh);
     for (const char* name : {"grid", "bvh"}) {
       INFO(name);
-      const auto accel = make_accel(
-          set, AccelSettings{.kind = accel_kind_from_name(name), .grid_resolution = {}, .bvh_leaf_size = 4});
+      const auto accel = make_accel(set, AccelSettings{.kind = accel_kind_from_name(name)});
       CHECK(accel->name() == name);
       check_against_brute_force(*accel, set, rays);
     }

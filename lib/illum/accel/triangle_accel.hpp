@@ -56,7 +56,7 @@ enum class AccelKind { brute_force, grid, bvh };
 struct AccelSettings {
   AccelKind kind = AccelKind::bvh;
   // Cells along the grid's longest axis (≥ 1; 0 is refused); none = ⌈∛(2N)⌉, about 2 cells per triangle.
-  std::optional<int> grid_resolution;
+  std::optional<int> grid_resolution{};
   int bvh_leaf_size = 4;  // most triangles in a BVH leaf
 };
 
