@@ -100,7 +100,7 @@ PlotSpec per_ray_plot(const std::string& title, const std::string& y_label, int 
     spec.series.push_back({.csv = "scaling.csv",
                            .x_column = 2,
                            .y_column = y_column,
-                           .title = s,
+                           .title = s == std::string("brute_force") ? "brute force" : s,
                            .filter = std::string("strcol(1) eq '") + s + "'"});
   return spec;
 }
@@ -112,7 +112,7 @@ void study_scaling(OutputFolder& out, bool quick) {
             : std::vector<std::size_t>{100, 300, 1000, 3000, 10000, 30000, 100000, 300000, 1000000};
   const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
   Table table({"structure", "triangles", "build seconds", "bytes per triangle", "nodes or cells per ray",
-               "triangle tests per ray", "Mrays/s (1 thread)"});
+               "triangle tests per ray", "Mrays per second (1 thread)"});
   struct Series {
     std::vector<double> n, nodes, tests;
   };
@@ -162,7 +162,7 @@ void study_grid_resolution(OutputFolder& out, bool quick) {
   const TriangleSet set = flake_with_about(quick ? 5000 : 100000);
   const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
   Table table({"resolution", "triangles", "build seconds", "bytes per triangle", "cells per ray",
-               "triangle tests per ray", "Mrays/s (1 thread)"});
+               "triangle tests per ray", "Mrays per second (1 thread)"});
   const std::vector<int> resolutions =
       quick ? std::vector<int>{4, 16, 32} : std::vector<int>{4, 8, 16, 32, 64, 128, 256};
   int done = 0;
@@ -190,7 +190,7 @@ void study_leaf_size(OutputFolder& out, bool quick) {
   const TriangleSet set = flake_with_about(quick ? 5000 : 100000);
   const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
   Table table({"leaf size", "triangles", "build seconds", "bytes per triangle", "nodes per ray",
-               "triangle tests per ray", "Mrays/s (1 thread)"});
+               "triangle tests per ray", "Mrays per second (1 thread)"});
   const std::vector<int> leaves =
       quick ? std::vector<int>{1, 4, 16} : std::vector<int>{1, 2, 4, 8, 16, 32, 64};
   int done = 0;
@@ -232,7 +232,7 @@ void render_with_threads(OutputFolder& out, bool quick) {
   const std::unique_ptr<TriangleAccel> bvh = make_accel(set);  // the default: the BVH
   const int width = quick ? 96 : 640, height = quick ? 72 : 480;
   const PinholeCamera camera = flake_camera(width, height);
-  Table table({"threads", "seconds", "Mrays/s", "speedup"});
+  Table table({"threads", "seconds", "Mrays per second", "speedup"});
   Image first(width, height);
   double one_thread = 0.0;
   TraversalCounters total;
