@@ -5,7 +5,8 @@
 // throughput of brute force, the uniform grid (3DDA) and the BVH (binned SAH),
 // with their build time and memory per triangle; sweeps the grid's resolution
 // and the BVH's leaf size; renders a shaded sphereflake with shadow rays
-// (any-hit) on one thread and on two and reports the speed-up.
+// (any-hit) on one thread and on two and reports the speed-up; counts the
+// triangle tests a light buffer saves shadow rays.
 #include <omp.h>
 
 #include <algorithm>
@@ -14,7 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "illum/accel/brute_force.hpp"
 #include "illum/accel/bvh.hpp"
+#include "illum/accel/light_buffer.hpp"
 #include "illum/accel/sphereflake.hpp"
 #include "illum/accel/triangle_accel.hpp"
 #include "illum/accel/uniform_grid.hpp"
@@ -276,6 +279,55 @@ void render_with_threads(OutputFolder& out, bool quick) {
            "Work counted while rendering the sphereflake (one thread)");
 }
 
+// Section 5: the light buffer against plain shadow rays (any hit), on the
+// points that the camera sees. Every method must make the same shadow decisions.
+void study_light_buffer(OutputFolder& out, bool quick) {
+  const TriangleSet set = flake_with_about(quick ? 1000 : 10000);
+  const Point3 light(-3.0, -6.0, 7.5);
+  const std::unique_ptr<TriangleAccel> bvh = make_accel(set);
+  const BruteForce brute(set);
+  std::vector<Point3> points;  // visible surface points, nudged off their surface
+  TraversalCounters ignored;
+  for (const Ray& ray : camera_rays(quick ? 32 : 48))
+    if (const auto hit = bvh->intersect(ray, ignored))
+      points.push_back(hit->hit.point +
+                       1e-9 * (dot(hit->hit.normal, ray.direction) < 0 ? 1.0 : -1.0) * hit->hit.normal);
+  const auto shadow_ray = [&](const Point3& p) {
+    const Vec3 d = p - light;
+    const double distance = length(d);
+    return Ray(light, d / distance, Interval(1e-9 * distance, distance * (1.0 - 1e-9)));
+  };
+  std::vector<char> reference;
+  TraversalCounters plain, hierarchy;
+  for (const Point3& p : points) reference.push_back(brute.occluded(shadow_ray(p), plain));
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (bvh->occluded(shadow_ray(points[k]), hierarchy) != static_cast<bool>(reference[k]))
+      throw std::runtime_error("the BVH and brute force disagree on a shadow ray");
+  const double n = static_cast<double>(points.size());
+  const double blocked = static_cast<double>(std::count(reference.begin(), reference.end(), 1)) / n;
+  Table table({"method", "cells per face edge", "candidates listed per triangle",
+               "nodes or cells per shadow ray", "triangle tests per shadow ray", "fraction in shadow"});
+  table.add_row({std::string("brute force (any hit)"), std::int64_t{0}, 0.0, 0.0,
+                 static_cast<double>(plain.triangle_tests) / n, blocked});
+  for (const int resolution : {2, 8, 32, 128}) {
+    const LightBuffer buffer(set, light, LightBufferSettings{.resolution = resolution});
+    TraversalCounters c;
+    for (std::size_t k = 0; k < points.size(); ++k)
+      if (buffer.occluded(points[k], c) != static_cast<bool>(reference[k]))
+        throw std::runtime_error("the light buffer and brute force disagree on a shadow ray");
+    table.add_row({std::string("light buffer"), std::int64_t{resolution},
+                   static_cast<double>(buffer.listed()) / static_cast<double>(set.size()),
+                   static_cast<double>(c.nodes_visited) / n, static_cast<double>(c.triangle_tests) / n,
+                   blocked});
+  }
+  table.add_row({std::string("BVH (any hit)"), std::int64_t{0}, 0.0,
+                 static_cast<double>(hierarchy.nodes_visited) / n,
+                 static_cast<double>(hierarchy.triangle_tests) / n, blocked});
+  out.table(
+      table, "light_buffer",
+      "Shadow rays from the visible points of a sphereflake to a point light: tests per ray, same decisions");
+}
+
 }  // namespace
 }  // namespace illum
 
@@ -291,6 +343,7 @@ int main(int argc, char** argv) {
     illum::study_grid_resolution(out, options.quick);
     illum::study_leaf_size(out, options.quick);
     illum::render_with_threads(out, options.quick);
+    illum::study_light_buffer(out, options.quick);
     out.finish();
   });
 }

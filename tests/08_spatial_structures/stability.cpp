@@ -9,6 +9,7 @@
 
 #include "illum/accel/brute_force.hpp"
 #include "illum/accel/bvh.hpp"
+#include "illum/accel/light_buffer.hpp"
 #include "illum/accel/slab_test.hpp"
 #include "illum/accel/sphereflake.hpp"
 #include "illum/accel/triangle_accel.hpp"
@@ -112,5 +113,34 @@ TEST_SUITE("stability") {
     const SphereflakeSettings big = sphereflake_for(1000000);
     const double n = static_cast<double>(sphereflake_spheres(big.levels)) * big.slices * (big.slices - 2);
     CHECK(n == doctest::Approx(1e6).epsilon(0.15));
+  }
+}
+
+TEST_SUITE("stability") {
+  TEST_CASE("light buffer: the same shadows as brute force, with fewer tests per shadow ray") {
+    const TriangleSet set = illum::test08::triangle_soup(1500, 0x080c);
+    const BruteForce brute(set);
+    // One light outside the scene's box, one inside it (triangles straddle its cube's planes).
+    for (const Point3& light : {Point3(6.1, -5.3, 9.7), Point3(0.4, 0.6, 1.7)}) {
+      INFO("light at (" << light.x << ", " << light.y << ", " << light.z << ")");
+      const LightBuffer buffer(set, light, LightBufferSettings{.resolution = 24});
+      Rng rng(0x080d);
+      TraversalCounters plain, listed;
+      int wrong = 0, blocked = 0;
+      for (int k = 0; k < 3000; ++k) {
+        const Point3 p(rng.uniform(-2.5, 3.3), rng.uniform(-1.9, 3.1), rng.uniform(-1.1, 4.5));
+        const Vec3 d = p - light;
+        const double distance = length(d);
+        const bool expected =
+            brute.occluded(Ray(light, d / distance, Interval(1e-9 * distance, distance * (1 - 1e-9))), plain);
+        blocked += expected;
+        wrong += buffer.occluded(p, listed) != expected;
+      }
+      CHECK(wrong == 0);
+      CHECK(blocked > 300);
+      CHECK(listed.triangle_tests < plain.triangle_tests / 4);
+    }
+    CHECK_THROWS_AS(LightBuffer(set, Point3(0.0), LightBufferSettings{.resolution = 0}),
+                    std::invalid_argument);
   }
 }
