@@ -99,7 +99,7 @@ PlotSpec per_ray_plot(const std::string& title, const std::string& y_label, int 
                 .log_x = true,
                 .log_y = true,
                 .series = {}};
-  for (const char* s : {"brute_force", "grid", "bvh"})
+  for (const char* s : {"brute_force", "grid", "octree", "bvh"})
     spec.series.push_back({.csv = "scaling.csv",
                            .x_column = 2,
                            .y_column = y_column,
@@ -119,12 +119,13 @@ void study_scaling(OutputFolder& out, bool quick) {
   struct Series {
     std::vector<double> n, nodes, tests;
   };
-  Series series[3];
+  Series series[4];
   int done = 0;
   for (const std::size_t target : sizes) {
     report_progress(kId, "scaling", done++, static_cast<int>(sizes.size()));
     const TriangleSet set = flake_with_about(target);
-    for (const AccelKind kind : {AccelKind::brute_force, AccelKind::grid, AccelKind::bvh}) {
+    for (const AccelKind kind :
+         {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::bvh}) {
       if (kind == AccelKind::brute_force && set.size() > (quick ? 1000u : 10000u)) continue;
       const Measure m = measure(set, AccelSettings{.kind = kind}, rays, quick ? 0.005 : 0.03);
       table.add_row({std::string(accel_kind_name(kind)), static_cast<std::int64_t>(set.size()),
@@ -139,10 +140,10 @@ void study_scaling(OutputFolder& out, bool quick) {
     }
   }
   out.table(table, "scaling",
-            "Cost per camera ray against sphereflake size, grid at ∛(2N) cells per axis, BVH leaves of 4");
+            "Cost per camera ray against sphereflake size, grid at ∛(2N) cells per axis, octree to depth 8, BVH leaves of 4");
   Table slopes(
       {"structure", "fit range", "slope of nodes or cells per ray", "slope of triangle tests per ray"});
-  for (const AccelKind kind : {AccelKind::brute_force, AccelKind::grid, AccelKind::bvh}) {
+  for (const AccelKind kind : {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::bvh}) {
     const Series& s = series[static_cast<int>(kind)];
     if (s.n.size() < 2) continue;
     slopes.add_row({std::string(accel_kind_name(kind)),
@@ -214,6 +215,25 @@ void study_leaf_size(OutputFolder& out, bool quick) {
   spec.series.push_back({"bvh_leaf_size.csv", 1, 5, "nodes visited", "", "linespoints"});
   spec.series.push_back({"bvh_leaf_size.csv", 1, 6, "triangle tests", "", "linespoints"});
   out.plot(spec, "bvh_leaf_size", "Bigger leaves: fewer nodes per ray, more triangles per leaf");
+}
+
+// Section 3b: the octree's knob, its depth.
+void study_octree_depth(OutputFolder& out, bool quick) {
+  const TriangleSet set = flake_with_about(quick ? 5000 : 100000);
+  const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
+  Table table({"max depth", "triangles", "build seconds", "bytes per triangle", "nodes per ray",
+               "triangle tests per ray", "Mrays per second (1 thread)"});
+  const std::vector<int> depths = quick ? std::vector<int>{2, 5, 8} : std::vector<int>{2, 4, 6, 8, 10, 12};
+  int done = 0;
+  for (const int depth : depths) {
+    report_progress(kId, "octree depth", done++, static_cast<int>(depths.size()));
+    const Measure m = measure(set, AccelSettings{.kind = AccelKind::octree, .octree_depth = depth}, rays,
+                              quick ? 0.005 : 0.03);
+    table.add_row({std::int64_t{depth}, static_cast<std::int64_t>(set.size()), m.build_seconds,
+                   m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});
+  }
+  out.table(table, "octree_depth",
+            "Octree: deepest level (leaves of at most 8 triangles) against cost per ray");
 }
 
 // One shaded pixel: Lambert term of the closest hit, darkened where a shadow ray (any hit) is blocked.
@@ -342,6 +362,7 @@ int main(int argc, char** argv) {
     illum::study_scaling(out, options.quick);
     illum::study_grid_resolution(out, options.quick);
     illum::study_leaf_size(out, options.quick);
+    illum::study_octree_depth(out, options.quick);
     illum::render_with_threads(out, options.quick);
     illum::study_light_buffer(out, options.quick);
     out.finish();

@@ -10,6 +10,7 @@
 #include "illum/accel/brute_force.hpp"
 #include "illum/accel/bvh.hpp"
 #include "illum/accel/light_buffer.hpp"
+#include "illum/accel/octree.hpp"
 #include "illum/accel/slab_test.hpp"
 #include "illum/accel/sphereflake.hpp"
 #include "illum/accel/triangle_accel.hpp"
@@ -142,5 +143,31 @@ TEST_SUITE("stability") {
     }
     CHECK_THROWS_AS(LightBuffer(set, Point3(0.0), LightBufferSettings{.resolution = 0}),
                     std::invalid_argument);
+  }
+}
+
+TEST_SUITE("stability") {
+  TEST_CASE("octree: the same closest hit and any hit as brute force, origins inside and outside") {
+    const TriangleSet set = illum::test08::triangle_soup(1500, 0x080e);
+    const std::vector<Ray> rays = illum::test08::mixed_rays(set, 3000, 0x080f);
+    const BruteForce brute(set);
+    for (const int depth : {0, 3, 7}) {
+      INFO("max depth " << depth);
+      const Octree octree(set, OctreeSettings{.max_depth = depth, .leaf_size = 8});
+      TraversalCounters c;
+      int wrong = 0, wrong_any = 0, hits = 0;
+      for (const Ray& ray : rays) {
+        const auto expected = brute.intersect(ray, c);
+        const auto got = octree.intersect(ray, c);
+        hits += expected.has_value();
+        wrong += expected.has_value() != got.has_value() || (expected && expected->hit.s != got->hit.s);
+        wrong_any += brute.occluded(ray, c) != octree.occluded(ray, c);
+      }
+      CHECK(wrong == 0);
+      CHECK(wrong_any == 0);
+      CHECK(hits > 300);
+    }
+    CHECK_THROWS_AS(Octree(set, OctreeSettings{.max_depth = 17, .leaf_size = 8}), std::invalid_argument);
+    CHECK(accel_kind_from_name("octree") == AccelKind::octree);
   }
 }

@@ -51,16 +51,17 @@ class TriangleAccel {
   virtual std::string_view name() const = 0;
 };
 
-enum class AccelKind { brute_force, grid, bvh };
+enum class AccelKind { brute_force, grid, octree, bvh };
 
 struct AccelSettings {
   AccelKind kind = AccelKind::bvh;
   // Cells along the grid's longest axis (≥ 1; 0 is refused); none = ⌈∛(2N)⌉, about 2 cells per triangle.
   std::optional<int> grid_resolution{};
   int bvh_leaf_size = 4;  // most triangles in a BVH leaf
+  int octree_depth = 8;   // deepest octree level below the root (0 … 16)
 };
 
-// "brute_force", "grid", "bvh"; throws std::invalid_argument naming the choices otherwise.
+// "brute_force", "grid", "octree", "bvh"; throws std::invalid_argument naming the choices otherwise.
 AccelKind accel_kind_from_name(std::string_view name);
 std::string_view accel_kind_name(AccelKind kind);
 
