@@ -9,6 +9,8 @@
 
 namespace illum {
 
+using std::numbers::pi;  // π is the standard's: no file defines its own
+
 void SmallPolygon::push_back(const Point3& p) {
   require(size < capacity, "SmallPolygon: more than 64 vertices");
   vertices[static_cast<std::size_t>(size++)] = p;
@@ -53,7 +55,7 @@ double point_polygon_form_factor(const Point3& x, const Vec3& normal, const Patc
     const double gamma = std::atan2(c_length, dot(r0, r1));
     sum += gamma * dot(normal, c) / c_length;
   }
-  return sum / (2 * std::numbers::pi);
+  return sum / (2 * pi);
 }
 
 }  // namespace illum
