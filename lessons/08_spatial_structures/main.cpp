@@ -140,7 +140,8 @@ void study_scaling(OutputFolder& out, bool quick) {
     }
   }
   out.table(table, "scaling",
-            "Cost per camera ray against sphereflake size, grid at ∛(2N) cells per axis, octree to depth 8, BVH leaves of 4");
+            "Cost per camera ray against sphereflake size, grid at ∛(2N) cells per axis, octree to depth 8, "
+            "BVH leaves of 4");
   Table slopes(
       {"structure", "fit range", "slope of nodes or cells per ray", "slope of triangle tests per ray"});
   for (const AccelKind kind : {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::bvh}) {
