@@ -18,7 +18,10 @@
 #include <omp.h>
 #include <CLI/CLI.hpp>
 
+#include "illum/core/error.hpp"
+#include "illum/core/memory_budget.hpp"
 #include "illum/core/stopwatch.hpp"
+#include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/io/scene_file.hpp"
@@ -39,6 +42,35 @@ const char* kId = "lesson11";
 // A shipped scene by name ("cornell" = scenes/cornell.json, compiled in), or a file.
 RadiosityScene load_scene(const std::string& scene, double max_patch_edge) {
   return load_radiosity_scene(scene, max_patch_edge);
+}
+
+// The most patches the study may mesh a scene into (the Cornell box has 616 at its 75 mm edge).
+constexpr double max_study_patches = 6000;
+
+// What this program needs of a scene beyond what the loader checks, refused
+// before anything is written: a camera (for the images), some emission
+// (else there is no light to solve for) and some reflectance (the study
+// rescales it, which a zero cannot be).
+void check_usable(const RadiosityScene& scene, const std::string& file) {
+  const std::string name = embedded_scene(file) ? "scenes/" + file + ".json" : file;
+  if (!scene.camera)
+    throw InputError(name, "camera", "(missing)", "lesson 11 draws the scene through its camera");
+  double emitted = 0;
+  for (const Patch& p : scene.patches) emitted += p.area * (p.emission.r + p.emission.g + p.emission.b);
+  if (!(emitted > 0))
+    throw InputError(name, "materials", "(no emission)", "no surface emits light: nothing to solve");
+  if (!(max_reflectance(scene.patches) > 0))
+    throw InputError(name, "materials", "(every reflectance 0)",
+                     "every reflectance is zero: the study's reflectance scales cannot rescale it");
+  // The study solves the N × N system directly (Gaussian elimination, N³/3
+  // steps) and keeps two N × N matrices: both bound the scene's size.
+  const double n = static_cast<double>(scene.patches.size());
+  if (n > max_study_patches)
+    throw InputError(name, "surfaces", std::to_string(scene.patches.size()) + " patches",
+                     "lesson 11's study meshes a scene into at most " +
+                         std::to_string(int(max_study_patches)) +
+                         " patches (it solves the system directly); use a smaller scene");
+  check_memory("the study's two form-factor matrices", 2 * n * n, sizeof(double));
 }
 
 // Scales every reflectance so that the largest channel in the scene is rho_max.
@@ -217,6 +249,10 @@ int main(int argc, char** argv) {
             ->capture_default_str();
       },
       [&](const ProgramOptions& options) {
+        // Validate before writing: the scene at both meshings used below.
+        const double study_edge = options.quick ? 220.0 : 75.0;
+        const RadiosityScene study_scene = load_scene(scene_file, study_edge);
+        check_usable(study_scene, scene_file);
         OutputFolder out(options.out, info.id, info.title);
         const bool quick = options.quick;
 
@@ -231,9 +267,7 @@ int main(int argc, char** argv) {
             "then the limit");
 
         // 2. The study: every solver on the Cornell box, several reflectance scales.
-        const double study_edge = quick ? 220.0 : 75.0;
         const int study_resolution = quick ? 32 : 96;
-        const RadiosityScene study_scene = load_scene(scene_file, study_edge);
         report_progress(
             kId, "hemicube form factors for " + std::to_string(study_scene.patches.size()) + " patches", 0,
             1);
@@ -459,7 +493,13 @@ int main(int argc, char** argv) {
         const std::size_t target = quick ? 300 : 2000;
         double edge = 120.0;
         RadiosityScene big = load_scene(scene_file, edge);
-        while (big.patches.size() < target) {
+        // Bounded by a count, not by edge reaching zero: 0.97^1000 ≈ 6e-14, and
+        // the loader refuses a meshing beyond max_scene_patches long before.
+        for (int shrink = 0; big.patches.size() < target; ++shrink) {
+          if (shrink == 1000)
+            throw std::runtime_error("cannot mesh " + scene_file + " into " + std::to_string(target) +
+                                     " patches (edge " + std::to_string(edge) + " gives " +
+                                     std::to_string(big.patches.size()) + ")");
           edge *= 0.97;
           big = load_scene(scene_file, edge);
         }
@@ -472,7 +512,11 @@ int main(int argc, char** argv) {
         const double emitted = total_power(big.patches, state.unshot);
         Table figure_history({"shots", "seconds", "unshot_fraction"});
         double unshot = 1.0, row_seconds = 0;
+        const std::size_t max_shots = 1000 * big.patches.size();  // 1% is reached in ~1 shot per patch
         while (unshot >= 0.01) {
+          if (state.shots >= max_shots)
+            throw std::runtime_error("progressive refinement left " + std::to_string(unshot) +
+                                     " of the power unshot after " + std::to_string(max_shots) + " shots");
           const std::size_t i = choose_shooter(big.patches, state.unshot);
           Stopwatch row_watch;
           hemicube.form_factor_row(big.patches, i, row.data(), buffers);
