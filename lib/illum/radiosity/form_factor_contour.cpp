@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <span>
+#include <vector>
 
 #include "illum/core/error.hpp"
 #include "illum/radiosity/form_factor_analytic.hpp"
@@ -13,6 +15,16 @@
 namespace illum {
 
 namespace {
+
+// N values of T on the stack, not constructed (with GLM_FORCE_CTOR_INIT a Vec3
+// array would be zero-filled on every call, which costs more than a quad pair).
+template <class T, int N>
+struct Uninitialized {
+  Uninitialized() {}
+  union {
+    T data[N];
+  };
+};
 
 // K(u) with K'(u) = ½ ln(u² + h²): ½u ln(u² + h²) − u + h·atan(u/h).
 double log_primitive(double u, double h) {
@@ -119,9 +131,19 @@ double polygon_polygon_form_factor(const Patch& from, const Patch& to, const Con
       height_above(pj, from.centroid, from.normal) <= 1e-12 * size)
     return 0.0;
   const QuadratureRule& rule = gauss_legendre(options.order);
-  // Edge vectors and lengths once per polygon, not once per edge pair.
-  std::array<Vec3, SmallPolygon::capacity> ei, ej;
-  std::array<double, SmallPolygon::capacity> li, lj;
+  // Edge vectors and lengths once per polygon, not once per edge pair: on the
+  // stack up to SmallPolygon::inline_capacity edges, on the heap beyond.
+  constexpr int small = SmallPolygon::inline_capacity;
+  Uninitialized<Vec3, small> ei_stack, ej_stack;
+  Uninitialized<double, small> li_stack, lj_stack;
+  std::vector<Vec3> ei_heap, ej_heap;
+  std::vector<double> li_heap, lj_heap;
+  if (pi.size > small) ei_heap.resize(static_cast<std::size_t>(pi.size)), li_heap.resize(ei_heap.size());
+  if (pj.size > small) ej_heap.resize(static_cast<std::size_t>(pj.size)), lj_heap.resize(ej_heap.size());
+  const std::span<Vec3> ei = pi.size > small ? std::span<Vec3>(ei_heap) : std::span<Vec3>(ei_stack.data, small);
+  const std::span<Vec3> ej = pj.size > small ? std::span<Vec3>(ej_heap) : std::span<Vec3>(ej_stack.data, small);
+  const std::span<double> li = pi.size > small ? std::span<double>(li_heap) : std::span<double>(li_stack.data, small);
+  const std::span<double> lj = pj.size > small ? std::span<double>(lj_heap) : std::span<double>(lj_stack.data, small);
   for (int p = 0; p < pi.size; ++p) {
     const auto k = static_cast<std::size_t>(p);
     ei[k] = pi[(p + 1) % pi.size] - pi[p];
