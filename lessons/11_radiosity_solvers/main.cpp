@@ -58,7 +58,7 @@ struct Settings {
   double figure_edge = 0;          // or, when > 0, with patches no longer than this (mm)
   int figure_resolution = 128;     // hemicube resolution of the figure and the scaling study
   double unshot_threshold = 1e-3;  // stop when the unshot power is below this fraction of the emitted
-  bool big_figure = false;         // --figure: the scaling study up to 8,000 patches
+  bool big_figure = false;         // --figure: only section 10, with the scaling study up to 8,000 patches
 };
 
 // A shipped scene by name ("cornell" = scenes/cornell.json, compiled in), or a file.
@@ -622,12 +622,20 @@ int main(int argc, char** argv) {
                        "stop the figure when the unshot power is below this fraction of the emitted")
             ->check(CLI::Range(1e-9, 0.5))
             ->capture_default_str();
-        app.add_flag("--figure", settings.big_figure, "the scaling study up to 8,000 patches (minutes)");
+        app.add_flag("--figure", settings.big_figure,
+                     "only the figure, with the scaling study up to 8,000 patches (a few minutes)");
       },
       [&](const ProgramOptions& options) {
         settings.quick = options.quick;
+        if (settings.quick) settings.unshot_threshold = std::max(settings.unshot_threshold, 0.01);
         if (!solvers.empty()) settings.solvers = solvers;
         OutputFolder out(options.out, info.id, info.title);
+        if (settings.big_figure) {
+          figure_section(out, settings);
+          scaling_section(out, settings);
+          out.finish();
+          return;
+        }
         three_patch_section(out);
         const StudySystem system = study_form_factors(out, settings);
         Table history({"solver", "rho_max", "sweeps", "seconds", "residual", "error", "display_error"});

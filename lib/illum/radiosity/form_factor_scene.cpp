@@ -183,7 +183,9 @@ double pair_to_tolerance(const Patch& a, const Patch& b, double ra, double rb, d
       return area_rule_form_factor(a, b, ma, mb);
     }
   }
-  return polygon_polygon_form_factor(a, b, contour);
+  ContourOptions to_target = contour;
+  to_target.tolerance = target;
+  return polygon_polygon_form_factor(a, b, to_target);
 }
 
 }  // namespace
@@ -192,7 +194,7 @@ FormFactorMatrix contour_form_factor_matrix(const std::vector<Patch>& patches, c
                                             MatrixReport* report) {
   require(target.absolute >= 1e-15 && target.absolute <= 1,
           "contour_form_factor_matrix: the tolerance must lie in [1e-15, 1]");
-  const ContourOptions contour{.order = target.absolute < 1e-8 ? 16 : 8};
+  const ContourOptions contour{.order = 8};
   const std::size_t n = patches.size();
   FormFactorMatrix f(n);
   // Per row: pairs by method, and the largest bound (summed after the parallel loop, in row order).

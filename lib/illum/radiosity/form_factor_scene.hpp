@@ -44,7 +44,8 @@ FormFactorMatrix contour_form_factor_matrix(const std::vector<Patch>& patches,
 //   - every other pair (shared edges and vertices, neighbours, polygons
 //     crossing each other's plane): the contour integral, whose parallel edge
 //     pairs are in closed form (exact for axis-aligned rectangles) and whose
-//     other edge pairs use the graded rule of order 8 (16 below 1e-8).
+//     other edge pairs are integrated adaptively to the pair's target
+//     (ContourOptions::tolerance: an estimated, not a proven, error).
 // F_ij is computed for i < j and F_ji = A_i F_ij / A_j; the pair's target is
 // absolute·min(1, A_j/A_i) so that both entries meet the tolerance. Rows in
 // parallel (OpenMP): each entry depends only on its pair, so the matrix is

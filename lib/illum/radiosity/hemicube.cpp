@@ -126,8 +126,27 @@ FaceTarget face_target(HemicubeBuffers& buffers, int res, HemicubeFace f, const 
 // Draws patches [begin, end) (all but i) onto the faces in `faces` with the
 // z-buffer. Within one buffer the first patch (lowest index) of the nearest
 // ones keeps a pixel; merge_faces keeps that rule across buffers.
+// The side planes of the five frustums that the point p (hemicube frame) is
+// outside of, four bits per face (bit 4k + plane), by the same sums as the
+// rasteriser's outcodes on the face coordinates (hemicube_raster.cpp,
+// plane_value). A polygon whose vertices are all outside one plane of face k
+// draws nothing there, so it is skipped without the per-face transform. The
+// near plane and the base plane are left to the rasteriser.
+unsigned planes_outside(const Vec3& p) {
+  const auto out = [](double v, int bit) { return v < 0 ? 1u << bit : 0u; };
+  // top (a, b, w) = (x, y, z); pos_x = (y, z, x); neg_x = (−y, z, −x); pos_y = (−x, z, y); neg_y = (x, z, −y);
+  // planes w + a, w − a, w − b (and w + b on top).
+  return out(p.z + p.x, 0) | out(p.z - p.x, 1) | out(p.z - p.y, 2) | out(p.z + p.y, 3) |  //
+         out(p.x + p.y, 4) | out(p.x - p.y, 5) | out(p.x - p.z, 6) |                        //
+         out(-p.x + -p.y, 8) | out(-p.x - -p.y, 9) | out(-p.x - p.z, 10) |                  //
+         out(p.y + -p.x, 12) | out(p.y - -p.x, 13) | out(p.y - p.z, 14) |                   //
+         out(-p.y + p.x, 16) | out(-p.y - p.x, 17) | out(-p.y - p.z, 18);
+}
+
+// `scratch` holds the per-patch work space (it may be `buffers` itself).
 void draw_patches(const std::vector<Patch>& patches, std::size_t i, const HemicubeFrame& frame,
-                  std::size_t begin, std::size_t end, unsigned faces, HemicubeBuffers& buffers) {
+                  std::size_t begin, std::size_t end, unsigned faces, HemicubeBuffers& buffers,
+                  HemicubeBuffers& scratch) {
   const int res = buffers.resolution;
   const Patch& receiver = patches[i];
   FaceTarget targets[5];
@@ -136,15 +155,17 @@ void draw_patches(const std::vector<Patch>& patches, std::size_t i, const Hemicu
     if (j == i) continue;
     const Patch& p = patches[j];
     const std::size_t nv = p.vertices.size();
-    if (buffers.local.size() < nv) buffers.local.resize(nv), buffers.face.resize(nv);
+    if (scratch.local.size() < nv) scratch.local.resize(nv), scratch.face.resize(nv);
     bool above = false;
     double reach = 0;
+    unsigned outside = ~0u;  // the frustum planes every vertex so far lies outside of
     for (std::size_t k = 0; k < nv; ++k) {
       const Vec3 d = p.vertices[k] - frame.eye;
-      buffers.local[k] = Vec3(dot(d, frame.x), dot(d, frame.y), dot(d, frame.z));
-      above |= buffers.local[k].z > 0;
+      scratch.local[k] = Vec3(dot(d, frame.x), dot(d, frame.y), dot(d, frame.z));
+      above |= scratch.local[k].z > 0;
       reach = std::max(
-          reach, std::abs(buffers.local[k].z) + std::abs(buffers.local[k].x) + std::abs(buffers.local[k].y));
+          reach, std::abs(scratch.local[k].z) + std::abs(scratch.local[k].x) + std::abs(scratch.local[k].y));
+      outside &= planes_outside(scratch.local[k]);
     }
     if (!above) continue;  // wholly behind or on the base plane: invisible from the hemicube
     // The patch's plane n·q = d in the hemicube's frame (eye at the origin).
@@ -159,11 +180,11 @@ void draw_patches(const std::vector<Patch>& patches, std::size_t i, const Hemicu
     // tie. Pushing back faces a relative 1e-9 further makes the front face win the tie.
     const double plane_d = d < 0 ? d : d * (1.0 + 1e-9);
     for (int k = 0; k < 5; ++k) {
-      if (!(faces & (1u << k))) continue;
+      if (!(faces & (1u << k)) || (outside >> (4 * k)) & 0xfu) continue;  // outside face k's frustum
       const auto f = static_cast<HemicubeFace>(k);
-      for (std::size_t v = 0; v < nv; ++v) buffers.face[v] = to_face(f, buffers.local[v]);
-      rasterize_polygon(buffers.face.data(), static_cast<int>(nv), to_face(f, n_local), plane_d, item,
-                        targets[k], buffers.raster);
+      for (std::size_t v = 0; v < nv; ++v) scratch.face[v] = to_face(f, scratch.local[v]);
+      rasterize_polygon(scratch.face.data(), static_cast<int>(nv), to_face(f, n_local), plane_d, item,
+                        targets[k], scratch.raster);
     }
   }
 }
@@ -189,7 +210,8 @@ void Hemicube::form_factor_row(const std::vector<Patch>& patches, std::size_t i,
   require(std::isfinite(rotation_angle), "Hemicube::form_factor_row: rotation_angle must be finite");
   constexpr unsigned all_faces = 0x1f;
   clear_faces(buffers, resolution(), all_faces);
-  draw_patches(patches, i, frame_of(patches[i], rotation_angle), 0, patches.size(), all_faces, buffers);
+  draw_patches(patches, i, frame_of(patches[i], rotation_angle), 0, patches.size(), all_faces, buffers,
+               buffers);
   accumulate_row(deltas_, buffers, patches.size(), i, row);
 }
 
@@ -198,38 +220,47 @@ void Hemicube::form_factor_row_parallel(const std::vector<Patch>& patches, std::
   require(i < patches.size(), "Hemicube::form_factor_row_parallel: patch index i is out of range");
   require(row != nullptr, "Hemicube::form_factor_row_parallel: row is null");
   require(std::isfinite(rotation_angle), "Hemicube::form_factor_row_parallel: rotation_angle must be finite");
-  // One buffer per range of patches, as many ranges as threads (grown once, reused).
-  const auto ranges = static_cast<std::size_t>(std::max(1, omp_get_max_threads()));
-  if (buffers.size() < ranges) buffers.resize(ranges);
-  const int res = resolution();
-  for (HemicubeBuffers& b : buffers)
-    if (b.resolution != res) clear_faces(b, res, 0x1f);  // allocates: the first call only
-  const HemicubeFrame frame = frame_of(patches[i], rotation_angle);
+  // One item buffer per range of patches, as many ranges as threads, then one
+  // scratch per thread (grown once, reused). A small row is drawn by one
+  // thread: forking and joining would cost more than it saves.
   const std::size_t n = patches.size();
-  // Tasks (range r, face k): each writes only face k of buffers[r], so they
-  // run in any order on any thread. Largest faces first for the dynamic schedule.
-  const long tasks = static_cast<long>(5 * ranges);
-#pragma omp parallel for schedule(dynamic, 1)
-  for (long t = 0; t < tasks; ++t) {
-    const auto r = static_cast<std::size_t>(t) / 5;
-    const unsigned face = 1u << (t % 5);
-    HemicubeBuffers& b = buffers[r];
-    clear_faces(b, res, face);
-    draw_patches(patches, i, frame, n * r / ranges, n * (r + 1) / ranges, face, b);
-  }
-  // Merge the ranges in order into buffers[0]: a strictly nearer pixel wins,
+  const int res = resolution();
+  const bool worth_threads = static_cast<double>(n) * res * res >= 4e6;
+  const auto ranges = static_cast<std::size_t>(worth_threads ? std::max(1, omp_get_max_threads()) : 1);
+  if (buffers.size() < 2 * ranges) buffers.resize(2 * ranges);
+  for (std::size_t r = 0; r < ranges; ++r)
+    if (buffers[r].resolution != res) clear_faces(buffers[r], res, 0x1f);  // allocates: the first call only
+  const HemicubeFrame frame = frame_of(patches[i], rotation_angle);
+  HemicubeBuffers& first = buffers[0];
+  const auto pixels = static_cast<std::ptrdiff_t>(first.items.size());
+  // One parallel region per row. Tasks (range r, face k) each write only
+  // face k of buffers[r], so they run in any order on any thread. Then the
+  // ranges are merged in order into buffers[0]: a strictly nearer pixel wins,
   // so on a tie the lower range (the lower patch index) keeps it, exactly as
   // one serial pass over all patches would. The row does not depend on the
   // number of threads.
-  HemicubeBuffers& first = buffers[0];
-  const auto pixels = static_cast<std::ptrdiff_t>(first.items.size());
-#pragma omp parallel for schedule(static) if (ranges > 1)
-  for (std::ptrdiff_t p = 0; p < pixels; ++p)
-    for (std::size_t r = 1; r < ranges; ++r)
-      if (buffers[r].inv_depth[static_cast<std::size_t>(p)] > first.inv_depth[static_cast<std::size_t>(p)]) {
-        first.inv_depth[static_cast<std::size_t>(p)] = buffers[r].inv_depth[static_cast<std::size_t>(p)];
-        first.items[static_cast<std::size_t>(p)] = buffers[r].items[static_cast<std::size_t>(p)];
-      }
+  const long tasks = static_cast<long>(5 * ranges);
+#pragma omp parallel if (ranges > 1)
+  {
+#pragma omp for schedule(dynamic, 1)
+    for (long t = 0; t < tasks; ++t) {
+      const auto r = static_cast<std::size_t>(t) / 5;
+      const unsigned face = 1u << (t % 5);
+      HemicubeBuffers& b = buffers[r];
+      clear_faces(b, res, face);
+      HemicubeBuffers& scratch = buffers[ranges + static_cast<std::size_t>(omp_get_thread_num())];
+      draw_patches(patches, i, frame, n * r / ranges, n * (r + 1) / ranges, face, b, scratch);
+    }
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t p = 0; p < pixels; ++p) {
+      const auto k = static_cast<std::size_t>(p);
+      for (std::size_t r = 1; r < ranges; ++r)
+        if (buffers[r].inv_depth[k] > first.inv_depth[k]) {
+          first.inv_depth[k] = buffers[r].inv_depth[k];
+          first.items[k] = buffers[r].items[k];
+        }
+    }
+  }
   accumulate_row(deltas_, first, n, i, row);
 }
 
