@@ -253,9 +253,9 @@ void tolerance_study(OutputFolder& out, const Settings& settings) {
     std::string name;
     ContourOptions options;
   };
-  for (const Fixed& m : {Fixed{"contour, closed-form edge pairs", {}},
-                         Fixed{"contour, plain Gauss-Legendre 8", {.order = 8, .exact_parallel_edges = false, .graded_near_edges = false}},
-                         Fixed{"contour, plain Gauss-Legendre 16", {.order = 16, .exact_parallel_edges = false, .graded_near_edges = false}}}) {
+  for (const Fixed& m : {Fixed{"contour: closed-form edge pairs", {}},
+                         Fixed{"contour: plain Gauss-Legendre 8", {.order = 8, .exact_parallel_edges = false, .graded_near_edges = false}},
+                         Fixed{"contour: plain Gauss-Legendre 16", {.order = 16, .exact_parallel_edges = false, .graded_near_edges = false}}}) {
     const MatrixRun run = run_matrix(
         [&](MatrixReport*) { return contour_form_factor_matrix(patches, m.options, PairReuse::none); }, exact, repeats);
     table.add_row({m.name, 0.0, static_cast<std::int64_t>(patches.size()), run.seconds, run.error, std::string("-"),
@@ -264,10 +264,10 @@ void tolerance_study(OutputFolder& out, const Settings& settings) {
   out.table(table, "tolerance_study",
             "The cube's form-factor matrix to a requested tolerance (every pair computed, all threads, best of " +
                 std::to_string(repeats) + "), against the closed forms for rectangles");
-  PlotSpec plot{"The cube's matrix: largest error vs time", "seconds", "max |F - F_exact|", true, true, {}, 1000, 620};
+  PlotSpec plot{"The cube's matrix: largest error vs time", "seconds", "max |F - exact F|", true, true, {}, 1000, 620};
   plot.series.push_back({"tolerance_study.csv", 4, 5, "to a tolerance (1e-3 ... 1e-13)", "strcol(1) eq 'to a tolerance'"});
   plot.series.push_back({"tolerance_study.csv", 4, 2, "the tolerance asked for", "strcol(1) eq 'to a tolerance'", "lines"});
-  for (const char* m : {"contour, closed-form edge pairs", "contour, plain Gauss-Legendre 8", "contour, plain Gauss-Legendre 16"})
+  for (const char* m : {"contour: closed-form edge pairs", "contour: plain Gauss-Legendre 8", "contour: plain Gauss-Legendre 16"})
     plot.series.push_back({"tolerance_study.csv", 4, 5, m, "strcol(1) eq '" + std::string(m) + "'", "points"});
   out.plot(plot, "tolerance_error_vs_time",
            "Largest error of the cube's matrix against time: the tolerance sweep and the fixed contour rules");
