@@ -220,36 +220,34 @@ void Hemicube::form_factor_row_parallel(const std::vector<Patch>& patches, std::
   require(i < patches.size(), "Hemicube::form_factor_row_parallel: patch index i is out of range");
   require(row != nullptr, "Hemicube::form_factor_row_parallel: row is null");
   require(std::isfinite(rotation_angle), "Hemicube::form_factor_row_parallel: rotation_angle must be finite");
-  // One item buffer per range of patches, as many ranges as threads, then one
-  // scratch per thread (grown once, reused). A small row is drawn by one
-  // thread: forking and joining would cost more than it saves.
+  // One item buffer (and scratch) per range of patches, as many ranges as
+  // threads (grown once, reused). A small row is drawn by one thread: forking
+  // and joining would cost more than it saves.
   const std::size_t n = patches.size();
   const int res = resolution();
   const bool worth_threads = static_cast<double>(n) * res * res >= 4e6;
   const auto ranges = static_cast<std::size_t>(worth_threads ? std::max(1, omp_get_max_threads()) : 1);
-  if (buffers.size() < 2 * ranges) buffers.resize(2 * ranges);
+  if (buffers.size() < ranges) buffers.resize(ranges);
   for (std::size_t r = 0; r < ranges; ++r)
     if (buffers[r].resolution != res) clear_faces(buffers[r], res, 0x1f);  // allocates: the first call only
   const HemicubeFrame frame = frame_of(patches[i], rotation_angle);
   HemicubeBuffers& first = buffers[0];
   const auto pixels = static_cast<std::ptrdiff_t>(first.items.size());
-  // One parallel region per row. Tasks (range r, face k) each write only
-  // face k of buffers[r], so they run in any order on any thread. Then the
+  // One parallel region per row. Range r is drawn (all five faces) into
+  // buffers[r] by one thread, so each patch is transformed once. Then the
   // ranges are merged in order into buffers[0]: a strictly nearer pixel wins,
   // so on a tie the lower range (the lower patch index) keeps it, exactly as
   // one serial pass over all patches would. The row does not depend on the
   // number of threads.
-  const long tasks = static_cast<long>(5 * ranges);
+  const long tasks = static_cast<long>(ranges);
 #pragma omp parallel if (ranges > 1)
   {
-#pragma omp for schedule(dynamic, 1)
+#pragma omp for schedule(static, 1)
     for (long t = 0; t < tasks; ++t) {
-      const auto r = static_cast<std::size_t>(t) / 5;
-      const unsigned face = 1u << (t % 5);
+      const auto r = static_cast<std::size_t>(t);
       HemicubeBuffers& b = buffers[r];
-      clear_faces(b, res, face);
-      HemicubeBuffers& scratch = buffers[ranges + static_cast<std::size_t>(omp_get_thread_num())];
-      draw_patches(patches, i, frame, n * r / ranges, n * (r + 1) / ranges, face, b, scratch);
+      clear_faces(b, res, 0x1f);
+      draw_patches(patches, i, frame, n * r / ranges, n * (r + 1) / ranges, 0x1f, b, b);
     }
 #pragma omp for schedule(static)
     for (std::ptrdiff_t p = 0; p < pixels; ++p) {

@@ -75,9 +75,8 @@ class Hemicube {
 
   // The same row computed by every OpenMP thread, for progressive refinement
   // where rows come one at a time: the patches are split into one range per
-  // thread, each (range, face) pair is a task drawing into its range's item
-  // buffer (buffers[range]) with its thread's scratch (buffers[threads +
-  // thread]), and the ranges are merged by depth in order, so that
+  // thread, each range is drawn by one thread into its own item buffer
+  // (buffers[range]), and the ranges are merged by depth in order, so that
   // on a tie the lower patch index keeps the pixel as in one serial pass.
   // The row is the same, bit for bit, as form_factor_row's, whatever the
   // number of threads. `buffers` is grown on the first call and reused.
