@@ -69,10 +69,12 @@ void cube_image(OutputFolder& out, const Settings& settings) {
   for (int i = 0; i < size; ++i)
     for (int j = 0; j < size; ++j) {
       const double value = f(static_cast<std::size_t>(i), static_cast<std::size_t>(j));
-      image.at(j, i) = value > 0 ? colormap_viridis(std::clamp((std::log10(value) + 6) / 5, 0.0, 1.0)) : Color(0.0);
+      image.at(j, i) =
+          value > 0 ? colormap_viridis(std::clamp((std::log10(value) + 6) / 5, 0.0, 1.0)) : Color(0.0);
     }
   out.image(image, "cube_matrix",
-            "F_ij of the cube's inside, rows i and columns j by face (x=0, x=1, y=0, y=1, z=0, z=1); colour log10 F "
+            "F_ij of the cube's inside, rows i and columns j by face (x=0, x=1, y=0, y=1, z=0, z=1); colour "
+            "log10 F "
             "from -6 to -1, black where F = 0 (coplanar patches)");
 }
 
@@ -104,8 +106,9 @@ void pair_study(Table& study, const Settings& settings) {
     const Patch* to;
     double exact;
   };
-  const Pair pairs[2] = {{"parallel squares", &ceiling, axis_aligned_rectangles_form_factor(floor, ceiling)},
-                         {"shared edge", &wall, axis_aligned_rectangles_form_factor(floor, wall)}};  // C-11, C-14
+  const Pair pairs[2] = {
+      {"parallel squares", &ceiling, axis_aligned_rectangles_form_factor(floor, ceiling)},
+      {"shared edge", &wall, axis_aligned_rectangles_form_factor(floor, wall)}};  // C-11, C-14
   for (const Pair& pair : pairs) {
     double seconds = 0;
     double f = timed([&] { return polygon_polygon_form_factor(floor, *pair.to); }, seconds, min_time);
@@ -119,7 +122,8 @@ void pair_study(Table& study, const Settings& settings) {
     }
     for (double tolerance : {1e-2, 1e-3, 1e-4, 1e-5, 1e-6}) {
       if (settings.quick && tolerance < 1e-4) continue;
-      f = timed([&] { return form_factor_hierarchical(floor, *pair.to, tolerance).value; }, seconds, min_time);
+      f = timed([&] { return form_factor_hierarchical(floor, *pair.to, tolerance).value; }, seconds,
+                min_time);
       study.add_row({"hierarchical", pair.name, tolerance, std::abs(f - pair.exact), seconds});
     }
     // Monte Carlo: the RMS error over 8 seeds, so that the N^-1/2 line is not a single noisy draw.
@@ -144,10 +148,12 @@ void point_study(Table& study, const Settings& settings) {
   const Patch ceiling = ceiling_square();
   const Point3 x(0, 0, 0);
   const Vec3 up(0, 0, 1);
-  const double exact = (2 * (1 / std::sqrt(2.0)) * std::atan(1 / std::sqrt(2.0))) / (2 * pi);  // B-3, a = b = c = 1
+  const double exact =
+      (2 * (1 / std::sqrt(2.0)) * std::atan(1 / std::sqrt(2.0))) / (2 * pi);  // B-3, a = b = c = 1
   double seconds = 0;
   const double f = timed([&] { return point_polygon_form_factor(x, up, ceiling); }, seconds, min_time);
-  study.add_row({"point: contour formula", "corner", std::int64_t{0}, std::max(std::abs(f - exact), 1e-17), seconds});
+  study.add_row(
+      {"point: contour formula", "corner", std::int64_t{0}, std::max(std::abs(f - exact), 1e-17), seconds});
   for (int segments : {1, 2, 4, 8, 16, 32, 64, 128, 256}) {
     const double g = timed([&] { return form_factor_nusselt(x, up, ceiling, segments); }, seconds, min_time);
     study.add_row({"point: Nusselt projected area", "corner", static_cast<std::int64_t>(segments),
@@ -155,7 +161,8 @@ void point_study(Table& study, const Settings& settings) {
   }
   using Estimator = std::function<double(int, Rng&)>;
   const std::pair<std::string, Estimator> estimators[3] = {
-      {"point: area sampling", [&](int n, Rng& rng) { return form_factor_area_sampling(x, up, ceiling, {}, n, rng); }},
+      {"point: area sampling",
+       [&](int n, Rng& rng) { return form_factor_area_sampling(x, up, ceiling, {}, n, rng); }},
       {"point: hemisphere uniform",
        [&](int n, Rng& rng) { return form_factor_hemisphere_uniform(x, up, ceiling, {}, n, rng); }},
       {"point: hemisphere cosine",
@@ -169,7 +176,8 @@ void point_study(Table& study, const Settings& settings) {
         const double e = estimate(samples, rng) - exact;
         squared += e * e;
       }
-      study.add_row({name, "corner", static_cast<std::int64_t>(samples), std::sqrt(squared / 8), watch.seconds() / 8});
+      study.add_row(
+          {name, "corner", static_cast<std::int64_t>(samples), std::sqrt(squared / 8), watch.seconds() / 8});
     }
 }
 
@@ -181,7 +189,8 @@ void study_section(OutputFolder& out, const Settings& settings) {
   out.table(study, "study",
             "Error against the closed forms (C-11 parallel squares, C-14 squares sharing an edge, B-3 point "
             "under a corner) and time per estimate; Monte Carlo errors are RMS over 8 seeds");
-  PlotSpec by_time{"Form factors: error vs time", "seconds per estimate", "|error|", true, true, {}, 1000, 620};
+  PlotSpec by_time{
+      "Form factors: error vs time", "seconds per estimate", "|error|", true, true, {}, 1000, 620};
   for (const char* m : {"contour (plain Gauss-Legendre)", "hierarchical", "Monte Carlo area to area"})
     for (const char* c : {"parallel squares", "shared edge"})
       by_time.series.push_back({"study.csv", 5, 4, std::string(m) + ", " + c,
@@ -192,8 +201,14 @@ void study_section(OutputFolder& out, const Settings& settings) {
   out.plot(by_time, "study_error_vs_time",
            "Error vs time, log-log: Monte Carlo falls as N^-1/2, quadrature and hierarchical faster; the "
            "shared edge slows plain Gauss-Legendre to an algebraic rate");
-  PlotSpec by_knob{"Form factors: error vs accuracy knob", "knob (points, samples, segments)", "|error|", true, true,
-                   {}, 1000, 620};
+  PlotSpec by_knob{"Form factors: error vs accuracy knob",
+                   "knob (points, samples, segments)",
+                   "|error|",
+                   true,
+                   true,
+                   {},
+                   1000,
+                   620};
   for (const char* m : {"contour (plain Gauss-Legendre)", "Monte Carlo area to area"})
     for (const char* c : {"parallel squares", "shared edge"})
       by_knob.series.push_back({"study.csv", 3, 4, std::string(m) + ", " + c,
@@ -211,8 +226,8 @@ struct MatrixRun {
 };
 
 // Best of `repeats` builds by `build`, with the largest error against `exact`.
-MatrixRun run_matrix(const std::function<FormFactorMatrix(MatrixReport*)>& build, const FormFactorMatrix& exact,
-                     int repeats) {
+MatrixRun run_matrix(const std::function<FormFactorMatrix(MatrixReport*)>& build,
+                     const FormFactorMatrix& exact, int repeats) {
   MatrixRun run;
   run.seconds = INFINITY;
   for (int repeat = 0; repeat < repeats; ++repeat) {
@@ -222,7 +237,8 @@ MatrixRun run_matrix(const std::function<FormFactorMatrix(MatrixReport*)>& build
   }
   for (std::size_t i = 0; i < exact.size(); ++i) {
     run.row_error = std::max(run.row_error, std::abs(run.f.row_sum(i) - 1));
-    for (std::size_t j = 0; j < exact.size(); ++j) run.error = std::max(run.error, std::abs(run.f(i, j) - exact(i, j)));
+    for (std::size_t j = 0; j < exact.size(); ++j)
+      run.error = std::max(run.error, std::abs(run.f(i, j) - exact(i, j)));
   }
   return run;
 }
@@ -234,19 +250,22 @@ void tolerance_study(OutputFolder& out, const Settings& settings) {
   const std::vector<Patch> patches = mesh_cube_interior(settings.quick ? 4 : settings.cube_n);
   const FormFactorMatrix exact = closed_form_rectangle_matrix(patches);
   const int repeats = settings.quick ? 1 : 5;
-  Table table({"method", "tolerance", "patches", "seconds", "max abs(F - F_exact)", "target met", "area-rule pairs",
-               "contour pairs"});
+  Table table({"method", "tolerance", "patches", "seconds", "max abs(F - F_exact)", "target met",
+               "area-rule pairs", "contour pairs"});
   for (int k = 3; k <= 13; ++k) {
     const double tolerance = std::pow(10.0, -k);
     report_progress("lesson09", "tolerance study", k - 3, 11);
     const MatrixRun run = run_matrix(
-        [&](MatrixReport* r) { return contour_form_factor_matrix(patches, FormFactorTolerance{tolerance}, r); }, exact,
-        repeats);
+        [&](MatrixReport* r) {
+          return contour_form_factor_matrix(patches, FormFactorTolerance{tolerance}, r);
+        },
+        exact, repeats);
     if (run.error > tolerance)
-      throw std::runtime_error("the cube's matrix at tolerance " + std::to_string(tolerance) + " has an error of " +
-                               std::to_string(run.error));
-    table.add_row({std::string("to a tolerance"), tolerance, static_cast<std::int64_t>(patches.size()), run.seconds,
-                   run.error, std::string("yes"), static_cast<std::int64_t>(run.report.area_rule_pairs),
+      throw std::runtime_error("the cube's matrix at tolerance " + std::to_string(tolerance) +
+                               " has an error of " + std::to_string(run.error));
+    table.add_row({std::string("to a tolerance"), tolerance, static_cast<std::int64_t>(patches.size()),
+                   run.seconds, run.error, std::string("yes"),
+                   static_cast<std::int64_t>(run.report.area_rule_pairs),
                    static_cast<std::int64_t>(run.report.contour_pairs)});
   }
   struct Fixed {
@@ -254,28 +273,39 @@ void tolerance_study(OutputFolder& out, const Settings& settings) {
     ContourOptions options;
   };
   for (const Fixed& m : {Fixed{"contour: closed-form edge pairs", {}},
-                         Fixed{"contour: plain Gauss-Legendre 8", {.order = 8, .exact_parallel_edges = false, .graded_near_edges = false}},
-                         Fixed{"contour: plain Gauss-Legendre 16", {.order = 16, .exact_parallel_edges = false, .graded_near_edges = false}}}) {
+                         Fixed{"contour: plain Gauss-Legendre 8",
+                               {.order = 8, .exact_parallel_edges = false, .graded_near_edges = false}},
+                         Fixed{"contour: plain Gauss-Legendre 16",
+                               {.order = 16, .exact_parallel_edges = false, .graded_near_edges = false}}}) {
     const MatrixRun run = run_matrix(
-        [&](MatrixReport*) { return contour_form_factor_matrix(patches, m.options, PairReuse::none); }, exact, repeats);
-    table.add_row({m.name, 0.0, static_cast<std::int64_t>(patches.size()), run.seconds, run.error, std::string("-"),
-                   std::int64_t{0}, static_cast<std::int64_t>(patches.size() * (patches.size() - 1) / 2)});
+        [&](MatrixReport*) { return contour_form_factor_matrix(patches, m.options, PairReuse::none); }, exact,
+        repeats);
+    table.add_row({m.name, 0.0, static_cast<std::int64_t>(patches.size()), run.seconds, run.error,
+                   std::string("-"), std::int64_t{0},
+                   static_cast<std::int64_t>(patches.size() * (patches.size() - 1) / 2)});
   }
-  out.table(table, "tolerance_study",
-            "The cube's form-factor matrix to a requested tolerance (every pair computed, all threads, best of " +
-                std::to_string(repeats) + "), against the closed forms for rectangles");
-  PlotSpec plot{"The cube's matrix: largest error vs time", "seconds", "max |F - exact F|", true, true, {}, 1000, 620};
-  plot.series.push_back({"tolerance_study.csv", 4, 5, "to a tolerance (1e-3 ... 1e-13)", "strcol(1) eq 'to a tolerance'"});
-  plot.series.push_back({"tolerance_study.csv", 4, 2, "the tolerance asked for", "strcol(1) eq 'to a tolerance'", "lines"});
-  for (const char* m : {"contour: closed-form edge pairs", "contour: plain Gauss-Legendre 8", "contour: plain Gauss-Legendre 16"})
-    plot.series.push_back({"tolerance_study.csv", 4, 5, m, "strcol(1) eq '" + std::string(m) + "'", "points"});
-  out.plot(plot, "tolerance_error_vs_time",
-           "Largest error of the cube's matrix against time: the tolerance sweep and the fixed contour rules");
+  out.table(
+      table, "tolerance_study",
+      "The cube's form-factor matrix to a requested tolerance (every pair computed, all threads, best of " +
+          std::to_string(repeats) + "), against the closed forms for rectangles");
+  PlotSpec plot{
+      "The cube's matrix: largest error vs time", "seconds", "max |F - exact F|", true, true, {}, 1000, 620};
+  plot.series.push_back(
+      {"tolerance_study.csv", 4, 5, "to a tolerance (1e-3 ... 1e-13)", "strcol(1) eq 'to a tolerance'"});
+  plot.series.push_back(
+      {"tolerance_study.csv", 4, 2, "the tolerance asked for", "strcol(1) eq 'to a tolerance'", "lines"});
+  for (const char* m : {"contour: closed-form edge pairs", "contour: plain Gauss-Legendre 8",
+                        "contour: plain Gauss-Legendre 16"})
+    plot.series.push_back(
+        {"tolerance_study.csv", 4, 5, m, "strcol(1) eq '" + std::string(m) + "'", "points"});
+  out.plot(
+      plot, "tolerance_error_vs_time",
+      "Largest error of the cube's matrix against time: the tolerance sweep and the fixed contour rules");
 }
 
 // --- 11. The figure: the matrix at 1e-4, 1e-8, 1e-12 on one thread and on all -------
 void cube_figure(OutputFolder& out, const Settings& settings) {
-  const std::vector<int> sizes = settings.quick ? std::vector<int>{4}
+  const std::vector<int> sizes = settings.quick    ? std::vector<int>{4}
                                  : settings.figure ? std::vector<int>{12, 20, 30}
                                                    : std::vector<int>{settings.cube_n};
   const int threads = omp_get_max_threads(), repeats = settings.quick ? 1 : settings.figure ? 3 : 5;
@@ -289,19 +319,22 @@ void cube_figure(OutputFolder& out, const Settings& settings) {
         report_progress("lesson09", "cube " + std::to_string(patches.size()) + " patches", 0, 1);
         omp_set_num_threads(t);
         const MatrixRun run = run_matrix(
-            [&](MatrixReport* r) { return contour_form_factor_matrix(patches, FormFactorTolerance{tolerance}, r); },
+            [&](MatrixReport* r) {
+              return contour_form_factor_matrix(patches, FormFactorTolerance{tolerance}, r);
+            },
             exact, repeats);
-        std::printf("cube %zu patches, tolerance %.0e, %d thread(s): %.3f s, max error %.3g\n", patches.size(),
-                    tolerance, t, run.seconds, run.error);
-        table.add_row({static_cast<std::int64_t>(patches.size()), tolerance, std::int64_t{t}, run.seconds, run.error,
-                       run.row_error, reciprocity_error(run.f, patches)});
+        std::printf("cube %zu patches, tolerance %.0e, %d thread(s): %.3f s, max error %.3g\n",
+                    patches.size(), tolerance, t, run.seconds, run.error);
+        table.add_row({static_cast<std::int64_t>(patches.size()), tolerance, std::int64_t{t}, run.seconds,
+                       run.error, run.row_error, reciprocity_error(run.f, patches)});
         if (t == threads) break;  // with one thread, one row
       }
     omp_set_num_threads(threads);
   }
-  out.table(table, "cube_matrix",
-            "The cube's form-factor matrix to a tolerance, every pair computed (no reuse of translates), best of " +
-                std::to_string(repeats) + " runs, against the closed forms for rectangles");
+  out.table(
+      table, "cube_matrix",
+      "The cube's form-factor matrix to a tolerance, every pair computed (no reuse of translates), best of " +
+          std::to_string(repeats) + " runs, against the closed forms for rectangles");
   cube_image(out, settings);
 }
 
@@ -317,8 +350,11 @@ int main(int argc, char** argv) {
       argc, argv, info,
       [&](CLI::App& app) {
         app.add_flag("--cube-only", settings.cube_only, "only the cube figure (timing of the matrix)");
-        app.add_flag("--figure", settings.figure, "the cube figure on the 864-, 2,400- and 5,400-patch cubes");
-        app.add_option("--cube-n", settings.cube_n, "patches per cube edge")->check(CLI::Range(1, 60))->capture_default_str();
+        app.add_flag("--figure", settings.figure,
+                     "the cube figure on the 864-, 2,400- and 5,400-patch cubes");
+        app.add_option("--cube-n", settings.cube_n, "patches per cube edge")
+            ->check(CLI::Range(1, 60))
+            ->capture_default_str();
         app.add_option("--tolerance", settings.tolerance, "absolute tolerance of the cube image's matrix")
             ->check(CLI::Range(1e-15, 1.0))
             ->capture_default_str();

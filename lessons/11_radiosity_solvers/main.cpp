@@ -329,20 +329,22 @@ std::vector<Color> solver_study(OutputFolder& out, const Settings& settings, con
                       static_cast<int>(kScales.size() * settings.solvers.size()));
       const SolverSummary r =
           run_solver(solver, label, patches, s.f, exact, settings.quick ? 300 : 3000, history);
-      summary.add_row({label, name_of(solver), r.sweeps_to_1e3, r.sweeps_to_1e6, r.seconds_to_1e6,
-                       r.worst_ratio});
+      summary.add_row(
+          {label, name_of(solver), r.sweeps_to_1e3, r.sweeps_to_1e6, r.seconds_to_1e6, r.worst_ratio});
       if (solver != Solver::jacobi) continue;
       if (!(r.worst_ratio <= rho * (1 + 1e-9)))
-        throw std::runtime_error("Jacobi contracted by more than max rho: the bound of lesson 11 section 3 fails");
+        throw std::runtime_error(
+            "Jacobi contracted by more than max rho: the bound of lesson 11 section 3 fails");
       growth.add_row({label, std::string("open (published)"), r.sweeps_to_1e6, (1 - rho) * r.sweeps_to_1e6,
                       r.worst_ratio});
     }
   }
   omp_set_num_threads(threads);
   out.table(summary, "solver_study",
-            "Sweeps and seconds each solver needs on the Cornell box (" + std::to_string(s.scene.patches.size()) +
-                " patches) to bring the error below 1e-3 and 1e-6");
-  out.table(direct_table, "direct_time", "Time of the direct solution (Gaussian elimination, three channels)");
+            "Sweeps and seconds each solver needs on the Cornell box (" +
+                std::to_string(s.scene.patches.size()) + " patches) to bring the error below 1e-3 and 1e-6");
+  out.table(direct_table, "direct_time",
+            "Time of the direct solution (Gaussian elimination, three channels)");
   return published;
 }
 
@@ -392,8 +394,10 @@ void closed_box_section(OutputFolder& out, const Settings& settings, const Study
                     (1 - rho) * r.sweeps_to_1e6, r.worst_ratio});
   }
   out.table(history, "closed_history", "Jacobi on the closed box at several reflectance scales");
-  PlotSpec j{"Jacobi in the closed box at several reflectance scales", "sweeps", "relative error", false, true,
-             {}};
+  out.table(growth, "jacobi_growth",
+            "Jacobi's sweeps grow like 1/(1 - rho); its error shrinks by at most rho per sweep");
+  PlotSpec j{
+      "Jacobi in the closed box at several reflectance scales", "sweeps", "relative error", false, true, {}};
   for (double rho : kScales)
     j.series.push_back({"closed_history.csv", 3, 6, "max rho = " + fixed(rho, 3),
                         "strcol(2) eq '" + fixed(rho, 3) + "'", "lines"});
@@ -429,11 +433,17 @@ void study_plots(OutputFolder& out, const Settings& settings, const Table& histo
       const bool time = v.x_column == 4;
       const std::string what = v.name[0] == 'r' ? "Residual" : "Error";
       PlotSpec spec{what + " vs " + (time ? "time" : "work") + ", Cornell box, max rho = " + label + which,
-                    v.x_label, v.y_label, time, true, {}};
+                    v.x_label,
+                    v.y_label,
+                    time,
+                    true,
+                    {}};
       for (const Solver solver : settings.solvers)
         spec.series.push_back({"solver_history.csv", v.x_column, v.y_column, name_of(solver),
                                "strcol(1) eq '" + name_of(solver) + "' && " + where});
-      if (v.y_column == 6)
+      const bool progressive = std::find(settings.solvers.begin(), settings.solvers.end(),
+                                         Solver::progressive) != settings.solvers.end();
+      if (v.y_column == 6 && progressive)
         spec.series.push_back({"solver_history.csv", v.x_column, 7, "progressive + ambient (display)",
                                "strcol(1) eq 'progressive' && " + where});
       if (time)
@@ -463,13 +473,15 @@ void pictures_section(OutputFolder& out, const Settings& settings, const StudySy
       const std::size_t i = choose_shooter(s.scene.patches, state.unshot);
       shoot(s.scene.patches, i, s.f.row(i), state);
     }
-    out.image(lesson11::flat_patch_image(items, size, size, display_radiosity(s.scene.patches, state), exposure),
-              "cornell_shots_" + std::to_string(shots),
-              "Progressive refinement after " + std::to_string(shots) +
-                  " shots, with the ambient term (display only)");
+    out.image(
+        lesson11::flat_patch_image(items, size, size, display_radiosity(s.scene.patches, state), exposure),
+        "cornell_shots_" + std::to_string(shots),
+        "Progressive refinement after " + std::to_string(shots) +
+            " shots, with the ambient term (display only)");
     if (shots == 10)
       out.image(lesson11::flat_patch_image(items, size, size, state.radiosity, exposure),
-                "cornell_shots_10_no_ambient", "After 10 shots without the ambient term: unlit patches stay black");
+                "cornell_shots_10_no_ambient",
+                "After 10 shots without the ambient term: unlit patches stay black");
   }
   out.image(lesson11::flat_patch_image(items, size, size, converged, exposure), "cornell_converged",
             "The converged solution (direct), one flat colour per patch");
@@ -517,12 +529,13 @@ void figure_section(OutputFolder& out, const Settings& settings) {
   const int resolution = settings.quick ? 32 : settings.figure_resolution;
   report_progress(kId, "figure: " + std::to_string(big.patches.size()) + " patches", 0, 1);
   Table history({"shots", "seconds", "unshot_fraction"});
-  const ProgressiveRun run = progressive_on_demand(big.patches, resolution, settings.unshot_threshold, &history);
-  Table figure({"patches", "max patch edge (mm)", "hemicube resolution", "threads", "shots", "unshot / emitted",
-                "seconds", "seconds in hemicube rows"});
+  const ProgressiveRun run =
+      progressive_on_demand(big.patches, resolution, settings.unshot_threshold, &history);
+  Table figure({"patches", "max patch edge (mm)", "hemicube resolution", "threads", "shots",
+                "unshot / emitted", "seconds", "seconds in hemicube rows"});
   figure.add_row({static_cast<std::int64_t>(big.patches.size()), edge, static_cast<std::int64_t>(resolution),
-                  static_cast<std::int64_t>(omp_get_max_threads()), static_cast<std::int64_t>(run.state.shots),
-                  run.unshot, run.seconds, run.row_seconds});
+                  static_cast<std::int64_t>(omp_get_max_threads()),
+                  static_cast<std::int64_t>(run.state.shots), run.unshot, run.seconds, run.row_seconds});
   out.table(figure, "figure_progressive",
             "The Cornell box solved by progressive refinement with hemicube rows on demand, to " +
                 fixed(100 * settings.unshot_threshold, 2) + "% unshot power");
@@ -538,7 +551,8 @@ void figure_section(OutputFolder& out, const Settings& settings) {
   const std::vector<int> items = lesson11::patch_item_buffer(big, size, size);
   out.image(lesson11::flat_patch_image(items, size, size, display_radiosity(big.patches, run.state),
                                        lesson11::exposure_for(big.patches, run.state.radiosity)),
-            "cornell_progressive_figure", "The figure's solution: flat patch colours, ambient term added for display");
+            "cornell_progressive_figure",
+            "The figure's solution: flat patch colours, ambient term added for display");
   std::cout << "Figure: " << big.patches.size() << " patches (edge " << fixed(edge, 1) << " mm), hemicube "
             << resolution << ", " << omp_get_max_threads() << " threads, " << run.state.shots << " shots to "
             << fixed(100 * run.unshot, 3) << "% unshot in " << fixed(run.seconds, 2) << " s ("
@@ -550,7 +564,7 @@ void figure_section(OutputFolder& out, const Settings& settings) {
 // least-squares slope of log(seconds) against log(patches) on all threads:
 // shots grow like n and each shot costs O(n), so the exponent tends to 2.
 void scaling_section(OutputFolder& out, const Settings& settings) {
-  std::vector<int> counts = settings.quick      ? std::vector<int>{150, 300}
+  std::vector<int> counts = settings.quick        ? std::vector<int>{150, 300}
                             : settings.big_figure ? std::vector<int>{500, 1000, 2000, 4000, 8000}
                                                   : std::vector<int>{500, 1000, 2000};
   const int resolution = settings.quick ? 32 : settings.figure_resolution;
@@ -562,10 +576,13 @@ void scaling_section(OutputFolder& out, const Settings& settings) {
     const RadiosityScene scene = scene_with_patches(settings.scene, static_cast<std::size_t>(count), edge);
     double one_thread = 0;
     for (const int t : {1, threads}) {
-      report_progress(kId, "scaling: " + std::to_string(scene.patches.size()) + " patches, " +
-                               std::to_string(t) + " threads", 0, 1);
+      report_progress(
+          kId,
+          "scaling: " + std::to_string(scene.patches.size()) + " patches, " + std::to_string(t) + " threads",
+          0, 1);
       omp_set_num_threads(t);
-      const ProgressiveRun run = progressive_on_demand(scene.patches, resolution, settings.unshot_threshold, nullptr);
+      const ProgressiveRun run =
+          progressive_on_demand(scene.patches, resolution, settings.unshot_threshold, nullptr);
       if (t == 1) one_thread = run.seconds;
       scaling.add_row({static_cast<std::int64_t>(scene.patches.size()), std::int64_t{t},
                        static_cast<std::int64_t>(run.state.shots), run.seconds,
@@ -581,13 +598,44 @@ void scaling_section(OutputFolder& out, const Settings& settings) {
   const double k = static_cast<double>(counts.size());
   const double exponent = (k * sxy - sx * sy) / (k * sxx - sx * sx);
   out.table(scaling, "figure_scaling",
-            "Progressive refinement with hemicube rows on demand to " + fixed(100 * settings.unshot_threshold, 2) +
+            "Progressive refinement with hemicube rows on demand to " +
+                fixed(100 * settings.unshot_threshold, 2) +
                 "% unshot, at several patch counts, on one thread and on all");
   Table fit({"patches from", "patches to", "threads", "exponent of seconds against patches"});
   fit.add_row({std::int64_t{counts.front()}, std::int64_t{counts.back()}, std::int64_t{threads}, exponent});
   out.table(fit, "figure_growth", "Least-squares slope of log(seconds) against log(patches)");
   std::cout << "Scaling: time grows as n^" << fixed(exponent, 2) << " from " << counts.front() << " to "
             << counts.back() << " patches\n";
+}
+
+// The lesson's options, validated by CLI11 (a bad value: a clear error, exit 2, nothing written).
+void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers) {
+  app.add_option("--scene", settings.scene, "A radiosity scene: a JSON file, or a shipped scene's name")
+      ->capture_default_str();
+  app.add_option("--solvers", solvers,
+                 "the study's solvers (jacobi, gauss-seidel, sor-1.2, southwell, progressive)")
+      ->transform(CLI::CheckedTransformer(kSolverNames));
+  app.add_option("--patches", settings.figure_patches, "patches of the figure's box (at least)")
+      ->check(CLI::Range(4, 100000))
+      ->capture_default_str();
+  app.add_option("--patch-edge", settings.figure_edge,
+                 "the figure's largest patch edge in mm (instead of --patches)")
+      ->check(CLI::Range(1.0, 10000.0));
+  app.add_option("--hemicube-resolution", settings.figure_resolution,
+                 "hemicube resolution of the figure (even, 8 to 2048)")
+      ->check(CLI::Range(8, 2048) & CLI::Validator(
+                                        [](std::string& s) {
+                                          return std::stoi(s) % 2 == 0 ? std::string()
+                                                                       : "the resolution must be even";
+                                        },
+                                        "EVEN"))
+      ->capture_default_str();
+  app.add_option("--unshot", settings.unshot_threshold,
+                 "stop the figure when the unshot power is below this fraction of the emitted")
+      ->check(CLI::Range(1e-9, 0.5))
+      ->capture_default_str();
+  app.add_flag("--figure", settings.big_figure,
+               "only the figure, with the scaling study up to 8,000 patches (a few minutes)");
 }
 
 }  // namespace
@@ -601,30 +649,7 @@ int main(int argc, char** argv) {
   Settings settings;
   std::vector<Solver> solvers;
   return run_program(
-      argc, argv, info,
-      [&](CLI::App& app) {
-        app.add_option("--scene", settings.scene, "A radiosity scene: a JSON file, or a shipped scene's name")
-            ->capture_default_str();
-        app.add_option("--solvers", solvers, "the study's solvers (jacobi, gauss-seidel, sor-1.2, southwell, progressive)")
-            ->transform(CLI::CheckedTransformer(kSolverNames));
-        app.add_option("--patches", settings.figure_patches, "patches of the figure's box (at least)")
-            ->check(CLI::Range(4, 100000))
-            ->capture_default_str();
-        app.add_option("--patch-edge", settings.figure_edge, "the figure's largest patch edge in mm (instead of --patches)")
-            ->check(CLI::Range(1.0, 10000.0));
-        app.add_option("--hemicube-resolution", settings.figure_resolution,
-                       "hemicube resolution of the figure (even, 8 to 2048)")
-            ->check(CLI::Range(8, 2048) & CLI::Validator([](std::string& s) {
-                      return std::stoi(s) % 2 == 0 ? std::string() : "the resolution must be even";
-                    }, "EVEN"))
-            ->capture_default_str();
-        app.add_option("--unshot", settings.unshot_threshold,
-                       "stop the figure when the unshot power is below this fraction of the emitted")
-            ->check(CLI::Range(1e-9, 0.5))
-            ->capture_default_str();
-        app.add_flag("--figure", settings.big_figure,
-                     "only the figure, with the scaling study up to 8,000 patches (a few minutes)");
-      },
+      argc, argv, info, [&](CLI::App& app) { add_options(app, settings, solvers); },
       [&](const ProgramOptions& options) {
         settings.quick = options.quick;
         if (settings.quick) settings.unshot_threshold = std::max(settings.unshot_threshold, 0.01);
@@ -639,13 +664,13 @@ int main(int argc, char** argv) {
         three_patch_section(out);
         const StudySystem system = study_form_factors(out, settings);
         Table history({"solver", "rho_max", "sweeps", "seconds", "residual", "error", "display_error"});
-        Table growth({"rho_max", "box", "Jacobi sweeps to 1e-6", "(1 - rho_max) * sweeps", "worst e(k+1)/e(k)"});
+        Table growth(
+            {"rho_max", "box", "Jacobi sweeps to 1e-6", "(1 - rho_max) * sweeps", "worst e(k+1)/e(k)"});
         std::vector<double> direct_seconds;
-        const std::vector<Color> published = solver_study(out, settings, system, history, growth, direct_seconds);
+        const std::vector<Color> published =
+            solver_study(out, settings, system, history, growth, direct_seconds);
         jacobi_threads_section(out, system, published);
-        closed_box_section(out, settings, system, growth);
-        out.table(growth, "jacobi_growth",
-                  "Jacobi's sweeps grow like 1/(1 - rho); its error shrinks by at most rho per sweep");
+        closed_box_section(out, settings, system, growth);  // and writes the growth table
         study_plots(out, settings, history, direct_seconds);
         pictures_section(out, settings, system, published);
         figure_section(out, settings);

@@ -34,11 +34,13 @@ std::vector<Patch> random_box(std::uint64_t seed) {
       return t;
     };
     const std::vector<double> u = cuts(4), v = cuts(5);
-    auto at = [&](double s, double t) { return (1 - s) * (1 - t) * c[0] + s * (1 - t) * c[1] + s * t * c[2] + (1 - s) * t * c[3]; };
+    auto at = [&](double s, double t) {
+      return (1 - s) * (1 - t) * c[0] + s * (1 - t) * c[1] + s * t * c[2] + (1 - s) * t * c[3];
+    };
     for (std::size_t a = 0; a + 1 < u.size(); ++a)
       for (std::size_t b = 0; b + 1 < v.size(); ++b)
-        box.push_back(make_patch({at(u[a], v[b]), at(u[a + 1], v[b]), at(u[a + 1], v[b + 1]), at(u[a], v[b + 1])},
-                                 Color(0.5)));
+        box.push_back(make_patch(
+            {at(u[a], v[b]), at(u[a + 1], v[b]), at(u[a + 1], v[b + 1]), at(u[a], v[b + 1])}, Color(0.5)));
   }
   return box;
 }

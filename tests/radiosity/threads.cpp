@@ -26,7 +26,9 @@ void with_threads(int threads, Body body) {
   omp_set_num_threads(previous);
 }
 
-bool same_bits(const double* a, const double* b, std::size_t n) { return std::memcmp(a, b, n * sizeof(double)) == 0; }
+bool same_bits(const double* a, const double* b, std::size_t n) {
+  return std::memcmp(a, b, n * sizeof(double)) == 0;
+}
 
 }  // namespace
 
@@ -50,17 +52,21 @@ TEST_SUITE("stability") {
     // The Cornell box (its blocks hide parts of the room from most patches), large
     // enough that the row is split over threads; ties in depth along shared edges
     // and silhouettes must go to the same patch as in one serial pass.
-    const RadiosityScene scene = parse_radiosity_scene(*embedded_scene("cornell"), "scenes/cornell.json", 60.0);
+    const RadiosityScene scene =
+        parse_radiosity_scene(*embedded_scene("cornell"), "scenes/cornell.json", 60.0);
     const std::vector<Patch>& patches = scene.patches;
     const Hemicube hemicube(96);
-    REQUIRE(static_cast<double>(patches.size()) * 96 * 96 >= 4e6);  // the threaded path, not the serial fallback
+    REQUIRE(static_cast<double>(patches.size()) * 96 * 96 >=
+            4e6);  // the threaded path, not the serial fallback
     HemicubeBuffers serial_buffers;
     std::vector<HemicubeBuffers> parallel_buffers;
     std::vector<double> serial(patches.size()), parallel(patches.size());
     for (std::size_t i = 0; i < patches.size(); i += 37) {
       hemicube.form_factor_row(patches, i, serial.data(), serial_buffers);
       for (const int threads : {1, 2, 3}) {
-        with_threads(threads, [&] { hemicube.form_factor_row_parallel(patches, i, parallel.data(), parallel_buffers); });
+        with_threads(threads, [&] {
+          hemicube.form_factor_row_parallel(patches, i, parallel.data(), parallel_buffers);
+        });
         INFO("row " << i << " on " << threads << " threads");
         CHECK(same_bits(serial.data(), parallel.data(), patches.size()));
       }

@@ -87,14 +87,15 @@ void closest_point_on_edge(const Point3& a, const Vec3& ep, const Point3& b, con
 template <class G>
 double rule_on(const G& g, double lo, double hi, const QuadratureRule& rule) {
   double sum = 0;
-  for (std::size_t k = 0; k < rule.nodes.size(); ++k) sum += rule.weights[k] * g(lo + rule.nodes[k] * (hi - lo));
+  for (std::size_t k = 0; k < rule.nodes.size(); ++k)
+    sum += rule.weights[k] * g(lo + rule.nodes[k] * (hi - lo));
   return sum * (hi - lo);
 }
 
 // ∫_lo^hi g to within `tolerance` (estimated: the two halves against the whole), halving as needed.
 template <class G>
-double adaptive_rule(const G& g, double lo, double hi, double whole, double tolerance, const QuadratureRule& rule,
-                     int depth) {
+double adaptive_rule(const G& g, double lo, double hi, double whole, double tolerance,
+                     const QuadratureRule& rule, int depth) {
   const double mid = 0.5 * (lo + hi);
   const double left = rule_on(g, lo, mid, rule), right = rule_on(g, mid, hi, rule);
   if (depth == 0 || std::abs(left + right - whole) <= tolerance) return left + right;
@@ -169,10 +170,14 @@ double polygon_polygon_form_factor(const Patch& from, const Patch& to, const Con
   std::vector<double> li_heap, lj_heap;
   if (pi.size > small) ei_heap.resize(static_cast<std::size_t>(pi.size)), li_heap.resize(ei_heap.size());
   if (pj.size > small) ej_heap.resize(static_cast<std::size_t>(pj.size)), lj_heap.resize(ej_heap.size());
-  const std::span<Vec3> ei = pi.size > small ? std::span<Vec3>(ei_heap) : std::span<Vec3>(ei_stack.data, small);
-  const std::span<Vec3> ej = pj.size > small ? std::span<Vec3>(ej_heap) : std::span<Vec3>(ej_stack.data, small);
-  const std::span<double> li = pi.size > small ? std::span<double>(li_heap) : std::span<double>(li_stack.data, small);
-  const std::span<double> lj = pj.size > small ? std::span<double>(lj_heap) : std::span<double>(lj_stack.data, small);
+  const std::span<Vec3> ei =
+      pi.size > small ? std::span<Vec3>(ei_heap) : std::span<Vec3>(ei_stack.data, small);
+  const std::span<Vec3> ej =
+      pj.size > small ? std::span<Vec3>(ej_heap) : std::span<Vec3>(ej_stack.data, small);
+  const std::span<double> li =
+      pi.size > small ? std::span<double>(li_heap) : std::span<double>(li_stack.data, small);
+  const std::span<double> lj =
+      pj.size > small ? std::span<double>(lj_heap) : std::span<double>(lj_stack.data, small);
   for (int p = 0; p < pi.size; ++p) {
     const auto k = static_cast<std::size_t>(p);
     ei[k] = pi[(p + 1) % pi.size] - pi[p];
@@ -198,11 +203,10 @@ double polygon_polygon_form_factor(const Patch& from, const Patch& to, const Con
       const double cosine = dot(ei[kp], ej[kq]) / scale;
       if (std::abs(cosine) <= 1e-14) continue;  // perpendicular edges: dx_i · dx_j = 0
       const bool parallel = std::abs(cosine) >= 1 - 1e-14 || length(cross(ei[kp], ej[kq])) <= 1e-12 * scale;
-      const double integral =
-          parallel && options.exact_parallel_edges
-              ? parallel_edges_log_integral(pi[p], ei[kp], pj[q], ej[kq])
-              : edge_pair_log_integral(pi[p], ei[kp], pj[q], ej[kq], parallel, options, rule,
-                                       pair_tolerance / std::abs(cosine));
+      const double integral = parallel && options.exact_parallel_edges
+                                  ? parallel_edges_log_integral(pi[p], ei[kp], pj[q], ej[kq])
+                                  : edge_pair_log_integral(pi[p], ei[kp], pj[q], ej[kq], parallel, options,
+                                                           rule, pair_tolerance / std::abs(cosine));
       sum += cosine * integral;
     }
   }

@@ -190,8 +190,8 @@ double pair_to_tolerance(const Patch& a, const Patch& b, double ra, double rb, d
 
 }  // namespace
 
-FormFactorMatrix contour_form_factor_matrix(const std::vector<Patch>& patches, const FormFactorTolerance& target,
-                                            MatrixReport* report) {
+FormFactorMatrix contour_form_factor_matrix(const std::vector<Patch>& patches,
+                                            const FormFactorTolerance& target, MatrixReport* report) {
   require(target.absolute >= 1e-15 && target.absolute <= 1,
           "contour_form_factor_matrix: the tolerance must lie in [1e-15, 1]");
   const ContourOptions contour{.order = 8};

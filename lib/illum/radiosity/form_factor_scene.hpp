@@ -61,7 +61,8 @@ struct MatrixReport {
   double largest_area_rule_bound = 0;
 };
 
-FormFactorMatrix contour_form_factor_matrix(const std::vector<Patch>& patches, const FormFactorTolerance& target,
+FormFactorMatrix contour_form_factor_matrix(const std::vector<Patch>& patches,
+                                            const FormFactorTolerance& target,
                                             MatrixReport* report = nullptr);
 
 // The same matrix from the closed forms for axis-aligned rectangles (the

@@ -94,7 +94,8 @@ HemicubeFrame frame_of(const Patch& receiver, double rotation_angle) {
 // Sizes the buffers for `res` (allocating only when the resolution changes)
 // and clears the faces in `faces` (bit k: face k).
 void clear_faces(HemicubeBuffers& buffers, int res, unsigned faces) {
-  const std::size_t pixels = face_offset(res, HemicubeFace::neg_y) + static_cast<std::size_t>(res) * (res / 2);
+  const std::size_t pixels =
+      face_offset(res, HemicubeFace::neg_y) + static_cast<std::size_t>(res) * (res / 2);
   if (buffers.resolution != res) {
     buffers.resolution = res;
     buffers.items.assign(pixels, kEmptyPixel);
@@ -115,12 +116,9 @@ void clear_faces(HemicubeBuffers& buffers, int res, unsigned faces) {
 
 FaceTarget face_target(HemicubeBuffers& buffers, int res, HemicubeFace f, const Patch& receiver) {
   const std::size_t off = face_offset(res, f);
-  return FaceTarget{buffers.items.data() + off,
-                    buffers.inv_depth.data() + off,
-                    res,
-                    HemicubeBuffers::face_height(res, f),
-                    f != HemicubeFace::top,
-                    1e-9 * std::sqrt(receiver.area)};
+  return FaceTarget{
+      buffers.items.data() + off,           buffers.inv_depth.data() + off, res,
+      HemicubeBuffers::face_height(res, f), f != HemicubeFace::top,         1e-9 * std::sqrt(receiver.area)};
 }
 
 // Draws patches [begin, end) (all but i) onto the faces in `faces` with the
@@ -134,12 +132,12 @@ FaceTarget face_target(HemicubeBuffers& buffers, int res, HemicubeFace f, const 
 // near plane and the base plane are left to the rasteriser.
 unsigned planes_outside(const Vec3& p) {
   const auto out = [](double v, int bit) { return v < 0 ? 1u << bit : 0u; };
-  // top (a, b, w) = (x, y, z); pos_x = (y, z, x); neg_x = (−y, z, −x); pos_y = (−x, z, y); neg_y = (x, z, −y);
-  // planes w + a, w − a, w − b (and w + b on top).
+  // top (a, b, w) = (x, y, z); pos_x = (y, z, x); neg_x = (−y, z, −x); pos_y = (−x, z, y); neg_y = (x, z,
+  // −y); planes w + a, w − a, w − b (and w + b on top).
   return out(p.z + p.x, 0) | out(p.z - p.x, 1) | out(p.z - p.y, 2) | out(p.z + p.y, 3) |  //
-         out(p.x + p.y, 4) | out(p.x - p.y, 5) | out(p.x - p.z, 6) |                        //
-         out(-p.x + -p.y, 8) | out(-p.x - -p.y, 9) | out(-p.x - p.z, 10) |                  //
-         out(p.y + -p.x, 12) | out(p.y - -p.x, 13) | out(p.y - p.z, 14) |                   //
+         out(p.x + p.y, 4) | out(p.x - p.y, 5) | out(p.x - p.z, 6) |                      //
+         out(-p.x + -p.y, 8) | out(-p.x - -p.y, 9) | out(-p.x - p.z, 10) |                //
+         out(p.y + -p.x, 12) | out(p.y - -p.x, 13) | out(p.y - p.z, 14) |                 //
          out(-p.y + p.x, 16) | out(-p.y - p.x, 17) | out(-p.y - p.z, 18);
 }
 
@@ -190,8 +188,8 @@ void draw_patches(const std::vector<Patch>& patches, std::size_t i, const Hemicu
 }
 
 // F_ij = Σ ΔF over the pixels showing j.
-void accumulate_row(const HemicubeDeltas& deltas, const HemicubeBuffers& buffers, std::size_t n, std::size_t i,
-                    double* row) {
+void accumulate_row(const HemicubeDeltas& deltas, const HemicubeBuffers& buffers, std::size_t n,
+                    std::size_t i, double* row) {
   std::fill(row, row + n, 0.0);
   const int res = buffers.resolution;
   accumulate_face(buffers.items.data(), deltas.top.data(), deltas.top.size(), row);
