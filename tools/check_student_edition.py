@@ -26,12 +26,15 @@ from grading.runner import run_suite  # noqa: E402
 
 
 def content_problems(edition: Path) -> list[str]:
-    """What must not be in the edition: reference units, hidden tests; what must: the marker."""
+    """What must not be in the edition: reference units, hidden tests; what must: the marker, the errata."""
     problems = []
     if not (edition / project.STUDENT_EDITION_MARKER).is_file():
         problems.append(f"{edition} has no {project.STUDENT_EDITION_MARKER} marker")
     if (edition / "tests" / "hidden").exists():
         problems.append("tests/hidden/ is in the student edition")
+    # The texts cite "erratum N" of the notes: the list must travel with them.
+    if not (edition / "docs" / "errata.md").is_file():
+        problems.append("docs/errata.md (the errata the lessons cite) is missing from the student edition")
     stubs = project.exercise_stubs(edition)
     for reference in sorted((edition / "lib").rglob("*.cpp")):
         if reference.name in stubs:

@@ -6,6 +6,11 @@
 Steps (all by default; pick some with --only):
   lessons  runs every BIN/lessonNN with --out OUT/lessonNN (and --quick); the
            first failure stops the job with the program's exit code and name;
+           OUT/run_log.json records each run's date, cores and load average;
+  figures  refreshes the figures of the lesson texts and decks from the tables
+           in OUT (tools/figures.py: timings and their labels; a figure whose
+           other values changed is left for `tools/figures.py --update` and
+           listed); skipped after a --quick run, whose tables are small;
   slides   builds every slides/NN_*.md deck to OUT/slides/NN_*.html (Marp);
   index    writes OUT/index.html, linking every lesson's outputs, deck, lesson
            text and exercise; --check-links then verifies every local link.
@@ -16,6 +21,7 @@ written atomically. `cmake --build --preset release --target gallery` runs it.
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import re
 import subprocess
@@ -24,11 +30,13 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import figures  # noqa: E402
 from gallery.decks import DeckError, build_decks, find_decks  # noqa: E402
+from gallery.fsutil import atomic_write_text  # noqa: E402
 from gallery.index import check_links, write_index  # noqa: E402
 
 SOURCE = Path(__file__).resolve().parent.parent
-STEPS = ("lessons", "slides", "index")
+STEPS = ("lessons", "figures", "slides", "index")
 PROGRAM = re.compile(r"^lesson(\d\d)$")
 
 
@@ -51,16 +59,51 @@ def run_lessons(bin_dir: Path, out: Path, quick: bool) -> None:
     programs = find_programs(bin_dir)
     if not programs:
         raise JobError(f"no lessonNN programs in {bin_dir} (build them first: cmake --build --preset release)")
+    log_path = out / "run_log.json"
     for i, program in enumerate(programs, 1):
         cmd = [str(program), "--out", str(out / program.name)] + (["--quick"] if quick else [])
         say(f"[{i}/{len(programs)}] {' '.join(cmd)}")
         start = time.monotonic()
+        started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+        load_before = load_average()
         # Output passes straight through: progress on stderr stays visible.
         code = subprocess.call(cmd, cwd=out, stdin=subprocess.DEVNULL)
         if code != 0:
             raise JobError(f"{program.name} failed (exit code {code}); its messages are above. "
                            f"Re-run it alone with: {' '.join(cmd)}")
-        say(f"{program.name} done in {time.monotonic() - start:.1f} s")
+        seconds = time.monotonic() - start
+        record_run(log_path, program.name, {
+            "started": started, "seconds": round(seconds, 1), "cores": os.cpu_count(),
+            "load_before": load_before, "load_after": load_average(), "quick": quick})
+        say(f"{program.name} done in {seconds:.1f} s")
+
+
+def load_average() -> list[float]:
+    try:
+        return [round(x, 2) for x in os.getloadavg()]
+    except OSError:
+        return []
+
+
+def record_run(log_path: Path, name: str, run: dict) -> None:
+    """Adds one program's run to OUT/run_log.json (the figures' timing labels)."""
+    try:
+        log = json.loads(log_path.read_text(encoding="utf-8"))
+        if not isinstance(log, dict):
+            log = {}
+    except (OSError, ValueError):
+        log = {}
+    log[name] = run
+    atomic_write_text(log_path, json.dumps(log, indent=2, sort_keys=True) + "\n")
+
+
+def run_figures(source: Path, out: Path, quick: bool) -> None:
+    if quick:
+        say("figures: skipped (a --quick run's tables are not the ones the texts quote)")
+        return
+    code = figures.process(source, out, "refresh", log=lambda m: say(m))
+    if code != 0:
+        say("warning: some figures could not be refreshed (above); `tools/figures.py --check` fails on them")
 
 
 def run_slides(source: Path, slides_dir: Path, out: Path) -> None:
@@ -108,6 +151,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if "lessons" in steps:
             run_lessons(args.bin.resolve(), out, args.quick)
+        if "figures" in steps:
+            run_figures(source, out, args.quick)
         if "slides" in steps:
             run_slides(source, slides_dir, out)
         if "index" in steps:

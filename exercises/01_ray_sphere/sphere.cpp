@@ -17,7 +17,7 @@ Sphere::Sphere(const Point3& center_, double radius_) : center(center_), radius(
   throw NotImplemented("Sphere::Sphere", "validate the radius (r > 0, finite) and the centre (finite)");
 }
 
-// Task 2. The notes' quadratic: ΔP = Pc − P0 (erratum 1), B = −2 ω·ΔP,
+// Task 2. The notes' quadratic: ΔP = Pc − P0 (erratum 1 of docs/errata.md), B = −2 ω·ΔP,
 // C = |ΔP|² − r², discriminant B² − 4C, s = (−B ± √disc)/2.
 template <class T>
 SphereRoots<T> sphere_roots_notes(const glm::vec<3, T>& origin, const glm::vec<3, T>& direction,

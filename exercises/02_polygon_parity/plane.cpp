@@ -8,7 +8,7 @@
 
 namespace illum {
 
-// Task 1. Solve N·(P0 + sω) + D = 0 for s (mind erratum 2: there is a minus
+// Task 1. Solve N·(P0 + sω) + D = 0 for s (mind erratum 2 of docs/errata.md: there is a minus
 // sign). Classify N·ω = 0 as parallel or in_plane, and report an s that
 // overflows to infinity as parallel.
 PlaneCrossing cross_plane(const Ray& ray, const Plane& plane) {

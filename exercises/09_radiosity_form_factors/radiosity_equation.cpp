@@ -19,7 +19,7 @@ double exitance_from_radiance_monte_carlo(const RadianceFunction& radiance, int 
                        "divide I cos φ by the density 1/2π (lesson 09 §1)");
 }
 
-// Task 12. M_ii = 1 − ρ_i F_ii, M_ij = −ρ_i F_ij (erratum 4: M·B = E).
+// Task 12. M_ii = 1 − ρ_i F_ii, M_ij = −ρ_i F_ij (erratum 4 of docs/errata.md: M·B = E).
 std::vector<double> radiosity_matrix(const FormFactorMatrix& f, std::span<const double> reflectance) {
   throw NotImplemented("radiosity_matrix",
                        "row i is ρ_i times row i of F, subtracted from the identity (lesson 09 §3)");

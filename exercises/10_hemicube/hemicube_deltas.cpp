@@ -17,7 +17,7 @@ double top_face_delta(double x, double y, double pixel_area) {
   throw NotImplemented("top_face_delta", "both cosines are 1/r on the top face (lesson 10, §2, eq. 10.2)");
 }
 
-// Task 2. ΔF of a side-face pixel at face coordinates (y, z): mind erratum 6.
+// Task 2. ΔF of a side-face pixel at face coordinates (y, z): mind erratum 6 of docs/errata.md.
 double side_face_delta(double y, double z, double pixel_area) {
   throw NotImplemented("side_face_delta",
                        "on the face x = 1, r² = y² + z² + 1, cos φ_i = z/r, cos φ_p = 1/r (lesson 10, §2, "

@@ -24,7 +24,7 @@ std::vector<double> gaussian_elimination(std::vector<double> a, std::vector<doub
       "(lesson 11, §2)");
 }
 
-// Task 2. M = I − diag(ρ)F per channel (erratum 4), solved by Task 1.
+// Task 2. M = I − diag(ρ)F per channel (erratum 4 of docs/errata.md), solved by Task 1.
 std::vector<Color> solve_direct(const std::vector<Patch>& patches, const FormFactorMatrix& f) {
   throw NotImplemented("solve_direct",
                        "build M_ij = δ_ij − ρ_i F_ij for each channel and solve M·B = E (lesson 11, §2)");

@@ -332,7 +332,7 @@ void cube_figure(OutputFolder& out, const Settings& settings) {
     omp_set_num_threads(threads);
   }
   out.table(
-      table, "cube_matrix",
+      table, settings.figure ? "cube_matrix_sizes" : "cube_matrix",
       "The cube's form-factor matrix to a tolerance, every pair computed (no reuse of translates), best of " +
           std::to_string(repeats) + " runs, against the closed forms for rectangles");
   cube_image(out, settings);

@@ -15,7 +15,7 @@
 namespace illum::lesson11 {
 
 // Parameter s of the hit of `ray` with a planar convex polygon (either side),
-// or nothing: the plane hit s = (N·(V0 − P0))/(N·ω) (erratum 2's sign), then
+// or nothing: the plane hit s = (N·(V0 − P0))/(N·ω) (the sign of erratum 2 of docs/errata.md), then
 // the point must lie on the inner side of every edge.
 std::optional<double> hit_convex_polygon(const Ray& ray, const std::vector<Point3>& polygon,
                                          const Vec3& normal);

@@ -1,4 +1,4 @@
-// Grading tests of lesson 02: the ray–plane hit (erratum 2) and point in
+// Grading tests of lesson 02: the ray–plane hit (erratum 2 of docs/errata.md) and point in
 // polygon by crossing parity with the half-open rule.
 #include <doctest/doctest.h>
 

@@ -7,6 +7,7 @@
 
 #include "illum/geometry/orientation.hpp"
 #include "illum/geometry/triangle.hpp"
+#include "support/throws_containing.hpp"
 
 using namespace illum;
 
@@ -56,9 +57,9 @@ TEST_SUITE("stability") {
   }
 
   TEST_CASE("bad input: a triangle with NaN or collinear vertices") {
-    CHECK_THROWS_WITH_AS(Triangle(Point3(0, 0, 0), Point3(1, 1, 1), Point3(2, 2, 2)),
-                         doctest::Contains("collinear"), std::invalid_argument);
-    CHECK_THROWS_WITH_AS(Triangle(Point3(0, 0, 0), Point3(std::nan(""), 1, 1), Point3(2, 0, 2)),
-                         doctest::Contains("finite"), std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(Triangle(Point3(0, 0, 0), Point3(1, 1, 1), Point3(2, 2, 2)), "collinear",
+                                  std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(Triangle(Point3(0, 0, 0), Point3(std::nan(""), 1, 1), Point3(2, 0, 2)),
+                                  "finite", std::invalid_argument);
   }
 }

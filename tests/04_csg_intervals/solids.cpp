@@ -7,6 +7,7 @@
 
 #include "04_csg_intervals/csg_test_helpers.hpp"
 #include "illum/core/random.hpp"
+#include "support/throws_containing.hpp"
 
 using namespace illum;
 using namespace csg_test;
@@ -17,29 +18,28 @@ const double nan_value = std::numeric_limits<double>::quiet_NaN();
 
 TEST_SUITE("input") {
   TEST_CASE("bad input: non-positive sizes, zero normals and NaN are refused") {
-    CHECK_THROWS_WITH_AS(SolidSphere(Point3(0), 0.0), doctest::Contains("radius"), std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(SolidSphere(Point3(0), 0.0), "radius", std::invalid_argument);
     CHECK_THROWS_AS(SolidSphere(Point3(0), -1.0), std::invalid_argument);
     CHECK_THROWS_AS(SolidSphere(Point3(nan_value, 0, 0), 1.0), std::invalid_argument);
     CHECK_THROWS_AS(SolidSphere(Point3(0), nan_value), std::invalid_argument);
-    CHECK_THROWS_WITH_AS(SolidBox(Point3(0), Point3(1, 0, 1)), doctest::Contains("positive length"),
-                         std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(SolidBox(Point3(0), Point3(1, 0, 1)), "positive length",
+                                  std::invalid_argument);
     CHECK_THROWS_AS(SolidBox(Point3(1), Point3(0)), std::invalid_argument);
     CHECK_THROWS_AS(SolidBox(Point3(0), Point3(1, nan_value, 1)), std::invalid_argument);
     CHECK_THROWS_AS(SolidBox::centered(Point3(0), Vec3(1, -1, 1)), std::invalid_argument);
-    CHECK_THROWS_WITH_AS(SolidHalfSpace(Vec3(0), 1.0), doctest::Contains("non-zero"), std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(SolidHalfSpace(Vec3(0), 1.0), "non-zero", std::invalid_argument);
     CHECK_THROWS_AS(SolidHalfSpace(Vec3(0, 0, 1), nan_value), std::invalid_argument);
     CHECK_THROWS_AS(SolidSlab(Vec3(0, 0, 1), 1.0, 1.0), std::invalid_argument);
     CHECK_THROWS_AS(SolidSlab(Vec3(0, 0, 1), 2.0, 1.0), std::invalid_argument);
     CHECK_THROWS_AS(SolidCylinder(Point3(0), Vec3(0, 0, 1), 0.0, 1.0), std::invalid_argument);
-    CHECK_THROWS_WITH_AS(SolidCylinder(Point3(0), Vec3(0, 0, 1), 1.0, -2.0), doctest::Contains("height"),
-                         std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(SolidCylinder(Point3(0), Vec3(0, 0, 1), 1.0, -2.0), "height",
+                                  std::invalid_argument);
     CHECK_THROWS_AS(SolidCylinder(Point3(0), Vec3(nan_value, 0, 1), 1.0, 1.0), std::invalid_argument);
   }
 
   TEST_CASE("bad input: an empty (null) CSG node is refused") {
     const CsgNodePtr ball = csg_solid(SolidSphere(Point3(0), 1.0));
-    CHECK_THROWS_WITH_AS(csg_union(ball, nullptr), doctest::Contains("empty (null) CSG node"),
-                         std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(csg_union(ball, nullptr), "empty (null) CSG node", std::invalid_argument);
     CHECK_THROWS_AS(csg_intersection(nullptr, ball), std::invalid_argument);
     CHECK_THROWS_AS(csg_difference(ball, nullptr), std::invalid_argument);
     CHECK_THROWS_AS(CsgTree(nullptr), std::invalid_argument);
@@ -49,14 +49,14 @@ TEST_SUITE("input") {
     auto broken = std::make_shared<CsgNode>();
     broken->is_leaf = false;
     broken->left = ball;
-    CHECK_THROWS_WITH_AS(CsgTree{broken}, doctest::Contains("null"), std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(CsgTree{broken}, "null", std::invalid_argument);
   }
 
   TEST_CASE("bad input: a tree too large for a span list is refused") {
     std::vector<CsgNodePtr> balls;
     for (int i = 0; i < SpanList::capacity + 1; ++i)
       balls.push_back(csg_solid(SolidSphere(Point3(3.0 * i, 0, 0), 1.0)));
-    CHECK_THROWS_WITH_AS(CsgTree(csg_union_all(balls)), doctest::Contains("capacity"), std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(CsgTree(csg_union_all(balls)), "capacity", std::invalid_argument);
     balls.pop_back();
     CHECK(CsgTree(csg_union_all(balls)).primitive_count() == SpanList::capacity);
   }

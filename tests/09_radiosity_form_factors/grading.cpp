@@ -398,7 +398,7 @@ TEST_SUITE("lesson09") {
     // A box 1 × 2 × 3 meshed 3 × 3 per face: patches of different shapes on
     // different faces, so reuse must only join pairs that are true translates.
     // Each entry is compared with the contour integral of that very pair, and
-    // the box is closed, so every row sums to 1 (erratum 5).
+    // the box is closed, so every row sums to 1 (erratum 5 of docs/errata.md).
     std::vector<Patch> box = mesh_cube_interior(3);
     for (Patch& p : box) {
       for (Point3& v : p.vertices) v *= Vec3(1, 2, 3);

@@ -245,7 +245,7 @@ TEST_SUITE("lesson10") {
 
   TEST_CASE("a closed cube: every row sums to one, to round-off") {
     // Every direction above each patch hits exactly one other patch, so Σ_j F_ij = 1
-    // (erratum 5). With exact deltas, any pixel drawn twice or missed by the fill rule
+    // (erratum 5 of docs/errata.md). With exact deltas, any pixel drawn twice or missed by the fill rule
     // would show as an error of at least one delta (> 1e-5 at resolution 24).
     const auto cube = closed_cube(3);
     for (bool rotate : {false, true}) {
@@ -427,7 +427,7 @@ TEST_SUITE("lesson10") {
     hemicube.form_factor_row(cube, 5, row.data(), buffers);
     const FormFactorMatrix unrotated = hemicube_form_factors(cube, 16);
     // Inside the closed cube every pixel sees some patch and the exact deltas
-    // sum to 1, so each row sums to 1 (erratum 5): an all-zero row, equal in
+    // sum to 1, so each row sums to 1 (erratum 5 of docs/errata.md): an all-zero row, equal in
     // every version, fails here.
     double row_sum = 0, rotated_sum = 0;
     for (std::size_t j = 0; j < cube.size(); ++j) row_sum += row[j], rotated_sum += f(5, j);

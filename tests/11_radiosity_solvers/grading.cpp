@@ -14,6 +14,7 @@
 #include "illum/radiosity/radiosity_solvers.hpp"
 #include "illum/radiosity/radiosity_system.hpp"
 #include "illum/radiosity/three_patch_example.hpp"
+#include "support/throws_containing.hpp"
 
 using namespace illum;
 
@@ -100,8 +101,8 @@ TEST_SUITE("lesson11") {
 
   TEST_CASE("hard case: a singular system is refused, not solved") {
     INFO("the second row is twice the first: det A = 0, there is no unique solution");
-    CHECK_THROWS_WITH_AS(gaussian_elimination({1, 2, 2, 4}, {1, 2}), doctest::Contains("singular"),
-                         std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(gaussian_elimination({1, 2, 2, 4}, {1, 2}), "singular",
+                                  std::invalid_argument);
     CHECK_THROWS_AS(gaussian_elimination({1, 2, 3}, {1, 2}), std::invalid_argument);
   }
 

@@ -9,6 +9,7 @@
 
 #include "illum/core/error.hpp"
 #include "illum/radiosity/radiosity_scene.hpp"
+#include "support/throws_containing.hpp"
 
 using namespace illum;
 
@@ -148,7 +149,6 @@ TEST_SUITE("stability") {
     const std::string text =
         R"({"surfaces": [{"name": "left wall", "material": {"reflectance": [0.63, 0.065, 0.05]},
       "polygon": [[552.8, 0, 0], [549.6, 0, 559.2], [556, 548.8, 559.2], [556, 548.8, 0]]}]})";
-    CHECK_THROWS_WITH_AS(parse_radiosity_scene(text, "red.json", 100.0), doctest::Contains("not planar"),
-                         InputError);
+    ILLUM_CHECK_THROWS_CONTAINING(parse_radiosity_scene(text, "red.json", 100.0), "not planar", InputError);
   }
 }

@@ -6,6 +6,7 @@ if(TARGET tests_hidden AND NOT TARGET tests_hidden_stubs)
   get_target_property(illum_hidden_sources tests_hidden SOURCES)
   add_executable(tests_hidden_stubs ${illum_hidden_sources})
   target_link_libraries(tests_hidden_stubs PRIVATE illum_stubs doctest::doctest)
+  target_include_directories(tests_hidden_stubs PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})  # support/*.hpp
 endif()
 
 # Only a reference build can be checked: with ILLUM_EXERCISES set, tests_lessonNN runs

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "illum/radiosity/patch.hpp"
+#include "support/throws_containing.hpp"
 
 using illum::Point3;
 using illum::Vec3;
@@ -51,14 +52,15 @@ TEST_SUITE("stability") {
   }
 
   TEST_CASE("bad input: too few vertices, zero area, non-planar, concave, NaN") {
-    CHECK_THROWS_WITH_AS(illum::make_patch({{0, 0, 0}, {1, 0, 0}}), doctest::Contains("three vertices"),
-                         std::invalid_argument);
-    CHECK_THROWS_WITH_AS(illum::make_patch({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}), doctest::Contains("zero area"),
-                         std::invalid_argument);
-    CHECK_THROWS_WITH_AS(illum::make_patch({{0, 0, 0}, {1, 0, 0}, {1, 1, 0.1}, {0, 1, 0}}),
-                         doctest::Contains("not planar"), std::invalid_argument);
-    CHECK_THROWS_WITH_AS(illum::make_patch({{0, 0, 0}, {2, 0, 0}, {1, 0.5, 0}, {2, 2, 0}, {0, 2, 0}}),
-                         doctest::Contains("not convex"), std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(illum::make_patch({{0, 0, 0}, {1, 0, 0}}), "three vertices",
+                                  std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(illum::make_patch({{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}), "zero area",
+                                  std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(illum::make_patch({{0, 0, 0}, {1, 0, 0}, {1, 1, 0.1}, {0, 1, 0}}),
+                                  "not planar", std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(
+        illum::make_patch({{0, 0, 0}, {2, 0, 0}, {1, 0.5, 0}, {2, 2, 0}, {0, 2, 0}}), "not convex",
+        std::invalid_argument);
     CHECK_THROWS_AS(illum::make_patch({{0, 0, 0}, {1, 0, 0}, {0, std::nan(""), 0}}), std::invalid_argument);
   }
 }

@@ -3,7 +3,10 @@
 // `--out`), which tools/grade turns into a score table, Gradescope's
 // results.json and JUnit XML.
 //
-// Two kinds of line:
+// Three kinds of line:
+//   {"event":"started", "suite", "name", "file", "line", "description"}
+//     when a test case starts, so that the driver knows which test was
+//     running when the program crashed or was killed on a timeout;
 //   {"event":"test_case", "suite", "name", "file", "line", "description",
 //    "passed", "skipped", "seconds", "asserts", "asserts_failed",
 //    "failures":[{"kind", "file", "line", "expression", "expansion",
@@ -27,6 +30,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 namespace {
@@ -38,6 +42,19 @@ constexpr std::string_view not_implemented_prefix = "NotImplemented: ";
 
 std::string str(const doctest::String& s) { return std::string(s.c_str(), s.size()); }
 std::string str(const char* s) { return s != nullptr ? std::string(s) : std::string(); }
+
+// The expected text of a CHECK_THROWS_WITH: a `const char*` up to doctest
+// 2.4.8 (Ubuntu 22.04), an object with c_str() from 2.4.9 on (Debian 12),
+// which added doctest::Contains. Decided by the member's type, not by a
+// version number, so that any doctest 2.4.x compiles this.
+template <class Text>
+std::string expected_text(const Text& text) {
+  if constexpr (std::is_convertible_v<const Text&, const char*>) {
+    return str(static_cast<const char*>(text));
+  } else {
+    return str(text.c_str());
+  }
+}
 
 // doctest wraps the exception text of an assertion in double quotes; the
 // record keeps the text itself.
@@ -82,7 +99,7 @@ std::string describe(const doctest::AssertData& a) {
   namespace at = doctest::assertType;
   std::string text = std::string(doctest::assertString(a.m_at)) + "( " + str(a.m_expr);
   if ((a.m_at & at::is_throws_as) != 0) text += std::string(", ") + str(a.m_exception_type);
-  if ((a.m_at & at::is_throws_with) != 0) text += ", \"" + std::string(a.m_exception_string.c_str()) + "\"";
+  if ((a.m_at & at::is_throws_with) != 0) text += ", \"" + expected_text(a.m_exception_string) + "\"";
   text += " ) ";
   if ((a.m_at & at::is_throws) != 0) {
     text += "did NOT throw at all";
@@ -92,7 +109,8 @@ std::string describe(const doctest::AssertData& a) {
   } else if (a.m_threw) {
     text += "THREW exception: " + unquote(str(a.m_exception));
   } else {
-    text += "is NOT correct; values: " + std::string(doctest::assertString(a.m_at)) + "( " + str(a.m_decomp) + " )";
+    text += "is NOT correct; values: " + std::string(doctest::assertString(a.m_at)) + "( " + str(a.m_decomp) +
+            " )";
   }
   return text;
 }
@@ -119,6 +137,9 @@ class GradeReporter : public doctest::IReporter {
     test_ = &test;
     failures_ = json::array();
     subcases_.clear();
+    json record = identify(test);
+    record["event"] = "started";
+    write(record);
   }
   void test_case_reenter(const doctest::TestCaseData&) override { subcases_.clear(); }
 
@@ -127,7 +148,8 @@ class GradeReporter : public doctest::IReporter {
     namespace reason = doctest::TestCaseFailureReason;
     // Failures that no assertion or exception explains (a timeout, a test
     // that should have failed) are recorded too: they are not NotImplemented.
-    if ((stats.failure_flags & reason::Timeout) != 0) add_failure("timeout", "the test case exceeded its timeout");
+    if ((stats.failure_flags & reason::Timeout) != 0)
+      add_failure("timeout", "the test case exceeded its timeout");
     if ((stats.failure_flags & reason::ShouldHaveFailedButDidnt) != 0)
       add_failure("decorator", "the test case should have failed but did not");
     if ((stats.failure_flags & reason::DidntFailExactlyNumTimes) != 0)
@@ -143,7 +165,8 @@ class GradeReporter : public doctest::IReporter {
     record["asserts"] = stats.numAssertsCurrentTest;
     record["asserts_failed"] = stats.numAssertsFailedCurrentTest;
     bool only_not_implemented = !stats.testCaseSuccess && !failures_.empty();
-    for (const json& failure : failures_) only_not_implemented = only_not_implemented && failure["not_implemented"];
+    for (const json& failure : failures_)
+      only_not_implemented = only_not_implemented && failure["not_implemented"];
     record["failures"] = failures_;
     record["not_implemented_only"] = only_not_implemented;
     write(record);
@@ -160,7 +183,9 @@ class GradeReporter : public doctest::IReporter {
     failures_.push_back(std::move(failure));
   }
 
-  void subcase_start(const doctest::SubcaseSignature& subcase) override { subcases_.push_back(str(subcase.m_name)); }
+  void subcase_start(const doctest::SubcaseSignature& subcase) override {
+    subcases_.push_back(str(subcase.m_name));
+  }
   void subcase_end() override {
     if (!subcases_.empty()) subcases_.pop_back();
   }

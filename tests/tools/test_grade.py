@@ -20,6 +20,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
 
 from grading import reports  # noqa: E402
 from grading.autograder import install_submission, run_script, setup_script  # noqa: E402
+from grading.build import failed_exercise_files  # noqa: E402
+from grading.driver import main as grade_main  # noqa: E402
 from grading.edition import excluded_files  # noqa: E402
 from grading.integrity import check_pair  # noqa: E402
 from grading.project import normalize_lesson  # noqa: E402
@@ -110,7 +112,13 @@ class ReportTest(unittest.TestCase):
         data = reports.gradescope_results(sample_run(hidden_extra=True), Path("/src"))
         self.assertEqual((data["score"], data["max_score"]), (2.0, 5.0))
         self.assertEqual(data["visibility"], "visible")
-        self.assertEqual(data["stdout_visibility"], "visible")
+        # The compiler's output and the logs are on stdout too: students read them once, in results.json.
+        self.assertEqual(data["stdout_visibility"], "hidden")
+        self.assertEqual(data["output_format"], "md")
+        self.assertIn("```text\nlesson", data["output"])  # the table in a code block keeps its columns
+        # While hidden tests exist, students see neither their row nor the total (Gradescope hides it too).
+        self.assertNotIn("hidden", data["output"].split("```text")[1].split("Hidden tests")[0])
+        self.assertNotRegex(data["output"], r"(?m)^total")
         self.assertEqual(len(data["tests"]), 4)
         for test in data["tests"]:
             self.assertEqual(set(test) >= {"name", "score", "max_score", "status", "output", "visibility"}, True)
@@ -123,14 +131,57 @@ class ReportTest(unittest.TestCase):
         self.assertEqual(data["tests"][3]["visibility"], reports.HIDDEN_VISIBILITY)
         json.dumps(data)  # serialisable
 
-    def test_build_failure_scores_zero_and_shows_the_compiler(self) -> None:
-        run = GradeRun(lessons=["01"], build_failed=True, build_output="sphere.cpp:3: error: expected ';'")
+    def test_build_failure_scores_zero_and_shows_the_compiler_once(self) -> None:
+        run = GradeRun(lessons=["01"], build_failed=True,
+                       build_output="exercises/01_ray_sphere/sphere.cpp:3: error: expected ';' in vector<T>")
         data = reports.gradescope_results(run)
         self.assertEqual(data["score"], 0)
-        self.assertIn("expected ';'", data["output"])
+        self.assertIn("did not compile", data["output"])
+        self.assertNotIn("expected ';'", data["output"])  # once: in the build entry
         self.assertEqual(data["tests"][0]["status"], "failed")
-        self.assertIn("expected ';'", data["tests"][0]["output"])
+        self.assertEqual(data["tests"][0]["output_format"], "text")  # keeps the <T>
+        self.assertIn("expected ';' in vector<T>", data["tests"][0]["output"])
         self.assertIn("build failed", reports.score_table(run))
+
+    def test_a_broken_tree_does_not_blame_the_student(self) -> None:
+        run = GradeRun(lessons=["01"], build_failed=True, blame_student=False, build_output="lib/x.cpp: error")
+        self.assertNotIn("Your code", reports.gradescope_results(run)["output"])
+        self.assertIn("not your code", reports.gradescope_results(run)["output"])
+
+    def test_hidden_tests_that_do_not_build_are_shown_to_instructors_only(self) -> None:
+        run = sample_run()
+        run.hidden_build_failed = True
+        run.hidden_build_output = "tests/hidden/secret.cpp:9: error: SECRET_EXPECTATION undeclared"
+        data = reports.gradescope_results(run, Path("/src"))
+        self.assertIn("misconfigured", data["output"])
+        self.assertNotIn("SECRET", data["output"])
+        secret = [t for t in data["tests"] if "SECRET" in t["output"]]
+        self.assertEqual([t["visibility"] for t in secret], ["hidden"])
+        self.assertEqual(sum(t["max_score"] for t in data["tests"]), 4.0)  # the visible tests are graded
+        self.assertEqual(reports.exit_code(run), 2)
+
+    def test_a_file_that_fell_back_to_its_stub_is_named(self) -> None:
+        run = sample_run()
+        run.fallbacks = {"exercises/01_ray_sphere/sphere.cpp": "sphere.cpp:1: error: x"}
+        data = reports.gradescope_results(run)
+        self.assertIn("exercises/01_ray_sphere/sphere.cpp", data["output"])
+        self.assertEqual(data["tests"][0]["name"],
+                         "build: exercises/01_ray_sphere/sphere.cpp did not compile (graded as the stub)")
+
+    def test_results_say_what_was_graded(self) -> None:
+        run = sample_run()
+        run.submission = {"installed": [{"file": "sphere (1).cpp", "target": "exercises/01_ray_sphere/sphere.cpp",
+                                         "note": "taken as sphere.cpp"}],
+                          "ignored": [{"file": "notes.txt", "reason": "not a C++ file"}],
+                          "notes": [], "expected": ["sphere.cpp"]}
+        output = reports.gradescope_results(run)["output"]
+        self.assertIn("used `sphere (1).cpp` as `exercises/01_ray_sphere/sphere.cpp` (taken as sphere.cpp)", output)
+        self.assertIn("ignored `notes.txt`: not a C++ file", output)
+        run.submission["expected"] = ["sphere.cpp", "triangle.cpp"]
+        self.assertIn("not in your upload, so graded as the unchanged stub: `triangle.cpp`",
+                      reports.gradescope_results(run)["output"])
+        run.submission = {"installed": [], "ignored": [], "notes": [], "expected": ["sphere.cpp"]}
+        self.assertIn("Upload `sphere.cpp`", reports.gradescope_results(run)["output"])
 
     def test_long_outputs_are_cut(self) -> None:
         run = GradeRun(lessons=["01"], build_failed=True, build_output="x" * (reports.MAX_OUTPUT_CHARS + 10))
@@ -174,7 +225,56 @@ time.sleep(30)
 """
 
 
+RERUN_PROGRAM = """#!/usr/bin/env python3
+# Stands in for a doctest program with three tests; the second never ends.
+import json, sys, time
+out = next(a.split("=", 1)[1] for a in sys.argv if a.startswith("--out="))
+first = int(next((a.split("=", 1)[1] for a in sys.argv if a.startswith("--first=")), "1"))
+names = ["one", "loops", "three"]
+def record(event, number, **extra):
+    return json.dumps(dict(event=event, suite="lesson01", name=names[number - 1], file="/t.cpp", line=number,
+                           description="", **extra)) + "\\n"
+with open(out, "w") as f:
+    if "--list-test-cases" in sys.argv:
+        f.write("".join(record("listed", n) for n in (1, 2, 3)))
+        sys.exit(0)
+    for number in range(first, 4):
+        f.write(record("started", number)); f.flush()
+        if number == 2:
+            time.sleep(60)
+        f.write(record("test_case", number, passed=True, skipped=False, failures=[])); f.flush()
+"""
+
+
 class RunnerTest(unittest.TestCase):
+    def test_a_hanging_test_costs_only_itself(self) -> None:
+        from grading.runner import run_suite
+
+        with tempfile.TemporaryDirectory() as folder:
+            program = Path(folder) / "tests_lesson01"
+            program.write_text(RERUN_PROGRAM)
+            program.chmod(0o755)
+            run = run_suite(program, "lesson01", timeout=30, test_timeout=1.0)
+        self.assertEqual([(r.name, r.status) for r in run.results],
+                         [("one", "passed"), ("loops", "failed"), ("three", "passed")])
+        self.assertIn("did not finish within 1 s", run.results[1].output())
+        self.assertIn('test "loops"', run.problem)
+
+    def test_no_test_starts_after_the_deadline(self) -> None:
+        from grading import runner
+
+        with tempfile.TemporaryDirectory() as folder:
+            program = Path(folder) / "tests_lesson01"
+            program.write_text(RERUN_PROGRAM)
+            program.chmod(0o755)
+            runner.set_deadline(0.0)
+            try:
+                run = runner.run_suite(program, "lesson01", timeout=30, test_timeout=1.0)
+            finally:
+                runner.set_deadline(None)
+        self.assertEqual([r.status for r in run.results], ["not run"] * 3)
+        self.assertIn("ILLUM_GRADE_DEADLINE", run.results[0].output())
+
     """A crashing or hanging program still gives a result for every listed test."""
 
     def run_fake(self, mode: str, timeout: float) -> "object":
@@ -244,30 +344,157 @@ class EditionTest(unittest.TestCase):
 
 
 class AutograderTest(unittest.TestCase):
+    def make_tree(self, folder: str) -> tuple[Path, Path]:
+        tree, submission = Path(folder) / "tree", Path(folder) / "submission"
+        (tree / "exercises" / "01_ray_sphere").mkdir(parents=True)
+        (tree / "exercises" / "02_polygons").mkdir(parents=True)
+        (tree / "exercises" / "01_ray_sphere" / "sphere.cpp").write_text("stub")
+        (tree / "exercises" / "02_polygons" / "polygon.cpp").write_text("stub")
+        submission.mkdir()
+        return tree, submission
+
     def test_submission_files_replace_the_stubs_by_name(self) -> None:
         with tempfile.TemporaryDirectory() as folder:
-            tree, submission = Path(folder) / "tree", Path(folder) / "submission"
-            (tree / "exercises" / "01_ray_sphere").mkdir(parents=True)
-            (tree / "exercises" / "02_polygons").mkdir(parents=True)
-            (tree / "exercises" / "01_ray_sphere" / "sphere.cpp").write_text("stub")
-            (tree / "exercises" / "02_polygons" / "polygon.cpp").write_text("stub")
+            tree, submission = self.make_tree(folder)
             (submission / "deep" / "er").mkdir(parents=True)
             (submission / "deep" / "er" / "sphere.cpp").write_text("older copy")
             (submission / "sphere.cpp").write_text("mine")
             (submission / "polygon.cpp").write_text("not graded in this assignment")
             (submission / "notes.cpp").write_text("?")
-            installed, ignored = install_submission(submission, tree, ["01"])
-            self.assertEqual(installed, ["sphere.cpp -> exercises/01_ray_sphere/sphere.cpp"])
+            (submission / "notes.txt").write_text("?")
+            report = install_submission(submission, tree, ["01"])
+            self.assertEqual(report.installed, [{"file": "sphere.cpp", "target": "exercises/01_ray_sphere/sphere.cpp",
+                                                 "note": ""}])
             self.assertEqual((tree / "exercises" / "01_ray_sphere" / "sphere.cpp").read_text(), "mine")
             self.assertEqual((tree / "exercises" / "02_polygons" / "polygon.cpp").read_text(), "stub")
-            self.assertEqual(sorted(ignored), ["deep/er/sphere.cpp", "notes.cpp", "polygon.cpp"])
+            reasons = {i["file"]: i["reason"] for i in report.ignored}
+            self.assertEqual(sorted(reasons), ["deep/er/sphere.cpp", "notes.cpp", "notes.txt", "polygon.cpp"])
+            self.assertIn("`sphere.cpp` was used", reasons["deep/er/sphere.cpp"])
+            self.assertEqual(reasons["notes.txt"], "not a C++ file")
+            self.assertEqual(report.expected, ["sphere.cpp"])
+
+    def test_renamed_files_and_zips_are_recognised(self) -> None:
+        import zipfile
+        with tempfile.TemporaryDirectory() as folder:
+            tree, submission = self.make_tree(folder)
+            (submission / "Sphere (1).cpp").write_text("renamed by a browser")
+            report = install_submission(submission, tree, ["01"])
+            self.assertEqual(report.installed[0]["file"], "Sphere (1).cpp")
+            self.assertIn("taken as sphere.cpp", report.installed[0]["note"])
+            (submission / "Sphere (1).cpp").unlink()
+            with zipfile.ZipFile(submission / "homework.zip", "w") as archive:
+                archive.writestr("homework/exercises/01_ray_sphere/sphere.cpp", "zipped")
+                archive.writestr("../evil.cpp", "outside")
+                archive.writestr("__MACOSX/homework/._sphere.cpp", "junk")
+            report = install_submission(submission, tree, ["01"])
+            self.assertEqual((tree / "exercises" / "01_ray_sphere" / "sphere.cpp").read_text(), "zipped")
+            self.assertEqual(report.installed[0]["file"], "homework.zip/homework/exercises/01_ray_sphere/sphere.cpp")
+            self.assertTrue(any("unpacked `homework.zip`" in n for n in report.notes))
+            self.assertFalse((Path(folder) / "evil.cpp").exists())
 
     def test_scripts_install_the_packages_and_grade_the_lessons(self) -> None:
-        setup = setup_script(["cmake", "g++"], ["--student", "01"])
-        self.assertIn("apt-get install -y --no-install-recommends cmake g++", setup)
-        run = run_script(["01"], ["--student", "--hidden", "/autograder/source/hidden-tests", "01"])
-        self.assertIn("tools/grade --student --hidden /autograder/source/hidden-tests 01", run)
-        self.assertIn("/autograder/results/results.json", run)
+        setup = setup_script(["cmake", "g++"], ["01"])
+        self.assertIn("packages=(cmake g++)", setup)
+        self.assertIn("apt-get install -y --no-install-recommends", setup)
+        self.assertIn('ROOT="${ILLUM_AUTOGRADER_ROOT:-/autograder}"', setup)
+        self.assertIn("grading.autograder setup \"$ROOT\" 01", setup)
+        self.assertNotIn("> /dev/null", setup)  # the warm build is shown
+        self.assertNotIn("|| true", setup)    # and its failure stops the image
+        run = run_script(["01"])
+        self.assertIn("grading.autograder run \"$ROOT\" 01", run)
+        self.assertIn('CMAKE_BUILD_PARALLEL_LEVEL="${CMAKE_BUILD_PARALLEL_LEVEL:-2}"', run)
+        self.assertIn("ILLUM_GRADE_TEST_TIMEOUT", run)
+
+
+class BuildFailureTest(unittest.TestCase):
+    def test_the_broken_exercise_file_is_named(self) -> None:
+        output = ("/a/exercises/01_ray_sphere/sphere.cpp:12:5: error: expected ';' before '}' token\n"
+                  "make[2]: *** [CMakeFiles/illum.dir/build.make:90: CMakeFiles/illum.dir/exercises/"
+                  "03_orientation_convex/triangle.cpp.o] Error 1\n"
+                  "note: exercises/05_x/mentioned_only.cpp is fine\n")
+        self.assertEqual(failed_exercise_files(output), ["exercises/01_ray_sphere/sphere.cpp",
+                                                         "exercises/03_orientation_convex/triangle.cpp"])
+        self.assertEqual(failed_exercise_files("lib/illum/core/ray.cpp:1:1: error: x"), [])
+
+
+class FallbackTest(unittest.TestCase):
+    """A student file that does not compile is swapped for its stub; the other lessons keep theirs."""
+
+    def test_only_the_broken_file_falls_back(self) -> None:
+        import argparse
+        from unittest import mock
+
+        from grading import build, driver
+
+        with tempfile.TemporaryDirectory() as folder:
+            tree, pristine = Path(folder) / "tree", Path(folder) / "pristine"
+            for lesson, name in (("01_ray_sphere", "sphere.cpp"), ("10_hemicube", "hemicube_deltas.cpp")):
+                (tree / "exercises" / lesson).mkdir(parents=True)
+                (tree / "exercises" / lesson / name).write_text("student's " + name)
+                (pristine / lesson).mkdir(parents=True)
+                (pristine / lesson / name).write_text("stub")
+            outputs = iter([
+                build.StepResult(False, "/x/exercises/01_ray_sphere/sphere.cpp:3:1: error: expected ';'\n"),
+                build.StepResult(True, "")])
+            args = argparse.Namespace(student=True, fallback_stubs=pristine)
+            run = GradeRun(lessons=["01", "10"], student=True)
+            with mock.patch.object(build, "build", side_effect=lambda *a, **k: next(outputs)):
+                step = driver._build_with_fallback(args, run, Path(folder) / "b", tree, ["illum"])
+            self.assertTrue(step.ok)
+            self.assertEqual(list(run.fallbacks), ["exercises/01_ray_sphere/sphere.cpp"])
+            self.assertEqual((tree / "exercises/01_ray_sphere/sphere.cpp").read_text(), "stub")
+            self.assertEqual((tree / "exercises/10_hemicube/hemicube_deltas.cpp").read_text(),
+                             "student's hemicube_deltas.cpp")
+
+    def test_an_error_outside_the_students_files_is_not_papered_over(self) -> None:
+        import argparse
+        from unittest import mock
+
+        from grading import build, driver
+
+        with tempfile.TemporaryDirectory() as folder:
+            pristine = Path(folder) / "pristine" / "01_ray_sphere"
+            pristine.mkdir(parents=True)
+            (pristine / "sphere.cpp").write_text("stub")
+            broken = build.StepResult(False, "/x/exercises/01_ray_sphere/sphere.cpp:3:1: error: a\n"
+                                             "/x/lib/illum/core/ray.cpp:9:1: error: b\n")
+            args = argparse.Namespace(student=True, fallback_stubs=pristine.parent)
+            run = GradeRun(lessons=["01"], student=True)
+            with mock.patch.object(build, "build", return_value=broken):
+                step = driver._build_with_fallback(args, run, Path(folder), Path(folder), ["illum"])
+            self.assertFalse(step.ok)
+            self.assertEqual(run.fallbacks, {})
+
+
+class CommandLineTest(unittest.TestCase):
+    """Wrong commands stop before anything is built (exit 2), without a traceback or a file."""
+
+    def run_main(self, argv: list[str]) -> tuple[int, str]:
+        import contextlib
+        import io
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err):
+            try:
+                status = grade_main(argv)
+            except SystemExit as exit_:  # argparse
+                status = int(exit_.code)
+        return status, err.getvalue()
+
+    def test_a_lesson_that_does_not_exist(self) -> None:
+        status, err = self.run_main(["99"])
+        self.assertEqual(status, 2)
+        self.assertIn("lesson 99 does not exist; the lessons are 01", err)
+        self.assertNotIn("Traceback", err)
+
+    def test_output_paths_that_cannot_be_written(self) -> None:
+        with tempfile.TemporaryDirectory() as folder:
+            for option in ("--results", "--junit", "--pack-autograder"):
+                for path, words in ((folder, "is a folder"), (f"{folder}/none/x", "does not exist")):
+                    status, err = self.run_main([option, path, "01"])
+                    self.assertEqual(status, 2, (option, path))
+                    self.assertIn(words, err)
+                    self.assertNotIn("Traceback", err)
+            self.assertEqual(list(Path(folder).iterdir()), [])  # nothing left behind
 
 
 if __name__ == "__main__":

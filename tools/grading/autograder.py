@@ -1,35 +1,58 @@
-"""Gradescope's autograder zip, and putting a submission in place.
+"""Gradescope's autograder zip, its setup check, and grading one submission.
 
-The zip unpacks to /autograder/source/ as:
+The zip unpacks to ``$ROOT/source/`` (``ROOT`` is ``/autograder`` on
+Gradescope; ``ILLUM_AUTOGRADER_ROOT`` moves it, for tests) as:
 
-    setup.sh          installs tools/debian-packages.txt and warms the build
-    run_autograder    installs the submission, runs tools/grade --student
+    setup.sh          installs the build packages, then ``setup`` below
+    run_autograder    ``run`` below, once per submission
     illum/            the student edition of the tree (no reference units)
+    reference/        the reference exercise units of the graded lessons,
+                      used only by setup.sh to prove the grader works
     hidden-tests/     tests/hidden/ plus the --hidden folder given when packing
 
-Gradescope runs ``setup.sh`` once when it builds the image and
-``run_autograder`` once per submission, with the student's files in
-/autograder/submission/ and results expected in /autograder/results/.
+``python3 -m grading.autograder setup ROOT NN…`` (from setup.sh) checks the
+toolchain and library versions, builds the reference and grades it (it must
+score full marks, hidden tests included), then builds the stubs so that a
+submission recompiles only the student's files. Any failure exits non-zero
+with a message an instructor can act on: a grader that cannot build the
+reference must never tell a student that their code did not compile.
+
+``python3 -m grading.autograder run ROOT NN…`` (from run_autograder) puts the
+stubs back, installs the upload (``install_submission``), runs tools/grade
+with Gradescope's limits, and makes sure results.json exists.
 """
 from __future__ import annotations
 
+import json
+import os
+import re
 import shlex
 import shutil
 import stat
+import subprocess
 import sys
 import tempfile
 import zipfile
-from pathlib import Path
+from dataclasses import dataclass, field
+from pathlib import Path, PurePosixPath
 
 from .edition import make_student_edition
 from .project import exercise_stubs
 
-SOURCE = "/autograder/source"
-SUBMISSION = "/autograder/submission"
-RESULTS = "/autograder/results"
+DEFAULT_ROOT = "/autograder"
 
 # Packages of tools/debian-packages.txt that grading does not need.
 NOT_FOR_GRADING = {"chromium", "nodejs", "npm", "gnuplot-nox", "zip", "libbenchmark-dev"}
+
+# The oldest versions the grading build is checked against (docs/grading.md):
+# Ubuntu 22.04, Gradescope's default image.
+MINIMUM_VERSIONS = {"g++": (11, 0), "cmake": (3, 22), "python3": (3, 10), "doctest": (2, 4, 8),
+                    "nlohmann-json": (3, 10, 5)}
+
+# Gradescope's default container: 0.5 vCPU, 768 MB, 10 minutes for the whole run.
+# The tests stop starting 8 minutes into tools/grade, so that results.json is written in time.
+RUN_LIMITS = {"CMAKE_BUILD_PARALLEL_LEVEL": "2", "ILLUM_GRADE_TEST_TIMEOUT": "30", "ILLUM_GRADE_TIMEOUT": "240",
+              "ILLUM_GRADE_DEADLINE": "480"}
 
 
 def debian_packages(root: Path) -> list[str]:
@@ -40,42 +63,59 @@ def debian_packages(root: Path) -> list[str]:
     return names
 
 
-def setup_script(packages: list[str], grade_arguments: list[str]) -> str:
+def setup_script(packages: list[str], lessons: list[str]) -> str:
+    quoted = " ".join(shlex.quote(p) for p in packages)
     return f"""#!/usr/bin/env bash
 # Gradescope runs this once, as root, when it builds the autograder image.
+# It fails loudly: every step is shown, and a step that fails stops the
+# image with a message saying what to fix.
 set -euo pipefail
-export DEBIAN_FRONTEND=noninteractive
-apt-get update
-apt-get install -y --no-install-recommends {" ".join(shlex.quote(p) for p in packages)}
+ROOT="${{ILLUM_AUTOGRADER_ROOT:-{DEFAULT_ROOT}}}"
+fail() {{ printf '\\nsetup.sh: FAILED: %s\\n' "$1" >&2; exit 1; }}
+trap 'fail "the command on line $LINENO failed (its output is above)"' ERR
 
-# Everything comes from the distribution's packages: CMakeLists.txt needs
-# CMake 3.22 (Ubuntu 22.04's); only the presets, unused here, need 3.25.
-# chromium, nodejs and npm serve the slides, not grading, and are skipped.
+packages=({quoted})
+missing=()
+for package in "${{packages[@]}}"; do
+  dpkg-query -W -f='${{Status}}' "$package" 2>/dev/null | grep -q 'ok installed' || missing+=("$package")
+done
+if [ "${{#missing[@]}}" -gt 0 ]; then
+  echo "setup.sh: installing ${{missing[*]}}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update || fail "apt-get update failed: the image needs network access to its package mirror"
+  apt-get install -y --no-install-recommends "${{missing[@]}}" \\
+    || fail "apt-get could not install ${{missing[*]}}: choose an Ubuntu 22.04 (or newer) or Debian 12 base image"
+else
+  echo "setup.sh: every build package is installed already"
+fi
 
-chmod +x {SOURCE}/run_autograder {SOURCE}/illum/tools/grade
-# Build once with the stubs, so that grading a submission recompiles only the
-# student's files. The score of this run means nothing.
-cd {SOURCE}/illum
-python3 tools/grade {" ".join(shlex.quote(a) for a in grade_arguments)} > /dev/null 2>&1 || true
+chmod +x "$ROOT/source/run_autograder" "$ROOT/source/illum/tools/grade"
+cd "$ROOT/source/illum"
+# Versions, the reference build and its grading, then the warm stubs build.
+PYTHONPATH=tools python3 -m grading.autograder setup "$ROOT" {" ".join(lessons)} \\
+  || fail "the grader does not work on this image (see above); students' code was not involved"
+echo "setup.sh: ready"
 """
 
 
-def run_script(lessons: list[str], grade_arguments: list[str]) -> str:
+def run_script(lessons: list[str]) -> str:
+    limits = "\n".join(f'export {k}="${{{k}:-{v}}}"' for k, v in RUN_LIMITS.items())
     return f"""#!/usr/bin/env bash
-# Gradescope runs this for every submission. tools/grade writes results.json
-# whatever happens (a compile error gives score 0 and the compiler's output).
+# Gradescope runs this for every submission. results.json is written whatever
+# happens: a student file that does not compile costs only its lesson, a
+# test that hangs or crashes costs only itself.
 set -uo pipefail
-mkdir -p {RESULTS}
-cd {SOURCE}/illum
-PYTHONPATH=tools python3 -m grading.autograder {SUBMISSION} . {" ".join(lessons)}
-python3 tools/grade {" ".join(shlex.quote(a) for a in grade_arguments)} \\
-    --results {RESULTS}/results.json --junit {RESULTS}/junit.xml
+ROOT="${{ILLUM_AUTOGRADER_ROOT:-{DEFAULT_ROOT}}}"
+# Gradescope's default limits: 0.5 vCPU, 768 MB, 10 minutes for the whole run.
+{limits}
+cd "$ROOT/source/illum"
+PYTHONPATH=tools python3 -m grading.autograder run "$ROOT" {" ".join(lessons)}
 exit 0
 """
 
 
 def _add(archive: zipfile.ZipFile, path: Path, name: str) -> None:
-    """Adds a file keeping its executable bit (zipfile.write does, explicitly here for the scripts)."""
+    """Adds a file keeping its executable bit."""
     info = zipfile.ZipInfo.from_file(path, name)
     info.compress_type = zipfile.ZIP_DEFLATED
     with path.open("rb") as data:
@@ -104,75 +144,334 @@ def hidden_test_files(root: Path, extra: Path | None) -> list[Path]:
     return files
 
 
+def reference_units(root: Path, lessons: list[str]) -> list[Path]:
+    """lib/illum/**/<name>.cpp for every exercise stub of the graded lessons."""
+    units = []
+    for name, stub in sorted(exercise_stubs(root).items()):
+        if stub.parent.name[:2] in lessons:
+            found = sorted((root / "lib" / "illum").rglob(name))
+            if len(found) != 1:
+                raise ValueError(f"exercise {stub.relative_to(root)} has {len(found)} reference units in lib/illum")
+            units.append(found[0])
+    return units
+
+
 def pack_autograder(root: Path, zip_path: Path, lessons: list[str], extra_hidden: Path | None) -> list[str]:
     """Writes the autograder zip; returns its file names (for the summary)."""
     hidden_files = hidden_test_files(root, extra_hidden)
-    grade_arguments = ["--student"]
-    if hidden_files:
-        grade_arguments += ["--hidden", f"{SOURCE}/hidden-tests"]
-    grade_arguments += lessons
-    with tempfile.TemporaryDirectory(prefix="illum-autograder-") as folder:
-        edition = make_student_edition(root, Path(folder) / "illum")
-        zip_path.parent.mkdir(parents=True, exist_ok=True)
-        temporary = zip_path.with_name(zip_path.name + ".tmp-pack")
-        with zipfile.ZipFile(temporary, "w") as archive:
-            _add_text(archive, "setup.sh", setup_script(debian_packages(root), grade_arguments), True)
-            _add_text(archive, "run_autograder", run_script(lessons, grade_arguments), True)
-            for path in sorted(edition.out.rglob("*")):
-                if path.is_file():
-                    _add(archive, path, "illum/" + path.relative_to(edition.out).as_posix())
-            for path in hidden_files:
-                _add(archive, path, "hidden-tests/" + path.name)
-            names = archive.namelist()
+    references = reference_units(root, lessons)
+    temporary = zip_path.with_name(zip_path.name + ".tmp-pack")
+    try:
+        with tempfile.TemporaryDirectory(prefix="illum-autograder-") as folder:
+            edition = make_student_edition(root, Path(folder) / "illum")
+            with zipfile.ZipFile(temporary, "w") as archive:
+                _add_text(archive, "setup.sh", setup_script(debian_packages(root), lessons), True)
+                _add_text(archive, "run_autograder", run_script(lessons), True)
+                for path in sorted(edition.out.rglob("*")):
+                    if path.is_file():
+                        _add(archive, path, "illum/" + path.relative_to(edition.out).as_posix())
+                for path in references:
+                    _add(archive, path, "reference/" + path.name)
+                for path in hidden_files:
+                    _add(archive, path, "hidden-tests/" + path.name)
+                names = archive.namelist()
         temporary.replace(zip_path)
+    finally:
+        temporary.unlink(missing_ok=True)
     return names
 
 
-def install_submission(submission: Path, tree: Path, lessons: list[str]) -> tuple[list[str], list[str]]:
-    """Copies the submitted .cpp files over the stubs of the graded lessons.
+# --- the upload ------------------------------------------------------------------------------
 
-    Files are matched by name (exercise units have unique names), wherever
-    the student put them in the submission. Returns (installed, ignored).
-    The copy gets a fresh modification time so that make recompiles it even
-    if the student's file is older than the build warmed up by setup.sh.
+# What browsers and file managers do to a name: "sphere (1).cpp", "sphere(2).cpp", "sphere-1.cpp",
+# "Copy of sphere.cpp", "sphere.CPP".
+_RENAMED = re.compile(r"^(?:copy of |copia de )?(?P<stem>.+?)(?:\s*\(\d+\)|-\d+| copy| copia)?\.(?:cpp|cc|cxx|c\+\+)$",
+                      re.I)
+MAX_ZIP_BYTES = 20 * 1024 * 1024
+
+
+@dataclass
+class Submission:
+    """What was made of an upload; written as JSON for tools/grade --submission-info."""
+
+    installed: list[dict[str, str]] = field(default_factory=list)  # file, target, note
+    ignored: list[dict[str, str]] = field(default_factory=list)    # file, reason
+    notes: list[str] = field(default_factory=list)
+    expected: list[str] = field(default_factory=list)
+
+    def to_json(self) -> dict:
+        return {"installed": self.installed, "ignored": self.ignored, "notes": self.notes,
+                "expected": self.expected}
+
+
+def _skipped_part(part: str) -> bool:
+    return part.startswith(".") or part == "__MACOSX"
+
+
+def _unpack_zips(submission: Path, into: Path, report: Submission) -> list[tuple[Path, str]]:
+    """(file, name shown to the student) of every file inside the zips of the upload."""
+    found: list[tuple[Path, str]] = []
+    for number, archive_path in enumerate(sorted(submission.rglob("*.zip"))):
+        shown = archive_path.relative_to(submission).as_posix()
+        if any(_skipped_part(p) for p in archive_path.relative_to(submission).parts):
+            continue
+        try:
+            with zipfile.ZipFile(archive_path) as archive:
+                members = [m for m in archive.infolist() if not m.is_dir()]
+                if sum(m.file_size for m in members) > MAX_ZIP_BYTES:
+                    report.ignored.append({"file": shown, "reason": "the zip is too large to unpack"})
+                    continue
+                target = into / str(number)
+                for member in members:
+                    parts = PurePosixPath(member.filename).parts
+                    if member.filename.startswith("/") or ".." in parts or any(_skipped_part(p) for p in parts):
+                        continue
+                    out = target.joinpath(*parts)
+                    out.parent.mkdir(parents=True, exist_ok=True)
+                    out.write_bytes(archive.read(member))
+                    found.append((out, f"{shown}/{member.filename}"))
+                report.notes.append(f"unpacked `{shown}` (a zip in your upload) and looked inside it")
+        except (zipfile.BadZipFile, OSError) as error:
+            report.ignored.append({"file": shown, "reason": f"not a zip that can be opened ({error})"})
+    return found
+
+
+def install_submission(submission: Path, tree: Path, lessons: list[str]) -> Submission:
+    """Copies the uploaded exercise files over the stubs of the graded lessons.
+
+    Files are matched by name (exercise units have unique names), wherever the
+    student put them, inside a zip of the upload too. A name a browser or a
+    file manager changed ("sphere (1).cpp", "Sphere.cpp") is recognised and
+    said so; an exact name wins over such a name, and a file nearer the top of
+    the upload over a deeper copy. The copy gets a fresh modification time so
+    that make recompiles it even if it is older than the warm build.
     """
     stubs = {name: path for name, path in exercise_stubs(tree).items()
              if not lessons or path.parent.name[:2] in lessons}
-    installed: list[str] = []
-    ignored: list[str] = []
-    done: set[str] = set()
-    # Shallowest first: a file at the top of the submission wins over a copy in a subfolder.
-    candidates = sorted(submission.rglob("*.cpp"), key=lambda p: (len(p.parts), str(p)))
-    for path in candidates:
-        relative = path.relative_to(submission).as_posix()
-        if any(part.startswith(".") or part == "__MACOSX" for part in path.relative_to(submission).parts):
-            continue
-        if path.name in stubs and path.name not in done:
-            target = stubs[path.name]
+    report = Submission(expected=sorted(stubs))
+    lowered = {name.lower(): name for name in stubs}
+    with tempfile.TemporaryDirectory(prefix="illum-upload-") as folder:
+        candidates: list[tuple[Path, str]] = []
+        for path in sorted(submission.rglob("*")):
+            relative = path.relative_to(submission)
+            if not path.is_file() or any(_skipped_part(p) for p in relative.parts):
+                continue
+            if path.suffix.lower() == ".zip":
+                continue
+            candidates.append((path, relative.as_posix()))
+        candidates += _unpack_zips(submission, Path(folder), report)
+
+        def rank(item: tuple[Path, str]) -> tuple[int, int, str]:
+            _, shown = item
+            name = PurePosixPath(shown).name
+            return (0 if name in stubs else 1, len(PurePosixPath(shown).parts), shown)
+
+        done: dict[str, str] = {}
+        for path, shown in sorted(candidates, key=rank):
+            name = PurePosixPath(shown).name
+            match = _RENAMED.match(name)
+            wanted = name if name in stubs else lowered.get(f"{match.group('stem')}.cpp".lower()) if match else None
+            if wanted is None:
+                reason = ("not an exercise file of lesson(s) " + ", ".join(lessons) if lessons else
+                          "not an exercise file") if path.suffix.lower() in (".cpp", ".hpp", ".h") else "not a C++ file"
+                report.ignored.append({"file": shown, "reason": reason})
+                continue
+            if wanted in done:
+                report.ignored.append({"file": shown, "reason": f"a second {wanted}; `{done[wanted]}` was used"})
+                continue
+            target = stubs[wanted]
             shutil.copyfile(path, target)
             target.touch()
-            done.add(path.name)
-            installed.append(f"{relative} -> {target.relative_to(tree).as_posix()}")
-        else:
-            ignored.append(relative)
-    return installed, ignored
+            done[wanted] = shown
+            note = "" if name == wanted else f"taken as {wanted}; next time upload it under that name"
+            report.installed.append({"file": shown, "target": target.relative_to(tree).as_posix(), "note": note})
+    return report
+
+
+# --- setup.sh and run_autograder -------------------------------------------------------------
+
+class SetupError(Exception):
+    """Something an instructor must fix before the autograder can grade."""
+
+
+def _version(text: str) -> tuple[int, ...]:
+    match = re.search(r"(\d+)\.(\d+)(?:\.(\d+))?", text)
+    if not match:
+        return ()
+    return tuple(int(g) for g in match.groups() if g is not None)
+
+
+def _command_version(command: list[str]) -> tuple[tuple[int, ...], str]:
+    try:
+        completed = subprocess.run(command, capture_output=True, text=True, check=False)
+    except OSError as error:
+        return (), str(error)
+    text = (completed.stdout or completed.stderr).strip().splitlines()
+    first = text[0] if text else ""
+    return _version(first), first
+
+
+def library_versions(compiler: str = "c++") -> dict[str, tuple[int, ...]]:
+    """doctest and nlohmann-json as the compiler finds them (their version macros)."""
+    probe = "#include <doctest/doctest.h>\n#include <nlohmann/json.hpp>\n"
+    completed = subprocess.run([compiler, "-std=c++20", "-E", "-dM", "-x", "c++", "-"], input=probe,
+                               capture_output=True, text=True, check=False)
+    if completed.returncode != 0:
+        raise SetupError("the compiler cannot include <doctest/doctest.h> and <nlohmann/json.hpp>: install "
+                         "doctest-dev and nlohmann-json3-dev\n" + completed.stderr[-2000:])
+    macros = dict(re.findall(r"^#define (\w+) (\d+)\s*$", completed.stdout, re.M))
+    found = {}
+    for library, prefix in (("doctest", "DOCTEST_VERSION_"), ("nlohmann-json", "NLOHMANN_JSON_VERSION_")):
+        parts = [macros.get(prefix + part) for part in ("MAJOR", "MINOR", "PATCH")]
+        if all(parts):
+            found[library] = tuple(int(p) for p in parts)
+    return found
+
+
+def check_toolchain() -> list[str]:
+    """Prints the versions found; raises SetupError if one is missing or too old."""
+    found: dict[str, tuple[tuple[int, ...], str]] = {
+        "g++": _command_version(["c++", "-dumpfullversion"]),
+        "cmake": _command_version(["cmake", "--version"]),
+        "python3": (sys.version_info[:3], sys.version.split()[0]),
+    }
+    for name, version in library_versions().items():
+        found[name] = (version, ".".join(map(str, version)))
+    lines, problems = [], []
+    for name, minimum in MINIMUM_VERSIONS.items():
+        version, text = found.get(name, ((), "not found"))
+        ok = bool(version) and version >= minimum
+        lines.append(f"  {name:<14} {'.'.join(map(str, version)) or text:<10} "
+                     f"(needs {'.'.join(map(str, minimum))}){'' if ok else '  <-- TOO OLD or MISSING'}")
+        if not ok:
+            problems.append(f"{name} {text} is older than {'.'.join(map(str, minimum))} or missing")
+    print("setup: toolchain and libraries found:\n" + "\n".join(lines), flush=True)
+    if problems:
+        raise SetupError("; ".join(problems) + ". Choose an Ubuntu 22.04 (or newer) or Debian 12 base image.")
+    return lines
+
+
+def _grade(tree: Path, lessons: list[str], hidden: Path | None, results: Path,
+           extra: list[str] | None = None, quiet: bool = False) -> int:
+    command = [sys.executable, str(tree / "tools" / "grade"), "--student", *(extra or [])]
+    if hidden is not None:
+        command += ["--hidden", str(hidden)]
+    command += [*lessons, "--results", str(results)]
+    print("$ " + " ".join(shlex.quote(c) for c in command), flush=True)
+    return subprocess.run(command, check=False, stdout=subprocess.DEVNULL if quiet else None,
+                          stderr=subprocess.STDOUT if quiet else None).returncode
+
+
+def _paths(root: Path) -> tuple[Path, Path, Path | None, Path]:
+    source = root / "source"
+    tree = source / "illum"
+    hidden = source / "hidden-tests"
+    return source, tree, (hidden if any(hidden.glob("*.cpp")) else None), tree / "build" / "pristine-stubs"
+
+
+def _restore_stubs(tree: Path, pristine: Path) -> None:
+    for stub in sorted(pristine.rglob("*.cpp")):
+        target = tree / "exercises" / stub.relative_to(pristine)
+        if not target.exists() or target.read_bytes() != stub.read_bytes():
+            shutil.copyfile(stub, target)
+            target.touch()
+
+
+def setup(root: Path, lessons: list[str]) -> None:
+    """setup.sh's checks: versions, the reference graded at full marks, then a warm stubs build."""
+    source, tree, hidden, pristine = _paths(root)
+    check_toolchain()
+    # Keep the stubs as they came, for run_autograder and for the fallback of a broken file.
+    if pristine.exists():
+        shutil.rmtree(pristine)
+    for stub in sorted((tree / "exercises").glob("[0-9][0-9]_*/*.cpp")):
+        target = pristine / stub.relative_to(tree / "exercises")
+        target.parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(stub, target)
+    references = sorted((source / "reference").glob("*.cpp"))
+    if not references:
+        raise SetupError(f"{source / 'reference'} holds no reference unit: repack the autograder with "
+                         "tools/grade --pack-autograder")
+    stubs = exercise_stubs(tree)
+    for unit in references:
+        if unit.name not in stubs:
+            raise SetupError(f"reference/{unit.name} has no stub in exercises/: repack the autograder")
+        shutil.copyfile(unit, stubs[unit.name])
+        stubs[unit.name].touch()
+    print("\nsetup: building and grading the reference solutions (they must score full marks)", flush=True)
+    with tempfile.TemporaryDirectory(prefix="illum-setup-") as folder:
+        results = Path(folder) / "reference.json"
+        status = _grade(tree, lessons, hidden, results)
+        data = json.loads(results.read_text(encoding="utf-8")) if results.exists() else {}
+        if status != 0 or not data.get("tests") or data.get("score") != data.get("max_score"):
+            failed = [t["name"] for t in data.get("tests", []) if t.get("status") != "passed"]
+            raise SetupError(
+                f"the reference solutions did not pass (tools/grade exited {status}; score "
+                f"{data.get('score')}/{data.get('max_score')}; failing: {', '.join(failed[:10]) or 'the build'}). "
+                "The grader would blame students for its own fault: fix the tree, the hidden tests or the "
+                "image, and repack.")
+        print(f"setup: the reference scored {data['score']}/{data['max_score']} over {len(data['tests'])} tests",
+              flush=True)
+        _restore_stubs(tree, pristine)
+        print("\nsetup: warming the build with the stubs (a submission then recompiles only its own files)",
+              flush=True)
+        stub_results = Path(folder) / "stubs.json"
+        _grade(tree, lessons, hidden, stub_results)
+        data = json.loads(stub_results.read_text(encoding="utf-8")) if stub_results.exists() else {}
+        if not data.get("tests") or data.get("score") != 0:
+            raise SetupError(f"the stubs scored {data.get('score')} (expected 0 over at least one test): "
+                             "the grading tests do not detect unwritten code")
+
+
+def _fallback_results(results: Path, message: str) -> None:
+    data = {"score": 0, "output": message, "output_format": "text", "visibility": "visible",
+            "stdout_visibility": "hidden",
+            "tests": [{"name": "grader", "score": 0, "max_score": 0, "status": "failed", "output": message,
+                       "visibility": "visible"}]}
+    results.write_text(json.dumps(data, indent=2) + "\n", encoding="utf-8")
+
+
+def run(root: Path, lessons: list[str]) -> int:
+    """run_autograder: stubs back, the upload installed, tools/grade with Gradescope's limits."""
+    source, tree, hidden, pristine = _paths(root)
+    results_dir = root / "results"
+    results_dir.mkdir(parents=True, exist_ok=True)
+    results = results_dir / "results.json"
+    results.unlink(missing_ok=True)
+    if not pristine.is_dir():
+        _fallback_results(results, "The autograder was not set up (setup.sh did not finish). This is not your "
+                                   "code's fault: tell your instructor.")
+        return 2
+    _restore_stubs(tree, pristine)
+    report = install_submission(root / "submission", tree, lessons)
+    info = tree / "build" / "submission.json"
+    info.write_text(json.dumps(report.to_json(), indent=2) + "\n", encoding="utf-8")
+    for item in report.installed:
+        print(f"installed {item['file']} -> {item['target']} {item['note']}".rstrip())
+    for item in report.ignored:
+        print(f"ignored {item['file']}: {item['reason']}")
+    status = _grade(tree, lessons, hidden, results,
+                    ["--submission-info", str(info), "--fallback-stubs", str(pristine),
+                     "--junit", str(results_dir / "junit.xml")])
+    if not results.exists():
+        _fallback_results(results, f"The grader failed (tools/grade exited {status}) before writing results. "
+                                   "This is not your code's fault: tell your instructor.")
+    return 0
 
 
 def main(argv: list[str]) -> int:
-    """``python3 -m grading.autograder SUBMISSION TREE [NN ...]`` (used by run_autograder)."""
-    if len(argv) < 2:
-        print("usage: python3 -m grading.autograder SUBMISSION TREE [NN ...]", file=sys.stderr)
+    """``python3 -m grading.autograder setup|run ROOT [NN ...]``."""
+    if len(argv) < 2 or argv[0] not in ("setup", "run"):
+        print("usage: python3 -m grading.autograder setup|run ROOT [NN ...]", file=sys.stderr)
         return 2
-    submission, tree, lessons = Path(argv[0]), Path(argv[1]), argv[2:]
-    installed, ignored = install_submission(submission, tree, lessons)
-    for line in installed:
-        print(f"installed {line}")
-    for line in ignored:
-        print(f"ignored {line} (not an exercise file of the graded lessons)")
-    if not installed:
-        expected = sorted(name for name, path in exercise_stubs(tree).items()
-                          if not lessons or path.parent.name[:2] in lessons)
-        print("None of your files matched an exercise file; expected: " + ", ".join(expected))
+    command, root, lessons = argv[0], Path(argv[1]), argv[2:]
+    if command == "run":
+        return run(root, lessons)
+    try:
+        setup(root, lessons)
+    except SetupError as error:
+        print(f"\nsetup: {error}", file=sys.stderr)
+        return 1
     return 0
 
 

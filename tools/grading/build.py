@@ -8,6 +8,7 @@ programs and the stub twins are not needed to grade.
 from __future__ import annotations
 
 import os
+import re
 import subprocess
 import sys
 from dataclasses import dataclass
@@ -71,3 +72,38 @@ def build(build_dir: Path, targets: Sequence[str], echo: bool = True) -> StepRes
     if targets:
         command += ["--target", *targets]
     return run_streaming(command, echo)
+
+
+# A compiler or make error line that names an exercise unit, e.g.
+#   /…/exercises/01_ray_sphere/sphere.cpp:12:5: error: expected ';'
+#   make[2]: *** [… CMakeFiles/illum.dir/exercises/01_ray_sphere/sphere.cpp.o] Error 1
+_EXERCISE_FILE = re.compile(r"(exercises/\d\d_[^/\s:]+/[^/\s:\]]+\.cpp)")
+_ERROR_LINE = re.compile(r"\berror\b|\bError \d+|undefined reference", re.I)
+
+
+def failed_exercise_files(output: str) -> list[str]:
+    """The exercise units (``exercises/NN_topic/name.cpp``) a failed build blames.
+
+    Read from the lines that report an error; a unit named only in an
+    "In file included from" line counts too (its include broke). Empty when
+    the failure names no exercise unit (then the tree itself is broken).
+    """
+    blamed: set[str] = set()
+    for line in output.splitlines():
+        if _ERROR_LINE.search(line) or line.lstrip().startswith("In file included from"):
+            blamed.update(_EXERCISE_FILE.findall(line))
+    return sorted(blamed)
+
+
+def error_lines_outside(output: str, files: list[str]) -> bool:
+    """True when an error is reported in a source file (.cpp) other than ``files``.
+
+    An error in a header counts as the includer's (a student's call can fail
+    inside a template of a header); an error in another .cpp means the tree
+    itself does not build, and then no stub can help.
+    """
+    for line in output.splitlines():
+        match = re.match(r"\s*(\S+\.(?:cpp|cc|cxx)):\d+(?::\d+)?: (?:fatal )?error\b", line)
+        if match and not any(match.group(1).endswith(f) for f in files):
+            return True
+    return False

@@ -35,6 +35,17 @@ class GradeRun:
     problems: list[str] = field(default_factory=list)  # crashes, timeouts, missing programs
     student: bool = False
     seconds: float = 0.0
+    # Attributed build failure: only the student's files named here failed;
+    # each was replaced by its stub and the rest was graded (file -> compiler output).
+    fallbacks: dict[str, str] = field(default_factory=dict)
+    # The instructor's hidden tests did not build: the grader is misconfigured.
+    hidden_build_failed: bool = False
+    hidden_build_output: str = ""
+    has_hidden: bool = False
+    # What the autograder did with the upload (autograder.install_submission).
+    submission: dict[str, Any] | None = None
+    # False when the build failure is not the student's (a broken tree).
+    blame_student: bool = True
 
     @property
     def score(self) -> float:
@@ -51,7 +62,7 @@ def exit_code(run: GradeRun) -> int:
     Finding no grading test at all is a failure, not a vacuous pass: a grader
     that graded nothing must not report success.
     """
-    if run.build_failed:
+    if run.build_failed or run.hidden_build_failed:
         return EXIT_NOT_BUILT
     if not run.results:
         return EXIT_FAILED
@@ -62,11 +73,11 @@ def _fmt(x: float) -> str:
     return f"{x:g}"
 
 
-def _rows(run: GradeRun) -> list[tuple[str, int, int, float, float]]:
+def _rows(run: GradeRun, with_hidden: bool = True) -> list[tuple[str, int, int, float, float]]:
     """(label, tests passed, tests, points, max points) per lesson, visible then hidden."""
     rows = []
     for lesson in run.lessons:
-        for hidden in (False, True):
+        for hidden in (False, True) if with_hidden else (False,):
             group = [r for r in run.results if r.lesson == lesson and r.hidden == hidden]
             if hidden and not group:
                 continue
@@ -76,28 +87,49 @@ def _rows(run: GradeRun) -> list[tuple[str, int, int, float, float]]:
     return rows
 
 
-def score_table(run: GradeRun) -> str:
-    """The table printed at the end of a run, one row per lesson."""
+def score_table(run: GradeRun, for_students: bool = False) -> str:
+    """The table printed at the end of a run, one row per lesson.
+
+    ``for_students`` (results.json, which students read): while hidden tests
+    exist, neither their row nor the total is shown, as Gradescope itself
+    hides the total from students then.
+    """
     if run.build_failed:
         return "The build failed: nothing was graded (score 0). The compiler's messages are above."
+    # Any entry hidden from students (a hidden test, or the hidden tests' failed build) hides the total.
+    hide = for_students and (run.hidden_build_failed or any(r.hidden for r in run.results))
     header = ("lesson", "tests passed", "points")
     body = [(label, f"{passed}/{total}", f"{_fmt(points)}/{_fmt(max_points)}")
-            for label, passed, total, points, max_points in _rows(run)]
-    percent = 100.0 * run.score / run.max_score if run.max_score else 0.0
-    total_passed = sum(r.passed for r in run.results)
-    footer = ("total", f"{total_passed}/{len(run.results)}",
-              f"{_fmt(run.score)}/{_fmt(run.max_score)}  ({percent:.0f}%)")
-    widths = [max(len(row[i]) for row in [header, *body, footer]) for i in range(3)]
+            for label, passed, total, points, max_points in _rows(run, with_hidden=not hide)]
+    shown = [r for r in run.results if not (hide and r.hidden)]
+    score, max_score = sum(r.score for r in shown), sum(r.points for r in shown)
+    percent = 100.0 * score / max_score if max_score else 0.0
+    footer = ("total", f"{sum(r.passed for r in shown)}/{len(shown)}",
+              f"{_fmt(score)}/{_fmt(max_score)}  ({percent:.0f}%)")
+    rows = [header, *body] + ([] if hide else [footer])
+    widths = [max(len(row[i]) for row in rows) for i in range(3)]
 
     def line(row: tuple[str, str, str]) -> str:
         return "  ".join(cell.ljust(width) for cell, width in zip(row, widths)).rstrip()
 
     rule = "  ".join("-" * w for w in widths)
-    lines = [line(header), rule, *map(line, body), rule, line(footer)]
+    lines = [line(header), rule, *map(line, body)] + ([] if hide else [rule, line(footer)])
+    if hide:
+        lines.append("Hidden tests are graded too; your total appears when your instructor publishes the scores.")
     if not run.results:
         lines.append("no grading tests were found for the lessons asked for")
-    lines.extend(f"problem: {p}" for p in run.problems)
+    lines.extend(f"problem: {p}" for p in (run.problems if not for_students else _visible_problems(run)))
     return "\n".join(lines)
+
+
+def _visible_problems(run: GradeRun) -> list[str]:
+    """Problems a student may read: none about the hidden tests' program, and
+    the ones of a single test only counted (each test's entry says why)."""
+    problems = [p for p in run.problems if "tests_hidden" not in p]
+    per_test = sum(part.count(': test "') for part in problems)
+    general = [part for p in problems for part in p.split("; ") if ': test "' not in part]
+    lines = [f"{per_test} test(s) crashed or did not finish; their entries say which and why"] if per_test else []
+    return lines + general
 
 
 def failure_report(run: GradeRun, root: Path | None = None) -> str:
@@ -122,30 +154,81 @@ def test_name(result: TestResult) -> str:
     return f"lesson{result.lesson}{' (hidden)' if result.hidden else ''}: {result.name}"
 
 
+def _fence(text: str) -> str:
+    """A Markdown code block that keeps a table's columns and a compiler's <T>."""
+    fence = "```"
+    while fence in text:
+        fence += "`"
+    return f"{fence}text\n{text.rstrip()}\n{fence}"
+
+
+def submission_summary(run: GradeRun) -> str:
+    """Markdown: which uploaded files were graded, which were ignored, what was expected."""
+    info = run.submission
+    if not info:
+        return ""
+    lines = ["**What was graded**", ""]
+    for used in info.get("installed", []):
+        lines.append(f"- used `{used['file']}` as `{used['target']}`" + (f" ({used['note']})" if used.get("note") else ""))
+    for ignored in info.get("ignored", []):
+        lines.append(f"- ignored `{ignored['file']}`: {ignored['reason']}")
+    for note in info.get("notes", []):
+        lines.append(f"- {note}")
+    used = {Path(item["target"]).name for item in info.get("installed", [])}
+    missing = [name for name in info.get("expected", []) if name not in used]
+    if info.get("installed") and missing:
+        lines.append("- not in your upload, so graded as the unchanged stub: " + ", ".join(f"`{m}`" for m in missing))
+    if not info.get("installed"):
+        expected = ", ".join(f"`{name}`" for name in info.get("expected", []))
+        lines.append(f"- **none of your files is an exercise file of lesson(s) {', '.join(run.lessons)}**, so the "
+                     f"unchanged stubs were graded. Upload {expected} (the files of `exercises/NN_topic/`, "
+                     "under those names).")
+    return "\n".join(lines)
+
+
+def _compiler_messages(output: str) -> str:
+    """A build log without make's progress lines, which say nothing about the error."""
+    return "\n".join(line for line in output.splitlines()
+                     if not re.match(r"\[\s*\d+%\]|gmake\[\d+\]: (Entering|Leaving)", line))
+
+
+def _build_entry(name: str, output: str, visibility: str = "visible") -> dict[str, Any]:
+    output = _compiler_messages(output)
+    return {"name": name, "score": 0, "max_score": 0, "status": "failed", "output": _truncate(output),
+            "output_format": "text", "visibility": visibility}
+
+
 def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any]:
     """Gradescope's results.json: one entry per test, hidden tests marked hidden.
 
-    On a failed build the score is 0 and the single entry carries the
-    compiler's output, so the student sees why nothing was graded.
+    Students read it, so it says what was graded, keeps the hidden tests' row
+    and the total out of the summary while hidden tests exist, and holds
+    each compiler output once (in its build entry, as plain text). On a failed
+    build the score is 0 and the single entry carries the compiler's output.
     """
+    summary = submission_summary(run)
+    common = {"output_format": "md", "test_output_format": "text", "visibility": "visible",
+              "stdout_visibility": "hidden", "execution_time": round(run.seconds, 1)}
     if run.build_failed:
+        if run.blame_student:
+            headline = "Your code did not compile, so no test could run. The compiler's messages are in the build entry below."
+        else:
+            headline = ("The grader could not build (this is not your code's fault: tell your instructor). "
+                        "Nothing was graded.")
         return {
             "score": 0,
-            "output": "Your code did not compile, so no test could run. The compiler said:\n\n"
-                      + _truncate(run.build_output),
-            "visibility": "visible",
-            "stdout_visibility": "visible",
-            "execution_time": round(run.seconds, 1),
-            "tests": [{
-                "name": "build",
-                "score": 0,
-                "max_score": 0,
-                "status": "failed",
-                "output": _truncate(run.build_output),
-                "visibility": "visible",
-            }],
+            "output": "\n\n".join(part for part in (summary, headline) if part),
+            **common,
+            "tests": [_build_entry("build", run.build_output)],
         }
     tests = []
+    for failed_file, output in run.fallbacks.items():
+        tests.append(_build_entry(f"build: {failed_file} did not compile (graded as the stub)", output))
+    if run.hidden_build_failed:
+        # Not the student's fault, and the hidden tests' source must not reach students.
+        tests.append(_build_entry("hidden tests: build (instructors only)",
+                                  "The instructor's hidden tests did not compile; they were not graded.\n\n"
+                                  + run.hidden_build_output, visibility=HIDDEN_VISIBILITY))
     for number, result in enumerate(run.results, start=1):
         tests.append({
             "name": test_name(result),
@@ -154,16 +237,23 @@ def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any
             "max_score": result.points,
             "status": "passed" if result.passed else "failed",
             "output": _truncate(result.output(root)),
+            "output_format": "text",
             "visibility": HIDDEN_VISIBILITY if result.hidden else "visible",
         })
-    summary = score_table(run)
+    parts = [summary]
+    if run.fallbacks:
+        parts.append("**Some of your files did not compile.** Each was replaced by its stub, so only its lesson "
+                     "lost points; the compiler's messages are in the `build:` entries below:\n"
+                     + "\n".join(f"- `{name}`" for name in run.fallbacks))
+    if run.hidden_build_failed:
+        parts.append("The grader is misconfigured: some of the instructor's tests could not be built. This is not "
+                     "your code's fault; your visible tests were graded, and your instructor has been shown why.")
+    parts.append(_fence(score_table(run, for_students=True)))
     return {
         "score": run.score,
         "max_score": run.max_score,
-        "output": summary,
-        "visibility": "visible",
-        "stdout_visibility": "visible",
-        "execution_time": round(run.seconds, 1),
+        "output": "\n\n".join(part for part in parts if part),
+        **common,
         "tests": tests,
     }
 

@@ -197,6 +197,11 @@ def _short_path(file: str, root: Path | None) -> str:
     """A source path relative to the tree's root, as a student sees the tree."""
     if root is None or not file:
         return file
+    if not Path(file).is_absolute():  # relative to the build folder: ../../../tests/x.cpp
+        parts = Path(file).parts
+        while parts and parts[0] == "..":
+            parts = parts[1:]
+        return str(Path(*parts)) if parts else file
     try:
         return str(Path(file).resolve().relative_to(root.resolve()))
     except ValueError:

@@ -12,7 +12,7 @@ PlaneCrossing cross_plane(const Ray& ray, const Plane& plane) {
     // Parallel: the origin's distance decides between "never" and "always".
     return {distance == 0.0 ? PlaneContact::in_plane : PlaneContact::parallel, 0.0};
   }
-  const double s = -distance / approach;  // eq. 2.2, with the minus sign of erratum 2
+  const double s = -distance / approach;  // eq. 2.2, with the minus sign of erratum 2 of docs/errata.md
   // |N·ω| so small that s overflows: the crossing lies beyond any finite distance.
   if (!std::isfinite(s)) return {PlaneContact::parallel, 0.0};
   return {PlaneContact::crosses, s};

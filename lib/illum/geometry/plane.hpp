@@ -4,7 +4,7 @@
 //
 // Substituting the ray P = P0 + sω into the plane gives N·(P0 + sω) = −D, so
 //   s = −(D + N·P0) / (N·ω)                                  (lesson 02, eq. 2.2)
-// The notes print this without the minus sign (erratum 2): with it, a plane
+// The notes print this without the minus sign (erratum 2 of docs/errata.md): with it, a plane
 // in front of the ray would be reported behind it. N·ω = 0 means the ray is
 // parallel to the plane: it misses it, or lies in it.
 #include <cmath>

@@ -30,7 +30,7 @@ int axis_of(const Vec3& v) {
 
 bool sphere_span(const Ray& ray, const SolidSphere& ball, int surface, Span& span) {
   // Lesson 01's quadratic s² − 2 s ω·ΔP + |ΔP|² − r² = 0 with ΔP = Pc − P0
-  // (erratum 1), in its stable form: the half-chord h from the distance d
+  // (erratum 1 of docs/errata.md), in its stable form: the half-chord h from the distance d
   // between the centre and the line, h² = r² − d² = (r − d)(r + d).
   const Vec3 delta = ball.center - ray.origin;
   const double b = dot(ray.direction, delta);  // s of the point of the line nearest Pc
@@ -94,7 +94,7 @@ bool half_space_span(const Ray& ray, const SolidHalfSpace& half, int surface, Sp
     span.exit = {+infinity, half.normal, surface};
     return true;
   }
-  // The notes' plane N·P + D = 0 with D = −offset; erratum 2: s = −(D + N·P0)/(N·ω).
+  // The notes' plane N·P + D = 0 with D = −offset; erratum 2 of docs/errata.md: s = −(D + N·P0)/(N·ω).
   const double s = -height / approach;
   if (approach > 0.0) {
     span.enter = {-infinity, half.normal, surface};  // the ray leaves through the plane

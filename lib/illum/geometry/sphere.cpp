@@ -15,7 +15,7 @@ Sphere::Sphere(const Point3& center_, double radius_) : center(center_), radius(
 template <class T>
 SphereRoots<T> sphere_roots_notes(const glm::vec<3, T>& origin, const glm::vec<3, T>& direction,
                                   const glm::vec<3, T>& center, T radius) {
-  const glm::vec<3, T> delta = center - origin;  // ΔP = Pc − P0 (erratum 1)
+  const glm::vec<3, T> delta = center - origin;  // ΔP = Pc − P0 (erratum 1 of docs/errata.md)
   const T b = T(-2) * glm::dot(direction, delta);
   const T c = glm::dot(delta, delta) - radius * radius;
   const T discriminant = b * b - T(4) * c;  // A = 1

@@ -2,7 +2,7 @@
 // Ray–sphere intersection, lesson 01 ("Intersección Rayo-Esfera").
 //
 // Substituting the ray P = P0 + sω into the sphere |P − Pc|² − r² = 0 gives
-//   s² − 2 s ω·ΔP + |ΔP|² − r² = 0,  with ΔP = Pc − P0   (erratum 1),
+//   s² − 2 s ω·ΔP + |ΔP|² − r² = 0,  with ΔP = Pc − P0   (erratum 1 of docs/errata.md),
 // a quadratic A s² + B s + C = 0 with A = 1, B = −2 ω·ΔP, C = |ΔP|² − r².
 // Two forms are provided side by side:
 // * sphere_roots_notes: the textbook formula s = (−B ± √(B² − 4AC)) / 2A.
@@ -40,7 +40,7 @@ struct SphereRoots {
   T s_far = 0;
 };
 
-// The notes' quadratic formula, with erratum 1 applied. `direction` must be
+// The notes' quadratic formula, with erratum 1 of docs/errata.md applied. `direction` must be
 // a unit vector (A = 1); T is float or double, to compare precisions.
 template <class T>
 SphereRoots<T> sphere_roots_notes(const glm::vec<3, T>& origin, const glm::vec<3, T>& direction,

@@ -19,7 +19,7 @@ class FormFactorMatrix {
   double* row(std::size_t i) { return f_.data() + i * n_; }
   const double* row(std::size_t i) const { return f_.data() + i * n_; }
 
-  // Σ_j F_ij: 1 in a closed environment, less where energy escapes (erratum 5).
+  // Σ_j F_ij: 1 in a closed environment, less where energy escapes (erratum 5 of docs/errata.md).
   double row_sum(std::size_t i) const {
     double s = 0;
     for (std::size_t j = 0; j < n_; ++j) s += f_[i * n_ + j];

@@ -14,7 +14,8 @@ double top_face_delta(double x, double y, double pixel_area) {
 }
 
 double side_face_delta(double y, double z, double pixel_area) {
-  // eq. 10.3 (erratum 6): on the face x = 1, r² = y² + z² + 1, cos φ_i = z/r, cos φ_p = 1/r.
+  // eq. 10.3 (erratum 6 of docs/errata.md): on the face x = 1, r² = y² + z² + 1,
+  // cos φ_i = z/r, cos φ_p = 1/r.
   const double r2 = y * y + z * z + 1.0;
   return z * pixel_area / (std::numbers::pi * r2 * r2);
 }

@@ -13,7 +13,7 @@
 //     ΔF = ΔA / (π (x² + y² + 1)²)                      (eq. 10.2)
 // * Side face x = 1 with face coordinates (y, z): r² = y² + z² + 1,
 //   cos φ_i = z/r, cos φ_p = 1/r, so
-//     ΔF = z ΔA / (π (y² + z² + 1)²)                    (eq. 10.3, erratum 6:
+//     ΔF = z ΔA / (π (y² + z² + 1)²)                    (eq. 10.3, erratum 6 of docs/errata.md:
 //   the notes write r = √(x² + y² + 1), the top face's r, before using the
 //   right one.)
 //
@@ -32,7 +32,7 @@ namespace illum {
 double top_face_delta(double x, double y, double pixel_area);
 
 // ΔF of a side-face pixel of area `pixel_area` centred at face coordinates
-// (y, z), z the height above the patch, eq. 10.3 (erratum 6).
+// (y, z), z the height above the patch, eq. 10.3 (erratum 6 of docs/errata.md).
 double side_face_delta(double y, double z, double pixel_area);
 
 // ∫₀ˣ∫₀ʸ 1/(π (s² + t² + 1)²) dt ds: the form factor from the hemicube's

@@ -1,13 +1,13 @@
 #pragma once
 // The radiosity equation (lesson 09).
 //
-// Radiance I (erratum 3: the notes call it "irradiancia"; it is radiance,
+// Radiance I (erratum 3 of docs/errata.md: the notes call it "irradiancia"; it is radiance,
 // power per projected area per solid angle) integrated against cos φ over the
 // hemisphere gives the radiosity leaving a point:
 //   B = ∫_hemi I(φ, θ) cos φ dω = ∫_0^{2π} ∫_0^{π/2} I cos φ sin φ dφ dθ,
 // which is πI for a Lambertian surface (I the same in every direction).
 // Discretised over patches, B_i = E_i + ρ_i Σ_j F_ij B_j, or M·B = E with
-// M_ii = 1 − ρ_i F_ii and M_ij = −ρ_i F_ij (erratum 4: the notes write
+// M_ii = 1 − ρ_i F_ii and M_ij = −ρ_i F_ij (erratum 4 of docs/errata.md: the notes write
 // E = [B]·M, B on the wrong side).
 #include <functional>
 #include <span>

@@ -56,7 +56,7 @@ std::vector<Color> solve_direct(const std::vector<Patch>& patches, const FormFac
   for (int c = 0; c < 3; ++c) {
     std::vector<double> m(n * n), e(n);
     for (std::size_t i = 0; i < n; ++i) {
-      // Row i of M = I − diag(ρ)F (erratum 4).
+      // Row i of M = I − diag(ρ)F (erratum 4 of docs/errata.md).
       for (std::size_t j = 0; j < n; ++j) m[i * n + j] = -patches[i].reflectance[c] * f(i, j);
       m[i * n + i] += 1.0;
       e[i] = patches[i].emission[c];
@@ -158,7 +158,7 @@ void shoot(const std::vector<Patch>& patches, std::size_t i, const double* form_
   state.unshot[i] = Color(0.0);
   const double area_i = patches[i].area;
   for (std::size_t j = 0; j < patches.size(); ++j) {
-    // Erratum 8: the receiver's reflectance ρ_j and F_ji = F_ij A_i / A_j (reciprocity).
+    // Erratum 8 of docs/errata.md: the receiver's reflectance ρ_j and F_ji = F_ij A_i / A_j (reciprocity).
     const Color received = patches[j].reflectance * (form_factor_row[j] * area_i / patches[j].area) * delta;
     state.radiosity[j] += received;
     state.unshot[j] += received;

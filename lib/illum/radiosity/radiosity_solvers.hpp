@@ -20,7 +20,7 @@ namespace illum {
 std::vector<double> gaussian_elimination(std::vector<double> a, std::vector<double> b);
 
 // Task 2. The exact reference: builds M = I − diag(ρ)·F for each channel
-// (erratum 4) and solves M·B = E by gaussian_elimination. Checks its input
+// (erratum 4 of docs/errata.md) and solves M·B = E by gaussian_elimination. Checks its input
 // with check_radiosity_system and check_form_factors. O(n³).
 std::vector<Color> solve_direct(const std::vector<Patch>& patches, const FormFactorMatrix& f);
 
@@ -60,12 +60,12 @@ struct ProgressiveState {
 ProgressiveState progressive_start(const std::vector<Patch>& patches);
 
 // Task 6b. The patch with the most unshot power A_i (Δ_i.r + Δ_i.g + Δ_i.b),
-// first on ties (erratum 8: power, not radiosity, once areas differ).
+// first on ties (erratum 8 of docs/errata.md: power, not radiosity, once areas differ).
 std::size_t choose_shooter(const std::vector<Patch>& patches, const std::vector<Color>& unshot);
 
 // Task 6c. Shoots patch i's unshot radiosity through its form-factor row
 // F_i· (row[j] = F_ij, j = 0 … n−1): with Δ = Δ_i, set Δ_i = 0, then for every j
-//   ΔB_j = ρ_j F_ji Δ = ρ_j F_ij (A_i / A_j) Δ    (erratum 8)
+//   ΔB_j = ρ_j F_ji Δ = ρ_j F_ij (A_i / A_j) Δ    (erratum 8 of docs/errata.md)
 //   B_j += ΔB_j,  Δ_j += ΔB_j.
 // Only row i is needed: the hemicube placed on the shooter gives it.
 void shoot(const std::vector<Patch>& patches, std::size_t i, const double* form_factor_row,

@@ -3,7 +3,7 @@
 // shares (not an exercise unit): checks, the residual, norms and power.
 //
 //   B_i = E_i + ρ_i Σ_j F_ij B_j            (lesson 11, eq. 11.1; per RGB channel)
-//   M·B = E,  M_ii = 1 − ρ_i F_ii,  M_ij = −ρ_i F_ij   (erratum 4: M·B, not B·M)
+//   M·B = E,  M_ii = 1 − ρ_i F_ii,  M_ij = −ρ_i F_ij   (erratum 4 of docs/errata.md: M·B, not B·M)
 #include <cstddef>
 #include <vector>
 
@@ -26,7 +26,7 @@ void check_patches(const std::vector<Patch>& patches);
 void check_radiosity_system(const std::vector<Patch>& patches, const FormFactorMatrix& f);
 
 // Throws std::invalid_argument unless every F_ij is finite and ≥ 0 and every
-// row sums to at most 1 + tolerance (erratum 5: = 1 closed, < 1 open). O(n²).
+// row sums to at most 1 + tolerance (erratum 5 of docs/errata.md: = 1 closed, < 1 open). O(n²).
 void check_form_factors(const FormFactorMatrix& f, double tolerance = 1e-3);
 
 // The residual r_i = E_i + ρ_i Σ_j F_ij B_j − B_i of a guess B (eq. 11.3):

@@ -10,7 +10,7 @@ std::optional<double> segment_patch_hit(const Point3& a, const Point3& b, const 
   const double denominator = dot(patch.normal, d);
   if (std::abs(denominator) <= 1e-15 * length(d)) return std::nullopt;  // parallel to the plane
   const double plane_d = -dot(patch.normal, patch.vertices[0]);
-  const double t = -(plane_d + dot(patch.normal, a)) / denominator;  // erratum 2
+  const double t = -(plane_d + dot(patch.normal, a)) / denominator;  // erratum 2 of docs/errata.md
   if (!(t > t_min && t < t_max)) return std::nullopt;
   const Point3 p = a + t * d;
   const std::size_t n = patch.vertices.size();

@@ -12,7 +12,7 @@ namespace illum {
 
 // The parameter t of the point a + t(b − a) where the segment crosses the
 // convex patch, if it does so with t strictly inside (t_min, t_max). The
-// plane hit is t = −(D + N·a)/(N·(b − a)) with D = −N·v₀ (erratum 2: the
+// plane hit is t = −(D + N·a)/(N·(b − a)) with D = −N·v₀ (erratum 2 of docs/errata.md: the
 // notes drop the minus sign); a segment parallel to the plane never hits.
 // Containment: the hit is on the inner side of every edge of the
 // counter-clockwise polygon (edges and vertices count as inside).
