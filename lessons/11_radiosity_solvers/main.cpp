@@ -54,11 +54,12 @@ struct Settings {
   bool quick = false;
   std::vector<Solver> solvers = {Solver::jacobi, Solver::gauss_seidel, Solver::sor, Solver::southwell,
                                  Solver::progressive};
-  int figure_patches = 2000;       // the figure's box is meshed until it has at least this many patches
-  double figure_edge = 0;          // or, when > 0, with patches no longer than this (mm)
-  int figure_resolution = 128;     // hemicube resolution of the figure and the scaling study
-  double unshot_threshold = 1e-3;  // stop when the unshot power is below this fraction of the emitted
-  bool big_figure = false;         // --figure: only section 10, with the scaling study up to 8,000 patches
+  int figure_patches = 2000;    // the figure's box is meshed until it has at least this many patches
+  double figure_edge = 0;       // or, when > 0, with patches no longer than this (mm)
+  int figure_resolution = 128;  // hemicube resolution of the figure and the scaling study
+  double unshot_threshold = 0;  // stop when the unshot power is below this fraction of the emitted
+                                // (0: 1%, or 0.1% with --figure)
+  bool big_figure = false;      // --figure: only section 10, with the scaling study up to 8,000 patches
 };
 
 // A shipped scene by name ("cornell" = scenes/cornell.json, compiled in), or a file.
@@ -631,9 +632,9 @@ void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers
                                         "EVEN"))
       ->capture_default_str();
   app.add_option("--unshot", settings.unshot_threshold,
-                 "stop the figure when the unshot power is below this fraction of the emitted")
-      ->check(CLI::Range(1e-9, 0.5))
-      ->capture_default_str();
+                 "stop the figure when the unshot power is below this fraction of the emitted "
+                 "(default 0.01, or 0.001 with --figure)")
+      ->check(CLI::Range(1e-9, 0.5));
   app.add_flag("--figure", settings.big_figure,
                "only the figure, with the scaling study up to 8,000 patches (a few minutes)");
 }
@@ -652,6 +653,7 @@ int main(int argc, char** argv) {
       argc, argv, info, [&](CLI::App& app) { add_options(app, settings, solvers); },
       [&](const ProgramOptions& options) {
         settings.quick = options.quick;
+        if (settings.unshot_threshold == 0) settings.unshot_threshold = settings.big_figure ? 1e-3 : 1e-2;
         if (settings.quick) settings.unshot_threshold = std::max(settings.unshot_threshold, 0.01);
         if (!solvers.empty()) settings.solvers = solvers;
         OutputFolder out(options.out, info.id, info.title);
