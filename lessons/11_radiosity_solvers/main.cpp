@@ -570,7 +570,7 @@ void scaling_section(OutputFolder& out, const Settings& settings) {
                                                   : std::vector<int>{500, 1000, 2000};
   const int resolution = settings.quick ? 32 : settings.figure_resolution;
   const int threads = omp_get_max_threads();
-  Table scaling({"patches", "threads", "shots", "seconds", "seconds per shot (ms)", "speed-up"});
+  Table scaling({"patches", "threads", "shots", "seconds", "seconds per shot (ms)", "speedup"});
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   for (const int count : counts) {
     double edge = 0;
