@@ -1,32 +1,87 @@
-// The `illum` command line: scenes in, images out. Each lesson that reads a
-// scene adds a subcommand; lesson 01 brings `render` for scenes of spheres.
+// The `illum` command line: scenes in, images out. Every scene of the course's
+// format (docs/scene-format.md) renders with the ray tree of lesson 06.
 //
-//   illum scenes                         list the scenes shipped in scenes/
-//   illum render spheres --out out/      render a shipped scene (or a file path)
+//   illum scenes                              list the scenes shipped in scenes/
+//   illum render whitted --out out/           render a shipped scene (or a file path)
+//   illum trace whitted --pixel 300 200       the ray tree of one pixel: JSON, Graphviz, overlay
 #include <iostream>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "illum/core/error.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
-#include "illum/io/sphere_scene.hpp"
+#include "illum/io/ray_tree_files.hpp"
+#include "illum/io/scene_file.hpp"
+#include "illum/trace/ray_tree_render.hpp"
 
 namespace {
 
-int render(const std::string& scene_name, const std::filesystem::path& out_dir, int width, int height) {
+struct RenderOptions {
+  std::string scene;
+  std::filesystem::path out = "out";
+  int width = 0, height = 0, depth = 5;
+  bool quick = false, no_plan = false;
+  std::vector<int> pixel;  // trace only: X Y
+
+  illum::RenderSettings settings() const {
+    return {.width = quick ? 96 : width,
+            .height = quick ? 0 : height,
+            .max_depth = depth,
+            .use_plan = !no_plan,
+            .background = illum::Color(0.35, 0.55, 0.9)};
+  }
+};
+
+void add_render_options(CLI::App& cmd, RenderOptions& o) {
+  cmd.add_option("scene", o.scene, "A scene file (JSON) or the name of a shipped scene")->required();
+  cmd.add_option("--out", o.out, "Folder for the outputs")->capture_default_str();
+  cmd.add_option("--width", o.width, "Image width (default: the scene camera's)")
+      ->check(CLI::Range(0, 16384));
+  cmd.add_option("--height", o.height, "Image height (default: in proportion)")->check(CLI::Range(0, 16384));
+  cmd.add_option("--depth", o.depth, "Depth limit of the ray tree")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
+  cmd.add_flag("--no-plan", o.no_plan,
+               "Trace every kind of ray at every hit (the notes' algorithm as written)");
+  cmd.add_flag("--quick", o.quick, "A small image (96 pixels wide), for tests");
+}
+
+int render(const RenderOptions& o) {
   // Everything is read and validated before the first file is written, and
   // each file is written atomically: bad input leaves no partial output.
-  const illum::SphereScene scene = illum::load_sphere_scene(scene_name);
-  const illum::SpherePreview preview = illum::render_sphere_preview(scene, width, height);
-  illum::OutputFolder out(out_dir, "illum-render", "illum render " + scene_name);
-  out.image(preview.shaded, "shaded", "Colour times a Lambert term for a fixed light");
-  out.image(preview.silhouette, "silhouette", "Silhouette");
-  out.image(preview.normals, "normals", "Outward normals as (n + 1)/2");
-  out.image(preview.depth, "depth", "Depth of the nearest hit");
-  out.text("counts.txt", preview.counters.summary() + "\n", "Work counted while rendering");
+  const illum::Scene scene = illum::load_scene(o.scene);
+  const illum::RenderResult result = illum::render_ray_tree(scene, o.settings());
+  illum::OutputFolder out(o.out, "illum-render", "illum render " + o.scene);
+  out.image(result.image, "render", scene.name + ", rendered with the ray tree (lesson 06)");
+  out.hdr(result.image, "render", "The same image, linear radiance");
+  out.text("counts.txt",
+           result.plan.summary() + "rays: " + result.stats.rays.summary() +
+               "\nintersection tests: " + std::to_string(result.stats.work.intersection_tests) + "\n",
+           "The effects plan and the rays counted by kind");
   out.finish();
-  std::cerr << "illum: wrote " << out_dir.string() << " (" << preview.counters.summary() << ")\n";
+  std::cerr << "illum: wrote " << o.out.string() << " (rays " << result.stats.rays.summary() << ")\n";
+  return 0;
+}
+
+int trace(const RenderOptions& o) {
+  const illum::Scene scene = illum::load_scene(o.scene);
+  const illum::RenderSettings settings = o.settings();
+  const illum::PinholeCamera camera = illum::render_camera(scene, settings);
+  const int x = o.pixel.at(0), y = o.pixel.at(1);
+  if (x < 0 || y < 0 || x >= camera.width() || y >= camera.height())
+    throw illum::InputError(
+        "command line", "--pixel", std::to_string(x) + " " + std::to_string(y),
+        "outside the " + std::to_string(camera.width()) + " × " + std::to_string(camera.height()) + " image");
+  const illum::PixelTree pixel = illum::trace_pixel_tree(scene, settings, x, y);
+  const illum::RenderResult result = illum::render_ray_tree(scene, settings);
+  illum::OutputFolder out(o.out, "illum-trace", "illum trace " + o.scene);
+  out.image(result.image, "render", scene.name + ", rendered with the ray tree (lesson 06)");
+  illum::write_ray_tree_files(out, scene, pixel, result.image, camera, "ray_tree");
+  out.finish();
+  std::cerr << "illum: wrote " << o.out.string() << " (the tree of pixel (" << x << ", " << y
+            << "): " << pixel.tree.nodes.size() << " rays, " << pixel.stats.rays.summary() << ")\n";
   return 0;
 }
 
@@ -38,20 +93,15 @@ int main(int argc, char** argv) {
 
   auto* list = app.add_subcommand("scenes", "List the scenes shipped in scenes/ (usable by name)");
   auto* version = app.add_subcommand("version", "Print the version");
-
-  std::string scene;
-  std::filesystem::path out = "out";
-  int width = 0, height = 0;
-  auto* render_cmd =
-      app.add_subcommand("render", "Render a scene of spheres: shaded, silhouette, normals, depth");
-  render_cmd->add_option("scene", scene, "A scene file (JSON) or the name of a shipped scene")->required();
-  render_cmd->add_option("--out", out, "Folder for the images")->capture_default_str();
-  render_cmd->add_option("--width", width, "Image width (default: the scene camera's)")
-      ->check(CLI::Range(0, 16384));
-  render_cmd->add_option("--height", height, "Image height (default: the scene camera's)")
-      ->check(CLI::Range(0, 16384));
-  bool quick = false;
-  render_cmd->add_flag("--quick", quick, "A small image (96 × 64), for tests");
+  RenderOptions render_options, trace_options;
+  auto* render_cmd = app.add_subcommand("render", "Render a scene with the ray tree (lesson 06)");
+  add_render_options(*render_cmd, render_options);
+  auto* trace_cmd =
+      app.add_subcommand("trace", "Write one pixel's ray tree: JSON, Graphviz drawing, overlay");
+  add_render_options(*trace_cmd, trace_options);
+  trace_cmd->add_option("--pixel", trace_options.pixel, "The pixel X Y (x to the right, y down)")
+      ->expected(2)
+      ->required();
 
   try {
     app.parse(argc, argv);
@@ -62,7 +112,8 @@ int main(int argc, char** argv) {
     if (version->parsed()) std::cout << "illum 0.1.0\n";
     if (list->parsed())
       for (const auto& s : illum::embedded_scenes()) std::cout << s.name << "\n";
-    if (render_cmd->parsed()) return render(scene, out, quick ? 96 : width, quick ? 64 : height);
+    if (render_cmd->parsed()) return render(render_options);
+    if (trace_cmd->parsed()) return trace(trace_options);
   } catch (const illum::NotImplemented& e) {
     std::cerr << "illum: " << e.message() << "\n";
     return 1;

@@ -8,6 +8,9 @@
 // and nanoseconds per intersection.
 #include <algorithm>
 #include <cmath>
+#include <numbers>
+#include <string>
+#include <tuple>
 #include <vector>
 
 #include "illum/core/counters.hpp"
@@ -22,6 +25,8 @@
 #include "illum/io/sphere_scene.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 namespace {
 
 void render_scene(OutputFolder& out, bool quick) {
@@ -82,7 +87,7 @@ std::vector<Case> make_cases(double distance, double radius, int count, Rng& rng
   std::vector<Case> cases;
   for (int k = 0; k < count; ++k) {
     const glm::dvec3 origin(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-    const double z = rng.uniform(-1, 1), phi = 2.0 * 3.141592653589793 * rng.uniform();
+    const double z = rng.uniform(-1, 1), phi = 2.0 * pi * rng.uniform();
     const glm::dvec3 w(std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z);
     const glm::dvec3 helper = std::abs(w.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0);
     const glm::dvec3 perpendicular = glm::normalize(glm::cross(w, helper));
@@ -202,26 +207,26 @@ void run_study(OutputFolder& out, bool quick, std::uint64_t seed) {
             "verdict), and the median cost per test",
             2);
 
-  PlotSpec spec;
-  spec.title = "Ray–sphere: nearer root, max relative error (sphere moving away, r = 1)";
-  spec.x_label = "distance / radius";
-  spec.y_label = "max relative error of s_{near}";
-  spec.log_x = spec.log_y = true;
-  for (const Method& m : methods) {
-    PlotSeries series;
-    series.csv = "study_precision.csv";
-    series.x_column = 4;
-    series.y_column = 8;
-    series.title = std::string(m.form) + ", " + m.precision;
-    series.filter = std::string("strcol(1) eq 'moving_away' && strcol(5) eq '") + m.form +
-                    "' && strcol(6) eq '" + m.precision + "' && column(8) > 0";
-    spec.series.push_back(series);
+  // The two sweeps, one curve per form and precision; exact zeros cannot sit on the log scale.
+  for (const auto& [sweep, title, name, caption] :
+       {std::tuple{"moving_away", "sphere moving away, r = 1", "study_precision",
+                   "Max relative error of the nearer root as the sphere moves away"},
+        std::tuple{"shrinking", "sphere shrinking at distance 1", "study_precision_shrinking",
+                   "Max relative error of the nearer root as the sphere shrinks"}}) {
+    PlotSpec spec{.title = std::string("Ray–sphere: nearer root, max relative error (") + title + ")",
+                  .x_label = "distance / radius",
+                  .y_label = "max relative error of s_{near}",
+                  .log_x = true,
+                  .log_y = true};
+    for (const Method& m : methods)
+      spec.curves.push_back({.table = "study_precision.csv",
+                             .x = "distance_over_radius",
+                             .y = "max_rel_error",
+                             .where = {{"sweep", sweep}, {"form", m.form}, {"precision", m.precision}},
+                             .y_positive = true,
+                             .title = std::string(m.form) + ", " + m.precision});
+    out.plot(spec, name, caption);
   }
-  out.plot(spec, "study_precision", "Max relative error of the nearer root as the sphere moves away");
-  spec.title = "Ray–sphere: nearer root, max relative error (sphere shrinking at distance 1)";
-  for (auto& series : spec.series)
-    series.filter.replace(series.filter.find("moving_away"), std::string("moving_away").size(), "shrinking");
-  out.plot(spec, "study_precision_shrinking", "Max relative error of the nearer root as the sphere shrinks");
 }
 
 }  // namespace

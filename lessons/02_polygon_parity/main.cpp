@@ -21,11 +21,10 @@
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 
-using namespace illum;
+namespace illum {
 
+using std::numbers::pi;  // π is the standard's: no file defines its own
 namespace {
-
-constexpr double pi = std::numbers::pi;
 
 // Points of a planar outline, placed in 3D: (u, v) ↦ centre + u·right + v·up.
 std::vector<Point3> place(const std::vector<Vec2>& outline, const Point3& centre, const Vec3& right,
@@ -205,74 +204,90 @@ Image tiling_image(const std::vector<Polygon>& pieces, Rule rule, int size, int 
   return image;
 }
 
+// --- §4. Crossing parity and the half-open rule: a tiling under three rules -----------------
+
+void tiling_study(OutputFolder& out, bool quick) {
+  const std::vector<Polygon> pieces = tiling();
+  const int size = quick ? 129 : 513;  // 4/(size − 1) is a power of two: every edge is sampled exactly
+  Table rules({"rule", "points", "claimed_0", "claimed_1", "claimed_2_or_more"});
+  const std::pair<Rule, std::string> all_rules[3] = {
+      {Rule::half_open, "half-open"}, {Rule::closed, "closed"}, {Rule::open, "open"}};
+  for (const auto& [rule, name] : all_rules) {
+    int counts[3];
+    const Image img = tiling_image(pieces, rule, size, counts);
+    out.image(img, "tiling_" + name,
+              "The tiling under the " + name + " rule: white = claimed twice or more, black = by none");
+    rules.add_row({name, std::int64_t{counts[0] + counts[1] + counts[2]}, std::int64_t{counts[0]},
+                   std::int64_t{counts[1]}, std::int64_t{counts[2]}});
+  }
+  out.table(rules, "tiling_rules",
+            "Grid points of [0,4)² claimed 0, 1 or 2+ times by the 11 pieces of the tiling");
+}
+
+// --- §5–6. Holes and the ray–polygon hit: the rendered scene ------------------------------------
+
+void render_polygons(OutputFolder& out, bool quick) {
+  out.image(quick ? render_scene(240, 135) : render_scene(960, 540), "polygons",
+            "Stars, a notched comb and a frame with three holes, hit by ray–plane (erratum 2) plus parity");
+}
+
+// --- §7. What it costs: parity and the whole ray–polygon test against the vertex count -----------
+
+void parity_cost(OutputFolder& out, bool quick, std::uint64_t seed) {
+  Table cost({"vertices", "ns per parity query", "ns per vertex", "ns per ray-polygon test"});
+  Rng rng(seed);
+  const int max_vertices = quick ? 256 : 8192;
+  const double min_seconds = quick ? 0.002 : 0.05;
+  for (int n = 8; n <= max_vertices; n *= 2) {
+    const Polygon p(place(star(n / 2, 1.0, 0.5), Point3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)));
+    std::vector<Vec2> queries(1024);
+    std::vector<Ray> rays;
+    for (Vec2& q : queries) q = Vec2(rng.uniform(-1, 1), rng.uniform(-1, 1));
+    for (const Vec2& q : queries)
+      rays.push_back(Ray::toward(Point3(0.1, -0.2, 3), Point3(q, 0) - Point3(0.1, -0.2, 3)));
+    // One thread, best of three runs.
+    const double ns = best_nanoseconds_per_call(
+        3, [&](std::uint64_t i) { do_not_optimize(inside_parity(p, queries[i & 1023])); }, min_seconds);
+    const double ns_ray = best_nanoseconds_per_call(
+        3, [&](std::uint64_t i) { do_not_optimize(intersect(rays[i & 1023], p).has_value()); }, min_seconds);
+    cost.add_row({std::int64_t{n}, ns, ns / n, ns_ray});
+  }
+  out.table(cost, "parity_cost",
+            "Cost of the parity test and of the full ray–polygon test against the vertex count");
+  out.plot({.title = "Parity test: cost grows linearly with the vertex count",
+            .x_label = "vertices n",
+            .y_label = "ns per query",
+            .log_x = true,
+            .log_y = true,
+            .curves = {{.table = "parity_cost.csv",
+                        .x = "vertices",
+                        .y = "ns per parity query",
+                        .title = "inside\\_parity (2D)"},
+                       {.table = "parity_cost.csv",
+                        .x = "vertices",
+                        .y = "ns per ray-polygon test",
+                        .title = "ray–polygon (plane + box + parity)"}}},
+           "parity_cost", "Nanoseconds per query against the number of vertices (log-log)");
+}
+
 }  // namespace
+}  // namespace illum
 
 int main(int argc, char** argv) {
-  const ProgramInfo info{"lesson02", "The plane hit and containment by parity",
-                         "Renders polygons (stars, a comb, a polygon with holes) through the pinhole camera, "
-                         "checks a tiling under three boundary rules, and measures the parity test's cost "
-                         "against the vertex count."};
-  return run_program(argc, argv, info, {}, [&](const ProgramOptions& options) {
+  const illum::ProgramInfo info{
+      "lesson02", "The plane hit and containment by parity",
+      "Renders polygons (stars, a comb, a polygon with holes) through the pinhole camera, "
+      "checks a tiling under three boundary rules, and measures the parity test's cost "
+      "against the vertex count."};
+  return illum::run_program(argc, argv, info, {}, [&](const illum::ProgramOptions& options) {
+    using namespace illum;
     OutputFolder out(options.out, info.id, info.title);
-    const bool quick = options.quick;
-
-    report_progress(info.id, "render", 0, 3);
-    out.image(quick ? render_scene(240, 135) : render_scene(960, 540), "polygons",
-              "Stars, a notched comb and a frame with three holes, hit by ray–plane (erratum 2) plus parity");
-
-    report_progress(info.id, "tiling", 1, 3);
-    const std::vector<Polygon> pieces = tiling();
-    const int size = quick ? 129 : 513;  // 4/(size − 1) is a power of two: every edge is sampled exactly
-    Table rules({"rule", "points", "claimed_0", "claimed_1", "claimed_2_or_more"});
-    const std::pair<Rule, std::string> all_rules[3] = {
-        {Rule::half_open, "half-open"}, {Rule::closed, "closed"}, {Rule::open, "open"}};
-    for (const auto& [rule, name] : all_rules) {
-      int counts[3];
-      const Image img = tiling_image(pieces, rule, size, counts);
-      out.image(img, "tiling_" + name,
-                "The tiling under the " + name + " rule: white = claimed twice or more, black = by none");
-      rules.add_row({name, std::int64_t{counts[0] + counts[1] + counts[2]}, std::int64_t{counts[0]},
-                     std::int64_t{counts[1]}, std::int64_t{counts[2]}});
-    }
-    out.table(rules, "tiling_rules",
-              "Grid points of [0,4)² claimed 0, 1 or 2+ times by the 11 pieces of the tiling");
-
+    report_progress(info.id, "tiling", 0, 3);
+    tiling_study(out, options.quick);  // §4
+    report_progress(info.id, "render", 1, 3);
+    render_polygons(out, options.quick);  // §5–6
     report_progress(info.id, "cost study", 2, 3);
-    Table cost({"vertices", "ns per parity query", "ns per vertex", "ns per ray-polygon test"});
-    Rng rng(options.seed);
-    const int max_vertices = quick ? 256 : 8192;
-    const double min_seconds = quick ? 0.002 : 0.05;
-    for (int n = 8; n <= max_vertices; n *= 2) {
-      const Polygon p(place(star(n / 2, 1.0, 0.5), Point3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)));
-      std::vector<Vec2> queries(1024);
-      std::vector<Ray> rays;
-      for (Vec2& q : queries) q = Vec2(rng.uniform(-1, 1), rng.uniform(-1, 1));
-      for (const Vec2& q : queries)
-        rays.push_back(Ray::toward(Point3(0.1, -0.2, 3), Point3(q, 0) - Point3(0.1, -0.2, 3)));
-      // The best of three runs: other work on the machine only ever adds
-      // time, so the minimum is the cost of the query itself (one thread).
-      double ns = infinity, ns_ray = infinity;
-      for (int run = 0; run < 3; ++run) {
-        ns = std::min(ns, nanoseconds_per_call(
-                              [&](std::uint64_t i) { do_not_optimize(inside_parity(p, queries[i & 1023])); },
-                              min_seconds));
-        ns_ray = std::min(
-            ns_ray, nanoseconds_per_call(
-                        [&](std::uint64_t i) { do_not_optimize(intersect(rays[i & 1023], p).has_value()); },
-                        min_seconds));
-      }
-      cost.add_row({std::int64_t{n}, ns, ns / n, ns_ray});
-    }
-    out.table(cost, "parity_cost",
-              "Cost of the parity test and of the full ray–polygon test against the vertex count");
-    PlotSpec spec;
-    spec.title = "Parity test: cost grows linearly with the vertex count";
-    spec.x_label = "vertices n";
-    spec.y_label = "ns per query";
-    spec.log_x = spec.log_y = true;
-    spec.series = {{"parity_cost.csv", 1, 2, "inside\\_parity (2D)", "", "linespoints"},
-                   {"parity_cost.csv", 1, 4, "ray–polygon (plane + box + parity)", "", "linespoints"}};
-    out.plot(spec, "parity_cost", "Nanoseconds per query against the number of vertices (log-log)");
+    parity_cost(out, options.quick, options.seed);  // §7
     report_progress(info.id, "done", 3, 3);
     out.finish();
   });

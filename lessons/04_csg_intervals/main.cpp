@@ -10,6 +10,7 @@
 #include <cmath>
 #include <functional>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -20,8 +21,7 @@
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 
-using namespace illum;
-
+namespace illum {
 namespace {
 
 // ---- scenes --------------------------------------------------------------------
@@ -225,13 +225,14 @@ void coincident_face_study(OutputFolder& out, int width, int height) {
             "Artefact pixels (the removed top face showing inside the blind hole or the square pocket) and "
             "pixels of a 1e-4 thick coin that vanish, against the sliver tolerance.");
 
-  PlotSpec plot;
-  plot.title = "Coincident faces: artefacts vs the sliver tolerance";
-  plot.x_label = "sliver tolerance (units of s; tolerance 0 is not drawn)";
-  plot.y_label = "% of the pixels concerned";
-  plot.log_x = true;
-  plot.series = {{"coincident_faces.csv", 1, 7, "blind hole: removed face showing", "column(1) > 0"},
-                 {"coincident_faces.csv", 1, 8, "thin coin (1e-4 thick): pixels lost", "column(1) > 0"}};
+  PlotSpec plot{.title = "Coincident faces: artefacts vs the sliver tolerance",
+                .x_label = "sliver tolerance (units of s; tolerance 0 is not drawn)",
+                .y_label = "% of the pixels concerned",
+                .log_x = true};
+  for (const auto& [column, title] : {std::pair{"artefact_percent", "blind hole: removed face showing"},
+                                      {"coin_lost_percent", "thin coin (1e-4 thick): pixels lost"}})
+    plot.curves.push_back(
+        {.table = "coincident_faces.csv", .x = "tolerance", .y = column, .x_positive = true, .title = title});
   out.plot(plot, "coincident_faces",
            "Too small a tolerance shows the removed face; too large erases thin solids.");
 
@@ -284,14 +285,10 @@ void depth_study(OutputFolder& out, int width, int height, bool quick) {
       // Time on one thread: the cost of one ray, not the machine's width. The
       // best of three runs, since other work on the machine only ever adds time.
       CsgCounters scratch;
-      double ns = infinity;
-      for (int run = 0; run < 3; ++run) {
-        ns = std::min(ns, nanoseconds_per_call(
-                              [&](std::uint64_t i) {
-                                do_not_optimize(intersect(rays[i % rays.size()], tree, options, scratch));
-                              },
-                              quick ? 0.002 : 0.05));
-      }
+      const double ns = best_nanoseconds_per_call(
+          3,
+          [&](std::uint64_t i) { do_not_optimize(intersect(rays[i % rays.size()], tree, options, scratch)); },
+          quick ? 0.002 : 0.05);
       const double per_ray = 1.0 / static_cast<double>(rays.size());
       grouped[prune ? 1 : 0].push_back({std::int64_t{tree.depth()}, std::int64_t{n},
                                         std::string(prune ? "on" : "off"),
@@ -306,19 +303,24 @@ void depth_study(OutputFolder& out, int width, int height, bool quick) {
   out.table(table, "depth_cost",
             "Cost per camera ray of a balanced union of 2^k balls: primitive tests, box tests and time, with "
             "and without bounding-box pruning; hits_differing counts rays whose hit changed (must be 0).");
-  PlotSpec tests;
-  tests.title = "CSG cost per ray against the number of primitives";
-  tests.x_label = "primitives in the tree";
-  tests.y_label = "ns per ray (one thread)";
-  tests.log_x = tests.log_y = true;
-  tests.series = {{"depth_cost.csv", 2, 6, "no pruning", "strcol(3) eq 'off'"},
-                  {"depth_cost.csv", 2, 6, "bounding-box pruning", "strcol(3) eq 'on'"}};
-  out.plot(tests, "depth_cost_time", "Time per ray grows linearly without pruning, far slower with it.");
-  PlotSpec count = tests;
-  count.y_label = "primitive tests per ray";
-  count.series = {{"depth_cost.csv", 2, 4, "no pruning", "strcol(3) eq 'off'"},
-                  {"depth_cost.csv", 2, 4, "bounding-box pruning", "strcol(3) eq 'on'"}};
-  out.plot(count, "depth_cost_tests", "Primitive tests per ray, counted with CsgCounters.");
+  for (const auto& [y, label, name, caption] :
+       {std::tuple{"ns_per_ray", "ns per ray (one thread)", "depth_cost_time",
+                   "Time per ray grows linearly without pruning, far slower with it."},
+        std::tuple{"tests_per_ray", "primitive tests per ray", "depth_cost_tests",
+                   "Primitive tests per ray, counted with CsgCounters."}}) {
+    PlotSpec plot{.title = "CSG cost per ray against the number of primitives",
+                  .x_label = "primitives in the tree",
+                  .y_label = label,
+                  .log_x = true,
+                  .log_y = true};
+    for (const auto& [pruning, title] : {std::pair{"off", "no pruning"}, {"on", "bounding-box pruning"}})
+      plot.curves.push_back({.table = "depth_cost.csv",
+                             .x = "primitives",
+                             .y = y,
+                             .where = {{"pruning", pruning}},
+                             .title = title});
+    out.plot(plot, name, caption);
+  }
 }
 
 // ---- the gallery ----------------------------------------------------------------
@@ -351,14 +353,16 @@ void render_gallery(OutputFolder& out, int width, int height) {
 }
 
 }  // namespace
+}  // namespace illum
 
 int main(int argc, char** argv) {
-  const ProgramInfo info{
+  const illum::ProgramInfo info{
       "lesson04", "CSG by combining ray intervals",
       "Renders a die, a lens and a drilled cube built by CSG, then measures coincident-face "
       "artefacts against the sliver tolerance and cost against tree depth with and without "
       "bounding-box pruning."};
-  return run_program(argc, argv, info, {}, [&](const ProgramOptions& options) {
+  return illum::run_program(argc, argv, info, {}, [&](const illum::ProgramOptions& options) {
+    using namespace illum;
     OutputFolder out(options.out, info.id, info.title);
     const int width = options.quick ? 120 : 480, height = options.quick ? 90 : 360;
     render_gallery(out, width, height);

@@ -26,8 +26,9 @@
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 
-using namespace illum;
+namespace illum {
 
+using std::numbers::pi;  // π is the standard's: no file defines its own
 namespace {
 
 const ProgramInfo info{
@@ -237,9 +238,7 @@ std::vector<Table::Cell> cells(const T&... values) {
 // estimate least disturbed by other work.
 template <class F>
 double best_of_three_ns(F&& call, double min_seconds) {
-  double best = infinity;
-  for (int i = 0; i < 3; ++i) best = std::min(best, nanoseconds_per_call(call, min_seconds));
-  return best;
+  return best_nanoseconds_per_call(3, call, min_seconds);
 }
 
 double median(std::vector<double> v) {
@@ -290,21 +289,31 @@ void implicit_study(OutputFolder& out, const ProgramOptions& options) {
   out.table(table, "implicit_study",
             "Torus (R = 1, r = 0.35), rays in meridian planes (exact hit from two circle quadratics): error, "
             "iterations, evaluations and time per ray for each method as the tolerance tightens");
-  PlotSpec error_plot{"Implicit surfaces: max error against iterations (torus)",
-                      "mean iterations per ray",
-                      "max |s - s_exact|",
-                      true,
-                      true,
-                      {}};
-  PlotSpec time_plot{
-      "Implicit surfaces: time per ray against tolerance", "tolerance", "ns per ray", true, true, {}};
-  PlotSpec tol_plot{
-      "Implicit surfaces: max error against tolerance", "tolerance", "max |s - s_exact|", true, true, {}};
+  PlotSpec error_plot{.title = "Implicit surfaces: max error against iterations (torus)",
+                      .x_label = "mean iterations per ray",
+                      .y_label = "max |s - s_exact|",
+                      .log_x = true,
+                      .log_y = true};
+  PlotSpec time_plot{.title = "Implicit surfaces: time per ray against tolerance",
+                     .x_label = "tolerance",
+                     .y_label = "ns per ray",
+                     .log_x = true,
+                     .log_y = true};
+  PlotSpec tol_plot{.title = "Implicit surfaces: max error against tolerance",
+                    .x_label = "tolerance",
+                    .y_label = "max |s - s_exact|",
+                    .log_x = true,
+                    .log_y = true};
   for (ImplicitMethod method : methods) {
-    const std::string filter = "strcol(1) eq '" + std::string(to_string(method)) + "'";
-    error_plot.series.push_back({"implicit_study.csv", 3, 6, to_string(method), filter});
-    time_plot.series.push_back({"implicit_study.csv", 2, 8, to_string(method), filter});
-    tol_plot.series.push_back({"implicit_study.csv", 2, 6, to_string(method), filter});
+    const PlotCurve curve{
+        .table = "implicit_study.csv", .where = {{"method", to_string(method)}}, .title = to_string(method)};
+    PlotCurve by_iterations = curve, by_time = curve, by_tolerance = curve;
+    by_iterations.x = "mean_iterations", by_iterations.y = "max_error";
+    by_time.x = "tolerance", by_time.y = "ns_per_ray";
+    by_tolerance.x = "tolerance", by_tolerance.y = "max_error";
+    error_plot.curves.push_back(by_iterations);
+    time_plot.curves.push_back(by_time);
+    tol_plot.curves.push_back(by_tolerance);
   }
   out.plot(error_plot, "implicit_error_vs_iterations", "Max error against mean iterations, log-log");
   out.plot(tol_plot, "implicit_error_vs_tolerance", "Max error against the tolerance, log-log");
@@ -362,10 +371,10 @@ std::optional<double> bilinear_exact_s(const Ray& ray, const BezierPatch& patch)
   return best;
 }
 
-void patch_study(OutputFolder& out, const ProgramOptions& options) {
+// Newton on a bilinear patch against the closed-form quadratic, as the tolerance tightens.
+void patch_accuracy_study(OutputFolder& out, const ProgramOptions& options, Rng& rng) {
   const BezierPatch bilinear =
       BezierPatch::bilinear(Point3(0, 0, 0), Point3(2, 0, 0.5), Point3(0, 2, -0.3), Point3(2.2, 2.1, 1.4));
-  Rng rng(options.seed + 7);
   struct Case {
     Ray ray;
     double exact;
@@ -406,15 +415,21 @@ void patch_study(OutputFolder& out, const ProgramOptions& options) {
       table, "patch_study",
       "Bilinear patch, random rays: Newton in (u, v) against the closed-form quadratic, as the tolerance "
       "tightens (subdivision depth 4)");
-  PlotSpec plot{
-      "Bilinear patch: Newton error against tolerance", "tolerance", "|s - s_exact|", true, true, {}};
-  plot.series.push_back({"patch_study.csv", 1, 4, "max error", ""});
-  plot.series.push_back({"patch_study.csv", 1, 3, "median error", ""});
-  out.plot(plot, "patch_error_vs_tolerance",
-           "Newton on the bilinear patch: error against tolerance, log-log");
+  out.plot(
+      {.title = "Bilinear patch: Newton error against tolerance",
+       .x_label = "tolerance",
+       .y_label = "|s - s_exact|",
+       .log_x = true,
+       .log_y = true,
+       .curves =
+           {{.table = "patch_study.csv", .x = "tolerance", .y = "max_error", .title = "max error"},
+            {.table = "patch_study.csv", .x = "tolerance", .y = "median_error", .title = "median error"}}},
+      "patch_error_vs_tolerance", "Newton on the bilinear patch: error against tolerance, log-log");
+}
 
-  // The subdivision depth: too shallow and Newton starts too far from a
-  // root (missing it, or finding the farther of two); deeper costs boxes.
+// The subdivision depth: too shallow and Newton starts too far from a
+// root (missing it, or finding the farther of two); deeper costs boxes.
+void patch_depth_study(OutputFolder& out, const ProgramOptions& options, Rng& rng) {
   const BezierPatch wavy = demo_patches().front();
   const PatchBox box = wavy.bounds();
   std::vector<Ray> rays;
@@ -450,9 +465,13 @@ void patch_study(OutputFolder& out, const ProgramOptions& options) {
   out.table(
       depth_table, "patch_depth_study",
       "Bicubic patch, rays at its box: subdivision depth against hits that differ from depth 7, and cost");
-  PlotSpec depth_plot{
-      "Bicubic patch: subdivision depth", "max depth", "rays wrong or missed", false, false, {}};
-  depth_plot.series.push_back({"patch_depth_study.csv", 1, 4, "wrong or missed (of all rays)", ""});
+  const PlotSpec depth_plot{.title = "Bicubic patch: subdivision depth",
+                            .x_label = "max depth",
+                            .y_label = "rays wrong or missed",
+                            .curves = {{.table = "patch_depth_study.csv",
+                                        .x = "max_depth",
+                                        .y = "wrong_or_missed",
+                                        .title = "wrong or missed (of all rays)"}}};
   out.plot(depth_plot, "patch_depth",
            "Rays whose hit differs from the depth-7 reference, by subdivision depth");
 }
@@ -489,9 +508,17 @@ std::string demos(OutputFolder& out) {
   log << "\nnewton(): " << to_string(r.status) << " after " << r.iterations << " steps at s = " << r.s
       << "\n\n";
   out.table(iterates, "local_minimum_newton", "Newton iterates from s0 = 0.8 on the ray above the torus");
-  PlotSpec plot{"Newton near a local minimum (ray 0.01 above the torus)", "s", "f(s)", false, false, {}};
-  plot.series.push_back({"local_minimum_curve.csv", 1, 2, "f(s)", "", "lines"});
-  plot.series.push_back({"local_minimum_newton.csv", 2, 3, "Newton iterates", "", "points pt 7"});
+  const PlotSpec plot{
+      .title = "Newton near a local minimum (ray 0.01 above the torus)",
+      .x_label = "s",
+      .y_label = "f(s)",
+      .curves = {
+          {.table = "local_minimum_curve.csv", .x = "s", .y = "f", .title = "f(s)", .mark = PlotMark::lines},
+          {.table = "local_minimum_newton.csv",
+           .x = "s",
+           .y = "f",
+           .title = "Newton iterates",
+           .mark = PlotMark::filled_points}}};
   out.plot(plot, "local_minimum", "f along a ray that misses the torus, with Newton's iterates");
 
   // (b) Tangent ray: f(s) = (s − 3)² ≥ 0 on the unit sphere, y = 1.
@@ -527,53 +554,73 @@ std::string demos(OutputFolder& out) {
   return log.str();
 }
 
+// --- the pictures, in the README's order --------------------------------------------------------
+
+PinholeCamera torus_camera(int width, int height) {
+  return PinholeCamera(Point3(0.0, -3.2, 2.0), Point3(0.0), Vec3(0, 0, 1), 45.0, width, height);
+}
+
+// §1–6. A torus by safeguarded Newton and a blob by sphere tracing.
+void implicit_pictures(OutputFolder& out, int width, int height) {
+  const Torus torus(Point3(0.0), 1.0, 0.35);
+  out.image(render_implicit(torus_camera(width, height), torus, ImplicitMethod::safeguarded_newton, {},
+                            Color(0.8, 0.35, 0.3)),
+            "torus", "Torus (R = 1, r = 0.35): fixed-step march, then safeguarded Newton on the quartic");
+  const Blob blob({{Point3(-0.7, 0.0, 0.0), 1.0, 3.0},
+                   {Point3(0.6, 0.1, 0.1), 1.0, 2.5},
+                   {Point3(0.0, 0.3, 0.8), 0.8, 4.0},
+                   {Point3(0.1, -0.5, -0.4), 0.7, 5.0}},
+                  0.45);
+  const PinholeCamera blob_camera(Point3(0.0, -4.0, 1.2), Point3(0.0, 0.0, 0.1), Vec3(0, 0, 1), 40.0, width,
+                                  height);
+  out.image(render_implicit(blob_camera, blob, ImplicitMethod::sphere_tracing, {}, Color(0.35, 0.75, 0.45)),
+            "blob", "Blob of four Gaussian balls: sphere tracing with the Lipschitz bound");
+}
+
+// §7. Three ways to miss a hit: Newton's local minima, a thin feature, and the demos' log.
+void missed_hits(OutputFolder& out, int width, int height) {
+  const Torus torus(Point3(0.0), 1.0, 0.35);
+  int failures = 0, wrong = 0;
+  out.image(render_newton_failures(torus_camera(width, height), torus, failures, wrong),
+            "newton_local_minimum",
+            "Plain Newton from the bounding-ball entry: red = no root found although the ray hits, "
+            "orange = a farther root");
+  out.image(render_thin_feature(width, height, 0.15), "thin_feature",
+            "Thin torus (r = 0.02): fixed-step march, step 0.15 (left) steps over the tube; sphere tracing "
+            "(right) cannot");
+  std::ostringstream summary;
+  summary << "# Lesson 05: what the numerical methods do on hard rays\n\n"
+          << "Plain Newton from the bounding-ball entry on the torus image: " << failures
+          << " pixels find no root although the ray hits, " << wrong << " land on a farther root (of "
+          << width * height << " pixels).\n\n"
+          << demos(out);
+  out.text("demos.md", summary.str(), "Newton in a local minimum, a tangent ray, a thin feature: the log");
+}
+
+// §8. Parametric patches: the ray as two planes and Newton in (u, v).
+void patch_pictures(OutputFolder& out, int width, int height) {
+  const PinholeCamera patch_camera(Point3(0.0, -4.2, 3.0), Point3(0.0, 0.0, 0.0), Vec3(0, 0, 1), 45.0, width,
+                                   height);
+  out.image(render_patches(patch_camera, demo_patches(), {}), "patches",
+            "A bicubic Bezier patch (left) and a bilinear saddle (right): two planes and Newton in (u, v), "
+            "checkered in (u, v)");
+}
+
 }  // namespace
+}  // namespace illum
 
 int main(int argc, char** argv) {
+  using namespace illum;
   return run_program(argc, argv, info, {}, [&](const ProgramOptions& options) {
     OutputFolder out(options.out, info.id, info.title);
     const int width = options.quick ? 96 : 480, height = options.quick ? 72 : 360;
-
-    const Torus torus(Point3(0.0), 1.0, 0.35);
-    const PinholeCamera torus_camera(Point3(0.0, -3.2, 2.0), Point3(0.0), Vec3(0, 0, 1), 45.0, width, height);
-    out.image(
-        render_implicit(torus_camera, torus, ImplicitMethod::safeguarded_newton, {}, Color(0.8, 0.35, 0.3)),
-        "torus", "Torus (R = 1, r = 0.35): fixed-step march, then safeguarded Newton on the quartic");
-
-    const Blob blob({{Point3(-0.7, 0.0, 0.0), 1.0, 3.0},
-                     {Point3(0.6, 0.1, 0.1), 1.0, 2.5},
-                     {Point3(0.0, 0.3, 0.8), 0.8, 4.0},
-                     {Point3(0.1, -0.5, -0.4), 0.7, 5.0}},
-                    0.45);
-    const PinholeCamera blob_camera(Point3(0.0, -4.0, 1.2), Point3(0.0, 0.0, 0.1), Vec3(0, 0, 1), 40.0, width,
-                                    height);
-    out.image(render_implicit(blob_camera, blob, ImplicitMethod::sphere_tracing, {}, Color(0.35, 0.75, 0.45)),
-              "blob", "Blob of four Gaussian balls: sphere tracing with the Lipschitz bound");
-
-    const PinholeCamera patch_camera(Point3(0.0, -4.2, 3.0), Point3(0.0, 0.0, 0.0), Vec3(0, 0, 1), 45.0,
-                                     width, height);
-    out.image(render_patches(patch_camera, demo_patches(), {}), "patches",
-              "A bicubic Bezier patch (left) and a bilinear saddle (right): two planes and Newton in (u, v), "
-              "checkered in (u, v)");
-
-    int failures = 0, wrong = 0;
-    out.image(render_newton_failures(torus_camera, torus, failures, wrong), "newton_local_minimum",
-              "Plain Newton from the bounding-ball entry: red = no root found although the ray hits, "
-              "orange = a farther root");
-    out.image(render_thin_feature(width, height, 0.15), "thin_feature",
-              "Thin torus (r = 0.02): fixed-step march, step 0.15 (left) steps over the tube; sphere tracing "
-              "(right) cannot");
-
-    std::ostringstream summary;
-    summary << "# Lesson 05: what the numerical methods do on hard rays\n\n"
-            << "Plain Newton from the bounding-ball entry on the torus image: " << failures
-            << " pixels find no root although the ray hits, " << wrong << " land on a farther root (of "
-            << width * height << " pixels).\n\n"
-            << demos(out);
-    out.text("demos.md", summary.str(), "Newton in a local minimum, a tangent ray, a thin feature: the log");
-
-    implicit_study(out, options);
-    patch_study(out, options);
+    implicit_pictures(out, width, height);  // §1–6
+    missed_hits(out, width, height);        // §7
+    patch_pictures(out, width, height);     // §8
+    implicit_study(out, options);           // §9, the studies
+    Rng rng(options.seed + 7);              // the two patch studies draw from it in turn
+    patch_accuracy_study(out, options, rng);
+    patch_depth_study(out, options, rng);
     out.finish();
   });
 }

@@ -18,9 +18,9 @@
 #include <CLI/CLI.hpp>
 
 #include "illum/core/stopwatch.hpp"
-#include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
+#include "illum/io/scene_file.hpp"
 #include "illum/radiosity/hemicube.hpp"
 #include "illum/radiosity/radiosity_scene.hpp"
 #include "illum/radiosity/radiosity_solvers.hpp"
@@ -64,8 +64,6 @@ struct Settings {
 
 // A shipped scene by name ("cornell" = scenes/cornell.json, compiled in), or a file.
 RadiosityScene load_scene(const std::string& scene, double max_patch_edge) {
-  if (const auto text = embedded_scene(scene))
-    return parse_radiosity_scene(*text, "scenes/" + scene + ".json", max_patch_edge);
   return load_radiosity_scene(scene, max_patch_edge);
 }
 

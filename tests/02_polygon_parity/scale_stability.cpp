@@ -1,5 +1,5 @@
-// Lesson 02, outside grading: huge and tiny coordinates (DESIGN.md's
-// "far from the origin / tiny scene" hard case). The same non-convex polygon
+// Lesson 02, outside grading: huge and tiny coordinates (the
+// "far from the origin / tiny scene" hard case of docs/architecture.md). The same non-convex polygon
 // is placed 1e8 away from the origin and shrunk to 1e−8; a correct ray–polygon
 // test decides every point as it does at unit size, because nothing in it
 // depends on where the polygon is or how big it is (no absolute epsilon).

@@ -1,5 +1,5 @@
-// Lesson 03, outside grading: huge and tiny coordinates (DESIGN.md's
-// "far from the origin / tiny scene" hard case) for triangles and convex
+// Lesson 03, outside grading: huge and tiny coordinates (the
+// "far from the origin / tiny scene" hard case of docs/architecture.md) for triangles and convex
 // polygons. A square split along its diagonal, and a convex hexagon, are
 // placed 1e8 away from the origin and shrunk to 1e−8: hits, barycentrics,
 // the shared diagonal and the inside test behave as at unit size.

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "illum/io/scene_file.hpp"
 #include "illum/radiosity/hemicube.hpp"
 #include "illum/radiosity/radiosity_scene.hpp"
 #include "illum/radiosity/radiosity_solvers.hpp"

@@ -10,4 +10,18 @@ endforeach()
 add_test(NAME e2e_illum_render_bad_scene
          COMMAND ${CMAKE_COMMAND} -DILLUM=$<TARGET_FILE:illum_cli> -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/e2e/bad_radius.json
                  -DOUT=${CMAKE_BINARY_DIR}/test-out/illum-bad -P ${CMAKE_CURRENT_SOURCE_DIR}/e2e/expect_refusal.cmake)
+# The bad scene input of lesson 06's scene format: an unknown material, a missing OBJ file.
+add_test(NAME e2e_illum_render_unknown_material
+         COMMAND ${CMAKE_COMMAND} -DILLUM=$<TARGET_FILE:illum_cli> -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/e2e/bad_material.json
+                 "-DEXPECT=bad_material.json;primitives[0].material;\"glas\";did you mean 'glass'"
+                 -DOUT=${CMAKE_BINARY_DIR}/test-out/illum-bad-material -P ${CMAKE_CURRENT_SOURCE_DIR}/e2e/expect_refusal.cmake)
+add_test(NAME e2e_illum_render_missing_obj
+         COMMAND ${CMAKE_COMMAND} -DILLUM=$<TARGET_FILE:illum_cli> -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/e2e/missing_obj.json
+                 "-DEXPECT=missing_obj.json;primitives[0].obj;no_such_bunny.obj;cannot open the OBJ file"
+                 -DOUT=${CMAKE_BINARY_DIR}/test-out/illum-missing-obj -P ${CMAKE_CURRENT_SOURCE_DIR}/e2e/expect_refusal.cmake)
 add_test(NAME e2e_illum_render COMMAND illum_cli render spheres --quick --out ${CMAKE_BINARY_DIR}/test-out/illum-render)
+
+# The ray-tree inspector of the command line: one pixel's tree as JSON, Graphviz and overlay.
+add_test(NAME e2e_illum_trace
+         COMMAND ${CMAKE_COMMAND} -DILLUM=$<TARGET_FILE:illum_cli> -DOUT=${CMAKE_BINARY_DIR}/test-out/illum-trace
+                 -P ${CMAKE_CURRENT_SOURCE_DIR}/e2e/expect_trace.cmake)

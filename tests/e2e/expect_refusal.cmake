@@ -5,7 +5,11 @@ execute_process(COMMAND ${ILLUM} render ${SCENE} --out ${OUT} RESULT_VARIABLE st
 if(status EQUAL 0)
   message(FATAL_ERROR "illum accepted the bad scene ${SCENE}")
 endif()
-foreach(expected "bad_radius.json" "spheres[1].radius" "-0.5" "must be positive")
+# EXPECT: the words the message must contain (";"-separated); the default is bad_radius.json's.
+if(NOT DEFINED EXPECT)
+  set(EXPECT "bad_radius.json;primitives[1].radius;-0.5;must be positive")
+endif()
+foreach(expected IN LISTS EXPECT)
   string(FIND "${err}" "${expected}" at)
   if(at EQUAL -1)
     message(FATAL_ERROR "the error message does not mention '${expected}':\n${err}")

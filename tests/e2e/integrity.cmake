@@ -1,4 +1,4 @@
-# Grading integrity, tested rather than assumed (DESIGN.md, "Exercises and grading"):
+# Grading integrity, tested rather than assumed (docs/architecture.md, "Exercises and grading"):
 # every grading test passes on the reference and fails with NotImplemented on the stubs.
 # tools/grade --check-integrity runs each tests_lessonNN / tests_lessonNN_stubs pair;
 # the hidden tests get a stubs twin here so that they are held to the same rule.

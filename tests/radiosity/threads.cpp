@@ -8,7 +8,7 @@
 #include <cstring>
 #include <vector>
 
-#include "illum/io/embedded_scenes.hpp"
+#include "illum/io/scene_file.hpp"
 #include "illum/radiosity/form_factor_scene.hpp"
 #include "illum/radiosity/hemicube.hpp"
 #include "illum/radiosity/radiosity_scene.hpp"
@@ -52,8 +52,7 @@ TEST_SUITE("stability") {
     // The Cornell box (its blocks hide parts of the room from most patches), large
     // enough that the row is split over threads; ties in depth along shared edges
     // and silhouettes must go to the same patch as in one serial pass.
-    const RadiosityScene scene =
-        parse_radiosity_scene(*embedded_scene("cornell"), "scenes/cornell.json", 60.0);
+    const RadiosityScene scene = load_radiosity_scene("cornell", 60.0);  // the shipped scene, by name
     const std::vector<Patch>& patches = scene.patches;
     const Hemicube hemicube(96);
     REQUIRE(static_cast<double>(patches.size()) * 96 * 96 >=

@@ -3,7 +3,7 @@
 //
 // Every output file is written under a temporary name beside its final name
 // and renamed into place only when complete, so an interrupted or failed run
-// never leaves a truncated image or table behind (DESIGN.md).
+// never leaves a truncated image or table behind (docs/architecture.md, "Numbers and errors").
 #include <filesystem>
 #include <functional>
 #include <ostream>

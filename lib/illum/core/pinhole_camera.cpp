@@ -7,6 +7,8 @@
 
 namespace illum {
 
+using std::numbers::pi;  // π is the standard's: no file defines its own
+
 PinholeCamera::PinholeCamera(const Point3& eye, const Point3& target, const Vec3& up,
                              double vertical_fov_degrees, int width, int height)
     : eye_(eye), width_(width), height_(height) {
@@ -19,7 +21,7 @@ PinholeCamera::PinholeCamera(const Point3& eye, const Point3& target, const Vec3
   const Vec3 f = normalize(w);
   const Vec3 r = normalize(cross(f, up));
   const Vec3 u = cross(r, f);
-  const double half_height = std::tan(0.5 * vertical_fov_degrees * std::numbers::pi / 180.0);
+  const double half_height = std::tan(0.5 * vertical_fov_degrees * pi / 180.0);
   const double pixel = 2.0 * half_height / height;  // size of a pixel on the plane at distance 1
   forward_ = f - (0.5 * width * pixel) * r + (0.5 * height * pixel) * u;  // top-left corner
   right_ = pixel * r;

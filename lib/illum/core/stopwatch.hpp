@@ -1,7 +1,9 @@
 #pragma once
 // Timing for studies and benchmarks (never for tests: tests count work instead).
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
+#include <limits>
 
 namespace illum {
 
@@ -33,6 +35,29 @@ double nanoseconds_per_call(F&& call, double min_seconds = 0.05) {
     const double t = watch.seconds();
     if (t >= min_seconds || n >= (std::uint64_t{1} << 40)) return 1e9 * t / static_cast<double>(n);
   }
+}
+
+// The best of `runs` measurements of nanoseconds_per_call(call, min_seconds).
+// Other work on the machine only ever adds time, so the minimum is the cost
+// of the call itself. Every best-of-N timing in the lessons goes through here.
+template <class F>
+double best_nanoseconds_per_call(int runs, F&& call, double min_seconds = 0.05) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int run = 0; run < runs; ++run) best = std::min(best, nanoseconds_per_call(call, min_seconds));
+  return best;
+}
+
+// The seconds of the fastest of `runs` runs of `work()` (a whole computation,
+// timed once per run), for work too long to repeat in nanoseconds_per_call.
+template <class F>
+double best_seconds(int runs, F&& work) {
+  double best = std::numeric_limits<double>::infinity();
+  for (int run = 0; run < runs; ++run) {
+    Stopwatch watch;
+    work();
+    best = std::min(best, watch.seconds());
+  }
+  return best;
 }
 
 }  // namespace illum

@@ -1,7 +1,7 @@
 #pragma once
 // Vectors and points in double precision, over GLM.
 //
-// illum computes in double throughout (DESIGN.md, "Numbers and errors");
+// illum computes in double throughout (docs/architecture.md, "Numbers and errors");
 // a lesson that shows why switches to float explicitly with Vec3f.
 #include <limits>
 

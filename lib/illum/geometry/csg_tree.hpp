@@ -61,11 +61,16 @@ struct CsgCounters {
 };
 
 struct CsgHit {
-  double s = 0;          // ray parameter, inside ray.range
-  Point3 point;          // P0 + sω
-  Vec3 normal;           // outward unit normal of the composite solid there
-  bool entering = true;  // false when the ray leaves the solid here (it started inside)
-  int surface = 0;       // tag of the primitive whose surface it is
+  double s = 0;  // ray parameter, inside ray.range
+  Point3 point;  // P0 + sω
+  // Outward unit normal of the composite solid there, never flipped towards
+  // the ray (the side is read from it, as for every hit struct: see
+  // geometry/surface_hit.hpp).
+  Vec3 normal;
+  // Lesson 04's span view of the same fact: false when the ray leaves the
+  // solid here (it started inside); equals dot(ω, normal) < 0.
+  bool entering = true;
+  int surface = 0;  // tag of the primitive whose surface it is
 };
 
 // A CSG tree flattened for evaluation: nodes in an array, each inner node

@@ -31,7 +31,7 @@ struct ImplicitOptions {
 struct ImplicitHit {
   double s = 0;
   Point3 point;
-  Vec3 normal;  // ∇F/|∇F|, pointing out of the solid
+  Vec3 normal;  // ∇F/|∇F|, pointing out of the solid, never flipped towards the ray
   RootResult root;
   long evaluations = 0;  // every evaluation of F, ∇F or G, the march included
 };

@@ -30,8 +30,8 @@ struct PatchHit {
   double s = 0;         // ray parameter, inside ray.range
   double u = 0, v = 0;  // patch parameters, in [0, 1]
   Point3 point;         // S(u, v)
-  Vec3 normal;          // (∂S/∂u × ∂S/∂v)/|…|, orientation as parametrised
-  int iterations = 0;   // Newton steps taken
+  Vec3 normal;  // (∂S/∂u × ∂S/∂v)/|…|, orientation as parametrised, never flipped towards the ray
+  int iterations = 0;  // Newton steps taken
 };
 
 struct PatchOptions {

@@ -35,7 +35,7 @@ enum class RootStatus {
   max_iterations,   // the iteration budget ran out first
 };
 
-const char* to_string(RootStatus status);
+const char* to_string(RootStatus status);  // defined in root_status.cpp (not the exercise unit)
 
 struct RootResult {
   RootStatus status = RootStatus::max_iterations;

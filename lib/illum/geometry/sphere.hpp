@@ -54,8 +54,8 @@ SphereRoots<T> sphere_roots_stable(const glm::vec<3, T>& origin, const glm::vec<
 struct SphereHit {
   double s = 0;              // ray parameter of the hit, inside ray.range
   Point3 point{0.0};         // P0 + sω
-  Vec3 normal{0.0};          // outward unit normal (P − Pc)/r at the hit
-  bool from_inside = false;  // the ray's origin lies strictly inside the sphere
+  Vec3 normal{0.0};          // outward unit normal (P − Pc)/r at the hit, never flipped towards the ray
+  bool from_inside = false;  // the ray's origin lies strictly inside the sphere (which root lesson 01 takes)
 };
 
 // The nearest hit of the ray with the sphere whose parameter lies in

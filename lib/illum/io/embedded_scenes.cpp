@@ -8,4 +8,10 @@ std::optional<std::string_view> embedded_scene(std::string_view name) {
   return std::nullopt;
 }
 
+std::optional<std::string_view> embedded_file(std::string_view file_name) {
+  for (const EmbeddedScene& file : embedded_files())
+    if (file.name == file_name) return file.json;
+  return std::nullopt;
+}
+
 }  // namespace illum

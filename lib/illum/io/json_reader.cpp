@@ -1,5 +1,6 @@
 #include "illum/io/json_reader.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -16,7 +17,7 @@ JsonReader JsonReader::parse_text(const std::string& text, const std::string& fi
   doc->file = file_name;
   try {
     doc->root = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // syntax errors, and numbers such as 1e999 that overflow
     throw InputError(file_name, "(file)", "(not JSON)", std::string("cannot parse JSON: ") + e.what());
   }
   const nlohmann::json* root = &doc->root;
@@ -101,6 +102,67 @@ Vec3 JsonReader::vec3_in(double lo, double hi) const {
       at(static_cast<std::size_t>(k))
           .fail("must lie in [" + std::to_string(lo) + ", " + std::to_string(hi) + ")");
   return v;
+}
+
+Vec3 JsonReader::color() const {
+  const Vec3 v = vec3();
+  for (int k = 0; k < 3; ++k)
+    if (!(v[k] >= 0.0 && v[k] <= 1.0))
+      at(static_cast<std::size_t>(k)).fail("a colour factor must lie in [0, 1]");
+  return v;
+}
+
+std::vector<std::string> JsonReader::keys() const {
+  if (!node_->is_object()) fail("expected an object");
+  std::vector<std::string> out;
+  for (const auto& item : node_->items()) out.push_back(item.key());
+  return out;
+}
+
+namespace {
+
+// Levenshtein distance, for "did you mean" suggestions (short names only).
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+std::string nearest_name(std::string_view name, const std::vector<std::string_view>& known) {
+  std::string_view best;
+  std::size_t best_distance = std::max<std::size_t>(2, name.size() / 3) + 1;
+  for (std::string_view k : known)
+    if (const std::size_t d = edit_distance(name, k); d < best_distance) best = k, best_distance = d;
+  return std::string(best);
+}
+
+void JsonReader::only_fields(std::initializer_list<std::string_view> known) const {
+  if (!node_->is_object()) fail("expected an object");
+  for (const auto& item : node_->items()) {
+    if (std::find(known.begin(), known.end(), item.key()) != known.end()) continue;
+    // ostringstream rather than string '+': GCC 12 warns falsely (-Wrestrict) on the latter.
+    std::ostringstream problem;
+    problem << "unknown field '" << item.key() << "'";
+    if (const std::string near = nearest_name(item.key(), std::vector<std::string_view>(known));
+        !near.empty()) {
+      problem << "; did you mean '" << near << "'?";
+    } else {
+      problem << "; known fields:";
+      for (std::string_view k : known) problem << ' ' << k;
+    }
+    at(item.key()).fail(problem.str());
+  }
 }
 
 }  // namespace illum

@@ -1,7 +1,7 @@
 #pragma once
 // Reading a JSON file field by field, so that every error names the file,
 // the field's path ("spheres[2].radius") and the offending value
-// (DESIGN.md: "a clear error naming the file, field and value").
+// (docs/architecture.md, "Numbers and errors").
 //
 //   const JsonReader root = JsonReader::parse_file("scenes/spheres.json");
 //   for (std::size_t i = 0; i < root.at("spheres").size(); ++i) {
@@ -12,6 +12,8 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -44,6 +46,14 @@ class JsonReader {
   Vec3 vec3() const;                         // [x, y, z], finite
   Vec3 vec3_in(double lo, double hi) const;  // every component in [lo, hi)
 
+  // The member names of an object, in the file's order as nlohmann-json
+  // keeps it (sorted), for objects whose keys are names ("materials").
+  std::vector<std::string> keys() const;
+  // Throws InputError for a member of this object whose name is not in
+  // `known`, suggesting the nearest known name ("did you mean 'radius'?").
+  void only_fields(std::initializer_list<std::string_view> known) const;
+  Vec3 color() const;  // [r, g, b], each in [0, 1]
+
   // Throws InputError(file, path, value-as-JSON, problem).
   [[noreturn]] void fail(const std::string& problem) const;
 
@@ -57,5 +67,9 @@ class JsonReader {
   const nlohmann::json* node_;
   std::string path_;
 };
+
+// The name of `known` nearest to `name` by edit distance, if it is close
+// enough to be a typo (at most max(2, |name|/3) edits); otherwise "".
+std::string nearest_name(std::string_view name, const std::vector<std::string_view>& known);
 
 }  // namespace illum

@@ -34,6 +34,10 @@ class OutputFolder {
   // any text file (a log, a printed table)
   void text(const std::string& file_name, const std::string& contents, const std::string& caption);
 
+  // Records a file that another program wrote into the folder (Graphviz's
+  // drawings); `kind` is one of the manifest's kinds ("image", "text", …).
+  void add_file(const std::string& kind, const std::string& file_name, const std::string& caption);
+
   // Writes manifest.json. Call once, when every output is written.
   void finish() const;
 

@@ -5,53 +5,30 @@
 
 #include "illum/core/error.hpp"
 #include "illum/core/parallel.hpp"
-#include "illum/io/embedded_scenes.hpp"
+#include "illum/io/scene_file.hpp"
 
 namespace illum {
 
-namespace {
-
-CameraSpec read_camera(const JsonReader& c) {
-  CameraSpec camera;
-  camera.eye = c.at("eye").vec3();
-  camera.target = c.at("target").vec3();
-  camera.up = c.at("up").vec3();
-  const double fov = c.at("vertical_fov_degrees").number();
-  if (!(fov > 0 && fov < 180))
-    c.at("vertical_fov_degrees").fail("the field of view must lie in (0, 180) degrees");
-  camera.vertical_fov_degrees = fov;
-  camera.width = c.at("width").integer(1, 16384);
-  camera.height = c.at("height").integer(1, 16384);
-  const Vec3 view = camera.target - camera.eye;
-  if (length(view) == 0) c.at("target").fail("the target must differ from the eye");
-  if (length(cross(view, camera.up)) <= 1e-12 * length(view) * length(camera.up))
-    c.at("up").fail("'up' must not be parallel to the view direction (or zero)");
-  return camera;
-}
-
-}  // namespace
-
 SphereScene read_sphere_scene(const JsonReader& root) {
+  const Scene full = read_scene(root);
   SphereScene scene;
-  scene.camera = read_camera(root.at("camera"));
-  const JsonReader list = root.at("spheres");
-  if (list.size() == 0) list.fail("a scene needs at least one sphere");
-  for (std::size_t i = 0; i < list.size(); ++i) {
-    const JsonReader s = list.at(i);
-    SceneSphere sphere;
-    sphere.name = s.has("name") ? s.at("name").string() : "sphere " + std::to_string(i);
-    sphere.center = s.at("center").vec3();
-    sphere.radius = s.at("radius").positive_number();
-    sphere.color = s.has("color") ? s.at("color").vec3_in(0.0, 1.0 + 1e-12) : Color(0.8);
-    scene.spheres.push_back(sphere);
+  scene.camera = full.camera;
+  for (std::size_t i = 0; i < full.primitives.size(); ++i) {
+    const Primitive& p = full.primitives[i];
+    const auto* sphere = std::get_if<Sphere>(&p.shape);
+    if (!sphere)
+      root.at("primitives")
+          .at(i)
+          .at("type")
+          .fail("the sphere preview (lesson 01) draws spheres only, not a " +
+                std::string(to_string(p.kind())));
+    scene.spheres.push_back({p.name, sphere->center, sphere->radius, full.materials[p.material].diffuse});
   }
   return scene;
 }
 
 SphereScene load_sphere_scene(const std::string& file_or_name) {
-  if (const auto text = embedded_scene(file_or_name))
-    return read_sphere_scene(JsonReader::parse_text(std::string(*text), "scenes/" + file_or_name + ".json"));
-  return read_sphere_scene(JsonReader::parse_file(file_or_name));
+  return read_sphere_scene(open_scene(file_or_name).root);
 }
 
 SpherePreview render_sphere_preview(const SphereScene& scene, int width, int height) {

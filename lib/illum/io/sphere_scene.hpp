@@ -1,13 +1,8 @@
 #pragma once
-// Scenes of spheres (lesson 01): a pinhole camera and coloured spheres, read
-// from JSON (scenes/spheres.json is the shipped example), and their preview
-// images: silhouette, normals, depth and a simple shaded picture.
-//
-// {
-//   "camera": {"eye": [x,y,z], "target": [x,y,z], "up": [x,y,z],
-//              "vertical_fov_degrees": 50, "width": 480, "height": 320},
-//   "spheres": [{"name": "ball", "center": [x,y,z], "radius": 0.5, "color": [r,g,b]}, ...]
-// }
+// Scenes of spheres (lesson 01): the sphere primitives of a scene file of
+// the course's one format (docs/scene-format.md; scenes/spheres.json is the
+// shipped example), each with its material's diffuse colour, and their
+// preview images: silhouette, normals, depth and a simple shaded picture.
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -17,15 +12,9 @@
 #include "illum/core/pinhole_camera.hpp"
 #include "illum/geometry/sphere.hpp"
 #include "illum/io/json_reader.hpp"
+#include "illum/trace/scene.hpp"
 
 namespace illum {
-
-struct CameraSpec {
-  Point3 eye, target;
-  Vec3 up;
-  double vertical_fov_degrees = 45;
-  int width = 0, height = 0;
-};
 
 struct SceneSphere {
   std::string name;
@@ -40,9 +29,10 @@ struct SphereScene {
 };
 
 // Validates every field (InputError naming file, field and value) before
-// anything is built: a radius ≤ 0, a colour outside [0, 1], a camera whose
-// eye equals its target or whose up is parallel to the view, an image size
-// outside [1, 16384], an empty sphere list, NaN anywhere.
+// anything is built, as read_scene does (a radius ≤ 0, a colour outside
+// [0, 1], a camera whose eye equals its target or whose up is parallel to
+// the view, an image size outside [1, 16384], no primitives, NaN anywhere),
+// and refuses any primitive that is not a sphere.
 SphereScene read_sphere_scene(const JsonReader& root);
 
 // A file path, or the name of a shipped scene ("spheres" = scenes/spheres.json).

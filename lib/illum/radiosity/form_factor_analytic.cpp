@@ -9,6 +9,8 @@
 
 namespace illum {
 
+using std::numbers::pi;  // π is the standard's: no file defines its own
+
 SmallPolygon clip_polygon_to_half_space(std::span<const Point3> polygon, const Point3& origin,
                                         const Vec3& normal) {
   require(dot(normal, normal) > 0, "clip_polygon_to_half_space: the plane's normal is zero");
@@ -46,7 +48,7 @@ double point_polygon_form_factor(const Point3& x, const Vec3& normal, const Patc
     const double gamma = std::atan2(c_length, dot(r0, r1));
     sum += gamma * dot(normal, c) / c_length;
   }
-  return sum / (2 * std::numbers::pi);
+  return sum / (2 * pi);
 }
 
 }  // namespace illum

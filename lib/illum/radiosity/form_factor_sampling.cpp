@@ -12,9 +12,9 @@
 
 namespace illum {
 
-namespace {
+using std::numbers::pi;  // π is the standard's: no file defines its own
 
-constexpr double pi = std::numbers::pi;
+namespace {
 
 void check_point(const Point3& x, const Vec3& normal, int samples, const char* message) {
   require(is_finite(x) && is_unit(normal) && samples > 0, message);

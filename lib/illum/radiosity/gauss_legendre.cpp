@@ -5,8 +5,11 @@
 #include <numbers>
 
 #include "illum/core/error.hpp"
+#include "illum/core/vec.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 
 namespace {
 
@@ -16,7 +19,7 @@ QuadratureRule build_rule(int n) {
   rule.weights.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     // Root i of P_n on [−1, 1], from the Chebyshev-like first guess, refined by Newton.
-    double x = std::cos(std::numbers::pi * (i + 0.75) / (n + 0.5));
+    double x = std::cos(pi * (i + 0.75) / (n + 0.5));
     double derivative = 1;
     for (int iteration = 0; iteration < 100; ++iteration) {
       double p0 = 1, p1 = x;  // P_0, P_1; the three-term recurrence gives P_n

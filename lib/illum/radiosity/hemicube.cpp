@@ -7,9 +7,12 @@
 #include <omp.h>
 
 #include "illum/core/error.hpp"
+#include "illum/core/frame.hpp"
 #include "illum/core/random.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 
 namespace {
 
@@ -35,16 +38,6 @@ inline Vec3 to_face(HemicubeFace f, const Vec3& p) {
     default:
       return Vec3(p.x, p.z, -p.y);
   }
-}
-
-// An orthonormal tangent basis (t, b) for the unit normal n, continuous
-// except across n.z = −1/0 sign changes (Duff et al. 2017).
-void tangent_basis(const Vec3& n, Vec3& t, Vec3& b) {
-  const double sign = std::copysign(1.0, n.z);
-  const double a = -1.0 / (sign + n.z);
-  const double c = n.x * n.y * a;
-  t = Vec3(1.0 + sign * n.x * n.x * a, sign * c, -sign * n.x);
-  b = Vec3(c, sign + n.y * n.y * a, -n.y);
 }
 
 }  // namespace
@@ -85,8 +78,8 @@ struct HemicubeFrame {
 
 HemicubeFrame frame_of(const Patch& receiver, double rotation_angle) {
   const Vec3 z = receiver.normal;
-  Vec3 t, b;
-  tangent_basis(z, t, b);
+  const Frame basis = Frame::around(z);
+  const Vec3 &t = basis.t1, &b = basis.t2;
   const double cs = std::cos(rotation_angle), sn = std::sin(rotation_angle);
   return {cs * t + sn * b, -sn * t + cs * b, z, receiver.centroid};
 }
@@ -274,7 +267,7 @@ FormFactorMatrix hemicube_form_factors(const std::vector<Patch>& patches, int re
       double angle = 0.0;
       if (random_rotation) {
         Rng rng(seed, static_cast<std::uint64_t>(i));
-        angle = 2.0 * std::numbers::pi * rng.uniform();
+        angle = 2.0 * pi * rng.uniform();
       }
       hemicube.form_factor_row(patches, static_cast<std::size_t>(i), f.row(static_cast<std::size_t>(i)),
                                buffers, angle);

@@ -4,33 +4,36 @@
 #include <numbers>
 
 #include "illum/core/error.hpp"
+#include "illum/core/vec.hpp"
 
 namespace illum {
+
+using std::numbers::pi;  // π is the standard's: no file defines its own
 
 double top_face_delta(double x, double y, double pixel_area) {
   // eq. 10.2: r² = x² + y² + 1 and cos φ_i = cos φ_p = 1/r, so cos·cos/(π r²) = 1/(π r⁴).
   const double r2 = x * x + y * y + 1.0;
-  return pixel_area / (std::numbers::pi * r2 * r2);
+  return pixel_area / (pi * r2 * r2);
 }
 
 double side_face_delta(double y, double z, double pixel_area) {
   // eq. 10.3 (erratum 6 of docs/errata.md): on the face x = 1, r² = y² + z² + 1,
   // cos φ_i = z/r, cos φ_p = 1/r.
   const double r2 = y * y + z * z + 1.0;
-  return z * pixel_area / (std::numbers::pi * r2 * r2);
+  return z * pixel_area / (pi * r2 * r2);
 }
 
 double top_face_corner(double x, double y) {
   // eq. 10.4: differential area to a parallel rectangle with a corner above it, at unit height.
   const double sx = std::sqrt(1.0 + x * x), sy = std::sqrt(1.0 + y * y);
-  return (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy)) / (2.0 * std::numbers::pi);
+  return (x / sx * std::atan(y / sx) + y / sy * std::atan(x / sy)) / (2.0 * pi);
 }
 
 double side_face_corner(double y, double z) {
   // eq. 10.5: integrate t/(s² + t² + 1)² over t first (antiderivative −1/(2(s² + t² + 1))),
   // then 1/(1 + s²) − 1/(1 + z² + s²) over s.
   const double sz = std::sqrt(1.0 + z * z);
-  return (std::atan(y) - std::atan(y / sz) / sz) / (2.0 * std::numbers::pi);
+  return (std::atan(y) - std::atan(y / sz) / sz) / (2.0 * pi);
 }
 
 HemicubeDeltas make_hemicube_deltas(int resolution, DeltaRule rule) {

@@ -9,9 +9,9 @@
 
 namespace illum {
 
-namespace {
-constexpr double pi = std::numbers::pi;
-}
+using std::numbers::pi;  // π is the standard's: no file defines its own
+
+namespace {}
 
 double exitance_from_radiance_quadrature(const RadianceFunction& radiance, int n) {
   require(n >= 1 && n <= max_gauss_legendre_order, "exitance_from_radiance_quadrature: n must be in 1 … 64");

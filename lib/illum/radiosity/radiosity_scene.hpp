@@ -2,22 +2,15 @@
 // A radiosity scene: named planar surfaces with materials, meshed into
 // patches no larger than a chosen edge length (lessons 09–12).
 //
-// The JSON format (scenes/cornell.json is the worked example):
-//   {
-//     "name": "...", "notes": "...",                     (optional)
-//     "camera": {"eye": [x,y,z], "target": [x,y,z], "up": [x,y,z],
-//                "vertical_fov_degrees": f},              (optional)
-//     "materials": {"white": {"reflectance": [r,g,b], "emission": [r,g,b]}, ...},
-//     "surfaces": [{"name": "...", "material": "white" or {...inline...},
-//                   "polygon": [[x,y,z], ...3 or 4 vertices...]}, ...]
-//   }
-// Reflectance is required, each channel in [0, 1); emission is optional
-// (default 0), each channel ≥ 0. Polygons are triangles or convex planar
-// quads, wound counter-clockwise seen from the side that emits and reflects.
+// The scenes are the course's one scene format (docs/scene-format.md), read
+// by io/scene_file (load_radiosity_scene): each polygon or triangle primitive
+// becomes a surface, its material's diffuse colour the reflectance ρ (< 1)
+// and its emission the surface's own radiosity E. Polygons are triangles or
+// convex planar quads, wound counter-clockwise seen from the side that emits
+// and reflects.
 #include <filesystem>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "illum/core/vec.hpp"
@@ -50,17 +43,23 @@ struct RadiosityScene {
   std::vector<Patch> patches;  // every surface meshed; patch.surface indexes `surfaces`
 };
 
-// Reads and validates a scene file, then meshes every surface into patches
-// whose edges are at most max_patch_edge long (quads by mesh_quad into n × m,
-// triangles by mesh_triangle into n²). Throws illum::InputError naming the
-// file, the JSON path of the field (e.g. "surfaces[3].polygon[2][1]"), its
-// value and the problem; nothing is returned on error. Throws
-// std::invalid_argument when max_patch_edge is not positive and finite.
-RadiosityScene load_radiosity_scene(const std::filesystem::path& file, double max_patch_edge);
+// Why `polygon` cannot be a radiosity surface, or nothing: fewer than 3 or
+// more than 4 vertices, zero area (with its own message when the surface
+// emits: the light would be lost), a vertex off the mean plane by more than
+// scene_planarity_tolerance of its size, or not strictly convex. `vertex` is
+// the offending vertex, or -1 for the polygon as a whole.
+struct PolygonProblem {
+  int vertex = -1;
+  std::string message;
+};
+std::optional<PolygonProblem> radiosity_polygon_problem(const std::vector<Point3>& polygon, bool emits);
 
-// The same from JSON text; `source` names it in error messages.
-RadiosityScene parse_radiosity_scene(std::string_view json_text, const std::string& source,
-                                     double max_patch_edge);
+// Meshes every surface into patches whose edges are at most max_patch_edge
+// long (quads by mesh_quad into n × m, triangles by mesh_triangle into n²),
+// setting scene.patches and each surface's first_patch and patch_count.
+// Precondition: every polygon passed radiosity_polygon_problem. Throws
+// std::invalid_argument when max_patch_edge is not positive and finite.
+void mesh_radiosity_surfaces(RadiosityScene& scene, double max_patch_edge);
 
 // Relative planarity tolerance of scene polygons: a vertex may lie at most
 // this fraction of the polygon's size off its mean plane (0.55 µm on a

@@ -78,6 +78,7 @@ void shoot(const std::vector<Patch>& patches, std::size_t i, const double* form_
 Color ambient_term(const std::vector<Patch>& patches, const std::vector<Color>& unshot);
 
 // B_i + ρ_i · ambient_term(Δ): what progressive refinement shows on screen.
+// Defined in progressive_display.cpp (provided code, not the exercise unit).
 std::vector<Color> display_radiosity(const std::vector<Patch>& patches, const ProgressiveState& state);
 
 }  // namespace illum

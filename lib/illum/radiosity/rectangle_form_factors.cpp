@@ -8,9 +8,9 @@
 
 namespace illum {
 
-namespace {
+using std::numbers::pi;  // π is the standard's: no file defines its own
 
-constexpr double pi = std::numbers::pi;
+namespace {
 
 // u·ln(u) and friends vanish at 0; a guarded log keeps 0·ln 0 = 0.
 double x_log(double scale, double argument) { return scale == 0 ? 0.0 : scale * std::log(argument); }

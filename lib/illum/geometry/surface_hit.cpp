@@ -1,0 +1,138 @@
+#include "illum/geometry/surface_hit.hpp"
+
+#include <cmath>
+
+#include "illum/geometry/parity.hpp"
+
+namespace illum {
+
+namespace {
+
+// pbrt-v4's γ_n = nu/(1 − nu), u the unit roundoff of double: the relative
+// error bound of n chained floating-point operations.
+constexpr double gamma(int n) {
+  constexpr double u = std::numeric_limits<double>::epsilon() * 0.5;
+  return n * u / (1.0 - n * u);
+}
+
+Vec3 abs3(const Vec3& v) { return glm::abs(v); }
+
+}  // namespace
+
+void SurfaceHit::orient(const Vec3& ray_direction, const Vec3& outward_geometric,
+                        const Vec3& outward_shading) {
+  front_face = arrives_at_front(ray_direction, outward_geometric);
+  geometric_normal = front_face ? outward_geometric : -outward_geometric;
+  // An interpolated shading normal may lean past the geometric plane; keep it
+  // on the geometric normal's side so that both answer "which side" alike.
+  const Vec3 shading = dot(outward_shading, outward_geometric) < 0.0 ? -outward_shading : outward_shading;
+  shading_normal = front_face ? shading : -shading;
+}
+
+Vec3 ray_point_error(const Ray& ray, double t) {
+  // fl(o + fl(t·ω)): one rounding in the product, one in the sum.
+  return gamma(2) * (abs3(ray.origin) + std::abs(t) * abs3(ray.direction));
+}
+
+std::optional<SurfaceHit> intersect_surface(const Ray& ray, const Sphere& sphere) {
+  const auto hit = intersect(ray, sphere);
+  if (!hit) return std::nullopt;
+  SurfaceHit out;
+  out.t = hit->s;
+  // Re-project onto the sphere (pbrt-v4 §6.8.5): the point then lies within
+  // a few ulps of the surface whatever the root's own error.
+  const Vec3 offset = hit->point - sphere.center;
+  out.point = sphere.center + offset * (sphere.radius / length(offset));
+  out.point_error = gamma(5) * (abs3(out.point - sphere.center) + abs3(sphere.center));
+  out.orient(ray.direction, hit->normal, hit->normal);
+  return out;
+}
+
+std::optional<SurfaceHit> intersect_surface(const Ray& ray, const Polygon& polygon) {
+  const auto hit = intersect(ray, polygon);
+  if (!hit) return std::nullopt;
+  SurfaceHit out;
+  out.t = hit->s;
+  out.point = hit->point;
+  // The plane hit s = −(N·P0 + D)/(N·ω) carries a relative error of a few
+  // ulps, magnified along the ray by |s|: bound it with the point's own error.
+  out.point_error = gamma(7) * (abs3(ray.origin) + std::abs(hit->s) * abs3(ray.direction));
+  out.orient(ray.direction, hit->normal, hit->normal);
+  return out;
+}
+
+std::optional<SurfaceHit> intersect_surface(const Ray& ray, const Triangle& triangle) {
+  const auto hit = intersect(ray, triangle);
+  if (!hit) return std::nullopt;
+  SurfaceHit out;
+  out.t = hit->s;
+  // The barycentric point (pbrt-v4 §6.8.4): λa·a + λb·b + λc·c, error γ7 Σ|λ_i p_i|.
+  const Vec3& l = hit->barycentric;
+  out.point = l.x * triangle.a + l.y * triangle.b + l.z * triangle.c;
+  out.point_error = gamma(7) * (abs3(l.x * triangle.a) + abs3(l.y * triangle.b) + abs3(l.z * triangle.c));
+  out.uv = Vec2(l.y, l.z);
+  out.orient(ray.direction, hit->normal, hit->normal);
+  return out;
+}
+
+std::optional<SurfaceHit> intersect_surface(const Ray& ray, const TriangleMesh& mesh, std::uint64_t* tests) {
+  std::optional<SurfaceHit> best;
+  Ray r = ray;
+  for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
+    if (tests) ++*tests;
+    const Triangle tri = mesh.triangle(i);
+    auto hit = intersect_surface(r, tri);
+    if (!hit) continue;
+    r.range.hi = hit->t;  // a farther triangle can no longer win
+    hit->element = static_cast<std::uint32_t>(i);
+    if (!mesh.corner_normals.empty()) {
+      const double la = 1.0 - hit->uv.x - hit->uv.y;
+      const Vec3 n = la * mesh.corner_normals[3 * i] + hit->uv.x * mesh.corner_normals[3 * i + 1] +
+                     hit->uv.y * mesh.corner_normals[3 * i + 2];
+      if (length_squared(n) > 0.0) hit->orient(ray.direction, tri.normal(), normalize(n));
+    }
+    best = hit;
+  }
+  return best;
+}
+
+std::optional<SurfaceHit> intersect_surface(const Ray& ray, const CsgTree& tree, const CsgOptions& options) {
+  const auto hit = intersect(ray, tree, options);
+  if (!hit) return std::nullopt;
+  SurfaceHit out;
+  out.t = hit->s;
+  out.point = hit->point;
+  out.point_error = gamma(7) * (abs3(ray.origin) + std::abs(hit->s) * abs3(ray.direction));
+  out.element = static_cast<std::uint32_t>(hit->surface);
+  out.orient(ray.direction, hit->normal, hit->normal);
+  return out;
+}
+
+std::optional<SurfaceHit> intersect_surface(const Ray& ray, const BezierPatch& patch,
+                                            const PatchOptions& options) {
+  const auto hit = intersect_patch(ray, patch, options);
+  if (!hit) return std::nullopt;
+  SurfaceHit out;
+  out.t = hit->s;
+  out.point = hit->point;  // S(u, v): on the surface; off the ray by at most the tolerance
+  out.point_error = Vec3(options.tolerance) + gamma(7) * abs3(hit->point);
+  out.uv = Vec2(hit->u, hit->v);
+  out.orient(ray.direction, hit->normal, hit->normal);
+  return out;
+}
+
+std::optional<SurfaceHit> intersect_surface(const Ray& ray, const ImplicitSurface& surface,
+                                            ImplicitMethod method, const ImplicitOptions& options) {
+  const auto hit = intersect_implicit(ray, surface, method, options);
+  if (!hit) return std::nullopt;
+  SurfaceHit out;
+  out.t = hit->s;
+  out.point = hit->point;
+  // The root finder stops within `tolerance` of the root in s; along a unit ω
+  // that moves the point by as much on each axis, at most.
+  out.point_error = options.tolerance * abs3(ray.direction) + ray_point_error(ray, hit->s);
+  out.orient(ray.direction, hit->normal, hit->normal);
+  return out;
+}
+
+}  // namespace illum

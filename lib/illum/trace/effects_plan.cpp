@@ -1,0 +1,75 @@
+#include "illum/trace/effects_plan.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "illum/core/error.hpp"
+
+namespace illum {
+
+namespace {
+
+double max_channel(const Color& c) { return std::max({c.r, c.g, c.b}); }
+
+std::string on_off(bool on) { return on ? "on " : "off"; }
+
+}  // namespace
+
+std::string EffectsPlan::summary() const {
+  std::string s = analysed ? "effects plan (from the scene):\n" : "no effects plan (every effect on):\n";
+  s += "  reflection rays        " + on_off(reflection) + "\n";
+  s += "  refraction rays        " + on_off(refraction) + "\n";
+  s += "  shadow rays            " + on_off(shadows) + "\n";
+  s += "  shadow attenuation     " + on_off(shadow_attenuation) + "\n";
+  s += "  skip zero-weight rays  " + on_off(skip_zero_weights) + "\n";
+  s += "  depth limit            " + std::to_string(max_depth) + "\n";
+  if (!reasons.empty()) s += reasons;
+  return s;
+}
+
+EffectsPlan full_effects(int max_depth) {
+  require(max_depth >= 0, "full_effects: the depth limit must not be negative");
+  return EffectsPlan{.max_depth = max_depth, .skip_zero_weights = false};
+}
+
+EffectsPlan plan_effects(const Scene& scene, int max_depth) {
+  require(max_depth >= 0, "plan_effects: the depth limit must not be negative");
+  double heaviest = 0.0;  // max over materials and channels of k_r + k_t
+  bool mirror = false, glass = false;
+  for (const Material& m : scene.materials) {
+    mirror = mirror || max_channel(m.reflectance) > 0.0;
+    glass = glass || max_channel(m.transmittance) > 0.0;
+    heaviest = std::max(heaviest, max_channel(m.reflectance + m.transmittance));
+  }
+  const bool lights = !scene.point_lights.empty() || !scene.area_lights.empty();
+  EffectsPlan plan{.reflection = mirror || glass,
+                   .refraction = glass,
+                   .shadows = lights,
+                   .shadow_attenuation = glass && lights,
+                   .max_depth = max_depth,
+                   .skip_zero_weights = true,
+                   .analysed = true};
+  std::string why;
+  why += mirror ? "  a material has k_r > 0: reflected rays are needed\n"
+                : (glass ? "  no k_r > 0, but glass reflects totally inside: reflected rays kept\n"
+                         : "  no material has k_r > 0 or k_t > 0: no reflected rays\n");
+  why += glass ? "  a material has k_t > 0: refracted rays and attenuated shadow rays\n"
+               : "  no material has k_t > 0: no refracted rays; shadow rays stop at the first surface\n";
+  if (!lights) why += "  the scene has no lights: no shadow rays\n";
+  if (!plan.reflection && !plan.refraction) {
+    plan.max_depth = 0;
+    why += "  no secondary rays: depth limit 0\n";
+  } else if (heaviest < 1.0) {
+    // Depth d weighs at most heaviest^d: stop where that is below the threshold.
+    const int useful = static_cast<int>(std::ceil(std::log(contribution_threshold) / std::log(heaviest)));
+    if (useful < plan.max_depth) {
+      plan.max_depth = std::max(useful, 1);
+      why += "  max(k_r + k_t) = " + std::to_string(heaviest) + ": depth " + std::to_string(plan.max_depth) +
+             " already weighs < 1/1024, the depth limit is cut to it\n";
+    }
+  }
+  plan.reasons = why;
+  return plan;
+}
+
+}  // namespace illum

@@ -1,0 +1,55 @@
+#pragma once
+// The effects plan (lesson 06, §6): simulate only the effects a scene calls
+// for. Built from the scene before any ray is cast, printed, and obeyed by
+// the ray tree: a kind of ray the plan switches off is never spawned.
+//
+// Without a plan (full_effects) the tree is the notes' "evaluar (rayo)" as
+// written: at every hit below the depth limit both children are created and
+// evaluated, and a shadow ray goes to every light above the tangent plane,
+// whatever the material; a zero k_r or k_t only multiplies its child by 0.
+// What the analysis decides, and why each cut changes nothing in the image:
+// * per hit, a ray whose factor is zero there is not cast (0·I adds +0);
+// * no material with k_r > 0 or k_t > 0 → no reflected rays (a transmissive
+//   material keeps them: total internal reflection sends k_t to I_r);
+// * no material with k_t > 0 → no refracted rays, and shadow rays stop at
+//   the first surface (there is no glass to see a light through);
+// * no light → no shadow rays (I_own is the ambient and emitted terms alone);
+// * the depth limit is cut to 0 without secondary rays, and otherwise to the
+//   depth where the heaviest path weight max(k_r + k_t)^d falls below
+//   `contribution_threshold` (Whitted's adaptive tree depth, with the bound
+//   taken over the materials instead of per ray). Only this last cut may
+//   change a pixel, by less than the threshold times the brightest radiance.
+#include <string>
+
+#include "illum/trace/scene.hpp"
+
+namespace illum {
+
+// A node whose path weight is below this cannot move a pixel of radiance ≤ 1
+// by one step of an 8-bit image (1/255 ≈ 0.0039).
+inline constexpr double contribution_threshold = 1.0 / 1024.0;
+
+struct EffectsPlan {
+  bool reflection = true;          // spawn reflected rays I_r
+  bool refraction = true;          // spawn transmitted rays I_t
+  bool shadows = true;             // cast one shadow ray per light
+  bool shadow_attenuation = true;  // shadow rays cross transmissive surfaces, attenuated by k_t
+  int max_depth = 5;               // depth of the deepest secondary ray (0: primary rays only)
+  // Per hit: a child or shadow ray whose factor is zero there (k_r = 0,
+  // k_t = 0, k_d = k_s = 0) is not cast. Off, the tree is the notes' literal
+  // algorithm: both children at every hit below the depth limit.
+  bool skip_zero_weights = true;
+  bool analysed = false;  // false: everything switched on, nothing analysed
+
+  // Several lines, one per decision, with its reason.
+  std::string summary() const;
+  std::string reasons{};  // filled by plan_effects: why each switch is set as it is
+};
+
+// No analysis: every kind of ray, up to `max_depth` (the "without the plan" run).
+EffectsPlan full_effects(int max_depth);
+
+// The scene's plan for a requested depth limit (max_depth ≥ 0).
+EffectsPlan plan_effects(const Scene& scene, int max_depth);
+
+}  // namespace illum

@@ -1,0 +1,59 @@
+#pragma once
+// The ray tree, *árbol de rayos* (lesson 06, §5): the notes' recursive
+// "evaluar (rayo)" of backward ray tracing, Whitted's model.
+//
+//   evaluate(ray):
+//     nearest hit (none: the background)
+//     I_own = k_a·I_a + emission + Σ_lights S_l · I_l · (k_d N·L + k_s (R·V)^n)
+//             where S_l is the shadow test: one shadow ray per light
+//     below the depth limit: I_r = evaluate(reflected ray), I_t = evaluate(refracted ray)
+//             (total internal reflection: no refracted ray, its k_t goes to I_r)
+//     return I_own + k_r·I_r + k_t·I_t                                   (eq. 6.9)
+//
+// The tracer obeys an EffectsPlan (effects_plan.hpp): a switched-off kind of
+// ray is never spawned. Counting is always on (TraceStats); recording the
+// tree (RayTree) only when the inspector asks for it.
+#include "illum/trace/effects_plan.hpp"
+#include "illum/trace/light_sample.hpp"
+#include "illum/trace/ray_tree_record.hpp"
+#include "illum/trace/scene.hpp"
+
+namespace illum {
+
+// What evaluate needs besides the ray. `stats` must not be null; `tree` is
+// null except in the inspector.
+struct Tracer {
+  const Scene& scene;
+  const EffectsPlan& plan;
+  Color background{0.0};
+  TraceStats* stats = nullptr;
+  RayTree* tree = nullptr;
+};
+
+// The shadow test for one light (lesson 06, §5.2): the fraction of the light
+// that reaches the hit point along a shadow ray from it (spawn_ray_to):
+// 1 when nothing lies between, 0 when an opaque surface does; with
+// plan.shadow_attenuation, each transmissive surface crossed multiplies it by
+// its k_t instead of blocking. Nothing at or beyond the light blocks it.
+// Counts every shadow ray cast; records them as children of `node` when
+// tracer.tree is set (`light` is the light's index, for the record).
+Color shadow_transmission(const Tracer& tracer, const SurfaceHit& hit, const Point3& light_position,
+                          int node = no_node, std::uint32_t light = no_light);
+
+// I_own of the notes: the surface's own intensity at the hit seen from
+// `to_viewer` (unit): k_a·I_a + emission + Σ_l S_l·I_l·phong_term(...).
+// A light behind the surface or on its tangent plane (N·L ≤ 0) contributes
+// nothing and casts no shadow ray; with plan.skip_zero_weights, neither does
+// a light on a surface with k_d = k_s = 0. With plan.shadows off, no light is used.
+Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_viewer, int node = no_node);
+
+// The notes' evaluar(rayo). `depth` is the ray's depth in the tree (0 for
+// a primary ray); children are spawned while depth < plan.max_depth.
+// Children obey the plan: none of a kind it switches off, and with
+// plan.skip_zero_weights none whose factor (k_r, k_t) is zero at this hit.
+// `weight` is the product of the k_r and k_t on the way from the eye and
+// `parent` the node that spawned this ray; both are for the record only.
+Color evaluate(const Tracer& tracer, const Ray& ray, int depth = 0, RayKind kind = RayKind::primary,
+               const Color& weight = Color(1.0), int parent = no_node);
+
+}  // namespace illum

@@ -1,0 +1,76 @@
+#include "illum/trace/scene.hpp"
+
+#include <type_traits>
+
+namespace illum {
+
+const char* to_string(PrimitiveKind kind) {
+  switch (kind) {
+    case PrimitiveKind::sphere:
+      return "sphere";
+    case PrimitiveKind::polygon:
+      return "polygon";
+    case PrimitiveKind::triangle:
+      return "triangle";
+    case PrimitiveKind::mesh:
+      return "mesh";
+    case PrimitiveKind::csg:
+      return "csg";
+    case PrimitiveKind::bilinear_patch:
+      return "bilinear_patch";
+    case PrimitiveKind::implicit:
+      return "implicit";
+  }
+  return "?";
+}
+
+std::optional<SurfaceHit> Primitive::intersect(const Ray& ray, WorkCounters* counters) const {
+  std::uint64_t tests = 0;
+  const std::optional<SurfaceHit> hit = std::visit(
+      [&](const auto& s) -> std::optional<SurfaceHit> {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<T, TriangleMesh>) {
+          return intersect_surface(ray, s, &tests);
+        } else if constexpr (std::is_same_v<T, ImplicitPrimitive>) {
+          tests = 1;
+          return intersect_surface(ray, *s.surface, s.method, s.options);
+        } else {
+          tests = 1;
+          return intersect_surface(ray, s);
+        }
+      },
+      shape);
+  if (counters) {
+    counters->intersection_tests += tests;
+    if (hit) ++counters->hits;
+  }
+  return hit;
+}
+
+std::optional<SurfaceHit> Scene::intersect(const Ray& ray, WorkCounters* counters) const {
+  std::optional<SurfaceHit> best;
+  Ray r = ray;
+  for (std::size_t i = 0; i < primitives.size(); ++i) {
+    auto hit = primitives[i].intersect(r, counters);
+    if (!hit) continue;
+    r.range.hi = hit->t;  // each hit shrinks the range: a farther primitive cannot win
+    hit->primitive = static_cast<std::uint32_t>(i);
+    hit->material = primitives[i].material;
+    best = hit;
+  }
+  return best;
+}
+
+bool Scene::occluded(const Ray& ray, WorkCounters* counters) const {
+  for (const Primitive& p : primitives)
+    if (p.intersect(ray, counters)) return true;
+  return false;
+}
+
+std::uint32_t Scene::material_index(const std::string& name) const {
+  for (std::size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].name == name) return static_cast<std::uint32_t>(i);
+  return no_material;
+}
+
+}  // namespace illum

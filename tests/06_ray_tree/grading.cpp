@@ -1,0 +1,271 @@
+// Grading tests of lesson 06: the ray tree.
+//
+// Every expected value is worked out by hand in the test: directions from
+// Snell's law written with angles (not the vector form the code uses),
+// colours from the notes' model term by term on scenes placed so that every
+// cosine is a simple fraction.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "06_ray_tree/test_scenes.hpp"
+#include "illum/trace/optics.hpp"
+#include "illum/trace/ray_tree.hpp"
+
+using namespace illum;
+using illum::test::add_floor;
+using illum::test::add_light;
+using illum::test::add_material;
+using illum::test::add_sphere;
+using illum::test::hand_hit;
+using illum::test::material;
+
+namespace {
+
+void check_vec(const Vec3& got, const Vec3& want, double eps = 1e-12) {
+  INFO("got (", got.x, ", ", got.y, ", ", got.z, "), expected (", want.x, ", ", want.y, ", ", want.z, ")");
+  CHECK(got.x == doctest::Approx(want.x).epsilon(eps).scale(1.0));
+  CHECK(got.y == doctest::Approx(want.y).epsilon(eps).scale(1.0));
+  CHECK(got.z == doctest::Approx(want.z).epsilon(eps).scale(1.0));
+}
+
+struct Run {
+  TraceStats stats;
+  Color color{0.0};
+};
+
+// Evaluates one ray through the scene under its effects plan at the depth limit.
+Run run(const Scene& scene, const Ray& ray, int max_depth, Color background = Color(0.0)) {
+  const EffectsPlan plan = plan_effects(scene, max_depth);
+  Run r;
+  const Tracer tracer{.scene = scene, .plan = plan, .background = background, .stats = &r.stats};
+  r.color = evaluate(tracer, ray);
+  return r;
+}
+
+}  // namespace
+
+TEST_SUITE("lesson06") {
+  TEST_CASE("reflect: R = I − 2(N·I)N off a tilted normal") {
+    // N·I = −0.8, so R = I + 1.6 N = (0, 0.96, −1 + 1.28) = (0, 0.96, 0.28); |R|² = 0.9216 + 0.0784 = 1.
+    check_vec(reflect(Vec3(0, 0, -1), Vec3(0, 0.6, 0.8)), Vec3(0, 0.96, 0.28));
+    // 45° onto a floor: the vertical component flips, the horizontal one stays.
+    const double s = std::sqrt(0.5);
+    check_vec(reflect(Vec3(s, -s, 0), Vec3(0, 1, 0)), Vec3(s, s, 0));
+  }
+
+  TEST_CASE("refract: air into glass (η = 1.5) at 45° follows sin θ_t = sin θ_i / 1.5") {
+    const double s = std::sqrt(0.5);
+    const Refraction r = refract(Vec3(s, -s, 0), Vec3(0, 1, 0), 1.0 / 1.5);
+    REQUIRE_MESSAGE(!r.total_internal_reflection,
+                    "from the thinner medium there is always a transmitted ray");
+    const double sin_t = s / 1.5, cos_t = std::sqrt(1.0 - sin_t * sin_t);  // θ_t ≈ 28.1°
+    check_vec(r.direction, Vec3(sin_t, -cos_t, 0));
+  }
+
+  TEST_CASE("refract: glass into air bends away from the normal (sin 0.4 → sin 0.6)") {
+    // Inside glass (η_i/η_t = 1.5), travelling up, sin θ_i = 0.4: sin θ_t = 0.6, cos θ_t = 0.8.
+    // The normal given is the one facing the ray: (0, −1, 0).
+    const Refraction r = refract(Vec3(0.4, std::sqrt(0.84), 0), Vec3(0, -1, 0), 1.5);
+    REQUIRE(!r.total_internal_reflection);
+    check_vec(r.direction, Vec3(0.6, 0.8, 0));
+  }
+
+  TEST_CASE("refract: beyond the critical angle there is no transmitted ray") {
+    // sin θ_i = 0.8 inside glass: sin θ_t would be 1.2 > 1.
+    const Refraction r = refract(Vec3(0.8, 0.6, 0), Vec3(0, -1, 0), 1.5);
+    CHECK_MESSAGE(r.total_internal_reflection, "1.5 · 0.8 = 1.2 > 1: total internal reflection");
+  }
+
+  TEST_CASE("hard case: the critical angle exactly, and just either side of it") {
+    // sin θ_c = 1/1.5 = 2/3. At θ_c the transmitted ray would graze the surface (cos θ_t = 0):
+    // either answer is acceptable there, but not a NaN and not a ray into the glass.
+    const double sin_c = 2.0 / 3.0;
+    const Refraction at = refract(Vec3(sin_c, std::sqrt(1 - sin_c * sin_c), 0), Vec3(0, -1, 0), 1.5);
+    if (!at.total_internal_reflection) {
+      CHECK(is_finite(at.direction));
+      CHECK_MESSAGE(std::abs(at.direction.y) < 1e-6, "at θ_c the transmitted ray runs along the surface");
+      CHECK(at.direction.x == doctest::Approx(1.0).epsilon(1e-9));
+    }
+    const double past = sin_c + 1e-6, before = sin_c - 1e-6;
+    CHECK(refract(Vec3(past, std::sqrt(1 - past * past), 0), Vec3(0, -1, 0), 1.5).total_internal_reflection);
+    const Refraction in = refract(Vec3(before, std::sqrt(1 - before * before), 0), Vec3(0, -1, 0), 1.5);
+    REQUIRE(!in.total_internal_reflection);
+    const double sin_t = 1.5 * before;  // just below 1
+    CHECK(in.direction.x == doctest::Approx(sin_t).epsilon(1e-9));
+    CHECK(in.direction.y == doctest::Approx(std::sqrt(1 - sin_t * sin_t)).epsilon(1e-6));
+  }
+
+  TEST_CASE("hard case: grazing incidence into glass gives the critical angle, reflection the same ray") {
+    // θ_i = 90°: sin θ_t = 1/1.5, the light bends to θ_c inside the glass.
+    const Refraction r = refract(Vec3(1, 0, 0), Vec3(0, 1, 0), 1.0 / 1.5);
+    REQUIRE(!r.total_internal_reflection);
+    check_vec(r.direction, Vec3(2.0 / 3.0, -std::sqrt(5.0) / 3.0, 0));
+    check_vec(reflect(Vec3(1, 0, 0), Vec3(0, 1, 0)), Vec3(1, 0, 0));
+  }
+
+  TEST_CASE("Phong term: k_d (N·L) + k_s (R·V)^n term by term") {
+    const Vec3 n(0, 0, 1), l(0, 0.6, 0.8);
+    const Color kd(0.5, 0.25, 0.1), ks(0.3);
+    // Viewer on the mirror direction R = 2(N·L)N − L = (0, −0.6, 0.8): R·V = 1.
+    const Color mirror = phong_term(n, l, Vec3(0, -0.6, 0.8), kd, ks, 10.0);
+    check_vec(mirror, kd * 0.8 + ks * 1.0);
+    // Viewer overhead: R·V = 0.8, and 0.8^10 = 0.1073741824.
+    const Color overhead = phong_term(n, l, Vec3(0, 0, 1), kd, ks, 10.0);
+    check_vec(overhead, kd * 0.8 + ks * 0.1073741824);
+  }
+
+  TEST_CASE("hard case: a light exactly on the tangent plane gives nothing, not even a highlight") {
+    // N·L = 0; the viewer sits on R = −L, where a careless specular term would give k_s.
+    const Color c = phong_term(Vec3(0, 0, 1), Vec3(1, 0, 0), Vec3(-1, 0, 0), Color(0.7), Color(0.5), 4.0);
+    check_vec(c, Color(0.0));
+  }
+
+  TEST_CASE("hard case: a light behind the surface gives nothing, though R·V > 0") {
+    // N·L = −0.2 with L = (0, √0.96, −0.2); R = 2(N·L)N − L = (0, −√0.96, −0.2) and
+    // V = (0, −0.6, 0.8) give R·V = 0.6√0.96 − 0.16 ≈ 0.428 > 0: a highlight from behind.
+    const Color c = phong_term(Vec3(0, 0, 1), Vec3(0, std::sqrt(0.96), -0.2), Vec3(0, -0.6, 0.8), Color(0.7),
+                               Color(0.5), 2.0);
+    check_vec(c, Color(0.0));
+  }
+
+  TEST_CASE("hard case: an occluder beyond the light casts no shadow; one between point and light does") {
+    Scene scene;
+    const auto grey = add_material(scene, material("grey"));
+    add_sphere(scene, "ball", Point3(0, 0, 1), 0.25, grey);
+    const SurfaceHit at_origin = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), grey);
+    TraceStats stats;
+    const EffectsPlan plan = full_effects(0);
+    const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+    check_vec(shadow_transmission(tracer, at_origin, Point3(0, 0, 2)), Color(0.0));
+    CHECK_MESSAGE(stats.rays.shadow >= 1, "the test casts a shadow ray and counts it");
+    // The light at z = 0.5 is in front of the ball (which starts at z = 0.75): nothing blocks it.
+    check_vec(shadow_transmission(tracer, at_origin, Point3(0, 0, 0.5)), Color(1.0));
+    // A light off to the side: the ray from the origin to (1, 0, 1) passes 0.707 from the ball's centre.
+    check_vec(shadow_transmission(tracer, at_origin, Point3(1, 0, 1)), Color(1.0));
+  }
+
+  TEST_CASE("shadow test: through a glass ball with attenuation, k_t once per surface crossed") {
+    Scene scene;
+    const auto floor = add_material(scene, material("floor"));
+    Material glass = material("glass");
+    glass.transmittance = Color(0.8, 0.5, 0.9);
+    glass.index_of_refraction = 1.5;
+    const auto g = add_material(scene, glass);
+    add_sphere(scene, "glass ball", Point3(0, 0, 2), 0.5, g);
+    const SurfaceHit p = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), floor);
+    TraceStats stats;
+    EffectsPlan plan = full_effects(0);
+    const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+    // In at z = 1.5 and out at z = 2.5: (k_t)² = (0.64, 0.25, 0.81).
+    check_vec(shadow_transmission(tracer, p, Point3(0, 0, 4)), Color(0.64, 0.25, 0.81), 1e-12);
+    plan.shadow_attenuation = false;  // the opaque-scene rule: any surface blocks
+    check_vec(shadow_transmission(tracer, p, Point3(0, 0, 4)), Color(0.0));
+  }
+
+  TEST_CASE("evaluate: one diffuse and specular ball, ambient + diffuse + Phong by hand") {
+    Scene scene;
+    Material m = material("plastic");
+    m.ambient = Color(0.2, 0.1, 0.05);
+    m.diffuse = Color(0.5, 0.4, 0.3);
+    m.specular = Color(0.25);
+    m.phong_exponent = 3;
+    add_sphere(scene, "ball", Point3(0, 0, 0), 1.0, add_material(scene, m));
+    scene.ambient_light = Color(0.5);
+    add_light(scene, Point3(3, 0, 5), Color(2.0, 1.0, 0.5));
+    // The ray down the z axis hits (0, 0, 1) with N = (0, 0, 1); L = (3, 0, 4)/5 = (0.6, 0, 0.8):
+    // N·L = 0.8; R = 2·0.8·N − L = (−0.6, 0, 0.8), V = (0, 0, 1): R·V = 0.8, 0.8³ = 0.512.
+    const Run r = run(scene, Ray(Point3(0, 0, 5), Vec3(0, 0, -1)), 3);
+    const Color expected = m.ambient * 0.5 + Color(2.0, 1.0, 0.5) * (m.diffuse * 0.8 + Color(0.25) * 0.512);
+    check_vec(r.color, expected);
+    CHECK(r.stats.rays.primary == 1);
+    CHECK_MESSAGE(r.stats.rays.shadow == 1, "one shadow ray per light");
+    CHECK_MESSAGE(r.stats.rays.reflection + r.stats.rays.refraction == 0, "k_r = k_t = 0: no child rays");
+  }
+
+  TEST_CASE("evaluate: a mirror floor shows the ball it reflects, I_own + k_r·I_r") {
+    Scene scene;
+    Material mirror = material("mirror");
+    mirror.ambient = Color(0.1);
+    mirror.reflectance = Color(0.5);
+    Material lamp = material("red lamp");
+    lamp.emission = Color(1, 0, 0);
+    add_floor(scene, "floor", 0.0, 10.0, add_material(scene, mirror));
+    add_sphere(scene, "lamp", Point3(2, 0, 2), 0.5, add_material(scene, lamp));
+    scene.ambient_light = Color(1.0);
+    // From (−2, 0, 2) towards the origin: reflected towards (2, 0, 2), the lamp's centre.
+    const Ray ray = Ray::toward(Point3(-2, 0, 2), Vec3(1, 0, -1));
+    check_vec(run(scene, ray, 1).color, Color(0.1) + 0.5 * Color(1, 0, 0));
+    const Run flat = run(scene, ray, 0);
+    CHECK_MESSAGE(flat.stats.rays.reflection == 0, "depth limit 0: the primary ray has no children");
+    check_vec(flat.color, Color(0.1));
+  }
+
+  TEST_CASE("evaluate: straight through a glass ball needs depth 2 to see the background, weighed k_t²") {
+    Scene scene;
+    Material glass = material("glass");
+    glass.transmittance = Color(0.9);
+    glass.index_of_refraction = 1.5;
+    add_sphere(scene, "ball", Point3(0, 0, 0), 1.0, add_material(scene, glass));
+    const Color background(0.2, 0.4, 0.6);
+    const Ray ray(Point3(0, 0, 5), Vec3(0, 0, -1));  // normal incidence: no bending in, none out
+    check_vec(run(scene, ray, 2, background).color, 0.81 * background);
+    const Run one = run(scene, ray, 1, background);
+    CHECK_MESSAGE(one.stats.rays.refraction == 1, "depth 1: the ray into the glass, not the one out of it");
+    check_vec(one.color, Color(0.0));
+  }
+
+  TEST_CASE("hard case: a ray leaving a glass ball from inside beyond the critical angle reflects totally") {
+    Scene scene;
+    Material glass = material("glass");
+    glass.ambient = Color(0.1);
+    glass.transmittance = Color(0.9);
+    glass.index_of_refraction = 1.5;
+    add_sphere(scene, "ball", Point3(0, 0, 0), 1.0, add_material(scene, glass));
+    scene.ambient_light = Color(1.0);
+    // From (0, 0.9, 0) inside along +x: the surface is met at sin θ_i = 0.9, and 1.5·0.9 > 1.
+    // Depth 1: I_own = 0.1 here, and the reflected ray (weight k_r + k_t = 0.9) meets the
+    // inside again where I_own = 0.1: 0.1 + 0.9·0.1 = 0.19. Entering instead of leaving
+    // (η_i/η_t = 1/1.5) would refract out to the black background: 0.1.
+    const Run r = run(scene, Ray(Point3(0, 0.9, 0), Vec3(1, 0, 0)), 1);
+    check_vec(r.color, Color(0.19));
+    CHECK_MESSAGE(r.stats.rays.reflection == 1, "total internal reflection spawns the reflected ray");
+    CHECK(r.stats.rays.refraction == 0);
+  }
+
+  TEST_CASE("hard case: a ray tangent to a mirror ball goes on past it") {
+    Scene scene;
+    Material chrome = material("chrome");
+    chrome.ambient = Color(0.2);
+    chrome.reflectance = Color(0.7);
+    add_sphere(scene, "ball", Point3(0, 1, 5), 1.0, add_material(scene, chrome));
+    scene.ambient_light = Color(1.0);
+    // The z axis touches the ball at (0, 0, 5), where N = (0, −1, 0) ⟂ ω: the mirror
+    // direction is ω itself and it must not hit the ball again.
+    const Color background(0.3, 0.6, 0.9);
+    const Run r = run(scene, Ray(Point3(0, 0, 0), Vec3(0, 0, 1)), 2, background);
+    REQUIRE(is_finite(r.color));
+    const Color hit = Color(0.2) + 0.7 * background;  // the tangent counts as a hit (one double root)
+    CHECK_MESSAGE((glm::all(glm::lessThan(glm::abs(r.color - hit), Color(1e-12))) ||
+                   glm::all(glm::lessThan(glm::abs(r.color - background), Color(1e-12)))),
+                  "a tangent ray either touches the ball (I_own + k_r·background) or misses it (background)");
+  }
+
+  TEST_CASE("hard case: depth 0 is the local model alone, whatever the materials") {
+    Scene scene;
+    Material m = material("everything");
+    m.ambient = Color(0.25);
+    m.diffuse = Color(0.5);
+    m.reflectance = Color(0.3);
+    m.transmittance = Color(0.3);
+    m.index_of_refraction = 1.5;
+    add_sphere(scene, "ball", Point3(0, 0, 0), 1.0, add_material(scene, m));
+    scene.ambient_light = Color(1.0);
+    add_light(scene, Point3(0, 0, 10), Color(1.0));
+    // N·L = 1 at (0, 0, 1): I_own = 0.25 + 0.5·1 = 0.75, and no child rays.
+    const Run r = run(scene, Ray(Point3(0, 0, 5), Vec3(0, 0, -1)), 0);
+    check_vec(r.color, Color(0.75));
+    CHECK(r.stats.rays.reflection == 0);
+    CHECK(r.stats.rays.refraction == 0);
+  }
+}

@@ -1,0 +1,49 @@
+#pragma once
+// Small scenes built in code for the lesson-06 tests, each simple enough that
+// the colour of a ray can be worked out by hand.
+#include <string>
+#include <vector>
+
+#include "illum/trace/scene.hpp"
+
+namespace illum::test {
+
+inline Material material(const std::string& name) { return Material{.name = name}; }
+
+inline std::uint32_t add_material(Scene& scene, const Material& m) {
+  scene.materials.push_back(m);
+  return static_cast<std::uint32_t>(scene.materials.size() - 1);
+}
+
+inline void add_sphere(Scene& scene, const std::string& name, const Point3& centre, double radius,
+                       std::uint32_t material) {
+  scene.primitives.push_back(Primitive{.name = name, .shape = Sphere(centre, radius), .material = material});
+}
+
+// The square [−h, h]² of the plane z = z0, normal +z (counter-clockwise seen from above).
+inline void add_floor(Scene& scene, const std::string& name, double z0, double h, std::uint32_t material) {
+  scene.primitives.push_back(Primitive{
+      .name = name,
+      .shape = Polygon({Point3(-h, -h, z0), Point3(h, -h, z0), Point3(h, h, z0), Point3(-h, h, z0)}),
+      .material = material});
+}
+
+inline void add_light(Scene& scene, const Point3& position, const Color& intensity) {
+  scene.point_lights.push_back(PointLight{.name = "light", .position = position, .intensity = intensity});
+}
+
+// A surface hit made by hand: the point (exact, error bound a few ulps), the
+// normal facing the side the ray came from, and a material.
+inline SurfaceHit hand_hit(const Point3& point, const Vec3& normal, std::uint32_t material) {
+  SurfaceHit hit;
+  hit.t = 1.0;
+  hit.point = point;
+  hit.point_error = Vec3(1e-15) * (Vec3(1.0) + glm::abs(point));
+  hit.geometric_normal = hit.shading_normal = normal;
+  hit.front_face = true;
+  hit.primitive = 0;
+  hit.material = material;
+  return hit;
+}
+
+}  // namespace illum::test
