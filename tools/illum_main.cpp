@@ -4,12 +4,17 @@
 //   illum scenes                              list the scenes shipped in scenes/
 //   illum render whitted --out out/           render a shipped scene (or a file path)
 //   illum trace whitted --pixel 300 200       the ray tree of one pixel: JSON, Graphviz, overlay
+#include <algorithm>
 #include <iostream>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
 
+#include "illum/core/atomic_file.hpp"
 #include "illum/core/error.hpp"
+#include "illum/core/memory_budget.hpp"
+#include "illum/core/nearest_name.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/ray_tree_files.hpp"
@@ -45,13 +50,23 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
       ->capture_default_str();
   cmd.add_flag("--no-plan", o.no_plan,
                "Trace every kind of ray at every hit (the notes' algorithm as written)");
-  cmd.add_flag("--quick", o.quick, "A small image (96 pixels wide), for tests");
+  cmd.add_flag("--quick", o.quick, "A small image (96 pixels wide), for tests")->disable_flag_override();
+}
+
+// The image, its sRGB copy for the PNG and the HDR file: checked against the
+// memory budget before anything is allocated (a huge --width is refused with
+// what it would take, not a std::bad_alloc or an hour of rendering).
+void check_render_memory(const illum::PinholeCamera& camera) {
+  illum::check_memory("a " + std::to_string(camera.width()) + " × " + std::to_string(camera.height()) +
+                          " render (the image and its copies for the files)",
+                      static_cast<double>(camera.width()) * camera.height(), 2 * sizeof(illum::Color));
 }
 
 int render(const RenderOptions& o) {
   // Everything is read and validated before the first file is written, and
   // each file is written atomically: bad input leaves no partial output.
   const illum::Scene scene = illum::load_scene(o.scene);
+  check_render_memory(illum::render_camera(scene, o.settings()));
   const illum::RenderResult result = illum::render_ray_tree(scene, o.settings());
   illum::OutputFolder out(o.out, "illum-render", "illum render " + o.scene);
   out.image(result.image, "render", scene.name + ", rendered with the ray tree (lesson 06)");
@@ -69,6 +84,7 @@ int trace(const RenderOptions& o) {
   const illum::Scene scene = illum::load_scene(o.scene);
   const illum::RenderSettings settings = o.settings();
   const illum::PinholeCamera camera = illum::render_camera(scene, settings);
+  check_render_memory(camera);
   const int x = o.pixel.at(0), y = o.pixel.at(1);
   if (x < 0 || y < 0 || x >= camera.width() || y >= camera.height())
     throw illum::InputError(
@@ -103,23 +119,38 @@ int main(int argc, char** argv) {
       ->expected(2)
       ->required();
 
+  // CLI11 says only "A subcommand is required" for `illum rendr`: name it, and the nearest.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string_view> known;
+    for (const CLI::App* sub : app.get_subcommands({})) known.push_back(sub->get_name());
+    if (std::find(known.begin(), known.end(), argv[1]) == known.end()) {
+      std::cerr << "illum: " << illum::unknown_name_message("subcommand", argv[1], known) << "\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  // As in run_program: a failed command removes every file it wrote.
+  illum::WriteTransaction transaction;
+  int status = 0;
   try {
     if (version->parsed()) std::cout << "illum 0.1.0\n";
     if (list->parsed())
       for (const auto& s : illum::embedded_scenes()) std::cout << s.name << "\n";
-    if (render_cmd->parsed()) return render(render_options);
-    if (trace_cmd->parsed()) return trace(trace_options);
+    if (render_cmd->parsed()) status = render(render_options);
+    if (trace_cmd->parsed()) status = trace(trace_options);
   } catch (const illum::NotImplemented& e) {
+    transaction.roll_back();
     std::cerr << "illum: " << e.message() << "\n";
     return 1;
   } catch (const std::exception& e) {
+    transaction.roll_back();
     std::cerr << "illum: error: " << e.what() << "\n";
     return 1;
   }
-  return 0;
+  transaction.commit();
+  return status;
 }

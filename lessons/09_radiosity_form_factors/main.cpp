@@ -352,8 +352,9 @@ int main(int argc, char** argv) {
         app.add_flag("--cube-only", settings.cube_only, "only the cube figure (timing of the matrix)");
         app.add_flag("--figure", settings.figure,
                      "the cube figure on the 864-, 2,400- and 5,400-patch cubes");
-        app.add_option("--cube-n", settings.cube_n, "patches per cube edge")
-            ->check(CLI::Range(1, 60))
+        app.add_option("--cube-n", settings.cube_n,
+                       "patches per cube edge (at most 24: 3,456 patches, minutes per variant)")
+            ->check(CLI::Range(1, 24))
             ->capture_default_str();
         app.add_option("--tolerance", settings.tolerance, "absolute tolerance of the cube image's matrix")
             ->check(CLI::Range(1e-15, 1.0))

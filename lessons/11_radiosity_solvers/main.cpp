@@ -17,7 +17,10 @@
 #include <omp.h>
 #include <CLI/CLI.hpp>
 
+#include "illum/core/error.hpp"
+#include "illum/core/memory_budget.hpp"
 #include "illum/core/stopwatch.hpp"
+#include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/io/scene_file.hpp"
@@ -67,11 +70,46 @@ RadiosityScene load_scene(const std::string& scene, double max_patch_edge) {
   return load_radiosity_scene(scene, max_patch_edge);
 }
 
+// The most patches the study may mesh a scene into (the Cornell box has 616 at its 75 mm edge).
+constexpr double max_study_patches = 6000;
+
+// What this program needs of a scene beyond what the loader checks, refused
+// before anything is written: a camera (for the images), some emission
+// (else there is no light to solve for) and some reflectance (the study
+// rescales it, which a zero cannot be).
+void check_usable(const RadiosityScene& scene, const std::string& file) {
+  const std::string name = embedded_scene(file) ? "scenes/" + file + ".json" : file;
+  if (!scene.camera)
+    throw InputError(name, "camera", "(missing)", "lesson 11 draws the scene through its camera");
+  double emitted = 0;
+  for (const Patch& p : scene.patches) emitted += p.area * (p.emission.r + p.emission.g + p.emission.b);
+  if (!(emitted > 0))
+    throw InputError(name, "materials", "(no emission)", "no surface emits light: nothing to solve");
+  if (!(max_reflectance(scene.patches) > 0))
+    throw InputError(name, "materials", "(every reflectance 0)",
+                     "every reflectance is zero: the study's reflectance scales cannot rescale it");
+  // The study solves the N × N system directly (Gaussian elimination, N³/3
+  // steps) and keeps two N × N matrices: both bound the scene's size.
+  const double n = static_cast<double>(scene.patches.size());
+  if (n > max_study_patches)
+    throw InputError(name, "surfaces", std::to_string(scene.patches.size()) + " patches",
+                     "lesson 11's study meshes a scene into at most " +
+                         std::to_string(int(max_study_patches)) +
+                         " patches (it solves the system directly); use a smaller scene");
+  check_memory("the study's two form-factor matrices", 2 * n * n, sizeof(double));
+}
+
 // The scene meshed to at least `patches` patches: the edge shrinks by 3% until it is.
+// Bounded by a count, not by edge reaching zero: 0.97^1000 ≈ 6e-14, and the
+// loader refuses a meshing beyond max_scene_patches long before.
 RadiosityScene scene_with_patches(const std::string& scene, std::size_t patches, double& edge) {
   edge = 240.0;
   RadiosityScene s = load_scene(scene, edge);
-  while (s.patches.size() < patches) s = load_scene(scene, edge *= 0.97);
+  for (int shrink = 0; s.patches.size() < patches; ++shrink) {
+    if (shrink == 1000)
+      throw std::runtime_error("cannot mesh " + scene + " into " + std::to_string(patches) + " patches");
+    s = load_scene(scene, edge *= 0.97);
+  }
   return s;
 }
 
@@ -504,7 +542,11 @@ ProgressiveRun progressive_on_demand(const std::vector<Patch>& patches, int reso
   Stopwatch watch;
   run.state = progressive_start(patches);
   const double emitted = total_power(patches, run.state.unshot);
+  const std::size_t max_shots = 1000 * patches.size();  // 1% is reached in ~3 shots per patch
   while (run.unshot >= threshold) {
+    if (run.state.shots >= max_shots)
+      throw std::runtime_error("progressive refinement left " + std::to_string(run.unshot) +
+                               " of the power unshot after " + std::to_string(max_shots) + " shots");
     const std::size_t i = choose_shooter(patches, run.state.unshot);
     Stopwatch row_watch;
     hemicube.form_factor_row_parallel(patches, i, row.data(), buffers);
@@ -654,6 +696,8 @@ int main(int argc, char** argv) {
         if (settings.unshot_threshold == 0) settings.unshot_threshold = settings.big_figure ? 1e-3 : 1e-2;
         if (settings.quick) settings.unshot_threshold = std::max(settings.unshot_threshold, 0.01);
         if (!solvers.empty()) settings.solvers = solvers;
+        // Validate before writing: the scene as the study meshes it.
+        check_usable(load_scene(settings.scene, settings.quick ? 220.0 : 75.0), settings.scene);
         OutputFolder out(options.out, info.id, info.title);
         if (settings.big_figure) {
           figure_section(out, settings);

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "illum/core/atomic_file.hpp"
+#include "illum/core/memory_budget.hpp"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #if defined(__GNUC__)
@@ -25,6 +26,8 @@ Image::Image(int width, int height, Color fill) : width_(width), height_(height)
   if (width <= 0 || height <= 0)
     throw std::invalid_argument("Image: width and height must be positive, got " + std::to_string(width) +
                                 "x" + std::to_string(height));
+  check_memory("an image of " + std::to_string(width) + " × " + std::to_string(height) + " pixels",
+               static_cast<double>(width) * height, sizeof(Color));
   pixels_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), fill);
 }
 

@@ -1,6 +1,7 @@
 #include "illum/geometry/implicit_trace.hpp"
 
 #include <cmath>
+#include <cstdint>
 
 #include "illum/core/error.hpp"
 
@@ -27,8 +28,15 @@ std::optional<Interval> march_for_sign_change(const RealFunction& f, Interval ra
   double s = range.lo;
   double fs = f.value(s);
   if (fs == 0.0) return Interval(s, s + std::min(step, range.size()));
-  while (s < range.hi) {
-    const double next = std::min(s + step, range.hi);
+  // Steps are counted, not accumulated: far from the origin s + step == s,
+  // and a loop waiting for s to reach range.hi would never end.
+  const double steps = std::ceil(range.size() / step);
+  require(steps <= max_march_steps,
+          "march_for_sign_change: more steps than max_march_steps (the step is too "
+          "small for the range)");
+  const auto count = static_cast<std::int64_t>(steps);
+  for (std::int64_t k = 1; k <= count; ++k) {
+    const double next = k == count ? range.hi : std::min(range.lo + static_cast<double>(k) * step, range.hi);
     const double fn = f.value(next);
     // A sign change between two samples; an even number of crossings inside
     // one step (a thin feature, a tangent ray) leaves no trace.

@@ -39,7 +39,10 @@ struct ImplicitHit {
 // The first [s, s + h] with a sign change of f, sampling from range.lo in
 // steps h (the last step is clipped to range.hi). Nothing when no sample pair
 // changes sign. Throws std::invalid_argument when h is not positive and
-// finite or the range is empty or infinite.
+// finite or the range is empty or infinite, or when the range holds more
+// than max_march_steps steps (sample k is range.lo + k·h, counted in an
+// integer, so the march ends even where s + h rounds back to s).
+constexpr double max_march_steps = 1e8;
 std::optional<Interval> march_for_sign_change(const RealFunction& f, Interval range, double step);
 
 // The nearest hit of the ray with the surface, by `method`. Throws

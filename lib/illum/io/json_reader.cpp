@@ -4,15 +4,23 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "illum/core/error.hpp"
+#include "illum/core/json_text_check.hpp"
+#include "illum/core/nearest_name.hpp"
 
 namespace illum {
 
 JsonReader::JsonReader(std::shared_ptr<const Document> doc, const nlohmann::json* node, std::string path)
     : doc_(std::move(doc)), node_(node), path_(std::move(path)) {}
 
+void JsonReader::check_text(std::string_view text, const std::string& file_name) {
+  check_json_text(text, file_name, max_depth);
+}
+
 JsonReader JsonReader::parse_text(const std::string& text, const std::string& file_name) {
+  check_text(text, file_name);
   auto doc = std::make_shared<Document>();
   doc->file = file_name;
   try {
@@ -25,6 +33,9 @@ JsonReader JsonReader::parse_text(const std::string& text, const std::string& fi
 }
 
 JsonReader JsonReader::parse_file(const std::filesystem::path& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec))
+    throw InputError(file.string(), "(file)", file.string(), "this is a directory, not a JSON file");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string(), "(file)", "(unreadable)", "cannot open the file");
   std::ostringstream text;
@@ -117,34 +128,6 @@ std::vector<std::string> JsonReader::keys() const {
   std::vector<std::string> out;
   for (const auto& item : node_->items()) out.push_back(item.key());
   return out;
-}
-
-namespace {
-
-// Levenshtein distance, for "did you mean" suggestions (short names only).
-std::size_t edit_distance(std::string_view a, std::string_view b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
-}  // namespace
-
-std::string nearest_name(std::string_view name, const std::vector<std::string_view>& known) {
-  std::string_view best;
-  std::size_t best_distance = std::max<std::size_t>(2, name.size() / 3) + 1;
-  for (std::string_view k : known)
-    if (const std::size_t d = edit_distance(name, k); d < best_distance) best = k, best_distance = d;
-  return std::string(best);
 }
 
 void JsonReader::only_fields(std::initializer_list<std::string_view> known) const {

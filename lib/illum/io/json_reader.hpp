@@ -9,6 +9,7 @@
 //     double r = s.at("radius").positive_number();   // InputError if ≤ 0, NaN, or not a number
 //   }
 #include <filesystem>
+#include <initializer_list>
 #include <memory>
 #include <optional>
 #include <string>
@@ -17,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "illum/core/nearest_name.hpp"  // nearest_name, for "did you mean"
 #include "illum/core/vec.hpp"
 
 namespace illum {
@@ -28,6 +30,14 @@ class JsonReader {
   static JsonReader parse_file(const std::filesystem::path& file);
   // Parses text as if it came from `file_name` (for tests and embedded scenes).
   static JsonReader parse_text(const std::string& text, const std::string& file_name);
+
+  // What the JSON parser's own messages cannot name, checked on the text
+  // before it is parsed (parse_text calls it): nesting deeper than
+  // max_depth, and numbers outside the range of a double (1e999). Throws
+  // InputError with the file, the field's path and the number as written.
+  // It does not recurse, so hostile nesting cannot overflow the stack.
+  static void check_text(std::string_view text, const std::string& file_name);
+  static constexpr int max_depth = 64;
 
   const std::string& file() const { return doc_->file; }
   const std::string& path() const { return path_; }  // "" for the root, then "a.b[2].c"
@@ -67,9 +77,5 @@ class JsonReader {
   const nlohmann::json* node_;
   std::string path_;
 };
-
-// The name of `known` nearest to `name` by edit distance, if it is close
-// enough to be a typo (at most max(2, |name|/3) edits); otherwise "".
-std::string nearest_name(std::string_view name, const std::vector<std::string_view>& known);
 
 }  // namespace illum

@@ -8,7 +8,8 @@ namespace illum {
 
 OutputFolder::OutputFolder(std::filesystem::path folder, std::string id, std::string title)
     : folder_(std::move(folder)), id_(std::move(id)), title_(std::move(title)) {
-  std::filesystem::create_directories(folder_);
+  // The folder is made by the first write, not here: a program that refuses
+  // its input after opening its OutputFolder leaves no empty folder behind.
 }
 
 void OutputFolder::image(const Image& img, const std::string& name, const std::string& caption) {

@@ -1,11 +1,13 @@
 #include "illum/io/program.hpp"
 
+#include <charconv>
 #include <iostream>
 
 #include <omp.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
 
+#include "illum/core/atomic_file.hpp"
 #include "illum/core/error.hpp"
 
 namespace illum {
@@ -18,25 +20,55 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
   options.out = std::filesystem::path("out") / info.id;
   app.add_option("--out", options.out, "Folder for the outputs (images, tables, plots)")
       ->capture_default_str();
-  app.add_flag("--quick", options.quick, "Small sizes and short studies (used by the tests)");
-  app.add_option("--seed", options.seed, "Seed for every random choice")->capture_default_str();
-  app.add_option("--threads", options.threads, "Threads to use (0 = all cores)")->capture_default_str();
+  // --quick is a plain switch: "--quick=3" is refused, not read as "true".
+  app.add_flag("--quick", options.quick, "Small sizes and short studies (used by the tests)")
+      ->disable_flag_override();
+  // Read as text, so that "-1" is refused instead of wrapping to 2^64 - 1 and
+  // 2^64 is refused instead of saturating.
+  std::string seed_text = std::to_string(options.seed);
+  app.add_option("--seed", seed_text, "Seed for every random choice (0 to 2^64 - 1)")
+      ->capture_default_str()
+      ->check(
+          [&](const std::string& text) -> std::string {
+            std::uint64_t value = 0;
+            const char* end = text.data() + text.size();
+            const auto [ptr, ec] = std::from_chars(text.data(), end, value);
+            if (text.empty() || ec != std::errc() || ptr != end)
+              return "must be a whole number from 0 to 18446744073709551615, got '" + text + "'";
+            return "";
+          },
+          "SEED");
+  const int cores = omp_get_num_procs();
+  app.add_option("--threads", options.threads,
+                 "Threads to use (0 = all cores, at most " + std::to_string(max_threads) + ")")
+      ->capture_default_str()
+      ->check(CLI::Range(0, max_threads));
   if (add_options) add_options(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
+  std::from_chars(seed_text.data(), seed_text.data() + seed_text.size(), options.seed);
   if (options.threads > 0) omp_set_num_threads(options.threads);
+  if (options.threads > cores)
+    std::cerr << info.id << ": note: --threads " << options.threads << " is more than this machine's "
+              << cores << " cores\n";
+  // Every file the body writes is recorded; if it throws, they are removed
+  // and the output folder is left as it was (validate before write, by construction).
+  WriteTransaction transaction;
   try {
     body(options);
   } catch (const NotImplemented& e) {
+    transaction.roll_back();
     std::cerr << info.id << ": " << e.message() << "\n";
     return 1;
   } catch (const std::exception& e) {
+    transaction.roll_back();
     std::cerr << info.id << ": error: " << e.what() << "\n";
     return 1;
   }
+  transaction.commit();
   return 0;
 }
 

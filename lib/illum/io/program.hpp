@@ -1,6 +1,6 @@
 #pragma once
 // What every illum program shares: --help, --out DIR, --quick, --seed, and
-// errors reported as one clear line with exit code 1 (2 for bad flags).
+// errors reported as one clear line with exit code 1 (CLI11's non-zero code for bad flags).
 //
 //   int main(int argc, char** argv) {
 //     illum::ProgramInfo info{"lesson01", "Ray and sphere", "Renders ... and runs the study."};
@@ -27,12 +27,17 @@ struct ProgramOptions {
   std::filesystem::path out;  // --out, default out/<id>
   bool quick = false;         // --quick: small sizes, for the tests
   std::uint64_t seed = 1;     // --seed, for every random choice
-  int threads = 0;            // --threads, 0 = all cores (OpenMP's default)
+  int threads = 0;            // --threads, 0 = all cores (OpenMP's default), at most max_threads
 };
 
+// The largest --threads accepted: far above any core count a course machine
+// has, far below the count that makes the OpenMP runtime fail to start its threads.
+constexpr int max_threads = 256;
+
 // Parses the shared flags (and any that `add_options` registers), then runs
-// `body`. An exception from `body` is printed as "<id>: error: <what>" and
-// the exit code is 1.
+// `body` inside a WriteTransaction. An exception from `body` is printed as
+// "<id>: error: <what>", every file the body wrote is removed (the output
+// folder is left as it was), and the exit code is 1.
 int run_program(int argc, char** argv, const ProgramInfo& info,
                 const std::function<void(CLI::App&)>& add_options,
                 const std::function<void(const ProgramOptions&)>& body);

@@ -8,6 +8,7 @@
 #include <tiny_obj_loader.h>
 
 #include "illum/core/error.hpp"
+#include "illum/core/memory_budget.hpp"
 #include "illum/io/embedded_scenes.hpp"
 
 namespace illum {
@@ -357,9 +358,14 @@ Primitive read_primitive(const JsonReader& p, std::size_t i, const Scene& scene,
 
 bool emits(const Material& m) { return m.emission != Color(0.0); }
 
-Scene read_scene_from(const JsonReader& root, const FileSource& source) {
+// The top level's fields, checked first by every reader of the format.
+void only_top_fields(const JsonReader& root) {
   root.only_fields({"format", "name", "description", "notes", "units", "camera", "ambient_light", "materials",
                     "lights", "primitives"});
+}
+
+Scene read_scene_from(const JsonReader& root, const FileSource& source) {
+  only_top_fields(root);
   const JsonReader format = root.at("format");
   if (!format.json().is_number_integer() || format.json().get<long long>() != scene_format_version)
     format.fail("this build reads scene format " + std::to_string(scene_format_version) +
@@ -463,12 +469,15 @@ RadiosityScene radiosity_from(const JsonReader& root, const FileSource& source, 
   // The radiosity checks of each polygon come first, so that their own
   // messages (an emitter of zero area, a wall off its plane by 1.6 mm) are
   // the ones a user sees, not the general polygon constructor's.
+  // A misspelt field gets its "did you mean" here too, not "field required".
+  only_top_fields(root);
   const JsonReader primitives = root.at("primitives");
   for (std::size_t i = 0; i < primitives.size(); ++i) {
     const JsonReader p = primitives.at(i);
     const std::string type = p.at("type").string();
     if (type != "polygon" && type != "triangle")
       p.at("type").fail("the radiosity lessons mesh polygons and triangles only, not a " + type);
+    p.only_fields({"type", "name", "material", "vertices", "holes"});
     if (p.has("holes")) p.at("holes").fail("the radiosity lessons mesh polygons without holes");
     const JsonReader vertices = p.at("vertices");
     const std::vector<Point3> polygon = read_points(vertices, 0, max_polygon_vertices);
@@ -521,6 +530,20 @@ RadiosityScene radiosity_from(const JsonReader& root, const FileSource& source, 
     surface.reflectance = m.diffuse;
     surface.emission = m.emission;
     out.surfaces.push_back(std::move(surface));
+  }
+  // Patch counts, in double, against the stated maximum before anything is
+  // meshed (a 1 km wall meshed at 1 mm would be 10^12 patches).
+  double total = 0;
+  for (std::size_t i = 0; i < out.surfaces.size(); ++i) {
+    const double count = radiosity_patch_grid(out.surfaces[i].polygon, max_patch_edge).patches;
+    total += count;
+    if (!(total <= max_scene_patches)) {
+      std::ostringstream msg;
+      msg << "meshing with patch edge " << max_patch_edge << " would make " << count
+          << " patches of this polygon (" << total << " so far); the most a scene may have is "
+          << max_scene_patches;
+      primitives.at(i).at("vertices").fail(msg.str());
+    }
   }
   // Meshing, only once every surface is valid: no partial output.
   mesh_radiosity_surfaces(out, max_patch_edge);

@@ -4,15 +4,34 @@
 #include <cmath>
 
 #include "illum/core/error.hpp"
+#include "illum/core/memory_budget.hpp"
 #include "illum/core/parallel.hpp"
 #include "illum/io/scene_file.hpp"
 
 namespace illum {
 
+namespace {
+
+// Four Images of Color and the depth buffer of render_sphere_preview.
+constexpr double preview_bytes_per_pixel = 4 * sizeof(Color) + sizeof(double);
+
+void check_preview_memory(int width, int height) {
+  check_memory("a " + std::to_string(width) + " × " + std::to_string(height) +
+                   " preview (four images and a depth buffer)",
+               static_cast<double>(width) * height, preview_bytes_per_pixel);
+}
+
+}  // namespace
+
 SphereScene read_sphere_scene(const JsonReader& root) {
   const Scene full = read_scene(root);
   SphereScene scene;
   scene.camera = full.camera;
+  try {
+    check_preview_memory(scene.camera.width, scene.camera.height);
+  } catch (const std::length_error& e) {
+    root.at("camera").at("width").fail(e.what());
+  }
   for (std::size_t i = 0; i < full.primitives.size(); ++i) {
     const Primitive& p = full.primitives[i];
     const auto* sphere = std::get_if<Sphere>(&p.shape);
@@ -34,6 +53,7 @@ SphereScene load_sphere_scene(const std::string& file_or_name) {
 SpherePreview render_sphere_preview(const SphereScene& scene, int width, int height) {
   if (width <= 0) width = scene.camera.width;
   if (height <= 0) height = scene.camera.height;
+  check_preview_memory(width, height);
   const CameraSpec& c = scene.camera;
   const PinholeCamera camera(c.eye, c.target, c.up, c.vertical_fov_degrees, width, height);
   std::vector<Sphere> spheres;

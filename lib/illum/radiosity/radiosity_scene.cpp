@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "illum/core/error.hpp"
+#include "illum/core/memory_budget.hpp"
 
 namespace illum {
 namespace {
@@ -17,8 +18,10 @@ double longest_edge(const std::vector<Point3>& polygon) {
   return longest;
 }
 
-int divisions(double edge, double max_patch_edge) {
-  return std::max(1, static_cast<int>(std::ceil(edge / max_patch_edge - 1e-9)));
+// Patches along an edge, in double: a wall far larger than the patch edge
+// is refused by count (radiosity_patch_grid), never cast to an int that overflows.
+double divisions(double edge, double max_patch_edge) {
+  return std::max(1.0, std::ceil(edge / max_patch_edge - 1e-9));
 }
 
 }  // namespace
@@ -59,22 +62,35 @@ std::optional<PolygonProblem> radiosity_polygon_problem(const std::vector<Point3
   return std::nullopt;
 }
 
+PatchGrid radiosity_patch_grid(const std::vector<Point3>& p, double max_patch_edge) {
+  if (p.size() == 4) {
+    const double nu = divisions(std::max(length(p[1] - p[0]), length(p[2] - p[3])), max_patch_edge);
+    const double nv = divisions(std::max(length(p[3] - p[0]), length(p[2] - p[1])), max_patch_edge);
+    return {nu, nv, nu * nv};
+  }
+  const double n = divisions(longest_edge(p), max_patch_edge);
+  return {n, n, n * n};
+}
+
 void mesh_radiosity_surfaces(RadiosityScene& scene, double max_patch_edge) {
   require(std::isfinite(max_patch_edge) && max_patch_edge > 0.0,
           "load_radiosity_scene: max_patch_edge must be positive and finite");
+  double total = 0;
+  for (const RadiositySurface& surface : scene.surfaces)
+    total += radiosity_patch_grid(surface.polygon, max_patch_edge).patches;
+  require(total <= max_scene_patches, "mesh_radiosity_surfaces: more patches than max_scene_patches");
   scene.patches.clear();
   for (std::size_t s = 0; s < scene.surfaces.size(); ++s) {
     RadiositySurface& surface = scene.surfaces[s];
     const auto& p = surface.polygon;
+    const PatchGrid grid = radiosity_patch_grid(p, max_patch_edge);
     std::vector<Patch> patches;
     if (p.size() == 4) {
-      const int nu = divisions(std::max(length(p[1] - p[0]), length(p[2] - p[3])), max_patch_edge);
-      const int nv = divisions(std::max(length(p[3] - p[0]), length(p[2] - p[1])), max_patch_edge);
-      patches = mesh_quad(p[0], p[1], p[2], p[3], nu, nv, surface.reflectance, surface.emission,
-                          static_cast<int>(s));
+      patches = mesh_quad(p[0], p[1], p[2], p[3], static_cast<int>(grid.nu), static_cast<int>(grid.nv),
+                          surface.reflectance, surface.emission, static_cast<int>(s));
     } else {
-      patches = mesh_triangle(p[0], p[1], p[2], divisions(longest_edge(p), max_patch_edge),
-                              surface.reflectance, surface.emission, static_cast<int>(s));
+      patches = mesh_triangle(p[0], p[1], p[2], static_cast<int>(grid.nu), surface.reflectance,
+                              surface.emission, static_cast<int>(s));
     }
     surface.first_patch = scene.patches.size();
     surface.patch_count = patches.size();

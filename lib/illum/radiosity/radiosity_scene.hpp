@@ -59,7 +59,18 @@ std::optional<PolygonProblem> radiosity_polygon_problem(const std::vector<Point3
 // setting scene.patches and each surface's first_patch and patch_count.
 // Precondition: every polygon passed radiosity_polygon_problem. Throws
 // std::invalid_argument when max_patch_edge is not positive and finite.
+// std::invalid_argument, too, when the scene would have more than
+// max_scene_patches patches (core/memory_budget.hpp): check with
+// radiosity_patch_grid first, to name the surface.
 void mesh_radiosity_surfaces(RadiosityScene& scene, double max_patch_edge);
+
+// How mesh_radiosity_surfaces divides a polygon: nu × nv patches for a quad,
+// nu² (nu = nv) for a triangle. Counted in double, so that a wall 10^9 times
+// the patch edge gives 10^18, not an overflowed int.
+struct PatchGrid {
+  double nu = 1, nv = 1, patches = 1;
+};
+PatchGrid radiosity_patch_grid(const std::vector<Point3>& polygon, double max_patch_edge);
 
 // Relative planarity tolerance of scene polygons: a vertex may lie at most
 // this fraction of the polygon's size off its mean plane (0.55 µm on a

@@ -1,0 +1,102 @@
+#!/usr/bin/env python3
+"""Writes the bad scenes of tests/badinput/cases.txt (run it here after a
+format change): each is a valid scene of docs/scene-format.md with one thing
+wrong, named by its file name. r_*: radiosity scenes (lesson 11 --scene),
+s_*: scenes of spheres (illum render)."""
+import copy
+import json
+
+CAMERA = {"eye": [50, 50, -200], "target": [50, 50, 50], "up": [0, 1, 0], "vertical_fov_degrees": 40,
+          "width": 64, "height": 64}
+RADIOSITY = {
+    "format": 1, "name": "two quads", "camera": CAMERA,
+    "materials": {"white": {"diffuse": [0.7, 0.7, 0.7]},
+                  "light": {"diffuse": [0.5, 0.5, 0.5], "emission": [10, 10, 10]}},
+    "primitives": [
+        {"type": "polygon", "name": "floor", "material": "white",
+         "vertices": [[0, 0, 0], [0, 0, 100], [100, 0, 100], [100, 0, 0]]},
+        {"type": "polygon", "name": "light", "material": "light",
+         "vertices": [[0, 100, 0], [100, 100, 0], [100, 100, 100], [0, 100, 100]]}]}
+SPHERES = {
+    "format": 1,
+    "camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "up": [0, 1, 0], "vertical_fov_degrees": 45,
+               "width": 32, "height": 24},
+    "materials": {"red": {"diffuse": [0.8, 0.3, 0.2]}},
+    "primitives": [{"type": "sphere", "name": "ball", "material": "red", "center": [0, 0, 0], "radius": 1}]}
+
+
+def write(name, scene):
+    with open(name, "w") as f:
+        f.write(scene if isinstance(scene, str) else json.dumps(scene, indent=1) + "\n")
+
+
+def variant(base, change):
+    s = copy.deepcopy(base)
+    change(s)
+    return s
+
+
+def rename(d, old, new):
+    d[new] = d.pop(old)
+
+
+def floor(s, vertices):
+    s["primitives"][0]["vertices"] = vertices
+
+
+R, S = RADIOSITY, SPHERES
+write("r_valid.json", R)
+write("r_emision_typo.json", variant(R, lambda s: rename(s["materials"]["light"], "emission", "emision")))
+write("r_difuse_typo.json", variant(R, lambda s: rename(s["materials"]["white"], "diffuse", "difuse")))
+write("r_primitives_typo.json", variant(R, lambda s: rename(s, "primitives", "primitivs")))
+write("r_vertices_typo.json", variant(R, lambda s: rename(s["primitives"][0], "vertices", "vertexes")))
+write("r_camera_typo.json", variant(R, lambda s: s["camera"].update(fov=40)))
+write("r_camera_nan.json", variant(R, lambda s: s["camera"].update(eye=[50, "NaN", -200])))
+write("r_camera_null.json", variant(R, lambda s: s["camera"].update(up=[0, None, 0])))
+write("r_camera_1e999.json", json.dumps(R).replace('"eye": [50, 50, -200]', '"eye": [50, 1e999, -200]'))
+write("r_eye_target.json", variant(R, lambda s: s["camera"].update(target=[50, 50, -200])))
+write("r_up_parallel.json", variant(R, lambda s: s["camera"].update(up=[0, 0, 2])))
+write("r_no_camera.json", variant(R, lambda s: s.pop("camera")))
+write("r_zero_reflectance.json",
+      variant(R, lambda s: [m.update(diffuse=[0, 0, 0]) for m in s["materials"].values()]))
+write("r_no_emission.json", variant(R, lambda s: s["materials"]["light"].pop("emission")))
+write("r_nonplanar.json", variant(R, lambda s: floor(s, [[0, 0, 0], [0, 0, 100], [100, 1, 100], [100, 0, 0]])))
+write("r_huge_wall.json", variant(R, lambda s: floor(s, [[0, 0, 0], [0, 0, 1e9], [1e9, 0, 1e9], [1e9, 0, 0]])))
+write("r_big_for_study.json",
+      variant(R, lambda s: floor(s, [[0, 0, 0], [0, 0, 10000], [10000, 0, 10000], [10000, 0, 0]])))
+write("r_nonconvex.json", variant(R, lambda s: floor(s, [[0, 0, 0], [100, 0, 100], [0, 0, 100], [100, 0, 0]])))
+write("r_degenerate.json", variant(R, lambda s: floor(s, [[0, 0, 0], [50, 0, 50], [100, 0, 100]])))
+write("r_reflectance_one.json", variant(R, lambda s: s["materials"]["white"].update(diffuse=[1.0, 0.5, 0.5])))
+write("r_negative_emission.json", variant(R, lambda s: s["materials"]["light"].update(emission=[10, -1, 10])))
+write("r_unknown_material.json", variant(R, lambda s: s["primitives"][0].update(material="whyte")))
+write("r_five_vertices.json", variant(R, lambda s: s["primitives"][0]["vertices"].append([50, 0, -20])))
+write("r_sphere.json", variant(R, lambda s: s["primitives"].append(
+    {"type": "sphere", "material": "white", "center": [50, 50, 50], "radius": 10})))
+write("r_empty_primitives.json", variant(R, lambda s: s.update(primitives=[])))
+write("r_primitive_not_object.json", variant(R, lambda s: s["primitives"].append(3)))
+write("r_not_json.json", '{ "primitives": [ { "material": "white", } ] \n')
+write("r_top_array.json", "[1, 2, 3]\n")
+
+write("s_valid.json", S)
+write("s_colour_field.json", variant(S, lambda s: rename(s["materials"]["red"], "diffuse", "colour")))
+write("s_difuse_typo.json", variant(S, lambda s: rename(s["materials"]["red"], "diffuse", "difuse")))
+write("s_radius_typo.json", variant(S, lambda s: rename(s["primitives"][0], "radius", "raduis")))
+write("s_top_typo.json", variant(S, lambda s: rename(s, "primitives", "primitive")))
+write("s_no_format.json", variant(S, lambda s: s.pop("format")))
+write("s_eye_target.json", variant(S, lambda s: s["camera"].update(target=[0, 0, 3])))
+write("s_up_parallel.json", variant(S, lambda s: s["camera"].update(up=[0, 0, -5])))
+write("s_camera_string.json", variant(S, lambda s: s["camera"].update(eye="here")))
+write("s_camera_1e999.json", json.dumps(S).replace('"target": [0, 0, 0]', '"target": [0, -1e999, 0]'))
+write("s_width_zero.json", variant(S, lambda s: s["camera"].update(width=0)))
+write("s_width_fraction.json", variant(S, lambda s: s["camera"].update(width=31.5)))
+write("s_huge_image.json", variant(S, lambda s: s["camera"].update(width=16384, height=16384)))
+write("s_radius_negative.json", variant(S, lambda s: s["primitives"][0].update(radius=-2)))
+write("s_color_above_one.json", variant(S, lambda s: s["materials"]["red"].update(diffuse=[0.5, 1.5, 0.5])))
+write("s_fov_180.json", variant(S, lambda s: s["camera"].update(vertical_fov_degrees=180)))
+write("s_empty_primitives.json", variant(S, lambda s: s.update(primitives=[])))
+write("s_primitive_not_object.json", variant(S, lambda s: s["primitives"].append([1, 2, 3])))
+write("s_polygon.json", variant(S, lambda s: s["primitives"].append(
+    {"type": "polygon", "material": "red", "vertices": [[0, 0, -2], [1, 0, -2], [0, 1, -2]]})))
+write("s_no_camera.json", variant(S, lambda s: s.pop("camera")))
+write("s_not_json.json", '{"camera": {"eye": [0, 0, 3]')
+write("s_top_string.json", '"primitives"\n')
