@@ -4,6 +4,7 @@
                 [--build-dir DIR] [NN ...]
     tools/grade --check-integrity --build-dir DIR
     tools/grade --pack-autograder FILE.zip [--hidden DIR] [NN ...]
+    tools/grade --mutants [NN ...] [--sample N --seed S] [--jobs J] [--report FILE]
 
 The autograder (run_autograder) adds --submission-info FILE (what was
 installed from the upload) and --fallback-stubs DIR (pristine stubs: a
@@ -222,7 +223,12 @@ def pack(args: argparse.Namespace, root: Path) -> int:
 
 
 def main(argv: list[str] | None = None) -> int:
-    args = parse_arguments(sys.argv[1:] if argv is None else argv)
+    argv = sys.argv[1:] if argv is None else argv
+    if "--mutants" in argv:  # the mutation report has options of its own (tools/grading/mutants.py)
+        from .mutants import main as mutants_main
+
+        return mutants_main(argv)
+    args = parse_arguments(argv)
     root = project.ROOT
     try:
         if args.check_integrity:

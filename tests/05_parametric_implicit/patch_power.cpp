@@ -1,0 +1,195 @@
+// Lesson 05 grading tests for the boundaries of the Bézier patch
+// intersection: rays through the edges and a corner of the parameter square
+// (closed), a hit from the back (det J < 0), patches far smaller and larger
+// than 1 (the singularity test is relative to |S_u||S_v|), the exact Newton
+// step count where F is linear in (u, v), and max_iterations at its bounds.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include "illum/geometry/bezier_patch.hpp"
+#include "illum/geometry/patch_newton.hpp"
+
+using namespace illum;
+
+namespace {
+
+// S(u, v) = (c·u, c·v, c·uv): the saddle scaled by c (corners 0, (c,0,0), (0,c,0), (c,c,c)).
+BezierPatch scaled_saddle(double c) {
+  return BezierPatch::bilinear(Point3(0, 0, 0), Point3(c, 0, 0), Point3(0, c, 0), Point3(c, c, c));
+}
+
+}  // namespace
+
+TEST_SUITE("lesson05") {
+  TEST_CASE("hard case: rays through the edges and corners of the parameter square hit (it is closed)") {
+    // Vertical rays at (x, y): on the saddle x = u, y = v exactly, z = uv, s = 5 − uv.
+    const BezierPatch patch = scaled_saddle(1.0);
+    const double points[][2] = {{0.0, 0.5}, {1.0, 0.5}, {0.5, 0.0}, {0.5, 1.0}, {1.0, 1.0}, {0.0, 0.0}};
+    for (const auto& p : points) {
+      const double u = p[0], v = p[1];
+      INFO("ray through (", u, ", ", v, "): on the boundary of [0, 1]², which belongs to the patch");
+      const std::optional<PatchHit> hit = intersect_patch(Ray(Point3(u, v, 5), Vec3(0, 0, -1)), patch);
+      REQUIRE(hit);
+      CHECK(std::abs(hit->u - u) <= 1e-12);
+      CHECK(std::abs(hit->v - v) <= 1e-12);
+      CHECK(hit->u >= 0.0);
+      CHECK(hit->u <= 1.0);
+      CHECK(hit->v >= 0.0);
+      CHECK(hit->v <= 1.0);
+      CHECK(std::abs(hit->s - (5.0 - u * v)) <= 1e-12);
+    }
+    CHECK_FALSE_MESSAGE(intersect_patch(Ray(Point3(1.001, 0.5, 5), Vec3(0, 0, -1)), patch),
+                        "x = 1.001: u would be 1.001, outside the square");
+  }
+
+  TEST_CASE("a hit from the back of the patch (ω·(S_u × S_v) > 0) is a hit, with the parametrised normal") {
+    // From below, along +z, onto (0.25, 0.75): z = uv = 0.1875, s = 0.1875 + 2;
+    // the normal (−v, −u, 1)/√(u² + v² + 1) keeps its orientation (it faces the other way).
+    const std::optional<PatchHit> hit =
+        intersect_patch(Ray(Point3(0.25, 0.75, -2), Vec3(0, 0, 1)), scaled_saddle(1));
+    REQUIRE_MESSAGE(hit,
+                    "det J = ω·(S_u × S_v) is positive from below and negative from above: only |det J| "
+                    "says singular");
+    CHECK(std::abs(hit->s - 2.1875) <= 1e-12);
+    const double norm = std::sqrt(0.75 * 0.75 + 0.25 * 0.25 + 1.0);
+    CHECK(std::abs(hit->normal.x + 0.75 / norm) <= 1e-12);
+    CHECK(std::abs(hit->normal.y + 0.25 / norm) <= 1e-12);
+    CHECK(std::abs(hit->normal.z - 1.0 / norm) <= 1e-12);
+  }
+
+  TEST_CASE("hard case: patches of size 1e-4 and 100 are hit alike (singularity is relative to |S_u||S_v|)") {
+    for (double c : {1e-4, 100.0}) {
+      INFO("saddle scaled by ", c, ": |S_u||S_v| ≈ c², det J ≈ c² for a ray along −z");
+      // Down onto (0.5c, 0.25c): u = 0.5, v = 0.25, z = c·uv = c/8.
+      const Ray ray(Point3(0.5 * c, 0.25 * c, 3 * c), Vec3(0, 0, -1));
+      PatchOptions options;
+      options.tolerance = 1e-12 * c;  // distances scale with the patch
+      const std::optional<PatchHit> hit = intersect_patch(ray, scaled_saddle(c), options);
+      REQUIRE(hit);
+      CHECK(std::abs(hit->u - 0.5) <= 1e-9);
+      CHECK(std::abs(hit->v - 0.25) <= 1e-9);
+      CHECK(std::abs(hit->s - (3 * c - c / 8)) <= 1e-9 * c);
+    }
+  }
+
+  TEST_CASE("hard case: a ray crossing a wave twice gets the nearer hit, whichever way it runs") {
+    // Heights 0, 1, −1, 0 along u (degree 3), flat in v (degree 1): x = u, y = v,
+    // z = 3u(1 − u)(1 − 2u). A ray at height 0.05 along ±x at y = 0.3 meets it
+    // where 3u(1 − u)(1 − 2u) = 0.05: once near u ≈ 0.017 and once near u ≈ 0.48.
+    // Newton must start inside each sub-patch the ray's box test keeps: started
+    // elsewhere it converges to the other crossing, the farther one.
+    std::vector<Point3> points;
+    const double heights[4] = {0, 1, -1, 0};
+    for (int j = 0; j <= 1; ++j)
+      for (int i = 0; i <= 3; ++i) points.emplace_back(i / 3.0, j, heights[i]);
+    const BezierPatch wave(3, 1, points);
+    // The two roots by bisection on g(u) = 3u(1 − u)(1 − 2u) − 0.05 (g < 0 at 0 and at 0.5, > 0 at 0.2).
+    const auto root = [](double lo, double hi) {
+      const auto g = [](long double u) { return 3 * u * (1 - u) * (1 - 2 * u) - 0.05L; };
+      long double a = lo, b = hi;
+      const bool rising = g(a) < 0;
+      for (int k = 0; k < 200; ++k) {
+        const long double m = (a + b) / 2;
+        ((g(m) < 0) == rising ? a : b) = m;
+      }
+      return static_cast<double>((a + b) / 2);
+    };
+    const double first = root(0.0, 0.2), second = root(0.2, 0.5);
+    REQUIRE(first < 0.05);
+    REQUIRE(second > 0.4);
+    const auto forward = intersect_patch(Ray(Point3(-1, 0.3, 0.05), Vec3(1, 0, 0)), wave);
+    REQUIRE(forward);
+    CHECK_MESSAGE(std::abs(forward->u - first) <= 1e-9, "along +x the nearer crossing is the one at small u");
+    CHECK(std::abs(forward->s - (1 + first)) <= 1e-9);
+    CHECK(std::abs(forward->v - 0.3) <= 1e-9);
+    const auto backward = intersect_patch(Ray(Point3(2, 0.3, 0.05), Vec3(-1, 0, 0)), wave);
+    REQUIRE(backward);
+    CHECK_MESSAGE(std::abs(backward->u - second) <= 1e-9,
+                  "along −x the nearer crossing is the one near u ≈ 0.48");
+    CHECK(std::abs(backward->s - (2 - second)) <= 1e-9);
+  }
+
+  TEST_CASE("hard case: the same wave turned to run along v, crossed along ±y at u = 0.3") {
+    // Heights 0, 1, −1, 0 along v, flat in u: z = 3v(1 − v)(1 − 2v). The
+    // sub-patches the nearer crossing lies in are now upper halves in v.
+    std::vector<Point3> points;
+    const double heights[4] = {0, 1, -1, 0};
+    for (int j = 0; j <= 3; ++j)
+      for (int i = 0; i <= 1; ++i) points.emplace_back(i, j / 3.0, heights[j]);
+    const BezierPatch wave(1, 3, points);
+    const auto root = [](double lo, double hi) {  // bisection on 3v(1 − v)(1 − 2v) − 0.05
+      const auto g = [](long double v) { return 3 * v * (1 - v) * (1 - 2 * v) - 0.05L; };
+      long double a = lo, b = hi;
+      const bool rising = g(a) < 0;
+      for (int k = 0; k < 200; ++k) {
+        const long double m = (a + b) / 2;
+        ((g(m) < 0) == rising ? a : b) = m;
+      }
+      return static_cast<double>((a + b) / 2);
+    };
+    const double first = root(0.0, 0.2), second = root(0.2, 0.5);
+    const auto forward = intersect_patch(Ray(Point3(0.3, -1, 0.05), Vec3(0, 1, 0)), wave);
+    REQUIRE(forward);
+    CHECK_MESSAGE(std::abs(forward->v - first) <= 1e-9, "along +y the nearer crossing is the one at small v");
+    CHECK(std::abs(forward->u - 0.3) <= 1e-9);
+    const auto backward = intersect_patch(Ray(Point3(0.3, 2, 0.05), Vec3(0, -1, 0)), wave);
+    REQUIRE(backward);
+    CHECK_MESSAGE(std::abs(backward->v - second) <= 1e-9,
+                  "along −y the nearer crossing is the one near v ≈ 0.48");
+    CHECK(std::abs(backward->s - (2 - second)) <= 1e-9);
+  }
+
+  TEST_CASE("hard case: oblique rays onto the edges u = 0 and u = 1 report u inside [0, 1]") {
+    // Rays along (±1, 0.3, −1)/|·| aimed at saddle points (e, v, e·v), e = 0 or 1:
+    // Newton stops within 1e−12 of the planes, so its u may lie a hair outside
+    // the square; the contract clamps it (the 1e−9 slack admits the hit).
+    const BezierPatch patch = scaled_saddle(1.0);
+    for (int k = 0; k <= 40; ++k) {
+      const double v = 0.05 + 0.0225 * k;
+      for (double e : {0.0, 1.0}) {
+        const Vec3 w = normalize(Vec3(e == 0.0 ? 1.0 : -1.0, 0.3, -1.0));
+        const Point3 target(e, v, e * v);
+        const Ray ray(target - 2.0 * w, w);
+        INFO("edge u = ", e, ", v = ", v);
+        const std::optional<PatchHit> hit = intersect_patch(ray, patch);
+        REQUIRE(hit);
+        CHECK_MESSAGE((hit->u >= 0.0 && hit->u <= 1.0), "hit.u is clamped to [0, 1]");
+        CHECK(std::abs(hit->u - e) <= 1e-9);
+        CHECK(std::abs(hit->v - v) <= 1e-9);
+      }
+    }
+  }
+
+  TEST_CASE("intersect_patch with max_depth 0: one Newton start at the patch's centre") {
+    PatchOptions options;
+    options.max_depth = 0;
+    const std::optional<PatchHit> hit =
+        intersect_patch(Ray(Point3(0.3, 0.7, 5), Vec3(0, 0, -1)), scaled_saddle(1.0), options);
+    REQUIRE_MESSAGE(hit, "max_depth = 0 is allowed: no subdivision, Newton from (½, ½)");
+    CHECK(std::abs(hit->s - (5 - 0.21)) <= 1e-12);
+  }
+
+  TEST_CASE("patch_newton: one step where F is linear in (u, v), and max_iterations at its bounds") {
+    // A vertical ray: both planes are vertical, so F₁, F₂ depend on x = u and
+    // y = v only, linearly: Newton lands on (0.3, 0.7) in exactly one step.
+    const BezierPatch patch = scaled_saddle(1.0);
+    const Ray ray(Point3(0.3, 0.7, 5.0), Vec3(0.0, 0.0, -1.0));
+    const RayPlanes planes = ray_planes(ray);
+    const std::optional<PatchHit> hit = patch_newton(patch, ray, planes, Vec2(0.9, 0.1), 1e-13, 20);
+    REQUIRE(hit);
+    CHECK_MESSAGE(hit->iterations == 1,
+                  "iterations counts Newton steps taken: one update, then |F| ≤ tolerance");
+    CHECK(std::abs(hit->u - 0.3) <= 1e-14);
+    CHECK(std::abs(hit->v - 0.7) <= 1e-14);
+    const std::optional<PatchHit> at_start = patch_newton(patch, ray, planes, Vec2(0.3, 0.7), 1e-13, 20);
+    REQUIRE(at_start);
+    CHECK_MESSAGE(at_start->iterations == 0, "a start already on the ray needs no step");
+    const std::optional<PatchHit> one = patch_newton(patch, ray, planes, Vec2(0.9, 0.1), 1e-13, 1);
+    CHECK_MESSAGE(one.has_value(), "max_iterations = 1 allows the one step this linear F needs");
+    CHECK_THROWS_AS(patch_newton(patch, ray, planes, Vec2(0.5, 0.5), 1e-13, 0), std::invalid_argument);
+  }
+}

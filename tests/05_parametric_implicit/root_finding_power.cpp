@@ -1,0 +1,118 @@
+// Lesson 05 grading tests that a worse method cannot pass: an iteration
+// bound only Newton's quadratic convergence meets (bisection cannot), and
+// stopping rules checked on badly scaled functions, where stopping on the
+// residual |f(s)| instead of the step |Δs| (or the bracket's width) answers
+// too early or never.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "05_parametric_implicit/support.hpp"
+#include "illum/geometry/root_finding.hpp"
+
+using namespace illum;
+using lesson05::Function;
+
+namespace {
+
+// c·(s² − 2): the root √2 whatever the scale c > 0.
+Function scaled_square(double c) {
+  return Function([c](double s) { return c * (s * s - 2.0); }, [c](double s) { return c * 2.0 * s; });
+}
+
+}  // namespace
+
+TEST_SUITE("lesson05") {
+  TEST_CASE("safeguarded Newton converges in a handful of steps where bisection needs 42") {
+    // Bracket [0, 4], f = s² − 2: the first iterate is the midpoint 2; Newton
+    // then gives 1.5, 1.41667, 1.4142157, 1.41421356237469, 1.414213562373095,
+    // each step less than half the one before, so every one is accepted.
+    // Bisection would need ⌈log₂(4 / 1e−13)⌉ = 42 halvings for the same width.
+    const RootResult r = safeguarded_newton(scaled_square(1.0), {0.0, 4.0}, 1e-13, 100);
+    REQUIRE(r.converged());
+    CHECK(std::abs(r.s - std::sqrt(2.0)) <= 1e-13);
+    CHECK_MESSAGE(r.iterations <= 8,
+                  "once the Newton candidate is inside the bracket and shrinks the step, "
+                  "it must be taken: the digits double at every step");
+  }
+
+  TEST_CASE("hard case: Newton's stopping rule is the step, not the residual, on badly scaled functions") {
+    // c = 1e−12: at s = 1 the residual is already 1e−12 < the tolerance 1e−10,
+    // yet s is 0.41 from the root. c = 1e12: near √2 the residual cannot drop
+    // below ~1e−3 (the spacing of doubles times f'), so a residual test never stops.
+    for (double c : {1e-12, 1e12}) {
+      INFO("f(s) = ", c, " · (s² − 2), root √2");
+      const RootResult plain = newton(scaled_square(c), 1.0, 1e-10, 60);
+      REQUIRE_MESSAGE(plain.converged(),
+                      "stop when the step |f/f'| ≤ tolerance (lesson 05), whatever the scale");
+      CHECK(std::abs(plain.s - std::sqrt(2.0)) <= 1e-9);
+      const RootResult safe = safeguarded_newton(scaled_square(c), {1.0, 2.0}, 1e-10, 100);
+      REQUIRE_MESSAGE(safe.converged(),
+                      "safeguarded Newton stops on the step or the bracket width, not on |f|");
+      CHECK(std::abs(safe.s - std::sqrt(2.0)) <= 1e-9);
+      const RootResult halving = bisection(scaled_square(c), {1.0, 2.0}, 1e-10, 100);
+      REQUIRE_MESSAGE(halving.converged(), "bisection stops on the half width of the bracket, not on |f|");
+      CHECK(std::abs(halving.s - std::sqrt(2.0)) <= 1e-10);
+      CHECK_MESSAGE(halving.iterations == 33,
+                    "[1, 2] halved until 2^−(k+1) ≤ 1e−10: k = 33, whatever the scale");
+    }
+  }
+
+  TEST_CASE("bisection and safeguarded Newton on a falling function (f(a) > 0 > f(b))") {
+    // f = 2 − s² on [0.5, 3]: the sign change runs the other way; the kept
+    // half is still the one whose ends differ in sign.
+    const Function falling([](double s) { return 2.0 - s * s; }, [](double s) { return -2.0 * s; });
+    const RootResult halving = bisection(falling, {0.5, 3.0}, 1e-12, 100);
+    REQUIRE(halving.converged());
+    CHECK(std::abs(halving.s - std::sqrt(2.0)) <= 1e-12);
+    const RootResult safe = safeguarded_newton(falling, {0.5, 3.0}, 1e-12, 100);
+    REQUIRE(safe.converged());
+    CHECK(std::abs(safe.s - std::sqrt(2.0)) <= 1e-12);
+    CHECK_MESSAGE(safe.iterations <= 10, "bisection would need ⌈log₂(2.5/1e−12)⌉ = 42 halvings");
+  }
+
+  TEST_CASE("safeguarded Newton: exact step counts, roots at the bracket's ends, a budget of one step") {
+    // f = s − 1 on [0, 4]: the start is the midpoint 2 (f = 1, which moves b to 2);
+    // step 1 is Newton's 2 − 1/1 = 1 (inside (0, 2), half the width 2), where f = 0.
+    const Function line([](double s) { return s - 1.0; }, [](double) { return 1.0; });
+    const RootResult r = safeguarded_newton(line, {0.0, 4.0}, 1e-12, 50);
+    REQUIRE(r.converged());
+    CHECK(r.s == 1.0);
+    CHECK_MESSAGE(r.iterations == 1,
+                  "the midpoint start is not an iteration; one Newton step lands on the root");
+    const RootResult budget = safeguarded_newton(line, {0.0, 4.0}, 1e-12, 1);
+    CHECK_MESSAGE(budget.converged(), "max_iterations = 1 allows the one step this line needs");
+    // A root exactly at either end is returned at once, with no iteration.
+    const RootResult at_b = safeguarded_newton(line, {-3.0, 1.0}, 1e-12, 50);
+    REQUIRE(at_b.converged());
+    CHECK(at_b.s == 1.0);
+    CHECK(at_b.iterations == 0);
+    const RootResult at_a = safeguarded_newton(line, {1.0, 2.5}, 1e-12, 50);
+    REQUIRE(at_a.converged());
+    CHECK(at_a.s == 1.0);
+    CHECK(at_a.iterations == 0);
+    // An end where f = 1 (not 0) is not a root: f = 3 − s on [2, 5] has f(2) = 1,
+    // f(5) = −2 and its root at 3; f = s − 1 on [−5, 2] has f(2) = 1 at b.
+    const Function falling([](double s) { return 3.0 - s; }, [](double) { return -1.0; });
+    const RootResult not_an_end = safeguarded_newton(falling, {2.0, 5.0}, 1e-12, 50);
+    REQUIRE(not_an_end.converged());
+    CHECK_MESSAGE(not_an_end.s == doctest::Approx(3.0).epsilon(1e-12), "f(2) = 1 is no root; the root is 3");
+    const RootResult not_b = safeguarded_newton(line, {-5.0, 2.0}, 1e-12, 50);
+    REQUIRE(not_b.converged());
+    CHECK_MESSAGE(not_b.s == doctest::Approx(1.0).epsilon(1e-12), "f(2) = 1 at b is no root either");
+  }
+
+  TEST_CASE("sphere tracing: a surface exactly at range.hi is reached, and a miss counts its steps") {
+    // Distance 4 − s (a wall at s = 4), Lipschitz 1: one step of 4 lands on it.
+    const Function wall([](double s) { return 4.0 - s; }, [](double) { return -1.0; });
+    const RootResult at_end = sphere_trace(wall, {0.0, 4.0}, 1.0, 1e-9, 50);
+    REQUIRE_MESSAGE(at_end.converged(), "s = 4 = range.hi lies in the closed range: the wall is reached");
+    CHECK(at_end.s == 4.0);
+    CHECK_MESSAGE(at_end.iterations == 1, "one step of d/L = 4, then d = 0 ≤ tolerance");
+    // Distance 1 everywhere (nothing near), Lipschitz 1, range [0, 2.5]: steps to 1, 2, then 3 > 2.5.
+    const Function nothing([](double) { return 1.0; }, [](double) { return 0.0; });
+    const RootResult miss = sphere_trace(nothing, {0.0, 2.5}, 1.0, 1e-9, 50);
+    CHECK(miss.status == RootStatus::missed);
+    CHECK_MESSAGE(miss.iterations == 3, "three steps of length 1 leave [0, 2.5]: the third one is counted");
+  }
+}

@@ -1,0 +1,280 @@
+// Lesson 11 grading tests on a system where every term of every solver
+// matters: three patches of unequal areas (1.5, 0.75, 3), a form-factor
+// matrix that is not symmetric (it obeys reciprocity A_i F_ij = A_j F_ji
+// instead), non-zero self-terms F_ii (concave patches see themselves), and a
+// reflectance and an emission that differ by channel. The expected solution
+// comes from Cramer's rule, evaluated here in long double; the iterative
+// solvers are checked sweep by sweep against their definitions and against
+// the invariants of the notes (the residual of Southwell, B = E + ρF(B − ΔB)
+// of progressive refinement).
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "illum/radiosity/radiosity_solvers.hpp"
+#include "illum/radiosity/radiosity_system.hpp"
+
+using namespace illum;
+
+namespace {
+
+constexpr std::size_t n = 3;
+
+struct GeneralSystem {
+  std::vector<Patch> patches;
+  FormFactorMatrix f{n};
+  std::array<Color, n> exact{};  // Cramer's rule
+};
+
+Patch rectangle(double x, double width, Color rho, Color e) {
+  return make_patch({{x, 0, 0}, {x + width, 0, 0}, {x + width, 1, 0}, {x, 1, 0}}, rho, e);
+}
+
+// Cramer's rule on (I − diag(ρ)F) B = E, one channel, in long double.
+std::array<long double, n> cramer(const long double m[n][n], const long double e[n]) {
+  const auto det3 = [](const long double a[n][n]) {
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+           a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+           a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  };
+  const long double det = det3(m);
+  std::array<long double, n> x{};
+  for (std::size_t k = 0; k < n; ++k) {
+    long double mk[n][n];
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j) mk[i][j] = j == k ? e[i] : m[i][j];
+    x[k] = det3(mk) / det;
+  }
+  return x;
+}
+
+GeneralSystem general_system() {
+  GeneralSystem s;
+  s.patches = {rectangle(0, 1.5, Color(0.5, 0.3, 0.7), Color(1.0, 0.5, 0.2)),
+               rectangle(2, 0.75, Color(0.8, 0.6, 0.2), Color(0.0, 0.3, 0.0)),
+               rectangle(4, 3.0, Color(0.25, 0.9, 0.4), Color(0.4, 0.0, 1.0))};
+  // F_01 = 0.2, F_02 = 0.3, F_12 = 0.4; the transposed entries by reciprocity:
+  // F_10 = 0.2·1.5/0.75 = 0.4, F_20 = 0.3·1.5/3 = 0.15, F_21 = 0.4·0.75/3 = 0.1.
+  const double rows[n][n] = {{0.1, 0.2, 0.3}, {0.4, 0.05, 0.4}, {0.15, 0.1, 0.2}};
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) s.f(i, j) = rows[i][j];
+  for (int c = 0; c < 3; ++c) {
+    long double m[n][n], e[n];
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t j = 0; j < n; ++j)
+        m[i][j] = (i == j ? 1.0L : 0.0L) - static_cast<long double>(s.patches[i].reflectance[c]) * rows[i][j];
+      e[i] = s.patches[i].emission[c];
+    }
+    const auto x = cramer(m, e);
+    for (std::size_t i = 0; i < n; ++i) s.exact[i][c] = static_cast<double>(x[i]);
+  }
+  return s;
+}
+
+// E_i + ρ_i Σ_j F_ij B_j − B_i, every term written out (eq. 11.3).
+Color residual_of(const GeneralSystem& s, const std::vector<Color>& b, std::size_t i) {
+  Color gathered(0.0);
+  for (std::size_t j = 0; j < n; ++j) gathered += s.f(i, j) * b[j];
+  return s.patches[i].emission + s.patches[i].reflectance * gathered - b[i];
+}
+
+void check_close(const Color& got, const Color& expected, double tolerance, const char* what) {
+  for (int c = 0; c < 3; ++c) {
+    INFO(what, ", channel ", c, ": got ", got[c], ", expected ", expected[c]);
+    CHECK(std::abs(got[c] - expected[c]) <= tolerance * (1.0 + std::abs(expected[c])));
+  }
+}
+
+}  // namespace
+
+TEST_SUITE("lesson11") {
+  TEST_CASE(
+      "general system: the direct solution matches Cramer's rule (unequal areas, F_ii ≠ 0, F not "
+      "symmetric)") {
+    const GeneralSystem s = general_system();
+    const std::vector<Color> b = solve_direct(s.patches, s.f);
+    REQUIRE(b.size() == n);
+    for (std::size_t i = 0; i < n; ++i) {
+      INFO("patch ", i,
+           ": row i of M is δ_ij − ρ_i F_ij, with F_ii on the diagonal and F_ij (not F_ji) off it");
+      check_close(b[i], s.exact[i], 1e-12, "B_i");
+    }
+  }
+
+  TEST_CASE("general system: one Jacobi sweep by its definition, then the limit") {
+    const GeneralSystem s = general_system();
+    std::vector<Color> b = {Color(1.0, 2.0, 0.5), Color(0.25, 0.75, 1.5), Color(2.0, 0.125, 1.0)};
+    std::vector<Color> next;
+    jacobi_sweep(s.patches, s.f, b, next);
+    REQUIRE(next.size() == n);
+    for (std::size_t i = 0; i < n; ++i) {
+      // B_i ← (E_i + ρ_i Σ_{j≠i} F_ij B_j) / (1 − ρ_i F_ii): the self-term moved to the left.
+      Color gathered(0.0);
+      for (std::size_t j = 0; j < n; ++j)
+        if (j != i) gathered += s.f(i, j) * b[j];
+      const Patch& p = s.patches[i];
+      const Color expected = (p.emission + p.reflectance * gathered) / (1.0 - p.reflectance * s.f(i, i));
+      INFO("patch ", i, ": Jacobi uses the previous sweep's B_j for every j, and divides by 1 − ρ_i F_ii");
+      check_close(next[i], expected, 1e-14, "Jacobi sweep");
+    }
+    for (int sweep = 0; sweep < 200; ++sweep) {
+      jacobi_sweep(s.patches, s.f, b, next);
+      b.swap(next);
+    }
+    for (std::size_t i = 0; i < n; ++i) check_close(b[i], s.exact[i], 1e-10, "Jacobi limit vs Cramer");
+  }
+
+  TEST_CASE("general system: one over-relaxed Gauss-Seidel sweep by its definition, then the limit") {
+    const GeneralSystem s = general_system();
+    const double omega = 1.25;
+    std::vector<Color> b = {Color(1.0, 2.0, 0.5), Color(0.25, 0.75, 1.5), Color(2.0, 0.125, 1.0)};
+    std::vector<Color> expected = b;
+    for (std::size_t i = 0; i < n; ++i) {  // rows in order, each using the rows already updated
+      Color gathered(0.0);
+      for (std::size_t j = 0; j < n; ++j)
+        if (j != i) gathered += s.f(i, j) * expected[j];
+      const Patch& p = s.patches[i];
+      const Color gs = (p.emission + p.reflectance * gathered) / (1.0 - p.reflectance * s.f(i, i));
+      expected[i] = (1.0 - omega) * expected[i] + omega * gs;
+    }
+    gauss_seidel_sweep(s.patches, s.f, b, omega);
+    for (std::size_t i = 0; i < n; ++i) {
+      INFO("patch ", i,
+           ": B_i ← (1 − ω) B_i + ω (E_i + ρ_i Σ_{j≠i} F_ij B_j)/(1 − ρ_i F_ii), new B_j for j < i");
+      check_close(b[i], expected[i], 1e-14, "Gauss-Seidel sweep");
+    }
+    for (int sweep = 0; sweep < 200; ++sweep) gauss_seidel_sweep(s.patches, s.f, b, omega);
+    for (std::size_t i = 0; i < n; ++i) check_close(b[i], s.exact[i], 1e-10, "Gauss-Seidel limit vs Cramer");
+  }
+
+  TEST_CASE("general system: Southwell keeps r = E + ρFB − B exact, relaxes the largest |r| and converges") {
+    const GeneralSystem s = general_system();
+    std::vector<Color> b(n, Color(0.0));
+    std::vector<Color> residual(s.patches.size());
+    for (std::size_t i = 0; i < n; ++i) residual[i] = s.patches[i].emission;  // r = E at B = 0
+    for (int step = 0; step < 400; ++step) {
+      std::size_t largest = 0;
+      double most = -1;
+      for (std::size_t k = 0; k < n; ++k) {
+        const double size = std::abs(residual[k].r) + std::abs(residual[k].g) + std::abs(residual[k].b);
+        if (size > most) most = size, largest = k;
+      }
+      const std::size_t chosen = southwell_step(s.patches, s.f, b, residual);
+      INFO("step ", step);
+      CHECK_MESSAGE(chosen == largest,
+                    "Southwell relaxes the patch with the largest |r_i| (summed over channels)");
+      for (std::size_t i = 0; i < n; ++i) {
+        INFO("patch ", i, ": relaxing i changes r_j by ρ_j F_ji δ (column i of ρF), r_i becomes 0");
+        check_close(residual[i], residual_of(s, b, i), 1e-12, "Southwell's running residual vs E + ρFB − B");
+      }
+      if (step > 0 && most < 1e-15) break;
+    }
+    for (std::size_t i = 0; i < n; ++i) check_close(b[i], s.exact[i], 1e-10, "Southwell limit vs Cramer");
+  }
+
+  TEST_CASE("general system: progressive refinement shoots the most power and keeps B = E + ρF(B − ΔB)") {
+    // Shooting ΔB_i sends ρ_j F_ji ΔB_i to every j, F_ji = F_ij A_i / A_j
+    // (erratum 8): what has been shot, B − ΔB, has been gathered exactly, so
+    // B_j = E_j + ρ_j Σ_i F_ji (B_i − ΔB_i) holds after every shot.
+    const GeneralSystem s = general_system();
+    ProgressiveState state = progressive_start(s.patches);
+    for (int shot = 0; shot < 300; ++shot) {
+      std::size_t most_power = 0;
+      double most = -1;
+      for (std::size_t i = 0; i < n; ++i) {
+        const Color& u = state.unshot[i];
+        const double power = s.patches[i].area * (u.r + u.g + u.b);
+        if (power > most) most = power, most_power = i;
+      }
+      const std::size_t shooter = choose_shooter(s.patches, state.unshot);
+      INFO("shot ", shot);
+      CHECK_MESSAGE(shooter == most_power,
+                    "the shooter has the largest unshot power A_i ΔB_i, not radiosity");
+      shoot(s.patches, shooter, s.f.row(shooter), state);
+      for (std::size_t j = 0; j < n; ++j) {
+        Color gathered(0.0);
+        for (std::size_t i = 0; i < n; ++i) gathered += s.f(j, i) * (state.radiosity[i] - state.unshot[i]);
+        const Color expected = s.patches[j].emission + s.patches[j].reflectance * gathered;
+        INFO("patch ", j,
+             ": the receiver uses its own ρ_j and F_ji = F_ij A_i/A_j; the shooter's F_ii counts too");
+        check_close(state.radiosity[j], expected, 1e-12, "B_j vs E_j + ρ_j Σ F_ji (B_i − ΔB_i)");
+      }
+      if (most < 1e-14) break;
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      check_close(state.radiosity[i], s.exact[i], 1e-10, "progressive limit");
+  }
+
+  TEST_CASE("ties: the shooter and Southwell's row are the first of equals") {
+    const GeneralSystem s = general_system();  // areas 1.5, 0.75, 3
+    // Unshot power A_i (ΔB_i.r + ΔB_i.g + ΔB_i.b): 1.5·2 = 0.75·4 = 3·1 = 3, all exact.
+    std::vector<Color> unshot = {Color(1.0, 0.5, 0.5), Color(2.0, 1.0, 1.0), Color(0.5, 0.25, 0.25)};
+    CHECK_MESSAGE(choose_shooter(s.patches, unshot) == 0, "three equal powers: the first patch shoots");
+    unshot[0] = Color(0.0);
+    CHECK_MESSAGE(choose_shooter(s.patches, unshot) == 1,
+                  "patches 1 and 2 tie at power 3: the first of them");
+    // Southwell: |r| summed over channels, 0.5 for row 0 and 1 for rows 1 and 2.
+    std::vector<Color> b(n, Color(0.0));
+    std::vector<Color> residual = {Color(0.25, 0.125, 0.125), Color(0.25, 0.25, 0.5), Color(1.0, 0.0, 0.0)};
+    CHECK_MESSAGE(southwell_step(s.patches, s.f, b, residual) == 1, "rows 1 and 2 tie at |r| = 1: the first");
+  }
+
+  TEST_CASE("general system: the ambient term weighs ρ and ΔB by area") {
+    const GeneralSystem s = general_system();
+    const std::vector<Color> unshot = {Color(0.5, 0.25, 1.0), Color(2.0, 0.0, 0.5), Color(0.125, 1.0, 0.25)};
+    // Σ A = 5.25. Red: ρ̄ = (1.5·0.5 + 0.75·0.8 + 3·0.25)/5.25 = 2.1/5.25 = 0.4,
+    // ΔB̄ = (0.75 + 1.5 + 0.375)/5.25 = 0.5, ambient = 0.5/(1 − 0.4) = 5/6.
+    // Green: ρ̄ = (0.45 + 0.45 + 2.7)/5.25 = 3.6/5.25, ΔB̄ = (0.375 + 0 + 3)/5.25 = 3.375/5.25,
+    // ambient = 3.375/(5.25 − 3.6) = 3.375/1.65. Blue: ρ̄ = (1.05 + 0.15 + 1.2)/5.25 = 2.4/5.25,
+    // ΔB̄ = (1.5 + 0.375 + 0.75)/5.25 = 2.625/5.25, ambient = 2.625/(5.25 − 2.4) = 2.625/2.85.
+    const Color expected(5.0 / 6.0, 3.375 / 1.65, 2.625 / 2.85);
+    check_close(ambient_term(s.patches, unshot), expected, 1e-13,
+                "ambient = (Σ A_i ΔB_i / Σ A_i) / (1 − Σ A_i ρ_i / Σ A_i)");
+  }
+
+  TEST_CASE(
+      "hard case: gaussian elimination must pivot on the largest entry of every column, not only the first") {
+    // Column 0 is settled by row 0 (nothing to eliminate). In column 1 the
+    // candidate pivots are 1e−20 (row 1) and 1 (row 2): partial pivoting takes
+    // row 2. Pivoting on 1e−20 instead gives the multiplier 1e20, row 2 becomes
+    // (1 − 1e20, 2 − 1e20) = (−1e20, −1e20) in double, x₂ = 1 and then
+    // x₁ = (1 − x₂)/1e−20 = 0: the answer loses x₁ = 1 entirely.
+    // By hand: x₃ = 1, x₀ = (7 − 5·1)/2 = 1, and the 2 × 2 block
+    // 1e−20 x₁ + x₂ = 1, x₁ + x₂ = 2 gives x₁ = 1/(1 − 1e−20), x₂ = 1 − 1e−20·x₁: both 1 in double.
+    const std::vector<double> a = {2, 0,     0, 5,  //
+                                   0, 1e-20, 1, 0,  //
+                                   0, 1,     1, 0,  //
+                                   0, 0,     0, 1};
+    const std::vector<double> b = {7, 1, 2, 1};
+    const std::vector<double> x = gaussian_elimination(a, b);
+    REQUIRE(x.size() == 4);
+    for (std::size_t i = 0; i < 4; ++i) {
+      INFO("x_", i, ": the pivot of column k is the largest |A_ik| over rows i ≥ k, compared entry by entry");
+      CHECK(x[i] == doctest::Approx(1.0).epsilon(1e-14));
+    }
+  }
+
+  TEST_CASE("gaussian elimination: a non-symmetric 4 × 4 system whose second pivot is zero") {
+    // Solution chosen first, x* = (1, −2, 3, 0.5); b = A x*, every product exact in binary.
+    // Rows 0 and 1 agree in their first two entries up to a factor 2, so once
+    // the first column is eliminated (pivot 2, row 1) the entry in the second
+    // pivot position is 0: the second column needs a row exchange too.
+    const std::vector<double> a = {1,   2,   0.5, -1,    //
+                                   2,   4,   3,   0.25,  //
+                                   -1,  0.5, 2,   4,     //
+                                   0.5, -3,  1,   2};
+    const double x[4] = {1, -2, 3, 0.5};
+    std::vector<double> b(4, 0.0);
+    for (std::size_t i = 0; i < 4; ++i)
+      for (std::size_t j = 0; j < 4; ++j) b[i] += a[i * 4 + j] * x[j];
+    const std::vector<double> got = gaussian_elimination(a, b);
+    REQUIRE(got.size() == 4);
+    for (std::size_t i = 0; i < 4; ++i) {
+      INFO("x_", i,
+           ": partial pivoting, elimination of every row below, back substitution over every column");
+      CHECK(got[i] == doctest::Approx(x[i]).epsilon(1e-13));
+    }
+  }
+}
