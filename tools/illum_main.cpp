@@ -6,6 +6,7 @@
 //   illum trace whitted --pixel 300 200       the ray tree of one pixel: JSON, Graphviz, overlay
 #include <algorithm>
 #include <iostream>
+#include <stdexcept>
 #include <string_view>
 #include <vector>
 
@@ -56,17 +57,25 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
 // The image, its sRGB copy for the PNG and the HDR file: checked against the
 // memory budget before anything is allocated (a huge --width is refused with
 // what it would take, not a std::bad_alloc or an hour of rendering).
-void check_render_memory(const illum::PinholeCamera& camera) {
-  illum::check_memory("a " + std::to_string(camera.width()) + " × " + std::to_string(camera.height()) +
-                          " render (the image and its copies for the files)",
-                      static_cast<double>(camera.width()) * camera.height(), 2 * sizeof(illum::Color));
+// When the size is the scene camera's own, the error names the scene file and
+// its camera.width field.
+void check_render_memory(const RenderOptions& o, const illum::PinholeCamera& camera) {
+  try {
+    illum::check_memory("a " + std::to_string(camera.width()) + " × " + std::to_string(camera.height()) +
+                            " render (the image and its copies for the files)",
+                        static_cast<double>(camera.width()) * camera.height(), 2 * sizeof(illum::Color));
+  } catch (const std::length_error& e) {
+    if (o.width == 0 && o.height == 0 && !o.quick)
+      illum::open_scene(o.scene).root.at("camera").at("width").fail(e.what());
+    throw;
+  }
 }
 
 int render(const RenderOptions& o) {
   // Everything is read and validated before the first file is written, and
   // each file is written atomically: bad input leaves no partial output.
   const illum::Scene scene = illum::load_scene(o.scene);
-  check_render_memory(illum::render_camera(scene, o.settings()));
+  check_render_memory(o, illum::render_camera(scene, o.settings()));
   const illum::RenderResult result = illum::render_ray_tree(scene, o.settings());
   illum::OutputFolder out(o.out, "illum-render", "illum render " + o.scene);
   out.image(result.image, "render", scene.name + ", rendered with the ray tree (lesson 06)");
@@ -84,7 +93,7 @@ int trace(const RenderOptions& o) {
   const illum::Scene scene = illum::load_scene(o.scene);
   const illum::RenderSettings settings = o.settings();
   const illum::PinholeCamera camera = illum::render_camera(scene, settings);
-  check_render_memory(camera);
+  check_render_memory(o, camera);
   const int x = o.pixel.at(0), y = o.pixel.at(1);
   if (x < 0 || y < 0 || x >= camera.width() || y >= camera.height())
     throw illum::InputError(

@@ -12,12 +12,6 @@
 
 namespace illum {
 
-// Provided: a fixed-capacity push.
-void SmallPolygon::push_back(const Point3& p) {
-  require(size < capacity, "SmallPolygon: more than 64 vertices");
-  vertices[static_cast<std::size_t>(size++)] = p;
-}
-
 // Task 1. Sutherland–Hodgman against one plane: keep vertices with
 // n·(v − origin) ≥ 0, insert the crossing point of every edge whose ends lie
 // strictly on opposite sides. Fewer than 3 vertices left: return an empty polygon.

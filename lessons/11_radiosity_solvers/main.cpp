@@ -2,15 +2,14 @@
 // progressive table, studies every solver on the Cornell box at several
 // reflectance scales (residual and error against the direct solution, per
 // sweep and per second), draws the box after 1, 10, 100 shots and at
-// convergence, and solves a ~2,000-patch box by progressive refinement with
-// hemicube rows computed only for the shooters.
+// convergence, solves a ~2,000-patch box by progressive refinement with
+// hemicube rows computed only for the shooters (on every thread), and
+// measures how that figure's time grows with the patch count.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <iostream>
 #include <map>
-#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,12 +31,39 @@
 #include "illum/radiosity/three_patch_example.hpp"
 #include "patch_render.hpp"
 
-namespace fs = std::filesystem;
 using namespace illum;
 
 namespace {
 
 const char* kId = "lesson11";
+
+// The solvers of the study. An enum, so that a misspelt name cannot run the
+// wrong method; the command line maps names to it and refuses others.
+enum class Solver { jacobi, gauss_seidel, sor, southwell, progressive };
+const std::map<std::string, Solver> kSolverNames = {{"jacobi", Solver::jacobi},
+                                                    {"gauss-seidel", Solver::gauss_seidel},
+                                                    {"sor-1.2", Solver::sor},
+                                                    {"southwell", Solver::southwell},
+                                                    {"progressive", Solver::progressive}};
+std::string name_of(Solver s) {
+  for (const auto& [name, solver] : kSolverNames)
+    if (solver == s) return name;
+  return "?";
+}
+
+// What the command line sets (validated there: a bad value stops the program before it writes anything).
+struct Settings {
+  std::string scene = "cornell";
+  bool quick = false;
+  std::vector<Solver> solvers = {Solver::jacobi, Solver::gauss_seidel, Solver::sor, Solver::southwell,
+                                 Solver::progressive};
+  int figure_patches = 2000;    // the figure's box is meshed until it has at least this many patches
+  double figure_edge = 0;       // or, when > 0, with patches no longer than this (mm)
+  int figure_resolution = 128;  // hemicube resolution of the figure and the scaling study
+  double unshot_threshold = 0;  // stop when the unshot power is below this fraction of the emitted
+                                // (0: 1%, or 0.1% with --figure)
+  bool big_figure = false;      // --figure: only section 10, with the scaling study up to 8,000 patches
+};
 
 // A shipped scene by name ("cornell" = scenes/cornell.json, compiled in), or a file.
 RadiosityScene load_scene(const std::string& scene, double max_patch_edge) {
@@ -71,6 +97,20 @@ void check_usable(const RadiosityScene& scene, const std::string& file) {
                          std::to_string(int(max_study_patches)) +
                          " patches (it solves the system directly); use a smaller scene");
   check_memory("the study's two form-factor matrices", 2 * n * n, sizeof(double));
+}
+
+// The scene meshed to at least `patches` patches: the edge shrinks by 3% until it is.
+// Bounded by a count, not by edge reaching zero: 0.97^1000 ≈ 6e-14, and the
+// loader refuses a meshing beyond max_scene_patches long before.
+RadiosityScene scene_with_patches(const std::string& scene, std::size_t patches, double& edge) {
+  edge = 240.0;
+  RadiosityScene s = load_scene(scene, edge);
+  for (int shrink = 0; s.patches.size() < patches; ++shrink) {
+    if (shrink == 1000)
+      throw std::runtime_error("cannot mesh " + scene + " into " + std::to_string(patches) + " patches");
+    s = load_scene(scene, edge *= 0.97);
+  }
+  return s;
 }
 
 // Scales every reflectance so that the largest channel in the scene is rho_max.
@@ -117,11 +157,13 @@ struct SolverSummary {
 // One solver advanced one unit of work at a time from its start: a sweep
 // (Jacobi, Gauss–Seidel, SOR) or a step (one Southwell relaxation, one
 // shot). It can restart, so that one run can be timed several times; every
-// buffer is allocated and touched by restart(), outside the timed work.
+// buffer is allocated and touched by restart(), outside the timed work. The
+// system is checked once here, where it enters, not in every step.
 class SolverRun {
  public:
-  SolverRun(std::string solver, const std::vector<Patch>& patches, const FormFactorMatrix& f)
-      : solver_(std::move(solver)), patches_(patches), f_(f) {
+  SolverRun(Solver solver, const std::vector<Patch>& patches, const FormFactorMatrix& f)
+      : solver_(solver), patches_(patches), f_(f) {
+    check_radiosity_system(patches, f);
     restart();
   }
 
@@ -129,78 +171,68 @@ class SolverRun {
     const std::size_t n = patches_.size();
     b_.assign(n, Color(0.0));
     next_.assign(n, Color(0.0));
-    if (solver_ == "southwell") residual_ = emissions(patches_);  // r = E − M·0
-    if (solver_ == "progressive") state_ = progressive_start(patches_);
+    if (solver_ == Solver::southwell) residual_ = emissions(patches_);  // r = E − M·0
+    if (solver_ == Solver::progressive) state_ = progressive_start(patches_);
   }
 
   void advance() {
-    if (solver_ == "jacobi") {
-      jacobi_sweep(patches_, f_, b_, next_);
-      b_.swap(next_);
-    } else if (solver_ == "gauss-seidel") {
-      gauss_seidel_sweep(patches_, f_, b_, 1.0);
-    } else if (solver_ == "sor-1.2") {
-      gauss_seidel_sweep(patches_, f_, b_, 1.2);
-    } else if (solver_ == "southwell") {
-      southwell_step(patches_, f_, b_, residual_);
-    } else {  // progressive refinement, rows from the precomputed matrix
-      const std::size_t i = choose_shooter(patches_, state_.unshot);
-      shoot(patches_, i, f_.row(i), state_);
+    switch (solver_) {
+      case Solver::jacobi:
+        jacobi_sweep(patches_, f_, b_, next_);
+        b_.swap(next_);
+        break;
+      case Solver::gauss_seidel:
+        gauss_seidel_sweep(patches_, f_, b_, 1.0);
+        break;
+      case Solver::sor:
+        gauss_seidel_sweep(patches_, f_, b_, 1.2);
+        break;
+      case Solver::southwell:
+        southwell_step(patches_, f_, b_, residual_);
+        break;
+      case Solver::progressive: {  // rows from the precomputed matrix
+        const std::size_t i = choose_shooter(patches_, state_.unshot);
+        shoot(patches_, i, f_.row(i), state_);
+        break;
+      }
     }
   }
 
   // Units per sweep: one sweep = n row operations (n Southwell steps or n
   // shots cost as much as one Jacobi sweep).
-  bool sweeps() const { return solver_ == "jacobi" || solver_ == "gauss-seidel" || solver_ == "sor-1.2"; }
+  bool sweeps() const { return solver_ != Solver::southwell && solver_ != Solver::progressive; }
   double units_per_sweep() const { return sweeps() ? 1.0 : static_cast<double>(patches_.size()); }
   // Where to record: every sweep; for steps at 1, 2, 4, … then every n/4.
   bool due(std::size_t unit) const {
     return sweeps() || (unit & (unit - 1)) == 0 || unit % std::max<std::size_t>(1, patches_.size() / 4) == 0;
   }
-  const std::vector<Color>& radiosity() const { return solver_ == "progressive" ? state_.radiosity : b_; }
+  const std::vector<Color>& radiosity() const {
+    return solver_ == Solver::progressive ? state_.radiosity : b_;
+  }
   // What the method shows: progressive refinement adds the ambient term.
   std::vector<Color> shown() const {
-    return solver_ == "progressive" ? display_radiosity(patches_, state_) : radiosity();
+    return solver_ == Solver::progressive ? display_radiosity(patches_, state_) : radiosity();
   }
 
  private:
-  std::string solver_;
+  Solver solver_;
   const std::vector<Patch>& patches_;
   const FormFactorMatrix& f_;
   std::vector<Color> b_, next_, residual_;
   ProgressiveState state_;
 };
 
-// Runs one solver on (patches, f) until the error is below 1e-9 (or
-// max_sweeps) and appends its history to `history`: residual and error
-// at each record point, and the seconds of solver work up to it. The
-// iteration is deterministic, so it is run three times and each unit of
-// work (sweep or step) counts with its best time of the three: other work
-// on the machine only ever adds time. The residuals and errors computed for
-// the table are not the solver's work and are not timed.
-SolverSummary run_solver(const std::string& solver, const std::string& scale,
-                         const std::vector<Patch>& patches, const FormFactorMatrix& f,
-                         const std::vector<Color>& exact, int max_sweeps, Table& history) {
-  const double exact_norm = max_norm(exact), e_norm = max_norm(emissions(patches));
-  SolverRun run(solver, patches, f);
-  struct Point {
-    double sweeps, residual, error, display_error, seconds;
-  };
-  std::vector<Point> points;
-  std::vector<double> unit_seconds;  // the time of each unit of work, best of three
-  const auto max_units = static_cast<std::size_t>(max_sweeps * run.units_per_sweep());
+// Each unit of work's best time over three deterministic runs of `run`
+// (other work on the machine only ever adds time); `record` is called after
+// each unit of the first run, untimed, and returns false to stop.
+template <class Record>
+std::vector<double> best_unit_times(SolverRun& run, std::size_t max_units, Record record) {
+  std::vector<double> unit_seconds;
   while (unit_seconds.size() < max_units) {
     Stopwatch watch;
     run.advance();
     unit_seconds.push_back(watch.seconds());
-    const std::size_t units = unit_seconds.size();
-    if (!run.due(units)) continue;
-    const std::vector<Color>& b = run.radiosity();
-    const double error = max_difference(b, exact) / exact_norm;
-    points.push_back({static_cast<double>(units) / run.units_per_sweep(),
-                      max_norm(radiosity_residual(patches, f, b)) / e_norm, error,
-                      max_difference(run.shown(), exact) / exact_norm, 0.0});
-    if (error < 1e-9) break;
+    if (!record(unit_seconds.size())) break;
   }
   for (int repeat = 1; repeat < 3; ++repeat) {
     run.restart();
@@ -210,6 +242,31 @@ SolverSummary run_solver(const std::string& solver, const std::string& scale,
       seconds = std::min(seconds, watch.seconds());
     }
   }
+  return unit_seconds;
+}
+
+// Runs one solver on (patches, f) until the error is below 1e-9 (or
+// max_sweeps) and appends its history to `history`: residual and error
+// at each record point, and the seconds of solver work up to it. The
+// residuals and errors computed for the table are not timed.
+SolverSummary run_solver(Solver solver, const std::string& scale, const std::vector<Patch>& patches,
+                         const FormFactorMatrix& f, const std::vector<Color>& exact, int max_sweeps,
+                         Table& history) {
+  const double exact_norm = max_norm(exact), e_norm = max_norm(emissions(patches));
+  SolverRun run(solver, patches, f);
+  struct Point {
+    double sweeps, residual, error, display_error, seconds;
+  };
+  std::vector<Point> points;
+  const auto max_units = static_cast<std::size_t>(max_sweeps * run.units_per_sweep());
+  const std::vector<double> unit_seconds = best_unit_times(run, max_units, [&](std::size_t units) {
+    if (!run.due(units)) return true;
+    const double error = max_difference(run.radiosity(), exact) / exact_norm;
+    points.push_back({static_cast<double>(units) / run.units_per_sweep(),
+                      max_norm(radiosity_residual(patches, f, run.radiosity())) / e_norm, error,
+                      max_difference(run.shown(), exact) / exact_norm, 0.0});
+    return error >= 1e-9;
+  });
   double seconds = 0;
   for (std::size_t unit = 1, k = 0; unit <= unit_seconds.size(); ++unit) {
     seconds += unit_seconds[unit - 1];
@@ -217,20 +274,409 @@ SolverSummary run_solver(const std::string& solver, const std::string& scale,
   }
   SolverSummary summary;
   double previous_error = 1.0;  // B = 0 is off by |B*| everywhere: relative error 1
-  if (solver == "jacobi") summary.worst_ratio = 0;
+  if (solver == Solver::jacobi) summary.worst_ratio = 0;
   for (const Point& p : points) {
-    history.add_row({solver, scale, p.sweeps, p.seconds, p.residual, p.error, p.display_error});
+    history.add_row({name_of(solver), scale, p.sweeps, p.seconds, p.residual, p.error, p.display_error});
     if (std::isnan(summary.sweeps_to_1e3) && p.error < 1e-3) summary.sweeps_to_1e3 = p.sweeps;
     if (std::isnan(summary.sweeps_to_1e6) && p.error < 1e-6) {
       summary.sweeps_to_1e6 = p.sweeps;
       summary.seconds_to_1e6 = p.seconds;
     }
     // Jacobi: e(k+1)/e(k) ≤ max ρ (lesson 11, section 3), once e is above rounding.
-    if (solver == "jacobi" && previous_error > 1e-13)
+    if (solver == Solver::jacobi && previous_error > 1e-13)
       summary.worst_ratio = std::max(summary.worst_ratio, p.error / previous_error);
     previous_error = p.error;
   }
   return summary;
+}
+
+// --- 1. The notes' three-patch example, printed in the notes' layout ---------
+void three_patch_section(OutputFolder& out) {
+  const std::string table_text = three_patch_table_text();
+  std::cout << "Three-patch progressive refinement (lesson 11, section 6; errata: the three-patch example)\n"
+            << table_text << '\n';
+  out.text("three_patch_table.txt", table_text,
+           "The notes' three-patch progressive example: shooter, B and unshot radiosity after each shot, "
+           "then the limit");
+}
+
+// The study's system: the box meshed coarsely, hemicube form factors made reciprocal.
+struct StudySystem {
+  RadiosityScene scene;
+  FormFactorMatrix f;
+  double edge = 0;
+  int resolution = 0;
+};
+
+// --- 8. The study's form factors --------------------------------------------
+StudySystem study_form_factors(OutputFolder& out, const Settings& settings) {
+  StudySystem s;
+  s.edge = settings.quick ? 220.0 : 75.0;
+  s.resolution = settings.quick ? 32 : 96;
+  s.scene = load_scene(settings.scene, s.edge);
+  report_progress(kId, "hemicube form factors for " + std::to_string(s.scene.patches.size()) + " patches", 0,
+                  1);
+  Stopwatch watch;
+  const FormFactorMatrix hemicube_f = hemicube_form_factors(s.scene.patches, s.resolution);
+  const double seconds = watch.seconds();
+  s.f = reciprocal_average(hemicube_f, s.scene.patches);
+  check_form_factors(s.f, 1e-12);
+  double largest_row = 0;
+  for (std::size_t i = 0; i < s.f.size(); ++i) largest_row = std::max(largest_row, s.f.row_sum(i));
+  Table t({"patches", "hemicube resolution", "seconds", "reciprocity error before averaging", "after",
+           "largest row sum"});
+  t.add_row({static_cast<std::int64_t>(s.f.size()), static_cast<std::int64_t>(s.resolution), seconds,
+             reciprocity_error(hemicube_f, s.scene.patches), reciprocity_error(s.f, s.scene.patches),
+             largest_row});
+  out.table(t, "study_form_factors", "The study's form factors: hemicube, then made reciprocal by averaging");
+  std::cout << "Study: " << s.scene.patches.size() << " patches, hemicube " << s.resolution
+            << " form factors in " << fixed(seconds, 2) << " s\n";
+  return s;
+}
+
+const std::vector<double> kScales = {0.5, 0.78, 0.9, 0.99};  // 0.78: the published values
+
+// --- 8. Every solver at every reflectance scale, on one thread ----------------
+// Returns the direct solution at the published reflectances. Every solver is
+// timed on one thread, so that seconds compare the methods' work.
+std::vector<Color> solver_study(OutputFolder& out, const Settings& settings, const StudySystem& s,
+                                Table& history, Table& growth, std::vector<double>& direct_seconds) {
+  Table summary({"rho_max", "solver", "sweeps to 1e-3", "sweeps to 1e-6", "seconds to 1e-6",
+                 "worst Jacobi e(k+1)/e(k)"});
+  Table direct_table({"rho_max", "patches", "direct seconds"});
+  std::vector<Color> published;
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  int done = 0;
+  for (double rho : kScales) {
+    const std::vector<Patch> patches = with_max_reflectance(s.scene.patches, rho);
+    const std::string label = fixed(rho, 3);
+    std::vector<Color> exact;
+    double seconds = INFINITY;
+    for (int repeat = 0; repeat < 3; ++repeat) {  // best of three, like the iterative solvers
+      Stopwatch watch;
+      exact = solve_direct(patches, s.f);
+      seconds = std::min(seconds, watch.seconds());
+    }
+    direct_seconds.push_back(seconds);
+    direct_table.add_row({label, static_cast<std::int64_t>(patches.size()), seconds});
+    if (rho == 0.78) published = exact;
+    for (const Solver solver : settings.solvers) {
+      report_progress(kId, "study rho " + label + " " + name_of(solver), done++,
+                      static_cast<int>(kScales.size() * settings.solvers.size()));
+      const SolverSummary r =
+          run_solver(solver, label, patches, s.f, exact, settings.quick ? 300 : 3000, history);
+      summary.add_row(
+          {label, name_of(solver), r.sweeps_to_1e3, r.sweeps_to_1e6, r.seconds_to_1e6, r.worst_ratio});
+      if (solver != Solver::jacobi) continue;
+      if (!(r.worst_ratio <= rho * (1 + 1e-9)))
+        throw std::runtime_error(
+            "Jacobi contracted by more than max rho: the bound of lesson 11 section 3 fails");
+      growth.add_row({label, std::string("open (published)"), r.sweeps_to_1e6, (1 - rho) * r.sweeps_to_1e6,
+                      r.worst_ratio});
+    }
+  }
+  omp_set_num_threads(threads);
+  out.table(summary, "solver_study",
+            "Sweeps and seconds each solver needs on the Cornell box (" +
+                std::to_string(s.scene.patches.size()) + " patches) to bring the error below 1e-3 and 1e-6");
+  out.table(direct_table, "direct_time",
+            "Time of the direct solution (Gaussian elimination, three channels)");
+  return published;
+}
+
+// --- 8. Jacobi's sweep on one thread and on all of them -----------------------
+// Timed as in the study (each sweep alone, best of three): on a shared
+// machine a parallel sweep waits at its barrier for a thread that the system
+// has not scheduled.
+void jacobi_threads_section(OutputFolder& out, const StudySystem& s, const std::vector<Color>& published) {
+  Table jacobi_threads({"threads", "ms per Jacobi sweep"});
+  const int threads = omp_get_max_threads();
+  for (int t : {1, threads}) {
+    omp_set_num_threads(t);
+    Table scratch({"solver", "rho_max", "sweeps", "seconds", "residual", "error", "display_error"});
+    const SolverSummary r = run_solver(Solver::jacobi, "0.780", with_max_reflectance(s.scene.patches, 0.78),
+                                       s.f, published, 40, scratch);
+    jacobi_threads.add_row({std::int64_t{t}, 1e3 * r.seconds_to_1e6 / r.sweeps_to_1e6});
+    if (t == threads) break;  // with one thread, one row
+  }
+  omp_set_num_threads(threads);
+  out.table(jacobi_threads, "jacobi_threads",
+            "Jacobi's sweep (published reflectances) on one thread and on all, best of three");
+}
+
+// --- 3. Jacobi in the closed box ----------------------------------------------
+// The published box is open at the front and its colours absorb, so Jacobi
+// contracts faster than max ρ. Closing it with a front wall (z = 0, facing
+// +z) and making every patch reflect ρ brings the rate close to ρ and the
+// sweeps close to ln(1e6)/(1 − ρ).
+void closed_box_section(OutputFolder& out, const Settings& settings, const StudySystem& s, Table& growth) {
+  std::vector<Patch> closed = s.scene.patches;
+  const int divisions = std::max(1, static_cast<int>(std::ceil(556.0 / s.edge)));
+  for (Patch& p : mesh_quad({0, 0, 0}, {552.8, 0, 0}, {556, 548.8, 0}, {0, 548.8, 0}, divisions, divisions,
+                            closed.front().reflectance, Color(0.0), -1))
+    closed.push_back(std::move(p));
+  const FormFactorMatrix fc = reciprocal_average(hemicube_form_factors(closed, s.resolution), closed);
+  Table history({"solver", "rho_max", "sweeps", "seconds", "residual", "error", "display_error"});
+  for (double rho : kScales) {
+    std::vector<Patch> patches = closed;  // grey: every patch reflects rho in every channel
+    for (Patch& p : patches) p.reflectance = Color(rho);
+    const std::string label = fixed(rho, 3);
+    report_progress(kId, "closed box, Jacobi, rho " + label, 0, 1);
+    const SolverSummary r = run_solver(Solver::jacobi, label, patches, fc, solve_direct(patches, fc),
+                                       settings.quick ? 2000 : 4000, history);
+    if (!(r.worst_ratio <= rho * (1 + 1e-9)))
+      throw std::runtime_error("Jacobi contracted by more than max rho in the closed box");
+    growth.add_row({label, std::string("closed, grey (every rho = rho_max)"), r.sweeps_to_1e6,
+                    (1 - rho) * r.sweeps_to_1e6, r.worst_ratio});
+  }
+  out.table(history, "closed_history", "Jacobi on the closed box at several reflectance scales");
+  out.table(growth, "jacobi_growth",
+            "Jacobi's sweeps grow like 1/(1 - rho); its error shrinks by at most rho per sweep");
+  PlotSpec j{
+      "Jacobi in the closed box at several reflectance scales", "sweeps", "relative error", false, true, {}};
+  for (double rho : kScales)
+    j.series.push_back({"closed_history.csv", 3, 6, "max rho = " + fixed(rho, 3),
+                        "strcol(2) eq '" + fixed(rho, 3) + "'", "lines"});
+  out.plot(j, "jacobi_closed_scales", "Jacobi's error per sweep in the closed box: slopes near log(max rho)");
+}
+
+// --- 8. The study's tables and plots ------------------------------------------
+// Per scale, four views: residual and error, per sweep and per second. The
+// direct solution is the reference (error 0): in the time plots it is the
+// vertical line at the seconds it took.
+void study_plots(OutputFolder& out, const Settings& settings, const Table& history,
+                 const std::vector<double>& direct_seconds) {
+  out.table(history, "solver_history",
+            "Every solver's residual and error (relative, max norm) per sweep and per second");
+  Table marks({"rho_max", "seconds", "level"});
+  for (std::size_t k = 0; k < kScales.size(); ++k)
+    for (double level : {1e-10, 1.0}) marks.add_row({fixed(kScales[k], 3), direct_seconds[k], level});
+  out.table(marks, "direct_marks", "The direct solve's time, as a vertical line in the time plots");
+  struct View {
+    const char *name, *x_label;
+    int x_column;
+    const char* y_label;
+    int y_column;
+  };
+  const View views[] = {{"residual_vs_sweeps", "work (sweeps)", 3, "relative residual (max norm)", 5},
+                        {"residual_vs_time", "seconds", 4, "relative residual (max norm)", 5},
+                        {"error_vs_sweeps", "work (sweeps)", 3, "relative error (max norm)", 6},
+                        {"error_vs_time", "seconds", 4, "relative error (max norm)", 6}};
+  for (double rho : kScales) {
+    const std::string label = fixed(rho, 3), where = "strcol(2) eq '" + label + "'";
+    const std::string which = rho == 0.78 ? " (published)" : "";
+    for (const View& v : views) {
+      const bool time = v.x_column == 4;
+      const std::string what = v.name[0] == 'r' ? "Residual" : "Error";
+      PlotSpec spec{what + " vs " + (time ? "time" : "work") + ", Cornell box, max rho = " + label + which,
+                    v.x_label,
+                    v.y_label,
+                    time,
+                    true,
+                    {}};
+      for (const Solver solver : settings.solvers)
+        spec.series.push_back({"solver_history.csv", v.x_column, v.y_column, name_of(solver),
+                               "strcol(1) eq '" + name_of(solver) + "' && " + where});
+      const bool progressive = std::find(settings.solvers.begin(), settings.solvers.end(),
+                                         Solver::progressive) != settings.solvers.end();
+      if (v.y_column == 6 && progressive)
+        spec.series.push_back({"solver_history.csv", v.x_column, 7, "progressive + ambient (display)",
+                               "strcol(1) eq 'progressive' && " + where});
+      if (time)
+        spec.series.push_back(
+            {"direct_marks.csv", 2, 3, "direct (the reference)", "strcol(1) eq '" + label + "'", "lines"});
+      out.plot(spec, std::string(v.name) + "_rho" + fixed(100 * rho, 0),
+               what + " vs " + (time ? "seconds (best of three)" : "sweeps") +
+                   " for every solver, rho_max = " + label + which);
+    }
+  }
+  PlotSpec j{"Jacobi at several reflectance scales", "sweeps", "relative error", false, true, {}};
+  for (double rho : kScales)
+    j.series.push_back({"solver_history.csv", 3, 6, "max rho = " + fixed(rho, 3),
+                        "strcol(1) eq 'jacobi' && strcol(2) eq '" + fixed(rho, 3) + "'", "lines"});
+  out.plot(j, "jacobi_scales", "Jacobi's error per sweep: a straight line of slope log(rho) at most");
+}
+
+// --- 9. Pictures: flat patch colours after 1, 10, 100 shots and at convergence --
+void pictures_section(OutputFolder& out, const Settings& settings, const StudySystem& s,
+                      const std::vector<Color>& converged) {
+  const int size = settings.quick ? 96 : 384;
+  const std::vector<int> items = lesson11::patch_item_buffer(s.scene, size, size);
+  const double exposure = lesson11::exposure_for(s.scene.patches, converged);
+  ProgressiveState state = progressive_start(s.scene.patches);
+  for (std::size_t shots : {std::size_t{1}, std::size_t{10}, std::size_t{100}}) {
+    while (state.shots < shots) {
+      const std::size_t i = choose_shooter(s.scene.patches, state.unshot);
+      shoot(s.scene.patches, i, s.f.row(i), state);
+    }
+    out.image(
+        lesson11::flat_patch_image(items, size, size, display_radiosity(s.scene.patches, state), exposure),
+        "cornell_shots_" + std::to_string(shots),
+        "Progressive refinement after " + std::to_string(shots) +
+            " shots, with the ambient term (display only)");
+    if (shots == 10)
+      out.image(lesson11::flat_patch_image(items, size, size, state.radiosity, exposure),
+                "cornell_shots_10_no_ambient",
+                "After 10 shots without the ambient term: unlit patches stay black");
+  }
+  out.image(lesson11::flat_patch_image(items, size, size, converged, exposure), "cornell_converged",
+            "The converged solution (direct), one flat colour per patch");
+}
+
+// One run of progressive refinement with hemicube rows on demand, on every thread.
+struct ProgressiveRun {
+  ProgressiveState state;
+  double unshot = 1, seconds = 0, row_seconds = 0;
+};
+
+// Shoots until the unshot power is below `threshold` of the emitted power.
+// Per shot: one hemicube row (all threads), then choose and shoot (O(n)).
+// The row and the item buffers are allocated once, before the first shot.
+ProgressiveRun progressive_on_demand(const std::vector<Patch>& patches, int resolution, double threshold,
+                                     Table* history) {
+  const Hemicube hemicube(resolution);
+  std::vector<HemicubeBuffers> buffers;
+  std::vector<double> row(patches.size());
+  ProgressiveRun run;
+  Stopwatch watch;
+  run.state = progressive_start(patches);
+  const double emitted = total_power(patches, run.state.unshot);
+  const std::size_t max_shots = 1000 * patches.size();  // 1% is reached in ~3 shots per patch
+  while (run.unshot >= threshold) {
+    if (run.state.shots >= max_shots)
+      throw std::runtime_error("progressive refinement left " + std::to_string(run.unshot) +
+                               " of the power unshot after " + std::to_string(max_shots) + " shots");
+    const std::size_t i = choose_shooter(patches, run.state.unshot);
+    Stopwatch row_watch;
+    hemicube.form_factor_row_parallel(patches, i, row.data(), buffers);
+    run.row_seconds += row_watch.seconds();
+    shoot(patches, i, row.data(), run.state);
+    run.unshot = total_power(patches, run.state.unshot) / emitted;
+    const std::size_t shots = run.state.shots;
+    if (history && ((shots & (shots - 1)) == 0 || shots % 50 == 0 || run.unshot < threshold))
+      history->add_row({static_cast<std::int64_t>(shots), watch.seconds(), run.unshot});
+  }
+  run.seconds = watch.seconds();
+  return run;
+}
+
+// --- 10. The figure: the box solved with hemicube rows on demand ---------------
+void figure_section(OutputFolder& out, const Settings& settings) {
+  double edge = settings.figure_edge;
+  const RadiosityScene big =
+      edge > 0 ? load_scene(settings.scene, edge)
+               : scene_with_patches(settings.scene, settings.quick ? 300 : settings.figure_patches, edge);
+  const int resolution = settings.quick ? 32 : settings.figure_resolution;
+  report_progress(kId, "figure: " + std::to_string(big.patches.size()) + " patches", 0, 1);
+  Table history({"shots", "seconds", "unshot_fraction"});
+  const ProgressiveRun run =
+      progressive_on_demand(big.patches, resolution, settings.unshot_threshold, &history);
+  Table figure({"patches", "max patch edge (mm)", "hemicube resolution", "threads", "shots",
+                "unshot / emitted", "seconds", "seconds in hemicube rows"});
+  figure.add_row({static_cast<std::int64_t>(big.patches.size()), edge, static_cast<std::int64_t>(resolution),
+                  static_cast<std::int64_t>(omp_get_max_threads()),
+                  static_cast<std::int64_t>(run.state.shots), run.unshot, run.seconds, run.row_seconds});
+  out.table(figure, "figure_progressive",
+            "The Cornell box solved by progressive refinement with hemicube rows on demand, to " +
+                fixed(100 * settings.unshot_threshold, 2) + "% unshot power");
+  out.table(history, "figure_history", "Unshot power after each shot of the figure's run");
+  PlotSpec fp{"Progressive refinement on the Cornell box: unshot power",
+              "shots",
+              "unshot / emitted power",
+              false,
+              true,
+              {{"figure_history.csv", 1, 3, "unshot fraction", "", "lines"}}};
+  out.plot(fp, "figure_unshot", "Unshot power vs shots (hemicube rows on demand)");
+  const int size = settings.quick ? 96 : 384;
+  const std::vector<int> items = lesson11::patch_item_buffer(big, size, size);
+  out.image(lesson11::flat_patch_image(items, size, size, display_radiosity(big.patches, run.state),
+                                       lesson11::exposure_for(big.patches, run.state.radiosity)),
+            "cornell_progressive_figure",
+            "The figure's solution: flat patch colours, ambient term added for display");
+  std::cout << "Figure: " << big.patches.size() << " patches (edge " << fixed(edge, 1) << " mm), hemicube "
+            << resolution << ", " << omp_get_max_threads() << " threads, " << run.state.shots << " shots to "
+            << fixed(100 * run.unshot, 3) << "% unshot in " << fixed(run.seconds, 2) << " s ("
+            << fixed(run.row_seconds, 2) << " s in hemicube rows)\n";
+}
+
+// --- 10. How the figure's time grows with the patch count ----------------------
+// The same run at several patch counts on one thread and on all, and the
+// least-squares slope of log(seconds) against log(patches) on all threads:
+// shots grow like n and each shot costs O(n), so the exponent tends to 2.
+void scaling_section(OutputFolder& out, const Settings& settings) {
+  std::vector<int> counts = settings.quick        ? std::vector<int>{150, 300}
+                            : settings.big_figure ? std::vector<int>{500, 1000, 2000, 4000, 8000}
+                                                  : std::vector<int>{500, 1000, 2000};
+  const int resolution = settings.quick ? 32 : settings.figure_resolution;
+  const int threads = omp_get_max_threads();
+  Table scaling({"patches", "threads", "shots", "seconds", "seconds per shot (ms)", "speedup"});
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const int count : counts) {
+    double edge = 0;
+    const RadiosityScene scene = scene_with_patches(settings.scene, static_cast<std::size_t>(count), edge);
+    double one_thread = 0;
+    for (const int t : {1, threads}) {
+      report_progress(
+          kId,
+          "scaling: " + std::to_string(scene.patches.size()) + " patches, " + std::to_string(t) + " threads",
+          0, 1);
+      omp_set_num_threads(t);
+      const ProgressiveRun run =
+          progressive_on_demand(scene.patches, resolution, settings.unshot_threshold, nullptr);
+      if (t == 1) one_thread = run.seconds;
+      scaling.add_row({static_cast<std::int64_t>(scene.patches.size()), std::int64_t{t},
+                       static_cast<std::int64_t>(run.state.shots), run.seconds,
+                       1e3 * run.seconds / static_cast<double>(run.state.shots), one_thread / run.seconds});
+      if (t == threads) {
+        const double x = std::log(static_cast<double>(scene.patches.size())), y = std::log(run.seconds);
+        sx += x, sy += y, sxx += x * x, sxy += x * y;
+        break;
+      }
+    }
+  }
+  omp_set_num_threads(threads);
+  const double k = static_cast<double>(counts.size());
+  const double exponent = (k * sxy - sx * sy) / (k * sxx - sx * sx);
+  out.table(scaling, "figure_scaling",
+            "Progressive refinement with hemicube rows on demand to " +
+                fixed(100 * settings.unshot_threshold, 2) +
+                "% unshot, at several patch counts, on one thread and on all");
+  Table fit({"patches from", "patches to", "threads", "exponent of seconds against patches"});
+  fit.add_row({std::int64_t{counts.front()}, std::int64_t{counts.back()}, std::int64_t{threads}, exponent});
+  out.table(fit, "figure_growth", "Least-squares slope of log(seconds) against log(patches)");
+  std::cout << "Scaling: time grows as n^" << fixed(exponent, 2) << " from " << counts.front() << " to "
+            << counts.back() << " patches\n";
+}
+
+// The lesson's options, validated by CLI11 (a bad value: a clear error, exit 2, nothing written).
+void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers) {
+  app.add_option("--scene", settings.scene, "A radiosity scene: a JSON file, or a shipped scene's name")
+      ->capture_default_str();
+  app.add_option("--solvers", solvers,
+                 "the study's solvers (jacobi, gauss-seidel, sor-1.2, southwell, progressive)")
+      ->transform(CLI::CheckedTransformer(kSolverNames));
+  app.add_option("--patches", settings.figure_patches, "patches of the figure's box (at least)")
+      ->check(CLI::Range(4, 100000))
+      ->capture_default_str();
+  app.add_option("--patch-edge", settings.figure_edge,
+                 "the figure's largest patch edge in mm (instead of --patches)")
+      ->check(CLI::Range(1.0, 10000.0));
+  app.add_option("--hemicube-resolution", settings.figure_resolution,
+                 "hemicube resolution of the figure (even, 8 to 2048)")
+      ->check(CLI::Range(8, 2048) & CLI::Validator(
+                                        [](std::string& s) {
+                                          return std::stoi(s) % 2 == 0 ? std::string()
+                                                                       : "the resolution must be even";
+                                        },
+                                        "EVEN"))
+      ->capture_default_str();
+  app.add_option("--unshot", settings.unshot_threshold,
+                 "stop the figure when the unshot power is below this fraction of the emitted "
+                 "(default 0.01, or 0.001 with --figure)")
+      ->check(CLI::Range(1e-9, 0.5));
+  app.add_flag("--figure", settings.big_figure,
+               "only the figure, with the scaling study up to 8,000 patches (a few minutes)");
 }
 
 }  // namespace
@@ -241,319 +687,38 @@ int main(int argc, char** argv) {
       "The notes' three-patch progressive table; direct, Jacobi, Gauss-Seidel (SOR), Southwell and "
       "progressive refinement on the Cornell box at several reflectance scales; the box after 1, "
       "10, 100 shots; a ~2,000-patch box by progressive refinement with hemicube rows on demand."};
-  std::string scene_file = "cornell";
+  Settings settings;
+  std::vector<Solver> solvers;
   return run_program(
-      argc, argv, info,
-      [&](CLI::App& app) {
-        app.add_option("--scene", scene_file, "A radiosity scene: a JSON file, or a shipped scene's name")
-            ->capture_default_str();
-      },
+      argc, argv, info, [&](CLI::App& app) { add_options(app, settings, solvers); },
       [&](const ProgramOptions& options) {
-        // Validate before writing: the scene at both meshings used below.
-        const double study_edge = options.quick ? 220.0 : 75.0;
-        const RadiosityScene study_scene = load_scene(scene_file, study_edge);
-        check_usable(study_scene, scene_file);
+        settings.quick = options.quick;
+        if (settings.unshot_threshold == 0) settings.unshot_threshold = settings.big_figure ? 1e-3 : 1e-2;
+        if (settings.quick) settings.unshot_threshold = std::max(settings.unshot_threshold, 0.01);
+        if (!solvers.empty()) settings.solvers = solvers;
+        // Validate before writing: the scene as the study meshes it.
+        check_usable(load_scene(settings.scene, settings.quick ? 220.0 : 75.0), settings.scene);
         OutputFolder out(options.out, info.id, info.title);
-        const bool quick = options.quick;
-
-        // 1. The notes' three-patch example, printed in the notes' layout.
-        const std::string table_text = three_patch_table_text();
-        std::cout
-            << "Three-patch progressive refinement (lesson 11, section 6; errata: the three-patch example)\n"
-            << table_text << '\n';
-        out.text(
-            "three_patch_table.txt", table_text,
-            "The notes' three-patch progressive example: shooter, B and unshot radiosity after each shot, "
-            "then the limit");
-
-        // 2. The study: every solver on the Cornell box, several reflectance scales.
-        const int study_resolution = quick ? 32 : 96;
-        report_progress(
-            kId, "hemicube form factors for " + std::to_string(study_scene.patches.size()) + " patches", 0,
-            1);
-        Stopwatch ff_watch;
-        const FormFactorMatrix hemicube_f = hemicube_form_factors(study_scene.patches, study_resolution);
-        const double ff_seconds = ff_watch.seconds();
-        const double hemicube_reciprocity = reciprocity_error(hemicube_f, study_scene.patches);
-        const FormFactorMatrix f = reciprocal_average(hemicube_f, study_scene.patches);
-        check_form_factors(f, 1e-12);
-        double largest_row = 0;
-        for (std::size_t i = 0; i < f.size(); ++i) largest_row = std::max(largest_row, f.row_sum(i));
-        {
-          Table t({"patches", "hemicube resolution", "seconds", "reciprocity error before averaging", "after",
-                   "largest row sum"});
-          t.add_row({static_cast<std::int64_t>(f.size()), static_cast<std::int64_t>(study_resolution),
-                     ff_seconds, hemicube_reciprocity, reciprocity_error(f, study_scene.patches),
-                     largest_row});
-          out.table(t, "study_form_factors",
-                    "The study's form factors: hemicube, then made reciprocal by averaging");
+        if (settings.big_figure) {
+          figure_section(out, settings);
+          scaling_section(out, settings);
+          out.finish();
+          return;
         }
-
+        three_patch_section(out);
+        const StudySystem system = study_form_factors(out, settings);
         Table history({"solver", "rho_max", "sweeps", "seconds", "residual", "error", "display_error"});
-        Table summary({"rho_max", "solver", "sweeps to 1e-3", "sweeps to 1e-6", "seconds to 1e-6",
-                       "worst Jacobi e(k+1)/e(k)"});
-        Table direct_table({"rho_max", "patches", "direct seconds"});
         Table growth(
             {"rho_max", "box", "Jacobi sweeps to 1e-6", "(1 - rho_max) * sweeps", "worst e(k+1)/e(k)"});
-        const std::vector<double> scales = {
-            0.5, 0.78, 0.9, 0.99};  // 0.78: the published values (the light's ρ is the largest)
-        const std::vector<std::string> solvers = {"jacobi", "gauss-seidel", "sor-1.2", "southwell",
-                                                  "progressive"};
-        std::vector<Color> exact_published;
         std::vector<double> direct_seconds;
-        int done = 0;
-        // Every solver is timed on one thread, so that seconds compare the
-        // methods' work. Jacobi's sweep is the one that parallelizes; the
-        // jacobi_threads table below measures what a second thread buys.
-        const int threads = omp_get_max_threads();
-        omp_set_num_threads(1);
-        for (double rho : scales) {
-          const std::vector<Patch> patches = with_max_reflectance(study_scene.patches, rho);
-          const std::string label = fixed(rho, 3);
-          std::vector<Color> exact;
-          double seconds = INFINITY;
-          for (int repeat = 0; repeat < 3; ++repeat) {  // best of three, like the iterative solvers
-            Stopwatch watch;
-            exact = solve_direct(patches, f);
-            seconds = std::min(seconds, watch.seconds());
-          }
-          direct_seconds.push_back(seconds);
-          direct_table.add_row({label, static_cast<std::int64_t>(patches.size()), seconds});
-          if (rho == 0.78) exact_published = exact;
-          const int max_sweeps = quick ? 300 : 3000;
-          for (const std::string& solver : solvers) {
-            report_progress(kId, "study rho " + label + " " + solver, done++,
-                            static_cast<int>(scales.size() * solvers.size()));
-            const SolverSummary s = run_solver(solver, label, patches, f, exact, max_sweeps, history);
-            summary.add_row(
-                {label, solver, s.sweeps_to_1e3, s.sweeps_to_1e6, s.seconds_to_1e6, s.worst_ratio});
-            if (solver == "jacobi") {
-              if (!(s.worst_ratio <= rho * (1 + 1e-9)))
-                throw std::runtime_error(
-                    "Jacobi contracted by more than max rho: the bound of lesson 11 section 3 fails");
-              growth.add_row({label, std::string("open (published)"), s.sweeps_to_1e6,
-                              (1 - rho) * s.sweeps_to_1e6, s.worst_ratio});
-            }
-          }
-        }
-        // Jacobi's sweep on 1 thread and on all of them, timed as in the study
-        // (each sweep alone, best of three, after the untimed residual and
-        // error bookkeeping, while the other threads wait): on a shared
-        // machine a parallel sweep waits at its barrier for a thread that
-        // the system has not scheduled.
-        Table jacobi_threads({"threads", "ms per Jacobi sweep"});
-        for (int t : {1, threads}) {
-          omp_set_num_threads(t);
-          Table scratch(history.columns());
-          const SolverSummary s =
-              run_solver("jacobi", "0.780", with_max_reflectance(study_scene.patches, 0.78), f,
-                         exact_published, 40, scratch);
-          jacobi_threads.add_row({std::int64_t{t}, 1e3 * s.seconds_to_1e6 / s.sweeps_to_1e6});
-          if (t == threads) break;  // with one thread, one row
-        }
-        omp_set_num_threads(threads);
-        out.table(jacobi_threads, "jacobi_threads",
-                  "Jacobi's sweep (published reflectances) on one thread and on all, best of three");
-        // The published box is open at the front and its colours absorb, so
-        // Jacobi contracts faster than max ρ. Closing it with a front wall
-        // (z = 0, facing +z) and making every patch reflect ρ brings the
-        // rate close to ρ and the sweeps close to ln(1e6)/(1 − ρ).
-        {
-          std::vector<Patch> closed = study_scene.patches;
-          const int divisions = std::max(1, static_cast<int>(std::ceil(556.0 / study_edge)));
-          for (Patch& p : mesh_quad({0, 0, 0}, {552.8, 0, 0}, {556, 548.8, 0}, {0, 548.8, 0}, divisions,
-                                    divisions, closed.front().reflectance, Color(0.0), -1))
-            closed.push_back(std::move(p));
-          const FormFactorMatrix fc =
-              reciprocal_average(hemicube_form_factors(closed, study_resolution), closed);
-          Table closed_history(
-              {"solver", "rho_max", "sweeps", "seconds", "residual", "error", "display_error"});
-          for (double rho : scales) {
-            std::vector<Patch> patches = closed;  // grey: every patch reflects rho in every channel
-            for (Patch& p : patches) p.reflectance = Color(rho);
-            const std::string label = fixed(rho, 3);
-            report_progress(kId, "closed box, Jacobi, rho " + label, 0, 1);
-            const SolverSummary s = run_solver("jacobi", label, patches, fc, solve_direct(patches, fc),
-                                               quick ? 2000 : 4000, closed_history);
-            if (!(s.worst_ratio <= rho * (1 + 1e-9)))
-              throw std::runtime_error("Jacobi contracted by more than max rho in the closed box");
-            growth.add_row({label, std::string("closed, grey (every rho = rho_max)"), s.sweeps_to_1e6,
-                            (1 - rho) * s.sweeps_to_1e6, s.worst_ratio});
-          }
-          out.table(closed_history, "closed_history",
-                    "Jacobi on the closed box at several reflectance scales");
-          PlotSpec j{"Jacobi in the closed box at several reflectance scales",
-                     "sweeps",
-                     "relative error",
-                     false,
-                     true,
-                     {}};
-          for (double rho : scales)
-            j.series.push_back({"closed_history.csv", 3, 6, "max rho = " + fixed(rho, 3),
-                                "strcol(2) eq '" + fixed(rho, 3) + "'", "lines"});
-          out.plot(j, "jacobi_closed_scales",
-                   "Jacobi's error per sweep in the closed box: slopes near log(max rho)");
-        }
-        out.table(history, "solver_history",
-                  "Every solver's residual and error (relative, max norm) per sweep and per second");
-        out.table(summary, "solver_study",
-                  "Sweeps and seconds each solver needs on the Cornell box (" +
-                      std::to_string(study_scene.patches.size()) +
-                      " patches) to bring the error below 1e-3 and 1e-6");
-        out.table(growth, "jacobi_growth",
-                  "Jacobi's sweeps grow like 1/(1 - rho); its error shrinks by at most rho per sweep");
-        out.table(direct_table, "direct_time",
-                  "Time of the direct solution (Gaussian elimination, three channels)");
-        // Per scale, the four views: residual and error, per sweep and per
-        // second. The direct solution is the reference (error 0): in the time
-        // plots it is the vertical line at the seconds it took.
-        Table direct_marks({"rho_max", "seconds", "level"});
-        for (std::size_t k = 0; k < scales.size(); ++k)
-          for (double level : {1e-10, 1.0})
-            direct_marks.add_row({fixed(scales[k], 3), direct_seconds[k], level});
-        out.table(direct_marks, "direct_marks",
-                  "The direct solve's time, as a vertical line in the time plots");
-        {
-          struct View {
-            const char* name;
-            const char* x_label;
-            int x_column;
-            const char* y_label;
-            int y_column;
-          };
-          const View views[] = {{"residual_vs_sweeps", "work (sweeps)", 3, "relative residual (max norm)", 5},
-                                {"residual_vs_time", "seconds", 4, "relative residual (max norm)", 5},
-                                {"error_vs_sweeps", "work (sweeps)", 3, "relative error (max norm)", 6},
-                                {"error_vs_time", "seconds", 4, "relative error (max norm)", 6}};
-          for (double rho : scales) {
-            const std::string label = fixed(rho, 3);
-            const std::string suffix = "_rho" + fixed(100 * rho, 0);
-            const std::string where = "strcol(2) eq '" + label + "'";
-            const std::string which = rho == 0.78 ? " (published)" : "";
-            for (const View& v : views) {
-              const bool time = v.x_column == 4;
-              PlotSpec spec{std::string(v.name[0] == 'r' ? "Residual" : "Error") + " vs " +
-                                (time ? "time" : "work") + ", Cornell box, max rho = " + label + which,
-                            v.x_label,
-                            v.y_label,
-                            time,
-                            true,
-                            {}};
-              for (const std::string& s : solvers)
-                spec.series.push_back({"solver_history.csv", v.x_column, v.y_column, s,
-                                       "strcol(1) eq '" + s + "' && " + where});
-              if (v.y_column == 6)
-                spec.series.push_back({"solver_history.csv", v.x_column, 7, "progressive + ambient (display)",
-                                       "strcol(1) eq 'progressive' && " + where});
-              if (time)
-                spec.series.push_back({"direct_marks.csv", 2, 3, "direct (the reference)",
-                                       "strcol(1) eq '" + label + "'", "lines"});
-              out.plot(spec, std::string(v.name) + suffix,
-                       std::string(v.name[0] == 'r' ? "Residual" : "Error") + " vs " +
-                           (time ? "seconds (best of three)" : "sweeps") +
-                           " for every solver, rho_max = " + label + which);
-            }
-          }
-          PlotSpec j{"Jacobi at several reflectance scales", "sweeps", "relative error", false, true, {}};
-          for (double rho : scales)
-            j.series.push_back({"solver_history.csv", 3, 6, "max rho = " + fixed(rho, 3),
-                                "strcol(1) eq 'jacobi' && strcol(2) eq '" + fixed(rho, 3) + "'", "lines"});
-          out.plot(j, "jacobi_scales", "Jacobi's error per sweep: a straight line of slope log(rho) at most");
-        }
-
-        // 3. Images: flat patch colours after 1, 10, 100 shots and at convergence.
-        const int size = quick ? 96 : 384;
-        const std::vector<int> items = lesson11::patch_item_buffer(study_scene, size, size);
-        const double exposure = lesson11::exposure_for(study_scene.patches, exact_published);
-        {
-          ProgressiveState state = progressive_start(study_scene.patches);
-          for (std::size_t shots : {std::size_t{1}, std::size_t{10}, std::size_t{100}}) {
-            while (state.shots < shots) {
-              const std::size_t i = choose_shooter(study_scene.patches, state.unshot);
-              shoot(study_scene.patches, i, f.row(i), state);
-            }
-            const std::string name = "cornell_shots_" + std::to_string(shots);
-            out.image(lesson11::flat_patch_image(items, size, size,
-                                                 display_radiosity(study_scene.patches, state), exposure),
-                      name,
-                      "Progressive refinement after " + std::to_string(shots) +
-                          " shots, with the ambient term (display only)");
-            if (shots == 10)
-              out.image(lesson11::flat_patch_image(items, size, size, state.radiosity, exposure),
-                        "cornell_shots_10_no_ambient",
-                        "After 10 shots without the ambient term: unlit patches stay black");
-          }
-          out.image(lesson11::flat_patch_image(items, size, size, exact_published, exposure),
-                    "cornell_converged", "The converged solution (direct), one flat colour per patch");
-        }
-
-        // 4. The figure: ~2,000 patches, progressive refinement, hemicube rows
-        //    computed only for the patches that shoot, until the unshot power
-        //    is below 1% of the emitted power.
-        const std::size_t target = quick ? 300 : 2000;
-        double edge = 120.0;
-        RadiosityScene big = load_scene(scene_file, edge);
-        // Bounded by a count, not by edge reaching zero: 0.97^1000 ≈ 6e-14, and
-        // the loader refuses a meshing beyond max_scene_patches long before.
-        for (int shrink = 0; big.patches.size() < target; ++shrink) {
-          if (shrink == 1000)
-            throw std::runtime_error("cannot mesh " + scene_file + " into " + std::to_string(target) +
-                                     " patches (edge " + std::to_string(edge) + " gives " +
-                                     std::to_string(big.patches.size()) + ")");
-          edge *= 0.97;
-          big = load_scene(scene_file, edge);
-        }
-        const int resolution = quick ? 32 : 128;
-        const Hemicube hemicube(resolution);
-        HemicubeBuffers buffers;
-        std::vector<double> row(big.patches.size());
-        Stopwatch watch;
-        ProgressiveState state = progressive_start(big.patches);
-        const double emitted = total_power(big.patches, state.unshot);
-        Table figure_history({"shots", "seconds", "unshot_fraction"});
-        double unshot = 1.0, row_seconds = 0;
-        const std::size_t max_shots = 1000 * big.patches.size();  // 1% is reached in ~1 shot per patch
-        while (unshot >= 0.01) {
-          if (state.shots >= max_shots)
-            throw std::runtime_error("progressive refinement left " + std::to_string(unshot) +
-                                     " of the power unshot after " + std::to_string(max_shots) + " shots");
-          const std::size_t i = choose_shooter(big.patches, state.unshot);
-          Stopwatch row_watch;
-          hemicube.form_factor_row(big.patches, i, row.data(), buffers);
-          row_seconds += row_watch.seconds();
-          shoot(big.patches, i, row.data(), state);
-          unshot = total_power(big.patches, state.unshot) / emitted;
-          if ((state.shots & (state.shots - 1)) == 0 || state.shots % 50 == 0 || unshot < 0.01)
-            figure_history.add_row({static_cast<std::int64_t>(state.shots), watch.seconds(), unshot});
-        }
-        const double figure_seconds = watch.seconds();
-        Table figure({"patches", "max patch edge (mm)", "hemicube resolution", "shots", "unshot / emitted",
-                      "seconds", "seconds in hemicube rows"});
-        figure.add_row({static_cast<std::int64_t>(big.patches.size()), edge,
-                        static_cast<std::int64_t>(resolution), static_cast<std::int64_t>(state.shots), unshot,
-                        figure_seconds, row_seconds});
-        out.table(figure, "figure_progressive",
-                  "The Cornell box solved by progressive refinement with hemicube rows on demand, to 1% "
-                  "unshot power");
-        out.table(figure_history, "figure_history", "Unshot power after each shot of the figure's run");
-        PlotSpec fp{"Progressive refinement on the Cornell box: unshot power",
-                    "shots",
-                    "unshot / emitted power",
-                    false,
-                    true,
-                    {{"figure_history.csv", 1, 3, "unshot fraction", "", "lines"}}};
-        out.plot(fp, "figure_unshot", "Unshot power vs shots (hemicube rows on demand)");
-        const std::vector<int> big_items = lesson11::patch_item_buffer(big, size, size);
-        out.image(lesson11::flat_patch_image(big_items, size, size, display_radiosity(big.patches, state),
-                                             lesson11::exposure_for(big.patches, state.radiosity)),
-                  "cornell_progressive_figure",
-                  "The figure's solution: flat patch colours, ambient term added for display");
-        std::cout << "Study: " << study_scene.patches.size() << " patches, hemicube " << study_resolution
-                  << " form factors in " << fixed(ff_seconds, 2) << " s\n"
-                  << "Figure: " << big.patches.size() << " patches (edge " << fixed(edge, 1)
-                  << " mm), hemicube " << resolution << ", " << state.shots << " shots to "
-                  << fixed(100 * unshot, 2) << "% unshot in " << fixed(figure_seconds, 2) << " s ("
-                  << fixed(row_seconds, 2) << " s in hemicube rows)\n";
+        const std::vector<Color> published =
+            solver_study(out, settings, system, history, growth, direct_seconds);
+        jacobi_threads_section(out, system, published);
+        closed_box_section(out, settings, system, growth);  // and writes the growth table
+        study_plots(out, settings, history, direct_seconds);
+        pictures_section(out, settings, system, published);
+        figure_section(out, settings);
+        scaling_section(out, settings);
         out.finish();
       });
 }

@@ -47,8 +47,8 @@ Patch disc_polygon(int n, double r, double z, bool facing_down) {
 }
 
 // The same regular n-gon cut into `pieces` fan sectors (centre, then n/pieces + 1
-// consecutive vertices), so that many sides fit the clipper's 63-vertex
-// polygons. Form factors add up over a split target: F(n-gon) = Σ F(sector).
+// consecutive vertices). Form factors add up over a split target:
+// F(n-gon) = Σ F(sector); the whole 720-gon is tested in tolerance.cpp.
 std::vector<Patch> disc_sectors(int n, int pieces, double r, double z, bool facing_down) {
   std::vector<Patch> sectors;
   const int per = n / pieces;
@@ -187,7 +187,7 @@ TEST_SUITE("lesson09") {
     // with ρ, so F(disc) − F(n-gon) = ∫_segments kernel lies between
     // kernel(r)·ΔA and kernel(r cos(π/n))·ΔA: a bracket about 10⁻⁵ of the
     // deficit wide, far tighter than the 60-gon's disc-to-disc bracket.
-    // The 720-gon is summed over 12 sectors of 60 sides (the clipper takes at most 63 vertices).
+    // The 720-gon is summed over 12 sectors of 60 sides (as a whole it is tested in tolerance.cpp).
     const int n = 720;
     const double r = 1.2, h = 0.8;
     const double missing = pi * r * r - 0.5 * n * r * r * std::sin(2 * pi / n);
@@ -292,7 +292,7 @@ TEST_SUITE("lesson09") {
     // inscribed polygons' by the integral over (D₁∖P₁)×D₂ ∪ P₁×(D₂∖P₂), so
     //   0 ≤ A₁F₁₂(discs) − A₁F₁₂(polygons) ≤ (ΔA₁·πr₂² + A(P₁)·ΔA₂)/(π h²),
     // ΔA = πr² − (n/2) r² sin(2π/n) the area each polygon misses (≈ 1.3e−5 of its disc).
-    // Each 720-gon is cut into 12 sectors of 60 sides (the clipper takes at most 63 vertices), and
+    // Each 720-gon is cut into 12 sectors of 60 sides (the whole 720-gons: tolerance.cpp), and
     // A₁F₁₂ = Σ_k Σ_l A(sector k) F(sector k → sector l); a sector's area is 60 · ½ r² sin(2π/n).
     const int n = 720, pieces = 12;
     const double r1 = 0.6, r2 = 1.1, h = 0.9;

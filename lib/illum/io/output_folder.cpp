@@ -40,7 +40,8 @@ void OutputFolder::text(const std::string& file_name, const std::string& content
   entries_.push_back({"text", file_name, caption});
 }
 
-void OutputFolder::add_file(const std::string& kind, const std::string& file_name, const std::string& caption) {
+void OutputFolder::add_file(const std::string& kind, const std::string& file_name,
+                            const std::string& caption) {
   entries_.push_back({kind, file_name, caption});
 }
 

@@ -11,15 +11,8 @@ namespace illum {
 
 using std::numbers::pi;  // π is the standard's: no file defines its own
 
-void SmallPolygon::push_back(const Point3& p) {
-  require(size < capacity, "SmallPolygon: more than 64 vertices");
-  vertices[static_cast<std::size_t>(size++)] = p;
-}
-
 SmallPolygon clip_polygon_to_half_space(std::span<const Point3> polygon, const Point3& origin,
                                         const Vec3& normal) {
-  require(polygon.size() < static_cast<std::size_t>(SmallPolygon::capacity),
-          "clip_polygon_to_half_space: at most 63 vertices (clipping adds one)");
   require(dot(normal, normal) > 0, "clip_polygon_to_half_space: the plane's normal is zero");
   SmallPolygon out;
   const std::size_t n = polygon.size();

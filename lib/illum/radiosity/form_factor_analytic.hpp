@@ -8,32 +8,64 @@
 // The formula integrates the signed cos φ_i, so a polygon that crosses the
 // receiver's tangent plane gets a wrong (too small, even negative) value:
 // the part below the horizon counts negative. Clip it first.
-#include <array>
+#include <algorithm>
 #include <span>
+#include <vector>
 
 #include "illum/core/vec.hpp"
 #include "illum/radiosity/patch.hpp"
 
 namespace illum {
 
-// A convex polygon of at most 64 vertices held on the stack, so that the
-// clipping in the inner loops of the form-factor matrix allocates nothing.
-struct SmallPolygon {
-  static constexpr int capacity = 64;
-  std::array<Point3, capacity> vertices;  // not zero-filled: only the first `size` are used
-  int size = 0;
+// A convex polygon held on the stack up to 64 vertices, so that the clipping
+// in the inner loops of the form-factor matrix allocates nothing; a larger
+// one (a disc as a 720-gon) moves to the heap on its 65th vertex.
+class SmallPolygon {
+ public:
+  static constexpr int inline_capacity = 64;
+  int size = 0;  // vertices in use; setting it to 0 empties the polygon
 
-  void push_back(const Point3& p);  // throws std::invalid_argument when full
-  const Point3& operator[](int i) const { return vertices[static_cast<std::size_t>(i)]; }
-  std::span<const Point3> view() const { return {vertices.data(), static_cast<std::size_t>(size)}; }
+  SmallPolygon() = default;
+  SmallPolygon(const SmallPolygon& other) { *this = other; }
+  SmallPolygon& operator=(const SmallPolygon& other) {  // copies the `size` vertices in use only
+    size = other.size;
+    heap_ = other.heap_;
+    if (heap_.empty()) std::copy(other.inline_.vertices, other.inline_.vertices + size, inline_.vertices);
+    return *this;
+  }
+
+  void push_back(const Point3& p) {
+    if (heap_.empty() && size < inline_capacity) {
+      inline_.vertices[size++] = p;
+      return;
+    }
+    if (heap_.empty()) heap_.assign(inline_.vertices, inline_.vertices + size);
+    heap_.resize(static_cast<std::size_t>(size));
+    heap_.push_back(p);
+    ++size;
+  }
+  const Point3* data() const { return heap_.empty() ? inline_.vertices : heap_.data(); }
+  const Point3& operator[](int i) const { return data()[i]; }
+  std::span<const Point3> view() const { return {data(), static_cast<std::size_t>(size)}; }
+
+ private:
+  // Not zero-filled (a union member is not constructed): only the first `size`
+  // are used, and filling 64 vertices would cost more than clipping a quad.
+  union Inline {
+    Inline() {}
+    Inline(const Inline&) = delete;
+    Point3 vertices[inline_capacity];
+  };
+  Inline inline_;
+  std::vector<Point3> heap_;  // all the vertices, once there are more than 64
 };
 
 // Exercise 1. The part of the convex polygon on the closed side
 // n·(y − origin) ≥ 0 of the plane through `origin` (Sutherland–Hodgman
 // against one plane): vertices on the plane are kept, and a new vertex is
 // inserted where an edge crosses from one open side to the other. Returns an
-// empty polygon when nothing is left. Throws std::invalid_argument for a
-// polygon of more than 63 vertices (the result could not fit) or a zero normal.
+// empty polygon when nothing is left. Any number of vertices (more than 63
+// spill to the heap). Throws std::invalid_argument for a zero normal.
 SmallPolygon clip_polygon_to_half_space(std::span<const Point3> polygon, const Point3& origin,
                                         const Vec3& normal);
 

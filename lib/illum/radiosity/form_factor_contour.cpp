@@ -5,6 +5,9 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <span>
+#include <utility>
+#include <vector>
 
 #include "illum/core/error.hpp"
 #include "illum/radiosity/form_factor_analytic.hpp"
@@ -13,6 +16,16 @@
 namespace illum {
 
 namespace {
+
+// N values of T on the stack, not constructed (with GLM_FORCE_CTOR_INIT a Vec3
+// array would be zero-filled on every call, which costs more than a quad pair).
+template <class T, int N>
+struct Uninitialized {
+  Uninitialized() {}
+  union {
+    T data[N];
+  };
+};
 
 // K(u) with K'(u) = ½ ln(u² + h²): ½u ln(u² + h²) − u + h·atan(u/h).
 double log_primitive(double u, double h) {
@@ -70,12 +83,41 @@ void closest_point_on_edge(const Point3& a, const Vec3& ep, const Point3& b, con
   distance = length(w + s * ep - t * eq);
 }
 
-// ∫_0^{L_p} g(σ) dσ with g the closed-form inner integral.
+// ∫_lo^hi g by the rule.
+template <class G>
+double rule_on(const G& g, double lo, double hi, const QuadratureRule& rule) {
+  double sum = 0;
+  for (std::size_t k = 0; k < rule.nodes.size(); ++k)
+    sum += rule.weights[k] * g(lo + rule.nodes[k] * (hi - lo));
+  return sum * (hi - lo);
+}
+
+// ∫_lo^hi g to within `tolerance` (estimated: the two halves against the whole), halving as needed.
+template <class G>
+double adaptive_rule(const G& g, double lo, double hi, double whole, double tolerance,
+                     const QuadratureRule& rule, int depth) {
+  const double mid = 0.5 * (lo + hi);
+  const double left = rule_on(g, lo, mid, rule), right = rule_on(g, mid, hi, rule);
+  if (depth == 0 || std::abs(left + right - whole) <= tolerance) return left + right;
+  return adaptive_rule(g, lo, mid, left, 0.5 * tolerance, rule, depth - 1) +
+         adaptive_rule(g, mid, hi, right, 0.5 * tolerance, rule, depth - 1);
+}
+
+// ∫_0^{L_p} g(σ) dσ with g the closed-form inner integral; `tolerance` > 0 asks
+// for the adaptive rule (split at the closest point first).
 double edge_pair_log_integral(const Point3& a, const Vec3& ep, const Point3& b, const Vec3& eq, bool parallel,
-                              const ContourOptions& options, const QuadratureRule& rule) {
+                              const ContourOptions& options, const QuadratureRule& rule, double tolerance) {
   const double lp = length(ep), lq = length(eq);
   const Vec3 u = ep / lp, v = eq / lq;
   auto g = [&](double sigma) { return inner_log_integral(a + sigma * u, b, v, lq); };
+  if (tolerance > 0 && !parallel) {
+    double sigma_star = 0, distance = 0;
+    closest_point_on_edge(a, ep, b, eq, sigma_star, distance);
+    double sum = 0;
+    for (const auto& [lo, hi] : {std::pair{0.0, sigma_star}, std::pair{sigma_star, lp}})
+      if (hi > lo) sum += adaptive_rule(g, lo, hi, rule_on(g, lo, hi, rule), 0.5 * tolerance, rule, 40);
+    return sum;
+  }
   double sigma_star = 0, distance = 0;
   if (!parallel && options.graded_near_edges) closest_point_on_edge(a, ep, b, eq, sigma_star, distance);
   if (parallel || !options.graded_near_edges || distance >= lp) {
@@ -119,9 +161,23 @@ double polygon_polygon_form_factor(const Patch& from, const Patch& to, const Con
       height_above(pj, from.centroid, from.normal) <= 1e-12 * size)
     return 0.0;
   const QuadratureRule& rule = gauss_legendre(options.order);
-  // Edge vectors and lengths once per polygon, not once per edge pair.
-  std::array<Vec3, SmallPolygon::capacity> ei, ej;
-  std::array<double, SmallPolygon::capacity> li, lj;
+  // Edge vectors and lengths once per polygon, not once per edge pair: on the
+  // stack up to SmallPolygon::inline_capacity edges, on the heap beyond.
+  constexpr int small = SmallPolygon::inline_capacity;
+  Uninitialized<Vec3, small> ei_stack, ej_stack;
+  Uninitialized<double, small> li_stack, lj_stack;
+  std::vector<Vec3> ei_heap, ej_heap;
+  std::vector<double> li_heap, lj_heap;
+  if (pi.size > small) ei_heap.resize(static_cast<std::size_t>(pi.size)), li_heap.resize(ei_heap.size());
+  if (pj.size > small) ej_heap.resize(static_cast<std::size_t>(pj.size)), lj_heap.resize(ej_heap.size());
+  const std::span<Vec3> ei =
+      pi.size > small ? std::span<Vec3>(ei_heap) : std::span<Vec3>(ei_stack.data, small);
+  const std::span<Vec3> ej =
+      pj.size > small ? std::span<Vec3>(ej_heap) : std::span<Vec3>(ej_stack.data, small);
+  const std::span<double> li =
+      pi.size > small ? std::span<double>(li_heap) : std::span<double>(li_stack.data, small);
+  const std::span<double> lj =
+      pj.size > small ? std::span<double>(lj_heap) : std::span<double>(lj_stack.data, small);
   for (int p = 0; p < pi.size; ++p) {
     const auto k = static_cast<std::size_t>(p);
     ei[k] = pi[(p + 1) % pi.size] - pi[p];
@@ -132,6 +188,10 @@ double polygon_polygon_form_factor(const Patch& from, const Patch& to, const Con
     ej[k] = pj[(q + 1) % pj.size] - pj[q];
     lj[k] = length(ej[k]);
   }
+  // options.tolerance on F, shared among the edge pairs, as a tolerance on each ∫∫ ln r:
+  // F = Σ cos · ∫∫ / (2π A_i).
+  const double pair_tolerance =
+      options.tolerance * 2 * std::numbers::pi * from.area / static_cast<double>(pi.size * pj.size);
   double sum = 0;
   for (int p = 0; p < pi.size; ++p) {
     const auto kp = static_cast<std::size_t>(p);
@@ -143,10 +203,10 @@ double polygon_polygon_form_factor(const Patch& from, const Patch& to, const Con
       const double cosine = dot(ei[kp], ej[kq]) / scale;
       if (std::abs(cosine) <= 1e-14) continue;  // perpendicular edges: dx_i · dx_j = 0
       const bool parallel = std::abs(cosine) >= 1 - 1e-14 || length(cross(ei[kp], ej[kq])) <= 1e-12 * scale;
-      const double integral =
-          parallel && options.exact_parallel_edges
-              ? parallel_edges_log_integral(pi[p], ei[kp], pj[q], ej[kq])
-              : edge_pair_log_integral(pi[p], ei[kp], pj[q], ej[kq], parallel, options, rule);
+      const double integral = parallel && options.exact_parallel_edges
+                                  ? parallel_edges_log_integral(pi[p], ei[kp], pj[q], ej[kq])
+                                  : edge_pair_log_integral(pi[p], ei[kp], pj[q], ej[kq], parallel, options,
+                                                           rule, pair_tolerance / std::abs(cosine));
       sum += cosine * integral;
     }
   }

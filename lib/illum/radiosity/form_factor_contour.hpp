@@ -25,6 +25,12 @@ struct ContourOptions {
   int order = 8;                     // Gauss–Legendre points of the outer integral, 1 … 64
   bool exact_parallel_edges = true;  // parallel edge pairs in closed form (else plain quadrature)
   bool graded_near_edges = true;     // split and grade the outer rule where non-parallel edges come close
+  // When > 0: the absolute error allowed in F. The outer integral of every
+  // non-parallel edge pair is then halved adaptively (the halves against the
+  // whole, an estimated error) until its share of the tolerance is met, as
+  // needed where edges of thin patches nearly touch; `order` is the rule on
+  // each piece.
+  double tolerance = 0;
 };
 
 // Exercise 3. F from `from` to the front side of `to` by the double contour

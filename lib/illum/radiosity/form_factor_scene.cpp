@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "illum/core/error.hpp"
+#include "illum/radiosity/form_factor_quadrature.hpp"
 #include "illum/radiosity/rectangle_form_factors.hpp"
 
 namespace illum {
@@ -149,7 +150,91 @@ FormFactorMatrix matrix_reusing_translates(const std::vector<Patch>& patches, co
   return f;
 }
 
+// The cost of one contour integral in evaluations of the area rule's kernel,
+// per edge pair: a parallel edge pair costs four log and four atan, about 60
+// kernel evaluations, and a quad pair has four to eight of its sixteen edge
+// pairs parallel (the rest perpendicular, free); measured on the cube.
+constexpr double kContourCostPerEdgePair = 15.0;
+
+// The smallest order m whose bound meets `target`, or 0 when none does.
+int smallest_area_order(int vertices, double radius, double distance, double area_to, double target) {
+  for (int m = 1; m <= max_area_rule_order; ++m)
+    if (area_rule_error_bound(m, vertices, radius, distance, area_to) <= target) return m;
+  return 0;
+}
+
+// One pair of the tolerance-driven matrix: the value and the method used.
+enum class PairMethod { contour, area_rule };
+
+double pair_to_tolerance(const Patch& a, const Patch& b, double ra, double rb, double target,
+                         const ContourOptions& contour, PairMethod& method, double& bound) {
+  method = PairMethod::contour;
+  bound = 0;
+  if (area_rule_applies(a, b, ra, rb)) {
+    const double d = length(b.centroid - a.centroid);
+    const int na = static_cast<int>(a.vertices.size()), nb = static_cast<int>(b.vertices.size());
+    // Half the target for each side's discretisation.
+    const int ma = smallest_area_order(na, ra, d, b.area, 0.5 * target);
+    const int mb = smallest_area_order(nb, rb, d, b.area, 0.5 * target);
+    const double cost = static_cast<double>(ma * ma * mb * mb);
+    if (ma > 0 && mb > 0 && cost <= kContourCostPerEdgePair * na * nb) {
+      method = PairMethod::area_rule;
+      bound = area_rule_error_bound(ma, na, ra, d, b.area) + area_rule_error_bound(mb, nb, rb, d, b.area);
+      return area_rule_form_factor(a, b, ma, mb);
+    }
+  }
+  ContourOptions to_target = contour;
+  to_target.tolerance = target;
+  return polygon_polygon_form_factor(a, b, to_target);
+}
+
 }  // namespace
+
+FormFactorMatrix contour_form_factor_matrix(const std::vector<Patch>& patches,
+                                            const FormFactorTolerance& target, MatrixReport* report) {
+  require(target.absolute >= 1e-15 && target.absolute <= 1,
+          "contour_form_factor_matrix: the tolerance must lie in [1e-15, 1]");
+  const ContourOptions contour{.order = 8};
+  const std::size_t n = patches.size();
+  FormFactorMatrix f(n);
+  // Per row: pairs by method, and the largest bound (summed after the parallel loop, in row order).
+  struct RowReport {
+    std::size_t coplanar = 0, contour = 0, area_rule = 0;
+    double bound = 0;
+  };
+  std::vector<RowReport> rows(n);
+  std::vector<double> radius(n);
+  for (std::size_t i = 0; i < n; ++i) radius[i] = patch_radius(patches[i]);
+  parallel_for(static_cast<long>(n), 4, [&](long row) {
+    const auto i = static_cast<std::size_t>(row);
+    RowReport& r = rows[i];
+    for (std::size_t j = i + 1; j < n; ++j) {
+      if (coplanar(patches[i], patches[j])) {
+        ++r.coplanar;
+        continue;
+      }
+      const double pair_target = target.absolute * std::min(1.0, patches[j].area / patches[i].area);
+      PairMethod method{};
+      double bound = 0;
+      const double fij = pair_to_tolerance(patches[i], patches[j], radius[i], radius[j], pair_target, contour,
+                                           method, bound);
+      ++(method == PairMethod::contour ? r.contour : r.area_rule);
+      r.bound = std::max(r.bound, bound);
+      f(i, j) = fij;
+      f(j, i) = patches[i].area * fij / patches[j].area;
+    }
+  });
+  if (report) {
+    *report = {};
+    for (const RowReport& r : rows) {
+      report->coplanar_pairs += r.coplanar;
+      report->contour_pairs += r.contour;
+      report->area_rule_pairs += r.area_rule;
+      report->largest_area_rule_bound = std::max(report->largest_area_rule_bound, r.bound);
+    }
+  }
+  return f;
+}
 
 FormFactorMatrix contour_form_factor_matrix(const std::vector<Patch>& patches, const ContourOptions& options,
                                             PairReuse reuse) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include <omp.h>
+
 #include "illum/core/error.hpp"
 #include "illum/core/frame.hpp"
 #include "illum/core/random.hpp"
@@ -65,60 +67,101 @@ bool hemicube_pixel(const Vec3& d, int resolution, HemicubeFace& face, int& col,
 
 Hemicube::Hemicube(int resolution, DeltaRule rule) : deltas_(make_hemicube_deltas(resolution, rule)) {}
 
-void Hemicube::form_factor_row(const std::vector<Patch>& patches, std::size_t i, double* row,
-                               HemicubeBuffers& buffers, double rotation_angle) const {
-  require(i < patches.size(), "Hemicube::form_factor_row: patch index i is out of range");
-  require(row != nullptr, "Hemicube::form_factor_row: row is null");
-  require(std::isfinite(rotation_angle), "Hemicube::form_factor_row: rotation_angle must be finite");
-  const int res = resolution();
+namespace {
+
+// The hemicube's frame at patch i: z along the receiver's normal, x and y
+// turned by rotation_angle about it.
+struct HemicubeFrame {
+  Vec3 x, y, z;
+  Point3 eye;
+};
+
+HemicubeFrame frame_of(const Patch& receiver, double rotation_angle) {
+  const Vec3 z = receiver.normal;
+  const Frame basis = Frame::around(z);
+  const Vec3 &t = basis.t1, &b = basis.t2;
+  const double cs = std::cos(rotation_angle), sn = std::sin(rotation_angle);
+  return {cs * t + sn * b, -sn * t + cs * b, z, receiver.centroid};
+}
+
+// Sizes the buffers for `res` (allocating only when the resolution changes)
+// and clears the faces in `faces` (bit k: face k).
+void clear_faces(HemicubeBuffers& buffers, int res, unsigned faces) {
   const std::size_t pixels =
       face_offset(res, HemicubeFace::neg_y) + static_cast<std::size_t>(res) * (res / 2);
   if (buffers.resolution != res) {
     buffers.resolution = res;
     buffers.items.assign(pixels, kEmptyPixel);
     buffers.inv_depth.assign(pixels, 0.0);
-  } else {
-    std::fill(buffers.items.begin(), buffers.items.end(), kEmptyPixel);
-    std::fill(buffers.inv_depth.begin(), buffers.inv_depth.end(), 0.0);
+    return;
   }
-
-  // The hemicube's frame: z along the receiver's normal, x and y turned by
-  // rotation_angle about it.
-  const Patch& receiver = patches[i];
-  const Vec3 z = receiver.normal;
-  const Frame frame = Frame::around(z);
-  const Vec3 &t = frame.t1, &b = frame.t2;
-  const double cs = std::cos(rotation_angle), sn = std::sin(rotation_angle);
-  const Vec3 x = cs * t + sn * b, y = -sn * t + cs * b;
-  const Point3 eye = receiver.centroid;
-
-  FaceTarget targets[5];
   for (int k = 0; k < 5; ++k) {
+    if (!(faces & (1u << k))) continue;
     const auto f = static_cast<HemicubeFace>(k);
-    const std::size_t off = face_offset(res, f);
-    targets[k] = FaceTarget{
-        buffers.items.data() + off, buffers.inv_depth.data() + off, res, HemicubeBuffers::face_height(res, f),
-        f != HemicubeFace::top,     1e-9 * std::sqrt(receiver.area)};
+    const std::size_t begin = face_offset(res, f),
+                      end = begin + static_cast<std::size_t>(res) * HemicubeBuffers::face_height(res, f);
+    std::fill(buffers.items.begin() + static_cast<std::ptrdiff_t>(begin),
+              buffers.items.begin() + static_cast<std::ptrdiff_t>(end), kEmptyPixel);
+    std::fill(buffers.inv_depth.begin() + static_cast<std::ptrdiff_t>(begin),
+              buffers.inv_depth.begin() + static_cast<std::ptrdiff_t>(end), 0.0);
   }
+}
 
-  for (std::size_t j = 0; j < patches.size(); ++j) {
+FaceTarget face_target(HemicubeBuffers& buffers, int res, HemicubeFace f, const Patch& receiver) {
+  const std::size_t off = face_offset(res, f);
+  return FaceTarget{
+      buffers.items.data() + off,           buffers.inv_depth.data() + off, res,
+      HemicubeBuffers::face_height(res, f), f != HemicubeFace::top,         1e-9 * std::sqrt(receiver.area)};
+}
+
+// Draws patches [begin, end) (all but i) onto the faces in `faces` with the
+// z-buffer. Within one buffer the first patch (lowest index) of the nearest
+// ones keeps a pixel; merge_faces keeps that rule across buffers.
+// The side planes of the five frustums that the point p (hemicube frame) is
+// outside of, four bits per face (bit 4k + plane), by the same sums as the
+// rasteriser's outcodes on the face coordinates (hemicube_raster.cpp,
+// plane_value). A polygon whose vertices are all outside one plane of face k
+// draws nothing there, so it is skipped without the per-face transform. The
+// near plane and the base plane are left to the rasteriser.
+unsigned planes_outside(const Vec3& p) {
+  const auto out = [](double v, int bit) { return v < 0 ? 1u << bit : 0u; };
+  // top (a, b, w) = (x, y, z); pos_x = (y, z, x); neg_x = (−y, z, −x); pos_y = (−x, z, y); neg_y = (x, z,
+  // −y); planes w + a, w − a, w − b (and w + b on top).
+  return out(p.z + p.x, 0) | out(p.z - p.x, 1) | out(p.z - p.y, 2) | out(p.z + p.y, 3) |  //
+         out(p.x + p.y, 4) | out(p.x - p.y, 5) | out(p.x - p.z, 6) |                      //
+         out(-p.x + -p.y, 8) | out(-p.x - -p.y, 9) | out(-p.x - p.z, 10) |                //
+         out(p.y + -p.x, 12) | out(p.y - -p.x, 13) | out(p.y - p.z, 14) |                 //
+         out(-p.y + p.x, 16) | out(-p.y - p.x, 17) | out(-p.y - p.z, 18);
+}
+
+// `scratch` holds the per-patch work space (it may be `buffers` itself).
+void draw_patches(const std::vector<Patch>& patches, std::size_t i, const HemicubeFrame& frame,
+                  std::size_t begin, std::size_t end, unsigned faces, HemicubeBuffers& buffers,
+                  HemicubeBuffers& scratch) {
+  const int res = buffers.resolution;
+  const Patch& receiver = patches[i];
+  FaceTarget targets[5];
+  for (int k = 0; k < 5; ++k) targets[k] = face_target(buffers, res, static_cast<HemicubeFace>(k), receiver);
+  for (std::size_t j = begin; j < end; ++j) {
     if (j == i) continue;
     const Patch& p = patches[j];
     const std::size_t nv = p.vertices.size();
-    if (buffers.local.size() < nv) buffers.local.resize(nv), buffers.face.resize(nv);
+    if (scratch.local.size() < nv) scratch.local.resize(nv), scratch.face.resize(nv);
     bool above = false;
     double reach = 0;
+    unsigned outside = ~0u;  // the frustum planes every vertex so far lies outside of
     for (std::size_t k = 0; k < nv; ++k) {
-      const Vec3 d = p.vertices[k] - eye;
-      buffers.local[k] = Vec3(dot(d, x), dot(d, y), dot(d, z));
-      above |= buffers.local[k].z > 0;
+      const Vec3 d = p.vertices[k] - frame.eye;
+      scratch.local[k] = Vec3(dot(d, frame.x), dot(d, frame.y), dot(d, frame.z));
+      above |= scratch.local[k].z > 0;
       reach = std::max(
-          reach, std::abs(buffers.local[k].z) + std::abs(buffers.local[k].x) + std::abs(buffers.local[k].y));
+          reach, std::abs(scratch.local[k].z) + std::abs(scratch.local[k].x) + std::abs(scratch.local[k].y));
+      outside &= planes_outside(scratch.local[k]);
     }
     if (!above) continue;  // wholly behind or on the base plane: invisible from the hemicube
     // The patch's plane n·q = d in the hemicube's frame (eye at the origin).
-    const Vec3 n_local(dot(p.normal, x), dot(p.normal, y), dot(p.normal, z));
-    const double d = dot(p.normal, p.vertices[0] - eye);
+    const Vec3 n_local(dot(p.normal, frame.x), dot(p.normal, frame.y), dot(p.normal, frame.z));
+    const double d = dot(p.normal, p.vertices[0] - frame.eye);
     if (std::abs(d) <= 1e-12 * reach) continue;  // seen exactly edge-on: projects to a line
     // d < 0: the eye is in front of the patch. Otherwise we see its back,
     // which still hides what lies behind it but receives nothing.
@@ -128,19 +171,86 @@ void Hemicube::form_factor_row(const std::vector<Patch>& patches, std::size_t i,
     // tie. Pushing back faces a relative 1e-9 further makes the front face win the tie.
     const double plane_d = d < 0 ? d : d * (1.0 + 1e-9);
     for (int k = 0; k < 5; ++k) {
+      if (!(faces & (1u << k)) || (outside >> (4 * k)) & 0xfu) continue;  // outside face k's frustum
       const auto f = static_cast<HemicubeFace>(k);
-      for (std::size_t v = 0; v < nv; ++v) buffers.face[v] = to_face(f, buffers.local[v]);
-      rasterize_polygon(buffers.face.data(), static_cast<int>(nv), to_face(f, n_local), plane_d, item,
-                        targets[k], buffers.raster);
+      for (std::size_t v = 0; v < nv; ++v) scratch.face[v] = to_face(f, scratch.local[v]);
+      rasterize_polygon(scratch.face.data(), static_cast<int>(nv), to_face(f, n_local), plane_d, item,
+                        targets[k], scratch.raster);
     }
   }
+}
 
-  // F_ij = Σ ΔF over the pixels showing j.
-  std::fill(row, row + patches.size(), 0.0);
-  accumulate_face(targets[0].items, deltas_.top.data(), deltas_.top.size(), row);
+// F_ij = Σ ΔF over the pixels showing j.
+void accumulate_row(const HemicubeDeltas& deltas, const HemicubeBuffers& buffers, std::size_t n,
+                    std::size_t i, double* row) {
+  std::fill(row, row + n, 0.0);
+  const int res = buffers.resolution;
+  accumulate_face(buffers.items.data(), deltas.top.data(), deltas.top.size(), row);
   for (int k = 1; k < 5; ++k)
-    accumulate_face(targets[k].items, deltas_.side.data(), deltas_.side.size(), row);
+    accumulate_face(buffers.items.data() + face_offset(res, static_cast<HemicubeFace>(k)), deltas.side.data(),
+                    deltas.side.size(), row);
   row[i] = 0.0;
+}
+
+}  // namespace
+
+void Hemicube::form_factor_row(const std::vector<Patch>& patches, std::size_t i, double* row,
+                               HemicubeBuffers& buffers, double rotation_angle) const {
+  require(i < patches.size(), "Hemicube::form_factor_row: patch index i is out of range");
+  require(row != nullptr, "Hemicube::form_factor_row: row is null");
+  require(std::isfinite(rotation_angle), "Hemicube::form_factor_row: rotation_angle must be finite");
+  constexpr unsigned all_faces = 0x1f;
+  clear_faces(buffers, resolution(), all_faces);
+  draw_patches(patches, i, frame_of(patches[i], rotation_angle), 0, patches.size(), all_faces, buffers,
+               buffers);
+  accumulate_row(deltas_, buffers, patches.size(), i, row);
+}
+
+void Hemicube::form_factor_row_parallel(const std::vector<Patch>& patches, std::size_t i, double* row,
+                                        std::vector<HemicubeBuffers>& buffers, double rotation_angle) const {
+  require(i < patches.size(), "Hemicube::form_factor_row_parallel: patch index i is out of range");
+  require(row != nullptr, "Hemicube::form_factor_row_parallel: row is null");
+  require(std::isfinite(rotation_angle), "Hemicube::form_factor_row_parallel: rotation_angle must be finite");
+  // One item buffer (and scratch) per range of patches, as many ranges as
+  // threads (grown once, reused). A small row is drawn by one thread: forking
+  // and joining would cost more than it saves.
+  const std::size_t n = patches.size();
+  const int res = resolution();
+  const bool worth_threads = static_cast<double>(n) * res * res >= 4e6;
+  const auto ranges = static_cast<std::size_t>(worth_threads ? std::max(1, omp_get_max_threads()) : 1);
+  if (buffers.size() < ranges) buffers.resize(ranges);
+  for (std::size_t r = 0; r < ranges; ++r)
+    if (buffers[r].resolution != res) clear_faces(buffers[r], res, 0x1f);  // allocates: the first call only
+  const HemicubeFrame frame = frame_of(patches[i], rotation_angle);
+  HemicubeBuffers& first = buffers[0];
+  const auto pixels = static_cast<std::ptrdiff_t>(first.items.size());
+  // One parallel region per row. Range r is drawn (all five faces) into
+  // buffers[r] by one thread, so each patch is transformed once. Then the
+  // ranges are merged in order into buffers[0]: a strictly nearer pixel wins,
+  // so on a tie the lower range (the lower patch index) keeps it, exactly as
+  // one serial pass over all patches would. The row does not depend on the
+  // number of threads.
+  const long tasks = static_cast<long>(ranges);
+#pragma omp parallel if (ranges > 1)
+  {
+#pragma omp for schedule(static, 1)
+    for (long t = 0; t < tasks; ++t) {
+      const auto r = static_cast<std::size_t>(t);
+      HemicubeBuffers& b = buffers[r];
+      clear_faces(b, res, 0x1f);
+      draw_patches(patches, i, frame, n * r / ranges, n * (r + 1) / ranges, 0x1f, b, b);
+    }
+#pragma omp for schedule(static)
+    for (std::ptrdiff_t p = 0; p < pixels; ++p) {
+      const auto k = static_cast<std::size_t>(p);
+      for (std::size_t r = 1; r < ranges; ++r)
+        if (buffers[r].inv_depth[k] > first.inv_depth[k]) {
+          first.inv_depth[k] = buffers[r].inv_depth[k];
+          first.items[k] = buffers[r].items[k];
+        }
+    }
+  }
+  accumulate_row(deltas_, first, n, i, row);
 }
 
 FormFactorMatrix hemicube_form_factors(const std::vector<Patch>& patches, int resolution,

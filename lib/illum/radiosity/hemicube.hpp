@@ -73,6 +73,16 @@ class Hemicube {
   void form_factor_row(const std::vector<Patch>& patches, std::size_t i, double* row,
                        HemicubeBuffers& buffers, double rotation_angle = 0.0) const;
 
+  // The same row computed by every OpenMP thread, for progressive refinement
+  // where rows come one at a time: the patches are split into one range per
+  // thread, each range is drawn by one thread into its own item buffer
+  // (buffers[range]), and the ranges are merged by depth in order, so that
+  // on a tie the lower patch index keeps the pixel as in one serial pass.
+  // The row is the same, bit for bit, as form_factor_row's, whatever the
+  // number of threads. `buffers` is grown on the first call and reused.
+  void form_factor_row_parallel(const std::vector<Patch>& patches, std::size_t i, double* row,
+                                std::vector<HemicubeBuffers>& buffers, double rotation_angle = 0.0) const;
+
  private:
   HemicubeDeltas deltas_;
 };

@@ -42,6 +42,8 @@ void gauss_seidel_sweep(const std::vector<Patch>& patches, const FormFactorMatri
 // 0, and update every other residual:
 //   δ = r_i / (1 − ρ_i F_ii),  b_i += δ,  r_j += ρ_j F_ji δ (j ≠ i),  r_i = 0.
 // `residual` must hold E − M·b on entry (for b = 0: r = E). Returns i.
+// Checks only the sizes (std::invalid_argument): check the system once with
+// check_radiosity_system before the first step.
 std::size_t southwell_step(const std::vector<Patch>& patches, const FormFactorMatrix& f,
                            std::vector<Color>& b, std::vector<Color>& residual);
 
@@ -53,7 +55,8 @@ struct ProgressiveState {
   std::size_t shots = 0;
 };
 
-// Task 6a. B = Δ = E. Checks the patches (reflectance in [0, 1), E ≥ 0).
+// Task 6a. B = Δ = E. Checks the patches (check_patches: reflectance in
+// [0, 1), E ≥ 0) without building any matrix.
 ProgressiveState progressive_start(const std::vector<Patch>& patches);
 
 // Task 6b. The patch with the most unshot power A_i (Δ_i.r + Δ_i.g + Δ_i.b),

@@ -11,6 +11,10 @@ namespace illum {
 
 void check_radiosity_system(const std::vector<Patch>& patches, const FormFactorMatrix& f) {
   require(f.size() == patches.size(), "radiosity system: the form-factor matrix needs one row per patch");
+  check_patches(patches);
+}
+
+void check_patches(const std::vector<Patch>& patches) {
   for (std::size_t i = 0; i < patches.size(); ++i) {
     const Patch& p = patches[i];
     if (!(p.area > 0.0) || !std::isfinite(p.area))

@@ -13,11 +13,16 @@
 
 namespace illum {
 
-// Throws std::invalid_argument unless there is one matrix row per patch,
-// every area is positive, every reflectance channel lies in [0, 1) and every
-// emission channel is finite and ≥ 0. O(n): cheap enough for every sweep.
-// ρ ≥ 1 is refused because in a closed scene (Σ_j F_ij = 1) M = I − ρF is
-// then singular: the light would never decay.
+// Throws std::invalid_argument unless every area is positive, every
+// reflectance channel lies in [0, 1) and every emission channel is finite
+// and ≥ 0. ρ ≥ 1 is refused because in a closed scene (Σ_j F_ij = 1)
+// M = I − ρF is then singular: the light would never decay. O(n), no matrix:
+// progressive refinement checks its patches with it before the first shot.
+void check_patches(const std::vector<Patch>& patches);
+
+// check_patches, and one matrix row per patch. O(n): the sweeps (O(n²) each)
+// call it every time; a Southwell step (O(n)) does not, its caller checks
+// the system once before the first step.
 void check_radiosity_system(const std::vector<Patch>& patches, const FormFactorMatrix& f);
 
 // Throws std::invalid_argument unless every F_ij is finite and ≥ 0 and every

@@ -1,0 +1,33 @@
+// Lesson 08 exercise, task 3: BVH traversal, closest hit and any hit.
+// Replace each `throw NotImplemented(...)` with your code. The tasks, hints
+// and the tests that grade them are in README.md beside this file; the node
+// layout is in lib/illum/accel/bvh.hpp, the contracts in
+// lib/illum/accel/bvh_traversal.hpp.
+#include "illum/accel/bvh_traversal.hpp"
+
+#include <cmath>
+
+#include "illum/accel/slab_test.hpp"
+#include "illum/core/error.hpp"
+
+namespace illum {
+
+// Task 3a. Closest hit. Keep a stack of (node, entry s); skip a popped node
+// whose entry lies beyond the closest hit so far; at a leaf test every
+// triangle with the range shrunk to the closest hit; at an inner node clip
+// both children (slab_clip with slab_far_slack) and push the farther first.
+// Count each box test in counters.nodes_visited and each triangle test in
+// counters.triangle_tests; count the ray in counters.rays.
+std::optional<AccelHit> bvh_closest_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters) {
+  throw NotImplemented("bvh_closest_hit",
+                       "visit the nearer child first and skip nodes that begin beyond the best hit "
+                       "(lesson 08, §4 \"comprobar (nodo, rayo)\")");
+}
+
+// Task 3b. Any hit: the same walk, returning true at the first triangle hit.
+bool bvh_any_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters) {
+  throw NotImplemented("bvh_any_hit",
+                       "return at the first hit in range; order does not matter (lesson 08, §4)");
+}
+
+}  // namespace illum

@@ -1,0 +1,34 @@
+#pragma once
+// BVH traversal: closest hit and any hit over flattened nodes, lesson 08 (§4).
+//
+// Closest hit, with a stack of nodes still to visit:
+//   * a node is popped with the parameter at which the ray enters its box;
+//     when that lies beyond the closest hit so far, the node is skipped
+//     (early exit: nothing in it can be closer);
+//   * at an inner node both children's boxes are clipped (slab_clip) against
+//     [range.lo, closest so far]; the child entered first is visited first
+//     (pushed last), so that a close hit is found early and prunes the rest;
+//   * at a leaf every triangle is tested against the shrunken range.
+// Any hit (shadow rays): the same walk, returning at the first hit.
+// Each node whose box test is done counts as one node visit; each ray–triangle test as one test.
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "illum/accel/bvh.hpp"
+
+namespace illum {
+
+struct BvhView {
+  std::span<const BvhNode> nodes;       // nodes[0] is the root
+  std::span<const Triangle> triangles;  // in leaf order
+  std::span<const std::uint32_t> ids;   // the id reported for triangles[k]
+};
+
+// Deepest tree the traversal's fixed stack can hold.
+constexpr int bvh_max_depth = 96;
+
+std::optional<AccelHit> bvh_closest_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters);
+bool bvh_any_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters);
+
+}  // namespace illum

@@ -1,0 +1,71 @@
+#pragma once
+// One interface for every acceleration structure of lesson 08, so that a
+// renderer (the ray tree of lesson 06, the visibility of lessons 09–11) picks
+// one by name and never depends on which it got.
+//
+//   intersect(ray)  the closest hit with s in ray.range (primary and secondary rays)
+//   occluded(ray)   whether any hit exists with s in ray.range (shadow rays: any
+//                   hit will do, so the search stops at the first)
+//
+// Both count their work in TraversalCounters ("comprobar (nodo, rayo)": each
+// node or cell visited, each ray–triangle test), so the lesson can show cost
+// in counts as well as in time. A structure is immutable after construction
+// and safe to query from many threads, each with its own counters.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "illum/accel/triangle_set.hpp"
+#include "illum/core/ray.hpp"
+#include "illum/geometry/triangle.hpp"
+
+namespace illum {
+
+struct AccelHit {
+  TriangleHit hit;
+  std::uint32_t triangle = 0;  // index into the TriangleSet's triangles
+};
+
+struct TraversalCounters {
+  std::uint64_t rays = 0;
+  std::uint64_t nodes_visited = 0;   // BVH/octree nodes or grid cells whose contents were examined
+  std::uint64_t triangle_tests = 0;  // calls of the ray–triangle test
+
+  TraversalCounters& operator+=(const TraversalCounters& o) {
+    rays += o.rays;
+    nodes_visited += o.nodes_visited;
+    triangle_tests += o.triangle_tests;
+    return *this;
+  }
+};
+
+class TriangleAccel {
+ public:
+  virtual ~TriangleAccel() = default;
+  virtual std::optional<AccelHit> intersect(const Ray& ray, TraversalCounters& counters) const = 0;
+  virtual bool occluded(const Ray& ray, TraversalCounters& counters) const = 0;
+  // Bytes of the structure itself (nodes, cells, index lists), not counting the triangles.
+  virtual std::size_t memory_bytes() const = 0;
+  virtual std::string_view name() const = 0;
+};
+
+enum class AccelKind { brute_force, grid, octree, bvh };
+
+struct AccelSettings {
+  AccelKind kind = AccelKind::bvh;
+  // Cells along the grid's longest axis (≥ 1; 0 is refused); none = ⌈∛(2N)⌉, about 2 cells per triangle.
+  std::optional<int> grid_resolution{};
+  int bvh_leaf_size = 4;  // most triangles in a BVH leaf
+  int octree_depth = 8;   // deepest octree level below the root (0 … 16)
+};
+
+// "brute_force", "grid", "octree", "bvh"; throws std::invalid_argument naming the choices otherwise.
+AccelKind accel_kind_from_name(std::string_view name);
+std::string_view accel_kind_name(AccelKind kind);
+
+// Builds the chosen structure over a copy of the set's triangles.
+std::unique_ptr<TriangleAccel> make_accel(const TriangleSet& set, const AccelSettings& settings = {});
+
+}  // namespace illum

@@ -1,0 +1,49 @@
+#pragma once
+// Patch-to-patch form factors by a Gauss–Legendre product rule over both
+// areas (lesson 09, "Cálculo del factor de forma"), with the a-priori error
+// estimate that lets the matrix builder meet a requested tolerance cheaply:
+//   F_ij = (1/A_i) ∫_{A_i} ∫_{A_j} cos φ_i cos φ_j / (π r²) dA_j dA_i
+//        ≈ (1/A_i) Σ_a Σ_b w_a w_b cos φ_i cos φ_j / (π r_ab²).
+// The kernel is smooth while the patches are apart, so an m-point rule per
+// direction converges geometrically, like (radius / distance)^{2m}; near a
+// shared edge or vertex it does not, and the contour integral takes over.
+// Triangles are mapped from the square by the collapsed (Duffy) map,
+// quadrilaterals bilinearly; other polygons are not handled here.
+#include "illum/radiosity/patch.hpp"
+
+namespace illum {
+
+// The largest number of points per direction of the area rule (m × m points per patch).
+inline constexpr int max_area_rule_order = 8;
+
+// The smallest centroid distance, in units of the larger patch radius, at
+// which the area rule is used at all (closer pairs go to the contour integral).
+inline constexpr double min_area_rule_separation = 2.0;
+
+// F from `from` to `to` with an m_from × m_from rule on `from` and an
+// m_to × m_to rule on `to`. No clipping: both patches must lie wholly on the
+// front side (or on the plane) of each other, as area_rule_applies checks.
+// Throws std::invalid_argument for an order outside 1 … max_area_rule_order or a
+// patch that is neither a triangle nor a quadrilateral.
+double area_rule_form_factor(const Patch& from, const Patch& to, int m_from, int m_to);
+
+// Whether the area rule can be used for the pair: both are triangles or
+// quadrilaterals, each lies on the closed front side of the other's plane (so
+// the signed cosines need no clipping), and they are at least
+// min_area_rule_separation radii apart (radius_from, radius_to: patch_radius of each).
+bool area_rule_applies(const Patch& from, const Patch& to, double radius_from, double radius_to);
+
+// The radius of a patch: the largest distance from its centroid to a vertex.
+double patch_radius(const Patch& patch);
+
+// A-priori bound on the part of the area rule's error that comes from one
+// side: a patch of `vertices` vertices and radius r sampled with m × m points, the pair's
+// centroids d apart, the receiving patch of area `area_to`:
+//   E ≤ K · (area_to / (π d²)) · (r / d)^p,   p = 2m (quadrilateral), 2m − 1 (triangle),
+// since an m-point Gauss rule is exact to degree 2m − 1 and the collapsed map
+// of a triangle costs one degree. K = 2: the largest K measured over squares
+// and triangles seen from all directions at 2 ≤ d/r ≤ 8 is 0.66 (lesson 09
+// README, "The error target"). The pair's error is the sum of both sides'.
+double area_rule_error_bound(int m, int vertices, double radius, double distance, double area_to);
+
+}  // namespace illum
