@@ -518,6 +518,11 @@ class Workspace:
         return done.returncode == 0, done.stdout
 
     def write_unit(self, unit: Path, text: str) -> None:
+        # One mutant at a time: a worker that moves on to another unit puts the
+        # previous one back first, or every later mutant would also carry the
+        # last mutation of that unit (and be killed by it, not by its own).
+        if self.current is not None and self.current != unit:
+            self.restore()
         path = self.src / unit
         path.write_text(text, encoding="utf-8")
         self.current = unit

@@ -1,0 +1,290 @@
+// Grading tests of lesson 06 that close holes a mutation run found
+// (`tools/grade --mutants 06`, docs/grading.md): the exact critical angle,
+// a highlight that faces away from the viewer, a light on the tangent plane,
+// the zero-weight rule of the effects plan, and an oblique entry into glass
+// through evaluate (where η_i/η_t = 1/η and η differ).
+//
+// As in grading.cpp, every expected value is worked out by hand in the test.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "06_ray_tree/test_scenes.hpp"
+#include "illum/trace/optics.hpp"
+#include "illum/trace/ray_tree.hpp"
+#include "support/throws_containing.hpp"
+
+using namespace illum;
+using illum::test::add_light;
+using illum::test::add_material;
+using illum::test::add_sphere;
+using illum::test::hand_hit;
+using illum::test::material;
+
+namespace {
+
+void check_colour(const Color& got, const Color& want, double eps = 1e-12) {
+  INFO("got (", got.r, ", ", got.g, ", ", got.b, "), expected (", want.r, ", ", want.g, ", ", want.b, ")");
+  CHECK(got.r == doctest::Approx(want.r).epsilon(eps).scale(1.0));
+  CHECK(got.g == doctest::Approx(want.g).epsilon(eps).scale(1.0));
+  CHECK(got.b == doctest::Approx(want.b).epsilon(eps).scale(1.0));
+}
+
+// The axis-aligned rectangle [x0, x1] × [y0, y1] of the plane z = z0, normal +z
+// (counter-clockwise seen from above).
+void add_rectangle(Scene& scene, const std::string& name, double x0, double x1, double y0, double y1,
+                   double z0, std::uint32_t material) {
+  scene.primitives.push_back(Primitive{
+      .name = name,
+      .shape = Polygon({Point3(x0, y0, z0), Point3(x1, y0, z0), Point3(x1, y1, z0), Point3(x0, y1, z0)}),
+      .material = material});
+}
+
+}  // namespace
+
+TEST_SUITE("lesson06") {
+  TEST_CASE("hard case: sin θ_t = 1 exactly counts as total internal reflection") {
+    // Equal indices (η_i/η_t = 1) and grazing incidence along the surface: cos θ_i = −N·I = 0
+    // exactly, so sin² θ_t = 1² · (1 − 0²) = 1 with no rounding at all. The transmitted ray
+    // would run along the surface and carry nothing; optics.hpp's convention is that this
+    // is total internal reflection (sin θ_t ≥ 1), not a grazing transmitted ray.
+    const Refraction r = refract(Vec3(1, 0, 0), Vec3(0, 1, 0), 1.0);
+    CHECK_MESSAGE(r.total_internal_reflection,
+                  "sin θ_t = η sin θ_i = 1 · 1 = 1 exactly: the critical angle, which is total internal "
+                  "reflection (the test is sin² θ_t >= 1, not > 1)");
+    CHECK_MESSAGE(r.direction == Vec3(0.0), "under total internal reflection the direction is zero");
+  }
+
+  TEST_CASE("Phong term: a mirror direction facing away from the viewer gives no highlight") {
+    // N = (0, 0, 1), L = (0, 0.6, 0.8): N·L = 0.8, R = 2(N·L)N − L = (0, −0.6, 0.8).
+    // V = (0, 0.96, 0.28) (unit: 0.9216 + 0.0784 = 1) is above the surface, but
+    // R·V = −0.576 + 0.224 = −0.352 < 0: the specular term is 0 (not k_s·1, not (−0.352)^n).
+    const Color kd(0.5, 0.25, 0.1), ks(0.3, 0.6, 0.9);
+    const Color c = phong_term(Vec3(0, 0, 1), Vec3(0, 0.6, 0.8), Vec3(0, 0.96, 0.28), kd, ks, 3.0);
+    INFO("R·V = −0.352 < 0: only the diffuse term k_d·(N·L) = k_d·0.8 remains");
+    check_colour(c, kd * 0.8);
+  }
+
+  TEST_CASE("hard case: a light on the tangent plane casts no shadow ray and adds nothing") {
+    Scene scene;
+    Material m = material("grey");
+    m.ambient = Color(0.25, 0.5, 0.75);
+    m.diffuse = Color(0.5);
+    m.specular = Color(0.5);
+    const auto grey = add_material(scene, m);
+    scene.ambient_light = Color(0.5);
+    // The point is the origin with N = (0, 0, 1); the light at (2, 0, 0) gives L = (1, 0, 0):
+    // N·L = 0 exactly. Without the plan's zero-weight rule (full_effects), only N·L ≤ 0
+    // itself may stop the shadow ray: the header says such a light casts none.
+    add_light(scene, Point3(2, 0, 0), Color(1.0));
+    const SurfaceHit at_origin = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), grey);
+    const EffectsPlan plan = full_effects(0);
+    TraceStats stats;
+    const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+    const Color own = own_intensity(tracer, at_origin, Vec3(0, 0, 1));
+    INFO("I_own = k_a·I_a = (0.125, 0.25, 0.375): the light on the tangent plane contributes 0");
+    check_colour(own, m.ambient * 0.5);
+    CHECK_MESSAGE(stats.rays.shadow == 0,
+                  "N·L = 0: the light is on the tangent plane, so no shadow ray is cast");
+  }
+
+  TEST_CASE("effects plan: a surface with k_d = k_s = 0 casts no shadow ray when zero weights are skipped") {
+    Scene scene;
+    Material m = material("black mirror");
+    m.ambient = Color(0.2, 0.3, 0.4);
+    m.emission = Color(0.1, 0.0, 0.05);
+    m.reflectance = Color(0.5);  // k_d = k_s = 0: the Phong term is exactly black
+    const auto mirror = add_material(scene, m);
+    scene.ambient_light = Color(1.0);
+    add_light(scene, Point3(0, 0, 4), Color(3.0));  // straight overhead: N·L = 1 > 0
+    const SurfaceHit at_origin = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), mirror);
+    EffectsPlan plan = full_effects(0);
+    plan.skip_zero_weights = true;
+    TraceStats stats;
+    const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+    // I_own = k_a·I_a + emission + I_l·(0·(N·L) + 0·(R·V)^n)·S = (0.3, 0.3, 0.45).
+    check_colour(own_intensity(tracer, at_origin, Vec3(0, 0, 1)), Color(0.3, 0.3, 0.45));
+    CHECK_MESSAGE(stats.rays.shadow == 0,
+                  "k_d = k_s = 0 makes the light's factor (0, 0, 0): with skip_zero_weights its shadow ray "
+                  "is not cast (a black colour is one whose three channels are all ≤ 0)");
+    // The same surface under the literal algorithm (no skipping) does cast it.
+    const EffectsPlan literal = full_effects(0);
+    TraceStats literal_stats;
+    const Tracer literal_tracer{.scene = scene, .plan = literal, .stats = &literal_stats};
+    check_colour(own_intensity(literal_tracer, at_origin, Vec3(0, 0, 1)), Color(0.3, 0.3, 0.45));
+    CHECK_MESSAGE(literal_stats.rays.shadow == 1, "without the zero-weight rule, one shadow ray per light");
+  }
+
+  TEST_CASE("effects plan: an opaque mirror casts no refracted ray when zero weights are skipped") {
+    Scene scene;
+    Material mirror = material("mirror");
+    mirror.reflectance = Color(0.5);  // k_t = 0 here
+    Material glass = material("glass");
+    glass.transmittance = Color(0.5);  // another material has k_t > 0, so the plan keeps refraction on
+    glass.index_of_refraction = 1.5;
+    add_rectangle(scene, "mirror floor", -10, 10, -10, 10, 0.0, add_material(scene, mirror));
+    add_material(scene, glass);
+    const EffectsPlan plan = plan_effects(scene, 1);
+    REQUIRE_MESSAGE(plan.refraction, "a material with k_t > 0 exists: the plan must keep refracted rays");
+    REQUIRE(plan.skip_zero_weights);
+    TraceStats stats;
+    const Color background(0.2, 0.4, 0.6);
+    const Tracer tracer{.scene = scene, .plan = plan, .background = background, .stats = &stats};
+    // Straight down onto the mirror: I_own = 0, the reflected ray goes straight up to the
+    // background: 0.5·(0.2, 0.4, 0.6) = (0.1, 0.2, 0.3).
+    check_colour(evaluate(tracer, Ray(Point3(0, 0, 2), Vec3(0, 0, -1))), Color(0.1, 0.2, 0.3));
+    CHECK_MESSAGE(stats.rays.refraction == 0, "k_t = (0, 0, 0) at the mirror: no refracted ray is spawned");
+    CHECK(stats.rays.reflection == 1);
+  }
+
+  TEST_CASE("evaluate: entering glass obliquely uses η_i/η_t = 1/1.5 and bends towards the normal") {
+    // A glass plane z = 0 (k_t = 0.5, η = 1.5) above a small lamp z = −1, x ∈ [0.3, 0.8].
+    // The ray from (−1, 0, 1) meets the glass at the origin at 45° (front face):
+    //   sin θ_t = sin 45° / 1.5 = √2/3 ≈ 0.4714, cos θ_t = √(1 − 2/9) = √7/3,
+    //   so it reaches z = −1 at x = tan θ_t = √(2/7) ≈ 0.5345: on the lamp.
+    // With η_i/η_t = 1.5 instead (the leaving ratio), sin² θ_t = 2.25·0.5 = 1.125 > 1: total
+    // internal reflection at the entry, the ray goes up to the black sky and the pixel is 0.
+    // An unbent ray would reach x = 1 and miss the lamp.
+    Scene scene;
+    Material glass = material("glass");
+    glass.transmittance = Color(0.5);
+    glass.index_of_refraction = 1.5;
+    Material lamp = material("lamp");
+    lamp.emission = Color(0.2, 1.0, 0.6);
+    add_rectangle(scene, "glass plane", -10, 10, -10, 10, 0.0, add_material(scene, glass));
+    add_rectangle(scene, "lamp", 0.3, 0.8, -0.5, 0.5, -1.0, add_material(scene, lamp));
+    const EffectsPlan plan = plan_effects(scene, 1);
+    TraceStats stats;
+    const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+    const Color c = evaluate(tracer, Ray::toward(Point3(-1, 0, 1), Vec3(1, 0, -1)));
+    INFO(
+        "I = I_own(glass) + k_t·I_t = 0 + 0.5·(0.2, 1.0, 0.6): the refracted ray lands at x = √(2/7) on "
+        "the lamp");
+    check_colour(c, Color(0.1, 0.5, 0.3));
+    CHECK_MESSAGE(stats.rays.refraction == 1,
+                  "entering glass (front face) there is always a transmitted ray: η_i/η_t = 1/1.5 < 1");
+  }
+
+  TEST_CASE("refract: a ratio η_i/η_t of 0 is refused, not turned into a ray along −N") {
+    // η_i/η_t = 0 would be an infinitely dense second medium: sin θ_t = 0 whatever θ_i, and
+    // T = 0·I + (0 − 1)·N = −N. No material has η = ∞ (nor η_i = 0): optics.hpp says a ratio
+    // that is not positive and finite throws std::invalid_argument.
+    ILLUM_CHECK_THROWS_CONTAINING(refract(Vec3(0, 0, -1), Vec3(0, 0, 1), 0.0), "refract",
+                                  std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(refract(Vec3(0, 0, -1), Vec3(0, 0, 1), -1.5), "refract",
+                                  std::invalid_argument);
+  }
+
+  TEST_CASE("hard case: R·V = 0 exactly gives no highlight, even with exponent 0") {
+    // N = (0, 0, 1), L = (0, s, s) with s = √½: N·L = s, R = 2sN − L = (0, −s, s) (2s − s = s
+    // exactly). V = (0, s, s): R·V = −s·s + s·s = 0 exactly. optics.hpp: the specular part
+    // is zero when R·V ≤ 0; with n = 0 a test R·V ≥ 0 would give 0⁰ = 1, i.e. k_s.
+    const double s = std::sqrt(0.5);
+    const Color kd(0.5, 0.25, 0.1), ks(0.3, 0.6, 0.9);
+    const Color c = phong_term(Vec3(0, 0, 1), Vec3(0, s, s), Vec3(0, s, s), kd, ks, 0.0);
+    INFO("R·V = 0: the viewer is 90° from the mirror direction, only k_d·(N·L) = k_d·√½ remains");
+    check_colour(c, kd * s);
+  }
+
+  TEST_CASE("own intensity: each light is multiplied by its shadow transmission S_l, not divided by it") {
+    Scene scene;
+    Material m = material("matte");
+    m.diffuse = Color(0.5);  // k_s = 0, k_a = 0: I_own is the diffuse terms alone
+    const auto matte = add_material(scene, m);
+    Material glass = material("glass");
+    glass.transmittance = Color(0.8, 0.5, 0.9);
+    glass.index_of_refraction = 1.5;
+    add_sphere(scene, "glass ball", Point3(0, 0, 2), 0.5, add_material(scene, glass));
+    add_sphere(scene, "opaque ball", Point3(2, 0, 2), 0.5, matte);
+    // Light 1 overhead at (0, 0, 4): N·L = 1, its shadow ray crosses the glass ball twice,
+    // S_1 = k_t² = (0.64, 0.25, 0.81). Light 2 at (4, 0, 4): N·L = 1/√2, but the opaque ball
+    // centred on the segment to it blocks it, S_2 = 0.
+    add_light(scene, Point3(0, 0, 4), Color(2.0));
+    add_light(scene, Point3(4, 0, 4), Color(2.0));
+    const SurfaceHit at_origin = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), matte);
+    const EffectsPlan plan = full_effects(0);  // shadow attenuation on
+    TraceStats stats;
+    const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+    // I_own = I_1·k_d·1·S_1 + I_2·k_d·(1/√2)·0 = 2·0.5·(0.64, 0.25, 0.81) = (0.64, 0.25, 0.81).
+    INFO("I_own = Σ_l S_l·I_l·k_d(N·L): the glass light weighs S = k_t², the blocked light 0");
+    check_colour(own_intensity(tracer, at_origin, Vec3(0, 0, 1)), Color(0.64, 0.25, 0.81));
+  }
+
+  TEST_CASE("shadow test: a coloured glass that stops two channels still lets the third through") {
+    // A ball with k_t zero in two channels and 0.5 in the third: after the first surface the
+    // transmission is 0.5 in one channel only. That is not black (black is all three ≤ 0), so
+    // the shadow ray goes on through the second surface: S = 0.5² = 0.25 in that channel.
+    for (int channel = 0; channel < 3; ++channel) {
+      Scene scene;
+      const auto floor = add_material(scene, material("floor"));
+      Material glass = material("coloured glass");
+      glass.transmittance = Color(0.0);
+      glass.transmittance[channel] = 0.5;
+      glass.index_of_refraction = 1.5;
+      add_sphere(scene, "ball", Point3(0, 0, 2), 0.5, add_material(scene, glass));
+      const SurfaceHit p = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), floor);
+      const EffectsPlan plan = full_effects(0);
+      TraceStats stats;
+      const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+      Color want(0.0);
+      want[channel] = 0.25;
+      INFO("channel ", channel, ": k_t = 0.5 there and 0 elsewhere, crossed twice: S = 0.25 in that channel");
+      check_colour(shadow_transmission(tracer, p, Point3(0, 0, 4)), want);
+    }
+  }
+
+  TEST_CASE("ray tree record: weights multiply k_r and k_t, a miss has no I_own, a shadow ray returns 0") {
+    // A mirror floor (k_d = 0.5, k_r = (0.5, 0.25, 0.125)) lit from (0, 0, 4), seen straight down.
+    Scene scene;
+    Material m = material("mirror");
+    m.diffuse = Color(0.5);
+    m.reflectance = Color(0.5, 0.25, 0.125);
+    add_rectangle(scene, "floor", -10, 10, -10, 10, 0.0, add_material(scene, m));
+    add_light(scene, Point3(0, 0, 4), Color(1.0));
+    const Color background(0.2, 0.4, 0.6);
+    const EffectsPlan plan = plan_effects(scene, 1);
+    TraceStats stats;
+    RayTree tree;
+    const Tracer tracer{
+        .scene = scene, .plan = plan, .background = background, .stats = &stats, .tree = &tree};
+    // I = k_d·(N·L = 1) + k_r·background = (0.5 + 0.1, 0.5 + 0.1, 0.5 + 0.075).
+    check_colour(evaluate(tracer, Ray(Point3(0, 0, 2), Vec3(0, 0, -1))), Color(0.6, 0.6, 0.575));
+    const auto find = [&](RayKind kind) {
+      for (const RayTreeNode& node : tree.nodes)
+        if (node.kind == kind) return &node;
+      return static_cast<const RayTreeNode*>(nullptr);
+    };
+    const RayTreeNode* shadow = find(RayKind::shadow);
+    const RayTreeNode* reflected = find(RayKind::reflection);
+    REQUIRE(shadow != nullptr);
+    REQUIRE(reflected != nullptr);
+    INFO("the shadow ray: nothing blocks it, transmission (local) 1; it returns no colour of its own");
+    check_colour(shadow->local, Color(1.0));
+    check_colour(shadow->color, Color(0.0));
+    INFO(
+        "the reflected ray misses: no surface, so I_own = 0, and it returns the background; its path "
+        "weight is 1·k_r = (0.5, 0.25, 0.125)");
+    CHECK_FALSE(reflected->hit);
+    check_colour(reflected->local, Color(0.0));
+    check_colour(reflected->color, background);
+    check_colour(reflected->weight, Color(0.5, 0.25, 0.125));
+
+    // The refracted ray of the oblique glass entry (see above) weighs 1·k_t = 0.5.
+    Scene glass_scene;
+    Material glass = material("glass");
+    glass.transmittance = Color(0.5, 0.25, 0.75);
+    glass.index_of_refraction = 1.5;
+    add_rectangle(glass_scene, "glass plane", -10, 10, -10, 10, 0.0, add_material(glass_scene, glass));
+    const EffectsPlan glass_plan = plan_effects(glass_scene, 1);
+    RayTree glass_tree;
+    const Tracer glass_tracer{.scene = glass_scene, .plan = glass_plan, .stats = &stats, .tree = &glass_tree};
+    evaluate(glass_tracer, Ray::toward(Point3(-1, 0, 1), Vec3(1, 0, -1)));
+    const RayTreeNode* refracted = nullptr;
+    for (const RayTreeNode& node : glass_tree.nodes)
+      if (node.kind == RayKind::refraction) refracted = &node;
+    REQUIRE(refracted != nullptr);
+    INFO("the refracted ray's path weight is 1·k_t = (0.5, 0.25, 0.75)");
+    check_colour(refracted->weight, Color(0.5, 0.25, 0.75));
+  }
+}
