@@ -17,17 +17,11 @@ using illum::test::add_floor;
 using illum::test::add_light;
 using illum::test::add_material;
 using illum::test::add_sphere;
+using illum::test::check_vec;
 using illum::test::hand_hit;
 using illum::test::material;
 
 namespace {
-
-void check_vec(const Vec3& got, const Vec3& want, double eps = 1e-12) {
-  INFO("got (", got.x, ", ", got.y, ", ", got.z, "), expected (", want.x, ", ", want.y, ", ", want.z, ")");
-  CHECK(got.x == doctest::Approx(want.x).epsilon(eps).scale(1.0));
-  CHECK(got.y == doctest::Approx(want.y).epsilon(eps).scale(1.0));
-  CHECK(got.z == doctest::Approx(want.z).epsilon(eps).scale(1.0));
-}
 
 struct Run {
   TraceStats stats;

@@ -19,17 +19,11 @@ using namespace illum;
 using illum::test::add_light;
 using illum::test::add_material;
 using illum::test::add_sphere;
+using illum::test::check_vec;
 using illum::test::hand_hit;
 using illum::test::material;
 
 namespace {
-
-void check_colour(const Color& got, const Color& want, double eps = 1e-12) {
-  INFO("got (", got.r, ", ", got.g, ", ", got.b, "), expected (", want.r, ", ", want.g, ", ", want.b, ")");
-  CHECK(got.r == doctest::Approx(want.r).epsilon(eps).scale(1.0));
-  CHECK(got.g == doctest::Approx(want.g).epsilon(eps).scale(1.0));
-  CHECK(got.b == doctest::Approx(want.b).epsilon(eps).scale(1.0));
-}
 
 // The axis-aligned rectangle [x0, x1] × [y0, y1] of the plane z = z0, normal +z
 // (counter-clockwise seen from above).
@@ -63,7 +57,7 @@ TEST_SUITE("lesson06") {
     const Color kd(0.5, 0.25, 0.1), ks(0.3, 0.6, 0.9);
     const Color c = phong_term(Vec3(0, 0, 1), Vec3(0, 0.6, 0.8), Vec3(0, 0.96, 0.28), kd, ks, 3.0);
     INFO("R·V = −0.352 < 0: only the diffuse term k_d·(N·L) = k_d·0.8 remains");
-    check_colour(c, kd * 0.8);
+    check_vec(c, kd * 0.8);
   }
 
   TEST_CASE("hard case: a light on the tangent plane casts no shadow ray and adds nothing") {
@@ -84,7 +78,7 @@ TEST_SUITE("lesson06") {
     const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
     const Color own = own_intensity(tracer, at_origin, Vec3(0, 0, 1));
     INFO("I_own = k_a·I_a = (0.125, 0.25, 0.375): the light on the tangent plane contributes 0");
-    check_colour(own, m.ambient * 0.5);
+    check_vec(own, m.ambient * 0.5);
     CHECK_MESSAGE(stats.rays.shadow == 0,
                   "N·L = 0: the light is on the tangent plane, so no shadow ray is cast");
   }
@@ -104,7 +98,7 @@ TEST_SUITE("lesson06") {
     TraceStats stats;
     const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
     // I_own = k_a·I_a + emission + I_l·(0·(N·L) + 0·(R·V)^n)·S = (0.3, 0.3, 0.45).
-    check_colour(own_intensity(tracer, at_origin, Vec3(0, 0, 1)), Color(0.3, 0.3, 0.45));
+    check_vec(own_intensity(tracer, at_origin, Vec3(0, 0, 1)), Color(0.3, 0.3, 0.45));
     CHECK_MESSAGE(stats.rays.shadow == 0,
                   "k_d = k_s = 0 makes the light's factor (0, 0, 0): with skip_zero_weights its shadow ray "
                   "is not cast (a black colour is one whose three channels are all ≤ 0)");
@@ -112,7 +106,7 @@ TEST_SUITE("lesson06") {
     const EffectsPlan literal = full_effects(0);
     TraceStats literal_stats;
     const Tracer literal_tracer{.scene = scene, .plan = literal, .stats = &literal_stats};
-    check_colour(own_intensity(literal_tracer, at_origin, Vec3(0, 0, 1)), Color(0.3, 0.3, 0.45));
+    check_vec(own_intensity(literal_tracer, at_origin, Vec3(0, 0, 1)), Color(0.3, 0.3, 0.45));
     CHECK_MESSAGE(literal_stats.rays.shadow == 1, "without the zero-weight rule, one shadow ray per light");
   }
 
@@ -133,7 +127,7 @@ TEST_SUITE("lesson06") {
     const Tracer tracer{.scene = scene, .plan = plan, .background = background, .stats = &stats};
     // Straight down onto the mirror: I_own = 0, the reflected ray goes straight up to the
     // background: 0.5·(0.2, 0.4, 0.6) = (0.1, 0.2, 0.3).
-    check_colour(evaluate(tracer, Ray(Point3(0, 0, 2), Vec3(0, 0, -1))), Color(0.1, 0.2, 0.3));
+    check_vec(evaluate(tracer, Ray(Point3(0, 0, 2), Vec3(0, 0, -1))), Color(0.1, 0.2, 0.3));
     CHECK_MESSAGE(stats.rays.refraction == 0, "k_t = (0, 0, 0) at the mirror: no refracted ray is spawned");
     CHECK(stats.rays.reflection == 1);
   }
@@ -161,7 +155,7 @@ TEST_SUITE("lesson06") {
     INFO(
         "I = I_own(glass) + k_t·I_t = 0 + 0.5·(0.2, 1.0, 0.6): the refracted ray lands at x = √(2/7) on "
         "the lamp");
-    check_colour(c, Color(0.1, 0.5, 0.3));
+    check_vec(c, Color(0.1, 0.5, 0.3));
     CHECK_MESSAGE(stats.rays.refraction == 1,
                   "entering glass (front face) there is always a transmitted ray: η_i/η_t = 1/1.5 < 1");
   }
@@ -184,7 +178,7 @@ TEST_SUITE("lesson06") {
     const Color kd(0.5, 0.25, 0.1), ks(0.3, 0.6, 0.9);
     const Color c = phong_term(Vec3(0, 0, 1), Vec3(0, s, s), Vec3(0, s, s), kd, ks, 0.0);
     INFO("R·V = 0: the viewer is 90° from the mirror direction, only k_d·(N·L) = k_d·√½ remains");
-    check_colour(c, kd * s);
+    check_vec(c, kd * s);
   }
 
   TEST_CASE("own intensity: each light is multiplied by its shadow transmission S_l, not divided by it") {
@@ -208,7 +202,7 @@ TEST_SUITE("lesson06") {
     const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
     // I_own = I_1·k_d·1·S_1 + I_2·k_d·(1/√2)·0 = 2·0.5·(0.64, 0.25, 0.81) = (0.64, 0.25, 0.81).
     INFO("I_own = Σ_l S_l·I_l·k_d(N·L): the glass light weighs S = k_t², the blocked light 0");
-    check_colour(own_intensity(tracer, at_origin, Vec3(0, 0, 1)), Color(0.64, 0.25, 0.81));
+    check_vec(own_intensity(tracer, at_origin, Vec3(0, 0, 1)), Color(0.64, 0.25, 0.81));
   }
 
   TEST_CASE("shadow test: a coloured glass that stops two channels still lets the third through") {
@@ -230,7 +224,7 @@ TEST_SUITE("lesson06") {
       Color want(0.0);
       want[channel] = 0.25;
       INFO("channel ", channel, ": k_t = 0.5 there and 0 elsewhere, crossed twice: S = 0.25 in that channel");
-      check_colour(shadow_transmission(tracer, p, Point3(0, 0, 4)), want);
+      check_vec(shadow_transmission(tracer, p, Point3(0, 0, 4)), want);
     }
   }
 
@@ -249,7 +243,7 @@ TEST_SUITE("lesson06") {
     const Tracer tracer{
         .scene = scene, .plan = plan, .background = background, .stats = &stats, .tree = &tree};
     // I = k_d·(N·L = 1) + k_r·background = (0.5 + 0.1, 0.5 + 0.1, 0.5 + 0.075).
-    check_colour(evaluate(tracer, Ray(Point3(0, 0, 2), Vec3(0, 0, -1))), Color(0.6, 0.6, 0.575));
+    check_vec(evaluate(tracer, Ray(Point3(0, 0, 2), Vec3(0, 0, -1))), Color(0.6, 0.6, 0.575));
     const auto find = [&](RayKind kind) {
       for (const RayTreeNode& node : tree.nodes)
         if (node.kind == kind) return &node;
@@ -260,15 +254,15 @@ TEST_SUITE("lesson06") {
     REQUIRE(shadow != nullptr);
     REQUIRE(reflected != nullptr);
     INFO("the shadow ray: nothing blocks it, transmission (local) 1; it returns no colour of its own");
-    check_colour(shadow->local, Color(1.0));
-    check_colour(shadow->color, Color(0.0));
+    check_vec(shadow->local, Color(1.0));
+    check_vec(shadow->color, Color(0.0));
     INFO(
         "the reflected ray misses: no surface, so I_own = 0, and it returns the background; its path "
         "weight is 1·k_r = (0.5, 0.25, 0.125)");
     CHECK_FALSE(reflected->hit);
-    check_colour(reflected->local, Color(0.0));
-    check_colour(reflected->color, background);
-    check_colour(reflected->weight, Color(0.5, 0.25, 0.125));
+    check_vec(reflected->local, Color(0.0));
+    check_vec(reflected->color, background);
+    check_vec(reflected->weight, Color(0.5, 0.25, 0.125));
 
     // The refracted ray of the oblique glass entry (see above) weighs 1·k_t = 0.5.
     Scene glass_scene;
@@ -285,6 +279,6 @@ TEST_SUITE("lesson06") {
       if (node.kind == RayKind::refraction) refracted = &node;
     REQUIRE(refracted != nullptr);
     INFO("the refracted ray's path weight is 1·k_t = (0.5, 0.25, 0.75)");
-    check_colour(refracted->weight, Color(0.5, 0.25, 0.75));
+    check_vec(refracted->weight, Color(0.5, 0.25, 0.75));
   }
 }

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <doctest/doctest.h>
+
 #include "illum/trace/scene.hpp"
 
 namespace illum::test {
@@ -44,6 +46,15 @@ inline SurfaceHit hand_hit(const Point3& point, const Vec3& normal, std::uint32_
   hit.primitive = 0;
   hit.material = material;
   return hit;
+}
+
+// A vector or colour checked component by component, with both values in the
+// failure message.
+inline void check_vec(const Vec3& got, const Vec3& want, double eps = 1e-12) {
+  INFO("got (", got.x, ", ", got.y, ", ", got.z, "), expected (", want.x, ", ", want.y, ", ", want.z, ")");
+  CHECK(got.x == doctest::Approx(want.x).epsilon(eps).scale(1.0));
+  CHECK(got.y == doctest::Approx(want.y).epsilon(eps).scale(1.0));
+  CHECK(got.z == doctest::Approx(want.z).epsilon(eps).scale(1.0));
 }
 
 }  // namespace illum::test
