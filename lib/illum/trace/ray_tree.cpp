@@ -2,6 +2,7 @@
 // lesson 06, with optics.cpp.
 #include "illum/trace/ray_tree.hpp"
 
+#include "illum/trace/contribution_cutoff.hpp"
 #include "illum/trace/optics.hpp"
 #include "illum/trace/ray_offset.hpp"
 
@@ -76,12 +77,12 @@ Color evaluate(const Tracer& tracer, const Ray& ray, int depth, RayKind kind, co
       if (t.total_internal_reflection) {
         k_r += k_t;  // no transmitted ray: its energy is reflected
         record_total_internal_reflection(tracer.tree, node);
-      } else {
+      } else if (!pruned(tracer.min_contribution, weight * k_t)) {
         color += k_t * evaluate(tracer, spawn_ray(*hit, t.direction), depth + 1, RayKind::refraction,
                                 weight * k_t, node);
       }
     }
-    if (tracer.plan.reflection && !(skip && is_black(k_r)))
+    if (tracer.plan.reflection && !(skip && is_black(k_r)) && !pruned(tracer.min_contribution, weight * k_r))
       color += k_r * evaluate(tracer, spawn_ray(*hit, reflect(ray.direction, hit->shading_normal)), depth + 1,
                               RayKind::reflection, weight * k_r, node);
   }
