@@ -43,7 +43,8 @@ double confidence_half_width(const SampleMoments& moments, double z) {
 // Task 9. At max_samples: stop; below min_samples: go on; otherwise stop when
 // the half-width is at most the tolerance.
 bool enough_samples(const SampleMoments& moments, const StatisticalSettings& settings) {
-  throw NotImplemented("enough_samples", "half-width ≤ tolerance, within [min, max] samples (lesson 07, eq. 7.7)");
+  throw NotImplemented("enough_samples",
+                       "half-width ≤ tolerance, within [min, max] samples (lesson 07, eq. 7.7)");
 }
 
 // Task 10. Refuse bad settings (tolerance negative or not finite, not
@@ -51,7 +52,8 @@ bool enough_samples(const SampleMoments& moments, const StatisticalSettings& set
 // random_pixel does, one at a time, until enough_samples.
 PixelEstimate statistical_pixel(const ImageFunction& f, int i, int j, Rng& rng,
                                 const StatisticalSettings& settings) {
-  throw NotImplemented("statistical_pixel", "add samples until the confidence interval is narrow enough (lesson 07, §3)");
+  throw NotImplemented("statistical_pixel",
+                       "add samples until the confidence interval is narrow enough (lesson 07, §3)");
 }
 
 }  // namespace illum

@@ -84,9 +84,8 @@ TEST_SUITE("lesson07") {
   TEST_CASE("adaptive: a constant image traces only the pixel corners") {
     // 4 × 3 pixels have 5 × 4 = 20 corners; equal corners agree even at threshold 0.
     Recorder rec;
-    const AdaptiveRun run =
-        adaptive_image(rec.wrap([](double, double) { return Color(0.25, 0.5, 0.75); }), 4, 3,
-                       {.threshold = 0.0, .max_depth = 3});
+    const AdaptiveRun run = adaptive_image(rec.wrap([](double, double) { return Color(0.25, 0.5, 0.75); }), 4,
+                                           3, {.threshold = 0.0, .max_depth = 3});
     CHECK_MESSAGE(run.rays == 20, "a constant image needs its (W+1)(H+1) pixel corners and nothing else");
     CHECK(rec.points.size() == 20);
     for (const auto& [p, n] : rec.counts()) {
@@ -96,6 +95,24 @@ TEST_SUITE("lesson07") {
       CHECK_MESSAGE(n == 1, "each corner is shared by up to four pixels and traced once");
     }
     for (const Color& c : run.pixels) CHECK(c == Color(0.25, 0.5, 0.75));
+  }
+
+  TEST_CASE("adaptive: above the minimum depth a square is cut whatever its corners say") {
+    // Constant image, 2 × 1 pixels, min_depth 2 = max_depth 3: every pixel is cut twice
+    // (agreeing corners or not), then its squares of side 1/4 agree and stop. The
+    // lattice of step 1/4 over 2 × 1 pixels has (2·4 + 1)(1·4 + 1) = 45 points.
+    Recorder rec;
+    const AdaptiveRun run = adaptive_image(rec.wrap([](double, double) { return Color(0.5); }), 2, 1,
+                                           {.threshold = 0.1, .max_depth = 3, .min_depth = 2});
+    CHECK_MESSAGE(run.rays == 45, "min_depth 2: the first spacing is 1/4 pixel, nothing finer is traced");
+    for (const auto& [p, n] : rec.counts()) CHECK(4 * p.first == std::floor(4 * p.first));
+    SampleLattice lattice(1, 1, 2);
+    const ImageFunction f = [](double, double) { return Color(0.0); };
+    LatticeRow row(lattice, 0, f);
+    CHECK_THROWS_AS(adaptive_pixel(row, 0, {.threshold = 0.1, .max_depth = 2, .min_depth = 3}),
+                    std::invalid_argument);
+    CHECK_THROWS_AS(adaptive_pixel(row, 0, {.threshold = 0.1, .max_depth = 2, .min_depth = -1}),
+                    std::invalid_argument);
   }
 
   TEST_CASE("adaptive: threshold 0 refines to the maximum depth and no further") {
@@ -155,8 +172,9 @@ TEST_SUITE("lesson07") {
     const auto p1 = [](double a, double b, double c, double d) { return 0.25 * (a + b + c + d); };
     const double tl = p1(v[0][0], v[0][2], v[2][0], v[2][2]), tr = p1(v[0][2], v[0][4], v[2][2], v[2][4]);
     const double bl = p1(v[2][0], v[2][2], v[4][0], v[4][2]);
-    const double br = 0.25 * (p1(v[2][2], v[2][3], v[3][2], v[3][3]) + p1(v[2][3], v[2][4], v[3][3], v[3][4]) +
-                              p1(v[3][2], v[3][3], v[4][2], v[4][3]) + p1(v[3][3], v[3][4], v[4][3], v[4][4]));
+    const double br =
+        0.25 * (p1(v[2][2], v[2][3], v[3][2], v[3][3]) + p1(v[2][3], v[2][4], v[3][3], v[3][4]) +
+                p1(v[3][2], v[3][3], v[4][2], v[4][3]) + p1(v[3][3], v[3][4], v[4][3], v[4][4]));
     INFO("ColorP₂ = ¼[ColorP₁(TL) + ColorP₁(TR) + ColorP₁(BL) + ¼ Σ ColorP₁(BR's quarters)] = 0.24828125");
     check_grey(run.pixels[0], 0.25 * (tl + tr + bl + br));
     CHECK(0.25 * (tl + tr + bl + br) == doctest::Approx(0.24828125));
@@ -180,8 +198,8 @@ TEST_SUITE("lesson07") {
     // the method's known failure (lesson 07, §2), not a bug; the colour is 0.
     Recorder rec;
     const AdaptiveRun run = adaptive_image(rec.wrap([](double x, double y) {
-                                             return Color(x > 0.3 && x < 0.45 && y > 0.3 && y < 0.45 ? 1.0 : 0.0);
-                                           }),
+      return Color(x > 0.3 && x < 0.45 && y > 0.3 && y < 0.45 ? 1.0 : 0.0);
+    }),
                                            1, 1, {.threshold = 0.0, .max_depth = 3});
     CHECK(run.rays == 4);
     check_grey(run.pixels[0], 0.0);
@@ -194,8 +212,9 @@ TEST_SUITE("lesson07") {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     CHECK_THROWS_AS(adaptive_pixel(row, 0, {.threshold = nan, .max_depth = 2}), std::invalid_argument);
     CHECK_THROWS_AS(adaptive_pixel(row, 0, {.threshold = -0.1, .max_depth = 2}), std::invalid_argument);
-    CHECK_THROWS_AS(adaptive_pixel(row, 0, {.threshold = std::numeric_limits<double>::infinity(), .max_depth = 2}),
-                    std::invalid_argument);
+    CHECK_THROWS_AS(
+        adaptive_pixel(row, 0, {.threshold = std::numeric_limits<double>::infinity(), .max_depth = 2}),
+        std::invalid_argument);
     ILLUM_CHECK_THROWS_CONTAINING(adaptive_pixel(row, 0, {.threshold = 0.1, .max_depth = 3}), "max_depth",
                                   std::invalid_argument);
     CHECK_MESSAGE(row.traced() == 0, "a refused call traces nothing");
@@ -233,8 +252,9 @@ TEST_SUITE("lesson07") {
     INFO("mean ", s.mean, " (z = ", z_mean, "), variance ", s.variance, " (z = ", z_var, "), |z| must be ≤ ",
          z_critical());
     CHECK_MESSAGE(std::abs(z_mean) <= z_critical(), "the random estimator is unbiased: its mean is 0.3");
-    CHECK_MESSAGE(std::abs(z_var) <= z_critical(),
-                  "independent uniform samples: the variance is p(1−p)/N (stratified samples would have less)");
+    CHECK_MESSAGE(
+        std::abs(z_var) <= z_critical(),
+        "independent uniform samples: the variance is p(1−p)/N (stratified samples would have less)");
   }
 
   TEST_CASE("stratified: exactly one sample in each of the n × n cells") {
@@ -321,9 +341,11 @@ TEST_SUITE("lesson07") {
   TEST_CASE("statistical: a flat pixel stops early, a ramp goes on to the maximum") {
     Rng rng(5, 5);
     const ImageFunction flat = [](double, double) { return Color(0.4); };
-    CHECK(statistical_pixel(flat, 0, 0, rng, {.tolerance = 0.01, .min_samples = 6, .max_samples = 64}).samples == 6);
+    CHECK(statistical_pixel(flat, 0, 0, rng, {.tolerance = 0.01, .min_samples = 6, .max_samples = 64})
+              .samples == 6);
     CHECK_MESSAGE(
-        statistical_pixel(flat, 0, 0, rng, {.tolerance = 0.01, .min_samples = 1, .max_samples = 64}).samples == 2,
+        statistical_pixel(flat, 0, 0, rng, {.tolerance = 0.01, .min_samples = 1, .max_samples = 64})
+                .samples == 2,
         "with min_samples = 1 a flat pixel still takes two samples: one says nothing of the spread");
     // A ramp (f = x − i) has a spread no first samples can hide: 10⁻⁶ is never reached.
     const ImageFunction ramp = [](double x, double) { return Color(x - std::floor(x)); };
@@ -332,7 +354,8 @@ TEST_SUITE("lesson07") {
     CHECK(e.samples == 50);
     // Its points are drawn as random_pixel draws them: the estimate is the share left of the edge.
     Rng a(9, 1), b(9, 1);
-    const PixelEstimate s = statistical_pixel(edge, 2, 2, a, {.tolerance = 0.0, .min_samples = 8, .max_samples = 8});
+    const PixelEstimate s =
+        statistical_pixel(edge, 2, 2, a, {.tolerance = 0.0, .min_samples = 8, .max_samples = 8});
     double hits = 0;
     for (int k = 0; k < 8; ++k) {
       const double x = b.uniform();

@@ -52,7 +52,8 @@ TEST_SUITE("lesson07") {
     // Colour: 0.1 + 0.5·(0.1 + 0.5·0.1) = 0.175.
     REQUIRE(branch_contributes(Color(0.25), 0.25));
     const Traced t = trace(facing_mirrors(), 0.25, 10);
-    CHECK_MESSAGE(t.stats.rays.reflection == 2, "weights 0.5 and 0.25 reach the threshold 0.25; 0.125 does not");
+    CHECK_MESSAGE(t.stats.rays.reflection == 2,
+                  "weights 0.5 and 0.25 reach the threshold 0.25; 0.125 does not");
     CHECK(t.color.r == doctest::Approx(0.175).epsilon(1e-12));
     const Traced tighter = trace(facing_mirrors(), 0.3, 10);
     CHECK(tighter.stats.rays.reflection == 1);
@@ -81,7 +82,8 @@ TEST_SUITE("lesson07") {
     // image bit for bit and the same rays of every kind.
     CHECK_MESSAGE(branch_contributes(Color(0.0), 0.0), "threshold 0 keeps even a branch of weight 0");
     const Scene scene = load_scene("whitted");
-    const RenderSettings settings{.width = 40, .height = 30, .max_depth = 6, .background = Color(0.3, 0.5, 0.9)};
+    const RenderSettings settings{
+        .width = 40, .height = 30, .max_depth = 6, .background = Color(0.3, 0.5, 0.9)};
     const RenderResult tree = render_ray_tree(scene, settings);
     const SampledRender sampled =
         render_sampled(scene, settings, {.method = SamplingMethod::central, .samples = 1}, 0.0);

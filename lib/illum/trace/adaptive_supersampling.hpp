@@ -10,7 +10,9 @@
 //
 //   ColorP₂ = ¼ [ ¼(B + I + G + H) + ¼(G + H + E + J) + ¼(D + I + H + K) + ¼(…) ]
 //
-// down to a maximum depth. Corners are read from a LatticeRow, which traces
+// down to a maximum depth. A square above a minimum depth is cut whatever its
+// corners say: the first spacing of the samples, below which a feature can
+// fall between them unseen. Corners are read from a LatticeRow, which traces
 // each point once however many squares share it.
 #include "illum/trace/sample_lattice.hpp"
 
@@ -19,6 +21,7 @@ namespace illum {
 struct AdaptiveSettings {
   double threshold = 0.1;  // largest spread of a channel among four corners that still counts as agreement
   int max_depth = 2;       // cuts at most this many times: squares of 1/2^max_depth pixel
+  int min_depth = 0;       // cuts at least this many times: the first spacing is 1/2^min_depth pixel
 };
 
 // True when the four corners agree: in every channel, the largest minus the
@@ -33,8 +36,8 @@ Color refine_square(LatticeRow& row, int x, int y, int size, int level, const Ad
 
 // Pixel i of the row: refine_square on the whole pixel. The rays it cost are
 // the growth of row.traced(). Throws std::invalid_argument when the threshold
-// is negative or not finite, or when settings.max_depth differs from the
-// lattice's depth.
+// is negative or not finite, when settings.max_depth differs from the
+// lattice's depth, or when min_depth is not in [0, max_depth].
 Color adaptive_pixel(LatticeRow& row, int i, const AdaptiveSettings& settings);
 
 }  // namespace illum

@@ -61,12 +61,15 @@ const char* to_string(SamplingMethod method) {
 void check_sampling(const SamplingSettings& s) {
   require(s.samples >= 1, "sampling: samples per pixel must be at least 1");
   if (s.method == SamplingMethod::uniform || s.method == SamplingMethod::stratified)
-    require(is_square(s.samples), "sampling: uniform and stratified samples per pixel must be a square n × n");
+    require(is_square(s.samples),
+            "sampling: uniform and stratified samples per pixel must be a square n × n");
   if (s.method == SamplingMethod::adaptive) {
     require(std::isfinite(s.adaptive.threshold) && s.adaptive.threshold >= 0.0,
             "sampling: the adaptive threshold must be finite and >= 0");
     require(s.adaptive.max_depth >= 0 && s.adaptive.max_depth <= max_adaptive_depth,
             "sampling: the adaptive maximum depth must lie in [0, 5]");
+    require(s.adaptive.min_depth >= 0 && s.adaptive.min_depth <= s.adaptive.max_depth,
+            "sampling: the adaptive minimum depth must lie in [0, max_depth]");
   }
   if (s.method == SamplingMethod::statistical) {
     const StatisticalSettings& t = s.statistical;

@@ -31,7 +31,8 @@ Color LatticeRow::sample(int x, int y) {
   Color* color = nullptr;
   unsigned char* done = nullptr;
   if (y == 0 || y == s) {  // on the row's top or bottom edge: shared with the row above or below
-    const std::size_t i = (static_cast<std::size_t>(row_) + (y == s ? 1 : 0)) * lattice_.line_points_ + column;
+    const std::size_t i =
+        (static_cast<std::size_t>(row_) + (y == s ? 1 : 0)) * lattice_.line_points_ + column;
     color = &lattice_.edge_color_[i], done = &lattice_.edge_done_[i];
   } else {
     const std::size_t i = static_cast<std::size_t>(y - 1) * lattice_.line_points_ + column;

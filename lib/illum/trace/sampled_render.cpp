@@ -7,8 +7,8 @@
 
 namespace illum {
 
-SampledRender render_sampled(const Scene& scene, const RenderSettings& settings, const SamplingSettings& sampling,
-                             double min_contribution) {
+SampledRender render_sampled(const Scene& scene, const RenderSettings& settings,
+                             const SamplingSettings& sampling, double min_contribution) {
   require(std::isfinite(min_contribution) && min_contribution >= 0.0,
           "render_sampled: the pruning threshold must be finite and >= 0");
   check_sampling(sampling);

@@ -17,7 +17,7 @@ struct SampledRender {
 // min_contribution is negative or not finite. min_contribution = 0 (no
 // pruning) with SamplingMethod::central gives lesson 06's render_ray_tree
 // image bit for bit.
-SampledRender render_sampled(const Scene& scene, const RenderSettings& settings, const SamplingSettings& sampling,
-                             double min_contribution = 0.0);
+SampledRender render_sampled(const Scene& scene, const RenderSettings& settings,
+                             const SamplingSettings& sampling, double min_contribution = 0.0);
 
 }  // namespace illum
