@@ -13,7 +13,8 @@ namespace illum {
 // The area common to two discs of radii r1, r2 ≥ 0 whose centres are d ≥ 0
 // apart: 0 when d ≥ r1 + r2, π·min(r1, r2)² when d ≤ |r1 − r2|, otherwise
 // the lens r1²·acos(c1) + r2²·acos(c2) − ½√((−d+r1+r2)(d+r1−r2)(d−r1+r2)(d+r1+r2))
-// with c1 = (d² + r1² − r2²)/(2 d r1), c2 likewise (both clamped to [−1, 1]).
+// with c1 = (d² + r1² − r2²)/(2 d r1), c2 likewise, computed in a form that
+// stays accurate when the discs nearly touch (see the source).
 double disc_overlap_area(double r1, double r2, double d);
 
 // The angle between two directions, by atan2(|a × b|, a·b): accurate for
