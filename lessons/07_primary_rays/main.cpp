@@ -17,6 +17,7 @@
 #include <CLI/CLI.hpp>
 
 #include "illum/core/error.hpp"
+#include "illum/core/log_log_fit.hpp"
 #include "illum/core/stopwatch.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
@@ -45,10 +46,13 @@ void check_options(const Options& o) {
   const int root = static_cast<int>(std::lround(std::sqrt(std::max(o.spp, 0))));
   if (o.spp <= 0 || o.spp > 4096 || root * root != o.spp)
     fail("--spp", o.spp, "samples per pixel must be a square n × n between 1 and 4096");
-  if (!std::isfinite(o.threshold) || o.threshold < 0) fail("--threshold", o.threshold, "must be finite and >= 0");
+  if (!std::isfinite(o.threshold) || o.threshold < 0)
+    fail("--threshold", o.threshold, "must be finite and >= 0");
   if (o.max_depth < 0 || o.max_depth > max_adaptive_depth)
-    fail("--max-depth", o.max_depth, "the adaptive depth must lie in [0, 5] (at most 33 × 33 samples a pixel)");
-  if (!std::isfinite(o.tolerance) || o.tolerance <= 0) fail("--tolerance", o.tolerance, "must be finite and > 0");
+    fail("--max-depth", o.max_depth,
+         "the adaptive depth must lie in [0, 5] (at most 33 × 33 samples a pixel)");
+  if (!std::isfinite(o.tolerance) || o.tolerance <= 0)
+    fail("--tolerance", o.tolerance, "must be finite and > 0");
 }
 
 // A scene of the lesson with the size and background it is rendered at.
@@ -60,10 +64,11 @@ struct Shot {
 };
 
 Shot make_shot(const char* name, bool quick, Color background, std::uint64_t seed) {
-  return {name, load_scene(name),
-          RenderSettings{.width = quick ? 48 : 160, .height = quick ? 36 : 120, .max_depth = 5,
-                         .background = background},
-          seed};
+  return {
+      name, load_scene(name),
+      RenderSettings{
+          .width = quick ? 48 : 160, .height = quick ? 36 : 120, .max_depth = 5, .background = background},
+      seed};
 }
 
 struct Timed {
@@ -130,9 +135,8 @@ SamplingSettings statistical(double tolerance, int min, int max) {
 void equal_budget(OutputFolder& out, const Shot& shot, const Image& reference, int spp) {
   Table table({"scene", "method", "setting", "rays_per_pixel", "rmse", "max_error", "seconds"});
   const int depth = std::min(max_adaptive_depth, std::max(1, static_cast<int>(std::ceil(std::log2(spp)))));
-  const double threshold = tune(1e-4, 1.0, spp, [&](double t) {
-    return render(shot, adaptive(t, depth)).render.sampled.mean_rays();
-  });
+  const double threshold = tune(
+      1e-4, 1.0, spp, [&](double t) { return render(shot, adaptive(t, depth)).render.sampled.mean_rays(); });
   const int least = std::max(1, spp / 2);  // at least half the budget: the mean can reach it on flat images
   const double tolerance = tune(1e-4, 1.0, spp, [&](double t) {
     return render(shot, statistical(t, least, 4 * spp)).render.sampled.mean_rays();
@@ -148,8 +152,8 @@ void equal_budget(OutputFolder& out, const Shot& shot, const Image& reference, i
     const Timed t = render(shot, sampling);
     const ImageError e = image_error(t.render.sampled.image, reference);
     const std::string method = to_string(sampling.method);
-    table.add_row({std::string(shot.name), method, setting, t.render.sampled.mean_rays(), e.rmse, e.max,
-                   t.seconds});
+    table.add_row(
+        {std::string(shot.name), method, setting, t.render.sampled.mean_rays(), e.rmse, e.max, t.seconds});
     out.image(t.render.sampled.image, std::string(shot.name) + "_" + method,
               std::string(shot.name) + ", " + method + " sampling, " + setting + " (" +
                   format_number(t.render.sampled.mean_rays(), 3) + " rays a pixel on average)");
@@ -168,7 +172,8 @@ Image corner_colors(const Shot& shot) {
   const PinholeCamera camera = render_camera(shot.scene, shot.settings);
   const EffectsPlan plan = render_plan(shot.scene, shot.settings);
   TraceStats stats;
-  const Tracer tracer{.scene = shot.scene, .plan = plan, .background = shot.settings.background, .stats = &stats};
+  const Tracer tracer{
+      .scene = shot.scene, .plan = plan, .background = shot.settings.background, .stats = &stats};
   Image corners(camera.width() + 1, camera.height() + 1);
   for (int j = 0; j <= camera.height(); ++j)
     for (int i = 0; i <= camera.width(); ++i) corners.at(i, j) = evaluate(tracer, camera.ray_through(i, j));
@@ -183,7 +188,8 @@ void adaptive_section(OutputFolder& out, const Shot& checker, const Shot& fine, 
   for (const Shot* shot : {&checker, &fine}) {
     const Timed t = render(*shot, adaptive(o.threshold, o.max_depth));
     out.image(t.render.sampled.heat_map(most * most), std::string(shot->name) + "_adaptive_heat",
-              std::string(shot->name) + ": primary rays each pixel cost under adaptive supersampling (threshold " +
+              std::string(shot->name) +
+                  ": primary rays each pixel cost under adaptive supersampling (threshold " +
                   format_number(o.threshold, 3) + ", depth " + std::to_string(o.max_depth) +
                   "), log scale from 1 (dark) to " + std::to_string(most * most) + " (yellow)");
     if (shot != &fine) continue;
@@ -199,22 +205,26 @@ void adaptive_section(OutputFolder& out, const Shot& checker, const Shot& fine, 
                                          corners.at(i + 1, j + 1), o.threshold);
         wrong += far ? 1 : 0;
         misses += far && uncut ? 1 : 0;
-        missed.at(i, j) = far ? (uncut ? Color(1, 0.1, 0.1) : Color(1, 0.8, 0.2)) : 0.35 * fine_reference.at(i, j);
+        missed.at(i, j) =
+            far ? (uncut ? Color(1, 0.1, 0.1) : Color(1, 0.8, 0.2)) : 0.35 * fine_reference.at(i, j);
       }
-    out.image(missed, "fine_detail_adaptive_miss",
-              "Adaptive supersampling misses features smaller than its first spacing: red, pixels off by more "
-              "than 0.1 whose four corners agreed (never cut); orange, off by more than 0.1 although cut");
-    Table table({"scene", "threshold", "max_depth", "rays_per_pixel", "pixels_off_by_0.1", "of_which_never_cut"});
-    table.add_row({std::string(fine.name), o.threshold, std::int64_t{o.max_depth}, t.render.sampled.mean_rays(),
-                   std::int64_t{wrong}, std::int64_t{misses}});
-    out.table(table, "adaptive_miss", "Pixels the adaptive sampler gets wrong, and how many were never cut", 3);
+    out.image(
+        missed, "fine_detail_adaptive_miss",
+        "Adaptive supersampling misses features smaller than its first spacing: red, pixels off by more "
+        "than 0.1 whose four corners agreed (never cut); orange, off by more than 0.1 although cut");
+    Table table(
+        {"scene", "threshold", "max_depth", "rays_per_pixel", "pixels_off_by_0.1", "of_which_never_cut"});
+    table.add_row({std::string(fine.name), o.threshold, std::int64_t{o.max_depth},
+                   t.render.sampled.mean_rays(), std::int64_t{wrong}, std::int64_t{misses}});
+    out.table(table, "adaptive_miss", "Pixels the adaptive sampler gets wrong, and how many were never cut",
+              3);
   }
 }
 
 // --- §3 statistical antialiasing: where the rays go, and the early stop ----------------
 
-void statistical_section(OutputFolder& out, const Shot& checker, const Shot& fine, const Image& fine_reference,
-                         const Options& o) {
+void statistical_section(OutputFolder& out, const Shot& checker, const Shot& fine,
+                         const Image& fine_reference, const Options& o) {
   Table table({"scene", "tolerance", "min_samples", "max_samples", "rays_per_pixel", "rmse",
                "pixels_off_by_0.1", "of_which_stopped_at_min"});
   for (const int min : {4, 16}) {
@@ -234,21 +244,24 @@ void statistical_section(OutputFolder& out, const Shot& checker, const Shot& fin
     table.add_row({std::string(fine.name), o.tolerance, std::int64_t{min}, std::int64_t{256}, s.mean_rays(),
                    image_error(s.image, fine_reference).rmse, std::int64_t{wrong}, std::int64_t{stopped}});
     const std::string tag = "min" + std::to_string(min);
-    out.image(early, "fine_detail_statistical_early_stop_" + tag,
-              "Statistical antialiasing, at least " + std::to_string(min) +
-                  " samples: red, pixels off by more than 0.1 that stopped at the minimum because their first "
-                  "samples agreed by chance");
+    out.image(
+        early, "fine_detail_statistical_early_stop_" + tag,
+        "Statistical antialiasing, at least " + std::to_string(min) +
+            " samples: red, pixels off by more than 0.1 that stopped at the minimum because their first "
+            "samples agreed by chance");
     out.image(s.heat_map(256), "fine_detail_statistical_heat_" + tag,
-              "fine_detail: rays each pixel cost under statistical antialiasing (at least " + std::to_string(min) +
-                  "), log scale from 1 (dark) to 256 (yellow)");
+              "fine_detail: rays each pixel cost under statistical antialiasing (at least " +
+                  std::to_string(min) + "), log scale from 1 (dark) to 256 (yellow)");
   }
   const Timed t = render(checker, statistical(o.tolerance, 4, 256));
-  out.image(t.render.sampled.heat_map(256), "checkerboard_statistical_heat",
-            "checkerboard: rays each pixel cost under statistical antialiasing (at least 4), log scale 1 … 256");
-  out.table(table, "statistical_early_stop",
-            "Statistical antialiasing on thin lines and small spheres: the pixels it gets wrong, and how many "
-            "of them stopped at the minimum count",
-            3);
+  out.image(
+      t.render.sampled.heat_map(256), "checkerboard_statistical_heat",
+      "checkerboard: rays each pixel cost under statistical antialiasing (at least 4), log scale 1 … 256");
+  out.table(
+      table, "statistical_early_stop",
+      "Statistical antialiasing on thin lines and small spheres: the pixels it gets wrong, and how many "
+      "of them stopped at the minimum count",
+      3);
 }
 
 // --- §4 the study: error against rays and time ---------------------------------------------
@@ -266,7 +279,8 @@ std::vector<Knob> sweep(bool quick) {
     for (int n : {1, 2, 3, 4, 6, 8, 12, 16, 24})
       if (!quick || n <= 4) knobs.push_back({to_string(m), {.method = m, .samples = n * n}, double(n * n)});
   for (int n : {1, 4, 16, 64, 256, 576})
-    if (!quick || n <= 16) knobs.push_back({"random", {.method = SamplingMethod::random, .samples = n}, double(n)});
+    if (!quick || n <= 16)
+      knobs.push_back({"random", {.method = SamplingMethod::random, .samples = n}, double(n)});
   for (const int min_depth : {0, 1, 2})
     for (double t : {0.4, 0.2, 0.1, 0.05, 0.025, 0.0125, 0.006, 0.003, 0.0015})
       if (!quick || t >= 0.05) {
@@ -279,17 +293,6 @@ std::vector<Knob> sweep(bool quick) {
       if (!quick || t >= 0.025)
         knobs.push_back({"statistical (min " + std::to_string(min) + ")", statistical(t, min, 1024), t});
   return knobs;
-}
-
-// Least-squares slope of log y against log x.
-double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(x.size());
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    const double lx = std::log(x[k]), ly = std::log(y[k]);
-    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
-  }
-  return n < 2 ? 0.0 : (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 // Where a curve (x rising) first falls to `target`, interpolated in log-log; NaN if never.
@@ -305,7 +308,8 @@ double crossing(const std::vector<double>& x, const std::vector<double>& y, doub
 
 void convergence_study(OutputFolder& out, const Shot& shot, const Image& reference, bool quick) {
   Table table({"method", "knob", "rays_per_pixel", "rmse", "relative_rmse", "max_error", "seconds"});
-  Table summary({"method", "rmse_slope", "max_error_slope", "rays_per_pixel_for_1%_rmse", "seconds_for_1%_rmse"});
+  Table summary(
+      {"method", "rmse_slope", "max_error_slope", "rays_per_pixel_for_1%_rmse", "seconds_for_1%_rmse"});
   const double target = 0.01 * image_mean(reference);
   struct Curve {
     std::vector<double> rays, rmse, worst, seconds;
@@ -319,41 +323,51 @@ void convergence_study(OutputFolder& out, const Shot& shot, const Image& referen
     Curve& c = curves.back().second;
     c.rays.push_back(t.render.sampled.mean_rays()), c.rmse.push_back(e.rmse), c.worst.push_back(e.max);
     c.seconds.push_back(t.seconds);
-    table.add_row({knobs[k].method, knobs[k].value, c.rays.back(), e.rmse, e.rmse / image_mean(reference), e.max,
-                   t.seconds});
+    table.add_row({knobs[k].method, knobs[k].value, c.rays.back(), e.rmse, e.rmse / image_mean(reference),
+                   e.max, t.seconds});
     report_progress("lesson07", "convergence study", static_cast<int>(k + 1), static_cast<int>(knobs.size()));
   }
   for (auto& [method, c] : curves) {
     std::vector<std::size_t> order(c.rays.size());  // by rays, for the crossing
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
-    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return c.rays[a] < c.rays[b]; });
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return c.rays[a] < c.rays[b]; });
     std::vector<double> r, e, s;
     for (std::size_t k : order) r.push_back(c.rays[k]), e.push_back(c.rmse[k]), s.push_back(c.seconds[k]);
-    summary.add_row({method, log_log_slope(c.rays, c.rmse), log_log_slope(c.rays, c.worst), crossing(r, e, target),
-                     crossing(s, e, target)});
+    summary.add_row({method, log_log_slope(c.rays, c.rmse), log_log_slope(c.rays, c.worst),
+                     crossing(r, e, target), crossing(s, e, target)});
   }
   out.table(table, "convergence",
-            std::string(shot.name) + ": RMSE and largest pixel error against the converged reference, as the "
-            "rays per pixel grow, for each sampler",
+            std::string(shot.name) +
+                ": RMSE and largest pixel error against the converged reference, as the "
+                "rays per pixel grow, for each sampler",
             3);
   out.table(summary, "convergence_summary",
-            std::string(shot.name) + ": fitted log-log slopes of the error against rays per pixel, and the rays "
-            "and time each method needs for an RMSE of 1 % of the image's mean (interpolated; nan: not reached)",
+            std::string(shot.name) +
+                ": fitted log-log slopes of the error against rays per pixel, and the rays "
+                "and time each method needs for an RMSE of 1 % of the image's mean (interpolated; nan: not "
+                "reached)",
             3);
   for (const auto& [x, y, label, name] :
        {std::tuple{"rays_per_pixel", "rmse", "RMSE", "convergence_rmse"},
         std::tuple{"rays_per_pixel", "max_error", "largest pixel error", "convergence_max"},
         std::tuple{"seconds", "rmse", "RMSE", "convergence_time"}}) {
-    PlotSpec spec{.title = std::string(label) + " against " + (x[0] == 's' ? "time" : "rays") + " (" +
-                           shot.name + ")",
-                  .x_label = x[0] == 's' ? "render seconds" : "primary rays per pixel", .y_label = label,
-                  .log_x = true, .log_y = true};
+    PlotSpec spec{
+        .title = std::string(label) + " against " + (x[0] == 's' ? "time" : "rays") + " (" + shot.name + ")",
+        .x_label = x[0] == 's' ? "render seconds" : "primary rays per pixel",
+        .y_label = label,
+        .log_x = true,
+        .log_y = true};
     for (const auto& [method, c] : curves)
-      spec.curves.push_back(
-          {.table = "convergence.csv", .x = x, .y = y, .where = {{"method", method}}, .y_positive = true,
-           .title = method});
-    out.plot(spec, name, std::string(label) + " against " + (x[0] == 's' ? "time" : "rays per pixel") +
-                             ", log-log, every sampler");
+      spec.curves.push_back({.table = "convergence.csv",
+                             .x = x,
+                             .y = y,
+                             .where = {{"method", method}},
+                             .y_positive = true,
+                             .title = method});
+    out.plot(spec, name,
+             std::string(label) + " against " + (x[0] == 's' ? "time" : "rays per pixel") +
+                 ", log-log, every sampler");
   }
 }
 
@@ -361,32 +375,42 @@ void convergence_study(OutputFolder& out, const Shot& shot, const Image& referen
 
 void pruning_study(OutputFolder& out, bool quick) {
   const Shot whitted{"whitted", load_scene("whitted"),
-                     RenderSettings{.width = quick ? 48 : 160, .height = quick ? 36 : 120, .max_depth = 10,
+                     RenderSettings{.width = quick ? 48 : 160,
+                                    .height = quick ? 36 : 120,
+                                    .max_depth = 10,
                                     .background = Color(0.35, 0.55, 0.9)},
                      1};
   const SamplingSettings central{.method = SamplingMethod::central};
   const Timed full = render(whitted, central);
   const double all = static_cast<double>(full.render.stats.rays.total());
-  Table table({"threshold", "rays", "secondary_rays", "rays_saved", "share_saved", "rmse", "max_error", "seconds"});
+  Table table(
+      {"threshold", "rays", "secondary_rays", "rays_saved", "share_saved", "rmse", "max_error", "seconds"});
   for (double cutoff : {0.0, 0.001, 0.003, 0.01, 0.03, 0.1, 0.3, 0.6, 1.0}) {
     const Timed t = render(whitted, central, cutoff);
     const RayCounts& c = t.render.stats.rays;
     const ImageError e = image_error(t.render.sampled.image, full.render.sampled.image);
     table.add_row({cutoff, std::int64_t(c.total()), std::int64_t(c.reflection + c.refraction),
-                   std::int64_t(all - static_cast<double>(c.total())), 1.0 - static_cast<double>(c.total()) / all,
-                   e.rmse, e.max, t.seconds});
+                   std::int64_t(all - static_cast<double>(c.total())),
+                   1.0 - static_cast<double>(c.total()) / all, e.rmse, e.max, t.seconds});
   }
-  out.table(table, "pruning",
-            "Whitted's scene, depth limit 10, one ray a pixel: rays saved and error against the unpruned tree "
-            "as the contribution threshold grows (threshold 0 is the unpruned tree)",
-            3);
-  out.plot({.title = "Pruning the tree: error against rays saved (Whitted, depth limit 10)",
-            .x_label = "share of all rays saved", .y_label = "RMSE against the unpruned tree", .log_y = true,
-            .curves = {{.table = "pruning.csv", .x = "share_saved", .y = "rmse", .y_positive = true,
-                        .title = "RMSE"},
-                       {.table = "pruning.csv", .x = "share_saved", .y = "max_error", .y_positive = true,
-                        .title = "largest pixel error"}}},
-           "pruning", "Error against the share of rays saved, one point per threshold");
+  out.table(
+      table, "pruning",
+      "Whitted's scene, depth limit 10, one ray a pixel: rays saved and error against the unpruned tree "
+      "as the contribution threshold grows (threshold 0 is the unpruned tree)",
+      3);
+  out.plot(
+      {.title = "Pruning the tree: error against rays saved (Whitted, depth limit 10)",
+       .x_label = "share of all rays saved",
+       .y_label = "RMSE against the unpruned tree",
+       .log_y = true,
+       .curves =
+           {{.table = "pruning.csv", .x = "share_saved", .y = "rmse", .y_positive = true, .title = "RMSE"},
+            {.table = "pruning.csv",
+             .x = "share_saved",
+             .y = "max_error",
+             .y_positive = true,
+             .title = "largest pixel error"}}},
+      "pruning", "Error against the share of rays saved, one point per threshold");
 }
 
 // --- §6 generalised rays: one cone per pixel ------------------------------------------------
@@ -404,14 +428,15 @@ void cone_demo(OutputFolder& out, const Shot& fine, bool quick) {
   };
   const int w = camera.width(), h = camera.height();
   const Image reference =
-      sample_image(w, h, silhouette, {.method = SamplingMethod::stratified, .samples = quick ? 256 : 1024, .seed = 7})
+      sample_image(w, h, silhouette,
+                   {.method = SamplingMethod::stratified, .samples = quick ? 256 : 1024, .seed = 7})
           .image;
   Image cones(w, h);
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) {  // a cone of the pixel's solid angle: half-angle = side/√π
       const Vec3 axis = camera.ray_through(i + 0.5, j + 0.5).direction;
       const double side = angle_between(camera.ray_through(i, j + 0.5).direction,
-                                         camera.ray_through(i + 1, j + 0.5).direction);
+                                        camera.ray_through(i + 1, j + 0.5).direction);
       const Cone cone{.apex = camera.eye(), .axis = axis, .half_angle = side / std::sqrt(pi)};
       double empty = 1.0;
       for (const auto& [c, r] : beads) empty *= 1.0 - cone_sphere_coverage(cone, c, r);
@@ -421,15 +446,18 @@ void cone_demo(OutputFolder& out, const Shot& fine, bool quick) {
   const ImageError cone_error = image_error(cones, reference);
   table.add_row({std::string("one cone"), 1.0, cone_error.rmse, cone_error.max});
   for (int n : {1, 2, 3, 4, 6, 8, 12, 16}) {
-    const SampledImage s = sample_image(w, h, silhouette, {.method = SamplingMethod::stratified, .samples = n * n});
+    const SampledImage s =
+        sample_image(w, h, silhouette, {.method = SamplingMethod::stratified, .samples = n * n});
     const ImageError e = image_error(s.image, reference);
     table.add_row({std::string("stratified rays"), double(n * n), e.rmse, e.max});
   }
-  out.image(cones, "cone_silhouettes", "Bead silhouettes (fine_detail), one cone per pixel: coverage as grey");
+  out.image(cones, "cone_silhouettes",
+            "Bead silhouettes (fine_detail), one cone per pixel: coverage as grey");
   out.image(reference, "cone_reference", "Bead silhouettes, stratified 1,024 rays a pixel (the reference)");
-  out.table(table, "cone_tracing",
-            "Sphere silhouettes: one cone per pixel against stratified supersampling, error against the reference",
-            3);
+  out.table(
+      table, "cone_tracing",
+      "Sphere silhouettes: one cone per pixel against stratified supersampling, error against the reference",
+      3);
 }
 
 }  // namespace
@@ -438,7 +466,8 @@ void cone_demo(OutputFolder& out, const Shot& fine, bool quick) {
 int main(int argc, char** argv) {
   const illum::ProgramInfo info{
       "lesson07", "Lesson 07: primary rays, antialiasing and pruning the tree",
-      "Renders a checkerboard to the horizon and a scene of thin lines and small spheres with central, uniform, "
+      "Renders a checkerboard to the horizon and a scene of thin lines and small spheres with central, "
+      "uniform, "
       "random, stratified, adaptive and statistical sampling at equal ray budget; maps rays per pixel; shows "
       "the adaptive miss and the statistical early stop; studies error against rays and time; prunes "
       "Whitted's tree by contribution; antialiases silhouettes with one cone per pixel."};
@@ -446,7 +475,8 @@ int main(int argc, char** argv) {
   return illum::run_program(
       argc, argv, info,
       [&](CLI::App& app) {
-        app.add_option("--spp", o.spp, "Ray budget per pixel of the equal-budget images, a square (default 16)");
+        app.add_option("--spp", o.spp,
+                       "Ray budget per pixel of the equal-budget images, a square (default 16)");
         app.add_option("--threshold", o.threshold, "Adaptive threshold of §2 (default 0.05)");
         app.add_option("--max-depth", o.max_depth, "Adaptive maximum depth of §2, 0 to 5 (default 3)");
         app.add_option("--tolerance", o.tolerance, "Statistical tolerance of §3 (default 0.02)");

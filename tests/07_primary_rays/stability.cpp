@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 
+#include "illum/core/log_log_fit.hpp"
 #include "illum/io/scene_file.hpp"
 #include "illum/trace/cone_coverage.hpp"
 #include "illum/trace/sampled_render.hpp"
@@ -17,7 +18,7 @@ TEST_SUITE("stability") {
   TEST_CASE("hard case: disc overlap when the discs are nested, tangent, apart or concentric") {
     CHECK(disc_overlap_area(1.0, 0.5, 0.0) == doctest::Approx(pi * 0.25));  // concentric
     CHECK(disc_overlap_area(1.0, 0.5, 0.5) == doctest::Approx(pi * 0.25));  // inside, touching from within
-    CHECK(disc_overlap_area(1.0, 0.5, 1.5) == 0.0);                          // tangent from outside
+    CHECK(disc_overlap_area(1.0, 0.5, 1.5) == 0.0);                         // tangent from outside
     CHECK(disc_overlap_area(1.0, 0.5, 3.0) == 0.0);
     // Equal discs r = 1 at d = 1: the lens 2·acos(1/2) − ½·√3 = 2π/3 − √3/2.
     CHECK(disc_overlap_area(1.0, 1.0, 1.0) == doctest::Approx(2 * pi / 3 - std::sqrt(3.0) / 2));
@@ -27,7 +28,8 @@ TEST_SUITE("stability") {
     const double r1 = 1.0, r2 = 0.5, d = 1.5 - 1e-12, eps = r1 + r2 - d;
     const double want = 4.0 / 3.0 * std::sqrt(2 * eps * r1 * r2 / (r1 + r2)) * eps;
     CHECK(disc_overlap_area(r1, r2, d) == doctest::Approx(want).epsilon(1e-3));
-    const double c1 = (d * d + r1 * r1 - r2 * r2) / (2 * d * r1), c2 = (d * d + r2 * r2 - r1 * r1) / (2 * d * r2);
+    const double c1 = (d * d + r1 * r1 - r2 * r2) / (2 * d * r1),
+                 c2 = (d * d + r2 * r2 - r1 * r1) / (2 * d * r2);
     const double naive = r1 * r1 * std::acos(std::min(1.0, c1)) + r2 * r2 * std::acos(std::min(1.0, c2)) -
                          0.5 * std::sqrt((-d + r1 + r2) * (d + r1 - r2) * (d - r1 + r2) * (d + r1 + r2));
     INFO("the textbook form gives ", naive, " instead of ", want);
@@ -45,7 +47,7 @@ TEST_SUITE("stability") {
     const Cone cone{.apex = Point3(0.0), .axis = Vec3(0, 0, -1), .half_angle = 0.01};
     CHECK(cone_sphere_coverage(cone, Point3(0, 0, -10), 1.0) == 1.0);  // α ≈ 0.1 ≫ β: fully covered
     CHECK(cone_sphere_coverage(cone, Point3(5, 0, -10), 0.1) == 0.0);
-    CHECK(cone_sphere_coverage(cone, Point3(0, 0, 10), 1.0) == 0.0);  // behind the apex
+    CHECK(cone_sphere_coverage(cone, Point3(0, 0, 10), 1.0) == 0.0);   // behind the apex
     CHECK(cone_sphere_coverage(cone, Point3(0, 0.2, 0), 1.0) == 1.0);  // the apex inside the sphere
     // A large sphere whose silhouette edge passes through the axis covers about half.
     const double d = 1000.0, r = 100.0, alpha = std::asin(r / d);
@@ -102,14 +104,24 @@ TEST_SUITE("stability") {
   TEST_CASE("sampled renders are deterministic, adaptive rows in parallel included") {
     const Scene scene = load_scene("checkerboard");
     const RenderSettings rs{.width = 24, .height = 18};
-    for (const SamplingSettings& s :
-         {SamplingSettings{.method = SamplingMethod::stratified, .samples = 4},
-          SamplingSettings{.method = SamplingMethod::adaptive, .adaptive = {.threshold = 0.05, .max_depth = 3}},
-          SamplingSettings{.method = SamplingMethod::statistical}}) {
+    for (const SamplingSettings& s : {SamplingSettings{.method = SamplingMethod::stratified, .samples = 4},
+                                      SamplingSettings{.method = SamplingMethod::adaptive,
+                                      .adaptive = {.threshold = 0.05, .max_depth = 3}},
+                                      SamplingSettings{.method = SamplingMethod::statistical}}) {
       const SampledRender a = render_sampled(scene, rs, s), b = render_sampled(scene, rs, s);
       CHECK(a.sampled.image.pixels() == b.sampled.image.pixels());
       CHECK(a.sampled.rays == b.sampled.rays);
       CHECK(a.stats.rays.primary == static_cast<std::uint64_t>(a.sampled.mean_rays() * 24 * 18 + 0.5));
     }
+  }
+}
+
+TEST_SUITE("stability") {
+  TEST_CASE("log_log_slope recovers a power law and skips what has no logarithm") {
+    // y = 3 x^-0.5 at x = 1, 4, 16, 64: slope exactly −½; a y = 0 point and an x below x_min are left out.
+    const std::vector<double> x = {1, 4, 16, 64, 256, 0.5}, y = {3, 1.5, 0.75, 0.375, 0.0, 1e9};
+    CHECK(log_log_slope(x, y, 1.0) == doctest::Approx(-0.5));
+    CHECK(std::isnan(log_log_slope({2.0}, {1.0})));
+    CHECK(std::isnan(log_log_slope({2.0, 2.0}, {1.0, 3.0})));
   }
 }
