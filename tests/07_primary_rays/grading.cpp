@@ -235,6 +235,8 @@ TEST_SUITE("lesson07") {
     }
     check_grey(p.color, hits / 6);
     CHECK_THROWS_AS(random_pixel(edge, 0, 0, 0, rng), std::invalid_argument);
+    const PixelEstimate one = random_pixel(edge, 0, 0, 1, rng);  // one random ray is allowed
+    CHECK(one.samples == 1);
   }
 
   TEST_CASE("random: seeded z-tests of the mean and the variance on an edge pixel") {
@@ -273,6 +275,8 @@ TEST_SUITE("lesson07") {
     }
     CHECK_MESSAGE(cells.size() == static_cast<std::size_t>(n * n), "n² samples in n² different cells");
     CHECK_THROWS_AS(stratified_pixel(edge, 0, 0, 0, rng), std::invalid_argument);
+    CHECK_MESSAGE(stratified_pixel(edge, 0, 0, 1, rng).samples == 1,
+                  "n = 1: one jittered ray in the whole pixel");
   }
 
   TEST_CASE("stratified: seeded z-tests of the mean and the variance on an edge pixel") {
@@ -369,6 +373,8 @@ TEST_SUITE("lesson07") {
     CHECK_THROWS_AS(statistical_pixel(flat, 0, 0, rng, {.min_samples = 0}), std::invalid_argument);
     CHECK_THROWS_AS(statistical_pixel(flat, 0, 0, rng, {.min_samples = 9, .max_samples = 8}),
                     std::invalid_argument);
+    CHECK_THROWS_AS(statistical_pixel(flat, 0, 0, rng, {.z = 0.0}), std::invalid_argument);
+    CHECK_THROWS_AS(statistical_pixel(flat, 0, 0, rng, {.z = nan}), std::invalid_argument);
   }
 
   TEST_CASE("pruning: a branch contributes when its largest channel reaches the threshold") {
