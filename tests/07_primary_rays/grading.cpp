@@ -358,13 +358,17 @@ TEST_SUITE("lesson07") {
     CHECK(e.samples == 50);
     // Its points are drawn as random_pixel draws them: the estimate is the share left of the edge.
     Rng a(9, 1), b(9, 1);
+    Recorder rec;
     const PixelEstimate s =
-        statistical_pixel(edge, 2, 2, a, {.tolerance = 0.0, .min_samples = 8, .max_samples = 8});
+        statistical_pixel(rec.wrap(edge), 2, 3, a, {.tolerance = 0.0, .min_samples = 8, .max_samples = 8});
+    REQUIRE(rec.points.size() == 8);
     double hits = 0;
-    for (int k = 0; k < 8; ++k) {
-      const double x = b.uniform();
-      b.uniform();
-      hits += x < 0.3 ? 1 : 0;
+    for (std::size_t k = 0; k < 8; ++k) {
+      const double x = 2 + b.uniform(), y = 3 + b.uniform();
+      INFO("sample ", k, ": expected (", x, ", ", y, ") = (i + ξ₁, j + ξ₂)");
+      CHECK(rec.points[k].first == x);
+      CHECK(rec.points[k].second == y);
+      hits += x - 2 < 0.3 ? 1 : 0;
     }
     check_grey(s.color, hits / 8, 1e-12);
     const double nan = std::numeric_limits<double>::quiet_NaN();
