@@ -378,6 +378,8 @@ TEST_SUITE("lesson07") {
     CHECK_THROWS_AS(statistical_pixel(flat, 0, 0, rng, {.min_samples = 9, .max_samples = 8}),
                     std::invalid_argument);
     CHECK_THROWS_AS(statistical_pixel(flat, 0, 0, rng, {.z = 0.0}), std::invalid_argument);
+    CHECK_MESSAGE(statistical_pixel(flat, 0, 0, rng, {.min_samples = 3, .z = 0.5}).samples == 3,
+                  "any z > 0 is a confidence level (z = 0.5: about 38 %)");
     CHECK_THROWS_AS(statistical_pixel(flat, 0, 0, rng, {.z = nan}), std::invalid_argument);
   }
 
