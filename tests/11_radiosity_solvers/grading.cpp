@@ -100,7 +100,10 @@ TEST_SUITE("lesson11") {
   }
 
   TEST_CASE("hard case: a singular system is refused, not solved") {
-    INFO("the second row is twice the first: det A = 0, there is no unique solution");
+    INFO(
+        "the second row is twice the first: det A = 0, there is no unique solution. Contract of "
+        "gaussian_elimination: std::invalid_argument whose message contains \"singular\"; and for a "
+        "matrix that is not n × n");
     ILLUM_CHECK_THROWS_CONTAINING(gaussian_elimination({1, 2, 2, 4}, {1, 2}), "singular",
                                   std::invalid_argument);
     CHECK_THROWS_AS(gaussian_elimination({1, 2, 3}, {1, 2}), std::invalid_argument);
@@ -124,7 +127,10 @@ TEST_SUITE("lesson11") {
   TEST_CASE("hard case: a closed scene with reflectance 1 is refused") {
     TwoPatchEnclosure s(0.5);
     for (Patch& p : s.patches) p.reflectance = Color(1.0, 0.5, 0.5);
-    INFO("ρ = 1 with Σ_j F_ij = 1 makes M = I − ρF singular: light would bounce for ever");
+    INFO(
+        "ρ = 1 with Σ_j F_ij = 1 makes M = I − ρF singular: light would bounce for ever. Contracts "
+        "(radiosity_solvers.hpp): solve_direct, jacobi_sweep and progressive_start refuse a reflectance "
+        "outside [0, 1) with std::invalid_argument");
     CHECK_THROWS_AS(solve_direct(s.patches, s.f), std::invalid_argument);
     std::vector<Color> next;
     CHECK_THROWS_AS(jacobi_sweep(s.patches, s.f, {Color(0.0), Color(0.0)}, next), std::invalid_argument);
@@ -198,6 +204,7 @@ TEST_SUITE("lesson11") {
       CHECK(max_difference(b, s.exact) < 1e-10);
     }
     std::vector<Color> b(s.patches.size(), Color(0.0));
+    INFO("contract of gauss_seidel_sweep: ω must lie in the open interval (0, 2); 0 and 2 are refused");
     CHECK_THROWS_AS(gauss_seidel_sweep(s.patches, s.f, b, 2.0), std::invalid_argument);
     CHECK_THROWS_AS(gauss_seidel_sweep(s.patches, s.f, b, 0.0), std::invalid_argument);
   }
@@ -304,7 +311,9 @@ TEST_SUITE("lesson11") {
       CHECK(now <= unshot * (1 + 1e-12));
       unshot = now;
     }
-    CHECK(state.shots == 3000);
+    CHECK_MESSAGE(state.shots == 3000,
+                  "contract of shoot (radiosity_solvers.hpp): every shot counts, "
+                  "state.shots += 1, and progressive_start sets it to 0");
     CHECK(max_difference(state.radiosity, s.exact) < 1e-9);
   }
 

@@ -60,7 +60,7 @@ class SmallPolygon {
   std::vector<Point3> heap_;  // all the vertices, once there are more than 64
 };
 
-// Exercise 1. The part of the convex polygon on the closed side
+// Task 1. The part of the convex polygon on the closed side
 // n·(y − origin) ≥ 0 of the plane through `origin` (Sutherland–Hodgman
 // against one plane): vertices on the plane are kept, and a new vertex is
 // inserted where an edge crosses from one open side to the other. Returns an
@@ -69,7 +69,7 @@ class SmallPolygon {
 SmallPolygon clip_polygon_to_half_space(std::span<const Point3> polygon, const Point3& origin,
                                         const Vec3& normal);
 
-// Exercise 2. The form factor from the differential area at x with unit
+// Task 2. The form factor from the differential area at x with unit
 // normal `normal` to the front side of patch `to`, by the contour formula
 // applied to `to` clipped against the tangent plane of x. Zero when x lies on
 // or behind the plane of `to` (patches are one-sided: energy reaching the

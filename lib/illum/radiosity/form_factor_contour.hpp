@@ -33,7 +33,7 @@ struct ContourOptions {
   double tolerance = 0;
 };
 
-// Exercise 3. F from `from` to the front side of `to` by the double contour
+// Task 3. F from `from` to the front side of `to` by the double contour
 // integral (see above). Zero for coplanar patches (so F_ii = 0) and for pairs
 // that face away. Throws std::invalid_argument when options.order is outside 1 … 64.
 double polygon_polygon_form_factor(const Patch& from, const Patch& to, const ContourOptions& options = {});

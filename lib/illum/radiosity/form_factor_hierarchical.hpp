@@ -17,7 +17,7 @@ struct HierarchicalResult {
   int deepest_level = 0;  // how many times the finest piece was split
 };
 
-// Exercise 4. F from `from` to the front side of `to` (no occlusion) by
+// Task 4. F from `from` to the front side of `to` (no occlusion) by
 // adaptive subdivision of `from`, refining while the parent and children
 // estimates differ by more than `tolerance`, at most `max_depth` levels.
 // Throws std::invalid_argument when tolerance ≤ 0 or max_depth is outside 0 … 20.
