@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 03: students write convex.cpp in exercises/03_orientation_convex/.
 // Convex polygons, lesson 03 ("Polígonos convexos").
 //
 // A convex polygon lies on one side of each of its edges' lines, so a point

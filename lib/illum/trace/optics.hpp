@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 06: students write optics.cpp in exercises/06_ray_tree/.
 // The optics of the ray tree (lesson 06, §3): the perfectly reflected and
 // refracted directions and the Phong term of the local model. Pure functions
 // of unit vectors, so that each can be checked by hand.
