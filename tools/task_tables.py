@@ -155,7 +155,7 @@ def parse_tests(source: Path) -> list[TestCase]:
         elif text.startswith("TEST_CASE(", i) and not text[i - 1:i].isalnum() and not text[i - 1:i] == "_":
             close = _matching_paren(text, i + len("TEST_CASE"))
             inside = text[i + len("TEST_CASE("):close]
-            name_part, _, decorators = inside.partition("* doctest::")
+            name_part = re.split(r"\*\s*doctest::", inside, maxsplit=1)[0]
             description = ""
             match = re.search(r'doctest::description\(\s*"([^"]*)"\s*\)', inside)
             if match:
@@ -325,7 +325,7 @@ def source_problems(root: Path, lesson: str) -> list[str]:
             problems.append(f"{stub.relative_to(root)}: the banner must be \"{banner[0]}<what>.\" then "
                             f"\"{banner[1]}\" then \"{banner[2]}…\"")
         headers = sorted((root / "lib" / "illum").glob(f"*/{stub.stem}.hpp"))
-        mark = f"// Exercise unit of lesson {lesson}: students write {stub.name} in exercises/{exercise.name}/."
+        mark = f"// Exercise unit of lesson {lesson}: students write {stub.name}."
         if headers and mark not in headers[0].read_text(encoding="utf-8").splitlines()[:3]:
             problems.append(f"{headers[0].relative_to(root)}: the second line must be \"{mark}\"")
     readme, text, updated = updated_readme(root, lesson)

@@ -1,5 +1,5 @@
 #pragma once
-// Exercise unit of lesson 05: students write root_finding.cpp in exercises/05_parametric_implicit/.
+// Exercise unit of lesson 05: students write root_finding.cpp.
 // Roots of one real function f(s), lesson 05 ("Intersección con Superf.
 // Implícitas"): substituting the ray P(s) = P0 + sω into an implicit surface
 // F(x, y, z) = 0 leaves one equation in one unknown, f(s) = F(P0 + sω) = 0.

@@ -1,5 +1,5 @@
 #pragma once
-// Exercise unit of lesson 03: students write triangle.cpp in exercises/03_orientation_convex/.
+// Exercise unit of lesson 03: students write triangle.cpp.
 // Ray–triangle intersection with barycentric coordinates, watertight,
 // lesson 03 (§5).
 //

@@ -1,6 +1,6 @@
 #pragma once
-// Exercise unit of lesson 09: students write form_factor_analytic.cpp in
-// exercises/09_radiosity_form_factors/. The analytic form factor from a differential area to a polygon
+// Exercise unit of lesson 09: students write form_factor_analytic.cpp.
+// The analytic form factor from a differential area to a polygon
 // (lesson 09, "Dif. Área frente a polígono"): the contour formula
 //   F_{dA→A_j} = (1/2π) Σ_k γ_k n·(R_{k+1} × R_k)/|R_{k+1} × R_k|,
 // R_k = v_k − x, γ_k the angle between R_k and R_{k+1}: each edge adds the

@@ -1,5 +1,5 @@
 #pragma once
-// Exercise unit of lesson 09: students write form_factor_contour.cpp in exercises/09_radiosity_form_factors/.
+// Exercise unit of lesson 09: students write form_factor_contour.cpp.
 // Polygon-to-polygon form factors by the double contour integral (lesson 09,
 // "Integrales de contorno. Teorema de Stokes"). Stokes' theorem turns the
 // four-fold area integral of cos φ_i cos φ_j/(π r²) into a double integral

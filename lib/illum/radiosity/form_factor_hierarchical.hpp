@@ -1,6 +1,6 @@
 #pragma once
-// Exercise unit of lesson 09: students write form_factor_hierarchical.cpp in
-// exercises/09_radiosity_form_factors/. Hierarchical decomposition (lesson 09, "Descomposición jerárquica"):
+// Exercise unit of lesson 09: students write form_factor_hierarchical.cpp.
+// Hierarchical decomposition (lesson 09, "Descomposición jerárquica"):
 // F_ij is the average over patch i of the point factor F_{dA→A_j},
 //   F_ij = (1/A_i) ∫_{A_i} F_{dA→A_j} dA,
 // estimated on a piece of patch i by the point factor at the piece's centroid.

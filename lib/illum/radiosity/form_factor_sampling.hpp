@@ -1,6 +1,6 @@
 #pragma once
-// Exercise unit of lesson 09: students write form_factor_sampling.cpp in
-// exercises/09_radiosity_form_factors/. Form factors by sampling (lesson 09, "Montecarlo", "Muestreo de
+// Exercise unit of lesson 09: students write form_factor_sampling.cpp.
+// Form factors by sampling (lesson 09, "Montecarlo", "Muestreo de
 // áreas", "Muestreo de semiesferas", "Analogía de Nusselt"). Each estimator below is unbiased (the Nusselt
 // one is deterministic); its standard deviation falls as N^-1/2 with the number of samples N. Every function
 // below throws std::invalid_argument for a number of samples (or segments_per_edge) below 1, and the

@@ -1,5 +1,5 @@
 #pragma once
-// Exercise unit of lesson 09: students write radiosity_equation.cpp in exercises/09_radiosity_form_factors/.
+// Exercise unit of lesson 09: students write radiosity_equation.cpp.
 // The radiosity equation (lesson 09).
 //
 // Radiance I (erratum 3 of docs/errata.md: the notes call it "irradiancia"; it is radiance,

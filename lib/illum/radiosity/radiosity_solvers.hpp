@@ -1,5 +1,5 @@
 #pragma once
-// Exercise unit of lesson 11: students write radiosity_solvers.cpp in exercises/11_radiosity_solvers/.
+// Exercise unit of lesson 11: students write radiosity_solvers.cpp.
 // Lesson 11: solving the radiosity system M·B = E (exercise unit:
 // radiosity_solvers.cpp). Every solver works on all three RGB channels at
 // once: a Color holds one radiosity per channel, and glm multiplies Colors

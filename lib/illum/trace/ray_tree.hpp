@@ -1,5 +1,5 @@
 #pragma once
-// Exercise unit of lesson 06: students write ray_tree.cpp in exercises/06_ray_tree/.
+// Exercise unit of lesson 06: students write ray_tree.cpp.
 // The ray tree, *árbol de rayos* (lesson 06, §5): the notes' recursive
 // "evaluar (rayo)" of backward ray tracing, Whitted's model.
 //
