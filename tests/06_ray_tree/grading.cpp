@@ -140,7 +140,9 @@ TEST_SUITE("lesson06") {
     const EffectsPlan plan = full_effects(0);
     const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
     check_vec(shadow_transmission(tracer, at_origin, Point3(0, 0, 2)), Color(0.0));
-    CHECK_MESSAGE(stats.rays.shadow >= 1, "the test casts a shadow ray and counts it");
+    CHECK_MESSAGE(stats.rays.shadow >= 1,
+                  "contract of shadow_transmission (ray_tree.hpp): every shadow ray cast is counted "
+                  "in stats.rays.shadow");
     // The light at z = 0.5 is in front of the ball (which starts at z = 0.75): nothing blocks it.
     check_vec(shadow_transmission(tracer, at_origin, Point3(0, 0, 0.5)), Color(1.0));
     // A light off to the side: the ray from the origin to (1, 0, 1) passes 0.707 from the ball's centre.
@@ -182,8 +184,11 @@ TEST_SUITE("lesson06") {
     const Run r = run(scene, Ray(Point3(0, 0, 5), Vec3(0, 0, -1)), 3);
     const Color expected = m.ambient * 0.5 + Color(2.0, 1.0, 0.5) * (m.diffuse * 0.8 + Color(0.25) * 0.512);
     check_vec(r.color, expected);
-    CHECK(r.stats.rays.primary == 1);
-    CHECK_MESSAGE(r.stats.rays.shadow == 1, "one shadow ray per light");
+    CHECK_MESSAGE(r.stats.rays.primary == 1,
+                  "contract of evaluate (ray_tree.hpp): each ray is counted once "
+                  "under its kind, the primary ray as primary");
+    CHECK_MESSAGE(r.stats.rays.shadow == 1,
+                  "one shadow ray per light; contract of shadow_transmission: each one is counted");
     CHECK_MESSAGE(r.stats.rays.reflection + r.stats.rays.refraction == 0, "k_r = k_t = 0: no child rays");
   }
 

@@ -139,6 +139,7 @@ TEST_SUITE("lesson09") {
     CHECK(m[3] == doctest::Approx(1.0));
     CHECK(m[0] * 0.5 + m[1] * 1.0 == doctest::Approx(0.0));
     CHECK(m[2] * 0.5 + m[3] * 1.0 == doctest::Approx(1.0));
+    INFO("contract of radiosity_matrix: a reflectance outside [0, 1) or sizes that differ are refused");
     CHECK_THROWS_AS(radiosity_matrix(f, std::vector<double>{0.5, 1.0}), std::invalid_argument);
     CHECK_THROWS_AS(radiosity_matrix(f, std::vector<double>{-0.1, 0.2}), std::invalid_argument);
     CHECK_THROWS_AS(radiosity_matrix(f, std::vector<double>{0.5}), std::invalid_argument);
@@ -457,6 +458,7 @@ TEST_SUITE("lesson09") {
           doctest::Approx(point_to_perpendicular_rectangle(2, 1.3, 1)).epsilon(1e-5));
     CHECK(form_factor_nusselt({0, 0, 0}, up, disc_polygon(60, 1.0, 1.0, true), 64) <=
           point_to_coaxial_disc(1, 1));
+    INFO("contract (form_factor_sampling.hpp): segments_per_edge below 1 is refused");
     CHECK_THROWS_AS(form_factor_nusselt({0, 0, 0}, up, ceiling_rect(0, 1, 0, 1, 1), 0),
                     std::invalid_argument);
   }
@@ -484,6 +486,7 @@ TEST_SUITE("lesson09") {
     const double z = z_score(estimate, f, second - f * f, n);
     INFO("estimate ", estimate, " against C-11 ", f, ", z = ", z);
     CHECK(std::abs(z) < z_critical);
+    INFO("contract (form_factor_sampling.hpp): a number of samples below 1 is refused");
     CHECK_THROWS_AS(form_factor_monte_carlo(floor, ceiling, {}, 0, rng), std::invalid_argument);
   }
 
@@ -554,6 +557,7 @@ TEST_SUITE("lesson09") {
     const double z = z_score(estimate, s.exact, s.exact * (1 - s.exact), n);  // a hit is a Bernoulli trial
     INFO("estimate ", estimate, " against ", s.exact, ", z = ", z);
     CHECK(std::abs(z) < z_critical);
+    INFO("contract (form_factor_sampling.hpp): a normal that is not unit length is refused");
     CHECK_THROWS_AS(form_factor_hemisphere_cosine({0, 0, 0}, Vec3(0, 0, 3), s.target, {}, 10, rng),
                     std::invalid_argument);
   }
