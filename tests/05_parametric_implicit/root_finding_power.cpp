@@ -118,6 +118,8 @@ TEST_SUITE("lesson05") {
     const Function nothing([](double) { return 1.0; }, [](double) { return 0.0; });
     const RootResult miss = sphere_trace(nothing, {0.0, 2.5}, 1.0, 1e-9, 50);
     CHECK(miss.status == RootStatus::missed);
-    CHECK_MESSAGE(miss.iterations == 3, "three steps of length 1 leave [0, 2.5]: the third one is counted");
+    CHECK_MESSAGE(miss.iterations == 3,
+                  "three steps of length 1 leave [0, 2.5]: the third one is counted (contract of "
+                  "sphere_trace: the step that passes range.hi counts)");
   }
 }
