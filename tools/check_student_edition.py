@@ -7,7 +7,9 @@ function still to write).
 Steps: build the ``student-edition`` target of a configured tree; check the
 edition holds no reference unit and no hidden test; configure and build it
 in a temporary folder; run each ``tests_lessonNN`` on suite ``lessonNN``
-through the illum-grade reporter; check that the grading_integrity test is
+through the illum-grade reporter (every test of a lesson handed out must fail
+with NotImplemented, every test of a lesson shipped as reference code must
+pass); check that the grading_integrity test is
 not registered there.
 """
 from __future__ import annotations
@@ -66,8 +68,16 @@ def main() -> int:
         programs = grading_programs(work / "bin")
         if not programs:
             problems.append("the student edition built no tests_lessonNN program")
+        handed_out = project.exercise_lessons(edition)
         for lesson, program in programs.items():
             run = run_suite(program, f"lesson{lesson}")
+            if lesson not in handed_out:  # shipped as reference code: its tests must pass
+                failed = [t.name for t in run.results if not t.passed and not t.skipped]
+                problems += [f"lesson{lesson} (not handed out): \"{name}\" fails on the reference code it ships"
+                             for name in failed]
+                print(f"lesson{lesson}: not handed out; {len(run.results) - len(failed)}/{len(run.results)} "
+                      "grading test(s) pass on its reference code")
+                continue
             if run.problem:
                 problems.append(run.problem)
             if not run.results:

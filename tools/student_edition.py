@@ -1,7 +1,13 @@
 #!/usr/bin/env python3
 """Writes the student edition of illum: the tracked tree without the reference
-sources of exercise units and without hidden tests (CMake target
-``student-edition``; the rules are in tools/grading/edition.py)."""
+sources of the exercises handed out and without hidden tests; the lessons not
+handed out keep their reference units as working code (CMake target
+``student-edition``, lessons from ILLUM_HAND_OUT; the rules are in
+tools/grading/edition.py).
+
+    tools/student_edition.py --source . --out /tmp/edition              # every exercise
+    tools/student_edition.py --source . --out /tmp/edition --lessons 03 # lesson 03 only
+"""
 from __future__ import annotations
 
 import argparse
@@ -11,21 +17,30 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 from grading.edition import make_student_edition  # noqa: E402
+from grading.project import normalize_lesson  # noqa: E402
 
 
 def main() -> int:
-    parser = argparse.ArgumentParser(description=__doc__)
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--source", type=Path, required=True, help="the instructors' tree")
     parser.add_argument("--out", type=Path, required=True, help="where to write the student edition")
+    parser.add_argument("--lessons", nargs="*", metavar="NN",
+                        help="the lessons whose exercises to hand out (default: every lesson with exercises)")
     args = parser.parse_args()
     try:
-        edition = make_student_edition(args.source, args.out)
+        lessons = None
+        if args.lessons:  # "03 11", "03,11", "3"
+            lessons = [normalize_lesson(t) for text in args.lessons for t in text.split(",") if t.strip()]
+        edition = make_student_edition(args.source, args.out, lessons)
     except ValueError as error:
         print(f"student_edition.py: {error}", file=sys.stderr)
         return 2
     for path, reason in sorted(edition.left_out.items()):
         print(f"left out {path} ({reason})")
-    print(f"student edition: {edition.copied} files in {edition.out}")
+    for note in edition.notes:
+        print(f"note: {note}")
+    print(f"student edition: {edition.copied} files in {edition.out}; exercises handed out: "
+          f"lessons {', '.join(edition.handed_out)}")
     return 0
 
 

@@ -1,4 +1,4 @@
-// Lesson 05 exercise, part 2: rays against Bézier patches by two planes and Newton.
+// Lesson 05 exercise: rays against Bézier patches by two planes and Newton.
 // Replace each `throw NotImplemented(...)` with your code. The tasks, hints
 // and the tests that grade them are in README.md beside this file; the
 // declarations and their contracts are in lib/illum/geometry/patch_newton.hpp.

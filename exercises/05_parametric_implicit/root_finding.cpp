@@ -1,4 +1,4 @@
-// Lesson 05 exercise, part 1: the root finders for implicit surfaces.
+// Lesson 05 exercise: the root finders for implicit surfaces.
 // Replace each `throw NotImplemented(...)` with your code. The tasks, hints
 // and the tests that grade them are in README.md beside this file; the
 // declarations and their contracts are in lib/illum/geometry/root_finding.hpp.

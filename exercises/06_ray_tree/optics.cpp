@@ -1,4 +1,4 @@
-// Lesson 06 exercise, part 1: the optics of the ray tree.
+// Lesson 06 exercise: the optics of the ray tree.
 // Replace each `throw NotImplemented(...)` with your code. The tasks, hints
 // and the tests that grade them are in README.md beside this file; the
 // declarations and their contracts are in lib/illum/trace/optics.hpp.

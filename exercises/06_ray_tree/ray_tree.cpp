@@ -1,4 +1,4 @@
-// Lesson 06 exercise, part 2: the ray tree, the notes' "evaluar (rayo)".
+// Lesson 06 exercise: the ray tree, the notes' "evaluar (rayo)".
 // Replace each `throw NotImplemented(...)` with your code. The tasks, hints
 // and the tests that grade them are in README.md beside this file; the
 // declarations and their contracts are in lib/illum/trace/ray_tree.hpp.

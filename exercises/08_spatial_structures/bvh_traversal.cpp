@@ -1,4 +1,4 @@
-// Lesson 08 exercise, task 3: BVH traversal, closest hit and any hit.
+// Lesson 08 exercise: BVH traversal, closest hit and any hit.
 // Replace each `throw NotImplemented(...)` with your code. The tasks, hints
 // and the tests that grade them are in README.md beside this file; the node
 // layout is in lib/illum/accel/bvh.hpp, the contracts in

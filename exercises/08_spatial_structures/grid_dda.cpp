@@ -1,4 +1,4 @@
-// Lesson 08 exercise, task 2: the 3DDA walk through a uniform grid.
+// Lesson 08 exercise: the 3DDA walk through a uniform grid.
 // Replace each `throw NotImplemented(...)` with your code. The tasks, hints
 // and the tests that grade them are in README.md beside this file; the
 // declarations, the DdaWalk fields and the invariants are in

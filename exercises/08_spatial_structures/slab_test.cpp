@@ -1,5 +1,5 @@
-// Lesson 08 exercise, task 1: the slab test.
-// Replace the `throw NotImplemented(...)` with your code. The tasks, hints
+// Lesson 08 exercise: the slab test.
+// Replace each `throw NotImplemented(...)` with your code. The tasks, hints
 // and the tests that grade them are in README.md beside this file; the
 // declaration and its contract are in lib/illum/accel/slab_test.hpp.
 #include "illum/accel/slab_test.hpp"

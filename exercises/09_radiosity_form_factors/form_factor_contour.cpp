@@ -1,5 +1,7 @@
 // Lesson 09 exercise: polygon-to-polygon form factors by the double contour integral.
-// The declarations and their contracts are in lib/illum/radiosity/form_factor_contour.hpp.
+// Replace each `throw NotImplemented(...)` with your code. The tasks, hints
+// and the tests that grade them are in README.md beside this file; the
+// declarations and their contracts are in lib/illum/radiosity/form_factor_contour.hpp.
 #include "illum/radiosity/form_factor_contour.hpp"
 
 #include "illum/core/error.hpp"

@@ -1,5 +1,7 @@
 // Lesson 09 exercise: form factors by hierarchical decomposition.
-// The declarations and their contracts are in lib/illum/radiosity/form_factor_hierarchical.hpp.
+// Replace each `throw NotImplemented(...)` with your code. The tasks, hints
+// and the tests that grade them are in README.md beside this file; the
+// declarations and their contracts are in lib/illum/radiosity/form_factor_hierarchical.hpp.
 #include "illum/radiosity/form_factor_hierarchical.hpp"
 
 #include "illum/core/error.hpp"

@@ -1,5 +1,7 @@
 // Lesson 09 exercise: radiance to radiosity and the matrix form of the radiosity equation.
-// The declarations and their contracts are in lib/illum/radiosity/radiosity_equation.hpp.
+// Replace each `throw NotImplemented(...)` with your code. The tasks, hints
+// and the tests that grade them are in README.md beside this file; the
+// declarations and their contracts are in lib/illum/radiosity/radiosity_equation.hpp.
 #include "illum/radiosity/radiosity_equation.hpp"
 
 #include "illum/core/error.hpp"

@@ -30,7 +30,8 @@ std::vector<Color> solve_direct(const std::vector<Patch>& patches, const FormFac
                        "build M_ij = δ_ij − ρ_i F_ij for each channel and solve M·B = E (lesson 11, §2)");
 }
 
-// Task 3. Jacobi: the new vector from the old one only.
+// Task 3. Jacobi: the new vector from the old one only. Call check_radiosity_system
+// first: a reflectance ≥ 1 must be refused (the contract in the header).
 void jacobi_sweep(const std::vector<Patch>& patches, const FormFactorMatrix& f, const std::vector<Color>& b,
                   std::vector<Color>& next) {
   throw NotImplemented("jacobi_sweep",
@@ -54,7 +55,7 @@ std::size_t southwell_step(const std::vector<Patch>& patches, const FormFactorMa
       "(lesson 11, §5)");
 }
 
-// Task 6a. B = Δ = E.
+// Task 6a. B = Δ = E, no shots yet; check_patches refuses a reflectance ≥ 1.
 ProgressiveState progressive_start(const std::vector<Patch>& patches) {
   throw NotImplemented("progressive_start", "B_i = E_i and Δ_i = E_i: the notes' \"Inicio\" (lesson 11, §6)");
 }
@@ -64,7 +65,7 @@ std::size_t choose_shooter(const std::vector<Patch>& patches, const std::vector<
   throw NotImplemented("choose_shooter", "argmax_i A_i (Δ_i.r + Δ_i.g + Δ_i.b), first on ties (erratum 8)");
 }
 
-// Task 6c. Shoot: ΔB_j = ρ_j F_ij (A_i/A_j) Δ_i.
+// Task 6c. Shoot: ΔB_j = ρ_j F_ij (A_i/A_j) Δ_i, and count the shot (state.shots).
 void shoot(const std::vector<Patch>& patches, std::size_t i, const double* form_factor_row,
            ProgressiveState& state) {
   throw NotImplemented(

@@ -33,7 +33,7 @@ Point3 centre_at(const Ray& ray, double t, double h) {
 }  // namespace
 
 TEST_SUITE("lesson01") {
-  TEST_CASE("Sphere refuses a zero, negative or non-finite radius") {
+  TEST_CASE("Sphere refuses a zero, negative or non-finite radius" * doctest::description("task=1")) {
     CHECK_THROWS_AS(Sphere(Point3(0, 0, 0), 0.0), std::invalid_argument);
     CHECK_THROWS_AS(Sphere(Point3(0, 0, 0), -1.0), std::invalid_argument);
     CHECK_THROWS_AS(Sphere(Point3(0, 0, 0), not_a_number), std::invalid_argument);
@@ -44,7 +44,8 @@ TEST_SUITE("lesson01") {
     CHECK(ok.center == Point3(1, 2, 3));
   }
 
-  TEST_CASE("notes' form: a ray through the centre of a unit sphere at z = 5 meets it at s = 4 and s = 6") {
+  TEST_CASE("notes' form: a ray through the centre of a unit sphere at z = 5 meets it at s = 4 and s = 6" *
+            doctest::description("task=2")) {
     // ΔP = (0,0,5), B = −2·5 = −10, C = 25 − 1 = 24, disc = 100 − 96 = 4, s = (10 ∓ 2)/2.
     const auto r = illum::sphere_roots_notes(Vec3(0), plus_z, Vec3(0, 0, 5), 1.0);
     CHECK_MESSAGE(r.count == 2, "disc = B² − 4C = 4 > 0: the ray crosses the sphere twice");
@@ -52,7 +53,7 @@ TEST_SUITE("lesson01") {
     CHECK(r.s_far == doctest::Approx(6.0).epsilon(1e-15));
   }
 
-  TEST_CASE("notes' form uses ΔP = Pc − P0 (erratum 1), not P − P0") {
+  TEST_CASE("notes' form uses ΔP = Pc − P0 (erratum 1), not P − P0" * doctest::description("task=2")) {
     // Origin away from zero: only the corrected ΔP gives roots 9 and 11 here.
     const auto r = illum::sphere_roots_notes(Vec3(3, -2, 1), plus_z, Vec3(3, -2, 11), 1.0);
     REQUIRE_MESSAGE(r.count == 2, "the line passes through the centre; it must cross the sphere");
@@ -60,7 +61,8 @@ TEST_SUITE("lesson01") {
     CHECK(r.s_far == doctest::Approx(11.0));
   }
 
-  TEST_CASE("notes' form: discriminant < 0 means the line misses, = 0 means tangent") {
+  TEST_CASE("notes' form: discriminant < 0 means the line misses, = 0 means tangent" *
+            doctest::description("task=2")) {
     const auto miss = illum::sphere_roots_notes(Vec3(0), plus_z, Vec3(0, 2, 5), 1.0);
     CHECK_MESSAGE(miss.count == 0, "the centre is 2 from the line but r = 1: B² − 4C = 100 − 4·28 < 0");
     // Centre 1 from the line with r = 1: B = −10, C = 25 + 1 − 1 = 25, B² − 4C = 0 exactly.
@@ -70,7 +72,7 @@ TEST_SUITE("lesson01") {
     CHECK(touch.s_far == doctest::Approx(5.0));
   }
 
-  TEST_CASE("stable form: the roots t ± √(r² − h²) of an oblique ray") {
+  TEST_CASE("stable form: the roots t ± √(r² − h²) of an oblique ray" * doctest::description("task=3")) {
     const Ray ray = Ray::toward(Point3(1, 2, 3), Vec3(1, -2, 0.5));
     const double t = 7.25, h = 0.6, r = 1.0;
     const auto roots = illum::sphere_roots_stable(ray.origin, ray.direction, centre_at(ray, t, h), r);
@@ -80,7 +82,8 @@ TEST_SUITE("lesson01") {
     CHECK(roots.s_far == doctest::Approx(t + half_chord).epsilon(1e-13));
   }
 
-  TEST_CASE("hard case: stable form on a far, small sphere keeps every digit") {
+  TEST_CASE("hard case: stable form on a far, small sphere keeps every digit" *
+            doctest::description("task=3")) {
     // Distance 1e8, radius 1, through the centre: the roots are 1e8 ± 1. The
     // notes' B² − 4C = 4e16 − 4·fl(1e16 − 1) rounds to 0 there. C itself is
     // not a double (1e16 − 1 rounds to 1e16), so the best possible near root
@@ -92,7 +95,8 @@ TEST_SUITE("lesson01") {
     CHECK(roots.s_far == doctest::Approx(1e8 + 1).epsilon(3e-16));
   }
 
-  TEST_CASE("hard case: stable form keeps the small root of an origin just outside the surface") {
+  TEST_CASE("hard case: stable form keeps the small root of an origin just outside the surface" *
+            doctest::description("task=3")) {
     // Centre at z = c ≈ 1 + 1e-10, radius 1, ray along +z from the origin: the
     // near root is c − 1 (exact in floating point, Sterbenz) ≈ 1e-10. The
     // notes' (−B − √disc)/2 subtracts two numbers near 2 and keeps ~6 digits.
@@ -105,14 +109,16 @@ TEST_SUITE("lesson01") {
     CHECK(roots.s_far == doctest::Approx(c + 1.0).epsilon(1e-15));
   }
 
-  TEST_CASE("stable form in single precision agrees with the hand calculation") {
+  TEST_CASE("stable form in single precision agrees with the hand calculation" *
+            doctest::description("task=3")) {
     const auto r = illum::sphere_roots_stable(glm::vec3(0), glm::vec3(0, 0, 1), glm::vec3(0, 0.6f, 5), 1.0f);
     REQUIRE(r.count == 2);
     CHECK(r.s_near == doctest::Approx(4.2).epsilon(1e-6));  // 5 ∓ √(1 − 0.36) = 5 ∓ 0.8
     CHECK(r.s_far == doctest::Approx(5.8).epsilon(1e-6));
   }
 
-  TEST_CASE("intersect: the nearest hit, its point, outward normal and side") {
+  TEST_CASE("intersect: the nearest hit, its point, outward normal and side" *
+            doctest::description("task=1,3,4")) {
     const Ray ray(Point3(0, 0, 0), plus_z);
     const auto hit = illum::intersect(ray, Sphere(Point3(0, 0, 5), 1.0));
     REQUIRE_MESSAGE(hit.has_value(), "the ray passes through the centre: it must hit");
@@ -124,7 +130,8 @@ TEST_SUITE("lesson01") {
     CHECK_FALSE_MESSAGE(hit->from_inside, "the origin is 5 from the centre, outside r = 1");
   }
 
-  TEST_CASE("intersect: from inside the sphere the hit is the far root") {
+  TEST_CASE("intersect: from inside the sphere the hit is the far root" *
+            doctest::description("task=1,3,4")) {
     const Ray ray(Point3(0, 0, 5), Vec3(0, 1, 0));
     const auto hit = illum::intersect(ray, Sphere(Point3(0, 0, 5), 2.0));
     REQUIRE_MESSAGE(hit.has_value(), "a ray starting at the centre always leaves the sphere");
@@ -133,13 +140,13 @@ TEST_SUITE("lesson01") {
     CHECK_MESSAGE(hit->from_inside, "|P0 − Pc| = 0 < r: the ray starts inside");
   }
 
-  TEST_CASE("hard case: a sphere behind the ray is not hit") {
+  TEST_CASE("hard case: a sphere behind the ray is not hit" * doctest::description("task=1,3,4")) {
     const Ray ray(Point3(0, 0, 0), plus_z);
     const auto hit = illum::intersect(ray, Sphere(Point3(0, 0, -5), 1.0));
     CHECK_MESSAGE(!hit.has_value(), "both roots (−6 and −4) are negative: the sphere is behind the ray");
   }
 
-  TEST_CASE("hard case: origin on the surface") {
+  TEST_CASE("hard case: origin on the surface" * doctest::description("task=1,3,4")) {
     // A ray leaving a surface starts its range a little after 0 so that it
     // does not hit the point it leaves from.
     const Sphere sphere(Point3(0, 0, 0), 1.0);
@@ -154,7 +161,7 @@ TEST_SUITE("lesson01") {
     CHECK(inward->point.z == doctest::Approx(-1.0));
   }
 
-  TEST_CASE("hard case: a tangent ray grazes the sphere at one point") {
+  TEST_CASE("hard case: a tangent ray grazes the sphere at one point" * doctest::description("task=1,3,4")) {
     const Ray ray(Point3(0, 0, 0), plus_z);
     const auto hit = illum::intersect(ray, Sphere(Point3(0, 1, 5), 1.0));
     REQUIRE_MESSAGE(hit.has_value(),
@@ -164,7 +171,7 @@ TEST_SUITE("lesson01") {
                   "at the tangent point the normal is perpendicular to the ray");
   }
 
-  TEST_CASE("intersect: hits outside the ray's range do not count") {
+  TEST_CASE("intersect: hits outside the ray's range do not count" * doctest::description("task=1,3,4")) {
     const Sphere sphere(Point3(0, 0, 5), 1.0);
     CHECK_MESSAGE(!illum::intersect(Ray(Point3(0), plus_z, illum::Interval(0, 3.5)), sphere).has_value(),
                   "the nearest root s = 4 lies beyond the range's end 3.5");
@@ -174,13 +181,15 @@ TEST_SUITE("lesson01") {
                   "s = 4 is before the range; the far root s = 6 is inside it");
   }
 
-  TEST_CASE("intersect: a non-unit direction breaks the precondition A = 1") {
+  TEST_CASE("intersect: a non-unit direction breaks the precondition A = 1" *
+            doctest::description("task=1,4")) {
     Ray ray(Point3(0), plus_z);
     ray.direction = Vec3(0, 0, 2);  // bypassing the constructor's check on purpose
     CHECK_THROWS_AS(illum::intersect(ray, Sphere(Point3(0, 0, 5), 1.0)), std::invalid_argument);
   }
 
-  TEST_CASE("hard case: a huge sphere seen from close by (the ground of lesson 01's scene)") {
+  TEST_CASE("hard case: a huge sphere seen from close by (the ground of lesson 01's scene)" *
+            doctest::description("task=1,3,4")) {
     // Radius 1e6 centred 1e6 + 1 below the origin: the top of the sphere is 1 below.
     const Ray down(Point3(0, 0, 0), Vec3(0, -1, 0));
     const auto hit = illum::intersect(down, Sphere(Point3(0, -1e6 - 1, 0), 1e6));

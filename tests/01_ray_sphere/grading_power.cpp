@@ -17,7 +17,8 @@ using illum::Sphere;
 using illum::Vec3;
 
 TEST_SUITE("lesson01") {
-  TEST_CASE("hard case: a root exactly at range.lo or range.hi is a hit (the range is closed)") {
+  TEST_CASE("hard case: a root exactly at range.lo or range.hi is a hit (the range is closed)" *
+            doctest::description("task=1,3,4")) {
     // Unit sphere at z = 5, ray along +z from the origin: roots 4 and 6, exact in binary.
     const Sphere sphere(Point3(0, 0, 5), 1.0);
     const Vec3 z(0, 0, 1);
@@ -36,7 +37,8 @@ TEST_SUITE("lesson01") {
                         "both roots, 4 and 6, lie outside [4.25, 5.75]");
   }
 
-  TEST_CASE("hard case: a ray starting on the surface with the default range [0, ∞) hits at s = 0") {
+  TEST_CASE("hard case: a ray starting on the surface with the default range [0, ∞) hits at s = 0" *
+            doctest::description("task=1,3,4")) {
     // Origin (0, 0, 3) on the sphere of radius 2 at (0, 0, 1); along −z the roots are 0 and 4.
     const Sphere sphere(Point3(0, 0, 1), 2.0);
     const auto inward = illum::intersect(Ray(Point3(0, 0, 3), Vec3(0, 0, -1)), sphere);
@@ -52,7 +54,8 @@ TEST_SUITE("lesson01") {
     CHECK_FALSE(outward->from_inside);
   }
 
-  TEST_CASE("hard case: a tangent ray that starts on the sphere touches it at its origin") {
+  TEST_CASE("hard case: a tangent ray that starts on the sphere touches it at its origin" *
+            doctest::description("task=1,3,4")) {
     // Sphere of radius 2 at the origin, ray from (0, 2, 0) along +x: the line's
     // distance to the centre is r, a double root at s = 0.
     const Sphere sphere(Point3(0), 2.0);
@@ -68,7 +71,8 @@ TEST_SUITE("lesson01") {
     CHECK_FALSE(hit->from_inside);
   }
 
-  TEST_CASE("intersect: an oblique hit's point and normal, coordinates not exact in binary") {
+  TEST_CASE("intersect: an oblique hit's point and normal, coordinates not exact in binary" *
+            doctest::description("task=1,3,4")) {
     // Centre (0.3, −0.7, 2.9), radius 0.5; the ray from (0.1, 0.2, −0.4) aims
     // at the centre, so the hit is the point of the sphere nearest the origin:
     // P = Pc − r ω and N = −ω, at s = |Pc − P0| − r.

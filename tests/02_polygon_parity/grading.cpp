@@ -21,7 +21,8 @@ Polygon square(double x0, double y0, double x1, double y1) {
 }  // namespace
 
 TEST_SUITE("lesson02") {
-  TEST_CASE("ray-plane: the sign of erratum 2 puts a plane in front of the ray at positive s") {
+  TEST_CASE("ray-plane: the sign of erratum 2 puts a plane in front of the ray at positive s" *
+            doctest::description("task=1,2")) {
     // Plane z = 2: N = (0,0,1), D = −2. From the origin along +z:
     // s = −(D + N·P0)/(N·ω) = −(−2 + 0)/1 = 2. The notes' formula without the
     // minus sign would give s = −2, a hit behind the ray.
@@ -36,7 +37,7 @@ TEST_SUITE("lesson02") {
     CHECK(*s == doctest::Approx(2.0));
   }
 
-  TEST_CASE("ray-plane: a tilted plane and an oblique ray, by hand") {
+  TEST_CASE("ray-plane: a tilted plane and an oblique ray, by hand" * doctest::description("task=1,2")) {
     // Plane x + y + z = 3 (N = (1,1,1)/√3, D = −3/√3). Ray from (0,0,0) towards
     // (1,2,3)/√14: the line point s·(1,2,3)/√14 has x+y+z = 6s/√14 = 3, so
     // s = √14/2 and the hit is (1,2,3)/2.
@@ -51,7 +52,7 @@ TEST_SUITE("lesson02") {
     CHECK(p.z == doctest::Approx(1.5));
   }
 
-  TEST_CASE("ray-plane: a plane behind the ray is not hit") {
+  TEST_CASE("ray-plane: a plane behind the ray is not hit" * doctest::description("task=1,2")) {
     // Plane z = −1 and a ray going up from the origin: s = −1 < 0.
     const Plane plane(Vec3(0, 0, 1), 1.0);
     const Ray ray(Point3(0, 0, 0), Vec3(0, 0, 1));
@@ -61,7 +62,8 @@ TEST_SUITE("lesson02") {
     CHECK_MESSAGE(!intersect(ray, plane).has_value(), "s = −1 lies outside the ray's range [0, ∞)");
   }
 
-  TEST_CASE("hard case: a ray parallel to the plane and off it never meets it") {
+  TEST_CASE("hard case: a ray parallel to the plane and off it never meets it" *
+            doctest::description("task=1,2")) {
     // N·ω = 0 and D + N·P0 = −1 ≠ 0: no s solves the equation.
     const Plane plane(Vec3(0, 0, 1), 0.0);
     const Ray ray(Point3(0, 0, 1), Vec3(1, 0, 0));
@@ -70,7 +72,8 @@ TEST_SUITE("lesson02") {
     CHECK(!intersect(ray, plane).has_value());
   }
 
-  TEST_CASE("hard case: a ray lying in the plane is reported in-plane and not as a hit") {
+  TEST_CASE("hard case: a ray lying in the plane is reported in-plane and not as a hit" *
+            doctest::description("task=1,2")) {
     // Plane x + y + z = 0 (tilted) and ω = (1, −1, 0)/√2 from the origin: N·ω = 0
     // exactly and the origin is on the plane, so every point of the ray is on it.
     const Plane plane(Vec3(1, 1, 1), 0.0);
@@ -80,7 +83,8 @@ TEST_SUITE("lesson02") {
     CHECK_MESSAGE(!intersect(ray, plane).has_value(), "a polygon seen edge-on is drawn as nothing");
   }
 
-  TEST_CASE("hard case: an origin on the plane gives s = 0, kept or skipped by the range") {
+  TEST_CASE("hard case: an origin on the plane gives s = 0, kept or skipped by the range" *
+            doctest::description("task=1,2")) {
     // Origin (3, 4, 2) on the plane z = 2; any direction not parallel: s = 0.
     const Plane plane(Vec3(0, 0, 1), -2.0);
     const Ray ray = Ray::toward(Point3(3, 4, 2), Vec3(1, 1, 1));
@@ -92,7 +96,8 @@ TEST_SUITE("lesson02") {
                   "a secondary ray starting at 1e-9 must not hit the surface it leaves");
   }
 
-  TEST_CASE("hard case: a nearly parallel ray hits far away with full relative accuracy") {
+  TEST_CASE("hard case: a nearly parallel ray hits far away with full relative accuracy" *
+            doctest::description("task=1,2")) {
     // ω = (1, 0, −1e-12)/√(1 + 1e-24), from (0,0,1) to the plane z = 0:
     // s = 1/|ω_z| = √(1 + 1e-24)/1e-12 = 1e12 (to 24 digits).
     const Plane plane(Vec3(0, 0, 1), 0.0);
@@ -102,7 +107,8 @@ TEST_SUITE("lesson02") {
     CHECK_MESSAGE(std::abs(*s / 1e12 - 1.0) < 1e-12, "s = 1/1e-12 = 1e12 up to rounding");
   }
 
-  TEST_CASE("hard case: a ray so nearly parallel that s overflows is reported parallel") {
+  TEST_CASE("hard case: a ray so nearly parallel that s overflows is reported parallel" *
+            doctest::description("task=1,2")) {
     // N·ω ≈ 1e-310 (subnormal): s = 1e10/1e-310 overflows to infinity, which
     // is no place to put a hit.
     const Plane plane(Vec3(0, 0, 1), 0.0);
@@ -112,7 +118,7 @@ TEST_SUITE("lesson02") {
     CHECK(!intersect(ray, plane).has_value());
   }
 
-  TEST_CASE("parity: a convex square and a concave notched shape") {
+  TEST_CASE("parity: a convex square and a concave notched shape" * doctest::description("task=3,4")) {
     const Polygon sq = square(0, 0, 2, 2);
     CHECK(inside_parity(sq, Vec2(1, 1)));
     CHECK(!inside_parity(sq, Vec2(3, 1)));
@@ -128,7 +134,8 @@ TEST_SUITE("lesson02") {
     CHECK(count_crossings(u.loop_2d(0), Vec2(-1, 2)) == 4);
   }
 
-  TEST_CASE("hard case: a vertex on the test ray is counted once, or not at all, never twice") {
+  TEST_CASE("hard case: a vertex on the test ray is counted once, or not at all, never twice" *
+            doctest::description("task=3")) {
     // Diamond with vertices (0,1), (1,0), (2,1), (1,2). From q = (−1, 1) the ray
     // v = 1 passes through the vertices (0,1) and (2,1). Geometrically it
     // enters and leaves: 2 crossings. Counting each vertex for both its edges
@@ -148,7 +155,8 @@ TEST_SUITE("lesson02") {
     CHECK_MESSAGE(count_crossings(above, Vec2(0, 1)) % 2 == 0, "a grazed apex must not flip the parity");
   }
 
-  TEST_CASE("hard case: an edge lying along the test ray is never counted") {
+  TEST_CASE("hard case: an edge lying along the test ray is never counted" *
+            doctest::description("task=3,4")) {
     // Square [0,2]² seen from q = (−1, 0): the bottom edge lies on the ray.
     // Both its ends count as below, so it straddles nothing; the two side
     // edges each have one end strictly above: q is left of both, 2 crossings.
@@ -163,7 +171,8 @@ TEST_SUITE("lesson02") {
     CHECK_MESSAGE(!inside_parity(sq, Vec2(2, 1)), "a point on the right edge does not (open right)");
   }
 
-  TEST_CASE("hard case: a tiling claims every point, shared edges and vertices included, exactly once") {
+  TEST_CASE("hard case: a tiling claims every point, shared edges and vertices included, exactly once" *
+            doctest::description("task=3,4")) {
     // [0,4]² cut into: a frame [0,2]² with the hole [0.5,1.5]², the plug that
     // fills the hole, an L-shaped (concave) piece, two triangles, and a fan of
     // four triangles around (3, 3). Every point of [0,4)² lies in exactly one
@@ -201,7 +210,7 @@ TEST_SUITE("lesson02") {
     CHECK(checked == 37 * 37);
   }
 
-  TEST_CASE("parity: holes work by the same count") {
+  TEST_CASE("parity: holes work by the same count" * doctest::description("task=3,4")) {
     // Square [0,6]² with two square holes; the hole loops run either way.
     const Polygon p(
         {{0, 0, 0}, {6, 0, 0}, {6, 6, 0}, {0, 6, 0}},
@@ -213,7 +222,8 @@ TEST_SUITE("lesson02") {
     CHECK(!inside_parity(p, Vec2(7, 3)));
   }
 
-  TEST_CASE("ray-polygon: a star is hit in its body and tips and missed between the tips") {
+  TEST_CASE("ray-polygon: a star is hit in its body and tips and missed between the tips" *
+            doctest::description("task=1,2,3,4,5")) {
     // A five-pointed star (outer radius 2, inner radius 0.8) in the plane z = 5,
     // seen from the origin along +z: hits have s = 5 and normal ±z.
     std::vector<Point3> star;
@@ -237,7 +247,8 @@ TEST_SUITE("lesson02") {
     CHECK_MESSAGE(!intersect(aim(3, 0), p).has_value(), "far outside the star");
   }
 
-  TEST_CASE("hard case: a polygon whose normal is mostly x is projected by dropping x") {
+  TEST_CASE("hard case: a polygon whose normal is mostly x is projected by dropping x" *
+            doctest::description("task=1,2,3,4,5")) {
     // A square in the plane x = 1 + 0.1 y, spanning y, z in [0, 1]. Its normal
     // is ∝ (1, −0.1, 0): dropping z would flatten it to a segment.
     const Polygon p({{1.0, 0, 0}, {1.1, 1, 0}, {1.1, 1, 1}, {1.0, 0, 1}});
@@ -249,7 +260,7 @@ TEST_SUITE("lesson02") {
     CHECK_MESSAGE(!intersect(Ray(Point3(-5, 0.5, 1.5), Vec3(1, 0, 0)), p).has_value(), "z = 1.5 is above it");
   }
 
-  TEST_CASE("hard case: a polygon seen edge-on is not hit") {
+  TEST_CASE("hard case: a polygon seen edge-on is not hit" * doctest::description("task=1,2,3,4,5")) {
     const Polygon sq = square(0, 0, 2, 2);
     // Positive control: the same ray tilted just out of the plane, from
     // (−1, 1, 0.01) towards the centre (1, 1, 0), crosses z = 0 inside the

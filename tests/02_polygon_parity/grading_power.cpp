@@ -14,7 +14,8 @@
 using namespace illum;
 
 TEST_SUITE("lesson02") {
-  TEST_CASE("hard case: ray-polygon hits on the boundary follow the half-open rule, bounding box included") {
+  TEST_CASE("hard case: ray-polygon hits on the boundary follow the half-open rule, bounding box included" *
+            doctest::description("task=1,2,3,4,5")) {
     // The square [0, 1]² in the plane z = 2, normal +z: dropping z keeps (u, v) = (x, y).
     // Rays along +z from z = 0 meet the plane at s = 2, exactly at (x, y, 2).
     // Half-open rule (lesson 02): the left and bottom edges and the bottom-left
@@ -50,7 +51,8 @@ TEST_SUITE("lesson02") {
     }
   }
 
-  TEST_CASE("ray-plane: a crossing exactly at either end of the ray's range counts (the range is closed)") {
+  TEST_CASE("ray-plane: a crossing exactly at either end of the ray's range counts (the range is closed)" *
+            doctest::description("task=1,2,3,4,5")) {
     // Plane z = 3 (N = (0, 0, 1), D = −3); a ray from the origin along +z crosses it at s = 3.
     const Plane plane(Vec3(0, 0, 1), -3.0);
     const Ray at_hi(Point3(0), Vec3(0, 0, 1), Interval(1, 3));
@@ -67,7 +69,8 @@ TEST_SUITE("lesson02") {
     CHECK_FALSE(intersect(before, square).has_value());
   }
 
-  TEST_CASE("ray-polygon: a polygon whose plane does not pass through the origin, hit obliquely") {
+  TEST_CASE("ray-polygon: a polygon whose plane does not pass through the origin, hit obliquely" *
+            doctest::description("task=1,2,3,4,5")) {
     // Triangle in the plane x + y + z = 3 (N = (1,1,1)/√3; all components equal,
     // so the constructor's largest-component rule drops one axis); the ray from
     // (0, 0, 0) along (1, 1, 1)/√3 meets the plane at s = √3, at (1, 1, 1).

@@ -50,7 +50,8 @@ Vec2 kettner_point(int i, int j) {
 
 TEST_SUITE("lesson03") {
   TEST_CASE(
-      "hard case: on Kettner's grid the convex test needs the exact predicate, not the plain determinant") {
+      "hard case: on Kettner's grid the convex test needs the exact predicate, not the plain determinant" *
+      doctest::description("task=5,6")) {
     const ConvexPolygon convex(flat_polygon(wedge));
     int wrong = 0, naive_wrong = 0;
     for (int i = 0; i < 64; ++i)
@@ -71,7 +72,8 @@ TEST_SUITE("lesson03") {
                   "orient2d_sign_perturbed (lesson 03: never the plain determinant)");
   }
 
-  TEST_CASE("hard case: on Kettner's grid the winding number needs the exact predicate too") {
+  TEST_CASE("hard case: on Kettner's grid the winding number needs the exact predicate too" *
+            doctest::description("task=1,2")) {
     const Polygon polygon = flat_polygon(triangle_wedge);
     int wrong = 0, naive_wrong = 0;
     for (int i = 0; i < 64; ++i)
@@ -90,7 +92,8 @@ TEST_SUITE("lesson03") {
                   "an upward edge counts when orient2d_sign_perturbed(a, b, q) > 0");
   }
 
-  TEST_CASE("convexity: a first vertex in the middle of an edge, counter-clockwise and clockwise") {
+  TEST_CASE("convexity: a first vertex in the middle of an edge, counter-clockwise and clockwise" *
+            doctest::description("task=4,5,6")) {
     // The unit square listed from the midpoint of its bottom edge: the first
     // turn is straight on (orientation 0) and must be skipped, not taken as the
     // polygon's turn direction, nor as a fold.
@@ -111,7 +114,8 @@ TEST_SUITE("lesson03") {
     CHECK_FALSE(is_convex(flat_polygon({{1, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}, {0, 0}})));
   }
 
-  TEST_CASE("convexity: the sign-change count sees every edge, wherever the loop starts") {
+  TEST_CASE("convexity: the sign-change count sees every edge, wherever the loop starts" *
+            doctest::description("task=4,5")) {
     // A pentagram turns the same way at every vertex; only the count of sign
     // changes of the edges' u and v components (4 each: it goes round twice)
     // rejects it. Turned so that it starts at 30°, its last edge is the one
@@ -133,7 +137,8 @@ TEST_SUITE("lesson03") {
     CHECK(ConvexPolygon(flat_polygon(hexagon)).orientation() == 1);
   }
 
-  TEST_CASE("convex test: a clockwise pentagon with coordinates not exact in binary") {
+  TEST_CASE("convex test: a clockwise pentagon with coordinates not exact in binary" *
+            doctest::description("task=5,6")) {
     // Clockwise, vertices on tenths (none exact in binary). Inside ⇔ on the
     // right of every edge (cross product < 0), computed here in long double
     // with a margin far larger than rounding.

@@ -27,7 +27,8 @@ void check_vec(const Vec3& got, const Vec3& expected, double tolerance = 1e-12) 
 }  // namespace
 
 TEST_SUITE("lesson04") {
-  TEST_CASE("inside_result is the truth table of union, intersection and difference") {
+  TEST_CASE("inside_result is the truth table of union, intersection and difference" *
+            doctest::description("task=1")) {
     // (in A, in B) -> union, intersection, difference
     const bool table[4][5] = {{false, false, false, false, false},
                               {true, false, true, false, true},
@@ -44,7 +45,8 @@ TEST_SUITE("lesson04") {
     }
   }
 
-  TEST_CASE("two overlapping spans: union, intersection and difference by hand") {
+  TEST_CASE("two overlapping spans: union, intersection and difference by hand" *
+            doctest::description("task=1,2")) {
     // A = [1, 3] (tag 1), B = [2, 5] (tag 2).
     const SpanList a = list({span(1, 3, 1)}), b = list({span(2, 5, 2)});
 
@@ -67,7 +69,8 @@ TEST_SUITE("lesson04") {
     check_vec(d[0].exit.normal, Vec3(1, 0, 0));  // B's entry normal −x, reversed
   }
 
-  TEST_CASE("difference: B's crossings bound the hole, with their normals reversed") {
+  TEST_CASE("difference: B's crossings bound the hole, with their normals reversed" *
+            doctest::description("task=1,2")) {
     // A = [1, 5] (tag 1) minus B = [2, 3] (tag 2) = [1, 2] ∪ [3, 5].
     const SpanList d = combine(CsgOperation::subtract, list({span(1, 5, 1)}), list({span(2, 3, 2)}));
     REQUIRE_MESSAGE(d.size() == 2, "a hole in the middle of A splits it into two spans");
@@ -84,7 +87,7 @@ TEST_SUITE("lesson04") {
     check_vec(d[1].exit.normal, Vec3(1, 0, 0));
   }
 
-  TEST_CASE("several spans on each side merge in order") {
+  TEST_CASE("several spans on each side merge in order" * doctest::description("task=1,2")) {
     const SpanList a = list({span(0, 1, 1), span(2, 3, 1), span(4, 5, 1)});
     const SpanList b = list({span(0.5, 2.5, 2), span(4.5, 6, 2)});
     // Worked on the number line:
@@ -109,7 +112,7 @@ TEST_SUITE("lesson04") {
     check_span(back[1], 5, 6);
   }
 
-  TEST_CASE("empty operands") {
+  TEST_CASE("empty operands" * doctest::description("task=1,2")) {
     const SpanList a = list({span(1, 2, 1)}), none;
     CHECK(combine(CsgOperation::unite, a, none).size() == 1);
     CHECK(combine(CsgOperation::unite, none, a).size() == 1);
@@ -120,7 +123,7 @@ TEST_SUITE("lesson04") {
     check_span(d[0], 1, 2);
   }
 
-  TEST_CASE("hard case: A ∪ A = A, A ∩ A = A, A − A = ∅") {
+  TEST_CASE("hard case: A ∪ A = A, A ∩ A = A, A − A = ∅" * doctest::description("task=1,2")) {
     const SpanList a = list({span(1, 2, 7), span(3, 4, 7)});
     for (const CsgOperation op : {CsgOperation::unite, CsgOperation::intersect}) {
       const SpanList same = combine(op, a, a);
@@ -135,7 +138,7 @@ TEST_SUITE("lesson04") {
                   "s = 1 or s = 3");
   }
 
-  TEST_CASE("hard case: touching solids share a face") {
+  TEST_CASE("hard case: touching solids share a face" * doctest::description("task=1,2")) {
     // Two boxes face to face: A = [1, 2], B = [2, 3] along the ray.
     const SpanList a = list({span(1, 2, 1)}), b = list({span(2, 3, 2)});
     const SpanList u = combine(CsgOperation::unite, a, b);
@@ -151,7 +154,7 @@ TEST_SUITE("lesson04") {
     check_span(d[0], 1, 2);
   }
 
-  TEST_CASE("hard case: coincident faces, computed exactly alike") {
+  TEST_CASE("hard case: coincident faces, computed exactly alike" * doctest::description("task=1,2")) {
     // A = [1, 4] minus B = [1, 2]: B's entry face is A's entry face.
     const SpanList d = combine(CsgOperation::subtract, list({span(1, 4, 1)}), list({span(1, 2, 2)}));
     REQUIRE_MESSAGE(d.size() == 1,
@@ -161,7 +164,8 @@ TEST_SUITE("lesson04") {
     check_vec(d[0].enter.normal, Vec3(-1, 0, 0));  // B's exit normal +x, reversed
   }
 
-  TEST_CASE("hard case: coincident faces that rounding set 1e-15 apart, and the sliver tolerance") {
+  TEST_CASE("hard case: coincident faces that rounding set 1e-15 apart, and the sliver tolerance" *
+            doctest::description("task=1,2")) {
     // A = [1, 4] minus B = [1 + 1e-15, 2]: the faces should coincide but B's
     // was computed slightly later. Without a tolerance the sliver [1, 1+1e-15]
     // survives and A's removed face shows; a tolerance of 1e-12 removes it.
@@ -181,7 +185,7 @@ TEST_SUITE("lesson04") {
     CHECK_MESSAGE(thin.empty(), "the tolerance is inclusive: a span of length exactly 0.5 is dropped at 0.5");
   }
 
-  TEST_CASE("nearest_crossing: the first end in the ray's range") {
+  TEST_CASE("nearest_crossing: the first end in the ray's range" * doctest::description("task=3")) {
     const SpanList spans = list({span(-2, -1, 1), span(1, 3, 2, 3), span(5, 6, 4)});
     const auto from_outside = nearest_crossing(spans, Interval(0, infinity));
     REQUIRE_MESSAGE(from_outside.has_value(), "the span [1,3] lies ahead");
@@ -208,7 +212,7 @@ TEST_SUITE("lesson04") {
     CHECK_MESSAGE(!last.has_value(), "an end at s = +∞ is not a surface either");
   }
 
-  TEST_CASE("bad input: broken preconditions are std::invalid_argument") {
+  TEST_CASE("bad input: broken preconditions are std::invalid_argument" * doctest::description("task=2,3")) {
     const SpanList good = list({span(1, 2)});
     const SpanList unsorted = list({span(3, 4), span(1, 2)});
     const SpanList backwards = list({span(2, 1)});
@@ -226,7 +230,8 @@ TEST_SUITE("lesson04") {
     CHECK_THROWS_AS(nearest_crossing(good, Interval(std::nan(""), 1.0)), std::invalid_argument);
   }
 
-  TEST_CASE("a lens: the intersection of two spheres, hit by closed form") {
+  TEST_CASE("a lens: the intersection of two spheres, hit by closed form" *
+            doctest::description("task=1,2,3")) {
     // Unit spheres centred at (0,0,±0.6) overlap in a lens between z = −0.4 and 0.4.
     const CsgTree lens(csg_intersection(csg_solid(SolidSphere(Point3(0, 0, 0.6), 1.0), 1),
                                         csg_solid(SolidSphere(Point3(0, 0, -0.6), 1.0), 2)));
@@ -245,7 +250,8 @@ TEST_SUITE("lesson04") {
                   "at x = 0.85 > 0.8 the ray crosses both spheres, but never both at once");
   }
 
-  TEST_CASE("a cut ball: a sphere ∩ a half-space, whose span reaches -∞") {
+  TEST_CASE("a cut ball: a sphere ∩ a half-space, whose span reaches -∞" *
+            doctest::description("task=1,2,3")) {
     // Unit ball (tag 1) ∩ half-space z <= 0.5 (tag 2): a ball with its cap sliced off.
     const CsgTree cut(csg_intersection(csg_solid(SolidSphere(Point3(0), 1.0), 1),
                                        csg_solid(SolidHalfSpace(Vec3(0, 0, 1), 0.5), 2)));
@@ -267,7 +273,8 @@ TEST_SUITE("lesson04") {
                   "a horizontal ray at z = 0.7 passes through the removed cap only");
   }
 
-  TEST_CASE("hard case: a ray starting inside the composite leaves through the far surface") {
+  TEST_CASE("hard case: a ray starting inside the composite leaves through the far surface" *
+            doctest::description("task=1,2,3")) {
     // Cube [−1,1]³ (tag 1) ∪ sphere centre (2,0,0) radius 1.5 (tag 2), ray from the origin along +x.
     const CsgTree solid(csg_union(csg_solid(SolidBox(Point3(-1), Point3(1)), 1),
                                   csg_solid(SolidSphere(Point3(2, 0, 0), 1.5), 2)));
@@ -292,7 +299,7 @@ TEST_SUITE("lesson04") {
     check_vec(wall->normal, Vec3(-1, 0, 0));  // the sphere's outward +x, reversed
   }
 
-  TEST_CASE("a drilled cube: holes, walls and faces by hand") {
+  TEST_CASE("a drilled cube: holes, walls and faces by hand" * doctest::description("task=1,2,3")) {
     const CsgTree cube(drilled_cube());
     CHECK_MESSAGE(!intersect(Ray(Point3(0, 0, 5), Vec3(0, 0, -1)), cube).has_value(),
                   "straight down the vertical hole the ray meets nothing");
@@ -314,7 +321,7 @@ TEST_SUITE("lesson04") {
     check_vec(wall->normal, Vec3(1, 0, 0), 1e-9);  // the y-cylinder's outward −x, reversed
   }
 
-  TEST_CASE("hard case: tangent and touching primitives") {
+  TEST_CASE("hard case: tangent and touching primitives" * doctest::description("task=1,2,3")) {
     // Two unit spheres touching at the origin.
     const auto left = csg_solid(SolidSphere(Point3(-1, 0, 0), 1.0), 1);
     const auto right = csg_solid(SolidSphere(Point3(1, 0, 0), 1.0), 2);
@@ -333,7 +340,8 @@ TEST_SUITE("lesson04") {
                   "a ray tangent to a sphere (distance from the centre = r) touches but does not enter");
   }
 
-  TEST_CASE("hard case: a pocket sharing the top face of a box does not show that face") {
+  TEST_CASE("hard case: a pocket sharing the top face of a box does not show that face" *
+            doctest::description("task=1,2,3")) {
     // Box [−1,1]³ minus the box [−0.5,0.5]² × [0, 1]: the pocket's top is the
     // box's top face. Exact coincidence (both faces from the same slab arithmetic).
     const CsgTree pocket(csg_difference(csg_solid(SolidBox(Point3(-1), Point3(1)), 1),
@@ -369,7 +377,8 @@ TEST_SUITE("lesson04") {
                   "removed face showing through a sliver span");
   }
 
-  TEST_CASE("the hit agrees with point classification along random rays") {
+  TEST_CASE("the hit agrees with point classification along random rays" *
+            doctest::description("task=1,2,3")) {
     // Independent check: classify points along each ray straight from the
     // primitives' inequalities. Before the hit the state never changes; just
     // after it, the state is the opposite of just before.

@@ -9,7 +9,8 @@ using namespace illum;
 using namespace csg_test;
 
 TEST_SUITE("lesson04") {
-  TEST_CASE("hard case: nearest_crossing counts a crossing exactly at either end of the range") {
+  TEST_CASE("hard case: nearest_crossing counts a crossing exactly at either end of the range" *
+            doctest::description("task=3")) {
     const SpanList spans = list({span(2, 5, 1, 2), span(7, 9, 3, 4)});
     // The entry at 2 = range.hi: the sorted scan may stop only at an entry beyond range.hi.
     const auto entry_at_hi = nearest_crossing(spans, Interval(0, 2));

@@ -65,7 +65,8 @@ double allowed_error(ImplicitMethod method, double tolerance, double cos_theta) 
 }  // namespace
 
 TEST_SUITE("lesson05") {
-  TEST_CASE("torus: every method finds the closed-form hit of a ray in the equatorial plane") {
+  TEST_CASE("torus: every method finds the closed-form hit of a ray in the equatorial plane" *
+            doctest::description("task=1,2,3,4")) {
     // In the plane z = 0 the torus (R = 2, r = 0.5) is the ring 1.5 ≤ ρ ≤ 2.5:
     // the ray y = 0.3 enters where x² + 0.09 = 2.5², x = −√6.16.
     const Torus torus(Point3(0.0), 2.0, 0.5);
@@ -88,7 +89,8 @@ TEST_SUITE("lesson05") {
     }
   }
 
-  TEST_CASE("torus: a general ray agrees with the quartic solved independently in long double") {
+  TEST_CASE("torus: a general ray agrees with the quartic solved independently in long double" *
+            doctest::description("task=1,2,3,4")) {
     const Torus torus(Point3(0.0), 1.0, 0.35);
     const Ray rays[] = {Ray::toward(Point3(3.0, -4.0, 1.2), Vec3(-3.0, 5.1, -1.05)),
                         Ray::toward(Point3(-2.5, 0.4, 2.0), Vec3(3.4, -0.2, -2.1)),
@@ -111,7 +113,7 @@ TEST_SUITE("lesson05") {
     }
   }
 
-  TEST_CASE("hard case: rays through the torus hole miss it") {
+  TEST_CASE("hard case: rays through the torus hole miss it" * doctest::description("task=1,2,3,4")) {
     // Along the axis ρ = 0, so F = (z² + R² − r²)² > 0: no root at all. The
     // slanted ray keeps ρ ≤ 0.3 < R − r = 1.5 while |z| ≤ r.
     const Torus torus(Point3(0.0), 2.0, 0.5);
@@ -137,7 +139,8 @@ TEST_SUITE("lesson05") {
     }
   }
 
-  TEST_CASE("blob: a single ball's surface is where its Gaussian equals the threshold") {
+  TEST_CASE("blob: a single ball's surface is where its Gaussian equals the threshold" *
+            doctest::description("task=1,2,3,4")) {
     // T = a·exp(−bρ²) at ρ² = ln(a/T)/b: here a = 2, b = 1.5, T = 0.5.
     const Blob blob({{Point3(0.0), 2.0, 1.5}}, 0.5);
     const double rho2 = std::log(2.0 / 0.5) / 1.5;
@@ -159,7 +162,8 @@ TEST_SUITE("lesson05") {
     }
   }
 
-  TEST_CASE("blob: two balls melt together where neither alone reaches the threshold") {
+  TEST_CASE("blob: two balls melt together where neither alone reaches the threshold" *
+            doctest::description("task=1,2,3,4")) {
     // Balls at (±0.6, 0, 0), a = 1, b = 2, T = 0.6. On the ray x = 0, y = 0.1
     // both are at squared distance 0.37 + z², so F = T − 2exp(−2(0.37 + z²))
     // and z² = ln(2/T)/2 − 0.37 > 0. One ball alone would need z² = ln(1/T)/2 −

@@ -117,7 +117,7 @@ std::optional<Exact> bilinear_exact(const Ray& ray, Point3 p00, Point3 p10, Poin
 }  // namespace
 
 TEST_SUITE("lesson05") {
-  TEST_CASE("ray_planes: two orthonormal planes that both contain the ray") {
+  TEST_CASE("ray_planes: two orthonormal planes that both contain the ray" * doctest::description("task=5")) {
     const Ray rays[] = {Ray(Point3(1, 2, 3), Vec3(1, 0, 0)), Ray(Point3(-4, 0.5, 2), Vec3(0, 0, -1)),
                         Ray::toward(Point3(0.3, -7, 1e3), Vec3(1, 1, 1)),
                         Ray::toward(Point3(2, 2, 2), Vec3(-0.2, 0.9, 0.01))};
@@ -138,7 +138,8 @@ TEST_SUITE("lesson05") {
     }
   }
 
-  TEST_CASE("bilinear saddle: a vertical ray hits (a, b, ab) with normal (−b, −a, 1)") {
+  TEST_CASE("bilinear saddle: a vertical ray hits (a, b, ab) with normal (−b, −a, 1)" *
+            doctest::description("task=5,6,7")) {
     // S = (u, v, uv), S_u = (1, 0, v), S_v = (0, 1, u), S_u × S_v = (−v, −u, 1).
     const Ray ray(Point3(0.3, 0.7, 5.0), Vec3(0.0, 0.0, -1.0));
     const std::optional<PatchHit> hit = intersect_patch(ray, saddle());
@@ -151,7 +152,8 @@ TEST_SUITE("lesson05") {
     CHECK(length(hit->point - Point3(0.3, 0.7, 0.21)) <= 1e-12);
   }
 
-  TEST_CASE("bilinear patch: a slanted ray agrees with the closed-form quadratic") {
+  TEST_CASE("bilinear patch: a slanted ray agrees with the closed-form quadratic" *
+            doctest::description("task=5,6,7")) {
     const Point3 p00(0, 0, 0), p10(2, 0, 0.5), p01(0, 2, -0.3), p11(2.2, 2.1, 1.4);
     const BezierPatch patch = BezierPatch::bilinear(p00, p10, p01, p11);
     const Ray rays[] = {Ray::toward(Point3(-1, 0.5, 3), Vec3(2.2, 0.6, -2.8)),
@@ -169,7 +171,8 @@ TEST_SUITE("lesson05") {
     }
   }
 
-  TEST_CASE("bicubic height field: a vertical ray hits z = h(u, v) from the Bernstein sum") {
+  TEST_CASE("bicubic height field: a vertical ray hits z = h(u, v) from the Bernstein sum" *
+            doctest::description("task=5,6,7")) {
     const BezierPatch patch = wavy.patch();
     const double u = 0.37, v = 0.61;
     const Ray ray(Point3(u, v, 10.0), Vec3(0.0, 0.0, -1.0));
@@ -183,7 +186,8 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(length(hit->normal - expected) <= 1e-9, "(1, 0, h_u) × (0, 1, h_v) = (−h_u, −h_v, 1)");
   }
 
-  TEST_CASE("hard case: a ray that crosses a hump twice returns the nearer hit") {
+  TEST_CASE("hard case: a ray that crosses a hump twice returns the nearer hit" *
+            doctest::description("task=5,6,7")) {
     // The horizontal ray z = 0.4 along y = 0.5 enters the hump where h(x, ½)
     // rises through 0.4 and leaves where it falls back: the first crossing,
     // found here by bisection of h(x, ½) − 0.4 on [0, ½], is the answer.
@@ -205,7 +209,8 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(hit->u < 0.5, "the hit is on the near side of the hump");
   }
 
-  TEST_CASE("hard case: a planar patch seen edge-on is not hit, a nearly edge-on ray is") {
+  TEST_CASE("hard case: a planar patch seen edge-on is not hit, a nearly edge-on ray is" *
+            doctest::description("task=5,6,7")) {
     const BezierPatch flat =
         BezierPatch::bilinear(Point3(0, 0, 0), Point3(1, 0, 0), Point3(0, 1, 0), Point3(1, 1, 0));
     // In the patch's plane: the line meets the patch in a segment, det J = ω·(S_u × S_v) = 0.
@@ -222,7 +227,8 @@ TEST_SUITE("lesson05") {
     CHECK(std::abs(hit->v - 0.5) <= 1e-10);
   }
 
-  TEST_CASE("hard case: a patch with a collapsed edge (coincident corners) still has a unit normal") {
+  TEST_CASE("hard case: a patch with a collapsed edge (coincident corners) still has a unit normal" *
+            doctest::description("task=5,6,7")) {
     // P00 = P10: the edge v = 0 is a single point. S = (uv, v, 0): S_u = (v, 0, 0)
     // vanishes on that edge, so S_u × S_v = (0, 0, v) is zero there.
     const BezierPatch triangle =
@@ -242,7 +248,8 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(near_corner->normal.z == doctest::Approx(1.0), "the flat triangle faces +z");
   }
 
-  TEST_CASE("intersect_patch: misses beside the patch and behind the origin") {
+  TEST_CASE("intersect_patch: misses beside the patch and behind the origin" *
+            doctest::description("task=5,6,7")) {
     // Positive control: straight down onto (0.5, 0.5), where z = uv = 0.25, so
     // s = 5 − 0.25 = 4.75. An intersector that always missed would pass the rest.
     const std::optional<PatchHit> hit = intersect_patch(Ray(Point3(0.5, 0.5, 5), Vec3(0, 0, -1)), saddle());
@@ -260,7 +267,8 @@ TEST_SUITE("lesson05") {
                   "with the range [0, 5] the hit at s = 4.75 counts again");
   }
 
-  TEST_CASE("patch_newton converges in a few steps and refuses bad input") {
+  TEST_CASE("patch_newton converges in a few steps and refuses bad input" *
+            doctest::description("task=5,6,7")) {
     const Ray ray(Point3(0.3, 0.7, 5.0), Vec3(0.0, 0.0, -1.0));
     const RayPlanes planes = ray_planes(ray);
     const std::optional<PatchHit> hit = patch_newton(saddle(), ray, planes, Vec2(0.5, 0.5), 1e-14, 20);

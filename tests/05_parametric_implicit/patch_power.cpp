@@ -25,7 +25,8 @@ BezierPatch scaled_saddle(double c) {
 }  // namespace
 
 TEST_SUITE("lesson05") {
-  TEST_CASE("hard case: rays through the edges and corners of the parameter square hit (it is closed)") {
+  TEST_CASE("hard case: rays through the edges and corners of the parameter square hit (it is closed)" *
+            doctest::description("task=5,6,7")) {
     // Vertical rays at (x, y): on the saddle x = u, y = v exactly, z = uv, s = 5 − uv.
     const BezierPatch patch = scaled_saddle(1.0);
     const double points[][2] = {{0.0, 0.5}, {1.0, 0.5}, {0.5, 0.0}, {0.5, 1.0}, {1.0, 1.0}, {0.0, 0.0}};
@@ -46,7 +47,8 @@ TEST_SUITE("lesson05") {
                         "x = 1.001: u would be 1.001, outside the square");
   }
 
-  TEST_CASE("a hit from the back of the patch (ω·(S_u × S_v) > 0) is a hit, with the parametrised normal") {
+  TEST_CASE("a hit from the back of the patch (ω·(S_u × S_v) > 0) is a hit, with the parametrised normal" *
+            doctest::description("task=5,6,7")) {
     // From below, along +z, onto (0.25, 0.75): z = uv = 0.1875, s = 0.1875 + 2;
     // the normal (−v, −u, 1)/√(u² + v² + 1) keeps its orientation (it faces the other way).
     const std::optional<PatchHit> hit =
@@ -61,7 +63,8 @@ TEST_SUITE("lesson05") {
     CHECK(std::abs(hit->normal.z - 1.0 / norm) <= 1e-12);
   }
 
-  TEST_CASE("hard case: patches of size 1e-4 and 100 are hit alike (singularity is relative to |S_u||S_v|)") {
+  TEST_CASE("hard case: patches of size 1e-4 and 100 are hit alike (singularity is relative to |S_u||S_v|)" *
+            doctest::description("task=5,6,7")) {
     for (double c : {1e-4, 100.0}) {
       INFO("saddle scaled by ", c, ": |S_u||S_v| ≈ c², det J ≈ c² for a ray along −z");
       // Down onto (0.5c, 0.25c): u = 0.5, v = 0.25, z = c·uv = c/8.
@@ -76,7 +79,8 @@ TEST_SUITE("lesson05") {
     }
   }
 
-  TEST_CASE("hard case: a ray crossing a wave twice gets the nearer hit, whichever way it runs") {
+  TEST_CASE("hard case: a ray crossing a wave twice gets the nearer hit, whichever way it runs" *
+            doctest::description("task=5,6,7")) {
     // Heights 0, 1, −1, 0 along u (degree 3), flat in v (degree 1): x = u, y = v,
     // z = 3u(1 − u)(1 − 2u). A ray at height 0.05 along ±x at y = 0.3 meets it
     // where 3u(1 − u)(1 − 2u) = 0.05: once near u ≈ 0.017 and once near u ≈ 0.48.
@@ -113,7 +117,8 @@ TEST_SUITE("lesson05") {
     CHECK(std::abs(backward->s - (2 - second)) <= 1e-9);
   }
 
-  TEST_CASE("hard case: the same wave turned to run along v, crossed along ±y at u = 0.3") {
+  TEST_CASE("hard case: the same wave turned to run along v, crossed along ±y at u = 0.3" *
+            doctest::description("task=5,6,7")) {
     // Heights 0, 1, −1, 0 along v, flat in u: z = 3v(1 − v)(1 − 2v). The
     // sub-patches the nearer crossing lies in are now upper halves in v.
     std::vector<Point3> points;
@@ -143,7 +148,8 @@ TEST_SUITE("lesson05") {
     CHECK(std::abs(backward->s - (2 - second)) <= 1e-9);
   }
 
-  TEST_CASE("hard case: oblique rays onto the edges u = 0 and u = 1 report u inside [0, 1]") {
+  TEST_CASE("hard case: oblique rays onto the edges u = 0 and u = 1 report u inside [0, 1]" *
+            doctest::description("task=5,6,7")) {
     // Rays along (±1, 0.3, −1)/|·| aimed at saddle points (e, v, e·v), e = 0 or 1:
     // Newton stops within 1e−12 of the planes, so its u may lie a hair outside
     // the square; the contract clamps it (the 1e−9 slack admits the hit).
@@ -164,7 +170,8 @@ TEST_SUITE("lesson05") {
     }
   }
 
-  TEST_CASE("intersect_patch with max_depth 0: one Newton start at the patch's centre") {
+  TEST_CASE("intersect_patch with max_depth 0: one Newton start at the patch's centre" *
+            doctest::description("task=5,6,7")) {
     PatchOptions options;
     options.max_depth = 0;
     const std::optional<PatchHit> hit =
@@ -173,7 +180,8 @@ TEST_SUITE("lesson05") {
     CHECK(std::abs(hit->s - (5 - 0.21)) <= 1e-12);
   }
 
-  TEST_CASE("patch_newton: one step where F is linear in (u, v), and max_iterations at its bounds") {
+  TEST_CASE("patch_newton: one step where F is linear in (u, v), and max_iterations at its bounds" *
+            doctest::description("task=5,6")) {
     // A vertical ray: both planes are vertical, so F₁, F₂ depend on x = u and
     // y = v only, linearly: Newton lands on (0.3, 0.7) in exactly one step.
     const BezierPatch patch = scaled_saddle(1.0);

@@ -19,7 +19,8 @@ const double not_a_number = std::numeric_limits<double>::quiet_NaN();
 }
 
 TEST_SUITE("lesson05") {
-  TEST_CASE("bisection halves the bracket until its half width is below the tolerance") {
+  TEST_CASE("bisection halves the bracket until its half width is below the tolerance" *
+            doctest::description("task=1")) {
     const Function f([](double s) { return s * s - 2.0; }, [](double s) { return 2.0 * s; });
     const RootResult r = bisection(f, {1.0, 2.0}, 1e-10, 200);
     REQUIRE_MESSAGE(r.converged(), "f(1) = −1 and f(2) = 2 differ in sign: [1, 2] brackets √2");
@@ -30,7 +31,8 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(r.iterations == 33, "bisection gains exactly one bit per step: 33 halvings reach 1e−10");
   }
 
-  TEST_CASE("hard case: a tangent ray gives no sign change, so bracketing cannot see it") {
+  TEST_CASE("hard case: a tangent ray gives no sign change, so bracketing cannot see it" *
+            doctest::description("task=1,3")) {
     // The ray y = 1 grazes the unit sphere at s = 3: f(s) = (s − 3)² ≥ 0 touches
     // zero without changing sign (a double root).
     const ImplicitSphere sphere(Point3(0.0), 1.0);
@@ -55,7 +57,8 @@ TEST_SUITE("lesson05") {
                   "safeguarded Newton needs the same bracket and is just as blind");
   }
 
-  TEST_CASE("hard case: NaN and other bad input are refused with std::invalid_argument") {
+  TEST_CASE("hard case: NaN and other bad input are refused with std::invalid_argument" *
+            doctest::description("task=1,2,3,4")) {
     const Function f([](double s) { return s - 1.0; }, [](double) { return 1.0; });
     CHECK_THROWS_AS(bisection(f, {not_a_number, 2.0}, 1e-9, 50), std::invalid_argument);
     CHECK_THROWS_AS(bisection(f, {2.0, 0.0}, 1e-9, 50), std::invalid_argument);  // a > b
@@ -69,7 +72,7 @@ TEST_SUITE("lesson05") {
     CHECK_THROWS_AS(sphere_trace(f, {0.0, 5.0}, not_a_number, 1e-9, 50), std::invalid_argument);
   }
 
-  TEST_CASE("Newton converges quadratically to √2") {
+  TEST_CASE("Newton converges quadratically to √2" * doctest::description("task=2")) {
     // s ← s − (s² − 2)/(2s) from 1: 1.5, 1.41667, 1.4142157, 1.41421356237469,
     // … the number of correct digits doubles each step.
     const Function f([](double s) { return s * s - 2.0; }, [](double s) { return 2.0 * s; });
@@ -81,7 +84,8 @@ TEST_SUITE("lesson05") {
     CHECK(newton(f, 1.0, 1e-15, 1).s == doctest::Approx(1.5).epsilon(1e-15));
   }
 
-  TEST_CASE("hard case: Newton stalls at a local minimum and cycles, never claiming a false root") {
+  TEST_CASE("hard case: Newton stalls at a local minimum and cycles, never claiming a false root" *
+            doctest::description("task=2")) {
     // A ray passing beside a surface: f has a positive local minimum and no root
     // (the notes: "Método del Gradiente problemas con mínimos locales").
     const Function bump([](double s) { return (s - 2.0) * (s - 2.0) + 0.25; },
@@ -98,7 +102,8 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE((cycle.s == 0.0 || cycle.s == 1.0), "the iterates of the 2-cycle are exactly 0 and 1");
   }
 
-  TEST_CASE("safeguarded Newton finds the root that plain Newton cycles around") {
+  TEST_CASE("safeguarded Newton finds the root that plain Newton cycles around" *
+            doctest::description("task=3")) {
     const Function cubic([](double s) { return s * s * s - 2.0 * s + 2.0; },
                          [](double s) { return 3.0 * s * s - 2.0; });
     // Cardano for t³ + pt + q with p = −2, q = 2: one real root since
@@ -111,7 +116,8 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(r.iterations <= 60, "bisection steps rescue Newton, then Newton's steps finish quickly");
   }
 
-  TEST_CASE("safeguarded Newton stays inside the bracket where Newton runs away") {
+  TEST_CASE("safeguarded Newton stays inside the bracket where Newton runs away" *
+            doctest::description("task=2,3")) {
     // atan has slope → 0 far from its root: Newton from −20 overshoots further each step.
     const Function f([](double s) { return std::atan(s - 1.0); },
                      [](double s) { return 1.0 / (1.0 + (s - 1.0) * (s - 1.0)); });
@@ -123,7 +129,8 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(std::abs(safe.s - 1.0) <= 1e-12, "atan(s − 1) = 0 at s = 1");
   }
 
-  TEST_CASE("sphere tracing approaches the sphere from outside and never crosses it") {
+  TEST_CASE("sphere tracing approaches the sphere from outside and never crosses it" *
+            doctest::description("task=4")) {
     const ImplicitSphere sphere(Point3(0.0, 0.0, 5.0), 1.0);
     const Ray ray = Ray::toward(Point3(0.0), Vec3(0.5, 0.0, 5.0));
     // Closed form: s² − 2s ω·C + |C|² − r² = 0, nearer root.
@@ -138,7 +145,7 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(exact - r.s <= 1e-12 / cos_theta + 1e-14, "stopped within tolerance/cos θ of the true hit");
   }
 
-  TEST_CASE("sphere tracing reports a miss when the ray passes by") {
+  TEST_CASE("sphere tracing reports a miss when the ray passes by" * doctest::description("task=4")) {
     const ImplicitSphere sphere(Point3(0.0, 0.0, 5.0), 1.0);
     // Positive control: the parallel ray at x = 0.5 meets the sphere at
     // z = 5 − √(1 − 0.25); a march that always reported a miss fails here.
@@ -156,7 +163,8 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(r.status == RootStatus::missed, "the distance stays ≥ 1: the march leaves the range");
   }
 
-  TEST_CASE("hard case: sphere tracing crawls along a tangent ray but stays outside") {
+  TEST_CASE("hard case: sphere tracing crawls along a tangent ray but stays outside" *
+            doctest::description("task=4")) {
     // Along y = 1 the distance to the unit sphere is √(1 + t²) − 1 ≈ t²/2 with
     // t = 3 − s: steps shrink like t², so the march needs ~2/t steps.
     const ImplicitSphere sphere(Point3(0.0), 1.0);
@@ -169,7 +177,8 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(r.iterations > 100, "a grazing ray costs many steps: the price of never overshooting");
   }
 
-  TEST_CASE("hard case: a thin feature falls between the samples of a fixed-step march") {
+  TEST_CASE("hard case: a thin feature falls between the samples of a fixed-step march" *
+            doctest::description("task=4")) {
     // A thin torus (R = 1, r = 0.01) crossed along the x axis: the tube occupies
     // x ∈ [−1.01, −0.99] and [0.99, 1.01]. From x = −3.1 a march of step 0.25
     // samples x = −1.1, −0.85, … and 0.9, 1.15: no sample lands in the tube.

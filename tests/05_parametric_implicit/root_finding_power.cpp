@@ -23,7 +23,8 @@ Function scaled_square(double c) {
 }  // namespace
 
 TEST_SUITE("lesson05") {
-  TEST_CASE("safeguarded Newton converges in a handful of steps where bisection needs 42") {
+  TEST_CASE("safeguarded Newton converges in a handful of steps where bisection needs 42" *
+            doctest::description("task=3")) {
     // Bracket [0, 4], f = s² − 2: the first iterate is the midpoint 2; Newton
     // then gives 1.5, 1.41667, 1.4142157, 1.41421356237469, 1.414213562373095,
     // each step less than half the one before, so every one is accepted.
@@ -36,7 +37,8 @@ TEST_SUITE("lesson05") {
                   "it must be taken: the digits double at every step");
   }
 
-  TEST_CASE("hard case: Newton's stopping rule is the step, not the residual, on badly scaled functions") {
+  TEST_CASE("hard case: Newton's stopping rule is the step, not the residual, on badly scaled functions" *
+            doctest::description("task=1,2,3")) {
     // c = 1e−12: at s = 1 the residual is already 1e−12 < the tolerance 1e−10,
     // yet s is 0.41 from the root. c = 1e12: near √2 the residual cannot drop
     // below ~1e−3 (the spacing of doubles times f'), so a residual test never stops.
@@ -58,7 +60,8 @@ TEST_SUITE("lesson05") {
     }
   }
 
-  TEST_CASE("bisection and safeguarded Newton on a falling function (f(a) > 0 > f(b))") {
+  TEST_CASE("bisection and safeguarded Newton on a falling function (f(a) > 0 > f(b))" *
+            doctest::description("task=1,3")) {
     // f = 2 − s² on [0.5, 3]: the sign change runs the other way; the kept
     // half is still the one whose ends differ in sign.
     const Function falling([](double s) { return 2.0 - s * s; }, [](double s) { return -2.0 * s; });
@@ -71,7 +74,8 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(safe.iterations <= 10, "bisection would need ⌈log₂(2.5/1e−12)⌉ = 42 halvings");
   }
 
-  TEST_CASE("safeguarded Newton: exact step counts, roots at the bracket's ends, a budget of one step") {
+  TEST_CASE("safeguarded Newton: exact step counts, roots at the bracket's ends, a budget of one step" *
+            doctest::description("task=3")) {
     // f = s − 1 on [0, 4]: the start is the midpoint 2 (f = 1, which moves b to 2);
     // step 1 is Newton's 2 − 1/1 = 1 (inside (0, 2), half the width 2), where f = 0.
     const Function line([](double s) { return s - 1.0; }, [](double) { return 1.0; });
@@ -102,7 +106,8 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(not_b.s == doctest::Approx(1.0).epsilon(1e-12), "f(2) = 1 at b is no root either");
   }
 
-  TEST_CASE("sphere tracing: a surface exactly at range.hi is reached, and a miss counts its steps") {
+  TEST_CASE("sphere tracing: a surface exactly at range.hi is reached, and a miss counts its steps" *
+            doctest::description("task=4")) {
     // Distance 4 − s (a wall at s = 4), Lipschitz 1: one step of 4 lands on it.
     const Function wall([](double s) { return 4.0 - s; }, [](double) { return -1.0; });
     const RootResult at_end = sphere_trace(wall, {0.0, 4.0}, 1.0, 1e-9, 50);
@@ -113,6 +118,8 @@ TEST_SUITE("lesson05") {
     const Function nothing([](double) { return 1.0; }, [](double) { return 0.0; });
     const RootResult miss = sphere_trace(nothing, {0.0, 2.5}, 1.0, 1e-9, 50);
     CHECK(miss.status == RootStatus::missed);
-    CHECK_MESSAGE(miss.iterations == 3, "three steps of length 1 leave [0, 2.5]: the third one is counted");
+    CHECK_MESSAGE(miss.iterations == 3,
+                  "three steps of length 1 leave [0, 2.5]: the third one is counted (contract of "
+                  "sphere_trace: the step that passes range.hi counts)");
   }
 }

@@ -40,7 +40,7 @@ Run run(const Scene& scene, const Ray& ray, int max_depth, Color background = Co
 }  // namespace
 
 TEST_SUITE("lesson06") {
-  TEST_CASE("reflect: R = I − 2(N·I)N off a tilted normal") {
+  TEST_CASE("reflect: R = I − 2(N·I)N off a tilted normal" * doctest::description("task=1")) {
     // N·I = −0.8, so R = I + 1.6 N = (0, 0.96, −1 + 1.28) = (0, 0.96, 0.28); |R|² = 0.9216 + 0.0784 = 1.
     check_vec(reflect(Vec3(0, 0, -1), Vec3(0, 0.6, 0.8)), Vec3(0, 0.96, 0.28));
     // 45° onto a floor: the vertical component flips, the horizontal one stays.
@@ -48,7 +48,8 @@ TEST_SUITE("lesson06") {
     check_vec(reflect(Vec3(s, -s, 0), Vec3(0, 1, 0)), Vec3(s, s, 0));
   }
 
-  TEST_CASE("refract: air into glass (η = 1.5) at 45° follows sin θ_t = sin θ_i / 1.5") {
+  TEST_CASE("refract: air into glass (η = 1.5) at 45° follows sin θ_t = sin θ_i / 1.5" *
+            doctest::description("task=2")) {
     const double s = std::sqrt(0.5);
     const Refraction r = refract(Vec3(s, -s, 0), Vec3(0, 1, 0), 1.0 / 1.5);
     REQUIRE_MESSAGE(!r.total_internal_reflection,
@@ -57,7 +58,8 @@ TEST_SUITE("lesson06") {
     check_vec(r.direction, Vec3(sin_t, -cos_t, 0));
   }
 
-  TEST_CASE("refract: glass into air bends away from the normal (sin 0.4 → sin 0.6)") {
+  TEST_CASE("refract: glass into air bends away from the normal (sin 0.4 → sin 0.6)" *
+            doctest::description("task=2")) {
     // Inside glass (η_i/η_t = 1.5), travelling up, sin θ_i = 0.4: sin θ_t = 0.6, cos θ_t = 0.8.
     // The normal given is the one facing the ray: (0, −1, 0).
     const Refraction r = refract(Vec3(0.4, std::sqrt(0.84), 0), Vec3(0, -1, 0), 1.5);
@@ -65,13 +67,15 @@ TEST_SUITE("lesson06") {
     check_vec(r.direction, Vec3(0.6, 0.8, 0));
   }
 
-  TEST_CASE("refract: beyond the critical angle there is no transmitted ray") {
+  TEST_CASE("refract: beyond the critical angle there is no transmitted ray" *
+            doctest::description("task=2")) {
     // sin θ_i = 0.8 inside glass: sin θ_t would be 1.2 > 1.
     const Refraction r = refract(Vec3(0.8, 0.6, 0), Vec3(0, -1, 0), 1.5);
     CHECK_MESSAGE(r.total_internal_reflection, "1.5 · 0.8 = 1.2 > 1: total internal reflection");
   }
 
-  TEST_CASE("hard case: the critical angle exactly, and just either side of it") {
+  TEST_CASE("hard case: the critical angle exactly, and just either side of it" *
+            doctest::description("task=2")) {
     // sin θ_c = 1/1.5 = 2/3. At θ_c the transmitted ray would graze the surface (cos θ_t = 0):
     // either answer is acceptable there, but not a NaN and not a ray into the glass.
     const double sin_c = 2.0 / 3.0;
@@ -90,7 +94,8 @@ TEST_SUITE("lesson06") {
     CHECK(in.direction.y == doctest::Approx(std::sqrt(1 - sin_t * sin_t)).epsilon(1e-6));
   }
 
-  TEST_CASE("hard case: grazing incidence into glass gives the critical angle, reflection the same ray") {
+  TEST_CASE("hard case: grazing incidence into glass gives the critical angle, reflection the same ray" *
+            doctest::description("task=1,2")) {
     // θ_i = 90°: sin θ_t = 1/1.5, the light bends to θ_c inside the glass.
     const Refraction r = refract(Vec3(1, 0, 0), Vec3(0, 1, 0), 1.0 / 1.5);
     REQUIRE(!r.total_internal_reflection);
@@ -98,7 +103,7 @@ TEST_SUITE("lesson06") {
     check_vec(reflect(Vec3(1, 0, 0), Vec3(0, 1, 0)), Vec3(1, 0, 0));
   }
 
-  TEST_CASE("Phong term: k_d (N·L) + k_s (R·V)^n term by term") {
+  TEST_CASE("Phong term: k_d (N·L) + k_s (R·V)^n term by term" * doctest::description("task=3")) {
     const Vec3 n(0, 0, 1), l(0, 0.6, 0.8);
     const Color kd(0.5, 0.25, 0.1), ks(0.3);
     // Viewer on the mirror direction R = 2(N·L)N − L = (0, −0.6, 0.8): R·V = 1.
@@ -109,13 +114,15 @@ TEST_SUITE("lesson06") {
     check_vec(overhead, kd * 0.8 + ks * 0.1073741824);
   }
 
-  TEST_CASE("hard case: a light exactly on the tangent plane gives nothing, not even a highlight") {
+  TEST_CASE("hard case: a light exactly on the tangent plane gives nothing, not even a highlight" *
+            doctest::description("task=3")) {
     // N·L = 0; the viewer sits on R = −L, where a careless specular term would give k_s.
     const Color c = phong_term(Vec3(0, 0, 1), Vec3(1, 0, 0), Vec3(-1, 0, 0), Color(0.7), Color(0.5), 4.0);
     check_vec(c, Color(0.0));
   }
 
-  TEST_CASE("hard case: a light behind the surface gives nothing, though R·V > 0") {
+  TEST_CASE("hard case: a light behind the surface gives nothing, though R·V > 0" *
+            doctest::description("task=3")) {
     // N·L = −0.2 with L = (0, √0.96, −0.2); R = 2(N·L)N − L = (0, −√0.96, −0.2) and
     // V = (0, −0.6, 0.8) give R·V = 0.6√0.96 − 0.16 ≈ 0.428 > 0: a highlight from behind.
     const Color c = phong_term(Vec3(0, 0, 1), Vec3(0, std::sqrt(0.96), -0.2), Vec3(0, -0.6, 0.8), Color(0.7),
@@ -123,7 +130,8 @@ TEST_SUITE("lesson06") {
     check_vec(c, Color(0.0));
   }
 
-  TEST_CASE("hard case: an occluder beyond the light casts no shadow; one between point and light does") {
+  TEST_CASE("hard case: an occluder beyond the light casts no shadow; one between point and light does" *
+            doctest::description("task=4")) {
     Scene scene;
     const auto grey = add_material(scene, material("grey"));
     add_sphere(scene, "ball", Point3(0, 0, 1), 0.25, grey);
@@ -132,14 +140,17 @@ TEST_SUITE("lesson06") {
     const EffectsPlan plan = full_effects(0);
     const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
     check_vec(shadow_transmission(tracer, at_origin, Point3(0, 0, 2)), Color(0.0));
-    CHECK_MESSAGE(stats.rays.shadow >= 1, "the test casts a shadow ray and counts it");
+    CHECK_MESSAGE(stats.rays.shadow >= 1,
+                  "contract of shadow_transmission (ray_tree.hpp): every shadow ray cast is counted "
+                  "in stats.rays.shadow");
     // The light at z = 0.5 is in front of the ball (which starts at z = 0.75): nothing blocks it.
     check_vec(shadow_transmission(tracer, at_origin, Point3(0, 0, 0.5)), Color(1.0));
     // A light off to the side: the ray from the origin to (1, 0, 1) passes 0.707 from the ball's centre.
     check_vec(shadow_transmission(tracer, at_origin, Point3(1, 0, 1)), Color(1.0));
   }
 
-  TEST_CASE("shadow test: through a glass ball with attenuation, k_t once per surface crossed") {
+  TEST_CASE("shadow test: through a glass ball with attenuation, k_t once per surface crossed" *
+            doctest::description("task=4")) {
     Scene scene;
     const auto floor = add_material(scene, material("floor"));
     Material glass = material("glass");
@@ -157,7 +168,8 @@ TEST_SUITE("lesson06") {
     check_vec(shadow_transmission(tracer, p, Point3(0, 0, 4)), Color(0.0));
   }
 
-  TEST_CASE("evaluate: one diffuse and specular ball, ambient + diffuse + Phong by hand") {
+  TEST_CASE("evaluate: one diffuse and specular ball, ambient + diffuse + Phong by hand" *
+            doctest::description("task=3,4,5,6")) {
     Scene scene;
     Material m = material("plastic");
     m.ambient = Color(0.2, 0.1, 0.05);
@@ -172,12 +184,16 @@ TEST_SUITE("lesson06") {
     const Run r = run(scene, Ray(Point3(0, 0, 5), Vec3(0, 0, -1)), 3);
     const Color expected = m.ambient * 0.5 + Color(2.0, 1.0, 0.5) * (m.diffuse * 0.8 + Color(0.25) * 0.512);
     check_vec(r.color, expected);
-    CHECK(r.stats.rays.primary == 1);
-    CHECK_MESSAGE(r.stats.rays.shadow == 1, "one shadow ray per light");
+    CHECK_MESSAGE(r.stats.rays.primary == 1,
+                  "contract of evaluate (ray_tree.hpp): each ray is counted once "
+                  "under its kind, the primary ray as primary");
+    CHECK_MESSAGE(r.stats.rays.shadow == 1,
+                  "one shadow ray per light; contract of shadow_transmission: each one is counted");
     CHECK_MESSAGE(r.stats.rays.reflection + r.stats.rays.refraction == 0, "k_r = k_t = 0: no child rays");
   }
 
-  TEST_CASE("evaluate: a mirror floor shows the ball it reflects, I_own + k_r·I_r") {
+  TEST_CASE("evaluate: a mirror floor shows the ball it reflects, I_own + k_r·I_r" *
+            doctest::description("task=1,5,6")) {
     Scene scene;
     Material mirror = material("mirror");
     mirror.ambient = Color(0.1);
@@ -195,7 +211,8 @@ TEST_SUITE("lesson06") {
     check_vec(flat.color, Color(0.1));
   }
 
-  TEST_CASE("evaluate: straight through a glass ball needs depth 2 to see the background, weighed k_t²") {
+  TEST_CASE("evaluate: straight through a glass ball needs depth 2 to see the background, weighed k_t²" *
+            doctest::description("task=2,5,6")) {
     Scene scene;
     Material glass = material("glass");
     glass.transmittance = Color(0.9);
@@ -209,7 +226,8 @@ TEST_SUITE("lesson06") {
     check_vec(one.color, Color(0.0));
   }
 
-  TEST_CASE("hard case: a ray leaving a glass ball from inside beyond the critical angle reflects totally") {
+  TEST_CASE("hard case: a ray leaving a glass ball from inside beyond the critical angle reflects totally" *
+            doctest::description("task=1,2,5,6")) {
     Scene scene;
     Material glass = material("glass");
     glass.ambient = Color(0.1);
@@ -227,7 +245,8 @@ TEST_SUITE("lesson06") {
     CHECK(r.stats.rays.refraction == 0);
   }
 
-  TEST_CASE("hard case: a ray tangent to a mirror ball goes on past it") {
+  TEST_CASE("hard case: a ray tangent to a mirror ball goes on past it" *
+            doctest::description("task=1,5,6")) {
     Scene scene;
     Material chrome = material("chrome");
     chrome.ambient = Color(0.2);
@@ -245,7 +264,8 @@ TEST_SUITE("lesson06") {
                   "a tangent ray either touches the ball (I_own + k_r·background) or misses it (background)");
   }
 
-  TEST_CASE("hard case: depth 0 is the local model alone, whatever the materials") {
+  TEST_CASE("hard case: depth 0 is the local model alone, whatever the materials" *
+            doctest::description("task=3,4,5,6")) {
     Scene scene;
     Material m = material("everything");
     m.ambient = Color(0.25);

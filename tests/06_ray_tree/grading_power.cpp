@@ -38,7 +38,8 @@ void add_rectangle(Scene& scene, const std::string& name, double x0, double x1, 
 }  // namespace
 
 TEST_SUITE("lesson06") {
-  TEST_CASE("hard case: sin θ_t = 1 exactly counts as total internal reflection") {
+  TEST_CASE("hard case: sin θ_t = 1 exactly counts as total internal reflection" *
+            doctest::description("task=2")) {
     // Equal indices (η_i/η_t = 1) and grazing incidence along the surface: cos θ_i = −N·I = 0
     // exactly, so sin² θ_t = 1² · (1 − 0²) = 1 with no rounding at all. The transmitted ray
     // would run along the surface and carry nothing; optics.hpp's convention is that this
@@ -50,7 +51,8 @@ TEST_SUITE("lesson06") {
     CHECK_MESSAGE(r.direction == Vec3(0.0), "under total internal reflection the direction is zero");
   }
 
-  TEST_CASE("Phong term: a mirror direction facing away from the viewer gives no highlight") {
+  TEST_CASE("Phong term: a mirror direction facing away from the viewer gives no highlight" *
+            doctest::description("task=3")) {
     // N = (0, 0, 1), L = (0, 0.6, 0.8): N·L = 0.8, R = 2(N·L)N − L = (0, −0.6, 0.8).
     // V = (0, 0.96, 0.28) (unit: 0.9216 + 0.0784 = 1) is above the surface, but
     // R·V = −0.576 + 0.224 = −0.352 < 0: the specular term is 0 (not k_s·1, not (−0.352)^n).
@@ -60,7 +62,8 @@ TEST_SUITE("lesson06") {
     check_vec(c, kd * 0.8);
   }
 
-  TEST_CASE("hard case: a light on the tangent plane casts no shadow ray and adds nothing") {
+  TEST_CASE("hard case: a light on the tangent plane casts no shadow ray and adds nothing" *
+            doctest::description("task=5")) {
     Scene scene;
     Material m = material("grey");
     m.ambient = Color(0.25, 0.5, 0.75);
@@ -83,7 +86,8 @@ TEST_SUITE("lesson06") {
                   "N·L = 0: the light is on the tangent plane, so no shadow ray is cast");
   }
 
-  TEST_CASE("effects plan: a surface with k_d = k_s = 0 casts no shadow ray when zero weights are skipped") {
+  TEST_CASE("effects plan: a surface with k_d = k_s = 0 casts no shadow ray when zero weights are skipped" *
+            doctest::description("task=3,4,5")) {
     Scene scene;
     Material m = material("black mirror");
     m.ambient = Color(0.2, 0.3, 0.4);
@@ -110,7 +114,8 @@ TEST_SUITE("lesson06") {
     CHECK_MESSAGE(literal_stats.rays.shadow == 1, "without the zero-weight rule, one shadow ray per light");
   }
 
-  TEST_CASE("effects plan: an opaque mirror casts no refracted ray when zero weights are skipped") {
+  TEST_CASE("effects plan: an opaque mirror casts no refracted ray when zero weights are skipped" *
+            doctest::description("task=1,5,6")) {
     Scene scene;
     Material mirror = material("mirror");
     mirror.reflectance = Color(0.5);  // k_t = 0 here
@@ -132,7 +137,8 @@ TEST_SUITE("lesson06") {
     CHECK(stats.rays.reflection == 1);
   }
 
-  TEST_CASE("evaluate: entering glass obliquely uses η_i/η_t = 1/1.5 and bends towards the normal") {
+  TEST_CASE("evaluate: entering glass obliquely uses η_i/η_t = 1/1.5 and bends towards the normal" *
+            doctest::description("task=2,5,6")) {
     // A glass plane z = 0 (k_t = 0.5, η = 1.5) above a small lamp z = −1, x ∈ [0.3, 0.8].
     // The ray from (−1, 0, 1) meets the glass at the origin at 45° (front face):
     //   sin θ_t = sin 45° / 1.5 = √2/3 ≈ 0.4714, cos θ_t = √(1 − 2/9) = √7/3,
@@ -160,7 +166,8 @@ TEST_SUITE("lesson06") {
                   "entering glass (front face) there is always a transmitted ray: η_i/η_t = 1/1.5 < 1");
   }
 
-  TEST_CASE("refract: a ratio η_i/η_t of 0 is refused, not turned into a ray along −N") {
+  TEST_CASE("refract: a ratio η_i/η_t of 0 is refused, not turned into a ray along −N" *
+            doctest::description("task=2")) {
     // η_i/η_t = 0 would be an infinitely dense second medium: sin θ_t = 0 whatever θ_i, and
     // T = 0·I + (0 − 1)·N = −N. No material has η = ∞ (nor η_i = 0): optics.hpp says a ratio
     // that is not positive and finite throws std::invalid_argument.
@@ -170,7 +177,8 @@ TEST_SUITE("lesson06") {
                                   std::invalid_argument);
   }
 
-  TEST_CASE("hard case: R·V = 0 exactly gives no highlight, even with exponent 0") {
+  TEST_CASE("hard case: R·V = 0 exactly gives no highlight, even with exponent 0" *
+            doctest::description("task=3")) {
     // N = (0, 0, 1), L = (0, s, s) with s = √½: N·L = s, R = 2sN − L = (0, −s, s) (2s − s = s
     // exactly). V = (0, s, s): R·V = −s·s + s·s = 0 exactly. optics.hpp: the specular part
     // is zero when R·V ≤ 0; with n = 0 a test R·V ≥ 0 would give 0⁰ = 1, i.e. k_s.
@@ -181,7 +189,8 @@ TEST_SUITE("lesson06") {
     check_vec(c, kd * s);
   }
 
-  TEST_CASE("own intensity: each light is multiplied by its shadow transmission S_l, not divided by it") {
+  TEST_CASE("own intensity: each light is multiplied by its shadow transmission S_l, not divided by it" *
+            doctest::description("task=3,4,5")) {
     Scene scene;
     Material m = material("matte");
     m.diffuse = Color(0.5);  // k_s = 0, k_a = 0: I_own is the diffuse terms alone
@@ -205,7 +214,8 @@ TEST_SUITE("lesson06") {
     check_vec(own_intensity(tracer, at_origin, Vec3(0, 0, 1)), Color(0.64, 0.25, 0.81));
   }
 
-  TEST_CASE("shadow test: a coloured glass that stops two channels still lets the third through") {
+  TEST_CASE("shadow test: a coloured glass that stops two channels still lets the third through" *
+            doctest::description("task=4")) {
     // A ball with k_t zero in two channels and 0.5 in the third: after the first surface the
     // transmission is 0.5 in one channel only. That is not black (black is all three ≤ 0), so
     // the shadow ray goes on through the second surface: S = 0.5² = 0.25 in that channel.
@@ -228,7 +238,8 @@ TEST_SUITE("lesson06") {
     }
   }
 
-  TEST_CASE("ray tree record: weights multiply k_r and k_t, a miss has no I_own, a shadow ray returns 0") {
+  TEST_CASE("ray tree record: weights multiply k_r and k_t, a miss has no I_own, a shadow ray returns 0" *
+            doctest::description("task=1,2,3,4,5,6")) {
     // A mirror floor (k_d = 0.5, k_r = (0.5, 0.25, 0.125)) lit from (0, 0, 4), seen straight down.
     Scene scene;
     Material m = material("mirror");

@@ -87,7 +87,8 @@ void check_against_brute_force(const TriangleAccel& accel, const TriangleSet& se
 }  // namespace
 
 TEST_SUITE("lesson08") {
-  TEST_CASE("slab test: a ray through a box from outside enters and leaves at the slab planes") {
+  TEST_CASE("slab test: a ray through a box from outside enters and leaves at the slab planes" *
+            doctest::description("task=1")) {
     // Box [−1.5, 2.25] × [0.5, 3.0] × [−2, 1]; ray from (−4, 1, 0) along (1, 0.5, −0.25)/|…|.
     Aabb box;
     box.lo = Point3(-1.5, 0.5, -2.0);
@@ -107,7 +108,8 @@ TEST_SUITE("lesson08") {
     CHECK(slab_clip(SlabRay(ray), box, Interval(0.0, 2.4 * len)).empty());
   }
 
-  TEST_CASE("hard case: slab test with the origin inside the box starts at the range's start") {
+  TEST_CASE("hard case: slab test with the origin inside the box starts at the range's start" *
+            doctest::description("task=1")) {
     Aabb box;
     box.lo = Point3(-0.3, -0.7, 0.1);
     box.hi = Point3(0.9, 1.3, 2.6);
@@ -120,7 +122,8 @@ TEST_SUITE("lesson08") {
     CHECK(got.hi == doctest::Approx(1.0 / 0.6).epsilon(1e-12));
   }
 
-  TEST_CASE("hard case: slab test with a ray parallel to a slab, lying exactly on its plane") {
+  TEST_CASE("hard case: slab test with a ray parallel to a slab, lying exactly on its plane" *
+            doctest::description("task=1")) {
     Aabb box;
     box.lo = Point3(0.1, 1.0, -1.0);
     box.hi = Point3(2.3, 3.0, 4.0);
@@ -147,7 +150,8 @@ TEST_SUITE("lesson08") {
     CHECK(e.hi == doctest::Approx(9.0));
   }
 
-  TEST_CASE("3DDA: axis-parallel segments that start and end on cell boundaries") {
+  TEST_CASE("3DDA: axis-parallel segments that start and end on cell boundaries" *
+            doctest::description("task=1,2a,2b")) {
     // From x = 1 to x = 3 along +x: cells 1 and 2 only (cells 0 and 3 are only touched).
     CHECK(walk(Point3(1.0, 0.5, 0.5), Vec3(1, 0, 0), Interval(0.0, 2.0)) == Cells{{1, 0, 0}, {2, 0, 0}});
     // The same segment backwards, from x = 3 to x = 1.
@@ -158,7 +162,8 @@ TEST_SUITE("lesson08") {
     CHECK(walk(Point3(3.25, -7.0, 0.75), Vec3(0, 1, 0)) == Cells{{3, 0, 0}, {3, 1, 0}});
   }
 
-  TEST_CASE("3DDA: diagonal segments, through an edge and through a corner") {
+  TEST_CASE("3DDA: diagonal segments, through an edge and through a corner" *
+            doctest::description("task=1,2a,2b")) {
     // (1, 0.5, 0)/|…| from (0.2, 0.2, 0.3): x = 1 at x-travel 0.8, y = 1 at x-travel 1.6 (x = 1.8),
     // x = 2, x = 3, and y = 2 at x = 3.8, where the ray leaves the grid.
     CHECK(walk(Point3(0.2, 0.2, 0.3), Vec3(1.0, 0.5, 0.0)) ==
@@ -172,7 +177,8 @@ TEST_SUITE("lesson08") {
           Cells{{0, 0, 0}, {1, 1, 1}});
   }
 
-  TEST_CASE("hard case: 3DDA starts in the cell of an origin inside the grid") {
+  TEST_CASE("hard case: 3DDA starts in the cell of an origin inside the grid" *
+            doctest::description("task=1,2a,2b")) {
     CHECK(walk(Point3(2.25, 0.75, 1.5), Vec3(-1, 0, 0)) == Cells{{2, 0, 1}, {1, 0, 1}, {0, 0, 1}});
     // Origin on an inner boundary (x = 2), heading −x: the walk begins in cell 1, not 2.
     CHECK(walk(Point3(2.0, 0.75, 0.5), Vec3(-1, 0, 0)) == Cells{{1, 0, 0}, {0, 0, 0}});
@@ -180,7 +186,8 @@ TEST_SUITE("lesson08") {
     CHECK(walk(Point3(1.5, 1.5, 2.5), Vec3(1, 0, 0), Interval(0.0, 1.0)) == Cells{{1, 1, 2}, {2, 1, 2}});
   }
 
-  TEST_CASE("hard case: 3DDA terminates on axis-parallel rays and on rays that miss or graze") {
+  TEST_CASE("hard case: 3DDA terminates on axis-parallel rays and on rays that miss or graze" *
+            doctest::description("task=1,2a,2b")) {
     // Parallel to two axes, from inside, in both senses.
     CHECK(walk(Point3(3.5, 1.5, 0.5), Vec3(0, 0, 1)) == Cells{{3, 1, 0}, {3, 1, 1}, {3, 1, 2}});
     CHECK(walk(Point3(3.5, 1.5, 2.5), Vec3(0, 0, -1)) == Cells{{3, 1, 2}, {3, 1, 1}, {3, 1, 0}});
@@ -198,7 +205,8 @@ TEST_SUITE("lesson08") {
     }
   }
 
-  TEST_CASE("3DDA: consecutive cells are neighbours and each cell is visited once") {
+  TEST_CASE("3DDA: consecutive cells are neighbours and each cell is visited once" *
+            doctest::description("task=1,2a,2b")) {
     // The grid [−1.3, 2.9] × [0.7, 1.9] × [−3.1, −0.2], 7 × 3 × 5 cells: nothing exact in binary.
     GridFrame f;
     f.bounds.lo = Point3(-1.3, 0.7, -3.1);
@@ -235,7 +243,7 @@ TEST_SUITE("lesson08") {
     CHECK(long_walks > 100);
   }
 
-  TEST_CASE("grid: a hit is accepted only inside the current cell") {
+  TEST_CASE("grid: a hit is accepted only inside the current cell" * doctest::description("task=1,2a,2b")) {
     // T1 is a long slanted triangle crossed by the ray at x = 2.6 whose box spans every
     // cell along the ray; T2 is small, in the plane x = 2.3, in the last cell only.
     // Testing T1 in the first cell finds s(2.6): accepting it there would miss T2.
@@ -254,7 +262,8 @@ TEST_SUITE("lesson08") {
     CHECK(counters.nodes_visited == 3);
   }
 
-  TEST_CASE("grid: the same closest hit as brute force on seeded random rays, at several resolutions") {
+  TEST_CASE("grid: the same closest hit as brute force on seeded random rays, at several resolutions" *
+            doctest::description("task=1,2a,2b")) {
     const TriangleSet set = triangle_soup(1500, 0x0801);
     const std::vector<Ray> rays = mixed_rays(set, 3000, 0x0802);
     const auto reference = brute_force_hits(set, rays);
@@ -265,7 +274,8 @@ TEST_SUITE("lesson08") {
     }
   }
 
-  TEST_CASE("BVH: the same closest hit as brute force on seeded random rays, at several leaf sizes") {
+  TEST_CASE("BVH: the same closest hit as brute force on seeded random rays, at several leaf sizes" *
+            doctest::description("task=1,3a")) {
     const TriangleSet set = triangle_soup(2000, 0x0803);
     const std::vector<Ray> rays = mixed_rays(set, 4000, 0x0804);
     const auto reference = brute_force_hits(set, rays);
@@ -275,7 +285,8 @@ TEST_SUITE("lesson08") {
     }
   }
 
-  TEST_CASE("BVH and grid: any-hit agrees with brute force on shadow segments") {
+  TEST_CASE("BVH and grid: any-hit agrees with brute force on shadow segments" *
+            doctest::description("task=1,2a,2b,3b")) {
     const TriangleSet set = triangle_soup(1200, 0x0805);
     Rng rng(0x0806);
     const BruteForce brute(set);
@@ -300,7 +311,8 @@ TEST_SUITE("lesson08") {
     CHECK(blocked < 2700);
   }
 
-  TEST_CASE("BVH: nodes visited per ray within budget: front-to-back order and early exit") {
+  TEST_CASE("BVH: nodes visited per ray within budget: front-to-back order and early exit" *
+            doctest::description("task=1,3a,3b")) {
     // 1024 triangles stacked along z (planes z = 0.1·k, jittered in x and y), each
     // covering the axis x = y = 0.
     std::vector<Triangle> tris;
@@ -334,7 +346,8 @@ TEST_SUITE("lesson08") {
     }
   }
 
-  TEST_CASE("BVH: far fewer node visits than triangles on camera rays into a triangle soup") {
+  TEST_CASE("BVH: far fewer node visits than triangles on camera rays into a triangle soup" *
+            doctest::description("task=1,3a")) {
     // Budget: 12·log2 N node boxes per ray on average (a balanced tree has depth
     // log2(N/4); a ray meets a handful of paths). Brute force would test N triangles.
     const TriangleSet set = triangle_soup(8000, 0x0808);
@@ -355,7 +368,8 @@ TEST_SUITE("lesson08") {
     CHECK(tests_per_ray <= 4.0 * std::log2(8000.0));
   }
 
-  TEST_CASE("make_accel: every structure picked by name gives brute force's answers") {
+  TEST_CASE("make_accel: every structure picked by name gives brute force's answers" *
+            doctest::description("task=1,2a,2b,3a")) {
     const TriangleSet set = triangle_soup(600, 0x080a);
     const std::vector<Ray> rays = mixed_rays(set, 1500, 0x080b);
     const auto reference = brute_force_hits(set, rays);
@@ -368,7 +382,8 @@ TEST_SUITE("lesson08") {
     }
   }
 
-  TEST_CASE("hard case: rays from a closed mesh's inside towards its vertices and edges all hit") {
+  TEST_CASE("hard case: rays from a closed mesh's inside towards its vertices and edges all hit" *
+            doctest::description("task=1,2a,2b,3a")) {
     // Each such ray passes through a box corner or edge of some leaf: without the
     // slab test's far_slack it can miss the leaf by an ulp. Watertightness (lesson 03) survives the
     // structures: a ray through a shared vertex or edge is handed to the same triangle test, whichever cell

@@ -73,7 +73,8 @@ const Vec3 up(0, 0, 1);
 
 TEST_SUITE("lesson09") {
   // ---------------------------------------------------------------- B = πI
-  TEST_CASE("B = πI: Gauss–Legendre over the hemisphere of a Lambertian and two non-Lambertian radiances") {
+  TEST_CASE("B = πI: Gauss–Legendre over the hemisphere of a Lambertian and two non-Lambertian radiances" *
+            doctest::description("task=10")) {
     INFO("B = ∫∫ I cos φ sin φ dφ dθ; constant I gives πI (lesson 09 §1, erratum 3: I is radiance)");
     CHECK(exitance_from_radiance_quadrature([](double, double) { return 1.7; }, 12) ==
           doctest::Approx(pi * 1.7).epsilon(1e-12));
@@ -87,7 +88,7 @@ TEST_SUITE("lesson09") {
                     std::invalid_argument);
   }
 
-  TEST_CASE("B = πI by Monte Carlo passes a z-test") {
+  TEST_CASE("B = πI by Monte Carlo passes a z-test" * doctest::description("task=11")) {
     // X = 2π I cos φ with cos φ uniform: E[X] = πI, E[X²] = 4π²I²/3, Var = π²I²/3.
     const double radiance = 2.5;
     const int n = 200000;
@@ -101,7 +102,8 @@ TEST_SUITE("lesson09") {
   }
 
   // ------------------------------------------------------- the matrix form
-  TEST_CASE("M·B = E: the notes' three-patch example (erratum 4: B goes on the right of M)") {
+  TEST_CASE("M·B = E: the notes' three-patch example (erratum 4: B goes on the right of M)" *
+            doctest::description("task=12")) {
     // ρ = 0.5 everywhere and F chosen so that ρF gives the notes' couplings
     // K12 = 0.2, K13 = 0.3, K23 = 0.1; its solution is B = (1.16745, 0.27123, 0.37736).
     FormFactorMatrix f(3);
@@ -123,7 +125,8 @@ TEST_SUITE("lesson09") {
     }
   }
 
-  TEST_CASE("radiosity matrix: row i carries ρ_i, M_ii = 1 − ρ_i F_ii, and bad input is refused") {
+  TEST_CASE("radiosity matrix: row i carries ρ_i, M_ii = 1 − ρ_i F_ii, and bad input is refused" *
+            doctest::description("task=12")) {
     // Two patches that see only each other, only patch 0 reflects (ρ = 0.5):
     // E = (0, 1) gives B = (0.5, 1) by hand. M·B = E holds; B·M (the notes' layout) gives (0.5, 0.75).
     FormFactorMatrix f(2);
@@ -136,13 +139,14 @@ TEST_SUITE("lesson09") {
     CHECK(m[3] == doctest::Approx(1.0));
     CHECK(m[0] * 0.5 + m[1] * 1.0 == doctest::Approx(0.0));
     CHECK(m[2] * 0.5 + m[3] * 1.0 == doctest::Approx(1.0));
+    INFO("contract of radiosity_matrix: a reflectance outside [0, 1) or sizes that differ are refused");
     CHECK_THROWS_AS(radiosity_matrix(f, std::vector<double>{0.5, 1.0}), std::invalid_argument);
     CHECK_THROWS_AS(radiosity_matrix(f, std::vector<double>{-0.1, 0.2}), std::invalid_argument);
     CHECK_THROWS_AS(radiosity_matrix(f, std::vector<double>{0.5}), std::invalid_argument);
   }
 
   // ------------------------------------------------ clipping and point to polygon
-  TEST_CASE("clipping a convex polygon against a plane") {
+  TEST_CASE("clipping a convex polygon against a plane" * doctest::description("task=1")) {
     const std::vector<Point3> square{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     const SmallPolygon right = clip_polygon_to_half_space(square, {0.25, 0, 0}, {1, 0, 0});
     CHECK(right.size == 4);
@@ -158,7 +162,8 @@ TEST_SUITE("lesson09") {
     CHECK_THROWS_AS(clip_polygon_to_half_space(square, {0, 0, 0}, Vec3(0.0)), std::invalid_argument);
   }
 
-  TEST_CASE("point to polygon: a parallel rectangle above a corner, against Howell B-3") {
+  TEST_CASE("point to polygon: a parallel rectangle above a corner, against Howell B-3" *
+            doctest::description("task=1,2")) {
     for (const auto& [a, b, c] : {std::tuple{1.0, 1.0, 1.0}, {2.0, 0.5, 1.5}, {3.0, 1.0, 0.2}}) {
       const Patch rect = ceiling_rect(0, a, 0, b, c);
       INFO("a = ", a, ", b = ", b, ", c = ", c);
@@ -169,7 +174,8 @@ TEST_SUITE("lesson09") {
                     std::invalid_argument);
   }
 
-  TEST_CASE("point to polygon: a regular 60-gon is bracketed by the discs inside and outside it") {
+  TEST_CASE("point to polygon: a regular 60-gon is bracketed by the discs inside and outside it" *
+            doctest::description("task=1,2")) {
     // The kernel is positive, so F grows with the target: F(disc of radius
     // r cos(π/n)) ≤ F(n-gon inscribed in radius r) ≤ F(disc of radius r).
     const int n = 60;
@@ -179,7 +185,8 @@ TEST_SUITE("lesson09") {
     CHECK(f >= point_to_coaxial_disc(r * std::cos(pi / n), h));
   }
 
-  TEST_CASE("point to polygon: a regular 720-gon matches the disc (Howell) to within its missing area") {
+  TEST_CASE("point to polygon: a regular 720-gon matches the disc (Howell) to within its missing area" *
+            doctest::description("task=1,2")) {
     // The n-gon inscribed in the circle of radius r misses the n circular
     // segments of total area ΔA = πr² − (n/2) r² sin(2π/n) (≈ 1.3e−5 of the
     // disc for n = 720). The segments lie between radii r cos(π/n) and r,
@@ -203,7 +210,8 @@ TEST_SUITE("lesson09") {
     CHECK(deficit <= kernel(r * std::cos(pi / n)) * missing + 1e-14);
   }
 
-  TEST_CASE("hard case: polygon crossing the receiver's tangent plane is clipped") {
+  TEST_CASE("hard case: polygon crossing the receiver's tangent plane is clipped" *
+            doctest::description("task=1,2")) {
     // The wall x = 1, y ∈ [0, 2], z ∈ [−0.7, 1.3] reaches below the horizon of
     // the receiver at the origin. Only its part z ≥ 0 is seen: Howell B-4 with c = 1.3.
     const Patch wall = wall_x(1, 0, 2, -0.7, 1.3, false);
@@ -214,7 +222,8 @@ TEST_SUITE("lesson09") {
   }
 
   TEST_CASE(
-      "hard case: coincident point on a vertex, point on the plane (edge-on), polygon seen from behind") {
+      "hard case: coincident point on a vertex, point on the plane (edge-on), polygon seen from behind" *
+      doctest::description("task=1,2")) {
     const Patch wall = wall_x(1, 0, 2, 0, 1.3, false);
     // Positive controls first: a form factor that always returned 0 would
     // pass every check of this test below.
@@ -242,7 +251,8 @@ TEST_SUITE("lesson09") {
   }
 
   // ------------------------------------------------------- polygon to polygon
-  TEST_CASE("contour integral: parallel rectangles against Howell C-11 (unit squares at 1: 0.19982)") {
+  TEST_CASE("contour integral: parallel rectangles against Howell C-11 (unit squares at 1: 0.19982)" *
+            doctest::description("task=1,3")) {
     CHECK(parallel_rectangles(1, 1, 1) == doctest::Approx(0.19982).epsilon(1e-4));  // the table value
     for (const auto& [a, b, c] : {std::tuple{1.0, 1.0, 1.0}, {2.0, 1.0, 0.5}, {0.3, 0.7, 2.0}}) {
       INFO("a = ", a, ", b = ", b, ", c = ", c);
@@ -253,7 +263,8 @@ TEST_SUITE("lesson09") {
                     std::invalid_argument);
   }
 
-  TEST_CASE("hard case: adjacent perpendicular rectangles sharing an edge, against Howell C-14 (0.20004)") {
+  TEST_CASE("hard case: adjacent perpendicular rectangles sharing an edge, against Howell C-14 (0.20004)" *
+            doctest::description("task=1,3")) {
     CHECK(perpendicular_rectangles_common_edge(1, 1, 1) == doctest::Approx(0.20004).epsilon(1e-4));
     for (const auto& [w, h, l] : {std::tuple{1.0, 1.0, 1.0}, {0.5, 2.0, 1.5}, {2.0, 0.25, 1.0}}) {
       // Floor x ∈ [0, w], y ∈ [0, l]; wall x = 0, z ∈ [0, h]: they share the edge x = z = 0.
@@ -264,7 +275,7 @@ TEST_SUITE("lesson09") {
     }
   }
 
-  TEST_CASE("hard case: a patch partly behind the other's plane") {
+  TEST_CASE("hard case: a patch partly behind the other's plane" * doctest::description("task=1,3")) {
     // The wall x = 0.5, z ∈ [1, 2] faces −x; only the half x < 0.5 of the unit
     // floor sees its front. Superposition of C-14 over that half: A' F' = A'(F(h=2) − F(h=1)).
     const Patch floor = floor_rect(0, 1, 0, 1, 0), wall = wall_x(0.5, 0, 1, 1, 2, false);
@@ -273,7 +284,8 @@ TEST_SUITE("lesson09") {
     CHECK(polygon_polygon_form_factor(floor, wall) == doctest::Approx(expected).epsilon(1e-10));
   }
 
-  TEST_CASE("contour integral: coaxial regular 60-gons are bracketed by the discs (Howell C-40)") {
+  TEST_CASE("contour integral: coaxial regular 60-gons are bracketed by the discs (Howell C-40)" *
+            doctest::description("task=1,3")) {
     // A₁F₁₂ = ∫∫ kernel grows with both patches, so the polygons' exchange
     // lies between those of the inscribed and circumscribed disc pairs.
     const int n = 60;
@@ -286,7 +298,8 @@ TEST_SUITE("lesson09") {
     CHECK(exchange <= outer);
   }
 
-  TEST_CASE("contour integral: coaxial 720-gons match the discs (Howell C-40) within their missing area") {
+  TEST_CASE("contour integral: coaxial 720-gons match the discs (Howell C-40) within their missing area" *
+            doctest::description("task=1,3")) {
     // A₁F₁₂ = ∫_{A₁}∫_{A₂} k with k = cos θ₁ cos θ₂/(π d²) = h²/(π d⁴) ≤ 1/(π h²)
     // (d ≥ h between the parallel planes). The disc pair's exchange exceeds the
     // inscribed polygons' by the integral over (D₁∖P₁)×D₂ ∪ P₁×(D₂∖P₂), so
@@ -310,7 +323,8 @@ TEST_SUITE("lesson09") {
     CHECK(exchange >= discs - bound - 1e-12);
   }
 
-  TEST_CASE("hard case: F_ii = 0 and coplanar neighbours exchange nothing; reciprocity holds") {
+  TEST_CASE("hard case: F_ii = 0 and coplanar neighbours exchange nothing; reciprocity holds" *
+            doctest::description("task=1,3")) {
     const Patch a = floor_rect(0, 1, 0, 1, 0), neighbour = floor_rect(1, 2, 0, 1, 0);
     CHECK(polygon_polygon_form_factor(a, a) == 0.0);
     CHECK(polygon_polygon_form_factor(a, neighbour) == 0.0);
@@ -325,7 +339,8 @@ TEST_SUITE("lesson09") {
     CHECK(tri.area * fij == doctest::Approx(quad.area * fji).epsilon(1e-9));
   }
 
-  TEST_CASE("sum rule in closed enclosures: the cube and the regular tetrahedron") {
+  TEST_CASE("sum rule in closed enclosures: the cube and the regular tetrahedron" *
+            doctest::description("task=1,3")) {
     // Inside a cube each face sees the opposite one (C-11) and four adjacent ones (C-14): 0.19982 + 4·0.20004
     // = 1. Cube faces meshed 3 × 3: every row sums to 1, and the face-to-face totals are the unit-square
     // closed forms.
@@ -370,7 +385,8 @@ TEST_SUITE("lesson09") {
       }
   }
 
-  TEST_CASE("M·B = E in a closed cube: uniform emission gives B = E/(1 − ρ)") {
+  TEST_CASE("M·B = E in a closed cube: uniform emission gives B = E/(1 − ρ)" *
+            doctest::description("task=1,3,12")) {
     // Σ_j F_ij = 1, so B_i = E + ρ Σ_j F_ij B = E + ρB everywhere: B = E/(1 − ρ), by hand.
     std::vector<Patch> cube;
     auto add = [&](std::vector<Patch> face) { cube.insert(cube.end(), face.begin(), face.end()); };
@@ -394,7 +410,8 @@ TEST_SUITE("lesson09") {
     }
   }
 
-  TEST_CASE("the matrix builder: reusing translated pairs gives the pair-by-pair contour values") {
+  TEST_CASE("the matrix builder: reusing translated pairs gives the pair-by-pair contour values" *
+            doctest::description("task=1,3")) {
     // A box 1 × 2 × 3 meshed 3 × 3 per face: patches of different shapes on
     // different faces, so reuse must only join pairs that are true translates.
     // Each entry is compared with the contour integral of that very pair, and
@@ -417,7 +434,8 @@ TEST_SUITE("lesson09") {
   }
 
   // -------------------------------------------------------- hierarchical
-  TEST_CASE("hierarchical decomposition converges to the closed forms, also across a shared edge") {
+  TEST_CASE("hierarchical decomposition converges to the closed forms, also across a shared edge" *
+            doctest::description("task=1,2,4")) {
     const HierarchicalResult parallel =
         form_factor_hierarchical(floor_rect(0, 1, 0, 1, 0), ceiling_rect(0, 1, 0, 1, 1), 1e-6);
     CHECK(std::abs(parallel.value - parallel_rectangles(1, 1, 1)) < 1e-5);
@@ -432,19 +450,22 @@ TEST_SUITE("lesson09") {
   }
 
   // -------------------------------------------------------------- Nusselt
-  TEST_CASE("Nusselt's analogy: projected area over π, also for a polygon crossing the horizon") {
+  TEST_CASE("Nusselt's analogy: projected area over π, also for a polygon crossing the horizon" *
+            doctest::description("task=1,9")) {
     CHECK(form_factor_nusselt({0, 0, 0}, up, ceiling_rect(0, 2, 0, 0.5, 1.5), 512) ==
           doctest::Approx(point_to_parallel_rectangle_corner(2, 0.5, 1.5)).epsilon(1e-5));
     CHECK(form_factor_nusselt({0, 0, 0}, up, wall_x(1, 0, 2, -0.7, 1.3, false), 512) ==
           doctest::Approx(point_to_perpendicular_rectangle(2, 1.3, 1)).epsilon(1e-5));
     CHECK(form_factor_nusselt({0, 0, 0}, up, disc_polygon(60, 1.0, 1.0, true), 64) <=
           point_to_coaxial_disc(1, 1));
+    INFO("contract (form_factor_sampling.hpp): segments_per_edge below 1 is refused");
     CHECK_THROWS_AS(form_factor_nusselt({0, 0, 0}, up, ceiling_rect(0, 1, 0, 1, 1), 0),
                     std::invalid_argument);
   }
 
   // --------------------------------------------------------- Monte Carlo
-  TEST_CASE("Monte Carlo area to area: parallel unit squares pass a z-test") {
+  TEST_CASE("Monte Carlo area to area: parallel unit squares pass a z-test" *
+            doctest::description("task=5")) {
     // Per-sample value X = A_j c²/(π r⁴); E[X²] = (A_j/A_i)∫∫ (c²/(π r⁴))² by a
     // Gauss–Legendre product rule (smooth: r ≥ 1), Var = E[X²] − F².
     const double f = parallel_rectangles(1, 1, 1);
@@ -465,10 +486,12 @@ TEST_SUITE("lesson09") {
     const double z = z_score(estimate, f, second - f * f, n);
     INFO("estimate ", estimate, " against C-11 ", f, ", z = ", z);
     CHECK(std::abs(z) < z_critical);
+    INFO("contract (form_factor_sampling.hpp): a number of samples below 1 is refused");
     CHECK_THROWS_AS(form_factor_monte_carlo(floor, ceiling, {}, 0, rng), std::invalid_argument);
   }
 
-  TEST_CASE("hard case: Monte Carlo with a patch behind another gets exactly zero") {
+  TEST_CASE("hard case: Monte Carlo with a patch behind another gets exactly zero" *
+            doctest::description("task=5,6,7,8")) {
     // A large blocker at z = 1 hides the small square at z = 2 from the floor completely.
     const Patch floor = floor_rect(0, 1, 0, 1, 0), blocker = ceiling_rect(-1, 2, -1, 2, 1),
                 hidden = ceiling_rect(0, 1, 0, 1, 2);
@@ -493,7 +516,7 @@ TEST_SUITE("lesson09") {
     static double r2(double x, double y) { return x * x + y * y + 4; }
   };
 
-  TEST_CASE("area sampling from a point with an occluder passes a z-test") {
+  TEST_CASE("area sampling from a point with an occluder passes a z-test" * doctest::description("task=6")) {
     const Shadowed s;
     // X = A_B k V: E[X²] = A_B ∫_visible k² dA.
     const double second =
@@ -508,7 +531,7 @@ TEST_SUITE("lesson09") {
     CHECK(std::abs(z) < z_critical);
   }
 
-  TEST_CASE("uniform hemisphere sampling with an occluder passes a z-test") {
+  TEST_CASE("uniform hemisphere sampling with an occluder passes a z-test" * doctest::description("task=7")) {
     const Shadowed s;
     // X = 2 cos φ on visible directions, density 1/2π: E[X²] = (2/π)∫ cos²φ dω
     // = (2/π)∫_visible c³/r⁵ dA (dω = c dA/r³).
@@ -524,7 +547,8 @@ TEST_SUITE("lesson09") {
     CHECK(std::abs(z) < z_critical);
   }
 
-  TEST_CASE("cosine-weighted hemisphere sampling with an occluder passes a z-test") {
+  TEST_CASE("cosine-weighted hemisphere sampling with an occluder passes a z-test" *
+            doctest::description("task=8")) {
     const Shadowed s;
     const int n = 200000;
     Rng rng(4242);
@@ -533,6 +557,7 @@ TEST_SUITE("lesson09") {
     const double z = z_score(estimate, s.exact, s.exact * (1 - s.exact), n);  // a hit is a Bernoulli trial
     INFO("estimate ", estimate, " against ", s.exact, ", z = ", z);
     CHECK(std::abs(z) < z_critical);
+    INFO("contract (form_factor_sampling.hpp): a normal that is not unit length is refused");
     CHECK_THROWS_AS(form_factor_hemisphere_cosine({0, 0, 0}, Vec3(0, 0, 3), s.target, {}, 10, rng),
                     std::invalid_argument);
   }

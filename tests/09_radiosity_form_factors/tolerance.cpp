@@ -59,7 +59,8 @@ const double kTolerances[] = {1e-3, 1e-6, 1e-9, 1e-12};
 }  // namespace
 
 TEST_SUITE("lesson09") {
-  TEST_CASE("hard case: whole 720-gons (more than 64 vertices) against the coaxial discs (Howell C-40)") {
+  TEST_CASE("hard case: whole 720-gons (more than 64 vertices) against the coaxial discs (Howell C-40)" *
+            doctest::description("task=1,2,3")) {
     // The clipper keeps 64 vertices on the stack and moves larger polygons to
     // the heap, so a disc as one 720-gon needs no cutting into sectors. The
     // polygons' exchange A₁F₁₂ = ∫∫ h²/(π d⁴) falls short of the discs' by at most
@@ -88,7 +89,8 @@ TEST_SUITE("lesson09") {
     CHECK(point >= lesson09_test::point_to_coaxial_disc(r2 * std::cos(pi / n), h) - 1e-12);
   }
 
-  TEST_CASE("the matrix to a tolerance: every entry of the cube's meets it, against the closed forms") {
+  TEST_CASE("the matrix to a tolerance: every entry of the cube's meets it, against the closed forms" *
+            doctest::description("task=1,3")) {
     const std::vector<Patch> cube = mesh_cube_interior(7);
     const FormFactorMatrix exact = closed_form_rectangle_matrix(cube);
     for (const double tolerance : kTolerances) {
@@ -104,7 +106,8 @@ TEST_SUITE("lesson09") {
     }
   }
 
-  TEST_CASE("the matrix to a tolerance: a box of rectangles of random sizes, both triangles of the matrix") {
+  TEST_CASE("the matrix to a tolerance: a box of rectangles of random sizes, both triangles of the matrix" *
+            doctest::description("task=1,3")) {
     // Unequal areas: F_ji = A_i F_ij / A_j magnifies the error of F_ij by A_i/A_j,
     // so the builder must aim at tolerance·A_j/A_i for the smaller patch's row.
     const std::vector<Patch> box = random_box(14);
@@ -116,7 +119,8 @@ TEST_SUITE("lesson09") {
     }
   }
 
-  TEST_CASE("the matrix to a tolerance: triangles (half rectangles) add up to the rectangles' closed forms") {
+  TEST_CASE("the matrix to a tolerance: triangles (half rectangles) add up to the rectangles' closed forms" *
+            doctest::description("task=1,3")) {
     // Every rectangle of the random box cut along a diagonal: for rectangles
     // R = R₁ ∪ R₂ and S = S₁ ∪ S₂, A_R F_RS = Σ_ab A_Ra F_RaSb, so with each
     // F within τ the sum is within 2τ·A_R of the closed form A_R F_RS.

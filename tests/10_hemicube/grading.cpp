@@ -124,7 +124,8 @@ double side_share() { return 2 * howell_b4(1, 1, 1); }
 }  // namespace
 
 TEST_SUITE("lesson10") {
-  TEST_CASE("the closed forms used as references agree with quadrature and with each other") {
+  TEST_CASE("the closed forms used as references agree with quadrature and with each other" *
+            doctest::description("task=3")) {
     // Not an exercise check by itself: it guards the references the other tests use.
     const double b3 = integrate_2d(
         [](double x, double y) { return 1 / (kPi * std::pow(x * x + y * y + 1, 2)); }, 0, 0.7, 0, 1.3);
@@ -139,7 +140,7 @@ TEST_SUITE("lesson10") {
     CHECK(side_face_corner(0.9 / 2, 1.7 / 2) == doctest::Approx(b4).epsilon(1e-12));
   }
 
-  TEST_CASE("top-face delta is cos φ_i cos φ_p / (π r²) ΔA (eq. 10.2)") {
+  TEST_CASE("top-face delta is cos φ_i cos φ_p / (π r²) ΔA (eq. 10.2)" * doctest::description("task=1")) {
     for (auto [x, y] : std::vector<std::array<double, 2>>{{0, 0}, {0.3, -0.7}, {-0.95, 0.95}, {1, 0}}) {
       const Vec3 p(x, y, 1);  // pixel centre on the top face; patch normal and face normal are both +z
       const double r = length(p), cos_i = p.z / r, cos_p = p.z / r;
@@ -149,7 +150,7 @@ TEST_SUITE("lesson10") {
     }
   }
 
-  TEST_CASE("side-face delta uses r² = y² + z² + 1 (eq. 10.3, erratum 6)") {
+  TEST_CASE("side-face delta uses r² = y² + z² + 1 (eq. 10.3, erratum 6)" * doctest::description("task=2")) {
     for (auto [y, z] : std::vector<std::array<double, 2>>{{0, 0.5}, {0.4, 0.1}, {-0.9, 0.99}, {0.2, 0}}) {
       const Vec3 p(1, y, z);  // pixel centre on the face x = 1
       const double r = length(p);
@@ -162,7 +163,8 @@ TEST_SUITE("lesson10") {
     }
   }
 
-  TEST_CASE("exact deltas sum to each face's share and to one, to round-off") {
+  TEST_CASE("exact deltas sum to each face's share and to one, to round-off" *
+            doctest::description("task=3,4")) {
     for (int res : {2, 10, 64, 200}) {
       const HemicubeDeltas d = make_hemicube_deltas(res, DeltaRule::exact);
       REQUIRE(d.top.size() == static_cast<std::size_t>(res * res));
@@ -178,7 +180,8 @@ TEST_SUITE("lesson10") {
     }
   }
 
-  TEST_CASE("midpoint deltas (the notes) converge to the face shares at second order") {
+  TEST_CASE("midpoint deltas (the notes) converge to the face shares at second order" *
+            doctest::description("task=1,2,4")) {
     double previous = 0;
     for (int res : {8, 16, 32, 64}) {
       const HemicubeDeltas d = make_hemicube_deltas(res, DeltaRule::midpoint);
@@ -200,7 +203,8 @@ TEST_SUITE("lesson10") {
     }
   }
 
-  TEST_CASE("the row accumulation adds each pixel's delta to the patch it shows") {
+  TEST_CASE("the row accumulation adds each pixel's delta to the patch it shows" *
+            doctest::description("task=5")) {
     const std::vector<std::int32_t> items{0, -1, 2, 0, -2, 2, 2};
     const std::vector<double> deltas{0.1, 0.2, 0.3, 0.4, 0.5, 0.01, 0.001};
     std::vector<double> row{10, 20, 30};
@@ -211,7 +215,7 @@ TEST_SUITE("lesson10") {
     CHECK(row[2] == doctest::Approx(30.311));
   }
 
-  TEST_CASE("bad resolutions are refused") {
+  TEST_CASE("bad resolutions are refused" * doctest::description("task=3,4")) {
     CHECK(make_hemicube_deltas(4).resolution == 4);
     CHECK_THROWS_AS(make_hemicube_deltas(3), std::invalid_argument);
     CHECK_THROWS_AS(make_hemicube_deltas(0), std::invalid_argument);
@@ -225,7 +229,7 @@ TEST_SUITE("lesson10") {
     CHECK_THROWS_AS(hemicube.form_factor_row(patches, 0, nullptr, buffers), std::invalid_argument);
   }
 
-  TEST_CASE("a parallel square aligned with the pixels is exact (B-3)") {
+  TEST_CASE("a parallel square aligned with the pixels is exact (B-3)" * doctest::description("task=3,4,5")) {
     // Resolution 10: pixel edges at −1, −0.8, …, 1. A square of half side 0.6 at height 1
     // projects exactly onto pixel edges, so the exact deltas give the exact factor.
     const std::vector<Patch> patches{receiver_at_origin(), ceiling_rect(-0.6, 0.6, -0.6, 0.6, 1)};
@@ -235,7 +239,8 @@ TEST_SUITE("lesson10") {
     CHECK(row[1] == doctest::Approx(4 * howell_b3(0.6, 0.6, 1)).epsilon(1e-12));
   }
 
-  TEST_CASE("a perpendicular wall aligned with the pixels is exact (B-4)") {
+  TEST_CASE("a perpendicular wall aligned with the pixels is exact (B-4)" *
+            doctest::description("task=3,4,5")) {
     // The wall x = 1, |y| ≤ 0.6, 0 ≤ z ≤ 0.4 covers whole pixels of the +x side face.
     const std::vector<Patch> patches{receiver_at_origin(), wall_rect(1, -0.6, 0.6, 0, 0.4)};
     const auto row = row_of(patches, 10);
@@ -243,7 +248,7 @@ TEST_SUITE("lesson10") {
     CHECK(row[1] == doctest::Approx(2 * howell_b4(0.4, 0.6, 1)).epsilon(1e-12));
   }
 
-  TEST_CASE("a closed cube: every row sums to one, to round-off") {
+  TEST_CASE("a closed cube: every row sums to one, to round-off" * doctest::description("task=3,4,5")) {
     // Every direction above each patch hits exactly one other patch, so Σ_j F_ij = 1
     // (erratum 5 of docs/errata.md). With exact deltas, any pixel drawn twice or missed by the fill rule
     // would show as an error of at least one delta (> 1e-5 at resolution 24).
@@ -259,7 +264,8 @@ TEST_SUITE("lesson10") {
     }
   }
 
-  TEST_CASE("hard case: a floating block whose silhouette edges pass exactly through pixel centres") {
+  TEST_CASE("hard case: a floating block whose silhouette edges pass exactly through pixel centres" *
+            doctest::description("task=3,4,5")) {
     // A closed room with a block inside: every row still sums to one. From the floor patch
     // centred at (0.375, 0.125, 0) the top face's pixel centre (−0.1875, 0.5625) looks exactly
     // along the block's vertical edge x = 0.3, y = 0.35, where a front face and a back face
@@ -288,7 +294,8 @@ TEST_SUITE("lesson10") {
     }
   }
 
-  TEST_CASE("a tilted quad anywhere above the patch converges to Lambert's contour formula") {
+  TEST_CASE("a tilted quad anywhere above the patch converges to Lambert's contour formula" *
+            doctest::description("task=3,4,5")) {
     const std::vector<Point3> quad{{0.3, -0.2, 0.5}, {1.1, 0.1, 0.9}, {0.9, 0.9, 1.3}, {0.1, 0.6, 0.9}};
     // make_patch takes the vertices counter-clockwise seen from the front; face the origin.
     Patch target = make_patch(quad);
@@ -304,7 +311,7 @@ TEST_SUITE("lesson10") {
     }
   }
 
-  TEST_CASE("hard case: a patch seen edge-on gets nothing") {
+  TEST_CASE("hard case: a patch seen edge-on gets nothing" * doctest::description("task=3,4,5")) {
     // The plane y = 0 contains the hemicube's centre: the patch projects to a line.
     const std::vector<Patch> patches{receiver_at_origin(),
                                      make_patch({{0.5, 0, 0.2}, {1.5, 0, 0.2}, {1.5, 0, 1}, {0.5, 0, 1}}),
@@ -314,7 +321,8 @@ TEST_SUITE("lesson10") {
     CHECK(row[2] == doctest::Approx(4 * howell_b3(1.2, 1.2, 2)).epsilon(1e-12));
   }
 
-  TEST_CASE("hard case: a patch crossing the base plane counts only its part above") {
+  TEST_CASE("hard case: a patch crossing the base plane counts only its part above" *
+            doctest::description("task=3,4,5")) {
     // The wall reaches 0.5 below the patch's plane; the half face is clipped at z = 0.
     const std::vector<Patch> patches{receiver_at_origin(), wall_rect(1, -0.6, 0.6, -0.5, 0.4)};
     const auto row = row_of(patches, 10);
@@ -322,7 +330,8 @@ TEST_SUITE("lesson10") {
     CHECK(row[1] == doctest::Approx(2 * howell_b4(0.4, 0.6, 1)).epsilon(1e-12));
   }
 
-  TEST_CASE("hard case: adjacent patches sharing an edge with the receiver") {
+  TEST_CASE("hard case: adjacent patches sharing an edge with the receiver" *
+            doctest::description("task=3,4,5")) {
     // Receiver [−½, ½]² on the floor; a coplanar neighbour, and a wall rising from its edge x = ½.
     const std::vector<Patch> patches{
         receiver_at_origin(0.5), make_patch({{0.5, -0.5, 0}, {1.5, -0.5, 0}, {1.5, 0.5, 0}, {0.5, 0.5, 0}}),
@@ -352,7 +361,7 @@ TEST_SUITE("lesson10") {
     CHECK(std::abs(row[2] - area_value) > 0.005);
   }
 
-  TEST_CASE("hard case: a patch behind another gets nothing") {
+  TEST_CASE("hard case: a patch behind another gets nothing" * doctest::description("task=3,4,5")) {
     const std::vector<Patch> patches{receiver_at_origin(), ceiling_rect(-0.2, 0.2, -0.2, 0.2, 2),
                                      ceiling_rect(-0.6, 0.6, -0.6, 0.6, 1)};
     const auto row = row_of(patches, 10);
@@ -360,7 +369,8 @@ TEST_SUITE("lesson10") {
     CHECK(row[2] == doctest::Approx(4 * howell_b3(0.6, 0.6, 1)).epsilon(1e-12));
   }
 
-  TEST_CASE("hard case: a patch seen from behind hides what is behind it and receives nothing") {
+  TEST_CASE("hard case: a patch seen from behind hides what is behind it and receives nothing" *
+            doctest::description("task=3,4,5")) {
     // Positive controls: a row of zeros would pass both checks at the end.
     // Alone, the small square at height 2 projects onto [−0.1, 0.1]² of the top
     // face, exactly 2 × 2 pixels at resolution 20, whose exact deltas add up to
@@ -390,7 +400,8 @@ TEST_SUITE("lesson10") {
     CHECK_MESSAGE(row[2] == 0, "cos θ_j < 0: energy reaching the back of a one-sided patch is not F_ij");
   }
 
-  TEST_CASE("hard case: a tiny distant patch aliases: all of a pixel or nothing") {
+  TEST_CASE("hard case: a tiny distant patch aliases: all of a pixel or nothing" *
+            doctest::description("task=3,4,5")) {
     // A square 0.02 wide at height 1 covers 1/25 of a pixel at resolution 20 (pixel 0.1 wide).
     const int res = 20;
     const HemicubeDeltas d = make_hemicube_deltas(res);
@@ -406,7 +417,7 @@ TEST_SUITE("lesson10") {
     CHECK(hit[1] > 20 * exact);
   }
 
-  TEST_CASE("reflectance and emission play no part in form factors") {
+  TEST_CASE("reflectance and emission play no part in form factors" * doctest::description("task=3,4,5")) {
     std::vector<Patch> patches{receiver_at_origin(), ceiling_rect(-0.5, 0.7, -0.3, 0.6, 1.2)};
     const auto plain = row_of(patches, 32);
     patches[1].reflectance = Color(0.99);
@@ -417,7 +428,7 @@ TEST_SUITE("lesson10") {
     CHECK(coloured[1] == plain[1]);
   }
 
-  TEST_CASE("the parallel matrix equals the rows one by one") {
+  TEST_CASE("the parallel matrix equals the rows one by one" * doctest::description("task=3,4,5")) {
     const auto cube = closed_cube(2);
     const FormFactorMatrix f = hemicube_form_factors(cube, 16, true, 3);
     const FormFactorMatrix g = hemicube_form_factors(cube, 16, true, 3);

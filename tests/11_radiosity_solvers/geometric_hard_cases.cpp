@@ -82,8 +82,8 @@ void check_every_solver(const std::vector<Patch>& patches, const FormFactorMatri
 }  // namespace
 
 TEST_SUITE("lesson11") {
-  TEST_CASE(
-      "hard case: solvers with adjacent patches sharing an edge and a coplanar neighbour seen edge-on") {
+  TEST_CASE("hard case: solvers with adjacent patches sharing an edge and a coplanar neighbour seen edge-on" *
+            doctest::description("task=1,2,3,4,5,6a,6b,6c")) {
     // Unit squares: 0 the floor [0,1]² (z = 0, facing up, E = 1); 1 the wall
     // x = 0 rising from the floor's edge (facing +x); 2 the floor's coplanar
     // neighbour [1,2] × [0,1] (z = 0, facing up), sharing the edge x = 1.
@@ -111,7 +111,8 @@ TEST_SUITE("lesson11") {
     CHECK(b2 > 0);
   }
 
-  TEST_CASE("hard case: solvers with a patch hidden behind another (a zero row and column of F)") {
+  TEST_CASE("hard case: solvers with a patch hidden behind another (a zero row and column of F)" *
+            doctest::description("task=1,2,3,4,5,6a,6b,6c")) {
     // Unit squares stacked above each other: 0 the floor (z = 0, facing up,
     // E = 1); 1 a blocker (z = 1, facing down); 2 a hidden square (z = 2,
     // facing down, E = 0.7). Every segment from the floor to the hidden

@@ -88,7 +88,8 @@ ChosenSolution chosen_solution(std::size_t n, std::uint64_t seed, double rho_max
 }  // namespace
 
 TEST_SUITE("lesson11") {
-  TEST_CASE("gaussian elimination needs partial pivoting for a zero leading entry") {
+  TEST_CASE("gaussian elimination needs partial pivoting for a zero leading entry" *
+            doctest::description("task=1")) {
     // A·(1, 2, 3) = b by hand: row 1: 0·1 + 2·2 + 1·3 = 7; row 2: 1; row 3: 3 + 2 + 3 = 8.
     const std::vector<double> a = {0, 2, 1, 1, 0, 0, 3, 1, 1};
     const std::vector<double> x = gaussian_elimination(a, {7, 1, 8});
@@ -99,14 +100,18 @@ TEST_SUITE("lesson11") {
     CHECK(x[2] == doctest::Approx(3.0).epsilon(1e-14));
   }
 
-  TEST_CASE("hard case: a singular system is refused, not solved") {
-    INFO("the second row is twice the first: det A = 0, there is no unique solution");
+  TEST_CASE("hard case: a singular system is refused, not solved" * doctest::description("task=1")) {
+    INFO(
+        "the second row is twice the first: det A = 0, there is no unique solution. Contract of "
+        "gaussian_elimination: std::invalid_argument whose message contains \"singular\"; and for a "
+        "matrix that is not n × n");
     ILLUM_CHECK_THROWS_CONTAINING(gaussian_elimination({1, 2, 2, 4}, {1, 2}), "singular",
                                   std::invalid_argument);
     CHECK_THROWS_AS(gaussian_elimination({1, 2, 3}, {1, 2}), std::invalid_argument);
   }
 
-  TEST_CASE("the direct solution of the notes' three-patch system matches Cramer's rule") {
+  TEST_CASE("the direct solution of the notes' three-patch system matches Cramer's rule" *
+            doctest::description("task=1,2")) {
     const ThreePatchExample ex = three_patch_example();
     const std::vector<Color> b = solve_direct(ex.patches, ex.form_factors);
     REQUIRE(b.size() == 3);
@@ -121,24 +126,28 @@ TEST_SUITE("lesson11") {
     CHECK(std::abs(b[2].r - 0.37736) < 0.5e-5);
   }
 
-  TEST_CASE("hard case: a closed scene with reflectance 1 is refused") {
+  TEST_CASE("hard case: a closed scene with reflectance 1 is refused" * doctest::description("task=2,3,6a")) {
     TwoPatchEnclosure s(0.5);
     for (Patch& p : s.patches) p.reflectance = Color(1.0, 0.5, 0.5);
-    INFO("ρ = 1 with Σ_j F_ij = 1 makes M = I − ρF singular: light would bounce for ever");
+    INFO(
+        "ρ = 1 with Σ_j F_ij = 1 makes M = I − ρF singular: light would bounce for ever. Contracts "
+        "(radiosity_solvers.hpp): solve_direct, jacobi_sweep and progressive_start refuse a reflectance "
+        "outside [0, 1) with std::invalid_argument");
     CHECK_THROWS_AS(solve_direct(s.patches, s.f), std::invalid_argument);
     std::vector<Color> next;
     CHECK_THROWS_AS(jacobi_sweep(s.patches, s.f, {Color(0.0), Color(0.0)}, next), std::invalid_argument);
     CHECK_THROWS_AS(progressive_start(s.patches), std::invalid_argument);
   }
 
-  TEST_CASE("form factor rows summing above 1 are refused by the direct solver") {
+  TEST_CASE("form factor rows summing above 1 are refused by the direct solver" *
+            doctest::description("task=2")) {
     TwoPatchEnclosure s(0.5);
     s.f(0, 1) = 1.5;
     INFO("Σ_j F_0j = 1.5: patch 0 would send out more than all its energy (erratum 5)");
     CHECK_THROWS_AS(solve_direct(s.patches, s.f), std::invalid_argument);
   }
 
-  TEST_CASE("Jacobi's first two sweeps from B = 0 by hand, then the limit") {
+  TEST_CASE("Jacobi's first two sweeps from B = 0 by hand, then the limit" * doctest::description("task=3")) {
     const ThreePatchExample ex = three_patch_example();
     std::vector<Color> b(3, Color(0.0)), next;
     jacobi_sweep(ex.patches, ex.form_factors, b, next);
@@ -160,7 +169,7 @@ TEST_SUITE("lesson11") {
       CHECK(next[static_cast<std::size_t>(i)].b == doctest::Approx(cramer_b[i]).epsilon(1e-12));
   }
 
-  TEST_CASE("Jacobi contracts the error by at most max ρ per sweep") {
+  TEST_CASE("Jacobi contracts the error by at most max ρ per sweep" * doctest::description("task=3")) {
     const ChosenSolution s = chosen_solution(40, 7, 0.95);
     const double rho = max_reflectance(s.patches);
     std::vector<Color> b(s.patches.size(), Color(0.0)), next;
@@ -176,7 +185,7 @@ TEST_SUITE("lesson11") {
     CHECK(error < 1e-3);
   }
 
-  TEST_CASE("Gauss-Seidel's first sweep by hand, and its limit") {
+  TEST_CASE("Gauss-Seidel's first sweep by hand, and its limit" * doctest::description("task=4")) {
     const ThreePatchExample ex = three_patch_example();
     std::vector<Color> b(3, Color(0.0));
     gauss_seidel_sweep(ex.patches, ex.form_factors, b);
@@ -189,7 +198,8 @@ TEST_SUITE("lesson11") {
       CHECK(b[static_cast<std::size_t>(i)].r == doctest::Approx(cramer_b[i]).epsilon(1e-12));
   }
 
-  TEST_CASE("over-relaxed Gauss-Seidel converges to the chosen solution; ω outside (0, 2) is refused") {
+  TEST_CASE("over-relaxed Gauss-Seidel converges to the chosen solution; ω outside (0, 2) is refused" *
+            doctest::description("task=4")) {
     const ChosenSolution s = chosen_solution(30, 11, 0.9);
     for (double omega : {0.8, 1.0, 1.3}) {
       std::vector<Color> b(s.patches.size(), Color(0.0));
@@ -198,11 +208,13 @@ TEST_SUITE("lesson11") {
       CHECK(max_difference(b, s.exact) < 1e-10);
     }
     std::vector<Color> b(s.patches.size(), Color(0.0));
+    INFO("contract of gauss_seidel_sweep: ω must lie in the open interval (0, 2); 0 and 2 are refused");
     CHECK_THROWS_AS(gauss_seidel_sweep(s.patches, s.f, b, 2.0), std::invalid_argument);
     CHECK_THROWS_AS(gauss_seidel_sweep(s.patches, s.f, b, 0.0), std::invalid_argument);
   }
 
-  TEST_CASE("Southwell relaxes the largest residual first: two steps by hand") {
+  TEST_CASE("Southwell relaxes the largest residual first: two steps by hand" *
+            doctest::description("task=5")) {
     const ThreePatchExample ex = three_patch_example();
     std::vector<Color> b(3, Color(0.0)), r = emissions(ex.patches);
     REQUIRE_MESSAGE(southwell_step(ex.patches, ex.form_factors, b, r) == 0,
@@ -222,7 +234,8 @@ TEST_SUITE("lesson11") {
       CHECK(b[static_cast<std::size_t>(i)].r == doctest::Approx(cramer_b[i]).epsilon(1e-12));
   }
 
-  TEST_CASE("the three-patch progressive table matches the notes' table, value by value") {
+  TEST_CASE("the three-patch progressive table matches the notes' table, value by value" *
+            doctest::description("task=1,2,6a,6b,6c")) {
     // The notes' table, typed in as printed (strings, so that the number of
     // decimals printed tells how closely each value must agree).
     const char* notes[6][7] = {
@@ -273,7 +286,8 @@ TEST_SUITE("lesson11") {
     }
   }
 
-  TEST_CASE("erratum 8: with unequal areas the shooter has the most power and receivers use their own ρ") {
+  TEST_CASE("erratum 8: with unequal areas the shooter has the most power and receivers use their own ρ" *
+            doctest::description("task=6a,6b,6c")) {
     // Patch 0: area 1, ρ = 0.5, Δ = 1. Patch 1: area 4, ρ = 0.3, Δ = 0.5.
     std::vector<Patch> patches = {square(0, 1, Color(0.5), Color(1.0)), square(2, 2, Color(0.3), Color(0.5))};
     ProgressiveState state = progressive_start(patches);
@@ -292,7 +306,8 @@ TEST_SUITE("lesson11") {
     CHECK(state.radiosity[1].r == doctest::Approx(0.5));
   }
 
-  TEST_CASE("progressive refinement loses unshot power at every shot and converges to the direct solution") {
+  TEST_CASE("progressive refinement loses unshot power at every shot and converges to the direct solution" *
+            doctest::description("task=6a,6b,6c")) {
     const ChosenSolution s = chosen_solution(25, 3, 0.9, true);
     ProgressiveState state = progressive_start(s.patches);
     double unshot = total_power(s.patches, state.unshot);
@@ -304,11 +319,13 @@ TEST_SUITE("lesson11") {
       CHECK(now <= unshot * (1 + 1e-12));
       unshot = now;
     }
-    CHECK(state.shots == 3000);
+    CHECK_MESSAGE(state.shots == 3000,
+                  "contract of shoot (radiosity_solvers.hpp): every shot counts, "
+                  "state.shots += 1, and progressive_start sets it to 0");
     CHECK(max_difference(state.radiosity, s.exact) < 1e-9);
   }
 
-  TEST_CASE("the ambient term by hand") {
+  TEST_CASE("the ambient term by hand" * doctest::description("task=7")) {
     // Areas 1 and 3, ρ = 0.5 and 0.1: ρ_avg = (0.5 + 0.3)/4 = 0.2, R = 1/(1 − 0.2) = 1.25.
     // Δ = (0.4, 0): ambient = 1.25 · (0.4 · 1)/4 = 0.125.
     std::vector<Patch> patches = {square(0, 1, Color(0.5), Color(0.0)),
@@ -324,7 +341,8 @@ TEST_SUITE("lesson11") {
     CHECK(state.radiosity[0].g == 1.0);
   }
 
-  TEST_CASE("hard case: no emission anywhere gives B = 0 for every solver") {
+  TEST_CASE("hard case: no emission anywhere gives B = 0 for every solver" *
+            doctest::description("task=1,2,3,4,5,6a,6b,6c,7")) {
     ThreePatchExample ex = three_patch_example();
     {
       // Positive controls on the notes' example with E = (1, 0, 0): a solver
@@ -361,7 +379,8 @@ TEST_SUITE("lesson11") {
     CHECK(max_norm({ambient_term(ex.patches, state.unshot)}) == 0.0);
   }
 
-  TEST_CASE("hard case: reflectance 0.99 in a closed enclosure still converges, by exactly 0.99 per sweep") {
+  TEST_CASE("hard case: reflectance 0.99 in a closed enclosure still converges, by exactly 0.99 per sweep" *
+            doctest::description("task=1,2,3")) {
     TwoPatchEnclosure s(0.99);
     const double exact0 = 1.0 / (1.0 - 0.99 * 0.99), exact1 = 0.99 / (1.0 - 0.99 * 0.99);
     const std::vector<Color> direct = solve_direct(s.patches, s.f);
@@ -383,7 +402,8 @@ TEST_SUITE("lesson11") {
     CHECK(sweeps == 1375);
   }
 
-  TEST_CASE("hard case: an ill-conditioned enclosure (ρ = 1 − 1e-6) is still solved directly") {
+  TEST_CASE("hard case: an ill-conditioned enclosure (ρ = 1 − 1e-6) is still solved directly" *
+            doctest::description("task=1,2")) {
     const double rho = 1.0 - 1e-6;
     TwoPatchEnclosure s(rho);
     const std::vector<Color> b = solve_direct(s.patches, s.f);

@@ -92,7 +92,8 @@ void check_close(const Color& got, const Color& expected, double tolerance, cons
 TEST_SUITE("lesson11") {
   TEST_CASE(
       "general system: the direct solution matches Cramer's rule (unequal areas, F_ii ≠ 0, F not "
-      "symmetric)") {
+      "symmetric)" *
+      doctest::description("task=1,2")) {
     const GeneralSystem s = general_system();
     const std::vector<Color> b = solve_direct(s.patches, s.f);
     REQUIRE(b.size() == n);
@@ -103,7 +104,8 @@ TEST_SUITE("lesson11") {
     }
   }
 
-  TEST_CASE("general system: one Jacobi sweep by its definition, then the limit") {
+  TEST_CASE("general system: one Jacobi sweep by its definition, then the limit" *
+            doctest::description("task=3")) {
     const GeneralSystem s = general_system();
     std::vector<Color> b = {Color(1.0, 2.0, 0.5), Color(0.25, 0.75, 1.5), Color(2.0, 0.125, 1.0)};
     std::vector<Color> next;
@@ -126,7 +128,8 @@ TEST_SUITE("lesson11") {
     for (std::size_t i = 0; i < n; ++i) check_close(b[i], s.exact[i], 1e-10, "Jacobi limit vs Cramer");
   }
 
-  TEST_CASE("general system: one over-relaxed Gauss-Seidel sweep by its definition, then the limit") {
+  TEST_CASE("general system: one over-relaxed Gauss-Seidel sweep by its definition, then the limit" *
+            doctest::description("task=4")) {
     const GeneralSystem s = general_system();
     const double omega = 1.25;
     std::vector<Color> b = {Color(1.0, 2.0, 0.5), Color(0.25, 0.75, 1.5), Color(2.0, 0.125, 1.0)};
@@ -149,7 +152,8 @@ TEST_SUITE("lesson11") {
     for (std::size_t i = 0; i < n; ++i) check_close(b[i], s.exact[i], 1e-10, "Gauss-Seidel limit vs Cramer");
   }
 
-  TEST_CASE("general system: Southwell keeps r = E + ρFB − B exact, relaxes the largest |r| and converges") {
+  TEST_CASE("general system: Southwell keeps r = E + ρFB − B exact, relaxes the largest |r| and converges" *
+            doctest::description("task=5")) {
     const GeneralSystem s = general_system();
     std::vector<Color> b(n, Color(0.0));
     std::vector<Color> residual(s.patches.size());
@@ -174,7 +178,8 @@ TEST_SUITE("lesson11") {
     for (std::size_t i = 0; i < n; ++i) check_close(b[i], s.exact[i], 1e-10, "Southwell limit vs Cramer");
   }
 
-  TEST_CASE("general system: progressive refinement shoots the most power and keeps B = E + ρF(B − ΔB)") {
+  TEST_CASE("general system: progressive refinement shoots the most power and keeps B = E + ρF(B − ΔB)" *
+            doctest::description("task=6a,6b,6c")) {
     // Shooting ΔB_i sends ρ_j F_ji ΔB_i to every j, F_ji = F_ij A_i / A_j
     // (erratum 8): what has been shot, B − ΔB, has been gathered exactly, so
     // B_j = E_j + ρ_j Σ_i F_ji (B_i − ΔB_i) holds after every shot.
@@ -207,7 +212,8 @@ TEST_SUITE("lesson11") {
       check_close(state.radiosity[i], s.exact[i], 1e-10, "progressive limit");
   }
 
-  TEST_CASE("ties: the shooter and Southwell's row are the first of equals") {
+  TEST_CASE("ties: the shooter and Southwell's row are the first of equals" *
+            doctest::description("task=5,6b")) {
     const GeneralSystem s = general_system();  // areas 1.5, 0.75, 3
     // Unshot power A_i (ΔB_i.r + ΔB_i.g + ΔB_i.b): 1.5·2 = 0.75·4 = 3·1 = 3, all exact.
     std::vector<Color> unshot = {Color(1.0, 0.5, 0.5), Color(2.0, 1.0, 1.0), Color(0.5, 0.25, 0.25)};
@@ -221,7 +227,7 @@ TEST_SUITE("lesson11") {
     CHECK_MESSAGE(southwell_step(s.patches, s.f, b, residual) == 1, "rows 1 and 2 tie at |r| = 1: the first");
   }
 
-  TEST_CASE("general system: the ambient term weighs ρ and ΔB by area") {
+  TEST_CASE("general system: the ambient term weighs ρ and ΔB by area" * doctest::description("task=7")) {
     const GeneralSystem s = general_system();
     const std::vector<Color> unshot = {Color(0.5, 0.25, 1.0), Color(2.0, 0.0, 0.5), Color(0.125, 1.0, 0.25)};
     // Σ A = 5.25. Red: ρ̄ = (1.5·0.5 + 0.75·0.8 + 3·0.25)/5.25 = 2.1/5.25 = 0.4,
@@ -235,7 +241,8 @@ TEST_SUITE("lesson11") {
   }
 
   TEST_CASE(
-      "hard case: gaussian elimination must pivot on the largest entry of every column, not only the first") {
+      "hard case: gaussian elimination must pivot on the largest entry of every column, not only the first" *
+      doctest::description("task=1")) {
     // Column 0 is settled by row 0 (nothing to eliminate). In column 1 the
     // candidate pivots are 1e−20 (row 1) and 1 (row 2): partial pivoting takes
     // row 2. Pivoting on 1e−20 instead gives the multiplier 1e20, row 2 becomes
@@ -256,7 +263,8 @@ TEST_SUITE("lesson11") {
     }
   }
 
-  TEST_CASE("gaussian elimination: a non-symmetric 4 × 4 system whose second pivot is zero") {
+  TEST_CASE("gaussian elimination: a non-symmetric 4 × 4 system whose second pivot is zero" *
+            doctest::description("task=1")) {
     // Solution chosen first, x* = (1, −2, 3, 0.5); b = A x*, every product exact in binary.
     // Rows 0 and 1 agree in their first two entries up to a factor 2, so once
     // the first column is eliminated (pivot 2, row 1) the entry in the second

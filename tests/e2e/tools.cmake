@@ -7,3 +7,6 @@ set_tests_properties(tools_mutants_py PROPERTIES LABELS grading ENVIRONMENT PYTH
 # Unit tests of tools/figures.py (figures in the lesson texts come from the programs' tables).
 add_test(NAME figures_tool COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_figures.py)
 set_tests_properties(figures_tool PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# The task tables' source reader (tools/task_tables.py; the tables themselves: CTest task_tables).
+add_test(NAME tools_task_tables_py COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_task_tables.py)
+set_tests_properties(tools_task_tables_py PROPERTIES LABELS grading ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)

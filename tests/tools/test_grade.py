@@ -22,6 +22,7 @@ from grading import reports  # noqa: E402
 from grading.autograder import install_submission, run_script, setup_script  # noqa: E402
 from grading.build import failed_exercise_files  # noqa: E402
 from grading.driver import main as grade_main  # noqa: E402
+from grading.alone import declared_dependencies  # noqa: E402
 from grading.edition import excluded_files  # noqa: E402
 from grading.integrity import check_pair  # noqa: E402
 from grading.project import normalize_lesson  # noqa: E402
@@ -341,6 +342,38 @@ class EditionTest(unittest.TestCase):
         left_out = excluded_files(files)
         self.assertEqual(set(left_out), {"lib/illum/geometry/sphere.cpp", "tests/hidden/lesson01_hidden.cpp",
                                          "tests/hidden/README.md", "build/release/x", "out/index.html"})
+
+
+class HandOutTest(unittest.TestCase):
+    FILES = ["lib/illum/geometry/sphere.cpp", "lib/illum/geometry/parity.cpp", "lib/illum/core/ray.cpp",
+             "exercises/01_ray_sphere/sphere.cpp", "exercises/01_ray_sphere/README.md",
+             "exercises/02_polygon_parity/parity.cpp", "exercises/02_polygon_parity/README.md",
+             "exercises/02_polygon_parity/depends.txt", "tests/02_polygon_parity/grading.cpp"]
+
+    def test_lessons_not_handed_out_keep_their_reference_and_lose_their_exercise(self) -> None:
+        left_out = excluded_files(self.FILES, ["02"])
+        self.assertEqual(set(left_out), {"lib/illum/geometry/parity.cpp", "exercises/01_ray_sphere/sphere.cpp",
+                                         "exercises/01_ray_sphere/README.md"})
+        self.assertNotIn("lib/illum/geometry/sphere.cpp", left_out)  # lesson 01 ships as working code
+
+    def test_every_lesson_is_handed_out_by_default(self) -> None:
+        left_out = excluded_files(self.FILES)
+        self.assertIn("lib/illum/geometry/sphere.cpp", left_out)
+        self.assertIn("lib/illum/geometry/parity.cpp", left_out)
+        self.assertFalse(any(f.startswith("exercises/") for f in left_out))
+
+    def test_depends_txt_separates_grading_from_program_dependencies(self) -> None:
+        with tempfile.TemporaryDirectory() as folder:
+            root = Path(folder)
+            (root / "exercises" / "06_ray_tree").mkdir(parents=True)
+            (root / "exercises" / "06_ray_tree" / "depends.txt").write_text(
+                "# comment\n01   # spheres\n03 program  # meshes\n\n")
+            self.assertEqual(declared_dependencies("06", root), ["01", "03"])
+            self.assertEqual(declared_dependencies("06", root, program=False), ["01"])
+            self.assertEqual(declared_dependencies("07", root), [])
+            (root / "exercises" / "06_ray_tree" / "depends.txt").write_text("lesson one\n")
+            with self.assertRaises(ValueError):
+                declared_dependencies("06", root)
 
 
 class AutograderTest(unittest.TestCase):

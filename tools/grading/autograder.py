@@ -163,7 +163,9 @@ def pack_autograder(root: Path, zip_path: Path, lessons: list[str], extra_hidden
     temporary = zip_path.with_name(zip_path.name + ".tmp-pack")
     try:
         with tempfile.TemporaryDirectory(prefix="illum-autograder-") as folder:
-            edition = make_student_edition(root, Path(folder) / "illum")
+            # Only the graded lessons are exercises there: the others are reference code, so a
+            # lesson that builds on an earlier one (docs/grading.md) is graded on its own units.
+            edition = make_student_edition(root, Path(folder) / "illum", lessons)
             with zipfile.ZipFile(temporary, "w") as archive:
                 _add_text(archive, "setup.sh", setup_script(debian_packages(root), lessons), True)
                 _add_text(archive, "run_autograder", run_script(lessons), True)

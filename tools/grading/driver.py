@@ -3,6 +3,7 @@
     tools/grade [--student] [--results FILE] [--junit FILE] [--hidden DIR]
                 [--build-dir DIR] [NN ...]
     tools/grade --check-integrity --build-dir DIR
+    tools/grade --check-alone --build-dir DIR
     tools/grade --pack-autograder FILE.zip [--hidden DIR] [NN ...]
     tools/grade --mutants [NN ...] [--sample N --seed S] [--jobs J] [--report FILE]
 
@@ -49,6 +50,9 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--check-integrity", action="store_true",
                         help="check an already-built tree (--build-dir): every grading test passes on the "
                              "reference and fails with NotImplemented on the stubs")
+    parser.add_argument("--check-alone", action="store_true",
+                        help="check an already-built reference tree (--build-dir): each lesson's grading tests "
+                             "pass and its program runs with every other lesson's units as stubs")
     parser.add_argument("--pack-autograder", type=Path, metavar="FILE.zip",
                         help="write Gradescope's autograder zip for the named lessons")
     parser.add_argument("--submission-info", type=Path, metavar="FILE", help=argparse.SUPPRESS)
@@ -63,6 +67,8 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
         parser.error("--check-integrity and --pack-autograder are separate commands")
     if args.check_integrity and not args.build_dir:
         parser.error("--check-integrity needs --build-dir DIR (an already-built tree)")
+    if args.check_alone and not args.build_dir:
+        parser.error("--check-alone needs --build-dir DIR (an already-built tree)")
     try:
         args.lessons = sorted(set(project.normalize_lesson(text) for text in args.lessons))
     except ValueError as error:
@@ -203,6 +209,22 @@ def check_integrity(args: argparse.Namespace, root: Path) -> int:
     return reports.EXIT_PASSED if report.ok else reports.EXIT_FAILED
 
 
+def check_alone(args: argparse.Namespace, root: Path) -> int:
+    from .alone import check_alone as run_check
+
+    if project.is_student_edition(root):
+        print("tools/grade: --check-alone needs the reference solutions, which the student edition "
+              "does not have", file=sys.stderr)
+        return reports.EXIT_NOT_BUILT
+    report = run_check(args.build_dir, root)
+    for line in report.checked:
+        print(f"ok       {line}")
+    for line in report.offenders:
+        print(f"OFFENDER {line}")
+    print("each lesson alone: " + ("passed" if report.ok else f"FAILED ({len(report.offenders)} problem(s))"))
+    return reports.EXIT_PASSED if report.ok else reports.EXIT_FAILED
+
+
 def pack(args: argparse.Namespace, root: Path) -> int:
     from .autograder import pack_autograder
 
@@ -233,6 +255,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if args.check_integrity:
             return check_integrity(args, root)
+        if args.check_alone:
+            return check_alone(args, root)
         if args.pack_autograder:
             return pack(args, root)
         return grade(args, root)
@@ -242,7 +266,7 @@ def main(argv: list[str] | None = None) -> int:
     except Exception as error:  # noqa: BLE001 -- the autograder must still get a results.json
         text = traceback.format_exc()
         print(text, file=sys.stderr)
-        if args.results and not args.check_integrity and not args.pack_autograder:
+        if args.results and not args.check_integrity and not args.check_alone and not args.pack_autograder:
             failed = GradeRun(lessons=args.lessons, build_failed=True, blame_student=False,
                               build_output="The grader itself failed (not your code):\n" + text)
             reports.write_results_json(args.results, failed)

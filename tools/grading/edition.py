@@ -1,9 +1,13 @@
 """The student edition: the tracked tree without what students must not see.
 
-Left out:
-* the reference source of every exercise unit -- ``lib/illum/**/<name>.cpp``
-  that has a twin ``exercises/NN_*/<name>.cpp``; CMake builds the stub when
-  the reference is absent;
+The instructor chooses the lessons to hand out (default: every lesson with
+exercises). Left out:
+* the reference source of every exercise unit of a lesson handed out --
+  ``lib/illum/**/<name>.cpp`` that has a twin ``exercises/NN_*/<name>.cpp``;
+  CMake builds the stub when the reference is absent;
+* ``exercises/NN_*/`` of every lesson *not* handed out: its units ship as
+  working reference code, so that the lessons handed out can use its results
+  (docs/grading.md, "Choosing the lessons to hand out");
 * ``tests/hidden/`` (an instructor's hidden tests);
 * ``build/`` and ``out/`` (generated).
 A ``STUDENT_EDITION`` marker file tells CMake and the driver which tree
@@ -55,11 +59,25 @@ def tracked_files(source: Path) -> list[str]:
     return sorted(files)
 
 
-def excluded_files(files: list[str]) -> dict[str, str]:
-    """Path -> reason, for every path of ``files`` the student edition leaves out."""
-    twins = {PurePosixPath(f).name for f in files
-             if len(PurePosixPath(f).parts) == 3 and PurePosixPath(f).parts[0] == "exercises"
-             and PurePosixPath(f).parts[1][:2].isdigit() and f.endswith(".cpp")}
+def _stub_lesson(path: str) -> str | None:
+    """NN for ``exercises/NN_topic/<unit>.cpp``, else None."""
+    parts = PurePosixPath(path).parts
+    if len(parts) == 3 and parts[0] == "exercises" and parts[1][:2].isdigit() and path.endswith(".cpp"):
+        return parts[1][:2]
+    return None
+
+
+def exercise_lessons_of(files: list[str]) -> list[str]:
+    return sorted({nn for f in files if (nn := _stub_lesson(f))})
+
+
+def excluded_files(files: list[str], handed_out: list[str] | None = None) -> dict[str, str]:
+    """Path -> reason, for every path of ``files`` the student edition leaves out.
+
+    ``handed_out``: the lessons whose exercises students get (None: all)."""
+    lessons = exercise_lessons_of(files)
+    handed = set(lessons if handed_out is None else handed_out)
+    twins = {PurePosixPath(f).name for f in files if _stub_lesson(f) in handed}
     reasons = {}
     for f in files:
         parts = PurePosixPath(f).parts
@@ -69,6 +87,8 @@ def excluded_files(files: list[str]) -> dict[str, str]:
             reasons[f] = "hidden test"
         elif parts[:2] == ("lib", "illum") and f.endswith(".cpp") and parts[-1] in twins:
             reasons[f] = "reference solution of an exercise unit"
+        elif parts[0] == "exercises" and len(parts) >= 3 and parts[1][:2].isdigit() and parts[1][:2] not in handed:
+            reasons[f] = "exercise not handed out (its units ship as reference code)"
         elif f == STUDENT_EDITION_MARKER:
             reasons[f] = "marker, rewritten"
     return reasons
@@ -79,10 +99,15 @@ class Edition:
     out: Path
     copied: int = 0
     left_out: dict[str, str] = field(default_factory=dict)
+    handed_out: list[str] = field(default_factory=list)
+    notes: list[str] = field(default_factory=list)  # dependencies among the lessons handed out
 
 
-def make_student_edition(source: Path, out: Path) -> Edition:
-    """Writes the student edition of ``source`` to ``out`` (replacing an earlier one)."""
+def make_student_edition(source: Path, out: Path, handed_out: list[str] | None = None) -> Edition:
+    """Writes the student edition of ``source`` to ``out`` (replacing an earlier one),
+    handing out the exercises of ``handed_out`` (None: every lesson with exercises)."""
+    from .alone import declared_dependencies
+
     source, out = source.resolve(), out.resolve()
     # Inside the source tree, only the generated folders are safe: anywhere
     # else the edition would be copied into itself next time.
@@ -94,8 +119,21 @@ def make_student_edition(source: Path, out: Path) -> Edition:
             raise ValueError(f"{out} exists and is not a student edition; refusing to replace it")
         shutil.rmtree(out)
     files = tracked_files(source)
-    left_out = excluded_files(files)
-    edition = Edition(out, left_out=left_out)
+    lessons = exercise_lessons_of(files)
+    unknown = sorted(set(handed_out or []) - set(lessons))
+    if unknown:
+        raise ValueError(f"lesson(s) {', '.join(unknown)} have no exercises; lessons with exercises: "
+                         f"{', '.join(lessons)}")
+    chosen = lessons if handed_out is None else sorted(set(handed_out))
+    if not chosen:
+        raise ValueError("no lesson to hand out")
+    left_out = excluded_files(files, chosen)
+    edition = Edition(out, left_out=left_out, handed_out=chosen)
+    for lesson in chosen:
+        needed = [d for d in declared_dependencies(lesson, source) if d in chosen]
+        if needed:
+            edition.notes.append(f"lesson {lesson} builds on lesson {', '.join(needed)}, also handed out: its "
+                                 f"program and tests need the students' lesson {', '.join(needed)} code first")
     for relative in files:
         if relative in left_out:
             continue
@@ -107,11 +145,15 @@ def make_student_edition(source: Path, out: Path) -> Edition:
         shutil.copy2(origin, target)
         edition.copied += 1
     version = _git_describe(source)
+    given = [nn for nn in lessons if nn not in chosen]
     (out / STUDENT_EDITION_MARKER).write_text(
         "This is the student edition of illum"
         + (f", made from {version}" if version else "")
-        + ".\nThe reference solutions of the exercises and the instructors' hidden tests are not part of it;\n"
-        "the exercise stubs in exercises/ are built in their place. Grade your work with\n"
+        + f".\nExercises handed out: lessons {', '.join(chosen)}.\n"
+        + (f"Lessons {', '.join(given)} are not exercises here: their units are working reference code.\n"
+           if given else "")
+        + "The reference solutions of the exercises handed out and the instructors' hidden tests are not part\n"
+        "of it; the exercise stubs in exercises/ are built in their place. Grade your work with\n"
         "    tools/grade --student NN\n"
         "(see docs/grading.md).\n", encoding="utf-8")
     return edition

@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 08: students write bvh_traversal.cpp.
 // BVH traversal: closest hit and any hit over flattened nodes, lesson 08 (§4).
 //
 // Closest hit, with a stack of nodes still to visit:

@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 08: students write grid_dda.cpp.
 // 3DDA: walking a ray through the cells of a uniform grid, lesson 08 (§3,
 // "voxels y 3DDA"), after Amanatides and Woo ("A fast voxel traversal
 // algorithm for ray tracing", Eurographics 1987).

@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 08: students write slab_test.cpp.
 // The slab test: the part of a ray's parameter range inside a box, lesson 08 (§4).
 //
 // Along axis a the ray P0 + sω is inside the slab lo[a] ≤ x ≤ hi[a] for s

@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 03: students write convex.cpp.
 // Convex polygons, lesson 03 ("Polígonos convexos").
 //
 // A convex polygon lies on one side of each of its edges' lines, so a point
@@ -23,8 +24,9 @@ bool is_convex(const Polygon& polygon);
 
 class ConvexPolygon {
  public:
-  // Throws std::invalid_argument when the polygon has holes or is not convex
-  // (concave, self-intersecting, or with a U-turn at a vertex).
+  // Throws std::invalid_argument when the polygon has holes (the message says
+  // "holes") or is not convex (concave, self-intersecting, or with a U-turn at
+  // a vertex; the message says "not convex").
   explicit ConvexPolygon(Polygon polygon);
 
   const Polygon& polygon() const { return polygon_; }

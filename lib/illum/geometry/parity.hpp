@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 02: students write parity.cpp.
 // Point in polygon by crossing parity, lesson 02 ("Paridad de Intersecciones").
 //
 // Cast a test ray from the query point q towards +u in the polygon's 2D

@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 05: students write patch_newton.cpp.
 // Ray–parametric-patch intersection, lesson 05 ("Intersección con Superf.
 // Paramétricas"), the way the notes set it up: the ray is the line where
 // two planes π₁ and π₂ meet, so a point S(u, v) of the patch is on the ray

@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 02: students write plane.cpp.
 // The plane N·P + D = 0 and the ray–plane hit, lesson 02 ("Intersección
 // Rayo-Polígono", first step).
 //

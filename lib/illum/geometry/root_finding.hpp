@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 05: students write root_finding.cpp.
 // Roots of one real function f(s), lesson 05 ("Intersección con Superf.
 // Implícitas"): substituting the ray P(s) = P0 + sω into an implicit surface
 // F(x, y, z) = 0 leaves one equation in one unknown, f(s) = F(P0 + sω) = 0.
@@ -69,8 +70,10 @@ RootResult safeguarded_newton(const RealFunction& f, Interval bracket, double to
 // Sphere tracing (lesson 05, §6). `distance` is a function that is positive
 // before the surface and has |distance(s) − distance(t)| ≤ lipschitz·|s − t|,
 // so no root lies closer than distance(s)/lipschitz: march s ← s + d/L from
-// range.lo. Converged when distance(s) ≤ tolerance (s is then the hit);
-// missed when s passes range.hi. Throws std::invalid_argument when the range
+// range.lo. Converged when distance(s) ≤ tolerance (s is then the hit;
+// iterations = the steps taken before it, 0 when range.lo is already within
+// tolerance); missed when a step passes range.hi (s = range.hi, and that step
+// is counted in iterations). Throws std::invalid_argument when the range
 // is empty or NaN (range.hi may be +∞), lipschitz or tolerance is not
 // positive and finite, or max_iterations < 1.
 RootResult sphere_trace(const RealFunction& distance, Interval range, double lipschitz, double tolerance,

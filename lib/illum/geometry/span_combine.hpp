@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 04: students write span_combine.cpp.
 // Combining span lists by Boolean operations, and choosing the hit, lesson 04
 // ("Se combinan los intervalos siguiendo las operaciones booleanas del árbol
 // CSG. Se determina el punto más próximo del intervalo resultado.").

@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 01: students write sphere.cpp.
 // Ray–sphere intersection, lesson 01 ("Intersección Rayo-Esfera").
 //
 // Substituting the ray P = P0 + sω into the sphere |P − Pc|² − r² = 0 gives

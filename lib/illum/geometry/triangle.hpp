@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 03: students write triangle.cpp.
 // Ray–triangle intersection with barycentric coordinates, watertight,
 // lesson 03 (§5).
 //
@@ -6,8 +7,12 @@
 // and every λ ≥ 0 (barycentric coordinates). Following Woop, Benthin and Wald
 // ("Watertight ray/triangle intersection", JCGT 2013), the vertices are moved
 // into the ray's own frame: translated by −P0 and sheared so that the ray
-// becomes the +z axis. In that frame the hit is at the 2D origin, and the
-// three 2D edge functions
+// becomes the +z axis. The shear (lesson 03, §5): kz is the axis of the largest
+// |ω_k| (ties to x, then y), kx = (kz + 1) mod 3, ky = (kx + 1) mod 3, swapped
+// when ω[kz] < 0; with S = (ω[kx]/ω[kz], ω[ky]/ω[kz], 1/ω[kz]) a vertex p − P0
+// goes to p' = (p[kx] − S.x p[kz], p[ky] − S.y p[kz]), z'_p = S.z p[kz], and the
+// hit's s = (U z'_a + V z'_b + W z'_c)/(U + V + W). In that frame the hit is
+// at the 2D origin, and the three 2D edge functions
 //   U = orient2d(b', c', 0),  V = orient2d(c', a', 0),  W = orient2d(a', b', 0)
 // are the unnormalised barycentrics: λa = U/(U+V+W), and so on. The ray hits
 // the triangle when U, V, W all have the same sign (either winding, so the

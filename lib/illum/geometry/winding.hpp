@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 03: students write winding.cpp.
 // Oriented crossings: the winding number, lesson 03 ("Intersecciones Orientadas").
 //
 // Parity only counts crossings. The winding number also looks at their

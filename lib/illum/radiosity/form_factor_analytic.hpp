@@ -1,6 +1,7 @@
 #pragma once
-// The analytic form factor from a differential area to a polygon (lesson 09,
-// "Dif. Área frente a polígono"): the contour formula
+// Exercise unit of lesson 09: students write form_factor_analytic.cpp.
+// The analytic form factor from a differential area to a polygon
+// (lesson 09, "Dif. Área frente a polígono"): the contour formula
 //   F_{dA→A_j} = (1/2π) Σ_k γ_k n·(R_{k+1} × R_k)/|R_{k+1} × R_k|,
 // R_k = v_k − x, γ_k the angle between R_k and R_{k+1}: each edge adds the
 // projection onto the receiver's normal of the spherical lune it subtends.
@@ -60,7 +61,7 @@ class SmallPolygon {
   std::vector<Point3> heap_;  // all the vertices, once there are more than 64
 };
 
-// Exercise 1. The part of the convex polygon on the closed side
+// Task 1. The part of the convex polygon on the closed side
 // n·(y − origin) ≥ 0 of the plane through `origin` (Sutherland–Hodgman
 // against one plane): vertices on the plane are kept, and a new vertex is
 // inserted where an edge crosses from one open side to the other. Returns an
@@ -69,7 +70,7 @@ class SmallPolygon {
 SmallPolygon clip_polygon_to_half_space(std::span<const Point3> polygon, const Point3& origin,
                                         const Vec3& normal);
 
-// Exercise 2. The form factor from the differential area at x with unit
+// Task 2. The form factor from the differential area at x with unit
 // normal `normal` to the front side of patch `to`, by the contour formula
 // applied to `to` clipped against the tangent plane of x. Zero when x lies on
 // or behind the plane of `to` (patches are one-sided: energy reaching the

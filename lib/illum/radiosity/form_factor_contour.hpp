@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 09: students write form_factor_contour.cpp.
 // Polygon-to-polygon form factors by the double contour integral (lesson 09,
 // "Integrales de contorno. Teorema de Stokes"). Stokes' theorem turns the
 // four-fold area integral of cos φ_i cos φ_j/(π r²) into a double integral
@@ -33,7 +34,7 @@ struct ContourOptions {
   double tolerance = 0;
 };
 
-// Exercise 3. F from `from` to the front side of `to` by the double contour
+// Task 3. F from `from` to the front side of `to` by the double contour
 // integral (see above). Zero for coplanar patches (so F_ii = 0) and for pairs
 // that face away. Throws std::invalid_argument when options.order is outside 1 … 64.
 double polygon_polygon_form_factor(const Patch& from, const Patch& to, const ContourOptions& options = {});

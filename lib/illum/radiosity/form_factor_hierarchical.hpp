@@ -1,6 +1,7 @@
 #pragma once
-// Hierarchical decomposition (lesson 09, "Descomposición jerárquica"): F_ij is
-// the average over patch i of the point factor F_{dA→A_j},
+// Exercise unit of lesson 09: students write form_factor_hierarchical.cpp.
+// Hierarchical decomposition (lesson 09, "Descomposición jerárquica"):
+// F_ij is the average over patch i of the point factor F_{dA→A_j},
 //   F_ij = (1/A_i) ∫_{A_i} F_{dA→A_j} dA,
 // estimated on a piece of patch i by the point factor at the piece's centroid.
 // A piece is split in four (quads through their edge midpoints, triangles by
@@ -17,7 +18,7 @@ struct HierarchicalResult {
   int deepest_level = 0;  // how many times the finest piece was split
 };
 
-// Exercise 4. F from `from` to the front side of `to` (no occlusion) by
+// Task 4. F from `from` to the front side of `to` (no occlusion) by
 // adaptive subdivision of `from`, refining while the parent and children
 // estimates differ by more than `tolerance`, at most `max_depth` levels.
 // Throws std::invalid_argument when tolerance ≤ 0 or max_depth is outside 0 … 20.

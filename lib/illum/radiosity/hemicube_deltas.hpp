@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 10: students write hemicube_deltas.cpp.
 // Delta form factors of the hemicube, lesson 10 ("Método del Hemicubo").
 //
 // The hemicube is a unit half-cube placed on a patch: the top face is the

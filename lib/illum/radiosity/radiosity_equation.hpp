@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 09: students write radiosity_equation.cpp.
 // The radiosity equation (lesson 09).
 //
 // Radiance I (erratum 3 of docs/errata.md: the notes call it "irradiancia"; it is radiance,
@@ -21,17 +22,17 @@ namespace illum {
 // I(φ, θ): φ the polar angle from the normal, θ the azimuth (the notes' names).
 using RadianceFunction = std::function<double(double phi, double theta)>;
 
-// Exercise 10. B by an n × n tensor Gauss–Legendre rule over φ ∈ [0, π/2]
+// Task 10. B by an n × n tensor Gauss–Legendre rule over φ ∈ [0, π/2]
 // and θ ∈ [0, 2π] of I cos φ sin φ. Throws std::invalid_argument for n
 // outside 1 … 64.
 double exitance_from_radiance_quadrature(const RadianceFunction& radiance, int n);
 
-// Exercise 11. B by Monte Carlo: directions uniform on the hemisphere
+// Task 11. B by Monte Carlo: directions uniform on the hemisphere
 // (density 1/2π), each scoring 2π I cos φ. Throws std::invalid_argument
 // for samples ≤ 0.
 double exitance_from_radiance_monte_carlo(const RadianceFunction& radiance, int samples, Rng& rng);
 
-// Exercise 12. The n × n matrix M of M·B = E for one colour channel, row-major:
+// Task 12. The n × n matrix M of M·B = E for one colour channel, row-major:
 // M_ii = 1 − ρ_i F_ii, M_ij = −ρ_i F_ij. Throws std::invalid_argument when
 // the sizes differ or a reflectance is outside [0, 1).
 std::vector<double> radiosity_matrix(const FormFactorMatrix& f, std::span<const double> reflectance);

@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 06: students write optics.cpp.
 // The optics of the ray tree (lesson 06, §3): the perfectly reflected and
 // refracted directions and the Phong term of the local model. Pure functions
 // of unit vectors, so that each can be checked by hand.
@@ -29,7 +30,8 @@ struct Refraction {
 // Snell's law η_i sin θ_i = η_t sin θ_t in vector form (lesson 06, eq. 6.6):
 //   T = η I + (η cos θ_i − cos θ_t) N,   cos θ_i = −N·I,
 //   cos θ_t = √(1 − η² (1 − cos² θ_i)),  with η = eta_ratio = η_i/η_t > 0.
-// Throws std::invalid_argument when eta_ratio is not positive and finite.
+// Throws std::invalid_argument, with a message that names refract, when
+// eta_ratio is not positive and finite.
 Refraction refract(const Vec3& incident, const Vec3& normal, double eta_ratio);
 
 // The factor of the local model for one light that reaches the point

@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 06: students write ray_tree.cpp.
 // The ray tree, *árbol de rayos* (lesson 06, §5): the notes' recursive
 // "evaluar (rayo)" of backward ray tracing, Whitted's model.
 //
@@ -39,7 +40,8 @@ struct Tracer {
 // 1 when nothing lies between, 0 when an opaque surface does; with
 // plan.shadow_attenuation, each transmissive surface crossed multiplies it by
 // its k_t instead of blocking. Nothing at or beyond the light blocks it.
-// Counts every shadow ray cast; records them as children of `node` when
+// Counts every shadow ray cast (tracer.stats->rays.count(RayKind::shadow)),
+// one per call that casts one; records them as children of `node` when
 // tracer.tree is set (`light` is the light's index, for the record).
 Color shadow_transmission(const Tracer& tracer, const SurfaceHit& hit, const Point3& light_position,
                           int node = no_node, std::uint32_t light = no_light);
@@ -51,7 +53,9 @@ Color shadow_transmission(const Tracer& tracer, const SurfaceHit& hit, const Poi
 // a light on a surface with k_d = k_s = 0. With plan.shadows off, no light is used.
 Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_viewer, int node = no_node);
 
-// The notes' evaluar(rayo). `depth` is the ray's depth in the tree (0 for
+// The notes' evaluar(rayo). Counts the ray once in tracer.stats->rays under
+// its `kind` (tracer.stats->rays.count(kind)) before looking for a hit, so a
+// ray that misses is counted too. `depth` is the ray's depth in the tree (0 for
 // a primary ray); children are spawned while depth < plan.max_depth.
 // Children obey the plan: none of a kind it switches off, and with
 // plan.skip_zero_weights none whose factor (k_r, k_t) is zero at this hit.
