@@ -122,7 +122,8 @@ SceneInventory scene_inventory(const Scene& scene) {
   }
   for (std::size_t i = 0; i < reflecting.size(); ++i)
     for (std::size_t j = i + 1; j < reflecting.size(); ++j)
-      if (in_front(reflecting[i], reflecting[j]) && in_front(reflecting[j], reflecting[i])) ++inv.facing_pairs;
+      if (in_front(reflecting[i], reflecting[j]) && in_front(reflecting[j], reflecting[i]))
+        ++inv.facing_pairs;
   return inv;
 }
 
@@ -166,8 +167,8 @@ TwoPassMesh mesh_two_pass_scene(const Scene& scene, const std::string& file, dou
   return mesh;
 }
 
-RadiosityPass solve_radiosity_pass(const std::vector<Patch>& patches, int hemicube_resolution, double threshold,
-                                   const std::vector<Color>& extra_emission) {
+RadiosityPass solve_radiosity_pass(const std::vector<Patch>& patches, int hemicube_resolution,
+                                   double threshold, const std::vector<Color>& extra_emission) {
   require(extra_emission.empty() || extra_emission.size() == patches.size(),
           "solve_radiosity_pass: one extra emission per patch");
   Stopwatch watch;
@@ -210,34 +211,63 @@ Color radiosity_at(const TwoPassMesh& mesh, const CornerRadiosity& corners, std:
   require(s >= 0, "radiosity_at: the primitive is not a meshed surface");
   const RadiositySurface& surface = mesh.radiosity.surfaces[static_cast<std::size_t>(s)];
   const auto [n, m] = mesh.grid[static_cast<std::size_t>(s)];
-  const PatchCell cell = locate_patch(surface_coordinates(surface.polygon, x), n, m,
-                                      static_cast<int>(surface.polygon.size()));
-  const std::array<Color, 4>& c = corners[surface.first_patch + std::min(cell.patch, surface.patch_count - 1)];
+  const PatchCell cell =
+      locate_patch(surface_coordinates(surface.polygon, x), n, m, static_cast<int>(surface.polygon.size()));
+  const std::array<Color, 4>& c =
+      corners[surface.first_patch + std::min(cell.patch, surface.patch_count - 1)];
   Color b(0.0);
-  for (int k = 0; k < cell.corners; ++k) b += cell.weight[static_cast<std::size_t>(k)] * c[static_cast<std::size_t>(k)];
+  for (int k = 0; k < cell.corners; ++k)
+    b += cell.weight[static_cast<std::size_t>(k)] * c[static_cast<std::size_t>(k)];
   return b;
 }
 
-CausticPass caustic_pass(const Scene& scene, const TwoPassMesh& mesh, std::uint64_t photons, std::uint64_t seed,
-                         int max_bounces) {
+Emitters::Emitters(const Scene& scene) {
+  for (const AreaLight& l : scene.area_lights) {
+    patches.push_back(make_patch(l.polygon, Color(0.0), l.emission, 1e-6));
+    total += patches.back().area * (l.emission.r + l.emission.g + l.emission.b);
+    cumulative.push_back(total);
+  }
+}
+
+std::size_t Emitters::choose(double u) const {
+  const auto it = std::upper_bound(cumulative.begin(), cumulative.end(), u * total);
+  return std::min(static_cast<std::size_t>(it - cumulative.begin()), cumulative.size() - 1);
+}
+
+Point3 uniform_point_on(const Patch& patch, Rng& rng) {
+  // A triangle of the fan from vertex 0, chosen by area; then a uniform point in it.
+  const auto& v = patch.vertices;
+  const double pick = rng.uniform() * patch.area;
+  double acc = 0;
+  std::size_t f = 1;
+  for (; f + 2 < v.size(); ++f) {
+    acc += 0.5 * length(cross(v[f] - v[0], v[f + 1] - v[0]));
+    if (pick < acc) break;
+  }
+  double s = rng.uniform(), r = rng.uniform();
+  if (s + r > 1) s = 1 - s, r = 1 - r;
+  return v[0] + s * (v[f] - v[0]) + r * (v[f + 1] - v[0]);
+}
+
+Vec3 cosine_direction(const Vec3& normal, Rng& rng) {
+  // Malley's method: a uniform point on the unit disc lifted to the hemisphere.
+  const double r2 = rng.uniform(), phi = 2 * pi * rng.uniform(), r = std::sqrt(r2);
+  return Frame::around(normal).to_world(r * std::cos(phi), r * std::sin(phi), std::sqrt(1 - r2));
+}
+
+CausticPass caustic_pass(const Scene& scene, const TwoPassMesh& mesh, std::uint64_t photons,
+                         std::uint64_t seed, int max_bounces) {
   Stopwatch watch;
   CausticPass pass;
   const std::size_t n = mesh.radiosity.patches.size();
   pass.extra_emission.assign(n, Color(0.0));
-  // Emitters chosen in proportion to their power E·A (summed over channels).
-  std::vector<double> cumulative;
-  std::vector<Patch> emitters;
-  double total = 0;
-  for (const AreaLight& l : scene.area_lights) {
-    emitters.push_back(make_patch(l.polygon, Color(0.0), l.emission, 1e-6));
-    total += emitters.back().area * (l.emission.r + l.emission.g + l.emission.b);
-    cumulative.push_back(total);
-  }
-  if (emitters.empty() || photons == 0 || !(total > 0)) return pass;
+  const Emitters emitters(scene);
+  if (emitters.patches.empty() || photons == 0 || !(emitters.total > 0)) return pass;
   constexpr std::uint64_t block = 4096;  // photons per random stream: the result does not depend on threads
   const auto blocks = static_cast<std::int64_t>((photons + block - 1) / block);
   const int threads = omp_get_max_threads();
-  std::vector<std::vector<Color>> deposits(static_cast<std::size_t>(threads), std::vector<Color>(n, Color(0.0)));
+  std::vector<std::vector<Color>> deposits(static_cast<std::size_t>(threads),
+                                           std::vector<Color>(n, Color(0.0)));
   std::vector<std::uint64_t> first(static_cast<std::size_t>(threads), 0), landed(first);
 #pragma omp parallel for schedule(dynamic)
   for (std::int64_t b = 0; b < blocks; ++b) {
@@ -245,33 +275,13 @@ CausticPass caustic_pass(const Scene& scene, const TwoPassMesh& mesh, std::uint6
     Rng rng(seed, static_cast<std::uint64_t>(b));
     const std::uint64_t end = std::min<std::uint64_t>(photons, static_cast<std::uint64_t>(b + 1) * block);
     for (std::uint64_t k = static_cast<std::uint64_t>(b) * block; k < end; ++k) {
-      const double pick = rng.uniform() * total;
-      const std::size_t e = std::min<std::size_t>(
-          static_cast<std::size_t>(std::upper_bound(cumulative.begin(), cumulative.end(), pick) - cumulative.begin()),
-          emitters.size() - 1);
-      const Patch& light = emitters[e];
-      // A point uniform on the emitter (fan triangles by area), a cosine-distributed direction.
-      const auto& v = light.vertices;
-      double a = rng.uniform() * light.area, acc = 0;
-      Point3 origin = light.centroid;
-      for (std::size_t f = 1; f + 1 < v.size(); ++f) {
-        const double area = 0.5 * length(cross(v[f] - v[0], v[f + 1] - v[0]));
-        if (a <= acc + area || f + 2 == v.size()) {
-          double s = rng.uniform(), r = rng.uniform();
-          if (s + r > 1) s = 1 - s, r = 1 - r;
-          origin = v[0] + s * (v[f] - v[0]) + r * (v[f + 1] - v[0]);
-          break;
-        }
-        acc += area;
-      }
-      const double r1 = rng.uniform(), phi = 2 * pi * rng.uniform();
-      const Frame frame = Frame::around(light.normal);
-      const Vec3 local(std::sqrt(r1) * std::cos(phi), std::sqrt(r1) * std::sin(phi), std::sqrt(1 - r1));
-      Ray ray(origin + 1e-6 * (1.0 + length(origin)) * light.normal, frame.to_world(local.x, local.y, local.z));
+      const Patch& light = emitters.patches[emitters.choose(rng.uniform())];
+      const Point3 origin = uniform_point_on(light, rng);
+      Ray ray(origin + 1e-9 * (1.0 + length(origin)) * light.normal, cosine_direction(light.normal, rng));
       // Emitter e is chosen with probability p_e = ΣE_e A_e / total, so the photon carries
       // Φ_e / (N p_e) = E_e · total / (N ΣE_e) per channel.
-      Color power = light.emission * (total / ((light.emission.r + light.emission.g + light.emission.b) *
-                                               static_cast<double>(photons)));
+      const Color& e = light.emission;
+      Color power = e * (emitters.total / ((e.r + e.g + e.b) * static_cast<double>(photons)));
       bool specular_path = false;
       for (int bounce = 0; bounce <= max_bounces; ++bounce) {
         const std::optional<SurfaceHit> hit = scene.intersect(ray);
@@ -348,7 +358,8 @@ Color diffuse_part(const EyeTracer& e, const SurfaceHit& hit, const Vec3& to_vie
     const LightSample light = light_sample(e.scene, l, hit.point);
     const Vec3 to_light = normalize(light.position - hit.point);
     if (!(dot(hit.shading_normal, to_light) > 0.0)) continue;
-    d += light.intensity * phong_term(hit.shading_normal, to_light, to_viewer, m.diffuse, m.specular, m.phong_exponent) *
+    d += light.intensity *
+         phong_term(hit.shading_normal, to_light, to_viewer, m.diffuse, m.specular, m.phong_exponent) *
          shadow_transmission(e.tracer, hit, light.position);
   }
   return d;

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "illum/core/image.hpp"
+#include "illum/core/random.hpp"
 #include "illum/radiosity/radiosity_scene.hpp"
 #include "illum/radiosity/radiosity_solvers.hpp"
 #include "illum/radiosity/two_pass_plan.hpp"
@@ -37,9 +38,9 @@ SceneInventory scene_inventory(const Scene& scene);
 // `sphere_rings` × 2·sphere_rings quads and triangles, specular polygons as
 // one patch each), with reflectance 0: they block and absorb, never shoot.
 struct TwoPassMesh {
-  RadiosityScene radiosity;                // surfaces = the meshed primitives, in scene order
-  std::vector<int> surface_of_primitive;   // per scene primitive: its surface, or −1
-  std::vector<std::array<int, 2>> grid;    // per surface: n, m of its mesh (m = n for a triangle)
+  RadiosityScene radiosity;               // surfaces = the meshed primitives, in scene order
+  std::vector<int> surface_of_primitive;  // per scene primitive: its surface, or −1
+  std::vector<std::array<int, 2>> grid;   // per surface: n, m of its mesh (m = n for a triangle)
   std::size_t receiver_patches = 0;
   std::size_t occluder_patches = 0;
 };
@@ -62,8 +63,8 @@ struct RadiosityPass {
 // the unshot power is below `threshold` of the emitted. `extra_emission`
 // (empty, or one per patch) is added to each patch's E first: the caustic
 // deposits. Throws std::runtime_error after 1000 shots per patch.
-RadiosityPass solve_radiosity_pass(const std::vector<Patch>& patches, int hemicube_resolution, double threshold,
-                                   const std::vector<Color>& extra_emission = {});
+RadiosityPass solve_radiosity_pass(const std::vector<Patch>& patches, int hemicube_resolution,
+                                   double threshold, const std::vector<Color>& extra_emission = {});
 
 // The radiosity at every corner of every patch, in the patch's vertex order:
 // what pass two interpolates. flat_corners gives every corner its patch's B
@@ -75,6 +76,21 @@ CornerRadiosity flat_corners(const std::vector<Color>& radiosity);
 // surface_coordinates, locate_patch, then the corner weights.
 Color radiosity_at(const TwoPassMesh& mesh, const CornerRadiosity& corners, std::uint32_t primitive,
                    const Point3& x);
+
+// The scene's emitting polygons (its area lights) as patches, for light
+// rays: one is chosen in proportion to its power ΣE·A (summed over channels).
+struct Emitters {
+  std::vector<Patch> patches;
+  std::vector<double> cumulative;  // running sums of the powers
+  double total = 0;                // the emitted power ΣE·A, channels summed
+  explicit Emitters(const Scene& scene);
+  // The emitter whose power interval holds u·total (u uniform in [0, 1)).
+  std::size_t choose(double u) const;
+};
+// A point uniform in area on a convex patch, and a cosine-distributed unit
+// direction around a unit normal (density cos θ / π), from uniform numbers.
+Point3 uniform_point_on(const Patch& patch, Rng& rng);
+Vec3 cosine_direction(const Vec3& normal, Rng& rng);
 
 // The caustic pass: `photons` light rays from the emitters (points uniform
 // on each polygon, directions cosine-distributed, emitters chosen in
@@ -89,8 +105,8 @@ struct CausticPass {
   std::uint64_t photons = 0, specular_first = 0, deposited = 0;
   double seconds = 0;
 };
-CausticPass caustic_pass(const Scene& scene, const TwoPassMesh& mesh, std::uint64_t photons, std::uint64_t seed,
-                         int max_bounces = 8);
+CausticPass caustic_pass(const Scene& scene, const TwoPassMesh& mesh, std::uint64_t photons,
+                         std::uint64_t seed, int max_bounces = 8);
 
 // Pass two: one ray per pixel through the scene's camera at width × height.
 // `corners` null: no radiosity (the local model lights every surface).

@@ -20,8 +20,10 @@ TwoPassPlan plan_two_pass(const SceneInventory& scene, const TwoPassRequest& req
 
   plan.caustic_pass = request.caustics && scene.emitters > 0 && specular && receivers;
   if (request.caustics && !plan.caustic_pass)
-    why += "  caustics asked for, but no emitter, no mirror or glass, or no diffuse surface: no caustic pass\n";
-  if (plan.caustic_pass) why += "  caustic pass: light rays from the emitters through the specular surfaces\n";
+    why +=
+        "  caustics asked for, but no emitter, no mirror or glass, or no diffuse surface: no caustic pass\n";
+  if (plan.caustic_pass)
+    why += "  caustic pass: light rays from the emitters through the specular surfaces\n";
 
   const bool interreflection = scene.emitters > 0 && scene.facing_pairs > 0;
   plan.radiosity_pass = interreflection || plan.caustic_pass;
@@ -31,8 +33,9 @@ TwoPassPlan plan_two_pass(const SceneInventory& scene, const TwoPassRequest& req
   else if (plan.caustic_pass)
     why += "  no diffuse surfaces face each other, but the caustic deposits need patches: pass one runs\n";
   else
-    why += scene.emitters == 0 ? "  no emitter: nothing for pass one to distribute, no radiosity pass\n"
-                               : "  no two diffuse surfaces face each other: no interreflection, no radiosity pass\n";
+    why += scene.emitters == 0
+               ? "  no emitter: nothing for pass one to distribute, no radiosity pass\n"
+               : "  no two diffuse surfaces face each other: no interreflection, no radiosity pass\n";
 
   plan.reflection = specular;
   plan.refraction = scene.glass > 0;
@@ -57,7 +60,8 @@ TwoPassPlan plan_two_pass(const SceneInventory& scene, const TwoPassRequest& req
   plan.shadow_rays = point_direct || area_direct;
   if (point_direct) why += "  point lights are not in B: shadow rays to them\n";
   if (area_direct) why += "  some diffuse surface is not in B: shadow rays to the emitters\n";
-  if (!plan.shadow_rays) why += "  every diffuse surface's light is in B (or nothing is lit): no shadow rays\n";
+  if (!plan.shadow_rays)
+    why += "  every diffuse surface's light is in B (or nothing is lit): no shadow rays\n";
   return plan;
 }
 

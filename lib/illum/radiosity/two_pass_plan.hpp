@@ -39,7 +39,7 @@ struct TwoPassRequest {
 };
 
 struct TwoPassPlan {
-  bool caustic_pass = false;    // light rays from the emitters through specular surfaces, deposited on patches
+  bool caustic_pass = false;  // light rays from the emitters through specular surfaces, deposited on patches
   bool radiosity_pass = false;  // pass one: mesh the diffuse surfaces and solve for B
   bool reflection = false;      // pass two spawns reflected rays
   bool refraction = false;      // pass two spawns refracted rays

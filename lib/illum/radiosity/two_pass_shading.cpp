@@ -35,7 +35,8 @@ Vec2 surface_coordinates(std::span<const Point3> polygon, const Point3& x) {
     const double v = (d11 * dot(h, e2) - d12 * dot(h, e1)) / det;
     return {clamp01(u), clamp01(v)};
   }
-  const Vec3 normal = cross(polygon[1] - p0, polygon[3] - p0) + cross(polygon[3] - polygon[2], polygon[1] - polygon[2]);
+  const Vec3 normal =
+      cross(polygon[1] - p0, polygon[3] - p0) + cross(polygon[3] - polygon[2], polygon[1] - polygon[2]);
   const Vec3 a = abs(normal);
   const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
   const Vec2 e = drop_largest(polygon[1] - p0, axis), f = drop_largest(polygon[3] - p0, axis);
@@ -54,7 +55,9 @@ Vec2 surface_coordinates(std::span<const Point3> polygon, const Point3& x) {
     const double slack = 1e-9;
     const bool first_in = r1 >= -slack && r1 <= 1.0 + slack;
     const bool second_in = r2 >= -slack && r2 <= 1.0 + slack;
-    v = first_in && !second_in ? r1 : (second_in && !first_in ? r2 : (std::abs(r1 - 0.5) < std::abs(r2 - 0.5) ? r1 : r2));
+    v = first_in && !second_in
+            ? r1
+            : (second_in && !first_in ? r2 : (std::abs(r1 - 0.5) < std::abs(r2 - 0.5) ? r1 : r2));
   }
   v = clamp01(v);
   const Vec2 den = e + g * v, num = h - f * v;

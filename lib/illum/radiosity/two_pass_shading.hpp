@@ -40,9 +40,9 @@ Vec2 surface_coordinates(std::span<const Point3> polygon, const Point3& x);
 // the point: bilinear in the cell for a quad, barycentric for a triangle
 // (unused corners 0). Weights are ≥ 0 and add up to 1.
 struct PatchCell {
-  std::size_t patch = 0;             // index among the surface's patches
-  std::array<double, 4> weight{};    // corner weights
-  int corners = 4;                   // 4 for a quad's cell, 3 for a triangle
+  std::size_t patch = 0;           // index among the surface's patches
+  std::array<double, 4> weight{};  // corner weights
+  int corners = 4;                 // 4 for a quad's cell, 3 for a triangle
 };
 
 // `vertex_count` is 4 (a quad meshed n × m) or 3 (a triangle meshed n², m
