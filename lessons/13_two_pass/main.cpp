@@ -10,8 +10,8 @@
 // path-traced reference.
 #include <algorithm>
 #include <cmath>
-#include <optional>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,7 +59,8 @@ struct PipelineRun {
 PipelineRun run_pipeline(const Scene& scene, const std::string& file, const Settings& s, bool caustics,
                          int width, std::optional<TwoPassPlan> forced = std::nullopt) {
   PipelineRun run;
-  run.plan = forced ? *forced : plan_two_pass(scene_inventory(scene), {.max_depth = s.depth, .caustics = caustics});
+  run.plan =
+      forced ? *forced : plan_two_pass(scene_inventory(scene), {.max_depth = s.depth, .caustics = caustics});
   CornerRadiosity corners;
   if (run.plan.radiosity_pass) {
     run.mesh = mesh_two_pass_scene(scene, file, s.edge);
@@ -131,8 +132,9 @@ void plan_section(OutputFolder& out, const Settings& s) {
     const RayCounts& rays = r.eye.stats.rays;
     t.add_row({name, yes_no(r.plan.caustic_pass), yes_no(r.plan.radiosity_pass), yes_no(r.plan.reflection),
                yes_no(r.plan.refraction), yes_no(r.plan.shadow_rays), std::int64_t{r.plan.max_depth},
-               count(r.mesh.receiver_patches), count(r.mesh.occluder_patches), count(r.radiosity.hemicube_rows),
-               count(rays.primary), count(rays.reflection), count(rays.refraction), count(rays.shadow)});
+               count(r.mesh.receiver_patches), count(r.mesh.occluder_patches),
+               count(r.radiosity.hemicube_rows), count(rays.primary), count(rays.reflection),
+               count(rays.refraction), count(rays.shadow)});
     if (name == s.scene) std::cout << "scene " << name << ": " << r.plan.summary();
   }
   out.table(t, "plans",
@@ -166,11 +168,12 @@ Image images_section(OutputFolder& out, const Scene& scene, const Settings& s) {
              count(radiosity.eye.stats.rays.total()), radiosity.eye.seconds});
   t.add_row({"ray tracing alone", "lesson 06's ray tree", std::int64_t{0}, std::int64_t{0},
              count(rays.stats.rays.total()), ray_seconds});
-  t.add_row({"both", "pass one", count(both.mesh.radiosity.patches.size()), count(both.radiosity.hemicube_rows),
-             std::int64_t{0}, both.radiosity.seconds});
+  t.add_row({"both", "pass one", count(both.mesh.radiosity.patches.size()),
+             count(both.radiosity.hemicube_rows), std::int64_t{0}, both.radiosity.seconds});
   t.add_row({"both", "pass two", std::int64_t{0}, std::int64_t{0}, count(both.eye.stats.rays.total()),
              both.eye.seconds});
-  out.table(t, "pass_times", "What each image cost, pass by pass (" + std::to_string(s.width) + " pixels wide)");
+  out.table(t, "pass_times",
+            "What each image cost, pass by pass (" + std::to_string(s.width) + " pixels wide)");
   std::cout << "pass one: " << both.mesh.receiver_patches << " receiver + " << both.mesh.occluder_patches
             << " occluder patches, " << both.radiosity.hemicube_rows << " shots, "
             << format_number(both.radiosity.seconds, 3) << " s; pass two: " << both.eye.stats.rays.summary()
@@ -190,8 +193,9 @@ void caustics_section(OutputFolder& out, const Scene& scene, const Settings& s, 
             "Classic two-pass, with the caustic pass, and the light it added (×4)");
   Table t({"photons", "first hit specular", "deposited on patches", "caustic pass seconds",
            "pass one seconds", "shots"});
-  t.add_row({count(with.caustics.photons), count(with.caustics.specular_first), count(with.caustics.deposited),
-             with.caustics.seconds, with.radiosity.seconds, count(with.radiosity.hemicube_rows)});
+  t.add_row({count(with.caustics.photons), count(with.caustics.specular_first),
+             count(with.caustics.deposited), with.caustics.seconds, with.radiosity.seconds,
+             count(with.radiosity.hemicube_rows)});
   out.table(t, "caustic_pass", "The caustic pass: light rays from the emitter through the spheres");
   std::cout << "caustic pass: " << with.caustics.photons << " light rays, " << with.caustics.deposited
             << " deposited after a specular bounce\n";
@@ -213,21 +217,25 @@ void study_section(OutputFolder& out, const Scene& scene, const Settings& s) {
   const PipelineRun radiosity = run_pipeline(scene, s.scene, s, false, w, diffuse_only);
   methods.add_row({"radiosity alone", radiosity.radiosity.seconds + radiosity.eye.seconds,
                    relative_error(radiosity.eye.image, reference)});
-  methods.add_row({"two-pass", both.radiosity.seconds + both.eye.seconds, relative_error(both.eye.image, reference)});
+  methods.add_row(
+      {"two-pass", both.radiosity.seconds + both.eye.seconds, relative_error(both.eye.image, reference)});
   const PipelineRun caustic = run_pipeline(scene, s.scene, s, true, w);
-  methods.add_row({"two-pass + caustic pass", caustic.caustics.seconds + caustic.radiosity.seconds + caustic.eye.seconds,
+  methods.add_row({"two-pass + caustic pass",
+                   caustic.caustics.seconds + caustic.radiosity.seconds + caustic.eye.seconds,
                    relative_error(caustic.eye.image, reference)});
   out.table(methods, "study_methods",
             "Error of each method against a path-traced reference (" + std::to_string(s.reference_samples) +
                 " paths per pixel, " + std::to_string(w) + " pixels wide)");
 
-  Table mesh({"max patch edge", "patches", "shots", "pass one seconds", "pass two seconds", "relative error"});
-  for (const double edge : s.quick ? std::vector<double>{200, 100} : std::vector<double>{200, 140, 100, 70, 50, 35}) {
+  Table mesh(
+      {"max patch edge", "patches", "shots", "pass one seconds", "pass two seconds", "relative error"});
+  for (const double edge :
+       s.quick ? std::vector<double>{200, 100} : std::vector<double>{200, 140, 100, 70, 50, 35}) {
     Settings e = s;
     e.edge = edge;
     const PipelineRun r = run_pipeline(scene, s.scene, e, false, w);
-    mesh.add_row({edge, count(r.mesh.radiosity.patches.size()), count(r.radiosity.hemicube_rows), r.radiosity.seconds,
-                  r.eye.seconds, relative_error(r.eye.image, reference)});
+    mesh.add_row({edge, count(r.mesh.radiosity.patches.size()), count(r.radiosity.hemicube_rows),
+                  r.radiosity.seconds, r.eye.seconds, relative_error(r.eye.image, reference)});
   }
   out.table(mesh, "study_mesh", "Pass one's cost and the two-pass error against the mesh size");
   Table depth({"depth limit", "rays", "pass two seconds", "relative error"});
@@ -236,17 +244,31 @@ void study_section(OutputFolder& out, const Scene& scene, const Settings& s) {
     plan.max_depth = std::min(d, both.plan.max_depth);
     const CornerRadiosity corners = flat_corners(both.radiosity.state.radiosity);
     const EyePass eye = eye_pass(scene, both.mesh, &corners, plan, w, 0);
-    depth.add_row({std::int64_t{d}, count(eye.stats.rays.total()), eye.seconds, relative_error(eye.image, reference)});
+    depth.add_row(
+        {std::int64_t{d}, count(eye.stats.rays.total()), eye.seconds, relative_error(eye.image, reference)});
   }
   out.table(depth, "study_depth", "Pass two's cost and error against the depth limit of its specular rays");
-  out.plot({.title = "Two-pass error and pass one's time against the patch count",
-            .x_label = "patches", .y_label = "relative error / seconds", .log_x = true, .log_y = true,
-            .curves = {{.table = "study_mesh.csv", .x = "patches", .y = "relative error", .title = "relative error"},
-                       {.table = "study_mesh.csv", .x = "patches", .y = "pass one seconds", .title = "pass one seconds"}}},
-           "study_mesh", "Error and cost of pass one against the mesh");
-  out.plot({.title = "Pass two: error and rays against the depth limit", .x_label = "depth limit",
-            .y_label = "relative error", .log_y = true,
-            .curves = {{.table = "study_depth.csv", .x = "depth limit", .y = "relative error", .title = "relative error"}}},
+  out.plot(
+      {.title = "Two-pass error and pass one's time against the patch count",
+       .x_label = "patches",
+       .y_label = "relative error / seconds",
+       .log_x = true,
+       .log_y = true,
+       .curves =
+           {{.table = "study_mesh.csv", .x = "patches", .y = "relative error", .title = "relative error"},
+            {.table = "study_mesh.csv",
+             .x = "patches",
+             .y = "pass one seconds",
+             .title = "pass one seconds"}}},
+      "study_mesh", "Error and cost of pass one against the mesh");
+  out.plot({.title = "Pass two: error and rays against the depth limit",
+            .x_label = "depth limit",
+            .y_label = "relative error",
+            .log_y = true,
+            .curves = {{.table = "study_depth.csv",
+                        .x = "depth limit",
+                        .y = "relative error",
+                        .title = "relative error"}}},
            "study_depth", "Error of the two-pass image against the depth of pass two");
 }
 
@@ -266,8 +288,9 @@ Scene checked_scene(const Settings& s) {
     return n;
   }();
   if (patches > 20000)
-    throw InputError("command line", "--edge", format_number(s.edge, 6),
-                     "meshes the scene into " + format_number(patches, 3) + " patches; lesson 13 allows 20000");
+    throw InputError(
+        "command line", "--edge", format_number(s.edge, 6),
+        "meshes the scene into " + format_number(patches, 3) + " patches; lesson 13 allows 20000");
   (void)mesh_two_pass_scene(scene, s.scene, s.edge);  // every surface meshable, every occluder supported
   return scene;
 }
@@ -276,11 +299,12 @@ Scene checked_scene(const Settings& s) {
 }  // namespace illum
 
 int main(int argc, char** argv) {
-  const illum::ProgramInfo info{"lesson13", "Lesson 13: two-pass global illumination",
-                                "Plans the passes of every shipped scene, renders the Cornell box with two "
-                                "spheres by radiosity, by ray tracing and by both, adds caustics with a pass of "
-                                "light rays, and studies each pass's cost and error against a path-traced "
-                                "reference."};
+  const illum::ProgramInfo info{
+      "lesson13", "Lesson 13: two-pass global illumination",
+      "Plans the passes of every shipped scene, renders the Cornell box with two "
+      "spheres by radiosity, by ray tracing and by both, adds caustics with a pass of "
+      "light rays, and studies each pass's cost and error against a path-traced "
+      "reference."};
   illum::Settings s;
   return illum::run_program(
       argc, argv, info,
@@ -292,14 +316,16 @@ int main(int argc, char** argv) {
             ->check(CLI::Range(0, 32));
         app.add_option("--photons", s.photons, "Light rays of the caustic pass (default 1e6)")
             ->check(CLI::Range(1e3, 1e8));
-        app.add_option("--reference-samples", s.reference_samples, "Paths per pixel of the reference (default 512)")
+        app.add_option("--reference-samples", s.reference_samples,
+                       "Paths per pixel of the reference (default 512)")
             ->check(CLI::Range(2, 65536));
       },
       [&](const illum::ProgramOptions& options) {
         using namespace illum;
         s.quick = options.quick, s.seed = options.seed;
         if (s.quick) {
-          s.width = 96, s.study_width = 24, s.hemicube = 32, s.unshot = 1e-2, s.photons = std::min(s.photons, 1e5);
+          s.width = 96, s.study_width = 24, s.hemicube = 32, s.unshot = 1e-2,
+          s.photons = std::min(s.photons, 1e5);
           s.reference_samples = std::min(s.reference_samples, 32);
           s.edge = std::max(s.edge, 100.0);
         }

@@ -11,7 +11,7 @@ namespace illum {
 
 TwoPassPlan plan_two_pass(const SceneInventory& scene, const TwoPassRequest& request) {
   require(request.max_depth >= 0, "plan_two_pass: the depth limit must not be negative");
-  require(!(scene.heaviest_specular > 1.0),
+  require(scene.heaviest_specular <= 1.0,
           "plan_two_pass: k_r + k_t > 1 in a material: a surface would reflect more light than it receives");
   TwoPassPlan plan;
   std::string& why = plan.reasons;
