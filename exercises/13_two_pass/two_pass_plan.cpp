@@ -15,9 +15,10 @@ namespace illum {
 
 // Task 1. Decide the passes and the rays of pass two from the inventory.
 TwoPassPlan plan_two_pass(const SceneInventory& scene, const TwoPassRequest& request) {
-  throw NotImplemented("plan_two_pass",
-                       "pass one needs an emitter and a facing pair (or the caustic pass); specular rays need a "
-                       "mirror or glass; shadow rays only for light that B does not hold (lesson 13, §2)");
+  throw NotImplemented(
+      "plan_two_pass",
+      "pass one needs an emitter and a facing pair (or the caustic pass); specular rays need a "
+      "mirror or glass; shadow rays only for light that B does not hold (lesson 13, §2)");
 }
 
 }  // namespace illum

@@ -13,9 +13,10 @@ namespace illum {
 
 // Task 2. (u, v) of a point of a meshed quad (inverse bilinear map) or triangle (barycentric).
 Vec2 surface_coordinates(std::span<const Point3> polygon, const Point3& x) {
-  throw NotImplemented("surface_coordinates",
-                       "solve cross(g, f) v² + (cross(e, f) + cross(h, g)) v + cross(h, e) = 0 with the stable "
-                       "roots, then u = (h − f v)/(e + g v) (lesson 13, §3)");
+  throw NotImplemented(
+      "surface_coordinates",
+      "solve cross(g, f) v² + (cross(e, f) + cross(h, g)) v + cross(h, e) = 0 with the stable "
+      "roots, then u = (h − f v)/(e + g v) (lesson 13, §3)");
 }
 
 // Task 3. The patch holding (u, v) and its corners' weights.
@@ -28,9 +29,10 @@ PatchCell locate_patch(const Vec2& uv, int n, int m, int vertex_count) {
 // Task 4. I = D + k_r I_r + k_t I_t.
 Color second_pass_radiance(const Color& diffuse, const Color& k_r, const Color& reflected, const Color& k_t,
                            const Color& transmitted) {
-  throw NotImplemented("second_pass_radiance",
-                       "add k_r I_r and k_t I_t channel by channel, only where the factor is not zero; refuse "
-                       "k_r + k_t > 1 (lesson 13, eq. 13.2)");
+  throw NotImplemented(
+      "second_pass_radiance",
+      "add k_r I_r and k_t I_t channel by channel, only where the factor is not zero; refuse "
+      "k_r + k_t > 1 (lesson 13, eq. 13.2)");
 }
 
 }  // namespace illum

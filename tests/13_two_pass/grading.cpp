@@ -52,7 +52,8 @@ SceneInventory cornell_box() {
 TEST_SUITE("lesson13") {
   // --- the plan ---------------------------------------------------------------
   TEST_CASE("an empty plan: an empty scene runs no pass and casts only primary rays") {
-    const TwoPassPlan plan = plan_two_pass(SceneInventory{}, TwoPassRequest{.max_depth = 7, .caustics = true});
+    const TwoPassPlan plan =
+        plan_two_pass(SceneInventory{}, TwoPassRequest{.max_depth = 7, .caustics = true});
     CHECK_MESSAGE(!plan.radiosity_pass, "no emitter, no surface: nothing to solve");
     CHECK_MESSAGE(!plan.caustic_pass, "no emitter and no mirror: no light rays");
     CHECK_MESSAGE(!plan.reflection, "no mirror or glass: no reflected rays");
@@ -75,7 +76,8 @@ TEST_SUITE("lesson13") {
     const SceneInventory wall{.diffuse_surfaces = 1, .facing_pairs = 0, .emitters = 1};
     const TwoPassPlan plan = plan_two_pass(wall, TwoPassRequest{});
     CHECK_MESSAGE(!plan.radiosity_pass, "a single diffuse surface has no partner to bounce light to");
-    CHECK_MESSAGE(plan.shadow_rays, "the wall's direct light is then pass two's, by shadow rays to the emitter");
+    CHECK_MESSAGE(plan.shadow_rays,
+                  "the wall's direct light is then pass two's, by shadow rays to the emitter");
     CHECK(!plan.reflection);
     CHECK(plan.max_depth == 0);
   }
@@ -83,7 +85,8 @@ TEST_SUITE("lesson13") {
   TEST_CASE("the Cornell box: pass one only, no specular rays and no shadow rays") {
     const TwoPassPlan plan = plan_two_pass(cornell_box(), TwoPassRequest{.max_depth = 7});
     CHECK(plan.radiosity_pass);
-    CHECK_MESSAGE(!plan.shadow_rays, "the emitter's direct light is in B already: adding it would count it twice");
+    CHECK_MESSAGE(!plan.shadow_rays,
+                  "the emitter's direct light is in B already: adding it would count it twice");
     CHECK_MESSAGE(!plan.reflection, "no mirror or glass");
     CHECK(!plan.refraction);
     CHECK_MESSAGE(plan.max_depth == 0, "asked for 7, but with no specular rays the tree has depth 0");
@@ -108,7 +111,8 @@ TEST_SUITE("lesson13") {
     CHECK(plan.reflection);
     CHECK(plan.refraction);
     CHECK_MESSAGE(!plan.shadow_rays, "the spheres have no diffuse part, the walls' light is in B");
-    CHECK_MESSAGE(plan.max_depth == 9, "k_r + k_t = 1 (lossless glass): 1^d never falls below 1/1024, no cut");
+    CHECK_MESSAGE(plan.max_depth == 9,
+                  "k_r + k_t = 1 (lossless glass): 1^d never falls below 1/1024, no cut");
     CHECK(!plan.caustic_pass);
   }
 
@@ -128,7 +132,8 @@ TEST_SUITE("lesson13") {
     box.point_lights = 1;
     const TwoPassPlan plan = plan_two_pass(box, TwoPassRequest{});
     CHECK(plan.radiosity_pass);
-    CHECK_MESSAGE(plan.shadow_rays, "pass one meshes emitting surfaces only; a point light's direct light is pass two's");
+    CHECK_MESSAGE(plan.shadow_rays,
+                  "pass one meshes emitting surfaces only; a point light's direct light is pass two's");
   }
 
   TEST_CASE("a diffuse sphere in the Cornell box is lit by shadow rays, the walls by B") {
@@ -136,11 +141,13 @@ TEST_SUITE("lesson13") {
     box.other_diffuse = 1;
     const TwoPassPlan plan = plan_two_pass(box, TwoPassRequest{});
     CHECK(plan.radiosity_pass);
-    CHECK_MESSAGE(plan.shadow_rays, "a sphere has no patches: its light from the emitter comes from shadow rays");
+    CHECK_MESSAGE(plan.shadow_rays,
+                  "a sphere has no patches: its light from the emitter comes from shadow rays");
   }
 
   TEST_CASE("the caustic pass needs an emitter, a mirror or glass and a receiver, and forces pass one") {
-    const SceneInventory wall_and_mirror{.diffuse_surfaces = 1, .emitters = 1, .mirrors = 1, .heaviest_specular = 0.9};
+    const SceneInventory wall_and_mirror{
+        .diffuse_surfaces = 1, .emitters = 1, .mirrors = 1, .heaviest_specular = 0.9};
     const TwoPassPlan without = plan_two_pass(wall_and_mirror, TwoPassRequest{.caustics = false});
     CHECK_MESSAGE(!without.radiosity_pass, "one wall: no interreflection");
     CHECK(without.shadow_rays);
@@ -156,7 +163,8 @@ TEST_SUITE("lesson13") {
 
   TEST_CASE("hard case: k_r + k_t > 1 and a negative depth are refused") {
     const SceneInventory bright{.diffuse_surfaces = 1, .emitters = 1, .mirrors = 1, .heaviest_specular = 1.2};
-    ILLUM_CHECK_THROWS_CONTAINING(plan_two_pass(bright, TwoPassRequest{}), "k_r + k_t", std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(plan_two_pass(bright, TwoPassRequest{}), "k_r + k_t",
+                                  std::invalid_argument);
     ILLUM_CHECK_THROWS_CONTAINING(plan_two_pass(cornell_box(), TwoPassRequest{.max_depth = -1}), "depth",
                                   std::invalid_argument);
     SceneInventory nan_weight = bright;
@@ -179,7 +187,8 @@ TEST_SUITE("lesson13") {
     // No two sides parallel, tilted out of every axis plane (the projection must pick its axes).
     const Vec3 a(1, 2, 2), b(-2, 2, 1);  // the plane's two directions
     const Point3 o(3, -1, 2);
-    const std::array<Point3, 4> general{o, o + 10.0 * a + 1.0 * b, o + 12.0 * a + 9.0 * b, o + 1.0 * a + 11.0 * b};
+    const std::array<Point3, 4> general{o, o + 10.0 * a + 1.0 * b, o + 12.0 * a + 9.0 * b,
+                                        o + 1.0 * a + 11.0 * b};
     for (double u : {0.0, 0.2, 0.7, 1.0})
       for (double v : {0.1, 0.5, 1.0}) check_uv(general, u, v, 1e-12);
   }
@@ -191,7 +200,8 @@ TEST_SUITE("lesson13") {
     check_uv(slanted, 1.0, 1.0, 1e-14);
     // g of size 1e-9: the textbook root (−k1 + √(k1² − 4 k2 k0)) / (2 k2) cancels to ~1e-7;
     // the stable pair q = −(k1 + sign(k1)√Δ)/2, roots q/k2 and k0/q, keeps every digit.
-    const std::array<Point3, 4> almost{Point3(0, 0, 0), Point3(1, 0, 0), Point3(1 + 1e-9, 0, 1), Point3(0, 0, 1)};
+    const std::array<Point3, 4> almost{Point3(0, 0, 0), Point3(1, 0, 0), Point3(1 + 1e-9, 0, 1),
+                                       Point3(0, 0, 1)};
     check_uv(almost, 0.3, 0.6, 1e-12);
     check_uv(almost, 0.9, 0.05, 1e-12);
   }
@@ -230,7 +240,8 @@ TEST_SUITE("lesson13") {
 
   TEST_CASE("hard case: the far edge and corner of a quad belong to the last cell, not past it") {
     const PatchCell corner = locate_patch(Vec2(1.0, 1.0), 4, 2, 4);
-    CHECK_MESSAGE(corner.patch == 7, "floor(1·4) = 4 is one past the last column: the point is in cell (3, 1)");
+    CHECK_MESSAGE(corner.patch == 7,
+                  "floor(1·4) = 4 is one past the last column: the point is in cell (3, 1)");
     CHECK(corner.weight[2] == doctest::Approx(1.0));
     CHECK(corner.weight[0] == doctest::Approx(0.0));
     const PatchCell edge = locate_patch(Vec2(1.0, 0.25), 4, 2, 4);
@@ -251,7 +262,7 @@ TEST_SUITE("lesson13") {
       bool down;
       std::size_t patch;
     };
-    const std::vector<Expect> order{{0, 0, false, 0}, {0, 0, true, 1}, {1, 0, false, 2},
+    const std::vector<Expect> order{{0, 0, false, 0}, {0, 0, true, 1},  {1, 0, false, 2},
                                     {1, 0, true, 3},  {2, 0, false, 4}, {0, 1, false, 5},
                                     {0, 1, true, 6},  {1, 1, false, 7}, {0, 2, false, 8}};
     for (const Expect& e : order) {
@@ -283,15 +294,17 @@ TEST_SUITE("lesson13") {
       for (double v : {0.02, 0.4, 0.66}) {
         const PatchCell q = locate_patch(Vec2(u, v), n, m, 4);
         const int i = static_cast<int>(q.patch % n), j = static_cast<int>(q.patch / n);
-        const std::array<double, 4> corner{f(double(i) / n, double(j) / m), f(double(i + 1) / n, double(j) / m),
-                                           f(double(i + 1) / n, double(j + 1) / m), f(double(i) / n, double(j + 1) / m)};
+        const std::array<double, 4> corner{
+            f(double(i) / n, double(j) / m), f(double(i + 1) / n, double(j) / m),
+            f(double(i + 1) / n, double(j + 1) / m), f(double(i) / n, double(j + 1) / m)};
         double got = 0;
         for (std::size_t k = 0; k < 4; ++k) got += q.weight[k] * corner[k];
         CHECK(got == doctest::Approx(f(u, v)).epsilon(1e-12));
       }
     // Triangles: the point's value from the three corners of whichever triangle holds it;
     // on the diagonal between an up and a down triangle both give f, so either may hold it.
-    for (const Vec2& uv : {Vec2(0.1, 0.1), Vec2(0.3, 0.25), Vec2(0.2, 0.2), Vec2(0.45, 0.35), Vec2(0.1, 0.7)}) {
+    for (const Vec2& uv :
+         {Vec2(0.1, 0.1), Vec2(0.3, 0.25), Vec2(0.2, 0.2), Vec2(0.45, 0.35), Vec2(0.1, 0.7)}) {
       const PatchCell t = locate_patch(uv, n, 0, 3);
       // Recover (i, j, down) from the patch index by listing the mesh in order.
       int i = -1, j = -1;
@@ -304,10 +317,12 @@ TEST_SUITE("lesson13") {
       REQUIRE(i >= 0);
       const double h = 1.0 / n;
       const std::array<double, 3> corner =
-          down ? std::array<double, 3>{f((i + 1) * h, j * h), f((i + 1) * h, (j + 1) * h), f(i * h, (j + 1) * h)}
+          down ? std::array<double, 3>{f((i + 1) * h, j * h), f((i + 1) * h, (j + 1) * h),
+                                       f(i * h, (j + 1) * h)}
                : std::array<double, 3>{f(i * h, j * h), f((i + 1) * h, j * h), f(i * h, (j + 1) * h)};
       const double got = t.weight[0] * corner[0] + t.weight[1] * corner[1] + t.weight[2] * corner[2];
-      INFO("(u, v) = (" << uv.x << ", " << uv.y << ") in triangle (" << i << ", " << j << ") " << (down ? "down" : "up"));
+      INFO("(u, v) = (" << uv.x << ", " << uv.y << ") in triangle (" << i << ", " << j << ") "
+                        << (down ? "down" : "up"));
       CHECK(got == doctest::Approx(f(uv.x, uv.y)).epsilon(1e-12));
       for (int k = 0; k < 3; ++k) CHECK(t.weight[static_cast<std::size_t>(k)] >= 0.0);
     }
@@ -322,13 +337,14 @@ TEST_SUITE("lesson13") {
     CHECK(got.g == doctest::Approx(1.2).epsilon(1e-15));
     CHECK(got.b == doctest::Approx(1.3).epsilon(1e-15));
     const Color lossless = second_pass_radiance(Color(0.0), Color(0.1), Color(2.0), Color(0.9), Color(1.0));
-    CHECK_MESSAGE(lossless.r == doctest::Approx(1.1).epsilon(1e-15), "k_r + k_t = 1 exactly is lossless glass: allowed");
+    CHECK_MESSAGE(lossless.r == doctest::Approx(1.1).epsilon(1e-15),
+                  "k_r + k_t = 1 exactly is lossless glass: allowed");
   }
 
   TEST_CASE("hard case: a ray that was not cast is not read") {
     const double nan = std::numeric_limits<double>::quiet_NaN();
-    const Color got = second_pass_radiance(Color(0.5, 0.25, 0.125), Color(0.0, 0.5, 0.0), Color(nan), Color(0.0),
-                                           Color(nan));
+    const Color got = second_pass_radiance(Color(0.5, 0.25, 0.125), Color(0.0, 0.5, 0.0), Color(nan),
+                                           Color(0.0), Color(nan));
     INFO("k = 0 in a channel means no ray there: 0·NaN would be NaN, the channel must stay the diffuse part");
     CHECK(got.r == 0.5);
     CHECK(std::isnan(got.g));  // k_r = 0.5 reads the (here NaN) reflected value, as it must
@@ -340,7 +356,7 @@ TEST_SUITE("lesson13") {
         second_pass_radiance(Color(0.0), Color(0.6, 0.1, 0.1), Color(1.0), Color(0.5, 0.1, 0.1), Color(1.0)),
         "k_r + k_t", std::invalid_argument);
     CHECK_THROWS_AS(static_cast<void>(second_pass_radiance(Color(0.0), Color(0.1, 0.1, -0.1), Color(1.0),
-                                                            Color(0.0), Color(1.0))),
+                                                           Color(0.0), Color(1.0))),
                     std::invalid_argument);
   }
 }

@@ -265,13 +265,13 @@ CausticPass caustic_pass(const Scene& scene, const TwoPassMesh& mesh, std::uint6
   if (emitters.patches.empty() || photons == 0 || !(emitters.total > 0)) return pass;
   constexpr std::uint64_t block = 4096;  // photons per random stream: the result does not depend on threads
   const auto blocks = static_cast<std::int64_t>((photons + block - 1) / block);
-  const int threads = omp_get_max_threads();
-  std::vector<std::vector<Color>> deposits(static_cast<std::size_t>(threads),
-                                           std::vector<Color>(n, Color(0.0)));
-  std::vector<std::uint64_t> first(static_cast<std::size_t>(threads), 0), landed(first);
+  // Each block keeps its deposits in order; they are added up block by block afterwards, so
+  // the sums (and the image) are the same bit for bit whatever the number of threads.
+  std::vector<std::vector<std::pair<std::size_t, Color>>> deposits(static_cast<std::size_t>(blocks));
+  std::vector<std::uint64_t> first(static_cast<std::size_t>(blocks), 0);
 #pragma omp parallel for schedule(dynamic)
   for (std::int64_t b = 0; b < blocks; ++b) {
-    const auto t = static_cast<std::size_t>(omp_get_thread_num());
+    const auto t = static_cast<std::size_t>(b);
     Rng rng(seed, static_cast<std::uint64_t>(b));
     const std::uint64_t end = std::min<std::uint64_t>(photons, static_cast<std::uint64_t>(b + 1) * block);
     for (std::uint64_t k = static_cast<std::uint64_t>(b) * block; k < end; ++k) {
@@ -296,8 +296,7 @@ CausticPass caustic_pass(const Scene& scene, const TwoPassMesh& mesh, std::uint6
                                                 static_cast<int>(surface.polygon.size()));
             const std::size_t j = surface.first_patch + std::min(cell.patch, surface.patch_count - 1);
             const Patch& patch = mesh.radiosity.patches[j];
-            deposits[t][j] += patch.reflectance * power / patch.area;
-            ++landed[t];
+            deposits[t].emplace_back(j, patch.reflectance * power / patch.area);
           }
           break;
         }
@@ -327,9 +326,9 @@ CausticPass caustic_pass(const Scene& scene, const TwoPassMesh& mesh, std::uint6
     }
   }
   for (std::size_t t = 0; t < deposits.size(); ++t) {
-    for (std::size_t j = 0; j < n; ++j) pass.extra_emission[j] += deposits[t][j];
+    for (const auto& [j, e] : deposits[t]) pass.extra_emission[j] += e;
     pass.specular_first += first[t];
-    pass.deposited += landed[t];
+    pass.deposited += deposits[t].size();
   }
   pass.photons = photons;
   pass.seconds = watch.seconds();
