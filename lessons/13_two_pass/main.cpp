@@ -40,7 +40,7 @@ struct Settings {
   int depth = 5;                // pass two's depth limit asked for
   int width = 256;              // the images' width (height in the camera's proportion)
   int study_width = 64;         // the study's images (the reference is path traced at this size)
-  int reference_samples = 512;  // paths per pixel of the reference
+  int reference_samples = 256;  // paths per pixel of the reference
   double photons = 1e6;         // light rays of the caustic pass
   std::uint64_t seed = 1;
   bool quick = false;
@@ -72,6 +72,22 @@ PipelineRun run_pipeline(const Scene& scene, const std::string& file, const Sett
   }
   run.eye = eye_pass(scene, run.mesh, run.plan.radiosity_pass ? &corners : nullptr, run.plan, width, 0);
   return run;
+}
+
+// Pass two over a run's solution without specular rays: radiosity alone.
+EyePass diffuse_eye_pass(const Scene& scene, const PipelineRun& run, int width) {
+  TwoPassPlan diffuse_only = run.plan;
+  diffuse_only.reflection = diffuse_only.refraction = false, diffuse_only.max_depth = 0;
+  const CornerRadiosity corners = flat_corners(run.radiosity.state.radiosity);
+  return eye_pass(scene, run.mesh, &corners, diffuse_only, width, 0);
+}
+
+// Pass two over a run's solution with its plan, at another size or depth limit.
+EyePass eye_again(const Scene& scene, const PipelineRun& run, int width, int depth) {
+  TwoPassPlan plan = run.plan;
+  plan.max_depth = std::min(depth, run.plan.max_depth);
+  const CornerRadiosity corners = flat_corners(run.radiosity.state.radiosity);
+  return eye_pass(scene, run.mesh, &corners, plan, width, 0);
 }
 
 // An exposure that maps the 95th percentile of the brightest channel to 0.85 (lights saturate).
@@ -143,47 +159,40 @@ void plan_section(OutputFolder& out, const Settings& s) {
 }
 
 // --- 2. Radiosity alone, ray tracing alone, both ------------------------------
-Image images_section(OutputFolder& out, const Scene& scene, const Settings& s) {
+PipelineRun images_section(OutputFolder& out, const Scene& scene, const Settings& s) {
   PipelineRun both = run_pipeline(scene, s.scene, s, false, s.width);
-  std::cout << both.plan.summary();
-  TwoPassPlan diffuse_only = both.plan;
-  diffuse_only.reflection = diffuse_only.refraction = false, diffuse_only.max_depth = 0;
-  const PipelineRun radiosity = run_pipeline(scene, s.scene, s, false, s.width, diffuse_only);
+  // Pass one is view independent: radiosity alone is the same solution seen without
+  // specular rays (depth 0), the spheres black where pass one made them absorb.
+  const EyePass radiosity = diffuse_eye_pass(scene, both, s.width);
+  Stopwatch watch;
   const RenderResult rays = render_ray_tree(scene, {.width = s.width, .max_depth = s.depth});
-  double ray_seconds = 0;
-  {
-    Stopwatch w;
-    (void)render_ray_tree(scene, {.width = s.width, .max_depth = s.depth});
-    ray_seconds = w.seconds();
-  }
+  const double ray_seconds = watch.seconds();
   const double exposure = exposure_for(both.eye.image);
-  out.image(side_by_side({exposed(radiosity.eye.image, exposure), exposed(rays.image, exposure),
+  out.image(side_by_side({exposed(radiosity.image, exposure), exposed(rays.image, exposure),
                           exposed(both.eye.image, exposure)}),
             "three_images", "Radiosity alone (spheres black), ray tracing alone (lesson 06), both passes");
   out.image(exposed(both.eye.image, exposure), "two_pass", "The two passes combined");
   Table t({"image", "pass", "patches", "shots", "rays", "seconds"});
-  t.add_row({"radiosity alone", "pass one", count(radiosity.mesh.radiosity.patches.size()),
-             count(radiosity.radiosity.hemicube_rows), std::int64_t{0}, radiosity.radiosity.seconds});
-  t.add_row({"radiosity alone", "pass two (no specular rays)", std::int64_t{0}, std::int64_t{0},
-             count(radiosity.eye.stats.rays.total()), radiosity.eye.seconds});
-  t.add_row({"ray tracing alone", "lesson 06's ray tree", std::int64_t{0}, std::int64_t{0},
-             count(rays.stats.rays.total()), ray_seconds});
-  t.add_row({"both", "pass one", count(both.mesh.radiosity.patches.size()),
+  t.add_row({"radiosity alone, both", "pass one", count(both.mesh.radiosity.patches.size()),
              count(both.radiosity.hemicube_rows), std::int64_t{0}, both.radiosity.seconds});
+  t.add_row({"radiosity alone", "pass two without specular rays", std::int64_t{0}, std::int64_t{0},
+             count(radiosity.stats.rays.total()), radiosity.seconds});
   t.add_row({"both", "pass two", std::int64_t{0}, std::int64_t{0}, count(both.eye.stats.rays.total()),
              both.eye.seconds});
+  t.add_row({"ray tracing alone", "lesson 06's ray tree", std::int64_t{0}, std::int64_t{0},
+             count(rays.stats.rays.total()), ray_seconds});
   out.table(t, "pass_times",
             "What each image cost, pass by pass (" + std::to_string(s.width) + " pixels wide)");
   std::cout << "pass one: " << both.mesh.receiver_patches << " receiver + " << both.mesh.occluder_patches
             << " occluder patches, " << both.radiosity.hemicube_rows << " shots, "
             << format_number(both.radiosity.seconds, 3) << " s; pass two: " << both.eye.stats.rays.summary()
             << ", " << format_number(both.eye.seconds, 3) << " s\n";
-  return both.eye.image;
+  return both;
 }
 
 // --- 3. What the classic method misses: caustics ------------------------------
-void caustics_section(OutputFolder& out, const Scene& scene, const Settings& s, const Image& classic) {
-  const PipelineRun with = run_pipeline(scene, s.scene, s, true, s.width);
+PipelineRun caustics_section(OutputFolder& out, const Scene& scene, const Settings& s, const Image& classic) {
+  PipelineRun with = run_pipeline(scene, s.scene, s, true, s.width);
   const double exposure = exposure_for(classic);
   Image gain(classic.width(), classic.height());
   for (int y = 0; y < gain.height(); ++y)
@@ -199,51 +208,47 @@ void caustics_section(OutputFolder& out, const Scene& scene, const Settings& s, 
   out.table(t, "caustic_pass", "The caustic pass: light rays from the emitter through the spheres");
   std::cout << "caustic pass: " << with.caustics.photons << " light rays, " << with.caustics.deposited
             << " deposited after a specular bounce\n";
+  return with;
 }
 
 // --- 4. The study: cost of each pass, and what each buys in error -------------
-void study_section(OutputFolder& out, const Scene& scene, const Settings& s) {
+void study_section(OutputFolder& out, const Scene& scene, const Settings& s, const PipelineRun& both,
+                   const PipelineRun& caustic) {
   const int w = s.study_width;
+  report_progress(id, "path-traced reference", 0, 1);
   const Image reference = lesson13::path_traced_reference(scene, w, 0, s.reference_samples, s.seed);
   const Image half = lesson13::path_traced_reference(scene, w, 0, s.reference_samples / 2, s.seed + 1);
   Table methods({"method", "seconds", "relative error"});
-  methods.add_row({"reference noise (half the samples, another seed)", 0.0, relative_error(half, reference)});
+  methods.add_row({"reference noise (half the paths, another seed)", 0.0, relative_error(half, reference)});
   Stopwatch watch;
   const RenderResult rays = render_ray_tree(scene, {.width = w, .max_depth = s.depth});
   methods.add_row({"ray tracing alone", watch.seconds(), relative_error(rays.image, reference)});
-  PipelineRun both = run_pipeline(scene, s.scene, s, false, w);
-  TwoPassPlan diffuse_only = both.plan;
-  diffuse_only.reflection = diffuse_only.refraction = false, diffuse_only.max_depth = 0;
-  const PipelineRun radiosity = run_pipeline(scene, s.scene, s, false, w, diffuse_only);
-  methods.add_row({"radiosity alone", radiosity.radiosity.seconds + radiosity.eye.seconds,
-                   relative_error(radiosity.eye.image, reference)});
-  methods.add_row(
-      {"two-pass", both.radiosity.seconds + both.eye.seconds, relative_error(both.eye.image, reference)});
-  const PipelineRun caustic = run_pipeline(scene, s.scene, s, true, w);
+  const EyePass radiosity = diffuse_eye_pass(scene, both, w);
+  methods.add_row({"radiosity alone", both.radiosity.seconds + radiosity.seconds,
+                   relative_error(radiosity.image, reference)});
+  const EyePass two = eye_again(scene, both, w, s.depth);
+  methods.add_row({"two-pass", both.radiosity.seconds + two.seconds, relative_error(two.image, reference)});
+  const EyePass with = eye_again(scene, caustic, w, s.depth);
   methods.add_row({"two-pass + caustic pass",
-                   caustic.caustics.seconds + caustic.radiosity.seconds + caustic.eye.seconds,
-                   relative_error(caustic.eye.image, reference)});
+                   caustic.caustics.seconds + caustic.radiosity.seconds + with.seconds,
+                   relative_error(with.image, reference)});
   out.table(methods, "study_methods",
             "Error of each method against a path-traced reference (" + std::to_string(s.reference_samples) +
                 " paths per pixel, " + std::to_string(w) + " pixels wide)");
-
-  Table mesh(
-      {"max patch edge", "patches", "shots", "pass one seconds", "pass two seconds", "relative error"});
+  Table mesh({"max patch edge", "patches", "shots", "pass one seconds", "relative error"});
   for (const double edge :
-       s.quick ? std::vector<double>{200, 100} : std::vector<double>{200, 140, 100, 70, 50, 35}) {
+       s.quick ? std::vector<double>{200, 140} : std::vector<double>{200, 140, 100, 70, 50}) {
+    report_progress(id, "mesh study, edge " + format_number(edge, 3), 0, 1);
     Settings e = s;
     e.edge = edge;
     const PipelineRun r = run_pipeline(scene, s.scene, e, false, w);
     mesh.add_row({edge, count(r.mesh.radiosity.patches.size()), count(r.radiosity.hemicube_rows),
-                  r.radiosity.seconds, r.eye.seconds, relative_error(r.eye.image, reference)});
+                  r.radiosity.seconds, relative_error(r.eye.image, reference)});
   }
   out.table(mesh, "study_mesh", "Pass one's cost and the two-pass error against the mesh size");
   Table depth({"depth limit", "rays", "pass two seconds", "relative error"});
   for (int d = 0; d <= (s.quick ? 2 : 6); ++d) {
-    TwoPassPlan plan = both.plan;
-    plan.max_depth = std::min(d, both.plan.max_depth);
-    const CornerRadiosity corners = flat_corners(both.radiosity.state.radiosity);
-    const EyePass eye = eye_pass(scene, both.mesh, &corners, plan, w, 0);
+    const EyePass eye = eye_again(scene, both, w, d);
     depth.add_row(
         {std::int64_t{d}, count(eye.stats.rays.total()), eye.seconds, relative_error(eye.image, reference)});
   }
@@ -261,7 +266,7 @@ void study_section(OutputFolder& out, const Scene& scene, const Settings& s) {
              .y = "pass one seconds",
              .title = "pass one seconds"}}},
       "study_mesh", "Error and cost of pass one against the mesh");
-  out.plot({.title = "Pass two: error and rays against the depth limit",
+  out.plot({.title = "Pass two: error against the depth limit",
             .x_label = "depth limit",
             .y_label = "relative error",
             .log_y = true,
@@ -317,7 +322,7 @@ int main(int argc, char** argv) {
         app.add_option("--photons", s.photons, "Light rays of the caustic pass (default 1e6)")
             ->check(CLI::Range(1e3, 1e8));
         app.add_option("--reference-samples", s.reference_samples,
-                       "Paths per pixel of the reference (default 512)")
+                       "Paths per pixel of the reference (default 256)")
             ->check(CLI::Range(2, 65536));
       },
       [&](const illum::ProgramOptions& options) {
@@ -332,9 +337,9 @@ int main(int argc, char** argv) {
         const Scene scene = checked_scene(s);
         OutputFolder out(options.out, info.id, info.title);
         plan_section(out, s);
-        const Image classic = images_section(out, scene, s);
-        caustics_section(out, scene, s, classic);
-        study_section(out, scene, s);
+        const PipelineRun classic = images_section(out, scene, s);
+        const PipelineRun caustic = caustics_section(out, scene, s, classic.eye.image);
+        study_section(out, scene, s, classic, caustic);
         out.finish();
       });
 }

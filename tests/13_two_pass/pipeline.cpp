@@ -18,11 +18,13 @@ namespace {
 // A scene from JSON text, with the camera and materials every test here shares.
 Scene scene_from(const std::string& primitives, const std::string& eye = "[50, 50, -200]") {
   const std::string text = R"({"format": 1, "name": "test",
-    "camera": {"eye": )" + eye + R"(, "target": [50, 50, 100], "up": [0, 1, 0], "vertical_fov_degrees": 30,
+    "camera": {"eye": )" + eye +
+                           R"(, "target": [50, 50, 100], "up": [0, 1, 0], "vertical_fov_degrees": 30,
                "width": 16, "height": 16},
     "materials": {"white": {"diffuse": [0.5, 0.5, 0.5]}, "light": {"emission": [10, 10, 10]},
                   "mirror": {"reflectance": [0.9, 0.9, 0.9]}},
-    "primitives": )" + primitives + "}";
+    "primitives": )" + primitives +
+                           "}";
   return read_scene(JsonReader::parse_text(text, "test.json"), ".");
 }
 
@@ -31,7 +33,8 @@ const std::string wall =
 // The light faces the wall (−z seen from the wall: counter-clockwise from +z… facing +z).
 const std::string light =
     R"({"type": "polygon", "name": "light", "material": "light", "vertices": [[40,40,0],[60,40,0],[60,60,0],[40,60,0]]})";
-const std::string mirror_ball = R"({"type": "sphere", "material": "mirror", "center": [50, 50, 60], "radius": 10})";
+const std::string mirror_ball =
+    R"({"type": "sphere", "material": "mirror", "center": [50, 50, 60], "radius": 10})";
 
 }  // namespace
 
