@@ -316,7 +316,7 @@ int main(int argc, char** argv) {
       [&](CLI::App& app) {
         app.add_option("--scene", s.scene, "Scene file or shipped name (default cornell_spheres)");
         app.add_option("--edge", s.edge, "Largest patch edge of pass one, scene units (default 50)")
-            ->check(CLI::PositiveNumber);
+            ->check(CLI::Range(1e-6, 1e9));
         app.add_option("--depth", s.depth, "Depth limit of pass two's specular rays (default 5)")
             ->check(CLI::Range(0, 32));
         app.add_option("--photons", s.photons, "Light rays of the caustic pass (default 1e6)")
