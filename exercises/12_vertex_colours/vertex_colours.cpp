@@ -13,7 +13,8 @@
 namespace illum {
 
 // Task 1. The mean of the faces that touch each vertex (corners and T-vertex hosts).
-std::vector<Color> average_vertex_radiosity(const SharedVertexMesh& mesh, const std::vector<Color>& face_radiosity) {
+std::vector<Color> average_vertex_radiosity(const SharedVertexMesh& mesh,
+                                            const std::vector<Color>& face_radiosity) {
   throw NotImplemented("average_vertex_radiosity",
                        "sum B_f over the faces listing v and the T-vertex hosts of v, divide by their "
                        "number (lesson 12, §2)");
@@ -35,7 +36,8 @@ void resolve_t_vertices(const SharedVertexMesh& mesh, std::vector<Color>& vertex
 
 // Task 4. Per face, per corner, by the chosen rule.
 std::vector<std::vector<Color>> corner_radiosity(const SharedVertexMesh& mesh,
-                                                 const std::vector<Color>& face_radiosity, VertexColourRule rule) {
+                                                 const std::vector<Color>& face_radiosity,
+                                                 VertexColourRule rule) {
   throw NotImplemented("corner_radiosity",
                        "patch_own: every corner B_f; otherwise Task 1 or 2, then Task 3, then read each "
                        "face's corners (lesson 12, §2-4)");

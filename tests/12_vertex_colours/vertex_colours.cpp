@@ -54,7 +54,8 @@ void check_colour(const Color& got, const Color& want, const std::string& why) {
 }  // namespace
 
 TEST_SUITE("lesson12") {
-  TEST_CASE("average: the 2 x 2 grid's centre is the mean of four faces, an edge vertex of two, a corner its own") {
+  TEST_CASE(
+      "average: the 2 x 2 grid's centre is the mean of four faces, an edge vertex of two, a corner its own") {
     // Faces 0 (B = 4), 1 (6), 2 (8), 3 (10): centre (1, 1) = 28/4 = 7;
     // bottom edge (1, 0) = (4 + 6)/2 = 5; corner (0, 0) = 4 (one face).
     const SharedVertexMesh mesh = share_vertices(grid(2, 2));
@@ -68,7 +69,9 @@ TEST_SUITE("lesson12") {
     CHECK_MESSAGE(per_vertex.size() == 9, "a 2 x 2 grid has 3 x 3 shared vertices");
   }
 
-  TEST_CASE("hard case: a vertex on the boundary with one patch is extrapolated past the interior, B_a = 2B1 - B_e") {
+  TEST_CASE(
+      "hard case: a vertex on the boundary with one patch is extrapolated past the interior, B_a = 2B1 - "
+      "B_e") {
     // Faces 4, 6, 8, 10 as above, centre average 7:
     //   corner (0, 0) of face 0:  2·4 − 7 = 1     corner (2, 2) of face 3: 2·10 − 7 = 13
     //   edge (1, 0), faces 0, 1, inside edge to (1, 1): 4 + 6 − 7 = 3
@@ -90,10 +93,13 @@ TEST_SUITE("lesson12") {
     const std::vector<Color> b = {Color(1, 2, 0), Color(1, 2, 0), Color(9, 2, 0), Color(9, 2, 0)};
     const std::vector<Color> v = extrapolated_vertex_radiosity(mesh, b);
     const auto corners = corner_radiosity(mesh, b, VertexColourRule::extrapolate);
-    check_colour(corner_at(mesh, corners, 0, {0, 0, 0}), Color(0, 2, 0), "2·1 − 5 = −3 clamps to 0 in red only");
-    check_colour(corner_at(mesh, corners, 0, {1, 0, 0}), Color(0, 2, 0), "1 + 1 − 5 = −3 clamps to 0 in red only");
+    check_colour(corner_at(mesh, corners, 0, {0, 0, 0}), Color(0, 2, 0),
+                 "2·1 − 5 = −3 clamps to 0 in red only");
+    check_colour(corner_at(mesh, corners, 0, {1, 0, 0}), Color(0, 2, 0),
+                 "1 + 1 − 5 = −3 clamps to 0 in red only");
     check_colour(corner_at(mesh, corners, 3, {2, 2, 0}), Color(13, 2, 0), "2·9 − 5 = 13");
-    for (const Color& c : v) CHECK_MESSAGE(glm::all(glm::greaterThanEqual(c, Color(0.0))), "no vertex is negative");
+    for (const Color& c : v)
+      CHECK_MESSAGE(glm::all(glm::greaterThanEqual(c, Color(0.0))), "no vertex is negative");
   }
 
   TEST_CASE("extrapolation reproduces a linear radiosity exactly, the average does not at the boundary") {
@@ -115,7 +121,8 @@ TEST_SUITE("lesson12") {
     // The average at the corner (0, 0) is face 0's B = B(0.5, 0.5) = 12.5, not B(0, 0) = 10.
     const std::vector<Color> a = average_vertex_radiosity(mesh, b);
     for (std::size_t i = 0; i < a.size(); ++i)
-      if (length(mesh.positions[i]) == 0) CHECK_MESSAGE(a[i].r == doctest::Approx(12.5), "the average pulls inwards");
+      if (length(mesh.positions[i]) == 0)
+        CHECK_MESSAGE(a[i].r == doctest::Approx(12.5), "the average pulls inwards");
   }
 
   TEST_CASE("hard case: a vertex shared by patches of two different walls is two vertices, one per wall") {
@@ -136,13 +143,15 @@ TEST_SUITE("lesson12") {
     }
   }
 
-  TEST_CASE("hard case: a T-vertex takes the value along the large face's edge, so the picture has no crack") {
+  TEST_CASE(
+      "hard case: a T-vertex takes the value along the large face's edge, so the picture has no crack") {
     // Big face [0, 2]² (B = 8) beside two small faces [2, 3] × [0, 1] (B = 2)
     // and [2, 3] × [1, 2] (B = 4). (2, 1) is a T-vertex on the big face's edge
     // (2, 0)→(2, 2). Averages: (2, 0) = (8 + 2)/2 = 5, (2, 2) = (8 + 4)/2 = 6,
     // and (2, 1) = (8 + 2 + 4)/3 = 14/3 before the T-vertex is resolved.
     // Resolved: (5 + 6)/2 = 5.5, which is what the big face shows at (2, 1).
-    const SharedVertexMesh mesh = share_vertices({square(0, 0, 2, 2), square(2, 0, 3, 1), square(2, 1, 3, 2)});
+    const SharedVertexMesh mesh =
+        share_vertices({square(0, 0, 2, 2), square(2, 0, 3, 1), square(2, 1, 3, 2)});
     REQUIRE(mesh.t_vertices.size() == 1);
     const std::vector<Color> b = {Color(8), Color(2), Color(4)};
     const std::vector<Color> raw = average_vertex_radiosity(mesh, b);
@@ -187,7 +196,8 @@ TEST_SUITE("lesson12") {
 
   TEST_CASE("patch_own: the trivial solution gives every corner its own face's radiosity") {
     const SharedVertexMesh mesh = share_vertices(grid(2, 1));
-    const auto corners = corner_radiosity(mesh, {Color(1, 2, 3), Color(4, 5, 6)}, VertexColourRule::patch_own);
+    const auto corners =
+        corner_radiosity(mesh, {Color(1, 2, 3), Color(4, 5, 6)}, VertexColourRule::patch_own);
     REQUIRE(corners.size() == 2);
     for (const Color& c : corners[0]) check_colour(c, Color(1, 2, 3), "face 0's own colour");
     for (const Color& c : corners[1]) check_colour(c, Color(4, 5, 6), "face 1's own colour");
@@ -205,13 +215,15 @@ TEST_SUITE("lesson12") {
     CHECK_THROWS_AS(gouraud({Color(0), Color(1)}, 0.5, 0.5), std::invalid_argument);
   }
 
-  TEST_CASE("interpolate_radiosity on a trapezoid follows the bilinear map, not the straight-line distances") {
+  TEST_CASE(
+      "interpolate_radiosity on a trapezoid follows the bilinear map, not the straight-line distances") {
     // Corners (0,0), (4,0), (3,2), (1,2): the point x(u, v) at u = 0.25, v = 0.5 is
     // 0.375(0,0) + 0.125(4,0) + 0.125(3,2) + 0.375(1,2) = (1.25, 1). Corner values 0, 4, 8, 12
     // give 0.125·4 + 0.125·8 + 0.375·12 = 6.
     const Patch trapezoid = make_patch({{0, 0, 0}, {4, 0, 0}, {3, 2, 0}, {1, 2, 0}}, Color(0.5));
     const std::vector<Color> c = {Color(0), Color(4), Color(8), Color(12)};
-    check_colour(interpolate_radiosity(trapezoid, c, {1.25, 1, 0}), Color(6), "bilinear at (u, v) = (0.25, 0.5)");
+    check_colour(interpolate_radiosity(trapezoid, c, {1.25, 1, 0}), Color(6),
+                 "bilinear at (u, v) = (0.25, 0.5)");
   }
 
   TEST_CASE("a triangle's corner with no opposite vertex keeps its average under extrapolate") {

@@ -131,7 +131,7 @@ SharedVertexMesh share_vertices(const std::vector<Patch>& patches, const VertexS
     int vertex;
   };
   std::vector<std::vector<std::vector<Piece>>> inside(patches.size());  // [face][edge] → T-vertices
-  std::vector<std::pair<double, TVertex>> found;                         // (host edge length, T-vertex)
+  std::vector<std::pair<double, TVertex>> found;                        // (host edge length, T-vertex)
   for (std::size_t f = 0; f < patches.size(); ++f) {
     const std::vector<int>& corners = mesh.faces[f];
     inside[f].resize(corners.size());

@@ -6,7 +6,8 @@
 
 namespace illum {
 
-std::vector<Color> average_vertex_radiosity(const SharedVertexMesh& mesh, const std::vector<Color>& face_radiosity) {
+std::vector<Color> average_vertex_radiosity(const SharedVertexMesh& mesh,
+                                            const std::vector<Color>& face_radiosity) {
   require(face_radiosity.size() == mesh.faces.size(),
           "average_vertex_radiosity: one radiosity per face is needed");
   std::vector<Color> sum(mesh.positions.size(), Color(0.0));
@@ -70,11 +71,13 @@ void resolve_t_vertices(const SharedVertexMesh& mesh, std::vector<Color>& vertex
 }
 
 std::vector<std::vector<Color>> corner_radiosity(const SharedVertexMesh& mesh,
-                                                 const std::vector<Color>& face_radiosity, VertexColourRule rule) {
+                                                 const std::vector<Color>& face_radiosity,
+                                                 VertexColourRule rule) {
   require(face_radiosity.size() == mesh.faces.size(), "corner_radiosity: one radiosity per face is needed");
   std::vector<std::vector<Color>> corners(mesh.faces.size());
   if (rule == VertexColourRule::patch_own) {
-    for (std::size_t f = 0; f < mesh.faces.size(); ++f) corners[f].assign(mesh.faces[f].size(), face_radiosity[f]);
+    for (std::size_t f = 0; f < mesh.faces.size(); ++f)
+      corners[f].assign(mesh.faces[f].size(), face_radiosity[f]);
     return corners;
   }
   std::vector<Color> value = rule == VertexColourRule::average

@@ -37,7 +37,8 @@ enum class VertexColourRule { patch_own, average, extrapolate };
 // list the vertex and the faces whose edge it lies inside (mesh.t_vertices).
 // A vertex that no face touches gets 0. Throws std::invalid_argument when
 // face_radiosity.size() != mesh.faces.size().
-std::vector<Color> average_vertex_radiosity(const SharedVertexMesh& mesh, const std::vector<Color>& face_radiosity);
+std::vector<Color> average_vertex_radiosity(const SharedVertexMesh& mesh,
+                                            const std::vector<Color>& face_radiosity);
 
 // Task 2. Per vertex: the extrapolation rule above, built on Task 1's averages,
 // each channel clamped at zero. Same precondition as Task 1.
@@ -52,7 +53,8 @@ void resolve_t_vertices(const SharedVertexMesh& mesh, std::vector<Color>& vertex
 // Task 4. Per face, per corner (in the order of mesh.faces[f]): the radiosity
 // the rule gives, T-vertices resolved (Task 3) for average and extrapolate.
 std::vector<std::vector<Color>> corner_radiosity(const SharedVertexMesh& mesh,
-                                                 const std::vector<Color>& face_radiosity, VertexColourRule rule);
+                                                 const std::vector<Color>& face_radiosity,
+                                                 VertexColourRule rule);
 
 // Task 5. Gouraud interpolation inside one face from its corner values:
 // bilinear for 4 corners,
