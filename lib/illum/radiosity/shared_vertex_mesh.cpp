@@ -196,6 +196,22 @@ SharedVertexMesh share_vertices(const std::vector<Patch>& patches, const VertexS
   return mesh;
 }
 
+std::vector<std::vector<int>> display_polygons(const SharedVertexMesh& mesh) {
+  std::vector<std::vector<const TVertex*>> on_face(mesh.faces.size());
+  for (const TVertex& t : mesh.t_vertices) on_face[static_cast<std::size_t>(t.face)].push_back(&t);
+  std::vector<std::vector<int>> polygons(mesh.faces.size());
+  for (std::size_t f = 0; f < mesh.faces.size(); ++f) {
+    std::vector<const TVertex*>& ts = on_face[f];
+    std::sort(ts.begin(), ts.end(), [](const TVertex* a, const TVertex* b) { return a->t < b->t; });
+    for (int corner : mesh.faces[f]) {
+      polygons[f].push_back(corner);
+      for (const TVertex* t : ts)
+        if (t->from == corner) polygons[f].push_back(t->vertex);
+    }
+  }
+  return polygons;
+}
+
 std::pair<double, double> patch_parameters(const Patch& patch, const Point3& point) {
   const std::vector<Point3>& p = patch.vertices;
   require(p.size() == 3 || p.size() == 4, "patch_parameters: the patch must have 3 or 4 vertices");

@@ -57,6 +57,12 @@ struct VertexSharing {
 // positive and finite.
 SharedVertexMesh share_vertices(const std::vector<Patch>& patches, const VertexSharing& sharing = {});
 
+// Every face's corners with its T-vertices inserted in order along each
+// edge: the polygons to hand to a renderer that interpolates colours along
+// edges (OpenGL, MeshLab), so that the large face's edge passes through the
+// T-vertex's colour and the picture has no crack.
+std::vector<std::vector<int>> display_polygons(const SharedVertexMesh& mesh);
+
 // The parameters (u, v) of `point` on a patch: for a quadrilateral p0 p1 p2 p3
 // the inverse of the bilinear map
 //   x(u, v) = (1 − u)(1 − v) p0 + u(1 − v) p1 + u v p2 + (1 − u) v p3,

@@ -35,7 +35,9 @@ std::unique_ptr<TriangleAccel> patch_bvh(const std::vector<Patch>& patches) {
 void ray_cast_row(const Patch& shooter, const std::vector<Patch>& elements, const TriangleAccel& occluders,
                   double* row) {
   const auto n = static_cast<std::ptrdiff_t>(elements.size());
-#pragma omp parallel for schedule(static)
+  // Threads only pay off on long rows: a parallel region per shot costs a
+  // barrier, which a loaded machine makes slow.
+#pragma omp parallel for schedule(static) if (n >= 4096)
   for (std::ptrdiff_t e = 0; e < n; ++e) {
     const Patch& element = elements[static_cast<std::size_t>(e)];
     const Vec3 d = element.centroid - shooter.centroid;
