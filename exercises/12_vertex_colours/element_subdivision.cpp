@@ -18,8 +18,9 @@ double radiosity_gap(const Color& a, const Color& b) {
 
 // Task 7. Mark both ends of every neighbour pair whose gap exceeds the threshold, unless already small.
 std::vector<bool> elements_to_split(const std::vector<std::pair<int, int>>& neighbours,
-                                    const std::vector<Color>& radiosity, const std::vector<double>& longest_edge,
-                                    double threshold, double min_edge) {
+                                    const std::vector<Color>& radiosity,
+                                    const std::vector<double>& longest_edge, double threshold,
+                                    double min_edge) {
   throw NotImplemented("elements_to_split",
                        "check the arguments, then for each pair with gap > threshold mark each end whose "
                        "longest edge is > min_edge (lesson 12, §5)");

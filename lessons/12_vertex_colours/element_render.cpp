@@ -37,8 +37,8 @@ ElementView view_elements(const RadiosityScene& scene, const ElementMesh& mesh, 
       const RadiositySurface& surface = scene.surfaces[static_cast<std::size_t>(hit)];
       const Point3 p = a + nearest * (b - a);
       const std::size_t i = static_cast<std::size_t>(y) * width + x;
-      for (std::size_t q = surface.first_patch; q < surface.first_patch + surface.patch_count && view.element[i] < 0;
-           ++q)
+      for (std::size_t q = surface.first_patch;
+           q < surface.first_patch + surface.patch_count && view.element[i] < 0; ++q)
         if (element_contains(scene.patches[q], p))
           for (int e : elements_of[q])
             if (element_contains(mesh.elements[static_cast<std::size_t>(e)], p)) {
@@ -97,7 +97,7 @@ Image side_by_side(const std::vector<Image>& images) {
 
 bool element_contains(const Patch& element, const Point3& point) {
   const std::vector<Point3>& v = element.vertices;
-  const double slack = 1e-9 * std::sqrt(element.area);
+  const double slack = 1e-7 * std::sqrt(element.area);
   for (std::size_t k = 0; k < v.size(); ++k) {
     const Vec3 edge = v[(k + 1) % v.size()] - v[k];
     if (dot(cross(edge, point - v[k]), element.normal) < -slack * length(edge)) return false;

@@ -36,11 +36,11 @@ const char* program_id = "lesson12";
 struct Settings {
   std::string scene = "cornell";
   bool quick = false;
-  double threshold = 0.05;           // subdivision: a gap above this fraction of the brightest element splits
-  std::filesystem::path ply;         // --ply: also write the figure's binary PLY here
-  int figure_elements = 10000;       // the figure's element count (about)
-  double figure_patch_edge = 75;     // mm: the figure's patches (the shooters)
-  double unshot = 1e-3;              // stop at this fraction of the emitted power unshot
+  double threshold = 0.05;        // subdivision: a gap above this fraction of the brightest element splits
+  std::filesystem::path ply;      // --ply: also write the figure's binary PLY here
+  int figure_elements = 10000;    // the figure's element count (about)
+  double figure_patch_edge = 75;  // mm: the figure's patches (the shooters)
+  double unshot = 1e-3;           // stop at this fraction of the emitted power unshot
 };
 
 std::string fixed(double value, int decimals) {
@@ -79,13 +79,14 @@ Solved vertex_colour_section(OutputFolder& out, const Settings& settings) {
   const double exposure = lesson12::exposure_for(s.mesh, s.solution.element_radiosity);
   const lesson12::ElementView view = lesson12::view_elements(s.scene, s.mesh, *s.scene.camera, size, size);
   // The close-up: the back wall's lower left corner, where the red wall and the floor meet it.
-  const RadiosityCamera close{.eye = s.scene.camera->eye, .target = {500, 40, 559}, .up = {0, 1, 0},
-                              .vertical_fov_degrees = 9};
+  const RadiosityCamera close{
+      .eye = s.scene.camera->eye, .target = {500, 40, 559}, .up = {0, 1, 0}, .vertical_fov_degrees = 9};
   const lesson12::ElementView zoom = lesson12::view_elements(s.scene, s.mesh, close, size, size);
   std::vector<Image> whole, closeups;
   Table table({"rule", "vertices", "vertices with a channel clamped at 0", "smallest vertex channel"});
   const std::vector<Color> average = average_vertex_radiosity(s.shared, s.solution.element_radiosity);
-  const std::vector<Color> extrapolated = extrapolated_vertex_radiosity(s.shared, s.solution.element_radiosity);
+  const std::vector<Color> extrapolated =
+      extrapolated_vertex_radiosity(s.shared, s.solution.element_radiosity);
   for (const auto& [rule, name] : rules) {
     const auto corners = corner_radiosity(s.shared, s.solution.element_radiosity, rule);
     whole.push_back(lesson12::gouraud_image(view, s.mesh, corners, exposure));
@@ -165,6 +166,20 @@ Solved adaptive(const Settings& settings, double patch_edge, double threshold, d
   return s;
 }
 
+// The element count at which the uniform runs (elements, error), in order of
+// elements, reach `error`: linear interpolation of log error against log
+// elements between the two runs that bracket it; NaN outside their range.
+double uniform_elements_at(const std::vector<std::pair<double, double>>& runs, double error) {
+  for (std::size_t i = 1; i < runs.size(); ++i) {
+    const auto [n0, e0] = runs[i - 1];
+    const auto [n1, e1] = runs[i];
+    if (!(error <= e0 && error >= e1)) continue;
+    const double f = std::log(error / e0) / std::log(e1 / e0);
+    return std::exp(std::log(n0) + f * std::log(n1 / n0));
+  }
+  return NAN;
+}
+
 // --- 5–6. Uniform against adaptive substructuring ------------------------------
 void substructuring_study(OutputFolder& out, const Settings& settings) {
   const double patch_edge = settings.quick ? 275.0 : 140.0;
@@ -174,19 +189,28 @@ void substructuring_study(OutputFolder& out, const Settings& settings) {
   const Solved reference = solve(settings, patch_edge, reference_k, shooting);
   Table table({"scheme", "knob", "patches", "elements", "shots", "seconds", "flat_error", "average_error",
                "extrapolated_error"});
+  std::vector<std::pair<double, double>> uniform_runs;  // (elements, flat error)
+  Table equal({"threshold", "adaptive elements", "flat_error", "uniform elements at that error",
+               "uniform / adaptive"});
   const auto add = [&](const std::string& scheme, const std::string& knob, const Solved& s, double seconds) {
     const std::vector<double> e = errors_against(s, reference);
+    const auto elements = static_cast<double>(s.mesh.elements.size());
+    if (scheme == "uniform") uniform_runs.push_back({elements, e[0]});
+    if (scheme == "adaptive") {
+      const double uniform = uniform_elements_at(uniform_runs, e[0]);
+      equal.add_row({knob, static_cast<std::int64_t>(elements), e[0], uniform, uniform / elements});
+    }
     table.add_row({scheme, knob, static_cast<std::int64_t>(s.scene.patches.size()),
-                   static_cast<std::int64_t>(s.mesh.elements.size()), static_cast<std::int64_t>(s.solution.shots),
-                   seconds, e[0], e[1], e[2]});
+                   static_cast<std::int64_t>(s.mesh.elements.size()),
+                   static_cast<std::int64_t>(s.solution.shots), seconds, e[0], e[1], e[2]});
   };
   for (int k : settings.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 3, 4, 6, 8}) {
     report_progress(program_id, "study: uniform k = " + std::to_string(k), k, 8);
     const Solved s = solve(settings, patch_edge, k, shooting);
     add("uniform", std::to_string(k) + "x" + std::to_string(k), s, s.solution.seconds);
   }
-  const std::vector<double> thresholds =
-      settings.quick ? std::vector<double>{settings.threshold} : std::vector<double>{0.2, 0.1, 0.05, 0.025, 0.0125};
+  const std::vector<double> thresholds = settings.quick ? std::vector<double>{settings.threshold}
+                                                        : std::vector<double>{0.2, 0.1, 0.05, 0.025, 0.0125};
   for (double t : thresholds) {
     report_progress(program_id, "study: adaptive, threshold " + fixed(t, 4), 0, 1);
     double seconds = 0;
@@ -194,23 +218,40 @@ void substructuring_study(OutputFolder& out, const Settings& settings) {
     add("adaptive", fixed(t, 4), s, seconds);
   }
   out.table(table, "substructuring",
-            "Uniform and adaptive substructuring of the box (" + std::to_string(reference.scene.patches.size()) +
-                " patches): error against a uniform " + std::to_string(reference_k) + "x" +
-                std::to_string(reference_k) + " solution (" + std::to_string(reference.mesh.elements.size()) +
+            "Uniform and adaptive substructuring of the box (" +
+                std::to_string(reference.scene.patches.size()) + " patches): error against a uniform " +
+                std::to_string(reference_k) + "x" + std::to_string(reference_k) + " solution (" +
+                std::to_string(reference.mesh.elements.size()) +
                 " elements), and time (adaptive: all its solves)");
+  out.table(equal, "equal_error",
+            "Elements a uniform mesh needs for the adaptive mesh's flat error (log-log interpolation "
+            "between the uniform runs; NaN: outside their range)");
   out.plot({.title = "Substructuring: error against element count",
             .x_label = "elements",
             .y_label = "relative error (area-weighted, L1)",
             .log_x = true,
             .log_y = true,
-            .curves = {{.table = "substructuring.csv", .x = "elements", .y = "flat_error",
-                        .where = {{"scheme", "uniform"}}, .title = "uniform, flat"},
-                       {.table = "substructuring.csv", .x = "elements", .y = "flat_error",
-                        .where = {{"scheme", "adaptive"}}, .title = "adaptive, flat"},
-                       {.table = "substructuring.csv", .x = "elements", .y = "extrapolated_error",
-                        .where = {{"scheme", "uniform"}}, .title = "uniform, Gouraud (extrapolated)", .dashed = true},
-                       {.table = "substructuring.csv", .x = "elements", .y = "extrapolated_error",
-                        .where = {{"scheme", "adaptive"}}, .title = "adaptive, Gouraud (extrapolated)",
+            .curves = {{.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "flat_error",
+                        .where = {{"scheme", "uniform"}},
+                        .title = "uniform, flat"},
+                       {.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "flat_error",
+                        .where = {{"scheme", "adaptive"}},
+                        .title = "adaptive, flat"},
+                       {.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "extrapolated_error",
+                        .where = {{"scheme", "uniform"}},
+                        .title = "uniform, Gouraud (extrapolated)",
+                        .dashed = true},
+                       {.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "extrapolated_error",
+                        .where = {{"scheme", "adaptive"}},
+                        .title = "adaptive, Gouraud (extrapolated)",
                         .dashed = true}}},
            "substructuring_error", "Error against element count, uniform and adaptive");
   out.plot({.title = "Substructuring: time against element count",
@@ -218,10 +259,16 @@ void substructuring_study(OutputFolder& out, const Settings& settings) {
             .y_label = "seconds",
             .log_x = true,
             .log_y = true,
-            .curves = {{.table = "substructuring.csv", .x = "elements", .y = "seconds",
-                        .where = {{"scheme", "uniform"}}, .title = "uniform"},
-                       {.table = "substructuring.csv", .x = "elements", .y = "seconds",
-                        .where = {{"scheme", "adaptive"}}, .title = "adaptive (every pass)"}}},
+            .curves = {{.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "seconds",
+                        .where = {{"scheme", "uniform"}},
+                        .title = "uniform"},
+                       {.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "seconds",
+                        .where = {{"scheme", "adaptive"}},
+                        .title = "adaptive (every pass)"}}},
            "substructuring_time", "Solve time against element count, uniform and adaptive");
 }
 
@@ -250,9 +297,10 @@ Solved figure_section(OutputFolder& out, const Settings& settings) {
       tenths.add_row({std::string(name), std::int64_t{t}, static_cast<std::int64_t>(h.shots), h.seconds,
                       h.unshot_fraction});
     }
-    std::cout << "Figure (" << name << "): " << s.scene.patches.size() << " patches, " << s.mesh.elements.size()
-              << " elements, " << r.shots << " shots to " << fixed(100 * r.unshot_fraction, 3) << "% unshot in "
-              << fixed(r.seconds, 2) << " s on " << omp_get_max_threads() << " threads\n";
+    std::cout << "Figure (" << name << "): " << s.scene.patches.size() << " patches, "
+              << s.mesh.elements.size() << " elements, " << r.shots << " shots to "
+              << fixed(100 * r.unshot_fraction, 3) << "% unshot in " << fixed(r.seconds, 2) << " s on "
+              << omp_get_max_threads() << " threads\n";
     if (visibility == ShotVisibility::ray_cast) kept = std::move(s);
   }
   out.table(figure, "figure", "The box solved to the unshot target: shoot from patches, receive at elements");
@@ -261,17 +309,24 @@ Solved figure_section(OutputFolder& out, const Settings& settings) {
             .x_label = "seconds",
             .y_label = "unshot / emitted power",
             .log_y = true,
-            .curves = {{.table = "figure_tenths.csv", .x = "seconds", .y = "unshot_fraction",
-                        .where = {{"visibility", "ray_cast_bvh"}}, .title = "ray cast (BVH)"},
-                       {.table = "figure_tenths.csv", .x = "seconds", .y = "unshot_fraction",
-                        .where = {{"visibility", "hemicube_128"}}, .title = "hemicube 128"}}},
+            .curves = {{.table = "figure_tenths.csv",
+                        .x = "seconds",
+                        .y = "unshot_fraction",
+                        .where = {{"visibility", "ray_cast_bvh"}},
+                        .title = "ray cast (BVH)"},
+                       {.table = "figure_tenths.csv",
+                        .x = "seconds",
+                        .y = "unshot_fraction",
+                        .where = {{"visibility", "hemicube_128"}},
+                        .title = "hemicube 128"}}},
            "figure_tenths", "Unshot power after each tenth of the run, against the time spent");
   const int size = settings.quick ? 64 : 384;
-  const lesson12::ElementView view = lesson12::view_elements(kept.scene, kept.mesh, *kept.scene.camera, size, size);
-  out.image(lesson12::gouraud_image(view, kept.mesh,
-                                    corner_radiosity(kept.shared, kept.solution.element_radiosity,
-                                                     VertexColourRule::extrapolate),
-                                    lesson12::exposure_for(kept.mesh, kept.solution.element_radiosity)),
+  const lesson12::ElementView view =
+      lesson12::view_elements(kept.scene, kept.mesh, *kept.scene.camera, size, size);
+  out.image(lesson12::gouraud_image(
+                view, kept.mesh,
+                corner_radiosity(kept.shared, kept.solution.element_radiosity, VertexColourRule::extrapolate),
+                lesson12::exposure_for(kept.mesh, kept.solution.element_radiosity)),
             "figure", "The figure's box, Gouraud-shaded from extrapolated vertex colours");
   return kept;
 }
@@ -286,7 +341,8 @@ void export_section(OutputFolder& out, const Settings& settings, const Solved& s
     mesh.colours.push_back({to_srgb8(exposure * v.r), to_srgb8(exposure * v.g), to_srgb8(exposure * v.b)});
   const std::string comment = "illum lesson 12: " + s.scene.name + ", extrapolated vertex radiosity";
   write_ply_file(out.path("cornell_box.ply"), mesh, PlyEncoding::binary_little_endian, comment);
-  out.add_file("mesh", "cornell_box.ply", "The solved box, binary PLY with per-vertex colours (MeshLab, Blender)");
+  out.add_file("mesh", "cornell_box.ply",
+               "The solved box, binary PLY with per-vertex colours (MeshLab, Blender)");
   write_ply_file(out.path("cornell_box_ascii.ply"), mesh, PlyEncoding::ascii, comment);
   out.add_file("mesh", "cornell_box_ascii.ply", "The same mesh as ASCII PLY");
   write_obj_file(out.path("cornell_box.obj"), mesh, comment);
@@ -304,11 +360,13 @@ void add_options(CLI::App& app, Settings& settings) {
                  "brightest element (> 0)")
       ->check(CLI::PositiveNumber & CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  app.add_option("--ply", settings.ply, "also write the figure's binary PLY to this file (its folder must exist)")
+  app.add_option("--ply", settings.ply,
+                 "also write the figure's binary PLY to this file (its folder must exist)")
       ->check(CLI::Validator(
           [](std::string& path) {
             const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-            if (std::filesystem::path(path).filename().empty()) return std::string("names a folder, not a file");
+            if (std::filesystem::path(path).filename().empty())
+              return std::string("names a folder, not a file");
             if (!parent.empty() && !std::filesystem::is_directory(parent))
               return "the folder " + parent.string() + " does not exist";
             return std::string();
@@ -320,7 +378,8 @@ void add_options(CLI::App& app, Settings& settings) {
   app.add_option("--patch-edge", settings.figure_patch_edge, "the figure's largest patch edge (mm)")
       ->check(CLI::Range(20.0, 1000.0))
       ->capture_default_str();
-  app.add_option("--unshot", settings.unshot, "stop when the unshot power is below this fraction of the emitted")
+  app.add_option("--unshot", settings.unshot,
+                 "stop when the unshot power is below this fraction of the emitted")
       ->check(CLI::Range(1e-6, 0.5))
       ->capture_default_str();
 }
@@ -330,10 +389,11 @@ void add_options(CLI::App& app, Settings& settings) {
 
 int main(int argc, char** argv) {
   using namespace illum;
-  const ProgramInfo info{program_id, "Vertex colours, substructuring and the final image",
-                         "The Cornell box drawn with the patch's own colour, averaged and extrapolated vertex "
-                         "colours; uniform against adaptive substructuring; the box at about 10,000 elements; "
-                         "PLY and OBJ export."};
+  const ProgramInfo info{
+      program_id, "Vertex colours, substructuring and the final image",
+      "The Cornell box drawn with the patch's own colour, averaged and extrapolated vertex "
+      "colours; uniform against adaptive substructuring; the box at about 10,000 elements; "
+      "PLY and OBJ export."};
   Settings settings;
   return run_program(
       argc, argv, info, [&](CLI::App& app) { add_options(app, settings); },
@@ -341,7 +401,13 @@ int main(int argc, char** argv) {
         settings.quick = options.quick;
         const RadiosityScene scene = load_radiosity_scene(settings.scene, 250.0);  // validate before writing
         if (!scene.camera)
-          throw InputError(settings.scene, "camera", "(missing)", "lesson 12 draws the scene through its camera");
+          throw InputError(settings.scene, "camera", "(missing)",
+                           "lesson 12 draws the scene through its camera");
+        double emitted = 0;
+        for (const Patch& p : scene.patches) emitted += p.area * (p.emission.r + p.emission.g + p.emission.b);
+        if (!(emitted > 0))
+          throw InputError(settings.scene, "materials", "(no emission)",
+                           "no surface emits light: nothing to solve");
         for (const RadiositySurface& s : scene.surfaces)
           if (s.polygon.size() != 3 && s.polygon.size() != 4)
             throw InputError(settings.scene, "surfaces", s.name, "lesson 12 splits triangles and quads only");

@@ -46,8 +46,7 @@ TEST_SUITE("lesson12") {
 
   TEST_CASE("hard case: an element already at the smallest size is not split, its large neighbour is") {
     // Gap 10 between elements 0 (edge 0.5) and 1 (edge 2); min_edge 0.5: element 0 stops.
-    const std::vector<bool> split =
-        elements_to_split({{0, 1}}, {Color(0), Color(10)}, {0.5, 2.0}, 1.0, 0.5);
+    const std::vector<bool> split = elements_to_split({{0, 1}}, {Color(0), Color(10)}, {0.5, 2.0}, 1.0, 0.5);
     CHECK(split == std::vector<bool>{false, true});
   }
 
@@ -55,8 +54,10 @@ TEST_SUITE("lesson12") {
     // Big [0, 2]² (B = 5) beside small [2, 3] × [0, 1] (B = 5.2) and [2, 3] × [1, 2]
     // (B = 9): gaps 0.2 and 4 to the big one, 3.8 between the small ones. Threshold 1:
     // all but the first small one split.
-    const SharedVertexMesh mesh = share_vertices({square(0, 0, 2, 2), square(2, 0, 3, 1), square(2, 1, 3, 2)});
-    REQUIRE_MESSAGE(mesh.neighbours.size() == 3, "the big face touches both small ones, which touch each other");
+    const SharedVertexMesh mesh =
+        share_vertices({square(0, 0, 2, 2), square(2, 0, 3, 1), square(2, 1, 3, 2)});
+    REQUIRE_MESSAGE(mesh.neighbours.size() == 3,
+                    "the big face touches both small ones, which touch each other");
     const std::vector<bool> split =
         elements_to_split(mesh.neighbours, {Color(5), Color(5.2), Color(9)}, {2.0, 1.0, 1.0}, 1.0, 0.1);
     CHECK(split == std::vector<bool>{true, true, true});
@@ -76,7 +77,8 @@ TEST_SUITE("lesson12") {
           std::vector<bool>{false, false});
   }
 
-  TEST_CASE("elements_to_split refuses a threshold that is not positive, and pairs or sizes that do not fit") {
+  TEST_CASE(
+      "elements_to_split refuses a threshold that is not positive, and pairs or sizes that do not fit") {
     const std::vector<Color> b = {Color(0), Color(1)};
     const std::vector<double> edge = {1.0, 1.0};
     for (double bad : {0.0, -1.0, double(NAN), double(INFINITY)}) {

@@ -34,7 +34,8 @@ void check_coloured_mesh(const ColouredMesh& mesh) {
   }
 }
 
-void write_ply(std::ostream& out, const ColouredMesh& mesh, PlyEncoding encoding, const std::string& comment) {
+void write_ply(std::ostream& out, const ColouredMesh& mesh, PlyEncoding encoding,
+               const std::string& comment) {
   check_coloured_mesh(mesh);
   const bool binary = encoding == PlyEncoding::binary_little_endian;
   out << "ply\nformat " << (binary ? "binary_little_endian" : "ascii") << " 1.0\n";
@@ -45,7 +46,8 @@ void write_ply(std::ostream& out, const ColouredMesh& mesh, PlyEncoding encoding
       << "element face " << mesh.faces.size() << "\nproperty list uchar int vertex_indices\nend_header\n";
   if (binary) {
     for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-      for (int axis = 0; axis < 3; ++axis) put_little_endian(out, static_cast<float>(mesh.positions[v][axis]));
+      for (int axis = 0; axis < 3; ++axis)
+        put_little_endian(out, static_cast<float>(mesh.positions[v][axis]));
       out.write(reinterpret_cast<const char*>(mesh.colours[v].data()), 3);
     }
     for (const std::vector<int>& face : mesh.faces) {
@@ -72,8 +74,8 @@ void write_obj(std::ostream& out, const ColouredMesh& mesh, const std::string& c
   out << std::setprecision(9);
   for (std::size_t v = 0; v < mesh.positions.size(); ++v)
     out << "v " << mesh.positions[v].x << ' ' << mesh.positions[v].y << ' ' << mesh.positions[v].z << ' '
-        << mesh.colours[v][0] / 255.0 << ' ' << mesh.colours[v][1] / 255.0 << ' ' << mesh.colours[v][2] / 255.0
-        << '\n';
+        << mesh.colours[v][0] / 255.0 << ' ' << mesh.colours[v][1] / 255.0 << ' '
+        << mesh.colours[v][2] / 255.0 << '\n';
   for (const std::vector<int>& face : mesh.faces) {
     out << 'f';
     for (int v : face) out << ' ' << v + 1;

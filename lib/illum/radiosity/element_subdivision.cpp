@@ -13,11 +13,15 @@ double radiosity_gap(const Color& a, const Color& b) {
 }
 
 std::vector<bool> elements_to_split(const std::vector<std::pair<int, int>>& neighbours,
-                                    const std::vector<Color>& radiosity, const std::vector<double>& longest_edge,
-                                    double threshold, double min_edge) {
-  require(std::isfinite(threshold) && threshold > 0, "elements_to_split: the threshold must be positive and finite");
-  require(std::isfinite(min_edge) && min_edge >= 0, "elements_to_split: min_edge must be finite and not negative");
-  require(longest_edge.size() == radiosity.size(), "elements_to_split: one longest edge per element is needed");
+                                    const std::vector<Color>& radiosity,
+                                    const std::vector<double>& longest_edge, double threshold,
+                                    double min_edge) {
+  require(std::isfinite(threshold) && threshold > 0,
+          "elements_to_split: the threshold must be positive and finite");
+  require(std::isfinite(min_edge) && min_edge >= 0,
+          "elements_to_split: min_edge must be finite and not negative");
+  require(longest_edge.size() == radiosity.size(),
+          "elements_to_split: one longest edge per element is needed");
   const auto n = static_cast<int>(radiosity.size());
   std::vector<bool> split(radiosity.size(), false);
   for (const auto& [e, g] : neighbours) {

@@ -27,7 +27,8 @@ double radiosity_gap(const Color& a, const Color& b);
 // min_edge is negative or not finite, longest_edge.size() !=
 // radiosity.size(), or a pair names an element out of range.
 std::vector<bool> elements_to_split(const std::vector<std::pair<int, int>>& neighbours,
-                                    const std::vector<Color>& radiosity, const std::vector<double>& longest_edge,
-                                    double threshold, double min_edge);
+                                    const std::vector<Color>& radiosity,
+                                    const std::vector<double>& longest_edge, double threshold,
+                                    double min_edge);
 
 }  // namespace illum

@@ -49,7 +49,8 @@ void ray_cast_row(const Patch& shooter, const std::vector<Patch>& elements, cons
     // The segment's ends lie on the shooter and on the element: leave a
     // relative margin so that their own patches never block it.
     TraversalCounters counters;
-    if (occluders.occluded(Ray(shooter.centroid, d / r, Interval(1e-7 * r, (1 - 1e-7) * r)), counters)) continue;
+    if (occluders.occluded(Ray(shooter.centroid, d / r, Interval(1e-7 * r, (1 - 1e-7) * r)), counters))
+      continue;
     row[e] = (cos_p / r) * (cos_e / r) * element.area / (std::numbers::pi * r2 + element.area);
   }
 }
@@ -99,7 +100,8 @@ SubstructuredSolution shoot_patches_to_elements(const std::vector<Patch>& patche
                                                 const ShootingSettings& settings) {
   Stopwatch watch;
   const std::size_t n = mesh.elements.size();
-  require(mesh.patch_of.size() == n && n > 0, "shoot_patches_to_elements: an empty or inconsistent element mesh");
+  require(mesh.patch_of.size() == n && n > 0,
+          "shoot_patches_to_elements: an empty or inconsistent element mesh");
   for (int p : mesh.patch_of)
     require(p >= 0 && static_cast<std::size_t>(p) < patches.size(),
             "shoot_patches_to_elements: an element names no patch");
@@ -152,7 +154,8 @@ SubstructuredSolution shoot_patches_to_elements(const std::vector<Patch>& patche
     }
     ++s.shots;
     unshot_power = 0;
-    for (std::size_t q = 0; q < patches.size(); ++q) unshot_power += power(s.patch_unshot[q], patches[q].area);
+    for (std::size_t q = 0; q < patches.size(); ++q)
+      unshot_power += power(s.patch_unshot[q], patches[q].area);
     s.history.push_back({s.shots, watch.seconds(), unshot_power / emitted});
   }
   s.unshot_fraction = unshot_power / emitted;

@@ -65,8 +65,8 @@ struct SubstructuredSolution {
   std::vector<Color> element_radiosity;
   std::vector<Color> patch_unshot;
   std::size_t shots = 0;
-  double unshot_fraction = 1;  // Σ A_p Δ_p / Σ A_p E_p, channels summed
-  double seconds = 0;          // the whole solve, set-up included
+  double unshot_fraction = 1;       // Σ A_p Δ_p / Σ A_p E_p, channels summed
+  double seconds = 0;               // the whole solve, set-up included
   std::vector<ShotRecord> history;  // after every shot
 };
 
