@@ -182,15 +182,18 @@ RadiosityPass solve_radiosity_pass(const std::vector<Patch>& patches, int hemicu
     pass.seconds = watch.seconds();
     return pass;
   }
+  // One thread per row: a row over a few thousand patches takes well under a millisecond,
+  // and splitting it (form_factor_row_parallel) costs a barrier per shot, which on a loaded
+  // machine waits for a descheduled thread far longer than the row itself.
   const Hemicube hemicube(hemicube_resolution);
-  std::vector<HemicubeBuffers> buffers;
+  HemicubeBuffers buffers;
   std::vector<double> row(lit.size());
   const std::size_t max_shots = 1000 * lit.size();
   while (pass.unshot >= threshold) {
     if (pass.state.shots >= max_shots)
       throw std::runtime_error("solve_radiosity_pass: the unshot power did not fall below the threshold");
     const std::size_t i = choose_shooter(lit, pass.state.unshot);
-    hemicube.form_factor_row_parallel(lit, i, row.data(), buffers);
+    hemicube.form_factor_row(lit, i, row.data(), buffers);
     ++pass.hemicube_rows;
     shoot(lit, i, row.data(), pass.state);
     pass.unshot = total_power(lit, pass.state.unshot) / emitted;

@@ -59,7 +59,7 @@ struct RadiosityPass {
   double seconds = 0;
 };
 
-// Progressive refinement with hemicube rows on demand (all threads), until
+// Progressive refinement with hemicube rows on demand (one thread), until
 // the unshot power is below `threshold` of the emitted. `extra_emission`
 // (empty, or one per patch) is added to each patch's E first: the caustic
 // deposits. Throws std::runtime_error after 1000 shots per patch.
