@@ -34,16 +34,17 @@ constexpr const char* id = "lesson13";
 // What the command line sets, validated before anything is written.
 struct Settings {
   std::string scene = "cornell_spheres";
-  double edge = 50;             // pass one's largest patch edge (scene units)
-  int hemicube = 64;            // hemicube resolution of pass one
-  double unshot = 1e-3;         // pass one stops below this fraction of the emitted power unshot
-  int depth = 5;                // pass two's depth limit asked for
-  int width = 256;              // the images' width (height in the camera's proportion)
-  int study_width = 64;         // the study's images (the reference is path traced at this size)
+  double edge = 50;              // pass one's largest patch edge (scene units)
+  int hemicube = 64;             // hemicube resolution of pass one
+  double unshot = 1e-3;          // pass one stops below this fraction of the emitted power unshot
+  int depth = 5;                 // pass two's depth limit asked for
+  int width = 256;               // the images' width (height in the camera's proportion)
+  int study_width = 64;          // the study's images (the reference is path traced at this size)
   int reference_samples = 1024;  // paths per pixel of the reference
-  double photons = 1e6;         // light rays of the caustic pass
+  double photons = 1e6;          // light rays of the caustic pass
   std::uint64_t seed = 1;
   bool quick = false;
+  VertexColourRule vertex_rule = VertexColourRule::extrapolate;  // how pass two reads B (lesson 12)
 };
 
 // Everything one run of the pipeline measured.
@@ -52,6 +53,7 @@ struct PipelineRun {
   TwoPassMesh mesh;
   CausticPass caustics;
   RadiosityPass radiosity;
+  CornerRadiosity corners;  // B at the patches' corners, as pass two reads it
   EyePass eye;
 };
 
@@ -61,16 +63,15 @@ PipelineRun run_pipeline(const Scene& scene, const std::string& file, const Sett
   PipelineRun run;
   run.plan =
       forced ? *forced : plan_two_pass(scene_inventory(scene), {.max_depth = s.depth, .caustics = caustics});
-  CornerRadiosity corners;
   if (run.plan.radiosity_pass) {
     run.mesh = mesh_two_pass_scene(scene, file, s.edge);
     if (run.plan.caustic_pass)
       run.caustics = caustic_pass(scene, run.mesh, static_cast<std::uint64_t>(s.photons), s.seed);
     run.radiosity =
         solve_radiosity_pass(run.mesh.radiosity.patches, s.hemicube, s.unshot, run.caustics.extra_emission);
-    corners = flat_corners(run.radiosity.state.radiosity);
+    run.corners = vertex_corners(run.mesh, run.radiosity.state.radiosity, s.vertex_rule);
   }
-  run.eye = eye_pass(scene, run.mesh, run.plan.radiosity_pass ? &corners : nullptr, run.plan, width, 0);
+  run.eye = eye_pass(scene, run.mesh, run.plan.radiosity_pass ? &run.corners : nullptr, run.plan, width, 0);
   return run;
 }
 
@@ -78,8 +79,7 @@ PipelineRun run_pipeline(const Scene& scene, const std::string& file, const Sett
 EyePass diffuse_eye_pass(const Scene& scene, const PipelineRun& run, int width) {
   TwoPassPlan diffuse_only = run.plan;
   diffuse_only.reflection = diffuse_only.refraction = false, diffuse_only.max_depth = 0;
-  const CornerRadiosity corners = flat_corners(run.radiosity.state.radiosity);
-  return eye_pass(scene, run.mesh, &corners, diffuse_only, width, 0);
+  return eye_pass(scene, run.mesh, &run.corners, diffuse_only, width, 0);
 }
 
 // Pass two over a run's solution with its plan, at another size or depth limit
@@ -87,8 +87,7 @@ EyePass diffuse_eye_pass(const Scene& scene, const PipelineRun& run, int width) 
 EyePass eye_again(const Scene& scene, const PipelineRun& run, int width, int depth) {
   TwoPassPlan plan = run.plan;
   plan.max_depth = plan.reflection ? depth : 0;
-  const CornerRadiosity corners = flat_corners(run.radiosity.state.radiosity);
-  return eye_pass(scene, run.mesh, &corners, plan, width, 0);
+  return eye_pass(scene, run.mesh, &run.corners, plan, width, 0);
 }
 
 // An exposure that maps the 95th percentile of the brightest channel to 0.85 (lights saturate).
@@ -220,17 +219,24 @@ void study_section(OutputFolder& out, const Scene& scene, const Settings& s, con
   const Image reference = lesson13::path_traced_reference(scene, w, 0, s.reference_samples, s.seed);
   const Image half = lesson13::path_traced_reference(scene, w, 0, s.reference_samples / 2, s.seed + 1);
   Table methods({"method", "seconds", "relative error"});
-  methods.add_row({"half the reference's paths, another seed (its noise)", 0.0, relative_error(half, reference)});
+  methods.add_row(
+      {"half the reference's paths, another seed (its noise)", 0.0, relative_error(half, reference)});
   Stopwatch watch;
   const RenderResult rays = render_ray_tree(scene, {.width = w, .max_depth = s.depth});
   methods.add_row({"ray tracing alone", watch.seconds(), relative_error(rays.image, reference)});
   const EyePass radiosity = diffuse_eye_pass(scene, both, w);
   methods.add_row({"radiosity alone", both.radiosity.seconds + radiosity.seconds,
                    relative_error(radiosity.image, reference)});
+  PipelineRun flat = both;
+  flat.corners = flat_corners(both.radiosity.state.radiosity);
+  const EyePass tiles = eye_again(scene, flat, w, s.depth);
+  methods.add_row({"two-pass, flat patches", both.radiosity.seconds + tiles.seconds,
+                   relative_error(tiles.image, reference)});
   const EyePass two = eye_again(scene, both, w, s.depth);
-  methods.add_row({"two-pass", both.radiosity.seconds + two.seconds, relative_error(two.image, reference)});
+  methods.add_row({"two-pass, vertex colours", both.radiosity.seconds + two.seconds,
+                   relative_error(two.image, reference)});
   const EyePass with = eye_again(scene, caustic, w, s.depth);
-  methods.add_row({"two-pass + caustic pass",
+  methods.add_row({"two-pass, vertex colours, caustic pass",
                    caustic.caustics.seconds + caustic.radiosity.seconds + with.seconds,
                    relative_error(with.image, reference)});
   out.table(methods, "study_methods",

@@ -208,6 +208,20 @@ CornerRadiosity flat_corners(const std::vector<Color>& radiosity) {
   return corners;
 }
 
+CornerRadiosity vertex_corners(const TwoPassMesh& mesh, const std::vector<Color>& radiosity,
+                               VertexColourRule rule) {
+  require(radiosity.size() == mesh.radiosity.patches.size(), "vertex_corners: one radiosity per patch");
+  CornerRadiosity corners = flat_corners(radiosity);
+  if (rule == VertexColourRule::patch_own || mesh.receiver_patches == 0) return corners;
+  const auto receivers = static_cast<std::ptrdiff_t>(mesh.receiver_patches);
+  const std::vector<Patch> faces(mesh.radiosity.patches.begin(), mesh.radiosity.patches.begin() + receivers);
+  const std::vector<Color> face_b(radiosity.begin(), radiosity.begin() + receivers);
+  const std::vector<std::vector<Color>> smooth = corner_radiosity(share_vertices(faces), face_b, rule);
+  for (std::size_t f = 0; f < smooth.size(); ++f)
+    for (std::size_t k = 0; k < smooth[f].size() && k < 4; ++k) corners[f][k] = smooth[f][k];
+  return corners;
+}
+
 Color radiosity_at(const TwoPassMesh& mesh, const CornerRadiosity& corners, std::uint32_t primitive,
                    const Point3& x) {
   const int s = mesh.surface_of_primitive.at(primitive);

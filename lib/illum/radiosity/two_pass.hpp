@@ -25,6 +25,7 @@
 #include "illum/radiosity/radiosity_scene.hpp"
 #include "illum/radiosity/radiosity_solvers.hpp"
 #include "illum/radiosity/two_pass_plan.hpp"
+#include "illum/radiosity/vertex_colours.hpp"
 #include "illum/trace/ray_tree_record.hpp"
 #include "illum/trace/scene.hpp"
 
@@ -68,9 +69,13 @@ RadiosityPass solve_radiosity_pass(const std::vector<Patch>& patches, int hemicu
 
 // The radiosity at every corner of every patch, in the patch's vertex order:
 // what pass two interpolates. flat_corners gives every corner its patch's B
-// (lesson 12's vertex colours are the smooth alternative).
+// (flat tiles); vertex_corners gives the receivers' corners lesson 12's
+// vertex colours (shared by the patches of one wall, T-vertices resolved),
+// the occluders' corners their own B.
 using CornerRadiosity = std::vector<std::array<Color, 4>>;
 CornerRadiosity flat_corners(const std::vector<Color>& radiosity);
+CornerRadiosity vertex_corners(const TwoPassMesh& mesh, const std::vector<Color>& radiosity,
+                               VertexColourRule rule);
 
 // B at the point x of the scene primitive `primitive` (a meshed surface):
 // surface_coordinates, locate_patch, then the corner weights.
