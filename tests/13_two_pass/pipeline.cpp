@@ -4,11 +4,14 @@
 // pass and check them against the plan.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "illum/io/json_reader.hpp"
 #include "illum/io/scene_file.hpp"
 #include "illum/radiosity/two_pass.hpp"
+#include "illum/trace/ray_tree_render.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;
@@ -129,6 +132,28 @@ TEST_SUITE("two_pass") {
     CHECK(plan.caustic_pass);
     CHECK(plan.radiosity_pass);
     CHECK(!plan.shadow_rays);
+  }
+
+  TEST_CASE("without pass one, pass two is lesson 06's ray tree: the same rays and the same picture") {
+    for (const char* name : {"whitted", "spheres", "primitives"}) {
+      INFO(name);
+      const Scene scene = load_scene(name);
+      const TwoPassPlan plan = plan_two_pass(scene_inventory(scene), {.max_depth = 4});
+      REQUIRE(!plan.radiosity_pass);
+      const EyePass eye = eye_pass(scene, TwoPassMesh{}, nullptr, plan, 32, 0);
+      const RenderResult tree = render_ray_tree(scene, {.width = 32, .max_depth = 4});
+      CHECK(eye.stats.rays.primary == tree.stats.rays.primary);
+      CHECK(eye.stats.rays.reflection == tree.stats.rays.reflection);
+      CHECK(eye.stats.rays.refraction == tree.stats.rays.refraction);
+      CHECK(eye.stats.rays.shadow == tree.stats.rays.shadow);
+      REQUIRE(eye.image.pixels().size() == tree.image.pixels().size());
+      double worst = 0;
+      for (std::size_t k = 0; k < eye.image.pixels().size(); ++k)
+        for (int c = 0; c < 3; ++c)
+          worst = std::max(worst, std::abs(eye.image.pixels()[k][c] - tree.image.pixels()[k][c]));
+      CHECK_MESSAGE(worst < 1e-12,
+                    "I = I_own + k_r I_r + k_t I_t either way; only the order of the sums differs");
+    }
   }
 
   TEST_CASE("bad input: k_r + k_t > 1 is refused by the loader, naming the field") {
