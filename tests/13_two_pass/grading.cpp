@@ -156,6 +156,13 @@ TEST_SUITE("lesson13") {
     CHECK_MESSAGE(with.radiosity_pass, "the deposits live on patches: pass one must mesh the wall");
     CHECK_MESSAGE(!with.shadow_rays, "the wall's direct light is now in B: no shadow rays to the emitter");
     CHECK(with.reflection);
+    const SceneInventory no_receiver{.emitters = 1, .mirrors = 1, .heaviest_specular = 0.9};
+    CHECK_MESSAGE(!plan_two_pass(no_receiver, TwoPassRequest{.caustics = true}).caustic_pass,
+                  "a light and a mirror with no diffuse surface: nowhere to deposit the focused light");
+    const SceneInventory no_emitter{
+        .diffuse_surfaces = 1, .point_lights = 1, .mirrors = 1, .heaviest_specular = 0.9};
+    CHECK_MESSAGE(!plan_two_pass(no_emitter, TwoPassRequest{.caustics = true}).caustic_pass,
+                  "light rays leave emitting polygons; a point light is not one");
     const TwoPassPlan box = plan_two_pass(cornell_box(), TwoPassRequest{.caustics = true});
     CHECK_MESSAGE(!box.caustic_pass, "no mirror or glass: nothing focuses light, no caustic pass");
     CHECK(box.radiosity_pass);
