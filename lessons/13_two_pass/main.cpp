@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <cmath>
 #include <iostream>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -59,10 +58,9 @@ struct PipelineRun {
 
 // The pipeline as the plan orders it: [caustic pass], [pass one], pass two.
 PipelineRun run_pipeline(const Scene& scene, const std::string& file, const Settings& s, bool caustics,
-                         int width, std::optional<TwoPassPlan> forced = std::nullopt) {
+                         int width) {
   PipelineRun run;
-  run.plan =
-      forced ? *forced : plan_two_pass(scene_inventory(scene), {.max_depth = s.depth, .caustics = caustics});
+  run.plan = plan_two_pass(scene_inventory(scene), {.max_depth = s.depth, .caustics = caustics});
   if (run.plan.radiosity_pass) {
     run.mesh = mesh_two_pass_scene(scene, file, s.edge);
     if (run.plan.caustic_pass)
@@ -151,7 +149,6 @@ void plan_section(OutputFolder& out, const Settings& s) {
                count(r.mesh.receiver_patches), count(r.mesh.occluder_patches),
                count(r.radiosity.hemicube_rows), count(rays.primary), count(rays.reflection),
                count(rays.refraction), count(rays.shadow)});
-    if (name == s.scene) std::cout << "scene " << name << ": " << r.plan.summary();
   }
   out.table(t, "plans",
             "The plan of every shipped scene and the counts of each pass (pass one at 100 mm patches, 1% "
@@ -161,6 +158,7 @@ void plan_section(OutputFolder& out, const Settings& s) {
 // --- 2. Radiosity alone, ray tracing alone, both ------------------------------
 PipelineRun images_section(OutputFolder& out, const Scene& scene, const Settings& s) {
   PipelineRun both = run_pipeline(scene, s.scene, s, false, s.width);
+  std::cout << "scene " << s.scene << ": " << both.plan.summary();
   // Pass one is view independent: radiosity alone is the same solution seen without
   // specular rays (depth 0), the spheres black where pass one made them absorb.
   const EyePass radiosity = diffuse_eye_pass(scene, both, s.width);
