@@ -156,6 +156,7 @@ _KIND_LABEL = {
     "markdown": "Markdown table",
     "image": "image",
     "plot": "plot",
+    "mesh": "mesh (PLY or OBJ, per-vertex colours)",
 }
 
 

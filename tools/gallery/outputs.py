@@ -19,7 +19,7 @@ import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-KINDS = ("image", "hdr", "table", "markdown", "plot", "script", "text")
+KINDS = ("image", "hdr", "table", "markdown", "plot", "script", "text", "mesh")
 # The extension each kind must have (None: any).
 KIND_EXTENSIONS = {
     "image": (".png",),
@@ -29,6 +29,7 @@ KIND_EXTENSIONS = {
     "markdown": (".md",),
     "script": None,
     "text": None,
+    "mesh": (".ply", ".obj"),
 }
 
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
@@ -290,6 +291,22 @@ def check_text(path: Path) -> list[str]:
     return []
 
 
+def check_mesh(path: Path) -> list[str]:
+    """A PLY opens with 'ply' and a format line and closes its header; an OBJ is text with vertices."""
+    data = Path(path).read_bytes()
+    if path.suffix == ".ply":
+        if not data.startswith(b"ply\n") or b"\nformat " not in data[:64] or b"end_header\n" not in data:
+            return [f"{path.name}: not a PLY file (no 'ply', format line or end_header)"]
+        return []
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError:
+        return [f"{path.name}: not UTF-8 text"]
+    if not any(line.startswith("v ") for line in text.splitlines()):
+        return [f"{path.name}: an OBJ file without vertices"]
+    return []
+
+
 CHECKS = {
     "image": check_png,
     "plot": check_png,
@@ -298,6 +315,7 @@ CHECKS = {
     "markdown": check_markdown_table,
     "script": check_text,
     "text": check_text,
+    "mesh": check_mesh,
 }
 
 

@@ -72,6 +72,13 @@ write("r_unknown_material.json", variant(R, lambda s: s["primitives"][0].update(
 write("r_five_vertices.json", variant(R, lambda s: s["primitives"][0]["vertices"].append([50, 0, -20])))
 write("r_sphere.json", variant(R, lambda s: s["primitives"].append(
     {"type": "sphere", "material": "white", "center": [50, 50, 50], "radius": 10})))
+# t_*: scenes of lesson 13 (two passes: specular spheres in the radiosity scene).
+write("t_specular_over_one.json", variant(R, lambda s: (
+    s["materials"].update(glass={"reflectance": [0.5, 0.5, 0.5], "transmittance": [0.6, 0.6, 0.6]}),
+    s["primitives"].append({"type": "sphere", "material": "glass", "center": [50, 50, 50], "radius": 10}))))
+write("t_csg_occluder.json", variant(R, lambda s: s["primitives"].append(
+    {"type": "csg", "material": "white", "solid": {"solid": "box", "min": [40, 0, 40], "max": [60, 20, 60]}})))
+write("t_no_emitter.json", variant(R, lambda s: s["materials"]["light"].pop("emission")))
 write("r_empty_primitives.json", variant(R, lambda s: s.update(primitives=[])))
 write("r_primitive_not_object.json", variant(R, lambda s: s["primitives"].append(3)))
 write("r_not_json.json", '{ "primitives": [ { "material": "white", } ] \n')

@@ -1,0 +1,421 @@
+// Lesson 12: vertex colours, substructuring and the final image. Solves the
+// Cornell box with patches that shoot and elements that receive, draws it
+// with the three vertex-colour rules side by side (and a close-up of the
+// Mach bands along the wall–floor edges), studies uniform against adaptive
+// subdivision (error against a uniformly fine solution, and time, per
+// element count), solves the box at about 10,000 elements with both
+// visibility methods, and exports the result as PLY and OBJ.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include <omp.h>
+#include <CLI/CLI.hpp>
+
+#include "element_render.hpp"
+#include "illum/core/error.hpp"
+#include "illum/io/mesh_export.hpp"
+#include "illum/io/output_folder.hpp"
+#include "illum/io/program.hpp"
+#include "illum/io/scene_file.hpp"
+#include "illum/radiosity/element_subdivision.hpp"
+#include "illum/radiosity/shared_vertex_mesh.hpp"
+#include "illum/radiosity/substructuring.hpp"
+#include "illum/radiosity/vertex_colours.hpp"
+
+namespace illum {
+namespace {
+
+const char* program_id = "lesson12";
+
+// What the command line sets (validated there, before anything is written).
+struct Settings {
+  std::string scene = "cornell";
+  bool quick = false;
+  double threshold = 0.05;        // subdivision: a gap above this fraction of the brightest element splits
+  std::filesystem::path ply;      // --ply: also write the figure's binary PLY here
+  int figure_elements = 10000;    // the figure's element count (about)
+  double figure_patch_edge = 75;  // mm: the figure's patches (the shooters)
+  double unshot = 1e-3;           // stop at this fraction of the emitted power unshot
+};
+
+std::string fixed(double value, int decimals) {
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*f", decimals, value);
+  return b;
+}
+
+const std::vector<std::pair<VertexColourRule, std::string>> rules = {
+    {VertexColourRule::patch_own, "patch_own"},
+    {VertexColourRule::average, "average"},
+    {VertexColourRule::extrapolate, "extrapolate"}};
+
+// A solved element mesh: the scene, its elements, their radiosity and who shares which vertex.
+struct Solved {
+  RadiosityScene scene;
+  ElementMesh mesh;
+  SubstructuredSolution solution;
+  SharedVertexMesh shared;
+};
+
+Solved solve(const Settings& settings, double patch_edge, int k, const ShootingSettings& shooting) {
+  Solved s;
+  s.scene = load_radiosity_scene(settings.scene, patch_edge);
+  s.mesh = uniform_elements(s.scene.patches, k);
+  s.solution = shoot_patches_to_elements(s.scene.patches, s.mesh, shooting);
+  s.shared = share_vertices(s.mesh.elements);
+  return s;
+}
+
+// --- 1–3. Vertex colours: the three rules side by side, and the Mach bands ----
+Solved vertex_colour_section(OutputFolder& out, const Settings& settings) {
+  const Solved s = solve(settings, settings.quick ? 250.0 : 110.0, 2,
+                         {.unshot_fraction = settings.quick ? 1e-2 : settings.unshot});
+  const int size = settings.quick ? 64 : 256;
+  const double exposure = lesson12::exposure_for(s.mesh, s.solution.element_radiosity);
+  const lesson12::ElementView view = lesson12::view_elements(s.scene, s.mesh, *s.scene.camera, size, size);
+  // The close-up: the back wall's lower left corner, where the red wall and the floor meet it.
+  const RadiosityCamera close{
+      .eye = s.scene.camera->eye, .target = {500, 40, 559}, .up = {0, 1, 0}, .vertical_fov_degrees = 9};
+  const lesson12::ElementView zoom = lesson12::view_elements(s.scene, s.mesh, close, size, size);
+  std::vector<Image> whole, closeups;
+  Table table({"rule", "vertices", "vertices with a channel clamped at 0", "smallest vertex channel"});
+  const std::vector<Color> average = average_vertex_radiosity(s.shared, s.solution.element_radiosity);
+  const std::vector<Color> extrapolated =
+      extrapolated_vertex_radiosity(s.shared, s.solution.element_radiosity);
+  for (const auto& [rule, name] : rules) {
+    const auto corners = corner_radiosity(s.shared, s.solution.element_radiosity, rule);
+    whole.push_back(lesson12::gouraud_image(view, s.mesh, corners, exposure));
+    closeups.push_back(lesson12::gouraud_image(zoom, s.mesh, corners, exposure));
+    std::int64_t clamped = 0;
+    double smallest = INFINITY;
+    for (std::size_t v = 0; v < s.shared.positions.size(); ++v) {
+      const Color& value = rule == VertexColourRule::extrapolate ? extrapolated[v] : average[v];
+      smallest = std::min({smallest, value.r, value.g, value.b});
+      if (rule == VertexColourRule::extrapolate)
+        for (int c = 0; c < 3; ++c) clamped += value[c] == 0 && average[v][c] > 0 ? 1 : 0;
+    }
+    table.add_row({name, static_cast<std::int64_t>(s.shared.positions.size()), clamped, smallest});
+  }
+  out.image(lesson12::side_by_side(whole), "vertex_rules",
+            "The solved box (" + std::to_string(s.mesh.elements.size()) +
+                " elements): the patch's own colour, the average at each vertex, the extrapolation "
+                "at wall edges (left to right)");
+  out.image(lesson12::side_by_side(closeups), "mach_bands",
+            "Close-up of the back wall's lower left corner, same three rules: flat tiles, then Gouraud "
+            "with its Mach bands along the element edges");
+  out.table(table, "vertex_rules", "Vertex values of each rule; the extrapolation's clamps at zero");
+  return s;
+}
+
+// The flat (own) and Gouraud (average, extrapolate) error of `s` against the
+// fine reference: Σ A_r |value − B_r| / Σ A_r |B_r| over the reference's
+// non-emitting elements, channels summed.
+std::vector<double> errors_against(const Solved& s, const Solved& reference) {
+  std::vector<std::vector<int>> elements_of(s.scene.patches.size());
+  for (std::size_t e = 0; e < s.mesh.elements.size(); ++e)
+    elements_of[static_cast<std::size_t>(s.mesh.patch_of[e])].push_back(static_cast<int>(e));
+  std::vector<double> errors;
+  for (const auto& [rule, name] : rules) {
+    const auto corners = corner_radiosity(s.shared, s.solution.element_radiosity, rule);
+    double difference = 0, total = 0;
+    for (std::size_t r = 0; r < reference.mesh.elements.size(); ++r) {
+      const Patch& element = reference.mesh.elements[r];
+      if (element.emission.r + element.emission.g + element.emission.b > 0) continue;
+      for (int e : elements_of[static_cast<std::size_t>(reference.mesh.patch_of[r])])
+        if (lesson12::element_contains(s.mesh.elements[static_cast<std::size_t>(e)], element.centroid)) {
+          const Color value = interpolate_radiosity(s.mesh.elements[static_cast<std::size_t>(e)],
+                                                    corners[static_cast<std::size_t>(e)], element.centroid);
+          const Color d = glm::abs(value - reference.solution.element_radiosity[r]);
+          difference += element.area * (d.r + d.g + d.b);
+          const Color& b = reference.solution.element_radiosity[r];
+          total += element.area * (b.r + b.g + b.b);
+          break;
+        }
+    }
+    errors.push_back(difference / total);
+  }
+  return errors;
+}
+
+// Adaptive substructuring: solve, split where neighbours differ by more than
+// the threshold (a fraction of the brightest non-emitting element), solve
+// again, until nothing splits or the elements reach min_edge.
+Solved adaptive(const Settings& settings, double patch_edge, double threshold, double min_edge,
+                const ShootingSettings& shooting, double& seconds) {
+  Solved s = solve(settings, patch_edge, 1, shooting);
+  seconds = s.solution.seconds;
+  for (int level = 0; level < 6; ++level) {
+    double brightest = 0;
+    for (std::size_t e = 0; e < s.mesh.elements.size(); ++e)
+      if (s.mesh.elements[e].emission == Color(0.0))
+        brightest = std::max({brightest, s.solution.element_radiosity[e].r, s.solution.element_radiosity[e].g,
+                              s.solution.element_radiosity[e].b});
+    const std::vector<bool> split = elements_to_split(s.shared.neighbours, s.solution.element_radiosity,
+                                                      longest_edges(s.mesh), threshold * brightest, min_edge);
+    if (std::find(split.begin(), split.end(), true) == split.end()) break;
+    s.mesh = split_elements(s.mesh, split);
+    s.solution = shoot_patches_to_elements(s.scene.patches, s.mesh, shooting);
+    s.shared = share_vertices(s.mesh.elements);
+    seconds += s.solution.seconds;
+  }
+  return s;
+}
+
+// The element count at which the uniform runs (elements, error), in order of
+// elements, reach `error`: linear interpolation of log error against log
+// elements between the two runs that bracket it; NaN outside their range.
+double uniform_elements_at(const std::vector<std::pair<double, double>>& runs, double error) {
+  for (std::size_t i = 1; i < runs.size(); ++i) {
+    const auto [n0, e0] = runs[i - 1];
+    const auto [n1, e1] = runs[i];
+    if (!(error <= e0 && error >= e1)) continue;
+    const double f = std::log(error / e0) / std::log(e1 / e0);
+    return std::exp(std::log(n0) + f * std::log(n1 / n0));
+  }
+  return NAN;
+}
+
+// --- 5–6. Uniform against adaptive substructuring ------------------------------
+void substructuring_study(OutputFolder& out, const Settings& settings) {
+  const double patch_edge = settings.quick ? 275.0 : 140.0;
+  const int reference_k = settings.quick ? 4 : 16;
+  const ShootingSettings shooting{.unshot_fraction = settings.quick ? 1e-2 : 1e-4};
+  report_progress(program_id, "study: the uniformly fine reference", 0, 1);
+  const Solved reference = solve(settings, patch_edge, reference_k, shooting);
+  Table table({"scheme", "knob", "patches", "elements", "shots", "seconds", "flat_error", "average_error",
+               "extrapolated_error"});
+  std::vector<std::pair<double, double>> uniform_runs;  // (elements, flat error)
+  Table equal({"threshold", "adaptive elements", "flat_error", "uniform elements at that error",
+               "uniform / adaptive"});
+  const auto add = [&](const std::string& scheme, const std::string& knob, const Solved& s, double seconds) {
+    const std::vector<double> e = errors_against(s, reference);
+    const auto elements = static_cast<double>(s.mesh.elements.size());
+    if (scheme == "uniform") uniform_runs.push_back({elements, e[0]});
+    if (scheme == "adaptive") {
+      const double uniform = uniform_elements_at(uniform_runs, e[0]);
+      equal.add_row({knob, static_cast<std::int64_t>(elements), e[0], uniform, uniform / elements});
+    }
+    table.add_row({scheme, knob, static_cast<std::int64_t>(s.scene.patches.size()),
+                   static_cast<std::int64_t>(s.mesh.elements.size()),
+                   static_cast<std::int64_t>(s.solution.shots), seconds, e[0], e[1], e[2]});
+  };
+  for (int k : settings.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 3, 4, 6, 8}) {
+    report_progress(program_id, "study: uniform k = " + std::to_string(k), k, 8);
+    const Solved s = solve(settings, patch_edge, k, shooting);
+    add("uniform", std::to_string(k) + "x" + std::to_string(k), s, s.solution.seconds);
+  }
+  const std::vector<double> thresholds = settings.quick ? std::vector<double>{settings.threshold}
+                                                        : std::vector<double>{0.2, 0.1, 0.05, 0.025, 0.0125};
+  for (double t : thresholds) {
+    report_progress(program_id, "study: adaptive, threshold " + fixed(t, 4), 0, 1);
+    double seconds = 0;
+    const Solved s = adaptive(settings, patch_edge, t, patch_edge / reference_k * 1.01, shooting, seconds);
+    add("adaptive", fixed(t, 4), s, seconds);
+  }
+  out.table(table, "substructuring",
+            "Uniform and adaptive substructuring of the box (" +
+                std::to_string(reference.scene.patches.size()) + " patches): error against a uniform " +
+                std::to_string(reference_k) + "x" + std::to_string(reference_k) + " solution (" +
+                std::to_string(reference.mesh.elements.size()) +
+                " elements), and time (adaptive: all its solves)");
+  out.table(equal, "equal_error",
+            "Elements a uniform mesh needs for the adaptive mesh's flat error (log-log interpolation "
+            "between the uniform runs; NaN: outside their range)");
+  out.plot({.title = "Substructuring: error against element count",
+            .x_label = "elements",
+            .y_label = "relative error (area-weighted, L1)",
+            .log_x = true,
+            .log_y = true,
+            .curves = {{.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "flat_error",
+                        .where = {{"scheme", "uniform"}},
+                        .title = "uniform, flat"},
+                       {.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "flat_error",
+                        .where = {{"scheme", "adaptive"}},
+                        .title = "adaptive, flat"},
+                       {.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "extrapolated_error",
+                        .where = {{"scheme", "uniform"}},
+                        .title = "uniform, Gouraud (extrapolated)",
+                        .dashed = true},
+                       {.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "extrapolated_error",
+                        .where = {{"scheme", "adaptive"}},
+                        .title = "adaptive, Gouraud (extrapolated)",
+                        .dashed = true}}},
+           "substructuring_error", "Error against element count, uniform and adaptive");
+  out.plot({.title = "Substructuring: time against element count",
+            .x_label = "elements",
+            .y_label = "seconds",
+            .log_x = true,
+            .log_y = true,
+            .curves = {{.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "seconds",
+                        .where = {{"scheme", "uniform"}},
+                        .title = "uniform"},
+                       {.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "seconds",
+                        .where = {{"scheme", "adaptive"}},
+                        .title = "adaptive (every pass)"}}},
+           "substructuring_time", "Solve time against element count, uniform and adaptive");
+}
+
+// --- 7. The figure: the box at about 10,000 elements, both visibility methods ---
+Solved figure_section(OutputFolder& out, const Settings& settings) {
+  const double edge = settings.quick ? 250.0 : settings.figure_patch_edge;
+  const std::size_t patches = load_radiosity_scene(settings.scene, edge).patches.size();
+  const int target = settings.quick ? 400 : settings.figure_elements;
+  const int k = std::max(1, static_cast<int>(std::lround(std::sqrt(target / static_cast<double>(patches)))));
+  Table figure({"visibility", "patches", "elements", "threads", "shots", "unshot / emitted", "seconds"});
+  Table tenths({"visibility", "tenth", "shots", "seconds", "unshot_fraction"});
+  Solved kept;
+  for (const auto& [visibility, name] : {std::pair{ShotVisibility::ray_cast, "ray_cast_bvh"},
+                                         std::pair{ShotVisibility::hemicube, "hemicube_128"}}) {
+    report_progress(program_id, std::string("figure: ") + name, 0, 1);
+    Solved s = solve(settings, edge, k,
+                     {.visibility = visibility, .unshot_fraction = settings.quick ? 1e-2 : settings.unshot});
+    const SubstructuredSolution& r = s.solution;
+    figure.add_row({std::string(name), static_cast<std::int64_t>(s.scene.patches.size()),
+                    static_cast<std::int64_t>(s.mesh.elements.size()),
+                    static_cast<std::int64_t>(omp_get_max_threads()), static_cast<std::int64_t>(r.shots),
+                    r.unshot_fraction, r.seconds});
+    for (int t = 1; t <= 10; ++t) {
+      const std::size_t shot = std::max<std::size_t>(1, (r.history.size() * t + 9) / 10);
+      const ShotRecord& h = r.history[shot - 1];
+      tenths.add_row({std::string(name), std::int64_t{t}, static_cast<std::int64_t>(h.shots), h.seconds,
+                      h.unshot_fraction});
+    }
+    std::cout << "Figure (" << name << "): " << s.scene.patches.size() << " patches, "
+              << s.mesh.elements.size() << " elements, " << r.shots << " shots to "
+              << fixed(100 * r.unshot_fraction, 3) << "% unshot in " << fixed(r.seconds, 2) << " s on "
+              << omp_get_max_threads() << " threads\n";
+    if (visibility == ShotVisibility::ray_cast) kept = std::move(s);
+  }
+  out.table(figure, "figure", "The box solved to the unshot target: shoot from patches, receive at elements");
+  out.table(tenths, "figure_tenths", "Time and unshot power after each tenth of the figure's shots");
+  out.plot({.title = "The figure's run: unshot power against time",
+            .x_label = "seconds",
+            .y_label = "unshot / emitted power",
+            .log_y = true,
+            .curves = {{.table = "figure_tenths.csv",
+                        .x = "seconds",
+                        .y = "unshot_fraction",
+                        .where = {{"visibility", "ray_cast_bvh"}},
+                        .title = "ray cast (BVH)"},
+                       {.table = "figure_tenths.csv",
+                        .x = "seconds",
+                        .y = "unshot_fraction",
+                        .where = {{"visibility", "hemicube_128"}},
+                        .title = "hemicube 128"}}},
+           "figure_tenths", "Unshot power after each tenth of the run, against the time spent");
+  const int size = settings.quick ? 64 : 384;
+  const lesson12::ElementView view =
+      lesson12::view_elements(kept.scene, kept.mesh, *kept.scene.camera, size, size);
+  out.image(lesson12::gouraud_image(
+                view, kept.mesh,
+                corner_radiosity(kept.shared, kept.solution.element_radiosity, VertexColourRule::extrapolate),
+                lesson12::exposure_for(kept.mesh, kept.solution.element_radiosity)),
+            "figure", "The figure's box, Gouraud-shaded from extrapolated vertex colours");
+  return kept;
+}
+
+// --- 8. Export: PLY (binary and ASCII) and OBJ with per-vertex colours ----------
+void export_section(OutputFolder& out, const Settings& settings, const Solved& s) {
+  std::vector<Color> value = extrapolated_vertex_radiosity(s.shared, s.solution.element_radiosity);
+  resolve_t_vertices(s.shared, value);
+  const double exposure = lesson12::exposure_for(s.mesh, s.solution.element_radiosity);
+  ColouredMesh mesh{.positions = s.shared.positions, .colours = {}, .faces = display_polygons(s.shared)};
+  for (const Color& v : value)
+    mesh.colours.push_back({to_srgb8(exposure * v.r), to_srgb8(exposure * v.g), to_srgb8(exposure * v.b)});
+  const std::string comment = "illum lesson 12: " + s.scene.name + ", extrapolated vertex radiosity";
+  write_ply_file(out.path("cornell_box.ply"), mesh, PlyEncoding::binary_little_endian, comment);
+  out.add_file("mesh", "cornell_box.ply",
+               "The solved box, binary PLY with per-vertex colours (MeshLab, Blender)");
+  write_ply_file(out.path("cornell_box_ascii.ply"), mesh, PlyEncoding::ascii, comment);
+  out.add_file("mesh", "cornell_box_ascii.ply", "The same mesh as ASCII PLY");
+  write_obj_file(out.path("cornell_box.obj"), mesh, comment);
+  out.add_file("mesh", "cornell_box.obj", "The same mesh as OBJ with vertex colours (v x y z r g b)");
+  if (!settings.ply.empty()) write_ply_file(settings.ply, mesh, PlyEncoding::binary_little_endian, comment);
+  std::cout << "Export: " << mesh.positions.size() << " vertices, " << mesh.faces.size() << " faces\n";
+}
+
+// The options, each checked before anything is written.
+void add_options(CLI::App& app, Settings& settings) {
+  app.add_option("--scene", settings.scene, "A radiosity scene: a JSON file, or a shipped scene's name")
+      ->capture_default_str();
+  app.add_option("--threshold", settings.threshold,
+                 "subdivision threshold: split where neighbours differ by more than this fraction of the "
+                 "brightest element (> 0)")
+      ->check(CLI::PositiveNumber & CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  app.add_option("--ply", settings.ply,
+                 "also write the figure's binary PLY to this file (its folder must exist)")
+      ->check(CLI::Validator(
+          [](std::string& path) {
+            const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+            if (std::filesystem::path(path).filename().empty())
+              return std::string("names a folder, not a file");
+            if (!parent.empty() && !std::filesystem::is_directory(parent))
+              return "the folder " + parent.string() + " does not exist";
+            return std::string();
+          },
+          "PLY FILE"));
+  app.add_option("--elements", settings.figure_elements, "the figure's element count (about)")
+      ->check(CLI::Range(100, 200000))
+      ->capture_default_str();
+  app.add_option("--patch-edge", settings.figure_patch_edge, "the figure's largest patch edge (mm)")
+      ->check(CLI::Range(20.0, 1000.0))
+      ->capture_default_str();
+  app.add_option("--unshot", settings.unshot,
+                 "stop when the unshot power is below this fraction of the emitted")
+      ->check(CLI::Range(1e-6, 0.5))
+      ->capture_default_str();
+}
+
+}  // namespace
+}  // namespace illum
+
+int main(int argc, char** argv) {
+  using namespace illum;
+  const ProgramInfo info{
+      program_id, "Vertex colours, substructuring and the final image",
+      "The Cornell box drawn with the patch's own colour, averaged and extrapolated vertex "
+      "colours; uniform against adaptive substructuring; the box at about 10,000 elements; "
+      "PLY and OBJ export."};
+  Settings settings;
+  return run_program(
+      argc, argv, info, [&](CLI::App& app) { add_options(app, settings); },
+      [&](const ProgramOptions& options) {
+        settings.quick = options.quick;
+        const RadiosityScene scene = load_radiosity_scene(settings.scene, 250.0);  // validate before writing
+        if (!scene.camera)
+          throw InputError(settings.scene, "camera", "(missing)",
+                           "lesson 12 draws the scene through its camera");
+        double emitted = 0;
+        for (const Patch& p : scene.patches) emitted += p.area * (p.emission.r + p.emission.g + p.emission.b);
+        if (!(emitted > 0))
+          throw InputError(settings.scene, "materials", "(no emission)",
+                           "no surface emits light: nothing to solve");
+        for (const RadiositySurface& s : scene.surfaces)
+          if (s.polygon.size() != 3 && s.polygon.size() != 4)
+            throw InputError(settings.scene, "surfaces", s.name, "lesson 12 splits triangles and quads only");
+        OutputFolder out(options.out, info.id, info.title);
+        vertex_colour_section(out, settings);
+        substructuring_study(out, settings);
+        const Solved figure = figure_section(out, settings);
+        export_section(out, settings, figure);
+        out.finish();
+      });
+}

@@ -1,0 +1,64 @@
+#pragma once
+// Pass two at a hit (lesson 13, §3): reading the radiosity solution where an
+// eye ray meets a meshed surface, and adding the specular rays.
+// Exercise unit of lesson 13 (two_pass_shading.cpp).
+//
+// A surface is meshed the way mesh_quad / mesh_triangle mesh it (patch.hpp):
+//   quad p0 p1 p2 p3:  P(u, v) = (1−u)(1−v) p0 + u(1−v) p1 + uv p2 + (1−u)v p3,
+//                      n × m cells, cell (i, j) is patch j·n + i with corners
+//                      P(i/n, j/m), P((i+1)/n, j/m), P((i+1)/n, (j+1)/m), P(i/n, (j+1)/m);
+//   triangle a b c:    P(u, v) = a + u (b − a) + v (c − a),  u, v ≥ 0, u + v ≤ 1,
+//                      n² triangles; row j (0 … n−1) holds, for i = 0 … n−j−1, the
+//                      "up" triangle (i, j), (i+1, j), (i, j+1) and, while
+//                      i + j + 1 < n, the "down" triangle (i+1, j), (i+1, j+1), (i, j+1),
+//                      in that order (row j starts at patch j (2n − j)).
+// Grid point (i, j) is P(i/n, j/m) (m = n for a triangle).
+#include <array>
+#include <cstddef>
+#include <span>
+
+#include "illum/core/vec.hpp"
+
+namespace illum {
+
+// (u, v) of the point x of a planar quad (4 vertices) or triangle (3) in the
+// parametrisation above. For a quad this inverts the bilinear map: with
+// e = p1 − p0, f = p3 − p0, g = p0 − p1 + p2 − p3, h = x − p0, projected on
+// the plane of the two largest components of the normal, and
+// cross(a, b) = a.x b.y − a.y b.x, v solves
+//   cross(g, f) v² + (cross(e, f) + cross(h, g)) v + cross(h, e) = 0,
+// a linear equation when g = 0 (a parallelogram), and then
+// u = (h − f v) / (e + g v) (the component with the larger denominator).
+// Of the quadratic's two roots, the one in [0, 1] (with a small tolerance);
+// the result is clamped to [0, 1]². For a triangle, (u, v) are the
+// barycentric weights of b and c. Throws std::invalid_argument unless the
+// polygon has 3 or 4 vertices.
+Vec2 surface_coordinates(std::span<const Point3> polygon, const Point3& x);
+
+// The patch of a meshed surface that holds the point of coordinates (u, v),
+// and the weight of each of its corners (in the patch's vertex order) in
+// the point: bilinear in the cell for a quad, barycentric for a triangle
+// (unused corners 0). Weights are ≥ 0 and add up to 1.
+struct PatchCell {
+  std::size_t patch = 0;           // index among the surface's patches
+  std::array<double, 4> weight{};  // corner weights
+  int corners = 4;                 // 4 for a quad's cell, 3 for a triangle
+};
+
+// `vertex_count` is 4 (a quad meshed n × m) or 3 (a triangle meshed n², m
+// ignored). A point on the far edge (u = 1) belongs to the last cell, not to
+// a cell past the end. Throws std::invalid_argument when n or m < 1 or
+// vertex_count is not 3 or 4.
+PatchCell locate_patch(const Vec2& uv, int n, int m, int vertex_count);
+
+// What the eye sees at a hit of pass two (lesson 13, eq. 13.2):
+//   I = D + k_r·I_r + k_t·I_t
+// where D is the diffuse part (B(x) read from pass one on a meshed surface,
+// the local model's own intensity elsewhere). A factor that is zero in a
+// channel adds nothing there, even when its ray was not cast and the value
+// passed is not a number. Throws std::invalid_argument when a factor is
+// negative or k_r + k_t > 1 in a channel.
+Color second_pass_radiance(const Color& diffuse, const Color& k_r, const Color& reflected, const Color& k_t,
+                           const Color& transmitted);
+
+}  // namespace illum
