@@ -2,6 +2,8 @@
 
 #include <type_traits>
 
+#include "illum/trace/scene_accel.hpp"
+
 namespace illum {
 
 const char* to_string(PrimitiveKind kind) {
@@ -47,7 +49,12 @@ std::optional<SurfaceHit> Primitive::intersect(const Ray& ray, WorkCounters* cou
   return hit;
 }
 
+void Scene::accelerate(const AccelSettings& settings) {
+  accel = std::make_shared<const SceneAccel>(*this, settings);
+}
+
 std::optional<SurfaceHit> Scene::intersect(const Ray& ray, WorkCounters* counters) const {
+  if (accel && accel->covers(*this)) return accel->intersect(*this, ray, counters);
   std::optional<SurfaceHit> best;
   Ray r = ray;
   for (std::size_t i = 0; i < primitives.size(); ++i) {
@@ -62,6 +69,7 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray, WorkCounters* counter
 }
 
 bool Scene::occluded(const Ray& ray, WorkCounters* counters) const {
+  if (accel && accel->covers(*this)) return accel->occluded(*this, ray, counters);
   for (const Primitive& p : primitives)
     if (p.intersect(ray, counters)) return true;
   return false;
