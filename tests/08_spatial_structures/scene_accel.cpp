@@ -27,8 +27,8 @@ Scene flake_scene() {
   for (const Face& f : flake.faces)
     for (int k = 0; k < 3; ++k) mesh.corner_normals.push_back(normalize(flake.vertices[f[k]] - Point3(0.0)));
   scene.primitives.push_back(Primitive{.name = "flake", .shape = mesh, .material = 0});
-  scene.primitives.push_back(
-      Primitive{.name = "blade", .shape = Triangle({-2, -0.1, 0.3}, {2, -0.1, 0.3}, {0, 1.9, -0.2}), .material = 0});
+  scene.primitives.push_back(Primitive{
+      .name = "blade", .shape = Triangle({-2, -0.1, 0.3}, {2, -0.1, 0.3}, {0, 1.9, -0.2}), .material = 0});
   scene.primitives.push_back(Primitive{.name = "ball", .shape = Sphere({0.9, 0.9, 0.9}, 0.4), .material = 0});
   return scene;
 }
@@ -47,13 +47,15 @@ void check_same_hit(const std::optional<SurfaceHit>& a, const std::optional<Surf
 
 TEST_SUITE("stability") {
   TEST_CASE("a scene with a structure finds the same hits as brute force, bit for bit, for every kind") {
-    for (const AccelKind kind : {AccelKind::bvh, AccelKind::grid, AccelKind::octree, AccelKind::brute_force}) {
+    for (const AccelKind kind :
+         {AccelKind::bvh, AccelKind::grid, AccelKind::octree, AccelKind::brute_force}) {
       CAPTURE(accel_kind_name(kind));
       Scene brute = flake_scene();
       Scene fast = brute;
       fast.accelerate({.kind = kind});
       REQUIRE(fast.accel);
-      CHECK(fast.accel->triangle_count() == std::get<TriangleMesh>(brute.primitives[0].shape).triangle_count() + 1);
+      CHECK(fast.accel->triangle_count() ==
+            std::get<TriangleMesh>(brute.primitives[0].shape).triangle_count() + 1);
       Rng rng(808);
       WorkCounters slow_work, fast_work;
       int hits = 0;
@@ -70,11 +72,13 @@ TEST_SUITE("stability") {
         CHECK(brute.occluded(shadow) == fast.occluded(shadow));
       }
       CHECK(hits > 1000);  // the rays do meet the scene
-      if (kind != AccelKind::brute_force) CHECK(fast_work.intersection_tests < slow_work.intersection_tests / 4);
+      if (kind != AccelKind::brute_force)
+        CHECK(fast_work.intersection_tests < slow_work.intersection_tests / 4);
     }
   }
 
-  TEST_CASE("a shipped scene is loaded with the default BVH; changing its primitives falls back to brute force") {
+  TEST_CASE(
+      "a shipped scene is loaded with the default BVH; changing its primitives falls back to brute force") {
     Scene scene = load_scene("primitives");
     REQUIRE(scene.accel);
     CHECK(scene.accel->kind() == AccelKind::bvh);

@@ -23,12 +23,14 @@ SceneAccel::SceneAccel(const Scene& scene, const AccelSettings& settings)
       others_.push_back(static_cast<std::uint32_t>(p));
     }
   }
-  if (!triangles.empty()) structure_ = make_accel(TriangleSet::from_triangles(std::move(triangles)), settings);
+  if (!triangles.empty())
+    structure_ = make_accel(TriangleSet::from_triangles(std::move(triangles)), settings);
 }
 
 bool SceneAccel::covers(const Scene& scene) const { return scene.primitives.size() == primitive_count_; }
 
-std::optional<SurfaceHit> SceneAccel::element_hit(const Scene& scene, const Ray& ray, std::uint32_t id) const {
+std::optional<SurfaceHit> SceneAccel::element_hit(const Scene& scene, const Ray& ray,
+                                                  std::uint32_t id) const {
   const Primitive& primitive = scene.primitives[primitive_of_[id]];
   std::optional<SurfaceHit> hit;
   if (const auto* mesh = std::get_if<TriangleMesh>(&primitive.shape))
@@ -42,7 +44,8 @@ std::optional<SurfaceHit> SceneAccel::element_hit(const Scene& scene, const Ray&
   return hit;
 }
 
-std::optional<SurfaceHit> SceneAccel::intersect(const Scene& scene, const Ray& ray, WorkCounters* counters) const {
+std::optional<SurfaceHit> SceneAccel::intersect(const Scene& scene, const Ray& ray,
+                                                WorkCounters* counters) const {
   std::optional<SurfaceHit> best;
   Ray r = ray;
   if (structure_) {

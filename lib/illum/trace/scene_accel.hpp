@@ -52,8 +52,8 @@ class SceneAccel {
   AccelKind kind_;
   std::unique_ptr<TriangleAccel> structure_;  // null when the scene has no triangles
   std::vector<std::uint32_t> primitive_of_;   // per structure triangle: the scene primitive
-  std::vector<std::uint32_t> element_of_;     // per structure triangle: its index in the mesh (0 for a triangle)
-  std::vector<std::uint32_t> others_;         // primitives tested one by one, in scene order
+  std::vector<std::uint32_t> element_of_;  // per structure triangle: its index in the mesh (0 for a triangle)
+  std::vector<std::uint32_t> others_;      // primitives tested one by one, in scene order
   std::size_t primitive_count_ = 0;
 };
 
