@@ -27,8 +27,10 @@ TEST_CASE("PatchOccluders agrees with brute-force visibility between random poin
       // Only pairs that face each other, as every form-factor estimator asks: a segment
       // along a wall (cos = 0) grazes the wall's other patches, and there the two
       // tests' planes (Newell's normal, each fan triangle's own) differ by rounding.
-      if (!(dot(p.normal, y - x) > 1e-6 * length(y - x) && dot(q.normal, x - y) > 1e-6 * length(y - x))) continue;
-      ++pairs;      const bool slow = mutually_visible(x, y, box.patches);
+      if (!(dot(p.normal, y - x) > 1e-6 * length(y - x) && dot(q.normal, x - y) > 1e-6 * length(y - x)))
+        continue;
+      ++pairs;
+      const bool slow = mutually_visible(x, y, box.patches);
       blocked += slow ? 0 : 1;
       disagreements += slow != fast.mutually_visible(x, y, counters) ? 1 : 0;
     }
@@ -47,7 +49,8 @@ TEST_CASE("the Monte Carlo form factor with a structure is the brute-force one, 
     const Patch& from = box.patches[3 * i];
     const Patch& to = box.patches[box.patches.size() - 1 - 5 * i];
     Rng a(100 + i), b(100 + i);
-    CHECK(form_factor_monte_carlo(from, to, box.patches, 500, a) == form_factor_monte_carlo(from, to, fast, 500, b));
+    CHECK(form_factor_monte_carlo(from, to, box.patches, 500, a) ==
+          form_factor_monte_carlo(from, to, fast, 500, b));
   }
   CHECK_THROWS_AS(PatchOccluders(std::vector<Patch>{}), std::invalid_argument);
 }

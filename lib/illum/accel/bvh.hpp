@@ -47,6 +47,8 @@ class Bvh final : public TriangleAccel {
 
   const std::vector<BvhNode>& nodes() const { return nodes_; }
   int depth() const { return depth_; }
+  const std::vector<Triangle>& triangles() const { return triangles_; }  // in leaf order
+  const std::vector<std::uint32_t>& ids() const { return ids_; }         // the set's index of each
 
  private:
   std::vector<BvhNode> nodes_;

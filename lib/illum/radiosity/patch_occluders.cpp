@@ -40,8 +40,8 @@ bool PatchOccluders::mutually_visible(const Point3& a, const Point3& b) const {
   return mutually_visible(a, b, ignored);
 }
 
-double form_factor_monte_carlo(const Patch& from, const Patch& to, const PatchOccluders& occluders, int samples,
-                               Rng& rng) {
+double form_factor_monte_carlo(const Patch& from, const Patch& to, const PatchOccluders& occluders,
+                               int samples, Rng& rng) {
   require(samples > 0, "form_factor_monte_carlo: the number of samples must be positive");
   const PolygonSampler sample_i(from), sample_j(to);
   TraversalCounters counters;

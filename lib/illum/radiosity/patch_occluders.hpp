@@ -39,7 +39,7 @@ class PatchOccluders {
 // form_factor_monte_carlo (lesson 09, exercise 5) with V(x, y) from the
 // structure: the same estimator on the same random stream, so the same
 // number whenever every visibility answer agrees.
-double form_factor_monte_carlo(const Patch& from, const Patch& to, const PatchOccluders& occluders, int samples,
-                               Rng& rng);
+double form_factor_monte_carlo(const Patch& from, const Patch& to, const PatchOccluders& occluders,
+                               int samples, Rng& rng);
 
 }  // namespace illum
