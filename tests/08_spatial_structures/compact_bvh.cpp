@@ -53,8 +53,9 @@ TEST_SUITE("stability") {
     CHECK(mismatches(CompactBvh(three, {.leaf_size = 4}), three, rays) == 0);
   }
 
-  TEST_CASE("hard case: rays aimed at the vertices of a sphereflake, where the float boxes and the filter must "
-            "not lose a hit") {
+  TEST_CASE(
+      "hard case: rays aimed at the vertices of a sphereflake, where the float boxes and the filter must "
+      "not lose a hit") {
     const IndexedTriangles flake = sphereflake({.levels = 1, .slices = 16});
     const TriangleSet set = TriangleSet::from_mesh(flake.vertices, flake.faces, "sphereflake");
     Rng rng(77);

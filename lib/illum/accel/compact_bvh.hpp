@@ -1,30 +1,34 @@
 #pragma once
-// The production BVH, lesson 08 (§4): the same tree as Bvh (binned SAH, the
-// same leaves), laid out and traversed for speed. Bvh's traversal
-// (bvh_traversal.cpp) is the teaching version, the exercise; this is the one
-// the scene, the radiosity visibility and the Embree comparison use.
+// The production BVH, lesson 08 (§4): the same binned-SAH tree as Bvh, its
+// levels collapsed in pairs into four-child nodes and laid out for speed.
+// Bvh's traversal (bvh_traversal.cpp) is the teaching version, the
+// exercise; this is the one the scene, the radiosity visibility and the
+// Embree comparison use ("bvh"; the teaching one is "bvh_teaching").
 //
 // What changes, and why each is safe:
-//   * nodes of 64 bytes (one cache line) holding both children's boxes in
-//     float, rounded OUTWARD (each lo down, each hi up), so the float box
-//     contains the double one and no hit is lost; the slab test runs in
-//     double on the widened boxes with the teaching version's far slack;
+//   * a node holds its (up to) four children's boxes, in float, rounded
+//     OUTWARD (lo down, hi up), so each float box contains the double one;
+//     one node is two cache lines, and half as many nodes lie on a path;
+//   * the four boxes are clipped at once (SSE, four float lanes). The ray
+//     origin is moved by 2⁻²¹·|o| (more than its rounding to float) towards
+//     each box's outside, and the exit widened by 2γ₃ (float): the float
+//     test can only accept more than the exact one, never less;
+//   * children are visited nearest entry first; the others are stacked with
+//     their entry and skipped when popped if a hit closer than that entry
+//     (plus 10⁻⁵ relative, the float test's slack) has been found;
 //   * per ray, the inverse direction and its signs are computed once; the
-//     near slab of each axis is then chosen by sign, no swap, no branch on
-//     parallel rays (0·∞ = NaN is dropped by the comparisons' order: a ray
-//     lying in a face plane counts as inside, as in slab_test.hpp);
-//   * both children are clipped at once; the one entered first is visited
-//     first and the other is stacked with its entry parameter, skipped when
-//     popped if a hit closer than that entry has been found;
+//     near plane of each axis is chosen by sign, no swap. 0·∞ = NaN (a ray
+//     lying in a face plane) is dropped by the order of the max/min operands:
+//     inside, as in slab_test.hpp;
 //   * each triangle is first tested by Möller–Trumbore on precomputed edges,
 //     a filter that rejects only when the ray misses by a clear margin
 //     (barycentrics below −10⁻⁴ or above 1 + 10⁻⁴; t outside the range by
-//     10⁻⁶ relative); a grazing ray (|cos| < 10⁻⁶) and every survivor go to
-//     lesson 03's watertight test, which decides. Hit/miss and t are
-//     therefore the exact test's, edges and vertices included, unless the
-//     filter's own rounding exceeds 10⁻⁴ in a barycentric — impossible unless
-//     the origin is ~10¹⁰ triangle sizes away.
-// Counters: one node visit per box test, one triangle test per filter test.
+//     10⁻⁶ relative); a grazing ray (|det| below 10⁻⁶ of its largest value)
+//     and every survivor go to lesson 03's watertight test, which decides.
+//     Hit/miss and t are therefore the exact test's, edges and vertices
+//     included, unless the filter's double rounding exceeds 10⁻⁴ in a
+//     barycentric, which needs an origin ~10¹⁰ triangle sizes away.
+// Counters: one node visit per child box tested, one triangle test per filter test.
 #include <cstdint>
 #include <vector>
 
@@ -33,19 +37,17 @@
 
 namespace illum {
 
-// One cache line holds an inner node's two children: their boxes (float,
-// rounded outward) side by side per axis, and for each child either a leaf's
-// triangle run (count > 0) or the index of the child's own node (count = 0).
-// A box test of both children therefore costs one memory fetch, and a child
-// whose box the ray misses is never fetched.
+// Four children: box planes [plane][child], planes 0–2 the lo of x, y, z and
+// 3–5 the hi; for each child a leaf's triangle run (count > 0) or the index of
+// its node (count = 0). An unused slot has an empty box (lo = +∞, hi = −∞)
+// that no ray enters.
 struct alignas(64) CompactBvhNode {
-  float lo[3][2];  // lo[axis][child]
-  float hi[3][2];
-  std::uint32_t child[2];  // leaf: first triangle; inner: node index
-  std::uint16_t count[2];  // leaf: triangles (≥ 1); inner: 0; an empty slot has an empty box
-  std::uint32_t pad = 0;
+  float planes[6][4];
+  std::uint32_t child[4];
+  std::uint16_t count[4];
+  std::uint64_t pad = 0;
 };
-static_assert(sizeof(CompactBvhNode) == 64);
+static_assert(sizeof(CompactBvhNode) == 128);
 
 // The filter's view of a triangle: a vertex and two edges, and the grazing bound.
 struct EdgeTriangle {
