@@ -6,7 +6,9 @@
 // with their build time and memory per triangle; sweeps the grid's resolution
 // and the BVH's leaf size; renders a shaded sphereflake with shadow rays
 // (any-hit) on one thread and on two and reports the speed-up; counts the
-// triangle tests a light buffer saves shadow rays.
+// triangle tests a light buffer saves shadow rays; compares the teaching and
+// production BVHs and times lesson 09's Monte Carlo form factors with V(x, y)
+// by brute force and through the BVH.
 #include <omp.h>
 
 #include <algorithm>
@@ -24,7 +26,10 @@
 #include "illum/core/image.hpp"
 #include "illum/core/pinhole_camera.hpp"
 #include "illum/core/stopwatch.hpp"
+#include "illum/radiosity/form_factor_sampling.hpp"
+#include "illum/radiosity/patch_occluders.hpp"
 #include "illum/io/output_folder.hpp"
+#include "illum/io/scene_file.hpp"
 #include "illum/io/program.hpp"
 
 namespace illum {
@@ -349,6 +354,61 @@ void study_light_buffer(OutputFolder& out, bool quick) {
       "Shadow rays from the visible points of a sphereflake to a point light: tests per ray, same decisions");
 }
 
+// Section 6: the structures at work elsewhere in the course. The teaching BVH
+// (the exercise's traversal) beside the production layout on the same tree;
+// then lesson 09's Monte Carlo form factors in the Cornell box with V(x, y)
+// by brute force over the patches and through the BVH: same numbers, less time.
+void study_structures_in_use(OutputFolder& out, bool quick) {
+  const TriangleSet set = flake_with_about(quick ? 10000 : 100000);
+  const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
+  Table bvhs({"BVH", "triangles", "build seconds", "bytes per triangle", "nodes per ray",
+              "triangle tests per ray", "Mrays per second (1 thread)"});
+  for (const AccelKind kind : {AccelKind::bvh_teaching, AccelKind::bvh}) {
+    const Measure m = measure(set, AccelSettings{.kind = kind}, rays, quick ? 0.005 : 0.05);
+    bvhs.add_row({std::string(accel_kind_name(kind)), static_cast<std::int64_t>(set.size()), m.build_seconds,
+                  m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});
+  }
+  out.table(bvhs, "bvh_layouts",
+            "The same SAH tree traversed by the exercise's code (two children, double boxes) and by the "
+            "production layout (four float children per node, filtered triangle tests)");
+
+  const RadiosityScene box = load_radiosity_scene("cornell", quick ? 200.0 : 75.0);
+  const int pairs = quick ? 12 : 60, samples = quick ? 64 : 256;
+  std::vector<double> slow(pairs), fast(pairs);
+  // Pairs facing each other across the box, many with the blocks in between.
+  const auto pair = [&](int k) {
+    const std::size_t n = box.patches.size();
+    return std::pair{&box.patches[(37 * k) % n], &box.patches[(101 * k + n / 2) % n]};
+  };
+  const double brute_seconds = best_seconds(3, [&] {
+    for (int k = 0; k < pairs; ++k) {
+      Rng rng(800 + k);
+      slow[k] = form_factor_monte_carlo(*pair(k).first, *pair(k).second, box.patches, samples, rng);
+    }
+  });
+  Stopwatch build;
+  const PatchOccluders occluders(box.patches);
+  const double build_seconds = build.seconds();
+  const double bvh_seconds = best_seconds(3, [&] {
+    for (int k = 0; k < pairs; ++k) {
+      Rng rng(800 + k);
+      fast[k] = form_factor_monte_carlo(*pair(k).first, *pair(k).second, occluders, samples, rng);
+    }
+  });
+  double largest_difference = 0;
+  for (int k = 0; k < pairs; ++k) largest_difference = std::max(largest_difference, std::abs(slow[k] - fast[k]));
+  Table mc({"visibility", "patches", "pairs", "samples per pair", "build seconds", "seconds", "speed-up",
+            "largest difference in F"});
+  mc.add_row({std::string("brute force over patches"), static_cast<std::int64_t>(box.patches.size()),
+              std::int64_t{pairs}, std::int64_t{samples}, 0.0, brute_seconds, 1.0, 0.0});
+  mc.add_row({std::string("BVH (any hit)"), static_cast<std::int64_t>(box.patches.size()), std::int64_t{pairs},
+              std::int64_t{samples}, build_seconds, bvh_seconds, brute_seconds / bvh_seconds,
+              largest_difference});
+  out.table(mc, "form_factor_visibility",
+            "Monte Carlo form factors (lesson 09) in the Cornell box, V(x, y) by brute force and by the BVH; "
+            "the same random streams, so equal numbers mean equal visibility answers");
+}
+
 }  // namespace
 }  // namespace illum
 
@@ -357,7 +417,8 @@ int main(int argc, char** argv) {
       illum::kId, "Spatial structures",
       "Measures brute force, the uniform grid (3DDA) and the BVH (binned SAH) on sphereflakes of 10^2 to "
       "10^6 triangles: cells or nodes and triangle tests per ray, throughput, build time and memory; "
-      "sweeps the grid resolution and the BVH leaf size; renders with 1 and 2 threads."};
+      "sweeps the grid resolution and the BVH leaf size; renders with 1 and 2 threads; times the "
+      "teaching and production BVHs and the Monte Carlo form factors with and without the BVH."};
   return illum::run_program(argc, argv, info, {}, [&](const illum::ProgramOptions& options) {
     illum::OutputFolder out(options.out, info.id, info.title);
     illum::study_scaling(out, options.quick);
@@ -366,6 +427,7 @@ int main(int argc, char** argv) {
     illum::study_octree_depth(out, options.quick);
     illum::render_with_threads(out, options.quick);
     illum::study_light_buffer(out, options.quick);
+    illum::study_structures_in_use(out, options.quick);
     out.finish();
   });
 }
