@@ -17,20 +17,24 @@
 #include <string>
 #include <vector>
 
+#include "illum/accel/bounding_sphere.hpp"
 #include "illum/accel/brute_force.hpp"
 #include "illum/accel/bvh.hpp"
+#include "illum/accel/kdop.hpp"
 #include "illum/accel/light_buffer.hpp"
+#include "illum/accel/oriented_box.hpp"
 #include "illum/accel/sphereflake.hpp"
 #include "illum/accel/triangle_accel.hpp"
 #include "illum/accel/uniform_grid.hpp"
 #include "illum/core/image.hpp"
 #include "illum/core/pinhole_camera.hpp"
 #include "illum/core/stopwatch.hpp"
+#include "illum/io/output_folder.hpp"
+#include "illum/io/program.hpp"
+#include "illum/io/scene_file.hpp"
 #include "illum/radiosity/form_factor_sampling.hpp"
 #include "illum/radiosity/patch_occluders.hpp"
-#include "illum/io/output_folder.hpp"
-#include "illum/io/scene_file.hpp"
-#include "illum/io/program.hpp"
+#include "illum/trace/scene.hpp"
 
 namespace illum {
 namespace {
@@ -354,6 +358,84 @@ void study_light_buffer(OutputFolder& out, bool quick) {
       "Shadow rays from the visible points of a sphereflake to a point light: tests per ray, same decisions");
 }
 
+// The meshes of the bounding-volume study: the shipped octahedron (as the
+// primitives scene places it), a sphereflake, and one sphere of it stretched
+// fourfold and tilted (the case oriented volumes are for).
+std::vector<std::pair<std::string, std::vector<Point3>>> bounding_study_meshes() {
+  const Scene primitives = load_scene("primitives");
+  std::vector<std::pair<std::string, std::vector<Point3>>> meshes;
+  for (const Primitive& p : primitives.primitives)
+    if (const auto* mesh = std::get_if<TriangleMesh>(&p.shape))
+      meshes.emplace_back("octahedron", mesh->positions);
+  meshes.emplace_back("sphereflake", sphereflake({.levels = 1, .slices = 16}).vertices);
+  std::vector<Point3> rod;
+  const double c = std::cos(0.6), s = std::sin(0.6);
+  for (const Point3& p : sphereflake({.levels = 0, .slices = 16}).vertices)
+    rod.emplace_back(c * 4 * p.x - s * p.y, s * 4 * p.x + c * p.y, p.z + 0.5 * p.x);
+  meshes.emplace_back("tilted rod", rod);
+  return meshes;
+}
+
+// Rays from a sphere of twice the bounding radius towards points of the bounding ball.
+std::vector<Ray> rays_around(const BoundingSphere& ball, int count) {
+  Rng rng(808);
+  std::vector<Ray> rays;
+  while (static_cast<int>(rays.size()) < count) {
+    const Vec3 u(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    const Vec3 v(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    if (dot(u, u) > 1 || dot(u, u) < 1e-4 || dot(v, v) > 1) continue;
+    const Point3 o = ball.center + 2 * ball.radius * normalize(u);
+    rays.push_back(Ray::toward(o, ball.center + ball.radius * v - o));
+  }
+  return rays;
+}
+
+// Section 2's trade-off: how tightly each bounding volume hugs a mesh (rays
+// hitting it per ray hitting the tightest one, the 26-DOP) against the cost
+// of one ray test.
+void study_bounding_volumes(OutputFolder& out, bool quick) {
+  Table table({"mesh", "volume", "slabs", "hits per 26-DOP hit", "ns per ray test"});
+  for (const auto& [name, points] : bounding_study_meshes()) {
+    const BoundingSphere sphere = BoundingSphere::around(points);
+    const OrientedBox obb = OrientedBox::around(points);
+    const KDop d6 = KDop::around(points, 6), d14 = KDop::around(points, 14), d18 = KDop::around(points, 18),
+               d26 = KDop::around(points, 26);
+    const std::vector<Ray> rays = rays_around(sphere, quick ? 4000 : 40000);
+    const auto count = [&](auto&& hit) {
+      double n = 0;
+      for (const Ray& r : rays) n += hit(r) ? 1 : 0;
+      return n;
+    };
+    const double reference = count([&](const Ray& r) { return d26.hit_by(r); });
+    const auto row = [&](const std::string& volume, std::int64_t slabs, auto&& hit) {
+      const double ns = best_nanoseconds_per_call(
+          3, [&](std::uint64_t i) { do_not_optimize(hit(rays[i % rays.size()])); }, quick ? 0.002 : 0.02);
+      table.add_row({name, volume, slabs, count(hit) / reference, ns});
+    };
+    row("sphere", 0, [&](const Ray& r) { return sphere.hit_by(r); });
+    row("axis-aligned box", 3, [&](const Ray& r) { return d6.hit_by(r); });
+    row("oriented box", 3, [&](const Ray& r) { return obb.hit_by(r); });
+    row("14-DOP", 7, [&](const Ray& r) { return d14.hit_by(r); });
+    row("18-DOP", 9, [&](const Ray& r) { return d18.hit_by(r); });
+    row("26-DOP", 13, [&](const Ray& r) { return d26.hit_by(r); });
+  }
+  out.table(table, "bounding_volumes",
+            "Bounding volumes on three meshes: rays that hit each per ray that hits the 26-DOP (tightness), "
+            "and the cost of one ray test",
+            3);
+  PlotSpec plot{.title = "Bounding volumes: tightness against cost",
+                .x_label = "ns per ray test",
+                .y_label = "hits per 26-DOP hit"};
+  for (const char* mesh : {"octahedron", "sphereflake", "tilted rod"})
+    plot.curves.push_back({.table = "bounding_volumes.csv",
+                           .x = "ns per ray test",
+                           .y = "hits per 26-DOP hit",
+                           .where = {{.column = "mesh", .equals = mesh}},
+                           .title = mesh,
+                           .mark = PlotMark::points});
+  out.plot(plot, "bounding_volumes", "Each point is a volume: lower is tighter, further left is cheaper");
+}
+
 // Section 6: the structures at work elsewhere in the course. The teaching BVH
 // (the exercise's traversal) beside the production layout on the same tree;
 // then lesson 09's Monte Carlo form factors in the Cornell box with V(x, y)
@@ -396,14 +478,15 @@ void study_structures_in_use(OutputFolder& out, bool quick) {
     }
   });
   double largest_difference = 0;
-  for (int k = 0; k < pairs; ++k) largest_difference = std::max(largest_difference, std::abs(slow[k] - fast[k]));
+  for (int k = 0; k < pairs; ++k)
+    largest_difference = std::max(largest_difference, std::abs(slow[k] - fast[k]));
   Table mc({"visibility", "patches", "pairs", "samples per pair", "build seconds", "seconds", "speed-up",
             "largest difference in F"});
   mc.add_row({std::string("brute force over patches"), static_cast<std::int64_t>(box.patches.size()),
               std::int64_t{pairs}, std::int64_t{samples}, 0.0, brute_seconds, 1.0, 0.0});
-  mc.add_row({std::string("BVH (any hit)"), static_cast<std::int64_t>(box.patches.size()), std::int64_t{pairs},
-              std::int64_t{samples}, build_seconds, bvh_seconds, brute_seconds / bvh_seconds,
-              largest_difference});
+  mc.add_row({std::string("BVH (any hit)"), static_cast<std::int64_t>(box.patches.size()),
+              std::int64_t{pairs}, std::int64_t{samples}, build_seconds, bvh_seconds,
+              brute_seconds / bvh_seconds, largest_difference});
   out.table(mc, "form_factor_visibility",
             "Monte Carlo form factors (lesson 09) in the Cornell box, V(x, y) by brute force and by the BVH; "
             "the same random streams, so equal numbers mean equal visibility answers");
@@ -426,6 +509,7 @@ int main(int argc, char** argv) {
     illum::study_leaf_size(out, options.quick);
     illum::study_octree_depth(out, options.quick);
     illum::render_with_threads(out, options.quick);
+    illum::study_bounding_volumes(out, options.quick);
     illum::study_light_buffer(out, options.quick);
     illum::study_structures_in_use(out, options.quick);
     out.finish();
