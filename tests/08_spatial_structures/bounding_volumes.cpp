@@ -140,7 +140,8 @@ TEST_SUITE("stability") {
   }
 
   TEST_CASE("bad input: a k that is not 6, 14, 18 or 26, and no points") {
-    ILLUM_CHECK_THROWS_CONTAINING(KDop::around(unit_cube, 8), "k must be 6, 14, 18 or 26", std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(KDop::around(unit_cube, 8), "k must be 6, 14, 18 or 26",
+                                  std::invalid_argument);
     CHECK_THROWS_AS(KDop::around(std::vector<Point3>{}, 14), std::invalid_argument);
     CHECK_THROWS_AS(OrientedBox::around(std::vector<Point3>{}), std::invalid_argument);
   }

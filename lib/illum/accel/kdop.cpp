@@ -11,9 +11,10 @@ namespace {
 // Axes first, then the diagonals, then the edge directions: the first three
 // make the box, the first seven the 14-DOP; the 18-DOP takes the axes and
 // the edge directions, and the 26-DOP all thirteen.
-const std::array<Vec3, 13> all_normals = {
-    Vec3(1, 0, 0),  Vec3(0, 1, 0),  Vec3(0, 0, 1),  Vec3(1, 1, 1),  Vec3(1, 1, -1), Vec3(1, -1, 1), Vec3(-1, 1, 1),
-    Vec3(1, 1, 0),  Vec3(1, -1, 0), Vec3(1, 0, 1),  Vec3(1, 0, -1), Vec3(0, 1, 1),  Vec3(0, 1, -1)};
+const std::array<Vec3, 13> all_normals = {Vec3(1, 0, 0),  Vec3(0, 1, 0),  Vec3(0, 0, 1),  Vec3(1, 1, 1),
+                                          Vec3(1, 1, -1), Vec3(1, -1, 1), Vec3(-1, 1, 1), Vec3(1, 1, 0),
+                                          Vec3(1, -1, 0), Vec3(1, 0, 1),  Vec3(1, 0, -1), Vec3(0, 1, 1),
+                                          Vec3(0, 1, -1)};
 const std::array<Vec3, 9> eighteen_normals = {Vec3(1, 0, 0),  Vec3(0, 1, 0),  Vec3(0, 0, 1),
                                               Vec3(1, 1, 0),  Vec3(1, -1, 0), Vec3(1, 0, 1),
                                               Vec3(1, 0, -1), Vec3(0, 1, 1),  Vec3(0, 1, -1)};
@@ -77,7 +78,8 @@ KDop KDop::around(std::span<const Point3> points, int k) {
 Interval KDop::clip(const Ray& ray) const {
   const std::span<const Vec3> n = normals(k);
   // n·P0 rounds by up to 3γ₃·max|P0_j| too: widen by twice that for this ray.
-  const double w = 6 * 3 * 0x1p-53 * std::max({std::abs(ray.origin.x), std::abs(ray.origin.y), std::abs(ray.origin.z)});
+  const double w =
+      6 * 3 * 0x1p-53 * std::max({std::abs(ray.origin.x), std::abs(ray.origin.y), std::abs(ray.origin.z)});
   Interval range = ray.range;
   for (std::size_t i = 0; i < n.size() && !range.empty(); ++i)
     clip_by_slab(dot(n[i], ray.origin), dot(n[i], ray.direction), lo[i] - w, hi[i] + w, range);

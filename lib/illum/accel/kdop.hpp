@@ -32,7 +32,7 @@ void clip_by_slab(double normal_dot_origin, double normal_dot_direction, double 
                   Interval& range);
 
 struct KDop {
-  int k = 0;                  // 6, 14, 18 or 26
+  int k = 0;                          // 6, 14, 18 or 26
   std::array<double, 13> lo{}, hi{};  // per normal, the first k/2 used
 
   // The k-DOP of the points. Throws std::invalid_argument on a k that is not

@@ -72,7 +72,8 @@ OrientedBox OrientedBox::around(std::span<const Point3> points) {
 }
 
 Interval OrientedBox::clip(const Ray& ray) const {
-  const double w = 6 * 3 * 0x1p-53 * std::max({std::abs(ray.origin.x), std::abs(ray.origin.y), std::abs(ray.origin.z)});
+  const double w =
+      6 * 3 * 0x1p-53 * std::max({std::abs(ray.origin.x), std::abs(ray.origin.y), std::abs(ray.origin.z)});
   Interval range = ray.range;
   for (int i = 0; i < 3 && !range.empty(); ++i)
     clip_by_slab(dot(axis[i], ray.origin), dot(axis[i], ray.direction), lo[i] - w, hi[i] + w, range);

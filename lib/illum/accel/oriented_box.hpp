@@ -19,7 +19,7 @@
 namespace illum {
 
 struct OrientedBox {
-  std::array<Vec3, 3> axis{};  // orthonormal, right-handed
+  std::array<Vec3, 3> axis{};        // orthonormal, right-handed
   std::array<double, 3> lo{}, hi{};  // extent along each axis (coordinates dot(axis, x))
 
   // Throws std::invalid_argument on no points or a point that is not finite.
