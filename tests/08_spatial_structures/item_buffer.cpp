@@ -29,10 +29,10 @@ TEST_SUITE("stability") {
           seen += hit ? 1 : 0;
           if (buffer.at(i, j) == expected) continue;
           // Allowed only when the ray also hits the buffer's triangle at (nearly) the same depth.
-          const auto other =
-              buffer.at(i, j) >= 0 ? intersect(Ray(ray.origin, ray.direction, Interval(0, infinity)),
-                                               set.triangles[static_cast<std::size_t>(buffer.at(i, j))])
-                                   : std::nullopt;
+          const auto other = buffer.at(i, j) >= 0
+                                 ? intersect(Ray(ray.origin, ray.direction, Interval(0, infinity)),
+                                             set.triangles[static_cast<std::size_t>(buffer.at(i, j))])
+                                 : std::nullopt;
           const bool tie = hit && other && std::abs(other->s - hit->hit.s) <= 1e-9 * hit->hit.s;
           differ += tie ? 0 : 1;
         }
