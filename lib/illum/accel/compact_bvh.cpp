@@ -192,13 +192,17 @@ std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters&
   int top = 0;
   std::uint64_t visits = 0, tests = 0;
   const float lo = round_down(ray.range.lo);
+  // How far a box may begin and still be entered: the closest hit so far plus the culling slack,
+  // in double (stacked entries) and rounded up to float (the box test); updated at each hit.
+  double reach = probe.range.hi + culling_slack * std::abs(probe.range.hi);
+  float reach_float = round_up(reach);
   Entry current{0, 0, ray.range.lo};
   for (;;) {
     if (current.count == 0) {
       const CompactBvhNode& node = nodes_[current.child];
       visits += 4;
       float entry[4];
-      clip_four(r, node, lo, round_up(probe.range.hi + culling_slack * std::abs(probe.range.hi)), entry);
+      clip_four(r, node, lo, reach_float, entry);
       Entry hits[4];
       int n = 0;
       for (int k = 0; k < 4; ++k) {
@@ -220,6 +224,8 @@ std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters&
         if (const auto hit = illum::intersect(probe, triangles_[k])) {
           best = AccelHit{*hit, ids_[k]};
           probe.range.hi = hit->s;
+          reach = probe.range.hi + culling_slack * std::abs(probe.range.hi);
+          reach_float = round_up(reach);
         }
       }
     }
@@ -232,7 +238,7 @@ std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters&
         return best;
       }
       current = stack[--top];
-      if (current.enter <= probe.range.hi + culling_slack * std::abs(probe.range.hi)) break;
+      if (current.enter <= reach) break;
     }
   }
 }
