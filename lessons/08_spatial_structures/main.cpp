@@ -410,7 +410,7 @@ void study_bounding_volumes(OutputFolder& out, bool quick) {
     const double reference = count([&](const Ray& r) { return d26.hit_by(r); });
     const auto row = [&](const std::string& volume, std::int64_t slabs, auto&& hit) {
       const double ns = best_nanoseconds_per_call(
-          3, [&](std::uint64_t i) { do_not_optimize(hit(rays[i % rays.size()])); }, quick ? 0.002 : 0.02);
+          5, [&](std::uint64_t i) { do_not_optimize(hit(rays[i % rays.size()])); }, quick ? 0.002 : 0.05);
       table.add_row({name, volume, slabs, count(hit) / reference, ns});
     };
     row("sphere", 0, [&](const Ray& r) { return sphere.hit_by(r); });
