@@ -91,14 +91,15 @@ inline bool may_hit(const FastRay& r, const EdgeTriangle& t, const Interval& ran
   const Vec3 p = cross(r.direction, t.e2);
   const double det = dot(t.e1, p);
   if (std::abs(det) < t.grazing) return true;  // grazing: the exact test decides
-  const double inv = 1.0 / det;
+  // u = u_num/det, v = v_num/det, tested against [−margin, 1 + margin] without dividing.
+  const double sign = det > 0 ? 1.0 : -1.0, size = std::abs(det), slop = margin * size;
   const Vec3 s = r.origin - t.v0;
-  const double u = dot(s, p) * inv;
-  if (u < -margin || u > 1 + margin) return false;
+  const double u = sign * dot(s, p);
+  if (u < -slop || u > size + slop) return false;
   const Vec3 q = cross(s, t.e1);
-  const double v = dot(r.direction, q) * inv;
-  if (v < -margin || u + v > 1 + margin) return false;
-  const double d = dot(t.e2, q) * inv;
+  const double v = sign * dot(r.direction, q);
+  if (v < -slop || u + v > size + slop) return false;
+  const double d = dot(t.e2, q) / det;
   const double slack = 1e-6 * std::abs(d);
   return d + slack >= range.lo && d - slack <= range.hi;
 }
