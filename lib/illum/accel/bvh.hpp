@@ -3,8 +3,8 @@
 // envolventes"): a binary tree of boxes whose leaves hold a few triangles.
 //
 // Build: top-down, binned surface-area heuristic (SAH). A node's triangles
-// are sorted by centroid into `bins` slots along the longest axis of their
-// centroids' box; of the bins − 1 planes between slots the one minimising
+// are sorted by centroid into `bins` slots along each axis of their
+// centroids' box; of the 3(bins − 1) planes between slots the one minimising
 //   A(left)·N(left) + A(right)·N(right)
 // is chosen: the expected number of triangle tests of a random ray that
 // reaches the node is proportional to it (a ray hits a convex box with
