@@ -16,7 +16,7 @@ using namespace illum;
 namespace {
 
 // A scene of a sphereflake mesh (shading normals on), a lone triangle that
-// pierces it, a sphere and a polygon: every path of SceneAccel.
+// pierces it, a sphere and a checkered polygon: every path of SceneAccel.
 Scene flake_scene() {
   Scene scene;
   scene.materials.push_back(Material{.name = "grey", .diffuse = Color(0.5)});
@@ -30,6 +30,14 @@ Scene flake_scene() {
   scene.primitives.push_back(Primitive{
       .name = "blade", .shape = Triangle({-2, -0.1, 0.3}, {2, -0.1, 0.3}, {0, 1.9, -0.2}), .material = 0});
   scene.primitives.push_back(Primitive{.name = "ball", .shape = Sphere({0.9, 0.9, 0.9}, 0.4), .material = 0});
+  // A checkered floor (lesson 07): the material depends on the hit point.
+  scene.materials.push_back(Material{.name = "dark", .diffuse = Color(0.1)});
+  Primitive floor{
+      .name = "floor",
+      .shape = Polygon({Point3(-3, -3, -1.2), Point3(3, -3, -1.2), Point3(3, 3, -1.2), Point3(-3, 3, -1.2)}),
+      .material = 0};
+  floor.checker_material = 1, floor.checker_size = 0.7;
+  scene.primitives.push_back(floor);
   return scene;
 }
 
@@ -41,6 +49,7 @@ void check_same_hit(const std::optional<SurfaceHit>& a, const std::optional<Surf
   CHECK(a->shading_normal == b->shading_normal);
   CHECK(a->primitive == b->primitive);
   CHECK(a->element == b->element);
+  CHECK(a->material == b->material);
 }
 
 }  // namespace

@@ -6,4 +6,4 @@ add_test(NAME tools_mutants_py COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOU
 set_tests_properties(tools_mutants_py PROPERTIES LABELS grading ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # Unit tests of tools/figures.py (figures in the lesson texts come from the programs' tables).
 add_test(NAME figures_tool COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_figures.py)
-set_tests_properties(figures_tool PROPERTIES ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+set_tests_properties(figures_tool PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)

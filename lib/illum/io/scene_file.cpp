@@ -308,6 +308,8 @@ TriangleMesh read_mesh(const JsonReader& p, const FileSource& source) {
   return mesh;
 }
 
+bool emits(const Material& m) { return m.emission != Color(0.0); }
+
 Primitive read_primitive(const JsonReader& p, std::size_t i, const Scene& scene, const FileSource& source) {
   const std::string type = p.at("type").string();
   const std::string name = p.has("name") ? p.at("name").string() : type + " " + std::to_string(i);
@@ -320,13 +322,22 @@ Primitive read_primitive(const JsonReader& p, std::size_t i, const Scene& scene,
     return with(Sphere(c, r));
   }
   if (type == "polygon") {
-    p.only_fields({"type", "name", "material", "vertices", "holes"});
+    p.only_fields({"type", "name", "material", "vertices", "holes", "checker"});
     std::vector<Point3> outer = read_points(p.at("vertices"), 3, max_polygon_vertices);
     std::vector<std::vector<Point3>> holes;
     if (p.has("holes"))
       for (std::size_t h = 0; h < p.at("holes").size(); ++h)
         holes.push_back(read_points(p.at("holes").at(h), 3, max_polygon_vertices));
-    return build_at(p.at("vertices"), [&] { return with(Polygon(outer, holes)); });
+    Primitive polygon = build_at(p.at("vertices"), [&] { return with(Polygon(outer, holes)); });
+    if (p.has("checker")) {  // lesson 07: a procedural checkerboard of two materials
+      const JsonReader c = p.at("checker");
+      c.only_fields({"material", "size"});
+      polygon.checker_material = material_of(c.at("material"), scene);
+      if (emits(scene.materials[polygon.checker_material]) || emits(scene.materials[polygon.material]))
+        c.at("material").fail("a checkered polygon must not emit (an area light has one material)");
+      polygon.checker_size = c.at("size").positive_number();
+    }
+    return polygon;
   }
   if (type == "triangle") {
     p.only_fields({"type", "name", "material", "vertices"});
@@ -355,8 +366,6 @@ Primitive read_primitive(const JsonReader& p, std::size_t i, const Scene& scene,
     problem += "; did you mean '" + near + "'?";
   p.at("type").fail(problem + " (known: sphere, polygon, triangle, mesh, csg, bilinear_patch, implicit)");
 }
-
-bool emits(const Material& m) { return m.emission != Color(0.0); }
 
 // The top level's fields, checked first by every reader of the format.
 void only_top_fields(const JsonReader& root) {

@@ -2,6 +2,7 @@
 // lesson 06, with optics.cpp.
 #include "illum/trace/ray_tree.hpp"
 
+#include "illum/trace/contribution_cutoff.hpp"
 #include "illum/trace/optics.hpp"
 #include "illum/trace/ray_offset.hpp"
 
@@ -76,14 +77,15 @@ Color evaluate(const Tracer& tracer, const Ray& ray, int depth, RayKind kind, co
       if (t.total_internal_reflection) {
         k_r += k_t;  // no transmitted ray: its energy is reflected
         record_total_internal_reflection(tracer.tree, node);
-      } else {
-        color += k_t * evaluate(tracer, spawn_ray(*hit, t.direction), depth + 1, RayKind::refraction,
-                                weight * k_t, node);
+      } else if (const Color w_t = weight * k_t; !pruned(tracer.min_contribution, w_t)) {
+        color +=
+            k_t * evaluate(tracer, spawn_ray(*hit, t.direction), depth + 1, RayKind::refraction, w_t, node);
       }
     }
-    if (tracer.plan.reflection && !(skip && is_black(k_r)))
+    const Color w_r = weight * k_r;  // the reflected child's path weight (lesson 07 may prune on it)
+    if (tracer.plan.reflection && !(skip && is_black(k_r)) && !pruned(tracer.min_contribution, w_r))
       color += k_r * evaluate(tracer, spawn_ray(*hit, reflect(ray.direction, hit->shading_normal)), depth + 1,
-                              RayKind::reflection, weight * k_r, node);
+                              RayKind::reflection, w_r, node);
   }
   record_result(tracer.tree, node, own, color);
   return color;

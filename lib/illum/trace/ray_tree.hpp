@@ -28,6 +28,10 @@ struct Tracer {
   Color background{0.0};
   TraceStats* stats = nullptr;
   RayTree* tree = nullptr;
+  // Lesson 07's pruning by contribution (Hall and Greenberg's adaptive depth
+  // control, contribution_cutoff.hpp): a child whose path weight falls below
+  // it is not spawned. 0, the default, prunes nothing: the tree of lesson 06.
+  double min_contribution = 0.0;
 };
 
 // The shadow test for one light (lesson 06, §5.2): the fraction of the light
@@ -52,7 +56,9 @@ Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_
 // Children obey the plan: none of a kind it switches off, and with
 // plan.skip_zero_weights none whose factor (k_r, k_t) is zero at this hit.
 // `weight` is the product of the k_r and k_t on the way from the eye and
-// `parent` the node that spawned this ray; both are for the record only.
+// `parent` the node that spawned this ray; both are for the record only,
+// except that with tracer.min_contribution > 0 a child whose weight fails
+// branch_contributes (lesson 07) is not spawned.
 Color evaluate(const Tracer& tracer, const Ray& ray, int depth = 0, RayKind kind = RayKind::primary,
                const Color& weight = Color(1.0), int parent = no_node);
 

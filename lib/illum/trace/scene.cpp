@@ -1,5 +1,6 @@
 #include "illum/trace/scene.hpp"
 
+#include <cmath>
 #include <type_traits>
 
 #include "illum/trace/scene_accel.hpp"
@@ -49,6 +50,13 @@ std::optional<SurfaceHit> Primitive::intersect(const Ray& ray, WorkCounters* cou
   return hit;
 }
 
+std::uint32_t Primitive::material_at(const Point3& p) const {
+  if (checker_material == no_material) return material;
+  const double s = checker_size;
+  const double cell = std::floor(p.x / s) + std::floor(p.y / s) + std::floor(p.z / s);
+  return std::fmod(cell, 2.0) == 0.0 ? material : checker_material;
+}
+
 void Scene::accelerate(const AccelSettings& settings) {
   accel = std::make_shared<const SceneAccel>(*this, settings);
 }
@@ -62,7 +70,7 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray, WorkCounters* counter
     if (!hit) continue;
     r.range.hi = hit->t;  // each hit shrinks the range: a farther primitive cannot win
     hit->primitive = static_cast<std::uint32_t>(i);
-    hit->material = primitives[i].material;
+    hit->material = primitives[i].material_at(hit->point);
     best = hit;
   }
   return best;

@@ -80,8 +80,15 @@ struct Primitive {
   std::string name;
   Shape shape;
   std::uint32_t material = no_material;
+  // A procedural checkerboard (lesson 07's aliasing scenes): with a second
+  // material, the cubes of side checker_size alternate between `material`
+  // and `checker_material` by the parity of ⌊x/s⌋ + ⌊y/s⌋ + ⌊z/s⌋ at the hit.
+  std::uint32_t checker_material = no_material;
+  double checker_size = 1.0;
 
   PrimitiveKind kind() const { return static_cast<PrimitiveKind>(shape.index()); }
+  // The material at a point of the surface (`material` unless checkered).
+  std::uint32_t material_at(const Point3& p) const;
   // The hit of this primitive alone (primitive index and material left unset).
   std::optional<SurfaceHit> intersect(const Ray& ray, WorkCounters* counters = nullptr) const;
 };

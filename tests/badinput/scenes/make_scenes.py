@@ -100,3 +100,16 @@ write("s_polygon.json", variant(S, lambda s: s["primitives"].append(
 write("s_no_camera.json", variant(S, lambda s: s.pop("camera")))
 write("s_not_json.json", '{"camera": {"eye": [0, 0, 3]')
 write("s_top_string.json", '"primitives"\n')
+
+# lesson 07: the procedural checker of a polygon
+def checkered(checker):
+    def change(s):
+        s["materials"]["white"] = {"diffuse": [0.8, 0.8, 0.8]}
+        s["primitives"].append({"type": "polygon", "name": "board", "material": "white", "checker": checker,
+                                "vertices": [[-5, -1, -5], [-5, -1, 5], [5, -1, 5], [5, -1, -5]]})
+    return change
+
+
+write("s_checker_unknown_material.json", variant(S, checkered({"material": "blak", "size": 1})))
+write("s_checker_size_zero.json", variant(S, checkered({"material": "red", "size": 0})))
+write("s_checker_size_typo.json", variant(S, checkered({"material": "red", "sise": 1})))
