@@ -6,7 +6,9 @@
 // with their build time and memory per triangle; sweeps the grid's resolution
 // and the BVH's leaf size; renders a shaded sphereflake with shadow rays
 // (any-hit) on one thread and on two and reports the speed-up; counts the
-// triangle tests a light buffer saves shadow rays.
+// triangle tests a light buffer saves shadow rays; compares the teaching and
+// production BVHs and times lesson 09's Monte Carlo form factors with V(x, y)
+// by brute force and through the BVH.
 #include <omp.h>
 
 #include <algorithm>
@@ -15,9 +17,13 @@
 #include <string>
 #include <vector>
 
+#include "illum/accel/bounding_sphere.hpp"
 #include "illum/accel/brute_force.hpp"
 #include "illum/accel/bvh.hpp"
+#include "illum/accel/item_buffer.hpp"
+#include "illum/accel/kdop.hpp"
 #include "illum/accel/light_buffer.hpp"
+#include "illum/accel/oriented_box.hpp"
 #include "illum/accel/sphereflake.hpp"
 #include "illum/accel/triangle_accel.hpp"
 #include "illum/accel/uniform_grid.hpp"
@@ -26,6 +32,10 @@
 #include "illum/core/stopwatch.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
+#include "illum/io/scene_file.hpp"
+#include "illum/radiosity/form_factor_sampling.hpp"
+#include "illum/radiosity/patch_occluders.hpp"
+#include "illum/trace/scene.hpp"
 
 namespace illum {
 namespace {
@@ -349,6 +359,177 @@ void study_light_buffer(OutputFolder& out, bool quick) {
       "Shadow rays from the visible points of a sphereflake to a point light: tests per ray, same decisions");
 }
 
+// The meshes of the bounding-volume study: the shipped octahedron (as the
+// primitives scene places it), a sphereflake, and one sphere of it stretched
+// fourfold and tilted (the case oriented volumes are for).
+std::vector<std::pair<std::string, std::vector<Point3>>> bounding_study_meshes() {
+  const Scene primitives = load_scene("primitives");
+  std::vector<std::pair<std::string, std::vector<Point3>>> meshes;
+  for (const Primitive& p : primitives.primitives)
+    if (const auto* mesh = std::get_if<TriangleMesh>(&p.shape))
+      meshes.emplace_back("octahedron", mesh->positions);
+  meshes.emplace_back("sphereflake", sphereflake({.levels = 1, .slices = 16}).vertices);
+  std::vector<Point3> rod;
+  const double c = std::cos(0.6), s = std::sin(0.6);
+  for (const Point3& p : sphereflake({.levels = 0, .slices = 16}).vertices)
+    rod.emplace_back(c * 4 * p.x - s * p.y, s * 4 * p.x + c * p.y, p.z + 0.5 * p.x);
+  meshes.emplace_back("tilted rod", rod);
+  return meshes;
+}
+
+// Rays from a sphere of twice the bounding radius towards points of the bounding ball.
+std::vector<Ray> rays_around(const BoundingSphere& ball, int count) {
+  Rng rng(808);
+  std::vector<Ray> rays;
+  while (static_cast<int>(rays.size()) < count) {
+    const Vec3 u(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    const Vec3 v(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    if (dot(u, u) > 1 || dot(u, u) < 1e-4 || dot(v, v) > 1) continue;
+    const Point3 o = ball.center + 2 * ball.radius * normalize(u);
+    rays.push_back(Ray::toward(o, ball.center + ball.radius * v - o));
+  }
+  return rays;
+}
+
+// Section 2's trade-off: how tightly each bounding volume hugs a mesh (rays
+// hitting it per ray hitting the tightest one, the 26-DOP) against the cost
+// of one ray test.
+void study_bounding_volumes(OutputFolder& out, bool quick) {
+  Table table({"mesh", "volume", "slabs", "hits per 26-DOP hit", "ns per ray test"});
+  for (const auto& [name, points] : bounding_study_meshes()) {
+    const BoundingSphere sphere = BoundingSphere::around(points);
+    const OrientedBox obb = OrientedBox::around(points);
+    const KDop d6 = KDop::around(points, 6), d14 = KDop::around(points, 14), d18 = KDop::around(points, 18),
+               d26 = KDop::around(points, 26);
+    const std::vector<Ray> rays = rays_around(sphere, quick ? 4000 : 40000);
+    const auto count = [&](auto&& hit) {
+      double n = 0;
+      for (const Ray& r : rays) n += hit(r) ? 1 : 0;
+      return n;
+    };
+    const double reference = count([&](const Ray& r) { return d26.hit_by(r); });
+    const auto row = [&](const std::string& volume, std::int64_t slabs, auto&& hit) {
+      const double ns = best_nanoseconds_per_call(
+          5, [&](std::uint64_t i) { do_not_optimize(hit(rays[i % rays.size()])); }, quick ? 0.002 : 0.05);
+      table.add_row({name, volume, slabs, count(hit) / reference, ns});
+    };
+    row("sphere", 0, [&](const Ray& r) { return sphere.hit_by(r); });
+    row("axis-aligned box", 3, [&](const Ray& r) { return d6.hit_by(r); });
+    row("oriented box", 3, [&](const Ray& r) { return obb.hit_by(r); });
+    row("14-DOP", 7, [&](const Ray& r) { return d14.hit_by(r); });
+    row("18-DOP", 9, [&](const Ray& r) { return d18.hit_by(r); });
+    row("26-DOP", 13, [&](const Ray& r) { return d26.hit_by(r); });
+  }
+  out.table(table, "bounding_volumes",
+            "Bounding volumes on three meshes: rays that hit each per ray that hits the 26-DOP (tightness), "
+            "and the cost of one ray test",
+            3);
+  PlotSpec plot{.title = "Bounding volumes: tightness against cost",
+                .x_label = "ns per ray test",
+                .y_label = "hits per 26-DOP hit"};
+  for (const char* mesh : {"octahedron", "sphereflake", "tilted rod"})
+    plot.curves.push_back({.table = "bounding_volumes.csv",
+                           .x = "ns per ray test",
+                           .y = "hits per 26-DOP hit",
+                           .where = {{.column = "mesh", .equals = mesh}},
+                           .title = mesh,
+                           .mark = PlotMark::points});
+  out.plot(plot, "bounding_volumes", "Each point is a volume: lower is tighter, further left is cheaper");
+}
+
+// Section 1's item buffer: primary visibility by rasterising triangle ids
+// against casting one ray per pixel through the BVH (and, on the small mesh,
+// brute force). The item buffer makes no ray–triangle test.
+void study_item_buffer(OutputFolder& out, bool quick) {
+  const TriangleSet set = flake_with_about(quick ? 10000 : 100000);
+  const PinholeCamera camera = flake_camera(quick ? 96 : 320, quick ? 72 : 240);
+  const auto pixels = static_cast<std::int64_t>(camera.width()) * camera.height();
+  const std::unique_ptr<TriangleAccel> bvh = make_accel(set);
+  ItemBuffer buffer;
+  const double raster_seconds = best_seconds(3, [&] { buffer = ItemBuffer::render(camera, set, 1e-6); });
+  std::vector<std::int32_t> cast(static_cast<std::size_t>(pixels));
+  TraversalCounters counters;
+  const double ray_seconds = best_seconds(3, [&] {
+    counters = {};
+    for (int j = 0; j < camera.height(); ++j)
+      for (int i = 0; i < camera.width(); ++i) {
+        const auto hit = bvh->intersect(camera.pixel_ray(i, j), counters);
+        cast[static_cast<std::size_t>(j) * camera.width() + i] =
+            hit ? static_cast<std::int32_t>(hit->triangle) : -1;
+      }
+  });
+  std::int64_t differ = 0;
+  for (std::size_t k = 0; k < cast.size(); ++k) differ += cast[k] != buffer.items[k] ? 1 : 0;
+  Table table({"primary visibility", "triangles", "pixels", "ray-triangle tests", "seconds",
+               "pixels whose triangle differs"});
+  table.add_row({std::string("rays through the BVH"), static_cast<std::int64_t>(set.size()), pixels,
+                 static_cast<std::int64_t>(counters.triangle_tests), ray_seconds, std::int64_t{0}});
+  table.add_row({std::string("brute-force rays (N per pixel)"), static_cast<std::int64_t>(set.size()), pixels,
+                 static_cast<std::int64_t>(set.size()) * pixels, std::string("not run"), std::int64_t{0}});
+  table.add_row({std::string("item buffer"), static_cast<std::int64_t>(set.size()), pixels, std::int64_t{0},
+                 raster_seconds, differ});
+  out.table(table, "item_buffer",
+            "Primary visibility of a sphereflake: rays through the BVH, brute force (tests counted, not run) "
+            "and the item buffer (no ray tests; differences are pixel centres on shared edges)",
+            4);
+}
+
+// Section 6: the structures at work elsewhere in the course. The teaching BVH
+// (the exercise's traversal) beside the production layout on the same tree;
+// then lesson 09's Monte Carlo form factors in the Cornell box with V(x, y)
+// by brute force over the patches and through the BVH: same numbers, less time.
+void study_structures_in_use(OutputFolder& out, bool quick) {
+  const TriangleSet set = flake_with_about(quick ? 10000 : 100000);
+  const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
+  Table bvhs({"BVH", "triangles", "build seconds", "bytes per triangle", "nodes per ray",
+              "triangle tests per ray", "Mrays per second (1 thread)"});
+  for (const AccelKind kind : {AccelKind::bvh_teaching, AccelKind::bvh}) {
+    const Measure m = measure(set, AccelSettings{.kind = kind}, rays, quick ? 0.005 : 0.05);
+    bvhs.add_row({std::string(accel_kind_name(kind)), static_cast<std::int64_t>(set.size()), m.build_seconds,
+                  m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});
+  }
+  out.table(bvhs, "bvh_layouts",
+            "The same SAH tree traversed by the exercise's code (two children, double boxes) and by the "
+            "production layout (four float children per node, filtered triangle tests)");
+
+  const RadiosityScene box = load_radiosity_scene("cornell", quick ? 200.0 : 75.0);
+  const int pairs = quick ? 12 : 60, samples = quick ? 64 : 256;
+  std::vector<double> slow(pairs), fast(pairs);
+  // Pairs facing each other across the box, many with the blocks in between.
+  const auto pair = [&](int k) {
+    const std::size_t n = box.patches.size();
+    return std::pair{&box.patches[(37 * k) % n], &box.patches[(101 * k + n / 2) % n]};
+  };
+  const double brute_seconds = best_seconds(3, [&] {
+    for (int k = 0; k < pairs; ++k) {
+      Rng rng(800 + k);
+      slow[k] = form_factor_monte_carlo(*pair(k).first, *pair(k).second, box.patches, samples, rng);
+    }
+  });
+  Stopwatch build;
+  const PatchOccluders occluders(box.patches);
+  const double build_seconds = build.seconds();
+  const double bvh_seconds = best_seconds(3, [&] {
+    for (int k = 0; k < pairs; ++k) {
+      Rng rng(800 + k);
+      fast[k] = form_factor_monte_carlo(*pair(k).first, *pair(k).second, occluders, samples, rng);
+    }
+  });
+  double largest_difference = 0;
+  for (int k = 0; k < pairs; ++k)
+    largest_difference = std::max(largest_difference, std::abs(slow[k] - fast[k]));
+  Table mc({"visibility", "patches", "pairs", "samples per pair", "build seconds", "seconds", "speed-up",
+            "largest difference in F"});
+  mc.add_row({std::string("brute force over patches"), static_cast<std::int64_t>(box.patches.size()),
+              std::int64_t{pairs}, std::int64_t{samples}, 0.0, brute_seconds, 1.0, 0.0});
+  mc.add_row({std::string("BVH (any hit)"), static_cast<std::int64_t>(box.patches.size()),
+              std::int64_t{pairs}, std::int64_t{samples}, build_seconds, bvh_seconds,
+              brute_seconds / bvh_seconds, largest_difference});
+  out.table(mc, "form_factor_visibility",
+            "Monte Carlo form factors (lesson 09) in the Cornell box, V(x, y) by brute force and by the BVH; "
+            "the same random streams, so equal numbers mean equal visibility answers");
+}
+
 }  // namespace
 }  // namespace illum
 
@@ -357,7 +538,8 @@ int main(int argc, char** argv) {
       illum::kId, "Spatial structures",
       "Measures brute force, the uniform grid (3DDA) and the BVH (binned SAH) on sphereflakes of 10^2 to "
       "10^6 triangles: cells or nodes and triangle tests per ray, throughput, build time and memory; "
-      "sweeps the grid resolution and the BVH leaf size; renders with 1 and 2 threads."};
+      "sweeps the grid resolution and the BVH leaf size; renders with 1 and 2 threads; times the "
+      "teaching and production BVHs and the Monte Carlo form factors with and without the BVH."};
   return illum::run_program(argc, argv, info, {}, [&](const illum::ProgramOptions& options) {
     illum::OutputFolder out(options.out, info.id, info.title);
     illum::study_scaling(out, options.quick);
@@ -365,7 +547,10 @@ int main(int argc, char** argv) {
     illum::study_leaf_size(out, options.quick);
     illum::study_octree_depth(out, options.quick);
     illum::render_with_threads(out, options.quick);
+    illum::study_bounding_volumes(out, options.quick);
     illum::study_light_buffer(out, options.quick);
+    illum::study_item_buffer(out, options.quick);
+    illum::study_structures_in_use(out, options.quick);
     out.finish();
   });
 }

@@ -374,7 +374,7 @@ TEST_SUITE("lesson08") {
     const std::vector<Ray> rays = mixed_rays(set, 1500, 0x080b);
     const auto reference = brute_force_hits(set, rays);
     CHECK(AccelSettings{}.kind == AccelKind::bvh);
-    for (const char* name : {"grid", "bvh"}) {
+    for (const char* name : {"grid", "bvh", "bvh_teaching"}) {
       INFO(name);
       const auto accel = make_accel(set, AccelSettings{.kind = accel_kind_from_name(name)});
       CHECK(accel->name() == name);

@@ -48,26 +48,23 @@ struct Builder {
     nodes[index].count = 0;
   }
 
-  // The SAH split of order[begin, end): the index where the right half starts.
-  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const Aabb& centroid_box, int level) {
-    const int axis = centroid_box.longest_axis();
+  struct Plane {
+    double cost = infinity;
+    int plane = 1;  // bins [0, plane) go left
+  };
+
+  int bin_of(std::uint32_t t, int axis, const Aabb& centroid_box) const {
     const double lo = centroid_box.lo[axis], extent = centroid_box.extent()[axis];
-    const std::uint32_t median = begin + (end - begin) / 2;
-    // All centroids equal, or a tree so deep the traversal stack is at risk: split by count.
-    if (!(extent > 0.0) || level > bvh_max_depth - 40) {
-      std::nth_element(
-          order.begin() + begin, order.begin() + median, order.begin() + end,
-          [&](std::uint32_t x, std::uint32_t y) { return centroids[x][axis] < centroids[y][axis]; });
-      return median;
-    }
+    const int b = static_cast<int>(settings.bins * ((centroids[t][axis] - lo) / extent));
+    return std::clamp(b, 0, settings.bins - 1);
+  }
+
+  // The cheapest of the bins − 1 planes across `axis` (which must have a positive extent).
+  Plane best_plane(std::uint32_t begin, std::uint32_t end, int axis, const Aabb& centroid_box) const {
     const int bin_count = settings.bins;
-    auto bin_of = [&](std::uint32_t t) {
-      const int b = static_cast<int>(bin_count * ((centroids[t][axis] - lo) / extent));
-      return std::clamp(b, 0, bin_count - 1);
-    };
     std::vector<Bin> bins(bin_count);
     for (std::uint32_t k = begin; k < end; ++k) {
-      Bin& bin = bins[bin_of(order[k])];
+      Bin& bin = bins[bin_of(order[k], axis, centroid_box)];
       bin.box.grow(boxes[order[k]]);
       ++bin.count;
     }
@@ -82,26 +79,43 @@ struct Builder {
     }
     acc = Aabb{};
     acc_n = 0;
-    double best_cost = infinity;
-    int best_plane = 1;
-    for (int b = 1; b < bin_count; ++b) {  // plane b: bins [0, b) go left
+    Plane best;
+    for (int b = 1; b < bin_count; ++b) {
       acc.grow(bins[b - 1].box);
       acc_n += bins[b - 1].count;
       const double cost = acc.surface_area() * acc_n + right_cost[b];
-      if (acc_n > 0 && acc_n < end - begin && cost < best_cost) {
-        best_cost = cost;
-        best_plane = b;
-      }
+      if (acc_n > 0 && acc_n < end - begin && cost < best.cost) best = Plane{cost, b};
     }
-    const auto middle = std::partition(order.begin() + begin, order.begin() + end,
-                                       [&](std::uint32_t t) { return bin_of(t) < best_plane; });
-    const auto mid = static_cast<std::uint32_t>(middle - order.begin());
-    if (mid == begin || mid == end) {  // every centroid in one bin (rounding): split by count
+    return best;
+  }
+
+  // The SAH split of order[begin, end): the index where the right half starts.
+  // Every axis along which the centroids spread is binned, and the cheapest
+  // plane of the three wins (binning the longest axis alone misses good
+  // splits of thin, tilted clusters).
+  std::uint32_t split(std::uint32_t begin, std::uint32_t end, const Aabb& centroid_box, int level) {
+    const int longest = centroid_box.longest_axis();
+    const std::uint32_t median = begin + (end - begin) / 2;
+    const auto split_by_count = [&](int axis) {
       std::nth_element(
           order.begin() + begin, order.begin() + median, order.begin() + end,
           [&](std::uint32_t x, std::uint32_t y) { return centroids[x][axis] < centroids[y][axis]; });
       return median;
+    };
+    // All centroids equal, or a tree so deep the traversal stack is at risk: split by count.
+    if (!(centroid_box.extent()[longest] > 0.0) || level > bvh_max_depth - 40) return split_by_count(longest);
+    int axis = longest;
+    Plane best;
+    for (int a = 0; a < 3; ++a) {
+      if (!(centroid_box.extent()[a] > 0.0)) continue;
+      const Plane p = best_plane(begin, end, a, centroid_box);
+      if (p.cost < best.cost) best = p, axis = a;
     }
+    const auto middle = std::partition(order.begin() + begin, order.begin() + end, [&](std::uint32_t t) {
+      return bin_of(t, axis, centroid_box) < best.plane;
+    });
+    const auto mid = static_cast<std::uint32_t>(middle - order.begin());
+    if (mid == begin || mid == end) return split_by_count(longest);  // every centroid in one bin (rounding)
     return mid;
   }
 };

@@ -3,8 +3,8 @@
 // envolventes"): a binary tree of boxes whose leaves hold a few triangles.
 //
 // Build: top-down, binned surface-area heuristic (SAH). A node's triangles
-// are sorted by centroid into `bins` slots along the longest axis of their
-// centroids' box; of the bins − 1 planes between slots the one minimising
+// are sorted by centroid into `bins` slots along each axis of their
+// centroids' box; of the 3(bins − 1) planes between slots the one minimising
 //   A(left)·N(left) + A(right)·N(right)
 // is chosen: the expected number of triangle tests of a random ray that
 // reaches the node is proportional to it (a ray hits a convex box with
@@ -43,10 +43,12 @@ class Bvh final : public TriangleAccel {
   std::optional<AccelHit> intersect(const Ray& ray, TraversalCounters& counters) const override;
   bool occluded(const Ray& ray, TraversalCounters& counters) const override;
   std::size_t memory_bytes() const override;
-  std::string_view name() const override { return "bvh"; }
+  std::string_view name() const override { return "bvh_teaching"; }
 
   const std::vector<BvhNode>& nodes() const { return nodes_; }
   int depth() const { return depth_; }
+  const std::vector<Triangle>& triangles() const { return triangles_; }  // in leaf order
+  const std::vector<std::uint32_t>& ids() const { return ids_; }         // the set's index of each
 
  private:
   std::vector<BvhNode> nodes_;

@@ -5,6 +5,7 @@
 
 #include "illum/accel/brute_force.hpp"
 #include "illum/accel/bvh.hpp"
+#include "illum/accel/compact_bvh.hpp"
 #include "illum/accel/octree.hpp"
 #include "illum/accel/uniform_grid.hpp"
 
@@ -15,8 +16,9 @@ AccelKind accel_kind_from_name(std::string_view name) {
   if (name == "grid") return AccelKind::grid;
   if (name == "octree") return AccelKind::octree;
   if (name == "bvh") return AccelKind::bvh;
+  if (name == "bvh_teaching") return AccelKind::bvh_teaching;
   throw std::invalid_argument("unknown acceleration structure '" + std::string(name) +
-                              "' (choose brute_force, grid, octree or bvh)");
+                              "' (choose brute_force, grid, octree, bvh or bvh_teaching)");
 }
 
 std::string_view accel_kind_name(AccelKind kind) {
@@ -29,6 +31,8 @@ std::string_view accel_kind_name(AccelKind kind) {
       return "octree";
     case AccelKind::bvh:
       return "bvh";
+    case AccelKind::bvh_teaching:
+      return "bvh_teaching";
   }
   return "?";
 }
@@ -48,6 +52,8 @@ std::unique_ptr<TriangleAccel> make_accel(const TriangleSet& set, const AccelSet
       return std::make_unique<Octree>(set,
                                       OctreeSettings{.max_depth = settings.octree_depth, .leaf_size = 8});
     case AccelKind::bvh:
+      return std::make_unique<CompactBvh>(set, BvhSettings{.leaf_size = settings.bvh_leaf_size});
+    case AccelKind::bvh_teaching:
       return std::make_unique<Bvh>(set, BvhSettings{.leaf_size = settings.bvh_leaf_size});
   }
   throw std::invalid_argument("make_accel: unknown AccelKind");

@@ -51,7 +51,9 @@ class TriangleAccel {
   virtual std::string_view name() const = 0;
 };
 
-enum class AccelKind { brute_force, grid, octree, bvh };
+// bvh: the production layout (compact_bvh.hpp); bvh_teaching: the same tree
+// traversed by the exercise unit (bvh_traversal.cpp), for the lesson's comparisons.
+enum class AccelKind { brute_force, grid, octree, bvh, bvh_teaching };
 
 struct AccelSettings {
   AccelKind kind = AccelKind::bvh;
@@ -61,7 +63,8 @@ struct AccelSettings {
   int octree_depth = 8;   // deepest octree level below the root (0 … 16)
 };
 
-// "brute_force", "grid", "octree", "bvh"; throws std::invalid_argument naming the choices otherwise.
+// "brute_force", "grid", "octree", "bvh", "bvh_teaching"; throws std::invalid_argument naming the choices
+// otherwise.
 AccelKind accel_kind_from_name(std::string_view name);
 std::string_view accel_kind_name(AccelKind kind);
 

@@ -75,22 +75,29 @@ std::optional<SurfaceHit> intersect_surface(const Ray& ray, const Triangle& tria
   return out;
 }
 
+std::optional<SurfaceHit> intersect_surface(const Ray& ray, const TriangleMesh& mesh, std::size_t element) {
+  const Triangle tri = mesh.triangle(element);
+  auto hit = intersect_surface(ray, tri);
+  if (!hit) return hit;
+  hit->element = static_cast<std::uint32_t>(element);
+  if (!mesh.corner_normals.empty()) {
+    const std::size_t i = element;
+    const double la = 1.0 - hit->uv.x - hit->uv.y;
+    const Vec3 n = la * mesh.corner_normals[3 * i] + hit->uv.x * mesh.corner_normals[3 * i + 1] +
+                   hit->uv.y * mesh.corner_normals[3 * i + 2];
+    if (length_squared(n) > 0.0) hit->orient(ray.direction, tri.normal(), normalize(n));
+  }
+  return hit;
+}
+
 std::optional<SurfaceHit> intersect_surface(const Ray& ray, const TriangleMesh& mesh, std::uint64_t* tests) {
   std::optional<SurfaceHit> best;
   Ray r = ray;
   for (std::size_t i = 0; i < mesh.triangle_count(); ++i) {
     if (tests) ++*tests;
-    const Triangle tri = mesh.triangle(i);
-    auto hit = intersect_surface(r, tri);
+    auto hit = intersect_surface(r, mesh, i);
     if (!hit) continue;
     r.range.hi = hit->t;  // a farther triangle can no longer win
-    hit->element = static_cast<std::uint32_t>(i);
-    if (!mesh.corner_normals.empty()) {
-      const double la = 1.0 - hit->uv.x - hit->uv.y;
-      const Vec3 n = la * mesh.corner_normals[3 * i] + hit->uv.x * mesh.corner_normals[3 * i + 1] +
-                     hit->uv.y * mesh.corner_normals[3 * i + 2];
-      if (length_squared(n) > 0.0) hit->orient(ray.direction, tri.normal(), normalize(n));
-    }
     best = hit;
   }
   return best;

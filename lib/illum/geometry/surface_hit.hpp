@@ -69,6 +69,10 @@ std::optional<SurfaceHit> intersect_surface(const Ray& ray, const Polygon& polyg
 std::optional<SurfaceHit> intersect_surface(const Ray& ray, const Triangle& triangle);
 std::optional<SurfaceHit> intersect_surface(const Ray& ray, const TriangleMesh& mesh,
                                             std::uint64_t* tests = nullptr);
+// Triangle `element` of the mesh alone, with its interpolated shading normal:
+// what the whole-mesh routine does per triangle, for a spatial structure
+// (lesson 08) that found the candidate and needs the same hit record.
+std::optional<SurfaceHit> intersect_surface(const Ray& ray, const TriangleMesh& mesh, std::size_t element);
 std::optional<SurfaceHit> intersect_surface(const Ray& ray, const CsgTree& tree,
                                             const CsgOptions& options = {});
 std::optional<SurfaceHit> intersect_surface(const Ray& ray, const BezierPatch& patch,

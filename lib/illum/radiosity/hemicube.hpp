@@ -17,9 +17,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "illum/geometry/hemicube_raster.hpp"
 #include "illum/radiosity/form_factor_matrix.hpp"
 #include "illum/radiosity/hemicube_deltas.hpp"
-#include "illum/radiosity/hemicube_raster.hpp"
 #include "illum/radiosity/patch.hpp"
 
 namespace illum {

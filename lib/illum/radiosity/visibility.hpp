@@ -1,7 +1,7 @@
 #pragma once
 // Visibility between two points by casting a ray against every patch of the
 // scene, brute force (lesson 09, the V(x, y) of the radiosity equation).
-// Lesson 08's spatial structures make this fast; here clarity comes first.
+// Lesson 08's structures make this fast (patch_occluders.hpp); here clarity comes first.
 #include <optional>
 #include <vector>
 

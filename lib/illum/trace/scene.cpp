@@ -3,6 +3,8 @@
 #include <cmath>
 #include <type_traits>
 
+#include "illum/trace/scene_accel.hpp"
+
 namespace illum {
 
 const char* to_string(PrimitiveKind kind) {
@@ -55,7 +57,12 @@ std::uint32_t Primitive::material_at(const Point3& p) const {
   return std::fmod(cell, 2.0) == 0.0 ? material : checker_material;
 }
 
+void Scene::accelerate(const AccelSettings& settings) {
+  accel = std::make_shared<const SceneAccel>(*this, settings);
+}
+
 std::optional<SurfaceHit> Scene::intersect(const Ray& ray, WorkCounters* counters) const {
+  if (accel && accel->covers(*this)) return accel->intersect(*this, ray, counters);
   std::optional<SurfaceHit> best;
   Ray r = ray;
   for (std::size_t i = 0; i < primitives.size(); ++i) {
@@ -70,6 +77,7 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray, WorkCounters* counter
 }
 
 bool Scene::occluded(const Ray& ray, WorkCounters* counters) const {
+  if (accel && accel->covers(*this)) return accel->occluded(*this, ray, counters);
   for (const Primitive& p : primitives)
     if (p.intersect(ray, counters)) return true;
   return false;

@@ -15,12 +15,15 @@
 #include <variant>
 #include <vector>
 
+#include "illum/accel/triangle_accel.hpp"
 #include "illum/core/counters.hpp"
 #include "illum/core/ray.hpp"
 #include "illum/core/vec.hpp"
 #include "illum/geometry/surface_hit.hpp"
 
 namespace illum {
+
+class SceneAccel;  // lesson 08's structures over the scene's triangles (scene_accel.hpp)
 
 // Every field has a physical meaning from the notes (lesson 06, "modelo de
 // iluminación"); colours are linear RGB factors in [0, 1] except emission.
@@ -100,11 +103,21 @@ struct Scene {
   std::vector<Primitive>
       primitives;  // spheres, polygons, triangles, meshes (OBJ), CSG, bilinear patches, implicit
 
-  // Nearest hit in ray.range (brute force over primitives; lesson 08 adds
-  // structures). Counts one intersection test per primitive (per triangle
-  // of a mesh) and one hit per test that found one.
+  // Lesson 08: the structure over the scene's triangles, or null for brute
+  // force. The loader (io/scene_file) builds the default BVH; accelerate()
+  // rebuilds it with other settings, brute_force() drops it. Changing the
+  // primitives afterwards needs another accelerate() (a changed count is
+  // detected and falls back to brute force).
+  std::shared_ptr<const SceneAccel> accel;
+  void accelerate(const AccelSettings& settings = {});
+  void brute_force() { accel.reset(); }
+
+  // Nearest hit in ray.range: through `accel` when there is one (the same
+  // hit, see scene_accel.hpp), else brute force over primitives. Counts one
+  // intersection test per primitive (per triangle of a mesh tested) and one
+  // hit per test that found one.
   std::optional<SurfaceHit> intersect(const Ray& ray, WorkCounters* counters = nullptr) const;
-  // Any hit in ray.range (shadow rays may stop at the first opaque hit).
+  // Any hit in ray.range (shadow rays may stop at the first opaque hit); any-hit query of `accel`.
   bool occluded(const Ray& ray, WorkCounters* counters = nullptr) const;
 
   // The index of the material called `name`, or no_material.

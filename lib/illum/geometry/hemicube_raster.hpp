@@ -2,6 +2,9 @@
 // The hemicube's rasteriser, lesson 10 (provided, not an exercise): one face
 // of the hemicube is a small perspective camera at the patch's centroid, and
 // each visible patch is drawn into the face's item buffer with a z-buffer.
+// It lives in geometry, the lowest area that both of its users can include:
+// the hemicube (radiosity) and lesson 08's item buffer (accel), which maps a
+// pinhole camera's view onto a face's coordinates and draws triangle ids.
 //
 // Coordinates are the face's view frame (a, b, w): w along the face's axis
 // (forward), a and b across it. The face covers the window |a/w| ≤ 1 and

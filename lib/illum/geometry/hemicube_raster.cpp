@@ -1,4 +1,4 @@
-#include "illum/radiosity/hemicube_raster.hpp"
+#include "illum/geometry/hemicube_raster.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,70 @@
+// The production BVH (suite "stability", not graded: it is not an exercise
+// unit): the same closest hit and the same shadow answers as brute force on
+// rays of every kind, axis-parallel rays through vertices included, for every
+// leaf size and for a tree that is a single leaf.
+#include <doctest/doctest.h>
+
+#include <vector>
+
+#include "illum/accel/brute_force.hpp"
+#include "illum/accel/compact_bvh.hpp"
+#include "illum/accel/sphereflake.hpp"
+#include "scenes.hpp"
+
+using namespace illum;
+
+namespace {
+
+// Hit/miss, s and (unless two triangles tie at that s) the triangle.
+int mismatches(const CompactBvh& fast, const TriangleSet& set, const std::vector<Ray>& rays) {
+  const BruteForce brute(set);
+  TraversalCounters c;
+  int wrong = 0;
+  for (const Ray& ray : rays) {
+    const auto expected = brute.intersect(ray, c);
+    const auto got = fast.intersect(ray, c);
+    bool same = expected.has_value() == got.has_value();
+    if (same && expected) {
+      const auto other = intersect(ray, set.triangles[got->triangle]);
+      same = expected->hit.s == got->hit.s && other && other->s == expected->hit.s;
+    }
+    const Ray shadow(ray.origin, ray.direction, Interval(0.0, 2.5));
+    same = same && brute.occluded(shadow, c) == fast.occluded(shadow, c);
+    wrong += same ? 0 : 1;
+  }
+  return wrong;
+}
+
+}  // namespace
+
+TEST_SUITE("stability") {
+  TEST_CASE("the production BVH answers as brute force does, for every leaf size") {
+    const TriangleSet soup = test08::triangle_soup(600, 41);
+    const std::vector<Ray> rays = test08::mixed_rays(soup, 3000, 42);
+    for (const int leaf : {1, 2, 4, 16}) {
+      CAPTURE(leaf);
+      CHECK(mismatches(CompactBvh(soup, {.leaf_size = leaf}), soup, rays) == 0);
+    }
+  }
+
+  TEST_CASE("hard case: a production BVH that is one leaf (an empty second slot nothing enters)") {
+    const TriangleSet three = test08::triangle_soup(3, 5);
+    const std::vector<Ray> rays = test08::mixed_rays(three, 2000, 6);
+    CHECK(mismatches(CompactBvh(three, {.leaf_size = 4}), three, rays) == 0);
+  }
+
+  TEST_CASE(
+      "hard case: rays aimed at the vertices of a sphereflake, where the float boxes and the filter must "
+      "not lose a hit") {
+    const IndexedTriangles flake = sphereflake({.levels = 1, .slices = 16});
+    const TriangleSet set = TriangleSet::from_mesh(flake.vertices, flake.faces, "sphereflake");
+    Rng rng(77);
+    std::vector<Ray> rays;
+    for (int k = 0; k < 2000; ++k) {
+      const Point3& v = flake.vertices[rng.below(static_cast<std::uint32_t>(flake.vertices.size()))];
+      const Point3 o = v + 3.0 * test08::random_direction(rng);
+      rays.push_back(Ray::toward(o, v - o));
+    }
+    CHECK(mismatches(CompactBvh(set, {}), set, rays) == 0);
+  }
+}
