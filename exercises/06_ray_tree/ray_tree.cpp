@@ -5,6 +5,7 @@
 #include "illum/trace/ray_tree.hpp"
 
 #include "illum/core/error.hpp"
+#include "illum/trace/contribution_cutoff.hpp"
 #include "illum/trace/optics.hpp"
 #include "illum/trace/ray_offset.hpp"
 
@@ -38,6 +39,9 @@ Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_
 // reflection adds k_t to k_r) and the reflected ray, each spawned with
 // spawn_ray and weighed by its k. Return I_own + k_r·I_r + k_t·I_t.
 // Record the ray with record_ray and its result with record_result.
+// Lesson 07 prunes the tree through this function: skip a child when
+// pruned(tracer.min_contribution, weight * k) is true (contribution_cutoff.hpp;
+// it is false whenever min_contribution is 0, the default).
 Color evaluate(const Tracer& tracer, const Ray& ray, int depth, RayKind kind, const Color& weight,
                int parent) {
   throw NotImplemented("evaluate",

@@ -1,8 +1,7 @@
-// Lesson 07 exercise, part 1: adaptive supersampling with shared corners.
+// Lesson 07 exercise: adaptive supersampling with shared corners.
 // Replace each `throw NotImplemented(...)` with your code. The tasks, hints
 // and the tests that grade them are in README.md beside this file; the
-// declarations and their contracts are in
-// lib/illum/trace/adaptive_supersampling.hpp.
+// declarations and their contracts are in lib/illum/trace/adaptive_supersampling.hpp.
 #include "illum/trace/adaptive_supersampling.hpp"
 
 #include <algorithm>

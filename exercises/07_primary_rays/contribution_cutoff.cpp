@@ -1,8 +1,7 @@
-// Lesson 07 exercise, part 3: pruning the ray tree by contribution.
+// Lesson 07 exercise: pruning the ray tree by contribution.
 // Replace each `throw NotImplemented(...)` with your code. The tasks, hints
 // and the tests that grade them are in README.md beside this file; the
-// declarations and their contracts are in
-// lib/illum/trace/contribution_cutoff.hpp.
+// declarations and their contracts are in lib/illum/trace/contribution_cutoff.hpp.
 #include "illum/trace/contribution_cutoff.hpp"
 
 #include <algorithm>

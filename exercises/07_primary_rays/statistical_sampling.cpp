@@ -1,8 +1,7 @@
-// Lesson 07 exercise, part 2: random, stratified and statistical sampling.
+// Lesson 07 exercise: random, stratified and statistical sampling.
 // Replace each `throw NotImplemented(...)` with your code. The tasks, hints
 // and the tests that grade them are in README.md beside this file; the
-// declarations and their contracts are in
-// lib/illum/trace/statistical_sampling.hpp.
+// declarations and their contracts are in lib/illum/trace/statistical_sampling.hpp.
 #include "illum/trace/statistical_sampling.hpp"
 
 #include <algorithm>

@@ -81,7 +81,7 @@ Spread spread_of(int m, Estimate&& estimate) {
 }  // namespace
 
 TEST_SUITE("lesson07") {
-  TEST_CASE("adaptive: a constant image traces only the pixel corners") {
+  TEST_CASE("adaptive: a constant image traces only the pixel corners" * doctest::description("task=1,2,3")) {
     // 4 × 3 pixels have 5 × 4 = 20 corners; equal corners agree even at threshold 0.
     Recorder rec;
     const AdaptiveRun run = adaptive_image(rec.wrap([](double, double) { return Color(0.25, 0.5, 0.75); }), 4,
@@ -97,7 +97,8 @@ TEST_SUITE("lesson07") {
     for (const Color& c : run.pixels) CHECK(c == Color(0.25, 0.5, 0.75));
   }
 
-  TEST_CASE("adaptive: above the minimum depth a square is cut whatever its corners say") {
+  TEST_CASE("adaptive: above the minimum depth a square is cut whatever its corners say" *
+            doctest::description("task=1,2,3")) {
     // Constant image, 2 × 1 pixels, min_depth 2 = max_depth 3: every pixel is cut twice
     // (agreeing corners or not), then its squares of side 1/4 agree and stop. The
     // lattice of step 1/4 over 2 × 1 pixels has (2·4 + 1)(1·4 + 1) = 45 points.
@@ -115,7 +116,8 @@ TEST_SUITE("lesson07") {
                     std::invalid_argument);
   }
 
-  TEST_CASE("adaptive: threshold 0 refines to the maximum depth and no further") {
+  TEST_CASE("adaptive: threshold 0 refines to the maximum depth and no further" *
+            doctest::description("task=1,2,3")) {
     // f = x + 10 y: every square's corners differ, so every square is cut down to
     // side 1/2^d: one pixel costs (2^d + 1)² points, all on the lattice of step 1/2^d.
     // The trapezoid rule is exact for a linear f: the colour is f at the centre.
@@ -137,7 +139,8 @@ TEST_SUITE("lesson07") {
     }
   }
 
-  TEST_CASE("adaptive: corners shared between pixels, rows and levels are traced once") {
+  TEST_CASE("adaptive: corners shared between pixels, rows and levels are traced once" *
+            doctest::description("task=1,2,3")) {
     // 3 × 2 pixels, depth 2, every square cut: the lattice has (3·4 + 1)(2·4 + 1) = 117 points.
     // Without reuse each pixel would trace its own 25 points: 150; without reuse between
     // levels, even more.
@@ -152,7 +155,8 @@ TEST_SUITE("lesson07") {
     }
   }
 
-  TEST_CASE("adaptive: ColorP₂ of the notes on a hand-made sample pattern") {
+  TEST_CASE("adaptive: ColorP₂ of the notes on a hand-made sample pattern" *
+            doctest::description("task=1,2,3")) {
     // One pixel, depth 2, threshold 0.5; v[Y][X] is the sample at (X/4, Y/4).
     // Corners 0.1, 0.2, 0.3, 1.0 spread 0.9: cut. Quarters TL, TR, BL spread ≤ 0.15: kept
     // (ColorP₁ each); BR (0.2, 0.3, 0.25, 1.0) spreads 0.8: cut once more (depth 2, final).
@@ -181,7 +185,8 @@ TEST_SUITE("lesson07") {
     CHECK_MESSAGE(run.rays == 14, "3 × 3 points for the first cut, 5 more for the cut of BR");
   }
 
-  TEST_CASE("adaptive: corners agree when every channel's spread is at most the threshold") {
+  TEST_CASE("adaptive: corners agree when every channel's spread is at most the threshold" *
+            doctest::description("task=1")) {
     // Spreads are exact binary fractions: 0.75 − 0.5 = 0.25 exactly.
     CHECK(corners_agree(Color(0.5), Color(0.75), Color(0.5), Color(0.625), 0.25));
     CHECK_FALSE(corners_agree(Color(0.5), Color(0.75), Color(0.5), Color(0.625), 0.2499));
@@ -192,7 +197,8 @@ TEST_SUITE("lesson07") {
     CHECK(corners_agree(Color(0.3), Color(0.3), Color(0.3), Color(0.3), 0.0));
   }
 
-  TEST_CASE("hard case: adaptive sampling misses a feature between its initial corners") {
+  TEST_CASE("hard case: adaptive sampling misses a feature between its initial corners" *
+            doctest::description("task=1,2,3")) {
     // A bright square [0.3, 0.45]² inside the pixel, away from every point of the
     // depth-0 grid: the four corners agree and the feature is never seen. That is
     // the method's known failure (lesson 07, §2), not a bug; the colour is 0.
@@ -205,7 +211,7 @@ TEST_SUITE("lesson07") {
     check_grey(run.pixels[0], 0.0);
   }
 
-  TEST_CASE("adaptive: settings that make no sense are refused") {
+  TEST_CASE("adaptive: settings that make no sense are refused" * doctest::description("task=3")) {
     SampleLattice lattice(2, 1, 2);
     const ImageFunction f = [](double, double) { return Color(0.0); };
     LatticeRow row(lattice, 0, f);
@@ -217,10 +223,11 @@ TEST_SUITE("lesson07") {
         std::invalid_argument);
     ILLUM_CHECK_THROWS_CONTAINING(adaptive_pixel(row, 0, {.threshold = 0.1, .max_depth = 3}), "max_depth",
                                   std::invalid_argument);
-    CHECK_MESSAGE(row.traced() == 0, "a refused call traces nothing");
+    CHECK_MESSAGE(row.traced() == 0, "contract of adaptive_pixel: a refused call traces nothing");
   }
 
-  TEST_CASE("random: the points are (i + ξ₁, j + ξ₂) in the generator's order") {
+  TEST_CASE("random: the points are (i + ξ₁, j + ξ₂) in the generator's order" *
+            doctest::description("task=4")) {
     Recorder rec;
     Rng rng(7, 3), mine(7, 3);
     const PixelEstimate p = random_pixel(rec.wrap(edge), 5, 2, 6, rng);
@@ -239,7 +246,8 @@ TEST_SUITE("lesson07") {
     CHECK(one.samples == 1);
   }
 
-  TEST_CASE("random: seeded z-tests of the mean and the variance on an edge pixel") {
+  TEST_CASE("random: seeded z-tests of the mean and the variance on an edge pixel" *
+            doctest::description("task=4")) {
     // Each of N = 16 samples falls left of the edge with p = 0.3: the estimate is B/N,
     // B ~ Binomial(16, 0.3): mean 0.3, variance p(1−p)/N = 0.013125.
     const int n = 16, m = 4000;
@@ -259,7 +267,7 @@ TEST_SUITE("lesson07") {
         "independent uniform samples: the variance is p(1−p)/N (stratified samples would have less)");
   }
 
-  TEST_CASE("stratified: exactly one sample in each of the n × n cells") {
+  TEST_CASE("stratified: exactly one sample in each of the n × n cells" * doctest::description("task=5")) {
     Recorder rec;
     Rng rng(11, 0);
     const int n = 5;
@@ -279,7 +287,8 @@ TEST_SUITE("lesson07") {
                   "n = 1: one jittered ray in the whole pixel");
   }
 
-  TEST_CASE("stratified: seeded z-tests of the mean and the variance on an edge pixel") {
+  TEST_CASE("stratified: seeded z-tests of the mean and the variance on an edge pixel" *
+            doctest::description("task=5")) {
     // n = 4: the edge x = 0.3 leaves one column of cells (x < 0.25) always left of it,
     // and cuts the second column at 0.2 of its width. Estimate = (4 + B)/16 with
     // B ~ Binomial(4, 0.2): mean (4 + 0.8)/16 = 0.3, variance 4·0.16/256 = 0.0025,
@@ -299,7 +308,8 @@ TEST_SUITE("lesson07") {
     CHECK_MESSAGE(std::abs(z_var) <= z_critical(), "only the cells the edge crosses vary");
   }
 
-  TEST_CASE("statistical: Welford's moments and the confidence half-width on a hand example") {
+  TEST_CASE("statistical: Welford's moments and the confidence half-width on a hand example" *
+            doctest::description("task=6,7,8")) {
     // 2, 4, 4, 4, 5, 5, 7, 9: mean 5, Σ(x − 5)² = 9+1+1+1+0+0+4+16 = 32, s² = 32/7,
     // half-width with z = 2: 2·√(32/7/8) = 2·√(4/7).
     SampleMoments m;
@@ -316,7 +326,7 @@ TEST_SUITE("lesson07") {
     CHECK_MESSAGE(std::isinf(confidence_half_width(one, 2.0)), "one sample says nothing of the spread");
   }
 
-  TEST_CASE("hard case: Welford's variance of samples far from zero") {
+  TEST_CASE("hard case: Welford's variance of samples far from zero" * doctest::description("task=6,7")) {
     // 10⁹ + {4, 7, 13, 16}: deviations −6, −3, 3, 6, s² = 90/3 = 30. The naive
     // Σx²/N − mean² subtracts two numbers near 10¹⁸ and keeps no correct digit.
     SampleMoments m;
@@ -329,7 +339,7 @@ TEST_SUITE("lesson07") {
     CHECK(std::abs(naive - 30.0) > 1.0);
   }
 
-  TEST_CASE("statistical: the stopping rule at its boundaries") {
+  TEST_CASE("statistical: the stopping rule at its boundaries" * doctest::description("task=6,7,8,9")) {
     // Samples 0 and 2: s² = 2, N = 2, half-width z·√(2/2) = z.
     SampleMoments m;
     add_sample(m, Color(0.0));
@@ -342,7 +352,8 @@ TEST_SUITE("lesson07") {
                   "always at max_samples");
   }
 
-  TEST_CASE("statistical: a flat pixel stops early, a ramp goes on to the maximum") {
+  TEST_CASE("statistical: a flat pixel stops early, a ramp goes on to the maximum" *
+            doctest::description("task=6,7,8,9,10")) {
     Rng rng(5, 5);
     const ImageFunction flat = [](double, double) { return Color(0.4); };
     CHECK(statistical_pixel(flat, 0, 0, rng, {.tolerance = 0.01, .min_samples = 6, .max_samples = 64})
@@ -383,12 +394,14 @@ TEST_SUITE("lesson07") {
     CHECK_THROWS_AS(statistical_pixel(flat, 0, 0, rng, {.z = nan}), std::invalid_argument);
   }
 
-  TEST_CASE("pruning: a branch contributes when its largest channel reaches the threshold") {
+  TEST_CASE("pruning: a branch contributes when its largest channel reaches the threshold" *
+            doctest::description("task=11,12")) {
     CHECK(path_contribution(Color(0.2, 0.5, 0.1)) == 0.5);
     CHECK(path_contribution(Color(0.0, 0.0, 0.7)) == 0.7);
     CHECK(branch_contributes(Color(0.2, 0.5, 0.1), 0.5));
     CHECK_FALSE(branch_contributes(Color(0.2, 0.5, 0.1), 0.5000001));
-    CHECK_MESSAGE(branch_contributes(Color(0.0), 0.0), "threshold 0 keeps every branch, even a zero one");
+    CHECK_MESSAGE(branch_contributes(Color(0.0), 0.0),
+                  "contract of branch_contributes: threshold 0 keeps every branch, even a zero one");
     const double nan = std::numeric_limits<double>::quiet_NaN();
     CHECK_THROWS_AS(branch_contributes(Color(1.0), nan), std::invalid_argument);
     CHECK_THROWS_AS(branch_contributes(Color(1.0), -0.01), std::invalid_argument);

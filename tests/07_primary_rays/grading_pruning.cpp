@@ -46,21 +46,24 @@ Traced trace(const Scene& scene, double min_contribution, int max_depth) {
 }  // namespace
 
 TEST_SUITE("lesson07") {
-  TEST_CASE("pruning: the branch below the threshold is not traced, the one at it is") {
+  TEST_CASE("pruning: the branch below the threshold is not traced, the one at it is" *
+            doctest::description("task=11,12")) {
     // Weights after 1, 2, 3 bounces: 0.5, 0.25, 0.125. Threshold 0.25: the first two
     // reflected rays are traced (0.25 ≥ 0.25), the third (0.125) is not.
     // Colour: 0.1 + 0.5·(0.1 + 0.5·0.1) = 0.175.
     REQUIRE(branch_contributes(Color(0.25), 0.25));
     const Traced t = trace(facing_mirrors(), 0.25, 10);
     CHECK_MESSAGE(t.stats.rays.reflection == 2,
-                  "weights 0.5 and 0.25 reach the threshold 0.25; 0.125 does not");
+                  "weights 0.5 and 0.25 reach the threshold 0.25; 0.125 does not (contract of "
+                  "branch_contributes: path_contribution ≥ threshold; of evaluate: no child that fails it)");
     CHECK(t.color.r == doctest::Approx(0.175).epsilon(1e-12));
     const Traced tighter = trace(facing_mirrors(), 0.3, 10);
     CHECK(tighter.stats.rays.reflection == 1);
     CHECK(tighter.color.g == doctest::Approx(0.15).epsilon(1e-12));
   }
 
-  TEST_CASE("pruning: the error of a pruned branch is below threshold × what it could bring") {
+  TEST_CASE("pruning: the error of a pruned branch is below threshold × what it could bring" *
+            doctest::description("task=11,12")) {
     // Unpruned, depth 10: Σ_{k=0}^{10} 0.1·0.5^k. Pruned at ε = 0.01: weights down to
     // 0.5^6 = 0.015625 traced, 0.5^7 = 0.0078 not. The missing tail is
     // Σ_{k≥7} 0.1·0.5^k (to depth 10) ≤ ε'·0.2 with ε' = 0.5^7 < ε, and 0.1·0.5^k per bounce.
@@ -76,7 +79,8 @@ TEST_SUITE("lesson07") {
     CHECK(full.color.r - cut.color.r <= 0.01 * 0.2);
   }
 
-  TEST_CASE("pruning: threshold 0 reproduces the unpruned tree exactly") {
+  TEST_CASE("pruning: threshold 0 reproduces the unpruned tree exactly" *
+            doctest::description("task=11,12")) {
     // Whitted's scene (mirror, glass, total internal reflection), 40 × 30, depth 6:
     // the lesson-07 renderer with one central ray and threshold 0 gives lesson 06's
     // image bit for bit and the same rays of every kind.

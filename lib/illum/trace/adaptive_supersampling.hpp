@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 07: students write adaptive_supersampling.cpp.
 // Adaptive supersampling, *sobremuestreo adaptativo* (lesson 07, §2; Whitted
 // 1980). A square's colour is the mean of its four corners A, B, C, D,
 //
@@ -24,20 +25,22 @@ struct AdaptiveSettings {
   int min_depth = 0;       // cuts at least this many times: the first spacing is 1/2^min_depth pixel
 };
 
-// True when the four corners agree: in every channel, the largest minus the
+// Task 1. True when the four corners agree: in every channel, the largest minus the
 // smallest of the four is at most `threshold` (≤, so that equal corners
 // agree at threshold 0).
 bool corners_agree(const Color& a, const Color& b, const Color& c, const Color& d, double threshold);
 
-// The colour of the square with top-left lattice point (x, y) and side
+// Task 2. The colour of the square with top-left lattice point (x, y) and side
 // `size` lattice steps, at level `level` (0 for a whole pixel), by eq. 7.3
 // and its recursion (eq. 7.4). `size` is 2^(row.max_depth() − level).
 Color refine_square(LatticeRow& row, int x, int y, int size, int level, const AdaptiveSettings& settings);
 
-// Pixel i of the row: refine_square on the whole pixel. The rays it cost are
+// Task 3. Pixel i of the row: refine_square on the whole pixel. The rays it cost are
 // the growth of row.traced(). Throws std::invalid_argument when the threshold
 // is negative or not finite, when settings.max_depth differs from the
-// lattice's depth, or when min_depth is not in [0, max_depth].
+// lattice's depth (its message contains "max_depth"), or when min_depth is
+// not in [0, max_depth]; a refused call traces nothing (it checks before it
+// samples).
 Color adaptive_pixel(LatticeRow& row, int i, const AdaptiveSettings& settings);
 
 }  // namespace illum

@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 07: students write contribution_cutoff.cpp.
 // Pruning the ray tree by contribution, *poda del árbol por umbral de
 // contribución* (lesson 07, §5): Hall and Greenberg's adaptive depth control.
 // A secondary ray at depth k carries the product of the k_r and k_t along
@@ -10,11 +11,11 @@
 
 namespace illum {
 
-// The largest channel of a path weight: how much of what the branch returns
+// Task 11. The largest channel of a path weight: how much of what the branch returns
 // reaches the pixel, at most. Weights are ≥ 0 channel by channel.
 double path_contribution(const Color& path_weight);
 
-// True when a branch of weight `path_weight` is worth tracing against the
+// Task 12. True when a branch of weight `path_weight` is worth tracing against the
 // cut-off `threshold`: path_contribution(path_weight) ≥ threshold. A
 // threshold of 0 keeps every branch (the unpruned tree). Throws
 // std::invalid_argument when the threshold is negative or not finite.

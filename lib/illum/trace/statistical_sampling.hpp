@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 07: students write statistical_sampling.cpp.
 // Sampling a pixel at random (lesson 07, §1 and §3): random supersampling,
 // stratified (jittered) supersampling, and statistical antialiasing,
 // *antialiasing estadístico* (Lee, Redner and Uselton 1985).
@@ -15,11 +16,11 @@
 
 namespace illum {
 
-// N samples uniform over pixel (i, j), each point (i + ξ₁, j + ξ₂) from `rng`
+// Task 4. N samples uniform over pixel (i, j), each point (i + ξ₁, j + ξ₂) from `rng`
 // (ξ₁ first, then ξ₂). Throws std::invalid_argument unless count ≥ 1.
 PixelEstimate random_pixel(const ImageFunction& f, int i, int j, int count, Rng& rng);
 
-// n × n jittered samples: one uniform point in each cell
+// Task 5. n × n jittered samples: one uniform point in each cell
 // [i + a/n, i + (a+1)/n) × [j + b/n, j + (b+1)/n). Throws
 // std::invalid_argument unless n ≥ 1.
 PixelEstimate stratified_pixel(const ImageFunction& f, int i, int j, int n, Rng& rng);
@@ -33,13 +34,13 @@ struct SampleMoments {
   Color m2{0.0};  // Σ (x − mean)², kept up to date
 };
 
-// Adds one sample: N ← N + 1, δ = x − mean, mean += δ/N, m2 += δ·(x − mean).
+// Task 6. Adds one sample: N ← N + 1, δ = x − mean, mean += δ/N, m2 += δ·(x − mean).
 void add_sample(SampleMoments& moments, const Color& sample);
 
-// The unbiased sample variance m2/(N − 1) per channel (0 below two samples).
+// Task 7. The unbiased sample variance m2/(N − 1) per channel (0 below two samples).
 Color sample_variance(const SampleMoments& moments);
 
-// The half-width z·s/√N of the confidence interval of the mean, largest over
+// Task 8. The half-width z·s/√N of the confidence interval of the mean, largest over
 // the channels; infinity below two samples (nothing is known of the spread).
 double confidence_half_width(const SampleMoments& moments, double z);
 
@@ -50,11 +51,11 @@ struct StatisticalSettings {
   double z = 1.96;          // the normal quantile of the confidence level (1.96: 95 %)
 };
 
-// Stop? At max_samples always; below min_samples never; otherwise when the
+// Task 9. Stop? At max_samples always; below min_samples never; otherwise when the
 // half-width is at most the tolerance.
 bool enough_samples(const SampleMoments& moments, const StatisticalSettings& settings);
 
-// Random samples over pixel (i, j), drawn as random_pixel draws them, one at
+// Task 10. Random samples over pixel (i, j), drawn as random_pixel draws them, one at
 // a time until enough_samples. Throws std::invalid_argument unless
 // tolerance ≥ 0 and finite, 1 ≤ min_samples ≤ max_samples, z > 0 and finite.
 PixelEstimate statistical_pixel(const ImageFunction& f, int i, int j, Rng& rng,
