@@ -1,7 +1,7 @@
-// Lesson 13 exercise, part 1: the plan of two-pass global illumination.
-// Replace the `throw NotImplemented(...)` with your code. The task, hints
-// and the tests that grade it are in README.md beside this file; the
-// declaration and its contract are in lib/illum/radiosity/two_pass_plan.hpp.
+// Lesson 13 exercise: the plan of two-pass global illumination.
+// Replace each `throw NotImplemented(...)` with your code. The tasks, hints
+// and the tests that grade them are in README.md beside this file; the
+// declarations and their contracts are in lib/illum/radiosity/two_pass_plan.hpp.
 // contribution_threshold (1/1024) is in illum/trace/effects_plan.hpp.
 #include "illum/radiosity/two_pass_plan.hpp"
 

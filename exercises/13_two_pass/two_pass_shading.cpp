@@ -1,7 +1,7 @@
-// Lesson 13 exercise, part 2: pass two at a hit. Replace each
-// `throw NotImplemented(...)` with your code. The tasks, hints and the tests
-// that grade them are in README.md beside this file; the declarations and
-// their contracts are in lib/illum/radiosity/two_pass_shading.hpp.
+// Lesson 13 exercise: pass two at a hit.
+// Replace each `throw NotImplemented(...)` with your code. The tasks, hints
+// and the tests that grade them are in README.md beside this file; the
+// declarations and their contracts are in lib/illum/radiosity/two_pass_shading.hpp.
 #include "illum/radiosity/two_pass_shading.hpp"
 
 #include <algorithm>

@@ -51,7 +51,8 @@ SceneInventory cornell_box() {
 
 TEST_SUITE("lesson13") {
   // --- the plan ---------------------------------------------------------------
-  TEST_CASE("an empty plan: an empty scene runs no pass and casts only primary rays") {
+  TEST_CASE("an empty plan: an empty scene runs no pass and casts only primary rays" *
+            doctest::description("task=1")) {
     const TwoPassPlan plan =
         plan_two_pass(SceneInventory{}, TwoPassRequest{.max_depth = 7, .caustics = true});
     CHECK_MESSAGE(!plan.radiosity_pass, "no emitter, no surface: nothing to solve");
@@ -62,7 +63,8 @@ TEST_SUITE("lesson13") {
     CHECK_MESSAGE(plan.max_depth == 0, "without specular rays the depth limit is 0");
   }
 
-  TEST_CASE("hard case: a scene with only emitters runs no pass and casts no shadow ray") {
+  TEST_CASE("hard case: a scene with only emitters runs no pass and casts no shadow ray" *
+            doctest::description("task=1")) {
     const SceneInventory only_lights{.emitters = 3, .point_lights = 1};
     const TwoPassPlan plan = plan_two_pass(only_lights, TwoPassRequest{.max_depth = 5, .caustics = true});
     CHECK_MESSAGE(!plan.radiosity_pass, "emitters that do not reflect exchange no light: B = E, known");
@@ -72,7 +74,8 @@ TEST_SUITE("lesson13") {
     CHECK(plan.max_depth == 0);
   }
 
-  TEST_CASE("one wall and a light: no interreflection, no radiosity pass; shadow rays light the wall") {
+  TEST_CASE("one wall and a light: no interreflection, no radiosity pass; shadow rays light the wall" *
+            doctest::description("task=1")) {
     const SceneInventory wall{.diffuse_surfaces = 1, .facing_pairs = 0, .emitters = 1};
     const TwoPassPlan plan = plan_two_pass(wall, TwoPassRequest{});
     CHECK_MESSAGE(!plan.radiosity_pass, "a single diffuse surface has no partner to bounce light to");
@@ -82,7 +85,8 @@ TEST_SUITE("lesson13") {
     CHECK(plan.max_depth == 0);
   }
 
-  TEST_CASE("the Cornell box: pass one only, no specular rays and no shadow rays") {
+  TEST_CASE("the Cornell box: pass one only, no specular rays and no shadow rays" *
+            doctest::description("task=1")) {
     const TwoPassPlan plan = plan_two_pass(cornell_box(), TwoPassRequest{.max_depth = 7});
     CHECK(plan.radiosity_pass);
     CHECK_MESSAGE(!plan.shadow_rays,
@@ -92,7 +96,8 @@ TEST_SUITE("lesson13") {
     CHECK_MESSAGE(plan.max_depth == 0, "asked for 7, but with no specular rays the tree has depth 0");
   }
 
-  TEST_CASE("only mirrors, lit by a point light: no radiosity pass, reflected rays only") {
+  TEST_CASE("only mirrors, lit by a point light: no radiosity pass, reflected rays only" *
+            doctest::description("task=1")) {
     const SceneInventory mirrors{.point_lights = 1, .mirrors = 3, .heaviest_specular = 0.9};
     const TwoPassPlan plan = plan_two_pass(mirrors, TwoPassRequest{.max_depth = 5});
     CHECK_MESSAGE(!plan.radiosity_pass, "no diffuse surface: nothing for radiosity to mesh");
@@ -103,7 +108,8 @@ TEST_SUITE("lesson13") {
     CHECK(plan.max_depth == 5);
   }
 
-  TEST_CASE("the Cornell box with a mirror and a glass sphere: both passes, every specular ray") {
+  TEST_CASE("the Cornell box with a mirror and a glass sphere: both passes, every specular ray" *
+            doctest::description("task=1")) {
     SceneInventory box = cornell_box();
     box.mirrors = 1, box.glass = 1, box.heaviest_specular = 1.0;
     const TwoPassPlan plan = plan_two_pass(box, TwoPassRequest{.max_depth = 9});
@@ -116,7 +122,8 @@ TEST_SUITE("lesson13") {
     CHECK(!plan.caustic_pass);
   }
 
-  TEST_CASE("the depth limit is cut where the heaviest path weighs less than 1/1024") {
+  TEST_CASE("the depth limit is cut where the heaviest path weighs less than 1/1024" *
+            doctest::description("task=1")) {
     // 0.3^5 = 0.00243 > 1/1024 = 0.000977 > 0.3^6 = 0.000729: depth 6 is the first below.
     SceneInventory s{.mirrors = 1, .heaviest_specular = 0.3};
     CHECK(plan_two_pass(s, TwoPassRequest{.max_depth = 10}).max_depth == 6);
@@ -127,7 +134,8 @@ TEST_SUITE("lesson13") {
     CHECK(plan_two_pass(s, TwoPassRequest{.max_depth = 10}).max_depth == 2);
   }
 
-  TEST_CASE("point lights are not in B: with pass one, shadow rays still go to them") {
+  TEST_CASE("point lights are not in B: with pass one, shadow rays still go to them" *
+            doctest::description("task=1")) {
     SceneInventory box = cornell_box();
     box.point_lights = 1;
     const TwoPassPlan plan = plan_two_pass(box, TwoPassRequest{});
@@ -136,7 +144,8 @@ TEST_SUITE("lesson13") {
                   "pass one meshes emitting surfaces only; a point light's direct light is pass two's");
   }
 
-  TEST_CASE("a diffuse sphere in the Cornell box is lit by shadow rays, the walls by B") {
+  TEST_CASE("a diffuse sphere in the Cornell box is lit by shadow rays, the walls by B" *
+            doctest::description("task=1")) {
     SceneInventory box = cornell_box();
     box.other_diffuse = 1;
     const TwoPassPlan plan = plan_two_pass(box, TwoPassRequest{});
@@ -145,7 +154,8 @@ TEST_SUITE("lesson13") {
                   "a sphere has no patches: its light from the emitter comes from shadow rays");
   }
 
-  TEST_CASE("the caustic pass needs an emitter, a mirror or glass and a receiver, and forces pass one") {
+  TEST_CASE("the caustic pass needs an emitter, a mirror or glass and a receiver, and forces pass one" *
+            doctest::description("task=1")) {
     const SceneInventory wall_and_mirror{
         .diffuse_surfaces = 1, .emitters = 1, .mirrors = 1, .heaviest_specular = 0.9};
     const TwoPassPlan without = plan_two_pass(wall_and_mirror, TwoPassRequest{.caustics = false});
@@ -168,7 +178,7 @@ TEST_SUITE("lesson13") {
     CHECK(box.radiosity_pass);
   }
 
-  TEST_CASE("hard case: k_r + k_t > 1 and a negative depth are refused") {
+  TEST_CASE("hard case: k_r + k_t > 1 and a negative depth are refused" * doctest::description("task=1")) {
     const SceneInventory bright{.diffuse_surfaces = 1, .emitters = 1, .mirrors = 1, .heaviest_specular = 1.2};
     ILLUM_CHECK_THROWS_CONTAINING(plan_two_pass(bright, TwoPassRequest{}), "k_r + k_t",
                                   std::invalid_argument);
@@ -181,14 +191,16 @@ TEST_SUITE("lesson13") {
   }
 
   // --- where the hit lies in the mesh --------------------------------------------
-  TEST_CASE("surface coordinates on a square are the point's fractions along its sides") {
+  TEST_CASE("surface coordinates on a square are the point's fractions along its sides" *
+            doctest::description("task=2")) {
     const std::array<Point3, 4> square{Point3(0, 0, 0), Point3(4, 0, 0), Point3(4, 0, 4), Point3(0, 0, 4)};
     const Vec2 uv = surface_coordinates(square, Point3(1, 0, 3));
     CHECK(uv.x == doctest::Approx(0.25).epsilon(1e-15));
     CHECK(uv.y == doctest::Approx(0.75).epsilon(1e-15));
   }
 
-  TEST_CASE("surface coordinates on the Cornell box's floor (a trapezoid) and on a general quad") {
+  TEST_CASE("surface coordinates on the Cornell box's floor (a trapezoid) and on a general quad" *
+            doctest::description("task=2")) {
     for (double u : {0.0, 0.125, 0.375, 0.5, 0.9, 1.0})
       for (double v : {0.0, 0.25, 0.625, 1.0}) check_uv(cornell_floor, u, v, 1e-12);
     // No two sides parallel, tilted out of every axis plane (the projection must pick its axes).
@@ -200,7 +212,8 @@ TEST_SUITE("lesson13") {
       for (double v : {0.1, 0.5, 1.0}) check_uv(general, u, v, 1e-12);
   }
 
-  TEST_CASE("hard case: a parallelogram and a nearly parallel quad, where the quadratic degenerates") {
+  TEST_CASE("hard case: a parallelogram and a nearly parallel quad, where the quadratic degenerates" *
+            doctest::description("task=2")) {
     // g = p0 − p1 + p2 − p3 = 0: the quadratic's leading coefficient vanishes (dividing by it fails).
     const std::array<Point3, 4> slanted{Point3(0, 0, 0), Point3(3, 0, 0), Point3(4, 0, 2), Point3(1, 0, 2)};
     check_uv(slanted, 0.25, 0.5, 1e-14);
@@ -213,7 +226,7 @@ TEST_SUITE("lesson13") {
     check_uv(almost, 0.9, 0.05, 1e-12);
   }
 
-  TEST_CASE("hard case: a quad far from the origin") {
+  TEST_CASE("hard case: a quad far from the origin" * doctest::description("task=2")) {
     std::array<Point3, 4> far = cornell_floor;
     for (Point3& p : far) p += Vec3(1e6, -2e6, 3e6);
     // Coordinates near 1e6 carry ~1e-10 of rounding; over a 550-wide quad that is ~1e-12 in u.
@@ -221,7 +234,8 @@ TEST_SUITE("lesson13") {
     check_uv(far, 1.0, 0.0, 1e-9);
   }
 
-  TEST_CASE("surface coordinates on a triangle are the barycentric weights of b and c") {
+  TEST_CASE("surface coordinates on a triangle are the barycentric weights of b and c" *
+            doctest::description("task=2")) {
     const std::array<Point3, 3> t{Point3(1, 1, 1), Point3(5, 1, 1), Point3(1, 1, 9)};
     const Vec2 uv = surface_coordinates(t, Point3(2, 1, 5));  // a + 1/4 (b − a) + 1/2 (c − a)
     CHECK(uv.x == doctest::Approx(0.25).epsilon(1e-14));
@@ -230,7 +244,8 @@ TEST_SUITE("lesson13") {
     CHECK_THROWS_AS(static_cast<void>(surface_coordinates(segment, Point3(0, 0, 0))), std::invalid_argument);
   }
 
-  TEST_CASE("locate a quad's cell: patch j·n + i and its bilinear corner weights") {
+  TEST_CASE("locate a quad's cell: patch j·n + i and its bilinear corner weights" *
+            doctest::description("task=3")) {
     // n = 4 across, m = 2 up. (0.625, 0.75): i = 2, j = 1, the cell's centre.
     PatchCell c = locate_patch(Vec2(0.625, 0.75), 4, 2, 4);
     CHECK(c.patch == 6);
@@ -245,7 +260,8 @@ TEST_SUITE("lesson13") {
     CHECK_THROWS_AS(static_cast<void>(locate_patch(Vec2(0.5, 0.5), 2, 2, 5)), std::invalid_argument);
   }
 
-  TEST_CASE("hard case: the far edge and corner of a quad belong to the last cell, not past it") {
+  TEST_CASE("hard case: the far edge and corner of a quad belong to the last cell, not past it" *
+            doctest::description("task=3")) {
     const PatchCell corner = locate_patch(Vec2(1.0, 1.0), 4, 2, 4);
     CHECK_MESSAGE(corner.patch == 7,
                   "floor(1·4) = 4 is one past the last column: the point is in cell (3, 1)");
@@ -260,7 +276,8 @@ TEST_SUITE("lesson13") {
     CHECK(origin.weight[0] == doctest::Approx(1.0));
   }
 
-  TEST_CASE("locate a triangle's cell: up and down triangles counted row by row") {
+  TEST_CASE("locate a triangle's cell: up and down triangles counted row by row" *
+            doctest::description("task=3")) {
     // n = 3, listed in mesh order: row 0 up(0,0) down(0,0) up(1,0) down(1,0) up(2,0);
     // row 1 up(0,1) down(0,1) up(1,1); row 2 up(0,2). Nine triangles, each found at its centroid
     // (cell corner + (1/3, 1/3) for up, + (2/3, 2/3) for down), where every corner weighs 1/3.
@@ -282,7 +299,7 @@ TEST_SUITE("lesson13") {
     }
   }
 
-  TEST_CASE("hard case: a triangle's corners belong to its corner patches") {
+  TEST_CASE("hard case: a triangle's corners belong to its corner patches" * doctest::description("task=3")) {
     // n = 3: the apex c = (0, 1) is the last patch, up(0, 2); b = (1, 0) is up(2, 0), patch 4.
     const PatchCell apex = locate_patch(Vec2(0.0, 1.0), 3, 0, 3);
     CHECK_MESSAGE(apex.patch == 8, "floor(1·3) = 3 is past the last row: the apex is in row 2");
@@ -292,7 +309,8 @@ TEST_SUITE("lesson13") {
     CHECK(b.weight[1] == doctest::Approx(1.0));
   }
 
-  TEST_CASE("the corner weights reproduce an affine function exactly, on both sides of a diagonal") {
+  TEST_CASE("the corner weights reproduce an affine function exactly, on both sides of a diagonal" *
+            doctest::description("task=3")) {
     // f(P) = 2 + 3u − 5v is affine in (u, v): interpolating its values at the cell's corners
     // must give f at the point, for a quad's cell and for up and down triangles alike.
     auto f = [](double u, double v) { return 2 + 3 * u - 5 * v; };
@@ -336,7 +354,8 @@ TEST_SUITE("lesson13") {
   }
 
   // --- what the eye sees ----------------------------------------------------------
-  TEST_CASE("pass two at a hit: the diffuse part plus k_r·I_r plus k_t·I_t, channel by channel") {
+  TEST_CASE("pass two at a hit: the diffuse part plus k_r·I_r plus k_t·I_t, channel by channel" *
+            doctest::description("task=4")) {
     const Color got = second_pass_radiance(Color(0.1, 0.2, 0.3), Color(0.5, 0.0, 0.25), Color(1, 2, 4),
                                            Color(0.25, 0.5, 0.0), Color(4, 2, 1));
     // red 0.1 + 0.5·1 + 0.25·4 = 1.6; green 0.2 + 0 + 0.5·2 = 1.2; blue 0.3 + 0.25·4 + 0 = 1.3.
@@ -348,7 +367,7 @@ TEST_SUITE("lesson13") {
                   "k_r + k_t = 1 exactly is lossless glass: allowed");
   }
 
-  TEST_CASE("hard case: a ray that was not cast is not read") {
+  TEST_CASE("hard case: a ray that was not cast is not read" * doctest::description("task=4")) {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     const Color got = second_pass_radiance(Color(0.5, 0.25, 0.125), Color(0.0, 0.5, 0.0), Color(nan),
                                            Color(0.0), Color(nan));
@@ -358,7 +377,7 @@ TEST_SUITE("lesson13") {
     CHECK(got.b == 0.125);
   }
 
-  TEST_CASE("hard case: k_r + k_t > 1 or a negative factor is refused") {
+  TEST_CASE("hard case: k_r + k_t > 1 or a negative factor is refused" * doctest::description("task=4")) {
     ILLUM_CHECK_THROWS_CONTAINING(
         second_pass_radiance(Color(0.0), Color(0.6, 0.1, 0.1), Color(1.0), Color(0.5, 0.1, 0.1), Color(1.0)),
         "k_r + k_t", std::invalid_argument);

@@ -1,10 +1,10 @@
 #pragma once
+// Exercise unit of lesson 13: students write two_pass_plan.cpp.
 // The effects plan of the whole pipeline (lesson 13, §2): which passes of
 // two-pass global illumination a scene calls for. Lesson 06's plan decides
 // the rays of one ray tree; this one decides, before any work, whether the
 // radiosity pass (pass one) runs, whether the caustic pass runs before it,
-// and which rays the eye pass (pass two) casts. Exercise unit of lesson 13
-// (two_pass_plan.cpp).
+// and which rays the eye pass (pass two) casts.
 //
 // The plan reads a SceneInventory, the counts it needs (two_pass.hpp's
 // scene_inventory fills one from a Scene), so that it can be checked on
@@ -51,7 +51,7 @@ struct TwoPassPlan {
   std::string summary() const;
 };
 
-// The plan (lesson 13, §2), decision by decision:
+// Task 1. The plan (lesson 13, §2), decision by decision:
 // * pass one runs when light can bounce between diffuse surfaces: an
 //   emitter and at least one facing pair. A wall and a light have no pair:
 //   pass two lights the wall directly, there is nothing to solve.
@@ -66,8 +66,9 @@ struct TwoPassPlan {
 //   does not hold: any point light with a diffuse surface (meshed or not);
 //   an emitter with other_diffuse > 0, or with diffuse_surfaces > 0 when
 //   pass one does not run.
-// Throws std::invalid_argument when request.max_depth < 0 or when
-// heaviest_specular > 1 or is not a number (k_r + k_t > 1 creates energy: a ray tree that
+// Throws std::invalid_argument when request.max_depth < 0 (its message
+// contains "depth") or when heaviest_specular > 1 or is not a number (its
+// message contains "k_r + k_t"; k_r + k_t > 1 creates energy: a ray tree that
 // reflects more than it receives diverges with depth).
 TwoPassPlan plan_two_pass(const SceneInventory& scene, const TwoPassRequest& request);
 

@@ -1,7 +1,7 @@
 #pragma once
+// Exercise unit of lesson 13: students write two_pass_shading.cpp.
 // Pass two at a hit (lesson 13, §3): reading the radiosity solution where an
 // eye ray meets a meshed surface, and adding the specular rays.
-// Exercise unit of lesson 13 (two_pass_shading.cpp).
 //
 // A surface is meshed the way mesh_quad / mesh_triangle mesh it (patch.hpp):
 //   quad p0 p1 p2 p3:  P(u, v) = (1−u)(1−v) p0 + u(1−v) p1 + uv p2 + (1−u)v p3,
@@ -21,7 +21,7 @@
 
 namespace illum {
 
-// (u, v) of the point x of a planar quad (4 vertices) or triangle (3) in the
+// Task 2. (u, v) of the point x of a planar quad (4 vertices) or triangle (3) in the
 // parametrisation above. For a quad this inverts the bilinear map: with
 // e = p1 − p0, f = p3 − p0, g = p0 − p1 + p2 − p3, h = x − p0, projected on
 // the plane of the two largest components of the normal, and
@@ -45,19 +45,20 @@ struct PatchCell {
   int corners = 4;                 // 4 for a quad's cell, 3 for a triangle
 };
 
-// `vertex_count` is 4 (a quad meshed n × m) or 3 (a triangle meshed n², m
+// Task 3. `vertex_count` is 4 (a quad meshed n × m) or 3 (a triangle meshed n², m
 // ignored). A point on the far edge (u = 1) belongs to the last cell, not to
 // a cell past the end. Throws std::invalid_argument when n or m < 1 or
 // vertex_count is not 3 or 4.
 PatchCell locate_patch(const Vec2& uv, int n, int m, int vertex_count);
 
-// What the eye sees at a hit of pass two (lesson 13, eq. 13.2):
+// Task 4. What the eye sees at a hit of pass two (lesson 13, eq. 13.2):
 //   I = D + k_r·I_r + k_t·I_t
 // where D is the diffuse part (B(x) read from pass one on a meshed surface,
 // the local model's own intensity elsewhere). A factor that is zero in a
 // channel adds nothing there, even when its ray was not cast and the value
 // passed is not a number. Throws std::invalid_argument when a factor is
-// negative or k_r + k_t > 1 in a channel.
+// negative, or when k_r + k_t > 1 in a channel (its message contains
+// "k_r + k_t").
 Color second_pass_radiance(const Color& diffuse, const Color& k_r, const Color& reflected, const Color& k_t,
                            const Color& transmitted);
 
