@@ -7,6 +7,8 @@
 //     resource (a font, a script) that fails to load,
 //   - a script error on the page,
 //   - a deck with no slides,
+//   - an image without a size (Marp's w:/h:) outside a column: its file's size
+//     differs between the quick run the test sees and the full run,
 //   - content that does not fit its slide: taller or wider than the slide's
 //     content box (the slide less its padding, where the footer and the page
 //     number sit), or a code block or table wider than its own box. The page
@@ -154,6 +156,11 @@ function inspectPage() {
     for (const img of slide.querySelectorAll('img')) {
       if (!img.complete || img.naturalWidth === 0)
         problems.push({ slide: where, reason: `image failed to load: ${img.getAttribute('src')}` });
+      // The test sees the quick run's images, the audience the full run's: an
+      // image sized by its file would fit one and not the other.
+      else if (!img.style.width && !img.style.height && !img.closest('.cols, .cols3'))
+        problems.push({ slide: where, reason: `image ${img.getAttribute('src')} has no size: write ` +
+                        '![h:N](…) or ![w:N](…), or put it in a <div class="cols"> column' });
     }
     for (const el of slide.querySelectorAll('[style*="background-image"]')) {
       const m = /url\((["']?)(.*?)\1\)/.exec(el.style.backgroundImage || '');
