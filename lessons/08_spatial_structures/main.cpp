@@ -92,19 +92,14 @@ double log_log_slope(const std::vector<double>& x, const std::vector<double>& y)
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-PlotSpec per_ray_plot(const std::string& title, const std::string& y_label, int y_column) {
-  PlotSpec spec{.title = title,
-                .x_label = "triangles N",
-                .y_label = y_label,
-                .log_x = true,
-                .log_y = true,
-                .series = {}};
+PlotSpec per_ray_plot(const std::string& title, const std::string& y_label, const std::string& y_column) {
+  PlotSpec spec{.title = title, .x_label = "triangles N", .y_label = y_label, .log_x = true, .log_y = true};
   for (const char* s : {"brute_force", "grid", "octree", "bvh"})
-    spec.series.push_back({.csv = "scaling.csv",
-                           .x_column = 2,
-                           .y_column = y_column,
-                           .title = s == std::string("brute_force") ? "brute force" : s,
-                           .filter = std::string("strcol(1) eq '") + s + "'"});
+    spec.curves.push_back({.table = "scaling.csv",
+                           .x = "triangles",
+                           .y = y_column,
+                           .where = {{"structure", s}},
+                           .title = s == std::string("brute_force") ? "brute force" : s});
   return spec;
 }
 
@@ -154,12 +149,13 @@ void study_scaling(OutputFolder& out, bool quick) {
                     log_log_slope(s.n, s.tests)});
   }
   out.table(slopes, "scaling_slopes", "Fitted log-log slopes of the per-ray counts (N ≥ 900)", 3);
-  out.plot(per_ray_plot("Ray-triangle tests per camera ray", "tests per ray", 6), "scaling_tests",
-           "Triangle tests per ray: N for brute force, flat-ish for grid and BVH");
-  out.plot(per_ray_plot("Cells or nodes visited per camera ray", "nodes or cells per ray", 5),
+  out.plot(per_ray_plot("Ray-triangle tests per camera ray", "tests per ray", "triangle tests per ray"),
+           "scaling_tests", "Triangle tests per ray: N for brute force, flat-ish for grid and BVH");
+  out.plot(per_ray_plot("Cells or nodes visited per camera ray", "nodes or cells per ray",
+                        "nodes or cells per ray"),
            "scaling_nodes", "Cells (grid) or nodes (BVH) visited per ray");
-  out.plot(per_ray_plot("Throughput", "Mrays/s, one thread", 7), "scaling_throughput",
-           "Closest-hit queries per second on one thread");
+  out.plot(per_ray_plot("Throughput", "Mrays/s, one thread", "Mrays per second (1 thread)"),
+           "scaling_throughput", "Closest-hit queries per second on one thread");
 }
 
 // Section 2: the grid's knob, its resolution.
@@ -179,14 +175,18 @@ void study_grid_resolution(OutputFolder& out, bool quick) {
                    m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});
   }
   out.table(table, "grid_resolution", "Uniform grid: cells along the longest axis against cost per ray");
-  PlotSpec spec{.title = "Grid resolution: cells walked against triangles tested",
-                .x_label = "cells along the longest axis",
-                .y_label = "per camera ray",
-                .log_x = true,
-                .log_y = true,
-                .series = {}};
-  spec.series.push_back({"grid_resolution.csv", 1, 5, "cells visited", "", "linespoints"});
-  spec.series.push_back({"grid_resolution.csv", 1, 6, "triangle tests", "", "linespoints"});
+  PlotSpec spec{
+      .title = "Grid resolution: cells walked against triangles tested",
+      .x_label = "cells along the longest axis",
+      .y_label = "per camera ray",
+      .log_x = true,
+      .log_y = true,
+      .curves = {
+          {.table = "grid_resolution.csv", .x = "resolution", .y = "cells per ray", .title = "cells visited"},
+          {.table = "grid_resolution.csv",
+           .x = "resolution",
+           .y = "triangle tests per ray",
+           .title = "triangle tests"}}};
   out.plot(spec, "grid_resolution", "Finer cells: fewer tests per ray, more cells to walk");
 }
 
@@ -207,14 +207,18 @@ void study_leaf_size(OutputFolder& out, bool quick) {
                    m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});
   }
   out.table(table, "bvh_leaf_size", "BVH: most triangles per leaf against cost per ray");
-  PlotSpec spec{.title = "BVH leaf size: nodes visited against triangles tested",
-                .x_label = "most triangles per leaf",
-                .y_label = "per camera ray",
-                .log_x = true,
-                .log_y = true,
-                .series = {}};
-  spec.series.push_back({"bvh_leaf_size.csv", 1, 5, "nodes visited", "", "linespoints"});
-  spec.series.push_back({"bvh_leaf_size.csv", 1, 6, "triangle tests", "", "linespoints"});
+  PlotSpec spec{
+      .title = "BVH leaf size: nodes visited against triangles tested",
+      .x_label = "most triangles per leaf",
+      .y_label = "per camera ray",
+      .log_x = true,
+      .log_y = true,
+      .curves = {
+          {.table = "bvh_leaf_size.csv", .x = "leaf size", .y = "nodes per ray", .title = "nodes visited"},
+          {.table = "bvh_leaf_size.csv",
+           .x = "leaf size",
+           .y = "triangle tests per ray",
+           .title = "triangle tests"}}};
   out.plot(spec, "bvh_leaf_size", "Bigger leaves: fewer nodes per ray, more triangles per leaf");
 }
 

@@ -433,11 +433,17 @@ void closed_box_section(OutputFolder& out, const Settings& settings, const Study
   out.table(history, "closed_history", "Jacobi on the closed box at several reflectance scales");
   out.table(growth, "jacobi_growth",
             "Jacobi's sweeps grow like 1/(1 - rho); its error shrinks by at most rho per sweep");
-  PlotSpec j{
-      "Jacobi in the closed box at several reflectance scales", "sweeps", "relative error", false, true, {}};
+  PlotSpec j{.title = "Jacobi in the closed box at several reflectance scales",
+             .x_label = "sweeps",
+             .y_label = "relative error",
+             .log_y = true};
   for (double rho : kScales)
-    j.series.push_back({"closed_history.csv", 3, 6, "max rho = " + fixed(rho, 3),
-                        "strcol(2) eq '" + fixed(rho, 3) + "'", "lines"});
+    j.curves.push_back({.table = "closed_history.csv",
+                        .x = "sweeps",
+                        .y = "error",
+                        .where = {{"rho_max", fixed(rho, 3)}},
+                        .title = "max rho = " + fixed(rho, 3),
+                        .mark = PlotMark::lines});
   out.plot(j, "jacobi_closed_scales", "Jacobi's error per sweep in the closed box: slopes near log(max rho)");
 }
 
@@ -454,47 +460,62 @@ void study_plots(OutputFolder& out, const Settings& settings, const Table& histo
     for (double level : {1e-10, 1.0}) marks.add_row({fixed(kScales[k], 3), direct_seconds[k], level});
   out.table(marks, "direct_marks", "The direct solve's time, as a vertical line in the time plots");
   struct View {
-    const char *name, *x_label;
-    int x_column;
-    const char* y_label;
-    int y_column;
+    const char *name, *x_label, *x, *y_label, *y;  // x and y: columns of solver_history.csv
   };
-  const View views[] = {{"residual_vs_sweeps", "work (sweeps)", 3, "relative residual (max norm)", 5},
-                        {"residual_vs_time", "seconds", 4, "relative residual (max norm)", 5},
-                        {"error_vs_sweeps", "work (sweeps)", 3, "relative error (max norm)", 6},
-                        {"error_vs_time", "seconds", 4, "relative error (max norm)", 6}};
+  const View views[] = {
+      {"residual_vs_sweeps", "work (sweeps)", "sweeps", "relative residual (max norm)", "residual"},
+      {"residual_vs_time", "seconds", "seconds", "relative residual (max norm)", "residual"},
+      {"error_vs_sweeps", "work (sweeps)", "sweeps", "relative error (max norm)", "error"},
+      {"error_vs_time", "seconds", "seconds", "relative error (max norm)", "error"}};
   for (double rho : kScales) {
-    const std::string label = fixed(rho, 3), where = "strcol(2) eq '" + label + "'";
+    const std::string label = fixed(rho, 3);
     const std::string which = rho == 0.78 ? " (published)" : "";
     for (const View& v : views) {
-      const bool time = v.x_column == 4;
+      const bool time = v.x == std::string("seconds");
       const std::string what = v.name[0] == 'r' ? "Residual" : "Error";
-      PlotSpec spec{what + " vs " + (time ? "time" : "work") + ", Cornell box, max rho = " + label + which,
-                    v.x_label,
-                    v.y_label,
-                    time,
-                    true,
-                    {}};
+      PlotSpec spec{
+          .title = what + " vs " + (time ? "time" : "work") + ", Cornell box, max rho = " + label + which,
+          .x_label = v.x_label,
+          .y_label = v.y_label,
+          .log_x = time,
+          .log_y = true};
       for (const Solver solver : settings.solvers)
-        spec.series.push_back({"solver_history.csv", v.x_column, v.y_column, name_of(solver),
-                               "strcol(1) eq '" + name_of(solver) + "' && " + where});
+        spec.curves.push_back({.table = "solver_history.csv",
+                               .x = v.x,
+                               .y = v.y,
+                               .where = {{"solver", name_of(solver)}, {"rho_max", label}},
+                               .title = name_of(solver)});
       const bool progressive = std::find(settings.solvers.begin(), settings.solvers.end(),
                                          Solver::progressive) != settings.solvers.end();
-      if (v.y_column == 6 && progressive)
-        spec.series.push_back({"solver_history.csv", v.x_column, 7, "progressive + ambient (display)",
-                               "strcol(1) eq 'progressive' && " + where});
+      if (v.y == std::string("error") && progressive)
+        spec.curves.push_back({.table = "solver_history.csv",
+                               .x = v.x,
+                               .y = "display_error",
+                               .where = {{"solver", "progressive"}, {"rho_max", label}},
+                               .title = "progressive + ambient (display)"});
       if (time)
-        spec.series.push_back(
-            {"direct_marks.csv", 2, 3, "direct (the reference)", "strcol(1) eq '" + label + "'", "lines"});
+        spec.curves.push_back({.table = "direct_marks.csv",
+                               .x = "seconds",
+                               .y = "level",
+                               .where = {{"rho_max", label}},
+                               .title = "direct (the reference)",
+                               .mark = PlotMark::lines});
       out.plot(spec, std::string(v.name) + "_rho" + fixed(100 * rho, 0),
                what + " vs " + (time ? "seconds (best of three)" : "sweeps") +
                    " for every solver, rho_max = " + label + which);
     }
   }
-  PlotSpec j{"Jacobi at several reflectance scales", "sweeps", "relative error", false, true, {}};
+  PlotSpec j{.title = "Jacobi at several reflectance scales",
+             .x_label = "sweeps",
+             .y_label = "relative error",
+             .log_y = true};
   for (double rho : kScales)
-    j.series.push_back({"solver_history.csv", 3, 6, "max rho = " + fixed(rho, 3),
-                        "strcol(1) eq 'jacobi' && strcol(2) eq '" + fixed(rho, 3) + "'", "lines"});
+    j.curves.push_back({.table = "solver_history.csv",
+                        .x = "sweeps",
+                        .y = "error",
+                        .where = {{"solver", "jacobi"}, {"rho_max", fixed(rho, 3)}},
+                        .title = "max rho = " + fixed(rho, 3),
+                        .mark = PlotMark::lines});
   out.plot(j, "jacobi_scales", "Jacobi's error per sweep: a straight line of slope log(rho) at most");
 }
 
@@ -581,12 +602,15 @@ void figure_section(OutputFolder& out, const Settings& settings) {
             "The Cornell box solved by progressive refinement with hemicube rows on demand, to " +
                 fixed(100 * settings.unshot_threshold, 2) + "% unshot power");
   out.table(history, "figure_history", "Unshot power after each shot of the figure's run");
-  PlotSpec fp{"Progressive refinement on the Cornell box: unshot power",
-              "shots",
-              "unshot / emitted power",
-              false,
-              true,
-              {{"figure_history.csv", 1, 3, "unshot fraction", "", "lines"}}};
+  const PlotSpec fp{.title = "Progressive refinement on the Cornell box: unshot power",
+                    .x_label = "shots",
+                    .y_label = "unshot / emitted power",
+                    .log_y = true,
+                    .curves = {{.table = "figure_history.csv",
+                                .x = "shots",
+                                .y = "unshot_fraction",
+                                .title = "unshot fraction",
+                                .mark = PlotMark::lines}}};
   out.plot(fp, "figure_unshot", "Unshot power vs shots (hemicube rows on demand)");
   const int size = settings.quick ? 96 : 384;
   const std::vector<int> items = lesson11::patch_item_buffer(big, size, size);
