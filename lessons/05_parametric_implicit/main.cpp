@@ -421,6 +421,7 @@ void patch_accuracy_study(OutputFolder& out, const ProgramOptions& options, Rng&
        .y_label = "|s - s_exact|",
        .log_x = true,
        .log_y = true,
+       .key = PlotKey::inside_top_left,  // shown small, beside the slide's bullets
        .curves =
            {{.table = "patch_study.csv", .x = "tolerance", .y = "max_error", .title = "max error"},
             {.table = "patch_study.csv", .x = "tolerance", .y = "median_error", .title = "median error"}}},
@@ -512,6 +513,7 @@ std::string demos(OutputFolder& out) {
       .title = "Newton near a local minimum (ray 0.01 above the torus)",
       .x_label = "s",
       .y_label = "f(s)",
+      .key = PlotKey::below,  // shown small, beside the slide's bullets
       .curves = {
           {.table = "local_minimum_curve.csv", .x = "s", .y = "f", .title = "f(s)", .mark = PlotMark::lines},
           {.table = "local_minimum_newton.csv",

@@ -460,7 +460,8 @@ void depth_study(OutputFolder& out, const Scene& scene, bool quick) {
   PlotSpec error{.title = "Ray tree: image error against depth 16",
                  .x_label = "depth limit",
                  .y_label = "error (linear RGB)",
-                 .log_y = true};
+                 .log_y = true,
+                 .key = PlotKey::inside_top_right};  // shown small, two side by side
   for (const auto& [column, title] :
        {std::pair{"rms_error", "RMS error"}, std::pair{"max_error", "max error"}})
     error.curves.push_back(
@@ -469,7 +470,8 @@ void depth_study(OutputFolder& out, const Scene& scene, bool quick) {
   PlotSpec size{.title = "Ray tree: size per pixel",
                 .x_label = "depth limit",
                 .y_label = "rays of the tree per pixel",
-                .log_y = true};
+                .log_y = true,
+                .key = PlotKey::inside_top_left};  // shown small, two side by side
   for (const auto& [column, title] :
        {std::pair{"tree_nodes_per_pixel", "with the effects plan"},
         std::pair{"tree_nodes_per_pixel_no_plan", "notes' algorithm, both children always"},

@@ -181,6 +181,7 @@ void study_grid_resolution(OutputFolder& out, bool quick) {
       .y_label = "per camera ray",
       .log_x = true,
       .log_y = true,
+      .key = PlotKey::below,  // shown small, two side by side
       .curves = {
           {.table = "grid_resolution.csv", .x = "resolution", .y = "cells per ray", .title = "cells visited"},
           {.table = "grid_resolution.csv",
@@ -213,6 +214,7 @@ void study_leaf_size(OutputFolder& out, bool quick) {
       .y_label = "per camera ray",
       .log_x = true,
       .log_y = true,
+      .key = PlotKey::below,  // shown small, two side by side
       .curves = {
           {.table = "bvh_leaf_size.csv", .x = "leaf size", .y = "nodes per ray", .title = "nodes visited"},
           {.table = "bvh_leaf_size.csv",

@@ -478,7 +478,9 @@ void study_plots(OutputFolder& out, const Settings& settings, const Table& histo
           .x_label = v.x_label,
           .y_label = v.y_label,
           .log_x = time,
-          .log_y = true};
+          .log_y = true,
+          // Shown two side by side: the key in the corner the falling curves leave empty.
+          .key = time ? PlotKey::inside_bottom_left : PlotKey::inside_top_right};
       for (const Solver solver : settings.solvers)
         spec.curves.push_back({.table = "solver_history.csv",
                                .x = v.x,
