@@ -30,7 +30,7 @@
 namespace illum {
 namespace {
 
-constexpr const char* kId = "lesson08";
+constexpr const char* program_id = "lesson08";
 
 TriangleSet flake_with_about(std::size_t triangles) {
   const IndexedTriangles mesh = sphereflake(sphereflake_for(triangles));
@@ -117,7 +117,7 @@ void study_scaling(OutputFolder& out, bool quick) {
   Series series[4];
   int done = 0;
   for (const std::size_t target : sizes) {
-    report_progress(kId, "scaling", done++, static_cast<int>(sizes.size()));
+    report_progress(program_id, "scaling", done++, static_cast<int>(sizes.size()));
     const TriangleSet set = flake_with_about(target);
     for (const AccelKind kind :
          {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::bvh}) {
@@ -168,7 +168,7 @@ void study_grid_resolution(OutputFolder& out, bool quick) {
       quick ? std::vector<int>{4, 16, 32} : std::vector<int>{4, 8, 16, 32, 64, 128, 256};
   int done = 0;
   for (const int r : resolutions) {
-    report_progress(kId, "grid resolution", done++, static_cast<int>(resolutions.size()));
+    report_progress(program_id, "grid resolution", done++, static_cast<int>(resolutions.size()));
     const Measure m = measure(set, AccelSettings{.kind = AccelKind::grid, .grid_resolution = r}, rays,
                               quick ? 0.005 : 0.03);
     table.add_row({std::int64_t{r}, static_cast<std::int64_t>(set.size()), m.build_seconds,
@@ -201,7 +201,7 @@ void study_leaf_size(OutputFolder& out, bool quick) {
       quick ? std::vector<int>{1, 4, 16} : std::vector<int>{1, 2, 4, 8, 16, 32, 64};
   int done = 0;
   for (const int leaf : leaves) {
-    report_progress(kId, "leaf size", done++, static_cast<int>(leaves.size()));
+    report_progress(program_id, "leaf size", done++, static_cast<int>(leaves.size()));
     const Measure m = measure(set, AccelSettings{.kind = AccelKind::bvh, .bvh_leaf_size = leaf}, rays,
                               quick ? 0.005 : 0.03);
     table.add_row({std::int64_t{leaf}, static_cast<std::int64_t>(set.size()), m.build_seconds,
@@ -233,7 +233,7 @@ void study_octree_depth(OutputFolder& out, bool quick) {
   const std::vector<int> depths = quick ? std::vector<int>{2, 5, 8} : std::vector<int>{2, 4, 6, 8, 10, 12};
   int done = 0;
   for (const int depth : depths) {
-    report_progress(kId, "octree depth", done++, static_cast<int>(depths.size()));
+    report_progress(program_id, "octree depth", done++, static_cast<int>(depths.size()));
     const Measure m = measure(set, AccelSettings{.kind = AccelKind::octree, .octree_depth = depth}, rays,
                               quick ? 0.005 : 0.03);
     table.add_row({std::int64_t{depth}, static_cast<std::int64_t>(set.size()), m.build_seconds,
@@ -360,7 +360,7 @@ void study_light_buffer(OutputFolder& out, bool quick) {
 
 int main(int argc, char** argv) {
   const illum::ProgramInfo info{
-      illum::kId, "Spatial structures",
+      illum::program_id, "Spatial structures",
       "Measures brute force, the uniform grid (3DDA) and the BVH (binned SAH) on sphereflakes of 10^2 to "
       "10^6 triangles: cells or nodes and triangle tests per ray, throughput, build time and memory; "
       "sweeps the grid resolution and the BVH leaf size; renders with 1 and 2 threads."};
