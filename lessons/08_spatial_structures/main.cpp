@@ -158,89 +158,92 @@ void study_scaling(OutputFolder& out, bool quick) {
            "scaling_throughput", "Closest-hit queries per second on one thread");
 }
 
-// Section 2: the grid's knob, its resolution.
-void study_grid_resolution(OutputFolder& out, bool quick) {
+// One structure's knob swept on the same sphereflake and camera rays: build
+// cost and memory against nodes (or cells) and triangle tests per ray.
+struct KnobStudy {
+  const char* name;   // the table's (and plot's) file name
+  const char* knob;   // the knob's column header
+  const char* nodes;  // the header of the nodes-or-cells-per-ray column
+  std::vector<int> quick_values, values;
+  AccelSettings (*settings)(int knob);
+  const char* caption;
+};
+
+void knob_study(OutputFolder& out, bool quick, const KnobStudy& study) {
   const TriangleSet set = flake_with_about(quick ? 5000 : 100000);
   const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
-  Table table({"resolution", "triangles", "build seconds", "bytes per triangle", "cells per ray",
+  Table table({study.knob, "triangles", "build seconds", "bytes per triangle", study.nodes,
                "triangle tests per ray", "Mrays per second (1 thread)"});
-  const std::vector<int> resolutions =
-      quick ? std::vector<int>{4, 16, 32} : std::vector<int>{4, 8, 16, 32, 64, 128, 256};
+  const std::vector<int>& values = quick ? study.quick_values : study.values;
   int done = 0;
-  for (const int r : resolutions) {
-    report_progress(program_id, "grid resolution", done++, static_cast<int>(resolutions.size()));
-    const Measure m = measure(set, AccelSettings{.kind = AccelKind::grid, .grid_resolution = r}, rays,
-                              quick ? 0.005 : 0.03);
-    table.add_row({std::int64_t{r}, static_cast<std::int64_t>(set.size()), m.build_seconds,
+  for (const int knob : values) {
+    report_progress(program_id, study.knob, done++, static_cast<int>(values.size()));
+    const Measure m = measure(set, study.settings(knob), rays, quick ? 0.005 : 0.03);
+    table.add_row({std::int64_t{knob}, static_cast<std::int64_t>(set.size()), m.build_seconds,
                    m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});
   }
-  out.table(table, "grid_resolution", "Uniform grid: cells along the longest axis against cost per ray");
-  PlotSpec spec{
-      .title = "Grid resolution: cells walked against triangles tested",
-      .x_label = "cells along the longest axis",
+  out.table(table, study.name, study.caption);
+}
+
+// The plot of a knob study: nodes (or cells) walked against triangles tested.
+void plot_knob_study(OutputFolder& out, const KnobStudy& study, const std::string& title,
+                     const std::string& x_label, const std::string& nodes_title, const std::string& caption) {
+  const std::string csv = std::string(study.name) + ".csv";
+  const PlotSpec spec{
+      .title = title,
+      .x_label = x_label,
       .y_label = "per camera ray",
       .log_x = true,
       .log_y = true,
       .key = PlotKey::below,  // shown small, two side by side
-      .curves = {
-          {.table = "grid_resolution.csv", .x = "resolution", .y = "cells per ray", .title = "cells visited"},
-          {.table = "grid_resolution.csv",
-           .x = "resolution",
-           .y = "triangle tests per ray",
-           .title = "triangle tests"}}};
-  out.plot(spec, "grid_resolution", "Finer cells: fewer tests per ray, more cells to walk");
+      .curves = {{.table = csv, .x = study.knob, .y = study.nodes, .title = nodes_title},
+                 {.table = csv, .x = study.knob, .y = "triangle tests per ray", .title = "triangle tests"}}};
+  out.plot(spec, study.name, caption);
+}
+
+// Section 2: the grid's knob, its resolution.
+void study_grid_resolution(OutputFolder& out, bool quick) {
+  const KnobStudy study{
+      .name = "grid_resolution",
+      .knob = "resolution",
+      .nodes = "cells per ray",
+      .quick_values = {4, 16, 32},
+      .values = {4, 8, 16, 32, 64, 128, 256},
+      .settings = [](int r) { return AccelSettings{.kind = AccelKind::grid, .grid_resolution = r}; },
+      .caption = "Uniform grid: cells along the longest axis against cost per ray"};
+  knob_study(out, quick, study);
+  plot_knob_study(out, study, "Grid resolution: cells walked against triangles tested",
+                  "cells along the longest axis", "cells visited",
+                  "Finer cells: fewer tests per ray, more cells to walk");
 }
 
 // Section 3: the BVH's knob, its leaf size.
 void study_leaf_size(OutputFolder& out, bool quick) {
-  const TriangleSet set = flake_with_about(quick ? 5000 : 100000);
-  const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
-  Table table({"leaf size", "triangles", "build seconds", "bytes per triangle", "nodes per ray",
-               "triangle tests per ray", "Mrays per second (1 thread)"});
-  const std::vector<int> leaves =
-      quick ? std::vector<int>{1, 4, 16} : std::vector<int>{1, 2, 4, 8, 16, 32, 64};
-  int done = 0;
-  for (const int leaf : leaves) {
-    report_progress(program_id, "leaf size", done++, static_cast<int>(leaves.size()));
-    const Measure m = measure(set, AccelSettings{.kind = AccelKind::bvh, .bvh_leaf_size = leaf}, rays,
-                              quick ? 0.005 : 0.03);
-    table.add_row({std::int64_t{leaf}, static_cast<std::int64_t>(set.size()), m.build_seconds,
-                   m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});
-  }
-  out.table(table, "bvh_leaf_size", "BVH: most triangles per leaf against cost per ray");
-  PlotSpec spec{
-      .title = "BVH leaf size: nodes visited against triangles tested",
-      .x_label = "most triangles per leaf",
-      .y_label = "per camera ray",
-      .log_x = true,
-      .log_y = true,
-      .key = PlotKey::below,  // shown small, two side by side
-      .curves = {
-          {.table = "bvh_leaf_size.csv", .x = "leaf size", .y = "nodes per ray", .title = "nodes visited"},
-          {.table = "bvh_leaf_size.csv",
-           .x = "leaf size",
-           .y = "triangle tests per ray",
-           .title = "triangle tests"}}};
-  out.plot(spec, "bvh_leaf_size", "Bigger leaves: fewer nodes per ray, more triangles per leaf");
+  const KnobStudy study{
+      .name = "bvh_leaf_size",
+      .knob = "leaf size",
+      .nodes = "nodes per ray",
+      .quick_values = {1, 4, 16},
+      .values = {1, 2, 4, 8, 16, 32, 64},
+      .settings = [](int leaf) { return AccelSettings{.kind = AccelKind::bvh, .bvh_leaf_size = leaf}; },
+      .caption = "BVH: most triangles per leaf against cost per ray"};
+  knob_study(out, quick, study);
+  plot_knob_study(out, study, "BVH leaf size: nodes visited against triangles tested",
+                  "most triangles per leaf", "nodes visited",
+                  "Bigger leaves: fewer nodes per ray, more triangles per leaf");
 }
 
 // Section 3b: the octree's knob, its depth.
 void study_octree_depth(OutputFolder& out, bool quick) {
-  const TriangleSet set = flake_with_about(quick ? 5000 : 100000);
-  const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
-  Table table({"max depth", "triangles", "build seconds", "bytes per triangle", "nodes per ray",
-               "triangle tests per ray", "Mrays per second (1 thread)"});
-  const std::vector<int> depths = quick ? std::vector<int>{2, 5, 8} : std::vector<int>{2, 4, 6, 8, 10, 12};
-  int done = 0;
-  for (const int depth : depths) {
-    report_progress(program_id, "octree depth", done++, static_cast<int>(depths.size()));
-    const Measure m = measure(set, AccelSettings{.kind = AccelKind::octree, .octree_depth = depth}, rays,
-                              quick ? 0.005 : 0.03);
-    table.add_row({std::int64_t{depth}, static_cast<std::int64_t>(set.size()), m.build_seconds,
-                   m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});
-  }
-  out.table(table, "octree_depth",
-            "Octree: deepest level (leaves of at most 8 triangles) against cost per ray");
+  knob_study(
+      out, quick,
+      {.name = "octree_depth",
+       .knob = "max depth",
+       .nodes = "nodes per ray",
+       .quick_values = {2, 5, 8},
+       .values = {2, 4, 6, 8, 10, 12},
+       .settings = [](int depth) { return AccelSettings{.kind = AccelKind::octree, .octree_depth = depth}; },
+       .caption = "Octree: deepest level (leaves of at most 8 triangles) against cost per ray"});
 }
 
 // One shaded pixel: Lambert term of the closest hit, darkened where a shadow ray (any hit) is blocked.
