@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -41,6 +42,7 @@ struct Settings {
   int figure_elements = 10000;    // the figure's element count (about)
   double figure_patch_edge = 75;  // mm: the figure's patches (the shooters)
   double unshot = 1e-3;           // stop at this fraction of the emitted power unshot
+  bool figure_only = false;       // --figure: only the figure (section 7) and its export (section 8)
 };
 
 std::string fixed(double value, int decimals) {
@@ -62,11 +64,18 @@ struct Solved {
   SharedVertexMesh shared;
 };
 
+// The scene's surfaces block light for the ray-cast rows (a few dozen
+// triangles in the BVH instead of two per patch).
+ShootingSettings with_occluders(ShootingSettings shooting, const RadiosityScene& scene) {
+  for (const RadiositySurface& surface : scene.surfaces) shooting.occluders.push_back(surface.polygon);
+  return shooting;
+}
+
 Solved solve(const Settings& settings, double patch_edge, int k, const ShootingSettings& shooting) {
   Solved s;
   s.scene = load_radiosity_scene(settings.scene, patch_edge);
   s.mesh = uniform_elements(s.scene.patches, k);
-  s.solution = shoot_patches_to_elements(s.scene.patches, s.mesh, shooting);
+  s.solution = shoot_patches_to_elements(s.scene.patches, s.mesh, with_occluders(shooting, s.scene));
   s.shared = share_vertices(s.mesh.elements);
   return s;
 }
@@ -112,32 +121,41 @@ Solved vertex_colour_section(OutputFolder& out, const Settings& settings) {
   return s;
 }
 
-// The flat (own) and Gouraud (average, extrapolate) error of `s` against the
-// fine reference: Σ A_r |value − B_r| / Σ A_r |B_r| over the reference's
-// non-emitting elements, channels summed.
-std::vector<double> errors_against(const Solved& s, const Solved& reference) {
+// The errors of `s` against the fine reference, per rule (flat = own,
+// average, extrapolate), over the reference's non-emitting elements r with
+// the solution read at r's centroid x_r:
+//   mean: Σ A_r |B(x_r) − B_r| / Σ A_r B_r      (channels summed)
+//   max:  max_r max_c |B(x_r) − B_r| / max_r max_c B_r
+struct Errors {
+  double mean[3] = {0, 0, 0}, max[3] = {0, 0, 0};
+};
+
+Errors errors_against(const Solved& s, const Solved& reference) {
   std::vector<std::vector<int>> elements_of(s.scene.patches.size());
   for (std::size_t e = 0; e < s.mesh.elements.size(); ++e)
     elements_of[static_cast<std::size_t>(s.mesh.patch_of[e])].push_back(static_cast<int>(e));
-  std::vector<double> errors;
-  for (const auto& [rule, name] : rules) {
-    const auto corners = corner_radiosity(s.shared, s.solution.element_radiosity, rule);
-    double difference = 0, total = 0;
+  Errors errors;
+  for (std::size_t rule = 0; rule < rules.size(); ++rule) {
+    const auto corners = corner_radiosity(s.shared, s.solution.element_radiosity, rules[rule].first);
+    double difference = 0, total = 0, largest_difference = 0, largest = 0;
     for (std::size_t r = 0; r < reference.mesh.elements.size(); ++r) {
       const Patch& element = reference.mesh.elements[r];
       if (element.emission.r + element.emission.g + element.emission.b > 0) continue;
-      for (int e : elements_of[static_cast<std::size_t>(reference.mesh.patch_of[r])])
-        if (lesson12::element_contains(s.mesh.elements[static_cast<std::size_t>(e)], element.centroid)) {
-          const Color value = interpolate_radiosity(s.mesh.elements[static_cast<std::size_t>(e)],
-                                                    corners[static_cast<std::size_t>(e)], element.centroid);
-          const Color d = glm::abs(value - reference.solution.element_radiosity[r]);
-          difference += element.area * (d.r + d.g + d.b);
-          const Color& b = reference.solution.element_radiosity[r];
-          total += element.area * (b.r + b.g + b.b);
-          break;
-        }
+      const Color& b = reference.solution.element_radiosity[r];
+      for (int e : elements_of[static_cast<std::size_t>(reference.mesh.patch_of[r])]) {
+        const auto ue = static_cast<std::size_t>(e);
+        if (!lesson12::element_contains(s.mesh.elements[ue], element.centroid)) continue;
+        const Color d =
+            glm::abs(interpolate_radiosity(s.mesh.elements[ue], corners[ue], element.centroid) - b);
+        difference += element.area * (d.r + d.g + d.b);
+        total += element.area * (b.r + b.g + b.b);
+        largest_difference = std::max({largest_difference, d.r, d.g, d.b});
+        largest = std::max({largest, b.r, b.g, b.b});
+        break;
+      }
     }
-    errors.push_back(difference / total);
+    errors.mean[rule] = difference / total;
+    errors.max[rule] = largest_difference / largest;
   }
   return errors;
 }
@@ -159,7 +177,7 @@ Solved adaptive(const Settings& settings, double patch_edge, double threshold, d
                                                       longest_edges(s.mesh), threshold * brightest, min_edge);
     if (std::find(split.begin(), split.end(), true) == split.end()) break;
     s.mesh = split_elements(s.mesh, split);
-    s.solution = shoot_patches_to_elements(s.scene.patches, s.mesh, shooting);
+    s.solution = shoot_patches_to_elements(s.scene.patches, s.mesh, with_occluders(shooting, s.scene));
     s.shared = share_vertices(s.mesh.elements);
     seconds += s.solution.seconds;
   }
@@ -187,22 +205,26 @@ void substructuring_study(OutputFolder& out, const Settings& settings) {
   const ShootingSettings shooting{.unshot_fraction = settings.quick ? 1e-2 : 1e-4};
   report_progress(program_id, "study: the uniformly fine reference", 0, 1);
   const Solved reference = solve(settings, patch_edge, reference_k, shooting);
-  Table table({"scheme", "knob", "patches", "elements", "shots", "seconds", "flat_error", "average_error",
-               "extrapolated_error"});
-  std::vector<std::pair<double, double>> uniform_runs;  // (elements, flat error)
-  Table equal({"threshold", "adaptive elements", "flat_error", "uniform elements at that error",
-               "uniform / adaptive"});
+  Table table({"scheme", "knob", "patches", "elements", "shots", "seconds", "flat_mean_error",
+               "average_mean_error", "extrapolated_mean_error", "flat_max_error", "extrapolated_max_error"});
+  std::vector<std::pair<double, double>> uniform_mean, uniform_max;  // (elements, flat error)
+  Table equal({"threshold", "adaptive elements", "flat_max_error", "uniform elements at that max error",
+               "flat_mean_error", "uniform elements at that mean error"});
   const auto add = [&](const std::string& scheme, const std::string& knob, const Solved& s, double seconds) {
-    const std::vector<double> e = errors_against(s, reference);
+    const Errors e = errors_against(s, reference);
     const auto elements = static_cast<double>(s.mesh.elements.size());
-    if (scheme == "uniform") uniform_runs.push_back({elements, e[0]});
-    if (scheme == "adaptive") {
-      const double uniform = uniform_elements_at(uniform_runs, e[0]);
-      equal.add_row({knob, static_cast<std::int64_t>(elements), e[0], uniform, uniform / elements});
+    if (scheme == "uniform") {
+      uniform_mean.push_back({elements, e.mean[0]});
+      uniform_max.push_back({elements, e.max[0]});
+    } else {
+      equal.add_row({knob, static_cast<std::int64_t>(elements), e.max[0],
+                     uniform_elements_at(uniform_max, e.max[0]), e.mean[0],
+                     uniform_elements_at(uniform_mean, e.mean[0])});
     }
     table.add_row({scheme, knob, static_cast<std::int64_t>(s.scene.patches.size()),
                    static_cast<std::int64_t>(s.mesh.elements.size()),
-                   static_cast<std::int64_t>(s.solution.shots), seconds, e[0], e[1], e[2]});
+                   static_cast<std::int64_t>(s.solution.shots), seconds, e.mean[0], e.mean[1], e.mean[2],
+                   e.max[0], e.max[2]});
   };
   for (int k : settings.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 3, 4, 6, 8}) {
     report_progress(program_id, "study: uniform k = " + std::to_string(k), k, 8);
@@ -224,36 +246,27 @@ void substructuring_study(OutputFolder& out, const Settings& settings) {
                 std::to_string(reference.mesh.elements.size()) +
                 " elements), and time (adaptive: all its solves)");
   out.table(equal, "equal_error",
-            "Elements a uniform mesh needs for the adaptive mesh's flat error (log-log interpolation "
+            "Elements a uniform mesh needs for each adaptive mesh's flat errors (log-log interpolation "
             "between the uniform runs; NaN: outside their range)");
-  out.plot({.title = "Substructuring: error against element count",
+  const auto curve = [](const std::string& y, const std::string& scheme, const std::string& title,
+                        bool dashed) {
+    return PlotCurve{.table = "substructuring.csv",
+                     .x = "elements",
+                     .y = y,
+                     .where = {{"scheme", scheme}},
+                     .title = title,
+                     .dashed = dashed};
+  };
+  out.plot({.title = "Substructuring: error against element count (flat elements)",
             .x_label = "elements",
-            .y_label = "relative error (area-weighted, L1)",
+            .y_label = "relative error",
             .log_x = true,
             .log_y = true,
-            .curves = {{.table = "substructuring.csv",
-                        .x = "elements",
-                        .y = "flat_error",
-                        .where = {{"scheme", "uniform"}},
-                        .title = "uniform, flat"},
-                       {.table = "substructuring.csv",
-                        .x = "elements",
-                        .y = "flat_error",
-                        .where = {{"scheme", "adaptive"}},
-                        .title = "adaptive, flat"},
-                       {.table = "substructuring.csv",
-                        .x = "elements",
-                        .y = "extrapolated_error",
-                        .where = {{"scheme", "uniform"}},
-                        .title = "uniform, Gouraud (extrapolated)",
-                        .dashed = true},
-                       {.table = "substructuring.csv",
-                        .x = "elements",
-                        .y = "extrapolated_error",
-                        .where = {{"scheme", "adaptive"}},
-                        .title = "adaptive, Gouraud (extrapolated)",
-                        .dashed = true}}},
-           "substructuring_error", "Error against element count, uniform and adaptive");
+            .curves = {curve("flat_max_error", "uniform", "uniform, largest error", false),
+                       curve("flat_max_error", "adaptive", "adaptive, largest error", false),
+                       curve("flat_mean_error", "uniform", "uniform, mean error", true),
+                       curve("flat_mean_error", "adaptive", "adaptive, mean error", true)}},
+           "substructuring_error", "Largest and mean error against element count, uniform and adaptive");
   out.plot({.title = "Substructuring: time against element count",
             .x_label = "elements",
             .y_label = "seconds",
@@ -278,19 +291,22 @@ Solved figure_section(OutputFolder& out, const Settings& settings) {
   const std::size_t patches = load_radiosity_scene(settings.scene, edge).patches.size();
   const int target = settings.quick ? 400 : settings.figure_elements;
   const int k = std::max(1, static_cast<int>(std::lround(std::sqrt(target / static_cast<double>(patches)))));
-  Table figure({"visibility", "patches", "elements", "threads", "shots", "unshot / emitted", "seconds"});
+  Table figure({"visibility", "patches", "elements", "threads", "shots", "unshot / emitted", "seconds",
+                "processor seconds (all threads)"});
   Table tenths({"visibility", "tenth", "shots", "seconds", "unshot_fraction"});
   Solved kept;
   for (const auto& [visibility, name] : {std::pair{ShotVisibility::ray_cast, "ray_cast_bvh"},
                                          std::pair{ShotVisibility::hemicube, "hemicube_128"}}) {
     report_progress(program_id, std::string("figure: ") + name, 0, 1);
+    const std::clock_t cpu_start = std::clock();  // processor time of every thread: load does not inflate it
     Solved s = solve(settings, edge, k,
                      {.visibility = visibility, .unshot_fraction = settings.quick ? 1e-2 : settings.unshot});
+    const double cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     const SubstructuredSolution& r = s.solution;
     figure.add_row({std::string(name), static_cast<std::int64_t>(s.scene.patches.size()),
                     static_cast<std::int64_t>(s.mesh.elements.size()),
                     static_cast<std::int64_t>(omp_get_max_threads()), static_cast<std::int64_t>(r.shots),
-                    r.unshot_fraction, r.seconds});
+                    r.unshot_fraction, r.seconds, cpu_seconds});
     for (int t = 1; t <= 10; ++t) {
       const std::size_t shot = std::max<std::size_t>(1, (r.history.size() * t + 9) / 10);
       const ShotRecord& h = r.history[shot - 1];
@@ -358,7 +374,21 @@ void add_options(CLI::App& app, Settings& settings) {
   app.add_option("--threshold", settings.threshold,
                  "subdivision threshold: split where neighbours differ by more than this fraction of the "
                  "brightest element (> 0)")
-      ->check(CLI::PositiveNumber & CLI::Range(0.0, 1.0))
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            double value = NAN;
+            try {
+              value = std::stod(text);
+            } catch (const std::exception&) {
+              return "'" + text + "' is not a number";
+            }
+            return value > 0 && value <= 1
+                       ? std::string()
+                       : "the subdivision threshold " + text +
+                             " must be positive and at most 1 (a fraction of the brightest "
+                             "element)";
+          },
+          "THRESHOLD"))
       ->capture_default_str();
   app.add_option("--ply", settings.ply,
                  "also write the figure's binary PLY to this file (its folder must exist)")
@@ -378,6 +408,7 @@ void add_options(CLI::App& app, Settings& settings) {
   app.add_option("--patch-edge", settings.figure_patch_edge, "the figure's largest patch edge (mm)")
       ->check(CLI::Range(20.0, 1000.0))
       ->capture_default_str();
+  app.add_flag("--figure", settings.figure_only, "only the figure (section 7) and its export (section 8)");
   app.add_option("--unshot", settings.unshot,
                  "stop when the unshot power is below this fraction of the emitted")
       ->check(CLI::Range(1e-6, 0.5))
@@ -412,8 +443,10 @@ int main(int argc, char** argv) {
           if (s.polygon.size() != 3 && s.polygon.size() != 4)
             throw InputError(settings.scene, "surfaces", s.name, "lesson 12 splits triangles and quads only");
         OutputFolder out(options.out, info.id, info.title);
-        vertex_colour_section(out, settings);
-        substructuring_study(out, settings);
+        if (!settings.figure_only) {
+          vertex_colour_section(out, settings);
+          substructuring_study(out, settings);
+        }
         const Solved figure = figure_section(out, settings);
         export_section(out, settings, figure);
         out.finish();

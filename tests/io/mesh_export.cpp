@@ -29,8 +29,9 @@ struct ReadPly {
 
 std::size_t type_size(const std::string& type) {
   static const std::map<std::string, std::size_t> sizes = {
-      {"char", 1}, {"uchar", 1}, {"short", 2}, {"ushort", 2}, {"int", 4}, {"uint", 4}, {"float", 4},
-      {"double", 8}, {"int8", 1}, {"uint8", 1}, {"int32", 4}, {"uint32", 4}, {"float32", 4}, {"float64", 8}};
+      {"char", 1},  {"uchar", 1},  {"short", 2},   {"ushort", 2}, {"int", 4},
+      {"uint", 4},  {"float", 4},  {"double", 8},  {"int8", 1},   {"uint8", 1},
+      {"int32", 4}, {"uint32", 4}, {"float32", 4}, {"float64", 8}};
   return sizes.at(type);
 }
 
@@ -128,7 +129,8 @@ void check_read_back(const ReadPly& ply, const ColouredMesh& m) {
   REQUIRE(ply.vertex_properties == std::vector<std::string>{"x", "y", "z", "red", "green", "blue"});
   for (std::size_t v = 0; v < m.positions.size(); ++v) {
     INFO("vertex " << v);
-    for (int axis = 0; axis < 3; ++axis) CHECK(ply.vertices[v][axis] == doctest::Approx(m.positions[v][axis]));
+    for (int axis = 0; axis < 3; ++axis)
+      CHECK(ply.vertices[v][axis] == doctest::Approx(m.positions[v][axis]));
     for (int c = 0; c < 3; ++c) CHECK(ply.vertices[v][3 + c] == m.colours[v][c]);
   }
   REQUIRE(ply.faces.size() == 3);

@@ -53,6 +53,10 @@ struct ShootingSettings {
   int hemicube_resolution = 128;  // hemicube only
   double unshot_fraction = 1e-3;  // stop when the unshot power is below this fraction of the emitted
   std::size_t max_shots = 0;      // and after at most this many shots (0: 200 per patch)
+  // ray_cast only: the polygons that block light (convex, 3 or more
+  // vertices). Empty: the patches themselves. The scene's surfaces block the
+  // same light with far fewer triangles for the BVH.
+  std::vector<std::vector<Point3>> occluders{};
 };
 
 struct ShotRecord {
