@@ -202,7 +202,7 @@ double uniform_elements_at(const std::vector<std::pair<double, double>>& runs, d
 void substructuring_study(OutputFolder& out, const Settings& settings) {
   const double patch_edge = settings.quick ? 275.0 : 140.0;
   const int reference_k = settings.quick ? 4 : 16;
-  const ShootingSettings shooting{.unshot_fraction = settings.quick ? 1e-2 : 1e-4};
+  const ShootingSettings shooting{.unshot_fraction = settings.quick ? 1e-2 : 1e-3};
   report_progress(program_id, "study: the uniformly fine reference", 0, 1);
   const Solved reference = solve(settings, patch_edge, reference_k, shooting);
   Table table({"scheme", "knob", "patches", "elements", "shots", "seconds", "flat_mean_error",
