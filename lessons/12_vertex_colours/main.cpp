@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <iostream>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include <omp.h>
@@ -122,7 +123,7 @@ Solved vertex_colour_section(OutputFolder& out, const Settings& settings) {
 }
 
 // The errors of `s` against the fine reference, per rule (flat = own,
-// average, extrapolate), over the reference's non-emitting elements r with
+// average, extrapolate), over the reference's non-emitting, lit elements r with
 // the solution read at r's centroid x_r:
 //   mean: Σ A_r |B(x_r) − B_r| / Σ A_r B_r      (channels summed)
 //   max:  max_r max_c |B(x_r) − B_r| / max_r max_c B_r
@@ -140,8 +141,11 @@ Errors errors_against(const Solved& s, const Solved& reference) {
     double difference = 0, total = 0, largest_difference = 0, largest = 0;
     for (std::size_t r = 0; r < reference.mesh.elements.size(); ++r) {
       const Patch& element = reference.mesh.elements[r];
-      if (element.emission.r + element.emission.g + element.emission.b > 0) continue;
       const Color& b = reference.solution.element_radiosity[r];
+      // Emitters, and elements that receive nothing (hidden from every
+      // patch, so from any eye in the scene: the ceiling above the light, the
+      // floor under the blocks), are left out.
+      if (element.emission.r + element.emission.g + element.emission.b > 0 || b == Color(0.0)) continue;
       for (int e : elements_of[static_cast<std::size_t>(reference.mesh.patch_of[r])]) {
         const auto ue = static_cast<std::size_t>(e);
         if (!lesson12::element_contains(s.mesh.elements[ue], element.centroid)) continue;
@@ -198,11 +202,54 @@ double uniform_elements_at(const std::vector<std::pair<double, double>>& runs, d
   return NAN;
 }
 
+// --- 6. The study's plots: error and time against element count -------------
+void study_plots(OutputFolder& out) {
+  const auto curve = [](const std::string& y, const std::string& scheme, const std::string& title,
+                        bool dashed) {
+    return PlotCurve{.table = "substructuring.csv",
+                     .x = "elements",
+                     .y = y,
+                     .where = {{"scheme", scheme}},
+                     .title = title,
+                     .dashed = dashed};
+  };
+  out.plot({.title = "Substructuring: error against element count (flat elements)",
+            .x_label = "elements",
+            .y_label = "relative error",
+            .log_x = true,
+            .log_y = true,
+            .curves = {curve("flat_max_error", "uniform", "uniform, largest error", false),
+                       curve("flat_max_error", "adaptive", "adaptive, largest error", false),
+                       curve("flat_mean_error", "uniform", "uniform, mean error", true),
+                       curve("flat_mean_error", "adaptive", "adaptive, mean error", true)}},
+           "substructuring_error", "Largest and mean error against element count, uniform and adaptive");
+  out.plot({.title = "Substructuring: time against element count",
+            .x_label = "elements",
+            .y_label = "seconds",
+            .log_x = true,
+            .log_y = true,
+            .curves = {{.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "seconds",
+                        .where = {{"scheme", "uniform"}},
+                        .title = "uniform"},
+                       {.table = "substructuring.csv",
+                        .x = "elements",
+                        .y = "seconds",
+                        .where = {{"scheme", "adaptive"}},
+                        .title = "adaptive (every pass)"}}},
+           "substructuring_time", "Solve time against element count, uniform and adaptive");
+}
+
 // --- 5–6. Uniform against adaptive substructuring ------------------------------
 void substructuring_study(OutputFolder& out, const Settings& settings) {
   const double patch_edge = settings.quick ? 275.0 : 140.0;
   const int reference_k = settings.quick ? 4 : 16;
   const ShootingSettings shooting{.unshot_fraction = settings.quick ? 1e-2 : 1e-3};
+  // On one thread, like lesson 11's study: the seconds compare the methods'
+  // work, not how a loaded machine schedules two threads' barriers.
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
   report_progress(program_id, "study: the uniformly fine reference", 0, 1);
   const Solved reference = solve(settings, patch_edge, reference_k, shooting);
   Table table({"scheme", "knob", "patches", "elements", "shots", "seconds", "flat_mean_error",
@@ -248,41 +295,8 @@ void substructuring_study(OutputFolder& out, const Settings& settings) {
   out.table(equal, "equal_error",
             "Elements a uniform mesh needs for each adaptive mesh's flat errors (log-log interpolation "
             "between the uniform runs; NaN: outside their range)");
-  const auto curve = [](const std::string& y, const std::string& scheme, const std::string& title,
-                        bool dashed) {
-    return PlotCurve{.table = "substructuring.csv",
-                     .x = "elements",
-                     .y = y,
-                     .where = {{"scheme", scheme}},
-                     .title = title,
-                     .dashed = dashed};
-  };
-  out.plot({.title = "Substructuring: error against element count (flat elements)",
-            .x_label = "elements",
-            .y_label = "relative error",
-            .log_x = true,
-            .log_y = true,
-            .curves = {curve("flat_max_error", "uniform", "uniform, largest error", false),
-                       curve("flat_max_error", "adaptive", "adaptive, largest error", false),
-                       curve("flat_mean_error", "uniform", "uniform, mean error", true),
-                       curve("flat_mean_error", "adaptive", "adaptive, mean error", true)}},
-           "substructuring_error", "Largest and mean error against element count, uniform and adaptive");
-  out.plot({.title = "Substructuring: time against element count",
-            .x_label = "elements",
-            .y_label = "seconds",
-            .log_x = true,
-            .log_y = true,
-            .curves = {{.table = "substructuring.csv",
-                        .x = "elements",
-                        .y = "seconds",
-                        .where = {{"scheme", "uniform"}},
-                        .title = "uniform"},
-                       {.table = "substructuring.csv",
-                        .x = "elements",
-                        .y = "seconds",
-                        .where = {{"scheme", "adaptive"}},
-                        .title = "adaptive (every pass)"}}},
-           "substructuring_time", "Solve time against element count, uniform and adaptive");
+  omp_set_num_threads(threads);
+  study_plots(out);
 }
 
 // --- 7. The figure: the box at about 10,000 elements, both visibility methods ---
@@ -293,48 +307,55 @@ Solved figure_section(OutputFolder& out, const Settings& settings) {
   const int k = std::max(1, static_cast<int>(std::lround(std::sqrt(target / static_cast<double>(patches)))));
   Table figure({"visibility", "patches", "elements", "threads", "shots", "unshot / emitted", "seconds",
                 "processor seconds (all threads)"});
-  Table tenths({"visibility", "tenth", "shots", "seconds", "unshot_fraction"});
+  Table tenths({"run", "tenth", "shots", "seconds", "unshot_fraction"});
   Solved kept;
+  const int threads = omp_get_max_threads();
+  // Each method on one thread and on all: on a machine loaded by other work
+  // a thread waits at every shot's barrier for its partner.
   for (const auto& [visibility, name] : {std::pair{ShotVisibility::ray_cast, "ray_cast_bvh"},
-                                         std::pair{ShotVisibility::hemicube, "hemicube_128"}}) {
-    report_progress(program_id, std::string("figure: ") + name, 0, 1);
-    const std::clock_t cpu_start = std::clock();  // processor time of every thread: load does not inflate it
-    Solved s = solve(settings, edge, k,
-                     {.visibility = visibility, .unshot_fraction = settings.quick ? 1e-2 : settings.unshot});
-    const double cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-    const SubstructuredSolution& r = s.solution;
-    figure.add_row({std::string(name), static_cast<std::int64_t>(s.scene.patches.size()),
-                    static_cast<std::int64_t>(s.mesh.elements.size()),
-                    static_cast<std::int64_t>(omp_get_max_threads()), static_cast<std::int64_t>(r.shots),
-                    r.unshot_fraction, r.seconds, cpu_seconds});
-    for (int t = 1; t <= 10; ++t) {
-      const std::size_t shot = std::max<std::size_t>(1, (r.history.size() * t + 9) / 10);
-      const ShotRecord& h = r.history[shot - 1];
-      tenths.add_row({std::string(name), std::int64_t{t}, static_cast<std::int64_t>(h.shots), h.seconds,
-                      h.unshot_fraction});
+                                         std::pair{ShotVisibility::hemicube, "hemicube_128"}})
+    for (const int t : threads > 1 ? std::vector<int>{1, threads} : std::vector<int>{1}) {
+      report_progress(program_id, std::string("figure: ") + name + ", " + std::to_string(t) + " threads", 0,
+                      1);
+      omp_set_num_threads(t);
+      const std::clock_t cpu_start =
+          std::clock();  // processor time of every thread: load does not inflate it
+      Solved s =
+          solve(settings, edge, k,
+                {.visibility = visibility, .unshot_fraction = settings.quick ? 1e-2 : settings.unshot});
+      const double cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+      omp_set_num_threads(threads);
+      const SubstructuredSolution& r = s.solution;
+      figure.add_row({std::string(name), static_cast<std::int64_t>(s.scene.patches.size()),
+                      static_cast<std::int64_t>(s.mesh.elements.size()), std::int64_t{t},
+                      static_cast<std::int64_t>(r.shots), r.unshot_fraction, r.seconds, cpu_seconds});
+      const std::string run = std::string(name) + "_" + std::to_string(t) + "_threads";
+      for (int tenth = 1; tenth <= 10; ++tenth) {
+        const ShotRecord& h = r.history[std::max<std::size_t>(1, (r.history.size() * tenth + 9) / 10) - 1];
+        tenths.add_row(
+            {run, std::int64_t{tenth}, static_cast<std::int64_t>(h.shots), h.seconds, h.unshot_fraction});
+      }
+      std::cout << "Figure (" << name << "): " << s.scene.patches.size() << " patches, "
+                << s.mesh.elements.size() << " elements, " << r.shots << " shots to "
+                << fixed(100 * r.unshot_fraction, 3) << "% unshot in " << fixed(r.seconds, 2) << " s on " << t
+                << " threads\n";
+      if (visibility == ShotVisibility::ray_cast) kept = std::move(s);
     }
-    std::cout << "Figure (" << name << "): " << s.scene.patches.size() << " patches, "
-              << s.mesh.elements.size() << " elements, " << r.shots << " shots to "
-              << fixed(100 * r.unshot_fraction, 3) << "% unshot in " << fixed(r.seconds, 2) << " s on "
-              << omp_get_max_threads() << " threads\n";
-    if (visibility == ShotVisibility::ray_cast) kept = std::move(s);
-  }
   out.table(figure, "figure", "The box solved to the unshot target: shoot from patches, receive at elements");
   out.table(tenths, "figure_tenths", "Time and unshot power after each tenth of the figure's shots");
+  std::vector<PlotCurve> curves;
+  for (const auto& row : tenths.rows())
+    if (std::get<std::int64_t>(row[1]) == 1)
+      curves.push_back({.table = "figure_tenths.csv",
+                        .x = "seconds",
+                        .y = "unshot_fraction",
+                        .where = {{"run", std::get<std::string>(row[0])}},
+                        .title = std::get<std::string>(row[0])});
   out.plot({.title = "The figure's run: unshot power against time",
             .x_label = "seconds",
             .y_label = "unshot / emitted power",
             .log_y = true,
-            .curves = {{.table = "figure_tenths.csv",
-                        .x = "seconds",
-                        .y = "unshot_fraction",
-                        .where = {{"visibility", "ray_cast_bvh"}},
-                        .title = "ray cast (BVH)"},
-                       {.table = "figure_tenths.csv",
-                        .x = "seconds",
-                        .y = "unshot_fraction",
-                        .where = {{"visibility", "hemicube_128"}},
-                        .title = "hemicube 128"}}},
+            .curves = curves},
            "figure_tenths", "Unshot power after each tenth of the run, against the time spent");
   const int size = settings.quick ? 64 : 384;
   const lesson12::ElementView view =
