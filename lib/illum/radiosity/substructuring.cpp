@@ -52,7 +52,10 @@ void ray_cast_row(const Patch& shooter, const std::vector<Patch>& elements, cons
     TraversalCounters counters;
     if (occluders.occluded(Ray(shooter.centroid, d / r, Interval(1e-7 * r, (1 - 1e-7) * r)), counters))
       continue;
-    row[e] = (cos_p / r) * (cos_e / r) * element.area / (std::numbers::pi * r2 + element.area);
+    // The shooter as a disc of its own area seen from the element (bounded
+    // by 1 however close the element), turned into F_pe by reciprocity.
+    const double f_ep = (cos_p / r) * (cos_e / r) * shooter.area / (std::numbers::pi * r2 + shooter.area);
+    row[e] = f_ep * element.area / shooter.area;
   }
 }
 
@@ -156,7 +159,11 @@ SubstructuredSolution shoot_patches_to_elements(const std::vector<Patch>& patche
     for (std::size_t e = 0; e < n; ++e) {
       if (row[e] == 0) continue;
       const Patch& element = mesh.elements[e];
-      const Color gain = element.reflectance * (row[e] * shooter.area / element.area) * delta;
+      // F_ep = F_pe A_p / A_e is a form factor: never above 1. The hemicube,
+      // which treats the shooter as a point, can exceed it for an element
+      // close to the shooter's centroid.
+      const double f_ep = std::min(1.0, row[e] * shooter.area / element.area);
+      const Color gain = element.reflectance * f_ep * delta;
       s.element_radiosity[e] += gain;
       const auto q = static_cast<std::size_t>(mesh.patch_of[e]);
       s.patch_unshot[q] += gain * (element.area / patches[q].area);

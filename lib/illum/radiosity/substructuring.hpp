@@ -15,11 +15,16 @@
 //   hemicube – lesson 10's hemicube at the shooter's centroid drawing every
 //              element (the shooter itself appended to the list so that it
 //              is skipped); every OpenMP thread draws a share;
-//   ray_cast – the point-to-disc factor from the shooter's centroid x_p to
-//              the element's centroid x_e at distance r,
-//                F_pe ≈ cos θ_p cos θ_e A_e / (π r² + A_e),
+//   ray_cast – the shooter seen from the element's centroid x_e as a disc of
+//              area A_p at its centroid x_p, distance r (Wallace, Elmquist
+//              and Haines 1989),
+//                F_ep ≈ cos θ_p cos θ_e A_p / (π r² + A_p)   (≤ 1 however close),
 //              times the visibility of the segment x_p–x_e, tested against
-//              the patches by lesson 08's BVH (no aliasing, one ray per element).
+//              the occluders by lesson 08's BVH (no aliasing, one ray per
+//              element); the row holds F_pe = F_ep A_e / A_p.
+// Either way ΔB_e = ρ_e min(1, F_pe A_p / A_e) Δ_p: F_ep is a form factor,
+// and the hemicube's point shooter can push it above 1 for an element right
+// beside the shooter's centroid.
 #include <cstddef>
 #include <vector>
 
