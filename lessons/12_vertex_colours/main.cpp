@@ -190,16 +190,21 @@ Solved adaptive(const Settings& settings, double patch_edge, double threshold, d
 
 // The element count at which the uniform runs (elements, error), in order of
 // elements, reach `error`: linear interpolation of log error against log
-// elements between the two runs that bracket it; NaN outside their range.
-double uniform_elements_at(const std::vector<std::pair<double, double>>& runs, double error) {
+// elements between the first two runs that bracket it; outside their range,
+// the text "more than" the largest run (no uniform run was that accurate)
+// or "fewer than" the smallest.
+Table::Cell uniform_elements_at(const std::vector<std::pair<double, double>>& runs, double error) {
+  double lowest = INFINITY;
   for (std::size_t i = 1; i < runs.size(); ++i) {
     const auto [n0, e0] = runs[i - 1];
     const auto [n1, e1] = runs[i];
-    if (!(error <= e0 && error >= e1)) continue;
+    lowest = std::min({lowest, e0, e1});
+    if (!(error <= std::max(e0, e1) && error >= std::min(e0, e1)) || e0 == e1) continue;
     const double f = std::log(error / e0) / std::log(e1 / e0);
     return std::exp(std::log(n0) + f * std::log(n1 / n0));
   }
-  return NAN;
+  const auto count = [](double n) { return std::to_string(static_cast<long long>(n)); };
+  return error < lowest ? "more than " + count(runs.back().first) : "fewer than " + count(runs.front().first);
 }
 
 // --- 6. The study's plots: error and time against element count -------------
@@ -294,7 +299,7 @@ void substructuring_study(OutputFolder& out, const Settings& settings) {
                 " elements), and time (adaptive: all its solves)");
   out.table(equal, "equal_error",
             "Elements a uniform mesh needs for each adaptive mesh's flat errors (log-log interpolation "
-            "between the uniform runs; NaN: outside their range)");
+            "between the uniform runs)");
   omp_set_num_threads(threads);
   study_plots(out);
 }
