@@ -46,6 +46,12 @@ struct Settings {
   bool figure_only = false;       // --figure: only the figure (section 7) and its export (section 8)
 };
 
+// "ray_cast_bvh_1_threads" → "ray cast bvh 1 threads" (gnuplot reads '_' as a subscript).
+std::string spaced(std::string text) {
+  std::replace(text.begin(), text.end(), '_', ' ');
+  return text;
+}
+
 std::string fixed(double value, int decimals) {
   char b[64];
   std::snprintf(b, sizeof b, "%.*f", decimals, value);
@@ -355,7 +361,7 @@ Solved figure_section(OutputFolder& out, const Settings& settings) {
                         .x = "seconds",
                         .y = "unshot_fraction",
                         .where = {{"run", std::get<std::string>(row[0])}},
-                        .title = std::get<std::string>(row[0])});
+                        .title = spaced(std::get<std::string>(row[0]))});
   out.plot({.title = "The figure's run: unshot power against time",
             .x_label = "seconds",
             .y_label = "unshot / emitted power",
