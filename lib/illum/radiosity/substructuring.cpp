@@ -173,6 +173,12 @@ SubstructuredSolution shoot_patches_to_elements(const std::vector<Patch>& patche
     for (std::size_t q = 0; q < patches.size(); ++q)
       unshot_power += power(s.patch_unshot[q], patches[q].area);
     s.history.push_back({s.shots, watch.seconds(), unshot_power / emitted});
+    while (s.snapshots.size() < settings.snapshot_unshot.size() &&
+           unshot_power / emitted < settings.snapshot_unshot[s.snapshots.size()]) {
+      const Color ambient = ambient_term(patches, s.patch_unshot);
+      std::vector<Color>& shown = s.snapshots.emplace_back(s.element_radiosity);
+      for (std::size_t e = 0; e < n; ++e) shown[e] += mesh.elements[e].reflectance * ambient;
+    }
   }
   s.unshot_fraction = unshot_power / emitted;
   s.seconds = watch.seconds();

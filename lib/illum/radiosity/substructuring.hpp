@@ -62,6 +62,10 @@ struct ShootingSettings {
   // vertices). Empty: the patches themselves. The scene's surfaces block the
   // same light with far fewer triangles for the BVH.
   std::vector<std::vector<Point3>> occluders{};
+  // Unshot fractions, largest first: when the unshot power first drops
+  // below each, the solution keeps a snapshot of what progressive
+  // refinement shows then, B_e + ρ_e·ambient (lesson 11, §7).
+  std::vector<double> snapshot_unshot{};
 };
 
 struct ShotRecord {
@@ -74,9 +78,10 @@ struct SubstructuredSolution {
   std::vector<Color> element_radiosity;
   std::vector<Color> patch_unshot;
   std::size_t shots = 0;
-  double unshot_fraction = 1;       // Σ A_p Δ_p / Σ A_p E_p, channels summed
-  double seconds = 0;               // the whole solve, set-up included
-  std::vector<ShotRecord> history;  // after every shot
+  double unshot_fraction = 1;                 // Σ A_p Δ_p / Σ A_p E_p, channels summed
+  double seconds = 0;                         // the whole solve, set-up included
+  std::vector<ShotRecord> history;            // after every shot
+  std::vector<std::vector<Color>> snapshots;  // one per snapshot_unshot level reached
 };
 
 // Progressive refinement, shooting from patches and receiving at elements.
