@@ -63,6 +63,8 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from gallery.markdown_table import is_separator_line, split_table_row
+
 SOURCE = Path(__file__).resolve().parent.parent
 # The Markdown files that may hold figures, relative to the source tree.
 TEXT_GLOBS = ("lessons/*/README.md", "slides/*.md", "exercises/*/README.md", "docs/*.md")
@@ -117,41 +119,15 @@ class Table:
         return [line(self.header), "|" + "---|" * len(self.header)] + [line(r) for r in self.rows]
 
 
-def split_row(line: str) -> list[str]:
-    body = line.strip()
-    if body.startswith("|"):
-        body = body[1:]
-    if body.endswith("|") and not body.endswith("\\|"):
-        body = body[:-1]
-    cells, current, i = [], "", 0
-    while i < len(body):
-        if body[i] == "\\" and i + 1 < len(body) and body[i + 1] == "|":
-            current += "|"
-            i += 2
-            continue
-        if body[i] == "|":
-            cells.append(current.strip())
-            current = ""
-        else:
-            current += body[i]
-        i += 1
-    cells.append(current.strip())
-    return cells
-
-
-def is_separator(line: str) -> bool:
-    return bool(re.fullmatch(r"\|?\s*:?-{3,}:?\s*(\|\s*:?-{3,}:?\s*)*\|?", line.strip()))
-
-
 def markdown_tables(lines: list[str]) -> list[tuple[int, Table]]:
     """Every pipe table in `lines`: (index of its header line, table)."""
     tables, i = [], 0
     while i + 1 < len(lines):
-        if lines[i].lstrip().startswith("|") and is_separator(lines[i + 1]):
-            start, header = i, split_row(lines[i])
+        if lines[i].lstrip().startswith("|") and is_separator_line(lines[i + 1]):
+            start, header = i, split_table_row(lines[i])
             rows, i = [], i + 2
             while i < len(lines) and lines[i].lstrip().startswith("|"):
-                rows.append(split_row(lines[i]))
+                rows.append(split_table_row(lines[i]))
                 i += 1
             tables.append((start, Table(header, rows)))
         else:

@@ -291,7 +291,7 @@ void implicit_study(OutputFolder& out, const ProgramOptions& options) {
             "iterations, evaluations and time per ray for each method as the tolerance tightens");
   PlotSpec error_plot{.title = "Implicit surfaces: max error against iterations (torus)",
                       .x_label = "mean iterations per ray",
-                      .y_label = "max |s - s_exact|",
+                      .y_label = "max |s - s_{exact}|",
                       .log_x = true,
                       .log_y = true};
   PlotSpec time_plot{.title = "Implicit surfaces: time per ray against tolerance",
@@ -301,7 +301,7 @@ void implicit_study(OutputFolder& out, const ProgramOptions& options) {
                      .log_y = true};
   PlotSpec tol_plot{.title = "Implicit surfaces: max error against tolerance",
                     .x_label = "tolerance",
-                    .y_label = "max |s - s_exact|",
+                    .y_label = "max |s - s_{exact}|",
                     .log_x = true,
                     .log_y = true};
   for (ImplicitMethod method : methods) {
@@ -418,9 +418,10 @@ void patch_accuracy_study(OutputFolder& out, const ProgramOptions& options, Rng&
   out.plot(
       {.title = "Bilinear patch: Newton error against tolerance",
        .x_label = "tolerance",
-       .y_label = "|s - s_exact|",
+       .y_label = "|s - s_{exact}|",
        .log_x = true,
        .log_y = true,
+       .key = PlotKey::inside_top_left,  // shown small, beside the slide's bullets
        .curves =
            {{.table = "patch_study.csv", .x = "tolerance", .y = "max_error", .title = "max error"},
             {.table = "patch_study.csv", .x = "tolerance", .y = "median_error", .title = "median error"}}},
@@ -512,6 +513,7 @@ std::string demos(OutputFolder& out) {
       .title = "Newton near a local minimum (ray 0.01 above the torus)",
       .x_label = "s",
       .y_label = "f(s)",
+      .key = PlotKey::below,  // shown small, beside the slide's bullets
       .curves = {
           {.table = "local_minimum_curve.csv", .x = "s", .y = "f", .title = "f(s)", .mark = PlotMark::lines},
           {.table = "local_minimum_newton.csv",

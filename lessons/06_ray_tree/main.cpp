@@ -49,19 +49,6 @@ auto timed(const char* section, F&& run) {
   return run();
 }
 
-PlotSeries series(const std::string& csv, int x, int y, const std::string& title, const std::string& filter) {
-  PlotSeries s;
-  s.csv = csv, s.x_column = x, s.y_column = y, s.title = title, s.filter = filter;
-  return s;
-}
-
-PlotSpec plot_spec(const std::string& title, const std::string& x_label, const std::string& y_label,
-                   bool log_x, bool log_y) {
-  PlotSpec spec;
-  spec.title = title, spec.x_label = x_label, spec.y_label = y_label, spec.log_x = log_x, spec.log_y = log_y;
-  return spec;
-}
-
 // --- §1 the radiation model: a slab of constant K_t ---------------------------
 
 void radiation_model(OutputFolder& out, bool quick) {
@@ -82,13 +69,18 @@ void radiation_model(OutputFolder& out, bool quick) {
       "A ray through a slab, K_t = 0.8, d = 2.5: marching dI/ds = −K_t I + K_a I_e against the closed "
       "form I₀e^(−K_t d) + (K_a I_e/K_t)(1 − e^(−K_t d)); 'absorbing' has emission and in-scattering off",
       4);
-  PlotSpec spec = plot_spec("Transport along a ray through a slab: marching error", "steps",
-                            "relative error of I(d)", true, true);
+  PlotSpec spec{.title = "Transport along a ray through a slab: marching error",
+                .x_label = "steps",
+                .y_label = "relative error of I(d)",
+                .log_x = true,
+                .log_y = true};
   for (const char* medium : {"absorbing", "glowing"})
     for (const char* method : {"euler", "midpoint"})
-      spec.series.push_back(
-          series("radiation_slab.csv", 3, 6, std::string(medium) + ", " + method,
-                 std::string("strcol(1) eq '") + medium + "' && strcol(2) eq '" + method + "'"));
+      spec.curves.push_back({.table = "radiation_slab.csv",
+                             .x = "steps",
+                             .y = "relative_error",
+                             .where = {{"medium", medium}, {"method", method}},
+                             .title = std::string(medium) + ", " + method});
   out.plot(spec, "radiation_slab", "Marching the transport equation converges to Beer–Lambert's law");
 }
 
@@ -290,14 +282,17 @@ void offset_study(OutputFolder& out, bool quick, std::uint64_t seed) {
             "Secondary rays leaving a sphere, by how they leave: reflected rays that hit their own sphere "
             "again, refracted rays that hit it near t = 0, refracted rays that miss its far side",
             3);
-  PlotSpec spec =
-      plot_spec("Reflected rays that hit their own unit sphere again",
-                "distance of the sphere from the origin (0 plotted at 1)", "re-hit rate", true, false);
+  PlotSpec spec{.title = "Reflected rays that hit their own unit sphere again",
+                .x_label = "distance of the sphere from the origin (0 plotted at 1)",
+                .y_label = "re-hit rate",
+                .log_x = true};
   for (const char* precision : {"float", "double"})
     for (const auto& [leave, name] : methods)
-      spec.series.push_back(series(
-          "offset_study.csv", 9, 6, std::string(name) + ", " + precision,
-          std::string("strcol(1) eq '") + precision + "' && strcol(5) eq '" + name + "' && column(4) == 1"));
+      spec.curves.push_back({.table = "offset_study.csv",
+                             .x = "distance_plotted",
+                             .y = "outgoing_rehit_rate",
+                             .where = {{"precision", precision}, {"leave", name}, {"radius", 1.0}},
+                             .title = std::string(name) + ", " + precision});
   out.plot(spec, "offset_study", "Re-hit rate of reflected rays: fixed epsilon against the bounded offset");
 }
 
@@ -407,13 +402,16 @@ void forward_tracing(OutputFolder& out, const Scene& scene, bool quick, std::uin
       "Forward tracing: photons shot from the light, followed through four bounces, that enter a pupil at "
       "the eye (radius 4 mm or 10 cm), against the backward tracer's one primary ray per pixel",
       3);
-  PlotSpec spec =
-      plot_spec("Forward tracing: pixels reached as photons are shot", "photons shot from the light",
-                "share of the image's pixels reached", true, false);
-  for (const double r : pupil_radii)  // the two radii lie on either side of 0.02
-    spec.series.push_back(series("forward_tracing.csv", 3, 6, "pupil radius " + format_number(r, 2) + " m",
-                                 std::string("strcol(1) eq 'forward from the light' && column(2) ") +
-                                     (r < 0.02 ? "< 0.02" : "> 0.02")));
+  PlotSpec spec{.title = "Forward tracing: pixels reached as photons are shot",
+                .x_label = "photons shot from the light",
+                .y_label = "share of the image's pixels reached",
+                .log_x = true};
+  for (const double r : pupil_radii)
+    spec.curves.push_back({.table = "forward_tracing.csv",
+                           .x = "rays_shot",
+                           .y = "share_of_pixels",
+                           .where = {{"method", "forward from the light"}, {"pupil_radius", r}},
+                           .title = "pupil radius " + format_number(r, 2) + " m"});
   out.plot(spec, "forward_tracing", "Share of pixels a forward tracer reaches with N photons");
 }
 
@@ -459,16 +457,26 @@ void depth_study(OutputFolder& out, const Scene& scene, bool quick) {
       "the tree's size per pixel (primary + secondary rays) with the plan, without it, and the worst case "
       "2^(d+1) − 1",
       3);
-  PlotSpec error =
-      plot_spec("Ray tree: image error against depth 16", "depth limit", "error (linear RGB)", false, true);
-  error.series.push_back(series("depth_study.csv", 1, 2, "RMS error", "column(2) > 0"));
-  error.series.push_back(series("depth_study.csv", 1, 3, "max error", "column(3) > 0"));
+  PlotSpec error{.title = "Ray tree: image error against depth 16",
+                 .x_label = "depth limit",
+                 .y_label = "error (linear RGB)",
+                 .log_y = true,
+                 .key = PlotKey::inside_top_right};  // shown small, two side by side
+  for (const auto& [column, title] :
+       {std::pair{"rms_error", "RMS error"}, std::pair{"max_error", "max error"}})
+    error.curves.push_back(
+        {.table = "depth_study.csv", .x = "depth_limit", .y = column, .y_positive = true, .title = title});
   out.plot(error, "depth_error", "Image error against the depth-16 reference, by depth limit");
-  PlotSpec size =
-      plot_spec("Ray tree: size per pixel", "depth limit", "rays of the tree per pixel", false, true);
-  size.series.push_back(series("depth_study.csv", 1, 6, "with the effects plan", ""));
-  size.series.push_back(series("depth_study.csv", 1, 7, "notes' algorithm, both children always", ""));
-  size.series.push_back(series("depth_study.csv", 1, 8, "worst case 2^{d+1} - 1", ""));
+  PlotSpec size{.title = "Ray tree: size per pixel",
+                .x_label = "depth limit",
+                .y_label = "rays of the tree per pixel",
+                .log_y = true,
+                .key = PlotKey::inside_top_left};  // shown small, two side by side
+  for (const auto& [column, title] :
+       {std::pair{"tree_nodes_per_pixel", "with the effects plan"},
+        std::pair{"tree_nodes_per_pixel_no_plan", "notes' algorithm, both children always"},
+        std::pair{"worst_case_nodes", "worst case 2^{d+1} - 1"}})
+    size.curves.push_back({.table = "depth_study.csv", .x = "depth_limit", .y = column, .title = title});
   out.plot(size, "depth_tree_size", "The tree's actual size against the full binary tree");
 }
 

@@ -40,7 +40,7 @@
 namespace illum {
 namespace {
 
-constexpr const char* kId = "lesson08";
+constexpr const char* program_id = "lesson08";
 
 TriangleSet flake_with_about(std::size_t triangles) {
   const IndexedTriangles mesh = sphereflake(sphereflake_for(triangles));
@@ -102,19 +102,14 @@ double log_log_slope(const std::vector<double>& x, const std::vector<double>& y)
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
-PlotSpec per_ray_plot(const std::string& title, const std::string& y_label, int y_column) {
-  PlotSpec spec{.title = title,
-                .x_label = "triangles N",
-                .y_label = y_label,
-                .log_x = true,
-                .log_y = true,
-                .series = {}};
+PlotSpec per_ray_plot(const std::string& title, const std::string& y_label, const std::string& y_column) {
+  PlotSpec spec{.title = title, .x_label = "triangles N", .y_label = y_label, .log_x = true, .log_y = true};
   for (const char* s : {"brute_force", "grid", "octree", "bvh"})
-    spec.series.push_back({.csv = "scaling.csv",
-                           .x_column = 2,
-                           .y_column = y_column,
-                           .title = s == std::string("brute_force") ? "brute force" : s,
-                           .filter = std::string("strcol(1) eq '") + s + "'"});
+    spec.curves.push_back({.table = "scaling.csv",
+                           .x = "triangles",
+                           .y = y_column,
+                           .where = {{"structure", s}},
+                           .title = s == std::string("brute_force") ? "brute force" : s});
   return spec;
 }
 
@@ -132,7 +127,7 @@ void study_scaling(OutputFolder& out, bool quick) {
   Series series[4];
   int done = 0;
   for (const std::size_t target : sizes) {
-    report_progress(kId, "scaling", done++, static_cast<int>(sizes.size()));
+    report_progress(program_id, "scaling", done++, static_cast<int>(sizes.size()));
     const TriangleSet set = flake_with_about(target);
     for (const AccelKind kind :
          {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::bvh}) {
@@ -164,87 +159,101 @@ void study_scaling(OutputFolder& out, bool quick) {
                     log_log_slope(s.n, s.tests)});
   }
   out.table(slopes, "scaling_slopes", "Fitted log-log slopes of the per-ray counts (N ≥ 900)", 3);
-  out.plot(per_ray_plot("Ray-triangle tests per camera ray", "tests per ray", 6), "scaling_tests",
-           "Triangle tests per ray: N for brute force, flat-ish for grid and BVH");
-  out.plot(per_ray_plot("Cells or nodes visited per camera ray", "nodes or cells per ray", 5),
+  out.plot(per_ray_plot("Ray-triangle tests per camera ray", "tests per ray", "triangle tests per ray"),
+           "scaling_tests", "Triangle tests per ray: N for brute force, flat-ish for grid and BVH");
+  out.plot(per_ray_plot("Cells or nodes visited per camera ray", "nodes or cells per ray",
+                        "nodes or cells per ray"),
            "scaling_nodes", "Cells (grid) or nodes (BVH) visited per ray");
-  out.plot(per_ray_plot("Throughput", "Mrays/s, one thread", 7), "scaling_throughput",
-           "Closest-hit queries per second on one thread");
+  out.plot(per_ray_plot("Throughput", "Mrays/s, one thread", "Mrays per second (1 thread)"),
+           "scaling_throughput", "Closest-hit queries per second on one thread");
+}
+
+// One structure's knob swept on the same sphereflake and camera rays: build
+// cost and memory against nodes (or cells) and triangle tests per ray.
+struct KnobStudy {
+  const char* name;   // the table's (and plot's) file name
+  const char* knob;   // the knob's column header
+  const char* nodes;  // the header of the nodes-or-cells-per-ray column
+  std::vector<int> quick_values, values;
+  AccelSettings (*settings)(int knob);
+  const char* caption;
+};
+
+void knob_study(OutputFolder& out, bool quick, const KnobStudy& study) {
+  const TriangleSet set = flake_with_about(quick ? 5000 : 100000);
+  const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
+  Table table({study.knob, "triangles", "build seconds", "bytes per triangle", study.nodes,
+               "triangle tests per ray", "Mrays per second (1 thread)"});
+  const std::vector<int>& values = quick ? study.quick_values : study.values;
+  int done = 0;
+  for (const int knob : values) {
+    report_progress(program_id, study.knob, done++, static_cast<int>(values.size()));
+    const Measure m = measure(set, study.settings(knob), rays, quick ? 0.005 : 0.03);
+    table.add_row({std::int64_t{knob}, static_cast<std::int64_t>(set.size()), m.build_seconds,
+                   m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});
+  }
+  out.table(table, study.name, study.caption);
+}
+
+// The plot of a knob study: nodes (or cells) walked against triangles tested.
+void plot_knob_study(OutputFolder& out, const KnobStudy& study, const std::string& title,
+                     const std::string& x_label, const std::string& nodes_title, const std::string& caption) {
+  const std::string csv = std::string(study.name) + ".csv";
+  const PlotSpec spec{
+      .title = title,
+      .x_label = x_label,
+      .y_label = "per camera ray",
+      .log_x = true,
+      .log_y = true,
+      .key = PlotKey::below,  // shown small, two side by side
+      .curves = {{.table = csv, .x = study.knob, .y = study.nodes, .title = nodes_title},
+                 {.table = csv, .x = study.knob, .y = "triangle tests per ray", .title = "triangle tests"}}};
+  out.plot(spec, study.name, caption);
 }
 
 // Section 2: the grid's knob, its resolution.
 void study_grid_resolution(OutputFolder& out, bool quick) {
-  const TriangleSet set = flake_with_about(quick ? 5000 : 100000);
-  const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
-  Table table({"resolution", "triangles", "build seconds", "bytes per triangle", "cells per ray",
-               "triangle tests per ray", "Mrays per second (1 thread)"});
-  const std::vector<int> resolutions =
-      quick ? std::vector<int>{4, 16, 32} : std::vector<int>{4, 8, 16, 32, 64, 128, 256};
-  int done = 0;
-  for (const int r : resolutions) {
-    report_progress(kId, "grid resolution", done++, static_cast<int>(resolutions.size()));
-    const Measure m = measure(set, AccelSettings{.kind = AccelKind::grid, .grid_resolution = r}, rays,
-                              quick ? 0.005 : 0.03);
-    table.add_row({std::int64_t{r}, static_cast<std::int64_t>(set.size()), m.build_seconds,
-                   m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});
-  }
-  out.table(table, "grid_resolution", "Uniform grid: cells along the longest axis against cost per ray");
-  PlotSpec spec{.title = "Grid resolution: cells walked against triangles tested",
-                .x_label = "cells along the longest axis",
-                .y_label = "per camera ray",
-                .log_x = true,
-                .log_y = true,
-                .series = {}};
-  spec.series.push_back({"grid_resolution.csv", 1, 5, "cells visited", "", "linespoints"});
-  spec.series.push_back({"grid_resolution.csv", 1, 6, "triangle tests", "", "linespoints"});
-  out.plot(spec, "grid_resolution", "Finer cells: fewer tests per ray, more cells to walk");
+  const KnobStudy study{
+      .name = "grid_resolution",
+      .knob = "resolution",
+      .nodes = "cells per ray",
+      .quick_values = {4, 16, 32},
+      .values = {4, 8, 16, 32, 64, 128, 256},
+      .settings = [](int r) { return AccelSettings{.kind = AccelKind::grid, .grid_resolution = r}; },
+      .caption = "Uniform grid: cells along the longest axis against cost per ray"};
+  knob_study(out, quick, study);
+  plot_knob_study(out, study, "Grid resolution: cells walked against triangles tested",
+                  "cells along the longest axis", "cells visited",
+                  "Finer cells: fewer tests per ray, more cells to walk");
 }
 
 // Section 3: the BVH's knob, its leaf size.
 void study_leaf_size(OutputFolder& out, bool quick) {
-  const TriangleSet set = flake_with_about(quick ? 5000 : 100000);
-  const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
-  Table table({"leaf size", "triangles", "build seconds", "bytes per triangle", "nodes per ray",
-               "triangle tests per ray", "Mrays per second (1 thread)"});
-  const std::vector<int> leaves =
-      quick ? std::vector<int>{1, 4, 16} : std::vector<int>{1, 2, 4, 8, 16, 32, 64};
-  int done = 0;
-  for (const int leaf : leaves) {
-    report_progress(kId, "leaf size", done++, static_cast<int>(leaves.size()));
-    const Measure m = measure(set, AccelSettings{.kind = AccelKind::bvh, .bvh_leaf_size = leaf}, rays,
-                              quick ? 0.005 : 0.03);
-    table.add_row({std::int64_t{leaf}, static_cast<std::int64_t>(set.size()), m.build_seconds,
-                   m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});
-  }
-  out.table(table, "bvh_leaf_size", "BVH: most triangles per leaf against cost per ray");
-  PlotSpec spec{.title = "BVH leaf size: nodes visited against triangles tested",
-                .x_label = "most triangles per leaf",
-                .y_label = "per camera ray",
-                .log_x = true,
-                .log_y = true,
-                .series = {}};
-  spec.series.push_back({"bvh_leaf_size.csv", 1, 5, "nodes visited", "", "linespoints"});
-  spec.series.push_back({"bvh_leaf_size.csv", 1, 6, "triangle tests", "", "linespoints"});
-  out.plot(spec, "bvh_leaf_size", "Bigger leaves: fewer nodes per ray, more triangles per leaf");
+  const KnobStudy study{
+      .name = "bvh_leaf_size",
+      .knob = "leaf size",
+      .nodes = "nodes per ray",
+      .quick_values = {1, 4, 16},
+      .values = {1, 2, 4, 8, 16, 32, 64},
+      .settings = [](int leaf) { return AccelSettings{.kind = AccelKind::bvh, .bvh_leaf_size = leaf}; },
+      .caption = "BVH: most triangles per leaf against cost per ray"};
+  knob_study(out, quick, study);
+  plot_knob_study(out, study, "BVH leaf size: nodes visited against triangles tested",
+                  "most triangles per leaf", "nodes visited",
+                  "Bigger leaves: fewer nodes per ray, more triangles per leaf");
 }
 
 // Section 3b: the octree's knob, its depth.
 void study_octree_depth(OutputFolder& out, bool quick) {
-  const TriangleSet set = flake_with_about(quick ? 5000 : 100000);
-  const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
-  Table table({"max depth", "triangles", "build seconds", "bytes per triangle", "nodes per ray",
-               "triangle tests per ray", "Mrays per second (1 thread)"});
-  const std::vector<int> depths = quick ? std::vector<int>{2, 5, 8} : std::vector<int>{2, 4, 6, 8, 10, 12};
-  int done = 0;
-  for (const int depth : depths) {
-    report_progress(kId, "octree depth", done++, static_cast<int>(depths.size()));
-    const Measure m = measure(set, AccelSettings{.kind = AccelKind::octree, .octree_depth = depth}, rays,
-                              quick ? 0.005 : 0.03);
-    table.add_row({std::int64_t{depth}, static_cast<std::int64_t>(set.size()), m.build_seconds,
-                   m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});
-  }
-  out.table(table, "octree_depth",
-            "Octree: deepest level (leaves of at most 8 triangles) against cost per ray");
+  knob_study(
+      out, quick,
+      {.name = "octree_depth",
+       .knob = "max depth",
+       .nodes = "nodes per ray",
+       .quick_values = {2, 5, 8},
+       .values = {2, 4, 6, 8, 10, 12},
+       .settings = [](int depth) { return AccelSettings{.kind = AccelKind::octree, .octree_depth = depth}; },
+       .caption = "Octree: deepest level (leaves of at most 8 triangles) against cost per ray"});
 }
 
 // One shaded pixel: Lambert term of the closest hit, darkened where a shadow ray (any hit) is blocked.
@@ -535,7 +544,7 @@ void study_structures_in_use(OutputFolder& out, bool quick) {
 
 int main(int argc, char** argv) {
   const illum::ProgramInfo info{
-      illum::kId, "Spatial structures",
+      illum::program_id, "Spatial structures",
       "Measures brute force, the uniform grid (3DDA) and the BVH (binned SAH) on sphereflakes of 10^2 to "
       "10^6 triangles: cells or nodes and triangle tests per ray, throughput, build time and memory; "
       "sweeps the grid resolution and the BVH leaf size; renders with 1 and 2 threads; times the "

@@ -189,32 +189,46 @@ void study_section(OutputFolder& out, const Settings& settings) {
   out.table(study, "study",
             "Error against the closed forms (C-11 parallel squares, C-14 squares sharing an edge, B-3 point "
             "under a corner) and time per estimate; Monte Carlo errors are RMS over 8 seeds");
-  PlotSpec by_time{
-      "Form factors: error vs time", "seconds per estimate", "|error|", true, true, {}, 1000, 620};
-  for (const char* m : {"contour (plain Gauss-Legendre)", "hierarchical", "Monte Carlo area to area"})
-    for (const char* c : {"parallel squares", "shared edge"})
-      by_time.series.push_back({"study.csv", 5, 4, std::string(m) + ", " + c,
-                                "strcol(1) eq '" + std::string(m) + "' && strcol(2) eq '" + c + "'"});
-  for (const char* m : {"point: Nusselt projected area", "point: area sampling", "point: hemisphere uniform",
-                        "point: hemisphere cosine"})
-    by_time.series.push_back({"study.csv", 5, 4, m, "strcol(1) eq '" + std::string(m) + "'"});
+  // One curve per method (and case, for the area-to-area methods) of study.csv.
+  const auto study_curves = [](const char* x, std::initializer_list<const char*> pair_methods,
+                               std::initializer_list<const char*> point_methods) {
+    std::vector<PlotCurve> curves;
+    for (const char* m : pair_methods)
+      for (const char* c : {"parallel squares", "shared edge"})
+        curves.push_back({.table = "study.csv",
+                          .x = x,
+                          .y = "error",
+                          .where = {{"method", m}, {"case", c}},
+                          .title = std::string(m) + ", " + c});
+    for (const char* m : point_methods)
+      curves.push_back({.table = "study.csv", .x = x, .y = "error", .where = {{"method", m}}, .title = m});
+    return curves;
+  };
+  const PlotSpec by_time{
+      .title = "Form factors: error vs time",
+      .x_label = "seconds per estimate",
+      .y_label = "|error|",
+      .log_x = true,
+      .log_y = true,
+      .width = 1000,
+      .height = 620,
+      .curves = study_curves("seconds",
+                             {"contour (plain Gauss-Legendre)", "hierarchical", "Monte Carlo area to area"},
+                             {"point: Nusselt projected area", "point: area sampling",
+                              "point: hemisphere uniform", "point: hemisphere cosine"})};
   out.plot(by_time, "study_error_vs_time",
            "Error vs time, log-log: Monte Carlo falls as N^-1/2, quadrature and hierarchical faster; the "
            "shared edge slows plain Gauss-Legendre to an algebraic rate");
-  PlotSpec by_knob{"Form factors: error vs accuracy knob",
-                   "knob (points, samples, segments)",
-                   "|error|",
-                   true,
-                   true,
-                   {},
-                   1000,
-                   620};
-  for (const char* m : {"contour (plain Gauss-Legendre)", "Monte Carlo area to area"})
-    for (const char* c : {"parallel squares", "shared edge"})
-      by_knob.series.push_back({"study.csv", 3, 4, std::string(m) + ", " + c,
-                                "strcol(1) eq '" + std::string(m) + "' && strcol(2) eq '" + c + "'"});
-  for (const char* m : {"point: Nusselt projected area", "point: hemisphere cosine"})
-    by_knob.series.push_back({"study.csv", 3, 4, m, "strcol(1) eq '" + std::string(m) + "'"});
+  const PlotSpec by_knob{
+      .title = "Form factors: error vs accuracy knob",
+      .x_label = "knob (points, samples, segments)",
+      .y_label = "|error|",
+      .log_x = true,
+      .log_y = true,
+      .width = 1000,
+      .height = 620,
+      .curves = study_curves("knob", {"contour (plain Gauss-Legendre)", "Monte Carlo area to area"},
+                             {"point: Nusselt projected area", "point: hemisphere cosine"})};
   out.plot(by_knob, "study_error_vs_knob", "Error vs the accuracy knob of each method, log-log");
 }
 
@@ -288,16 +302,32 @@ void tolerance_study(OutputFolder& out, const Settings& settings) {
       table, "tolerance_study",
       "The cube's form-factor matrix to a requested tolerance (every pair computed, all threads, best of " +
           std::to_string(repeats) + "), against the closed forms for rectangles");
-  PlotSpec plot{
-      "The cube's matrix: largest error vs time", "seconds", "max |F - exact F|", true, true, {}, 1000, 620};
-  plot.series.push_back(
-      {"tolerance_study.csv", 4, 5, "to a tolerance (1e-3 ... 1e-13)", "strcol(1) eq 'to a tolerance'"});
-  plot.series.push_back(
-      {"tolerance_study.csv", 4, 2, "the tolerance asked for", "strcol(1) eq 'to a tolerance'", "lines"});
+  PlotSpec plot{.title = "The cube's matrix: largest error vs time",
+                .x_label = "seconds",
+                .y_label = "max |F - exact F|",
+                .log_x = true,
+                .log_y = true,
+                .width = 1000,
+                .height = 620,
+                .curves = {{.table = "tolerance_study.csv",
+                            .x = "seconds",
+                            .y = "max abs(F - F_exact)",
+                            .where = {{"method", "to a tolerance"}},
+                            .title = "to a tolerance (1e-3 ... 1e-13)"},
+                           {.table = "tolerance_study.csv",
+                            .x = "seconds",
+                            .y = "tolerance",
+                            .where = {{"method", "to a tolerance"}},
+                            .title = "the tolerance asked for",
+                            .mark = PlotMark::lines}}};
   for (const char* m : {"contour: closed-form edge pairs", "contour: plain Gauss-Legendre 8",
                         "contour: plain Gauss-Legendre 16"})
-    plot.series.push_back(
-        {"tolerance_study.csv", 4, 5, m, "strcol(1) eq '" + std::string(m) + "'", "points"});
+    plot.curves.push_back({.table = "tolerance_study.csv",
+                           .x = "seconds",
+                           .y = "max abs(F - F_exact)",
+                           .where = {{"method", m}},
+                           .title = m,
+                           .mark = PlotMark::points});
   out.plot(
       plot, "tolerance_error_vs_time",
       "Largest error of the cube's matrix against time: the tolerance sweep and the fixed contour rules");

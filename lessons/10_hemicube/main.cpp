@@ -255,8 +255,8 @@ void draw_item_buffer(OutputFolder& out, bool quick) {
     int col, r;
     if (!hemicube_pixel(d, res, f, col, r)) return Color(1.0);
     const std::int32_t item = buffers.face_items(f)[static_cast<std::size_t>(r) * res + col];
-    if (item == kEmptyPixel) return Color(0.0);
-    if (item == kBackFacePixel) return Color(0.1);
+    if (item == empty_pixel) return Color(0.0);
+    if (item == back_face_pixel) return Color(0.1);
     return patch_colour(room[static_cast<std::size_t>(item)], item);
   });
   out.image(faces, "item_buffer",

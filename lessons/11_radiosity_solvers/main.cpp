@@ -35,18 +35,18 @@ using namespace illum;
 
 namespace {
 
-const char* kId = "lesson11";
+const char* program_id = "lesson11";
 
 // The solvers of the study. An enum, so that a misspelt name cannot run the
 // wrong method; the command line maps names to it and refuses others.
 enum class Solver { jacobi, gauss_seidel, sor, southwell, progressive };
-const std::map<std::string, Solver> kSolverNames = {{"jacobi", Solver::jacobi},
+const std::map<std::string, Solver> solver_names = {{"jacobi", Solver::jacobi},
                                                     {"gauss-seidel", Solver::gauss_seidel},
                                                     {"sor-1.2", Solver::sor},
                                                     {"southwell", Solver::southwell},
                                                     {"progressive", Solver::progressive}};
 std::string name_of(Solver s) {
-  for (const auto& [name, solver] : kSolverNames)
+  for (const auto& [name, solver] : solver_names)
     if (solver == s) return name;
   return "?";
 }
@@ -314,8 +314,8 @@ StudySystem study_form_factors(OutputFolder& out, const Settings& settings) {
   s.edge = settings.quick ? 220.0 : 75.0;
   s.resolution = settings.quick ? 32 : 96;
   s.scene = load_scene(settings.scene, s.edge);
-  report_progress(kId, "hemicube form factors for " + std::to_string(s.scene.patches.size()) + " patches", 0,
-                  1);
+  report_progress(program_id,
+                  "hemicube form factors for " + std::to_string(s.scene.patches.size()) + " patches", 0, 1);
   Stopwatch watch;
   const FormFactorMatrix hemicube_f = hemicube_form_factors(s.scene.patches, s.resolution);
   const double seconds = watch.seconds();
@@ -334,7 +334,7 @@ StudySystem study_form_factors(OutputFolder& out, const Settings& settings) {
   return s;
 }
 
-const std::vector<double> kScales = {0.5, 0.78, 0.9, 0.99};  // 0.78: the published values
+const std::vector<double> reflectance_scales = {0.5, 0.78, 0.9, 0.99};  // 0.78: the published values
 
 // --- 8. Every solver at every reflectance scale, on one thread ----------------
 // Returns the direct solution at the published reflectances. Every solver is
@@ -348,7 +348,7 @@ std::vector<Color> solver_study(OutputFolder& out, const Settings& settings, con
   const int threads = omp_get_max_threads();
   omp_set_num_threads(1);
   int done = 0;
-  for (double rho : kScales) {
+  for (double rho : reflectance_scales) {
     const std::vector<Patch> patches = with_max_reflectance(s.scene.patches, rho);
     const std::string label = fixed(rho, 3);
     std::vector<Color> exact;
@@ -362,8 +362,8 @@ std::vector<Color> solver_study(OutputFolder& out, const Settings& settings, con
     direct_table.add_row({label, static_cast<std::int64_t>(patches.size()), seconds});
     if (rho == 0.78) published = exact;
     for (const Solver solver : settings.solvers) {
-      report_progress(kId, "study rho " + label + " " + name_of(solver), done++,
-                      static_cast<int>(kScales.size() * settings.solvers.size()));
+      report_progress(program_id, "study rho " + label + " " + name_of(solver), done++,
+                      static_cast<int>(reflectance_scales.size() * settings.solvers.size()));
       const SolverSummary r =
           run_solver(solver, label, patches, s.f, exact, settings.quick ? 300 : 3000, history);
       summary.add_row(
@@ -405,6 +405,20 @@ void jacobi_threads_section(OutputFolder& out, const StudySystem& s, const std::
             "Jacobi's sweep (published reflectances) on one thread and on all, best of three");
 }
 
+// Jacobi's error per sweep, one line per reflectance scale, from a history
+// table (solver, rho_max, sweeps, …, error): the closed box's or the study's.
+PlotSpec jacobi_scales_plot(const std::string& title, const std::string& table) {
+  PlotSpec plot{.title = title, .x_label = "sweeps", .y_label = "relative error", .log_y = true};
+  for (double rho : reflectance_scales)
+    plot.curves.push_back({.table = table,
+                           .x = "sweeps",
+                           .y = "error",
+                           .where = {{"solver", "jacobi"}, {"rho_max", fixed(rho, 3)}},
+                           .title = "max rho = " + fixed(rho, 3),
+                           .mark = PlotMark::lines});
+  return plot;
+}
+
 // --- 3. Jacobi in the closed box ----------------------------------------------
 // The published box is open at the front and its colours absorb, so Jacobi
 // contracts faster than max ρ. Closing it with a front wall (z = 0, facing
@@ -418,11 +432,11 @@ void closed_box_section(OutputFolder& out, const Settings& settings, const Study
     closed.push_back(std::move(p));
   const FormFactorMatrix fc = reciprocal_average(hemicube_form_factors(closed, s.resolution), closed);
   Table history({"solver", "rho_max", "sweeps", "seconds", "residual", "error", "display_error"});
-  for (double rho : kScales) {
+  for (double rho : reflectance_scales) {
     std::vector<Patch> patches = closed;  // grey: every patch reflects rho in every channel
     for (Patch& p : patches) p.reflectance = Color(rho);
     const std::string label = fixed(rho, 3);
-    report_progress(kId, "closed box, Jacobi, rho " + label, 0, 1);
+    report_progress(program_id, "closed box, Jacobi, rho " + label, 0, 1);
     const SolverSummary r = run_solver(Solver::jacobi, label, patches, fc, solve_direct(patches, fc),
                                        settings.quick ? 2000 : 4000, history);
     if (!(r.worst_ratio <= rho * (1 + 1e-9)))
@@ -433,12 +447,8 @@ void closed_box_section(OutputFolder& out, const Settings& settings, const Study
   out.table(history, "closed_history", "Jacobi on the closed box at several reflectance scales");
   out.table(growth, "jacobi_growth",
             "Jacobi's sweeps grow like 1/(1 - rho); its error shrinks by at most rho per sweep");
-  PlotSpec j{
-      "Jacobi in the closed box at several reflectance scales", "sweeps", "relative error", false, true, {}};
-  for (double rho : kScales)
-    j.series.push_back({"closed_history.csv", 3, 6, "max rho = " + fixed(rho, 3),
-                        "strcol(2) eq '" + fixed(rho, 3) + "'", "lines"});
-  out.plot(j, "jacobi_closed_scales", "Jacobi's error per sweep in the closed box: slopes near log(max rho)");
+  out.plot(jacobi_scales_plot("Jacobi in the closed box at several reflectance scales", "closed_history.csv"),
+           "jacobi_closed_scales", "Jacobi's error per sweep in the closed box: slopes near log(max rho)");
 }
 
 // --- 8. The study's tables and plots ------------------------------------------
@@ -450,52 +460,60 @@ void study_plots(OutputFolder& out, const Settings& settings, const Table& histo
   out.table(history, "solver_history",
             "Every solver's residual and error (relative, max norm) per sweep and per second");
   Table marks({"rho_max", "seconds", "level"});
-  for (std::size_t k = 0; k < kScales.size(); ++k)
-    for (double level : {1e-10, 1.0}) marks.add_row({fixed(kScales[k], 3), direct_seconds[k], level});
+  for (std::size_t k = 0; k < reflectance_scales.size(); ++k)
+    for (double level : {1e-10, 1.0})
+      marks.add_row({fixed(reflectance_scales[k], 3), direct_seconds[k], level});
   out.table(marks, "direct_marks", "The direct solve's time, as a vertical line in the time plots");
   struct View {
-    const char *name, *x_label;
-    int x_column;
-    const char* y_label;
-    int y_column;
+    const char *name, *x_label, *x, *y_label, *y;  // x and y: columns of solver_history.csv
   };
-  const View views[] = {{"residual_vs_sweeps", "work (sweeps)", 3, "relative residual (max norm)", 5},
-                        {"residual_vs_time", "seconds", 4, "relative residual (max norm)", 5},
-                        {"error_vs_sweeps", "work (sweeps)", 3, "relative error (max norm)", 6},
-                        {"error_vs_time", "seconds", 4, "relative error (max norm)", 6}};
-  for (double rho : kScales) {
-    const std::string label = fixed(rho, 3), where = "strcol(2) eq '" + label + "'";
+  const View views[] = {
+      {"residual_vs_sweeps", "work (sweeps)", "sweeps", "relative residual (max norm)", "residual"},
+      {"residual_vs_time", "seconds", "seconds", "relative residual (max norm)", "residual"},
+      {"error_vs_sweeps", "work (sweeps)", "sweeps", "relative error (max norm)", "error"},
+      {"error_vs_time", "seconds", "seconds", "relative error (max norm)", "error"}};
+  for (double rho : reflectance_scales) {
+    const std::string label = fixed(rho, 3);
     const std::string which = rho == 0.78 ? " (published)" : "";
     for (const View& v : views) {
-      const bool time = v.x_column == 4;
+      const bool time = v.x == std::string("seconds");
       const std::string what = v.name[0] == 'r' ? "Residual" : "Error";
-      PlotSpec spec{what + " vs " + (time ? "time" : "work") + ", Cornell box, max rho = " + label + which,
-                    v.x_label,
-                    v.y_label,
-                    time,
-                    true,
-                    {}};
+      PlotSpec spec{
+          .title = what + " vs " + (time ? "time" : "work") + ", Cornell box, max rho = " + label + which,
+          .x_label = v.x_label,
+          .y_label = v.y_label,
+          .log_x = time,
+          .log_y = true,
+          // Shown two side by side: the key in the corner the falling curves leave empty.
+          .key = time ? PlotKey::inside_bottom_left : PlotKey::inside_top_right};
       for (const Solver solver : settings.solvers)
-        spec.series.push_back({"solver_history.csv", v.x_column, v.y_column, name_of(solver),
-                               "strcol(1) eq '" + name_of(solver) + "' && " + where});
+        spec.curves.push_back({.table = "solver_history.csv",
+                               .x = v.x,
+                               .y = v.y,
+                               .where = {{"solver", name_of(solver)}, {"rho_max", label}},
+                               .title = name_of(solver)});
       const bool progressive = std::find(settings.solvers.begin(), settings.solvers.end(),
                                          Solver::progressive) != settings.solvers.end();
-      if (v.y_column == 6 && progressive)
-        spec.series.push_back({"solver_history.csv", v.x_column, 7, "progressive + ambient (display)",
-                               "strcol(1) eq 'progressive' && " + where});
+      if (v.y == std::string("error") && progressive)
+        spec.curves.push_back({.table = "solver_history.csv",
+                               .x = v.x,
+                               .y = "display_error",
+                               .where = {{"solver", "progressive"}, {"rho_max", label}},
+                               .title = "progressive + ambient (display)"});
       if (time)
-        spec.series.push_back(
-            {"direct_marks.csv", 2, 3, "direct (the reference)", "strcol(1) eq '" + label + "'", "lines"});
+        spec.curves.push_back({.table = "direct_marks.csv",
+                               .x = "seconds",
+                               .y = "level",
+                               .where = {{"rho_max", label}},
+                               .title = "direct (the reference)",
+                               .mark = PlotMark::lines});
       out.plot(spec, std::string(v.name) + "_rho" + fixed(100 * rho, 0),
                what + " vs " + (time ? "seconds (best of three)" : "sweeps") +
                    " for every solver, rho_max = " + label + which);
     }
   }
-  PlotSpec j{"Jacobi at several reflectance scales", "sweeps", "relative error", false, true, {}};
-  for (double rho : kScales)
-    j.series.push_back({"solver_history.csv", 3, 6, "max rho = " + fixed(rho, 3),
-                        "strcol(1) eq 'jacobi' && strcol(2) eq '" + fixed(rho, 3) + "'", "lines"});
-  out.plot(j, "jacobi_scales", "Jacobi's error per sweep: a straight line of slope log(rho) at most");
+  out.plot(jacobi_scales_plot("Jacobi at several reflectance scales", "solver_history.csv"), "jacobi_scales",
+           "Jacobi's error per sweep: a straight line of slope log(rho) at most");
 }
 
 // --- 9. Pictures: flat patch colours after 1, 10, 100 shots and at convergence --
@@ -568,7 +586,7 @@ void figure_section(OutputFolder& out, const Settings& settings) {
       edge > 0 ? load_scene(settings.scene, edge)
                : scene_with_patches(settings.scene, settings.quick ? 300 : settings.figure_patches, edge);
   const int resolution = settings.quick ? 32 : settings.figure_resolution;
-  report_progress(kId, "figure: " + std::to_string(big.patches.size()) + " patches", 0, 1);
+  report_progress(program_id, "figure: " + std::to_string(big.patches.size()) + " patches", 0, 1);
   Table history({"shots", "seconds", "unshot_fraction"});
   const ProgressiveRun run =
       progressive_on_demand(big.patches, resolution, settings.unshot_threshold, &history);
@@ -581,12 +599,15 @@ void figure_section(OutputFolder& out, const Settings& settings) {
             "The Cornell box solved by progressive refinement with hemicube rows on demand, to " +
                 fixed(100 * settings.unshot_threshold, 2) + "% unshot power");
   out.table(history, "figure_history", "Unshot power after each shot of the figure's run");
-  PlotSpec fp{"Progressive refinement on the Cornell box: unshot power",
-              "shots",
-              "unshot / emitted power",
-              false,
-              true,
-              {{"figure_history.csv", 1, 3, "unshot fraction", "", "lines"}}};
+  const PlotSpec fp{.title = "Progressive refinement on the Cornell box: unshot power",
+                    .x_label = "shots",
+                    .y_label = "unshot / emitted power",
+                    .log_y = true,
+                    .curves = {{.table = "figure_history.csv",
+                                .x = "shots",
+                                .y = "unshot_fraction",
+                                .title = "unshot fraction",
+                                .mark = PlotMark::lines}}};
   out.plot(fp, "figure_unshot", "Unshot power vs shots (hemicube rows on demand)");
   const int size = settings.quick ? 96 : 384;
   const std::vector<int> items = lesson11::patch_item_buffer(big, size, size);
@@ -618,7 +639,7 @@ void scaling_section(OutputFolder& out, const Settings& settings) {
     double one_thread = 0;
     for (const int t : {1, threads}) {
       report_progress(
-          kId,
+          program_id,
           "scaling: " + std::to_string(scene.patches.size()) + " patches, " + std::to_string(t) + " threads",
           0, 1);
       omp_set_num_threads(t);
@@ -655,7 +676,7 @@ void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers
       ->capture_default_str();
   app.add_option("--solvers", solvers,
                  "the study's solvers (jacobi, gauss-seidel, sor-1.2, southwell, progressive)")
-      ->transform(CLI::CheckedTransformer(kSolverNames));
+      ->transform(CLI::CheckedTransformer(solver_names));
   app.add_option("--patches", settings.figure_patches, "patches of the figure's box (at least)")
       ->check(CLI::Range(4, 100000))
       ->capture_default_str();
@@ -683,7 +704,7 @@ void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers
 
 int main(int argc, char** argv) {
   const ProgramInfo info{
-      kId, "Solving the radiosity system",
+      program_id, "Solving the radiosity system",
       "The notes' three-patch progressive table; direct, Jacobi, Gauss-Seidel (SOR), Southwell and "
       "progressive refinement on the Cornell box at several reflectance scales; the box after 1, "
       "10, 100 shots; a ~2,000-patch box by progressive refinement with hemicube rows on demand."};

@@ -22,7 +22,7 @@ Patch square(double x0, double y0, double x1, double y1) {
 }  // namespace
 
 TEST_SUITE("lesson12") {
-  TEST_CASE("radiosity_gap is the largest channel difference, symmetric") {
+  TEST_CASE("radiosity_gap is the largest channel difference, symmetric" * doctest::description("task=6")) {
     // |1 − 4| = 3, |5 − 1| = 4, |2 − 2| = 0: the gap is 4, not the sum 7 nor the length 5.
     CHECK(radiosity_gap(Color(1, 5, 2), Color(4, 1, 2)) == 4.0);
     CHECK(radiosity_gap(Color(4, 1, 2), Color(1, 5, 2)) == 4.0);
@@ -30,7 +30,8 @@ TEST_SUITE("lesson12") {
     CHECK_MESSAGE(radiosity_gap(Color(0, 0, 3), Color(0, 0, -1)) == 4.0, "a blue-only gap counts");
   }
 
-  TEST_CASE("elements_to_split marks both ends of a pair whose gap exceeds the threshold, strictly") {
+  TEST_CASE("elements_to_split marks both ends of a pair whose gap exceeds the threshold, strictly" *
+            doctest::description("task=6,7")) {
     // Elements 0 (1), 1 (2), 2 (4), 3 (4.5) in a row: gaps 1, 2, 0.5. Threshold 1:
     // only the pair (1, 2) exceeds it (the gap 1 of (0, 1) equals it: not split).
     const std::vector<std::pair<int, int>> pairs = {{0, 1}, {1, 2}, {2, 3}};
@@ -44,13 +45,15 @@ TEST_SUITE("lesson12") {
                   "no gap exceeds 3");
   }
 
-  TEST_CASE("hard case: an element already at the smallest size is not split, its large neighbour is") {
+  TEST_CASE("hard case: an element already at the smallest size is not split, its large neighbour is" *
+            doctest::description("task=6,7")) {
     // Gap 10 between elements 0 (edge 0.5) and 1 (edge 2); min_edge 0.5: element 0 stops.
     const std::vector<bool> split = elements_to_split({{0, 1}}, {Color(0), Color(10)}, {0.5, 2.0}, 1.0, 0.5);
     CHECK(split == std::vector<bool>{false, true});
   }
 
-  TEST_CASE("hard case: across a T-vertex the large element and the one small neighbour that differs split") {
+  TEST_CASE("hard case: across a T-vertex the large element and the one small neighbour that differs split" *
+            doctest::description("task=6,7")) {
     // Big [0, 2]² (B = 5) beside small [2, 3] × [0, 1] (B = 5.2) and [2, 3] × [1, 2]
     // (B = 9): gaps 0.2 and 4 to the big one, 3.8 between the small ones. Threshold 1:
     // all but the first small one split.
@@ -66,7 +69,8 @@ TEST_SUITE("lesson12") {
     CHECK(only_far == std::vector<bool>{true, false, true});
   }
 
-  TEST_CASE("hard case: a crease between two walls is not a gradient: they are not neighbours") {
+  TEST_CASE("hard case: a crease between two walls is not a gradient: they are not neighbours" *
+            doctest::description("task=7")) {
     // Floor (B = 0.1) and wall (B = 50) meet along an edge but face different
     // ways: share_vertices makes them no pair, and nothing is split.
     const Patch floor = square(0, 0, 1, 1);
@@ -77,8 +81,8 @@ TEST_SUITE("lesson12") {
           std::vector<bool>{false, false});
   }
 
-  TEST_CASE(
-      "elements_to_split refuses a threshold that is not positive, and pairs or sizes that do not fit") {
+  TEST_CASE("elements_to_split refuses a threshold that is not positive, and pairs or sizes that do not fit" *
+            doctest::description("task=7")) {
     const std::vector<Color> b = {Color(0), Color(1)};
     const std::vector<double> edge = {1.0, 1.0};
     for (double bad : {0.0, -1.0, double(NAN), double(INFINITY)}) {

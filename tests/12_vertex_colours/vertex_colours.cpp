@@ -55,7 +55,8 @@ void check_colour(const Color& got, const Color& want, const std::string& why) {
 
 TEST_SUITE("lesson12") {
   TEST_CASE(
-      "average: the 2 x 2 grid's centre is the mean of four faces, an edge vertex of two, a corner its own") {
+      "average: the 2 x 2 grid's centre is the mean of four faces, an edge vertex of two, a corner its own" *
+      doctest::description("task=1,3,4")) {
     // Faces 0 (B = 4), 1 (6), 2 (8), 3 (10): centre (1, 1) = 28/4 = 7;
     // bottom edge (1, 0) = (4 + 6)/2 = 5; corner (0, 0) = 4 (one face).
     const SharedVertexMesh mesh = share_vertices(grid(2, 2));
@@ -69,9 +70,8 @@ TEST_SUITE("lesson12") {
     CHECK_MESSAGE(per_vertex.size() == 9, "a 2 x 2 grid has 3 x 3 shared vertices");
   }
 
-  TEST_CASE(
-      "hard case: a vertex on the boundary with one patch is extrapolated past the interior, B_a = 2B1 - "
-      "B_e") {
+  TEST_CASE("hard case: a vertex on the boundary with one patch is extrapolated past the interior" *
+            doctest::description("task=1,2,3,4")) {
     // Faces 4, 6, 8, 10 as above, centre average 7:
     //   corner (0, 0) of face 0:  2·4 − 7 = 1     corner (2, 2) of face 3: 2·10 − 7 = 13
     //   edge (1, 0), faces 0, 1, inside edge to (1, 1): 4 + 6 − 7 = 3
@@ -86,7 +86,8 @@ TEST_SUITE("lesson12") {
     check_colour(corner_at(mesh, corners, 1, {1, 1, 0}), Color(7), "the interior keeps the average");
   }
 
-  TEST_CASE("hard case: an extrapolation that would go negative is clamped at zero, channel by channel") {
+  TEST_CASE("hard case: an extrapolation that would go negative is clamped at zero, channel by channel" *
+            doctest::description("task=1,2,3,4")) {
     // Red: 1, 1, 9, 9 → centre 5, corner (0, 0): 2·1 − 5 = −3 → 0; edge (1, 0): 1 + 1 − 5 = −3 → 0;
     // corner (2, 2) of face 3: 2·9 − 5 = 13. Green: 2 everywhere → 2 (no clamp). Blue 0 → 0.
     const SharedVertexMesh mesh = share_vertices(grid(2, 2));
@@ -102,7 +103,8 @@ TEST_SUITE("lesson12") {
       CHECK_MESSAGE(glm::all(glm::greaterThanEqual(c, Color(0.0))), "no vertex is negative");
   }
 
-  TEST_CASE("extrapolation reproduces a linear radiosity exactly, the average does not at the boundary") {
+  TEST_CASE("extrapolation reproduces a linear radiosity exactly, the average does not at the boundary" *
+            doctest::description("task=1,2")) {
     // B(x, y) = 10 + 2x + 3y sampled at the centroids of a 3 × 3 grid. For a
     // linear field the notes' rules are exact: B₁ + B₂ = B(b) + B(e) along the
     // edge b–e, B₁ = (B(a) + B(e))/2 along the diagonal, and the interior
@@ -125,7 +127,8 @@ TEST_SUITE("lesson12") {
         CHECK_MESSAGE(a[i].r == doctest::Approx(12.5), "the average pulls inwards");
   }
 
-  TEST_CASE("hard case: a vertex shared by patches of two different walls is two vertices, one per wall") {
+  TEST_CASE("hard case: a vertex shared by patches of two different walls is two vertices, one per wall" *
+            doctest::description("task=1,2,3,4")) {
     // A floor square (normal +z) and a wall square (x from 0 to 1, z from 0
     // to 1 at y = 0, normal +y) meet along the edge y = z = 0. The floor's
     // corners there must take the floor's B (3) and the wall's the wall's (7),
@@ -143,8 +146,8 @@ TEST_SUITE("lesson12") {
     }
   }
 
-  TEST_CASE(
-      "hard case: a T-vertex takes the value along the large face's edge, so the picture has no crack") {
+  TEST_CASE("hard case: a T-vertex takes the value along the large face's edge, so the picture has no crack" *
+            doctest::description("task=1,3,4,5")) {
     // Big face [0, 2]² (B = 8) beside two small faces [2, 3] × [0, 1] (B = 2)
     // and [2, 3] × [1, 2] (B = 4). (2, 1) is a T-vertex on the big face's edge
     // (2, 0)→(2, 2). Averages: (2, 0) = (8 + 2)/2 = 5, (2, 2) = (8 + 4)/2 = 6,
@@ -165,7 +168,8 @@ TEST_SUITE("lesson12") {
                  "the big face's Gouraud value at (2, 1) meets the small faces': no crack");
   }
 
-  TEST_CASE("resolve_t_vertices works in the given order, so a nested T-vertex uses a resolved end") {
+  TEST_CASE("resolve_t_vertices works in the given order, so a nested T-vertex uses a resolved end" *
+            doctest::description("task=3")) {
     // A hand-made mesh: vertices 0 (value 0), 1 (value 8), 2 (the midpoint of
     // 0–1) and 3 (the midpoint of 0–2). Resolving 2 first gives 4, then 3 = 2.
     SharedVertexMesh mesh;
@@ -178,7 +182,8 @@ TEST_SUITE("lesson12") {
     check_colour(value[3], Color(2), "(0 + 4)/2, with vertex 2 already resolved");
   }
 
-  TEST_CASE("average is the plain mean of the faces, not weighted by their areas (unequal patches)") {
+  TEST_CASE("average is the plain mean of the faces, not weighted by their areas (unequal patches)" *
+            doctest::description("task=1,2,3,4")) {
     // A 1 × 1 face (B = 2) beside a 3 × 1 face (B = 10) sharing the edge x = 1:
     // the vertex (1, 0) is (2 + 10)/2 = 6 (area-weighted would give 8).
     // Extrapolated: (1, 0) is an edge vertex of the two faces whose inside
@@ -194,7 +199,8 @@ TEST_SUITE("lesson12") {
     check_colour(corner_at(mesh, extrapolated, 1, {4, 0, 0}), Color(14), "2·10 − 6");
   }
 
-  TEST_CASE("patch_own: the trivial solution gives every corner its own face's radiosity") {
+  TEST_CASE("patch_own: the trivial solution gives every corner its own face's radiosity" *
+            doctest::description("task=4")) {
     const SharedVertexMesh mesh = share_vertices(grid(2, 1));
     const auto corners =
         corner_radiosity(mesh, {Color(1, 2, 3), Color(4, 5, 6)}, VertexColourRule::patch_own);
@@ -203,7 +209,8 @@ TEST_SUITE("lesson12") {
     for (const Color& c : corners[1]) check_colour(c, Color(4, 5, 6), "face 1's own colour");
   }
 
-  TEST_CASE("gouraud: bilinear on four corners, barycentric on three, by hand") {
+  TEST_CASE("gouraud: bilinear on four corners, barycentric on three, by hand" *
+            doctest::description("task=5")) {
     const std::vector<Color> q = {Color(0), Color(4), Color(8), Color(12)};
     check_colour(gouraud(q, 0, 0), Color(0), "c0 at (0, 0)");
     check_colour(gouraud(q, 1, 1), Color(8), "c2 at (1, 1)");
@@ -215,8 +222,8 @@ TEST_SUITE("lesson12") {
     CHECK_THROWS_AS(gouraud({Color(0), Color(1)}, 0.5, 0.5), std::invalid_argument);
   }
 
-  TEST_CASE(
-      "interpolate_radiosity on a trapezoid follows the bilinear map, not the straight-line distances") {
+  TEST_CASE("interpolate_radiosity on a trapezoid follows the bilinear map, not the straight-line distances" *
+            doctest::description("task=5")) {
     // Corners (0,0), (4,0), (3,2), (1,2): the point x(u, v) at u = 0.25, v = 0.5 is
     // 0.375(0,0) + 0.125(4,0) + 0.125(3,2) + 0.375(1,2) = (1.25, 1). Corner values 0, 4, 8, 12
     // give 0.125·4 + 0.125·8 + 0.375·12 = 6.
@@ -226,7 +233,8 @@ TEST_SUITE("lesson12") {
                  "bilinear at (u, v) = (0.25, 0.5)");
   }
 
-  TEST_CASE("a triangle's corner with no opposite vertex keeps its average under extrapolate") {
+  TEST_CASE("a triangle's corner with no opposite vertex keeps its average under extrapolate" *
+            doctest::description("task=1,2,3,4")) {
     // Two triangles (0,0)(2,0)(0,2) and (2,0)(2,2)(0,2) (B = 3 and 5) share the
     // diagonal. (0, 0) belongs to the first only and has no opposite corner:
     // it keeps 3. (2, 0) is on the boundary of both, sharing the edge to (0, 2),
@@ -239,7 +247,8 @@ TEST_SUITE("lesson12") {
     check_colour(corner_at(mesh, corners, 0, {2, 0, 0}), Color(4), "3 + 5 − 4");
   }
 
-  TEST_CASE("every rule refuses a radiosity list of the wrong length") {
+  TEST_CASE("every rule refuses a radiosity list of the wrong length" *
+            doctest::description("task=1,2,3,4")) {
     const SharedVertexMesh mesh = share_vertices(grid(2, 1));
     const std::vector<Color> one = {Color(1)};
     CHECK_THROWS_AS(average_vertex_radiosity(mesh, one), std::invalid_argument);

@@ -59,6 +59,28 @@ TEST_SUITE("io") {
     CHECK(contains(script, "with points dt 2 lc 3 title"));
   }
 
+  TEST_CASE("a number is matched as a number, with every digit a double needs") {
+    // 0.004 is not exactly representable: the table writes it as 0.0040000000000000001
+    // (17 significant digits), which a text match on "0.004" would miss.
+    const auto folder = folder_with("method,radius,time,error");
+    const illum::PlotSpec spec{
+        .curves = {{.table = "t.csv", .x = "time", .y = "error", .where = {{"radius", 0.004}}, .title = "a"},
+                   {.table = "t.csv", .x = "time", .y = "error", .where = {{"radius", 1.0}}, .title = "b"}}};
+    const std::string script = illum::gnuplot_script(spec, "t.png", folder);
+    CHECK(contains(script, "((column(2) == 0.0040000000000000001) ? column(4) : 1/0)"));
+    CHECK(contains(script, "((column(2) == 1) ? column(4) : 1/0)"));
+  }
+
+  TEST_CASE("the key goes beside the plot unless the spec puts it inside or below") {
+    const auto folder = folder_with("method,n,time,error");
+    illum::PlotSpec spec{.curves = {{.table = "t.csv", .x = "n", .y = "error", .title = "a"}}};
+    CHECK(contains(illum::gnuplot_script(spec, "t.png", folder), "set key outside right top\n"));
+    spec.key = illum::PlotKey::below;
+    CHECK(contains(illum::gnuplot_script(spec, "t.png", folder), "set key below center horizontal\n"));
+    spec.key = illum::PlotKey::inside_bottom_left;
+    CHECK(contains(illum::gnuplot_script(spec, "t.png", folder), "set key inside left bottom\n"));
+  }
+
   TEST_CASE("hard case: an unknown column name is an error naming the file and the column") {
     const auto folder = folder_with("method,n,time,error");
     const illum::PlotSpec spec{.curves = {{.table = "t.csv", .x = "n", .y = "eror", .title = "a"}}};

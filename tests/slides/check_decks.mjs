@@ -6,8 +6,14 @@
 //   - a resource fetched from the network (decks must work offline) or a local
 //     resource (a font, a script) that fails to load,
 //   - a script error on the page,
-//   - a deck with no slides.
-// Content taller than its slide is printed as a warning (it does not fail).
+//   - a deck with no slides,
+//   - an image without a size (Marp's w:/h:) outside a column: its file's size
+//     differs between the quick run the test sees and the full run,
+//   - content that does not fit its slide: taller or wider than the slide's
+//     content box (the slide less its padding, where the footer and the page
+//     number sit), or a code block or table wider than its own box. The page
+//     is opened at the deck's size (the slides' viewBox, 1280x720 for 16:9)
+//     and the message names the overflow in px and the element that sticks out.
 //
 //   node tests/slides/check_decks.mjs [--timeout SECONDS] PATH...
 //
@@ -63,8 +69,66 @@ function findDecks(paths) {
   return decks;
 }
 
+const DEFAULT_SIZE = { width: 1280, height: 720 };  // Marp's 16:9
+
+// Runs in the page: the size of the deck's slides, from the first slide's viewBox.
+function slideSize() {
+  const svg = document.querySelector('svg[data-marpit-svg]');
+  const box = svg && svg.viewBox && svg.viewBox.baseVal;
+  return box && box.width > 0 ? { width: Math.round(box.width), height: Math.round(box.height) } : null;
+}
+
 // Runs in the page: the problems Marp's rendered slides show on their own.
 function inspectPage() {
+  const TOLERANCE = 2;  // px: sub-pixel rounding of line boxes and fonts
+  // A short name for the element that sticks out furthest, so the author knows what to shrink.
+  const describe = (el) => {
+    const img = el.tagName === 'IMG' ? el : el.querySelector('img');
+    if (img) return `image ${img.getAttribute('src')}`;
+    const text = (el.textContent || '').replace(/\s+/g, ' ').trim();
+    return `<${el.tagName.toLowerCase()}> ${JSON.stringify(text.slice(0, 40))}`;
+  };
+  // The slide's layout is measured in its own CSS px: the SVG may scale the
+  // rendered slide, so rectangles are divided by that scale.
+  const overflowOf = (section) => {
+    const reasons = [];
+    const style = getComputedStyle(section);
+    const box = section.getBoundingClientRect();
+    const scale = box.height / section.offsetHeight || 1;
+    const bottomLimit = section.clientHeight - parseFloat(style.paddingBottom);
+    const rightLimit = section.clientWidth - parseFloat(style.paddingRight);
+    let lowest = null, widest = null;
+    for (const el of section.querySelectorAll('*')) {
+      const pos = getComputedStyle(el).position;
+      // Marp's header and footer sit in the padding on purpose.
+      if (pos === 'absolute' || pos === 'fixed' || el.closest('header, footer')) continue;
+      // KaTeX: measure the rendered pieces of a formula (.base), not its hidden
+      // MathML copy nor the wide SVG strokes it clips (a root sign is 400em wide).
+      if (el.closest('.katex') && !(el.classList.contains('base') && el.parentElement.classList.contains('katex-html')))
+        continue;
+      if (el instanceof SVGElement) continue;
+      const r = el.getBoundingClientRect();
+      if (r.width === 0 && r.height === 0) continue;
+      const bottom = (r.bottom - box.top) / scale;
+      const right = (r.right - box.left) / scale;
+      if (!lowest || bottom > lowest.at) lowest = { el, at: bottom };
+      if (!widest || right > widest.at) widest = { el, at: right };
+    }
+    const tall = Math.max(section.scrollHeight - section.clientHeight, lowest ? lowest.at - bottomLimit : 0);
+    if (tall > TOLERANCE)
+      reasons.push(`content overflows the slide by ${Math.round(tall)}px at the bottom ` +
+                   `(lowest: ${lowest ? describe(lowest.el) : 'the section'})`);
+    const wide = Math.max(section.scrollWidth - section.clientWidth, widest ? widest.at - rightLimit : 0);
+    if (wide > TOLERANCE)
+      reasons.push(`content overflows the slide by ${Math.round(wide)}px on the right ` +
+                   `(widest: ${widest ? describe(widest.el) : 'the section'})`);
+    // A box that cuts off its own content (a code block's scroll box, a wide table).
+    for (const el of section.querySelectorAll('pre, table')) {
+      const cut = el.scrollWidth - el.clientWidth;
+      if (cut > TOLERANCE) reasons.push(`${describe(el)} is ${cut}px wider than its box (it scrolls or is cut)`);
+    }
+    return reasons;
+  };
   const problems = [];
   const slides = Array.from(document.querySelectorAll('svg[data-marpit-svg]'));
   const backgrounds = [];
@@ -86,14 +150,17 @@ function inspectPage() {
       const at = text.indexOf('ParseError');
       problems.push({ slide: where, reason: `KaTeX text: ${JSON.stringify(text.slice(at, at + 120))}` });
     }
-    // Content taller than the slide is cut off when presenting: a warning, not a failure.
+    // Content that does not fit is cut off (or covers the footer) when presenting.
     const section = slide.querySelector('section');
-    if (section && section.scrollHeight > section.clientHeight + 2)
-      problems.push({ slide: where, warning: true,
-        reason: `content overflows the slide by ${section.scrollHeight - section.clientHeight}px` });
+    if (section) for (const reason of overflowOf(section)) problems.push({ slide: where, reason });
     for (const img of slide.querySelectorAll('img')) {
       if (!img.complete || img.naturalWidth === 0)
         problems.push({ slide: where, reason: `image failed to load: ${img.getAttribute('src')}` });
+      // The test sees the quick run's images, the audience the full run's: an
+      // image sized by its file would fit one and not the other.
+      else if (!img.style.width && !img.style.height && !img.closest('.cols, .cols3'))
+        problems.push({ slide: where, reason: `image ${img.getAttribute('src')} has no size: write ` +
+                        '![h:N](…) or ![w:N](…), or put it in a <div class="cols"> column' });
     }
     for (const el of slide.querySelectorAll('[style*="background-image"]')) {
       const m = /url\((["']?)(.*?)\1\)/.exec(el.style.backgroundImage || '');
@@ -116,7 +183,6 @@ async function loadBackgrounds(backgrounds) {
 
 async function checkDeck(browser, deck, timeoutMs) {
   const problems = [];
-  const warnings = [];
   const add = (slide, reason) => problems.push({ deck, slide, reason });
   const page = await browser.newPage();
   try {
@@ -136,16 +202,19 @@ async function checkDeck(browser, deck, timeoutMs) {
         add('-', `${request.resourceType()} failed to load: ${url} (${request.failure()?.errorText})`);
     });
     page.on('pageerror', (error) => add('-', `script error: ${error.message.split('\n')[0]}`));
+    await page.setViewport(DEFAULT_SIZE);
     await page.goto(pathToFileURL(deck).href, { waitUntil: 'load', timeout: timeoutMs });
+    // Open the deck at its own size (the slides' viewBox), so one slide fills the window unscaled.
+    const size = await page.evaluate(slideSize);
+    if (size && (size.width !== DEFAULT_SIZE.width || size.height !== DEFAULT_SIZE.height))
+      await page.setViewport(size);
+    await page.evaluate(() => document.fonts.ready.then(() => true));
     const { count, problems: found, backgrounds } = await page.evaluate(inspectPage);
     if (count === 0) add('-', 'the deck has no slides (is it a Marp deck with `marp: true`?)');
-    for (const p of found) {
-      if (p.warning) warnings.push({ deck, slide: p.slide, reason: p.reason });
-      else add(p.slide, p.reason);
-    }
+    for (const p of found) add(p.slide, p.reason);
     for (const b of await page.evaluate(loadBackgrounds, backgrounds))
       add(b.slide, `background image failed to load: ${b.src}`);
-    return { slides: count, problems, warnings };
+    return { slides: count, problems };
   } finally {
     await page.close().catch(() => {});
   }
@@ -190,7 +259,6 @@ async function main() {
       if (result.problems.length) console.log(`FAIL ${name}: ${result.slides} slides, ${result.problems.length} problem(s)`);
       else console.log(`ok   ${name}: ${result.slides} slides`);
       all.push(...result.problems);
-      for (const w of result.warnings || []) console.log(`  warning: ${name} slide ${w.slide}: ${w.reason}`);
     }
   } finally {
     if (browser) await browser.close().catch(() => {});

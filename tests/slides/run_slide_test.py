@@ -7,8 +7,9 @@
     run_slide_test.py expect-failure   --out BUILD/test-out/slides-fixture
         builds tests/slides/fixtures/99_broken.md and asserts the checker
         rejects it for exactly the planted reasons (bad maths on slide 2, a
-        missing image on slide 3, a missing background on slide 4) and not
-        the good first slide.
+        missing image on slide 3, a missing background on slide 4, content
+        running off the bottom of slide 5 and off the right of slide 6)
+        and not the good first slide.
 
 A missing Marp, Node.js, puppeteer-core or Chromium is a failure with the
 advice to run tools/install-deps: these tests never pass by skipping.
@@ -108,6 +109,8 @@ def expect_failure(out: Path) -> int:
         "undefined command on slide 2": r"99_broken\.html slide 2: KaTeX: undefined command \\notacommand",
         "missing image on slide 3": r"99_broken\.html slide 3: image failed to load: \.\./lesson01/no_such_image\.png",
         "missing background on slide 4": r"99_broken\.html slide 4: background image failed to load",
+        "overflow at the bottom of slide 5": r"99_broken\.html slide 5: content overflows the slide by \d+px at the bottom",
+        "overflow on the right of slide 6": r"99_broken\.html slide 6: content overflows the slide by \d+px on the right",
     }
     missed = [what for what, pattern in expected.items() if not re.search(pattern, report)]
     if missed:

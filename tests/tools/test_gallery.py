@@ -107,6 +107,21 @@ class HdrCheck(TempDirTest):
         self.assertIn("resolution", problem)
 
 
+class MeshCheck(TempDirTest):
+    def test_binary_ply_header_passes(self):
+        body = b"ply\nformat binary_little_endian 1.0\nelement vertex 0\nend_header\n" + bytes([0xFF, 0x00])
+        self.assertEqual(outputs.check_mesh(self.write("a.ply", body)), [])
+
+    def test_ply_without_end_header_fails(self):
+        [problem] = outputs.check_mesh(self.write("a.ply", b"ply\nformat ascii 1.0\nelement vertex 0\n"))
+        self.assertIn("end_header", problem)
+
+    def test_obj_needs_a_vertex(self):
+        self.assertEqual(outputs.check_mesh(self.write("a.obj", b"v 0 0 0 1 1 1\nf 1 1 1\n")), [])
+        [problem] = outputs.check_mesh(self.write("b.obj", b"# nothing\n"))
+        self.assertIn("without vertices", problem)
+
+
 class CsvCheck(TempDirTest):
     def test_good_csv_passes(self):
         self.assertEqual(outputs.check_csv(self.write("t.csv", GOOD_CSV)), [])

@@ -19,6 +19,8 @@ import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .markdown_table import alignment, is_separator_cells, split_table_row
+
 KINDS = ("image", "hdr", "table", "markdown", "plot", "script", "text", "mesh")
 # The extension each kind must have (None: any).
 KIND_EXTENSIONS = {
@@ -191,32 +193,6 @@ def check_csv(path: Path) -> list[str]:
     return problems
 
 
-def split_table_row(line: str) -> list[str]:
-    """The cells of a Markdown table row '| a | b |' (pipes escaped as \\| stay in the cell)."""
-    body = line.strip()
-    if body.startswith("|"):
-        body = body[1:]
-    if body.endswith("|") and not body.endswith("\\|"):
-        body = body[:-1]
-    cells, current, i = [], "", 0
-    while i < len(body):
-        if body[i] == "\\" and i + 1 < len(body) and body[i + 1] == "|":
-            current += "|"
-            i += 2
-            continue
-        if body[i] == "|":
-            cells.append(current.strip())
-            current = ""
-        else:
-            current += body[i]
-        i += 1
-    cells.append(current.strip())
-    return cells
-
-
-_SEPARATOR_CELL = re.compile(r"^:?-{1,}:?$")
-
-
 @dataclass
 class MarkdownTable:
     header: list[str]
@@ -243,18 +219,14 @@ def parse_markdown_tables(text: str) -> tuple[list[MarkdownTable], list[str]]:
             continue
         header = split_table_row(block[0])
         separator = split_table_row(block[1])
-        if not all(_SEPARATOR_CELL.match(c.replace(" ", "")) for c in separator):
+        if not is_separator_cells(separator):
             problems.append(f"line {start + 2}: expected the separator line ('|---|---|'), found {block[1].strip()!r}")
             continue
         if len(separator) != len(header):
             problems.append(
                 f"line {start + 2}: the separator has {len(separator)} columns, the header has {len(header)}")
             continue
-        align = []
-        for c in separator:
-            c = c.replace(" ", "")
-            align.append("center" if c.startswith(":") and c.endswith(":") else
-                         "right" if c.endswith(":") else "left" if c.startswith(":") else "")
+        align = [alignment(c) for c in separator]
         rows = []
         for k, line in enumerate(block[2:]):
             cells = split_table_row(line)

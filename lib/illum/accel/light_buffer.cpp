@@ -10,7 +10,7 @@ namespace illum {
 namespace {
 
 // Face f ∈ 0…5 looks along axis f/2, towards + for even f; (u, v) are the other two axes.
-constexpr std::array<std::array<int, 3>, 3> kAxes{{{0, 1, 2}, {1, 2, 0}, {2, 0, 1}}};
+constexpr std::array<std::array<int, 3>, 3> face_axes{{{0, 1, 2}, {1, 2, 0}, {2, 0, 1}}};
 
 }  // namespace
 
@@ -36,7 +36,7 @@ LightBuffer::LightBuffer(const TriangleSet& set, const Point3& light, const Ligh
     const Triangle& t = triangles_[i];
     const std::array<Vec3, 3> d{t.a - light, t.b - light, t.c - light};
     for (int f = 0; f < 6; ++f) {
-      const auto& ax = kAxes[f / 2];
+      const auto& ax = face_axes[f / 2];
       const double sign = f % 2 == 0 ? 1.0 : -1.0;
       int i0 = 0, i1 = r - 1, j0 = 0, j1 = r - 1;
       int in_front = 0;
@@ -69,7 +69,7 @@ std::size_t LightBuffer::cell_of(const Vec3& d) const {
   const Vec3 a = glm::abs(d);
   const int axis = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
   const int f = 2 * axis + (d[axis] < 0.0 ? 1 : 0);
-  const auto& ax = kAxes[axis];
+  const auto& ax = face_axes[axis];
   const double w = a[axis], r = resolution_;
   const int i = std::clamp(static_cast<int>(std::floor((d[ax[1]] / w + 1.0) * 0.5 * r)), 0, resolution_ - 1);
   const int j = std::clamp(static_cast<int>(std::floor((d[ax[2]] / w + 1.0) * 0.5 * r)), 0, resolution_ - 1);

@@ -26,13 +26,14 @@ Aabb octant(const Aabb& box, int k) {
   return child;
 }
 
-constexpr int kMaxDepth = 16;
+constexpr int deepest_allowed = 16;
 
 }  // namespace
 
 Octree::Octree(const TriangleSet& set, const OctreeSettings& settings) : triangles_(set.triangles) {
   require(!triangles_.empty(), "Octree: no triangles");
-  require(settings.max_depth >= 0 && settings.max_depth <= kMaxDepth, "Octree: max_depth must be in 0..16");
+  require(settings.max_depth >= 0 && settings.max_depth <= deepest_allowed,
+          "Octree: max_depth must be in 0..16");
   require(settings.leaf_size >= 1, "Octree: leaf_size must be at least 1");
   std::vector<Aabb> boxes(triangles_.size());
   Aabb bounds;
@@ -94,7 +95,7 @@ std::optional<AccelHit> Octree::intersect(const Ray& ray, TraversalCounters& cou
     std::uint32_t node;
     double s_enter;
   };
-  Pending stack[8 * (kMaxDepth + 1) + 1];
+  Pending stack[8 * (deepest_allowed + 1) + 1];
   int top = 0;
   ++counters.nodes_visited;
   const Interval root = slab_clip(slab, nodes_[0].box, probe.range, slab_far_slack);
@@ -135,7 +136,7 @@ std::optional<AccelHit> Octree::intersect(const Ray& ray, TraversalCounters& cou
 bool Octree::occluded(const Ray& ray, TraversalCounters& counters) const {
   ++counters.rays;
   const SlabRay slab(ray);
-  std::uint32_t stack[8 * (kMaxDepth + 1) + 1];
+  std::uint32_t stack[8 * (deepest_allowed + 1) + 1];
   int top = 0;
   stack[top++] = 0;
   while (top > 0) {

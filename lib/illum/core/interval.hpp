@@ -13,7 +13,7 @@ struct Interval {
   double hi = -infinity;
 
   constexpr Interval() = default;
-  constexpr Interval(double lo_, double hi_) : lo(lo_), hi(hi_) {}
+  constexpr Interval(double lo, double hi) : lo(lo), hi(hi) {}
 
   constexpr bool empty() const { return !(lo <= hi); }
   constexpr double size() const { return hi - lo; }

@@ -4,8 +4,8 @@
 
 namespace illum {
 
-Ray::Ray(const Point3& origin_, const Vec3& direction_, Interval range_)
-    : origin(origin_), direction(direction_), range(range_) {
+Ray::Ray(const Point3& origin, const Vec3& direction, Interval range)
+    : origin(origin), direction(direction), range(range) {
   require(is_finite(origin) && is_finite(direction), "Ray: origin and direction must be finite");
   require(is_unit(direction), "Ray: the direction must be a unit vector (|ω| = 1); normalise it first");
 }

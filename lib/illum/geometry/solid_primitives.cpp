@@ -169,12 +169,12 @@ bool cylinder_span(const Ray& ray, const SolidCylinder& cylinder, int surface, S
 
 }  // namespace
 
-SolidSphere::SolidSphere(const Point3& center_, double radius_) : center(center_), radius(radius_) {
+SolidSphere::SolidSphere(const Point3& center, double radius) : center(center), radius(radius) {
   require(is_finite(center), "SolidSphere: the centre must be finite (no NaN or infinity)");
   require(finite(radius) && radius > 0.0, "SolidSphere: the radius must be positive and finite");
 }
 
-SolidBox::SolidBox(const Point3& lo_, const Point3& hi_) : lo(lo_), hi(hi_) {
+SolidBox::SolidBox(const Point3& lo, const Point3& hi) : lo(lo), hi(hi) {
   require(is_finite(lo) && is_finite(hi), "SolidBox: the corners must be finite (no NaN or infinity)");
   require(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z,
           "SolidBox: every side must have positive length (lo < hi on each axis)");
@@ -187,10 +187,10 @@ SolidBox SolidBox::centered(const Point3& center, const Vec3& half_size) {
   return SolidBox(center - half_size, center + half_size);
 }
 
-SolidHalfSpace::SolidHalfSpace(const Vec3& normal_, double offset_)
-    : normal(unit_normal(normal_, "SolidHalfSpace: the normal must be finite and non-zero")) {
-  require(finite(offset_), "SolidHalfSpace: the offset must be finite");
-  offset = offset_ / length(normal_);  // N·P <= D keeps its meaning when N is scaled to unit length
+SolidHalfSpace::SolidHalfSpace(const Vec3& normal, double offset)
+    : normal(unit_normal(normal, "SolidHalfSpace: the normal must be finite and non-zero")) {
+  require(finite(offset), "SolidHalfSpace: the offset must be finite");
+  this->offset = offset / length(normal);  // N·P <= D keeps its meaning when N is scaled to unit length
 }
 
 SolidHalfSpace SolidHalfSpace::through(const Point3& point, const Vec3& normal) {
@@ -199,19 +199,20 @@ SolidHalfSpace SolidHalfSpace::through(const Point3& point, const Vec3& normal) 
   return SolidHalfSpace(n, dot(n, point));
 }
 
-SolidSlab::SolidSlab(const Vec3& normal_, double lo_, double hi_)
-    : normal(unit_normal(normal_, "SolidSlab: the normal must be finite and non-zero")) {
-  require(finite(lo_) && finite(hi_), "SolidSlab: the bounds must be finite");
-  require(lo_ < hi_, "SolidSlab: the thickness must be positive (lo < hi)");
-  lo = lo_ / length(normal_);
-  hi = hi_ / length(normal_);
+SolidSlab::SolidSlab(const Vec3& normal, double lo, double hi)
+    : normal(unit_normal(normal, "SolidSlab: the normal must be finite and non-zero")) {
+  require(finite(lo) && finite(hi), "SolidSlab: the bounds must be finite");
+  require(lo < hi, "SolidSlab: the thickness must be positive (lo < hi)");
+  // The parameters, not the members: the bounds are scaled with the normal.
+  this->lo = lo / length(normal);
+  this->hi = hi / length(normal);
 }
 
-SolidCylinder::SolidCylinder(const Point3& base_, const Vec3& axis_, double radius_, double height_)
-    : base(base_),
-      axis(unit_normal(axis_, "SolidCylinder: the axis must be finite and non-zero")),
-      radius(radius_),
-      height(height_) {
+SolidCylinder::SolidCylinder(const Point3& base, const Vec3& axis, double radius, double height)
+    : base(base),
+      axis(unit_normal(axis, "SolidCylinder: the axis must be finite and non-zero")),
+      radius(radius),
+      height(height) {
   require(is_finite(base), "SolidCylinder: the base centre must be finite");
   require(finite(radius) && radius > 0.0, "SolidCylinder: the radius must be positive and finite");
   require(finite(height) && height > 0.0, "SolidCylinder: the height must be positive and finite");

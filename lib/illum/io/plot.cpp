@@ -1,5 +1,6 @@
 #include "illum/io/plot.hpp"
 
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -65,6 +66,13 @@ std::string gnuplot_text(const std::string& text) {  // a single-quoted gnuplot 
   return out + "'";
 }
 
+// A number as gnuplot reads it back to the same double (17 significant digits).
+std::string gnuplot_number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
 const char* mark_style(PlotMark mark) {
   switch (mark) {
     case PlotMark::lines:
@@ -79,14 +87,36 @@ const char* mark_style(PlotMark mark) {
   return "linespoints";
 }
 
+const char* key_placement(PlotKey key) {
+  switch (key) {
+    case PlotKey::inside_top_right:
+      return "inside right top";
+    case PlotKey::inside_top_left:
+      return "inside left top";
+    case PlotKey::inside_bottom_right:
+      return "inside right bottom";
+    case PlotKey::inside_bottom_left:
+      return "inside left bottom";
+    case PlotKey::below:
+      return "below center horizontal";
+    case PlotKey::outside_right:
+      break;
+  }
+  return "outside right top";
+}
+
 // One `plot` clause of a named-column curve.
 std::string curve_clause(const PlotCurve& c, ColumnLookup& column) {
   const std::string x = "column(" + column(c.table, c.x) + ")";
   std::string y = "column(" + column(c.table, c.y) + ")";
   std::string condition;
-  for (const RowMatch& m : c.where)
-    condition += (condition.empty() ? "" : " && ") + ("strcol(" + column(c.table, m.column) + ") eq ") +
-                 gnuplot_text(m.equals);
+  for (const RowMatch& m : c.where) {
+    const std::string k = column(c.table, m.column);
+    condition += (condition.empty() ? "" : " && ") +
+                 (std::holds_alternative<std::string>(m.equals)
+                      ? "strcol(" + k + ") eq " + gnuplot_text(std::get<std::string>(m.equals))
+                      : "column(" + k + ") == " + gnuplot_number(std::get<double>(m.equals)));
+  }
   if (c.x_positive) condition += (condition.empty() ? "" : " && ") + x + " > 0";
   if (c.y_positive) condition += (condition.empty() ? "" : " && ") + y + " > 0";
   if (!condition.empty()) y = "((" + condition + ") ? " + y + " : 1/0)";
@@ -106,7 +136,7 @@ std::string gnuplot_script(const PlotSpec& spec, const std::string& png_name,
        " enhanced font 'DejaVu Sans,11'\n";
   s += "set output " + quoted(png_name + ".tmp") + "\n";
   s += "set datafile separator ','\n";
-  s += "set key outside right top\nset grid\n";
+  s += "set key " + std::string(key_placement(spec.key)) + "\nset grid\n";
   s += "set title " + quoted(spec.title) + "\n";
   s += "set xlabel " + quoted(spec.x_label) + "\nset ylabel " + quoted(spec.y_label) + "\n";
   if (spec.log_x) s += "set logscale x\nset format x '10^{%L}'\n";
@@ -116,14 +146,6 @@ std::string gnuplot_script(const PlotSpec& spec, const std::string& png_name,
   std::vector<std::string> clauses;
   for (const PlotCurve& c : spec.curves) clauses.push_back(curve_clause(c, column));
   for (std::size_t i = 0; i < clauses.size(); ++i) s += (i ? ", \\\n     " : "") + clauses[i];
-  for (std::size_t i = 0; i < spec.series.size(); ++i) {  // DEPRECATED numbered series
-    const PlotSeries& p = spec.series[i];
-    const std::string x = "column(" + std::to_string(p.x_column) + ")";
-    std::string y = "column(" + std::to_string(p.y_column) + ")";
-    if (!p.filter.empty()) y = "((" + p.filter + ") ? " + y + " : 1/0)";
-    s += (i || !clauses.empty() ? ", \\\n     " : "") + quoted(p.csv) + " skip 1 using (" + x + "):(" + y +
-         ") with " + p.style + " title " + quoted(p.title);
-  }
   s += "\nset output\n";
   return s;
 }

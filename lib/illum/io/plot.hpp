@@ -13,14 +13,18 @@
 //            "accuracy", "caption");
 #include <filesystem>
 #include <string>
+#include <variant>
 #include <vector>
 
 namespace illum {
 
-// A row is plotted when its column `column` holds the text `equals`.
+// A row is plotted when its column `column` holds `equals`: a text is compared
+// as text ({"rule", "exact"}), a number as a number ({"radius", 1.0} matches the
+// cell "1", and {"pupil_radius", 0.004} the cell "0.0040000000000000001" the
+// table wrote for it).
 struct RowMatch {
   std::string column{};
-  std::string equals{};
+  std::variant<std::string, double> equals{};
 };
 
 enum class PlotMark { lines_points, lines, points, filled_points };
@@ -38,16 +42,16 @@ struct PlotCurve {
   bool dashed = false;
 };
 
-// DEPRECATED: numbered columns and gnuplot filter strings. Lessons 09 and 11
-// still use it (PlotSpec::series) until they move to PlotCurve; new code
-// writes PlotSpec::curves.
-struct PlotSeries {
-  std::string csv;   // file name of the data, in the plot's folder
-  int x_column = 1;  // 1-based column numbers, as gnuplot counts
-  int y_column = 2;
-  std::string title;
-  std::string filter;  // optional gnuplot condition on the row, e.g. "strcol(1) eq 'notes'"
-  std::string style = "linespoints";
+// Where the key (the curves' titles) goes. Beside the plot suits a wide
+// figure; a plot shown small (a slide's column) keeps its width with the key
+// inside a corner the curves leave empty, or below.
+enum class PlotKey {
+  outside_right,
+  inside_top_right,
+  inside_top_left,
+  inside_bottom_right,
+  inside_bottom_left,
+  below
 };
 
 struct PlotSpec {
@@ -56,9 +60,9 @@ struct PlotSpec {
   std::string y_label{};
   bool log_x = false;
   bool log_y = false;
-  std::vector<PlotSeries> series{};  // DEPRECATED (see PlotSeries): drawn after `curves`
   int width = 900;
   int height = 560;
+  PlotKey key = PlotKey::outside_right;
   std::vector<PlotCurve> curves{};
 };
 

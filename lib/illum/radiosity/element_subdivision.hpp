@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 12: students write element_subdivision.cpp.
 // Lesson 12 (exercise unit: element_subdivision.cpp): the test that decides
 // where to subdivide. The notes' "subestructuración de trozos cuando sea
 // necesario por excesivos gradientes de energía entre trozos": after a

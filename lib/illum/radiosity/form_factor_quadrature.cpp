@@ -49,7 +49,7 @@ void area_points(const Patch& patch, int m, AreaPoints& out) {
 }
 
 // K of area_rule_error_bound: twice the largest constant measured.
-constexpr double kErrorConstant = 2.0;
+constexpr double error_constant = 2.0;
 
 }  // namespace
 
@@ -76,7 +76,7 @@ double area_rule_error_bound(int m, int vertices, double radius, double distance
   const int power = vertices == 3 ? 2 * m - 1 : 2 * m;
   double ratio_power = 1;  // (r/d)^power by multiplication: std::pow costs more than the rule at m = 1
   for (int k = 0; k < power; ++k) ratio_power *= radius / distance;
-  return kErrorConstant * area_to / (std::numbers::pi * distance * distance) * ratio_power;
+  return error_constant * area_to / (std::numbers::pi * distance * distance) * ratio_power;
 }
 
 double area_rule_form_factor(const Patch& from, const Patch& to, int m_from, int m_to) {

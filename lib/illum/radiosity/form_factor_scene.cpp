@@ -154,7 +154,7 @@ FormFactorMatrix matrix_reusing_translates(const std::vector<Patch>& patches, co
 // per edge pair: a parallel edge pair costs four log and four atan, about 60
 // kernel evaluations, and a quad pair has four to eight of its sixteen edge
 // pairs parallel (the rest perpendicular, free); measured on the cube.
-constexpr double kContourCostPerEdgePair = 15.0;
+constexpr double contour_cost_per_edge_pair = 15.0;
 
 // The smallest order m whose bound meets `target`, or 0 when none does.
 int smallest_area_order(int vertices, double radius, double distance, double area_to, double target) {
@@ -177,7 +177,7 @@ double pair_to_tolerance(const Patch& a, const Patch& b, double ra, double rb, d
     const int ma = smallest_area_order(na, ra, d, b.area, 0.5 * target);
     const int mb = smallest_area_order(nb, rb, d, b.area, 0.5 * target);
     const double cost = static_cast<double>(ma * ma * mb * mb);
-    if (ma > 0 && mb > 0 && cost <= kContourCostPerEdgePair * na * nb) {
+    if (ma > 0 && mb > 0 && cost <= contour_cost_per_edge_pair * na * nb) {
       method = PairMethod::area_rule;
       bound = area_rule_error_bound(ma, na, ra, d, b.area) + area_rule_error_bound(mb, nb, rb, d, b.area);
       return area_rule_form_factor(a, b, ma, mb);

@@ -91,7 +91,7 @@ void clear_faces(HemicubeBuffers& buffers, int res, unsigned faces) {
       face_offset(res, HemicubeFace::neg_y) + static_cast<std::size_t>(res) * (res / 2);
   if (buffers.resolution != res) {
     buffers.resolution = res;
-    buffers.items.assign(pixels, kEmptyPixel);
+    buffers.items.assign(pixels, empty_pixel);
     buffers.inv_depth.assign(pixels, 0.0);
     return;
   }
@@ -101,7 +101,7 @@ void clear_faces(HemicubeBuffers& buffers, int res, unsigned faces) {
     const std::size_t begin = face_offset(res, f),
                       end = begin + static_cast<std::size_t>(res) * HemicubeBuffers::face_height(res, f);
     std::fill(buffers.items.begin() + static_cast<std::ptrdiff_t>(begin),
-              buffers.items.begin() + static_cast<std::ptrdiff_t>(end), kEmptyPixel);
+              buffers.items.begin() + static_cast<std::ptrdiff_t>(end), empty_pixel);
     std::fill(buffers.inv_depth.begin() + static_cast<std::ptrdiff_t>(begin),
               buffers.inv_depth.begin() + static_cast<std::ptrdiff_t>(end), 0.0);
   }
@@ -165,7 +165,7 @@ void draw_patches(const std::vector<Patch>& patches, std::size_t i, const Hemicu
     if (std::abs(d) <= 1e-12 * reach) continue;  // seen exactly edge-on: projects to a line
     // d < 0: the eye is in front of the patch. Otherwise we see its back,
     // which still hides what lies behind it but receives nothing.
-    const std::int32_t item = d < 0 ? static_cast<std::int32_t>(j) : kBackFacePixel;
+    const std::int32_t item = d < 0 ? static_cast<std::int32_t>(j) : back_face_pixel;
     // A back face meets a front face at a silhouette edge, where both project onto the
     // same side of the edge with the same depth: a ray exactly through the edge would
     // tie. Pushing back faces a relative 1e-9 further makes the front face win the tie.

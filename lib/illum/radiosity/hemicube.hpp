@@ -28,8 +28,8 @@ namespace illum {
 enum class HemicubeFace { top = 0, pos_x = 1, neg_x = 2, pos_y = 3, neg_y = 4 };
 
 // Item values other than patch indices.
-inline constexpr std::int32_t kEmptyPixel = -1;     // nothing seen: the ray escapes
-inline constexpr std::int32_t kBackFacePixel = -2;  // the back of a patch: it occludes, receives nothing
+inline constexpr std::int32_t empty_pixel = -1;      // nothing seen: the ray escapes
+inline constexpr std::int32_t back_face_pixel = -2;  // the back of a patch: it occludes, receives nothing
 
 // Per-thread scratch of the hemicube: the item and depth buffers of the five
 // faces, one after the other (top: res × res, then each side: res × res/2,

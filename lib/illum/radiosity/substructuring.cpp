@@ -13,6 +13,10 @@
 namespace illum {
 namespace {
 
+// Rows shorter than this are computed on one thread: a parallel region per
+// shot costs a fork and a barrier, which a loaded machine makes slow.
+constexpr std::size_t parallel_row_elements = 4096;
+
 std::vector<Patch> split_patch(const Patch& p, int k) {
   const std::vector<Point3>& v = p.vertices;
   if (v.size() == 4) return mesh_quad(v[0], v[1], v[2], v[3], k, k, p.reflectance, p.emission, p.surface);
@@ -22,12 +26,11 @@ std::vector<Patch> split_patch(const Patch& p, int k) {
 
 double power(const Color& c, double area) { return area * (c.r + c.g + c.b); }
 
-// The occluders of the ray-cast row: every patch as a fan of triangles.
-std::unique_ptr<TriangleAccel> patch_bvh(const std::vector<Patch>& patches) {
+// The occluders of the ray-cast row: every polygon as a fan of triangles.
+std::unique_ptr<TriangleAccel> occluder_bvh(const std::vector<std::vector<Point3>>& polygons) {
   std::vector<Triangle> triangles;
-  for (const Patch& p : patches)
-    for (std::size_t k = 1; k + 1 < p.vertices.size(); ++k)
-      triangles.emplace_back(p.vertices[0], p.vertices[k], p.vertices[k + 1]);
+  for (const std::vector<Point3>& p : polygons)
+    for (std::size_t k = 1; k + 1 < p.size(); ++k) triangles.emplace_back(p[0], p[k], p[k + 1]);
   return make_accel(TriangleSet::from_triangles(std::move(triangles)), {.kind = AccelKind::bvh});
 }
 
@@ -35,9 +38,7 @@ std::unique_ptr<TriangleAccel> patch_bvh(const std::vector<Patch>& patches) {
 void ray_cast_row(const Patch& shooter, const std::vector<Patch>& elements, const TriangleAccel& occluders,
                   double* row) {
   const auto n = static_cast<std::ptrdiff_t>(elements.size());
-  // Threads only pay off on long rows: a parallel region per shot costs a
-  // barrier, which a loaded machine makes slow.
-#pragma omp parallel for schedule(static) if (n >= 4096)
+#pragma omp parallel for schedule(static) if (n >= static_cast <std::ptrdiff_t>(parallel_row_elements))
   for (std::ptrdiff_t e = 0; e < n; ++e) {
     const Patch& element = elements[static_cast<std::size_t>(e)];
     const Vec3 d = element.centroid - shooter.centroid;
@@ -51,7 +52,10 @@ void ray_cast_row(const Patch& shooter, const std::vector<Patch>& elements, cons
     TraversalCounters counters;
     if (occluders.occluded(Ray(shooter.centroid, d / r, Interval(1e-7 * r, (1 - 1e-7) * r)), counters))
       continue;
-    row[e] = (cos_p / r) * (cos_e / r) * element.area / (std::numbers::pi * r2 + element.area);
+    // The shooter as a disc of its own area seen from the element (bounded
+    // by 1 however close the element), turned into F_pe by reciprocity.
+    const double f_ep = (cos_p / r) * (cos_e / r) * shooter.area / (std::numbers::pi * r2 + shooter.area);
+    row[e] = f_ep * element.area / shooter.area;
   }
 }
 
@@ -128,7 +132,10 @@ SubstructuredSolution shoot_patches_to_elements(const std::vector<Patch>& patche
     targets = mesh.elements;
     targets.push_back(patches.front());
   } else {
-    occluders = patch_bvh(patches);
+    std::vector<std::vector<Point3>> polygons = settings.occluders;
+    if (polygons.empty())
+      for (const Patch& p : patches) polygons.push_back(p.vertices);
+    occluders = occluder_bvh(polygons);
   }
   std::vector<double> row(n + 1, 0.0);
   s.history.reserve(std::min<std::size_t>(max_shots, 1 << 20));
@@ -138,7 +145,12 @@ SubstructuredSolution shoot_patches_to_elements(const std::vector<Patch>& patche
     const Patch& shooter = patches[p];
     if (hemicube) {
       targets.back() = shooter;
-      cube->form_factor_row_parallel(targets, n, row.data(), buffers);
+      if (n >= parallel_row_elements) {
+        cube->form_factor_row_parallel(targets, n, row.data(), buffers);
+      } else {
+        buffers.resize(1);
+        cube->form_factor_row(targets, n, row.data(), buffers.front());
+      }
     } else {
       ray_cast_row(shooter, mesh.elements, *occluders, row.data());
     }
@@ -147,7 +159,11 @@ SubstructuredSolution shoot_patches_to_elements(const std::vector<Patch>& patche
     for (std::size_t e = 0; e < n; ++e) {
       if (row[e] == 0) continue;
       const Patch& element = mesh.elements[e];
-      const Color gain = element.reflectance * (row[e] * shooter.area / element.area) * delta;
+      // F_ep = F_pe A_p / A_e is a form factor: never above 1. The hemicube,
+      // which treats the shooter as a point, can exceed it for an element
+      // close to the shooter's centroid.
+      const double f_ep = std::min(1.0, row[e] * shooter.area / element.area);
+      const Color gain = element.reflectance * f_ep * delta;
       s.element_radiosity[e] += gain;
       const auto q = static_cast<std::size_t>(mesh.patch_of[e]);
       s.patch_unshot[q] += gain * (element.area / patches[q].area);
@@ -157,6 +173,12 @@ SubstructuredSolution shoot_patches_to_elements(const std::vector<Patch>& patche
     for (std::size_t q = 0; q < patches.size(); ++q)
       unshot_power += power(s.patch_unshot[q], patches[q].area);
     s.history.push_back({s.shots, watch.seconds(), unshot_power / emitted});
+    while (s.snapshots.size() < settings.snapshot_unshot.size() &&
+           unshot_power / emitted < settings.snapshot_unshot[s.snapshots.size()]) {
+      const Color ambient = ambient_term(patches, s.patch_unshot);
+      std::vector<Color>& shown = s.snapshots.emplace_back(s.element_radiosity);
+      for (std::size_t e = 0; e < n; ++e) shown[e] += mesh.elements[e].reflectance * ambient;
+    }
   }
   s.unshot_fraction = unshot_power / emitted;
   s.seconds = watch.seconds();

@@ -15,11 +15,16 @@
 //   hemicube – lesson 10's hemicube at the shooter's centroid drawing every
 //              element (the shooter itself appended to the list so that it
 //              is skipped); every OpenMP thread draws a share;
-//   ray_cast – the point-to-disc factor from the shooter's centroid x_p to
-//              the element's centroid x_e at distance r,
-//                F_pe ≈ cos θ_p cos θ_e A_e / (π r² + A_e),
+//   ray_cast – the shooter seen from the element's centroid x_e as a disc of
+//              area A_p at its centroid x_p, distance r (Wallace, Elmquist
+//              and Haines 1989),
+//                F_ep ≈ cos θ_p cos θ_e A_p / (π r² + A_p)   (≤ 1 however close),
 //              times the visibility of the segment x_p–x_e, tested against
-//              the patches by lesson 08's BVH (no aliasing, one ray per element).
+//              the occluders by lesson 08's BVH (no aliasing, one ray per
+//              element); the row holds F_pe = F_ep A_e / A_p.
+// Either way ΔB_e = ρ_e min(1, F_pe A_p / A_e) Δ_p: F_ep is a form factor,
+// and the hemicube's point shooter can push it above 1 for an element right
+// beside the shooter's centroid.
 #include <cstddef>
 #include <vector>
 
@@ -53,6 +58,14 @@ struct ShootingSettings {
   int hemicube_resolution = 128;  // hemicube only
   double unshot_fraction = 1e-3;  // stop when the unshot power is below this fraction of the emitted
   std::size_t max_shots = 0;      // and after at most this many shots (0: 200 per patch)
+  // ray_cast only: the polygons that block light (convex, 3 or more
+  // vertices). Empty: the patches themselves. The scene's surfaces block the
+  // same light with far fewer triangles for the BVH.
+  std::vector<std::vector<Point3>> occluders{};
+  // Unshot fractions, largest first: when the unshot power first drops
+  // below each, the solution keeps a snapshot of what progressive
+  // refinement shows then, B_e + ρ_e·ambient (lesson 11, §7).
+  std::vector<double> snapshot_unshot{};
 };
 
 struct ShotRecord {
@@ -65,9 +78,10 @@ struct SubstructuredSolution {
   std::vector<Color> element_radiosity;
   std::vector<Color> patch_unshot;
   std::size_t shots = 0;
-  double unshot_fraction = 1;       // Σ A_p Δ_p / Σ A_p E_p, channels summed
-  double seconds = 0;               // the whole solve, set-up included
-  std::vector<ShotRecord> history;  // after every shot
+  double unshot_fraction = 1;                 // Σ A_p Δ_p / Σ A_p E_p, channels summed
+  double seconds = 0;                         // the whole solve, set-up included
+  std::vector<ShotRecord> history;            // after every shot
+  std::vector<std::vector<Color>> snapshots;  // one per snapshot_unshot level reached
 };
 
 // Progressive refinement, shooting from patches and receiving at elements.

@@ -1,4 +1,5 @@
 #pragma once
+// Exercise unit of lesson 12: students write vertex_colours.cpp.
 // Lesson 12 (exercise unit: vertex_colours.cpp): vertex colours, the notes'
 // "Asignación de color por vértice". The radiosity solution gives one value
 // per patch; a picture drawn with it shows every patch as a flat tile. Give
