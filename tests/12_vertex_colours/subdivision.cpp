@@ -86,7 +86,7 @@ TEST_SUITE("lesson12") {
     const std::vector<Color> b = {Color(0), Color(1)};
     const std::vector<double> edge = {1.0, 1.0};
     for (double bad : {0.0, -1.0, double(NAN), double(INFINITY)}) {
-      INFO("threshold " << bad);
+      INFO("contract of elements_to_split: threshold " << bad << " is not positive and finite");
       ILLUM_CHECK_THROWS_CONTAINING(elements_to_split({{0, 1}}, b, edge, bad, 0.1), "threshold",
                                     std::invalid_argument);
     }

@@ -251,6 +251,7 @@ TEST_SUITE("lesson12") {
             doctest::description("task=1,2,3,4")) {
     const SharedVertexMesh mesh = share_vertices(grid(2, 1));
     const std::vector<Color> one = {Color(1)};
+    INFO("contracts of Tasks 1-4: one radiosity per face (two here), one value per vertex");
     CHECK_THROWS_AS(average_vertex_radiosity(mesh, one), std::invalid_argument);
     CHECK_THROWS_AS(extrapolated_vertex_radiosity(mesh, one), std::invalid_argument);
     CHECK_THROWS_AS(corner_radiosity(mesh, one, VertexColourRule::patch_own), std::invalid_argument);

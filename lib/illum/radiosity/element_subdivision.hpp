@@ -14,17 +14,18 @@
 
 namespace illum {
 
-// Task 1. The gap between two radiosities: the largest of the three channel
+// Task 6. The gap between two radiosities: the largest of the three channel
 // differences, max(|a.r − b.r|, |a.g − b.g|, |a.b − b.b|). Symmetric, ≥ 0.
 double radiosity_gap(const Color& a, const Color& b);
 
-// Task 2. Which elements to split: element e is marked when some pair
+// Task 7. Which elements to split: element e is marked when some pair
 // (e, g) or (g, e) of `neighbours` has radiosity_gap(B_e, B_g) > threshold
 // (strictly) and e is still larger than the smallest allowed element,
 // longest_edge[e] > min_edge (both ends of a pair are tested on their own:
 // a small element beside a large one may stop while the large one splits).
 // Returns one flag per element (radiosity.size()). Throws
-// std::invalid_argument when threshold is not positive and finite,
+// std::invalid_argument when threshold is not positive and finite (its
+// message contains "threshold"),
 // min_edge is negative or not finite, longest_edge.size() !=
 // radiosity.size(), or a pair names an element out of range.
 std::vector<bool> elements_to_split(const std::vector<std::pair<int, int>>& neighbours,
