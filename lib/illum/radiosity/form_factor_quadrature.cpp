@@ -40,9 +40,7 @@ void map_area_points(const Patch& patch, int m, double* xs, double* ys, double* 
 }
 
 // Where order m starts within one patch's block of the table: Σ k² for k < m.
-constexpr std::size_t order_offset(int m) {
-  return static_cast<std::size_t>((m - 1) * m * (2 * m - 1) / 6);
-}
+constexpr std::size_t order_offset(int m) { return static_cast<std::size_t>((m - 1) * m * (2 * m - 1) / 6); }
 
 // K of area_rule_error_bound: twice the largest constant measured.
 constexpr double kErrorConstant = 2.0;
@@ -95,8 +93,8 @@ void area_rule_error_bounds(int vertices, double radius, double distance, double
   // Each order multiplies the bound by (r/d)²: the same values as area_rule_error_bound's, without
   // its argument checks and powers (the builder asks for them once per pair).
   const double ratio = radius / distance;
-  bounds[0] = kErrorConstant * area_to / (std::numbers::pi * distance * distance) * (vertices == 3 ? 1 : ratio) *
-              ratio;
+  bounds[0] = kErrorConstant * area_to / (std::numbers::pi * distance * distance) *
+              (vertices == 3 ? 1 : ratio) * ratio;
   for (int m = 1; m < max_area_rule_order; ++m) bounds[m] = bounds[m - 1] * ratio * ratio;
 }
 

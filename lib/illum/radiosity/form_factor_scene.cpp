@@ -174,8 +174,8 @@ struct PreparedPatches {
 // `target`; false when none costs at most `budget` evaluations. The target is
 // split between the sides as the geometry asks, not half and half: a small
 // patch facing a large one needs fewer points than the large one.
-bool cheapest_area_orders(const Patch& a, const Patch& b, double ra, double rb, double distance, double target,
-                          double budget, int& ma, int& mb, double& bound) {
+bool cheapest_area_orders(const Patch& a, const Patch& b, double ra, double rb, double distance,
+                          double target, double budget, int& ma, int& mb, double& bound) {
   double ea[max_area_rule_order], eb[max_area_rule_order];
   area_rule_error_bounds(static_cast<int>(a.vertices.size()), ra, distance, b.area, ea);
   area_rule_error_bounds(static_cast<int>(b.vertices.size()), rb, distance, b.area, eb);
@@ -203,7 +203,8 @@ void fill_by_reciprocity(const std::vector<Patch>& patches, FormFactorMatrix& f)
     const std::size_t j0 = static_cast<std::size_t>(t) * tile, j1 = std::min(n, j0 + tile);
     for (std::size_t i0 = 0; i0 < j1; i0 += tile)
       for (std::size_t j = j0; j < j1; ++j)
-        for (std::size_t i = i0; i < std::min(i0 + tile, j); ++i) f(j, i) = patches[i].area * f(i, j) / patches[j].area;
+        for (std::size_t i = i0; i < std::min(i0 + tile, j); ++i)
+          f(j, i) = patches[i].area * f(i, j) / patches[j].area;
   }
 }
 
@@ -224,7 +225,8 @@ double pair_to_tolerance(const std::vector<Patch>& patches, const PreparedPatche
   if (na >= 3 && na <= 4 && nb >= 3 && nb <= 4 && d >= min_area_rule_separation * std::max(ra, rb)) {
     const double budget = contour_cost_per_edge_pair * static_cast<double>(na * nb);
     int ma = 0, mb = 0;
-    if (cheapest_area_orders(a, b, ra, rb, d, target, budget, ma, mb, bound) && area_rule_applies(a, b, ra, rb)) {
+    if (cheapest_area_orders(a, b, ra, rb, d, target, budget, ma, mb, bound) &&
+        area_rule_applies(a, b, ra, rb)) {
       method = PairMethod::area_rule;
       return area_rule_exchange(prepared.points.points(i, ma), a.normal, prepared.points.points(j, mb),
                                 b.normal) /
