@@ -56,7 +56,7 @@ void area_rule_error_bounds(int vertices, double radius, double distance, double
                             double bounds[max_area_rule_order]);
 
 // The m × m points of the area rule on one patch, as separate coordinate
-// arrays (so that the kernel loop vectorises), each with its weight dA; the
+// arrays, each with its weight dA; the
 // weights sum to the patch's area.
 struct AreaRulePoints {
   const double *x = nullptr, *y = nullptr, *z = nullptr, *weight = nullptr;
@@ -70,7 +70,13 @@ struct AreaRulePoints {
 class AreaRulePointTable {
  public:
   explicit AreaRulePointTable(const std::vector<Patch>& patches);
-  AreaRulePoints points(std::size_t patch, int m) const;
+  // The points of patch `patch` at order m; requires patch < the scene's size
+  // and 1 ≤ m ≤ max_area_rule_order (not checked: it is called for every pair).
+  AreaRulePoints points(std::size_t patch, int m) const {
+    if (!mapped_[patch]) return {};
+    const std::size_t at = patch * per_patch + static_cast<std::size_t>((m - 1) * m * (2 * m - 1) / 6);
+    return {&x_[at], &y_[at], &z_[at], &weight_[at], m * m};
+  }
 
  private:
   static constexpr std::size_t per_patch = 204;  // Σ m² for m = 1 … 8
