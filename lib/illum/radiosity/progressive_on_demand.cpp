@@ -63,7 +63,8 @@ OnDemandRun progressive_on_demand(const std::vector<Patch>& patches, const Hemic
   if (!(emitted > 0)) return run;  // nothing emits: B = E = 0 is the solution
   const std::size_t max_shots = settings.max_shots > 0 ? settings.max_shots : 1000 * n;
   // One row per thread per round (never more rows than patches); all storage allocated here, once.
-  const std::size_t per_round = std::min<std::size_t>(n, static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
+  const std::size_t per_round =
+      std::min<std::size_t>(n, static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
   std::vector<double> rows(per_round * n), predicted(n);
   std::vector<HemicubeBuffers> buffers(per_round);
   std::vector<std::size_t> candidates(per_round);
@@ -74,7 +75,7 @@ OnDemandRun progressive_on_demand(const std::vector<Patch>& patches, const Hemic
     Stopwatch watch;
     std::exception_ptr error;
     const long count = static_cast<long>(per_round);
-#pragma omp parallel for schedule(static, 1) num_threads(static_cast<int>(per_round)) if (per_round > 1)
+#pragma omp parallel for schedule(static, 1) num_threads(static_cast <int>(per_round)) if (per_round > 1)
     for (long k = 0; k < count; ++k) {
       try {
         const auto r = static_cast<std::size_t>(k);
@@ -91,7 +92,8 @@ OnDemandRun progressive_on_demand(const std::vector<Patch>& patches, const Hemic
     std::fill(used.begin(), used.end(), 0);
     for (;;) {  // shoot while the serial loop's next shooter has its row ready
       const std::size_t i = choose_shooter(patches, run.state.unshot);
-      const auto k = static_cast<std::size_t>(std::find(candidates.begin(), candidates.end(), i) - candidates.begin());
+      const auto k =
+          static_cast<std::size_t>(std::find(candidates.begin(), candidates.end(), i) - candidates.begin());
       if (k == per_round || used[k]) break;
       used[k] = 1;
       if (run.state.shots >= max_shots)

@@ -43,8 +43,8 @@ struct OnDemandRun {
 // fraction), when given, is called after every shot. The rows and buffers are
 // allocated once, before the first round. Throws std::invalid_argument for a
 // fraction outside (0, 1) and std::runtime_error when max_shots is reached first.
-OnDemandRun progressive_on_demand(const std::vector<Patch>& patches, const Hemicube& hemicube,
-                                  const OnDemandSettings& settings,
-                                  const std::function<void(const ProgressiveState&, double)>& after_shot = {});
+OnDemandRun progressive_on_demand(
+    const std::vector<Patch>& patches, const Hemicube& hemicube, const OnDemandSettings& settings,
+    const std::function<void(const ProgressiveState&, double)>& after_shot = {});
 
 }  // namespace illum
