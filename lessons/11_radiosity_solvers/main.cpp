@@ -559,11 +559,12 @@ void figure_section(OutputFolder& out, const Settings& settings) {
   Table history({"shots", "seconds", "unshot_fraction"});
   const ProgressiveRun run =
       progressive_on_demand(big.patches, resolution, settings.unshot_threshold, &history);
-  Table figure({"patches", "max patch edge (mm)", "hemicube resolution", "threads", "shots",
+  Table figure({"patches", "max patch edge (mm)", "hemicube resolution", "threads", "shots", "rows computed",
                 "unshot / emitted", "seconds", "seconds in hemicube rows"});
   figure.add_row({static_cast<std::int64_t>(big.patches.size()), edge, static_cast<std::int64_t>(resolution),
                   static_cast<std::int64_t>(omp_get_max_threads()),
-                  static_cast<std::int64_t>(run.state.shots), run.unshot, run.seconds, run.row_seconds});
+                  static_cast<std::int64_t>(run.state.shots), static_cast<std::int64_t>(run.rows), run.unshot,
+                  run.seconds, run.row_seconds});
   out.table(figure, "figure_progressive",
             "The Cornell box solved by progressive refinement with hemicube rows on demand, to " +
                 fixed(100 * settings.unshot_threshold, 2) + "% unshot power");

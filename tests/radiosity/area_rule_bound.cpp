@@ -35,8 +35,9 @@ Patch random_patch(Rng& rng, int kind, const Point3& centre, const Vec3& normal)
   auto jitter = [&] { return 0.35 * (2 * rng.uniform() - 1); };
   std::vector<Point3> v;
   if (kind == 0) {  // a convex quadrilateral, no two sides parallel in general
-    v = {centre + (-1 + jitter()) * t + (-1 + jitter()) * b, centre + (1 + jitter()) * t + (-1 + jitter()) * b,
-         centre + (1 + jitter()) * t + (1 + jitter()) * b, centre + (-1 + jitter()) * t + (1 + jitter()) * b};
+    v = {centre + (-1 + jitter()) * t + (-1 + jitter()) * b,
+         centre + (1 + jitter()) * t + (-1 + jitter()) * b, centre + (1 + jitter()) * t + (1 + jitter()) * b,
+         centre + (-1 + jitter()) * t + (1 + jitter()) * b};
   } else if (kind == 1) {  // a rectangle of aspect 1 to 1/7
     const double h = 0.15 + 0.85 * rng.uniform();
     v = {centre - t - h * b, centre + t - h * b, centre + t + h * b, centre - t + h * b};
