@@ -12,9 +12,10 @@
 // by the point-to-point form factor without occlusion); then it shoots while
 // choose_shooter picks a patch whose row is ready. The shooters, their rows
 // (Hemicube::form_factor_row) and every value are those of the serial
-// one-row-per-shot loop, bit for bit, on any number of threads; a thread
-// synchronises once per round, not several times per row, which is what a
-// machine busy with other work punishes.
+// one-row-per-shot loop, bit for bit, on any number of threads. The threads
+// meet once per round (about two shots on two threads), not several times per
+// row, and sleep while they wait rather than spin: on a machine busy with
+// other work a spinning thread burns the time slice its partner needs.
 #include <cstddef>
 #include <functional>
 #include <vector>
