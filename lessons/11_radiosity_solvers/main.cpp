@@ -25,6 +25,7 @@
 #include "illum/io/program.hpp"
 #include "illum/io/scene_file.hpp"
 #include "illum/radiosity/hemicube.hpp"
+#include "illum/radiosity/progressive_on_demand.hpp"
 #include "illum/radiosity/radiosity_scene.hpp"
 #include "illum/radiosity/radiosity_solvers.hpp"
 #include "illum/radiosity/radiosity_system.hpp"
@@ -546,37 +547,23 @@ void pictures_section(OutputFolder& out, const Settings& settings, const StudySy
 struct ProgressiveRun {
   ProgressiveState state;
   double unshot = 1, seconds = 0, row_seconds = 0;
+  std::size_t rows = 0;  // rows computed: one per thread per round, shots of them used
 };
 
-// Shoots until the unshot power is below `threshold` of the emitted power.
-// Per shot: one hemicube row (all threads), then choose and shoot (O(n)).
-// The row and the item buffers are allocated once, before the first shot.
+// Shoots until the unshot power is below `threshold` of the emitted power
+// (progressive_on_demand: one row per thread per round, the same shots and
+// values as one row per shot). Rows and buffers are allocated once.
 ProgressiveRun progressive_on_demand(const std::vector<Patch>& patches, int resolution, double threshold,
                                      Table* history) {
   const Hemicube hemicube(resolution);
-  std::vector<HemicubeBuffers> buffers;
-  std::vector<double> row(patches.size());
-  ProgressiveRun run;
   Stopwatch watch;
-  run.state = progressive_start(patches);
-  const double emitted = total_power(patches, run.state.unshot);
-  const std::size_t max_shots = 1000 * patches.size();  // 1% is reached in ~3 shots per patch
-  while (run.unshot >= threshold) {
-    if (run.state.shots >= max_shots)
-      throw std::runtime_error("progressive refinement left " + std::to_string(run.unshot) +
-                               " of the power unshot after " + std::to_string(max_shots) + " shots");
-    const std::size_t i = choose_shooter(patches, run.state.unshot);
-    Stopwatch row_watch;
-    hemicube.form_factor_row_parallel(patches, i, row.data(), buffers);
-    run.row_seconds += row_watch.seconds();
-    shoot(patches, i, row.data(), run.state);
-    run.unshot = total_power(patches, run.state.unshot) / emitted;
-    const std::size_t shots = run.state.shots;
-    if (history && ((shots & (shots - 1)) == 0 || shots % 50 == 0 || run.unshot < threshold))
-      history->add_row({static_cast<std::int64_t>(shots), watch.seconds(), run.unshot});
-  }
-  run.seconds = watch.seconds();
-  return run;
+  const OnDemandRun on_demand = progressive_on_demand(
+      patches, hemicube, {.unshot_fraction = threshold}, [&](const ProgressiveState& state, double unshot) {
+        const std::size_t shots = state.shots;
+        if (history && ((shots & (shots - 1)) == 0 || shots % 50 == 0 || unshot < threshold))
+          history->add_row({static_cast<std::int64_t>(shots), watch.seconds(), unshot});
+      });
+  return {on_demand.state, on_demand.unshot_fraction, watch.seconds(), on_demand.row_seconds, on_demand.rows};
 }
 
 // --- 10. The figure: the box solved with hemicube rows on demand ---------------
@@ -590,11 +577,12 @@ void figure_section(OutputFolder& out, const Settings& settings) {
   Table history({"shots", "seconds", "unshot_fraction"});
   const ProgressiveRun run =
       progressive_on_demand(big.patches, resolution, settings.unshot_threshold, &history);
-  Table figure({"patches", "max patch edge (mm)", "hemicube resolution", "threads", "shots",
+  Table figure({"patches", "max patch edge (mm)", "hemicube resolution", "threads", "shots", "rows computed",
                 "unshot / emitted", "seconds", "seconds in hemicube rows"});
   figure.add_row({static_cast<std::int64_t>(big.patches.size()), edge, static_cast<std::int64_t>(resolution),
                   static_cast<std::int64_t>(omp_get_max_threads()),
-                  static_cast<std::int64_t>(run.state.shots), run.unshot, run.seconds, run.row_seconds});
+                  static_cast<std::int64_t>(run.state.shots), static_cast<std::int64_t>(run.rows), run.unshot,
+                  run.seconds, run.row_seconds});
   out.table(figure, "figure_progressive",
             "The Cornell box solved by progressive refinement with hemicube rows on demand, to " +
                 fixed(100 * settings.unshot_threshold, 2) + "% unshot power");

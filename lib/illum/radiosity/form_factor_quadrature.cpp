@@ -11,21 +11,13 @@ namespace illum {
 
 namespace {
 
-constexpr int max_points = max_area_rule_order * max_area_rule_order;
-
-// The points of an m × m rule on a patch, each with its weight dA (summing to
-// the area). Plain arrays, not zero-filled: only the first `size` are used.
-struct AreaPoints {
-  double x[max_points], y[max_points], z[max_points], weight[max_points];
-  int size = 0;
-};
-
-void area_points(const Patch& patch, int m, AreaPoints& out) {
+// Writes the m × m points of the rule on a triangle or quadrilateral into x, y, z, weight.
+void map_area_points(const Patch& patch, int m, double* xs, double* ys, double* zs, double* weights) {
   const QuadratureRule& rule = gauss_legendre(m);
   const std::vector<Point3>& v = patch.vertices;
-  out.size = 0;
+  int k = 0;
   for (int a = 0; a < m; ++a)
-    for (int b = 0; b < m; ++b) {
+    for (int b = 0; b < m; ++b, ++k) {
       const double s = rule.nodes[static_cast<std::size_t>(a)], t = rule.nodes[static_cast<std::size_t>(b)];
       const double w = rule.weights[static_cast<std::size_t>(a)] * rule.weights[static_cast<std::size_t>(b)];
       Point3 x;
@@ -42,11 +34,13 @@ void area_points(const Patch& patch, int m, AreaPoints& out) {
         const Vec3 dt = (1 - s) * (v[3] - v[0]) + s * (v[2] - v[1]);
         jacobian = length(cross(ds, dt));
       }
-      const int k = out.size++;
-      out.x[k] = x.x, out.y[k] = x.y, out.z[k] = x.z;
-      out.weight[k] = w * jacobian;
+      xs[k] = x.x, ys[k] = x.y, zs[k] = x.z;
+      weights[k] = w * jacobian;
     }
 }
+
+// Where order m starts within one patch's block of the table: Σ k² for k < m.
+constexpr std::size_t order_offset(int m) { return static_cast<std::size_t>((m - 1) * m * (2 * m - 1) / 6); }
 
 // K of area_rule_error_bound: twice the largest constant measured.
 constexpr double error_constant = 2.0;
@@ -85,23 +79,66 @@ double area_rule_form_factor(const Patch& from, const Patch& to, int m_from, int
   const std::size_t nf = from.vertices.size(), nt = to.vertices.size();
   require(nf >= 3 && nf <= 4 && nt >= 3 && nt <= 4,
           "area_rule_form_factor: only triangles and quadrilaterals are mapped from the square");
-  AreaPoints a, b;
-  area_points(from, m_from, a);
-  area_points(to, m_to, b);
-  const Vec3 ni = from.normal, nj = to.normal;
-  double sum = 0;
-  for (int p = 0; p < a.size; ++p) {
-    double inner = 0;
-    for (int q = 0; q < b.size; ++q) {
-      // cos φ_i cos φ_j / r² = (n_i·w)(−n_j·w) / |w|⁴ with w = y − x.
-      const double wx = b.x[q] - a.x[p], wy = b.y[q] - a.y[p], wz = b.z[q] - a.z[p];
-      const double r2 = wx * wx + wy * wy + wz * wz;
-      const double ci = ni.x * wx + ni.y * wy + ni.z * wz, cj = nj.x * wx + nj.y * wy + nj.z * wz;
-      inner -= b.weight[q] * ci * cj / (r2 * r2);
-    }
-    sum += a.weight[p] * inner;
-  }
+  constexpr int max_points = max_area_rule_order * max_area_rule_order;
+  double x[2][max_points], y[2][max_points], z[2][max_points], w[2][max_points];  // not zero-filled
+  map_area_points(from, m_from, x[0], y[0], z[0], w[0]);
+  map_area_points(to, m_to, x[1], y[1], z[1], w[1]);
+  const double sum = area_rule_exchange({x[0], y[0], z[0], w[0], m_from * m_from}, from.normal,
+                                        {x[1], y[1], z[1], w[1], m_to * m_to}, to.normal);
   return sum / (std::numbers::pi * from.area);
+}
+
+void area_rule_error_bounds(int vertices, double radius, double distance, double area_to,
+                            double bounds[max_area_rule_order]) {
+  // Each order multiplies the bound by (r/d)²: the same values as area_rule_error_bound's, without
+  // its argument checks and powers (the builder asks for them once per pair).
+  const double ratio = radius / distance;
+  bounds[0] = kErrorConstant * area_to / (std::numbers::pi * distance * distance) *
+              (vertices == 3 ? 1 : ratio) * ratio;
+  for (int m = 1; m < max_area_rule_order; ++m) bounds[m] = bounds[m - 1] * ratio * ratio;
+}
+
+AreaRulePointTable::AreaRulePointTable(const std::vector<Patch>& patches)
+    : x_(patches.size() * per_patch),
+      y_(x_.size()),
+      z_(x_.size()),
+      weight_(x_.size()),
+      mapped_(patches.size(), 0) {
+  static_assert(order_offset(max_area_rule_order + 1) == per_patch);
+  // Patches in parallel (OpenMP): each writes only its own block.
+  const long n = static_cast<long>(patches.size());
+#pragma omp parallel for schedule(static)
+  for (long k = 0; k < n; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    const std::size_t nv = patches[i].vertices.size();
+    if (nv < 3 || nv > 4) continue;
+    mapped_[i] = 1;
+    for (int m = 1; m <= max_area_rule_order; ++m) {
+      const std::size_t at = i * per_patch + order_offset(m);
+      map_area_points(patches[i], m, &x_[at], &y_[at], &z_[at], &weight_[at]);
+    }
+  }
+}
+
+double area_rule_exchange(const AreaRulePoints& from, const Vec3& normal_from, const AreaRulePoints& to,
+                          const Vec3& normal_to) {
+  const double nix = normal_from.x, niy = normal_from.y, niz = normal_from.z;
+  const double njx = normal_to.x, njy = normal_to.y, njz = normal_to.z;
+  double sum = 0;
+  for (int p = 0; p < from.size; ++p) {
+    const double px = from.x[p], py = from.y[p], pz = from.z[p];
+    double inner = 0;
+    // cos φ_i cos φ_j / r² = (n_i·w)(−n_j·w) / |w|⁴ with w = y − x. A plain loop: with at most 64
+    // points an OpenMP simd reduction was twice as slow (measured).
+    for (int q = 0; q < to.size; ++q) {
+      const double wx = to.x[q] - px, wy = to.y[q] - py, wz = to.z[q] - pz;
+      const double r2 = wx * wx + wy * wy + wz * wz;
+      const double ci = nix * wx + niy * wy + niz * wz, cj = njx * wx + njy * wy + njz * wz;
+      inner += to.weight[q] * ci * cj / (r2 * r2);
+    }
+    sum -= from.weight[p] * inner;
+  }
+  return sum;
 }
 
 }  // namespace illum

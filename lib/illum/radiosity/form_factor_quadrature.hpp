@@ -9,6 +9,9 @@
 // shared edge or vertex it does not, and the contour integral takes over.
 // Triangles are mapped from the square by the collapsed (Duffy) map,
 // quadrilaterals bilinearly; other polygons are not handled here.
+#include <cstddef>
+#include <vector>
+
 #include "illum/radiosity/patch.hpp"
 
 namespace illum {
@@ -45,5 +48,45 @@ double patch_radius(const Patch& patch);
 // and triangles seen from all directions at 2 ≤ d/r ≤ 8 is 0.66 (lesson 09
 // README, "The error target"). The pair's error is the sum of both sides'.
 double area_rule_error_bound(int m, int vertices, double radius, double distance, double area_to);
+
+// The bounds of area_rule_error_bound for m = 1 … max_area_rule_order at
+// once (bounds[m − 1]), without re-checking the arguments: what the matrix
+// builder needs for every pair when it picks the cheapest orders.
+void area_rule_error_bounds(int vertices, double radius, double distance, double area_to,
+                            double bounds[max_area_rule_order]);
+
+// The m × m points of the area rule on one patch, as separate coordinate
+// arrays, each with its weight dA; the
+// weights sum to the patch's area.
+struct AreaRulePoints {
+  const double *x = nullptr, *y = nullptr, *z = nullptr, *weight = nullptr;
+  int size = 0;
+};
+
+// The points of every patch of a scene at every order 1 … max_area_rule_order,
+// computed once so that a matrix builder does not map the same points again
+// for each of the n − 1 pairs a patch belongs to. Patches other than
+// triangles and quadrilaterals get no points (points() then has size 0).
+class AreaRulePointTable {
+ public:
+  explicit AreaRulePointTable(const std::vector<Patch>& patches);
+  // The points of patch `patch` at order m; requires patch < the scene's size
+  // and 1 ≤ m ≤ max_area_rule_order (not checked: it is called for every pair).
+  AreaRulePoints points(std::size_t patch, int m) const {
+    if (!mapped_[patch]) return {};
+    const std::size_t at = patch * per_patch + static_cast<std::size_t>((m - 1) * m * (2 * m - 1) / 6);
+    return {&x_[at], &y_[at], &z_[at], &weight_[at], m * m};
+  }
+
+ private:
+  static constexpr std::size_t per_patch = 204;  // Σ m² for m = 1 … 8
+  std::vector<double> x_, y_, z_, weight_;
+  std::vector<int> mapped_;  // 1 if the patch has points
+};
+
+// Σ_a Σ_b w_a w_b cos φ_a cos φ_b / r_ab²: the area rule's estimate of π A_from F,
+// from the points of both patches and their unit normals.
+double area_rule_exchange(const AreaRulePoints& from, const Vec3& normal_from, const AreaRulePoints& to,
+                          const Vec3& normal_to);
 
 }  // namespace illum

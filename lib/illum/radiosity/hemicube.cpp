@@ -180,16 +180,70 @@ void draw_patches(const std::vector<Patch>& patches, std::size_t i, const Hemicu
   }
 }
 
-// F_ij = Σ ΔF over the pixels showing j.
-void accumulate_row(const HemicubeDeltas& deltas, const HemicubeBuffers& buffers, std::size_t n,
-                    std::size_t i, double* row) {
-  std::fill(row, row + n, 0.0);
+// F_ij = Σ ΔF over the pixels showing j, in two halves of the hemicube with
+// the same number of pixels each: half 0 is the top face and the +x face
+// (res² + res²/2 pixels, the first half of the buffer), half 1 the other three
+// sides. accumulate_half(h) sums half h's pixels into its own partial row
+// (halves[h·n …]); combine_halves adds the two. Serial or on two threads, the
+// sums are the same, in the same order.
+void accumulate_half(const HemicubeDeltas& deltas, const HemicubeBuffers& buffers, std::size_t n, int half,
+                     double* partial) {
+  std::fill(partial, partial + n, 0.0);
   const int res = buffers.resolution;
-  accumulate_face(buffers.items.data(), deltas.top.data(), deltas.top.size(), row);
-  for (int k = 1; k < 5; ++k)
-    accumulate_face(buffers.items.data() + face_offset(res, static_cast<HemicubeFace>(k)), deltas.side.data(),
-                    deltas.side.size(), row);
+  for (int k = half == 0 ? 0 : 2; k < (half == 0 ? 2 : 5); ++k) {
+    const auto f = static_cast<HemicubeFace>(k);
+    const std::vector<double>& d = f == HemicubeFace::top ? deltas.top : deltas.side;
+    accumulate_face(buffers.items.data() + face_offset(res, f), d.data(), d.size(), partial);
+  }
+}
+
+void combine_halves(const double* halves, std::size_t n, std::size_t i, double* row) {
+  for (std::size_t j = 0; j < n; ++j) row[j] = halves[j] + halves[n + j];
   row[i] = 0.0;
+}
+
+// Sizes the two partial rows (allocating only when n grows).
+double* partial_rows(HemicubeBuffers& buffers, std::size_t n) {
+  if (buffers.halves.size() < 2 * n) buffers.halves.resize(2 * n);
+  return buffers.halves.data();
+}
+
+// The first patch index of each of `ranges` ranges of patches with about the
+// same drawing cost for the hemicube at patch i (cuts[r] … cuts[r + 1]). A
+// patch's cost: a fixed part for transforming and culling it (worth about
+// fixed_pixels pixels), plus the pixels it covers, about (res²/4)·Ω with Ω
+// ≈ A_j |n_j · v|/d³ its solid angle (capped at a hemisphere); patches wholly behind
+// the shooter are culled early and cost a quarter of the fixed part. The cuts
+// only balance the threads: the row does not depend on them.
+void cost_balanced_cuts(const std::vector<Patch>& patches, std::size_t i, int res, std::size_t ranges,
+                        std::vector<double>& cost, std::size_t* cuts) {
+  constexpr double fixed_pixels = 30;
+  const std::size_t n = patches.size();
+  if (cost.size() < n) cost.resize(n);
+  const Point3 eye = patches[i].centroid;
+  const Vec3 up = patches[i].normal;
+  const double pixels_per_steradian = 0.25 * res * res;
+  double total = 0;
+  for (std::size_t j = 0; j < n; ++j) {
+    const Vec3 v = patches[j].centroid - eye;
+    const double d2 = dot(v, v), height = dot(v, up);
+    const double reach2 = 4 * patches[j].area;  // about a patch's squared diameter
+    double c = 0.25 * fixed_pixels;
+    if (j != i && (height > 0 || height * height < reach2)) {
+      const double solid_angle = patches[j].area * std::abs(dot(patches[j].normal, v)) / (d2 * std::sqrt(d2));
+      c = fixed_pixels + pixels_per_steradian * std::min(2 * pi, solid_angle);
+    }
+    total += c;
+    cost[j] = total;
+  }
+  cuts[0] = 0;
+  std::size_t j = 0;
+  for (std::size_t r = 1; r < ranges; ++r) {
+    const double share = total * static_cast<double>(r) / static_cast<double>(ranges);
+    while (j < n && cost[j] < share) ++j;
+    cuts[r] = std::max(j, cuts[r - 1]);
+  }
+  cuts[ranges] = n;
 }
 
 }  // namespace
@@ -203,7 +257,10 @@ void Hemicube::form_factor_row(const std::vector<Patch>& patches, std::size_t i,
   clear_faces(buffers, resolution(), all_faces);
   draw_patches(patches, i, frame_of(patches[i], rotation_angle), 0, patches.size(), all_faces, buffers,
                buffers);
-  accumulate_row(deltas_, buffers, patches.size(), i, row);
+  const std::size_t n = patches.size();
+  double* halves = partial_rows(buffers, n);
+  for (int half = 0; half < 2; ++half) accumulate_half(deltas_, buffers, n, half, halves + half * n);
+  combine_halves(halves, n, i, row);
 }
 
 void Hemicube::form_factor_row_parallel(const std::vector<Patch>& patches, std::size_t i, double* row,
@@ -217,19 +274,26 @@ void Hemicube::form_factor_row_parallel(const std::vector<Patch>& patches, std::
   const std::size_t n = patches.size();
   const int res = resolution();
   const bool worth_threads = static_cast<double>(n) * res * res >= 4e6;
-  const auto ranges = static_cast<std::size_t>(worth_threads ? std::max(1, omp_get_max_threads()) : 1);
+  constexpr std::size_t max_ranges = 256;
+  const std::size_t ranges =
+      std::min(max_ranges, static_cast<std::size_t>(worth_threads ? std::max(1, omp_get_max_threads()) : 1));
   if (buffers.size() < ranges) buffers.resize(ranges);
   for (std::size_t r = 0; r < ranges; ++r)
     if (buffers[r].resolution != res) clear_faces(buffers[r], res, 0x1f);  // allocates: the first call only
   const HemicubeFrame frame = frame_of(patches[i], rotation_angle);
   HemicubeBuffers& first = buffers[0];
-  const auto pixels = static_cast<std::ptrdiff_t>(first.items.size());
+  double* halves = partial_rows(first, n);
+  std::size_t cuts[max_ranges + 1];
+  cost_balanced_cuts(patches, i, res, ranges, first.cost, cuts);
+  // Where the second half of the pixels starts (the −x face).
+  const std::size_t middle = face_offset(res, HemicubeFace::neg_x);
   // One parallel region per row. Range r is drawn (all five faces) into
-  // buffers[r] by one thread, so each patch is transformed once. Then the
-  // ranges are merged in order into buffers[0]: a strictly nearer pixel wins,
-  // so on a tie the lower range (the lower patch index) keeps it, exactly as
-  // one serial pass over all patches would. The row does not depend on the
-  // number of threads.
+  // buffers[r] by one thread, so each patch is transformed once. Then each
+  // half of the hemicube is merged and summed by one thread: the ranges are
+  // merged in order into buffers[0] (a strictly nearer pixel wins, so on a
+  // tie the lower range, the lower patch index, keeps it, exactly as one
+  // serial pass over all patches would), and the half's pixels are added into
+  // its partial row. The row does not depend on the number of threads.
   const long tasks = static_cast<long>(ranges);
 #pragma omp parallel if (ranges > 1)
   {
@@ -238,19 +302,21 @@ void Hemicube::form_factor_row_parallel(const std::vector<Patch>& patches, std::
       const auto r = static_cast<std::size_t>(t);
       HemicubeBuffers& b = buffers[r];
       clear_faces(b, res, 0x1f);
-      draw_patches(patches, i, frame, n * r / ranges, n * (r + 1) / ranges, 0x1f, b, b);
+      draw_patches(patches, i, frame, cuts[r], cuts[r + 1], 0x1f, b, b);
     }
-#pragma omp for schedule(static)
-    for (std::ptrdiff_t p = 0; p < pixels; ++p) {
-      const auto k = static_cast<std::size_t>(p);
-      for (std::size_t r = 1; r < ranges; ++r)
-        if (buffers[r].inv_depth[k] > first.inv_depth[k]) {
-          first.inv_depth[k] = buffers[r].inv_depth[k];
-          first.items[k] = buffers[r].items[k];
-        }
+#pragma omp for schedule(static, 1)
+    for (int half = 0; half < 2; ++half) {
+      const std::size_t begin = half == 0 ? 0 : middle, end = half == 0 ? middle : first.items.size();
+      for (std::size_t k = begin; k < end; ++k)
+        for (std::size_t r = 1; r < ranges; ++r)
+          if (buffers[r].inv_depth[k] > first.inv_depth[k]) {
+            first.inv_depth[k] = buffers[r].inv_depth[k];
+            first.items[k] = buffers[r].items[k];
+          }
+      accumulate_half(deltas_, first, n, half, halves + static_cast<std::size_t>(half) * n);
     }
   }
-  accumulate_row(deltas_, first, n, i, row);
+  combine_halves(halves, n, i, row);
 }
 
 FormFactorMatrix hemicube_form_factors(const std::vector<Patch>& patches, int resolution,

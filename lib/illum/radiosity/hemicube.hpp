@@ -39,8 +39,10 @@ struct HemicubeBuffers {
   int resolution = 0;
   std::vector<std::int32_t> items;
   std::vector<double> inv_depth;
-  std::vector<Vec3> local;  // one patch's vertices in the hemicube's frame
-  std::vector<Vec3> face;   // the same, permuted into one face's view frame
+  std::vector<Vec3> local;     // one patch's vertices in the hemicube's frame
+  std::vector<Vec3> face;      // the same, permuted into one face's view frame
+  std::vector<double> halves;  // two partial rows (see accumulate_half in hemicube.cpp), 2n values
+  std::vector<double> cost;    // the estimated drawing cost of patches 0 … j (form_factor_row_parallel)
   RasterScratch raster;
 
   // The item buffer of one face (after form_factor_row) and its size.
@@ -80,6 +82,13 @@ class Hemicube {
   // on a tie the lower patch index keeps the pixel as in one serial pass.
   // The row is the same, bit for bit, as form_factor_row's, whatever the
   // number of threads. `buffers` is grown on the first call and reused.
+  // The sum of the pixels is parallel too: both functions add the pixels of
+  // each half of the hemicube (the top and +x faces; the other three, half
+  // the pixels each) into a partial row of its own, then the two partial
+  // rows, so that a second thread can take one half. The ranges of patches
+  // are cut where the estimated drawing cost (a fixed cost per patch plus its
+  // projected pixels) is shared equally, not where the count is: a patch near
+  // the shooter fills thousands of pixels, a far one a few.
   void form_factor_row_parallel(const std::vector<Patch>& patches, std::size_t i, double* row,
                                 std::vector<HemicubeBuffers>& buffers, double rotation_angle = 0.0) const;
 
