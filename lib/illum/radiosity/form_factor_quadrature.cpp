@@ -93,7 +93,7 @@ void area_rule_error_bounds(int vertices, double radius, double distance, double
   // Each order multiplies the bound by (r/d)²: the same values as area_rule_error_bound's, without
   // its argument checks and powers (the builder asks for them once per pair).
   const double ratio = radius / distance;
-  bounds[0] = kErrorConstant * area_to / (std::numbers::pi * distance * distance) *
+  bounds[0] = error_constant * area_to / (std::numbers::pi * distance * distance) *
               (vertices == 3 ? 1 : ratio) * ratio;
   for (int m = 1; m < max_area_rule_order; ++m) bounds[m] = bounds[m - 1] * ratio * ratio;
 }
