@@ -71,7 +71,7 @@ TEXT_GLOBS = ("lessons/*/README.md", "slides/*.md", "exercises/*/README.md", "do
 # Header words that make a column (or a row, by its first cell) a timing.
 TIMING_WORDS = frozenset({
     "ns", "us", "µs", "ms", "sec", "secs", "second", "seconds", "nanoseconds", "microseconds",
-    "milliseconds", "time", "timing", "speedup", "elapsed",
+    "milliseconds", "time", "timing", "speedup", "speed", "elapsed",
 })
 OPEN = re.compile(r"^\s*<!--\s*figure:\s*(?P<spec>.*?)\s*-->\s*$")
 CLOSE = re.compile(r"^\s*<!--\s*/figure\s*-->\s*$")

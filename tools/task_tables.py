@@ -213,7 +213,10 @@ def _points(test: TestCase) -> float:
 
 
 def _escape(text: str) -> str:
-    return text.replace("|", "\\|")
+    """A test name as a table cell: pipes escaped, and each 'erratum N' linked to the
+    project's errata list, as every text that names an erratum does (tools/figures.py --check)."""
+    text = text.replace("|", "\\|")
+    return re.sub(r"\berratum (\d+)\b", r"[erratum \1](../../docs/errata.md#erratum-\1)", text)
 
 
 def table(lesson: str, tasks: dict[str, list[str]], tests: list[TestCase], root: Path) -> str:
