@@ -11,10 +11,25 @@ through the illum-grade reporter (every test of a lesson handed out must fail
 with NotImplemented, every test of a lesson shipped as reference code must
 pass); check that the grading_integrity test is
 not registered there.
+
+With ``--lesson NN`` (an instructor's re-verification, too slow for CI: two
+builds of the library and the lesson program's full run), it checks instead
+what a student handed out only lesson NN gets: the edition of that lesson
+alone (tools/student_edition.py --lessons NN) is written to the work folder;
+the student commands of the top-level README build it (``cmake --preset
+student``, then the lesson's tests and program); ``tools/grade --student NN``
+scores 0 on the untouched stubs; the reference units of lesson NN
+(``lib/illum/<area>/<unit>.cpp`` of this tree) are copied over the stubs as
+the student's files; the lesson program then runs to completion (``--quick``
+with ``--quick``) and ``tools/grade --student NN`` scores 100%.
+
+    tools/check_student_edition.py --lesson 07 --work-dir /tmp/ed07
 """
 from __future__ import annotations
 
 import argparse
+import json
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -45,12 +60,96 @@ def content_problems(edition: Path) -> list[str]:
     return problems
 
 
+def _grade(edition: Path, lesson: str, results: Path) -> tuple[int, float | None, int]:
+    """Runs the edition's own ``tools/grade --student NN``: (exit status, score %, grading tests)."""
+    results.unlink(missing_ok=True)
+    step = build.run_streaming([sys.executable, str(edition / "tools" / "grade"), "--student", lesson,
+                                "--results", str(results)], cwd=edition)
+    status = 0 if step.ok else 1
+    if not results.is_file():
+        return 2, None, 0
+    report = json.loads(results.read_text(encoding="utf-8"))
+    score = 100.0 * report["score"] / report["max_score"] if report.get("max_score") else None
+    return status, score, len(report.get("tests", []))
+
+
+def check_one_lesson(lesson: str, work: Path, quick: bool) -> list[str]:
+    """The student's path for one lesson handed out alone; the problems found."""
+    from grading.edition import make_student_edition
+
+    problems: list[str] = []
+    edition = work / f"student-edition-{lesson}"
+    made = make_student_edition(project.ROOT, edition, [lesson])
+    problems += content_problems(edition)
+    stubs = sorted((edition / "exercises").glob(f"{lesson}_*/*.cpp"))
+    print(f"lesson {lesson}: edition in {edition} ({made.copied} files); exercise units: "
+          f"{', '.join(s.name for s in stubs)}")
+    # The top-level README's student commands (the `student` preset, two jobs).
+    student_build = [["cmake", "--preset", "student"],
+                     ["cmake", "--build", "--preset", "student", "--target", f"tests_lesson{lesson}",
+                      f"lesson{lesson}"]]
+    for command in student_build:
+        if not build.run_streaming(command, cwd=edition).ok:
+            return problems + [f"lesson {lesson}: `{' '.join(command)}` fails in the edition on the stubs"]
+    results = work / f"grade-{lesson}.json"
+    status, score, tests = _grade(edition, lesson, results)
+    print(f"lesson {lesson}: on the untouched stubs, tools/grade --student {lesson} exits {status}, "
+          f"score {score}% over {tests} grading test(s)")
+    if status != 1 or score != 0 or not tests:
+        problems.append(f"lesson {lesson}: the stubs score {score}% (exit {status}, {tests} tests); expected 0%")
+    for stub in stubs:
+        references = sorted((project.ROOT / "lib").rglob(stub.name))
+        if len(references) != 1:
+            problems.append(f"lesson {lesson}: {stub.name} has {len(references)} reference(s) under lib/")
+            continue
+        shutil.copyfile(references[0], stub)
+        print(f"lesson {lesson}: {references[0].relative_to(project.ROOT)} copied over "
+              f"{stub.relative_to(edition)}")
+    for command in student_build[1:]:
+        if not build.run_streaming(command, cwd=edition).ok:
+            return problems + [f"lesson {lesson}: the edition does not build with the reference units as "
+                               "the student's files"]
+    out = work / f"out-{lesson}"
+    shutil.rmtree(out, ignore_errors=True)
+    program = [str(edition / "build" / "student" / "bin" / f"lesson{lesson}"), *(["--quick"] if quick else []),
+               "--out", str(out / f"lesson{lesson}")]
+    run = build.run_streaming(program, echo=True, cwd=edition)
+    print(f"lesson {lesson}: `lesson{lesson}{' --quick' if quick else ''}` "
+          + ("runs to completion" if run.ok else "FAILS"))
+    if not run.ok:
+        problems.append(f"lesson {lesson}: the lesson program stops on the reference units placed as the "
+                        f"student's: {(run.output.strip().splitlines() or ['(no output)'])[-1]}")
+    status, score, tests = _grade(edition, lesson, results)
+    print(f"lesson {lesson}: with the reference units as the student's files, tools/grade --student {lesson} "
+          f"exits {status}, score {score}% over {tests} grading test(s)")
+    if status != 0 or score != 100.0:
+        problems.append(f"lesson {lesson}: the reference units score {score}% (exit {status}); expected 100%")
+    return problems
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build-dir", type=Path, default=project.ROOT / "build" / "release",
                         help="a configured build tree of the instructors' source (default build/release)")
     parser.add_argument("--work-dir", type=Path, help="build the edition here instead of a temporary folder")
+    parser.add_argument("--lesson", metavar="NN", action="append",
+                        help="check the edition handing out only lesson NN instead (repeatable; see above)")
+    parser.add_argument("--quick", action="store_true", help="with --lesson: run the lesson program with --quick")
     args = parser.parse_args()
+
+    if args.lesson:
+        lessons = [project.normalize_lesson(t) for text in args.lesson for t in text.split(",") if t.strip()]
+        problems = []
+        with tempfile.TemporaryDirectory(prefix="illum-student-lesson-") as temporary:
+            work = (args.work_dir or Path(temporary)).resolve()
+            work.mkdir(parents=True, exist_ok=True)
+            for lesson in lessons:
+                problems += check_one_lesson(lesson, work, args.quick)
+        for problem in problems:
+            print(f"PROBLEM {problem}")
+        print(f"student edition of lesson(s) {', '.join(lessons)} alone: "
+              + ("ok" if not problems else f"FAILED ({len(problems)} problem(s))"))
+        return 0 if not problems else 1
 
     step = build.run_streaming(["cmake", "--build", str(args.build_dir), "--target", "student-edition"])
     if not step.ok:

@@ -58,8 +58,10 @@ import json
 import os
 import re
 import shlex
+import struct
 import sys
 import time
+import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -358,6 +360,253 @@ def texts(source: Path) -> list[Path]:
     return found
 
 
+# --- kept images -----------------------------------------------------------------------
+#
+# A lesson text shows its program's images where a student reads it: in the
+# repository browser and in the student edition, before anything has run. So
+# every deterministic image a lesson text links (renders, diagrams, error and
+# count plots) is kept in the repository, in lessons/NN_topic/figures/, a copy
+# of what the main job drew in out/lessonNN/; the text links `figures/x.png`.
+# A timing plot (its title or an axis label names a time, or a throughput) is
+# different on every run: it is not kept, the text links it in the program's
+# output, `../../out/lessonNN/x.png`, and quotes its table in a figure comment.
+
+FIGURES_FOLDER = "figures"
+IMAGE_LINK = re.compile(r"!\[[^\]]*\]\((?P<target>[^()\s]+\.png)\)")
+OUT_IMAGE = re.compile(r"\.\./\.\./out/lesson(?P<lesson>\d\d)/(?P<name>[\w.\-]+\.png)")
+KEPT_IMAGE = re.compile(FIGURES_FOLDER + r"/(?P<name>[\w.\-]+\.png)")
+# gnuplot's labels in the .gp file written beside each plot.
+PLOT_LABEL = re.compile(r'^\s*set\s+(?:title|[xy]2?label)\s+"(?P<label>(?:[^"\\]|\\.)*)"', re.M)
+# Words of a plot label that make it a timing plot, beyond TIMING_WORDS ("Mrays/s").
+PLOT_TIMING_WORDS = TIMING_WORDS | {"mrays", "throughput"}
+# Two drawings of one figure agree when their sizes match and at most this
+# share of pixels differs by more than PIXEL_LEVELS in a channel: a last-bit
+# change of a float moves an 8-bit value by one or two levels, a change of
+# what the program draws moves many pixels by much more.
+PIXEL_LEVELS = 4
+PIXEL_SHARE = 0.001
+
+
+def lesson_texts(source: Path) -> list[Path]:
+    return sorted(source.glob("lessons/[0-9][0-9]_*/README.md"))
+
+
+@dataclass
+class ImageLink:
+    line: int       # 0-based
+    start: int      # span of the link's target in the line
+    end: int
+    lesson: str     # the program that draws it: out/lesson<lesson>/<name>
+    name: str
+    kept: bool      # the text links figures/<name>
+
+
+def image_links(text: Path, lines: list[str]) -> tuple[list[ImageLink], list[str]]:
+    """The lesson text's image links to its program's outputs or its kept figures; problems."""
+    lesson = text.parent.name[:2]
+    links, problems, fence = [], [], False
+    for i, line in enumerate(lines):
+        if line.lstrip().startswith("```"):
+            fence = not fence
+        if fence:
+            continue
+        for m in IMAGE_LINK.finditer(line):
+            target = m.group("target")
+            out_match, kept_match = OUT_IMAGE.fullmatch(target), KEPT_IMAGE.fullmatch(target)
+            if kept_match:
+                links.append(ImageLink(i, m.start("target"), m.end("target"), lesson, kept_match["name"], True))
+            elif out_match and out_match["lesson"] == lesson:
+                links.append(ImageLink(i, m.start("target"), m.end("target"), lesson, out_match["name"], False))
+            elif out_match:
+                problems.append(f"{text}:{i + 1}: '{target}' is drawn by another lesson's program: a lesson text "
+                                f"shows its own program's images (link that figure from lesson "
+                                f"{out_match['lesson']}'s text)")
+    return links, problems
+
+
+def timing_plot(out: Path, lesson: str, name: str) -> str | None:
+    """The label that makes out/lessonNN/<name> a timing plot, or None (a render, a deterministic plot)."""
+    script = out / f"lesson{lesson}" / (Path(name).stem + ".gp")
+    if not script.is_file():
+        return None
+    for m in PLOT_LABEL.finditer(script.read_text(encoding="utf-8", errors="replace")):
+        if words(m.group("label")) & PLOT_TIMING_WORDS:
+            return m.group("label")
+    return None
+
+
+def decode_png(data: bytes) -> tuple[int, int, int, bytes]:
+    """(width, height, channels, pixels) of an 8-bit, non-interlaced grey/RGB/RGBA PNG."""
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        raise FigureError("not a PNG file")
+    chunks, pos, header = [], 8, None
+    while pos + 8 <= len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        pos += 12 + length
+        if kind == b"IHDR":
+            header = struct.unpack(">IIBBBBB", body)
+        elif kind == b"IDAT":
+            chunks.append(body)
+        elif kind == b"IEND":
+            break
+    if header is None:
+        raise FigureError("PNG without IHDR")
+    width, height, depth, colour, _, _, interlace = header
+    channels = {0: 1, 2: 3, 4: 2, 6: 4}.get(colour)
+    if depth != 8 or channels is None or interlace:
+        raise FigureError(f"unsupported PNG (bit depth {depth}, colour type {colour}, interlace {interlace})")
+    raw = zlib.decompress(b"".join(chunks))
+    stride = width * channels
+    if len(raw) != height * (stride + 1):
+        raise FigureError("PNG data of the wrong length")
+    pixels = bytearray(height * stride)
+    previous = bytearray(stride)
+    for y in range(height):
+        kind = raw[y * (stride + 1)]
+        row = bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        if kind == 1:    # Sub
+            for i in range(channels, stride):
+                row[i] = (row[i] + row[i - channels]) & 255
+        elif kind == 2:  # Up
+            row = bytearray((a + b) & 255 for a, b in zip(row, previous))
+        elif kind == 3:  # Average
+            for i in range(stride):
+                left = row[i - channels] if i >= channels else 0
+                row[i] = (row[i] + ((left + previous[i]) >> 1)) & 255
+        elif kind == 4:  # Paeth
+            for i in range(stride):
+                a = row[i - channels] if i >= channels else 0
+                b = previous[i]
+                c = previous[i - channels] if i >= channels else 0
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                row[i] = (row[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        elif kind != 0:
+            raise FigureError(f"PNG row {y} has unknown filter {kind}")
+        pixels[y * stride:(y + 1) * stride] = row
+        previous = row
+    return width, height, channels, bytes(pixels)
+
+
+def image_difference(kept: bytes, drawn: bytes) -> str | None:
+    """None when two PNGs show the same picture (within PIXEL_LEVELS/PIXEL_SHARE), else how they differ."""
+    if kept == drawn:
+        return None
+    (w1, h1, c1, p1), (w2, h2, c2, p2) = decode_png(kept), decode_png(drawn)
+    if (w1, h1, c1) != (w2, h2, c2):
+        return f"the kept figure is {w1}×{h1} with {c1} channel(s), the program drew {w2}×{h2} with {c2}"
+    differing, largest = 0, 0
+    for i in range(0, len(p1), c1):
+        step = max(abs(a - b) for a, b in zip(p1[i:i + c1], p2[i:i + c1]))
+        if step > PIXEL_LEVELS:
+            differing += 1
+        largest = max(largest, step)
+    if differing > PIXEL_SHARE * w1 * h1:
+        return (f"{differing} of {w1 * h1} pixels differ by more than {PIXEL_LEVELS} levels "
+                f"(largest difference {largest}; at most {PIXEL_SHARE:.1%} may)")
+    return None
+
+
+def check_images(source: Path, out: Path) -> tuple[list[str], int]:
+    """Problems with the lesson texts' images, and how many kept figures were compared."""
+    problems, compared = [], 0
+    for path in lesson_texts(source):
+        rel = path.relative_to(source)
+        links, found = image_links(rel, path.read_text(encoding="utf-8").splitlines())
+        problems += found
+        folder = path.parent / FIGURES_FOLDER
+        for link in links:
+            where = f"{rel}:{link.line + 1}"
+            drawn = out / f"lesson{link.lesson}" / link.name
+            if not drawn.is_file():
+                problems.append(f"{where}: {link.name}: the program wrote no out/lesson{link.lesson}/{link.name} "
+                                f"in {out}")
+                continue
+            timing = timing_plot(out, link.lesson, link.name)
+            if link.kept and timing:
+                problems.append(f"{where}: {link.name} is a timing plot ('{timing}'): it is not kept; link "
+                                f"../../out/lesson{link.lesson}/{link.name} (tools/figures.py --update-images)")
+            elif not link.kept and not timing:
+                problems.append(f"{where}: {link.name} is deterministic but linked in out/, which is empty until "
+                                f"the program has run: keep it with tools/figures.py --update-images")
+            elif link.kept:
+                kept = folder / link.name
+                if not kept.is_file():
+                    problems.append(f"{where}: {rel.parent}/{FIGURES_FOLDER}/{link.name} is missing "
+                                    "(tools/figures.py --update-images)")
+                    continue
+                compared += 1
+                try:
+                    difference = image_difference(kept.read_bytes(), drawn.read_bytes())
+                except FigureError as e:
+                    difference = str(e)
+                if difference:
+                    problems.append(f"{where}: {rel.parent}/{FIGURES_FOLDER}/{link.name} drifted from what "
+                                    f"lesson{link.lesson} draws: {difference}; review and refresh with "
+                                    "tools/figures.py --update-images")
+        linked = {link.name for link in links if link.kept}
+        for orphan in sorted(folder.glob("*")) if folder.is_dir() else []:
+            if orphan.name not in linked:
+                problems.append(f"{orphan.relative_to(source)} is not shown by {rel}: delete it "
+                                "(tools/figures.py --update-images does)")
+    return problems, compared
+
+
+def update_images(source: Path, out: Path, log=print) -> int:
+    """Keeps a copy of every deterministic image the lesson texts show, links the texts to it, drops the rest."""
+    problems, copied, texts_written, kept_total = [], 0, 0, 0
+    for path in lesson_texts(source):
+        rel = path.relative_to(source)
+        lines = path.read_text(encoding="utf-8").splitlines()
+        links, found = image_links(rel, lines)
+        problems += found
+        folder = path.parent / FIGURES_FOLDER
+        keep: set[str] = set()
+        changed = False
+        for link in reversed(links):  # right to left: earlier spans on a line stay valid
+            drawn = out / f"lesson{link.lesson}" / link.name
+            if not drawn.is_file():
+                problems.append(f"{rel}:{link.line + 1}: out/lesson{link.lesson}/{link.name} does not exist in "
+                                f"{out} (run the main job first)")
+                if link.kept:
+                    keep.add(link.name)  # leave it as it is
+                continue
+            if timing_plot(out, link.lesson, link.name):
+                target = f"../../out/lesson{link.lesson}/{link.name}"
+            else:
+                target = f"{FIGURES_FOLDER}/{link.name}"
+                keep.add(link.name)
+                kept = folder / link.name
+                data = drawn.read_bytes()
+                if not kept.is_file() or kept.read_bytes() != data:
+                    folder.mkdir(exist_ok=True)
+                    kept.write_bytes(data)
+                    copied += 1
+            line = lines[link.line]
+            if line[link.start:link.end] != target:
+                lines[link.line] = line[:link.start] + target + line[link.end:]
+                changed = True
+        for orphan in sorted(folder.glob("*")) if folder.is_dir() else []:
+            if orphan.name not in keep:
+                orphan.unlink()
+                log(f"figures: removed {orphan.relative_to(source)} (no longer shown, or a timing plot)")
+        if folder.is_dir() and not any(folder.iterdir()):
+            folder.rmdir()
+        kept_total += len(keep)
+        if changed:
+            tmp = path.with_name(path.name + ".tmp-figures")
+            tmp.write_text("\n".join(lines) + "\n", encoding="utf-8")
+            os.replace(tmp, path)
+            texts_written += 1
+            log(f"figures: relinked the images of {rel}")
+    for p in problems:
+        log(f"figures: {p}")
+    log(f"figures: {kept_total} kept figure(s) in lessons/*/{FIGURES_FOLDER}/, {copied} copied from {out}, "
+        f"{texts_written} text(s) relinked")
+    return 1 if problems else 0
+
+
 def process(source: Path, out: Path, mode: str, log=print) -> int:
     """mode: 'refresh', 'check' or 'update'. Returns the exit code."""
     problems: list[str] = []
@@ -410,11 +659,15 @@ def process(source: Path, out: Path, mode: str, log=print) -> int:
         for p in left:
             log(f"figures:   {p}")
     if mode == "check":
+        image_problems, compared = check_images(source, out)
+        for p in image_problems:
+            log(f"figures: {p}")
+        problems += image_problems
         if problems:
-            log(f"figures: FAILED: {len(problems)} problem(s) in {figures} figure(s)")
+            log(f"figures: FAILED: {len(problems)} problem(s) in {figures} figure(s) and the lesson texts' images")
             return 1
         log(f"figures: OK: the non-timing values of {figures} figure(s) match the tables in {out}, "
-            "and no text quotes a timing by hand")
+            f"no text quotes a timing by hand, and the {compared} kept image(s) match what the programs drew")
         return 0
     log(f"figures: {figures} figure(s), {written} file(s) rewritten")
     return 1 if problems else 0
@@ -427,11 +680,16 @@ def main(argv: list[str] | None = None) -> int:
     group = parser.add_mutually_exclusive_group()
     group.add_argument("--check", action="store_true", help="compare, write nothing; exit 1 on a difference")
     group.add_argument("--update", action="store_true", help="rewrite every figure from its table")
+    group.add_argument("--update-images", action="store_true",
+                       help="keep a copy of every deterministic image the lesson texts show in "
+                            "lessons/NN_topic/figures/ and link it; timing plots stay linked in out/")
     parser.add_argument("--out", type=Path, default=None, help="the main job's output folder (default: SOURCE/out)")
     parser.add_argument("--source", type=Path, default=SOURCE, help="the source tree (default: this checkout)")
     args = parser.parse_args(argv)
     source = args.source.resolve()
     out = (args.out or source / "out").resolve()
+    if args.update_images:
+        return update_images(source, out)
     mode = "check" if args.check else "update" if args.update else "refresh"
     return process(source, out, mode)
 
