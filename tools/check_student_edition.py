@@ -37,6 +37,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+import figures  # noqa: E402
 from grading import build, project  # noqa: E402
 from grading.integrity import grading_programs  # noqa: E402
 from grading.runner import run_suite  # noqa: E402
@@ -52,6 +53,13 @@ def content_problems(edition: Path) -> list[str]:
     # The texts cite "erratum N" of the notes: the list must travel with them.
     if not (edition / "docs" / "errata.md").is_file():
         problems.append("docs/errata.md (the errata the lessons cite) is missing from the student edition")
+    # The lesson texts' images show before anything has run (tools/figures.py, "Images").
+    for text in figures.lesson_texts(edition):
+        links, _ = figures.image_links(text.relative_to(edition), text.read_text(encoding="utf-8").splitlines())
+        for link in links:
+            if link.kept and not (text.parent / figures.FIGURES_FOLDER / link.name).is_file():
+                problems.append(f"{text.relative_to(edition)}:{link.line + 1} shows "
+                                f"{figures.FIGURES_FOLDER}/{link.name}, which the student edition lacks")
     stubs = project.exercise_stubs(edition)
     for reference in sorted((edition / "lib").rglob("*.cpp")):
         if reference.name in stubs:

@@ -1,9 +1,10 @@
 #!/usr/bin/env python3
-"""Figures in lesson texts and decks come from the programs' own tables.
+"""Figures in lesson texts and decks come from the programs' own tables and images.
 
-    tools/figures.py [--out out]            refresh timings (what the main job runs)
-    tools/figures.py --check [--out out]    fail when a text's values differ (what CI runs)
-    tools/figures.py --update [--out out]   rewrite every figure from the tables
+    tools/figures.py [--out out]                 refresh timings (what the main job runs)
+    tools/figures.py --check [--out out]         fail when a text's values or kept images differ (CI)
+    tools/figures.py --update [--out out]        rewrite every figure from the tables
+    tools/figures.py --update-images [--out out] keep the lesson texts' images (below)
 
 A figure is a block of Markdown between two comments:
 
@@ -43,6 +44,27 @@ verdicts) must not. So:
   `--update` (listing them);
 * `--update` rewrites every figure from its table (after a real change of a
   program's results, to be reviewed with `git diff`).
+
+Images. A lesson text (lessons/NN_topic/README.md) shows its program's
+images where a student reads it, before anything has run: every image it
+links whose pixels do not depend on timing (renders, diagrams, error and
+count plots) is kept in the repository as lessons/NN_topic/figures/x.png, a
+byte copy of out/lessonNN/x.png, and linked as `figures/x.png`. A timing plot
+-- its gnuplot script (out/lessonNN/x.gp) has a title or axis label with a
+word of TIMING_WORDS, or "Mrays"/"throughput" -- differs on every run: it is
+not kept, and the text links it in out/ (`../../out/lessonNN/x.png`), shown
+once the program has run, beside the figure comment quoting its table.
+
+* `--update-images` copies every kept image from OUT, relinks each image
+  link of the lesson texts to figures/ or out/ by that rule, and deletes
+  kept images no text shows any more (add an image: link it as
+  `../../out/lessonNN/x.png` and run this);
+* `--check` also fails when a kept image drifts from what the program drew:
+  sizes differ, or more than PIXEL_SHARE of the pixels differ by more than
+  PIXEL_LEVELS levels in a channel (the PNGs are decoded, so a different
+  encoder or a last-bit difference of a float does not count), when a
+  deterministic image is linked in out/, a timing plot is kept, a linked
+  image is missing, or a file of figures/ is shown by no text.
 
 The label under a figure with timings names the run: date, the machine's
 cores and its load average at the start and end of that program's run, as
