@@ -6,9 +6,11 @@
 from __future__ import annotations
 
 import json
+import struct
 import sys
 import tempfile
 import unittest
+import zlib
 from pathlib import Path
 
 SOURCE = Path(__file__).resolve().parents[2]
@@ -135,6 +137,124 @@ class FiguresTest(unittest.TestCase):
         joined = "\n".join(self.messages)
         self.assertIn("'erratum 2' is not linked", joined)
         self.assertNotIn("'erratum 1'", joined)
+
+
+def encode_png(width: int, height: int, pixels: bytes, filters: list[int]) -> bytes:
+    """An 8-bit RGB PNG whose row y is written with filter filters[y] (PNG spec, section 9),
+    an encoder written here so that the tool's decoder is tested against the specification."""
+    stride, rows, previous = width * 3, [], bytes(width * 3)
+    for y in range(height):
+        row = pixels[y * stride:(y + 1) * stride]
+        kind = filters[y]
+        left = lambda i, r=row: r[i - 3] if i >= 3 else 0  # noqa: E731
+        upper_left = lambda i, p=previous: p[i - 3] if i >= 3 else 0  # noqa: E731
+
+        def paeth(a: int, b: int, c: int) -> int:
+            p = a + b - c
+            pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+            return a if pa <= pb and pa <= pc else b if pb <= pc else c
+        predictor = {0: lambda i: 0, 1: left, 2: lambda i: previous[i],
+                     3: lambda i: (left(i) + previous[i]) // 2,
+                     4: lambda i: paeth(left(i), previous[i], upper_left(i))}[kind]
+        rows.append(bytes([kind]) + bytes((row[i] - predictor(i)) % 256 for i in range(stride)))
+        previous = row
+
+    def chunk(kind: bytes, body: bytes) -> bytes:
+        return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body))
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(b"".join(rows))) + chunk(b"IEND", b""))
+
+
+def picture(width: int, height: int, shift: int = 0) -> bytes:
+    """Distinct, non-monotonic values, so that every predictor matters."""
+    return bytes((37 * i + 11 * (i // 7) + shift) % 251 for i in range(width * height * 3))
+
+
+class KeptImagesTest(unittest.TestCase):
+    """Lesson texts show deterministic images from figures/, timing plots from out/."""
+
+    def setUp(self) -> None:
+        self._tmp = tempfile.TemporaryDirectory(prefix="illum-figures-images-")
+        self.root = Path(self._tmp.name)
+        self.out = self.root / "out"
+        self.messages: list[str] = []
+        self.render = encode_png(20, 10, picture(20, 10), [0, 1, 2, 3, 4] * 2)
+        self.write("out/lesson01/render.png", self.render)
+        self.write("out/lesson01/cost.png", encode_png(4, 5, picture(4, 5), [4] * 5))
+        self.write("out/lesson01/cost.gp", b'set title "Cost"\nset ylabel "ns per query"\n')
+        self.write("out/lesson01/error.png", encode_png(4, 5, picture(4, 5, 3), [1] * 5))
+        self.write("out/lesson01/error.gp", b'set title "Error against n"\nset ylabel "max error"\n')
+        self.write("lessons/01_x/README.md", b"# One\n\n![a render](../../out/lesson01/render.png)\n"
+                                             b"![cost](../../out/lesson01/cost.png) "
+                                             b"![error](../../out/lesson01/error.png)\n\n```\n"
+                                             b"![in code](../../out/lesson01/none.png)\n```\n")
+
+    def tearDown(self) -> None:
+        self._tmp.cleanup()
+
+    def write(self, rel: str, data: bytes) -> Path:
+        path = self.root / rel
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_bytes(data)
+        return path
+
+    def update(self) -> int:
+        self.messages = []
+        return figures.update_images(self.root, self.out, log=self.messages.append)
+
+    def check(self) -> int:
+        self.messages = []
+        return figures.process(self.root, self.out, "check", log=self.messages.append)
+
+    def test_the_decoder_undoes_each_of_the_five_row_filters(self):
+        width, height, channels, pixels = figures.decode_png(self.render)
+        self.assertEqual((width, height, channels), (20, 10, 3))
+        self.assertEqual(pixels, picture(20, 10))
+
+    def test_update_keeps_renders_and_error_plots_and_leaves_timing_plots_in_out(self):
+        self.assertEqual(self.update(), 0, self.messages)
+        text = (self.root / "lessons/01_x/README.md").read_text(encoding="utf-8")
+        self.assertIn("![a render](figures/render.png)", text)
+        self.assertIn("![error](figures/error.png)", text)
+        self.assertIn("![cost](../../out/lesson01/cost.png)", text)     # "ns per query": a timing plot
+        self.assertIn("![in code](../../out/lesson01/none.png)", text)  # inside a code fence: not a link
+        kept = sorted(p.name for p in (self.root / "lessons/01_x/figures").iterdir())
+        self.assertEqual(kept, ["error.png", "render.png"])
+        self.assertEqual(self.check(), 0, self.messages)
+
+    def test_check_accepts_a_level_of_rounding_and_fails_on_a_changed_drawing(self):
+        self.update()
+        nudged = bytes(min(v + 1, 255) for v in picture(20, 10))  # every value one level up
+        self.write("out/lesson01/render.png", encode_png(20, 10, nudged, [4] * 10))
+        self.assertEqual(self.check(), 0, self.messages)
+        changed = bytearray(picture(20, 10))
+        changed[0:30] = bytes(30)  # ten pixels black: 5% of the picture
+        self.write("out/lesson01/render.png", encode_png(20, 10, bytes(changed), [0] * 10))
+        self.assertEqual(self.check(), 1)
+        joined = "\n".join(self.messages)
+        self.assertIn("render.png drifted from what lesson01 draws: 10 of 200 pixels differ", joined)
+        self.write("out/lesson01/render.png", encode_png(10, 20, picture(20, 10), [0] * 20))
+        self.assertEqual(self.check(), 1)
+        self.assertIn("the kept figure is 20×10 with 3 channel(s), the program drew 10×20", "\n".join(self.messages))
+
+    def test_check_fails_on_an_unkept_render_a_kept_timing_plot_and_an_orphan_and_update_repairs(self):
+        self.update()
+        readme = self.root / "lessons/01_x/README.md"
+        text = readme.read_text(encoding="utf-8")
+        readme.write_text(text.replace("figures/render.png", "../../out/lesson01/render.png")
+                          .replace("../../out/lesson01/cost.png", "figures/cost.png"), encoding="utf-8")
+        self.write("lessons/01_x/figures/cost.png", b"")
+        self.write("lessons/01_x/figures/old.png", b"")
+        self.assertEqual(self.check(), 1)
+        joined = "\n".join(self.messages)
+        self.assertIn("render.png is deterministic but linked in out/", joined)
+        self.assertIn("cost.png is a timing plot ('ns per query')", joined)
+        self.assertIn("lessons/01_x/figures/old.png is not shown by lessons/01_x/README.md", joined)
+        self.assertEqual(self.update(), 0, self.messages)
+        self.assertEqual(readme.read_text(encoding="utf-8"), text)
+        self.assertFalse((self.root / "lessons/01_x/figures/old.png").exists())
+        self.assertFalse((self.root / "lessons/01_x/figures/cost.png").exists())
+        self.assertEqual(self.check(), 0, self.messages)
 
 
 if __name__ == "__main__":
