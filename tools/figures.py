@@ -407,6 +407,8 @@ PLOT_TIMING_WORDS = TIMING_WORDS | {"mrays", "throughput"}
 # what the program draws moves many pixels by much more.
 PIXEL_LEVELS = 4
 PIXEL_SHARE = 0.001
+# The repository stays small: all kept images together (CONTRIBUTING.md, "Images show where students read").
+KEPT_BUDGET_BYTES = 5_000_000
 
 
 def lesson_texts(source: Path) -> list[Path]:
@@ -532,7 +534,7 @@ def image_difference(kept: bytes, drawn: bytes) -> str | None:
 
 def check_images(source: Path, out: Path) -> tuple[list[str], int]:
     """Problems with the lesson texts' images, and how many kept figures were compared."""
-    problems, compared = [], 0
+    problems, compared, total = [], 0, 0
     for path in lesson_texts(source):
         rel = path.relative_to(source)
         links, found = image_links(rel, path.read_text(encoding="utf-8").splitlines())
@@ -569,9 +571,13 @@ def check_images(source: Path, out: Path) -> tuple[list[str], int]:
                                     "tools/figures.py --update-images")
         linked = {link.name for link in links if link.kept}
         for orphan in sorted(folder.glob("*")) if folder.is_dir() else []:
+            total += orphan.stat().st_size
             if orphan.name not in linked:
                 problems.append(f"{orphan.relative_to(source)} is not shown by {rel}: delete it "
                                 "(tools/figures.py --update-images does)")
+    if total > KEPT_BUDGET_BYTES:
+        problems.append(f"the kept images of lessons/*/{FIGURES_FOLDER}/ take {total / 1e6:.1f} MB, more than "
+                        f"{KEPT_BUDGET_BYTES / 1e6:.0f} MB: show fewer, or have the program draw them smaller")
     return problems, compared
 
 
