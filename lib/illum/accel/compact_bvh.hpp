@@ -20,15 +20,18 @@
 //     near plane of each axis is chosen by sign, no swap. 0·∞ = NaN (a ray
 //     lying in a face plane) is dropped by the order of the max/min operands:
 //     inside, as in slab_test.hpp;
-//   * each triangle is first tested by Möller–Trumbore on precomputed edges,
-//     a filter that rejects only when the ray misses by a clear margin
-//     (barycentrics below −10⁻⁴ or above 1 + 10⁻⁴; t outside the range by
-//     10⁻⁶ relative); a grazing ray (|det| below 10⁻⁶ of its largest value)
-//     and every survivor go to lesson 03's watertight test, which decides.
-//     Hit/miss and t are therefore the exact test's, edges and vertices
-//     included, unless the filter's double rounding exceeds 10⁻⁴ in a
-//     barycentric, which needs an origin ~10¹⁰ triangle sizes away.
-// Counters: one node visit per child box tested, one triangle test per filter test.
+//   * a leaf's triangles are stored four at a time (TrianglePack: float
+//     vertex and edges, one SSE lane per triangle) and tested at once by
+//     Möller–Trumbore in float, as a filter: a lane is dropped only when its
+//     barycentrics or its t miss by more than an a-priori bound on the float
+//     rounding (K·(|o|+|v0|)·|ω|·|e|, K = 2⁻¹⁷, about twice the worst case of
+//     the float operations, all norms ∞-norms), so a true hit is never
+//     dropped; a grazing lane (|det| within its bound, sign unknown) passes.
+//     Every surviving lane goes to lesson 03's watertight test in double,
+//     which decides: hit/miss and t are the exact test's, edges and vertices
+//     included. The bound assumes no float overflow or underflow (coordinates
+//     and edges within about 10^±15).
+// Counters: one node visit per child box tested, one triangle test per (used) lane filtered.
 #include <cstdint>
 #include <vector>
 
@@ -39,8 +42,8 @@ namespace illum {
 
 // Four children: box planes [plane][child], planes 0–2 the lo of x, y, z and
 // 3–5 the hi; for each child a leaf's triangle run (count > 0) or the index of
-// its node (count = 0). An unused slot has an empty box (lo = +∞, hi = −∞)
-// that no ray enters.
+// its node (count = 0). A leaf's `child` is its first TrianglePack. An unused slot has an empty box (lo = +∞,
+// hi = −∞) that no ray enters.
 struct alignas(64) CompactBvhNode {
   float planes[6][4];
   std::uint32_t child[4];
@@ -49,12 +52,16 @@ struct alignas(64) CompactBvhNode {
 };
 static_assert(sizeof(CompactBvhNode) == 128);
 
-// The filter's view of a triangle: a vertex and two edges, and the grazing bound.
-struct EdgeTriangle {
-  Point3 v0;
-  Vec3 e1, e2;
-  double grazing;  // 10⁻⁶·|e1 × e2|: below it |det| hands the ray to the exact test
+// The filter's view of four triangles, [axis][lane]: a vertex, the two edges
+// from it, and their ∞-norms for the rounding bound. A leaf of n triangles
+// owns ⌈n/4⌉ consecutive packs; its last pack's unused lanes are masked out.
+struct alignas(16) TrianglePack {
+  float v0[3][4];
+  float e1[3][4];
+  float e2[3][4];
+  float v0_size[4], e1_size[4], e2_size[4];  // ‖v0‖∞, ‖e1‖∞, ‖e2‖∞ (of the double values), rounded up
 };
+static_assert(sizeof(TrianglePack) == 192);
 
 class CompactBvh final : public TriangleAccel {
  public:
@@ -69,10 +76,12 @@ class CompactBvh final : public TriangleAccel {
   std::size_t node_count() const { return nodes_.size(); }
 
  private:
+  void prefetch(const void* entry) const;  // a traversal stack entry's node or packs
+
   std::vector<CompactBvhNode> nodes_;
-  std::vector<EdgeTriangle> edges_;  // in leaf order
-  std::vector<Triangle> triangles_;  // in leaf order, for the exact test
-  std::vector<std::uint32_t> ids_;
+  std::vector<TrianglePack> packs_;  // in leaf order
+  std::vector<Triangle> triangles_;  // triangles_[4·pack + lane], for the exact test (unused lanes: copies)
+  std::vector<std::uint32_t> ids_;   // the set's index, as triangles_
 };
 
 }  // namespace illum
