@@ -17,7 +17,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <ctime>
 #include <limits>
 #include <string>
 #include <vector>
@@ -28,6 +27,7 @@
 #include "illum/core/pinhole_camera.hpp"
 #include "illum/core/random.hpp"
 #include "illum/core/stopwatch.hpp"
+#include "illum/core/thread_cpu_stopwatch.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/table.hpp"
 
@@ -35,21 +35,9 @@ namespace {
 
 using namespace illum;
 
-// The calling thread's CPU time: on a machine shared with other jobs, wall
-// time counts the slices other processes took; this counts only ours.
-class CpuStopwatch {
- public:
-  CpuStopwatch() : start_(now()) {}
-  double seconds() const { return now() - start_; }
-
- private:
-  static double now() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-  }
-  double start_;
-};
+// Thread CPU time: on a machine shared with other jobs, wall time counts the
+// slices other processes took; this counts only ours.
+using CpuStopwatch = ThreadCpuStopwatch;
 
 struct EmbreeScene {
   RTCDevice device = nullptr;

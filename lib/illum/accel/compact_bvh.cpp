@@ -34,7 +34,7 @@ struct FastRay {
   float inverse[3];      // 1/ω per axis, ±∞ where ω[a] = 0
   float near_origin[3];  // the origin moved against the near plane by more than its float rounding
   float far_origin[3];   // and towards the far plane
-  int near_plane[3];     // index into CompactBvhNode::planes: a (lo) or 3 + a (hi)
+  int near_plane[3];     // offset in floats into CompactBvhNode::planes: 4a (lo) or 4(3 + a) (hi)
   int far_plane[3];
 #if defined(__SSE2__)
   __m128 inverse4[3], near_origin4[3], far_origin4[3];  // the same, in four lanes
@@ -44,8 +44,8 @@ struct FastRay {
       const double inv = 1.0 / ray.direction[a];
       inverse[a] = static_cast<float>(inv);
       const bool negative = std::signbit(inv);
-      near_plane[a] = negative ? 3 + a : a;
-      far_plane[a] = negative ? a : 3 + a;
+      near_plane[a] = 4 * (negative ? 3 + a : a);
+      far_plane[a] = 4 * (negative ? a : 3 + a);
       // Moving the origin by w towards +∞ is moving every plane by w towards −∞.
       const double w = 0x1p-21 * std::abs(ray.origin[a]);
       near_origin[a] = static_cast<float>(negative ? ray.origin[a] - w : ray.origin[a] + w);
@@ -63,33 +63,37 @@ struct FastRay {
 // result, the children the ray enters (bit k: child k). Conservative: see the header.
 inline int clip_four(const FastRay& r, const CompactBvhNode& n, float lo, float hi, float entry[4]) {
 #if defined(__SSE2__)
-  __m128 t0 = _mm_set1_ps(lo), t1 = _mm_set1_ps(hi);
-  const __m128 slack = _mm_set1_ps(float_far_slack), sign = _mm_set1_ps(-0.0f);
+  const float* planes = &n.planes[0][0];
+  __m128 t0 = _mm_set1_ps(lo), exit = _mm_set1_ps(float_infinity);
   for (int a = 0; a < 3; ++a) {
     const __m128 s_near =
-        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.planes[r.near_plane[a]]), r.near_origin4[a]), r.inverse4[a]);
+        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(planes + r.near_plane[a]), r.near_origin4[a]), r.inverse4[a]);
     const __m128 s_far =
-        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.planes[r.far_plane[a]]), r.far_origin4[a]), r.inverse4[a]);
-    // The exit widened by 2γ₃ of its size.
-    const __m128 widened = _mm_add_ps(s_far, _mm_mul_ps(slack, _mm_andnot_ps(sign, s_far)));
-    t0 = _mm_max_ps(s_near, t0);  // a NaN s_near yields t0 (SSE returns the second operand)
-    t1 = _mm_min_ps(widened, t1);
+        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(planes + r.far_plane[a]), r.far_origin4[a]), r.inverse4[a]);
+    t0 = _mm_max_ps(s_near, t0);     // a NaN s_near (0·∞) yields t0: SSE returns the second operand
+    exit = _mm_min_ps(s_far, exit);  // and a NaN s_far yields exit
   }
+  // The exit widened by 2γ₃ of its size; x + 2γ₃|x| grows with x, so widening the nearest
+  // exit once is widening each axis's exit and taking the nearest.
+  const __m128 widened =
+      _mm_add_ps(exit, _mm_mul_ps(_mm_set1_ps(float_far_slack), _mm_andnot_ps(_mm_set1_ps(-0.0f), exit)));
+  const __m128 t1 = _mm_min_ps(widened, _mm_set1_ps(hi));
   _mm_storeu_ps(entry, t0);
-  return _mm_movemask_ps(_mm_cmple_ps(t0, t1));
+  // An empty slot (lo = +∞, hi = −∞) enters at +∞ (its widened exit is NaN and drops out).
+  return _mm_movemask_ps(_mm_and_ps(_mm_cmple_ps(t0, t1), _mm_cmplt_ps(t0, _mm_set1_ps(float_infinity))));
 #else
   int inside = 0;
   for (int k = 0; k < 4; ++k) {
     float t0 = lo, t1 = hi;
     for (int a = 0; a < 3; ++a) {
-      const float s_near = (n.planes[r.near_plane[a]][k] - r.near_origin[a]) * r.inverse[a];
-      const float s_far = (n.planes[r.far_plane[a]][k] - r.far_origin[a]) * r.inverse[a];
+      const float s_near = ((&n.planes[0][0])[r.near_plane[a] + k] - r.near_origin[a]) * r.inverse[a];
+      const float s_far = ((&n.planes[0][0])[r.far_plane[a] + k] - r.far_origin[a]) * r.inverse[a];
       const float widened = s_far + float_far_slack * std::abs(s_far);
       t0 = s_near > t0 ? s_near : t0;
       t1 = widened < t1 ? widened : t1;
     }
     entry[k] = t0;
-    if (t0 <= t1) inside |= 1 << k;
+    if (t0 <= t1 && t0 < float_infinity) inside |= 1 << k;
   }
   return inside;
 #endif
@@ -349,6 +353,14 @@ std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters&
       if (inside != 0 && (inside & (inside - 1)) == 0) {  // one child entered: no sorting, no stack
         const int k = __builtin_ctz(inside);
         current = Entry{node.child[k], node.count[k], entry[k]};
+        continue;
+      }
+      if (inside != 0 && __builtin_popcount(static_cast<unsigned>(inside)) == 2) {  // the common pair
+        const int k0 = __builtin_ctz(inside), k1 = __builtin_ctz(inside & (inside - 1));
+        const int near = entry[k1] < entry[k0] ? k1 : k0, far = near == k0 ? k1 : k0;
+        stack[top] = Entry{node.child[far], node.count[far], entry[far]};
+        prefetch(&stack[top++]);
+        current = Entry{node.child[near], node.count[near], entry[near]};
         continue;
       }
       if (inside != 0) {
