@@ -523,7 +523,7 @@ void study_structures_in_use(OutputFolder& out, bool quick) {
   }
   out.table(bvhs, "bvh_layouts",
             "The same SAH tree traversed by the exercise's code (two children, double boxes) and by the "
-            "production layout (four float children per node, filtered triangle tests)");
+            "production layout (eight float children per node, four-lane filtered triangle tests)");
 
   const RadiosityScene box = load_radiosity_scene("cornell", quick ? 200.0 : 75.0);
   const int pairs = quick ? 12 : 60, samples = quick ? 64 : 256;

@@ -44,8 +44,8 @@ struct FastRay {
       const double inv = 1.0 / ray.direction[a];
       inverse[a] = static_cast<float>(inv);
       const bool negative = std::signbit(inv);
-      near_plane[a] = 4 * (negative ? 3 + a : a);
-      far_plane[a] = 4 * (negative ? a : 3 + a);
+      near_plane[a] = compact_bvh_width * (negative ? 3 + a : a);
+      far_plane[a] = compact_bvh_width * (negative ? a : 3 + a);
       // Moving the origin by w towards +∞ is moving every plane by w towards −∞.
       const double w = 0x1p-21 * std::abs(ray.origin[a]);
       near_origin[a] = static_cast<float>(negative ? ray.origin[a] - w : ray.origin[a] + w);
@@ -59,11 +59,10 @@ struct FastRay {
   }
 };
 
-// The entry parameter of each of the four children within [lo, hi] and, as the
+// The entry parameter of each of four children (`planes`: a node's half) within [lo, hi] and, as the
 // result, the children the ray enters (bit k: child k). Conservative: see the header.
-inline int clip_four(const FastRay& r, const CompactBvhNode& n, float lo, float hi, float entry[4]) {
+inline int clip_four(const FastRay& r, const float* planes, float lo, float hi, float entry[4]) {
 #if defined(__SSE2__)
-  const float* planes = &n.planes[0][0];
   __m128 t0 = _mm_set1_ps(lo), exit = _mm_set1_ps(float_infinity);
   for (int a = 0; a < 3; ++a) {
     const __m128 s_near =
@@ -86,8 +85,8 @@ inline int clip_four(const FastRay& r, const CompactBvhNode& n, float lo, float 
   for (int k = 0; k < 4; ++k) {
     float t0 = lo, t1 = hi;
     for (int a = 0; a < 3; ++a) {
-      const float s_near = ((&n.planes[0][0])[r.near_plane[a] + k] - r.near_origin[a]) * r.inverse[a];
-      const float s_far = ((&n.planes[0][0])[r.far_plane[a] + k] - r.far_origin[a]) * r.inverse[a];
+      const float s_near = (planes[r.near_plane[a] + k] - r.near_origin[a]) * r.inverse[a];
+      const float s_far = (planes[r.far_plane[a] + k] - r.far_origin[a]) * r.inverse[a];
       const float widened = s_far + float_far_slack * std::abs(s_far);
       t0 = s_near > t0 ? s_near : t0;
       t1 = widened < t1 ? widened : t1;
@@ -97,6 +96,13 @@ inline int clip_four(const FastRay& r, const CompactBvhNode& n, float lo, float 
   }
   return inside;
 #endif
+}
+
+// clip_four on both halves of a node: bit k of the result for child k.
+inline int clip_node(const FastRay& r, const CompactBvhNode& n, float lo, float hi, float entry[8]) {
+  static_assert(compact_bvh_width == 8);
+  const float* planes = &n.planes[0][0];
+  return clip_four(r, planes, lo, hi, entry) | clip_four(r, planes + 4, lo, hi, entry + 4) << 4;
 }
 
 // The filter's rounding bound, relative: K = 2⁻¹⁷ = 128 float ulps; the worst case of each
@@ -217,10 +223,10 @@ std::uint32_t pack_leaf(const std::vector<Triangle>& tree_triangles,
 // Lays out Bvh inner node `i` as nodes[at], its inner descendants after it.
 void lay_out(const std::vector<BvhNode>& tree, std::uint32_t i, std::uint32_t at,
              std::vector<CompactBvhNode>& nodes) {
-  // Open the largest inner child until there are four children or only leaves.
-  std::uint32_t kids[4] = {i + 1, tree[i].first, 0, 0};
+  // Open the largest inner child until there are eight children or only leaves.
+  std::uint32_t kids[compact_bvh_width] = {i + 1, tree[i].first};
   int n = 2;
-  while (n < 4) {
+  while (n < compact_bvh_width) {
     int widest = -1;
     for (int k = 0; k < n; ++k)
       if (!tree[kids[k]].leaf() &&
@@ -231,7 +237,7 @@ void lay_out(const std::vector<BvhNode>& tree, std::uint32_t i, std::uint32_t at
     kids[widest] = opened + 1;
     kids[n++] = tree[opened].first;
   }
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < compact_bvh_width; ++k) {
     CompactBvhNode& node = nodes[at];
     if (k >= n) {  // an empty slot
       for (int a = 0; a < 3; ++a) {
@@ -295,7 +301,7 @@ CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
   if (tree[0].leaf()) {
     // One leaf: slot 0 holds it, the other slots are empty.
     CompactBvhNode& root = nodes_[0];
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < compact_bvh_width; ++k)
       for (int a = 0; a < 3; ++a) {
         root.planes[a][k] = k == 0 ? round_down(tree[0].box.lo[a]) : float_infinity;
         root.planes[3 + a][k] = k == 0 ? round_up(tree[0].box.hi[a]) : -float_infinity;
@@ -310,7 +316,7 @@ CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
   triangles_.reserve(bvh.triangles().size() * 4 / 3 + 4);
   ids_.reserve(triangles_.capacity());
   for (CompactBvhNode& node : nodes_)
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < compact_bvh_width; ++k)
       if (node.count[k] > 0 && node.planes[0][k] != float_infinity)
         node.child[k] =
             pack_leaf(bvh.triangles(), bvh.ids(), node.child[k], node.count[k], packs_, triangles_, ids_);
@@ -323,7 +329,8 @@ void CompactBvh::prefetch(const void* entry) const {
                                 : reinterpret_cast<const char*>(&packs_[e.child]);
   _mm_prefetch(at, _MM_HINT_T0);
   _mm_prefetch(at + 64, _MM_HINT_T0);
-  if (e.count != 0) _mm_prefetch(at + 128, _MM_HINT_T0);
+  _mm_prefetch(at + 128, _MM_HINT_T0);
+  if (e.count == 0) _mm_prefetch(at + 192, _MM_HINT_T0);
 #else
   (void)entry;
 #endif
@@ -336,7 +343,7 @@ std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters&
   float t_hi = filter_hi(ray.range.hi);
   Ray probe = ray;  // probe.range.hi: the closest hit so far
   std::optional<AccelHit> best;
-  Entry stack[3 * bvh_max_depth + 4];
+  Entry stack[(compact_bvh_width - 1) * bvh_max_depth + compact_bvh_width];
   int top = 0;
   std::uint64_t visits = 0, tests = 0;
   const float lo = round_down(ray.range.lo);
@@ -347,9 +354,9 @@ std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters&
   for (;;) {
     if (current.count == 0) {
       const CompactBvhNode& node = nodes_[current.child];
-      visits += 4;
-      float entry[4];
-      int inside = clip_four(r, node, lo, reach_float, entry);
+      visits += compact_bvh_width;
+      float entry[compact_bvh_width];
+      int inside = clip_node(r, node, lo, reach_float, entry);
       if (inside != 0 && (inside & (inside - 1)) == 0) {  // one child entered: no sorting, no stack
         const int k = __builtin_ctz(inside);
         current = Entry{node.child[k], node.count[k], entry[k]};
@@ -364,7 +371,7 @@ std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters&
         continue;
       }
       if (inside != 0) {
-        Entry hits[4];
+        Entry hits[compact_bvh_width];
         int n = 0;
         for (; inside != 0; inside &= inside - 1) {
           const int k = __builtin_ctz(inside);
@@ -414,16 +421,16 @@ bool CompactBvh::occluded(const Ray& ray, TraversalCounters& counters) const {
   const FastRay r(ray);
   const PackRay pr(ray);
   const float t_lo = filter_lo(ray.range.lo), t_hi = filter_hi(ray.range.hi);
-  Entry stack[3 * bvh_max_depth + 4];
+  Entry stack[(compact_bvh_width - 1) * bvh_max_depth + compact_bvh_width];
   int top = 0;
   const float lo = round_down(ray.range.lo), hi = round_up(ray.range.hi);
   Entry current{0, 0, lo};
   for (;;) {
     if (current.count == 0) {
       const CompactBvhNode& node = nodes_[current.child];
-      counters.nodes_visited += 4;
-      float entry[4];
-      for (int inside = clip_four(r, node, lo, hi, entry); inside != 0; inside &= inside - 1) {
+      counters.nodes_visited += compact_bvh_width;
+      float entry[compact_bvh_width];
+      for (int inside = clip_node(r, node, lo, hi, entry); inside != 0; inside &= inside - 1) {
         const int k = __builtin_ctz(inside);
         stack[top++] = Entry{node.child[k], node.count[k], entry[k]};
       }

@@ -1,15 +1,18 @@
 #pragma once
 // The production BVH, lesson 08 (§4): the same binned-SAH tree as Bvh, its
-// levels collapsed in pairs into four-child nodes and laid out for speed.
+// levels collapsed (about three at a time) into eight-child nodes and laid
+// out for speed.
 // Bvh's traversal (bvh_traversal.cpp) is the teaching version, the
 // exercise; this is the one the scene, the radiosity visibility and the
 // Embree comparison use ("bvh"; the teaching one is "bvh_teaching").
 //
 // What changes, and why each is safe:
-//   * a node holds its (up to) four children's boxes, in float, rounded
+//   * a node holds its (up to) eight children's boxes, in float, rounded
 //     OUTWARD (lo down, hi up), so each float box contains the double one;
-//     one node is two cache lines, and half as many nodes lie on a path;
-//   * the four boxes are clipped at once (SSE, four float lanes). The ray
+//     one node is four cache lines, and a third as many nodes lie on a path
+//     (each node a dependent memory access: the cost a profile shows);
+//   * the eight boxes are clipped four at a time (SSE2, four float lanes,
+//     the x86-64 baseline: no run-time dispatch). The ray
 //     origin is moved by 2⁻²¹·|o| (more than its rounding to float) towards
 //     each box's outside, and the exit widened by 2γ₃ (float): the float
 //     test can only accept more than the exact one, never less;
@@ -40,17 +43,17 @@
 
 namespace illum {
 
-// Four children: box planes [plane][child], planes 0–2 the lo of x, y, z and
-// 3–5 the hi; for each child a leaf's triangle run (count > 0) or the index of
-// its node (count = 0). A leaf's `child` is its first TrianglePack. An unused slot has an empty box (lo = +∞,
-// hi = −∞) that no ray enters.
+// Eight children: box planes [plane][child], planes 0–2 the lo of x, y, z and
+// 3–5 the hi; for each child a leaf (count > 0 triangles, `child` its first
+// TrianglePack) or the index of its node (count = 0). An unused slot has an
+// empty box (lo = +∞, hi = −∞) that no ray enters.
+constexpr int compact_bvh_width = 8;
 struct alignas(64) CompactBvhNode {
-  float planes[6][4];
-  std::uint32_t child[4];
-  std::uint16_t count[4];
-  std::uint64_t pad = 0;
+  float planes[6][compact_bvh_width];
+  std::uint32_t child[compact_bvh_width];
+  std::uint16_t count[compact_bvh_width];
 };
-static_assert(sizeof(CompactBvhNode) == 128);
+static_assert(sizeof(CompactBvhNode) == 256);
 
 // The filter's view of four triangles, [axis][lane]: a vertex, the two edges
 // from it, and their ∞-norms for the rounding bound. A leaf of n triangles
