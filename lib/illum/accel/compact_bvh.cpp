@@ -159,7 +159,7 @@ inline int may_hit(const PackRay& r, const TrianglePack& pack, float lo, float h
   // a = ‖o‖ + ‖v0‖ bounding ‖s‖ and the rounding of o and v0 to float.
   const __m128 k = _mm_set1_ps(filter_rounding);
   const __m128 size = mul(k, add(r.origin_size, load(pack.v0_size)));
-  const __m128 e1 = load(pack.e1_size), e2 = load(pack.e2_size);
+  const __m128 e1 = load(pack.edge_size), e2 = e1;  // one bound for both edges: a little looser
   const __m128 de1 = mul(r.direction_size, e1), de2 = mul(r.direction_size, e2);
   const __m128 bound_u = mul(size, de2), bound_v = mul(size, de1), bound_det = mul(k, mul(de2, e1)),
                bound_t = mul(size, mul(e1, e2));
@@ -191,8 +191,7 @@ float filter_lo(double lo) { return lo > 0.0 ? round_down(lo) * (1.0f - 0x1p-20f
 // packs.size() on; returns the first pack's index.
 std::uint32_t pack_leaf(const std::vector<Triangle>& tree_triangles,
                         const std::vector<std::uint32_t>& tree_ids, std::uint32_t first, std::uint32_t count,
-                        std::vector<TrianglePack>& packs, std::vector<Triangle>& triangles,
-                        std::vector<std::uint32_t>& ids) {
+                        std::vector<TrianglePack>& packs, std::vector<Triangle>& triangles) {
   const auto start = static_cast<std::uint32_t>(packs.size());
   for (std::uint32_t base = 0; base < count; base += 4) {
     TrianglePack pack{};
@@ -210,10 +209,9 @@ std::uint32_t pack_leaf(const std::vector<Triangle>& tree_triangles,
         e2_size = std::max(e2_size, std::abs(e2[a]));
       }
       pack.v0_size[lane] = round_up(v0_size);
-      pack.e1_size[lane] = round_up(e1_size);
-      pack.e2_size[lane] = round_up(e2_size);
+      pack.edge_size[lane] = round_up(std::max(e1_size, e2_size));
+      pack.id[lane] = tree_ids[k];
       triangles.push_back(t);
-      ids.push_back(tree_ids[k]);
     }
     packs.push_back(pack);
   }
@@ -314,12 +312,11 @@ CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
   // Each leaf slot (an empty slot has lo = +∞) now points at its packs.
   packs_.reserve(bvh.triangles().size() / 3 + 1);
   triangles_.reserve(bvh.triangles().size() * 4 / 3 + 4);
-  ids_.reserve(triangles_.capacity());
   for (CompactBvhNode& node : nodes_)
     for (int k = 0; k < compact_bvh_width; ++k)
       if (node.count[k] > 0 && node.planes[0][k] != float_infinity)
         node.child[k] =
-            pack_leaf(bvh.triangles(), bvh.ids(), node.child[k], node.count[k], packs_, triangles_, ids_);
+            pack_leaf(bvh.triangles(), bvh.ids(), node.child[k], node.count[k], packs_, triangles_);
 }
 
 void CompactBvh::prefetch(const void* entry) const {
@@ -394,7 +391,7 @@ std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters&
         for (; lanes != 0; lanes &= lanes - 1) {
           const std::uint32_t k = 4 * p + static_cast<std::uint32_t>(__builtin_ctz(lanes));
           if (const auto hit = illum::intersect(probe, triangles_[k])) {
-            best = AccelHit{*hit, ids_[k]};
+            best = AccelHit{*hit, packs_[p].id[k % 4]};
             probe.range.hi = hit->s;
             t_hi = filter_hi(hit->s);
             reach_float = round_up(probe.range.hi + culling_slack * std::abs(probe.range.hi));
@@ -449,8 +446,7 @@ bool CompactBvh::occluded(const Ray& ray, TraversalCounters& counters) const {
 }
 
 std::size_t CompactBvh::memory_bytes() const {
-  return nodes_.size() * sizeof(CompactBvhNode) + packs_.size() * sizeof(TrianglePack) +
-         ids_.size() * sizeof(std::uint32_t);
+  return nodes_.size() * sizeof(CompactBvhNode) + packs_.size() * sizeof(TrianglePack);
 }
 
 }  // namespace illum

@@ -56,13 +56,15 @@ struct alignas(64) CompactBvhNode {
 static_assert(sizeof(CompactBvhNode) == 256);
 
 // The filter's view of four triangles, [axis][lane]: a vertex, the two edges
-// from it, and their ∞-norms for the rounding bound. A leaf of n triangles
+// from it, their ∞-norms for the rounding bound, and the triangles' ids. A leaf of n triangles
 // owns ⌈n/4⌉ consecutive packs; its last pack's unused lanes are masked out.
 struct alignas(16) TrianglePack {
   float v0[3][4];
   float e1[3][4];
   float e2[3][4];
-  float v0_size[4], e1_size[4], e2_size[4];  // ‖v0‖∞, ‖e1‖∞, ‖e2‖∞ (of the double values), rounded up
+  float v0_size[4];     // ‖v0‖∞ (of the double vertex), rounded up
+  float edge_size[4];   // max(‖e1‖∞, ‖e2‖∞) (of the double edges), rounded up
+  std::uint32_t id[4];  // the set's index of each lane's triangle: in the lines the filter reads
 };
 static_assert(sizeof(TrianglePack) == 192);
 
@@ -84,7 +86,6 @@ class CompactBvh final : public TriangleAccel {
   std::vector<CompactBvhNode> nodes_;
   std::vector<TrianglePack> packs_;  // in leaf order
   std::vector<Triangle> triangles_;  // triangles_[4·pack + lane], for the exact test (unused lanes: copies)
-  std::vector<std::uint32_t> ids_;   // the set's index, as triangles_
 };
 
 }  // namespace illum
