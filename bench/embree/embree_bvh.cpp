@@ -1,7 +1,8 @@
 // Lesson 08: illum's BVH beside Intel Embree 3, on the same meshes and rays.
 //
 //   cmake -S . -B build/bench -DILLUM_BUILD_BENCH=ON && cmake --build build/bench -j2 --target
-//   bench_embree_bvh build/bench/bin/bench_embree_bvh            (--quick: smaller meshes and ray sets)
+//   bench_embree_bvh build/bench/bin/bench_embree_bvh   (--quick: smaller meshes and ray sets;
+//   --out DIR: also write DIR/embree_bvh.md and DIR/embree_bvh_build.md)
 //
 // Two sphereflakes (about 10^5 and 10^6 triangles) × two ray sets (512² primary
 // rays from a camera; 512² random rays through the bounding box), one thread,
@@ -16,8 +17,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <ctime>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "illum/accel/bvh.hpp"
@@ -26,26 +27,17 @@
 #include "illum/core/pinhole_camera.hpp"
 #include "illum/core/random.hpp"
 #include "illum/core/stopwatch.hpp"
+#include "illum/core/thread_cpu_stopwatch.hpp"
+#include "illum/io/output_folder.hpp"
+#include "illum/io/table.hpp"
 
 namespace {
 
 using namespace illum;
 
-// The calling thread's CPU time: on a machine shared with other jobs, wall
-// time counts the slices other processes took; this counts only ours.
-class CpuStopwatch {
- public:
-  CpuStopwatch() : start_(now()) {}
-  double seconds() const { return now() - start_; }
-
- private:
-  static double now() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-  }
-  double start_;
-};
+// Thread CPU time: on a machine shared with other jobs, wall time counts the
+// slices other processes took; this counts only ours.
+using CpuStopwatch = ThreadCpuStopwatch;
 
 struct EmbreeScene {
   RTCDevice device = nullptr;
@@ -124,12 +116,12 @@ std::vector<Ray> box_rays(int count, const IndexedTriangles& mesh) {
 
 void compare(const char* mesh_name, const IndexedTriangles& mesh, const char* ray_name,
              const std::vector<Ray>& rays, const CompactBvh& bvh, const Bvh& teaching,
-             const EmbreeScene& embree) {
+             const EmbreeScene& embree, Table& table) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   std::vector<float> t_embree(rays.size()), bary(rays.size());
   std::vector<double> t_illum(rays.size());
-  TraversalCounters counters;
+  TraversalCounters counters, scratch;
   double embree_best = infinity, illum_best = infinity, teaching_best = infinity;
   for (int repeat = 0; repeat < 5; ++repeat) {  // best of five, interleaved, on a shared machine
     CpuStopwatch a;
@@ -137,13 +129,13 @@ void compare(const char* mesh_name, const IndexedTriangles& mesh, const char* ra
     embree_best = std::min(embree_best, a.seconds());
     CpuStopwatch b;
     for (std::size_t i = 0; i < rays.size(); ++i) {
-      const auto hit = bvh.intersect(rays[i], counters);
+      const auto hit = bvh.intersect(rays[i], repeat == 0 ? counters : scratch);  // count one pass
       t_illum[i] = hit ? hit->hit.s : infinity;
     }
     illum_best = std::min(illum_best, b.seconds());
     if (repeat < 2) {
       CpuStopwatch c;
-      for (const Ray& ray : rays) do_not_optimize(teaching.intersect(ray, counters).has_value());
+      for (const Ray& ray : rays) do_not_optimize(teaching.intersect(ray, scratch).has_value());
       teaching_best = std::min(teaching_best, c.seconds());
     }
   }
@@ -157,23 +149,50 @@ void compare(const char* mesh_name, const IndexedTriangles& mesh, const char* ra
     }
   }
   const double n = static_cast<double>(rays.size());
-  std::printf("%-10s %8zu %-7s %7zu | %8.3f %8.3f %6.3f | %8.3f %6.3f | %8d %10d %8d\n", mesh_name,
-              mesh.faces.size(), ray_name, rays.size(), 1e-6 * n / embree_best, 1e-6 * n / illum_best,
-              embree_best / illum_best, 1e-6 * n / teaching_best, embree_best / teaching_best, hit_miss,
-              hit_miss_edge, t_differs);
+  const double rays_counted = static_cast<double>(counters.rays);
+  const double nodes = static_cast<double>(counters.nodes_visited) / rays_counted;
+  const double tests = static_cast<double>(counters.triangle_tests) / rays_counted;
+  std::printf("%-10s %8zu %-7s %7zu | %8.3f %8.3f %6.3f | %8.3f %6.3f | %8d %10d %8d | %6.1f %6.1f\n",
+              mesh_name, mesh.faces.size(), ray_name, rays.size(), 1e-6 * n / embree_best,
+              1e-6 * n / illum_best, embree_best / illum_best, 1e-6 * n / teaching_best,
+              embree_best / teaching_best, hit_miss, hit_miss_edge, t_differs, nodes, tests);
+  table.add_row({std::string(mesh_name), static_cast<std::int64_t>(mesh.faces.size()), std::string(ray_name),
+                 1e-6 * n / embree_best, 1e-6 * n / illum_best, embree_best / illum_best,
+                 static_cast<std::int64_t>(hit_miss), static_cast<std::int64_t>(hit_miss_edge),
+                 static_cast<std::int64_t>(t_differs), nodes, tests});
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
+  bool quick = false;
+  std::string out_dir;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--quick") == 0) {
+      quick = true;
+    } else if (std::strcmp(argv[i], "--out") == 0 && i + 1 < argc && argv[i + 1][0] != '\0') {
+      out_dir = argv[++i];
+    } else {
+      std::fprintf(
+          stderr,
+          "bench_embree_bvh: unknown option or missing value: '%s'\nusage: %s [--quick] [--out DIR]\n",
+          argv[i], argv[0]);
+      return 2;
+    }
+  }
   const int side = quick ? 128 : 512;
   std::printf(
       "one thread, thread CPU time (best of five, interleaved); ratio = illum / Embree throughput; "
       "disagreements on hit/miss (away from edges, "
-      "near an edge), and on t beyond 1e-5 relative\n");
-  std::printf("%-10s %8s %-7s %7s | %8s %8s %6s | %8s %6s | %8s %10s %8s\n", "mesh", "tris", "rays", "count",
-              "Embree", "illum", "ratio", "teaching", "ratio", "hit/miss", "near edge", "t");
+      "near an edge), and on t beyond 1e-5 relative; illum's nodes (child boxes) and triangles tested per "
+      "ray\n");
+  std::printf("%-10s %8s %-7s %7s | %8s %8s %6s | %8s %6s | %8s %10s %8s | %6s %6s\n", "mesh", "tris", "rays",
+              "count", "Embree", "illum", "ratio", "teaching", "ratio", "hit/miss", "near edge", "t", "nodes",
+              "tests");
+  Table table({"mesh", "triangles", "rays", "Embree Mrays/s", "illum Mrays/s", "ratio",
+               "hit/miss away from edges", "hit/miss near edges", "t differs", "nodes per ray",
+               "tests per ray"});
+  Table builds({"triangles", "Embree build seconds", "illum build seconds"});
   for (const std::size_t target : {std::size_t{100000}, std::size_t{1000000}}) {
     const IndexedTriangles mesh = sphereflake(sphereflake_for(quick ? target / 10 : target));
     const TriangleSet set = TriangleSet::from_mesh(mesh.vertices, mesh.faces, "sphereflake");
@@ -184,9 +203,17 @@ int main(int argc, char** argv) {
     const EmbreeScene embree(mesh);
     std::printf("build %zu triangles: Embree %.3f s, illum %.3f s\n", mesh.faces.size(), embree.build_seconds,
                 illum_build);
+    builds.add_row({static_cast<std::int64_t>(mesh.faces.size()), embree.build_seconds, illum_build});
     const char* name = target == 100000 ? "flake1e5" : "flake1e6";
-    compare(name, mesh, "camera", camera_rays(side), bvh, teaching, embree);
-    compare(name, mesh, "random", box_rays(side * side, mesh), bvh, teaching, embree);
+    compare(name, mesh, "camera", camera_rays(side), bvh, teaching, embree, table);
+    compare(name, mesh, "random", box_rays(side * side, mesh), bvh, teaching, embree, table);
+  }
+  if (!out_dir.empty()) {
+    OutputFolder out(out_dir, "bench_embree", "illum's BVH beside Embree 3");
+    out.table(table, "embree_bvh", "illum's BVH beside Embree 3: one thread, closest hit, best of five", 3);
+    out.table(builds, "embree_bvh_build", "Build times of illum's BVH and of Embree 3, one thread", 3);
+    out.finish();
+    std::printf("wrote %s/embree_bvh.md\n", out_dir.c_str());
   }
   return 0;
 }

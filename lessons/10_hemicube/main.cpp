@@ -16,6 +16,7 @@
 
 #include "illum/core/error.hpp"
 #include "illum/core/image.hpp"
+#include "illum/core/log_log_fit.hpp"
 #include "illum/core/random.hpp"
 #include "illum/core/stopwatch.hpp"
 #include "illum/io/output_folder.hpp"
@@ -163,21 +164,6 @@ RowError row_error(const std::vector<double>& row, const std::vector<double>& ex
   e.mean_abs /= seen;
   e.mean_rel /= seen;
   return e;
-}
-
-// Least-squares slope of log y against log x over the points with x ≥ x_min and y > 0.
-double log_log_slope(const std::vector<double>& x, const std::vector<double>& y, double x_min = 0) {
-  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    if (x[k] < x_min || !(y[k] > 0)) continue;
-    const double lx = std::log(x[k]), ly = std::log(y[k]);
-    n += 1;
-    sx += lx;
-    sy += ly;
-    sxx += lx * lx;
-    sxy += lx * ly;
-  }
-  return n < 2 ? std::nan("") : (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 // --- pictures ----------------------------------------------------------------------------

@@ -67,4 +67,28 @@ TEST_SUITE("stability") {
     }
     CHECK(mismatches(CompactBvh(set, {}), set, rays) == 0);
   }
+
+  TEST_CASE(
+      "hard case: small triangles far from the origin, rays at their vertices and edge midpoints: the "
+      "float filter's bound grows with |P0| + |V0|, so no hit is lost at any scale") {
+    const IndexedTriangles flake = sphereflake({.levels = 1, .slices = 12});
+    for (const double size : {1e-3, 1.0, 1e3}) {
+      CAPTURE(size);
+      // The flake shrunk or grown by `size` and moved far off the origin (1000 of its own units at size 1).
+      const Vec3 offset = 1000.0 * Vec3(1.0, -0.7, 0.5);
+      std::vector<Point3> moved;
+      for (const Point3& p : flake.vertices) moved.push_back(offset + size * p);
+      const TriangleSet set = TriangleSet::from_mesh(moved, flake.faces, "far sphereflake");
+      Rng rng(303);
+      std::vector<Ray> rays;
+      for (int k = 0; k < 1500; ++k) {
+        const auto& f = flake.faces[rng.below(static_cast<std::uint32_t>(flake.faces.size()))];
+        const Point3 a = moved[f[0]], b = moved[f[1]];
+        const Point3 target = k % 2 == 0 ? a : 0.5 * (a + b);  // a vertex, or an edge's midpoint
+        const Point3 o = target + 3.0 * size * test08::random_direction(rng);
+        rays.push_back(Ray::toward(o, target - o));
+      }
+      CHECK(mismatches(CompactBvh(set, {}), set, rays) == 0);
+    }
+  }
 }

@@ -17,6 +17,8 @@ constexpr float float_infinity = std::numeric_limits<float>::infinity();
 constexpr float float_far_slack = 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 // A stacked child is skipped when its entry lies beyond the best hit by more than this (relative).
 constexpr double culling_slack = 1e-5;
+// Subtrees of at most this many triangles (one pack) become one leaf, if the settings allow it.
+constexpr std::uint32_t pack_width = 4;
 
 float round_down(double x) {
   const float f = static_cast<float>(x);
@@ -27,90 +29,202 @@ float round_up(double x) {
   return static_cast<double>(f) >= x ? f : std::nextafter(f, float_infinity);
 }
 
-// A ray prepared once for every box and triangle it meets.
+// A ray prepared once for every box it meets.
 struct FastRay {
-  Point3 origin;
-  Vec3 direction;
   float inverse[3];      // 1/ω per axis, ±∞ where ω[a] = 0
   float near_origin[3];  // the origin moved against the near plane by more than its float rounding
   float far_origin[3];   // and towards the far plane
-  int near_plane[3];     // index into CompactBvhNode::planes: a (lo) or 3 + a (hi)
+  int near_plane[3];     // offset in floats into CompactBvhNode::planes: 4a (lo) or 4(3 + a) (hi)
   int far_plane[3];
-  explicit FastRay(const Ray& ray) : origin(ray.origin), direction(ray.direction) {
+#if defined(__SSE2__)
+  __m128 inverse4[3], near_origin4[3], far_origin4[3];  // the same, in four lanes
+#endif
+  explicit FastRay(const Ray& ray) {
     for (int a = 0; a < 3; ++a) {
       const double inv = 1.0 / ray.direction[a];
       inverse[a] = static_cast<float>(inv);
       const bool negative = std::signbit(inv);
-      near_plane[a] = negative ? 3 + a : a;
-      far_plane[a] = negative ? a : 3 + a;
+      near_plane[a] = compact_bvh_width * (negative ? 3 + a : a);
+      far_plane[a] = compact_bvh_width * (negative ? a : 3 + a);
       // Moving the origin by w towards +∞ is moving every plane by w towards −∞.
       const double w = 0x1p-21 * std::abs(ray.origin[a]);
       near_origin[a] = static_cast<float>(negative ? ray.origin[a] - w : ray.origin[a] + w);
       far_origin[a] = static_cast<float>(negative ? ray.origin[a] + w : ray.origin[a] - w);
+#if defined(__SSE2__)
+      inverse4[a] = _mm_set1_ps(inverse[a]);
+      near_origin4[a] = _mm_set1_ps(near_origin[a]);
+      far_origin4[a] = _mm_set1_ps(far_origin[a]);
+#endif
     }
   }
 };
 
-// The entry parameter of each of the four children within [lo, hi], +∞ where
-// the ray misses it. Conservative: see the header.
-inline void clip_four(const FastRay& r, const CompactBvhNode& n, float lo, float hi, float entry[4]) {
+// The entry parameter of each of four children (`planes`: a node's half) within [lo, hi] and, as the
+// result, the children the ray enters (bit k: child k). Conservative: see the header.
+inline int clip_four(const FastRay& r, const float* planes, float lo, float hi, float entry[4]) {
 #if defined(__SSE2__)
-  __m128 t0 = _mm_set1_ps(lo), t1 = _mm_set1_ps(hi);
-  const __m128 slack = _mm_set1_ps(float_far_slack), sign = _mm_set1_ps(-0.0f);
+  __m128 t0 = _mm_set1_ps(lo), exit = _mm_set1_ps(float_infinity);
   for (int a = 0; a < 3; ++a) {
-    const __m128 inv = _mm_set1_ps(r.inverse[a]);
     const __m128 s_near =
-        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.planes[r.near_plane[a]]), _mm_set1_ps(r.near_origin[a])), inv);
+        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(planes + r.near_plane[a]), r.near_origin4[a]), r.inverse4[a]);
     const __m128 s_far =
-        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(n.planes[r.far_plane[a]]), _mm_set1_ps(r.far_origin[a])), inv);
-    // The exit widened by 2γ₃ of its size.
-    const __m128 widened = _mm_add_ps(s_far, _mm_mul_ps(slack, _mm_andnot_ps(sign, s_far)));
-    t0 = _mm_max_ps(s_near, t0);  // a NaN s_near yields t0 (SSE returns the second operand)
-    t1 = _mm_min_ps(widened, t1);
+        _mm_mul_ps(_mm_sub_ps(_mm_load_ps(planes + r.far_plane[a]), r.far_origin4[a]), r.inverse4[a]);
+    t0 = _mm_max_ps(s_near, t0);     // a NaN s_near (0·∞) yields t0: SSE returns the second operand
+    exit = _mm_min_ps(s_far, exit);  // and a NaN s_far yields exit
   }
-  const __m128 inside = _mm_cmple_ps(t0, t1);
-  _mm_storeu_ps(entry, _mm_or_ps(_mm_and_ps(inside, t0), _mm_andnot_ps(inside, _mm_set1_ps(float_infinity))));
+  // The exit widened by 2γ₃ of its size; x + 2γ₃|x| grows with x, so widening the nearest
+  // exit once is widening each axis's exit and taking the nearest.
+  const __m128 widened =
+      _mm_add_ps(exit, _mm_mul_ps(_mm_set1_ps(float_far_slack), _mm_andnot_ps(_mm_set1_ps(-0.0f), exit)));
+  const __m128 t1 = _mm_min_ps(widened, _mm_set1_ps(hi));
+  _mm_storeu_ps(entry, t0);
+  // An empty slot (lo = +∞, hi = −∞) enters at +∞ (its widened exit is NaN and drops out).
+  return _mm_movemask_ps(_mm_and_ps(_mm_cmple_ps(t0, t1), _mm_cmplt_ps(t0, _mm_set1_ps(float_infinity))));
 #else
+  int inside = 0;
   for (int k = 0; k < 4; ++k) {
     float t0 = lo, t1 = hi;
     for (int a = 0; a < 3; ++a) {
-      const float s_near = (n.planes[r.near_plane[a]][k] - r.near_origin[a]) * r.inverse[a];
-      const float s_far = (n.planes[r.far_plane[a]][k] - r.far_origin[a]) * r.inverse[a];
+      const float s_near = (planes[r.near_plane[a] + k] - r.near_origin[a]) * r.inverse[a];
+      const float s_far = (planes[r.far_plane[a] + k] - r.far_origin[a]) * r.inverse[a];
       const float widened = s_far + float_far_slack * std::abs(s_far);
       t0 = s_near > t0 ? s_near : t0;
       t1 = widened < t1 ? widened : t1;
     }
-    entry[k] = t0 <= t1 ? t0 : float_infinity;
+    entry[k] = t0;
+    if (t0 <= t1 && t0 < float_infinity) inside |= 1 << k;
   }
+  return inside;
 #endif
 }
 
-// Möller–Trumbore as a filter: false only when the ray clearly misses.
-inline bool may_hit(const FastRay& r, const EdgeTriangle& t, const Interval& range) {
-  constexpr double margin = 1e-4;
-  const Vec3 p = cross(r.direction, t.e2);
-  const double det = dot(t.e1, p);
-  if (std::abs(det) < t.grazing) return true;  // grazing: the exact test decides
-  // u = u_num/det, v = v_num/det, tested against [−margin, 1 + margin] without dividing.
-  const double sign = det > 0 ? 1.0 : -1.0, size = std::abs(det), slop = margin * size;
-  const Vec3 s = r.origin - t.v0;
-  const double u = sign * dot(s, p);
-  if (u < -slop || u > size + slop) return false;
-  const Vec3 q = cross(s, t.e1);
-  const double v = sign * dot(r.direction, q);
-  if (v < -slop || u + v > size + slop) return false;
-  const double d = dot(t.e2, q) / det;
-  const double slack = 1e-6 * std::abs(d);
-  return d + slack >= range.lo && d - slack <= range.hi;
+// clip_four on both halves of a node: bit k of the result for child k.
+inline int clip_node(const FastRay& r, const CompactBvhNode& n, float lo, float hi, float entry[8]) {
+  static_assert(compact_bvh_width == 8);
+  const float* planes = &n.planes[0][0];
+  return clip_four(r, planes, lo, hi, entry) | clip_four(r, planes + 4, lo, hi, entry + 4) << 4;
+}
+
+// The filter's rounding bound, relative: K = 2⁻¹⁷ = 128 float ulps; the worst case of each
+// quantity below (s = o − v0, p = ω × e2, q = s × e1 and their dot products) is under 64.
+constexpr float filter_rounding = 0x1p-17f;
+
+// A ray broadcast to the four lanes of a pack, with its norms for the bound.
+struct PackRay {
+#if defined(__SSE2__)
+  __m128 origin[3], direction[3];
+  __m128 origin_size, direction_size;  // ‖o‖∞, ‖ω‖∞ (rounded up)
+#endif
+  explicit PackRay(const Ray& ray) {
+#if defined(__SSE2__)
+    double o_size = 0, d_size = 0;
+    for (int a = 0; a < 3; ++a) {
+      origin[a] = _mm_set1_ps(static_cast<float>(ray.origin[a]));
+      direction[a] = _mm_set1_ps(static_cast<float>(ray.direction[a]));
+      o_size = std::max(o_size, std::abs(ray.origin[a]));
+      d_size = std::max(d_size, std::abs(ray.direction[a]));
+    }
+    origin_size = _mm_set1_ps(round_up(o_size));
+    direction_size = _mm_set1_ps(round_up(d_size));
+#else
+    (void)ray;
+#endif
+  }
+};
+
+// The lanes of `pack` (bit k: lane k) whose triangle the ray may hit with t in [lo, hi]
+// (lo ≤ 0 is no lower limit): Möller–Trumbore in float, each comparison widened by
+// its rounding bound (see the header), so a lane is dropped only on a sure miss.
+inline int may_hit(const PackRay& r, const TrianglePack& pack, float lo, float hi) {
+#if defined(__SSE2__)
+  const auto load = [](const float* x) { return _mm_load_ps(x); };
+  const auto mul = [](__m128 a, __m128 b) { return _mm_mul_ps(a, b); };
+  const auto sub = [](__m128 a, __m128 b) { return _mm_sub_ps(a, b); };
+  const auto add = [](__m128 a, __m128 b) { return _mm_add_ps(a, b); };
+  const __m128 s0 = sub(r.origin[0], load(pack.v0[0])), s1 = sub(r.origin[1], load(pack.v0[1])),
+               s2 = sub(r.origin[2], load(pack.v0[2]));
+  const __m128 a0 = load(pack.e1[0]), a1 = load(pack.e1[1]), a2 = load(pack.e1[2]);
+  const __m128 b0 = load(pack.e2[0]), b1 = load(pack.e2[1]), b2 = load(pack.e2[2]);
+  const __m128 d0 = r.direction[0], d1 = r.direction[1], d2 = r.direction[2];
+  // p = ω × e2, det = e1 · p, u = s · p; q = s × e1, v = ω · q, t·det = e2 · q.
+  const __m128 p0 = sub(mul(d1, b2), mul(d2, b1)), p1 = sub(mul(d2, b0), mul(d0, b2)),
+               p2 = sub(mul(d0, b1), mul(d1, b0));
+  const __m128 det = add(add(mul(a0, p0), mul(a1, p1)), mul(a2, p2));
+  const __m128 u = add(add(mul(s0, p0), mul(s1, p1)), mul(s2, p2));
+  const __m128 q0 = sub(mul(s1, a2), mul(s2, a1)), q1 = sub(mul(s2, a0), mul(s0, a2)),
+               q2 = sub(mul(s0, a1), mul(s1, a0));
+  const __m128 v = add(add(mul(d0, q0), mul(d1, q1)), mul(d2, q2));
+  const __m128 t = add(add(mul(b0, q0), mul(b1, q1)), mul(b2, q2));
+  // The bounds: K·a·‖ω‖·‖e2‖ (u), K·a·‖ω‖·‖e1‖ (v), K·‖e1‖·‖ω‖·‖e2‖ (det), K·a·‖e1‖·‖e2‖ (t·det),
+  // a = ‖o‖ + ‖v0‖ bounding ‖s‖ and the rounding of o and v0 to float.
+  const __m128 k = _mm_set1_ps(filter_rounding);
+  const __m128 size = mul(k, add(r.origin_size, load(pack.v0_size)));
+  const __m128 e1 = load(pack.edge_size), e2 = e1;  // one bound for both edges: a little looser
+  const __m128 de1 = mul(r.direction_size, e1), de2 = mul(r.direction_size, e2);
+  const __m128 bound_u = mul(size, de2), bound_v = mul(size, de1), bound_det = mul(k, mul(de2, e1)),
+               bound_t = mul(size, mul(e1, e2));
+  // Flip u, v, t·det by det's sign; |det| within its bound: the sign is unknown, the lane passes.
+  const __m128 sign = _mm_and_ps(det, _mm_set1_ps(-0.0f));
+  const __m128 size_det = _mm_andnot_ps(_mm_set1_ps(-0.0f), det);
+  const __m128 su = _mm_xor_ps(u, sign), sv = _mm_xor_ps(v, sign), st = _mm_xor_ps(t, sign);
+  const __m128 zero = _mm_setzero_ps();
+  __m128 miss = _mm_cmplt_ps(add(su, bound_u), zero);
+  miss = _mm_or_ps(miss, _mm_cmplt_ps(add(sv, bound_v), zero));
+  miss = _mm_or_ps(miss, _mm_cmpgt_ps(sub(add(su, sv), add(bound_u, bound_v)), add(size_det, bound_det)));
+  // t·|det| > hi·(|det| + its bound) for sure, or < lo·(|det| − its bound) for sure (lo > 0).
+  miss = _mm_or_ps(miss, _mm_cmpgt_ps(sub(st, bound_t), mul(_mm_set1_ps(hi), add(size_det, bound_det))));
+  miss = _mm_or_ps(miss, _mm_cmplt_ps(add(st, bound_t), mul(_mm_set1_ps(lo), sub(size_det, bound_det))));
+  miss = _mm_andnot_ps(_mm_cmple_ps(size_det, bound_det), miss);
+  return ~_mm_movemask_ps(miss) & 0xf;
+#else
+  (void)r, (void)pack, (void)lo, (void)hi;
+  return 0xf;  // no filter: the exact test decides every lane
+#endif
+}
+
+// The filter's limits on t: hi rounded up, lo rounded down, each by a further 2⁻²⁰
+// relative for the rounding of the products they enter; lo ≤ 0 (or hi < 0) is no limit.
+float filter_hi(double hi) { return hi >= 0.0 ? round_up(hi) * (1.0f + 0x1p-20f) : float_infinity; }
+float filter_lo(double lo) { return lo > 0.0 ? round_down(lo) * (1.0f - 0x1p-20f) : -float_infinity; }
+
+// Packs the triangles [first, first + count) of `tree_triangles` (and their ids) from
+// packs.size() on; returns the first pack's index.
+std::uint32_t pack_leaf(const std::vector<Triangle>& tree_triangles,
+                        const std::vector<std::uint32_t>& tree_ids, std::uint32_t first, std::uint32_t count,
+                        std::vector<TrianglePack>& packs, std::vector<Triangle>& triangles) {
+  const auto start = static_cast<std::uint32_t>(packs.size());
+  for (std::uint32_t base = 0; base < count; base += 4) {
+    TrianglePack pack{};
+    for (std::uint32_t lane = 0; lane < 4; ++lane) {
+      const std::uint32_t k = first + std::min(base + lane, count - 1);  // unused lanes: a copy
+      const Triangle& t = tree_triangles[k];
+      const Vec3 e1 = t.b - t.a, e2 = t.c - t.a;
+      double v0_size = 0, e1_size = 0, e2_size = 0;
+      for (int a = 0; a < 3; ++a) {
+        pack.v0[a][lane] = static_cast<float>(t.a[a]);
+        pack.e1[a][lane] = static_cast<float>(e1[a]);
+        pack.e2[a][lane] = static_cast<float>(e2[a]);
+        v0_size = std::max(v0_size, std::abs(t.a[a]));
+        e1_size = std::max(e1_size, std::abs(e1[a]));
+        e2_size = std::max(e2_size, std::abs(e2[a]));
+      }
+      pack.v0_size[lane] = round_up(v0_size);
+      pack.edge_size[lane] = round_up(std::max(e1_size, e2_size));
+      pack.id[lane] = tree_ids[k];
+      triangles.push_back(t);
+    }
+    packs.push_back(pack);
+  }
+  return start;
 }
 
 // Lays out Bvh inner node `i` as nodes[at], its inner descendants after it.
 void lay_out(const std::vector<BvhNode>& tree, std::uint32_t i, std::uint32_t at,
              std::vector<CompactBvhNode>& nodes) {
-  // Open the largest inner child until there are four children or only leaves.
-  std::uint32_t kids[4] = {i + 1, tree[i].first, 0, 0};
+  // Open the largest inner child until there are eight children or only leaves.
+  std::uint32_t kids[compact_bvh_width] = {i + 1, tree[i].first};
   int n = 2;
-  while (n < 4) {
+  while (n < compact_bvh_width) {
     int widest = -1;
     for (int k = 0; k < n; ++k)
       if (!tree[kids[k]].leaf() &&
@@ -121,7 +235,7 @@ void lay_out(const std::vector<BvhNode>& tree, std::uint32_t i, std::uint32_t at
     kids[widest] = opened + 1;
     kids[n++] = tree[opened].first;
   }
-  for (int k = 0; k < 4; ++k) {
+  for (int k = 0; k < compact_bvh_width; ++k) {
     CompactBvhNode& node = nodes[at];
     if (k >= n) {  // an empty slot
       for (int a = 0; a < 3; ++a) {
@@ -150,23 +264,42 @@ void lay_out(const std::vector<BvhNode>& tree, std::uint32_t i, std::uint32_t at
   }
 }
 
+// The tree with every inner node whose subtree holds at most `limit` triangles made a leaf of
+// them (a subtree's triangles are one run, its left child's first): one pack test instead
+// of a box test and a few part-empty packs. Children follow their parent in `tree`, so a
+// backward sweep sees them first; the merged subtree's nodes stay, unreachable.
+std::vector<BvhNode> merge_small_subtrees(const std::vector<BvhNode>& tree, std::uint32_t limit) {
+  std::vector<BvhNode> merged = tree;
+  for (std::size_t i = merged.size(); i-- > 0;) {
+    BvhNode& node = merged[i];
+    if (node.leaf()) continue;
+    const BvhNode &left = merged[i + 1], &right = merged[node.first];
+    if (left.leaf() && right.leaf() && left.count + right.count <= limit) {
+      node.count = left.count + right.count;
+      node.first = left.first;
+    }
+  }
+  return merged;
+}
+
 struct Entry {
   std::uint32_t child;
   std::uint32_t count;  // 0: an inner node
-  double enter;
+  float enter;          // a lower bound on where the ray enters its box
 };
 
 }  // namespace
 
 CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
   const Bvh bvh(set, settings);
-  const std::vector<BvhNode>& tree = bvh.nodes();
+  const std::vector<BvhNode> tree =
+      merge_small_subtrees(bvh.nodes(), std::min<std::uint32_t>(pack_width, settings.leaf_size));
   nodes_.reserve(tree.size() / 3 + 1);
   nodes_.emplace_back();
   if (tree[0].leaf()) {
     // One leaf: slot 0 holds it, the other slots are empty.
     CompactBvhNode& root = nodes_[0];
-    for (int k = 0; k < 4; ++k)
+    for (int k = 0; k < compact_bvh_width; ++k)
       for (int a = 0; a < 3; ++a) {
         root.planes[a][k] = k == 0 ? round_down(tree[0].box.lo[a]) : float_infinity;
         root.planes[3 + a][k] = k == 0 ? round_up(tree[0].box.hi[a]) : -float_infinity;
@@ -176,57 +309,93 @@ CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
   } else {
     lay_out(tree, 0, 0, nodes_);
   }
-  triangles_ = bvh.triangles();
-  ids_ = bvh.ids();
-  edges_.reserve(triangles_.size());
-  for (const Triangle& t : triangles_) {
-    const Vec3 e1 = t.b - t.a, e2 = t.c - t.a;
-    edges_.push_back(EdgeTriangle{t.a, e1, e2, 1e-6 * length(cross(e1, e2))});
-  }
+  // Each leaf slot (an empty slot has lo = +∞) now points at its packs.
+  packs_.reserve(bvh.triangles().size() / 3 + 1);
+  triangles_.reserve(bvh.triangles().size() * 4 / 3 + 4);
+  for (CompactBvhNode& node : nodes_)
+    for (int k = 0; k < compact_bvh_width; ++k)
+      if (node.count[k] > 0 && node.planes[0][k] != float_infinity)
+        node.child[k] =
+            pack_leaf(bvh.triangles(), bvh.ids(), node.child[k], node.count[k], packs_, triangles_);
+}
+
+void CompactBvh::prefetch(const void* entry) const {
+#if defined(__SSE2__)
+  const auto& e = *static_cast<const Entry*>(entry);
+  const char* at = e.count == 0 ? reinterpret_cast<const char*>(&nodes_[e.child])
+                                : reinterpret_cast<const char*>(&packs_[e.child]);
+  _mm_prefetch(at, _MM_HINT_T0);
+  _mm_prefetch(at + 64, _MM_HINT_T0);
+  _mm_prefetch(at + 128, _MM_HINT_T0);
+  if (e.count == 0) _mm_prefetch(at + 192, _MM_HINT_T0);
+#else
+  (void)entry;
+#endif
 }
 
 std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters& counters) const {
   const FastRay r(ray);
+  const PackRay pr(ray);
+  const float t_lo = filter_lo(ray.range.lo);
+  float t_hi = filter_hi(ray.range.hi);
   Ray probe = ray;  // probe.range.hi: the closest hit so far
   std::optional<AccelHit> best;
-  Entry stack[3 * bvh_max_depth + 4];
+  Entry stack[(compact_bvh_width - 1) * bvh_max_depth + compact_bvh_width];
   int top = 0;
   std::uint64_t visits = 0, tests = 0;
   const float lo = round_down(ray.range.lo);
   // How far a box may begin and still be entered: the closest hit so far plus the culling slack,
-  // in double (stacked entries) and rounded up to float (the box test); updated at each hit.
-  double reach = probe.range.hi + culling_slack * std::abs(probe.range.hi);
-  float reach_float = round_up(reach);
-  Entry current{0, 0, ray.range.lo};
+  // rounded up to float (the box test and the stacked entries); updated at each hit.
+  float reach_float = round_up(probe.range.hi + culling_slack * std::abs(probe.range.hi));
+  Entry current{0, 0, lo};
   for (;;) {
     if (current.count == 0) {
       const CompactBvhNode& node = nodes_[current.child];
-      visits += 4;
-      float entry[4];
-      clip_four(r, node, lo, reach_float, entry);
-      Entry hits[4];
-      int n = 0;
-      for (int k = 0; k < 4; ++k) {
-        if (entry[k] == float_infinity) continue;
-        // Insertion by entry, nearest first.
-        int j = n++;
-        for (; j > 0 && hits[j - 1].enter > entry[k]; --j) hits[j] = hits[j - 1];
-        hits[j] = Entry{node.child[k], node.count[k], entry[k]};
+      visits += compact_bvh_width;
+      float entry[compact_bvh_width];
+      int inside = clip_node(r, node, lo, reach_float, entry);
+      if (inside != 0 && (inside & (inside - 1)) == 0) {  // one child entered: no sorting, no stack
+        const int k = __builtin_ctz(inside);
+        current = Entry{node.child[k], node.count[k], entry[k]};
+        continue;
       }
-      if (n > 0) {
-        for (int k = n - 1; k > 0; --k) stack[top++] = hits[k];
+      if (inside != 0 && __builtin_popcount(static_cast<unsigned>(inside)) == 2) {  // the common pair
+        const int k0 = __builtin_ctz(inside), k1 = __builtin_ctz(inside & (inside - 1));
+        const int near = entry[k1] < entry[k0] ? k1 : k0, far = near == k0 ? k1 : k0;
+        stack[top] = Entry{node.child[far], node.count[far], entry[far]};
+        prefetch(&stack[top++]);
+        current = Entry{node.child[near], node.count[near], entry[near]};
+        continue;
+      }
+      if (inside != 0) {
+        Entry hits[compact_bvh_width];
+        int n = 0;
+        for (; inside != 0; inside &= inside - 1) {
+          const int k = __builtin_ctz(inside);
+          // Insertion by entry, nearest first.
+          int j = n++;
+          for (; j > 0 && hits[j - 1].enter > entry[k]; --j) hits[j] = hits[j - 1];
+          hits[j] = Entry{node.child[k], node.count[k], entry[k]};
+        }
+        for (int k = n - 1; k > 0; --k) {
+          stack[top++] = hits[k];
+          prefetch(&hits[k]);  // popped later: its lines can load meanwhile
+        }
         current = hits[0];
         continue;
       }
     } else {
-      for (std::uint32_t k = current.child; k < current.child + current.count; ++k) {
-        ++tests;
-        if (!may_hit(r, edges_[k], probe.range)) continue;
-        if (const auto hit = illum::intersect(probe, triangles_[k])) {
-          best = AccelHit{*hit, ids_[k]};
-          probe.range.hi = hit->s;
-          reach = probe.range.hi + culling_slack * std::abs(probe.range.hi);
-          reach_float = round_up(reach);
+      tests += current.count;
+      for (std::uint32_t p = current.child, left = current.count; left > 0; ++p, left -= std::min(left, 4u)) {
+        int lanes = may_hit(pr, packs_[p], t_lo, t_hi) & ((1 << std::min(left, 4u)) - 1);
+        for (; lanes != 0; lanes &= lanes - 1) {
+          const std::uint32_t k = 4 * p + static_cast<std::uint32_t>(__builtin_ctz(lanes));
+          if (const auto hit = illum::intersect(probe, triangles_[k])) {
+            best = AccelHit{*hit, packs_[p].id[k % 4]};
+            probe.range.hi = hit->s;
+            t_hi = filter_hi(hit->s);
+            reach_float = round_up(probe.range.hi + culling_slack * std::abs(probe.range.hi));
+          }
         }
       }
     }
@@ -239,7 +408,7 @@ std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters&
         return best;
       }
       current = stack[--top];
-      if (current.enter <= reach) break;
+      if (current.enter <= reach_float) break;
     }
   }
 }
@@ -247,22 +416,28 @@ std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters&
 bool CompactBvh::occluded(const Ray& ray, TraversalCounters& counters) const {
   ++counters.rays;
   const FastRay r(ray);
-  Entry stack[3 * bvh_max_depth + 4];
+  const PackRay pr(ray);
+  const float t_lo = filter_lo(ray.range.lo), t_hi = filter_hi(ray.range.hi);
+  Entry stack[(compact_bvh_width - 1) * bvh_max_depth + compact_bvh_width];
   int top = 0;
   const float lo = round_down(ray.range.lo), hi = round_up(ray.range.hi);
-  Entry current{0, 0, ray.range.lo};
+  Entry current{0, 0, lo};
   for (;;) {
     if (current.count == 0) {
       const CompactBvhNode& node = nodes_[current.child];
-      counters.nodes_visited += 4;
-      float entry[4];
-      clip_four(r, node, lo, hi, entry);
-      for (int k = 0; k < 4; ++k)
-        if (entry[k] != float_infinity) stack[top++] = Entry{node.child[k], node.count[k], entry[k]};
+      counters.nodes_visited += compact_bvh_width;
+      float entry[compact_bvh_width];
+      for (int inside = clip_node(r, node, lo, hi, entry); inside != 0; inside &= inside - 1) {
+        const int k = __builtin_ctz(inside);
+        stack[top++] = Entry{node.child[k], node.count[k], entry[k]};
+      }
     } else {
-      for (std::uint32_t k = current.child; k < current.child + current.count; ++k) {
-        ++counters.triangle_tests;
-        if (may_hit(r, edges_[k], ray.range) && illum::intersect(ray, triangles_[k])) return true;
+      counters.triangle_tests += current.count;
+      for (std::uint32_t p = current.child, left = current.count; left > 0; ++p, left -= std::min(left, 4u)) {
+        int lanes = may_hit(pr, packs_[p], t_lo, t_hi) & ((1 << std::min(left, 4u)) - 1);
+        for (; lanes != 0; lanes &= lanes - 1)
+          if (illum::intersect(ray, triangles_[4 * p + static_cast<std::uint32_t>(__builtin_ctz(lanes))]))
+            return true;
       }
     }
     if (top == 0) return false;
@@ -271,8 +446,7 @@ bool CompactBvh::occluded(const Ray& ray, TraversalCounters& counters) const {
 }
 
 std::size_t CompactBvh::memory_bytes() const {
-  return nodes_.size() * sizeof(CompactBvhNode) + edges_.size() * sizeof(EdgeTriangle) +
-         ids_.size() * sizeof(std::uint32_t);
+  return nodes_.size() * sizeof(CompactBvhNode) + packs_.size() * sizeof(TrianglePack);
 }
 
 }  // namespace illum

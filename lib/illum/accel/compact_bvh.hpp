@@ -1,15 +1,18 @@
 #pragma once
 // The production BVH, lesson 08 (§4): the same binned-SAH tree as Bvh, its
-// levels collapsed in pairs into four-child nodes and laid out for speed.
+// levels collapsed (about three at a time) into eight-child nodes and laid
+// out for speed.
 // Bvh's traversal (bvh_traversal.cpp) is the teaching version, the
 // exercise; this is the one the scene, the radiosity visibility and the
 // Embree comparison use ("bvh"; the teaching one is "bvh_teaching").
 //
 // What changes, and why each is safe:
-//   * a node holds its (up to) four children's boxes, in float, rounded
+//   * a node holds its (up to) eight children's boxes, in float, rounded
 //     OUTWARD (lo down, hi up), so each float box contains the double one;
-//     one node is two cache lines, and half as many nodes lie on a path;
-//   * the four boxes are clipped at once (SSE, four float lanes). The ray
+//     one node is four cache lines, and a third as many nodes lie on a path
+//     (each node a dependent memory access: the cost a profile shows);
+//   * the eight boxes are clipped four at a time (SSE2, four float lanes,
+//     the x86-64 baseline: no run-time dispatch). The ray
 //     origin is moved by 2⁻²¹·|o| (more than its rounding to float) towards
 //     each box's outside, and the exit widened by 2γ₃ (float): the float
 //     test can only accept more than the exact one, never less;
@@ -20,15 +23,18 @@
 //     near plane of each axis is chosen by sign, no swap. 0·∞ = NaN (a ray
 //     lying in a face plane) is dropped by the order of the max/min operands:
 //     inside, as in slab_test.hpp;
-//   * each triangle is first tested by Möller–Trumbore on precomputed edges,
-//     a filter that rejects only when the ray misses by a clear margin
-//     (barycentrics below −10⁻⁴ or above 1 + 10⁻⁴; t outside the range by
-//     10⁻⁶ relative); a grazing ray (|det| below 10⁻⁶ of its largest value)
-//     and every survivor go to lesson 03's watertight test, which decides.
-//     Hit/miss and t are therefore the exact test's, edges and vertices
-//     included, unless the filter's double rounding exceeds 10⁻⁴ in a
-//     barycentric, which needs an origin ~10¹⁰ triangle sizes away.
-// Counters: one node visit per child box tested, one triangle test per filter test.
+//   * a leaf's triangles are stored four at a time (TrianglePack: float
+//     vertex and edges, one SSE lane per triangle) and tested at once by
+//     Möller–Trumbore in float, as a filter: a lane is dropped only when its
+//     barycentrics or its t miss by more than an a-priori bound on the float
+//     rounding (K·(|o|+|v0|)·|ω|·|e|, K = 2⁻¹⁷, about twice the worst case of
+//     the float operations, all norms ∞-norms), so a true hit is never
+//     dropped; a grazing lane (|det| within its bound, sign unknown) passes.
+//     Every surviving lane goes to lesson 03's watertight test in double,
+//     which decides: hit/miss and t are the exact test's, edges and vertices
+//     included. The bound assumes no float overflow or underflow (coordinates
+//     and edges within about 10^±15).
+// Counters: one node visit per child box tested, one triangle test per (used) lane filtered.
 #include <cstdint>
 #include <vector>
 
@@ -37,24 +43,30 @@
 
 namespace illum {
 
-// Four children: box planes [plane][child], planes 0–2 the lo of x, y, z and
-// 3–5 the hi; for each child a leaf's triangle run (count > 0) or the index of
-// its node (count = 0). An unused slot has an empty box (lo = +∞, hi = −∞)
-// that no ray enters.
+// Eight children: box planes [plane][child], planes 0–2 the lo of x, y, z and
+// 3–5 the hi; for each child a leaf (count > 0 triangles, `child` its first
+// TrianglePack) or the index of its node (count = 0). An unused slot has an
+// empty box (lo = +∞, hi = −∞) that no ray enters.
+constexpr int compact_bvh_width = 8;
 struct alignas(64) CompactBvhNode {
-  float planes[6][4];
-  std::uint32_t child[4];
-  std::uint16_t count[4];
-  std::uint64_t pad = 0;
+  float planes[6][compact_bvh_width];
+  std::uint32_t child[compact_bvh_width];
+  std::uint16_t count[compact_bvh_width];
 };
-static_assert(sizeof(CompactBvhNode) == 128);
+static_assert(sizeof(CompactBvhNode) == 256);
 
-// The filter's view of a triangle: a vertex and two edges, and the grazing bound.
-struct EdgeTriangle {
-  Point3 v0;
-  Vec3 e1, e2;
-  double grazing;  // 10⁻⁶·|e1 × e2|: below it |det| hands the ray to the exact test
+// The filter's view of four triangles, [axis][lane]: a vertex, the two edges
+// from it, their ∞-norms for the rounding bound, and the triangles' ids. A leaf of n triangles
+// owns ⌈n/4⌉ consecutive packs; its last pack's unused lanes are masked out.
+struct alignas(16) TrianglePack {
+  float v0[3][4];
+  float e1[3][4];
+  float e2[3][4];
+  float v0_size[4];     // ‖v0‖∞ (of the double vertex), rounded up
+  float edge_size[4];   // max(‖e1‖∞, ‖e2‖∞) (of the double edges), rounded up
+  std::uint32_t id[4];  // the set's index of each lane's triangle: in the lines the filter reads
 };
+static_assert(sizeof(TrianglePack) == 192);
 
 class CompactBvh final : public TriangleAccel {
  public:
@@ -69,10 +81,11 @@ class CompactBvh final : public TriangleAccel {
   std::size_t node_count() const { return nodes_.size(); }
 
  private:
+  void prefetch(const void* entry) const;  // a traversal stack entry's node or packs
+
   std::vector<CompactBvhNode> nodes_;
-  std::vector<EdgeTriangle> edges_;  // in leaf order
-  std::vector<Triangle> triangles_;  // in leaf order, for the exact test
-  std::vector<std::uint32_t> ids_;
+  std::vector<TrianglePack> packs_;  // in leaf order
+  std::vector<Triangle> triangles_;  // triangles_[4·pack + lane], for the exact test (unused lanes: copies)
 };
 
 }  // namespace illum
