@@ -9,6 +9,7 @@
 // shared edge or vertex it does not, and the contour integral takes over.
 // Triangles are mapped from the square by the collapsed (Duffy) map,
 // quadrilaterals bilinearly; other polygons are not handled here.
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -55,9 +56,29 @@ double area_rule_error_bound(int m, int vertices, double radius, double distance
 void area_rule_error_bounds(int vertices, double radius, double distance, double area_to,
                             double bounds[max_area_rule_order]);
 
+// The number of points the arrays of an m × m rule hold: m² rounded up to a
+// multiple of 4, the extra points with weight 0, so that the kernel's loop
+// runs over whole groups of four (vector instructions, no remainder loop).
+constexpr int padded_points(int m) { return (m * m + 3) / 4 * 4; }
+
+// Where order m starts within one patch's block of an AreaRulePointTable:
+// Σ padded_points(k) for k < m.
+constexpr std::size_t area_rule_order_offset(int m) {
+  std::size_t at = 0;
+  for (int k = 1; k < m; ++k) at += static_cast<std::size_t>(padded_points(k));
+  return at;
+}
+inline constexpr std::array<std::size_t, max_area_rule_order + 2> area_rule_order_offsets = [] {
+  std::array<std::size_t, max_area_rule_order + 2> at{};
+  for (int m = 1; m <= max_area_rule_order + 1; ++m)
+    at[static_cast<std::size_t>(m)] = area_rule_order_offset(m);
+  return at;
+}();
+
 // The m × m points of the area rule on one patch, as separate coordinate
-// arrays, each with its weight dA; the
-// weights sum to the patch's area.
+// arrays, each with its weight dA; the weights sum to the patch's area. The
+// arrays hold padded_points(m) entries: `size` = m² points, then copies of the
+// first point with weight 0.
 struct AreaRulePoints {
   const double *x = nullptr, *y = nullptr, *z = nullptr, *weight = nullptr;
   int size = 0;
@@ -74,12 +95,12 @@ class AreaRulePointTable {
   // and 1 ≤ m ≤ max_area_rule_order (not checked: it is called for every pair).
   AreaRulePoints points(std::size_t patch, int m) const {
     if (!mapped_[patch]) return {};
-    const std::size_t at = patch * per_patch + static_cast<std::size_t>((m - 1) * m * (2 * m - 1) / 6);
+    const std::size_t at = patch * per_patch + area_rule_order_offsets[static_cast<std::size_t>(m)];
     return {&x_[at], &y_[at], &z_[at], &weight_[at], m * m};
   }
 
  private:
-  static constexpr std::size_t per_patch = 204;  // Σ m² for m = 1 … 8
+  static constexpr std::size_t per_patch = area_rule_order_offset(max_area_rule_order + 1);
   std::vector<double> x_, y_, z_, weight_;
   std::vector<int> mapped_;  // 1 if the patch has points
 };

@@ -154,10 +154,11 @@ FormFactorMatrix matrix_reusing_translates(const std::vector<Patch>& patches, co
 // The cost of one contour integral in evaluations of the area rule's kernel,
 // per edge pair: a parallel edge pair costs four log and four atan, and a
 // quad pair has four to eight of its sixteen edge pairs parallel (the rest
-// perpendicular, free). Measured on the cube (one thread): a contour pair
-// costs about 0.6 µs and a kernel evaluation of the area rule about 2 ns, so
-// a quad pair is worth 4⁴ = 256 evaluations, the rule of order 4 on both sides.
-constexpr double contour_cost_per_edge_pair = 16.0;
+// perpendicular, free). Measured on the cube (one thread, thread CPU time): a
+// contour pair costs about 0.45 µs and a kernel evaluation of the area rule
+// about 0.9 ns (AVX2; 1.6 ns without), so a quad pair is worth about 500
+// evaluations, the rule of order 4 on one side and 5 on the other.
+constexpr double contour_cost_per_edge_pair = 32.0;
 
 // What the tolerance-driven builder knows about every patch before the pairs:
 // its radius and its area rule's points at every order (mapped once, not once per pair).
