@@ -75,8 +75,9 @@ TEST_SUITE("stability") {
       const double d = length(b.centroid - a.centroid);
       for (int ma = 1; ma <= 5; ++ma)
         for (int mb = 1; mb <= 5; ++mb) {
-          const double bound = area_rule_error_bound(ma, static_cast<int>(a.vertices.size()), ra, d, b.area) +
-                               area_rule_error_bound(mb, static_cast<int>(b.vertices.size()), rb, d, b.area);
+          const double bound =
+              area_rule_error_bound(ma, static_cast<int>(a.vertices.size()), patch_half_edge(a), d, b.area) +
+              area_rule_error_bound(mb, static_cast<int>(b.vertices.size()), patch_half_edge(b), d, b.area);
           const double error = std::abs(area_rule_form_factor(a, b, ma, mb) - exact);
           tightest = std::max(tightest, error / bound);
           INFO("kinds " << kind_a << ", " << kind_b << ", d/r = " << d / std::max(ra, rb) << ", orders " << ma

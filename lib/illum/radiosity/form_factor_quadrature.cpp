@@ -52,9 +52,6 @@ void map_area_points(const Patch& patch, int m, double* xs, double* ys, double* 
   for (; k < padded_points(m); ++k) xs[k] = xs[0], ys[k] = ys[0], zs[k] = zs[0], weights[k] = 0;
 }
 
-// K of area_rule_error_bound: twice the largest constant measured.
-constexpr double error_constant = 2.0;
-
 }  // namespace
 
 double patch_radius(const Patch& patch) {
@@ -75,12 +72,20 @@ bool area_rule_applies(const Patch& from, const Patch& to, double radius_from, d
   return true;
 }
 
-double area_rule_error_bound(int m, int vertices, double radius, double distance, double area_to) {
+double patch_half_edge(const Patch& patch) {
+  double longest = 0;
+  const std::size_t n = patch.vertices.size();
+  for (std::size_t k = 0; k < n; ++k)
+    longest = std::max(longest, length(patch.vertices[(k + 1) % n] - patch.vertices[k]));
+  return 0.5 * longest;
+}
+
+double area_rule_error_bound(int m, int vertices, double half_edge, double distance, double area_to) {
   require(m >= 1 && m <= max_area_rule_order, "area_rule_error_bound: the order must be in 1 … 8");
   const int power = vertices == 3 ? 2 * m - 1 : 2 * m;
-  double ratio_power = 1;  // (r/d)^power by multiplication: std::pow costs more than the rule at m = 1
-  for (int k = 0; k < power; ++k) ratio_power *= radius / distance;
-  return error_constant * area_to / (std::numbers::pi * distance * distance) * ratio_power;
+  double ratio_power = 1;  // (h/d)^power by multiplication: std::pow costs more than the rule at m = 1
+  for (int k = 0; k < power; ++k) ratio_power *= half_edge / distance;
+  return area_rule_error_constant * area_to / (std::numbers::pi * distance * distance) * ratio_power;
 }
 
 double area_rule_form_factor(const Patch& from, const Patch& to, int m_from, int m_to) {
@@ -96,16 +101,6 @@ double area_rule_form_factor(const Patch& from, const Patch& to, int m_from, int
   const double sum = area_rule_exchange({x[0], y[0], z[0], w[0], m_from * m_from}, from.normal,
                                         {x[1], y[1], z[1], w[1], m_to * m_to}, to.normal);
   return sum / (std::numbers::pi * from.area);
-}
-
-void area_rule_error_bounds(int vertices, double radius, double distance, double area_to,
-                            double bounds[max_area_rule_order]) {
-  // Each order multiplies the bound by (r/d)²: the same values as area_rule_error_bound's, without
-  // its argument checks and powers (the builder asks for them once per pair).
-  const double ratio = radius / distance;
-  bounds[0] = error_constant * area_to / (std::numbers::pi * distance * distance) *
-              (vertices == 3 ? 1 : ratio) * ratio;
-  for (int m = 1; m < max_area_rule_order; ++m) bounds[m] = bounds[m - 1] * ratio * ratio;
 }
 
 AreaRulePointTable::AreaRulePointTable(const std::vector<Patch>& patches)

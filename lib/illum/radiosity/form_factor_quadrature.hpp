@@ -11,6 +11,7 @@
 // quadrilaterals bilinearly; other polygons are not handled here.
 #include <array>
 #include <cstddef>
+#include <numbers>
 #include <vector>
 
 #include "illum/radiosity/patch.hpp"
@@ -40,21 +41,43 @@ bool area_rule_applies(const Patch& from, const Patch& to, double radius_from, d
 // The radius of a patch: the largest distance from its centroid to a vertex.
 double patch_radius(const Patch& patch);
 
+// Half the longest edge of a patch: the size the area rule's error bound
+// uses. Each line of the rule's parameter square maps to a segment no longer
+// than the longest edge (the bilinear map of a convex quadrilateral and the
+// collapsed map of a triangle alike), and Gauss–Legendre converges on a
+// segment as (half its length / distance to the kernel's singularity)^{2m}.
+double patch_half_edge(const Patch& patch);
+
 // A-priori bound on the part of the area rule's error that comes from one
-// side: a patch of `vertices` vertices and radius r sampled with m × m points, the pair's
-// centroids d apart, the receiving patch of area `area_to`:
-//   E ≤ K · (area_to / (π d²)) · (r / d)^p,   p = 2m (quadrilateral), 2m − 1 (triangle),
+// side: a patch of `vertices` vertices whose longest edge is 2h, sampled with
+// m × m points, the pair's centroids d apart, the receiving patch of area
+// `area_to`:
+//   E ≤ K · (area_to / (π d²)) · (h / d)^p,   p = 2m (quadrilateral), 2m − 1 (triangle),
 // since an m-point Gauss rule is exact to degree 2m − 1 and the collapsed map
-// of a triangle costs one degree. K = 2: the largest K measured over squares
-// and triangles seen from all directions at 2 ≤ d/r ≤ 8 is 0.66 (lesson 09
-// README, "The error target"). The pair's error is the sum of both sides'.
-double area_rule_error_bound(int m, int vertices, double radius, double distance, double area_to);
+// of a triangle costs one degree. K = 3: about twice the largest constant
+// measured (1.55) over convex quadrilaterals, thin rectangles and triangles
+// seen from all directions at 2.4 ≤ d/r ≤ 12 (tests/radiosity/area_rule_bound.cpp). The
+// pair's error is the sum of both sides'. (The patch's radius in place of h
+// also bounds the error, but more loosely: √2 h for a square.)
+double area_rule_error_bound(int m, int vertices, double half_edge, double distance, double area_to);
+
+// K of area_rule_error_bound: about twice the largest constant measured (1.55,
+// over 4,500 random pairs of tests/radiosity/area_rule_bound.cpp's kinds).
+inline constexpr double area_rule_error_constant = 3.0;
 
 // The bounds of area_rule_error_bound for m = 1 … max_area_rule_order at
 // once (bounds[m − 1]), without re-checking the arguments: what the matrix
-// builder needs for every pair when it picks the cheapest orders.
-void area_rule_error_bounds(int vertices, double radius, double distance, double area_to,
-                            double bounds[max_area_rule_order]);
+// builder needs for every pair when it picks the cheapest orders. Inline: the
+// builder calls it twice per pair, and the two calls share their divisions.
+inline void area_rule_error_bounds(int vertices, double half_edge, double distance, double area_to,
+                                   double bounds[max_area_rule_order]) {
+  // Each order multiplies the bound by (h/d)²: the same values as area_rule_error_bound's, without
+  // its argument checks and powers.
+  const double ratio = half_edge / distance;
+  bounds[0] = area_rule_error_constant * area_to / (std::numbers::pi * distance * distance) *
+              (vertices == 3 ? 1 : ratio) * ratio;
+  for (int m = 1; m < max_area_rule_order; ++m) bounds[m] = bounds[m - 1] * ratio * ratio;
+}
 
 // The number of points the arrays of an m × m rule hold: m² rounded up to a
 // multiple of 4, the extra points with weight 0, so that the kernel's loop

@@ -161,32 +161,43 @@ FormFactorMatrix matrix_reusing_translates(const std::vector<Patch>& patches, co
 constexpr double contour_cost_per_edge_pair = 32.0;
 
 // What the tolerance-driven builder knows about every patch before the pairs:
-// its radius and its area rule's points at every order (mapped once, not once per pair).
+// its radius, half its longest edge and its area rule's points at every order
+// (mapped once, not once per pair).
 struct PreparedPatches {
-  explicit PreparedPatches(const std::vector<Patch>& patches) : points(patches), radius(patches.size()) {
-    for (std::size_t i = 0; i < patches.size(); ++i) radius[i] = patch_radius(patches[i]);
+  explicit PreparedPatches(const std::vector<Patch>& patches)
+      : points(patches), radius(patches.size()), half_edge(patches.size()) {
+    for (std::size_t i = 0; i < patches.size(); ++i) {
+      radius[i] = patch_radius(patches[i]);
+      half_edge[i] = patch_half_edge(patches[i]);
+    }
   }
   AreaRulePointTable points;
-  std::vector<double> radius;
+  std::vector<double> radius, half_edge;
 };
 
-// The orders (m_from, m_to) of the cheapest area rule (fewest kernel
-// evaluations m_from² m_to²) whose two one-sided bounds add up to at most
-// `target`; false when none costs at most `budget` evaluations. The target is
-// split between the sides as the geometry asks, not half and half: a small
-// patch facing a large one needs fewer points than the large one.
-bool cheapest_area_orders(const Patch& a, const Patch& b, double ra, double rb, double distance,
+// The orders (m_from, m_to) of the cheapest area rule (area_rule_cost) whose two one-sided bounds add up to
+// at most `target`; false when none costs at most `budget` evaluations. The target is split between the sides
+// as the geometry asks, not half and half: a small patch facing a large one needs fewer points than the large
+// one. The cost of the area rule at orders (ma, mb) in kernel evaluations, as area_rule_exchange spends it
+// with the smaller point set outside and the larger, padded to whole groups of four, inside; each outer point
+// adds about four evaluations' worth (its loads and the sum of the four lanes).
+double area_rule_cost(int ma, int mb) {
+  const int outer = std::min(ma, mb), inner = std::max(ma, mb);
+  return outer * outer * (padded_points(inner) + 4.0);
+}
+
+bool cheapest_area_orders(const Patch& a, const Patch& b, double ha, double hb, double distance,
                           double target, double budget, int& ma, int& mb, double& bound) {
   double ea[max_area_rule_order], eb[max_area_rule_order];
-  area_rule_error_bounds(static_cast<int>(a.vertices.size()), ra, distance, b.area, ea);
-  area_rule_error_bounds(static_cast<int>(b.vertices.size()), rb, distance, b.area, eb);
+  area_rule_error_bounds(static_cast<int>(a.vertices.size()), ha, distance, b.area, ea);
+  area_rule_error_bounds(static_cast<int>(b.vertices.size()), hb, distance, b.area, eb);
   double best = budget + 1;
-  for (int i = 0; i < max_area_rule_order && (i + 1) * (i + 1) <= best; ++i) {
+  for (int i = 0; i < max_area_rule_order && (i + 1) * (i + 1) <= best; ++i) {  // cost ≥ (i + 1)²
     if (ea[i] >= target) continue;
     int j = 0;
     while (j < max_area_rule_order && ea[i] + eb[j] > target) ++j;
     if (j == max_area_rule_order) continue;
-    const double cost = static_cast<double>((i + 1) * (i + 1) * (j + 1) * (j + 1));
+    const double cost = area_rule_cost(i + 1, j + 1);
     if (cost < best) best = cost, ma = i + 1, mb = j + 1, bound = ea[i] + eb[j];
   }
   return best <= budget;
@@ -226,12 +237,15 @@ double pair_to_tolerance(const std::vector<Patch>& patches, const PreparedPatche
   if (na >= 3 && na <= 4 && nb >= 3 && nb <= 4 && d >= min_area_rule_separation * std::max(ra, rb)) {
     const double budget = contour_cost_per_edge_pair * static_cast<double>(na * nb);
     int ma = 0, mb = 0;
-    if (cheapest_area_orders(a, b, ra, rb, d, target, budget, ma, mb, bound) &&
+    if (cheapest_area_orders(a, b, prepared.half_edge[i], prepared.half_edge[j], d, target, budget, ma, mb,
+                             bound) &&
         area_rule_applies(a, b, ra, rb)) {
       method = PairMethod::area_rule;
-      return area_rule_exchange(prepared.points.points(i, ma), a.normal, prepared.points.points(j, mb),
-                                b.normal) /
-             (std::numbers::pi * a.area);
+      // The exchange is symmetric in the two patches: the larger point set goes inside (area_rule_cost).
+      const AreaRulePoints pa = prepared.points.points(i, ma), pb = prepared.points.points(j, mb);
+      const double exchange = ma <= mb ? area_rule_exchange(pa, a.normal, pb, b.normal)
+                                       : area_rule_exchange(pb, b.normal, pa, a.normal);
+      return exchange / (std::numbers::pi * a.area);
     }
     bound = 0;
   }
