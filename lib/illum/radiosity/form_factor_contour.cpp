@@ -36,15 +36,16 @@ double log_primitive(double u, double h) {
   return value;
 }
 
-// H(u) with H''(u) = ½ ln(u² + d²): ¼(u² − d²) ln(u² + d²) + d u atan(u/d) − ¾u².
+// H(u) with H''(u) = ½ ln(u² + d²): ¼(u² − d²) ln(u² + d²) + d u atan(u/d) − ¾u²,
+// given d and 1/d (0 when d = 0; the four calls of an edge pair share it).
 // The atan is skipped where its term is zero (u = 0 happens wherever two
 // edges' endpoints line up, as on any mesh with aligned rows): the two
 // transcendental calls are most of a parallel edge pair's cost.
-double log_second_primitive(double u, double d) {
+double log_second_primitive(double u, double d, double inverse_d) {
   const double r2 = u * u + d * d;
   double value = -0.75 * u * u;
   if (r2 > 0) value += 0.25 * (u * u - d * d) * std::log(r2);
-  if (d > 0 && u != 0) value += d * u * std::atan(u / d);
+  if (d > 0 && u != 0) value += d * u * std::atan(u * inverse_d);
   return value;
 }
 
@@ -68,8 +69,9 @@ double parallel_edges_log_integral(const Point3& a, const Vec3& u, double lp, co
   const double d = length(w - along * u);
   const double q_end = along + dot(eq, u);
   const double q1 = std::min(along, q_end), q2 = std::max(along, q_end);
-  return log_second_primitive(lp - q1, d) - log_second_primitive(-q1, d) - log_second_primitive(lp - q2, d) +
-         log_second_primitive(-q2, d);
+  const double inverse_d = d > 0 ? 1 / d : 0;
+  return log_second_primitive(lp - q1, d, inverse_d) - log_second_primitive(-q1, d, inverse_d) -
+         log_second_primitive(lp - q2, d, inverse_d) + log_second_primitive(-q2, d, inverse_d);
 }
 
 // The parameter σ ∈ [0, L_p] of the point of edge p closest to edge q, and the distance.
