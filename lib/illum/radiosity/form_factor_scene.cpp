@@ -175,17 +175,20 @@ struct PreparedPatches {
   std::vector<double> radius, half_edge;
 };
 
-// The orders (m_from, m_to) of the cheapest area rule (area_rule_cost) whose two one-sided bounds add up to
-// at most `target`; false when none costs at most `budget` evaluations. The target is split between the sides
-// as the geometry asks, not half and half: a small patch facing a large one needs fewer points than the large
-// one. The cost of the area rule at orders (ma, mb) in kernel evaluations, as area_rule_exchange spends it
-// with the smaller point set outside and the larger, padded to whole groups of four, inside; each outer point
-// adds about four evaluations' worth (its loads and the sum of the four lanes).
+// The cost of the area rule at orders (ma, mb) in kernel evaluations, as
+// area_rule_exchange spends it with the smaller point set outside and the
+// larger, padded to whole groups of four, inside; each outer point adds about
+// four evaluations' worth (its loads and the sum of the four lanes).
 double area_rule_cost(int ma, int mb) {
   const int outer = std::min(ma, mb), inner = std::max(ma, mb);
   return outer * outer * (padded_points(inner) + 4.0);
 }
 
+// The orders (m_from, m_to) of the cheapest area rule (area_rule_cost) whose
+// two one-sided bounds add up to at most `target`; false when none costs at
+// most `budget` evaluations. The target is split between the sides as the
+// geometry asks, not half and half: a small patch facing a large one needs
+// fewer points than the large one.
 bool cheapest_area_orders(const Patch& a, const Patch& b, double ha, double hb, double distance,
                           double target, double budget, int& ma, int& mb, double& bound) {
   double ea[max_area_rule_order], eb[max_area_rule_order];
