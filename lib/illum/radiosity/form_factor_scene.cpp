@@ -194,12 +194,14 @@ bool cheapest_area_orders(const Patch& a, const Patch& b, double ha, double hb, 
   double ea[max_area_rule_order], eb[max_area_rule_order];
   area_rule_error_bounds(static_cast<int>(a.vertices.size()), ha, distance, b.area, ea);
   area_rule_error_bounds(static_cast<int>(b.vertices.size()), hb, distance, b.area, eb);
+  // As a's order rises its bound falls, so the lowest order of b that completes the target never
+  // rises: one walk down b's orders serves all of a's (at most 2·max_area_rule_order steps).
+  constexpr int top = max_area_rule_order - 1;
   double best = budget + 1;
-  for (int i = 0; i < max_area_rule_order && (i + 1) * (i + 1) <= best; ++i) {  // cost ≥ (i + 1)²
-    if (ea[i] >= target) continue;
-    int j = 0;
-    while (j < max_area_rule_order && ea[i] + eb[j] > target) ++j;
-    if (j == max_area_rule_order) continue;
+  int j = top;
+  for (int i = 0; i <= top && (i + 1) * (i + 1) <= best; ++i) {  // cost ≥ (i + 1)²
+    if (ea[i] + eb[top] > target) continue;                      // not even with b's highest order
+    while (j > 0 && ea[i] + eb[j - 1] <= target) --j;
     const double cost = area_rule_cost(i + 1, j + 1);
     if (cost < best) best = cost, ma = i + 1, mb = j + 1, bound = ea[i] + eb[j];
   }
@@ -226,6 +228,13 @@ void fill_by_reciprocity(const std::vector<Patch>& patches, FormFactorMatrix& f)
 // One pair of the tolerance-driven matrix: the value and the method used.
 enum class PairMethod { contour, area_rule };
 
+// F_ab by the contour integral to an absolute target.
+double contour_to_target(const Patch& a, const Patch& b, double target, const ContourOptions& contour) {
+  ContourOptions to_target = contour;
+  to_target.tolerance = target;
+  return polygon_polygon_form_factor(a, b, to_target);
+}
+
 double pair_to_tolerance(const std::vector<Patch>& patches, const PreparedPatches& prepared, std::size_t i,
                          std::size_t j, double target, const ContourOptions& contour, PairMethod& method,
                          double& bound) {
@@ -234,10 +243,23 @@ double pair_to_tolerance(const std::vector<Patch>& patches, const PreparedPatche
   method = PairMethod::contour;
   bound = 0;
   const std::size_t na = a.vertices.size(), nb = b.vertices.size();
-  const double d = length(b.centroid - a.centroid);
+  const double d2 = length_squared(b.centroid - a.centroid), r_max = std::max(ra, rb);
   // The cheap tests first: most pairs that fail do so on distance or on the bound, before the
-  // half-space test walks both vertex lists.
-  if (na >= 3 && na <= 4 && nb >= 3 && nb <= 4 && d >= min_area_rule_separation * std::max(ra, rb)) {
+  // half-space test walks both vertex lists. The first bound test needs no square root and one
+  // division: the larger half edge's side at the highest order, a lower bound of area_rule_error_bound
+  // there (exponent 2·max_area_rule_order whatever the shape, as h/d < 1), must meet the target on its
+  // own, else no orders can (at tight targets this rejects most pairs for the price of a few products).
+  if (na < 3 || na > 4 || nb < 3 || nb > 4 ||
+      d2 < min_area_rule_separation * min_area_rule_separation * r_max * r_max)
+    return contour_to_target(a, b, target, contour);
+  double ratio = std::max(prepared.half_edge[i], prepared.half_edge[j]);
+  ratio = ratio * ratio / d2;  // (h/d)²
+  static_assert((max_area_rule_order & (max_area_rule_order - 1)) == 0, "squaring reaches powers of two");
+  for (int k = 1; k < max_area_rule_order; k *= 2) ratio *= ratio;  // (h/d)^(2·max_area_rule_order)
+  if (area_rule_error_constant * b.area * ratio > target * std::numbers::pi * d2)
+    return contour_to_target(a, b, target, contour);
+  const double d = std::sqrt(d2);
+  {
     const double budget = contour_cost_per_edge_pair * static_cast<double>(na * nb);
     int ma = 0, mb = 0;
     if (cheapest_area_orders(a, b, prepared.half_edge[i], prepared.half_edge[j], d, target, budget, ma, mb,
@@ -252,9 +274,7 @@ double pair_to_tolerance(const std::vector<Patch>& patches, const PreparedPatche
     }
     bound = 0;
   }
-  ContourOptions to_target = contour;
-  to_target.tolerance = target;
-  return polygon_polygon_form_factor(a, b, to_target);
+  return contour_to_target(a, b, target, contour);
 }
 
 }  // namespace
