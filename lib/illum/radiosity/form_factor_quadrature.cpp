@@ -129,8 +129,17 @@ ILLUM_AVX2_CLONE double area_rule_exchange(const AreaRulePoints& from, const Vec
                                            const AreaRulePoints& to, const Vec3& normal_to) {
   const double nix = normal_from.x, niy = normal_from.y, niz = normal_from.z;
   const double njx = normal_to.x, njy = normal_to.y, njz = normal_to.z;
-  const int to_padded = (to.size + 3) / 4 * 4;
   double sum = 0;
+  if (to.size == 1) {  // order 1 on both sides (the smaller set is `from`): one term, no lanes to fill
+    for (int p = 0; p < from.size; ++p) {
+      const double wx = to.x[0] - from.x[p], wy = to.y[0] - from.y[p], wz = to.z[0] - from.z[p];
+      const double r2 = wx * wx + wy * wy + wz * wz;
+      const double ci = nix * wx + niy * wy + niz * wz, cj = njx * wx + njy * wy + njz * wz;
+      sum -= from.weight[p] * (to.weight[0] * ci * cj / (r2 * r2));
+    }
+    return sum;
+  }
+  const int to_padded = (to.size + 3) / 4 * 4;
   for (int p = 0; p < from.size; ++p) {
     const double px = from.x[p], py = from.y[p], pz = from.z[p];
     // cos φ_i cos φ_j / r² = (n_i·w)(−n_j·w) / |w|⁴ with w = y − x. Four

@@ -10,6 +10,7 @@
 // Triangles are mapped from the square by the collapsed (Duffy) map,
 // quadrilaterals bilinearly; other polygons are not handled here.
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <numbers>
 #include <vector>
@@ -66,17 +67,27 @@ double area_rule_error_bound(int m, int vertices, double half_edge, double dista
 inline constexpr double area_rule_error_constant = 3.0;
 
 // The bounds of area_rule_error_bound for m = 1 … max_area_rule_order at
-// once (bounds[m − 1]), without re-checking the arguments: what the matrix
-// builder needs for every pair when it picks the cheapest orders. Inline: the
-// builder calls it twice per pair, and the two calls share their divisions.
-inline void area_rule_error_bounds(int vertices, double half_edge, double distance, double area_to,
+// once (bounds[m − 1]), without re-checking the arguments, from the inverse
+// of the distance: what the matrix builder needs for every pair when it picks
+// the cheapest orders. Inline and free of divisions: the builder calls it
+// twice per pair, with the one reciprocal it computes per pair.
+inline void area_rule_error_bounds(int vertices, double half_edge, double inverse_distance, double area_to,
                                    double bounds[max_area_rule_order]) {
   // Each order multiplies the bound by (h/d)²: the same values as area_rule_error_bound's, without
-  // its argument checks and powers.
-  const double ratio = half_edge / distance;
-  bounds[0] = area_rule_error_constant * area_to / (std::numbers::pi * distance * distance) *
-              (vertices == 3 ? 1 : ratio) * ratio;
-  for (int m = 1; m < max_area_rule_order; ++m) bounds[m] = bounds[m - 1] * ratio * ratio;
+  // its argument checks. bounds[m] = bounds[m − 2^k] · (h/d)^(2·2^k), 2^k the highest power of two in
+  // m: a tree of products three deep rather than a chain of seven (the chain's latency was a third of
+  // the builder's time per pair at loose targets).
+  constexpr double constant_over_pi = area_rule_error_constant / std::numbers::pi;
+  const double ratio = half_edge * inverse_distance;
+  double power[std::bit_width(static_cast<unsigned>(max_area_rule_order))];  // power[k] = (h/d)^(2·2^k)
+  power[0] = ratio * ratio;
+  for (std::size_t k = 1; k < std::size(power); ++k) power[k] = power[k - 1] * power[k - 1];
+  bounds[0] =
+      constant_over_pi * area_to * inverse_distance * inverse_distance * (vertices == 3 ? 1 : ratio) * ratio;
+  for (unsigned m = 1; m < max_area_rule_order; ++m) {
+    const unsigned high = std::bit_floor(m);
+    bounds[m] = bounds[m - high] * power[std::countr_zero(high)];
+  }
 }
 
 // The number of points the arrays of an m × m rule hold: m² rounded up to a

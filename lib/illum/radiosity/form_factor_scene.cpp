@@ -161,18 +161,25 @@ FormFactorMatrix matrix_reusing_translates(const std::vector<Patch>& patches, co
 constexpr double contour_cost_per_edge_pair = 32.0;
 
 // What the tolerance-driven builder knows about every patch before the pairs:
-// its radius, half its longest edge and its area rule's points at every order
+// its radius, half its longest edge, 1/A and 1/(πA) (the pair loop divides by
+// nothing it can compute once), and its area rule's points at every order
 // (mapped once, not once per pair).
 struct PreparedPatches {
   explicit PreparedPatches(const std::vector<Patch>& patches)
-      : points(patches), radius(patches.size()), half_edge(patches.size()) {
+      : points(patches),
+        radius(patches.size()),
+        half_edge(patches.size()),
+        inverse_area(patches.size()),
+        inverse_pi_area(patches.size()) {
     for (std::size_t i = 0; i < patches.size(); ++i) {
       radius[i] = patch_radius(patches[i]);
       half_edge[i] = patch_half_edge(patches[i]);
+      inverse_area[i] = 1 / patches[i].area;
+      inverse_pi_area[i] = 1 / (std::numbers::pi * patches[i].area);
     }
   }
   AreaRulePointTable points;
-  std::vector<double> radius, half_edge;
+  std::vector<double> radius, half_edge, inverse_area, inverse_pi_area;
 };
 
 // The cost of the area rule at orders (ma, mb) in kernel evaluations, as
@@ -189,11 +196,11 @@ double area_rule_cost(int ma, int mb) {
 // most `budget` evaluations. The target is split between the sides as the
 // geometry asks, not half and half: a small patch facing a large one needs
 // fewer points than the large one.
-bool cheapest_area_orders(const Patch& a, const Patch& b, double ha, double hb, double distance,
+bool cheapest_area_orders(const Patch& a, const Patch& b, double ha, double hb, double inverse_distance,
                           double target, double budget, int& ma, int& mb, double& bound) {
   double ea[max_area_rule_order], eb[max_area_rule_order];
-  area_rule_error_bounds(static_cast<int>(a.vertices.size()), ha, distance, b.area, ea);
-  area_rule_error_bounds(static_cast<int>(b.vertices.size()), hb, distance, b.area, eb);
+  area_rule_error_bounds(static_cast<int>(a.vertices.size()), ha, inverse_distance, b.area, ea);
+  area_rule_error_bounds(static_cast<int>(b.vertices.size()), hb, inverse_distance, b.area, eb);
   // As a's order rises its bound falls, so the lowest order of b that completes the target never
   // rises: one walk down b's orders serves all of a's (at most 2·max_area_rule_order steps).
   constexpr int top = max_area_rule_order - 1;
@@ -245,35 +252,34 @@ double pair_to_tolerance(const std::vector<Patch>& patches, const PreparedPatche
   const std::size_t na = a.vertices.size(), nb = b.vertices.size();
   const double d2 = length_squared(b.centroid - a.centroid), r_max = std::max(ra, rb);
   // The cheap tests first: most pairs that fail do so on distance or on the bound, before the
-  // half-space test walks both vertex lists. The first bound test needs no square root and one
+  // half-space test walks both vertex lists. The first bound test needs no square root and no
   // division: the larger half edge's side at the highest order, a lower bound of area_rule_error_bound
   // there (exponent 2·max_area_rule_order whatever the shape, as h/d < 1), must meet the target on its
-  // own, else no orders can (at tight targets this rejects most pairs for the price of a few products).
+  // own, else no orders can: K A_b h^16 / (π d^18) > target. (It rejects most pairs at tight targets;
+  // a product that overflows or underflows only lets the pair through to the exact bounds.)
   if (na < 3 || na > 4 || nb < 3 || nb > 4 ||
       d2 < min_area_rule_separation * min_area_rule_separation * r_max * r_max)
     return contour_to_target(a, b, target, contour);
-  double ratio = std::max(prepared.half_edge[i], prepared.half_edge[j]);
-  ratio = ratio * ratio / d2;  // (h/d)²
   static_assert((max_area_rule_order & (max_area_rule_order - 1)) == 0, "squaring reaches powers of two");
-  for (int k = 1; k < max_area_rule_order; k *= 2) ratio *= ratio;  // (h/d)^(2·max_area_rule_order)
-  if (area_rule_error_constant * b.area * ratio > target * std::numbers::pi * d2)
+  const double h_max = std::max(prepared.half_edge[i], prepared.half_edge[j]);
+  double h_power = h_max * h_max, d_power = d2;
+  for (int k = 1; k < max_area_rule_order; k *= 2) h_power *= h_power, d_power *= d_power;  // h^16, d^16
+  if (area_rule_error_constant * b.area * h_power > target * std::numbers::pi * d2 * d_power)
     return contour_to_target(a, b, target, contour);
-  const double d = std::sqrt(d2);
-  {
-    const double budget = contour_cost_per_edge_pair * static_cast<double>(na * nb);
-    int ma = 0, mb = 0;
-    if (cheapest_area_orders(a, b, prepared.half_edge[i], prepared.half_edge[j], d, target, budget, ma, mb,
-                             bound) &&
-        area_rule_applies(a, b, ra, rb)) {
-      method = PairMethod::area_rule;
-      // The exchange is symmetric in the two patches: the larger point set goes inside (area_rule_cost).
-      const AreaRulePoints pa = prepared.points.points(i, ma), pb = prepared.points.points(j, mb);
-      const double exchange = ma <= mb ? area_rule_exchange(pa, a.normal, pb, b.normal)
-                                       : area_rule_exchange(pb, b.normal, pa, a.normal);
-      return exchange / (std::numbers::pi * a.area);
-    }
-    bound = 0;
+  const double inverse_d = 1 / std::sqrt(d2);
+  const double budget = contour_cost_per_edge_pair * static_cast<double>(na * nb);
+  int ma = 0, mb = 0;
+  if (cheapest_area_orders(a, b, prepared.half_edge[i], prepared.half_edge[j], inverse_d, target, budget, ma,
+                           mb, bound) &&
+      area_rule_applies(a, b, ra, rb)) {
+    method = PairMethod::area_rule;
+    // The exchange is symmetric in the two patches: the larger point set goes inside (area_rule_cost).
+    const AreaRulePoints pa = prepared.points.points(i, ma), pb = prepared.points.points(j, mb);
+    const double exchange = ma <= mb ? area_rule_exchange(pa, a.normal, pb, b.normal)
+                                     : area_rule_exchange(pb, b.normal, pa, a.normal);
+    return exchange * prepared.inverse_pi_area[i];
   }
+  bound = 0;
   return contour_to_target(a, b, target, contour);
 }
 
@@ -301,7 +307,7 @@ FormFactorMatrix contour_form_factor_matrix(const std::vector<Patch>& patches,
         ++r.coplanar;
         continue;
       }
-      const double pair_target = target.absolute * std::min(1.0, patches[j].area / patches[i].area);
+      const double pair_target = target.absolute * std::min(1.0, patches[j].area * prepared.inverse_area[i]);
       PairMethod method{};
       double bound = 0;
       const double fij = pair_to_tolerance(patches, prepared, i, j, pair_target, contour, method, bound);
