@@ -1,8 +1,10 @@
 // The a-priori bound of the area rule (suite "stability", not graded): the
 // matrix builder's tolerance rests on it, so it is checked on shapes and
 // orientations the cube never shows — irregular convex quadrilaterals, thin
-// rectangles, triangles — tilted at random, 2 to 10 radii apart, against the
-// contour integral (exact to rounding for patches this far apart).
+// rectangles, triangles — tilted at random, 2.4 to 12 radii apart, against the
+// contour integral (exact to rounding for patches this far apart). The bound
+// uses half the longest edge, as the builder does; the largest error / bound
+// over 4,500 pairs of other seeds was 0.52 (K = 3).
 #include <doctest/doctest.h>
 
 #include <algorithm>
