@@ -1,8 +1,10 @@
 // The a-priori bound of the area rule (suite "stability", not graded): the
 // matrix builder's tolerance rests on it, so it is checked on shapes and
 // orientations the cube never shows — irregular convex quadrilaterals, thin
-// rectangles, triangles — tilted at random, 2 to 10 radii apart, against the
-// contour integral (exact to rounding for patches this far apart).
+// rectangles, triangles — tilted at random, 2.4 to 12 radii apart, against the
+// contour integral (exact to rounding for patches this far apart). The bound
+// uses half the longest edge, as the builder does; the largest error / bound
+// over 4,500 pairs of other seeds was 0.52 (K = 3).
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -75,8 +77,9 @@ TEST_SUITE("stability") {
       const double d = length(b.centroid - a.centroid);
       for (int ma = 1; ma <= 5; ++ma)
         for (int mb = 1; mb <= 5; ++mb) {
-          const double bound = area_rule_error_bound(ma, static_cast<int>(a.vertices.size()), ra, d, b.area) +
-                               area_rule_error_bound(mb, static_cast<int>(b.vertices.size()), rb, d, b.area);
+          const double bound =
+              area_rule_error_bound(ma, static_cast<int>(a.vertices.size()), patch_half_edge(a), d, b.area) +
+              area_rule_error_bound(mb, static_cast<int>(b.vertices.size()), patch_half_edge(b), d, b.area);
           const double error = std::abs(area_rule_form_factor(a, b, ma, mb) - exact);
           tightest = std::max(tightest, error / bound);
           INFO("kinds " << kind_a << ", " << kind_b << ", d/r = " << d / std::max(ra, rb) << ", orders " << ma

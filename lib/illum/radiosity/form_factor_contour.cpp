@@ -36,12 +36,16 @@ double log_primitive(double u, double h) {
   return value;
 }
 
-// H(u) with H''(u) = ½ ln(u² + d²): ¼(u² − d²) ln(u² + d²) + d u atan(u/d) − ¾u².
-double log_second_primitive(double u, double d) {
+// H(u) with H''(u) = ½ ln(u² + d²): ¼(u² − d²) ln(u² + d²) + d u atan(u/d) − ¾u²,
+// given d and 1/d (0 when d = 0; the four calls of an edge pair share it).
+// The atan is skipped where its term is zero (u = 0 happens wherever two
+// edges' endpoints line up, as on any mesh with aligned rows): the two
+// transcendental calls are most of a parallel edge pair's cost.
+double log_second_primitive(double u, double d, double inverse_d) {
   const double r2 = u * u + d * d;
   double value = -0.75 * u * u;
   if (r2 > 0) value += 0.25 * (u * u - d * d) * std::log(r2);
-  if (d > 0) value += d * u * std::atan(u / d);
+  if (d > 0 && u != 0) value += d * u * std::atan(u * inverse_d);
   return value;
 }
 
@@ -56,17 +60,18 @@ double inner_log_integral(const Point3& x, const Point3& b, const Vec3& v, doubl
 // ∫∫ ln r dσ dτ over two parallel edges: with the common direction u, the
 // integrand depends only on the difference of the coordinates along u and on
 // the fixed distance d between the lines, so four values of H do it. Exact for
-// collinear, overlapping and coincident edges too (d = 0).
-double parallel_edges_log_integral(const Point3& a, const Vec3& ep, const Point3& b, const Vec3& eq) {
-  const double lp = length(ep);
-  const Vec3 u = ep / lp;
+// collinear, overlapping and coincident edges too (d = 0). Edge p is given by
+// its unit direction u and length lp.
+double parallel_edges_log_integral(const Point3& a, const Vec3& u, double lp, const Point3& b,
+                                   const Vec3& eq) {
   const Vec3 w = b - a;
   const double along = dot(w, u);
   const double d = length(w - along * u);
   const double q_end = along + dot(eq, u);
   const double q1 = std::min(along, q_end), q2 = std::max(along, q_end);
-  return log_second_primitive(lp - q1, d) - log_second_primitive(-q1, d) - log_second_primitive(lp - q2, d) +
-         log_second_primitive(-q2, d);
+  const double inverse_d = d > 0 ? 1 / d : 0;
+  return log_second_primitive(lp - q1, d, inverse_d) - log_second_primitive(-q1, d, inverse_d) -
+         log_second_primitive(lp - q2, d, inverse_d) + log_second_primitive(-q2, d, inverse_d);
 }
 
 // The parameter σ ∈ [0, L_p] of the point of edge p closest to edge q, and the distance.
@@ -139,12 +144,62 @@ double edge_pair_log_integral(const Point3& a, const Vec3& ep, const Point3& b, 
   return sum;
 }
 
-// Largest distance of a polygon's vertices from a plane, on its positive side.
-double height_above(const SmallPolygon& polygon, const Point3& origin, const Vec3& normal) {
-  double h = 0;
-  for (int k = 0; k < polygon.size; ++k) h = std::max(h, dot(normal, polygon[k] - origin));
-  return h;
+// The part of a polygon on the front side of a plane (the other patch's):
+// the polygon itself, uncopied, when all its vertices are on that side (the
+// usual case inside an enclosure), else its clipped copy; with the largest
+// height of its vertices above the plane.
+struct FrontPart {
+  SmallPolygon clipped;  // used only when the polygon had to be clipped
+  std::span<const Point3> vertices;
+  double height = 0;
+};
+
+void front_part(const std::vector<Point3>& polygon, const Point3& origin, const Vec3& normal,
+                FrontPart& part) {
+  bool all_in_front = true;
+  part.height = 0;
+  for (const Point3& v : polygon) {
+    const double h = dot(normal, v - origin);
+    all_in_front = all_in_front && h >= 0;
+    part.height = std::max(part.height, h);
+  }
+  if (all_in_front && polygon.size() >= 3) {  // what clip_polygon_to_half_space would return
+    part.vertices = polygon;
+    return;
+  }
+  part.clipped = clip_polygon_to_half_space(polygon, origin, normal);
+  part.vertices = part.clipped.view();
+  part.height = 0;
+  for (const Point3& v : part.vertices) part.height = std::max(part.height, dot(normal, v - origin));
 }
+
+// Each edge of a polygon as its vector, length and unit direction, once per
+// polygon rather than once per edge pair: on the stack up to
+// SmallPolygon::inline_capacity edges, on the heap beyond.
+class PolygonEdges {
+ public:
+  explicit PolygonEdges(std::span<const Point3> polygon) : size_(static_cast<int>(polygon.size())) {
+    if (size_ > SmallPolygon::inline_capacity) heap_.resize(polygon.size());
+    Edge* e = data();
+    for (int k = 0; k < size_; ++k) {
+      e[k].vector = polygon[static_cast<std::size_t>((k + 1) % size_)] - polygon[static_cast<std::size_t>(k)];
+      e[k].length = length(e[k].vector);
+      e[k].unit = e[k].vector * (1 / e[k].length);  // one division, not three
+    }
+  }
+  struct Edge {
+    Vec3 vector, unit;
+    double length;
+  };
+  const Edge& operator[](int k) const { return data()[k]; }
+
+ private:
+  Edge* data() { return heap_.empty() ? stack_.data : heap_.data(); }
+  const Edge* data() const { return heap_.empty() ? stack_.data : heap_.data(); }
+  int size_;
+  Uninitialized<Edge, SmallPolygon::inline_capacity> stack_;
+  std::vector<Edge> heap_;
+};
 
 }  // namespace
 
@@ -152,61 +207,36 @@ double polygon_polygon_form_factor(const Patch& from, const Patch& to, const Con
   require(options.order >= 1 && options.order <= max_gauss_legendre_order,
           "polygon_polygon_form_factor: the quadrature order must be in 1 … 64");
   // Only the part of each patch in front of the other exchanges energy.
-  const SmallPolygon pi = clip_polygon_to_half_space(from.vertices, to.centroid, to.normal);
-  const SmallPolygon pj = clip_polygon_to_half_space(to.vertices, from.centroid, from.normal);
-  if (pi.size == 0 || pj.size == 0) return 0.0;
+  FrontPart part_i, part_j;
+  front_part(from.vertices, to.centroid, to.normal, part_i);
+  front_part(to.vertices, from.centroid, from.normal, part_j);
+  const std::span<const Point3> pi = part_i.vertices, pj = part_j.vertices;
+  if (pi.empty() || pj.empty()) return 0.0;
   // Coplanar (F_ii included) or touching the other's plane only: every cos is zero.
   const double size = std::sqrt(std::max(from.area, to.area));  // a length scale for the tolerance
-  if (height_above(pi, to.centroid, to.normal) <= 1e-12 * size ||
-      height_above(pj, from.centroid, from.normal) <= 1e-12 * size)
-    return 0.0;
+  if (part_i.height <= 1e-12 * size || part_j.height <= 1e-12 * size) return 0.0;
   const QuadratureRule& rule = gauss_legendre(options.order);
-  // Edge vectors and lengths once per polygon, not once per edge pair: on the
-  // stack up to SmallPolygon::inline_capacity edges, on the heap beyond.
-  constexpr int small = SmallPolygon::inline_capacity;
-  Uninitialized<Vec3, small> ei_stack, ej_stack;
-  Uninitialized<double, small> li_stack, lj_stack;
-  std::vector<Vec3> ei_heap, ej_heap;
-  std::vector<double> li_heap, lj_heap;
-  if (pi.size > small) ei_heap.resize(static_cast<std::size_t>(pi.size)), li_heap.resize(ei_heap.size());
-  if (pj.size > small) ej_heap.resize(static_cast<std::size_t>(pj.size)), lj_heap.resize(ej_heap.size());
-  const std::span<Vec3> ei =
-      pi.size > small ? std::span<Vec3>(ei_heap) : std::span<Vec3>(ei_stack.data, small);
-  const std::span<Vec3> ej =
-      pj.size > small ? std::span<Vec3>(ej_heap) : std::span<Vec3>(ej_stack.data, small);
-  const std::span<double> li =
-      pi.size > small ? std::span<double>(li_heap) : std::span<double>(li_stack.data, small);
-  const std::span<double> lj =
-      pj.size > small ? std::span<double>(lj_heap) : std::span<double>(lj_stack.data, small);
-  for (int p = 0; p < pi.size; ++p) {
-    const auto k = static_cast<std::size_t>(p);
-    ei[k] = pi[(p + 1) % pi.size] - pi[p];
-    li[k] = length(ei[k]);
-  }
-  for (int q = 0; q < pj.size; ++q) {
-    const auto k = static_cast<std::size_t>(q);
-    ej[k] = pj[(q + 1) % pj.size] - pj[q];
-    lj[k] = length(ej[k]);
-  }
+  const int ni = static_cast<int>(pi.size()), nj = static_cast<int>(pj.size());
+  const PolygonEdges ei(pi), ej(pj);
   // options.tolerance on F, shared among the edge pairs, as a tolerance on each ∫∫ ln r:
   // F = Σ cos · ∫∫ / (2π A_i).
   const double pair_tolerance =
-      options.tolerance * 2 * std::numbers::pi * from.area / static_cast<double>(pi.size * pj.size);
+      options.tolerance * 2 * std::numbers::pi * from.area / static_cast<double>(ni * nj);
   double sum = 0;
-  for (int p = 0; p < pi.size; ++p) {
-    const auto kp = static_cast<std::size_t>(p);
-    if (li[kp] == 0) continue;
-    for (int q = 0; q < pj.size; ++q) {
-      const auto kq = static_cast<std::size_t>(q);
-      if (lj[kq] == 0) continue;
-      const double scale = li[kp] * lj[kq];
-      const double cosine = dot(ei[kp], ej[kq]) / scale;
+  for (int p = 0; p < ni; ++p) {
+    const PolygonEdges::Edge& ep = ei[p];
+    if (ep.length == 0) continue;
+    for (int q = 0; q < nj; ++q) {
+      const PolygonEdges::Edge& eq = ej[q];
+      if (eq.length == 0) continue;
+      const double cosine = dot(ep.unit, eq.unit);
       if (std::abs(cosine) <= 1e-14) continue;  // perpendicular edges: dx_i · dx_j = 0
-      const bool parallel = std::abs(cosine) >= 1 - 1e-14 || length(cross(ei[kp], ej[kq])) <= 1e-12 * scale;
+      const bool parallel = std::abs(cosine) >= 1 - 1e-14 || length_squared(cross(ep.unit, eq.unit)) <= 1e-24;
+      const auto kp = static_cast<std::size_t>(p), kq = static_cast<std::size_t>(q);
       const double integral = parallel && options.exact_parallel_edges
-                                  ? parallel_edges_log_integral(pi[p], ei[kp], pj[q], ej[kq])
-                                  : edge_pair_log_integral(pi[p], ei[kp], pj[q], ej[kq], parallel, options,
-                                                           rule, pair_tolerance / std::abs(cosine));
+                                  ? parallel_edges_log_integral(pi[kp], ep.unit, ep.length, pj[kq], eq.vector)
+                                  : edge_pair_log_integral(pi[kp], ep.vector, pj[kq], eq.vector, parallel,
+                                                           options, rule, pair_tolerance / std::abs(cosine));
       sum += cosine * integral;
     }
   }

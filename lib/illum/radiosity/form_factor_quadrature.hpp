@@ -9,7 +9,10 @@
 // shared edge or vertex it does not, and the contour integral takes over.
 // Triangles are mapped from the square by the collapsed (Duffy) map,
 // quadrilaterals bilinearly; other polygons are not handled here.
+#include <array>
+#include <bit>
 #include <cstddef>
+#include <numbers>
 #include <vector>
 
 #include "illum/radiosity/patch.hpp"
@@ -39,25 +42,77 @@ bool area_rule_applies(const Patch& from, const Patch& to, double radius_from, d
 // The radius of a patch: the largest distance from its centroid to a vertex.
 double patch_radius(const Patch& patch);
 
+// Half the longest edge of a patch: the size the area rule's error bound
+// uses. Each line of the rule's parameter square maps to a segment no longer
+// than the longest edge (the bilinear map of a convex quadrilateral and the
+// collapsed map of a triangle alike), and Gauss–Legendre converges on a
+// segment as (half its length / distance to the kernel's singularity)^{2m}.
+double patch_half_edge(const Patch& patch);
+
 // A-priori bound on the part of the area rule's error that comes from one
-// side: a patch of `vertices` vertices and radius r sampled with m × m points, the pair's
-// centroids d apart, the receiving patch of area `area_to`:
-//   E ≤ K · (area_to / (π d²)) · (r / d)^p,   p = 2m (quadrilateral), 2m − 1 (triangle),
+// side: a patch of `vertices` vertices whose longest edge is 2h, sampled with
+// m × m points, the pair's centroids d apart, the receiving patch of area
+// `area_to`:
+//   E ≤ K · (area_to / (π d²)) · (h / d)^p,   p = 2m (quadrilateral), 2m − 1 (triangle),
 // since an m-point Gauss rule is exact to degree 2m − 1 and the collapsed map
-// of a triangle costs one degree. K = 2: the largest K measured over squares
-// and triangles seen from all directions at 2 ≤ d/r ≤ 8 is 0.66 (lesson 09
-// README, "The error target"). The pair's error is the sum of both sides'.
-double area_rule_error_bound(int m, int vertices, double radius, double distance, double area_to);
+// of a triangle costs one degree. K = 3: about twice the largest constant
+// measured (1.55, over 4,500 random pairs) over convex quadrilaterals, thin
+// rectangles and triangles seen from all directions at 2.4 ≤ d/r ≤ 12
+// (tests/radiosity/area_rule_bound.cpp). The
+// pair's error is the sum of both sides'. (The patch's radius in place of h
+// also bounds the error, but more loosely: √2 h for a square.)
+double area_rule_error_bound(int m, int vertices, double half_edge, double distance, double area_to);
+
+// K of area_rule_error_bound (see there).
+inline constexpr double area_rule_error_constant = 3.0;
 
 // The bounds of area_rule_error_bound for m = 1 … max_area_rule_order at
-// once (bounds[m − 1]), without re-checking the arguments: what the matrix
-// builder needs for every pair when it picks the cheapest orders.
-void area_rule_error_bounds(int vertices, double radius, double distance, double area_to,
-                            double bounds[max_area_rule_order]);
+// once (bounds[m − 1]), without re-checking the arguments, from the inverse
+// of the distance: what the matrix builder needs for every pair when it picks
+// the cheapest orders. Inline and free of divisions: the builder calls it
+// twice per pair, with the one reciprocal it computes per pair.
+inline void area_rule_error_bounds(int vertices, double half_edge, double inverse_distance, double area_to,
+                                   double bounds[max_area_rule_order]) {
+  // Each order multiplies the bound by (h/d)²: the same values as area_rule_error_bound's, without
+  // its argument checks. bounds[m] = bounds[m − 2^k] · (h/d)^(2·2^k), 2^k the highest power of two in
+  // m: a tree of products three deep rather than a chain of seven (the chain's latency was a third of
+  // the builder's time per pair at loose targets).
+  constexpr double constant_over_pi = area_rule_error_constant / std::numbers::pi;
+  const double ratio = half_edge * inverse_distance;
+  double power[std::bit_width(static_cast<unsigned>(max_area_rule_order))];  // power[k] = (h/d)^(2·2^k)
+  power[0] = ratio * ratio;
+  for (std::size_t k = 1; k < std::size(power); ++k) power[k] = power[k - 1] * power[k - 1];
+  bounds[0] =
+      constant_over_pi * area_to * inverse_distance * inverse_distance * (vertices == 3 ? 1 : ratio) * ratio;
+  for (unsigned m = 1; m < max_area_rule_order; ++m) {
+    const unsigned high = std::bit_floor(m);
+    bounds[m] = bounds[m - high] * power[std::countr_zero(high)];
+  }
+}
+
+// The number of points the arrays of an m × m rule hold: m² rounded up to a
+// multiple of 4, the extra points with weight 0, so that the kernel's loop
+// runs over whole groups of four (vector instructions, no remainder loop).
+constexpr int padded_points(int m) { return (m * m + 3) / 4 * 4; }
+
+// Where order m starts within one patch's block of an AreaRulePointTable:
+// Σ padded_points(k) for k < m.
+constexpr std::size_t area_rule_order_offset(int m) {
+  std::size_t at = 0;
+  for (int k = 1; k < m; ++k) at += static_cast<std::size_t>(padded_points(k));
+  return at;
+}
+inline constexpr std::array<std::size_t, max_area_rule_order + 2> area_rule_order_offsets = [] {
+  std::array<std::size_t, max_area_rule_order + 2> at{};
+  for (int m = 1; m <= max_area_rule_order + 1; ++m)
+    at[static_cast<std::size_t>(m)] = area_rule_order_offset(m);
+  return at;
+}();
 
 // The m × m points of the area rule on one patch, as separate coordinate
-// arrays, each with its weight dA; the
-// weights sum to the patch's area.
+// arrays, each with its weight dA; the weights sum to the patch's area. The
+// arrays hold padded_points(m) entries: `size` = m² points, then copies of the
+// first point with weight 0.
 struct AreaRulePoints {
   const double *x = nullptr, *y = nullptr, *z = nullptr, *weight = nullptr;
   int size = 0;
@@ -74,12 +129,12 @@ class AreaRulePointTable {
   // and 1 ≤ m ≤ max_area_rule_order (not checked: it is called for every pair).
   AreaRulePoints points(std::size_t patch, int m) const {
     if (!mapped_[patch]) return {};
-    const std::size_t at = patch * per_patch + static_cast<std::size_t>((m - 1) * m * (2 * m - 1) / 6);
+    const std::size_t at = patch * per_patch + area_rule_order_offsets[static_cast<std::size_t>(m)];
     return {&x_[at], &y_[at], &z_[at], &weight_[at], m * m};
   }
 
  private:
-  static constexpr std::size_t per_patch = 204;  // Σ m² for m = 1 … 8
+  static constexpr std::size_t per_patch = area_rule_order_offset(max_area_rule_order + 1);
   std::vector<double> x_, y_, z_, weight_;
   std::vector<int> mapped_;  // 1 if the patch has points
 };

@@ -154,38 +154,62 @@ FormFactorMatrix matrix_reusing_translates(const std::vector<Patch>& patches, co
 // The cost of one contour integral in evaluations of the area rule's kernel,
 // per edge pair: a parallel edge pair costs four log and four atan, and a
 // quad pair has four to eight of its sixteen edge pairs parallel (the rest
-// perpendicular, free). Measured on the cube (one thread): a contour pair
-// costs about 0.6 µs and a kernel evaluation of the area rule about 2 ns, so
-// a quad pair is worth 4⁴ = 256 evaluations, the rule of order 4 on both sides.
-constexpr double contour_cost_per_edge_pair = 16.0;
+// perpendicular, free). Measured on the cube (one thread, thread CPU time): a
+// contour pair costs about 0.45 µs and a kernel evaluation of the area rule
+// about 0.9 ns (AVX2; 1.6 ns without), so a quad pair is worth about 500
+// evaluations, the rule of order 4 on one side and 5 on the other.
+constexpr double contour_cost_per_edge_pair = 32.0;
 
 // What the tolerance-driven builder knows about every patch before the pairs:
-// its radius and its area rule's points at every order (mapped once, not once per pair).
+// its radius, half its longest edge, 1/A and 1/(πA) (the pair loop divides by
+// nothing it can compute once), and its area rule's points at every order
+// (mapped once, not once per pair).
 struct PreparedPatches {
-  explicit PreparedPatches(const std::vector<Patch>& patches) : points(patches), radius(patches.size()) {
-    for (std::size_t i = 0; i < patches.size(); ++i) radius[i] = patch_radius(patches[i]);
+  explicit PreparedPatches(const std::vector<Patch>& patches)
+      : points(patches),
+        radius(patches.size()),
+        half_edge(patches.size()),
+        inverse_area(patches.size()),
+        inverse_pi_area(patches.size()) {
+    for (std::size_t i = 0; i < patches.size(); ++i) {
+      radius[i] = patch_radius(patches[i]);
+      half_edge[i] = patch_half_edge(patches[i]);
+      inverse_area[i] = 1 / patches[i].area;
+      inverse_pi_area[i] = 1 / (std::numbers::pi * patches[i].area);
+    }
   }
   AreaRulePointTable points;
-  std::vector<double> radius;
+  std::vector<double> radius, half_edge, inverse_area, inverse_pi_area;
 };
 
-// The orders (m_from, m_to) of the cheapest area rule (fewest kernel
-// evaluations m_from² m_to²) whose two one-sided bounds add up to at most
-// `target`; false when none costs at most `budget` evaluations. The target is
-// split between the sides as the geometry asks, not half and half: a small
-// patch facing a large one needs fewer points than the large one.
-bool cheapest_area_orders(const Patch& a, const Patch& b, double ra, double rb, double distance,
+// The cost of the area rule at orders (ma, mb) in kernel evaluations, as
+// area_rule_exchange spends it with the smaller point set outside and the
+// larger, padded to whole groups of four, inside; each outer point adds about
+// four evaluations' worth (its loads and the sum of the four lanes).
+double area_rule_cost(int ma, int mb) {
+  const int outer = std::min(ma, mb), inner = std::max(ma, mb);
+  return outer * outer * (padded_points(inner) + 4.0);
+}
+
+// The orders (m_from, m_to) of the cheapest area rule (area_rule_cost) whose
+// two one-sided bounds add up to at most `target`; false when none costs at
+// most `budget` evaluations. The target is split between the sides as the
+// geometry asks, not half and half: a small patch facing a large one needs
+// fewer points than the large one.
+bool cheapest_area_orders(const Patch& a, const Patch& b, double ha, double hb, double inverse_distance,
                           double target, double budget, int& ma, int& mb, double& bound) {
   double ea[max_area_rule_order], eb[max_area_rule_order];
-  area_rule_error_bounds(static_cast<int>(a.vertices.size()), ra, distance, b.area, ea);
-  area_rule_error_bounds(static_cast<int>(b.vertices.size()), rb, distance, b.area, eb);
+  area_rule_error_bounds(static_cast<int>(a.vertices.size()), ha, inverse_distance, b.area, ea);
+  area_rule_error_bounds(static_cast<int>(b.vertices.size()), hb, inverse_distance, b.area, eb);
+  // As a's order rises its bound falls, so the lowest order of b that completes the target never
+  // rises: one walk down b's orders serves all of a's (at most 2·max_area_rule_order steps).
+  constexpr int top = max_area_rule_order - 1;
   double best = budget + 1;
-  for (int i = 0; i < max_area_rule_order && (i + 1) * (i + 1) <= best; ++i) {
-    if (ea[i] >= target) continue;
-    int j = 0;
-    while (j < max_area_rule_order && ea[i] + eb[j] > target) ++j;
-    if (j == max_area_rule_order) continue;
-    const double cost = static_cast<double>((i + 1) * (i + 1) * (j + 1) * (j + 1));
+  int j = top;
+  for (int i = 0; i <= top && (i + 1) * (i + 1) <= best; ++i) {  // cost ≥ (i + 1)²
+    if (ea[i] + eb[top] > target) continue;                      // not even with b's highest order
+    while (j > 0 && ea[i] + eb[j - 1] <= target) --j;
+    const double cost = area_rule_cost(i + 1, j + 1);
     if (cost < best) best = cost, ma = i + 1, mb = j + 1, bound = ea[i] + eb[j];
   }
   return best <= budget;
@@ -211,6 +235,13 @@ void fill_by_reciprocity(const std::vector<Patch>& patches, FormFactorMatrix& f)
 // One pair of the tolerance-driven matrix: the value and the method used.
 enum class PairMethod { contour, area_rule };
 
+// F_ab by the contour integral to an absolute target.
+double contour_to_target(const Patch& a, const Patch& b, double target, const ContourOptions& contour) {
+  ContourOptions to_target = contour;
+  to_target.tolerance = target;
+  return polygon_polygon_form_factor(a, b, to_target);
+}
+
 double pair_to_tolerance(const std::vector<Patch>& patches, const PreparedPatches& prepared, std::size_t i,
                          std::size_t j, double target, const ContourOptions& contour, PairMethod& method,
                          double& bound) {
@@ -219,24 +250,37 @@ double pair_to_tolerance(const std::vector<Patch>& patches, const PreparedPatche
   method = PairMethod::contour;
   bound = 0;
   const std::size_t na = a.vertices.size(), nb = b.vertices.size();
-  const double d = length(b.centroid - a.centroid);
+  const double d2 = length_squared(b.centroid - a.centroid), r_max = std::max(ra, rb);
   // The cheap tests first: most pairs that fail do so on distance or on the bound, before the
-  // half-space test walks both vertex lists.
-  if (na >= 3 && na <= 4 && nb >= 3 && nb <= 4 && d >= min_area_rule_separation * std::max(ra, rb)) {
-    const double budget = contour_cost_per_edge_pair * static_cast<double>(na * nb);
-    int ma = 0, mb = 0;
-    if (cheapest_area_orders(a, b, ra, rb, d, target, budget, ma, mb, bound) &&
-        area_rule_applies(a, b, ra, rb)) {
-      method = PairMethod::area_rule;
-      return area_rule_exchange(prepared.points.points(i, ma), a.normal, prepared.points.points(j, mb),
-                                b.normal) /
-             (std::numbers::pi * a.area);
-    }
-    bound = 0;
+  // half-space test walks both vertex lists. The first bound test needs no square root and no
+  // division: the larger half edge's side at the highest order, a lower bound of area_rule_error_bound
+  // there (exponent 2·max_area_rule_order whatever the shape, as h/d < 1), must meet the target on its
+  // own, else no orders can: K A_b h^16 / (π d^18) > target. (It rejects most pairs at tight targets;
+  // a product that overflows or underflows only lets the pair through to the exact bounds.)
+  if (na < 3 || na > 4 || nb < 3 || nb > 4 ||
+      d2 < min_area_rule_separation * min_area_rule_separation * r_max * r_max)
+    return contour_to_target(a, b, target, contour);
+  static_assert((max_area_rule_order & (max_area_rule_order - 1)) == 0, "squaring reaches powers of two");
+  const double h_max = std::max(prepared.half_edge[i], prepared.half_edge[j]);
+  double h_power = h_max * h_max, d_power = d2;
+  for (int k = 1; k < max_area_rule_order; k *= 2) h_power *= h_power, d_power *= d_power;  // h^16, d^16
+  if (area_rule_error_constant * b.area * h_power > target * std::numbers::pi * d2 * d_power)
+    return contour_to_target(a, b, target, contour);
+  const double inverse_d = 1 / std::sqrt(d2);
+  const double budget = contour_cost_per_edge_pair * static_cast<double>(na * nb);
+  int ma = 0, mb = 0;
+  if (cheapest_area_orders(a, b, prepared.half_edge[i], prepared.half_edge[j], inverse_d, target, budget, ma,
+                           mb, bound) &&
+      area_rule_applies(a, b, ra, rb)) {
+    method = PairMethod::area_rule;
+    // The exchange is symmetric in the two patches: the larger point set goes inside (area_rule_cost).
+    const AreaRulePoints pa = prepared.points.points(i, ma), pb = prepared.points.points(j, mb);
+    const double exchange = ma <= mb ? area_rule_exchange(pa, a.normal, pb, b.normal)
+                                     : area_rule_exchange(pb, b.normal, pa, a.normal);
+    return exchange * prepared.inverse_pi_area[i];
   }
-  ContourOptions to_target = contour;
-  to_target.tolerance = target;
-  return polygon_polygon_form_factor(a, b, to_target);
+  bound = 0;
+  return contour_to_target(a, b, target, contour);
 }
 
 }  // namespace
@@ -263,7 +307,7 @@ FormFactorMatrix contour_form_factor_matrix(const std::vector<Patch>& patches,
         ++r.coplanar;
         continue;
       }
-      const double pair_target = target.absolute * std::min(1.0, patches[j].area / patches[i].area);
+      const double pair_target = target.absolute * std::min(1.0, patches[j].area * prepared.inverse_area[i]);
       PairMethod method{};
       double bound = 0;
       const double fij = pair_to_tolerance(patches, prepared, i, j, pair_target, contour, method, bound);
