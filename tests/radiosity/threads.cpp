@@ -100,7 +100,7 @@ TEST_SUITE("stability") {
       OnDemandRun run;
       with_threads(threads,
                    [&] { run = progressive_on_demand(patches, hemicube, {.unshot_fraction = fraction}); });
-      INFO("on " << threads << " threads: " << run.rounds << " rounds, " << run.rows << " rows");
+      INFO("on " << threads << " threads: " << run.stalls << " stalls, " << run.rows << " rows");
       CHECK(run.state.shots == serial.shots);
       CHECK(run.rows >= run.state.shots);
       CHECK(same_bits(&run.state.radiosity[0].r, &serial.radiosity[0].r, 3 * patches.size()));
