@@ -80,7 +80,9 @@ struct RowSlots {
     return none;
   }
   // Replaces the wanted list (no allocation: its capacity is the slot count).
-  void want(const std::vector<std::size_t>& rows_wanted) { wanted.assign(rows_wanted.begin(), rows_wanted.end()); }
+  void want(const std::vector<std::size_t>& rows_wanted) {
+    wanted.assign(rows_wanted.begin(), rows_wanted.end());
+  }
   // Claims a slot for the first wanted row from wanted[from] on that no slot
   // holds: the slot is marked as being drawn. none when there is no such row or no free slot.
   std::size_t claim_wanted(std::size_t from) {
@@ -119,7 +121,8 @@ OnDemandRun progressive_on_demand(const std::vector<Patch>& patches, const Hemic
   // `team` predicted next shooters) and 2·team + 2 row slots, enough that a
   // thread can always claim one (at most team − 1 are being drawn by the
   // helpers and team + 1 hold wanted rows).
-  const int max_team = std::max(1, std::min(omp_get_max_threads(), static_cast<int>(std::min<std::size_t>(n, 64))));
+  const int max_team =
+      std::max(1, std::min(omp_get_max_threads(), static_cast<int>(std::min<std::size_t>(n, 64))));
   RowSlots slots(static_cast<std::size_t>(2 * max_team + 2), n);
   std::vector<double> predicted(n);
   std::vector<std::size_t> candidates(static_cast<std::size_t>(max_team) + 1);

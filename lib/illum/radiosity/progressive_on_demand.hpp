@@ -46,8 +46,8 @@ struct OnDemandRun {
 // Shoots from B = Δ = E (progressive_start) until the unshot power is below
 // settings.unshot_fraction of the emitted power. after_shot(state, unshot
 // fraction), when given, is called after every shot. The row slots are
-// allocated once, before the first shot, and each thread's buffers by its first row. Throws std::invalid_argument for a
-// fraction outside (0, 1) and std::runtime_error when max_shots is reached first.
+// allocated once, before the first shot, and each thread's buffers by its first row. Throws
+// std::invalid_argument for a fraction outside (0, 1) and std::runtime_error when max_shots is reached first.
 OnDemandRun progressive_on_demand(
     const std::vector<Patch>& patches, const Hemicube& hemicube, const OnDemandSettings& settings,
     const std::function<void(const ProgressiveState&, double)>& after_shot = {});
