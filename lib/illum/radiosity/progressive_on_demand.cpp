@@ -175,17 +175,13 @@ OnDemandRun progressive_on_demand(const std::vector<Patch>& patches, const Hemic
         candidates.resize(team + (team > 1 ? 1 : 0));
         Stopwatch watch;
         while (!stop && run.unshot_fraction >= settings.unshot_fraction) {
+          lock.unlock();  // the O(n) choice and prediction need no lock: helpers keep claiming meanwhile
           const std::size_t i = choose_shooter(patches, run.state.unshot);
           candidates[0] = i;
-          if (team > 1) {  // outside the lock: the helpers keep drawing meanwhile
-            lock.unlock();
-            predict_next_shooters(patches, run.state.unshot, predicted, candidates);
-            lock.lock();
-            slots.want(candidates);
-            work_posted.notify_all();
-          } else {
-            slots.want(candidates);
-          }
+          if (team > 1) predict_next_shooters(patches, run.state.unshot, predicted, candidates);
+          lock.lock();
+          slots.want(candidates);
+          if (team > 1) work_posted.notify_all();
           // Row i: ready, or drawn here; while a helper draws it, draw the
           // next wanted row rather than wait, and wait only when there is none.
           watch.restart();
