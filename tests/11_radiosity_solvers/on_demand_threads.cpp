@@ -99,7 +99,9 @@ TEST_SUITE("stability") {
     }
   }
 
-  TEST_CASE("hard case: rows on demand stop with the shot limit's error on every thread count, no thread left waiting") {
+  TEST_CASE(
+      "hard case: rows on demand stop with the shot limit's error on every thread count, no thread left "
+      "waiting") {
     const RadiosityScene scene = load_radiosity_scene("cornell", 150.0);
     const Hemicube hemicube(16);
     for (const int threads : {1, 2, 4}) {
