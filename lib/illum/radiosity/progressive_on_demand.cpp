@@ -25,13 +25,21 @@ double power(const Patch& p, const Color& unshot) { return p.area * (unshot.r + 
 // Fills candidates[1 …) with the patches most likely to shoot after
 // candidates[0]: the largest unshot power each will have once candidates[0]
 // has shot, Φ_j + A_i Δ_i·ρ_j F̃_ij, with F̃_ij = A_j cos θ_i cos θ_j/(π d²)
-// (point to point, no occlusion, at most 1). `predicted` is scratch of size n.
+// (point to point, no occlusion, at most 1), the lowest index first on ties.
+// One pass keeps the best few in order (insertion into `best`, scratch of
+// candidates.size() − 1 values): the shooting thread runs it before every
+// shot while the others draw, so it must stay a small part of a shot.
 void predict_next_shooters(const std::vector<Patch>& patches, const std::vector<Color>& unshot,
-                           std::vector<double>& predicted, std::vector<std::size_t>& candidates) {
-  const std::size_t n = patches.size(), first = candidates[0];
+                           std::vector<double>& best, std::vector<std::size_t>& candidates) {
+  const std::size_t n = patches.size(), first = candidates[0], k = candidates.size() - 1;
   const Patch& s = patches[first];
   const Color sent = s.area * unshot[first];
+  std::fill(best.begin(), best.begin() + static_cast<std::ptrdiff_t>(k),
+            -std::numeric_limits<double>::infinity());
+  std::fill(candidates.begin() + 1, candidates.end(), first);  // fewer patches than places: the shooter again
+  std::size_t* const places = candidates.data() + 1;
   for (std::size_t j = 0; j < n; ++j) {
+    if (j == first) continue;
     double p = power(patches[j], unshot[j]);
     const Vec3 v = patches[j].centroid - s.centroid;
     const double d2 = dot(v, v), ci = dot(s.normal, v), cj = -dot(patches[j].normal, v);
@@ -40,15 +48,11 @@ void predict_next_shooters(const std::vector<Patch>& patches, const std::vector<
       const Color gained = patches[j].reflectance * sent * f;
       p += gained.r + gained.g + gained.b;
     }
-    predicted[j] = p;
-  }
-  predicted[first] = -std::numeric_limits<double>::infinity();
-  for (std::size_t k = 1; k < candidates.size(); ++k) {  // the next best, lowest index on ties
-    std::size_t best = first;
-    for (std::size_t j = 0; j < n; ++j)
-      if (predicted[j] > predicted[best]) best = j;
-    candidates[k] = best;
-    predicted[best] = -std::numeric_limits<double>::infinity();
+    if (!(p > best[k - 1])) continue;  // not better than the last kept: a tie keeps the lower index
+    std::size_t at = k - 1;
+    for (; at > 0 && p > best[at - 1]; --at) best[at] = best[at - 1], places[at] = places[at - 1];
+    best[at] = p;
+    places[at] = j;
   }
 }
 
@@ -124,7 +128,7 @@ OnDemandRun progressive_on_demand(const std::vector<Patch>& patches, const Hemic
   const int max_team =
       std::max(1, std::min(omp_get_max_threads(), static_cast<int>(std::min<std::size_t>(n, 64))));
   RowSlots slots(static_cast<std::size_t>(2 * max_team + 2), n);
-  std::vector<double> predicted(n);
+  std::vector<double> predicted(static_cast<std::size_t>(max_team));  // the best predictions (scratch)
   std::vector<std::size_t> candidates(static_cast<std::size_t>(max_team) + 1);
   std::mutex mutex;
   std::condition_variable work_posted, row_drawn;
