@@ -6,8 +6,10 @@
 // hemicube rows computed only for the shooters (on every thread), and
 // measures how that figure's time grows with the patch count.
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <iostream>
 #include <map>
 #include <string>
@@ -547,15 +549,18 @@ void pictures_section(OutputFolder& out, const Settings& settings, const StudySy
 struct ProgressiveRun {
   ProgressiveState state;
   double unshot = 1, seconds = 0, row_seconds = 0;
-  std::size_t rows = 0;  // rows computed: one per thread per round, shots of them used
+  double cpu_seconds = 0;  // processor time of every thread together (std::clock)
+  std::size_t rows = 0;    // rows computed: the shots' rows and those drawn ahead in vain
 };
 
 // Shoots until the unshot power is below `threshold` of the emitted power
-// (progressive_on_demand: one row per thread per round, the same shots and
-// values as one row per shot). Rows and buffers are allocated once.
+// (progressive_on_demand: one thread shoots while the others draw the rows it
+// will want next; the same shots and values as one row per shot). Rows and
+// buffers are allocated once.
 ProgressiveRun progressive_on_demand(const std::vector<Patch>& patches, int resolution, double threshold,
                                      Table* history) {
   const Hemicube hemicube(resolution);
+  const std::clock_t cpu_start = std::clock();
   Stopwatch watch;
   const OnDemandRun on_demand = progressive_on_demand(
       patches, hemicube, {.unshot_fraction = threshold}, [&](const ProgressiveState& state, double unshot) {
@@ -563,7 +568,13 @@ ProgressiveRun progressive_on_demand(const std::vector<Patch>& patches, int reso
         if (history && ((shots & (shots - 1)) == 0 || shots % 50 == 0 || unshot < threshold))
           history->add_row({static_cast<std::int64_t>(shots), watch.seconds(), unshot});
       });
-  return {on_demand.state, on_demand.unshot_fraction, watch.seconds(), on_demand.row_seconds, on_demand.rows};
+  const double seconds = watch.seconds();
+  return {on_demand.state,
+          on_demand.unshot_fraction,
+          seconds,
+          on_demand.row_seconds,
+          static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC,
+          on_demand.rows};
 }
 
 // --- 10. The figure: the box solved with hemicube rows on demand ---------------
@@ -578,11 +589,11 @@ void figure_section(OutputFolder& out, const Settings& settings) {
   const ProgressiveRun run =
       progressive_on_demand(big.patches, resolution, settings.unshot_threshold, &history);
   Table figure({"patches", "max patch edge (mm)", "hemicube resolution", "threads", "shots", "rows computed",
-                "unshot / emitted", "seconds", "seconds in hemicube rows"});
+                "unshot / emitted", "seconds", "CPU seconds", "seconds in hemicube rows"});
   figure.add_row({static_cast<std::int64_t>(big.patches.size()), edge, static_cast<std::int64_t>(resolution),
                   static_cast<std::int64_t>(omp_get_max_threads()),
                   static_cast<std::int64_t>(run.state.shots), static_cast<std::int64_t>(run.rows), run.unshot,
-                  run.seconds, run.row_seconds});
+                  run.seconds, run.cpu_seconds, run.row_seconds});
   out.table(figure, "figure_progressive",
             "The Cornell box solved by progressive refinement with hemicube rows on demand, to " +
                 fixed(100 * settings.unshot_threshold, 2) + "% unshot power");
@@ -610,8 +621,20 @@ void figure_section(OutputFolder& out, const Settings& settings) {
 }
 
 // --- 10. How the figure's time grows with the patch count ----------------------
+// The least-squares slope of log y against log x.
+double log_log_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const double u = std::log(x[i]), v = std::log(y[i]);
+    sx += u, sy += v, sxx += u * u, sxy += u * v;
+  }
+  const double k = static_cast<double>(x.size());
+  return (k * sxy - sx * sy) / (k * sxx - sx * sx);
+}
+
 // The same run at several patch counts on one thread and on all, and the
-// least-squares slope of log(seconds) against log(patches) on all threads:
+// least-squares slope of log(seconds) against log(patches) on all threads,
+// and of log(CPU seconds) on one thread, which a busy machine disturbs less:
 // shots grow like n and each shot costs O(n), so the exponent tends to 2.
 void scaling_section(OutputFolder& out, const Settings& settings) {
   std::vector<int> counts = settings.quick        ? std::vector<int>{150, 300}
@@ -619,8 +642,10 @@ void scaling_section(OutputFolder& out, const Settings& settings) {
                                                   : std::vector<int>{500, 1000, 2000};
   const int resolution = settings.quick ? 32 : settings.figure_resolution;
   const int threads = omp_get_max_threads();
-  Table scaling({"patches", "threads", "shots", "seconds", "seconds per shot (ms)", "speedup"});
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  Table scaling({"patches", "threads", "shots", "rows computed", "seconds", "CPU seconds",
+                 "seconds per shot (ms)", "speedup"});
+  std::vector<double> patches, seconds,
+      cpu_seconds;  // per count: all threads' wall time, one thread's CPU time
   for (const int count : counts) {
     double edge = 0;
     const RadiosityScene scene = scene_with_patches(settings.scene, static_cast<std::size_t>(count), edge);
@@ -633,57 +658,76 @@ void scaling_section(OutputFolder& out, const Settings& settings) {
       omp_set_num_threads(t);
       const ProgressiveRun run =
           progressive_on_demand(scene.patches, resolution, settings.unshot_threshold, nullptr);
-      if (t == 1) one_thread = run.seconds;
+      if (t == 1) one_thread = run.seconds, cpu_seconds.push_back(run.cpu_seconds);
       scaling.add_row({static_cast<std::int64_t>(scene.patches.size()), std::int64_t{t},
-                       static_cast<std::int64_t>(run.state.shots), run.seconds,
-                       1e3 * run.seconds / static_cast<double>(run.state.shots), one_thread / run.seconds});
+                       static_cast<std::int64_t>(run.state.shots), static_cast<std::int64_t>(run.rows),
+                       run.seconds, run.cpu_seconds, 1e3 * run.seconds / static_cast<double>(run.state.shots),
+                       one_thread / run.seconds});
       if (t == threads) {
-        const double x = std::log(static_cast<double>(scene.patches.size())), y = std::log(run.seconds);
-        sx += x, sy += y, sxx += x * x, sxy += x * y;
+        patches.push_back(static_cast<double>(scene.patches.size()));
+        seconds.push_back(run.seconds);
         break;
       }
     }
   }
   omp_set_num_threads(threads);
-  const double k = static_cast<double>(counts.size());
-  const double exponent = (k * sxy - sx * sy) / (k * sxx - sx * sx);
+  const double exponent = log_log_slope(patches, seconds), cpu_exponent = log_log_slope(patches, cpu_seconds);
   out.table(scaling, "figure_scaling",
             "Progressive refinement with hemicube rows on demand to " +
                 fixed(100 * settings.unshot_threshold, 2) +
                 "% unshot, at several patch counts, on one thread and on all");
-  Table fit({"patches from", "patches to", "threads", "exponent of seconds against patches"});
-  fit.add_row({std::int64_t{counts.front()}, std::int64_t{counts.back()}, std::int64_t{threads}, exponent});
+  Table fit({"patches from", "patches to", "threads", "exponent of seconds against patches",
+             "exponent of one thread's CPU seconds"});
+  fit.add_row({std::int64_t{counts.front()}, std::int64_t{counts.back()}, std::int64_t{threads}, exponent,
+               cpu_exponent});
   out.table(fit, "figure_growth", "Least-squares slope of log(seconds) against log(patches)");
-  std::cout << "Scaling: time grows as n^" << fixed(exponent, 2) << " from " << counts.front() << " to "
-            << counts.back() << " patches\n";
+  std::cout << "Scaling: time grows as n^" << fixed(exponent, 2) << " (one thread's CPU time as n^"
+            << fixed(cpu_exponent, 2) << ") from " << counts.front() << " to " << counts.back()
+            << " patches\n";
 }
 
 // The lesson's options, validated by CLI11 (a bad value: a clear error, exit 2, nothing written).
 void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers) {
+  // A whole even number (checked on the text: CLI11 runs every validator before converting).
+  const CLI::Validator even(
+      [](std::string& s) {
+        int value = 0;
+        const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), value);
+        if (error != std::errc() || end != s.data() + s.size()) return "'" + s + "' is not a whole number";
+        return value % 2 == 0 ? std::string() : "the resolution must be even";
+      },
+      "EVEN");
+  // CLI::Range lets NaN through (every comparison with it is false).
+  const CLI::Validator finite_number(
+      [](std::string& s) {
+        double value = 0;
+        const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), value);
+        return error == std::errc() && end == s.data() + s.size() && std::isfinite(value)
+                   ? std::string()
+                   : "'" + s + "' is not a finite number";
+      },
+      "FINITE");
   app.add_option("--scene", settings.scene, "A radiosity scene: a JSON file, or a shipped scene's name")
       ->capture_default_str();
   app.add_option("--solvers", solvers,
                  "the study's solvers (jacobi, gauss-seidel, sor-1.2, southwell, progressive)")
       ->transform(CLI::CheckedTransformer(solver_names));
-  app.add_option("--patches", settings.figure_patches, "patches of the figure's box (at least)")
-      ->check(CLI::Range(4, 100000))
-      ->capture_default_str();
+  CLI::Option* patches =
+      app.add_option("--patches", settings.figure_patches, "patches of the figure's box (at least)")
+          ->check(CLI::Range(4, 100000))
+          ->capture_default_str();
   app.add_option("--patch-edge", settings.figure_edge,
                  "the figure's largest patch edge in mm (instead of --patches)")
-      ->check(CLI::Range(1.0, 10000.0));
+      ->check(finite_number & CLI::Range(1.0, 10000.0))
+      ->excludes(patches);
   app.add_option("--hemicube-resolution", settings.figure_resolution,
                  "hemicube resolution of the figure (even, 8 to 2048)")
-      ->check(CLI::Range(8, 2048) & CLI::Validator(
-                                        [](std::string& s) {
-                                          return std::stoi(s) % 2 == 0 ? std::string()
-                                                                       : "the resolution must be even";
-                                        },
-                                        "EVEN"))
+      ->check(even & CLI::Range(8, 2048))
       ->capture_default_str();
   app.add_option("--unshot", settings.unshot_threshold,
                  "stop the figure when the unshot power is below this fraction of the emitted "
                  "(default 0.01, or 0.001 with --figure)")
-      ->check(CLI::Range(1e-9, 0.5));
+      ->check(finite_number & CLI::Range(1e-9, 0.5));
   app.add_flag("--figure", settings.big_figure,
                "only the figure, with the scaling study up to 8,000 patches (a few minutes)");
 }
@@ -707,6 +751,7 @@ int main(int argc, char** argv) {
         if (!solvers.empty()) settings.solvers = solvers;
         // Validate before writing: the scene as the study meshes it.
         check_usable(load_scene(settings.scene, settings.quick ? 220.0 : 75.0), settings.scene);
+        if (settings.figure_edge > 0) load_scene(settings.scene, settings.figure_edge);  // and the figure's
         OutputFolder out(options.out, info.id, info.title);
         if (settings.big_figure) {
           figure_section(out, settings);

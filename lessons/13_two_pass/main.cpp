@@ -21,6 +21,7 @@
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/io/scene_file.hpp"
+#include "illum/radiosity/progressive_on_demand.hpp"
 #include "illum/radiosity/two_pass.hpp"
 #include "illum/trace/ray_tree_render.hpp"
 #include "path_reference.hpp"
@@ -57,6 +58,25 @@ struct PipelineRun {
 };
 
 // The pipeline as the plan orders it: [caustic pass], [pass one], pass two.
+// Pass one on every thread: what solve_radiosity_pass computes on one (the
+// caustic deposits added to E, progressive refinement until the unshot power
+// is below `threshold` of the emitted), by the library's rows on demand, which
+// takes the same shots with the same values, bit for bit. hemicube_rows counts
+// the rows shot from, one per shot, as solve_radiosity_pass's does.
+RadiosityPass radiosity_pass_on_threads(std::vector<Patch> patches, int resolution, double threshold,
+                                        const std::vector<Color>& extra_emission) {
+  require(extra_emission.empty() || extra_emission.size() == patches.size(),
+          "radiosity_pass_on_threads: one extra emission per patch");
+  Stopwatch watch;
+  for (std::size_t i = 0; i < extra_emission.size(); ++i) patches[i].emission += extra_emission[i];
+  const OnDemandRun run =
+      progressive_on_demand(patches, Hemicube(resolution), {.unshot_fraction = threshold});
+  return {.state = run.state,
+          .hemicube_rows = run.state.shots,
+          .unshot = run.state.shots == 0 ? 0.0 : run.unshot_fraction,  // no shot: nothing emits
+          .seconds = watch.seconds()};
+}
+
 PipelineRun run_pipeline(const Scene& scene, const std::string& file, const Settings& s, bool caustics,
                          int width) {
   PipelineRun run;
@@ -65,8 +85,8 @@ PipelineRun run_pipeline(const Scene& scene, const std::string& file, const Sett
     run.mesh = mesh_two_pass_scene(scene, file, s.edge);
     if (run.plan.caustic_pass)
       run.caustics = caustic_pass(scene, run.mesh, static_cast<std::uint64_t>(s.photons), s.seed);
-    run.radiosity =
-        solve_radiosity_pass(run.mesh.radiosity.patches, s.hemicube, s.unshot, run.caustics.extra_emission);
+    run.radiosity = radiosity_pass_on_threads(run.mesh.radiosity.patches, s.hemicube, s.unshot,
+                                              run.caustics.extra_emission);
     run.corners = vertex_corners(run.mesh, run.radiosity.state.radiosity, s.vertex_rule);
   }
   run.eye = eye_pass(scene, run.mesh, run.plan.radiosity_pass ? &run.corners : nullptr, run.plan, width, 0);

@@ -6,16 +6,20 @@
 // patch that is depends on the shot before, so one shot's row cannot wait for
 // the next. But a row depends only on the geometry, never on the radiosities:
 // a row computed for a patch that is not shot next is merely wasted, never
-// wrong. Each round therefore computes, one row per thread at once, the row of
-// the next shooter and the rows of the patches most likely to shoot after it
-// (predicted from the unshot powers plus what the first shot will send them,
-// by the point-to-point form factor without occlusion); then it shoots while
-// choose_shooter picks a patch whose row is ready. The shooters, their rows
-// (Hemicube::form_factor_row) and every value are those of the serial
-// one-row-per-shot loop, bit for bit, on any number of threads. The threads
-// meet once per round (about two shots on two threads), not several times per
-// row, and sleep while they wait rather than spin: on a machine busy with
-// other work a spinning thread burns the time slice its partner needs.
+// wrong. So one thread shoots and the others draw ahead, without rounds:
+// before each shot the shooter posts the rows it wants, its own and those of
+// the patches most likely to shoot after it (predicted from the unshot powers
+// plus what this shot will send them, by the point-to-point form factor
+// without occlusion); a free thread draws the first wanted row nobody holds
+// into a slot of its own. The shooter shoots as soon as its row is ready; when
+// a helper is still drawing it, the shooter draws the next wanted row instead
+// of waiting. No thread waits for a slower one at a barrier, so rows of unequal
+// cost do not idle the team. The shooters (chosen exactly as by the serial
+// loop, choose_shooter), their rows (Hemicube::form_factor_row) and every value
+// are those of the serial one-row-per-shot loop, bit for bit, on any number of
+// threads: only the timing depends on the threads. Waiting threads sleep
+// (condition variables) rather than spin: on a machine busy with other work a
+// spinning thread burns the time slice its partner needs.
 #include <cstddef>
 #include <functional>
 #include <vector>
@@ -34,16 +38,16 @@ struct OnDemandSettings {
 struct OnDemandRun {
   ProgressiveState state;
   double unshot_fraction = 1;  // unshot / emitted power at the end
-  std::size_t rounds = 0;      // rounds of rows computed together
-  std::size_t rows = 0;        // rows computed (rows − shots were guessed wrong)
-  double row_seconds = 0;      // wall time spent computing rows
+  std::size_t stalls = 0;      // shots whose row was not ready when the shooter chose it
+  std::size_t rows = 0;        // rows computed (rows − shots were guessed wrong or drawn again)
+  double row_seconds = 0;      // wall time the shooter spent drawing its rows or waiting for them
 };
 
 // Shoots from B = Δ = E (progressive_start) until the unshot power is below
 // settings.unshot_fraction of the emitted power. after_shot(state, unshot
-// fraction), when given, is called after every shot. The rows and buffers are
-// allocated once, before the first round. Throws std::invalid_argument for a
-// fraction outside (0, 1) and std::runtime_error when max_shots is reached first.
+// fraction), when given, is called after every shot. The row slots are
+// allocated once, before the first shot, and each thread's buffers by its first row. Throws
+// std::invalid_argument for a fraction outside (0, 1) and std::runtime_error when max_shots is reached first.
 OnDemandRun progressive_on_demand(
     const std::vector<Patch>& patches, const Hemicube& hemicube, const OnDemandSettings& settings,
     const std::function<void(const ProgressiveState&, double)>& after_shot = {});
