@@ -588,8 +588,9 @@ void figure_section(OutputFolder& out, const Settings& settings) {
   Table history({"shots", "seconds", "unshot_fraction"});
   const ProgressiveRun run =
       progressive_on_demand(big.patches, resolution, settings.unshot_threshold, &history);
-  Table figure({"patches", "max patch edge (mm)", "hemicube resolution", "threads", "shots", "rows computed",
-                "unshot / emitted", "seconds", "CPU seconds", "seconds in hemicube rows"});
+  Table figure({"patches", "max patch edge (mm)", "hemicube resolution", "threads", "shots",
+                "rows computed (timing-dependent)", "unshot / emitted", "seconds", "CPU seconds",
+                "seconds in hemicube rows"});
   figure.add_row({static_cast<std::int64_t>(big.patches.size()), edge, static_cast<std::int64_t>(resolution),
                   static_cast<std::int64_t>(omp_get_max_threads()),
                   static_cast<std::int64_t>(run.state.shots), static_cast<std::int64_t>(run.rows), run.unshot,
@@ -642,7 +643,7 @@ void scaling_section(OutputFolder& out, const Settings& settings) {
                                                   : std::vector<int>{500, 1000, 2000};
   const int resolution = settings.quick ? 32 : settings.figure_resolution;
   const int threads = omp_get_max_threads();
-  Table scaling({"patches", "threads", "shots", "rows computed", "seconds", "CPU seconds",
+  Table scaling({"patches", "threads", "shots", "rows computed (timing-dependent)", "seconds", "CPU seconds",
                  "seconds per shot (ms)", "speedup"});
   std::vector<double> patches, seconds,
       cpu_seconds;  // per count: all threads' wall time, one thread's CPU time
