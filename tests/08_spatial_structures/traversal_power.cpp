@@ -50,7 +50,7 @@ using Cells = std::vector<CellIndex>;
 
 TEST_SUITE("lesson08") {
   TEST_CASE("BVH counters on a hand-built tree: three box tests, one triangle test, the far leaf pruned" *
-            doctest::description("task=1,3a")) {
+            doctest::description("task=1,3a,3b")) {
     // Root (node 0) over two leaves: node 1 holds a triangle at z = 1e-6, node 2 one at
     // z = 1.01e-4. The ray goes up the z axis from the origin.
     //   closest hit: root box tested (1 visit), then both children's boxes at the root
