@@ -82,7 +82,8 @@ TEST_SUITE("lesson08") {
     // Any hit: the root (1 visit), then node 1 popped first (2 visits), its triangle hit.
     TraversalCounters shadow;
     CHECK(bvh_any_hit(view, ray, shadow));
-    CHECK_MESSAGE(shadow.nodes_visited == 2, "any hit: the root, then the near leaf, which answers: 2 visits");
+    CHECK_MESSAGE(shadow.nodes_visited == 2,
+                  "any hit: the root, then the near leaf, which answers: 2 visits");
     CHECK_MESSAGE(shadow.triangle_tests == 1, "any hit returns at the first triangle hit: 1 test");
   }
 
@@ -98,12 +99,15 @@ TEST_SUITE("lesson08") {
                        std::span<const std::uint32_t>(id_storage.data(), 1)};
     const Ray ray(Point3(0, 0, -1), Vec3(0, 0, 1));
     TraversalCounters c;
-    CHECK_MESSAGE(!bvh_closest_hit(view, ray, c).has_value(),
-                  "the only triangle of the view lies beside the ray: no hit (leaf: triangles first … first + "
-                  "count − 1)");
+    const auto hit = bvh_closest_hit(view, ray, c);
+    CHECK_MESSAGE(
+        !hit.has_value(),
+        "the only triangle of the view lies beside the ray: no hit (leaf: triangles first … first + "
+        "count − 1)");
     CHECK_MESSAGE(c.triangle_tests == 1, "one leaf of one triangle: exactly 1 triangle test");
     TraversalCounters shadow;
-    CHECK_MESSAGE(!bvh_any_hit(view, ray, shadow),
+    const bool blocked = bvh_any_hit(view, ray, shadow);
+    CHECK_MESSAGE(!blocked,
                   "any hit: the only triangle of the view lies beside the ray, the segment is not blocked");
     CHECK_MESSAGE(shadow.triangle_tests == 1, "any hit: exactly the leaf's 1 triangle is tested");
     CHECK_MESSAGE(shadow.nodes_visited == 1, "any hit: the root leaf is the only node");
@@ -152,11 +156,11 @@ TEST_SUITE("lesson08") {
   TEST_CASE("hard case: slab test of a ray grazing a box's edge behind its origin (negative s)" *
             doctest::description("task=1")) {
     // Box [0,1]³, the line (2, 0, 0.5) + s(1, −1, 0), unnormalised so that every product is
-    // exact (slab_clip reads only the origin and 1/ω). Along x: s ∈ [(0 − 2)/1, (1 − 2)/1] = [−2, −1]; along y (ω = −1): s ∈ [(1 − 0)/−1,
-    // (0 − 0)/−1] = [−1, 0]: they meet in the single s = −1, the point (1, 1, 0.5) on the
-    // box's edge. The closed box contains it, so the clip is [−1, −1], not empty. With the
-    // far slack the exit may only widen (|s|·slack past −1), never shrink: a slack applied
-    // as slack·s rather than slack·|s| pulls a negative exit inwards and loses the graze.
+    // exact (slab_clip reads only the origin and 1/ω). Along x: s ∈ [(0 − 2)/1, (1 − 2)/1] = [−2, −1]; along
+    // y (ω = −1): s ∈ [(1 − 0)/−1, (0 − 0)/−1] = [−1, 0]: they meet in the single s = −1, the point (1, 1,
+    // 0.5) on the box's edge. The closed box contains it, so the clip is [−1, −1], not empty. With the far
+    // slack the exit may only widen (|s|·slack past −1), never shrink: a slack applied as slack·s rather than
+    // slack·|s| pulls a negative exit inwards and loses the graze.
     Ray dummy(Point3(0), Vec3(1, 0, 0));
     SlabRay ray(dummy);
     ray.origin = Point3(2, 0, 0.5);
@@ -169,8 +173,9 @@ TEST_SUITE("lesson08") {
     CHECK(exact.lo == -1.0);
     CHECK(exact.hi == -1.0);
     const Interval widened = slab_clip(ray, b, range, slab_far_slack);
-    CHECK_MESSAGE(!widened.empty(), "with the far slack the graze at s = −1 must still count: the slack widens "
-                                    "the exit by slack·|s| (slab_test.hpp), whatever the sign of s");
+    CHECK_MESSAGE(!widened.empty(),
+                  "with the far slack the graze at s = −1 must still count: the slack widens "
+                  "the exit by slack·|s| (slab_test.hpp), whatever the sign of s");
     CHECK(widened.lo == -1.0);
     CHECK_MESSAGE(widened.hi >= -1.0, "the widened exit is at or past the exact exit −1");
   }

@@ -60,8 +60,9 @@ TEST_SUITE("lesson12") {
     check_colour(value[1], Color(0.4, 0.3, 0.8), "vertex 1, shared by both faces: (B₀ + B₁)/2");
     check_colour(value[0], b0, "vertex 0 lies on face 0 only");
     check_colour(value[3], b1, "vertex 3 lies on face 1 only");
-    CHECK_MESSAGE(value[5] == Color(0.0),
-                  "a vertex that no face touches gets 0 (vertex_colours.hpp, Task 1), not the 0/0 of an empty mean");
+    CHECK_MESSAGE(
+        value[5] == Color(0.0),
+        "a vertex that no face touches gets 0 (vertex_colours.hpp, Task 1), not the 0/0 of an empty mean");
   }
 
   TEST_CASE("extrapolate on triangles: an edge vertex of two triangles sharing an edge to the centre" *
@@ -85,13 +86,16 @@ TEST_SUITE("lesson12") {
         extrapolated_vertex_radiosity(mesh, {Color(1), Color(2), Color(3), Color(4)});
     REQUIRE(value.size() == 5);
     check_colour(value[4], Color(2.5), "the centre is inside: the mean of its four triangles");
-    check_colour(value[1], Color(0.5), "corner (2,0) of T0 and T1, sharing the edge to the centre: 1 + 2 − 2.5");
-    check_colour(value[3], Color(4.5), "corner (0,2) of T2 and T3, sharing the edge to the centre: 3 + 4 − 2.5");
+    check_colour(value[1], Color(0.5),
+                 "corner (2,0) of T0 and T1, sharing the edge to the centre: 1 + 2 − 2.5");
+    check_colour(value[3], Color(4.5),
+                 "corner (0,2) of T2 and T3, sharing the edge to the centre: 3 + 4 − 2.5");
     check_colour(value[0], Color(2.5), "corner (0,0) of T3 and T0: 4 + 1 − 2.5");
   }
 
-  TEST_CASE("extrapolate: two faces that meet at a single vertex share no edge there, so it keeps its average" *
-            doctest::description("task=1,2")) {
+  TEST_CASE(
+      "extrapolate: two faces that meet at a single vertex share no edge there, so it keeps its average" *
+      doctest::description("task=1,2")) {
     // Squares A = [0,1]² (B = 1) and B = [1,2]×[1,2] (B = 3) touch only at 2 = (1, 1):
     //   A = (0, 1, 2, 3) with 0 (0,0), 1 (1,0), 2 (1,1), 3 (0,1);
     //   B = (2, 4, 5, 6) with 4 (2,1), 5 (2,2), 6 (1,2).

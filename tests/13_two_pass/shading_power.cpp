@@ -43,8 +43,10 @@ TEST_SUITE("lesson13") {
     // u = (5·2 − 2·3)/16 = ¼, v = (4·3 − 2·2)/16 = ½.
     const std::array<Point3, 3> t{Point3(0, 0, 0), Point3(2, 0, 0), Point3(1, 2, 0)};
     const Vec2 uv = surface_coordinates(t, Point3(1, 1, 0));
-    CHECK_MESSAGE(uv.x == doctest::Approx(0.25).epsilon(1e-14), "u: the weight of b in x = a + u(b − a) + v(c − a)");
-    CHECK_MESSAGE(uv.y == doctest::Approx(0.5).epsilon(1e-14), "v: the weight of c in x = a + u(b − a) + v(c − a)");
+    CHECK_MESSAGE(uv.x == doctest::Approx(0.25).epsilon(1e-14),
+                  "u: the weight of b in x = a + u(b − a) + v(c − a)");
+    CHECK_MESSAGE(uv.y == doctest::Approx(0.5).epsilon(1e-14),
+                  "v: the weight of c in x = a + u(b − a) + v(c − a)");
     // Another point, x = a + 0.6 e1 + 0.3 e2 = (1.5, 0.6, 0).
     const Vec2 uv2 = surface_coordinates(t, Point3(1.5, 0.6, 0));
     CHECK(uv2.x == doctest::Approx(0.6).epsilon(1e-14));
@@ -63,7 +65,8 @@ TEST_SUITE("lesson13") {
     check_uv(q, 1.0, 1.0, 1e-12);
   }
 
-  TEST_CASE("surface coordinates on a square whose first side runs along −x" * doctest::description("task=2")) {
+  TEST_CASE("surface coordinates on a square whose first side runs along −x" *
+            doctest::description("task=2")) {
     // p0 = (4,0,0), p1 = (0,0,0), p2 = (0,4,0), p3 = (4,4,0): e = p1 − p0 = (−4, 0), a
     // parallelogram (g = 0), so v = 3/4 and u = (h − f v)/(e + g v) with the denominator
     // (−4, 0): the component of larger *magnitude* is x, −4; y is 0 and gives 0/0.
@@ -84,10 +87,12 @@ TEST_SUITE("lesson13") {
     //   x = (1, −1e-9, 0):    u = ½ + 2.5e-10, v = −5e-10 → clamped v = 0.
     const std::array<Point3, 3> t{Point3(0, 0, 0), Point3(2, 0, 0), Point3(1, 2, 0)};
     const Vec2 past_b = surface_coordinates(t, Point3(2 + 1e-9, 0, 0));
-    CHECK_MESSAGE(past_b.x == 1.0, "u = 1 + 5e-10 must be clamped to 1 (two_pass_shading.hpp: clamped to [0, 1]²)");
+    CHECK_MESSAGE(past_b.x == 1.0,
+                  "u = 1 + 5e-10 must be clamped to 1 (two_pass_shading.hpp: clamped to [0, 1]²)");
     CHECK(past_b.y >= 0.0);
     const Vec2 below = surface_coordinates(t, Point3(1, -1e-9, 0));
-    CHECK_MESSAGE(below.y == 0.0, "v = −5e-10 must be clamped to 0 (two_pass_shading.hpp: clamped to [0, 1]²)");
+    CHECK_MESSAGE(below.y == 0.0,
+                  "v = −5e-10 must be clamped to 0 (two_pass_shading.hpp: clamped to [0, 1]²)");
     CHECK(below.x == doctest::Approx(0.5).epsilon(1e-8));
     // The square [0,4]² (z = 0): x = (4 + 1e-9, 2, 0) gives u = 1 + 2.5e-10 → 1.
     const std::array<Point3, 4> square{Point3(0, 0, 0), Point3(4, 0, 0), Point3(4, 4, 0), Point3(0, 4, 0)};
@@ -96,8 +101,9 @@ TEST_SUITE("lesson13") {
     CHECK(past_edge.y == doctest::Approx(0.5).epsilon(1e-12));
   }
 
-  TEST_CASE("hard case: a point a rounding error past a triangle's hypotenuse belongs to its row's last cell" *
-            doctest::description("task=3")) {
+  TEST_CASE(
+      "hard case: a point a rounding error past a triangle's hypotenuse belongs to its row's last cell" *
+      doctest::description("task=3")) {
     // n = 1: one patch. (u, v) = (½, ½ + 1e-12) is past u + v = 1 by rounding: patch 0,
     // barycentric weights (≈0, ½, ½), never a "down" triangle that does not exist.
     const PatchCell one = locate_patch(Vec2(0.5, 0.5 + 1e-12), 1, 0, 3);
