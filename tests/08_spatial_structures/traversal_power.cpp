@@ -6,6 +6,7 @@
 // heading −x. Every expected value is worked out by hand in the comments.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -204,5 +205,75 @@ TEST_SUITE("lesson08") {
     const GridFrame f = unit_frame();
     CHECK(dda_cells(f, Ray(Point3(1.0, 0.75, 0.5), Vec3(-1, 0, 0))) == Cells{{0, 0, 0}});
     CHECK(dda_cells(f, Ray(Point3(1.5, 1.0, 1.5), Vec3(0, -1, 0))) == Cells{{1, 0, 1}});
+  }
+}
+
+TEST_SUITE("lesson08") {
+  TEST_CASE(
+      "hard case: 3DDA entering a hair before boundary x = 1, where the rounded entry point lies past it" *
+      doctest::description("task=1,2a")) {
+    // Rays from (x0, −1, 0.5) towards +y and a little +x (or −x) enter the grid [0,4]×[0,2]×[0,3]
+    // through its face y = 0. For x0 stepped ulp by ulp, the entry lands within rounding of
+    // boundary x = 1, and the rounded entry point p = P0 + s_enter·ω sometimes falls in the
+    // cell across it. grid_dda.hpp fixes the start cell by parameters, not by p: the cell
+    // whose near boundary does not lie strictly ahead of s_enter and whose far boundary does,
+    // with the boundary parameters (lo + k·h − P0)/ω. That criterion is checked here, written
+    // out independently, on every ray; the rays where p's cell differs are counted, so the
+    // test is known to reach the case.
+    const GridFrame f = unit_frame();
+    int rounded_across = 0;
+    for (const double sense : {1.0, -1.0}) {
+      const Vec3 dir = normalize(Vec3(sense * 0.3, 1.0, 0.0));
+      const double reach = dir.x / dir.y;  // x travelled per unit of y
+      double x0 = 1.0 - reach;
+      for (int k = 0; k < 40; ++k) x0 = std::nextafter(x0, -10.0);
+      for (int k = 0; k < 80; ++k, x0 = std::nextafter(x0, 10.0)) {
+        const Ray ray(Point3(x0, -1.0, 0.5), dir);
+        const DdaWalk w = dda_start(f, ray);
+        REQUIRE(!w.done);
+        const int c = w.cell[0];
+        REQUIRE(c >= 0);
+        REQUIRE(c < 4);
+        const auto param = [&](int boundary) {
+          return (f.boundary(0, boundary) - ray.origin.x) / ray.direction.x;
+        };
+        // Moving +x the cell's near boundary is c, its far one c + 1; moving −x the reverse.
+        const int near = sense > 0 ? c : c + 1, far = sense > 0 ? c + 1 : c;
+        INFO("x0 = " << x0 << ", ω.x sign " << sense << ", start cell " << c << ", s_enter " << w.s_enter);
+        CHECK_MESSAGE((param(far) > w.s_enter || (sense > 0 ? c == 3 : c == 0)),
+                      "the start cell's far boundary must lie strictly ahead of s_enter");
+        CHECK_MESSAGE((!(param(near) > w.s_enter) || (sense > 0 ? c == 0 : c == 3)),
+                      "the start cell's near boundary must not lie strictly ahead of s_enter (it would be "
+                      "the cell before it)");
+        const double p = ray.at(w.s_enter).x;
+        rounded_across += static_cast<int>(std::floor(p)) != c;
+      }
+    }
+    CHECK_MESSAGE(rounded_across > 0,
+                  "no ray had its rounded entry point across the boundary: the test proves "
+                  "nothing (pick other starting points)");
+  }
+}
+
+TEST_SUITE("lesson08") {
+  TEST_CASE("hard case: a ray that starts on a box's face and leaves it: the slab exit is exactly s = 0" *
+            doctest::description("task=1,2a")) {
+    // From (4, 0.5, 0.5) on the face x = 4 of [0,4]×[0,2]×[0,3], along +x: the x slab gives
+    // s ∈ [(0 − 4)/1, (4 − 4)/1] = [−4, 0], so inside the range [0, ∞) only s = 0: the clip is
+    // [0, 0] (the closed box holds the start point), with or without the far slack (0·|0| = 0).
+    const Aabb b = box(Point3(0.0), Point3(4.0, 2.0, 3.0));
+    const Ray ray(Point3(4.0, 0.5, 0.5), Vec3(1, 0, 0));
+    for (const double slack : {0.0, slab_far_slack}) {
+      const Interval clip = slab_clip(SlabRay(ray), b, Interval::ahead(), slack);
+      INFO("far_slack " << slack << ": clip [" << clip.lo << ", " << clip.hi << "]");
+      CHECK_MESSAGE(clip.lo == 0.0, "the ray starts on the closed box: it is inside at s = 0");
+      CHECK_MESSAGE(clip.hi == 0.0,
+                    "the x slab's exit is (4 − 4)/1 = 0, widened by slack·|0| = 0: the ray is "
+                    "inside only at s = 0");
+    }
+    // The 3DDA: a segment of zero length in the grid visits no cell (grid_dda.hpp: done when
+    // ray.range ∩ bounds is empty or of zero length).
+    CHECK(dda_cells(unit_frame(), ray).empty());
+    CHECK(dda_cells(unit_frame(), Ray(Point3(0.0, 1.5, 2.5), Vec3(-1, 0, 0))).empty());
   }
 }
