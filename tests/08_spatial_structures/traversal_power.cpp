@@ -277,3 +277,33 @@ TEST_SUITE("lesson08") {
     CHECK(dda_cells(unit_frame(), Ray(Point3(0.0, 1.5, 2.5), Vec3(-1, 0, 0))).empty());
   }
 }
+
+TEST_SUITE("lesson08") {
+  TEST_CASE("BVH counters when both children are entered at the same s: the first child goes first" *
+            doctest::description("task=1,3a")) {
+    // Root 0 over leaf A (node 1: triangle at z = 1, box z ∈ [0.5, 1]) and inner node B
+    // (node 2, box z ∈ [0.5, 3]) over leaves B1 (node 3, triangle at z = 2) and B2 (node 4,
+    // triangle at z = 3). The ray goes up the z axis from the origin: A and B are both
+    // entered at s = 0.5, a tie, and bvh_traversal.hpp visits the first child (A) first:
+    //   root: 1 box test; its children A and B: 2 more (3); A: its triangle hit at s = 1
+    //   (1 triangle test); B (entered at 0.5 ≤ 1): its children's boxes, 2 more (5), both
+    //   begin beyond s = 1 and are not pushed. nodes = 5, triangle tests = 1.
+    // B first would test B1's triangle (hit at 2) before A's: 2 triangle tests.
+    const auto slab_box = [](double z0, double z1) { return box(Point3(-1, -1, z0), Point3(1, 1, z1)); };
+    const std::vector<BvhNode> nodes{inner(slab_box(0.5, 3), 2), leaf(slab_box(0.5, 1), 0, 1),
+                                     inner(slab_box(0.5, 3), 4), leaf(slab_box(2, 2), 1, 1),
+                                     leaf(slab_box(3, 3), 2, 1)};
+    const std::vector<Triangle> tris{across_axis(1), across_axis(2), across_axis(3)};
+    const std::vector<std::uint32_t> ids{0, 1, 2};
+    const BvhView view{nodes, tris, ids};
+    TraversalCounters c;
+    const auto hit = bvh_closest_hit(view, Ray(Point3(0, 0, 0), Vec3(0, 0, 1)), c);
+    REQUIRE(hit.has_value());
+    CHECK(hit->triangle == 0);
+    CHECK(hit->hit.s == doctest::Approx(1.0));
+    CHECK_MESSAGE(c.nodes_visited == 5, "box tests: the root, its two children, B's two children: 5");
+    CHECK_MESSAGE(c.triangle_tests == 1,
+                  "A and B are entered at the same s = 0.5: on a tie the first child (node + 1, here A) is "
+                  "visited first (bvh_traversal.hpp), its hit at s = 1 prunes B's leaves: 1 triangle test");
+  }
+}

@@ -10,6 +10,7 @@
 //   * at an inner node both children's boxes are clipped (slab_clip) against
 //     [range.lo, closest so far]; the child entered first is visited first
 //     (pushed last), so that a close hit is found early and prunes the rest;
+//     when both are entered at the same s, the first child (node + 1) first;
 //   * at a leaf every triangle is tested against the shrunken range.
 // Any hit (shadow rays): the same walk, returning at the first hit.
 // Each node whose box test is done counts as one node visit; each ray–triangle test as one test.
