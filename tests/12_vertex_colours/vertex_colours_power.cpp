@@ -121,3 +121,23 @@ TEST_SUITE("lesson12") {
                   "1 exceeds 0.5, so both split");
   }
 }
+
+TEST_SUITE("lesson12") {
+  TEST_CASE("average: the first vertex is averaged too" * doctest::description("task=1")) {
+    // The same two squares numbered so that the shared edge starts at vertex 0:
+    //   3 (0,1) — 1 (1,1) — 5 (2,1)
+    //   2 (0,0) — 0 (1,0) — 4 (2,0),   face 0 = (2, 0, 1, 3), face 1 = (0, 4, 5, 1).
+    // B₀ = 1, B₁ = 4: vertices 0 and 1 lie on both faces, (1 + 4)/2 = 2.5.
+    SharedVertexMesh mesh;
+    mesh.positions = {{1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}};
+    mesh.faces = {{2, 0, 1, 3}, {0, 4, 5, 1}};
+    mesh.group = {0, 0};
+    mesh.on_boundary = std::vector<bool>(6, true);
+    mesh.neighbours = {{0, 1}};
+    const std::vector<Color> value = average_vertex_radiosity(mesh, {Color(1), Color(4)});
+    REQUIRE(value.size() == 6);
+    check_colour(value[0], Color(2.5), "vertex 0, shared by both faces: (1 + 4)/2, not the sum 5");
+    check_colour(value[1], Color(2.5), "vertex 1, shared by both faces: (1 + 4)/2");
+    check_colour(value[2], Color(1), "vertex 2 lies on face 0 only");
+  }
+}

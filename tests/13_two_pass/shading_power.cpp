@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "illum/radiosity/two_pass_plan.hpp"
@@ -140,5 +141,55 @@ TEST_SUITE("lesson13") {
       CHECK_MESSAGE(plan.reasons.find("caustic") == std::string::npos,
                     "no caustics were asked for and no caustic pass runs: no reason may mention one");
     }
+  }
+}
+
+TEST_SUITE("lesson13") {
+  TEST_CASE(
+      "hard case: a quad meshed with m = 0 is refused, and (u, v) a hair outside [0, 1]² still gives weights "
+      "≥ 0" *
+      doctest::description("task=3")) {
+    // A quad needs at least one cell per side: n = 2, m = 0 is not a mesh (two_pass_shading.hpp).
+    CHECK_THROWS_AS(static_cast<void>(locate_patch(Vec2(0.5, 0.5), 2, 0, 4)), std::invalid_argument);
+    // (1 + 1e-9, 0.25) on a 2 × 2 mesh: the last column, cell (1, 0) = patch 1, at s = 1
+    // (clamped: the nearest point of the square) and t = 0.5: weights (0, ½, ½, 0).
+    const PatchCell right = locate_patch(Vec2(1 + 1e-9, 0.25), 2, 2, 4);
+    CHECK(right.patch == 1);
+    // (−1e-9, 0.75): cell (0, 1) = patch 2 at s = 0, t = 0.5: weights (½, 0, 0, ½).
+    const PatchCell left = locate_patch(Vec2(-1e-9, 0.75), 2, 2, 4);
+    CHECK(left.patch == 2);
+    for (const PatchCell& c : {right, left}) {
+      double sum = 0;
+      for (double w : c.weight) {
+        CHECK_MESSAGE(w >= 0.0,
+                      "a corner weight is never negative (two_pass_shading.hpp), even for (u, v) a "
+                      "rounding error outside [0, 1]²: s and t are clamped to [0, 1]");
+        sum += w;
+      }
+      CHECK(sum == doctest::Approx(1.0).epsilon(1e-12));
+    }
+    CHECK(right.weight[1] == doctest::Approx(0.5).epsilon(1e-8));
+    CHECK(right.weight[2] == doctest::Approx(0.5).epsilon(1e-8));
+    CHECK(left.weight[0] == doctest::Approx(0.5).epsilon(1e-8));
+    CHECK(left.weight[3] == doctest::Approx(0.5).epsilon(1e-8));
+  }
+
+  TEST_CASE("the plan's reasons say \"no emitter\" exactly when pass one lacks an emitter" *
+            doctest::description("task=1")) {
+    // Pass one does not run in both scenes; its line gives the cause (two_pass_plan.hpp, reasons):
+    // two facing walls and no light: "no emitter"; a wall and a light: the light is there,
+    // what is missing is a facing pair, so the reasons must not blame the emitter.
+    const TwoPassPlan dark = plan_two_pass(SceneInventory{.diffuse_surfaces = 2, .facing_pairs = 1}, {});
+    INFO("reasons (no emitter):\n" << dark.reasons);
+    CHECK(!dark.radiosity_pass);
+    CHECK_MESSAGE(dark.reasons.find("no emitter") != std::string::npos,
+                  "two facing walls without a light: pass one has nothing to distribute, \"no emitter\"");
+    const TwoPassPlan lit = plan_two_pass(SceneInventory{.diffuse_surfaces = 1, .emitters = 1}, {});
+    INFO("reasons (a wall and a light):\n" << lit.reasons);
+    CHECK(!lit.radiosity_pass);
+    CHECK_MESSAGE(
+        lit.reasons.find("no emitter") == std::string::npos,
+        "the scene has an emitter: the reason pass one does not run is that no two diffuse surfaces "
+        "face each other");
   }
 }
