@@ -4,11 +4,13 @@
 //
 // Closest hit, with a stack of nodes still to visit:
 //   * a node is popped with the parameter at which the ray enters its box;
-//     when that lies beyond the closest hit so far, the node is skipped
-//     (early exit: nothing in it can be closer);
+//     when that lies beyond the closest hit so far (by more than a relative
+//     1e-9 of its s, an allowance for ties), the node is skipped without a
+//     triangle test (early exit: nothing in it can be closer);
 //   * at an inner node both children's boxes are clipped (slab_clip) against
 //     [range.lo, closest so far]; the child entered first is visited first
 //     (pushed last), so that a close hit is found early and prunes the rest;
+//     when both are entered at the same s, the first child (node + 1) first;
 //   * at a leaf every triangle is tested against the shrunken range.
 // Any hit (shadow rays): the same walk, returning at the first hit.
 // Each node whose box test is done counts as one node visit; each ray–triangle test as one test.
@@ -26,7 +28,8 @@ struct BvhView {
   std::span<const std::uint32_t> ids;   // the id reported for triangles[k]
 };
 
-// Deepest tree the traversal's fixed stack can hold.
+// Deepest tree the traversal's fixed stack can hold (depth counted in edges
+// from the root, as Bvh::depth): a tree this deep is walked correctly.
 constexpr int bvh_max_depth = 96;
 
 std::optional<AccelHit> bvh_closest_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters);

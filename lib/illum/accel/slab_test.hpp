@@ -21,7 +21,8 @@
 // had closed). Each computed s is within 1.5ε (relative) of the true one, so a
 // hierarchy widens the exit by `far_slack` = 2γ₃ (γₙ = nε/(1 − nε)), after
 // pbrt-v4's conservative ray–bounds test; the 3DDA, which must not visit a
-// cell the ray only grazes, passes 0.
+// cell the ray only grazes, passes 0. The exit moves by far_slack·|s_exit|,
+// outwards whatever the sign of s: the slack only ever widens the interval.
 #include "illum/accel/aabb.hpp"
 #include "illum/core/interval.hpp"
 #include "illum/core/ray.hpp"

@@ -45,7 +45,9 @@ struct TwoPassPlan {
   bool refraction = false;      // pass two spawns refracted rays
   bool shadow_rays = false;     // pass two lights some diffuse surface directly (light not in B)
   int max_depth = 0;            // the depth limit of pass two's specular rays (0: primary rays only)
-  std::string reasons;          // one line per decision, saying why
+  // One line per decision, saying why; the word "caustic" appears only when caustics were asked
+  // for, and "no emitter" only when pass one does not run for want of an emitter.
+  std::string reasons;
 
   // The decisions and their reasons, one per line (defined in two_pass.cpp).
   std::string summary() const;

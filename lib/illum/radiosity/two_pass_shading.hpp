@@ -47,8 +47,12 @@ struct PatchCell {
 
 // Task 3. `vertex_count` is 4 (a quad meshed n × m) or 3 (a triangle meshed n², m
 // ignored). A point on the far edge (u = 1) belongs to the last cell, not to
-// a cell past the end. Throws std::invalid_argument when n or m < 1 or
-// vertex_count is not 3 or 4.
+// a cell past the end; on a triangle, a point on or a rounding error past the
+// hypotenuse u + v = 1 belongs to its row's last "up" triangle. The patch
+// index is always below the surface's patch count (n·m, or n²). A (u, v) a
+// rounding error outside [0, 1]² is taken at the nearest point of the square
+// (weights stay ≥ 0). Throws
+// std::invalid_argument when n or m < 1 or vertex_count is not 3 or 4.
 PatchCell locate_patch(const Vec2& uv, int n, int m, int vertex_count);
 
 // Task 4. What the eye sees at a hit of pass two (lesson 13, eq. 13.2):

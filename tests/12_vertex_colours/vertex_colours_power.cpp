@@ -1,0 +1,143 @@
+// Grading tests of lesson 12 that close gaps the mutation report
+// (tools/grade --mutants 12) found. The meshes are written by hand (positions,
+// faces, boundary flags), with integer corners, so that the vertex order is
+// chosen: the last vertex is a shared one, a vertex no face touches sits among
+// the others, two faces meet at a single vertex, triangles meet along an edge.
+// Every expected value is worked out in the comment beside it from the
+// formulas of vertex_colours.hpp.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "illum/radiosity/element_subdivision.hpp"
+#include "illum/radiosity/shared_vertex_mesh.hpp"
+#include "illum/radiosity/vertex_colours.hpp"
+
+using namespace illum;
+
+namespace {
+
+void check_colour(const Color& got, const Color& want, const std::string& why) {
+  INFO(why);
+  INFO("got (" << got.r << ", " << got.g << ", " << got.b << "), want (" << want.r << ", " << want.g << ", "
+               << want.b << ")");
+  CHECK(got.r == doctest::Approx(want.r).epsilon(1e-12));
+  CHECK(got.g == doctest::Approx(want.g).epsilon(1e-12));
+  CHECK(got.b == doctest::Approx(want.b).epsilon(1e-12));
+}
+
+// Two unit squares side by side in z = 0, and a vertex (5) that no face lists:
+//   4 (0,1) — 6 (1,1) — 3 (2,1)
+//   |   face 0   |   face 1   |
+//   0 (0,0) — 1 (1,0) — 2 (2,0)
+// The shared edge 1–6 ends at the last vertex, 6.
+SharedVertexMesh two_squares_with_a_stray_vertex() {
+  SharedVertexMesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, {5, 5, 5}, {1, 1, 0}};
+  mesh.faces = {{0, 1, 6, 4}, {1, 2, 3, 6}};
+  mesh.group = {0, 0};
+  mesh.on_boundary = {true, true, true, true, true, false, true};
+  mesh.neighbours = {{0, 1}};
+  return mesh;
+}
+
+}  // namespace
+
+TEST_SUITE("lesson12") {
+  TEST_CASE("average: the last vertex is averaged too, and a vertex no face touches gets 0" *
+            doctest::description("task=1")) {
+    // B₀ = (0.2, 0.4, 0.6), B₁ = (0.6, 0.2, 1.0). Vertices 1 and 6 (the last) lie on both
+    // faces: (B₀ + B₁)/2 = (0.4, 0.3, 0.8). Vertex 5 lies on no face: 0 (vertex_colours.hpp,
+    // Task 1), not 0/0. Vertices 0 and 4 take B₀, 2 and 3 take B₁.
+    const SharedVertexMesh mesh = two_squares_with_a_stray_vertex();
+    const Color b0(0.2, 0.4, 0.6), b1(0.6, 0.2, 1.0);
+    const std::vector<Color> value = average_vertex_radiosity(mesh, {b0, b1});
+    REQUIRE(value.size() == 7);
+    check_colour(value[6], Color(0.4, 0.3, 0.8), "the last vertex, shared by both faces: (B₀ + B₁)/2");
+    check_colour(value[1], Color(0.4, 0.3, 0.8), "vertex 1, shared by both faces: (B₀ + B₁)/2");
+    check_colour(value[0], b0, "vertex 0 lies on face 0 only");
+    check_colour(value[3], b1, "vertex 3 lies on face 1 only");
+    CHECK_MESSAGE(
+        value[5] == Color(0.0),
+        "a vertex that no face touches gets 0 (vertex_colours.hpp, Task 1), not the 0/0 of an empty mean");
+  }
+
+  TEST_CASE("extrapolate on triangles: an edge vertex of two triangles sharing an edge to the centre" *
+            doctest::description("task=1,2")) {
+    // A fan of four triangles around the centre 4 = (1, 1) of the square [0,2]²:
+    //   T0 = (4, 0, 1), T1 = (4, 1, 2), T2 = (4, 2, 3), T3 = (4, 3, 0), counter-clockwise,
+    //   corners 0 (0,0), 1 (2,0), 2 (2,2), 3 (0,2); B = 1, 2, 3, 4.
+    // The centre is inside: its average is (1 + 2 + 3 + 4)/4 = 2.5. Each corner is on the
+    // boundary and lies on two triangles that share the edge corner–centre, so
+    // B_b = B₁ + B₂ − B_e (vertex_colours.hpp) with e the centre:
+    //   corner 1 (T0, T1): 1 + 2 − 2.5 = 0.5;   corner 2 (T1, T2): 2 + 3 − 2.5 = 2.5;
+    //   corner 3 (T2, T3): 3 + 4 − 2.5 = 4.5;   corner 0 (T3, T0): 4 + 1 − 2.5 = 2.5.
+    // Their averages would be 1.5, 2.5, 3.5, 2.5: corners 1 and 3 tell the rules apart.
+    SharedVertexMesh mesh;
+    mesh.positions = {{0, 0, 0}, {2, 0, 0}, {2, 2, 0}, {0, 2, 0}, {1, 1, 0}};
+    mesh.faces = {{4, 0, 1}, {4, 1, 2}, {4, 2, 3}, {4, 3, 0}};
+    mesh.group = {0, 0, 0, 0};
+    mesh.on_boundary = {true, true, true, true, false};
+    mesh.neighbours = {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+    const std::vector<Color> value =
+        extrapolated_vertex_radiosity(mesh, {Color(1), Color(2), Color(3), Color(4)});
+    REQUIRE(value.size() == 5);
+    check_colour(value[4], Color(2.5), "the centre is inside: the mean of its four triangles");
+    check_colour(value[1], Color(0.5),
+                 "corner (2,0) of T0 and T1, sharing the edge to the centre: 1 + 2 − 2.5");
+    check_colour(value[3], Color(4.5),
+                 "corner (0,2) of T2 and T3, sharing the edge to the centre: 3 + 4 − 2.5");
+    check_colour(value[0], Color(2.5), "corner (0,0) of T3 and T0: 4 + 1 − 2.5");
+  }
+
+  TEST_CASE(
+      "extrapolate: two faces that meet at a single vertex share no edge there, so it keeps its average" *
+      doctest::description("task=1,2")) {
+    // Squares A = [0,1]² (B = 1) and B = [1,2]×[1,2] (B = 3) touch only at 2 = (1, 1):
+    //   A = (0, 1, 2, 3) with 0 (0,0), 1 (1,0), 2 (1,1), 3 (0,1);
+    //   B = (2, 4, 5, 6) with 4 (2,1), 5 (2,2), 6 (1,2).
+    // At vertex 2 the neighbours in A are 1 and 3, in B 4 and 6: no edge is shared, so the
+    // edge rule has no B_e and the vertex keeps its average (1 + 3)/2 = 2 (vertex_colours.hpp:
+    // a boundary vertex whose faces share no edge at it keeps its average).
+    SharedVertexMesh mesh;
+    mesh.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {2, 1, 0}, {2, 2, 0}, {1, 2, 0}};
+    mesh.faces = {{0, 1, 2, 3}, {2, 4, 5, 6}};
+    mesh.group = {0, 0};
+    mesh.on_boundary = std::vector<bool>(7, true);
+    const std::vector<Color> value = extrapolated_vertex_radiosity(mesh, {Color(1), Color(3)});
+    REQUIRE(value.size() == 7);
+    check_colour(value[2], Color(2), "the bow-tie vertex: (1 + 3)/2, no extrapolation without a shared edge");
+  }
+
+  TEST_CASE("elements_to_split accepts a pair whose second element is element 0" *
+            doctest::description("task=6,7")) {
+    // Elements 0 (B = 0) and 1 (B = 1), listed as the pair (1, 0): gap 1 > 0.5, both split.
+    const std::vector<bool> split = elements_to_split({{1, 0}}, {Color(0), Color(1)}, {1.0, 1.0}, 0.5, 0.0);
+    CHECK_MESSAGE(split == std::vector<bool>({true, true}),
+                  "element 0 is a valid element (indices 0 … n − 1) in either place of a pair; the gap "
+                  "1 exceeds 0.5, so both split");
+  }
+}
+
+TEST_SUITE("lesson12") {
+  TEST_CASE("average: the first vertex is averaged too" * doctest::description("task=1")) {
+    // The same two squares numbered so that the shared edge starts at vertex 0:
+    //   3 (0,1) — 1 (1,1) — 5 (2,1)
+    //   2 (0,0) — 0 (1,0) — 4 (2,0),   face 0 = (2, 0, 1, 3), face 1 = (0, 4, 5, 1).
+    // B₀ = 1, B₁ = 4: vertices 0 and 1 lie on both faces, (1 + 4)/2 = 2.5.
+    SharedVertexMesh mesh;
+    mesh.positions = {{1, 0, 0}, {1, 1, 0}, {0, 0, 0}, {0, 1, 0}, {2, 0, 0}, {2, 1, 0}};
+    mesh.faces = {{2, 0, 1, 3}, {0, 4, 5, 1}};
+    mesh.group = {0, 0};
+    mesh.on_boundary = std::vector<bool>(6, true);
+    mesh.neighbours = {{0, 1}};
+    const std::vector<Color> value = average_vertex_radiosity(mesh, {Color(1), Color(4)});
+    REQUIRE(value.size() == 6);
+    check_colour(value[0], Color(2.5), "vertex 0, shared by both faces: (1 + 4)/2, not the sum 5");
+    check_colour(value[1], Color(2.5), "vertex 1, shared by both faces: (1 + 4)/2");
+    check_colour(value[2], Color(1), "vertex 2 lies on face 0 only");
+  }
+}

@@ -1,0 +1,195 @@
+// Grading tests of lesson 13 that close gaps the mutation report
+// (tools/grade --mutants 13) found: a triangle whose sides are not
+// perpendicular (the normal equations' cross term), a quad off the origin's
+// plane and a quad whose first side runs along −x (the projection and the
+// division that recover u), points a rounding error outside (the clamp), a
+// point a rounding error past a triangle's hypotenuse (the last cell of a
+// row), and the plan's reasons. Expectations come from the forward maps
+// written here and from listing the mesh's patches by hand.
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "illum/radiosity/two_pass_plan.hpp"
+#include "illum/radiosity/two_pass_shading.hpp"
+
+using namespace illum;
+
+namespace {
+
+// The bilinear map of lesson 13, §3 (the definition, written out).
+Point3 bilinear(const std::array<Point3, 4>& q, double u, double v) {
+  return (1 - u) * (1 - v) * q[0] + u * (1 - v) * q[1] + u * v * q[2] + (1 - u) * v * q[3];
+}
+
+void check_uv(const std::array<Point3, 4>& q, double u, double v, double tolerance) {
+  const Vec2 got = surface_coordinates(q, bilinear(q, u, v));
+  INFO("the point P(" << u << ", " << v << ") of the quad must map back to (u, v); got (" << got.x << ", "
+                      << got.y << ")");
+  CHECK(std::abs(got.x - u) <= tolerance);
+  CHECK(std::abs(got.y - v) <= tolerance);
+}
+
+}  // namespace
+
+TEST_SUITE("lesson13") {
+  TEST_CASE("surface coordinates on a triangle whose sides at a are not perpendicular" *
+            doctest::description("task=2")) {
+    // a = (0,0,0), b = (2,0,0), c = (1,2,0): e1 = b − a and e2 = c − a have e1·e2 = 2 ≠ 0,
+    // so the cross term of the normal equations counts. x = a + ¼ e1 + ½ e2 = (1, 1, 0):
+    // by hand, d11 = 4, d12 = 2, d22 = 5, det = 16, h·e1 = 2, h·e2 = 3,
+    // u = (5·2 − 2·3)/16 = ¼, v = (4·3 − 2·2)/16 = ½.
+    const std::array<Point3, 3> t{Point3(0, 0, 0), Point3(2, 0, 0), Point3(1, 2, 0)};
+    const Vec2 uv = surface_coordinates(t, Point3(1, 1, 0));
+    CHECK_MESSAGE(uv.x == doctest::Approx(0.25).epsilon(1e-14),
+                  "u: the weight of b in x = a + u(b − a) + v(c − a)");
+    CHECK_MESSAGE(uv.y == doctest::Approx(0.5).epsilon(1e-14),
+                  "v: the weight of c in x = a + u(b − a) + v(c − a)");
+    // Another point, x = a + 0.6 e1 + 0.3 e2 = (1.5, 0.6, 0).
+    const Vec2 uv2 = surface_coordinates(t, Point3(1.5, 0.6, 0));
+    CHECK(uv2.x == doctest::Approx(0.6).epsilon(1e-14));
+    CHECK(uv2.y == doctest::Approx(0.3).epsilon(1e-14));
+  }
+
+  TEST_CASE("surface coordinates on a trapezoid in the plane z = 5 (its normal is computed, not assumed)" *
+            doctest::description("task=2")) {
+    // p0 = (0,0,5), p1 = (4,0,5), p2 = (3,2,5), p3 = (0,2,5): no two opposite sides both
+    // parallel, the plane's normal is +z, so the projection drops z. The normal is a cross
+    // product of the quad's edge vectors (differences of vertices); one taken with a
+    // vertex's position itself (p3 + p0) leans towards −y here and drops the wrong axis.
+    const std::array<Point3, 4> q{Point3(0, 0, 5), Point3(4, 0, 5), Point3(3, 2, 5), Point3(0, 2, 5)};
+    check_uv(q, 0.25, 0.5, 1e-12);
+    check_uv(q, 0.75, 0.125, 1e-12);
+    check_uv(q, 1.0, 1.0, 1e-12);
+  }
+
+  TEST_CASE("surface coordinates on a square whose first side runs along −x" *
+            doctest::description("task=2")) {
+    // p0 = (4,0,0), p1 = (0,0,0), p2 = (0,4,0), p3 = (4,4,0): e = p1 − p0 = (−4, 0), a
+    // parallelogram (g = 0), so v = 3/4 and u = (h − f v)/(e + g v) with the denominator
+    // (−4, 0): the component of larger *magnitude* is x, −4; y is 0 and gives 0/0.
+    // P(¼, ¾) = (3, 3, 0).
+    const std::array<Point3, 4> q{Point3(4, 0, 0), Point3(0, 0, 0), Point3(0, 4, 0), Point3(4, 4, 0)};
+    const Vec2 uv = surface_coordinates(q, Point3(3, 3, 0));
+    CHECK_MESSAGE(uv.x == doctest::Approx(0.25).epsilon(1e-14),
+                  "u = (h − f v)/(e + g v) by the component with the larger |denominator| (−4, not 0)");
+    CHECK(uv.y == doctest::Approx(0.75).epsilon(1e-14));
+    check_uv(q, 0.625, 0.125, 1e-12);
+  }
+
+  TEST_CASE("hard case: a point a rounding error outside the surface gets coordinates clamped to [0, 1]²" *
+            doctest::description("task=2")) {
+    // A hit computed by a ray lies within rounding of the surface, sometimes just outside.
+    // Triangle a = (0,0,0), b = (2,0,0), c = (1,2,0):
+    //   x = b + (1e-9, 0, 0): u = 1 + 5e-10, v = 0 → clamped u = 1;
+    //   x = (1, −1e-9, 0):    u = ½ + 2.5e-10, v = −5e-10 → clamped v = 0.
+    const std::array<Point3, 3> t{Point3(0, 0, 0), Point3(2, 0, 0), Point3(1, 2, 0)};
+    const Vec2 past_b = surface_coordinates(t, Point3(2 + 1e-9, 0, 0));
+    CHECK_MESSAGE(past_b.x == 1.0,
+                  "u = 1 + 5e-10 must be clamped to 1 (two_pass_shading.hpp: clamped to [0, 1]²)");
+    CHECK(past_b.y >= 0.0);
+    const Vec2 below = surface_coordinates(t, Point3(1, -1e-9, 0));
+    CHECK_MESSAGE(below.y == 0.0,
+                  "v = −5e-10 must be clamped to 0 (two_pass_shading.hpp: clamped to [0, 1]²)");
+    CHECK(below.x == doctest::Approx(0.5).epsilon(1e-8));
+    // The square [0,4]² (z = 0): x = (4 + 1e-9, 2, 0) gives u = 1 + 2.5e-10 → 1.
+    const std::array<Point3, 4> square{Point3(0, 0, 0), Point3(4, 0, 0), Point3(4, 4, 0), Point3(0, 4, 0)};
+    const Vec2 past_edge = surface_coordinates(square, Point3(4 + 1e-9, 2, 0));
+    CHECK_MESSAGE(past_edge.x == 1.0, "u = 1 + 2.5e-10 on the quad must be clamped to 1");
+    CHECK(past_edge.y == doctest::Approx(0.5).epsilon(1e-12));
+  }
+
+  TEST_CASE(
+      "hard case: a point a rounding error past a triangle's hypotenuse belongs to its row's last cell" *
+      doctest::description("task=3")) {
+    // n = 1: one patch. (u, v) = (½, ½ + 1e-12) is past u + v = 1 by rounding: patch 0,
+    // barycentric weights (≈0, ½, ½), never a "down" triangle that does not exist.
+    const PatchCell one = locate_patch(Vec2(0.5, 0.5 + 1e-12), 1, 0, 3);
+    CHECK_MESSAGE(one.patch == 0, "a triangle meshed with n = 1 has the single patch 0");
+    // n = 2: patches up(0,0) = 0, down(0,0) = 1, up(1,0) = 2, up(0,1) = 3. (¼, ¾ + 1e-12):
+    // row j = 1, i = 0, the row's last cell, the up triangle 3 (index n² = 4 does not exist).
+    const PatchCell two = locate_patch(Vec2(0.25, 0.75 + 1e-12), 2, 0, 3);
+    CHECK_MESSAGE(two.patch == 3, "row 1 of a triangle meshed with n = 2 holds only up(0, 1), patch 3");
+    for (const PatchCell& c : {one, two}) {
+      CHECK(c.corners == 3);
+      double sum = 0;
+      for (double w : c.weight) {
+        CHECK(w >= 0.0);
+        sum += w;
+      }
+      CHECK_MESSAGE(sum == doctest::Approx(1.0).epsilon(1e-12), "the corner weights add up to 1");
+      CHECK(c.weight[1] == doctest::Approx(0.5).epsilon(1e-9));
+      CHECK(c.weight[2] == doctest::Approx(0.5).epsilon(1e-9));
+    }
+  }
+
+  TEST_CASE("the plan's reasons speak of a caustic pass only when caustics were asked for" *
+            doctest::description("task=1")) {
+    // Three scenes without a caustic request: no emitter; a wall and a light (no facing
+    // pair); the Cornell box. Pass one's line must give the real cause (no emitter, no
+    // facing pair, interreflection), never the caustic deposits (two_pass_plan.hpp, reasons).
+    const SceneInventory no_emitter{.diffuse_surfaces = 2, .facing_pairs = 1};
+    const SceneInventory wall_and_light{.diffuse_surfaces = 1, .emitters = 1};
+    const SceneInventory box{.diffuse_surfaces = 7, .facing_pairs = 20, .emitters = 1};
+    for (const SceneInventory& scene : {no_emitter, wall_and_light, box}) {
+      const TwoPassPlan plan = plan_two_pass(scene, TwoPassRequest{.caustics = false});
+      INFO("reasons:\n" << plan.reasons);
+      CHECK(!plan.caustic_pass);
+      CHECK_MESSAGE(plan.reasons.find("caustic") == std::string::npos,
+                    "no caustics were asked for and no caustic pass runs: no reason may mention one");
+    }
+  }
+}
+
+TEST_SUITE("lesson13") {
+  TEST_CASE(
+      "hard case: a quad meshed with m = 0 is refused, and (u, v) a hair outside [0, 1]² still gives weights "
+      "≥ 0" *
+      doctest::description("task=3")) {
+    // A quad needs at least one cell per side: n = 2, m = 0 is not a mesh (two_pass_shading.hpp).
+    CHECK_THROWS_AS(static_cast<void>(locate_patch(Vec2(0.5, 0.5), 2, 0, 4)), std::invalid_argument);
+    // (1 + 1e-9, 0.25) on a 2 × 2 mesh: the last column, cell (1, 0) = patch 1, at s = 1
+    // (clamped: the nearest point of the square) and t = 0.5: weights (0, ½, ½, 0).
+    const PatchCell right = locate_patch(Vec2(1 + 1e-9, 0.25), 2, 2, 4);
+    CHECK(right.patch == 1);
+    // (−1e-9, 0.75): cell (0, 1) = patch 2 at s = 0, t = 0.5: weights (½, 0, 0, ½).
+    const PatchCell left = locate_patch(Vec2(-1e-9, 0.75), 2, 2, 4);
+    CHECK(left.patch == 2);
+    for (const PatchCell& c : {right, left}) {
+      double sum = 0;
+      for (double w : c.weight) {
+        CHECK_MESSAGE(w >= 0.0,
+                      "a corner weight is never negative (two_pass_shading.hpp), even for (u, v) a "
+                      "rounding error outside [0, 1]²: s and t are clamped to [0, 1]");
+        sum += w;
+      }
+      CHECK(sum == doctest::Approx(1.0).epsilon(1e-12));
+    }
+    CHECK(right.weight[1] == doctest::Approx(0.5).epsilon(1e-8));
+    CHECK(right.weight[2] == doctest::Approx(0.5).epsilon(1e-8));
+    CHECK(left.weight[0] == doctest::Approx(0.5).epsilon(1e-8));
+    CHECK(left.weight[3] == doctest::Approx(0.5).epsilon(1e-8));
+  }
+
+  TEST_CASE("the plan's reasons say \"no emitter\" exactly when pass one lacks an emitter" *
+            doctest::description("task=1")) {
+    // Pass one does not run in both scenes; its line gives the cause (two_pass_plan.hpp, reasons):
+    // two facing walls and no light: "no emitter"; a wall and a light: the light is there,
+    // what is missing is a facing pair, so the reasons must not blame the emitter.
+    const TwoPassPlan dark = plan_two_pass(SceneInventory{.diffuse_surfaces = 2, .facing_pairs = 1}, {});
+    INFO("reasons (no emitter):\n" << dark.reasons);
+    CHECK(!dark.radiosity_pass);
+    CHECK_MESSAGE(dark.reasons.find("no emitter") != std::string::npos,
+                  "two facing walls without a light: pass one has nothing to distribute, \"no emitter\"");
+    const TwoPassPlan lit = plan_two_pass(SceneInventory{.diffuse_surfaces = 1, .emitters = 1}, {});
+    INFO("reasons (a wall and a light):\n" << lit.reasons);
+    CHECK(!lit.radiosity_pass);
+    CHECK_MESSAGE(
+        lit.reasons.find("no emitter") == std::string::npos,
+        "the scene has an emitter: the reason pass one does not run is that no two diffuse surfaces "
+        "face each other");
+  }
+}
