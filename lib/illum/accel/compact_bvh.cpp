@@ -17,8 +17,9 @@ constexpr float float_infinity = std::numeric_limits<float>::infinity();
 constexpr float float_far_slack = 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 // A stacked child is skipped when its entry lies beyond the best hit by more than this (relative).
 constexpr double culling_slack = 1e-5;
-// Subtrees of at most this many triangles (one pack) become one leaf, if the settings allow it.
-constexpr std::uint32_t pack_width = 4;
+// Subtrees of at most this many triangles (two packs) become one leaf, if leaf_size allows it (a
+// leaf never holds more than leaf_size): one pack pair tested instead of a box and part-empty packs.
+constexpr std::uint32_t merged_leaf_limit = 8;
 
 float round_down(double x) {
   const float f = static_cast<float>(x);
@@ -293,7 +294,7 @@ struct Entry {
 CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
   const Bvh bvh(set, settings);
   const std::vector<BvhNode> tree =
-      merge_small_subtrees(bvh.nodes(), std::min<std::uint32_t>(pack_width, settings.leaf_size));
+      merge_small_subtrees(bvh.nodes(), std::min<std::uint32_t>(merged_leaf_limit, settings.leaf_size));
   nodes_.reserve(tree.size() / 3 + 1);
   nodes_.emplace_back();
   if (tree[0].leaf()) {
