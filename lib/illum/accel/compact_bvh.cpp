@@ -6,6 +6,9 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
+#endif
 
 #include "illum/accel/bvh_traversal.hpp"
 
@@ -105,6 +108,32 @@ inline int clip_node(const FastRay& r, const CompactBvhNode& n, float lo, float 
   const float* planes = &n.planes[0][0];
   return clip_four(r, planes, lo, hi, entry) | clip_four(r, planes + 4, lo, hi, entry + 4) << 4;
 }
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ILLUM_COMPACT_BVH_AVX 1
+// clip_node with the eight children in one AVX register: the same operations lane by lane (no
+// fused multiply-add), so the same answers; used only where the processor has AVX (run-time check).
+__attribute__((target("avx"))) inline int clip_node_avx(const FastRay& r, const CompactBvhNode& n, float lo,
+                                                        float hi, float entry[8]) {
+  const float* planes = &n.planes[0][0];
+  __m256 t0 = _mm256_set1_ps(lo), exit = _mm256_set1_ps(float_infinity);
+  for (int a = 0; a < 3; ++a) {
+    const __m256 inverse = _mm256_set1_ps(r.inverse[a]);
+    const __m256 s_near = _mm256_mul_ps(
+        _mm256_sub_ps(_mm256_load_ps(planes + r.near_plane[a]), _mm256_set1_ps(r.near_origin[a])), inverse);
+    const __m256 s_far = _mm256_mul_ps(
+        _mm256_sub_ps(_mm256_load_ps(planes + r.far_plane[a]), _mm256_set1_ps(r.far_origin[a])), inverse);
+    t0 = _mm256_max_ps(s_near, t0);  // NaN: the second operand, as in SSE
+    exit = _mm256_min_ps(s_far, exit);
+  }
+  const __m256 widened = _mm256_add_ps(
+      exit, _mm256_mul_ps(_mm256_set1_ps(float_far_slack), _mm256_andnot_ps(_mm256_set1_ps(-0.0f), exit)));
+  const __m256 t1 = _mm256_min_ps(widened, _mm256_set1_ps(hi));
+  _mm256_storeu_ps(entry, t0);
+  return _mm256_movemask_ps(_mm256_and_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OS),
+                                          _mm256_cmp_ps(t0, _mm256_set1_ps(float_infinity), _CMP_LT_OS)));
+}
+#endif
 
 // The filter's rounding bound, relative: K = 2⁻¹⁷ = 128 float ulps; the worst case of each
 // quantity below (s = o − v0, p = ω × e2, q = s × e1 and their dot products) is under 64.
@@ -292,6 +321,9 @@ struct Entry {
 }  // namespace
 
 CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
+#if defined(ILLUM_COMPACT_BVH_AVX)
+  avx_ = __builtin_cpu_supports("avx");
+#endif
   const Bvh bvh(set, settings);
   const std::vector<BvhNode> tree =
       merge_small_subtrees(bvh.nodes(), std::min<std::uint32_t>(merged_leaf_limit, settings.leaf_size));
@@ -328,13 +360,39 @@ void CompactBvh::prefetch(const void* entry) const {
   _mm_prefetch(at, _MM_HINT_T0);
   _mm_prefetch(at + 64, _MM_HINT_T0);
   _mm_prefetch(at + 128, _MM_HINT_T0);
-  if (e.count == 0) _mm_prefetch(at + 192, _MM_HINT_T0);
+  _mm_prefetch(at + 192, _MM_HINT_T0);  // a node's last line, or a leaf's second pack
+  if (e.count > 4) {
+    _mm_prefetch(at + 256, _MM_HINT_T0);
+    _mm_prefetch(at + 320, _MM_HINT_T0);
+  }
 #else
   (void)entry;
 #endif
 }
 
 std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters& counters) const {
+  return avx_ ? intersect_avx(ray, counters) : intersect_sse2(ray, counters);
+}
+
+#if defined(ILLUM_COMPACT_BVH_AVX)
+// The traversal compiled for AVX: flatten inlines it (and its SSE2 code, VEX-encoded) here.
+__attribute__((target("avx"), flatten)) std::optional<AccelHit> CompactBvh::intersect_avx(
+    const Ray& ray, TraversalCounters& counters) const {
+  return closest<true>(ray, counters);
+}
+#else
+std::optional<AccelHit> CompactBvh::intersect_avx(const Ray& ray, TraversalCounters& counters) const {
+  return closest<false>(ray, counters);
+}
+#endif
+
+__attribute__((flatten)) std::optional<AccelHit> CompactBvh::intersect_sse2(
+    const Ray& ray, TraversalCounters& counters) const {
+  return closest<false>(ray, counters);
+}
+
+template <bool wide>
+std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& counters) const {
   const FastRay r(ray);
   const PackRay pr(ray);
   const float t_lo = filter_lo(ray.range.lo);
@@ -354,7 +412,12 @@ std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters&
       const CompactBvhNode& node = nodes_[current.child];
       visits += compact_bvh_width;
       float entry[compact_bvh_width];
+#if defined(ILLUM_COMPACT_BVH_AVX)
+      int inside =
+          wide ? clip_node_avx(r, node, lo, reach_float, entry) : clip_node(r, node, lo, reach_float, entry);
+#else
       int inside = clip_node(r, node, lo, reach_float, entry);
+#endif
       if (inside != 0 && (inside & (inside - 1)) == 0) {  // one child entered: no sorting, no stack
         const int k = __builtin_ctz(inside);
         current = Entry{node.child[k], node.count[k], entry[k]};
