@@ -2,7 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <new>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -221,7 +226,7 @@ float filter_lo(double lo) { return lo > 0.0 ? round_down(lo) * (1.0f - 0x1p-20f
 // packs.size() on; returns the first pack's index.
 std::uint32_t pack_leaf(const std::vector<Triangle>& tree_triangles,
                         const std::vector<std::uint32_t>& tree_ids, std::uint32_t first, std::uint32_t count,
-                        std::vector<TrianglePack>& packs, std::vector<Triangle>& triangles) {
+                        LayoutVector<TrianglePack>& packs, LayoutVector<Triangle>& triangles) {
   const auto start = static_cast<std::uint32_t>(packs.size());
   for (std::uint32_t base = 0; base < count; base += 4) {
     TrianglePack pack{};
@@ -250,7 +255,7 @@ std::uint32_t pack_leaf(const std::vector<Triangle>& tree_triangles,
 
 // Lays out Bvh inner node `i` as nodes[at], its inner descendants after it.
 void lay_out(const std::vector<BvhNode>& tree, std::uint32_t i, std::uint32_t at,
-             std::vector<CompactBvhNode>& nodes) {
+             LayoutVector<CompactBvhNode>& nodes) {
   // Open the largest inner child until there are eight children or only leaves.
   std::uint32_t kids[compact_bvh_width] = {i + 1, tree[i].first};
   int n = 2;
@@ -318,7 +323,27 @@ struct Entry {
   float enter;          // a lower bound on where the ray enters its box
 };
 
+constexpr std::size_t huge_page = std::size_t{1} << 21;
+
 }  // namespace
+
+void* allocate_layout(std::size_t bytes, std::size_t alignment) {
+  if (bytes < huge_page) return ::operator new(bytes, std::align_val_t(alignment));
+  const std::size_t rounded = (bytes + huge_page - 1) / huge_page * huge_page;
+  void* block = std::aligned_alloc(huge_page, rounded);
+  if (block == nullptr) throw std::bad_alloc();
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  madvise(block, rounded, MADV_HUGEPAGE);  // advice only: without huge pages the block still works
+#endif
+  return block;
+}
+
+void free_layout(void* block, std::size_t bytes, std::size_t alignment) {
+  if (bytes < huge_page)
+    ::operator delete(block, std::align_val_t(alignment));
+  else
+    std::free(block);
+}
 
 CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
 #if defined(ILLUM_COMPACT_BVH_AVX)

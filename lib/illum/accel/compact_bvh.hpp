@@ -41,6 +41,7 @@
 //     a miss in cache. leaf_size stays what it is in Bvh, the most triangles
 //     in a leaf; the Embree comparison builds with leaf_size 8.
 // Counters: one node visit per child box tested, one triangle test per (used) lane filtered.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -74,6 +75,24 @@ struct alignas(16) TrianglePack {
 };
 static_assert(sizeof(TrianglePack) == 192);
 
+// Storage for the layout's arrays: blocks of 2 MiB and more are 2 MiB-aligned and offered to the
+// kernel as huge pages (Linux madvise; elsewhere plain aligned blocks), as Embree does: a ray's path
+// through a large tree touches pages at random, and one TLB entry then covers 512 times more.
+void* allocate_layout(std::size_t bytes, std::size_t alignment);
+void free_layout(void* block, std::size_t bytes, std::size_t alignment);
+template <class T>
+struct LayoutAllocator {
+  using value_type = T;
+  LayoutAllocator() = default;
+  template <class U>
+  explicit LayoutAllocator(const LayoutAllocator<U>&) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(allocate_layout(n * sizeof(T), alignof(T))); }
+  void deallocate(T* p, std::size_t n) { free_layout(p, n * sizeof(T), alignof(T)); }
+  friend bool operator==(const LayoutAllocator&, const LayoutAllocator&) { return true; }
+};
+template <class T>
+using LayoutVector = std::vector<T, LayoutAllocator<T>>;
+
 class CompactBvh final : public TriangleAccel {
  public:
   // Builds a Bvh with `settings` and lays it out; throws as Bvh does.
@@ -97,9 +116,9 @@ class CompactBvh final : public TriangleAccel {
 
   bool avx_ = false;
 
-  std::vector<CompactBvhNode> nodes_;
-  std::vector<TrianglePack> packs_;  // in leaf order
-  std::vector<Triangle> triangles_;  // triangles_[4·pack + lane], for the exact test (unused lanes: copies)
+  LayoutVector<CompactBvhNode> nodes_;
+  LayoutVector<TrianglePack> packs_;  // in leaf order
+  LayoutVector<Triangle> triangles_;  // triangles_[4·pack + lane], for the exact test (unused lanes: copies)
 };
 
 }  // namespace illum
