@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <limits>
 #include <new>
@@ -216,6 +217,73 @@ inline int may_hit(const PackRay& r, const TrianglePack& pack, float lo, float h
   return 0xf;  // no filter: the exact test decides every lane
 #endif
 }
+
+#if defined(ILLUM_COMPACT_BVH_AVX)
+// Four lanes of a pack's row (at `offset` bytes) and the same row of the next pack, as eight lanes.
+__attribute__((target("avx"))) inline __m256 load_two(const TrianglePack* pack, std::size_t offset) {
+  const auto* a = reinterpret_cast<const float*>(reinterpret_cast<const char*>(pack) + offset);
+  const auto* b = reinterpret_cast<const float*>(reinterpret_cast<const char*>(pack + 1) + offset);
+  return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(a)), _mm_load_ps(b), 1);
+}
+__attribute__((target("avx"))) inline __m256 broadcast_halves(__m128 x) { return _mm256_set_m128(x, x); }
+
+// may_hit on two consecutive packs at once, eight lanes (bit 4 + k: the second pack's lane k): the
+// same operations lane by lane, so the same answers.
+__attribute__((target("avx"))) inline int may_hit_two(const Ray& ray_unused, const PackRay& r,
+                                                      const TrianglePack* pack, float lo, float hi) {
+  (void)ray_unused;
+  constexpr std::size_t row = 4 * sizeof(float);
+  const std::size_t v0 = offsetof(TrianglePack, v0), e1o = offsetof(TrianglePack, e1),
+                    e2o = offsetof(TrianglePack, e2);
+  const __m256 s0 = _mm256_sub_ps(broadcast_halves(r.origin[0]), load_two(pack, v0)),
+               s1 = _mm256_sub_ps(broadcast_halves(r.origin[1]), load_two(pack, v0 + row)),
+               s2 = _mm256_sub_ps(broadcast_halves(r.origin[2]), load_two(pack, v0 + 2 * row));
+  const __m256 a0 = load_two(pack, e1o), a1 = load_two(pack, e1o + row), a2 = load_two(pack, e1o + 2 * row);
+  const __m256 b0 = load_two(pack, e2o), b1 = load_two(pack, e2o + row), b2 = load_two(pack, e2o + 2 * row);
+  const __m256 d0 = broadcast_halves(r.direction[0]), d1 = broadcast_halves(r.direction[1]),
+               d2 = broadcast_halves(r.direction[2]);
+  const __m256 p0 = _mm256_sub_ps(_mm256_mul_ps(d1, b2), _mm256_mul_ps(d2, b1)),
+               p1 = _mm256_sub_ps(_mm256_mul_ps(d2, b0), _mm256_mul_ps(d0, b2)),
+               p2 = _mm256_sub_ps(_mm256_mul_ps(d0, b1), _mm256_mul_ps(d1, b0));
+  const __m256 det =
+      _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a0, p0), _mm256_mul_ps(a1, p1)), _mm256_mul_ps(a2, p2));
+  const __m256 u =
+      _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(s0, p0), _mm256_mul_ps(s1, p1)), _mm256_mul_ps(s2, p2));
+  const __m256 q0 = _mm256_sub_ps(_mm256_mul_ps(s1, a2), _mm256_mul_ps(s2, a1)),
+               q1 = _mm256_sub_ps(_mm256_mul_ps(s2, a0), _mm256_mul_ps(s0, a2)),
+               q2 = _mm256_sub_ps(_mm256_mul_ps(s0, a1), _mm256_mul_ps(s1, a0));
+  const __m256 v =
+      _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(d0, q0), _mm256_mul_ps(d1, q1)), _mm256_mul_ps(d2, q2));
+  const __m256 t =
+      _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(b0, q0), _mm256_mul_ps(b1, q1)), _mm256_mul_ps(b2, q2));
+  const __m256 k = _mm256_set1_ps(filter_rounding);
+  const __m256 size = _mm256_mul_ps(
+      k, _mm256_add_ps(broadcast_halves(r.origin_size), load_two(pack, offsetof(TrianglePack, v0_size))));
+  const __m256 e1 = load_two(pack, offsetof(TrianglePack, edge_size)), e2 = e1;
+  const __m256 direction_size = broadcast_halves(r.direction_size);
+  const __m256 de1 = _mm256_mul_ps(direction_size, e1), de2 = _mm256_mul_ps(direction_size, e2);
+  const __m256 bound_u = _mm256_mul_ps(size, de2), bound_v = _mm256_mul_ps(size, de1),
+               bound_det = _mm256_mul_ps(k, _mm256_mul_ps(de2, e1)),
+               bound_t = _mm256_mul_ps(size, _mm256_mul_ps(e1, e2));
+  const __m256 sign = _mm256_and_ps(det, _mm256_set1_ps(-0.0f));
+  const __m256 size_det = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), det);
+  const __m256 su = _mm256_xor_ps(u, sign), sv = _mm256_xor_ps(v, sign), st = _mm256_xor_ps(t, sign);
+  const __m256 zero = _mm256_setzero_ps();
+  __m256 miss = _mm256_cmp_ps(_mm256_add_ps(su, bound_u), zero, _CMP_LT_OS);
+  miss = _mm256_or_ps(miss, _mm256_cmp_ps(_mm256_add_ps(sv, bound_v), zero, _CMP_LT_OS));
+  miss =
+      _mm256_or_ps(miss, _mm256_cmp_ps(_mm256_sub_ps(_mm256_add_ps(su, sv), _mm256_add_ps(bound_u, bound_v)),
+                                       _mm256_add_ps(size_det, bound_det), _CMP_GT_OS));
+  miss = _mm256_or_ps(
+      miss, _mm256_cmp_ps(_mm256_sub_ps(st, bound_t),
+                          _mm256_mul_ps(_mm256_set1_ps(hi), _mm256_add_ps(size_det, bound_det)), _CMP_GT_OS));
+  miss = _mm256_or_ps(
+      miss, _mm256_cmp_ps(_mm256_add_ps(st, bound_t),
+                          _mm256_mul_ps(_mm256_set1_ps(lo), _mm256_sub_ps(size_det, bound_det)), _CMP_LT_OS));
+  miss = _mm256_andnot_ps(_mm256_cmp_ps(size_det, bound_det, _CMP_LE_OS), miss);
+  return ~_mm256_movemask_ps(miss) & 0xff;
+}
+#endif
 
 // The filter's limits on t: hi rounded up, lo rounded down, each by a further 2⁻²⁰
 // relative for the rounding of the products they enter; lo ≤ 0 (or hi < 0) is no limit.
@@ -475,17 +543,28 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
       }
     } else {
       tests += current.count;
-      for (std::uint32_t p = current.child, left = current.count; left > 0; ++p, left -= std::min(left, 4u)) {
-        int lanes = may_hit(pr, packs_[p], t_lo, t_hi) & ((1 << std::min(left, 4u)) - 1);
+      for (std::uint32_t p = current.child, left = current.count; left > 0;) {
+        // Two packs at once where the AVX traversal runs and two remain, else one.
+        const bool two = wide && left > 4;
+        const std::uint32_t width = two ? 8u : 4u, used = std::min(left, width);
+#if defined(ILLUM_COMPACT_BVH_AVX)
+        int lanes =
+            (two ? may_hit_two(ray, pr, &packs_[p], t_lo, t_hi) : may_hit(pr, packs_[p], t_lo, t_hi)) &
+            ((1 << used) - 1);
+#else
+        int lanes = may_hit(pr, packs_[p], t_lo, t_hi) & ((1 << used) - 1);
+#endif
         for (; lanes != 0; lanes &= lanes - 1) {
           const std::uint32_t k = 4 * p + static_cast<std::uint32_t>(__builtin_ctz(lanes));
           if (const auto hit = illum::intersect(probe, triangles_[k])) {
-            best = AccelHit{*hit, packs_[p].id[k % 4]};
+            best = AccelHit{*hit, packs_[k / 4].id[k % 4]};
             probe.range.hi = hit->s;
             t_hi = filter_hi(hit->s);
             reach_float = round_up(probe.range.hi + culling_slack * std::abs(probe.range.hi));
           }
         }
+        p += width / 4;
+        left -= used;
       }
     }
     // Next: the nearest stacked entry that can still hold something closer.
