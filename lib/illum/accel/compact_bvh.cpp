@@ -229,9 +229,8 @@ __attribute__((target("avx"))) inline __m256 broadcast_halves(__m128 x) { return
 
 // may_hit on two consecutive packs at once, eight lanes (bit 4 + k: the second pack's lane k): the
 // same operations lane by lane, so the same answers.
-__attribute__((target("avx"))) inline int may_hit_two(const Ray& ray_unused, const PackRay& r,
-                                                      const TrianglePack* pack, float lo, float hi) {
-  (void)ray_unused;
+__attribute__((target("avx"))) inline int may_hit_two(const PackRay& r, const TrianglePack* pack, float lo,
+                                                      float hi) {
   constexpr std::size_t row = 4 * sizeof(float);
   const std::size_t v0 = offsetof(TrianglePack, v0), e1o = offsetof(TrianglePack, e1),
                     e2o = offsetof(TrianglePack, e2);
@@ -548,9 +547,8 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
         const bool two = wide && left > 4;
         const std::uint32_t width = two ? 8u : 4u, used = std::min(left, width);
 #if defined(ILLUM_COMPACT_BVH_AVX)
-        int lanes =
-            (two ? may_hit_two(ray, pr, &packs_[p], t_lo, t_hi) : may_hit(pr, packs_[p], t_lo, t_hi)) &
-            ((1 << used) - 1);
+        int lanes = (two ? may_hit_two(pr, &packs_[p], t_lo, t_hi) : may_hit(pr, packs_[p], t_lo, t_hi)) &
+                    ((1 << used) - 1);
 #else
         int lanes = may_hit(pr, packs_[p], t_lo, t_hi) & ((1 << used) - 1);
 #endif
