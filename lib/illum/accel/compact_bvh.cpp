@@ -413,9 +413,7 @@ void free_layout(void* block, std::size_t bytes, std::size_t alignment) {
 }
 
 CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
-#if defined(ILLUM_COMPACT_BVH_AVX)
-  avx_ = __builtin_cpu_supports("avx");
-#endif
+  use_avx(true);
   const Bvh bvh(set, settings);
   const std::vector<BvhNode> tree =
       merge_small_subtrees(bvh.nodes(), std::min<std::uint32_t>(merged_leaf_limit, settings.leaf_size));
@@ -442,6 +440,15 @@ CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
       if (node.count[k] > 0 && node.planes[0][k] != float_infinity)
         node.child[k] =
             pack_leaf(bvh.triangles(), bvh.ids(), node.child[k], node.count[k], packs_, triangles_);
+}
+
+bool CompactBvh::use_avx(bool wanted) {
+#if defined(ILLUM_COMPACT_BVH_AVX)
+  avx_ = wanted && __builtin_cpu_supports("avx");
+#else
+  (void)wanted;
+#endif
+  return avx_;
 }
 
 void CompactBvh::prefetch(const void* entry) const {

@@ -105,6 +105,9 @@ class CompactBvh final : public TriangleAccel {
   std::string_view name() const override { return "bvh"; }
 
   std::size_t node_count() const { return nodes_.size(); }
+  // The AVX traversal runs where the processor has AVX (the default); false forces the SSE2 baseline
+  // everywhere, so that tests check both on an AVX machine. Returns whether AVX is now used.
+  bool use_avx(bool wanted);
 
  private:
   void prefetch(const void* entry) const;  // a traversal stack entry's node or packs
