@@ -26,9 +26,9 @@ constexpr float float_infinity = std::numeric_limits<float>::infinity();
 constexpr float float_far_slack = 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 // A stacked child is skipped when its entry lies beyond the best hit by more than this (relative).
 constexpr double culling_slack = 1e-5;
-// Subtrees of at most this many triangles (two packs) become one leaf, if leaf_size allows it (a
+// Subtrees of at most this many triangles (four packs) become one leaf, if leaf_size allows it (a
 // leaf never holds more than leaf_size): one pack pair tested instead of a box and part-empty packs.
-constexpr std::uint32_t merged_leaf_limit = 8;
+constexpr std::uint32_t merged_leaf_limit = 16;
 
 float round_down(double x) {
   const float f = static_cast<float>(x);
@@ -460,7 +460,7 @@ void CompactBvh::prefetch(const void* entry) const {
   _mm_prefetch(at + 64, _MM_HINT_T0);
   _mm_prefetch(at + 128, _MM_HINT_T0);
   _mm_prefetch(at + 192, _MM_HINT_T0);  // a node's last line, or a leaf's second pack
-  if (e.count > 4) {
+  if (e.count > 4) {  // the rest of the second pack (a third and fourth are left to the hardware)
     _mm_prefetch(at + 256, _MM_HINT_T0);
     _mm_prefetch(at + 320, _MM_HINT_T0);
   }

@@ -36,11 +36,11 @@
 //     which decides: hit/miss and t are the exact test's, edges and vertices
 //     included. The bound assumes no float overflow or underflow (coordinates
 //     and edges within about 10^±15).
-//   * subtrees of at most min(8, leaf_size) triangles are merged into one
-//     leaf (at most two packs): a pack test is cheaper than a box test and
+//   * subtrees of at most min(16, leaf_size) triangles are merged into one
+//     leaf (at most four packs): a pack test is cheaper than a box test and
 //     a miss in cache. leaf_size stays what it is in Bvh, the most triangles
-//     in a leaf; the Embree comparison builds with leaf_size 8. The AVX
-//     traversal filters a leaf's two packs in one eight-lane pass.
+//     in a leaf; the Embree comparison builds with leaf_size 16. The AVX
+//     traversal filters a leaf's packs two at a time in eight lanes.
 // Counters: one node visit per child box tested, one triangle test per (used) lane filtered.
 #include <cstddef>
 #include <cstdint>
