@@ -2,9 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <cstdlib>
 #include <limits>
+#include <new>
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
+#if defined(__x86_64__) && defined(__GNUC__)
+#include <immintrin.h>
 #endif
 
 #include "illum/accel/bvh_traversal.hpp"
@@ -17,8 +26,9 @@ constexpr float float_infinity = std::numeric_limits<float>::infinity();
 constexpr float float_far_slack = 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 // A stacked child is skipped when its entry lies beyond the best hit by more than this (relative).
 constexpr double culling_slack = 1e-5;
-// Subtrees of at most this many triangles (one pack) become one leaf, if the settings allow it.
-constexpr std::uint32_t pack_width = 4;
+// Subtrees of at most this many triangles (four packs) become one leaf, if leaf_size allows it (a
+// leaf never holds more than leaf_size): one pack pair tested instead of a box and part-empty packs.
+constexpr std::uint32_t merged_leaf_limit = 16;
 
 float round_down(double x) {
   const float f = static_cast<float>(x);
@@ -105,6 +115,32 @@ inline int clip_node(const FastRay& r, const CompactBvhNode& n, float lo, float 
   return clip_four(r, planes, lo, hi, entry) | clip_four(r, planes + 4, lo, hi, entry + 4) << 4;
 }
 
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ILLUM_COMPACT_BVH_AVX 1
+// clip_node with the eight children in one AVX register: the same operations lane by lane (no
+// fused multiply-add), so the same answers; used only where the processor has AVX (run-time check).
+__attribute__((target("avx"))) inline int clip_node_avx(const FastRay& r, const CompactBvhNode& n, float lo,
+                                                        float hi, float entry[8]) {
+  const float* planes = &n.planes[0][0];
+  __m256 t0 = _mm256_set1_ps(lo), exit = _mm256_set1_ps(float_infinity);
+  for (int a = 0; a < 3; ++a) {
+    const __m256 inverse = _mm256_set1_ps(r.inverse[a]);
+    const __m256 s_near = _mm256_mul_ps(
+        _mm256_sub_ps(_mm256_load_ps(planes + r.near_plane[a]), _mm256_set1_ps(r.near_origin[a])), inverse);
+    const __m256 s_far = _mm256_mul_ps(
+        _mm256_sub_ps(_mm256_load_ps(planes + r.far_plane[a]), _mm256_set1_ps(r.far_origin[a])), inverse);
+    t0 = _mm256_max_ps(s_near, t0);  // NaN: the second operand, as in SSE
+    exit = _mm256_min_ps(s_far, exit);
+  }
+  const __m256 widened = _mm256_add_ps(
+      exit, _mm256_mul_ps(_mm256_set1_ps(float_far_slack), _mm256_andnot_ps(_mm256_set1_ps(-0.0f), exit)));
+  const __m256 t1 = _mm256_min_ps(widened, _mm256_set1_ps(hi));
+  _mm256_storeu_ps(entry, t0);
+  return _mm256_movemask_ps(_mm256_and_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OS),
+                                          _mm256_cmp_ps(t0, _mm256_set1_ps(float_infinity), _CMP_LT_OS)));
+}
+#endif
+
 // The filter's rounding bound, relative: K = 2⁻¹⁷ = 128 float ulps; the worst case of each
 // quantity below (s = o − v0, p = ω × e2, q = s × e1 and their dot products) is under 64.
 constexpr float filter_rounding = 0x1p-17f;
@@ -182,6 +218,72 @@ inline int may_hit(const PackRay& r, const TrianglePack& pack, float lo, float h
 #endif
 }
 
+#if defined(ILLUM_COMPACT_BVH_AVX)
+// Four lanes of a pack's row (at `offset` bytes) and the same row of the next pack, as eight lanes.
+__attribute__((target("avx"))) inline __m256 load_two(const TrianglePack* pack, std::size_t offset) {
+  const auto* a = reinterpret_cast<const float*>(reinterpret_cast<const char*>(pack) + offset);
+  const auto* b = reinterpret_cast<const float*>(reinterpret_cast<const char*>(pack + 1) + offset);
+  return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(a)), _mm_load_ps(b), 1);
+}
+__attribute__((target("avx"))) inline __m256 broadcast_halves(__m128 x) { return _mm256_set_m128(x, x); }
+
+// may_hit on two consecutive packs at once, eight lanes (bit 4 + k: the second pack's lane k): the
+// same operations lane by lane, so the same answers.
+__attribute__((target("avx"))) inline int may_hit_two(const PackRay& r, const TrianglePack* pack, float lo,
+                                                      float hi) {
+  constexpr std::size_t row = 4 * sizeof(float);
+  const std::size_t v0 = offsetof(TrianglePack, v0), e1o = offsetof(TrianglePack, e1),
+                    e2o = offsetof(TrianglePack, e2);
+  const __m256 s0 = _mm256_sub_ps(broadcast_halves(r.origin[0]), load_two(pack, v0)),
+               s1 = _mm256_sub_ps(broadcast_halves(r.origin[1]), load_two(pack, v0 + row)),
+               s2 = _mm256_sub_ps(broadcast_halves(r.origin[2]), load_two(pack, v0 + 2 * row));
+  const __m256 a0 = load_two(pack, e1o), a1 = load_two(pack, e1o + row), a2 = load_two(pack, e1o + 2 * row);
+  const __m256 b0 = load_two(pack, e2o), b1 = load_two(pack, e2o + row), b2 = load_two(pack, e2o + 2 * row);
+  const __m256 d0 = broadcast_halves(r.direction[0]), d1 = broadcast_halves(r.direction[1]),
+               d2 = broadcast_halves(r.direction[2]);
+  const __m256 p0 = _mm256_sub_ps(_mm256_mul_ps(d1, b2), _mm256_mul_ps(d2, b1)),
+               p1 = _mm256_sub_ps(_mm256_mul_ps(d2, b0), _mm256_mul_ps(d0, b2)),
+               p2 = _mm256_sub_ps(_mm256_mul_ps(d0, b1), _mm256_mul_ps(d1, b0));
+  const __m256 det =
+      _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(a0, p0), _mm256_mul_ps(a1, p1)), _mm256_mul_ps(a2, p2));
+  const __m256 u =
+      _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(s0, p0), _mm256_mul_ps(s1, p1)), _mm256_mul_ps(s2, p2));
+  const __m256 q0 = _mm256_sub_ps(_mm256_mul_ps(s1, a2), _mm256_mul_ps(s2, a1)),
+               q1 = _mm256_sub_ps(_mm256_mul_ps(s2, a0), _mm256_mul_ps(s0, a2)),
+               q2 = _mm256_sub_ps(_mm256_mul_ps(s0, a1), _mm256_mul_ps(s1, a0));
+  const __m256 v =
+      _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(d0, q0), _mm256_mul_ps(d1, q1)), _mm256_mul_ps(d2, q2));
+  const __m256 t =
+      _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(b0, q0), _mm256_mul_ps(b1, q1)), _mm256_mul_ps(b2, q2));
+  const __m256 k = _mm256_set1_ps(filter_rounding);
+  const __m256 size = _mm256_mul_ps(
+      k, _mm256_add_ps(broadcast_halves(r.origin_size), load_two(pack, offsetof(TrianglePack, v0_size))));
+  const __m256 e1 = load_two(pack, offsetof(TrianglePack, edge_size)), e2 = e1;
+  const __m256 direction_size = broadcast_halves(r.direction_size);
+  const __m256 de1 = _mm256_mul_ps(direction_size, e1), de2 = _mm256_mul_ps(direction_size, e2);
+  const __m256 bound_u = _mm256_mul_ps(size, de2), bound_v = _mm256_mul_ps(size, de1),
+               bound_det = _mm256_mul_ps(k, _mm256_mul_ps(de2, e1)),
+               bound_t = _mm256_mul_ps(size, _mm256_mul_ps(e1, e2));
+  const __m256 sign = _mm256_and_ps(det, _mm256_set1_ps(-0.0f));
+  const __m256 size_det = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), det);
+  const __m256 su = _mm256_xor_ps(u, sign), sv = _mm256_xor_ps(v, sign), st = _mm256_xor_ps(t, sign);
+  const __m256 zero = _mm256_setzero_ps();
+  __m256 miss = _mm256_cmp_ps(_mm256_add_ps(su, bound_u), zero, _CMP_LT_OS);
+  miss = _mm256_or_ps(miss, _mm256_cmp_ps(_mm256_add_ps(sv, bound_v), zero, _CMP_LT_OS));
+  miss =
+      _mm256_or_ps(miss, _mm256_cmp_ps(_mm256_sub_ps(_mm256_add_ps(su, sv), _mm256_add_ps(bound_u, bound_v)),
+                                       _mm256_add_ps(size_det, bound_det), _CMP_GT_OS));
+  miss = _mm256_or_ps(
+      miss, _mm256_cmp_ps(_mm256_sub_ps(st, bound_t),
+                          _mm256_mul_ps(_mm256_set1_ps(hi), _mm256_add_ps(size_det, bound_det)), _CMP_GT_OS));
+  miss = _mm256_or_ps(
+      miss, _mm256_cmp_ps(_mm256_add_ps(st, bound_t),
+                          _mm256_mul_ps(_mm256_set1_ps(lo), _mm256_sub_ps(size_det, bound_det)), _CMP_LT_OS));
+  miss = _mm256_andnot_ps(_mm256_cmp_ps(size_det, bound_det, _CMP_LE_OS), miss);
+  return ~_mm256_movemask_ps(miss) & 0xff;
+}
+#endif
+
 // The filter's limits on t: hi rounded up, lo rounded down, each by a further 2⁻²⁰
 // relative for the rounding of the products they enter; lo ≤ 0 (or hi < 0) is no limit.
 float filter_hi(double hi) { return hi >= 0.0 ? round_up(hi) * (1.0f + 0x1p-20f) : float_infinity; }
@@ -191,7 +293,7 @@ float filter_lo(double lo) { return lo > 0.0 ? round_down(lo) * (1.0f - 0x1p-20f
 // packs.size() on; returns the first pack's index.
 std::uint32_t pack_leaf(const std::vector<Triangle>& tree_triangles,
                         const std::vector<std::uint32_t>& tree_ids, std::uint32_t first, std::uint32_t count,
-                        std::vector<TrianglePack>& packs, std::vector<Triangle>& triangles) {
+                        LayoutVector<TrianglePack>& packs, LayoutVector<Triangle>& triangles) {
   const auto start = static_cast<std::uint32_t>(packs.size());
   for (std::uint32_t base = 0; base < count; base += 4) {
     TrianglePack pack{};
@@ -220,7 +322,7 @@ std::uint32_t pack_leaf(const std::vector<Triangle>& tree_triangles,
 
 // Lays out Bvh inner node `i` as nodes[at], its inner descendants after it.
 void lay_out(const std::vector<BvhNode>& tree, std::uint32_t i, std::uint32_t at,
-             std::vector<CompactBvhNode>& nodes) {
+             LayoutVector<CompactBvhNode>& nodes) {
   // Open the largest inner child until there are eight children or only leaves.
   std::uint32_t kids[compact_bvh_width] = {i + 1, tree[i].first};
   int n = 2;
@@ -288,12 +390,33 @@ struct Entry {
   float enter;          // a lower bound on where the ray enters its box
 };
 
+constexpr std::size_t huge_page = std::size_t{1} << 21;
+
 }  // namespace
 
+void* allocate_layout(std::size_t bytes, std::size_t alignment) {
+  if (bytes < huge_page) return ::operator new(bytes, std::align_val_t(alignment));
+  const std::size_t rounded = (bytes + huge_page - 1) / huge_page * huge_page;
+  void* block = std::aligned_alloc(huge_page, rounded);
+  if (block == nullptr) throw std::bad_alloc();
+#if defined(__linux__) && defined(MADV_HUGEPAGE)
+  madvise(block, rounded, MADV_HUGEPAGE);  // advice only: without huge pages the block still works
+#endif
+  return block;
+}
+
+void free_layout(void* block, std::size_t bytes, std::size_t alignment) {
+  if (bytes < huge_page)
+    ::operator delete(block, std::align_val_t(alignment));
+  else
+    std::free(block);
+}
+
 CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
+  use_avx(true);
   const Bvh bvh(set, settings);
   const std::vector<BvhNode> tree =
-      merge_small_subtrees(bvh.nodes(), std::min<std::uint32_t>(pack_width, settings.leaf_size));
+      merge_small_subtrees(bvh.nodes(), std::min<std::uint32_t>(merged_leaf_limit, settings.leaf_size));
   nodes_.reserve(tree.size() / 3 + 1);
   nodes_.emplace_back();
   if (tree[0].leaf()) {
@@ -319,6 +442,15 @@ CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
             pack_leaf(bvh.triangles(), bvh.ids(), node.child[k], node.count[k], packs_, triangles_);
 }
 
+bool CompactBvh::use_avx(bool wanted) {
+#if defined(ILLUM_COMPACT_BVH_AVX)
+  avx_ = wanted && __builtin_cpu_supports("avx");
+#else
+  (void)wanted;
+#endif
+  return avx_;
+}
+
 void CompactBvh::prefetch(const void* entry) const {
 #if defined(__SSE2__)
   const auto& e = *static_cast<const Entry*>(entry);
@@ -327,13 +459,39 @@ void CompactBvh::prefetch(const void* entry) const {
   _mm_prefetch(at, _MM_HINT_T0);
   _mm_prefetch(at + 64, _MM_HINT_T0);
   _mm_prefetch(at + 128, _MM_HINT_T0);
-  if (e.count == 0) _mm_prefetch(at + 192, _MM_HINT_T0);
+  _mm_prefetch(at + 192, _MM_HINT_T0);  // a node's last line, or a leaf's second pack
+  if (e.count > 4) {  // the rest of the second pack (a third and fourth are left to the hardware)
+    _mm_prefetch(at + 256, _MM_HINT_T0);
+    _mm_prefetch(at + 320, _MM_HINT_T0);
+  }
 #else
   (void)entry;
 #endif
 }
 
 std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters& counters) const {
+  return avx_ ? intersect_avx(ray, counters) : intersect_sse2(ray, counters);
+}
+
+#if defined(ILLUM_COMPACT_BVH_AVX)
+// The traversal compiled for AVX: flatten inlines it (and its SSE2 code, VEX-encoded) here.
+__attribute__((target("avx"), flatten)) std::optional<AccelHit> CompactBvh::intersect_avx(
+    const Ray& ray, TraversalCounters& counters) const {
+  return closest<true>(ray, counters);
+}
+#else
+std::optional<AccelHit> CompactBvh::intersect_avx(const Ray& ray, TraversalCounters& counters) const {
+  return closest<false>(ray, counters);
+}
+#endif
+
+__attribute__((flatten)) std::optional<AccelHit> CompactBvh::intersect_sse2(
+    const Ray& ray, TraversalCounters& counters) const {
+  return closest<false>(ray, counters);
+}
+
+template <bool wide>
+std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& counters) const {
   const FastRay r(ray);
   const PackRay pr(ray);
   const float t_lo = filter_lo(ray.range.lo);
@@ -353,7 +511,12 @@ std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters&
       const CompactBvhNode& node = nodes_[current.child];
       visits += compact_bvh_width;
       float entry[compact_bvh_width];
+#if defined(ILLUM_COMPACT_BVH_AVX)
+      int inside =
+          wide ? clip_node_avx(r, node, lo, reach_float, entry) : clip_node(r, node, lo, reach_float, entry);
+#else
       int inside = clip_node(r, node, lo, reach_float, entry);
+#endif
       if (inside != 0 && (inside & (inside - 1)) == 0) {  // one child entered: no sorting, no stack
         const int k = __builtin_ctz(inside);
         current = Entry{node.child[k], node.count[k], entry[k]};
@@ -386,17 +549,27 @@ std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters&
       }
     } else {
       tests += current.count;
-      for (std::uint32_t p = current.child, left = current.count; left > 0; ++p, left -= std::min(left, 4u)) {
-        int lanes = may_hit(pr, packs_[p], t_lo, t_hi) & ((1 << std::min(left, 4u)) - 1);
+      for (std::uint32_t p = current.child, left = current.count; left > 0;) {
+        // Two packs at once where the AVX traversal runs and two remain, else one.
+        const bool two = wide && left > 4;
+        const std::uint32_t width = two ? 8u : 4u, used = std::min(left, width);
+#if defined(ILLUM_COMPACT_BVH_AVX)
+        int lanes = (two ? may_hit_two(pr, &packs_[p], t_lo, t_hi) : may_hit(pr, packs_[p], t_lo, t_hi)) &
+                    ((1 << used) - 1);
+#else
+        int lanes = may_hit(pr, packs_[p], t_lo, t_hi) & ((1 << used) - 1);
+#endif
         for (; lanes != 0; lanes &= lanes - 1) {
           const std::uint32_t k = 4 * p + static_cast<std::uint32_t>(__builtin_ctz(lanes));
           if (const auto hit = illum::intersect(probe, triangles_[k])) {
-            best = AccelHit{*hit, packs_[p].id[k % 4]};
+            best = AccelHit{*hit, packs_[k / 4].id[k % 4]};
             probe.range.hi = hit->s;
             t_hi = filter_hi(hit->s);
             reach_float = round_up(probe.range.hi + culling_slack * std::abs(probe.range.hi));
           }
         }
+        p += width / 4;
+        left -= used;
       }
     }
     // Next: the nearest stacked entry that can still hold something closer.
