@@ -12,19 +12,16 @@
 #include <stdexcept>
 #include <vector>
 
+#include "closed_forms.hpp"
 #include "illum/core/random.hpp"
 #include "illum/radiosity/form_factor_contour.hpp"
+#include "illum/radiosity/form_factor_hierarchical.hpp"
 #include "illum/radiosity/form_factor_sampling.hpp"
 #include "illum/radiosity/patch.hpp"
 #include "illum/radiosity/radiosity_equation.hpp"
 
 using namespace illum;
-
-namespace {
-
-constexpr double pi = std::numbers::pi;
-
-}  // namespace
+using namespace lesson09_test;
 
 TEST_SUITE("lesson09") {
   TEST_CASE("Monte Carlo area to area: one sample is one kernel value, between its bounds" *
@@ -100,5 +97,34 @@ TEST_SUITE("lesson09") {
       CHECK_THROWS_AS(polygon_polygon_form_factor(a, a, {.order = order}), std::invalid_argument);
       CHECK_THROWS_AS(polygon_polygon_form_factor(a, away, {.order = order}), std::invalid_argument);
     }
+  }
+
+  TEST_CASE("hierarchical decomposition: one split of a rectangle is four quarters about its centre" *
+            doctest::description("task=4")) {
+    // max_depth = 0: the rectangle [0.2, 1.3] × [0.3, 1.0] (z = 0, normal +z) is
+    // split once, through its edge midpoints and its centre (the mean of its
+    // vertices), into four equal quarters, and F is the mean of the point factors
+    // at their centroids (x, y) = (0.475 or 1.025, 0.475 or 0.825). The target is
+    // the ceiling [0, 2] × [0, 1.5] at c = 0.8, facing down; every centroid lies
+    // under it, so its point factor is the sum of four corner rectangles (Howell
+    // B-3). Another centre (a vertex counted twice, say) gives unequal pieces and
+    // another value, off by far more than 1e-12.
+    const double c = 0.8;
+    const Patch from = make_patch({{0.2, 0.3, 0}, {1.3, 0.3, 0}, {1.3, 1.0, 0}, {0.2, 1.0, 0}});
+    const Patch to = make_patch({{0, 0, c}, {0, 1.5, c}, {2, 1.5, c}, {2, 0, c}});
+    const auto point_factor = [&](double x, double y) {
+      return point_to_parallel_rectangle_corner(2 - x, 1.5 - y, c) +
+             point_to_parallel_rectangle_corner(x, 1.5 - y, c) +
+             point_to_parallel_rectangle_corner(2 - x, y, c) + point_to_parallel_rectangle_corner(x, y, c);
+    };
+    double expected = 0;
+    for (const double x : {0.475, 1.025})
+      for (const double y : {0.475, 0.825}) expected += 0.25 * point_factor(x, y);
+    const HierarchicalResult r = form_factor_hierarchical(from, to, 1e-3, 0);
+    CHECK_MESSAGE(
+        r.value == doctest::Approx(expected).epsilon(1e-12),
+        "with max_depth = 0 a quad is split once through its edge midpoints and its centre "
+        "(v0 + v1 + v2 + v3)/4, and F is the area-weighted mean of the four children's point factors "
+        "at their centroids");
   }
 }
