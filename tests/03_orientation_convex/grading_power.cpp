@@ -169,7 +169,7 @@ TEST_SUITE("lesson03") {
   }
 
   TEST_CASE("hard case: winding with the test ray through a vertex, both orientations" *
-            doctest::description("task=1,2")) {
+            doctest::description("task=1,2,3")) {
     // The triangle (0.1, 0) → (0.3, 0.1) → (0.1, 0.2) contains q = (0.2, 0.1), and
     // the ray to +u from q passes exactly through the vertex (0.3, 0.1) (the same
     // double 0.1 in both). By the half-open rule of lesson 02 that vertex counts

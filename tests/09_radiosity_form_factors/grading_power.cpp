@@ -100,7 +100,7 @@ TEST_SUITE("lesson09") {
   }
 
   TEST_CASE("hierarchical decomposition: one split of a rectangle is four quarters about its centre" *
-            doctest::description("task=4")) {
+            doctest::description("task=1,2,4")) {
     // max_depth = 0: the rectangle [0.2, 1.3] × [0.3, 1.0] (z = 0, normal +z) is
     // split once, through its edge midpoints and its centre (the mean of its
     // vertices), into four equal quarters, and F is the mean of the point factors
