@@ -16,6 +16,7 @@
 
 #include "illum/geometry/convex.hpp"
 #include "illum/geometry/orientation.hpp"
+#include "illum/geometry/triangle.hpp"
 #include "illum/geometry/winding.hpp"
 
 using namespace illum;
@@ -165,5 +166,52 @@ TEST_SUITE("lesson03") {
       }
     CHECK(inside > 50);
     CHECK(checked - inside > 50);
+  }
+
+  TEST_CASE("hard case: winding with the test ray through a vertex, both orientations" *
+            doctest::description("task=1,2,3")) {
+    // The triangle (0.1, 0) → (0.3, 0.1) → (0.1, 0.2) contains q = (0.2, 0.1), and
+    // the ray to +u from q passes exactly through the vertex (0.3, 0.1) (the same
+    // double 0.1 in both). By the half-open rule of lesson 02 that vertex counts
+    // as below q, for both edges that meet there: the edge into it does not
+    // cross, the edge out of it (upward, q on its left) crosses once. So the
+    // winding number is +1 counter-clockwise and −1 clockwise, as for any
+    // interior point of a simple polygon.
+    const std::vector<Vec2> ccw = {{0.1, 0.0}, {0.3, 0.1}, {0.1, 0.2}};
+    const std::vector<Vec2> cw = {{0.1, 0.2}, {0.3, 0.1}, {0.1, 0.0}};
+    const Vec2 q(0.2, 0.1);
+    CHECK_MESSAGE(winding_number(std::span<const Vec2>(ccw), q) == 1,
+                  "counter-clockwise, q inside: winding +1; the vertex on the ray is below q for both of "
+                  "its edges (half-open: above means a.y > q.y, for a and b alike)");
+    CHECK_MESSAGE(winding_number(std::span<const Vec2>(cw), q) == -1,
+                  "clockwise, q inside: winding −1; a vertex with v = q.v is below, whichever end of "
+                  "the edge it is");
+    CHECK_MESSAGE(inside_nonzero(flat_polygon(ccw), q), "q is inside the triangle (nonzero rule)");
+  }
+
+  TEST_CASE("hard case: a ray with |ω.x| = |ω.y| through a shared edge: the frame ties to x" *
+            doctest::description("task=7")) {
+    // ω = (1, 1, 0)/√2: |ω.x| = |ω.y|, so by the header's rule ("ties to x,
+    // then y") kz = x, kx = y, ky = z, and a vertex p goes to (p.y − p.x, p.z).
+    // The two triangles share the edge (1, 1, −1)–(1, 1, 1), whose image is the
+    // 2D line X = 0; the ray from the origin meets it at (1, 1, 0), s = √2, so
+    // every edge function through it is exactly 0 and the symbolic
+    // perturbation decides: the ray is moved by (ε, ε²), to X > 0, which is
+    // triangle A's side (its third vertex (0.5, 1.5, 0) has X = 1). Taking
+    // kz = y instead gives the frame (p.z, p.x − p.y), where the shared edge is
+    // horizontal and the perturbation moves the ray up, to p.x − p.y > 0:
+    // triangle B, a different but still watertight answer.
+    const Triangle a(Point3(1, 1, -1), Point3(1, 1, 1), Point3(0.5, 1.5, 0));
+    const Triangle b(Point3(1, 1, 1), Point3(1, 1, -1), Point3(1.5, 0.5, 0));
+    const Ray ray = Ray::toward(Point3(0, 0, 0), Vec3(1, 1, 0));
+    const auto hit_a = intersect(ray, a);
+    const auto hit_b = intersect(ray, b);
+    CHECK_MESSAGE(hit_a.has_value() != hit_b.has_value(),
+                  "watertight: exactly one triangle of a shared edge");
+    REQUIRE_MESSAGE(
+        hit_a.has_value(),
+        "ties of |ω_k| go to x (header: kz is the largest |ω_k|, ties to x, then y): in the frame "
+        "(p.y − p.x, p.z) the perturbed ray lies at X > 0, inside triangle A");
+    CHECK(hit_a->s == doctest::Approx(std::sqrt(2.0)).epsilon(1e-12));
   }
 }

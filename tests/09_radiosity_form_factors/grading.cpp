@@ -252,7 +252,7 @@ TEST_SUITE("lesson09") {
 
   // ------------------------------------------------------- polygon to polygon
   TEST_CASE("contour integral: parallel rectangles against Howell C-11 (unit squares at 1: 0.19982)" *
-            doctest::description("task=1,3")) {
+            doctest::description("task=3")) {
     CHECK(parallel_rectangles(1, 1, 1) == doctest::Approx(0.19982).epsilon(1e-4));  // the table value
     for (const auto& [a, b, c] : {std::tuple{1.0, 1.0, 1.0}, {2.0, 1.0, 0.5}, {0.3, 0.7, 2.0}}) {
       INFO("a = ", a, ", b = ", b, ", c = ", c);
@@ -264,7 +264,7 @@ TEST_SUITE("lesson09") {
   }
 
   TEST_CASE("hard case: adjacent perpendicular rectangles sharing an edge, against Howell C-14 (0.20004)" *
-            doctest::description("task=1,3")) {
+            doctest::description("task=3")) {
     CHECK(perpendicular_rectangles_common_edge(1, 1, 1) == doctest::Approx(0.20004).epsilon(1e-4));
     for (const auto& [w, h, l] : {std::tuple{1.0, 1.0, 1.0}, {0.5, 2.0, 1.5}, {2.0, 0.25, 1.0}}) {
       // Floor x ∈ [0, w], y ∈ [0, l]; wall x = 0, z ∈ [0, h]: they share the edge x = z = 0.
@@ -285,7 +285,7 @@ TEST_SUITE("lesson09") {
   }
 
   TEST_CASE("contour integral: coaxial regular 60-gons are bracketed by the discs (Howell C-40)" *
-            doctest::description("task=1,3")) {
+            doctest::description("task=3")) {
     // A₁F₁₂ = ∫∫ kernel grows with both patches, so the polygons' exchange
     // lies between those of the inscribed and circumscribed disc pairs.
     const int n = 60;
@@ -299,7 +299,7 @@ TEST_SUITE("lesson09") {
   }
 
   TEST_CASE("contour integral: coaxial 720-gons match the discs (Howell C-40) within their missing area" *
-            doctest::description("task=1,3")) {
+            doctest::description("task=3")) {
     // A₁F₁₂ = ∫_{A₁}∫_{A₂} k with k = cos θ₁ cos θ₂/(π d²) = h²/(π d⁴) ≤ 1/(π h²)
     // (d ≥ h between the parallel planes). The disc pair's exchange exceeds the
     // inscribed polygons' by the integral over (D₁∖P₁)×D₂ ∪ P₁×(D₂∖P₂), so
@@ -324,7 +324,7 @@ TEST_SUITE("lesson09") {
   }
 
   TEST_CASE("hard case: F_ii = 0 and coplanar neighbours exchange nothing; reciprocity holds" *
-            doctest::description("task=1,3")) {
+            doctest::description("task=3")) {
     const Patch a = floor_rect(0, 1, 0, 1, 0), neighbour = floor_rect(1, 2, 0, 1, 0);
     CHECK(polygon_polygon_form_factor(a, a) == 0.0);
     CHECK(polygon_polygon_form_factor(a, neighbour) == 0.0);
@@ -386,7 +386,7 @@ TEST_SUITE("lesson09") {
   }
 
   TEST_CASE("M·B = E in a closed cube: uniform emission gives B = E/(1 − ρ)" *
-            doctest::description("task=1,3,12")) {
+            doctest::description("task=3,12")) {
     // Σ_j F_ij = 1, so B_i = E + ρ Σ_j F_ij B = E + ρB everywhere: B = E/(1 − ρ), by hand.
     std::vector<Patch> cube;
     auto add = [&](std::vector<Patch> face) { cube.insert(cube.end(), face.begin(), face.end()); };

@@ -7,7 +7,9 @@
 // A piece is split in four (quads through their edge midpoints, triangles by
 // their midpoints, other polygons into a fan around the centroid) and the
 // estimate is trusted when the children's area-weighted mean agrees with it
-// within the tolerance; otherwise each child is refined the same way.
+// within the tolerance; otherwise each child is refined the same way. A
+// quad's four children meet at its centre, the mean (v0 + v1 + v2 + v3)/4 of
+// its vertices; a piece's estimate is the point factor at its area centroid.
 #include "illum/radiosity/patch.hpp"
 
 namespace illum {
@@ -20,7 +22,9 @@ struct HierarchicalResult {
 
 // Task 4. F from `from` to the front side of `to` (no occlusion) by
 // adaptive subdivision of `from`, refining while the parent and children
-// estimates differ by more than `tolerance`, at most `max_depth` levels.
+// estimates differ by more than `tolerance`, at most `max_depth` levels
+// (max_depth = 0: one split, F is the area-weighted mean of the four
+// children's estimates).
 // Throws std::invalid_argument when tolerance ≤ 0 or max_depth is outside 0 … 20.
 HierarchicalResult form_factor_hierarchical(const Patch& from, const Patch& to, double tolerance,
                                             int max_depth = 12);
