@@ -60,6 +60,18 @@ TEST_SUITE("lesson05") {
     }
   }
 
+  TEST_CASE("Newton stops on a step exactly equal to the tolerance (|Δs| ≤ tolerance, not <)" *
+            doctest::description("task=2")) {
+    // f = s² − 2 from s0 = 2: f = 2, f' = 4, the step is 2/4 = 0.5 exactly and
+    // s becomes 1.5. With tolerance 0.5 the contract's |Δs| ≤ tolerance stops
+    // there, after one step; a strict < would take one more step, to
+    // 1.5 − 0.25/3 = 1.41667, and report two.
+    const RootResult r = newton(scaled_square(1.0), 2.0, 0.5, 10);
+    REQUIRE(r.converged());
+    CHECK_MESSAGE(r.iterations == 1, "contract: converged when |f/f'| ≤ tolerance; a step equal to it stops");
+    CHECK_MESSAGE(r.s == 1.5, "s is the point after the step that met the tolerance: 2 − 0.5 = 1.5");
+  }
+
   TEST_CASE("bisection and safeguarded Newton on a falling function (f(a) > 0 > f(b))" *
             doctest::description("task=1,3")) {
     // f = 2 − s² on [0.5, 3]: the sign change runs the other way; the kept

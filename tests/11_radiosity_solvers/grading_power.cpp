@@ -227,6 +227,37 @@ TEST_SUITE("lesson11") {
     CHECK_MESSAGE(southwell_step(s.patches, s.f, b, residual) == 1, "rows 1 and 2 tie at |r| = 1: the first");
   }
 
+  TEST_CASE(
+      "general system: Southwell from an overshooting guess relaxes the largest |r|, not the largest r" *
+      doctest::description("task=5")) {
+    // Start from B = 2·B_exact: r = E + ρF(2B) − 2B = E − 2(B − ρFB) = −E, so
+    // every residual is negative. |r| summed over channels is E's sum: 1.7,
+    // 0.3 and 1.4, so row 0 is relaxed first; the largest signed sum (−0.3)
+    // would pick row 1. Afterwards residuals of both signs mix.
+    const GeneralSystem s = general_system();
+    std::vector<Color> b(n);
+    for (std::size_t i = 0; i < n; ++i) b[i] = 2.0 * s.exact[i];
+    std::vector<Color> residual(n);
+    for (std::size_t i = 0; i < n; ++i) residual[i] = residual_of(s, b, i);
+    REQUIRE_MESSAGE(southwell_step(s.patches, s.f, b, residual) == 0,
+                    "contract: the row with the largest |r_i.r| + |r_i.g| + |r_i.b| -- residuals can be "
+                    "negative when the guess overshoots, and -1.7 is larger than -0.3 in size");
+    for (int step = 0; step < 400; ++step) {
+      std::size_t largest = 0;
+      double most = -1;
+      for (std::size_t k = 0; k < n; ++k) {
+        const double size = std::abs(residual[k].r) + std::abs(residual[k].g) + std::abs(residual[k].b);
+        if (size > most) most = size, largest = k;
+      }
+      if (most < 1e-15) break;
+      INFO("step ", step + 1);
+      CHECK_MESSAGE(southwell_step(s.patches, s.f, b, residual) == largest,
+                    "contract: Southwell relaxes the largest |r_i| (absolute values, summed over channels)");
+    }
+    for (std::size_t i = 0; i < n; ++i)
+      check_close(b[i], s.exact[i], 1e-10, "Southwell limit from 2·B vs Cramer");
+  }
+
   TEST_CASE("general system: the ambient term weighs ρ and ΔB by area" * doctest::description("task=7")) {
     const GeneralSystem s = general_system();
     const std::vector<Color> unshot = {Color(0.5, 0.25, 1.0), Color(2.0, 0.0, 0.5), Color(0.125, 1.0, 0.25)};
