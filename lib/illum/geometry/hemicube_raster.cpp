@@ -81,21 +81,26 @@ int rasterize_polygon(const Vec3* vertices, int count, const Vec3& plane_normal,
   // adds at most one vertex to a convex polygon.
   const std::size_t capacity = static_cast<std::size_t>(count) + 6;
   if (s.clip_a.size() < capacity) s.clip_a.resize(capacity), s.clip_b.resize(capacity);
-  std::copy(vertices, vertices + count, s.clip_a.begin());
   int n = count;
-  for (int k = 0; k < 5 && n >= 3; ++k)
-    if (any & (1u << k)) {
-      n = clip_against(k, s.clip_a, n, s.clip_b, t);
-      std::swap(s.clip_a, s.clip_b);
-    }
-  if (n < 3) return 0;
+  const Vec3* polygon = vertices;  // wholly inside (the usual case at fine meshes): no copy, no clipping
+  if (any != 0) {
+    std::copy(vertices, vertices + count, s.clip_a.begin());
+    for (int k = 0; k < 5 && n >= 3; ++k)
+      if (any & (1u << k)) {
+        n = clip_against(k, s.clip_a, n, s.clip_b, t);
+        std::swap(s.clip_a, s.clip_b);
+      }
+    if (n < 3) return 0;
+    polygon = s.clip_a.data();
+  }
 
-  // 2. Project to pixel coordinates.
+  // 2. Project to pixel coordinates (into clip_a, which `polygon` may alias:
+  // each vertex is read before it is written).
   const double half_w = 0.5 * t.width;
   const double y_offset = t.side ? 0.0 : 1.0;
   for (int v = 0; v < n; ++v) {
-    Vec3& p = s.clip_a[v];
-    p = Vec3((p.x / p.z + 1.0) * half_w, (p.y / p.z + y_offset) * half_w, 0.0);
+    const Vec3 p = polygon[v];
+    s.clip_a[v] = Vec3((p.x / p.z + 1.0) * half_w, (p.y / p.z + y_offset) * half_w, 0.0);
   }
 
   // 3. Spans: for each row whose centre Y = r + ½ lies in [Y_low, Y_high) of
@@ -114,8 +119,9 @@ int rasterize_polygon(const Vec3* vertices, int count, const Vec3& plane_normal,
             std::numeric_limits<double>::infinity());
   std::fill(s.span_right.begin() + row_begin, s.span_right.begin() + row_end,
             -std::numeric_limits<double>::infinity());
-  for (int v = 0; v < n; ++v) {
-    Vec3 p0 = s.clip_a[v], p1 = s.clip_a[(v + 1) % n];
+  // Edge (prev, v) for each v: no modulo (an integer division) per edge.
+  for (int v = 0, prev = n - 1; v < n; prev = v++) {
+    Vec3 p0 = s.clip_a[prev], p1 = s.clip_a[v];
     if (p0.y == p1.y) continue;          // horizontal edges cover no row centre on their own
     if (p0.y > p1.y) std::swap(p0, p1);  // walk every edge upwards, whichever polygon it belongs to
     const int r0 = std::max(row_begin, ceil_to_int(p0.y - 0.5));
