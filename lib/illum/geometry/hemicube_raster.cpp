@@ -81,21 +81,31 @@ int rasterize_polygon(const Vec3* vertices, int count, const Vec3& plane_normal,
   // adds at most one vertex to a convex polygon.
   const std::size_t capacity = static_cast<std::size_t>(count) + 6;
   if (s.clip_a.size() < capacity) s.clip_a.resize(capacity), s.clip_b.resize(capacity);
-  std::copy(vertices, vertices + count, s.clip_a.begin());
   int n = count;
-  for (int k = 0; k < 5 && n >= 3; ++k)
-    if (any & (1u << k)) {
-      n = clip_against(k, s.clip_a, n, s.clip_b, t);
-      std::swap(s.clip_a, s.clip_b);
-    }
-  if (n < 3) return 0;
+  const Vec3* polygon = vertices;  // wholly inside (the usual case at fine meshes): no copy, no clipping
+  if (any != 0) {
+    std::copy(vertices, vertices + count, s.clip_a.begin());
+    for (int k = 0; k < 5 && n >= 3; ++k)
+      if (any & (1u << k)) {
+        n = clip_against(k, s.clip_a, n, s.clip_b, t);
+        std::swap(s.clip_a, s.clip_b);
+      }
+    if (n < 3) return 0;
+    polygon = s.clip_a.data();
+  }
 
-  // 2. Project to pixel coordinates.
+  // 2. Project to pixel coordinates (into clip_a, which `polygon` may alias:
+  // each vertex is read before it is written).
   const double half_w = 0.5 * t.width;
   const double y_offset = t.side ? 0.0 : 1.0;
+  // Each vertex's first row at or above it, ⌈Y − ½⌉, is rounded once here and
+  // shared by its two edges and the polygon's row range (rounding is monotone,
+  // so the lowest of these is the row range's start).
+  if (s.vertex_row.size() < s.clip_a.size()) s.vertex_row.resize(s.clip_a.size());
   for (int v = 0; v < n; ++v) {
-    Vec3& p = s.clip_a[v];
-    p = Vec3((p.x / p.z + 1.0) * half_w, (p.y / p.z + y_offset) * half_w, 0.0);
+    const Vec3 p = polygon[v];
+    s.clip_a[v] = Vec3((p.x / p.z + 1.0) * half_w, (p.y / p.z + y_offset) * half_w, 0.0);
+    s.vertex_row[v] = ceil_to_int(s.clip_a[v].y - 0.5);
   }
 
   // 3. Spans: for each row whose centre Y = r + ½ lies in [Y_low, Y_high) of
@@ -104,22 +114,25 @@ int rasterize_polygon(const Vec3* vertices, int count, const Vec3& plane_normal,
     s.span_left.resize(t.height);
     s.span_right.resize(t.height);
   }
-  double y_low = s.clip_a[0].y, y_high = y_low;
+  int row_low = s.vertex_row[0], row_high = row_low;
   for (int v = 1; v < n; ++v)
-    y_low = std::min(y_low, s.clip_a[v].y), y_high = std::max(y_high, s.clip_a[v].y);
-  const int row_begin = std::max(0, ceil_to_int(y_low - 0.5));
-  const int row_end = std::min(t.height, ceil_to_int(y_high - 0.5));
+    row_low = std::min(row_low, s.vertex_row[v]), row_high = std::max(row_high, s.vertex_row[v]);
+  const int row_begin = std::max(0, row_low);
+  const int row_end = std::min(t.height, row_high);
   if (row_begin >= row_end) return 0;
   std::fill(s.span_left.begin() + row_begin, s.span_left.begin() + row_end,
             std::numeric_limits<double>::infinity());
   std::fill(s.span_right.begin() + row_begin, s.span_right.begin() + row_end,
             -std::numeric_limits<double>::infinity());
-  for (int v = 0; v < n; ++v) {
-    Vec3 p0 = s.clip_a[v], p1 = s.clip_a[(v + 1) % n];
-    if (p0.y == p1.y) continue;          // horizontal edges cover no row centre on their own
-    if (p0.y > p1.y) std::swap(p0, p1);  // walk every edge upwards, whichever polygon it belongs to
-    const int r0 = std::max(row_begin, ceil_to_int(p0.y - 0.5));
-    const int r1 = std::min(row_end, ceil_to_int(p1.y - 0.5));
+  // Edge (prev, v) for each v: no modulo (an integer division) per edge.
+  for (int v = 0, prev = n - 1; v < n; prev = v++) {
+    Vec3 p0 = s.clip_a[prev], p1 = s.clip_a[v];
+    int q0 = s.vertex_row[prev], q1 = s.vertex_row[v];
+    if (p0.y == p1.y) continue;  // horizontal edges cover no row centre on their own
+    if (p0.y > p1.y)
+      std::swap(p0, p1), std::swap(q0, q1);  // walk every edge upwards, whichever polygon it belongs to
+    const int r0 = std::max(row_begin, q0);
+    const int r1 = std::min(row_end, q1);
     const double slope = (p1.x - p0.x) / (p1.y - p0.y);
     for (int r = r0; r < r1; ++r) {
       const double x = p0.x + (r + 0.5 - p0.y) * slope;

@@ -44,6 +44,7 @@ struct FaceTarget {
 struct RasterScratch {
   std::vector<Vec3> clip_a, clip_b;           // polygons during clipping
   std::vector<double> span_left, span_right;  // per row of the face
+  std::vector<int> vertex_row;                // per vertex: its first row centre at or above it
 };
 
 // Bit mask of the frustum planes that a face-space point lies outside of
