@@ -581,6 +581,13 @@ def check_images(source: Path, out: Path) -> tuple[list[str], int]:
     return problems, compared
 
 
+def write_lines_atomically(path: Path, lines: list[str]) -> None:
+    """Writes a text through a temporary file and a rename: never half a file."""
+    tmp = path.with_name(path.name + ".tmp-figures")
+    tmp.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    os.replace(tmp, path)
+
+
 def update_images(source: Path, out: Path, log=print) -> int:
     """Keeps a copy of every deterministic image the lesson texts show, links the texts to it, drops the rest."""
     problems, copied, texts_written, kept_total = [], 0, 0, 0
@@ -623,9 +630,7 @@ def update_images(source: Path, out: Path, log=print) -> int:
             folder.rmdir()
         kept_total += len(keep)
         if changed:
-            tmp = path.with_name(path.name + ".tmp-figures")
-            tmp.write_text("\n".join(lines) + "\n", encoding="utf-8")
-            os.replace(tmp, path)
+            write_lines_atomically(path, lines)
             texts_written += 1
             log(f"figures: relinked the images of {rel}")
     for p in problems:
@@ -674,9 +679,7 @@ def process(source: Path, out: Path, mode: str, log=print) -> int:
                 lines[block.open_line + 1:block.close_line] = new_lines
                 changed = True
         if changed:
-            tmp = path.with_name(path.name + ".tmp-figures")
-            tmp.write_text("\n".join(lines) + "\n", encoding="utf-8")
-            os.replace(tmp, path)
+            write_lines_atomically(path, lines)
             written += 1
             log(f"figures: refreshed {rel}")
     for p in problems:

@@ -16,26 +16,16 @@
 #include <stdexcept>
 #include <vector>
 
+#include "13_two_pass/support.hpp"
 #include "illum/radiosity/two_pass_plan.hpp"
 #include "illum/radiosity/two_pass_shading.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;
+using lesson13::bilinear;
+using lesson13::check_uv;
 
 namespace {
-
-// The bilinear map of lesson 13, §3 (the definition, written out).
-Point3 bilinear(const std::array<Point3, 4>& q, double u, double v) {
-  return (1 - u) * (1 - v) * q[0] + u * (1 - v) * q[1] + u * v * q[2] + (1 - u) * v * q[3];
-}
-
-void check_uv(const std::array<Point3, 4>& q, double u, double v, double tolerance) {
-  const Vec2 got = surface_coordinates(q, bilinear(q, u, v));
-  INFO("the point P(" << u << ", " << v << ") of the quad must map back to (u, v); got (" << got.x << ", "
-                      << got.y << ")");
-  CHECK(std::abs(got.x - u) <= tolerance);
-  CHECK(std::abs(got.y - v) <= tolerance);
-}
 
 // The Cornell box's floor: a trapezoid (552.8 mm at the front, 549.6 mm at the back).
 const std::array<Point3, 4> cornell_floor{Point3(552.8, 0, 0), Point3(0, 0, 0), Point3(0, 0, 559.2),
