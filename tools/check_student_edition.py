@@ -146,7 +146,17 @@ def main() -> int:
     args = parser.parse_args()
 
     if args.lesson:
-        lessons = [project.normalize_lesson(t) for text in args.lesson for t in text.split(",") if t.strip()]
+        try:
+            lessons = [project.normalize_lesson(t) for text in args.lesson for t in text.split(",") if t.strip()]
+        except ValueError as error:
+            print(f"check_student_edition: --lesson: {error}", file=sys.stderr)
+            return 2
+        exercises = project.exercise_lessons(project.ROOT)
+        unknown = [nn for nn in lessons if nn not in exercises]
+        if unknown:  # checked before any folder is made or anything built
+            print(f"check_student_edition: --lesson {', '.join(unknown)}: no such lesson with exercises "
+                  f"(lessons with exercises: {', '.join(exercises)})", file=sys.stderr)
+            return 2
         problems = []
         with tempfile.TemporaryDirectory(prefix="illum-student-lesson-") as temporary:
             work = (args.work_dir or Path(temporary)).resolve()

@@ -10,6 +10,7 @@ Run: python3 tests/tools/test_grade.py   (ctest: tools_grade_py)
 from __future__ import annotations
 
 import json
+import subprocess
 import sys
 import tempfile
 import unittest
@@ -528,6 +529,27 @@ class CommandLineTest(unittest.TestCase):
                     self.assertIn(words, err)
                     self.assertNotIn("Traceback", err)
             self.assertEqual(list(Path(folder).iterdir()), [])  # nothing left behind
+
+
+
+class CheckStudentEditionOptionsTest(unittest.TestCase):
+    """tools/check_student_edition.py --lesson refuses what names no lesson with exercises, with exit 2 and
+    one line naming the option and the value, before it makes a folder or builds anything."""
+
+    def run_check(self, *args: str):
+        script = Path(__file__).resolve().parents[2] / "tools" / "check_student_edition.py"
+        return subprocess.run([sys.executable, str(script), *args], capture_output=True, text=True, timeout=60)
+
+    def test_bad_lessons(self) -> None:
+        for value, words in (("99", "--lesson 99: no such lesson with exercises"),
+                             ("abc", "--lesson: 'abc' is not a lesson number")):
+            with self.subTest(value=value), tempfile.TemporaryDirectory() as folder:
+                work = Path(folder) / "work"
+                done = self.run_check("--lesson", value, "--work-dir", str(work))
+                self.assertEqual(done.returncode, 2, done.stderr)
+                self.assertIn(words, done.stderr)
+                self.assertNotIn("Traceback", done.stderr)
+                self.assertFalse(work.exists(), "nothing may be made before the options are checked")
 
 
 if __name__ == "__main__":
