@@ -9,6 +9,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <ctime>
 #include <iostream>
 #include <map>
@@ -66,6 +67,7 @@ struct Settings {
   double unshot_threshold = 0;  // stop when the unshot power is below this fraction of the emitted
                                 // (0: 1%, or 0.1% with --figure)
   bool big_figure = false;      // --figure: only section 10, with the scaling study up to 8,000 patches
+  double row_memory_mb = 1024;  // rows kept for patches that shoot again (MiB; 0: only those in flight)
 };
 
 // A shipped scene by name ("cornell" = scenes/cornell.json, compiled in), or a file.
@@ -549,8 +551,9 @@ void pictures_section(OutputFolder& out, const Settings& settings, const StudySy
 struct ProgressiveRun {
   ProgressiveState state;
   double unshot = 1, seconds = 0, row_seconds = 0;
-  double cpu_seconds = 0;  // processor time of every thread together (std::clock)
-  std::size_t rows = 0;    // rows computed: the shots' rows and those drawn ahead in vain
+  double cpu_seconds = 0;   // processor time of every thread together (std::clock)
+  std::size_t rows = 0;     // rows computed: the shots' rows and those drawn ahead in vain
+  double idle_seconds = 0;  // time the threads together slept with nothing to draw
 };
 
 // Shoots until the unshot power is below `threshold` of the emitted power
@@ -558,12 +561,13 @@ struct ProgressiveRun {
 // will want next; the same shots and values as one row per shot). Rows and
 // buffers are allocated once.
 ProgressiveRun progressive_on_demand(const std::vector<Patch>& patches, int resolution, double threshold,
-                                     Table* history) {
+                                     double row_memory_mb, Table* history) {
   const Hemicube hemicube(resolution);
   const std::clock_t cpu_start = std::clock();
   Stopwatch watch;
   const OnDemandRun on_demand = progressive_on_demand(
-      patches, hemicube, {.unshot_fraction = threshold}, [&](const ProgressiveState& state, double unshot) {
+      patches, hemicube, {.unshot_fraction = threshold, .row_memory = row_memory_mb * 1024 * 1024},
+      [&](const ProgressiveState& state, double unshot) {
         const std::size_t shots = state.shots;
         if (history && ((shots & (shots - 1)) == 0 || shots % 50 == 0 || unshot < threshold))
           history->add_row({static_cast<std::int64_t>(shots), watch.seconds(), unshot});
@@ -574,7 +578,8 @@ ProgressiveRun progressive_on_demand(const std::vector<Patch>& patches, int reso
           seconds,
           on_demand.row_seconds,
           static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC,
-          on_demand.rows};
+          on_demand.rows,
+          on_demand.idle_seconds};
 }
 
 // --- 10. The figure: the box solved with hemicube rows on demand ---------------
@@ -586,8 +591,8 @@ void figure_section(OutputFolder& out, const Settings& settings) {
   const int resolution = settings.quick ? 32 : settings.figure_resolution;
   report_progress(program_id, "figure: " + std::to_string(big.patches.size()) + " patches", 0, 1);
   Table history({"shots", "seconds", "unshot_fraction"});
-  const ProgressiveRun run =
-      progressive_on_demand(big.patches, resolution, settings.unshot_threshold, &history);
+  const ProgressiveRun run = progressive_on_demand(big.patches, resolution, settings.unshot_threshold,
+                                                   settings.row_memory_mb, &history);
   Table figure({"patches", "max patch edge (mm)", "hemicube resolution", "threads", "shots",
                 "rows computed (timing-dependent)", "unshot / emitted", "seconds", "CPU seconds",
                 "seconds in hemicube rows"});
@@ -619,6 +624,42 @@ void figure_section(OutputFolder& out, const Settings& settings) {
             << resolution << ", " << omp_get_max_threads() << " threads, " << run.state.shots << " shots to "
             << fixed(100 * run.unshot, 3) << "% unshot in " << fixed(run.seconds, 2) << " s ("
             << fixed(run.row_seconds, 2) << " s in hemicube rows)\n";
+}
+
+// --- 10. Memory for time: how many rows the figure keeps ------------------------
+// The figure's run with room for none of its rows (only those in flight), a
+// part of them, and all of them: the same shots and radiosities every time
+// (bit for bit), drawn with fewer rows as more are kept.
+void row_memory_section(OutputFolder& out, const Settings& settings) {
+  double edge = 0;
+  const RadiosityScene scene = scene_with_patches(
+      settings.scene, settings.quick ? 300 : static_cast<std::size_t>(settings.figure_patches), edge);
+  const int resolution = settings.quick ? 32 : settings.figure_resolution;
+  const double n = static_cast<double>(scene.patches.size()),
+               row_mib = n * sizeof(double) / (1024.0 * 1024.0);
+  Table table({"rows kept (of n)", "MiB of rows", "shots", "rows computed (timing-dependent)", "seconds",
+               "CPU seconds", "seconds threads slept (timing-dependent)"});
+  for (const double share : {0.0, 0.125, 0.25, 0.5, 1.0}) {
+    report_progress(program_id, "row memory: " + fixed(100 * share, 1) + "% of the rows", 0, 1);
+    const double mib = share * n * row_mib;
+    const ProgressiveRun run =
+        progressive_on_demand(scene.patches, resolution, settings.unshot_threshold, mib, nullptr);
+    table.add_row({share, mib, static_cast<std::int64_t>(run.state.shots),
+                   static_cast<std::int64_t>(run.rows), run.seconds, run.cpu_seconds, run.idle_seconds});
+  }
+  out.table(table, "figure_row_memory",
+            "The figure's run (" + std::to_string(scene.patches.size()) + " patches, to " +
+                fixed(100 * settings.unshot_threshold, 2) +
+                "% unshot) with room for a share of its n rows: memory against rows drawn and time");
+  const PlotSpec plot{.title = "Rows kept against time: the figure's run",
+                      .x_label = "share of the n rows kept",
+                      .y_label = "seconds",
+                      .curves = {{.table = "figure_row_memory.csv",
+                                  .x = "rows kept (of n)",
+                                  .y = "seconds",
+                                  .title = "seconds",
+                                  .mark = PlotMark::lines_points}}};
+  out.plot(plot, "figure_row_memory", "Seconds against the share of rows kept (timing-dependent)");
 }
 
 // --- 10. How the figure's time grows with the patch count ----------------------
@@ -657,8 +698,8 @@ void scaling_section(OutputFolder& out, const Settings& settings) {
           "scaling: " + std::to_string(scene.patches.size()) + " patches, " + std::to_string(t) + " threads",
           0, 1);
       omp_set_num_threads(t);
-      const ProgressiveRun run =
-          progressive_on_demand(scene.patches, resolution, settings.unshot_threshold, nullptr);
+      const ProgressiveRun run = progressive_on_demand(scene.patches, resolution, settings.unshot_threshold,
+                                                       settings.row_memory_mb, nullptr);
       if (t == 1) one_thread = run.seconds, cpu_seconds.push_back(run.cpu_seconds);
       scaling.add_row({static_cast<std::int64_t>(scene.patches.size()), std::int64_t{t},
                        static_cast<std::int64_t>(run.state.shots), static_cast<std::int64_t>(run.rows),
@@ -708,6 +749,15 @@ void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers
                    : "'" + s + "' is not a finite number";
       },
       "FINITE");
+  // Rows kept may not ask for more than the machine's memory budget (core/memory_budget.hpp).
+  const CLI::Validator within_memory_budget(
+      [](std::string& s) {
+        const double mib = std::strtod(s.c_str(), nullptr);  // not a finite number: finite_number says so
+        return !std::isfinite(mib) || mib * 1024 * 1024 <= memory_budget_bytes()
+                   ? std::string()
+                   : s + " MiB is more than this machine's limit of " + format_bytes(memory_budget_bytes());
+      },
+      "MEMORY");
   app.add_option("--scene", settings.scene, "A radiosity scene: a JSON file, or a shipped scene's name")
       ->capture_default_str();
   app.add_option("--solvers", solvers,
@@ -729,6 +779,10 @@ void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers
                  "stop the figure when the unshot power is below this fraction of the emitted "
                  "(default 0.01, or 0.001 with --figure)")
       ->check(finite_number & CLI::Range(1e-9, 0.5));
+  app.add_option("--row-memory", settings.row_memory_mb,
+                 "MiB of hemicube rows kept for patches that shoot again (0: only the rows in flight)")
+      ->check(finite_number & CLI::Range(0.0, 1048576.0) & within_memory_budget)
+      ->capture_default_str();
   app.add_flag("--figure", settings.big_figure,
                "only the figure, with the scaling study up to 8,000 patches (a few minutes)");
 }
@@ -773,6 +827,7 @@ int main(int argc, char** argv) {
         study_plots(out, settings, history, direct_seconds);
         pictures_section(out, settings, system, published);
         figure_section(out, settings);
+        row_memory_section(out, settings);
         scaling_section(out, settings);
         out.finish();
       });

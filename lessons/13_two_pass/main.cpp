@@ -63,14 +63,17 @@ struct PipelineRun {
 // is below `threshold` of the emitted), by the library's rows on demand, which
 // takes the same shots with the same values, bit for bit. hemicube_rows counts
 // the rows shot from, one per shot, as solve_radiosity_pass's does.
+// Every row is kept for the patches that shoot again, up to 1 GiB (lesson 11, §10).
+constexpr double row_memory_bytes = 1024.0 * 1024 * 1024;
+
 RadiosityPass radiosity_pass_on_threads(std::vector<Patch> patches, int resolution, double threshold,
                                         const std::vector<Color>& extra_emission) {
   require(extra_emission.empty() || extra_emission.size() == patches.size(),
           "radiosity_pass_on_threads: one extra emission per patch");
   Stopwatch watch;
   for (std::size_t i = 0; i < extra_emission.size(); ++i) patches[i].emission += extra_emission[i];
-  const OnDemandRun run =
-      progressive_on_demand(patches, Hemicube(resolution), {.unshot_fraction = threshold});
+  const OnDemandRun run = progressive_on_demand(
+      patches, Hemicube(resolution), {.unshot_fraction = threshold, .row_memory = row_memory_bytes});
   return {.state = run.state,
           .hemicube_rows = run.state.shots,
           .unshot = run.state.shots == 0 ? 0.0 : run.unshot_fraction,  // no shot: nothing emits

@@ -9,7 +9,9 @@
 
 #include <omp.h>
 
+#include <cmath>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -96,6 +98,42 @@ TEST_SUITE("stability") {
       CHECK(run.state.shots == serial.shots);
       CHECK(same_bits(run.state.radiosity, serial.radiosity));
       CHECK(same_bits(run.state.unshot, serial.unshot));
+    }
+  }
+
+  TEST_CASE(
+      "rows kept in memory (all of them, or too few so that rows are evicted) give the serial loop's run") {
+    const RadiosityScene scene = load_radiosity_scene("cornell", 150.0);
+    const Hemicube hemicube(24);
+    const double fraction = 1e-3;
+    const ProgressiveState serial = serial_loop(scene.patches, hemicube, fraction);
+    const double n = static_cast<double>(scene.patches.size()), row_bytes = n * sizeof(double);
+    // All rows: each patch's row is drawn once (plus rows predicted for
+    // patches that never shoot), so at most n rows for more than 2n shots.
+    // A fifth of them: rows are evicted least recently used first and drawn again.
+    for (const double kept : {n, n / 5}) {
+      for (const int threads : {1, 2, 3}) {
+        const OnDemandRun run = on_threads(threads, scene.patches, hemicube,
+                                           {.unshot_fraction = fraction, .row_memory = kept * row_bytes});
+        INFO("room for " << kept << " rows of " << n << ", on " << threads << " threads: " << run.rows
+                         << " rows for " << run.state.shots << " shots");
+        CHECK(run.state.shots == serial.shots);
+        CHECK(same_bits(run.state.radiosity, serial.radiosity));
+        CHECK(same_bits(run.state.unshot, serial.unshot));
+        if (kept == n) CHECK(static_cast<double>(run.rows) <= n);
+        if (kept < n) CHECK(static_cast<double>(run.rows) > n);  // some rows were drawn again
+      }
+    }
+  }
+
+  TEST_CASE("hard case: a row memory that is negative or not finite is refused") {
+    const std::vector<Patch> cube = six_patch_cube();
+    const Hemicube hemicube(16);
+    for (const double bytes : {-1.0, std::numeric_limits<double>::infinity(), std::nan("")}) {
+      INFO("row memory " << bytes);
+      ILLUM_CHECK_THROWS_CONTAINING(
+          progressive_on_demand(cube, hemicube, {.unshot_fraction = 0.01, .row_memory = bytes}), "row memory",
+          std::invalid_argument);
     }
   }
 

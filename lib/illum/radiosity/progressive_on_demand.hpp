@@ -33,6 +33,10 @@ namespace illum {
 struct OnDemandSettings {
   double unshot_fraction = 0.01;  // stop when the unshot power is below this fraction of the emitted
   std::size_t max_shots = 0;      // std::runtime_error when reached first (0: 1000 per patch)
+  // Bytes of rows kept for patches that shoot again (n doubles a row; more
+  // than n rows are never kept). 0 keeps only the few rows the threads need
+  // at once; a patch that shoots again then mostly has its row drawn again.
+  double row_memory = 0;
 };
 
 struct OnDemandRun {
@@ -41,6 +45,8 @@ struct OnDemandRun {
   std::size_t stalls = 0;      // shots whose row was not ready when the shooter chose it
   std::size_t rows = 0;        // rows computed (rows − shots were guessed wrong or drawn again)
   double row_seconds = 0;      // wall time the shooter spent drawing its rows or waiting for them
+  double idle_seconds = 0;     // wall time the threads together spent asleep, with no row to draw or
+                               // waiting for one: 0 when the threads always have work
 };
 
 // Shoots from B = Δ = E (progressive_start) until the unshot power is below
