@@ -64,9 +64,9 @@ struct Settings {
   int figure_patches = 2000;    // the figure's box is meshed until it has at least this many patches
   double figure_edge = 0;       // or, when > 0, with patches no longer than this (mm)
   int figure_resolution = 128;  // hemicube resolution of the figure and the scaling study
-  double unshot_threshold = 0;  // stop when the unshot power is below this fraction of the emitted
-                                // (0: 1%, or 0.1% with --figure)
-  bool big_figure = false;      // --figure: only section 10, with the scaling study up to 8,000 patches
+  double unshot_threshold =
+      1e-3;                     // stop the figure when the unshot power is below this fraction of the emitted
+  bool figure_only = false;     // --figure: only section 10 (the figure, the rows kept, the scaling study)
   double row_memory_mb = 1024;  // rows kept for patches that shoot again (MiB; 0: only those in flight)
 };
 
@@ -679,9 +679,8 @@ double log_log_slope(const std::vector<double>& x, const std::vector<double>& y)
 // and of log(CPU seconds) on one thread, which a busy machine disturbs less:
 // shots grow like n and each shot costs O(n), so the exponent tends to 2.
 void scaling_section(OutputFolder& out, const Settings& settings) {
-  std::vector<int> counts = settings.quick        ? std::vector<int>{150, 300}
-                            : settings.big_figure ? std::vector<int>{500, 1000, 2000, 4000, 8000}
-                                                  : std::vector<int>{500, 1000, 2000};
+  std::vector<int> counts =
+      settings.quick ? std::vector<int>{150, 300} : std::vector<int>{500, 1000, 2000, 4000, 8000};
   const int resolution = settings.quick ? 32 : settings.figure_resolution;
   const int threads = omp_get_max_threads();
   Table scaling({"patches", "threads", "shots", "rows computed (timing-dependent)", "seconds", "CPU seconds",
@@ -777,14 +776,15 @@ void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers
       ->capture_default_str();
   app.add_option("--unshot", settings.unshot_threshold,
                  "stop the figure when the unshot power is below this fraction of the emitted "
-                 "(default 0.01, or 0.001 with --figure)")
-      ->check(finite_number & CLI::Range(1e-9, 0.5));
+                 "(at least 0.01 with --quick)")
+      ->check(finite_number & CLI::Range(1e-9, 0.5))
+      ->capture_default_str();
   app.add_option("--row-memory", settings.row_memory_mb,
                  "MiB of hemicube rows kept for patches that shoot again (0: only the rows in flight)")
       ->check(finite_number & CLI::Range(0.0, 1048576.0) & within_memory_budget)
       ->capture_default_str();
-  app.add_flag("--figure", settings.big_figure,
-               "only the figure, with the scaling study up to 8,000 patches (a few minutes)");
+  app.add_flag("--figure", settings.figure_only,
+               "only section 10: the figure, the rows kept and the scaling study up to 8,000 patches");
 }
 
 }  // namespace
@@ -801,15 +801,15 @@ int main(int argc, char** argv) {
       argc, argv, info, [&](CLI::App& app) { add_options(app, settings, solvers); },
       [&](const ProgramOptions& options) {
         settings.quick = options.quick;
-        if (settings.unshot_threshold == 0) settings.unshot_threshold = settings.big_figure ? 1e-3 : 1e-2;
         if (settings.quick) settings.unshot_threshold = std::max(settings.unshot_threshold, 0.01);
         if (!solvers.empty()) settings.solvers = solvers;
         // Validate before writing: the scene as the study meshes it.
         check_usable(load_scene(settings.scene, settings.quick ? 220.0 : 75.0), settings.scene);
         if (settings.figure_edge > 0) load_scene(settings.scene, settings.figure_edge);  // and the figure's
         OutputFolder out(options.out, info.id, info.title);
-        if (settings.big_figure) {
+        if (settings.figure_only) {
           figure_section(out, settings);
+          row_memory_section(out, settings);
           scaling_section(out, settings);
           out.finish();
           return;
