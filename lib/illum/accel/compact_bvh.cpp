@@ -460,10 +460,8 @@ void CompactBvh::prefetch(const void* entry) const {
   _mm_prefetch(at + 64, _MM_HINT_T0);
   _mm_prefetch(at + 128, _MM_HINT_T0);
   _mm_prefetch(at + 192, _MM_HINT_T0);  // a node's last line, or a leaf's second pack
-  if (e.count > 4) {  // the rest of the second pack (a third and fourth are left to the hardware)
-    _mm_prefetch(at + 256, _MM_HINT_T0);
-    _mm_prefetch(at + 320, _MM_HINT_T0);
-  }
+  if (e.count > 4)  // the rest of a leaf's packs: three lines each
+    for (std::uint32_t line = 4; line < (e.count + 3) / 4 * 3; ++line) _mm_prefetch(at + 64 * line, _MM_HINT_T0);
 #else
   (void)entry;
 #endif
@@ -520,6 +518,7 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
       if (inside != 0 && (inside & (inside - 1)) == 0) {  // one child entered: no sorting, no stack
         const int k = __builtin_ctz(inside);
         current = Entry{node.child[k], node.count[k], entry[k]};
+        prefetch(&current);
         continue;
       }
       if (inside != 0 && __builtin_popcount(static_cast<unsigned>(inside)) == 2) {  // the common pair
@@ -528,6 +527,7 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
         stack[top] = Entry{node.child[far], node.count[far], entry[far]};
         prefetch(&stack[top++]);
         current = Entry{node.child[near], node.count[near], entry[near]};
+        prefetch(&current);
         continue;
       }
       if (inside != 0) {
@@ -545,6 +545,7 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
           prefetch(&hits[k]);  // popped later: its lines can load meanwhile
         }
         current = hits[0];
+        prefetch(&current);
         continue;
       }
     } else {
