@@ -1,6 +1,7 @@
 #include "illum/accel/compact_bvh.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
@@ -30,13 +31,21 @@ constexpr double culling_slack = 1e-5;
 // leaf never holds more than leaf_size): one pack pair tested instead of a box and part-empty packs.
 constexpr std::uint32_t merged_leaf_limit = 16;
 
-float round_down(double x) {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) <= x ? f : std::nextafter(f, -float_infinity);
+// The next float towards +∞ (NaN and +∞ stay): std::nextafter without its library call, which the
+// traversal makes per ray (an AVX function calling out also pays a vzeroupper and its spills).
+inline float next_up(float f) {
+  if (!(f < float_infinity)) return f;
+  if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0.0f ? bits + 1 : bits - 1);  // −∞ goes to the lowest float
 }
-float round_up(double x) {
+inline float round_down(double x) {
   const float f = static_cast<float>(x);
-  return static_cast<double>(f) >= x ? f : std::nextafter(f, float_infinity);
+  return static_cast<double>(f) <= x ? f : -next_up(-f);
+}
+inline float round_up(double x) {
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) >= x ? f : next_up(f);
 }
 
 // A ray prepared once for every box it meets.
@@ -460,8 +469,9 @@ void CompactBvh::prefetch(const void* entry) const {
   _mm_prefetch(at + 64, _MM_HINT_T0);
   _mm_prefetch(at + 128, _MM_HINT_T0);
   _mm_prefetch(at + 192, _MM_HINT_T0);  // a node's last line, or a leaf's second pack
-  if (e.count > 4)  // the rest of a leaf's packs: three lines each
-    for (std::uint32_t line = 4; line < (e.count + 3) / 4 * 3; ++line) _mm_prefetch(at + 64 * line, _MM_HINT_T0);
+  if (e.count > 4)                      // the rest of a leaf's packs: three lines each
+    for (std::uint32_t line = 4; line < (e.count + 3) / 4 * 3; ++line)
+      _mm_prefetch(at + 64 * line, _MM_HINT_T0);
 #else
   (void)entry;
 #endif
@@ -495,7 +505,11 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
   const float t_lo = filter_lo(ray.range.lo);
   float t_hi = filter_hi(ray.range.hi);
   Ray probe = ray;  // probe.range.hi: the closest hit so far
-  std::optional<AccelHit> best;
+  // The closest hit so far: best_hit, valid when best_lane (4·pack + lane) is not `none`. Not a
+  // std::optional<AccelHit>, whose construction zero-fills its storage on every ray.
+  constexpr std::uint32_t none = ~0u;
+  std::uint32_t best_lane = none;
+  TriangleHit best_hit;
   Entry stack[(compact_bvh_width - 1) * bvh_max_depth + compact_bvh_width];
   int top = 0;
   std::uint64_t visits = 0, tests = 0;
@@ -563,7 +577,8 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
         for (; lanes != 0; lanes &= lanes - 1) {
           const std::uint32_t k = 4 * p + static_cast<std::uint32_t>(__builtin_ctz(lanes));
           if (const auto hit = illum::intersect(probe, triangles_[k])) {
-            best = AccelHit{*hit, packs_[k / 4].id[k % 4]};
+            best_hit = *hit;
+            best_lane = k;
             probe.range.hi = hit->s;
             t_hi = filter_hi(hit->s);
             reach_float = round_up(probe.range.hi + culling_slack * std::abs(probe.range.hi));
@@ -579,7 +594,8 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
         ++counters.rays;
         counters.nodes_visited += visits;
         counters.triangle_tests += tests;
-        return best;
+        if (best_lane == none) return std::nullopt;
+        return AccelHit{best_hit, packs_[best_lane / 4].id[best_lane % 4]};
       }
       current = stack[--top];
       if (current.enter <= reach_float) break;
