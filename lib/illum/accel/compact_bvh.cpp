@@ -39,13 +39,15 @@ inline float next_up(float f) {
   const auto bits = std::bit_cast<std::uint32_t>(f);
   return std::bit_cast<float>(f > 0.0f ? bits + 1 : bits - 1);  // −∞ goes to the lowest float
 }
+// Both neighbours computed and one picked: whether the conversion rounded the wrong way is a coin
+// toss per ray, a branch on it mispredicted half the time.
 inline float round_down(double x) {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) <= x ? f : -next_up(-f);
+  const float f = static_cast<float>(x), below = -next_up(-f);
+  return static_cast<double>(f) <= x ? f : below;
 }
 inline float round_up(double x) {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) >= x ? f : next_up(f);
+  const float f = static_cast<float>(x), above = next_up(f);
+  return static_cast<double>(f) >= x ? f : above;
 }
 
 // A ray prepared once for every box it meets.
