@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <new>
 #if defined(__linux__)
@@ -580,14 +581,21 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
   Entry current{0, 0, lo};
   for (;;) {
     if (current.count == 0) {
-      const CompactBvhNode& node = nodes_[current.child];
+      const CompactBvhNode& node_ref = nodes_[current.child];
+      // The children's links read before the boxes are clipped: their line is loaded with the boxes'
+      // lines, not after the clip has picked which child to read (a dependent miss).
+      struct {
+        std::uint32_t child[compact_bvh_width];
+        std::uint16_t count[compact_bvh_width];
+      } node;
+      std::memcpy(&node, node_ref.child, sizeof node);
       visits += compact_bvh_width;
       float entry[compact_bvh_width];
 #if defined(ILLUM_COMPACT_BVH_AVX)
-      int inside =
-          wide ? clip_node_avx(r, node, lo, reach_float, entry) : clip_node(r, node, lo, reach_float, entry);
+      int inside = wide ? clip_node_avx(r, node_ref, lo, reach_float, entry)
+                        : clip_node(r, node_ref, lo, reach_float, entry);
 #else
-      int inside = clip_node(r, node, lo, reach_float, entry);
+      int inside = clip_node(r, node_ref, lo, reach_float, entry);
 #endif
       if (inside != 0 && (inside & (inside - 1)) == 0) {  // one child entered: no sorting, no stack
         const int k = __builtin_ctz(inside);
