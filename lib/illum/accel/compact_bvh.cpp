@@ -129,18 +129,31 @@ inline int clip_node(const FastRay& r, const CompactBvhNode& n, float lo, float 
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #define ILLUM_COMPACT_BVH_AVX 1
+// FastRay's values broadcast to eight lanes once per ray (AVX alone has no register-to-register
+// broadcast: each node would otherwise pay two shuffles per value).
+struct WideRay {
+  __m256 inverse[3], near_origin[3], far_origin[3], lo;
+};
+__attribute__((target("avx"))) inline void widen(const FastRay& r, float lo, WideRay& w) {
+  for (int a = 0; a < 3; ++a) {
+    w.inverse[a] = _mm256_set1_ps(r.inverse[a]);
+    w.near_origin[a] = _mm256_set1_ps(r.near_origin[a]);
+    w.far_origin[a] = _mm256_set1_ps(r.far_origin[a]);
+  }
+  w.lo = _mm256_set1_ps(lo);
+}
+
 // clip_node with the eight children in one AVX register: the same operations lane by lane (no
 // fused multiply-add), so the same answers; used only where the processor has AVX (run-time check).
-__attribute__((target("avx"))) inline int clip_node_avx(const FastRay& r, const CompactBvhNode& n, float lo,
-                                                        float hi, float entry[8]) {
+__attribute__((target("avx"))) inline int clip_node_avx(const FastRay& r, const WideRay& w,
+                                                        const CompactBvhNode& n, float hi, float entry[8]) {
   const float* planes = &n.planes[0][0];
-  __m256 t0 = _mm256_set1_ps(lo), exit = _mm256_set1_ps(float_infinity);
+  __m256 t0 = w.lo, exit = _mm256_set1_ps(float_infinity);
   for (int a = 0; a < 3; ++a) {
-    const __m256 inverse = _mm256_set1_ps(r.inverse[a]);
     const __m256 s_near = _mm256_mul_ps(
-        _mm256_sub_ps(_mm256_load_ps(planes + r.near_plane[a]), _mm256_set1_ps(r.near_origin[a])), inverse);
-    const __m256 s_far = _mm256_mul_ps(
-        _mm256_sub_ps(_mm256_load_ps(planes + r.far_plane[a]), _mm256_set1_ps(r.far_origin[a])), inverse);
+        _mm256_sub_ps(_mm256_load_ps(planes + r.near_plane[a]), w.near_origin[a]), w.inverse[a]);
+    const __m256 s_far =
+        _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(planes + r.far_plane[a]), w.far_origin[a]), w.inverse[a]);
     t0 = _mm256_max_ps(s_near, t0);  // NaN: the second operand, as in SSE
     exit = _mm256_min_ps(s_far, exit);
   }
@@ -578,6 +591,10 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
       }
     deferred_count = 0;
   };
+#if defined(ILLUM_COMPACT_BVH_AVX)
+  WideRay w;
+  if constexpr (wide) widen(r, lo, w);
+#endif
   Entry current{0, 0, lo};
   for (;;) {
     if (current.count == 0) {
@@ -592,7 +609,7 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
       visits += compact_bvh_width;
       float entry[compact_bvh_width];
 #if defined(ILLUM_COMPACT_BVH_AVX)
-      int inside = wide ? clip_node_avx(r, node_ref, lo, reach_float, entry)
+      int inside = wide ? clip_node_avx(r, w, node_ref, reach_float, entry)
                         : clip_node(r, node_ref, lo, reach_float, entry);
 #else
       int inside = clip_node(r, node_ref, lo, reach_float, entry);
