@@ -7,7 +7,8 @@
 // Two sphereflakes (about 10^5 and 10^6 triangles) × two ray sets (512² primary
 // rays from a camera; 512² random rays through the bounding box), one thread,
 // closest hit: rtcIntersect1 against illum's production BVH (CompactBvh::intersect, leaf size 16 and
-// 32 SAH bins; the teaching Bvh is timed too, for the lesson). Prints Mrays/s for both, their ratio, the build times, and the rays on which the two disagree:
+// 32 SAH bins; the teaching Bvh is timed too, for the lesson). Prints Mrays/s for both, their ratio,
+// the build times, and the rays on which the two disagree:
 // on hit/miss (counted apart when Embree's hit is within 1e-4 barycentric of an
 // edge, where float and double may honestly differ), and on t beyond a relative 1e-5.
 #include <embree3/rtcore.h>
