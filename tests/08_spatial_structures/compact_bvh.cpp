@@ -5,6 +5,8 @@
 // processor has it) and the SSE2 baseline both.
 #include <doctest/doctest.h>
 
+#include <cmath>
+#include <limits>
 #include <vector>
 
 #include "illum/accel/brute_force.hpp"
@@ -47,6 +49,32 @@ TEST_SUITE("stability") {
       CompactBvh bvh(soup, {.leaf_size = leaf});
       CHECK(mismatches(bvh, soup, rays) == 0);
       bvh.use_avx(false);  // the SSE2 baseline, where the default above ran the AVX traversal
+      CHECK(mismatches(bvh, soup, rays) == 0);
+    }
+  }
+
+  TEST_CASE(
+      "hard case: ranges that begin or end exactly at a hit, or one float step past it: a hit the float "
+      "filter is sure of has its exact test deferred and its bound on t culling the rest, so it must "
+      "also be sure to lie within the range") {
+    const TriangleSet soup = test08::triangle_soup(600, 43);
+    const BruteForce brute(soup);
+    TraversalCounters c;
+    std::vector<Ray> rays;
+    for (const Ray& ray : test08::mixed_rays(soup, 4000, 45)) {
+      const auto hit = brute.intersect(ray, c);  // the hit whose s the ranges begin or end at
+      if (!hit) continue;
+      const double s = hit->hit.s, inf = std::numeric_limits<double>::infinity();
+      for (const Interval range : {Interval(s, inf), Interval(std::nextafter(s, inf), inf), Interval(0.0, s),
+                                   Interval(0.0, std::nextafter(s, 0.0))})
+        rays.emplace_back(ray.origin, ray.direction, range);
+    }
+    REQUIRE(rays.size() > 1000);  // some 400 rays hit the soup
+    for (const int leaf : {4, 16}) {
+      CAPTURE(leaf);
+      CompactBvh bvh(soup, {.leaf_size = leaf});
+      CHECK(mismatches(bvh, soup, rays) == 0);
+      bvh.use_avx(false);
       CHECK(mismatches(bvh, soup, rays) == 0);
     }
   }

@@ -1,9 +1,11 @@
 #include "illum/accel/compact_bvh.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <new>
 #if defined(__linux__)
@@ -30,13 +32,23 @@ constexpr double culling_slack = 1e-5;
 // leaf never holds more than leaf_size): one pack pair tested instead of a box and part-empty packs.
 constexpr std::uint32_t merged_leaf_limit = 16;
 
-float round_down(double x) {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) <= x ? f : std::nextafter(f, -float_infinity);
+// The next float towards +∞ (NaN and +∞ stay): std::nextafter without its library call, which the
+// traversal makes per ray (an AVX function calling out also pays a vzeroupper and its spills).
+inline float next_up(float f) {
+  if (!(f < float_infinity)) return f;
+  if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0.0f ? bits + 1 : bits - 1);  // −∞ goes to the lowest float
 }
-float round_up(double x) {
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) >= x ? f : std::nextafter(f, float_infinity);
+// Both neighbours computed and one picked: whether the conversion rounded the wrong way is a coin
+// toss per ray, a branch on it mispredicted half the time.
+inline float round_down(double x) {
+  const float f = static_cast<float>(x), below = -next_up(-f);
+  return static_cast<double>(f) <= x ? f : below;
+}
+inline float round_up(double x) {
+  const float f = static_cast<float>(x), above = next_up(f);
+  return static_cast<double>(f) >= x ? f : above;
 }
 
 // A ray prepared once for every box it meets.
@@ -117,18 +129,31 @@ inline int clip_node(const FastRay& r, const CompactBvhNode& n, float lo, float 
 
 #if defined(__x86_64__) && defined(__GNUC__)
 #define ILLUM_COMPACT_BVH_AVX 1
+// FastRay's values broadcast to eight lanes once per ray (AVX alone has no register-to-register
+// broadcast: each node would otherwise pay two shuffles per value).
+struct WideRay {
+  __m256 inverse[3], near_origin[3], far_origin[3], lo;
+};
+__attribute__((target("avx"))) inline void widen(const FastRay& r, float lo, WideRay& w) {
+  for (int a = 0; a < 3; ++a) {
+    w.inverse[a] = _mm256_set1_ps(r.inverse[a]);
+    w.near_origin[a] = _mm256_set1_ps(r.near_origin[a]);
+    w.far_origin[a] = _mm256_set1_ps(r.far_origin[a]);
+  }
+  w.lo = _mm256_set1_ps(lo);
+}
+
 // clip_node with the eight children in one AVX register: the same operations lane by lane (no
 // fused multiply-add), so the same answers; used only where the processor has AVX (run-time check).
-__attribute__((target("avx"))) inline int clip_node_avx(const FastRay& r, const CompactBvhNode& n, float lo,
-                                                        float hi, float entry[8]) {
+__attribute__((target("avx"))) inline int clip_node_avx(const FastRay& r, const WideRay& w,
+                                                        const CompactBvhNode& n, float hi, float entry[8]) {
   const float* planes = &n.planes[0][0];
-  __m256 t0 = _mm256_set1_ps(lo), exit = _mm256_set1_ps(float_infinity);
+  __m256 t0 = w.lo, exit = _mm256_set1_ps(float_infinity);
   for (int a = 0; a < 3; ++a) {
-    const __m256 inverse = _mm256_set1_ps(r.inverse[a]);
     const __m256 s_near = _mm256_mul_ps(
-        _mm256_sub_ps(_mm256_load_ps(planes + r.near_plane[a]), _mm256_set1_ps(r.near_origin[a])), inverse);
-    const __m256 s_far = _mm256_mul_ps(
-        _mm256_sub_ps(_mm256_load_ps(planes + r.far_plane[a]), _mm256_set1_ps(r.far_origin[a])), inverse);
+        _mm256_sub_ps(_mm256_load_ps(planes + r.near_plane[a]), w.near_origin[a]), w.inverse[a]);
+    const __m256 s_far =
+        _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(planes + r.far_plane[a]), w.far_origin[a]), w.inverse[a]);
     t0 = _mm256_max_ps(s_near, t0);  // NaN: the second operand, as in SSE
     exit = _mm256_min_ps(s_far, exit);
   }
@@ -168,10 +193,20 @@ struct PackRay {
   }
 };
 
+// The lanes a filter call found hit for sure (the margins beyond the rounding bound, each mirroring a
+// miss test of may_hit, so the same slack covers the comparisons' own rounding): the triangle is hit
+// with t > sure_lo (the ray's lower limit, rounded up, or 0) and t ≤ t_over / det_under (upper bounds
+// on t·|det| and lower bounds on |det|, per lane). The traversal defers their exact test.
+struct SureHits {
+  int lanes = 0;
+  float t_over[8], det_under[8];
+};
+
 // The lanes of `pack` (bit k: lane k) whose triangle the ray may hit with t in [lo, hi]
 // (lo ≤ 0 is no lower limit): Möller–Trumbore in float, each comparison widened by
 // its rounding bound (see the header), so a lane is dropped only on a sure miss.
-inline int may_hit(const PackRay& r, const TrianglePack& pack, float lo, float hi) {
+inline int may_hit(const PackRay& r, const TrianglePack& pack, float lo, float hi, float sure_lo = 0.0f,
+                   SureHits* sure = nullptr) {
 #if defined(__SSE2__)
   const auto load = [](const float* x) { return _mm_load_ps(x); };
   const auto mul = [](__m128 a, __m128 b) { return _mm_mul_ps(a, b); };
@@ -211,9 +246,21 @@ inline int may_hit(const PackRay& r, const TrianglePack& pack, float lo, float h
   miss = _mm_or_ps(miss, _mm_cmpgt_ps(sub(st, bound_t), mul(_mm_set1_ps(hi), add(size_det, bound_det))));
   miss = _mm_or_ps(miss, _mm_cmplt_ps(add(st, bound_t), mul(_mm_set1_ps(lo), sub(size_det, bound_det))));
   miss = _mm_andnot_ps(_mm_cmple_ps(size_det, bound_det), miss);
+  if (sure != nullptr) {  // u, v > 0, u + v < |det| and t > sure_lo, all by more than the bounds
+    const __m128 det_under = sub(size_det, bound_det);
+    __m128 hit = _mm_cmpgt_ps(sub(su, bound_u), zero);
+    hit = _mm_and_ps(hit, _mm_cmpgt_ps(sub(sv, bound_v), zero));
+    hit = _mm_and_ps(hit, _mm_cmplt_ps(add(add(su, sv), add(bound_u, bound_v)), det_under));
+    hit =
+        _mm_and_ps(hit, _mm_cmpgt_ps(sub(st, bound_t), mul(_mm_set1_ps(sure_lo), add(size_det, bound_det))));
+    sure->lanes = _mm_movemask_ps(hit);
+    _mm_storeu_ps(sure->t_over, add(st, bound_t));
+    _mm_storeu_ps(sure->det_under, det_under);
+  }
   return ~_mm_movemask_ps(miss) & 0xf;
 #else
-  (void)r, (void)pack, (void)lo, (void)hi;
+  (void)r, (void)pack, (void)lo, (void)hi, (void)sure_lo;
+  if (sure != nullptr) sure->lanes = 0;
   return 0xf;  // no filter: the exact test decides every lane
 #endif
 }
@@ -230,7 +277,7 @@ __attribute__((target("avx"))) inline __m256 broadcast_halves(__m128 x) { return
 // may_hit on two consecutive packs at once, eight lanes (bit 4 + k: the second pack's lane k): the
 // same operations lane by lane, so the same answers.
 __attribute__((target("avx"))) inline int may_hit_two(const PackRay& r, const TrianglePack* pack, float lo,
-                                                      float hi) {
+                                                      float hi, float sure_lo, SureHits& sure) {
   constexpr std::size_t row = 4 * sizeof(float);
   const std::size_t v0 = offsetof(TrianglePack, v0), e1o = offsetof(TrianglePack, e1),
                     e2o = offsetof(TrianglePack, e2);
@@ -280,6 +327,19 @@ __attribute__((target("avx"))) inline int may_hit_two(const PackRay& r, const Tr
       miss, _mm256_cmp_ps(_mm256_add_ps(st, bound_t),
                           _mm256_mul_ps(_mm256_set1_ps(lo), _mm256_sub_ps(size_det, bound_det)), _CMP_LT_OS));
   miss = _mm256_andnot_ps(_mm256_cmp_ps(size_det, bound_det, _CMP_LE_OS), miss);
+  const __m256 det_under = _mm256_sub_ps(size_det, bound_det);
+  __m256 hit = _mm256_cmp_ps(_mm256_sub_ps(su, bound_u), zero, _CMP_GT_OS);
+  hit = _mm256_and_ps(hit, _mm256_cmp_ps(_mm256_sub_ps(sv, bound_v), zero, _CMP_GT_OS));
+  hit =
+      _mm256_and_ps(hit, _mm256_cmp_ps(_mm256_add_ps(_mm256_add_ps(su, sv), _mm256_add_ps(bound_u, bound_v)),
+                                       det_under, _CMP_LT_OS));
+  hit = _mm256_and_ps(
+      hit,
+      _mm256_cmp_ps(_mm256_sub_ps(st, bound_t),
+                    _mm256_mul_ps(_mm256_set1_ps(sure_lo), _mm256_add_ps(size_det, bound_det)), _CMP_GT_OS));
+  sure.lanes = _mm256_movemask_ps(hit);
+  _mm256_storeu_ps(sure.t_over, _mm256_add_ps(st, bound_t));
+  _mm256_storeu_ps(sure.det_under, det_under);
   return ~_mm256_movemask_ps(miss) & 0xff;
 }
 #endif
@@ -460,10 +520,9 @@ void CompactBvh::prefetch(const void* entry) const {
   _mm_prefetch(at + 64, _MM_HINT_T0);
   _mm_prefetch(at + 128, _MM_HINT_T0);
   _mm_prefetch(at + 192, _MM_HINT_T0);  // a node's last line, or a leaf's second pack
-  if (e.count > 4) {  // the rest of the second pack (a third and fourth are left to the hardware)
-    _mm_prefetch(at + 256, _MM_HINT_T0);
-    _mm_prefetch(at + 320, _MM_HINT_T0);
-  }
+  if (e.count > 4)                      // the rest of a leaf's packs: three lines each
+    for (std::uint32_t line = 4; line < (e.count + 3) / 4 * 3; ++line)
+      _mm_prefetch(at + 64 * line, _MM_HINT_T0);
 #else
   (void)entry;
 #endif
@@ -497,7 +556,11 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
   const float t_lo = filter_lo(ray.range.lo);
   float t_hi = filter_hi(ray.range.hi);
   Ray probe = ray;  // probe.range.hi: the closest hit so far
-  std::optional<AccelHit> best;
+  // The closest hit so far: best_hit, valid when best_lane (4·pack + lane) is not `none`. Not a
+  // std::optional<AccelHit>, whose construction zero-fills its storage on every ray.
+  constexpr std::uint32_t none = ~0u;
+  std::uint32_t best_lane = none;
+  TriangleHit best_hit;
   Entry stack[(compact_bvh_width - 1) * bvh_max_depth + compact_bvh_width];
   int top = 0;
   std::uint64_t visits = 0, tests = 0;
@@ -505,21 +568,56 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
   // How far a box may begin and still be entered: the closest hit so far plus the culling slack,
   // rounded up to float (the box test and the stacked entries); updated at each hit.
   float reach_float = round_up(probe.range.hi + culling_slack * std::abs(probe.range.hi));
+  // Sure hits whose exact test is deferred (see SureHits), and the lower limit they must clear.
+  struct Deferred {
+    std::uint32_t lane;  // 4·pack + lane
+    float t_over;        // an upper bound on its t
+  };
+  constexpr int deferred_capacity = 8;
+  Deferred deferred[deferred_capacity];
+  int deferred_count = 0;
+  const float sure_lo = ray.range.lo > 0.0 ? round_up(ray.range.lo) * (1.0f + 0x1p-20f) : 0.0f;
+  // The deferred exact tests, nearest bound first (usually the first is the hit and the others miss
+  // by the range): each is lesson 03's test, as for any other lane.
+  const auto settle = [&] {
+    for (int i = 1; i < deferred_count; ++i)
+      for (int j = i; j > 0 && deferred[j].t_over < deferred[j - 1].t_over; --j)
+        std::swap(deferred[j], deferred[j - 1]);
+    for (int i = 0; i < deferred_count; ++i)
+      if (const auto hit = illum::intersect(probe, triangles_[deferred[i].lane])) {
+        best_hit = *hit;
+        best_lane = deferred[i].lane;
+        probe.range.hi = hit->s;
+      }
+    deferred_count = 0;
+  };
+#if defined(ILLUM_COMPACT_BVH_AVX)
+  WideRay w;
+  if constexpr (wide) widen(r, lo, w);
+#endif
   Entry current{0, 0, lo};
   for (;;) {
     if (current.count == 0) {
-      const CompactBvhNode& node = nodes_[current.child];
+      const CompactBvhNode& node_ref = nodes_[current.child];
+      // The children's links read before the boxes are clipped: their line is loaded with the boxes'
+      // lines, not after the clip has picked which child to read (a dependent miss).
+      struct {
+        std::uint32_t child[compact_bvh_width];
+        std::uint16_t count[compact_bvh_width];
+      } node;
+      std::memcpy(&node, node_ref.child, sizeof node);
       visits += compact_bvh_width;
       float entry[compact_bvh_width];
 #if defined(ILLUM_COMPACT_BVH_AVX)
-      int inside =
-          wide ? clip_node_avx(r, node, lo, reach_float, entry) : clip_node(r, node, lo, reach_float, entry);
+      int inside = wide ? clip_node_avx(r, w, node_ref, reach_float, entry)
+                        : clip_node(r, node_ref, lo, reach_float, entry);
 #else
-      int inside = clip_node(r, node, lo, reach_float, entry);
+      int inside = clip_node(r, node_ref, lo, reach_float, entry);
 #endif
       if (inside != 0 && (inside & (inside - 1)) == 0) {  // one child entered: no sorting, no stack
         const int k = __builtin_ctz(inside);
         current = Entry{node.child[k], node.count[k], entry[k]};
+        prefetch(&current);
         continue;
       }
       if (inside != 0 && __builtin_popcount(static_cast<unsigned>(inside)) == 2) {  // the common pair
@@ -528,6 +626,7 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
         stack[top] = Entry{node.child[far], node.count[far], entry[far]};
         prefetch(&stack[top++]);
         current = Entry{node.child[near], node.count[near], entry[near]};
+        prefetch(&current);
         continue;
       }
       if (inside != 0) {
@@ -545,6 +644,7 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
           prefetch(&hits[k]);  // popped later: its lines can load meanwhile
         }
         current = hits[0];
+        prefetch(&current);
         continue;
       }
     } else {
@@ -553,19 +653,36 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
         // Two packs at once where the AVX traversal runs and two remain, else one.
         const bool two = wide && left > 4;
         const std::uint32_t width = two ? 8u : 4u, used = std::min(left, width);
+        SureHits sure;
 #if defined(ILLUM_COMPACT_BVH_AVX)
-        int lanes = (two ? may_hit_two(pr, &packs_[p], t_lo, t_hi) : may_hit(pr, packs_[p], t_lo, t_hi)) &
+        int lanes = (two ? may_hit_two(pr, &packs_[p], t_lo, t_hi, sure_lo, sure)
+                         : may_hit(pr, packs_[p], t_lo, t_hi, sure_lo, &sure)) &
                     ((1 << used) - 1);
 #else
-        int lanes = may_hit(pr, packs_[p], t_lo, t_hi) & ((1 << used) - 1);
+        int lanes = may_hit(pr, packs_[p], t_lo, t_hi, sure_lo, &sure) & ((1 << used) - 1);
 #endif
         for (; lanes != 0; lanes &= lanes - 1) {
-          const std::uint32_t k = 4 * p + static_cast<std::uint32_t>(__builtin_ctz(lanes));
-          if (const auto hit = illum::intersect(probe, triangles_[k])) {
-            best = AccelHit{*hit, packs_[k / 4].id[k % 4]};
+          const int lane = __builtin_ctz(lanes);
+          const std::uint32_t k = 4 * p + static_cast<std::uint32_t>(lane);
+          if ((sure.lanes >> lane & 1) != 0) {
+            // A sure hit: its exact test waits (its data loading meanwhile), its bound on t culls now.
+            if (deferred_count == deferred_capacity) settle();
+            const float t_over = sure.t_over[lane] / sure.det_under[lane] * (1.0f + 0x1p-20f);
+            deferred[deferred_count++] = Deferred{k, t_over};
+#if defined(__SSE2__)
+            const char* exact = reinterpret_cast<const char*>(&triangles_[k]);
+            _mm_prefetch(exact, _MM_HINT_T0);
+            _mm_prefetch(exact + sizeof(Triangle) - 1, _MM_HINT_T0);
+#endif
+            t_hi = std::min(t_hi, t_over * (1.0f + 0x1p-20f));
+            reach_float = std::min(reach_float, round_up(t_over * (1.0 + culling_slack)));
+          } else if (const auto hit = illum::intersect(probe, triangles_[k])) {
+            best_hit = *hit;
+            best_lane = k;
             probe.range.hi = hit->s;
-            t_hi = filter_hi(hit->s);
-            reach_float = round_up(probe.range.hi + culling_slack * std::abs(probe.range.hi));
+            t_hi = std::min(t_hi, filter_hi(hit->s));
+            reach_float =
+                std::min(reach_float, round_up(probe.range.hi + culling_slack * std::abs(probe.range.hi)));
           }
         }
         p += width / 4;
@@ -575,10 +692,12 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
     // Next: the nearest stacked entry that can still hold something closer.
     for (;;) {
       if (top == 0) {
+        settle();
         ++counters.rays;
         counters.nodes_visited += visits;
         counters.triangle_tests += tests;
-        return best;
+        if (best_lane == none) return std::nullopt;
+        return AccelHit{best_hit, packs_[best_lane / 4].id[best_lane % 4]};
       }
       current = stack[--top];
       if (current.enter <= reach_float) break;

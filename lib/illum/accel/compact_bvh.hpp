@@ -34,8 +34,10 @@
 //     dropped; a grazing lane (|det| within its bound, sign unknown) passes.
 //     Every surviving lane goes to lesson 03's watertight test in double,
 //     which decides: hit/miss and t are the exact test's, edges and vertices
-//     included. The bound assumes no float overflow or underflow (coordinates
-//     and edges within about 10^±15).
+//     included. A lane hit for sure (every margin beyond the bound) has that
+//     test deferred to the end of the ray, its double data loading meanwhile,
+//     and culls at once by an upper bound on its t. The bound assumes no
+//     float overflow or underflow (coordinates and edges within about 10^±15).
 //   * subtrees of at most min(16, leaf_size) triangles are merged into one
 //     leaf (at most four packs): a pack test is cheaper than a box test and
 //     a miss in cache. leaf_size stays what it is in Bvh, the most triangles
