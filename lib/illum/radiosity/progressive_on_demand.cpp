@@ -55,12 +55,22 @@ struct ShotPass {
     const double area_i = area[i];
     Color* const radiosity = state.radiosity.data();
     Color* const unshot = state.unshot.data();
-    Survey survey(best, candidates, power_seen.get());
+    Survey survey(best, candidates);
     for (std::size_t j = 0; j < area.size(); ++j) {
+      if (row[j] == 0 && j != i) {
+        // Nothing received (about half the patches: those behind the
+        // shooter's plane or hidden): shoot would add +0, which changes no
+        // value, so B_j and Δ_j stay as they are, and so does the power
+        // the last survey saw.
+        survey.add(j, power_seen[j].load(std::memory_order_relaxed), held);
+        continue;
+      }
       const Color received = reflectance[j] * (row[j] * area_i / area[j]) * delta;
       radiosity[j] += received;
       unshot[j] += received;
-      survey.add(j, area[j] * (unshot[j].r + unshot[j].g + unshot[j].b), held);
+      const double p = area[j] * (unshot[j].r + unshot[j].g + unshot[j].b);
+      power_seen[j].store(p, std::memory_order_relaxed);
+      survey.add(j, p, held);
     }
     ++state.shots;
     return survey.finish();
@@ -69,9 +79,12 @@ struct ShotPass {
   // The survey alone, of the state before any shot.
   double survey(const std::vector<Color>& unshot, const std::atomic<bool>* held, std::vector<double>& best,
                 std::vector<std::size_t>& candidates) const {
-    Survey survey(best, candidates, power_seen.get());
-    for (std::size_t j = 0; j < area.size(); ++j)
-      survey.add(j, area[j] * (unshot[j].r + unshot[j].g + unshot[j].b), held);
+    Survey survey(best, candidates);
+    for (std::size_t j = 0; j < area.size(); ++j) {
+      const double p = area[j] * (unshot[j].r + unshot[j].g + unshot[j].b);
+      power_seen[j].store(p, std::memory_order_relaxed);
+      survey.add(j, p, held);
+    }
     return survey.finish();
   }
 
@@ -85,13 +98,12 @@ struct ShotPass {
   // unshot power. `best` is scratch of candidates.size() values.
   class Survey {
    public:
-    Survey(std::vector<double>& best, std::vector<std::size_t>& candidates, std::atomic<double>* power_seen)
-        : best_(best.data()), candidates_(candidates.data()), k_(candidates.size()), power_seen_(power_seen) {
+    Survey(std::vector<double>& best, std::vector<std::size_t>& candidates)
+        : best_(best.data()), candidates_(candidates.data()), k_(candidates.size()) {
       std::fill(best_, best_ + k_, -std::numeric_limits<double>::infinity());
       std::fill(candidates_, candidates_ + k_, 0);  // fewer patches than places: patch 0 again
     }
     void add(std::size_t j, double p, const std::atomic<bool>* held) {
-      power_seen_[j].store(p, std::memory_order_relaxed);
       total_ += p;
       if (p > most_) most_ = p, shooter_ = j;
       // Keep the k best in best[0 … k) (one more than the runners-up: the shooter may be among them).
@@ -116,7 +128,6 @@ struct ShotPass {
     double* best_;
     std::size_t* candidates_;
     std::size_t k_;
-    std::atomic<double>* power_seen_;
     double total_ = 0, most_ = -1;
     std::size_t shooter_ = 0;
   };
