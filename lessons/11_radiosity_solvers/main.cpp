@@ -558,8 +558,8 @@ struct ProgressiveRun {
 
 // Shoots until the unshot power is below `threshold` of the emitted power
 // (progressive_on_demand: one thread shoots while the others draw the rows it
-// will want next; the same shots and values as one row per shot). Rows and
-// buffers are allocated once.
+// will want next, rows kept up to row_memory_mb; the same shots and values as
+// one row per shot). Rows and buffers are allocated once.
 ProgressiveRun progressive_on_demand(const std::vector<Patch>& patches, int resolution, double threshold,
                                      double row_memory_mb, Table* history) {
   const Hemicube hemicube(resolution);

@@ -1,23 +1,25 @@
 #pragma once
 // Progressive refinement with hemicube rows computed on demand, on every
-// thread (lesson 11, §10): the n × n matrix is never stored, one row per shot.
+// thread (lesson 11, §10): the n × n matrix is never needed whole; rows are
+// kept for patches that shoot again as far as settings.row_memory allows.
 //
 // A shot needs the row of the patch with the most unshot power, and which
 // patch that is depends on the shot before, so one shot's row cannot wait for
 // the next. But a row depends only on the geometry, never on the radiosities:
-// a row computed for a patch that is not shot next is merely wasted, never
-// wrong. So one thread shoots and the others draw ahead, without rounds:
-// before each shot the shooter posts the rows it wants, its own and those of
-// the patches most likely to shoot after it (predicted from the unshot powers
-// plus what this shot will send them, by the point-to-point form factor
-// without occlusion); a free thread draws the first wanted row nobody holds
-// into a slot of its own. The shooter shoots as soon as its row is ready; when
-// a helper is still drawing it, the shooter draws the next wanted row instead
-// of waiting. No thread waits for a slower one at a barrier, so rows of unequal
-// cost do not idle the team. The shooters (chosen exactly as by the serial
-// loop, choose_shooter), their rows (Hemicube::form_factor_row) and every value
-// are those of the serial one-row-per-shot loop, bit for bit, on any number of
-// threads: only the timing depends on the threads. Waiting threads sleep
+// a row computed for a patch that is not shot next is wasted only if it is
+// dropped before that patch shoots, and it is never wrong. So one thread
+// shoots and the others draw ahead, without rounds: before each shot the
+// shooter posts the rows it wants, its own and those of the patches that
+// hold the most unshot power after it (with every row kept, only patches
+// whose row is not drawn yet); a free thread draws the first wanted row
+// nobody holds into a slot of its own. The shooter shoots as soon as its row
+// is ready; when a helper is still drawing it, the shooter draws the next
+// wanted row instead of waiting. No thread waits for a slower one at a
+// barrier, so rows of unequal cost do not idle the team. The shooters (chosen
+// exactly as by the serial loop, choose_shooter), their rows
+// (Hemicube::form_factor_row) and every value are those of the serial
+// one-row-per-shot loop, bit for bit, on any number of threads and with any
+// row memory: only the timing depends on them. Waiting threads sleep
 // (condition variables) rather than spin: on a machine busy with other work a
 // spinning thread burns the time slice its partner needs.
 #include <cstddef>
