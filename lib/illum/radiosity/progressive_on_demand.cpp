@@ -9,7 +9,6 @@
 #include <limits>
 #include <memory>
 #include <mutex>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 
