@@ -139,8 +139,8 @@ struct ShotPass {
 // never used goes first; then the row of the patch that held the least
 // unshot power at the last survey, the one least likely to shoot soon (a
 // patch that has just shot holds none: patches shoot again in about the
-// order they shot before, which makes "least recently used" drop exactly the
-// rows wanted next), the least recently used on ties. A patch that shoots
+// order they shot before, so "least recently used" tends to drop the rows
+// wanted next), the least recently used on ties. A patch that shoots
 // again finds its row still here unless its slot was reused: the row is then
 // not drawn twice, which changes nothing but the time. With as many slots as
 // patches no row is ever drawn twice.
