@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "illum/accel/bvh.hpp"
-#include "illum/accel/compact_bvh.hpp"
+#include "illum/accel/production/compact_bvh.hpp"
 #include "illum/accel/sphereflake.hpp"
 #include "illum/core/pinhole_camera.hpp"
 #include "illum/core/random.hpp"
@@ -122,23 +122,24 @@ void compare(const char* mesh_name, const IndexedTriangles& mesh, const char* ra
   std::vector<float> t_embree(rays.size()), bary(rays.size());
   std::vector<double> t_illum(rays.size());
   TraversalCounters counters, scratch;
-  double embree_best = infinity, illum_best = infinity, teaching_best = infinity;
-  for (int repeat = 0; repeat < 5; ++repeat) {  // best of five, interleaved, on a shared machine
+  // Best of five, interleaved (a slow spell of the shared machine hits all three alike);
+  // the teaching traversal, far slower, only in the first two runs.
+  const std::vector<double> best = best_of_each(5, [&](int run) {
     CpuStopwatch a;
     for (std::size_t i = 0; i < rays.size(); ++i) embree.intersect(rays[i], context, t_embree[i], bary[i]);
-    embree_best = std::min(embree_best, a.seconds());
+    const double embree_seconds = a.seconds();
     CpuStopwatch b;
     for (std::size_t i = 0; i < rays.size(); ++i) {
-      const auto hit = bvh.intersect(rays[i], repeat == 0 ? counters : scratch);  // count one pass
+      const auto hit = bvh.intersect(rays[i], run == 0 ? counters : scratch);  // count one pass
       t_illum[i] = hit ? hit->hit.s : infinity;
     }
-    illum_best = std::min(illum_best, b.seconds());
-    if (repeat < 2) {
-      CpuStopwatch c;
-      for (const Ray& ray : rays) do_not_optimize(teaching.intersect(ray, scratch).has_value());
-      teaching_best = std::min(teaching_best, c.seconds());
-    }
-  }
+    const double illum_seconds = b.seconds();
+    if (run >= 2) return std::vector<double>{embree_seconds, illum_seconds};
+    CpuStopwatch c;
+    for (const Ray& ray : rays) do_not_optimize(teaching.intersect(ray, scratch).has_value());
+    return std::vector<double>{embree_seconds, illum_seconds, c.seconds()};
+  });
+  const double embree_best = best[0], illum_best = best[1], teaching_best = best[2];
   int hit_miss = 0, hit_miss_edge = 0, t_differs = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {
     const bool he = std::isfinite(t_embree[i]), hi = std::isfinite(t_illum[i]);

@@ -5,6 +5,7 @@
 #include "illum/radiosity/form_factor_sampling.hpp"
 
 #include "illum/core/error.hpp"
+#include "illum/core/frame.hpp"
 #include "illum/radiosity/form_factor_analytic.hpp"
 #include "illum/radiosity/polygon_sampling.hpp"
 #include "illum/radiosity/visibility.hpp"

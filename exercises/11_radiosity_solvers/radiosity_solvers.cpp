@@ -66,7 +66,7 @@ std::size_t choose_shooter(const std::vector<Patch>& patches, const std::vector<
 }
 
 // Task 6c. Shoot: ΔB_j = ρ_j F_ij (A_i/A_j) Δ_i, and count the shot (state.shots).
-void shoot(const std::vector<Patch>& patches, std::size_t i, const double* form_factor_row,
+void shoot(const std::vector<Patch>& patches, std::size_t i, std::span<const double> form_factor_row,
            ProgressiveState& state) {
   throw NotImplemented(
       "shoot",

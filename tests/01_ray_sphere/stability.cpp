@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "illum/core/random.hpp"
@@ -17,7 +18,7 @@ using illum::Vec3;
 namespace {
 
 Vec3 random_unit(illum::Rng& rng) {
-  const double z = rng.uniform(-1, 1), phi = 2 * 3.141592653589793 * rng.uniform();
+  const double z = rng.uniform(-1, 1), phi = 2 * std::numbers::pi * rng.uniform();
   return {std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z};
 }
 

@@ -16,7 +16,7 @@ using namespace illum;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 Polygon flat(std::vector<Vec2> points) {
   std::vector<Point3> p;

@@ -12,6 +12,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "illum/geometry/convex.hpp"
@@ -122,7 +123,7 @@ TEST_SUITE("lesson03") {
     // rejects it. Turned so that it starts at 30°, its last edge is the one
     // that completes the fourth change: a count that skips it finds 2.
     std::vector<Vec2> star;
-    const double degree = std::acos(-1.0) / 180;
+    const double degree = std::numbers::pi / 180;
     for (int k = 0; k < 5; ++k)
       star.push_back({std::cos((30 + 144 * k) * degree), std::sin((30 + 144 * k) * degree)});
     CHECK_FALSE_MESSAGE(is_convex(flat_polygon(star)),

@@ -5,11 +5,11 @@
 
 #include <cmath>
 
-#include <omp.h>
 #include <nlohmann/json.hpp>
 
 #include "06_ray_tree/test_scenes.hpp"
 #include "illum/core/random.hpp"
+#include "illum/core/threads.hpp"
 #include "illum/trace/effects_plan.hpp"
 #include "illum/trace/participating_medium.hpp"
 #include "illum/trace/ray_offset.hpp"
@@ -125,12 +125,14 @@ TEST_SUITE("trace") {
 
   TEST_CASE("render: the image and the counts do not depend on the number of threads") {
     const Scene scene = balls_on_floor(true);
-    const int threads = omp_get_max_threads();
-    omp_set_num_threads(1);
-    const RenderResult one = render_ray_tree(scene, {.max_depth = 4});
-    omp_set_num_threads(3);
-    const RenderResult three = render_ray_tree(scene, {.max_depth = 4});
-    omp_set_num_threads(threads);
+    const RenderResult one = [&] {
+      const ScopedThreadCount threads(1);
+      return render_ray_tree(scene, {.max_depth = 4});
+    }();
+    const RenderResult three = [&] {
+      const ScopedThreadCount threads(3);
+      return render_ray_tree(scene, {.max_depth = 4});
+    }();
     CHECK(one.image.pixels() == three.image.pixels());
     CHECK(one.stats.rays.total() == three.stats.rays.total());
     CHECK(one.stats.work.intersection_tests == three.stats.work.intersection_tests);

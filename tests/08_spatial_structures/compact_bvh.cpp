@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "illum/accel/brute_force.hpp"
-#include "illum/accel/compact_bvh.hpp"
+#include "illum/accel/production/compact_bvh.hpp"
 #include "illum/accel/sphereflake.hpp"
 #include "scenes.hpp"
 

@@ -7,7 +7,7 @@
 
 namespace lesson09_test {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // Howell C-11: directly opposed parallel rectangles a × b at distance c.
 inline double parallel_rectangles(double a, double b, double c) {

@@ -5,16 +5,16 @@
 // into rectangles of random sizes, some of them cut into triangles.
 #include <doctest/doctest.h>
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <numbers>
 #include <stdexcept>
 #include <vector>
 
 #include "closed_forms.hpp"
 #include "illum/core/random.hpp"
+#include "illum/core/threads.hpp"
 #include "illum/radiosity/form_factor_analytic.hpp"
 #include "illum/radiosity/form_factor_contour.hpp"
 #include "illum/radiosity/form_factor_scene.hpp"
@@ -69,7 +69,8 @@ TEST_SUITE("lesson09") {
     // polygons' exchange A₁F₁₂ = ∫∫ h²/(π d⁴) falls short of the discs' by at most
     // (ΔA₁·πr₂² + A(P₁)·ΔA₂)/(π h²), ΔA the area each polygon misses.
     const int n = 720;
-    const double r1 = 0.6, r2 = 1.1, h = 0.9, pi = lesson09_test::pi;
+    const double r1 = 0.6, r2 = 1.1, h = 0.9;
+    using std::numbers::pi;
     std::vector<Point3> lower, upper;
     for (int k = 0; k < n; ++k) {
       const double t = 2 * pi * k / n;
@@ -171,16 +172,16 @@ TEST_SUITE("stability") {
         scene.push_back(p);
       }
     }
-    const int previous = omp_get_max_threads();
+    const auto matrix_on = [&](int threads, double tolerance) {
+      const ScopedThreadCount scoped(threads);
+      return contour_form_factor_matrix(scene, FormFactorTolerance{tolerance});
+    };
     for (const double tolerance : {1e-4, 1e-8, 1e-12}) {
-      omp_set_num_threads(1);
-      const FormFactorMatrix one = contour_form_factor_matrix(scene, FormFactorTolerance{tolerance});
-      omp_set_num_threads(2);
-      const FormFactorMatrix two = contour_form_factor_matrix(scene, FormFactorTolerance{tolerance});
-      omp_set_num_threads(previous);
+      const FormFactorMatrix one = matrix_on(1, tolerance);
+      const FormFactorMatrix two = matrix_on(2, tolerance);
       for (std::size_t i = 0; i < scene.size(); ++i) {
         INFO("tolerance " << tolerance << ", row " << i);
-        CHECK(std::memcmp(one.row(i), two.row(i), scene.size() * sizeof(double)) == 0);
+        CHECK(std::memcmp(one.row(i).data(), two.row(i).data(), scene.size() * sizeof(double)) == 0);
       }
     }
   }

@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -98,7 +99,7 @@ std::vector<double> row_of(const std::vector<Patch>& patches, int resolution, st
   const Hemicube hemicube(resolution);
   HemicubeBuffers buffers;
   std::vector<double> row(patches.size(), -1.0);
-  hemicube.form_factor_row(patches, i, row.data(), buffers, angle);
+  hemicube.form_factor_row(patches, i, row, buffers, angle);
   return row;
 }
 
@@ -208,11 +209,29 @@ TEST_SUITE("lesson10") {
     const std::vector<std::int32_t> items{0, -1, 2, 0, -2, 2, 2};
     const std::vector<double> deltas{0.1, 0.2, 0.3, 0.4, 0.5, 0.01, 0.001};
     std::vector<double> row{10, 20, 30};
-    accumulate_face(items.data(), deltas.data(), items.size(), row.data());
+    accumulate_face(items, deltas, row);
     INFO("empty (−1) and back-face (−2) pixels add nothing; the row is accumulated into, not overwritten");
     CHECK(row[0] == doctest::Approx(10.5));
     CHECK(row[1] == 20);
     CHECK(row[2] == doctest::Approx(30.311));
+  }
+
+  TEST_CASE("the row accumulation refuses items and deltas of different lengths and an item past the row" *
+            doctest::description("task=5")) {
+    // Contract of accumulate_face (hemicube_deltas.hpp): one item and one delta
+    // per pixel; every item ≥ 0 an index of the row. A face is a span, not a
+    // pointer and a count, so a length that disagrees can be seen, and refused.
+    const std::vector<std::int32_t> items{0, 1, 1};
+    const std::vector<double> deltas{0.25, 0.5};  // one delta short
+    std::vector<double> row{1.0, 2.0};
+    CHECK_THROWS_AS(accumulate_face(items, deltas, row), std::invalid_argument);
+    const std::vector<std::int32_t> past{0, 2};  // item 2 of a row of two patches
+    const std::vector<double> two{0.25, 0.5};
+    CHECK_THROWS_AS(accumulate_face(past, two, row), std::invalid_argument);
+    INFO("a face of two pixels whose lengths agree and whose items fit is accumulated");
+    const std::vector<std::int32_t> fine{1, -1};
+    accumulate_face(fine, two, row);
+    CHECK(row[1] == doctest::Approx(2.25));
   }
 
   TEST_CASE("bad resolutions are refused" * doctest::description("task=3,4")) {
@@ -225,8 +244,10 @@ TEST_SUITE("lesson10") {
     const Hemicube hemicube(8);
     HemicubeBuffers buffers;
     std::vector<double> row(2);
-    CHECK_THROWS_AS(hemicube.form_factor_row(patches, 2, row.data(), buffers), std::invalid_argument);
-    CHECK_THROWS_AS(hemicube.form_factor_row(patches, 0, nullptr, buffers), std::invalid_argument);
+    CHECK_THROWS_AS(hemicube.form_factor_row(patches, 2, row, buffers), std::invalid_argument);
+    INFO("a row must hold one value per patch: one too few is refused, not written past");
+    CHECK_THROWS_AS(hemicube.form_factor_row(patches, 0, std::span<double>(row).first(1), buffers),
+                    std::invalid_argument);
   }
 
   TEST_CASE("a parallel square aligned with the pixels is exact (B-3)" * doctest::description("task=3,4,5")) {
@@ -435,7 +456,7 @@ TEST_SUITE("lesson10") {
     const Hemicube hemicube(16);
     HemicubeBuffers buffers;
     std::vector<double> row(cube.size());
-    hemicube.form_factor_row(cube, 5, row.data(), buffers);
+    hemicube.form_factor_row(cube, 5, row, buffers);
     const FormFactorMatrix unrotated = hemicube_form_factors(cube, 16);
     // Inside the closed cube every pixel sees some patch and the exact deltas
     // sum to 1, so each row sums to 1 (erratum 5 of docs/errata.md): an all-zero row, equal in

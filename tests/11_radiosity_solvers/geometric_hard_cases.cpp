@@ -16,7 +16,7 @@ using namespace illum;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // Howell C-11: directly opposed parallel rectangles a × b at distance c.
 double howell_c11(double a, double b, double c) {

@@ -7,17 +7,16 @@
 // waiting.
 #include <doctest/doctest.h>
 
-#include <omp.h>
-
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <vector>
 
+#include "illum/core/threads.hpp"
 #include "illum/io/scene_file.hpp"
 #include "illum/radiosity/hemicube.hpp"
-#include "illum/radiosity/progressive_on_demand.hpp"
+#include "illum/radiosity/production/progressive_on_demand.hpp"
 #include "illum/radiosity/radiosity_solvers.hpp"
 #include "illum/radiosity/radiosity_system.hpp"
 #include "support/throws_containing.hpp"
@@ -34,20 +33,15 @@ ProgressiveState serial_loop(const std::vector<Patch>& patches, const Hemicube& 
   const double emitted = total_power(patches, state.unshot);
   while (total_power(patches, state.unshot) / emitted >= fraction) {
     const std::size_t i = choose_shooter(patches, state.unshot);
-    hemicube.form_factor_row(patches, i, row.data(), buffers);
-    shoot(patches, i, row.data(), state);
+    hemicube.form_factor_row(patches, i, row, buffers);
+    shoot(patches, i, row, state);
   }
   return state;
 }
 
 OnDemandRun on_threads(int threads, const std::vector<Patch>& patches, const Hemicube& hemicube,
                        const OnDemandSettings& settings) {
-  const int previous = omp_get_max_threads();
-  omp_set_num_threads(threads);
-  struct Restore {
-    int threads;
-    ~Restore() { omp_set_num_threads(threads); }
-  } restore{previous};
+  const ScopedThreadCount scoped(threads);
   return progressive_on_demand(patches, hemicube, settings);
 }
 

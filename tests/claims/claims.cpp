@@ -18,7 +18,7 @@ using namespace illum;
 
 namespace {
 
-constexpr double pi = std::numbers::pi;
+using std::numbers::pi;
 
 // Gauss–Legendre nodes and weights on [−1, 1] by Newton's method on P_n
 // (written here so that the quadrature below shares no code with lib/).

@@ -30,6 +30,12 @@ struct BvhNode {
   bool leaf() const { return count != 0; }
 };
 
+// Deepest tree a traversal's fixed stack can hold (depth counted in edges from
+// the root, as Bvh::depth): the build never makes a deeper one, and a tree
+// this deep is walked correctly by both traversals (bvh_traversal.cpp and the
+// production one). Its one home: the build that guarantees it.
+constexpr int bvh_max_depth = 96;
+
 struct BvhSettings {
   int leaf_size = 4;  // most triangles in a leaf (≥ 1)
   int bins = 16;      // SAH candidate planes per node + 1 (≥ 2)

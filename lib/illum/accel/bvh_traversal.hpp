@@ -28,10 +28,6 @@ struct BvhView {
   std::span<const std::uint32_t> ids;   // the id reported for triangles[k]
 };
 
-// Deepest tree the traversal's fixed stack can hold (depth counted in edges
-// from the root, as Bvh::depth): a tree this deep is walked correctly.
-constexpr int bvh_max_depth = 96;
-
 std::optional<AccelHit> bvh_closest_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters);
 bool bvh_any_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters);
 

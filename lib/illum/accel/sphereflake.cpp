@@ -2,13 +2,15 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <numbers>
 
 #include "illum/core/error.hpp"
+#include "illum/core/frame.hpp"
 
 namespace illum {
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
+using std::numbers::pi;
 
 void add_sphere(IndexedTriangles& mesh, const Point3& center, double radius, int slices) {
   const int stacks = slices / 2;
@@ -42,8 +44,9 @@ void add_flake(IndexedTriangles& mesh, const Point3& center, double radius, cons
                int slices) {
   add_sphere(mesh, center, radius, slices);
   if (level == 0) return;
-  const Vec3 helper = std::abs(axis.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  const Vec3 u = normalize(cross(axis, helper)), v = cross(axis, u);
+  // (u, v) = −(t1, t2) of the Gram–Schmidt frame: the directions Haines' layout was placed by.
+  const Frame frame = Frame::gram_schmidt(axis);
+  const Vec3 u = -frame.t1, v = -frame.t2;
   const double child = radius / 3.0;
   // Six children around the equator, three on the upper hemisphere (Haines' layout).
   for (int k = 0; k < 9; ++k) {

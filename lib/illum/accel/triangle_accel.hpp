@@ -51,8 +51,9 @@ class TriangleAccel {
   virtual std::string_view name() const = 0;
 };
 
-// bvh: the production layout (compact_bvh.hpp); bvh_teaching: the same tree
-// traversed by the exercise unit (bvh_traversal.cpp), for the lesson's comparisons.
+// bvh: the production layout (production/compact_bvh.hpp, not course material),
+// the default; bvh_teaching: the same tree traversed by the exercise unit
+// (bvh_traversal.cpp): what a lesson's program runs with `--accel bvh_teaching`.
 enum class AccelKind { brute_force, grid, octree, bvh, bvh_teaching };
 
 struct AccelSettings {

@@ -2,8 +2,10 @@
 // Timing for studies and benchmarks (never for tests: tests count work instead).
 #include <algorithm>
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <vector>
 
 namespace illum {
 
@@ -56,6 +58,24 @@ double best_seconds(int runs, F&& work) {
     Stopwatch watch;
     work();
     best = std::min(best, watch.seconds());
+  }
+  return best;
+}
+
+// Several measurements per run, kept together: the wall and the processor
+// seconds of one run, each step of a run, several methods timed in turn so
+// that a slow spell of the machine hits them alike. `measure(run)` returns
+// them for run = 0, 1, …, runs − 1 (the first run may also record what the
+// later ones repeat); each measurement's minimum over the runs is kept. A
+// later run that returns fewer measurements leaves the others as they were.
+template <class F>
+std::vector<double> best_of_each(int runs, F&& measure) {
+  std::vector<double> best;
+  for (int run = 0; run < runs; ++run) {
+    const std::vector<double> measured = measure(run);
+    if (run == 0) best = measured;
+    for (std::size_t k = 0; run > 0 && k < std::min(best.size(), measured.size()); ++k)
+      best[k] = std::min(best[k], measured[k]);
   }
   return best;
 }

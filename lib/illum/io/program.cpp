@@ -3,12 +3,12 @@
 #include <charconv>
 #include <iostream>
 
-#include <omp.h>
 #include <unistd.h>
 #include <CLI/CLI.hpp>
 
 #include "illum/core/atomic_file.hpp"
 #include "illum/core/error.hpp"
+#include "illum/core/threads.hpp"
 
 namespace illum {
 
@@ -38,7 +38,7 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
             return "";
           },
           "SEED");
-  const int cores = omp_get_num_procs();
+  const int cores = processor_count();
   app.add_option("--threads", options.threads,
                  "Threads to use (0 = all cores, at most " + std::to_string(max_threads) + ")")
       ->capture_default_str()
@@ -50,7 +50,7 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
     return app.exit(e);
   }
   std::from_chars(seed_text.data(), seed_text.data() + seed_text.size(), options.seed);
-  if (options.threads > 0) omp_set_num_threads(options.threads);
+  const ScopedThreadCount threads(options.threads);  // 0: every core, OpenMP's default
   if (options.threads > cores)
     std::cerr << info.id << ": note: --threads " << options.threads << " is more than this machine's "
               << cores << " cores\n";

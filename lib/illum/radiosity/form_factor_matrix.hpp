@@ -2,6 +2,7 @@
 // A dense n × n matrix of form factors F_ij (row i: the fractions of the
 // energy leaving patch i that reach each patch j). Lessons 09–11.
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "illum/radiosity/patch.hpp"
@@ -16,8 +17,9 @@ class FormFactorMatrix {
   std::size_t size() const { return n_; }
   double& operator()(std::size_t i, std::size_t j) { return f_[i * n_ + j]; }
   double operator()(std::size_t i, std::size_t j) const { return f_[i * n_ + j]; }
-  double* row(std::size_t i) { return f_.data() + i * n_; }
-  const double* row(std::size_t i) const { return f_.data() + i * n_; }
+  // Row i: F_i0 … F_i(n−1).
+  std::span<double> row(std::size_t i) { return {f_.data() + i * n_, n_}; }
+  std::span<const double> row(std::size_t i) const { return {f_.data() + i * n_, n_}; }
 
   // Σ_j F_ij: 1 in a closed environment, less where energy escapes (erratum 5 of docs/errata.md).
   double row_sum(std::size_t i) const {

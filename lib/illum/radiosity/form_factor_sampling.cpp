@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "illum/core/error.hpp"
+#include "illum/core/frame.hpp"
 #include "illum/core/ray.hpp"
 #include "illum/radiosity/form_factor_analytic.hpp"
 #include "illum/radiosity/polygon_sampling.hpp"
@@ -75,7 +76,7 @@ double form_factor_hemisphere_uniform(const Point3& x, const Vec3& normal, const
                                       const std::vector<Patch>& occluders, int samples, Rng& rng) {
   check_point(x, normal, samples,
               "form_factor_hemisphere_uniform: needs a finite point, a unit normal, samples > 0");
-  const TangentFrame frame(normal);
+  const Frame frame = Frame::gram_schmidt(normal);
   double sum = 0;
   for (int k = 0; k < samples; ++k) {
     // cos φ uniform in [0, 1) gives the uniform density 1/2π on the hemisphere.
@@ -92,7 +93,7 @@ double form_factor_hemisphere_cosine(const Point3& x, const Vec3& normal, const 
                                      const std::vector<Patch>& occluders, int samples, Rng& rng) {
   check_point(x, normal, samples,
               "form_factor_hemisphere_cosine: needs a finite point, a unit normal, samples > 0");
-  const TangentFrame frame(normal);
+  const Frame frame = Frame::gram_schmidt(normal);
   double hits = 0;
   for (int k = 0; k < samples; ++k) {
     // Uniform on the unit disc (polar warp), lifted to the hemisphere (Malley).
@@ -109,7 +110,7 @@ double form_factor_nusselt(const Point3& x, const Vec3& normal, const Patch& to,
           "form_factor_nusselt: needs a finite point, a unit normal, segments_per_edge ≥ 1");
   if (dot(to.normal, x - to.centroid) <= 0) return 0.0;  // x sees the back of `to`, or lies on its plane
   const SmallPolygon clipped = clip_polygon_to_half_space(to.vertices, x, normal);
-  const TangentFrame frame(normal);
+  const Frame frame = Frame::gram_schmidt(normal);
   // Shoelace over the projected outline: each boundary point p goes to the
   // unit hemisphere, (p − x)/|p − x|, then down to the disc (its t1, t2 coordinates).
   double twice_area = 0;

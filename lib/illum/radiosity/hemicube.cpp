@@ -4,11 +4,10 @@
 #include <cmath>
 #include <numbers>
 
-#include <omp.h>
-
 #include "illum/core/error.hpp"
 #include "illum/core/frame.hpp"
 #include "illum/core/random.hpp"
+#include "illum/core/threads.hpp"
 
 namespace illum {
 
@@ -42,9 +41,11 @@ inline Vec3 to_face(HemicubeFace f, const Vec3& p) {
 
 }  // namespace
 
-const std::int32_t* HemicubeBuffers::face_items(HemicubeFace f) const {
+std::span<const std::int32_t> HemicubeBuffers::face_items(HemicubeFace f) const {
   require(resolution > 0, "HemicubeBuffers::face_items: the buffers hold no hemicube yet");
-  return items.data() + face_offset(resolution, f);
+  return std::span<const std::int32_t>(items).subspan(
+      face_offset(resolution, f), static_cast<std::size_t>(face_width(resolution)) *
+                                      static_cast<std::size_t>(face_height(resolution, f)));
 }
 
 bool hemicube_pixel(const Vec3& d, int resolution, HemicubeFace& face, int& col, int& row) {
@@ -193,26 +194,25 @@ void draw_patches(const std::vector<Patch>& patches, std::size_t i, const Hemicu
 // sides. accumulate_half(h) sums half h's pixels into its own partial row
 // (halves[h·n …]); combine_halves adds the two. Serial or on two threads, the
 // sums are the same, in the same order.
-void accumulate_half(const HemicubeDeltas& deltas, const HemicubeBuffers& buffers, std::size_t n, int half,
-                     double* partial) {
-  std::fill(partial, partial + n, 0.0);
-  const int res = buffers.resolution;
+void accumulate_half(const HemicubeDeltas& deltas, const HemicubeBuffers& buffers, int half,
+                     std::span<double> partial) {
+  std::fill(partial.begin(), partial.end(), 0.0);
   for (int k = half == 0 ? 0 : 2; k < (half == 0 ? 2 : 5); ++k) {
     const auto f = static_cast<HemicubeFace>(k);
-    const std::vector<double>& d = f == HemicubeFace::top ? deltas.top : deltas.side;
-    accumulate_face(buffers.items.data() + face_offset(res, f), d.data(), d.size(), partial);
+    accumulate_face(buffers.face_items(f), f == HemicubeFace::top ? deltas.top : deltas.side, partial);
   }
 }
 
-void combine_halves(const double* halves, std::size_t n, std::size_t i, double* row) {
+void combine_halves(std::span<const double> halves, std::size_t i, std::span<double> row) {
+  const std::size_t n = row.size();
   for (std::size_t j = 0; j < n; ++j) row[j] = halves[j] + halves[n + j];
   row[i] = 0.0;
 }
 
-// Sizes the two partial rows (allocating only when n grows).
-double* partial_rows(HemicubeBuffers& buffers, std::size_t n) {
+// Sizes the two partial rows, n values each (allocating only when n grows).
+std::span<double> partial_rows(HemicubeBuffers& buffers, std::size_t n) {
   if (buffers.halves.size() < 2 * n) buffers.halves.resize(2 * n);
-  return buffers.halves.data();
+  return std::span<double>(buffers.halves).first(2 * n);
 }
 
 // The first patch index of each of `ranges` ranges of patches with about the
@@ -255,25 +255,28 @@ void cost_balanced_cuts(const std::vector<Patch>& patches, std::size_t i, int re
 
 }  // namespace
 
-void Hemicube::form_factor_row(const std::vector<Patch>& patches, std::size_t i, double* row,
+void Hemicube::form_factor_row(const std::vector<Patch>& patches, std::size_t i, std::span<double> row,
                                HemicubeBuffers& buffers, double rotation_angle) const {
   require(i < patches.size(), "Hemicube::form_factor_row: patch index i is out of range");
-  require(row != nullptr, "Hemicube::form_factor_row: row is null");
+  require(row.size() == patches.size(), "Hemicube::form_factor_row: the row must hold one value per patch");
   require(std::isfinite(rotation_angle), "Hemicube::form_factor_row: rotation_angle must be finite");
   constexpr unsigned all_faces = 0x1f;
   clear_faces(buffers, resolution(), all_faces);
   draw_patches(patches, i, frame_of(patches[i], rotation_angle), 0, patches.size(), all_faces, buffers,
                buffers);
   const std::size_t n = patches.size();
-  double* halves = partial_rows(buffers, n);
-  for (int half = 0; half < 2; ++half) accumulate_half(deltas_, buffers, n, half, halves + half * n);
-  combine_halves(halves, n, i, row);
+  const std::span<double> halves = partial_rows(buffers, n);
+  for (int half = 0; half < 2; ++half)
+    accumulate_half(deltas_, buffers, half, halves.subspan(static_cast<std::size_t>(half) * n, n));
+  combine_halves(halves, i, row);
 }
 
-void Hemicube::form_factor_row_parallel(const std::vector<Patch>& patches, std::size_t i, double* row,
-                                        std::vector<HemicubeBuffers>& buffers, double rotation_angle) const {
+void Hemicube::form_factor_row_parallel(const std::vector<Patch>& patches, std::size_t i,
+                                        std::span<double> row, std::vector<HemicubeBuffers>& buffers,
+                                        double rotation_angle) const {
   require(i < patches.size(), "Hemicube::form_factor_row_parallel: patch index i is out of range");
-  require(row != nullptr, "Hemicube::form_factor_row_parallel: row is null");
+  require(row.size() == patches.size(),
+          "Hemicube::form_factor_row_parallel: the row must hold one value per patch");
   require(std::isfinite(rotation_angle), "Hemicube::form_factor_row_parallel: rotation_angle must be finite");
   // One item buffer (and scratch) per range of patches, as many ranges as
   // threads (grown once, reused). A small row is drawn by one thread: forking
@@ -283,13 +286,13 @@ void Hemicube::form_factor_row_parallel(const std::vector<Patch>& patches, std::
   const bool worth_threads = static_cast<double>(n) * res * res >= 4e6;
   constexpr std::size_t max_ranges = 256;
   const std::size_t ranges =
-      std::min(max_ranges, static_cast<std::size_t>(worth_threads ? std::max(1, omp_get_max_threads()) : 1));
+      std::min(max_ranges, static_cast<std::size_t>(worth_threads ? std::max(1, available_threads()) : 1));
   if (buffers.size() < ranges) buffers.resize(ranges);
   for (std::size_t r = 0; r < ranges; ++r)
     if (buffers[r].resolution != res) clear_faces(buffers[r], res, 0x1f);  // allocates: the first call only
   const HemicubeFrame frame = frame_of(patches[i], rotation_angle);
   HemicubeBuffers& first = buffers[0];
-  double* halves = partial_rows(first, n);
+  const std::span<double> halves = partial_rows(first, n);
   std::size_t cuts[max_ranges + 1];
   cost_balanced_cuts(patches, i, res, ranges, first.cost, cuts);
   // Where the second half of the pixels starts (the −x face).
@@ -320,10 +323,10 @@ void Hemicube::form_factor_row_parallel(const std::vector<Patch>& patches, std::
             first.inv_depth[k] = buffers[r].inv_depth[k];
             first.items[k] = buffers[r].items[k];
           }
-      accumulate_half(deltas_, first, n, half, halves + static_cast<std::size_t>(half) * n);
+      accumulate_half(deltas_, first, half, halves.subspan(static_cast<std::size_t>(half) * n, n));
     }
   }
-  combine_halves(halves, n, i, row);
+  combine_halves(halves, i, row);
 }
 
 FormFactorMatrix hemicube_form_factors(const std::vector<Patch>& patches, int resolution,

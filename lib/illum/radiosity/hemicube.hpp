@@ -15,6 +15,7 @@
 // compared to the size of i, and it aliases when j covers few pixels.
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "illum/geometry/hemicube_raster.hpp"
@@ -45,8 +46,9 @@ struct HemicubeBuffers {
   std::vector<double> cost;    // the estimated drawing cost of patches 0 … j (form_factor_row_parallel)
   RasterScratch raster;
 
-  // The item buffer of one face (after form_factor_row) and its size.
-  const std::int32_t* face_items(HemicubeFace f) const;
+  // The item buffer of one face (after form_factor_row): face_width × face_height
+  // items, row by row. Throws std::invalid_argument before the first form_factor_row.
+  std::span<const std::int32_t> face_items(HemicubeFace f) const;
   static int face_width(int resolution) { return resolution; }
   static int face_height(int resolution, HemicubeFace f) {
     return f == HemicubeFace::top ? resolution : resolution / 2;
@@ -71,8 +73,8 @@ class Hemicube {
   // patches.size() entries; row[i] = 0. If rotation_angle != 0, the hemicube
   // is rotated by that angle (radians) about the normal (trades aliasing for
   // noise). Thread-safe with one HemicubeBuffers per thread. Throws
-  // std::invalid_argument when i is out of range or row is null.
-  void form_factor_row(const std::vector<Patch>& patches, std::size_t i, double* row,
+  // std::invalid_argument when i is out of range or row has not one entry per patch.
+  void form_factor_row(const std::vector<Patch>& patches, std::size_t i, std::span<double> row,
                        HemicubeBuffers& buffers, double rotation_angle = 0.0) const;
 
   // The same row computed by every OpenMP thread, for progressive refinement
@@ -89,7 +91,7 @@ class Hemicube {
   // are cut where the estimated drawing cost (a fixed cost per patch plus its
   // projected pixels) is shared equally, not where the count is: a patch near
   // the shooter fills thousands of pixels, a far one a few.
-  void form_factor_row_parallel(const std::vector<Patch>& patches, std::size_t i, double* row,
+  void form_factor_row_parallel(const std::vector<Patch>& patches, std::size_t i, std::span<double> row,
                                 std::vector<HemicubeBuffers>& buffers, double rotation_angle = 0.0) const;
 
  private:

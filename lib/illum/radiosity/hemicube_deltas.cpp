@@ -66,9 +66,15 @@ HemicubeDeltas make_hemicube_deltas(int resolution, DeltaRule rule) {
   return d;
 }
 
-void accumulate_face(const std::int32_t* items, const double* deltas, std::size_t pixel_count, double* row) {
-  for (std::size_t p = 0; p < pixel_count; ++p)
-    if (items[p] >= 0) row[items[p]] += deltas[p];
+void accumulate_face(std::span<const std::int32_t> items, std::span<const double> deltas,
+                     std::span<double> row) {
+  require(items.size() == deltas.size(), "accumulate_face: one item and one delta per pixel");
+  for (std::size_t p = 0; p < items.size(); ++p)
+    if (items[p] >= 0) {
+      require(static_cast<std::size_t>(items[p]) < row.size(),
+              "accumulate_face: an item is not an index of the row");
+      row[static_cast<std::size_t>(items[p])] += deltas[p];
+    }
 }
 
 }  // namespace illum

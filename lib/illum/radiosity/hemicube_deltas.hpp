@@ -25,6 +25,7 @@
 // a rectangle, eq. 10.4 and 10.5), evaluated at the pixel's four corners.
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace illum {
@@ -67,9 +68,12 @@ struct HemicubeDeltas {
 // Throws std::invalid_argument unless resolution is even and ≥ 2.
 HemicubeDeltas make_hemicube_deltas(int resolution, DeltaRule rule = DeltaRule::exact);
 
-// The row accumulation ("sumar las contribuciones a cada trozo"): for every
-// pixel p of a face, row[items[p]] += deltas[p] when items[p] ≥ 0 (negative
-// items are empty pixels or occluders that receive nothing).
-void accumulate_face(const std::int32_t* items, const double* deltas, std::size_t pixel_count, double* row);
+// The row accumulation ("sumar las contribuciones a cada trozo"): for
+// every pixel p of a face, row[items[p]] += deltas[p] when items[p] ≥ 0
+// (negative items are empty pixels or occluders that receive nothing).
+// Throws std::invalid_argument when items and deltas differ in length (one
+// item and one delta per pixel) or an item ≥ 0 is not an index of row.
+void accumulate_face(std::span<const std::int32_t> items, std::span<const double> deltas,
+                     std::span<double> row);
 
 }  // namespace illum

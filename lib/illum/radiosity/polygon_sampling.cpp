@@ -35,11 +35,4 @@ Point3 PolygonSampler::sample(Rng& rng) const {
   return (1 - su) * a + su * (1 - v) * b + su * v * c;
 }
 
-TangentFrame::TangentFrame(const Vec3& normal) : n(normal) {
-  // Any vector not parallel to n, then Gram–Schmidt.
-  const Vec3 helper = std::abs(n.x) < 0.9 ? Vec3(1, 0, 0) : Vec3(0, 1, 0);
-  t1 = normalize(cross(helper, n));
-  t2 = cross(n, t1);
-}
-
 }  // namespace illum

@@ -1,6 +1,6 @@
 #pragma once
 // Helpers the sampling methods of lesson 09 share: uniform points on a convex
-// polygon and a tangent frame around a normal.
+// polygon. (The frame around a normal is core/frame.hpp's Frame::gram_schmidt.)
 #include <array>
 
 #include "illum/core/random.hpp"
@@ -22,14 +22,6 @@ class PolygonSampler {
   const Patch* patch_;
   std::array<double, max_triangles> cumulative_{};  // fan areas, running sum divided by the total
   int triangles_ = 0;
-};
-
-// An orthonormal frame (t1, t2, n) with n the given unit normal.
-struct TangentFrame {
-  Vec3 t1, t2, n;
-  explicit TangentFrame(const Vec3& normal);
-  // The world direction of local coordinates (x, y, z) (z along n).
-  Vec3 to_world(double x, double y, double z) const { return x * t1 + y * t2 + z * n; }
 };
 
 }  // namespace illum

@@ -76,7 +76,7 @@ void jacobi_sweep(const std::vector<Patch>& patches, const FormFactorMatrix& f, 
 #pragma omp parallel for schedule(static) if (n >= 256)
   for (std::ptrdiff_t ii = 0; ii < static_cast<std::ptrdiff_t>(n); ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    const double* row = f.row(i);
+    const std::span<const double> row = f.row(i);
     Color gathered(0.0);
     for (std::size_t j = 0; j < n; ++j)
       if (j != i) gathered += row[j] * b[j];
@@ -92,7 +92,7 @@ void gauss_seidel_sweep(const std::vector<Patch>& patches, const FormFactorMatri
   require(omega > 0.0 && omega < 2.0, "gauss_seidel_sweep: the relaxation factor ω must lie in (0, 2)");
   const std::size_t n = patches.size();
   for (std::size_t i = 0; i < n; ++i) {  // sequential: row i uses rows 0 … i−1 of this sweep
-    const double* row = f.row(i);
+    const std::span<const double> row = f.row(i);
     Color gathered(0.0);
     for (std::size_t j = 0; j < n; ++j)
       if (j != i) gathered += row[j] * b[j];
@@ -149,9 +149,11 @@ std::size_t choose_shooter(const std::vector<Patch>& patches, const std::vector<
   return best;
 }
 
-void shoot(const std::vector<Patch>& patches, std::size_t i, const double* form_factor_row,
+void shoot(const std::vector<Patch>& patches, std::size_t i, std::span<const double> form_factor_row,
            ProgressiveState& state) {
-  require(i < patches.size() && form_factor_row != nullptr, "shoot: shooter index out of range or no row");
+  require(i < patches.size(), "shoot: shooter index out of range");
+  require(form_factor_row.size() == patches.size(),
+          "shoot: the form-factor row must hold one value per patch");
   require(state.radiosity.size() == patches.size() && state.unshot.size() == patches.size(),
           "shoot: the state must hold one value per patch");
   const Color delta = state.unshot[i];

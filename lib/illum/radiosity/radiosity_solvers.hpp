@@ -5,6 +5,7 @@
 // once: a Color holds one radiosity per channel, and glm multiplies Colors
 // channel by channel, so ρ_i * gathered is the per-channel product.
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "illum/core/vec.hpp"
@@ -78,9 +79,10 @@ std::size_t choose_shooter(const std::vector<Patch>& patches, const std::vector<
 //   ΔB_j = ρ_j F_ji Δ = ρ_j F_ij (A_i / A_j) Δ    (erratum 8 of docs/errata.md)
 //   B_j += ΔB_j,  Δ_j += ΔB_j,
 // and counts the shot: state.shots += 1. Only row i is needed: the hemicube
-// placed on the shooter gives it. Throws std::invalid_argument for i out of
-// range, a null row, or a state whose vectors have not one value per patch.
-void shoot(const std::vector<Patch>& patches, std::size_t i, const double* form_factor_row,
+// placed on the shooter gives it. Throws std::invalid_argument, before
+// changing the state, for i out of range, a row without one value per patch,
+// or a state whose vectors have not one value per patch.
+void shoot(const std::vector<Patch>& patches, std::size_t i, std::span<const double> form_factor_row,
            ProgressiveState& state);
 
 // Task 7. The ambient term of Cohen et al. (1988), for display only:

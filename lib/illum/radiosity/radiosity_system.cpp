@@ -57,7 +57,7 @@ std::vector<Color> radiosity_residual(const std::vector<Patch>& patches, const F
 #pragma omp parallel for schedule(static) if (n >= 256)  // threads cost more than they save on small scenes
   for (std::ptrdiff_t ii = 0; ii < static_cast<std::ptrdiff_t>(n); ++ii) {
     const auto i = static_cast<std::size_t>(ii);
-    const double* row = f.row(i);
+    const std::span<const double> row = f.row(i);
     Color gathered(0.0);
     for (std::size_t j = 0; j < n; ++j) gathered += row[j] * b[j];
     r[i] = patches[i].emission + patches[i].reflectance * gathered - b[i];

@@ -36,7 +36,7 @@ std::unique_ptr<TriangleAccel> occluder_bvh(const std::vector<std::vector<Point3
 
 // row[e] = F_pe by the point-to-disc factor and one shadow ray per element.
 void ray_cast_row(const Patch& shooter, const std::vector<Patch>& elements, const TriangleAccel& occluders,
-                  double* row) {
+                  std::span<double> row) {
   const auto n = static_cast<std::ptrdiff_t>(elements.size());
 #pragma omp parallel for schedule(static) if (n >= static_cast <std::ptrdiff_t>(parallel_row_elements))
   for (std::ptrdiff_t e = 0; e < n; ++e) {
@@ -146,13 +146,13 @@ SubstructuredSolution shoot_patches_to_elements(const std::vector<Patch>& patche
     if (hemicube) {
       targets.back() = shooter;
       if (n >= parallel_row_elements) {
-        cube->form_factor_row_parallel(targets, n, row.data(), buffers);
+        cube->form_factor_row_parallel(targets, n, row, buffers);
       } else {
         buffers.resize(1);
-        cube->form_factor_row(targets, n, row.data(), buffers.front());
+        cube->form_factor_row(targets, n, row, buffers.front());
       }
     } else {
-      ray_cast_row(shooter, mesh.elements, *occluders, row.data());
+      ray_cast_row(shooter, mesh.elements, *occluders, row);
     }
     const Color delta = s.patch_unshot[p];
     s.patch_unshot[p] = Color(0.0);

@@ -7,12 +7,11 @@
 #include <numbers>
 #include <stdexcept>
 
-#include <omp.h>
-
 #include "illum/core/error.hpp"
 #include "illum/core/frame.hpp"
 #include "illum/core/random.hpp"
 #include "illum/core/stopwatch.hpp"
+#include "illum/core/threads.hpp"
 #include "illum/radiosity/hemicube.hpp"
 #include "illum/radiosity/radiosity_system.hpp"
 #include "illum/radiosity/two_pass_shading.hpp"
@@ -193,9 +192,9 @@ RadiosityPass solve_radiosity_pass(const std::vector<Patch>& patches, int hemicu
     if (pass.state.shots >= max_shots)
       throw std::runtime_error("solve_radiosity_pass: the unshot power did not fall below the threshold");
     const std::size_t i = choose_shooter(lit, pass.state.unshot);
-    hemicube.form_factor_row(lit, i, row.data(), buffers);
+    hemicube.form_factor_row(lit, i, row, buffers);
     ++pass.hemicube_rows;
-    shoot(lit, i, row.data(), pass.state);
+    shoot(lit, i, row, pass.state);
     pass.unshot = total_power(lit, pass.state.unshot) / emitted;
   }
   pass.seconds = watch.seconds();

@@ -1,4 +1,5 @@
-#include "illum/accel/compact_bvh.hpp"
+// Not course material: read bvh_traversal.cpp (the exercise) for the BVH traversal.
+#include "illum/accel/production/compact_bvh.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -17,8 +18,6 @@
 #if defined(__x86_64__) && defined(__GNUC__)
 #include <immintrin.h>
 #endif
-
-#include "illum/accel/bvh_traversal.hpp"
 
 namespace illum {
 namespace {

@@ -1,4 +1,5 @@
-#include "illum/radiosity/progressive_on_demand.hpp"
+// Not course material: read radiosity_solvers.cpp (choose_shooter, shoot) and lesson 11, §6.
+#include "illum/radiosity/production/progressive_on_demand.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -9,14 +10,14 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <stdexcept>
 #include <string>
-
-#include <omp.h>
 
 #include "illum/core/error.hpp"
 #include "illum/core/memory_budget.hpp"
 #include "illum/core/stopwatch.hpp"
+#include "illum/core/threads.hpp"
 #include "illum/radiosity/radiosity_system.hpp"
 
 namespace illum {
@@ -46,7 +47,7 @@ struct ShotPass {
   // survey below, in one pass. The same operations in the same order as
   // shoot's give the same bits (the on-demand tests compare every run with
   // the serial loop that calls shoot, bit for bit).
-  double shoot_and_survey(std::size_t i, const double* row, ProgressiveState& state,
+  double shoot_and_survey(std::size_t i, std::span<const double> row, ProgressiveState& state,
                           const std::atomic<bool>* held, std::vector<double>& best,
                           std::vector<std::size_t>& candidates) const {
     const Color delta = state.unshot[i];
@@ -174,7 +175,7 @@ struct RowSlots {
     for (std::size_t p = 0; p < patches; ++p) held[p].store(false, std::memory_order_relaxed);
     wanted.reserve(slot_count);
   }
-  double* row(std::size_t slot) { return rows.get() + slot * n; }
+  std::span<double> row(std::size_t slot) { return {rows.get() + slot * n, n}; }
   std::size_t find(std::size_t p) const { return slot_of[p]; }
   void touch(std::size_t slot) { stamp[slot] = ++clock; }
   void forget(std::size_t slot) {
@@ -242,7 +243,7 @@ OnDemandRun progressive_on_demand(const std::vector<Patch>& patches, const Hemic
   // team − 1 are being drawn by the helpers and `wanted` hold wanted rows),
   // and as many more as settings.row_memory allows, up to one per patch.
   const int max_team =
-      std::max(1, std::min(omp_get_max_threads(), static_cast<int>(std::min<std::size_t>(n, 64))));
+      std::max(1, std::min(available_threads(), static_cast<int>(std::min<std::size_t>(n, 64))));
   const double row_bytes = static_cast<double>(n) * sizeof(double);
   const auto kept =
       static_cast<std::size_t>(std::min(static_cast<double>(n), settings.row_memory / row_bytes));
@@ -289,7 +290,7 @@ OnDemandRun progressive_on_demand(const std::vector<Patch>& patches, const Hemic
   {
     HemicubeBuffers buffers;  // each thread's own, sized by its first row
     std::unique_lock<std::mutex> lock(mutex);
-    if (omp_get_thread_num() > 0) {
+    if (thread_index() > 0) {
       // A helper draws the first wanted row that no slot holds, sleeping while there is none.
       for (;;) {
         std::size_t slot = RowSlots::none;
@@ -304,7 +305,7 @@ OnDemandRun progressive_on_demand(const std::vector<Patch>& patches, const Hemic
       }
     } else {
       try {
-        const auto team = static_cast<std::size_t>(omp_get_num_threads());
+        const auto team = static_cast<std::size_t>(team_size());
         candidates.resize(1 + ahead * (team - 1));
         // With every row kept, the helpers' guesses skip the rows already drawn: a helper then draws
         // rows as long as some patch lacks one, instead of idling while the shooter shoots.

@@ -1,4 +1,10 @@
+// Not course material: read radiosity_solvers.cpp (choose_shooter, shoot) and lesson 11, §6.
 #pragma once
+// Production code, apart from the course (lib/illum/radiosity/production/):
+// what lesson 11's figure (§10) and lesson 13's pass one run to be fast. The
+// algorithm is the course's progressive refinement, one shot per row, as
+// radiosity_solvers.cpp teaches it; this file adds only the scheduling.
+//
 // Progressive refinement with hemicube rows computed on demand, on every
 // thread (lesson 11, §10): the n × n matrix is never needed whole; rows are
 // kept for patches that shoot again as far as settings.row_memory allows.

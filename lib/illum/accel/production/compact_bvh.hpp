@@ -1,5 +1,12 @@
+// Not course material: read bvh_traversal.cpp (the exercise) for the BVH traversal.
 #pragma once
-// The production BVH, lesson 08 (§4): the same binned-SAH tree as Bvh, its
+// Production code, apart from the course (lib/illum/accel/production/): the
+// same tree as the teaching Bvh, laid out and traversed for speed. A student
+// need not read it; lesson 08 (§5) says what it changes and measures what it
+// buys (out/lesson08/bvh_layouts.md), and `--accel bvh_teaching` runs a
+// lesson's program on the exercise's traversal instead.
+//
+// The production BVH, lesson 08 (§5): the same binned-SAH tree as Bvh, its
 // levels collapsed (about three at a time) into eight-child nodes and laid
 // out for speed.
 // Bvh's traversal (bvh_traversal.cpp) is the teaching version, the
