@@ -42,4 +42,15 @@ class ExceptionCollector {
   std::exception_ptr first_;
 };
 
+// Runs body(row) for row = 0 … rows − 1 on every thread (dynamic schedule:
+// rows of unequal cost), each through an ExceptionCollector: the first
+// exception any row throws is rethrown here, after the loop.
+template <class Body>
+void parallel_rows(int rows, Body&& body) {
+  ExceptionCollector errors;
+#pragma omp parallel for schedule(dynamic)
+  for (int row = 0; row < rows; ++row) errors.run([&] { body(row); });
+  errors.rethrow_if_any();
+}
+
 }  // namespace illum
