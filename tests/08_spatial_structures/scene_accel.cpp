@@ -58,7 +58,7 @@ TEST_SUITE("stability") {
   TEST_CASE("a scene with a structure finds the same hits as brute force, bit for bit, for every kind") {
     for (const AccelKind kind :
          {AccelKind::bvh, AccelKind::grid, AccelKind::octree, AccelKind::brute_force}) {
-      CAPTURE(accel_kind_name(kind));
+      CAPTURE(to_string(kind));
       Scene brute = flake_scene();
       Scene fast = brute;
       fast.accelerate({.kind = kind});

@@ -15,7 +15,7 @@ TEST_CASE("PatchOccluders agrees with brute-force visibility between random poin
   const RadiosityScene box = load_radiosity_scene("cornell", 150.0);
   REQUIRE(box.patches.size() > 50);
   for (const AccelKind kind : {AccelKind::bvh, AccelKind::grid, AccelKind::octree}) {
-    CAPTURE(accel_kind_name(kind));
+    CAPTURE(to_string(kind));
     const PatchOccluders fast(box.patches, {.kind = kind});
     Rng rng(9);
     int pairs = 0, blocked = 0, disagreements = 0;

@@ -8,20 +8,11 @@
 #include "illum/accel/octree.hpp"
 #include "illum/accel/production/compact_bvh.hpp"
 #include "illum/accel/uniform_grid.hpp"
+#include "illum/core/enum_names.hpp"
 
 namespace illum {
 
-AccelKind accel_kind_from_name(std::string_view name) {
-  if (name == "brute_force") return AccelKind::brute_force;
-  if (name == "grid") return AccelKind::grid;
-  if (name == "octree") return AccelKind::octree;
-  if (name == "bvh") return AccelKind::bvh;
-  if (name == "bvh_teaching") return AccelKind::bvh_teaching;
-  throw std::invalid_argument("unknown acceleration structure '" + std::string(name) +
-                              "' (choose brute_force, grid, octree, bvh or bvh_teaching)");
-}
-
-std::string_view accel_kind_name(AccelKind kind) {
+const char* to_string(AccelKind kind) {
   switch (kind) {
     case AccelKind::brute_force:
       return "brute_force";
@@ -35,6 +26,10 @@ std::string_view accel_kind_name(AccelKind kind) {
       return "bvh_teaching";
   }
   return "?";
+}
+
+AccelKind accel_kind_from_name(std::string_view name) {
+  return enum_from_name(name, all_accel_kinds, "acceleration structure");
 }
 
 std::unique_ptr<TriangleAccel> make_accel(const TriangleSet& set, const AccelSettings& settings) {

@@ -11,6 +11,7 @@
 // node or cell visited, each ray–triangle test), so the lesson can show cost
 // in counts as well as in time. A structure is immutable after construction
 // and safe to query from many threads, each with its own counters.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -55,6 +56,8 @@ class TriangleAccel {
 // the default; bvh_teaching: the same tree traversed by the exercise unit
 // (bvh_traversal.cpp): what a lesson's program runs with `--accel bvh_teaching`.
 enum class AccelKind { brute_force, grid, octree, bvh, bvh_teaching };
+inline constexpr std::array<AccelKind, 5> all_accel_kinds = {
+    AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::bvh, AccelKind::bvh_teaching};
 
 struct AccelSettings {
   AccelKind kind = AccelKind::bvh;
@@ -64,10 +67,10 @@ struct AccelSettings {
   int octree_depth = 8;   // deepest octree level below the root (0 … 16)
 };
 
-// "brute_force", "grid", "octree", "bvh", "bvh_teaching"; throws std::invalid_argument naming the choices
-// otherwise.
+// "brute_force", "grid", "octree", "bvh", "bvh_teaching" (core/enum_names.hpp's pattern).
+const char* to_string(AccelKind kind);
+// The kind of that name; throws std::invalid_argument naming the choices otherwise.
 AccelKind accel_kind_from_name(std::string_view name);
-std::string_view accel_kind_name(AccelKind kind);
 
 // Builds the chosen structure over a copy of the set's triangles.
 std::unique_ptr<TriangleAccel> make_accel(const TriangleSet& set, const AccelSettings& settings = {});

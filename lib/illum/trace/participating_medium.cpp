@@ -6,7 +6,15 @@
 
 namespace illum {
 
-const char* to_string(MarchMethod method) { return method == MarchMethod::euler ? "euler" : "midpoint"; }
+const char* to_string(MarchMethod method) {
+  switch (method) {
+    case MarchMethod::euler:
+      return "euler";
+    case MarchMethod::midpoint:
+      return "midpoint";
+  }
+  return "?";
+}
 
 double march_through_slab(const Slab& slab, double incoming, int steps, MarchMethod method) {
   require(slab.extinction > 0.0 && slab.emission >= 0.0 && slab.thickness > 0.0 && steps >= 1,
