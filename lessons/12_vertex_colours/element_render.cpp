@@ -78,23 +78,6 @@ double exposure_for(const ElementMesh& mesh, const std::vector<Color>& radiosity
   return brightest[static_cast<std::size_t>(k)] > 0 ? 0.85 / brightest[static_cast<std::size_t>(k)] : 1;
 }
 
-Image side_by_side(const std::vector<Image>& images) {
-  constexpr int gap = 4;
-  int width = -gap, height = 0;
-  for (const Image& im : images) {
-    width += im.width() + gap;
-    height = std::max(height, im.height());
-  }
-  Image out(width, height, Color(1.0));
-  int left = 0;
-  for (const Image& im : images) {
-    for (int y = 0; y < im.height(); ++y)
-      for (int x = 0; x < im.width(); ++x) out.at(left + x, y) = im.at(x, y);
-    left += im.width() + gap;
-  }
-  return out;
-}
-
 bool element_contains(const Patch& element, const Point3& point) {
   const std::vector<Point3>& v = element.vertices;
   const double slack = 1e-7 * std::sqrt(element.area);

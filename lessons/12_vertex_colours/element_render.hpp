@@ -31,9 +31,6 @@ Image gouraud_image(const ElementView& view, const ElementMesh& mesh,
 // Maps the 95th percentile of the non-emitting elements' brightest channel to 0.85.
 double exposure_for(const ElementMesh& mesh, const std::vector<Color>& radiosity);
 
-// The images in a row, separated by a 4-pixel white gap.
-Image side_by_side(const std::vector<Image>& images);
-
 // Whether `point` (on the element's plane) lies inside the convex element,
 // edges included with a tolerance relative to the element's size.
 bool element_contains(const Patch& element, const Point3& point);
