@@ -15,9 +15,15 @@ written from those tags between the markers
     <!-- task-table: begin (written by tools/task_tables.py --update) -->
     <!-- task-table: end -->
 
+Every lesson text and exercise README also holds a "Where the code is" block
+(tools/code_map.py: the lesson's program and studies, library pairs, exercise
+files, tests and deck, as links), and --check holds every lesson program to
+the layout code_map.layout_problems states (studies numbered by the sections
+that quote them, labels that agree with the headings, a reading list).
+
 Commands:
 
-    tools/task_tables.py --update          # rewrite every README's table from the tags
+    tools/task_tables.py --update          # rewrite every README's table and code map
     tools/task_tables.py --check           # CI: every grading test tagged, every tag a task of
                                            # its lesson, every task graded, every table current
     tools/task_tables.py --check --build-dir build/release
@@ -550,6 +556,12 @@ def main() -> int:
             problems += source_problems(root, lesson)
             if args.build_dir:
                 problems += stub_problems(root, lesson, args.build_dir)
+    import code_map
+
+    # Every lesson text and exercise README: its "Where the code is" block; every lesson: its layout.
+    problems += code_map.update(root, write=args.update and not args.check)
+    if args.check:
+        problems += code_map.layout_problems(root)
     top = root / "README.md"
     if top.is_file():
         text = top.read_text(encoding="utf-8")

@@ -8,9 +8,9 @@
 // the nodes visited and the triangles tested. The studies the text quotes run
 // in its order, one file each in studies/ (README.md, "Read in this order").
 #include <iostream>
-#include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -29,19 +29,22 @@ int main(int argc, char** argv) {
       "sweeps the grid resolution and the BVH leaf size; renders with 1 and 2 threads; times the "
       "teaching and production BVHs and the Monte Carlo form factors with and without the BVH."};
   lesson08::Settings settings;
-  std::map<std::string, AccelKind> structures;
-  for (const AccelKind kind : all_accel_kinds) structures[to_string(kind)] = kind;
+  std::string structure_name = to_string(settings.accel);
+  std::vector<std::string> structures;
+  for (const AccelKind kind : all_accel_kinds) structures.emplace_back(to_string(kind));
   return run_program(
       argc, argv, info,
       [&](CLI::App& app) {
-        app.add_option("--accel", settings.accel,
+        app.add_option("--accel", structure_name,
                        "the structure the sphereflake is rendered through: bvh (production, the default), "
                        "bvh_teaching (the exercise's traversal), grid, octree or brute_force")
-            ->transform(CLI::CheckedTransformer(structures));
+            ->check(CLI::IsMember(structures))
+            ->capture_default_str();
       },
       [&](const ProgramOptions& options) {
         using namespace lesson08;
         settings.quick = options.quick;
+        settings.accel = accel_kind_from_name(structure_name);
         OutputFolder out(options.out, info.id, info.title);
         run_section(info.id, "§1 Visibility algorithms", [&] {
           s01_item_buffer(out, settings);
@@ -51,10 +54,10 @@ int main(int argc, char** argv) {
                     [&] { s02_bounding_volumes(out, settings); });
         run_section(info.id, "§5 Bounding volume hierarchies", [&] { s05_bvh_layouts(out, settings); });
         run_section(info.id, "§6 The measurements", [&] {
-          s06_scaling(out, settings);
-          s06_grid_resolution(out, settings);
-          s06_bvh_leaf_size(out, settings);
-          s06_octree_depth(out, settings);
+          s06a_scaling(out, settings);
+          s06b_grid_resolution(out, settings);
+          s06c_bvh_leaf_size(out, settings);
+          s06d_octree_depth(out, settings);
 
           // The demonstration: the sphereflake through the chosen structure, on every thread.
           const TriangleSet set = flake_with_about(settings.quick ? 5000 : 100000);
@@ -75,7 +78,7 @@ int main(int argc, char** argv) {
           out.text("render_counts.txt", counts + "\n", "Work counted while rendering the sphereflake");
           std::cout << "sphereflake through " << structure->name() << ": " << counts << "\n";
 
-          s06_render_threads(out, settings, *structure, picture.image);
+          s06e_render_threads(out, settings, *structure, picture.image);
         });
         run_section(info.id, "§8 The structures at work elsewhere in the course",
                     [&] { s08_form_factor_visibility(out, settings); });

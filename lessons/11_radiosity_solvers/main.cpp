@@ -148,12 +148,12 @@ int main(int argc, char** argv) {
         OutputFolder out(options.out, info.id, info.title);
         if (!settings.figure_only) {
           run_section(info.id, "§6 Progressive refinement", [&] { s06_three_patch(out); });
-          const StudySystem system = s08_form_factors(out, settings);
+          const StudySystem system = s08a_form_factors(out, settings);
           SolverStudy study = run_section(info.id, "§8 The study", [&] {
-            SolverStudy s = s08_solver_study(out, settings, system);
-            s08_jacobi_threads(out, system, s.published);
-            s08_closed_box(out, settings, system, s);  // and writes the growth table
-            s08_study_plots(out, settings, s);
+            SolverStudy s = s08b_solver_study(out, settings, system);
+            s08c_jacobi_threads(out, system, s.published);
+            s08d_closed_box(out, settings, system, s);  // and writes the growth table
+            s08e_study_plots(out, settings, s);
             return s;
           });
           run_section(info.id, "§9 Pictures", [&] { pictures(out, settings, system, study.published); });

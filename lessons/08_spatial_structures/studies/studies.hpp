@@ -26,22 +26,22 @@ void s02_bounding_volumes(OutputFolder& out, const Settings& settings);
 // §5: the teaching and the production traversal of one BVH (studies/s05_bvh_layouts.cpp).
 void s05_bvh_layouts(OutputFolder& out, const Settings& settings);
 
-// §6: cost per ray against the scene's size, every structure (studies/s06_scaling.cpp).
-void s06_scaling(OutputFolder& out, const Settings& settings);
+// §6: cost per ray against the scene's size, every structure (studies/s06a_scaling.cpp).
+void s06a_scaling(OutputFolder& out, const Settings& settings);
 
-// §6: the grid's resolution swept (studies/s06_grid_resolution.cpp).
-void s06_grid_resolution(OutputFolder& out, const Settings& settings);
+// §6: the grid's resolution swept (studies/s06b_grid_resolution.cpp).
+void s06b_grid_resolution(OutputFolder& out, const Settings& settings);
 
-// §6: the BVH's leaf size swept (studies/s06_bvh_leaf_size.cpp).
-void s06_bvh_leaf_size(OutputFolder& out, const Settings& settings);
+// §6: the BVH's leaf size swept (studies/s06c_bvh_leaf_size.cpp).
+void s06c_bvh_leaf_size(OutputFolder& out, const Settings& settings);
 
-// §6: the octree's depth swept (studies/s06_octree_depth.cpp).
-void s06_octree_depth(OutputFolder& out, const Settings& settings);
+// §6: the octree's depth swept (studies/s06d_octree_depth.cpp).
+void s06d_octree_depth(OutputFolder& out, const Settings& settings);
 
 // §6: the demonstration's picture on one thread and on two
-// (studies/s06_render_threads.cpp); `picture` is what both must draw.
-void s06_render_threads(OutputFolder& out, const Settings& settings, const TriangleAccel& accel,
-                        const Image& picture);
+// (studies/s06e_render_threads.cpp); `picture` is what both must draw.
+void s06e_render_threads(OutputFolder& out, const Settings& settings, const TriangleAccel& accel,
+                         const Image& picture);
 
 // §8: lesson 09's Monte Carlo form factors with the visibility by brute force
 // and through a BVH (studies/s08_form_factor_visibility.cpp).

@@ -34,8 +34,8 @@ struct Settings {
 void s06_three_patch(OutputFolder& out);
 
 // §8: the study's system, the box's hemicube form factors made reciprocal
-// (studies/s08_form_factors.cpp).
-StudySystem s08_form_factors(OutputFolder& out, const Settings& settings);
+// (studies/s08a_form_factors.cpp).
+StudySystem s08a_form_factors(OutputFolder& out, const Settings& settings);
 
 // What the solver study measured, for the studies after it.
 struct SolverStudy {
@@ -46,20 +46,20 @@ struct SolverStudy {
 };
 
 // §8: every solver at every reflectance scale, on one thread
-// (studies/s08_solver_study.cpp).
-SolverStudy s08_solver_study(OutputFolder& out, const Settings& settings, const StudySystem& system);
+// (studies/s08b_solver_study.cpp).
+SolverStudy s08b_solver_study(OutputFolder& out, const Settings& settings, const StudySystem& system);
 
-// §8: Jacobi's sweep on one thread and on all (studies/s08_jacobi_threads.cpp).
-void s08_jacobi_threads(OutputFolder& out, const StudySystem& system, const std::vector<Color>& published);
+// §8: Jacobi's sweep on one thread and on all (studies/s08c_jacobi_threads.cpp).
+void s08c_jacobi_threads(OutputFolder& out, const StudySystem& system, const std::vector<Color>& published);
 
 // §8: Jacobi in the box closed by a front wall, grey, against its bound
-// (studies/s08_closed_box.cpp); adds its rows to study.growth and writes it.
-void s08_closed_box(OutputFolder& out, const Settings& settings, const StudySystem& system,
-                    SolverStudy& study);
+// (studies/s08d_closed_box.cpp); adds its rows to study.growth and writes it.
+void s08d_closed_box(OutputFolder& out, const Settings& settings, const StudySystem& system,
+                     SolverStudy& study);
 
 // §8: the study's tables and plots, residual and error per sweep and per
-// second (studies/s08_solver_study.cpp).
-void s08_study_plots(OutputFolder& out, const Settings& settings, const SolverStudy& study);
+// second (studies/s08e_study_plots.cpp).
+void s08e_study_plots(OutputFolder& out, const Settings& settings, const SolverStudy& study);
 
 // §10: the figure, the box at about 2,000 patches by progressive refinement
 // with hemicube rows on demand (studies/s10_figure.cpp).

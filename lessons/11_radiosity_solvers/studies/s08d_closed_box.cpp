@@ -18,7 +18,7 @@
 
 namespace illum::lesson11 {
 
-void s08_closed_box(OutputFolder& out, const Settings& settings, const StudySystem& s, SolverStudy& study) {
+void s08d_closed_box(OutputFolder& out, const Settings& settings, const StudySystem& s, SolverStudy& study) {
   Table& growth = study.growth;
   std::vector<Patch> closed = s.scene.patches;
   const int divisions = std::max(1, static_cast<int>(std::ceil(556.0 / s.edge)));

@@ -10,7 +10,7 @@
 
 namespace illum::lesson11 {
 
-void s08_jacobi_threads(OutputFolder& out, const StudySystem& s, const std::vector<Color>& published) {
+void s08c_jacobi_threads(OutputFolder& out, const StudySystem& s, const std::vector<Color>& published) {
   Table jacobi_threads({"threads", "ms per Jacobi sweep"});
   const int threads = available_threads();
   for (int t : {1, threads}) {

@@ -16,7 +16,7 @@
 
 namespace illum::lesson11 {
 
-StudySystem s08_form_factors(OutputFolder& out, const Settings& settings) {
+StudySystem s08a_form_factors(OutputFolder& out, const Settings& settings) {
   StudySystem s;
   s.edge = settings.quick ? 220.0 : 75.0;
   s.resolution = settings.quick ? 32 : 96;

@@ -7,7 +7,7 @@
 
 namespace illum::lesson08 {
 
-void s06_bvh_leaf_size(OutputFolder& out, const Settings& settings) {
+void s06c_bvh_leaf_size(OutputFolder& out, const Settings& settings) {
   const bool quick = settings.quick;
   const KnobStudy study{
       .name = "bvh_leaf_size",

@@ -31,7 +31,7 @@ PlotSpec per_ray_plot(const std::string& title, const std::string& y_label, cons
 
 }  // namespace
 
-void s06_scaling(OutputFolder& out, const Settings& settings) {
+void s06a_scaling(OutputFolder& out, const Settings& settings) {
   const bool quick = settings.quick;
   const std::vector<std::size_t> sizes =
       quick ? std::vector<std::size_t>{100, 1000, 10000}

@@ -7,7 +7,7 @@
 
 namespace illum::lesson08 {
 
-void s06_grid_resolution(OutputFolder& out, const Settings& settings) {
+void s06b_grid_resolution(OutputFolder& out, const Settings& settings) {
   const bool quick = settings.quick;
   const KnobStudy study{
       .name = "grid_resolution",

@@ -7,7 +7,7 @@
 
 namespace illum::lesson08 {
 
-void s06_octree_depth(OutputFolder& out, const Settings& settings) {
+void s06d_octree_depth(OutputFolder& out, const Settings& settings) {
   const bool quick = settings.quick;
   knob_study(
       out, quick,

@@ -14,8 +14,8 @@
 
 namespace illum::lesson08 {
 
-void s06_render_threads(OutputFolder& out, const Settings& settings, const TriangleAccel& accel,
-                        const Image& picture) {
+void s06e_render_threads(OutputFolder& out, const Settings& settings, const TriangleAccel& accel,
+                         const Image& picture) {
   const PictureSize size = picture_size(settings.quick);
   const PinholeCamera camera = flake_camera(size.width, size.height);
   Table table({"threads", "samples per pixel", "seconds", "busiest thread's CPU seconds", "Mrays per second",
