@@ -138,12 +138,16 @@ def problems_in(path: Path, root: Path) -> list[str]:
     return found
 
 
+def problems_found(root: Path) -> list[str]:
+    root = root.resolve()
+    return [p for path in sources(root) for p in problems_in(path, root)]
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--root", type=Path, default=ROOT, help="the source tree (default: this checkout)")
     args = parser.parse_args(argv)
-    root = args.root.resolve()
-    problems = [p for path in sources(root) for p in problems_in(path, root)]
+    problems = problems_found(args.root)
     for problem in problems:
         print(problem)
     print("one home: " + ("every helper in its home" if not problems else f"FAILED ({len(problems)} problem(s))"))

@@ -80,5 +80,102 @@ class ParseTest(unittest.TestCase):
         self.assertNotIn("lesson03 --out", task_tables.student_commands("03", has_program=False))
 
 
+
+import code_map  # noqa: E402
+
+README = """# Lesson 01 — x
+
+> Notes: x.
+
+**Read in this order:**
+
+1. The library: [`geometry/thing.hpp`](../../lib/illum/geometry/thing.hpp), [`core/util.hpp`](../../lib/illum/core/util.hpp).
+2. The demonstration, [`main.cpp`](main.cpp).
+3. The studies: [`s02_cost.cpp`](studies/s02_cost.cpp) (§2).
+
+## 1. The idea
+
+## 2. What it costs: a study
+
+<!-- code-map: begin (written by tools/task_tables.py --update) -->
+<!-- code-map: end -->
+"""
+
+
+class CodeMapTest(unittest.TestCase):
+    """The lesson layout and its "Where the code is" blocks (tools/code_map.py)."""
+
+    def tree(self, folder: str, readme: str = README, study: str = "// §2 What it costs: the cost.\n"
+             "void s02_cost() {}\n", main: str = 'run_section(id, "§1 The idea", f);\n') -> Path:
+        root = Path(folder)
+        files = {
+            "lessons/01_x/README.md": readme,
+            "lessons/01_x/main.cpp": main,
+            "lessons/01_x/studies/s02_cost.cpp": study,
+            "lessons/01_x/shapes.hpp": "#pragma once\n",
+            "exercises/01_x/README.md": "# Exercise 01\n\n" + code_map.BEGIN + "\n" + code_map.END + "\n",
+            "exercises/01_x/thing.cpp": "// stub\n",
+            "lib/illum/geometry/thing.hpp": "", "lib/illum/geometry/thing.cpp": "",
+            "lib/illum/core/util.hpp": "", "lib/illum/core/util.cpp": "",
+            "tests/01_x/grading.cpp": "", "tests/radiosity/util.cpp": "", "tests/radiosity/other.cpp": "",
+            "slides/01_x.md": "",
+        }
+        for name, text in files.items():
+            (root / name).parent.mkdir(parents=True, exist_ok=True)
+            (root / name).write_text(text, encoding="utf-8")
+        return root
+
+    def test_block_links_everything_relative_to_its_readme(self) -> None:
+        with tempfile.TemporaryDirectory() as folder:
+            root = self.tree(folder)
+            lesson = code_map.code_map(root, "01", root / "lessons/01_x/README.md")
+            exercise = code_map.code_map(root, "01", root / "exercises/01_x/README.md")
+        self.assertIn("[`main.cpp`](main.cpp) (the demonstration)", lesson)
+        self.assertIn("[`studies/s02_cost.cpp`](studies/s02_cost.cpp) (§2)", lesson)
+        self.assertIn("[`shapes.hpp`](shapes.hpp) (helpers)", lesson)
+        # The unit's header, never its reference source (the student edition leaves it out).
+        self.assertIn("[`geometry/thing.hpp`](../../lib/illum/geometry/thing.hpp) (exercise unit)", lesson)
+        self.assertNotIn("geometry/thing.cpp", lesson)
+        self.assertIn("[`core/util.hpp`](../../lib/illum/core/util.hpp) · [`.cpp`](../../lib/illum/core/util.cpp)",
+                      lesson)
+        self.assertIn("[`tests/01_x/grading.cpp`](../../tests/01_x/grading.cpp)", lesson)
+        self.assertIn("also [`tests/radiosity/util.cpp`]", lesson)  # named after a library pair
+        self.assertNotIn("other.cpp", lesson)
+        self.assertIn("[`slides/01_x.md`](../../slides/01_x.md)", lesson)
+        # The exercise's block links back to the lesson text and its program.
+        self.assertIn("[`lessons/01_x/README.md`](../../lessons/01_x/README.md)", exercise)
+        self.assertIn("[`main.cpp`](../../lessons/01_x/main.cpp)", exercise)
+        self.assertIn("[`thing.cpp`](thing.cpp)", exercise)
+
+    def test_update_then_check(self) -> None:
+        with tempfile.TemporaryDirectory() as folder:
+            root = self.tree(folder)
+            self.assertEqual(len(code_map.update(root, write=False)), 2)  # both blocks stale
+            self.assertEqual(code_map.update(root, write=True), [])
+            self.assertEqual(code_map.update(root, write=False), [])
+            self.assertEqual(code_map.layout_problems(root), [])
+
+    def test_layout_rules(self) -> None:
+        cases = {
+            "banner": (dict(study="// §2 Something else.\nvoid s02_cost() {}\n"), "the first line must be"),
+            "entry point": (dict(study="// §2 What it costs.\nvoid run() {}\n"), "defines no function s02_cost"),
+            "label": (dict(main='run_section(id, "§1 Another idea", f);\n'), "does not agree"),
+            "no section": (dict(main='run_section(id, "§7 The idea", f);\n'), "names no section"),
+            "no list": (dict(readme=README.replace("**Read in this order:**", "Read this.")), "must open"),
+            "study unlisted": (dict(readme=README.replace("[`s02_cost.cpp`](studies/s02_cost.cpp) (§2)", "none")),
+                               "in file-name order"),
+            "main unlisted": (dict(readme=README.replace("[`main.cpp`](main.cpp)", "main")), "does not link main.cpp"),
+            "unit unlisted": (dict(readme=README.replace("[`geometry/thing.hpp`](../../lib/illum/geometry/thing.hpp), ", "")),
+                              "header of an exercise unit"),
+            "unit source": (dict(readme=README.replace("geometry/thing.hpp`](../../lib/illum/geometry/thing.hpp)",
+                                                       "geometry/thing.cpp`](../../lib/illum/geometry/thing.cpp)")),
+                            "a reference unit"),
+            "broken link": (dict(readme=README.replace("core/util.hpp)", "core/gone.hpp)")), "does not exist"),
+        }
+        for name, (change, words) in cases.items():
+            with self.subTest(name), tempfile.TemporaryDirectory() as folder:
+                problems = code_map.layout_problems(self.tree(folder, **change))
+                self.assertTrue(any(words in p for p in problems), problems)
+
 if __name__ == "__main__":
     unittest.main()
