@@ -307,3 +307,37 @@ TEST_SUITE("lesson08") {
                   "visited first (bvh_traversal.hpp), its hit at s = 1 prunes B's leaves: 1 triangle test");
   }
 }
+
+TEST_SUITE("lesson08") {
+  TEST_CASE(
+      "hard case: slab test of an empty box (lo > hi, as the default Aabb) is empty, of a flat one is not" *
+      doctest::description("task=1")) {
+    // Contract of slab_clip (slab_test.hpp): an empty box contains no point. The default Aabb{}
+    // has lo = +∞ and hi = −∞: the products give s_near = (+∞ − P0)·(1/ω) and s_far =
+    // (−∞ − P0)·(1/ω), ±∞ swapped into [−∞, +∞] on every axis, and a clip that trusts them
+    // returns the whole range [0, ∞]: a box that holds nothing would be entered by every ray.
+    const Ray ray = Ray::toward(Point3(0.3, -0.2, 0.1), Vec3(1.0, 2.0, -0.5));
+    const Ray parallel(Point3(0.3, -0.2, 0.1), Vec3(0, 0, 1));  // two axes parallel: the 0·∞ branch
+    for (const double slack : {0.0, slab_far_slack}) {
+      INFO("far_slack " << slack);
+      CHECK_MESSAGE(slab_clip(SlabRay(ray), Aabb{}, ray.range, slack).empty(),
+                    "the default Aabb{} is empty: no ray enters it");
+      CHECK(slab_clip(SlabRay(parallel), Aabb{}, parallel.range, slack).empty());
+      CHECK(slab_clip(SlabRay(ray), Aabb{}, Interval::everything(), slack).empty());
+      // Empty on one axis only: y runs from 2 down to 1. The x and z slabs alone would
+      // admit the ray; the box still holds no point.
+      const Aabb inverted = box(Point3(-5, 2, -5), Point3(5, 1, 5));
+      CHECK_MESSAGE(slab_clip(SlabRay(ray), inverted, ray.range, slack).empty(),
+                    "lo.y = 2 > hi.y = 1: an empty box, though its x and z slabs hold the ray");
+      CHECK(slab_clip(SlabRay(parallel), inverted, parallel.range, slack).empty());
+    }
+    // A flat box (lo.z = hi.z = 1, a box around a triangle in the plane z = 1) is not empty:
+    // the ray (0, 0, 0) + s(0, 0, 1) meets it at s = 1 exactly, a closed interval [1, 1].
+    const Aabb flat = box(Point3(-1, -1, 1), Point3(1, 1, 1));
+    const Ray up(Point3(0.0), Vec3(0, 0, 1));
+    const Interval at = slab_clip(SlabRay(up), flat, up.range);
+    REQUIRE_FALSE(at.empty());
+    CHECK(at.lo == 1.0);
+    CHECK(at.hi == 1.0);
+  }
+}

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "illum/accel/slab_test.hpp"
@@ -41,9 +42,16 @@ Octree::Octree(const TriangleSet& set, const OctreeSettings& settings) : triangl
     boxes[i] = bounds_of(triangles_[i]);
     bounds.grow(boxes[i]);
   }
-  // A cube around the bounds, a hair larger so that no triangle lies on its faces by rounding.
+  // A cube around the bounds, larger so that no triangle lies on its faces by rounding: by a
+  // hair of its size and by 64 ulps of the largest coordinate (c ± half is rounded there: a
+  // small mesh far from the origin would otherwise stick out of its own cube).
   const Vec3 e = bounds.extent();
-  const double half = 0.5 * std::max({e.x, e.y, e.z}) * (1.0 + 1e-9) + 1e-12;
+  const double largest = std::max({std::abs(bounds.lo.x), std::abs(bounds.lo.y), std::abs(bounds.lo.z),
+                                   std::abs(bounds.hi.x), std::abs(bounds.hi.y), std::abs(bounds.hi.z)});
+  const double longest = std::max({e.x, e.y, e.z});
+  const double half =
+      0.5 * longest + std::max({1e-9 * longest, 64.0 * std::numeric_limits<double>::epsilon() * largest,
+                                std::numeric_limits<double>::min()});
   const Point3 c = bounds.center();
   nodes_.push_back({});
   nodes_[0].box.lo = c - Vec3(half);
