@@ -221,7 +221,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // along an axis; then the same ray restricted to [s, s] at its hit.
   Rng& rng = in.rng();
   TraversalCounters counters;
-  const int ray_budget = 160;
+  const int ray_budget = 96;
   const auto compare = [&](const Ray& ray) {
     const auto expected = brute.intersect(ray, counters);
     const bool blocked = brute.occluded(ray, counters);
@@ -319,7 +319,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const int depth = static_cast<int>(in.below(9));
   const EffectsPlan plan = in.below(2) == 0 ? plan_effects(scene, depth) : full_effects(depth);
   const std::uint64_t tree_limit = (std::uint64_t{2} << plan.max_depth) - 1;  // 2^(d+1) − 1
-  for (int k = 0; k < 24 && !out_of_time(); ++k) {
+  for (int k = 0; k < 12 && !out_of_time(); ++k) {
     const Point3 eye = centre + 2.0 * extent * random_direction(rng);
     const Point3 target =
         centre + 0.4 * extent * Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
