@@ -280,6 +280,31 @@ TEST_SUITE("stability") {
         }
       }
     }
+    // A mesh in the plane z = 0, which is where the octree splits its cube first (and the grid may
+    // put a boundary): rays from just above or below the plane, leaving a point near it, with the
+    // range [s, s] at their hit and [s, ∞) from it. The cells on either side are entered or left
+    // at parameters a few ulps from s, either way.
+    {
+      const TriangleSet floor = plane_mesh(2, 0.0, 0.0, 2.0, 6);
+      Rng rng(2403);
+      std::vector<Ray> rays;
+      const BruteForce brute(floor);
+      TraversalCounters counters;
+      while (rays.size() < 1200) {
+        const Point3 o(rng.uniform(-0.9, 0.9), rng.uniform(-0.9, 0.9),
+                       (rng.uniform() < 0.5 ? 1.0 : -1.0) * std::pow(10.0, rng.uniform(-4.0, -0.5)));
+        const Vec3 d = normalize(Vec3(rng.uniform(-1, 1), rng.uniform(-1, 1), -o.z * rng.uniform(0.1, 3.0)));
+        if (const auto hit = brute.intersect(Ray(o, d), counters)) {
+          rays.emplace_back(o, d, Interval(hit->hit.s, hit->hit.s));
+          rays.emplace_back(o, d, Interval(hit->hit.s, infinity));
+        }
+      }
+      const auto reference = brute_force_answers(floor, rays);
+      for (const auto& s : every_structure(floor)) {
+        INFO("a mesh on z = 0, ranges beginning at its hits, ", s.name);
+        CHECK(disagreements(*s.accel, floor, rays, reference) == 0);
+      }
+    }
     // The same on a soup: every hit of brute force, asked for again with the range [s, s], and with
     // [s⁺, s⁺] one double past it (a miss, unless another triangle lies there).
     const TriangleSet soup = illum::test08::triangle_soup(500, 2401);

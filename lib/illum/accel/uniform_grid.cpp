@@ -86,22 +86,21 @@ UniformGrid::UniformGrid(const TriangleSet& set, const GridSettings& settings) :
   }
 }
 
-std::optional<CellIndex> UniformGrid::point_cell(const Ray& ray) const {
-  // The 3DDA walks pieces of positive length only (grid_dda.hpp); a range [t, t] is the one
-  // point ray.at(t), and the closed-interval contract still asks for a triangle through it.
-  const Interval inside = slab_clip(SlabRay(ray), frame_.bounds, ray.range);
-  if (inside.empty() || inside.lo != inside.hi) return std::nullopt;
-  const Point3 p = ray.at(inside.lo);
-  const Vec3 h = frame_.cell_size();
-  CellIndex cell;
-  for (int a = 0; a < 3; ++a)
-    cell[a] = std::clamp(static_cast<int>(std::floor((p[a] - frame_.bounds.lo[a]) / h[a])), 0,
-                         frame_.cells[a] - 1);  // a cell of either side of a boundary lists its triangles
-  return cell;
+Ray UniformGrid::walked(const Ray& ray) const {
+  // The segment the 3DDA walks: the range widened at both ends by a relative 1e-9 and by the
+  // listing slack (a length in s at least as long in every coordinate, |ω[a]| ≤ 1). The walk
+  // covers pieces of positive length only (grid_dda.hpp), while a range is closed: [t, t]
+  // holds the point ray.at(t), and a triangle whose computed hit is t may lie in a cell
+  // entered or left a few ulps from t. The triangles are tested against the range itself.
+  Ray walk = ray;
+  walk.range = Interval(ray.range.lo - (1e-9 * std::abs(ray.range.lo) + slack_),
+                        ray.range.hi + (1e-9 * std::abs(ray.range.hi) + slack_));
+  return walk;
 }
 
 std::optional<AccelHit> UniformGrid::intersect(const Ray& ray, TraversalCounters& counters) const {
   ++counters.rays;
+  if (ray.range.empty()) return std::nullopt;
   Ray probe = ray;
   std::optional<AccelHit> best;
   const auto test_cell = [&](const CellIndex& cell) {
@@ -115,12 +114,8 @@ std::optional<AccelHit> UniformGrid::intersect(const Ray& ray, TraversalCounters
       }
     }
   };
-  DdaWalk walk = dda_start(frame_, ray);
-  if (walk.done) {
-    if (const auto cell = point_cell(ray)) test_cell(*cell);
-    return best;
-  }
-  for (; !walk.done; dda_step(frame_, ray, walk)) {
+  const Ray segment = walked(ray);
+  for (DdaWalk walk = dda_start(frame_, segment); !walk.done; dda_step(frame_, segment, walk)) {
     test_cell(walk.cell);
     // The hit lies in this cell: nothing closer remains. The exit is a rounded crossing
     // (P0 + s·ω reaching a rounded boundary): a hit within a few ulps of |s| of it may lie in
@@ -135,6 +130,7 @@ std::optional<AccelHit> UniformGrid::intersect(const Ray& ray, TraversalCounters
 
 bool UniformGrid::occluded(const Ray& ray, TraversalCounters& counters) const {
   ++counters.rays;
+  if (ray.range.empty()) return false;
   const auto blocked_in = [&](const CellIndex& cell) {
     ++counters.nodes_visited;
     const std::size_t c = cell_number(cell);
@@ -144,13 +140,9 @@ bool UniformGrid::occluded(const Ray& ray, TraversalCounters& counters) const {
     }
     return false;
   };
-  DdaWalk walk = dda_start(frame_, ray);
-  if (walk.done) {
-    const auto cell = point_cell(ray);
-    return cell && blocked_in(*cell);
-  }
   // Any hit in range will do, wherever it lies.
-  for (; !walk.done; dda_step(frame_, ray, walk))
+  const Ray segment = walked(ray);
+  for (DdaWalk walk = dda_start(frame_, segment); !walk.done; dda_step(frame_, segment, walk))
     if (blocked_in(walk.cell)) return true;
   return false;
 }

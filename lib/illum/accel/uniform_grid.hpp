@@ -13,9 +13,11 @@
 // Rounding: the grid's box is padded, and each triangle listed in the cells
 // its box touches widened, by ulps of the largest coordinate (not of the
 // scene's size: a small mesh far from the origin, a flat floor at z = 10⁸);
-// a hit within ulps of the cell's exit is confirmed in the next cell; a
-// range of zero length [t, t] (which the 3DDA does not walk) is tested in
-// the cell of its one point. So the grid returns brute force's closest hit.
+// a hit within ulps of the cell's exit is confirmed in the next cell; and
+// the 3DDA walks the ray's range widened a little at both ends, so that a
+// range of zero length [t, t] (a point, which the 3DDA alone would not walk)
+// or one that begins or ends exactly at a hit reaches the cells around it.
+// So the grid returns brute force's closest hit.
 //
 // Cost: with about one triangle per cell the ray crosses O(resolution) cells,
 // and resolution ∝ N^⅓ for a fixed number of triangles per cell; memory grows
@@ -47,8 +49,8 @@ class UniformGrid final : public TriangleAccel {
   const GridFrame& frame() const { return frame_; }
 
  private:
-  // The cell of a range [t, t] inside the grid, whose point the 3DDA does not visit.
-  std::optional<CellIndex> point_cell(const Ray& ray) const;
+  // The ray with the range the 3DDA walks: ray.range widened a little at both ends.
+  Ray walked(const Ray& ray) const;
   std::size_t cell_number(const CellIndex& c) const {
     return (static_cast<std::size_t>(c[2]) * frame_.cells[1] + c[1]) * frame_.cells[0] + c[0];
   }
