@@ -47,7 +47,7 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
       ->check(CLI::Range(0, 16384));
   cmd.add_option("--height", o.height, "Image height (default: in proportion)")->check(CLI::Range(0, 16384));
   cmd.add_option("--depth", o.depth, "Depth limit of the ray tree")
-      ->check(CLI::Range(0, 64))
+      ->check(CLI::Range(0, illum::deepest_depth_limit))
       ->capture_default_str();
   cmd.add_flag("--no-plan", o.no_plan,
                "Trace every kind of ray at every hit (the notes' algorithm as written)");

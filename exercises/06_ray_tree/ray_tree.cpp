@@ -16,7 +16,9 @@ namespace illum {
 // recorded with record_shadow_ray. Opaque plan (no shadow_attenuation): 1 or 0
 // by tracer.scene.occluded. Otherwise follow the ray through the scene: an
 // opaque surface gives 0, a transmissive one multiplies by its k_t and the
-// ray goes on from it (another spawn_ray_to) towards the same light.
+// ray goes on from it (another spawn_ray_to) towards the same light. The walk
+// must end: return 0 right after the surface that brings every channel below
+// min_shadow_transmission, or right after the max_shadow_crossings-th surface.
 Color shadow_transmission(const Tracer& tracer, const SurfaceHit& hit, const Point3& light_position, int node,
                           std::uint32_t light) {
   throw NotImplemented(

@@ -16,6 +16,8 @@ namespace illum {
 // whose entry lies beyond the closest hit so far; at a leaf test every
 // triangle with the range shrunk to the closest hit; at an inner node clip
 // both children (slab_clip with slab_far_slack) and push the farther first.
+// Clip every box, the root too, against the range with both ends widened by
+// a relative 1e-9 (a range [t, t] at a hit on a box's face must reach it).
 // Count each box test in counters.nodes_visited and each triangle test in
 // counters.triangle_tests; count the ray in counters.rays.
 std::optional<AccelHit> bvh_closest_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters) {
@@ -24,7 +26,8 @@ std::optional<AccelHit> bvh_closest_hit(const BvhView& bvh, const Ray& ray, Trav
                        "(lesson 08, §4 \"comprobar (nodo, rayo)\")");
 }
 
-// Task 3b. Any hit: the same walk, returning true at the first triangle hit.
+// Task 3b. Any hit: the same walk, returning true at the first triangle hit;
+// the boxes clipped against ray.range with both ends widened the same way.
 bool bvh_any_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters) {
   throw NotImplemented("bvh_any_hit",
                        "return at the first hit in range; order does not matter (lesson 08, §4)");

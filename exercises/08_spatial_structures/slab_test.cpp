@@ -15,7 +15,8 @@ namespace illum {
 // products (lo[a] − P0[a])·inverse[a] and (hi[a] − P0[a])·inverse[a]. Where
 // inverse[a] is not finite the ray is parallel to the slab: keep the range if
 // lo[a] ≤ P0[a] ≤ hi[a], else return Interval::nothing(). Widen each slab's
-// exit by far_slack·|exit|.
+// exit by far_slack·|exit|. An empty box (lo[a] > hi[a] on an axis, as the
+// default Aabb{}) gives Interval::nothing().
 Interval slab_clip(const SlabRay& ray, const Aabb& box, Interval range, double far_slack) {
   throw NotImplemented("slab_clip",
                        "intersect the ray's range with the three slab intervals; branch on a parallel axis "

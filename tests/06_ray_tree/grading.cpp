@@ -168,6 +168,75 @@ TEST_SUITE("lesson06") {
     check_vec(shadow_transmission(tracer, p, Point3(0, 0, 4)), Color(0.0));
   }
 
+  TEST_CASE("hard case: a shadow walk through a stack of glass panes ends once the light left is negligible" *
+            doctest::description("task=4")) {
+    // Thirty square panes z = 1, 2, …, 30 of glass with k_t = 0.5 between the point (the
+    // origin) and the light at z = 40. Crossing n panes leaves 0.5ⁿ: 0.5¹⁹ = 1.9·10⁻⁶ is
+    // still at least 10⁻⁶, 0.5²⁰ = 9.5·10⁻⁷ is below it. Contract of shadow_transmission
+    // (ray_tree.hpp): the walk ends with 0 right after the 20th pane, having cast 20 shadow
+    // rays; without the cut-off it casts 31 and returns 0.5³⁰.
+    REQUIRE(min_shadow_transmission == 1e-6);
+    Scene scene;
+    const auto floor = add_material(scene, material("floor"));
+    Material glass = material("glass pane");
+    glass.transmittance = Color(0.5);
+    glass.index_of_refraction = 1.5;
+    const auto g = add_material(scene, glass);
+    for (int k = 1; k <= 30; ++k) add_floor(scene, "pane", k, 1.0, g);
+    const SurfaceHit p = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), floor);
+    TraceStats stats;
+    const EffectsPlan plan = full_effects(0);
+    const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+    const Color s = shadow_transmission(tracer, p, Point3(0, 0, 40));
+    CHECK_MESSAGE(s == Color(0.0),
+                  "0.5²⁰ < min_shadow_transmission in every channel: the light counts as "
+                  "blocked (contract of shadow_transmission, ray_tree.hpp)");
+    CHECK_MESSAGE(stats.rays.shadow == 20,
+                  "one shadow ray per pane up to the 20th, where the walk ends: 20 rays, "
+                  "got "
+                      << stats.rays.shadow);
+    // One channel still bright keeps the walk going: k_t = (0.5, 0.5, 1) loses red and green
+    // at pane 20 but blue stays 1, through all 30 panes: 31 rays, (0, 0, 1)·… = 0.5³⁰ in red.
+    scene.materials[g].transmittance = Color(0.5, 0.5, 1.0);
+    stats = TraceStats{};
+    const Color blue = shadow_transmission(tracer, p, Point3(0, 0, 40));
+    CHECK_MESSAGE(blue.b == 1.0, "blue is not attenuated: the cut-off needs every channel below 10⁻⁶");
+    CHECK(blue.r == doctest::Approx(std::pow(0.5, 30)).epsilon(1e-12));
+    CHECK(stats.rays.shadow == 31);
+  }
+
+  TEST_CASE("hard case: a shadow walk through more clear panes than max_shadow_crossings stops at the limit" *
+            doctest::description("task=4")) {
+    // 300 panes of perfectly clear glass (k_t = 1): the transmission never falls, so only the
+    // count can end the walk. Contract of shadow_transmission (ray_tree.hpp): right after the
+    // 256th surface crossed the walk ends with 0: 256 shadow rays, not 301.
+    REQUIRE(max_shadow_crossings == 256);
+    Scene scene;
+    const auto floor = add_material(scene, material("floor"));
+    Material clear = material("clear glass");
+    clear.transmittance = Color(1.0);
+    clear.index_of_refraction = 1.5;
+    const auto g = add_material(scene, clear);
+    for (int k = 1; k <= 300; ++k) add_floor(scene, "pane", 0.1 * k, 1.0, g);
+    const SurfaceHit p = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), floor);
+    TraceStats stats;
+    const EffectsPlan plan = full_effects(0);
+    const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+    const Color s = shadow_transmission(tracer, p, Point3(0, 0, 40));
+    CHECK_MESSAGE(s == Color(0.0),
+                  "more than max_shadow_crossings transmissive surfaces: the light counts as "
+                  "blocked (the stated cut-off)");
+    CHECK_MESSAGE(stats.rays.shadow == 256,
+                  "the walk stops after the 256th crossing: got " << stats.rays.shadow);
+    // Below the limit the same clear glass lets everything through: 200 panes, 201 rays, 1.
+    Scene fewer = scene;
+    fewer.primitives.erase(fewer.primitives.begin() + 200, fewer.primitives.end());
+    const Tracer tracer_fewer{.scene = fewer, .plan = plan, .stats = &stats};
+    stats = TraceStats{};
+    CHECK(shadow_transmission(tracer_fewer, p, Point3(0, 0, 40)) == Color(1.0));
+    CHECK(stats.rays.shadow == 201);
+  }
+
   TEST_CASE("evaluate: one diffuse and specular ball, ambient + diffuse + Phong by hand" *
             doctest::description("task=3,4,5,6")) {
     Scene scene;

@@ -14,6 +14,7 @@
 #include "illum/accel/bvh_traversal.hpp"
 #include "illum/accel/grid_dda.hpp"
 #include "illum/accel/slab_test.hpp"
+#include "illum/core/random.hpp"
 
 using namespace illum;
 
@@ -305,5 +306,143 @@ TEST_SUITE("lesson08") {
     CHECK_MESSAGE(c.triangle_tests == 1,
                   "A and B are entered at the same s = 0.5: on a tie the first child (node + 1, here A) is "
                   "visited first (bvh_traversal.hpp), its hit at s = 1 prunes B's leaves: 1 triangle test");
+  }
+}
+
+TEST_SUITE("lesson08") {
+  TEST_CASE(
+      "hard case: slab test of an empty box (lo > hi, as the default Aabb) is empty, of a flat one is not" *
+      doctest::description("task=1")) {
+    // Contract of slab_clip (slab_test.hpp): an empty box contains no point. The default Aabb{}
+    // has lo = +∞ and hi = −∞: the products give s_near = (+∞ − P0)·(1/ω) and s_far =
+    // (−∞ − P0)·(1/ω), ±∞ swapped into [−∞, +∞] on every axis, and a clip that trusts them
+    // returns the whole range [0, ∞]: a box that holds nothing would be entered by every ray.
+    const Ray ray = Ray::toward(Point3(0.3, -0.2, 0.1), Vec3(1.0, 2.0, -0.5));
+    const Ray parallel(Point3(0.3, -0.2, 0.1), Vec3(0, 0, 1));  // two axes parallel: the 0·∞ branch
+    for (const double slack : {0.0, slab_far_slack}) {
+      INFO("far_slack " << slack);
+      CHECK_MESSAGE(slab_clip(SlabRay(ray), Aabb{}, ray.range, slack).empty(),
+                    "the default Aabb{} is empty: no ray enters it");
+      CHECK(slab_clip(SlabRay(parallel), Aabb{}, parallel.range, slack).empty());
+      CHECK(slab_clip(SlabRay(ray), Aabb{}, Interval::everything(), slack).empty());
+      // Empty on one axis only: y runs from 2 down to 1. The x and z slabs alone would
+      // admit the ray; the box still holds no point.
+      const Aabb inverted = box(Point3(-5, 2, -5), Point3(5, 1, 5));
+      CHECK_MESSAGE(slab_clip(SlabRay(ray), inverted, ray.range, slack).empty(),
+                    "lo.y = 2 > hi.y = 1: an empty box, though its x and z slabs hold the ray");
+      CHECK(slab_clip(SlabRay(parallel), inverted, parallel.range, slack).empty());
+    }
+    // A flat box (lo.z = hi.z = 1, a box around a triangle in the plane z = 1) is not empty:
+    // the ray (0, 0, 0) + s(0, 0, 1) meets it at s = 1 exactly, a closed interval [1, 1].
+    const Aabb flat = box(Point3(-1, -1, 1), Point3(1, 1, 1));
+    const Ray up(Point3(0.0), Vec3(0, 0, 1));
+    const Interval at = slab_clip(SlabRay(up), flat, up.range);
+    REQUIRE_FALSE(at.empty());
+    CHECK(at.lo == 1.0);
+    CHECK(at.hi == 1.0);
+  }
+}
+
+TEST_SUITE("lesson08") {
+  TEST_CASE(
+      "hard case: BVH, a range [t, t] or [0, t] ending exactly at a hit on a box's face still finds it" *
+      doctest::description("task=1,3a,3b")) {
+    // Triangle A lies in the plane x = 0.37, so its leaf box is flat there and the root box (A and
+    // B, which lies at x ≤ −0.5) has its +x face there too. A ray along −x from x0 enters both boxes
+    // at the slab entry (x0 − 0.37), rounded; lesson 03's test gives the hit's s its own way, and
+    // about one ray in ten finds the entry an ulp past s. Ranges are closed: [s, s] holds s, and so
+    // does [0, s], a shadow ray ending exactly on the surface; brute force returns the hit. Contract
+    // of bvh_closest_hit and bvh_any_hit (bvh_traversal.hpp): every box, the root's included, is
+    // clipped against the range with its far end widened by a relative 1e-9, so the box is entered.
+    const double c = 0.37;
+    const Triangle a(Point3(c, -1.1, -0.9), Point3(c, 1.3, -0.8), Point3(c, 0.1, 1.2));
+    const Triangle b(Point3(-2.0, -1.0, -1.0), Point3(-0.5, 1.0, -1.0), Point3(-1.0, 0.0, 1.0));
+    const Aabb box_a = bounds_of(a), box_b = bounds_of(b);
+    Aabb root = box_a;
+    root.grow(box_b);
+    REQUIRE(root.hi.x == c);
+    const std::vector<BvhNode> nodes{inner(root, 2), leaf(box_a, 0, 1), leaf(box_b, 1, 1)};
+    const std::vector<Triangle> tris{a, b};
+    const std::vector<std::uint32_t> ids{0, 1};
+    const BvhView view{nodes, tris, ids};
+    Rng rng(0x0824);
+    int entry_past_hit = 0, missed = 0;
+    for (int k = 0; k < 400; ++k) {
+      const Point3 o(c + rng.uniform(0.01, 10.0), rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3));
+      const auto hit = intersect(Ray(o, Vec3(-1, 0, 0)), a);
+      REQUIRE(hit.has_value());
+      const double s = hit->s;
+      entry_past_hit += o.x - c > s ? 1 : 0;  // the slab entry of the face x = c: (c − x0)·(1/−1)
+      for (const Interval range : {Interval(s, s), Interval(0.0, s)}) {
+        const Ray ray(o, Vec3(-1, 0, 0), range);
+        TraversalCounters counters;
+        const auto got = bvh_closest_hit(view, ray, counters);
+        const bool found = got && got->triangle == 0 && got->hit.s == s;
+        const bool blocked = bvh_any_hit(view, ray, counters);
+        if ((!found || !blocked) && ++missed <= 3) {
+          INFO("x0 = " << o.x << ", s = " << s << ", slab entry " << o.x - c << ", range [" << range.lo
+                       << ", " << range.hi << "]");
+          CHECK_MESSAGE(found, "closest hit: the range holds s, the hit on A must be returned");
+          CHECK_MESSAGE(blocked, "any hit: the range holds s, A blocks the ray");
+        }
+      }
+    }
+    CHECK(missed == 0);
+    CHECK_MESSAGE(entry_past_hit > 10, "no ray had its slab entry past the hit: the test proves nothing");
+  }
+
+  TEST_CASE(
+      "hard case: BVH, a range [t, t] or [t, ∞) beginning exactly at a hit on a box's far face finds it" *
+      doctest::description("task=1,3a,3b")) {
+    // The unit cube's top face y = 1 (two triangles) in a leaf of its own, beside a leaf holding a
+    // triangle at y ≤ 0: rays from inside the cube, close under the face, leave it upwards. The hit's
+    // s comes from lesson 03's test, with errors of a few ulps of the face's size; the box's slab
+    // exit (1 − y0)/ω.y, widened by far_slack·|s|, holds errors of |s| only, and when s is small it
+    // falls short of the hit for about one ray in ten. A range beginning at the hit, [s, s] or
+    // [s, ∞), is then clipped to nothing by the box. Contract (bvh_traversal.hpp): both ends of
+    // the range are widened by a relative 1e-9 for the boxes, so the leaf is entered and the hit,
+    // which the closed range holds, is returned.
+    const Triangle top1(Point3(0, 1, 0), Point3(0, 1, 1), Point3(1, 1, 1));
+    const Triangle top2(Point3(0, 1, 0), Point3(1, 1, 1), Point3(1, 1, 0));
+    const Triangle low(Point3(0, -1, 0), Point3(1, 0, 0), Point3(0, 0, 1));
+    Aabb leaf_box = bounds_of(top1), low_box = bounds_of(low);
+    leaf_box.grow(bounds_of(top2));
+    Aabb root = leaf_box;
+    root.grow(low_box);
+    const std::vector<BvhNode> nodes{inner(root, 2), leaf(leaf_box, 0, 2), leaf(low_box, 2, 1)};
+    const std::vector<Triangle> tris{top1, top2, low};
+    const std::vector<std::uint32_t> ids{0, 1, 2};
+    const BvhView view{nodes, tris, ids};
+    Rng rng(0x0825);
+    int exit_short_of_hit = 0, missed = 0, hits = 0;
+    for (int k = 0; k < 1500; ++k) {
+      const Point3 o(rng.uniform(0, 1), 1.0 - std::pow(10.0, rng.uniform(-3, -0.3)), rng.uniform(0, 1));
+      const Vec3 d = normalize(Vec3(rng.uniform(-1, 1), rng.uniform(0.05, 1), rng.uniform(-1, 1)));
+      std::optional<TriangleHit> hit = intersect(Ray(o, d), top1);
+      if (!hit) hit = intersect(Ray(o, d), top2);
+      if (!hit) continue;
+      ++hits;
+      const double s = hit->s;
+      // The leaf's y slab exit, as the slab test computes it, widened by the far slack.
+      const double exit = (1.0 - o.y) * (1.0 / d.y);
+      exit_short_of_hit += exit + slab_far_slack * exit < s ? 1 : 0;
+      for (const Interval range : {Interval(s, s), Interval(s, infinity)}) {
+        const Ray ray(o, d, range);
+        TraversalCounters counters;
+        const auto got = bvh_closest_hit(view, ray, counters);
+        const bool found = got && got->triangle <= 1 && got->hit.s == s;
+        const bool blocked = bvh_any_hit(view, ray, counters);
+        if ((!found || !blocked) && ++missed <= 3) {
+          INFO("origin (" << o.x << ", " << o.y << ", " << o.z << "), s = " << s << ", widened slab exit "
+                          << exit << ", range [" << range.lo << ", " << range.hi << "]");
+          CHECK_MESSAGE(found, "closest hit: the range holds s, the hit on the top face must be returned");
+          CHECK_MESSAGE(blocked, "any hit: the range holds s, the top face blocks the ray");
+        }
+      }
+    }
+    CHECK(hits > 500);
+    CHECK(missed == 0);
+    CHECK_MESSAGE(exit_short_of_hit > 10,
+                  "no ray had its slab exit short of the hit: the test proves nothing");
   }
 }

@@ -25,3 +25,10 @@ add_test(NAME e2e_illum_render COMMAND illum_cli render spheres --quick --out ${
 add_test(NAME e2e_illum_trace
          COMMAND ${CMAKE_COMMAND} -DILLUM=$<TARGET_FILE:illum_cli> -DOUT=${CMAKE_BINARY_DIR}/test-out/illum-trace
                  -P ${CMAKE_CURRENT_SOURCE_DIR}/e2e/expect_trace.cmake)
+
+# A glass cube with faces on x = 0, y = 0 and z = 0, on a floor at z = 0: render and trace finish,
+# with at most three shadow rays per shadow test (the walk through the glass used to run forever).
+add_test(NAME e2e_illum_glass_cube_on_coordinate_planes
+         COMMAND ${CMAKE_COMMAND} -DILLUM=$<TARGET_FILE:illum_cli> -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/e2e/glass_cube_z0.json
+                 -DOUT=${CMAKE_BINARY_DIR}/test-out/illum-glass-cube -P ${CMAKE_CURRENT_SOURCE_DIR}/e2e/expect_glass_cube.cmake)
+set_tests_properties(e2e_illum_glass_cube_on_coordinate_planes PROPERTIES LABELS e2e TIMEOUT 120)

@@ -1,4 +1,5 @@
-# Fuzz targets, one per scene loader (tests/fuzz/fuzz_<loader>.cpp).
+# Fuzz targets (tests/fuzz/fuzz_<name>.cpp): one per scene loader, and the ray structures
+# (fuzz_ray_structures: random small scenes traced through every structure against brute force).
 #  * ILLUM_FUZZ=ON (preset "fuzz", clang): libFuzzer programs bin/fuzz_<loader>; tools/fuzz runs them.
 #  * every build: bin/fuzz_replay_<loader> runs the target once per file, and CTest
 #    replays the regression inputs (tests/fuzz/regressions/<loader>/) and the seeds.

@@ -8,11 +8,17 @@
 namespace illum {
 namespace {
 
-// Boxes are clipped against the range up to the closest hit so far plus a
-// relative 1e-9: a box whose entry rounds a hair past the best hit may still
-// hold a triangle that ties with it (coplanar, overlapping), and brute force
-// would return the smaller of the two computed parameters.
-Interval culling_range(const Interval& range) { return {range.lo, range.hi + 1e-9 * std::abs(range.hi)}; }
+// Boxes are clipped against the range widened at both ends by a relative 1e-9
+// (the far end being the closest hit so far): a box whose entry rounds a hair
+// past the best hit may still hold a triangle that ties with it (coplanar,
+// overlapping), and brute force would return the smaller of the two computed
+// parameters; and a triangle on a box's face is hit at an s that the slab
+// entry or exit of that face, each rounded its own way, may miss by a few ulps,
+// so a range that begins or ends exactly at the hit ([t, t], [t, ∞), [0, t])
+// would not reach its box.
+Interval culling_range(const Interval& range) {
+  return {range.lo - 1e-9 * std::abs(range.lo), range.hi + 1e-9 * std::abs(range.hi)};
+}
 
 struct Pending {
   std::uint32_t node;
@@ -28,7 +34,7 @@ std::optional<AccelHit> bvh_closest_hit(const BvhView& bvh, const Ray& ray, Trav
   std::optional<AccelHit> best;
 
   ++counters.nodes_visited;
-  const Interval root = slab_clip(slab, bvh.nodes[0].box, probe.range, slab_far_slack);
+  const Interval root = slab_clip(slab, bvh.nodes[0].box, culling_range(probe.range), slab_far_slack);
   if (root.empty()) return best;
   Pending stack[bvh_max_depth + 2];
   int top = 0;
@@ -80,7 +86,7 @@ bool bvh_any_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters
     const BvhNode& node = bvh.nodes[stack[--top]];
     const std::uint32_t index = static_cast<std::uint32_t>(&node - bvh.nodes.data());
     ++counters.nodes_visited;
-    if (slab_clip(slab, node.box, ray.range, slab_far_slack).empty()) continue;
+    if (slab_clip(slab, node.box, culling_range(ray.range), slab_far_slack).empty()) continue;
     if (node.leaf()) {
       for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
         ++counters.triangle_tests;

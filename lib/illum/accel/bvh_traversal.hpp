@@ -8,11 +8,18 @@
 //     1e-9 of its s, an allowance for ties), the node is skipped without a
 //     triangle test (early exit: nothing in it can be closer);
 //   * at an inner node both children's boxes are clipped (slab_clip) against
-//     [range.lo, closest so far]; the child entered first is visited first
+//     [range.lo, closest so far] (widened, below); the child entered first is visited first
 //     (pushed last), so that a close hit is found early and prunes the rest;
 //     when both are entered at the same s, the first child (node + 1) first;
 //   * at a leaf every triangle is tested against the shrunken range.
 // Any hit (shadow rays): the same walk, returning at the first hit.
+// Every box, the root's included, is clipped against the range with both
+// ends widened by that relative 1e-9 (for any hit, ray.range so widened): a
+// triangle on a box's face is hit at an s that the slab entry or exit of that
+// face may miss by a few ulps, and a range that begins or ends exactly at the
+// hit ([t, t], [t, ∞), a shadow ray ending on a surface) must still reach the
+// box. The triangle tests use the range itself: it stays closed, a hit at
+// exactly range.lo or range.hi counts, as brute force counts it.
 // Each node whose box test is done counts as one node visit; each ray–triangle test as one test.
 #include <cstdint>
 #include <optional>

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
 
 #include "illum/accel/slab_test.hpp"
@@ -41,9 +42,15 @@ Octree::Octree(const TriangleSet& set, const OctreeSettings& settings) : triangl
     boxes[i] = bounds_of(triangles_[i]);
     bounds.grow(boxes[i]);
   }
-  // A cube around the bounds, a hair larger so that no triangle lies on its faces by rounding.
+  // A cube around the bounds, larger so that no triangle lies on its faces by rounding: by a
+  // hair of its size and by 64 ulps of the largest coordinate (c ± half is rounded there: a
+  // small mesh far from the origin would otherwise stick out of its own cube).
   const Vec3 e = bounds.extent();
-  const double half = 0.5 * std::max({e.x, e.y, e.z}) * (1.0 + 1e-9) + 1e-12;
+  const double largest = std::max({std::abs(bounds.lo.x), std::abs(bounds.lo.y), std::abs(bounds.lo.z),
+                                   std::abs(bounds.hi.x), std::abs(bounds.hi.y), std::abs(bounds.hi.z)});
+  const double longest = std::max({e.x, e.y, e.z});
+  slack_ = 64.0 * std::numeric_limits<double>::epsilon() * largest;
+  const double half = 0.5 * longest + std::max({1e-9 * longest, slack_, std::numeric_limits<double>::min()});
   const Point3 c = bounds.center();
   nodes_.push_back({});
   nodes_[0].box.lo = c - Vec3(half);
@@ -86,6 +93,15 @@ void Octree::build(std::uint32_t index, std::vector<std::uint32_t> items, int le
   for (int k = 0; k < 8; ++k) build(first + k, std::move(parts[k]), level + 1, settings, boxes);
 }
 
+Interval Octree::cell_range(const Interval& range) const {
+  // Widened at both ends by a relative 1e-9 and by the rounding of the cells' faces (a length
+  // in s at least as long in every coordinate, |ω[a]| ≤ 1), so that a range that begins or ends
+  // exactly at a hit ([t, t], a shadow ray ending on a surface) still enters the cells around
+  // it, whose faces' slab parameters may miss t by a few ulps either way. The triangles are
+  // tested against the range itself.
+  return {range.lo - (1e-9 * std::abs(range.lo) + slack_), range.hi + (1e-9 * std::abs(range.hi) + slack_)};
+}
+
 std::optional<AccelHit> Octree::intersect(const Ray& ray, TraversalCounters& counters) const {
   ++counters.rays;
   const SlabRay slab(ray);
@@ -98,12 +114,12 @@ std::optional<AccelHit> Octree::intersect(const Ray& ray, TraversalCounters& cou
   Pending stack[8 * (deepest_allowed + 1) + 1];
   int top = 0;
   ++counters.nodes_visited;
-  const Interval root = slab_clip(slab, nodes_[0].box, probe.range, slab_far_slack);
+  const Interval root = slab_clip(slab, nodes_[0].box, cell_range(probe.range), slab_far_slack);
   if (root.empty()) return best;
   stack[top++] = {0, root.lo};
   while (top > 0) {
     const Pending current = stack[--top];
-    if (current.s_enter > probe.range.hi + 1e-9 * std::abs(probe.range.hi)) continue;
+    if (current.s_enter > cell_range(probe.range).hi) continue;
     const Node& node = nodes_[current.node];
     if (node.leaf) {
       for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
@@ -120,9 +136,8 @@ std::optional<AccelHit> Octree::intersect(const Ray& ray, TraversalCounters& cou
     int n = 0;
     for (int k = 0; k < 8; ++k) {
       ++counters.nodes_visited;
-      const Interval in = slab_clip(
-          slab, nodes_[node.first + k].box,
-          Interval(probe.range.lo, probe.range.hi + 1e-9 * std::abs(probe.range.hi)), slab_far_slack);
+      const Interval in =
+          slab_clip(slab, nodes_[node.first + k].box, cell_range(probe.range), slab_far_slack);
       if (!in.empty()) entered[n++] = {node.first + static_cast<std::uint32_t>(k), in.lo};
     }
     for (int i = 1; i < n; ++i)  // insertion sort, farthest first: at most eight entries
@@ -142,7 +157,7 @@ bool Octree::occluded(const Ray& ray, TraversalCounters& counters) const {
   while (top > 0) {
     const Node& node = nodes_[stack[--top]];
     ++counters.nodes_visited;
-    if (slab_clip(slab, node.box, ray.range, slab_far_slack).empty()) continue;
+    if (slab_clip(slab, node.box, cell_range(ray.range), slab_far_slack).empty()) continue;
     if (node.leaf) {
       for (std::uint32_t k = node.first; k < node.first + node.count; ++k) {
         ++counters.triangle_tests;

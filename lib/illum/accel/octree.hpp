@@ -10,6 +10,9 @@
 // lists it, a hit found in one leaf is kept as the best so far and the walk
 // goes on until every remaining node begins beyond it. An origin inside the
 // cube starts in the leaves around it (the slab test gives entry s = range.lo).
+// Cubes are clipped against the ray's range widened a little at both ends, so
+// that a range [t, t] (closed: the point at t) or one beginning or ending
+// exactly at a hit reaches the cells around that point.
 #include <cstdint>
 #include <vector>
 
@@ -44,11 +47,14 @@ class Octree final : public TriangleAccel {
   };
   void build(std::uint32_t index, std::vector<std::uint32_t> items, int level, const OctreeSettings& settings,
              const std::vector<Aabb>& boxes);
+  // The range a cube is clipped against: a little wider than the ray's (octree.cpp).
+  Interval cell_range(const Interval& range) const;
 
   std::vector<Node> nodes_;
   std::vector<Triangle> triangles_;
   std::vector<std::uint32_t> items_;
   int depth_ = 0;
+  double slack_ = 0.0;  // the rounding of the cells' faces: ulps of the largest coordinate
 };
 
 }  // namespace illum

@@ -8,6 +8,7 @@ namespace illum {
 
 Interval slab_clip(const SlabRay& ray, const Aabb& box, Interval range, double far_slack) {
   for (int a = 0; a < 3; ++a) {
+    if (!(box.lo[a] <= box.hi[a])) return Interval::nothing();  // an empty box holds no point
     if (!std::isfinite(ray.inverse[a])) {
       // Parallel to this slab: all or nothing, decided by the origin alone.
       if (ray.origin[a] < box.lo[a] || ray.origin[a] > box.hi[a]) return Interval::nothing();

@@ -42,6 +42,9 @@ struct SlabRay {
 // The parameters s in `range` for which the ray is inside the closed box;
 // an empty interval (Interval::nothing() or lo > hi) when there are none.
 // Never NaN. An origin inside the box gives an interval starting at range.lo.
+// An empty box (lo[a] > hi[a] on some axis, as the default Aabb{} with lo = +∞
+// and hi = −∞) contains no point: the interval is empty, whatever the ray
+// (the products would give s_near = −∞ and s_far = +∞, "everything").
 Interval slab_clip(const SlabRay& ray, const Aabb& box, Interval range, double far_slack = 0.0);
 
 // 2γ₃ for doubles: the widening of the exit that makes the slab test conservative.

@@ -10,6 +10,15 @@
 // (s ≤ the cell's exit); until then it is kept as the best so far and the
 // walk goes on.
 //
+// Rounding: the grid's box is padded, and each triangle listed in the cells
+// its box touches widened, by ulps of the largest coordinate (not of the
+// scene's size: a small mesh far from the origin, a flat floor at z = 10⁸);
+// a hit within ulps of the cell's exit is confirmed in the next cell; and
+// the 3DDA walks the ray's range widened a little at both ends, so that a
+// range of zero length [t, t] (a point, which the 3DDA alone would not walk)
+// or one that begins or ends exactly at a hit reaches the cells around it.
+// So the grid returns brute force's closest hit.
+//
 // Cost: with about one triangle per cell the ray crosses O(resolution) cells,
 // and resolution ∝ N^⅓ for a fixed number of triangles per cell; memory grows
 // with the cell count (resolution³).
@@ -40,11 +49,14 @@ class UniformGrid final : public TriangleAccel {
   const GridFrame& frame() const { return frame_; }
 
  private:
+  // The ray with the range the 3DDA walks: ray.range widened a little at both ends.
+  Ray walked(const Ray& ray) const;
   std::size_t cell_number(const CellIndex& c) const {
     return (static_cast<std::size_t>(c[2]) * frame_.cells[1] + c[1]) * frame_.cells[0] + c[0];
   }
 
   GridFrame frame_;
+  double slack_ = 0.0;  // rounding allowance in coordinates: ulps of the largest one
   std::vector<Triangle> triangles_;
   std::vector<std::uint32_t> cell_start_;  // cell c lists items[cell_start_[c] … cell_start_[c+1])
   std::vector<std::uint32_t> items_;       // triangle indices

@@ -41,9 +41,13 @@ inline bool arrives_at_front(const Vec3& ray_direction, const Vec3& outward_norm
 }
 
 struct SurfaceHit {
-  double t = infinity;         // ray parameter, inside ray.range
-  Point3 point{0.0};           // ray.at(t), or a refined surface point
-  Vec3 point_error{0.0};       // absolute floating-point error bound of `point` per axis (pbrt-v4 style)
+  double t = infinity;  // ray parameter, inside ray.range
+  Point3 point{0.0};    // ray.at(t), or a refined surface point
+  // The box around `point` (half-widths per axis) that a ray leaving the surface must clear
+  // (trace/ray_offset.hpp): the absolute rounding of `point` (pbrt-v4 style), and for a
+  // triangle also the rounding of the triangle test that the leaving ray will run, which
+  // does not vanish where the point is exact (a triangle in the plane z = 0).
+  Vec3 point_error{0.0};
   Vec3 geometric_normal{0.0};  // unit, oriented AGAINST the ray: dot(geometric_normal, ray.direction) <= 0
   Vec3 shading_normal{0.0};    // unit, on the same side as geometric_normal
   bool front_face = true;      // true when the ray arrived on the side the outward normal points to

@@ -29,11 +29,15 @@ std::string EffectsPlan::summary() const {
 
 EffectsPlan full_effects(int max_depth) {
   require(max_depth >= 0, "full_effects: the depth limit must not be negative");
+  require(max_depth <= deepest_depth_limit,
+          "full_effects: the depth limit must be at most 64 (deepest_depth_limit)");
   return EffectsPlan{.max_depth = max_depth, .skip_zero_weights = false};
 }
 
 EffectsPlan plan_effects(const Scene& scene, int max_depth) {
   require(max_depth >= 0, "plan_effects: the depth limit must not be negative");
+  require(max_depth <= deepest_depth_limit,
+          "plan_effects: the depth limit must be at most 64 (deepest_depth_limit)");
   double heaviest = 0.0;  // max over materials and channels of k_r + k_t
   bool mirror = false, glass = false;
   for (const Material& m : scene.materials) {

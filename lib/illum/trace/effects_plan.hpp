@@ -29,6 +29,11 @@ namespace illum {
 // by one step of an 8-bit image (1/255 ≈ 0.0039).
 inline constexpr double contribution_threshold = 1.0 / 1024.0;
 
+// The deepest depth limit a plan accepts: the recursion is a loop that follows
+// rays, and it must end; 64 levels is far past any depth whose rays can still
+// show (a path weight of 0.9⁶⁴ = 0.001), and keeps the call stack small.
+inline constexpr int deepest_depth_limit = 64;
+
 struct EffectsPlan {
   bool reflection = true;          // spawn reflected rays I_r
   bool refraction = true;          // spawn transmitted rays I_t
@@ -47,9 +52,11 @@ struct EffectsPlan {
 };
 
 // No analysis: every kind of ray, up to `max_depth` (the "without the plan" run).
+// Throws std::invalid_argument unless 0 ≤ max_depth ≤ deepest_depth_limit.
 EffectsPlan full_effects(int max_depth);
 
-// The scene's plan for a requested depth limit (max_depth ≥ 0).
+// The scene's plan for a requested depth limit (0 ≤ max_depth ≤ deepest_depth_limit,
+// else std::invalid_argument).
 EffectsPlan plan_effects(const Scene& scene, int max_depth);
 
 }  // namespace illum

@@ -12,13 +12,18 @@ namespace {
 
 bool is_black(const Color& c) { return c.r <= 0.0 && c.g <= 0.0 && c.b <= 0.0; }
 
+// Every channel below the shadow walk's cut-off (ray_tree.hpp).
+bool negligible(const Color& c) {
+  return c.r < min_shadow_transmission && c.g < min_shadow_transmission && c.b < min_shadow_transmission;
+}
+
 }  // namespace
 
 Color shadow_transmission(const Tracer& tracer, const SurfaceHit& hit, const Point3& light_position, int node,
                           std::uint32_t light) {
   Color transmission(1.0);
   Ray ray = spawn_ray_to(hit, light_position);
-  for (;;) {
+  for (int crossed = 1;; ++crossed) {
     tracer.stats->rays.count(RayKind::shadow);
     const int n = record_shadow_ray(tracer.tree, ray, node, light);
     if (!tracer.plan.shadow_attenuation) {  // opaque scene: any hit blocks, the first one found will do
@@ -27,7 +32,9 @@ Color shadow_transmission(const Tracer& tracer, const SurfaceHit& hit, const Poi
       const Color k_t = tracer.scene.materials[blocker->material].transmittance;
       transmission *= k_t;
       record_blocker(tracer.tree, n, *blocker, transmission);
-      if (!is_black(transmission)) {  // through the glass, on towards the same light
+      if (negligible(transmission) || crossed == max_shadow_crossings) {
+        transmission = Color(0.0);  // the cut-offs: the walk ends here, the light counts as blocked
+      } else {                      // through the glass, on towards the same light
         ray = spawn_ray_to(*blocker, light_position);
         continue;
       }

@@ -35,11 +35,24 @@ struct Tracer {
   double min_contribution = 0.0;
 };
 
+// The shadow walk's two cut-offs (lesson 06, §5.2), so that it always ends,
+// whatever the scene: a light seen through glass whose transmission has fallen
+// below min_shadow_transmission in every channel counts as blocked (it could
+// move no pixel: 10⁻⁶ of the light), and so does a light behind more than
+// max_shadow_crossings transmissive surfaces (a stated limit; a glass ball
+// takes 2, a closed glass mesh an even number, rarely more than a few dozen).
+inline constexpr double min_shadow_transmission = 1e-6;
+inline constexpr int max_shadow_crossings = 256;
+
 // The shadow test for one light (lesson 06, §5.2): the fraction of the light
 // that reaches the hit point along a shadow ray from it (spawn_ray_to):
 // 1 when nothing lies between, 0 when an opaque surface does; with
 // plan.shadow_attenuation, each transmissive surface crossed multiplies it by
-// its k_t instead of blocking. Nothing at or beyond the light blocks it.
+// its k_t instead of blocking, and the walk goes on from it (spawn_ray_to
+// again) unless a cut-off ends it with 0: right after the surface that brings
+// every channel below min_shadow_transmission, or right after the
+// max_shadow_crossings-th surface crossed. So a call casts at most
+// max_shadow_crossings shadow rays. Nothing at or beyond the light blocks it.
 // Counts every shadow ray cast (tracer.stats->rays.count(RayKind::shadow)),
 // one per call that casts one; records them as children of `node` when
 // tracer.tree is set (`light` is the light's index, for the record).

@@ -57,6 +57,32 @@ std::uint32_t Primitive::material_at(const Point3& p) const {
   return std::fmod(cell, 2.0) == 0.0 ? material : checker_material;
 }
 
+std::uint32_t Primitive::material_at(const SurfaceHit& hit) const {
+  if (checker_material == no_material) return material;
+  // The box of the points that span the surface (vertices, control points): where it
+  // has no extent, every point of the surface has that coordinate, exactly.
+  Point3 lo(infinity), hi(-infinity);
+  const auto grow = [&](const Point3& v) {
+    lo = glm::min(lo, v);
+    hi = glm::max(hi, v);
+  };
+  if (const auto* polygon = std::get_if<Polygon>(&shape)) {
+    for (const Point3& v : polygon->loop(0)) grow(v);
+  } else if (const auto* triangle = std::get_if<Triangle>(&shape)) {
+    grow(triangle->a), grow(triangle->b), grow(triangle->c);
+  } else if (const auto* mesh = std::get_if<TriangleMesh>(&shape)) {
+    const Triangle t = mesh->triangle(hit.element);
+    grow(t.a), grow(t.b), grow(t.c);
+  } else if (const auto* patch = std::get_if<BezierPatch>(&shape)) {
+    const PatchBox box = patch->bounds();
+    lo = box.lo, hi = box.hi;
+  }
+  Point3 p = hit.point;
+  for (int a = 0; a < 3; ++a)
+    if (lo[a] == hi[a]) p[a] = lo[a];
+  return material_at(p);
+}
+
 void Scene::accelerate(const AccelSettings& settings) {
   accel = std::make_shared<const SceneAccel>(*this, settings);
 }
@@ -70,7 +96,7 @@ std::optional<SurfaceHit> Scene::intersect(const Ray& ray, WorkCounters* counter
     if (!hit) continue;
     r.range.hi = hit->t;  // each hit shrinks the range: a farther primitive cannot win
     hit->primitive = static_cast<std::uint32_t>(i);
-    hit->material = primitives[i].material_at(hit->point);
+    hit->material = primitives[i].material_at(*hit);
     best = hit;
   }
   return best;

@@ -83,12 +83,20 @@ struct Primitive {
   // A procedural checkerboard (lesson 07's aliasing scenes): with a second
   // material, the cubes of side checker_size alternate between `material`
   // and `checker_material` by the parity of ⌊x/s⌋ + ⌊y/s⌋ + ⌊z/s⌋ at the hit.
+  // A surface lying on a plane of the cubes (a floor at y = 0) is read at its
+  // own exact coordinate there, not at the hit point's rounded one (y = ±4e-16
+  // would flip ⌊y⌋ from pixel to pixel): see material_at(const SurfaceHit&).
   std::uint32_t checker_material = no_material;
   double checker_size = 1.0;
 
   PrimitiveKind kind() const { return static_cast<PrimitiveKind>(shape.index()); }
   // The material at a point of the surface (`material` unless checkered).
   std::uint32_t material_at(const Point3& p) const;
+  // The material at a hit of this primitive: material_at(point) with every
+  // coordinate on which the whole surface is constant (a polygon, triangle,
+  // mesh triangle or patch lying in a plane x_a = c) set to c exactly, so that
+  // the checker of a surface on a cube's face reads one side of it everywhere.
+  std::uint32_t material_at(const SurfaceHit& hit) const;
   // The hit of this primitive alone (primitive index and material left unset).
   std::optional<SurfaceHit> intersect(const Ray& ray, WorkCounters* counters = nullptr) const;
 };

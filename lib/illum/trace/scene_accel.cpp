@@ -39,7 +39,7 @@ std::optional<SurfaceHit> SceneAccel::element_hit(const Scene& scene, const Ray&
     hit = intersect_surface(ray, std::get<Triangle>(primitive.shape));
   if (hit) {
     hit->primitive = primitive_of_[id];
-    hit->material = primitive.material_at(hit->point);
+    hit->material = primitive.material_at(*hit);
   }
   return hit;
 }
@@ -66,7 +66,7 @@ std::optional<SurfaceHit> SceneAccel::intersect(const Scene& scene, const Ray& r
     if (!hit) continue;
     r.range.hi = hit->t;
     hit->primitive = p;
-    hit->material = scene.primitives[p].material_at(hit->point);
+    hit->material = scene.primitives[p].material_at(*hit);
     best = hit;
   }
   return best;
