@@ -92,7 +92,7 @@ class TestResult:
     @property
     def key(self) -> tuple[str, str, str, int]:
         """Identifies a test across the listing and the run (names alone may repeat)."""
-        return (self.suite, self.name, self.file, self.line)
+        return (self.suite, self.name, normal_file(self.file), self.line)
 
     @property
     def score(self) -> float:
@@ -191,6 +191,18 @@ def merge(listed: list[dict[str, Any]], ran: list[dict[str, Any]], hidden: bool 
             results.append(expected)
     results.extend(r for k, r in by_key.items() if k not in seen)
     return results
+
+
+def normal_file(file: str) -> str:
+    """A test's source path as the same key whether the compiler saw it
+    absolute or relative to the build folder (ccache's base_dir makes it
+    ``../../../tests/x.cpp``): from its ``tests/`` folder on."""
+    text = file.replace("\\", "/")
+    if "/tests/" in text:
+        return "tests/" + text.rsplit("/tests/", 1)[1]
+    while text.startswith("../"):
+        text = text[3:]
+    return text
 
 
 def _short_path(file: str, root: Path | None) -> str:
