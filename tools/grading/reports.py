@@ -147,7 +147,8 @@ def score_table(run: GradeRun, for_students: bool = False) -> str:
 def _visible_problems(run: GradeRun) -> list[str]:
     """Problems a student may read: none about the hidden tests' program, and
     the ones of a single test only counted (each test's entry says why)."""
-    problems = [p for p in run.problems if "tests_hidden" not in p]
+    hidden_names = [r.name for r in run.results if r.hidden and r.name]
+    problems = [p for p in run.problems if "tests_hidden" not in p and not any(n in p for n in hidden_names)]
     per_test = sum(part.count(': test "') for part in problems)
     general = [part for p in problems for part in p.split("; ") if ': test "' not in part]
     lines = [f"{per_test} test(s) crashed or did not finish; their entries say which and why"] if per_test else []
