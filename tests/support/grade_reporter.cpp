@@ -21,7 +21,12 @@
 //     which tests should have run even when the program crashes half-way;
 //   {"event":"run_end"}
 //     when doctest has run every test, so that a program that ends without
-//     it (exit() in a test, a crash between tests) is told apart.
+//     it (exit() in a test, a crash between tests) is told apart;
+//   {"event":"value", "at_file", "at_line", "actual"}
+//     for each ILLUM_CHECK_APPROX of the running test (grade_values.hpp):
+//     the grader judges these values itself; "expected" and "epsilon" are
+//     added only when ILLUM_GRADE_SEND_EXPECTED is set (the autograder's
+//     run of the reference, which keeps them).
 //
 // Texts that come from the code under test (exception messages, the values
 // of a failed check, INFO contexts) are cut to max_text bytes, and a test
@@ -35,6 +40,8 @@
 // check demands of a grading test run on the stubs.
 #include <doctest/doctest.h>
 #include <unistd.h>
+
+#include "support/grade_values.hpp"
 
 #include <cerrno>
 #include <cstdlib>
@@ -54,7 +61,7 @@ using nlohmann::json;
 // The prefix our exception translator gives every stub's exception.
 constexpr std::string_view not_implemented_prefix = "NotImplemented: ";
 
-constexpr std::size_t max_text = 4096;   // bytes of one text taken from the code under test
+constexpr std::size_t max_text = 4096;    // bytes of one text taken from the code under test
 constexpr std::size_t max_failures = 30;  // failures recorded for one test case
 
 std::string cut(std::string text) {
@@ -177,10 +184,34 @@ std::string describe(const doctest::AssertData& a) {
   return text;
 }
 
+class GradeReporter;
+GradeReporter* active_reporter = nullptr;  // the one send_value() writes through
+
 class GradeReporter : public doctest::IReporter {
  public:
   explicit GradeReporter(const doctest::ContextOptions& options)
-      : options_(options), records_fd_(records_descriptor()) {}
+      : options_(options),
+        records_fd_(records_descriptor()),
+        send_expected_(std::getenv("ILLUM_GRADE_SEND_EXPECTED") != nullptr) {
+    active_reporter = this;
+  }
+  ~GradeReporter() override {
+    if (active_reporter == this) active_reporter = nullptr;
+  }
+
+  void value(const char* file, int line, double actual, double expected, double epsilon) {
+    if (test_ == nullptr) return;
+    json record;
+    record["event"] = "value";
+    record["at_file"] = str(file);
+    record["at_line"] = line;
+    record["actual"] = actual;
+    if (send_expected_) {  // only in the autograder's trusted run of the reference, which keeps them
+      record["expected"] = expected;
+      record["epsilon"] = epsilon;
+    }
+    write(record);
+  }
 
   void report_query(const doctest::QueryData& query) override {
     // Only the listing of test cases is meaningful to the driver; other
@@ -379,6 +410,7 @@ class GradeReporter : public doctest::IReporter {
 
   const doctest::ContextOptions& options_;
   const int records_fd_;
+  const bool send_expected_;
   const doctest::TestCaseData* test_ = nullptr;
   json failures_ = json::array();
   std::size_t dropped_ = 0;
@@ -387,5 +419,13 @@ class GradeReporter : public doctest::IReporter {
 };
 
 }  // namespace
+
+namespace illum::grading {
+
+void send_value(const char* file, int line, double actual, double expected, double epsilon) {
+  if (active_reporter != nullptr) active_reporter->value(file, line, actual, expected, epsilon);
+}
+
+}  // namespace illum::grading
 
 DOCTEST_REGISTER_REPORTER("illum-grade", 1, GradeReporter);

@@ -33,7 +33,7 @@ from grading.edition import excluded_files  # noqa: E402
 from grading.integrity import check_pair  # noqa: E402
 from grading.project import normalize_lesson  # noqa: E402
 from grading.reports import GradeRun  # noqa: E402
-from grading.results import merge, parse_lines, points_of  # noqa: E402
+from grading.results import TestResult, merge, parse_lines, points_of  # noqa: E402
 
 NI = "NotImplemented: intersect(Ray, Sphere) — take the nearest root"
 
@@ -308,6 +308,11 @@ for number in range(first, 4):
                 break
         sys.stdout.write(f"forked {made}\\n")
         sys.stdout.flush()
+    elif what.startswith("value="):  # the ILLUM_CHECK_APPROX records of a test (grade_values.hpp)
+        for actual in what.split("=", 1)[1].split(","):
+            out.write(json.dumps({"event": "value", "at_file": "/t.cpp", "at_line": 40, "actual": float(actual),
+                                  "expected": float(actual), "epsilon": 0}) + "\\n")
+        out.flush()
     elif what == "skip-report":
         continue  # started, and never a result: the next test starts while it runs
     finished(number, passed=what != "fail")
@@ -374,6 +379,26 @@ class RunnerTest(unittest.TestCase):
         self.assertIn("no result was received", run.results[-1].output())
         self.assertEqual([r.passed for r in run.results[:3]], [True, True, True])
 
+    def test_checked_values_are_judged_by_the_grader(self) -> None:
+        # The trusted run kept: test "two" checks 2.5 and then 7 at /t.cpp:40, relative 1e-9. The program's own
+        # verdict says passed every time; only the values it sends decide.
+        def listing(values):
+            return [{"suite": "lesson01", "name": n, "file": "/t.cpp", "line": k, "description": "",
+                     **({"values": values} if n == "two" else {})} for k, n in enumerate(["one", "two", "three"], 1)]
+
+        kept = [{"file": "../../t.cpp", "line": 40, "expected": 2.5, "epsilon": 1e-9},
+                {"file": "/t.cpp", "line": 40, "expected": 7.0, "epsilon": 1e-9}]
+        for sent, passed, words in (("2.5,7.000000001", True, ""),
+                                    ("2.5,7.1", False, "is 7.1, expected 7"),
+                                    ("2.5", False, "never computed"),
+                                    ("2.5,7,9", False, "more checked value"),
+                                    ("pass", False, "never computed")):
+            behaviour = {2: sent if sent == "pass" else f"value={sent}"}
+            run = self.run_fake(behaviour, expected=listing(kept))
+            self.assertEqual(run.results[1].passed, passed, sent)
+            self.assertIn(words, run.results[1].output(), sent)
+            self.assertEqual([run.results[0].passed, run.results[2].passed], [True, True])
+
     def test_output_is_capped_to_its_last_64_kb(self) -> None:
         run = self.run_fake({1: "print"})
         self.assertEqual([r.passed for r in run.results], [True, True, True])
@@ -398,7 +423,7 @@ class RunnerTest(unittest.TestCase):
         def rec(event: str, number: int, **extra) -> dict:
             return dict(event=event, suite="lesson01", name=f"t{number}", file="/t.cpp", line=number, **extra)
 
-        order = {("lesson01", f"t{k}", "/t.cpp", k): k for k in (1, 2, 3)}
+        order = {TestResult.from_json(rec("listed", k)).key: k for k in (1, 2, 3)}
         good = [rec("started", 1), rec("test_case", 1), rec("started", 2), rec("test_case", 2), {"event": "run_end"}]
         self.assertEqual(check_records(good, order, 1).violation, "")
         for records, words in (

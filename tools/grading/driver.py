@@ -33,6 +33,7 @@ from pathlib import Path
 from . import build, project, reports, runner, suspicious
 from .integrity import check_build
 from .reports import GradeRun, OutputError
+from .results import TestResult
 from .runner import deadline_from_environment, run_suite
 from .sandbox import Account, Limits, Sandbox, SandboxError
 
@@ -309,16 +310,21 @@ def _make_sandbox(args: argparse.Namespace) -> Sandbox:
     return Sandbox(account, limits)
 
 
-def _save_tests(path: Path, bin_dir: Path, lessons: list[str], tested: set[str], hidden: bool) -> None:
-    """The trusted list of tests (from the reference build, in setup): program -> suite -> listed records."""
+def _save_tests(path: Path, suites: list[tuple[str, runner.SuiteRun]]) -> None:
+    """The trusted list of tests (from the reference, in setup): program -> suite -> the tests in
+    doctest's order, each with the values its ILLUM_CHECK_APPROX checks expect (grade_values.hpp)."""
     saved: dict[str, dict[str, list[dict]]] = {}
-    for lesson in lessons:
-        suite = f"lesson{lesson}"
-        programs = ([f"tests_lesson{lesson}"] if lesson in tested else []) + (["tests_hidden"] if hidden else [])
-        for program in programs:
-            records = runner.listing(bin_dir / program, suite)
-            saved.setdefault(program, {})[suite] = [
-                {k: r.get(k) for k in ("suite", "name", "file", "line", "description")} for r in records]
+    for _lesson, suite in suites:
+        tests = []
+        for record in suite.listed:
+            entry = {k: record.get(k) for k in ("suite", "name", "file", "line", "description")}
+            values = [v for v in suite.values.get(TestResult.from_json(record).key, [])
+                      if isinstance(v.get("expected"), (int, float)) and isinstance(v.get("epsilon"), (int, float))]
+            if values:
+                entry["values"] = [{"file": v.get("at_file"), "line": v.get("at_line"), "expected": v.get("expected"),
+                                    "epsilon": v.get("epsilon")} for v in values]
+            tests.append(entry)
+        saved.setdefault(suite.program.name, {})[suite.suite] = tests
     reports.write_text(path, json.dumps(saved, indent=1) + "\n")
 
 
@@ -335,6 +341,7 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     except SandboxError as error:
         raise UsageError(str(error)) from error
     runner.set_sandbox(sandbox)
+    runner.set_trusted_run(bool(args.save_tests))
     tested = set(project.test_lessons(root))
     hidden_objects = data.hidden_objects
     has_hidden = bool(hidden_objects) or bool(project.hidden_sources(root, args.hidden))
@@ -396,11 +403,13 @@ def grade(args: argparse.Namespace, root: Path) -> int:
         planned = [(lesson, f"tests_lesson{lesson}", False) for lesson in lessons if lesson in tested]
         # The hidden tests last: nothing a student's code learns while they run can reach a visible result.
         planned += [(lesson, "tests_hidden", True) for lesson in lessons] if has_hidden else []
+        ran_suites = []
         for lesson, program, hidden in planned:
             expected = data.expected(program, f"lesson{lesson}")
             if expected == [] and hidden:
                 continue  # setup found no hidden test of this lesson
             suite = run_suite(bin_dir / program, f"lesson{lesson}", hidden=hidden, expected=expected)
+            ran_suites.append((lesson, suite))
             # A doctest::skip() test is switched off by its author: it neither scores nor costs.
             for skipped in (r for r in suite.results if r.skipped):
                 print(f"skipped, not graded: lesson{lesson}: {skipped.name}", file=sys.stderr)
@@ -411,7 +420,7 @@ def grade(args: argparse.Namespace, root: Path) -> int:
                 if suite.output.strip():
                     print(suite.output[-4000:], file=sys.stderr)
         if args.save_tests:
-            _save_tests(args.save_tests, bin_dir, lessons, tested, has_hidden)
+            _save_tests(args.save_tests, ran_suites)
     # Nothing of the student's may be alive, or left in the shared folders, when results are written.
     survivors = sandbox.reap()
     sandbox.clean_shared_folders()

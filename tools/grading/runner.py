@@ -41,7 +41,7 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .results import TestResult, merge
+from .results import TestResult, merge, normal_file
 from .sandbox import Sandbox
 
 DEFAULT_TIMEOUT = 600.0       # seconds per run of a test program
@@ -53,6 +53,7 @@ Key = tuple[str, str, str, int]
 
 _deadline: float | None = None  # time.monotonic() after which no test starts
 _sandbox: Sandbox | None = None
+_trusted_run = False  # the reference's run in setup: the programs send the expected values too
 
 
 def set_deadline(seconds_from_now: float | None) -> None:
@@ -64,6 +65,13 @@ def deadline_from_environment(start: float) -> None:
     """ILLUM_GRADE_DEADLINE seconds after ``start`` (a time.monotonic())."""
     value = os.environ.get("ILLUM_GRADE_DEADLINE")
     set_deadline(float(value) - (time.monotonic() - start) if value else None)
+
+
+def set_trusted_run(trusted: bool) -> None:
+    """In the autograder's run of the reference only: ILLUM_CHECK_APPROX sends its expected value and
+    tolerance, which setup keeps (a submission's run never sends them, so nothing in it can copy them)."""
+    global _trusted_run
+    _trusted_run = trusted
 
 
 def set_sandbox(sandbox: Sandbox | None) -> None:
@@ -102,6 +110,8 @@ class SuiteRun:
     output: str = ""   # the tail of the program's own stdout and stderr, for diagnosis
     tampering: list[str] = field(default_factory=list)  # for instructors: what did not add up
     survivors: list[str] = field(default_factory=list)  # processes left behind, killed
+    listed: list[dict] = field(default_factory=list)    # the tests that should report, in order
+    values: dict = field(default_factory=dict)          # test key -> its ILLUM_CHECK_APPROX records
 
 
 @dataclass
@@ -206,7 +216,8 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
     sandbox = current_sandbox()
     command = [str(program), *arguments, "--reporters=illum-grade", "--no-version"]
     try:
-        launched = sandbox.launch(command, cpu_seconds=timeout)
+        launched = sandbox.launch(command, cpu_seconds=timeout,
+                                  extra_env={"ILLUM_GRADE_SEND_EXPECTED": "1"} if _trusted_run else None)
     except OSError as error:
         return _Invocation([], f"could not run {program}: {error}", "")
     tail, records, status = _Tail(sandbox.limits.output_bytes), _Records(), _Records()
@@ -335,6 +346,10 @@ def check_records(records: list[dict], order: dict[Key, int], first: int, garbag
                               f"a second result for \"{key[1]}\"", key)
             running = None
             accepted.append(record)
+        elif event == "value":  # a value the grader judges itself, of the running test
+            if running is None:
+                return broken("a checked value outside any test")
+            accepted.append(record)
         elif event == "run_end":
             if running is not None:
                 return broken("the run ended while a test was still running")
@@ -372,6 +387,8 @@ def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | 
     position = {}
     for number, record in enumerate(listed, start=1):
         position.setdefault(_key(record), number)
+    stored_values = {_key(r): r["values"] for r in listed if r.get("values")}
+    run.listed = listed
 
     ran: dict[Key, dict] = {}
     problems: list[str] = []
@@ -390,11 +407,20 @@ def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | 
         outputs.append(invocation.output)
         run.survivors.extend(invocation.survivors)
         checked = check_records(invocation.records, position, first, invocation.garbage)
+        current: Key | None = None
         for record in checked.accepted:
-            if record.get("event") != "test_case":
+            event = record.get("event")
+            if event == "started":
+                current = _key(record)
+                run.values[current] = []
+            elif event == "value" and current is not None:
+                run.values[current].append(record)
+            if event != "test_case":
                 continue
             key = _key(record)
             if key in ran:  # already reported by an earlier run of the program
+                if record.get("skipped") and ran[key].get("skipped"):
+                    continue  # doctest reports a skipped test again in every run
                 checked.violation, checked.culprit = f"a second result for \"{key[1]}\"", key
                 break
             ran[key] = record
@@ -450,6 +476,12 @@ def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | 
             result.note, result.ran, result.passed = notes[result.key], True, False
         elif not result.ran and not why_missing:
             result.note = "no result was received for this test (the program never reported it)"
+        stored = stored_values.get(result.key)
+        if stored and result.passed:
+            problem = judge_values(stored, run.values.get(result.key, []))
+            if problem:
+                result.passed = False
+                result.note = f"checked by the grader outside your program: {problem}"
         if any("bad_alloc" in f.exception or "bad_alloc" in f.message for f in result.failures):
             result.note = (f"out of memory: your code asked for more than the {current_sandbox().limits.memory_mb} MB "
                            "a test program may use" + (f"; {result.note}" if result.note else ""))
@@ -462,17 +494,45 @@ def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | 
     return run
 
 
+def approx_equal(actual: float, expected: float, epsilon: float, scale: float = 1.0) -> bool:
+    """doctest's Approx: |a − e| < ε·(scale + max(|a|, |e|))."""
+    return abs(actual - expected) < epsilon * (scale + max(abs(actual), abs(expected)))
+
+
+def judge_values(stored: list[dict], sent: list[dict]) -> str:
+    """Why the values a test sent do not match what the trusted run kept, or ''.
+
+    ``stored``: [{"file", "line", "expected", "epsilon"}] in the order the
+    reference sent them; ``sent``: the "value" records of this run."""
+    counts: dict[tuple[str, int], int] = {}
+    mine: dict[tuple[str, int, int], object] = {}
+    for record in sent:
+        at = (normal_file(str(record.get("at_file", ""))), int(record.get("at_line", 0) or 0))
+        counts[at] = counts.get(at, 0) + 1
+        mine[(*at, counts[at])] = record.get("actual")
+    seen: dict[tuple[str, int], int] = {}
+    for check in stored:
+        at = (normal_file(str(check["file"])), int(check["line"]))
+        seen[at] = seen.get(at, 0) + 1
+        where = f"{at[0]}:{at[1]}"
+        actual = mine.get((*at, seen[at]))
+        if actual is None:
+            return f"the value checked at {where} was never computed (expected {check['expected']:.17g})"
+        try:
+            ok = approx_equal(float(actual), float(check["expected"]), float(check["epsilon"]))
+        except (TypeError, ValueError):
+            ok = False
+        if not ok:
+            return (f"the value checked at {where} is {actual!r}, expected {check['expected']:.17g} "
+                    f"(within a relative {check['epsilon']:g})")
+    extra = sum(counts.values()) - len(stored)
+    if extra > 0:
+        return f"{extra} more checked value(s) than the test makes"
+    return ""
+
+
 def list_suites(program: Path, timeout: float | None = None) -> list[TestResult]:
     """Every test case of a program, whatever its suite (for misplaced-suite checks)."""
     timeout = timeout_seconds() if timeout is None else timeout
     listing = _run_reporter(program, ["--list-test-cases"], timeout, timeout)
     return [TestResult.from_json(r) for r in listing.records if r.get("event") == "listed"]
-
-
-def listing(program: Path, suite: str, timeout: float | None = None) -> list[dict]:
-    """The "listed" records of one suite of a program (the trusted list, when the program is the reference)."""
-    timeout = timeout_seconds() if timeout is None else timeout
-    done = _run_reporter(program, [f"-ts={suite}", "--list-test-cases"], timeout, timeout)
-    if done.problem:
-        raise RuntimeError(f"listing {program.name} -ts={suite}: {done.problem}")
-    return [r for r in done.records if r.get("event") == "listed" and r.get("suite") == suite]

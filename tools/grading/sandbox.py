@@ -171,6 +171,9 @@ class Sandbox:
     def environment(self, home: Path, extra: dict[str, str] | None = None) -> dict[str, str]:
         env = {k: os.environ[k] for k in _PASSED_ENVIRONMENT if k in os.environ}
         env.setdefault("PATH", "/usr/local/bin:/usr/bin:/bin")
+        # Each OpenMP thread's stack counts against the memory limit: on a machine with many cores
+        # the default (one thread per core) would spend the limit on stacks alone.
+        env.setdefault("OMP_NUM_THREADS", str(min(os.cpu_count() or 1, 4)))
         env.setdefault("LANG", "C.UTF-8")
         env.update(HOME=str(home), TMPDIR=str(home / "tmp"))
         if self.account is not None:
@@ -196,7 +199,8 @@ class Sandbox:
 
     # --- running a test program ------------------------------------------------------------
 
-    def launch(self, argv: list[str], records: bool = True, cpu_seconds: float | None = None) -> Launched:
+    def launch(self, argv: list[str], records: bool = True, cpu_seconds: float | None = None,
+               extra_env: dict[str, str] | None = None) -> Launched:
         """Starts ``argv`` in the sandbox. Its stdout and stderr go to one pipe
         (``output_fd``), the reporter's records to another (``records_fd``),
         whose write end the program finds in ILLUM_GRADE_RECORDS_FD."""
@@ -206,7 +210,9 @@ class Sandbox:
         output_r, output_w = os.pipe()
         records_r, records_w = os.pipe() if records else (None, None)
         keep = [records_w] if records_w is not None else []
-        extra = {"ILLUM_GRADE_RECORDS_FD": str(records_w)} if records_w is not None else {}
+        extra = dict(extra_env or {})
+        if records_w is not None:
+            extra["ILLUM_GRADE_RECORDS_FD"] = str(records_w)
         limits = {
             "memory_bytes": self.limits.memory_mb * 1024 * 1024,
             "file_bytes": self.limits.file_mb * 1024 * 1024,
@@ -401,6 +407,8 @@ def user_processes(uid: int) -> list[tuple[int, str]]:
         except OSError:
             continue
         uids = fields.get("Uid", "").split()
+        if fields.get("State", "").strip()[:1] in ("Z", "X"):
+            continue  # a zombie is dead already; only its parent can make it go
         if uids and str(uid) in uids[:2]:
             found.append((int(entry), fields.get("Name", "?").strip()))
     return found
