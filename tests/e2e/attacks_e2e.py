@@ -311,7 +311,9 @@ def main(argv: list[str]) -> int:
         return 1
     plan = [(case, mode) for case in CASES for mode in case.modes if not args.only or case.name in args.only]
     slots = [work / f"slot-{k}" for k in range(1, max(1, args.jobs) + 1)]
-    users = ["illum-student"] + [f"illum-student-{k}" for k in range(2, len(slots) + 1)]
+    # Users of its own: CTest runs the end-to-end tests side by side, and every process of a grading
+    # user is killed at the end of each run.
+    users = [f"illum-test-at{k}" for k in range(1, len(slots) + 1)]
 
     def prepare(k: int) -> tuple[int, float, str]:
         """A slot: the autograder unpacked and set up at the path where its submissions are graded

@@ -145,8 +145,11 @@ def main(argv: list[str]) -> int:
     work.mkdir(parents=True)
     ag = work / "autograder"
 
+    # A grading user of its own (ILLUM_GRADE_USER): CTest runs the end-to-end tests side by side, and
+    # every process of a grading user is killed at the end of each run.
     env = dict(os.environ, ILLUM_AUTOGRADER_ROOT=str(ag), CMAKE_BUILD_PARALLEL_LEVEL="2",
-               ILLUM_GRADE_TEST_TIMEOUT=args.test_timeout, PYTHONDONTWRITEBYTECODE="1")
+               ILLUM_GRADE_TEST_TIMEOUT=args.test_timeout, PYTHONDONTWRITEBYTECODE="1",
+               ILLUM_GRADE_USER="illum-test-ag")
     if shutil.which("ccache"):
         env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_BASEDIR=str(ag), CCACHE_NOHASHDIR="1")
 

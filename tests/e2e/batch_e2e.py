@@ -115,7 +115,9 @@ def main(argv: list[str]) -> int:
     submissions.mkdir()
     class_of_submissions(submissions)
     (work / "roster.csv").write_text(ROSTER, encoding="utf-8")
-    env = dict(os.environ, ILLUM_GRADE_TEST_TIMEOUT="3", PYTHONDONTWRITEBYTECODE="1")
+    # Users of its own: CTest runs the end-to-end tests side by side, and every process of a grading
+    # user is killed at the end of each run.
+    env = dict(os.environ, ILLUM_GRADE_TEST_TIMEOUT="3", PYTHONDONTWRITEBYTECODE="1", ILLUM_GRADE_USER="illum-test-b")
     command = [sys.executable, str(ROOT / "tools" / "grade"), "--batch", str(submissions), "--out", str(out),
                "--jobs", "2", "--roster", str(work / "roster.csv"), "--format", "canvas", "--assignment",
                "Lesson 01", "--work-dir", str(work / "batch-work"), "01"]

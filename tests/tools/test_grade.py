@@ -446,7 +446,7 @@ class SandboxTest(unittest.TestCase):
         from grading import runner
         from grading.sandbox import Limits, Sandbox, create_account
 
-        self.account = create_account("illum-student")
+        self.account = create_account("illum-test-unit")  # its own: other tests grade side by side
         self.sandboxes = [Sandbox(self.account, Limits(processes=64), namespace=False),
                           Sandbox(self.account, Limits(processes=64))]
         self.runner = runner
@@ -955,6 +955,28 @@ class CommandLineTest(unittest.TestCase):
                 self.assertEqual(list(Path(folder).iterdir()), [], "the temporary or a half file was left")
             with mock.patch.object(driver, "grade", side_effect=reports.OutputError("cannot write x: No space")):
                 self.assert_refused(["01"], "cannot write x: No space")
+
+    @unittest.skipUnless(os.geteuid() == 0 and shutil.which("unshare"), "mounting a file system needs root")
+    def test_a_read_only_and_a_full_file_system(self) -> None:
+        # Real file systems, mounted in a private mount namespace: a read-only tmpfs is refused before
+        # anything is built; a full one fails the write, says so, and leaves no temporary behind.
+        grade = Path(__file__).resolve().parents[2] / "tools" / "grade"
+        with tempfile.TemporaryDirectory() as folder:
+            script = (f"mount -t tmpfs -o ro,size=1m none {folder} && "
+                      f"{sys.executable} {grade} --results {folder}/r.json 01; echo status=$?; "
+                      f"mount -t tmpfs -o size=8k none {folder} && head -c 8192 /dev/zero > {folder}/fill; "
+                      f"{sys.executable} -c 'import sys; sys.path.insert(0, \"{grade.parent}\"); "
+                      "from pathlib import Path; from grading import reports; "
+                      f"reports.write_text(Path(\"{folder}/r.json\"), \"x\" * 100000)'; echo status=$?; "
+                      f"ls -A {folder}")
+            done = subprocess.run(["unshare", "--mount", "sh", "-c", script], capture_output=True, text=True,
+                                  timeout=120)
+            if "mount:" in done.stderr and "status=" not in done.stdout:
+                self.skipTest(f"cannot mount here: {done.stderr.strip()}")
+        self.assertIn(f"--results {folder}/r.json: the folder {folder} cannot be written", done.stderr)
+        self.assertIn("cannot write", done.stderr)
+        self.assertIn("No space left on device (the disk is full)", done.stderr)
+        self.assertEqual(done.stdout.split(), ["status=2", "status=1", "fill"])  # no r.json.tmp-grade
 
     def test_batch_options(self) -> None:
         with tempfile.TemporaryDirectory() as folder:

@@ -227,7 +227,8 @@ class Slots:
     def __init__(self, work: Path, count: int, zip_path: Path, env: dict[str, str]) -> None:
         self.work, self.zip_path, self.env = work, zip_path, env
         self.folders = [work / f"slot-{k}" for k in range(1, count + 1)]
-        self.users = ["illum-student"] + [f"illum-student-{k}" for k in range(2, count + 1)]
+        base = os.environ.get("ILLUM_GRADE_USER") or "illum-student"
+        self.users = [base] + [f"{base}-{k}" for k in range(2, count + 1)]
         self.free = list(range(count))
         self.lock = threading.Lock()
 
