@@ -611,6 +611,29 @@ class AutograderTest(unittest.TestCase):
             self.assertTrue(any("unpacked `homework.zip`" in n for n in report.notes))
             self.assertFalse((Path(folder) / "evil.cpp").exists())
 
+    def test_a_symbolic_link_in_the_upload_is_not_followed(self) -> None:
+        with tempfile.TemporaryDirectory() as folder:
+            tree, submission = self.make_tree(folder)
+            secret = Path(folder) / "reference.cpp"
+            secret.write_text("the reference")
+            (submission / "sphere.cpp").symlink_to(secret)
+            report = install_submission(submission, tree, ["01"])
+            self.assertEqual(report.installed, [])
+            self.assertEqual((tree / "exercises" / "01_ray_sphere" / "sphere.cpp").read_text(), "stub")
+            self.assertIn("symbolic link", report.ignored[0]["reason"])
+
+    def test_setup_caps_its_build_jobs(self) -> None:
+        from unittest import mock
+
+        from grading import autograder
+
+        for cores, available_kb, jobs in ((64, 6 * 1024 * 1024, 4), (2, 2 * 1024 * 1024, 1), (8, 40 << 20, 4),
+                                          (1, 40 << 20, 1), (3, 5 * 1024 * 1024, 3)):
+            meminfo = f"MemTotal: 999 kB\nMemAvailable: {available_kb} kB\n"
+            with mock.patch("builtins.open", mock.mock_open(read_data=meminfo)), \
+                    mock.patch.object(autograder.os, "cpu_count", return_value=cores):
+                self.assertEqual(autograder.build_jobs(), jobs, (cores, available_kb))
+
     def test_scripts_install_the_packages_and_grade_the_lessons(self) -> None:
         setup = setup_script(["cmake", "g++"], ["01"])
         self.assertIn("packages=(cmake g++)", setup)

@@ -258,7 +258,12 @@ def install_submission(submission: Path, tree: Path, lessons: list[str]) -> Subm
         candidates: list[tuple[Path, str]] = []
         for path in sorted(submission.rglob("*")):
             relative = path.relative_to(submission)
-            if not path.is_file() or any(_skipped_part(p) for p in relative.parts):
+            if any(_skipped_part(p) for p in relative.parts):
+                continue
+            if path.is_symlink():  # it could point at the grader's own files
+                report.ignored.append({"file": relative.as_posix(), "reason": "a symbolic link, not a file"})
+                continue
+            if not path.is_file():
                 continue
             if path.suffix.lower() == ".zip":
                 continue

@@ -218,16 +218,22 @@ def _student_units(root: Path, lessons: list[str]) -> dict[str, str]:
             if path.parent.name[:2] in lessons}
 
 
-def _fall_back(args: argparse.Namespace, root: Path, relative: str) -> bool:
-    """Replaces a student's file by its pristine stub (only the autograder has them). True if done."""
+def _fall_back(args: argparse.Namespace, root: Path, relative: str, compiled: bool = True) -> bool:
+    """Replaces a student's file by its pristine stub (only the autograder has them). True if done.
+
+    ``compiled``: whether the student's file was compiled in this tree; if not (flagged by its text),
+    the stub keeps its own date, so that make reuses the stub's object of the warm build."""
     if not (args.student and args.fallback_stubs):
         return False
     stub = args.fallback_stubs / Path(relative).relative_to("exercises")
     if not stub.is_file():
         return False
     target = root / relative
-    shutil.copyfile(stub, target)
-    target.touch()
+    if compiled:
+        shutil.copyfile(stub, target)
+        target.touch()
+    else:
+        shutil.copy2(stub, target)
     return True
 
 
@@ -267,7 +273,7 @@ def _scan_sources(args: argparse.Namespace, run: GradeRun, root: Path) -> None:
         findings = suspicious.scan_source(path.read_text(encoding="utf-8", errors="replace"), relative)
         if findings:
             run.flagged[relative] = [f.describe() for f in findings]
-            if _fall_back(args, root, relative):
+            if _fall_back(args, root, relative, compiled=False):
                 print(f"tools/grade: {relative} was flagged; grading its lesson with the stub", file=sys.stderr)
 
 
