@@ -301,8 +301,8 @@ def main(argv: list[str]) -> int:
     work.chmod(0o755)
     grader_tree = args.grader_tree.resolve()
     env = dict(os.environ, CMAKE_BUILD_PARALLEL_LEVEL="2", PYTHONDONTWRITEBYTECODE="1")
-    if shutil.which("ccache"):  # the prepared tree's build reuses earlier objects
-        env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_BASEDIR=str(work), CCACHE_NOHASHDIR="1")
+    if shutil.which("ccache"):  # the prepared trees reuse earlier objects (autograder_e2e's, batch_e2e's too)
+        env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_NOHASHDIR="1")
     zip_path = work / "autograder.zip"
     done = subprocess.run([sys.executable, str(grader_tree / "tools" / "grade"), "--pack-autograder", str(zip_path),
                            *LESSONS], env=env, capture_output=True, text=True, check=False)
@@ -328,7 +328,8 @@ def main(argv: list[str]) -> int:
             folder.chmod(0o755)
         start = time.monotonic()
         done = subprocess.run(["bash", str(ag / "source" / "setup.sh")],
-                              env=dict(env, ILLUM_AUTOGRADER_ROOT=str(ag), ILLUM_GRADE_USER=users[k]),
+                              env=dict(env, ILLUM_AUTOGRADER_ROOT=str(ag), ILLUM_GRADE_USER=users[k],
+                                       CCACHE_BASEDIR=str(ag)),
                               stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace",
                               check=False)
         (slots[k] / "setup.log").write_text(done.stdout, encoding="utf-8")
@@ -338,8 +339,9 @@ def main(argv: list[str]) -> int:
 
     for slot in slots:
         slot.mkdir()
+    prepared_slots = [prepare(0)]  # alone first: the others then find its objects in ccache
     with ThreadPoolExecutor(max_workers=len(slots)) as pool:
-        prepared_slots = list(pool.map(prepare, range(len(slots))))
+        prepared_slots += list(pool.map(prepare, range(1, len(slots))))
     for k, (status, seconds, output) in enumerate(prepared_slots):
         print(f"setup.sh in {slots[k].name} ({grader_tree}): exit {status} in {seconds:.1f} s", flush=True)
         if status != 0:

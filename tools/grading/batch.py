@@ -242,7 +242,7 @@ class Slots:
         for name in ("setup.sh", "run_autograder", "illum/tools/grade"):
             (ag / "source" / name).chmod(0o755)
         (ag / "results").mkdir()
-        env = dict(self.env, ILLUM_AUTOGRADER_ROOT=str(ag), ILLUM_GRADE_USER=self.users[k])
+        env = dict(self.env, ILLUM_AUTOGRADER_ROOT=str(ag), ILLUM_GRADE_USER=self.users[k], CCACHE_BASEDIR=str(ag))
         done = subprocess.run(["bash", str(ag / "source" / "setup.sh")], env=env, stdout=subprocess.PIPE,
                               stderr=subprocess.STDOUT, text=True, errors="replace", check=False)
         if done.returncode == 0:
@@ -454,14 +454,16 @@ def _grade_batch(root: Path, args, lessons: list[str]) -> int:
                    CMAKE_BUILD_PARALLEL_LEVEL=os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(max(1, cores // jobs))))
         for key, value in RUN_LIMITS.items():
             env.setdefault(key, value)
-        if shutil.which("ccache"):  # the workers' setups share the library's objects
-            env.setdefault("CCACHE_BASEDIR", str(work))
-            env.setdefault("CCACHE_NOHASHDIR", "1")
+        if shutil.which("ccache"):  # each worker's tree at the same place under its base: they share objects
+            env["CCACHE_NOHASHDIR"] = "1"
         slots = Slots(work, jobs, zip_path, env)
         say(f"preparing the grader for lessons {', '.join(lessons)} in {jobs} worker(s): setup.sh builds and "
             "proves the reference, as on Gradescope")
-        with ThreadPoolExecutor(max_workers=jobs) as pool:
-            prepared = list(pool.map(slots.prepare, range(jobs)))
+        # The first worker alone: the others then find the library's objects in ccache, where it is installed.
+        prepared = [slots.prepare(0)]
+        if prepared[0][0] == 0 and jobs > 1:
+            with ThreadPoolExecutor(max_workers=jobs - 1) as pool:
+                prepared += list(pool.map(slots.prepare, range(1, jobs)))
         write_text(out / "setup.log", prepared[0][1])
         (out / "setup.log").chmod(0o600)
         for k, (status, log) in enumerate(prepared):

@@ -189,6 +189,7 @@ class GraderData:
     """The autograder's trusted data (autograder.py writes it in setup, readable by root only)."""
 
     def __init__(self, folder: Path | None) -> None:
+        folder = folder.resolve() if folder is not None else None  # CMake is given its objects' full paths
         self.folder = folder
         self.tests: dict[str, dict[str, list[dict]]] = {}
         self.stub_symbols: dict[str, str] = {}
