@@ -339,9 +339,8 @@ def main(argv: list[str]) -> int:
 
     for slot in slots:
         slot.mkdir()
-    prepared_slots = [prepare(0)]  # alone first: the others then find its objects in ccache
-    with ThreadPoolExecutor(max_workers=len(slots)) as pool:
-        prepared_slots += list(pool.map(prepare, range(1, len(slots))))
+    with ThreadPoolExecutor(max_workers=len(slots)) as pool:  # each finds build/release's objects in ccache
+        prepared_slots = list(pool.map(prepare, range(len(slots))))
     for k, (status, seconds, output) in enumerate(prepared_slots):
         print(f"setup.sh in {slots[k].name} ({grader_tree}): exit {status} in {seconds:.1f} s", flush=True)
         if status != 0:
