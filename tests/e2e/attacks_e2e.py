@@ -31,8 +31,10 @@ per attack class of the threat model:
 
 Cases of attacks that the sandbox defends on its own (not only the
 suspicious-code scan) run again with the scan switched off
-(ILLUM_GRADE_NO_SCAN=1), and the process attacks once more without a pid
-namespace (ILLUM_GRADE_NO_PID_NAMESPACE=1, as in a Docker container).
+(ILLUM_GRADE_NO_SCAN=1); the process attacks do so without a pid namespace
+as well (ILLUM_GRADE_NO_PID_NAMESPACE=1, as in a Docker container), the
+harder case: only the user separates them from the grader (the pid
+namespace's own kill is tested in tests/tools/test_grade.py).
 
 run_autograder runs under an address-space limit (``--grader-memory-mb``,
 default 3072), standing in for the memory of Gradescope's container.
@@ -92,7 +94,7 @@ BASELINE = Case("reference", "", "reference", None, "full", files=(SPHERE, PARIT
 
 CASES = [
     Case("fork_rewrites_results", "fork_rewrites_results.cpp", "stub", "constructor", "honest-zero",
-         ("scan", "no-scan", "no-scan-no-pidns")),
+         ("scan", "no-scan-no-pidns")),
     Case("fake_reporter", "fake_reporter.cpp", "stub", None, "honest-zero", ("scan", "no-scan")),
     Case("rewrite_records", "rewrite_records.cpp", "stub", None, "honest-zero", ("scan", "no-scan")),
     Case("define_write", "define_write.cpp", "stub", None, "honest-zero", ("scan", "no-scan")),
@@ -107,8 +109,7 @@ CASES = [
     Case("exit_in_test", "exit_in_test.cpp", "reference", "notes", "flagged-01", ("scan",)),
     Case("exit_in_test", "exit_in_test.cpp", "reference", "notes", "notes-fail:exit(0)", ("no-scan",)),
     Case("leave_processes", "leave_processes.cpp", "reference", "constructor", "flagged-01", ("scan",)),
-    Case("leave_processes", "leave_processes.cpp", "reference", "constructor", "full-01",
-         ("no-scan", "no-scan-no-pidns")),
+    Case("leave_processes", "leave_processes.cpp", "reference", "constructor", "full-01", ("no-scan-no-pidns",)),
     Case("out_of_memory", "out_of_memory.cpp", "reference", "notes", "notes-fail:out of memory"),
 ]
 MODE_ENV = {"scan": {}, "no-scan": {"ILLUM_GRADE_NO_SCAN": "1"},
