@@ -517,13 +517,13 @@ def judge_values(stored: list[dict], sent: list[dict]) -> str:
         where = f"{at[0]}:{at[1]}"
         actual = mine.get((*at, seen[at]))
         if actual is None:
-            return f"the value checked at {where} was never computed (expected {check['expected']:.17g})"
+            return f"the value checked at {where} was never computed (expected {float(check['expected'])!r})"
         try:
             ok = approx_equal(float(actual), float(check["expected"]), float(check["epsilon"]))
         except (TypeError, ValueError):
             ok = False
         if not ok:
-            return (f"the value checked at {where} is {actual!r}, expected {check['expected']:.17g} "
+            return (f"the value checked at {where} is {actual!r}, expected {float(check['expected'])!r} "
                     f"(within a relative {check['epsilon']:g})")
     extra = sum(counts.values()) - len(stored)
     if extra > 0:
