@@ -349,6 +349,12 @@ def grade(args: argparse.Namespace, root: Path) -> int:
         raise UsageError(str(error)) from error
     runner.set_sandbox(sandbox)
     runner.set_trusted_run(bool(args.save_tests))
+    if sandbox.account is not None:  # for the instructor's log: how far the separation goes here
+        print(f"tools/grade: the student's code runs as {sandbox.account.name}, "
+              + ("each test program in a pid namespace of its own" if sandbox.namespace else
+                 "each test program in a process group of its own (no pid namespace here: unshare is not "
+                 "allowed, or ILLUM_GRADE_NO_PID_NAMESPACE=1); every process of the user is killed after it"),
+              file=sys.stderr)
     tested = set(project.test_lessons(root))
     hidden_objects = data.hidden_objects
     has_hidden = bool(hidden_objects) or bool(project.hidden_sources(root, args.hidden))
