@@ -104,7 +104,8 @@ def check_reporter(compiler: str) -> list[str]:
     if shutil.which(compiler) is None:
         return [f"{compiler}: no C++ compiler to check the reporter with"]
     command = [compiler, "-std=c++20", "-fsyntax-only", "-Wall", "-Wextra", "-Werror",
-               f"-I{DOCTEST_248}", str(ROOT / "tests" / "support" / "grade_reporter.cpp")]
+               f"-I{DOCTEST_248}", f"-I{ROOT / 'tests'}",  # support/*.hpp, as the build finds them
+               str(ROOT / "tests" / "support" / "grade_reporter.cpp")]
     completed = subprocess.run(command, capture_output=True, text=True, check=False)
     if completed.returncode != 0:
         return ["tests/support/grade_reporter.cpp does not compile against doctest 2.4.8's reporter "

@@ -13,9 +13,12 @@ Gradescope's documented format and the expected score:
   no-compile    a file that does not compile            graded as the stub, and said so
   endless-loop  one function never returns              only the tests that call it fail
   subfolder     "my work/lesson 01/sphere (1).cpp"      max / max, the rename explained
-  broken-hidden an instructor's hidden test that does not compile (added after setup.sh):
-                the visible tests graded, students told the grader is misconfigured, the
-                compiler's output only in an entry hidden from them
+  broken-hidden the hidden tests' objects kept by setup.sh damaged afterwards, so that
+                tests_hidden does not link: the visible tests graded, students told the grader
+                is misconfigured, the linker's output only in an entry hidden from them
+
+After setup.sh it also checks what setup promises: the reference units and the hidden
+tests' sources are gone, and what it keeps for the runs is readable by root only.
 
 Prints the time of setup.sh and of each run. ccache is used when installed,
 so a second run reuses the first one's objects.
@@ -104,11 +107,6 @@ def mutate(text: str, pattern: str, replacement: str, what: str) -> str:
 
 
 SECRET = "SECRET_EXPECTED_VALUE_42"
-BROKEN_HIDDEN_TEST = f"""#include <doctest/doctest.h>
-TEST_SUITE("lesson01") {{
-  TEST_CASE("hidden: broken") {{ CHECK({SECRET} == 42); }}
-}}
-"""
 
 
 def submissions() -> dict[str, dict[str, str]]:
@@ -147,8 +145,11 @@ def main(argv: list[str]) -> int:
     work.mkdir(parents=True)
     ag = work / "autograder"
 
+    # A grading user of its own (ILLUM_GRADE_USER): CTest runs the end-to-end tests side by side, and
+    # every process of a grading user is killed at the end of each run.
     env = dict(os.environ, ILLUM_AUTOGRADER_ROOT=str(ag), CMAKE_BUILD_PARALLEL_LEVEL="2",
-               ILLUM_GRADE_TEST_TIMEOUT=args.test_timeout, PYTHONDONTWRITEBYTECODE="1")
+               ILLUM_GRADE_TEST_TIMEOUT=args.test_timeout, PYTHONDONTWRITEBYTECODE="1",
+               ILLUM_GRADE_USER="illum-test-ag")
     if shutil.which("ccache"):
         env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_BASEDIR=str(ag), CCACHE_NOHASHDIR="1")
 
@@ -177,6 +178,14 @@ def main(argv: list[str]) -> int:
         return 1
     check("the reference scored" in output and "toolchain and libraries found" in output,
           "setup.sh did not show the versions and the reference's score")
+    source = ag / "source"
+    check(not (source / "reference").exists(), "setup.sh left the reference units in the image")
+    check(not any((source / "hidden-tests").glob("*.cpp")), "setup.sh left the hidden tests' sources in the image")
+    check(not list((source / "illum").rglob(f"lib/**/{UNIT}")), "the reference unit is in the student edition")
+    grader = source / "grader"
+    check(grader.is_dir() and (grader.stat().st_mode & 0o077) == 0,
+          "the grader's data (trusted test list, hidden objects) is readable by others than root")
+    check(any((grader / "hidden-objects").glob("*.o")), "setup.sh kept no hidden test objects")
 
     expected_max = visible_max = None
     for case, files in submissions().items():
@@ -187,7 +196,8 @@ def main(argv: list[str]) -> int:
             (submission / relative).parent.mkdir(parents=True, exist_ok=True)
             (submission / relative).write_text(text, encoding="utf-8")
         if case == "broken-hidden":
-            (ag / "source" / "hidden-tests" / "zz_broken_hidden.cpp").write_text(BROKEN_HIDDEN_TEST, encoding="utf-8")
+            damaged = sorted((ag / "source" / "grader" / "hidden-objects").glob("*.o"))[0]
+            damaged.write_text(f"not an object file: {SECRET}\n", encoding="utf-8")
         status, seconds, output = run(["bash", str(ag / "source" / "run_autograder")], env)
         times[case] = seconds
         results = ag / "results" / "results.json"
@@ -235,11 +245,12 @@ def main(argv: list[str]) -> int:
                   "endless-loop: a test that does not call sphere_roots_notes timed out")
         elif case == "broken-hidden":
             shown = [t for t in data["tests"] if t["visibility"] != "hidden"]
-            secret = [t for t in data["tests"] if SECRET in t["output"]]
-            check(bool(secret) and all(t["visibility"] == "hidden" for t in secret),
-                  "broken-hidden: the compiler's output is not in an entry hidden from students")
-            check(SECRET not in data["output"] and all(SECRET not in t["output"] for t in shown),
-                  "broken-hidden: students can read the hidden test's source")
+            entry = [t for t in data["tests"] if t["name"].startswith("hidden tests: build")]
+            check(len(entry) == 1 and entry[0]["visibility"] == "hidden" and damaged.name in entry[0]["output"],
+                  "broken-hidden: the linker's output is not in an entry hidden from students")
+            check(damaged.name not in data["output"] and all(damaged.name not in t["output"] for t in shown),
+                  "broken-hidden: students can read the hidden tests' file names")
+            check(SECRET not in json.dumps(data), "broken-hidden: the damaged object's content reached the results")
             check("misconfigured" in data["output"] and "did not compile" not in data["output"],
                   "broken-hidden: the students' output does not say the grader is misconfigured")
             check(score == max_score == visible_max,

@@ -7,6 +7,7 @@
 
 #include "illum/core/ray.hpp"
 #include "illum/geometry/sphere.hpp"
+#include "support/grade_values.hpp"
 
 TEST_SUITE("lesson01") {
   TEST_CASE("hidden: an off-centre ray meets the unit sphere where the 3-4-5 triangle says") {
@@ -20,13 +21,12 @@ TEST_SUITE("lesson01") {
     const std::optional<illum::SphereHit> hit = illum::intersect(ray, sphere);
     REQUIRE_MESSAGE(hit.has_value(),
                     "the ray passes 0.6 from the centre of a sphere of radius 1: it must hit");
-    CHECK_MESSAGE(hit->s == doctest::Approx(4.2).epsilon(1e-12),
-                  "the nearer root is s = 5 − √(r² − d²) = 5 − 0.8");
-    CHECK(hit->point.x == doctest::Approx(0.6).epsilon(1e-12));
-    CHECK(hit->point.z == doctest::Approx(-0.8).epsilon(1e-12));
-    CHECK_MESSAGE(hit->normal.x == doctest::Approx(0.6).epsilon(1e-12), "the normal is (P − Pc)/r");
-    CHECK_MESSAGE(hit->normal.z == doctest::Approx(-0.8).epsilon(1e-12),
-                  "the normal points out, towards the ray");
+    // ILLUM_CHECK_APPROX: these values are also judged by the grader, outside the test program.
+    ILLUM_CHECK_APPROX_MESSAGE(hit->s, 4.2, 1e-12, "the nearer root is s = 5 − √(r² − d²) = 5 − 0.8");
+    ILLUM_CHECK_APPROX(hit->point.x, 0.6, 1e-12);
+    ILLUM_CHECK_APPROX(hit->point.z, -0.8, 1e-12);
+    ILLUM_CHECK_APPROX_MESSAGE(hit->normal.x, 0.6, 1e-12, "the normal is (P − Pc)/r");
+    ILLUM_CHECK_APPROX_MESSAGE(hit->normal.z, -0.8, 1e-12, "the normal points out, towards the ray");
     CHECK_MESSAGE(!hit->from_inside, "the origin (0.6, 0, −5) lies outside the sphere");
   }
 
@@ -37,9 +37,8 @@ TEST_SUITE("lesson01") {
     const illum::Ray ray({1.0, 2.0, 3.0}, {0.0, 1.0, 0.0});
     const std::optional<illum::SphereHit> hit = illum::intersect(ray, sphere);
     REQUIRE_MESSAGE(hit.has_value(), "a ray from the centre always leaves the sphere");
-    CHECK_MESSAGE(hit->s == doctest::Approx(2.0).epsilon(1e-12),
-                  "the near root −r is behind the ray; take the far one");
-    CHECK(hit->point.y == doctest::Approx(4.0).epsilon(1e-12));
+    ILLUM_CHECK_APPROX_MESSAGE(hit->s, 2.0, 1e-12, "the near root −r is behind the ray; take the far one");
+    ILLUM_CHECK_APPROX(hit->point.y, 4.0, 1e-12);
     CHECK_MESSAGE(hit->from_inside, "the origin is the centre, strictly inside");
   }
 }

@@ -9,7 +9,12 @@ Run: python3 tests/tools/test_grade.py   (ctest: tools_grade_py)
 """
 from __future__ import annotations
 
+import csv
+import io
 import json
+import os
+import re
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -28,7 +33,7 @@ from grading.edition import excluded_files  # noqa: E402
 from grading.integrity import check_pair  # noqa: E402
 from grading.project import normalize_lesson  # noqa: E402
 from grading.reports import GradeRun  # noqa: E402
-from grading.results import merge, parse_lines, points_of  # noqa: E402
+from grading.results import TestResult, merge, parse_lines, points_of  # noqa: E402
 
 NI = "NotImplemented: intersect(Ray, Sphere) — take the nearest root"
 
@@ -59,6 +64,12 @@ RUN = [
     ran("refuses a negative radius", 9, False, [assert_failure("CHECK( r > 0 ) is NOT correct", context="r must be positive")]),
     ran("grazing", 14, False, [assert_failure("threw", not_implemented=True)]),
 ]
+
+
+def reports_failure(message: str):
+    from grading.results import Failure
+
+    return Failure(kind="assert", message=message, file="/src/tests/hidden/x.cpp", line=3)
 
 
 def sample_run(hidden_extra: bool = False) -> GradeRun:
@@ -162,6 +173,40 @@ class ReportTest(unittest.TestCase):
         self.assertEqual(sum(t["max_score"] for t in data["tests"]), 4.0)  # the visible tests are graded
         self.assertEqual(reports.exit_code(run), 2)
 
+    def test_nothing_of_a_hidden_test_reaches_what_students_read(self) -> None:
+        secret = "SECRET_HIDDEN_EXPECTATION"
+        run = sample_run(hidden_extra=True)
+        hidden = run.results[-1]
+        hidden.name, hidden.passed = f"hidden: {secret} name", False
+        hidden.failures = [reports_failure(f"CHECK( {secret} == 42 ) is NOT correct")]
+        run.problems = [f'tests_hidden: test "hidden: {secret} name": the test program was killed by SIGSEGV',
+                        f'tests_lesson01: test "hidden: {secret} name" copied into another program']
+        run.review = [f"tampering: tests_hidden -ts=lesson01: a second result for \"{secret}\""]
+        run.hidden_build_failed, run.hidden_build_output = True, f"tests/hidden/x.cpp:3: error: {secret}"
+        data = reports.gradescope_results(run, Path("/src"))
+        shown = data["output"] + "".join(t["output"] + t["name"] for t in data["tests"] if t["visibility"] != "hidden")
+        self.assertNotIn(secret, shown)
+        self.assertIn(secret, json.dumps([t for t in data["tests"] if t["visibility"] == "hidden"]))
+
+    def test_a_flagged_file_is_said_to_the_student_and_the_review_to_the_instructor(self) -> None:
+        run = sample_run()
+        run.flagged = {"exercises/01_ray_sphere/sphere.cpp": ["exercises/01_ray_sphere/sphere.cpp:3: starts a process"]}
+        run.review = ["exercises/01_ray_sphere/sphere.cpp: calls the C function malloc(), unusual"]
+        data = reports.gradescope_results(run)
+        flagged = [t for t in data["tests"] if t["name"].startswith("flagged:")]
+        self.assertEqual([t["visibility"] for t in flagged], ["visible"])
+        self.assertIn("starts a process", flagged[0]["output"])
+        self.assertIn("do more than compute", data["output"])
+        review = [t for t in data["tests"] if t["name"].startswith("review")]
+        self.assertEqual([t["visibility"] for t in review], ["hidden"])
+        self.assertNotIn("malloc", data["output"])
+        self.assertEqual(data["extra_data"]["illum"]["lessons"]["01"]["status"], "flagged")
+        run.fallbacks = {"exercises/01_ray_sphere/sphere.cpp": "multiple definition of `illum::f()'"}
+        run.link_failures = {"exercises/01_ray_sphere/sphere.cpp"}
+        data = reports.gradescope_results(run)
+        self.assertIn("did not link", data["output"])
+        self.assertTrue(any(t["name"].endswith("did not link (graded as the stub)") for t in data["tests"]))
+
     def test_a_file_that_fell_back_to_its_stub_is_named(self) -> None:
         run = sample_run()
         run.fallbacks = {"exercises/01_ray_sphere/sphere.cpp": "sphere.cpp:1: error: x"}
@@ -211,96 +256,236 @@ class ReportTest(unittest.TestCase):
 
 
 FAKE_PROGRAM = """#!/usr/bin/env python3
-# Stands in for a doctest program: lists two tests, reports the first, then dies.
-import os, signal, sys, time
-out = next(a.split("=", 1)[1] for a in sys.argv if a.startswith("--out="))
-with open(out, "w") as f:
-    if "--list-test-cases" in sys.argv:
-        f.write(LISTED)
-        sys.exit(0)
-    f.write(FIRST + "\\n")
-    f.flush()
-print("student debug output on stdout")
-if MODE == "crash":
-    os.kill(os.getpid(), signal.SIGSEGV)
-time.sleep(30)
-"""
-
-
-RERUN_PROGRAM = """#!/usr/bin/env python3
-# Stands in for a doctest program with three tests; the second never ends.
-import json, sys, time
-out = next(a.split("=", 1)[1] for a in sys.argv if a.startswith("--out="))
-first = int(next((a.split("=", 1)[1] for a in sys.argv if a.startswith("--first=")), "1"))
-names = ["one", "loops", "three"]
+# Stands in for a doctest program run through the illum-grade reporter: its records go to the pipe
+# named by ILLUM_GRADE_RECORDS_FD, in the reporter's order. It has three tests, runs them from
+# --first=N on, and test number K does what BEHAVIOUR[K] says (default: pass).
+import json, os, signal, sys, time
+BEHAVIOUR = __BEHAVIOUR__
+out = os.fdopen(int(os.environ["ILLUM_GRADE_RECORDS_FD"]), "w")
+names = ["one", "two", "three"]
 def record(event, number, **extra):
-    return json.dumps(dict(event=event, suite="lesson01", name=names[number - 1], file="/t.cpp", line=number,
-                           description="", **extra)) + "\\n"
-with open(out, "w") as f:
-    if "--list-test-cases" in sys.argv:
-        f.write("".join(record("listed", n) for n in (1, 2, 3)))
-        sys.exit(0)
-    for number in range(first, 4):
-        f.write(record("started", number)); f.flush()
-        if number == 2:
-            time.sleep(60)
-        f.write(record("test_case", number, passed=True, skipped=False, failures=[])); f.flush()
+    out.write(json.dumps(dict(event=event, suite="lesson01", name=names[number - 1], file="/t.cpp", line=number,
+                              description="", **extra)) + "\\n")
+    out.flush()
+def finished(number, passed=True):
+    record("test_case", number, passed=passed, skipped=False, failures=[])
+if "--list-test-cases" in sys.argv:
+    for number in (1, 2, 3):
+        record("listed", number)
+    sys.exit(0)
+first = int(next((a.split("=", 1)[1] for a in sys.argv if a.startswith("--first=")), "1"))
+for number in range(first, 4):
+    what = BEHAVIOUR.get(number, "pass")
+    record("started", number)
+    if what == "hang":
+        time.sleep(60)
+    elif what == "crash":
+        os.kill(os.getpid(), signal.SIGSEGV)
+    elif what == "exit0":
+        os._exit(0)
+    elif what == "duplicate":
+        finished(number)
+    elif what == "forge":
+        finished(3)  # a result for a test that is not running
+    elif what == "print":
+        sys.stdout.write("x" * (5 * 1024 * 1024) + "END-OF-OUTPUT")
+        sys.stdout.flush()
+    elif what == "daemon":
+        if os.fork() == 0:
+            os.setsid()
+            if os.fork() == 0:
+                time.sleep(60)
+            os._exit(0)
+    elif what == "fork-many":
+        made = 0
+        for _ in range(300):
+            try:
+                if os.fork() == 0:
+                    time.sleep(60)
+                    os._exit(0)
+                made += 1
+            except OSError:
+                break
+        sys.stdout.write(f"forked {made}\\n")
+        sys.stdout.flush()
+    elif what.startswith("value="):  # the ILLUM_CHECK_APPROX records of a test (grade_values.hpp)
+        for actual in what.split("=", 1)[1].split(","):
+            out.write(json.dumps({"event": "value", "at_file": "/t.cpp", "at_line": 40, "actual": float(actual),
+                                  "expected": float(actual), "epsilon": 0}) + "\\n")
+        out.flush()
+    elif what == "skip-report":
+        continue  # started, and never a result: the next test starts while it runs
+    finished(number, passed=what != "fail")
+out.write(json.dumps({"event": "run_end"}) + "\\n")
+out.flush()
 """
+
+
+def fake_program(folder: str, behaviour: dict[int, str]) -> Path:
+    program = Path(folder) / "tests_lesson01"
+    program.write_text(FAKE_PROGRAM.replace("__BEHAVIOUR__", repr(behaviour)))
+    program.chmod(0o755)
+    Path(folder).chmod(0o755)
+    return program
 
 
 class RunnerTest(unittest.TestCase):
-    def test_a_hanging_test_costs_only_itself(self) -> None:
+    """What run_suite makes of a test program that hangs, crashes, exits, lies or floods (runner.py)."""
+
+    def run_fake(self, behaviour: dict[int, str], **options) -> "object":
         from grading.runner import run_suite
 
         with tempfile.TemporaryDirectory() as folder:
-            program = Path(folder) / "tests_lesson01"
-            program.write_text(RERUN_PROGRAM)
-            program.chmod(0o755)
-            run = run_suite(program, "lesson01", timeout=30, test_timeout=1.0)
-        self.assertEqual([(r.name, r.status) for r in run.results],
-                         [("one", "passed"), ("loops", "failed"), ("three", "passed")])
+            return run_suite(fake_program(folder, behaviour), "lesson01", timeout=options.pop("timeout", 30),
+                             test_timeout=options.pop("test_timeout", 5.0), **options)
+
+    def statuses(self, run) -> list[tuple[str, str]]:
+        return [(r.name, r.status) for r in run.results]
+
+    def test_a_hanging_test_costs_only_itself(self) -> None:
+        run = self.run_fake({2: "hang"}, test_timeout=1.0)
+        self.assertEqual(self.statuses(run), [("one", "passed"), ("two", "failed"), ("three", "passed")])
         self.assertIn("did not finish within 1 s", run.results[1].output())
-        self.assertIn('test "loops"', run.problem)
+        self.assertIn('test "two"', run.problem)
+
+    def test_a_crash_costs_only_the_test_that_crashed(self) -> None:
+        run = self.run_fake({2: "crash"})
+        self.assertEqual(self.statuses(run), [("one", "passed"), ("two", "failed"), ("three", "passed")])
+        self.assertIn("SIGSEGV", run.results[1].output())
+
+    def test_exit_inside_a_test_is_reported_as_such(self) -> None:
+        run = self.run_fake({1: "exit0"})
+        self.assertEqual(self.statuses(run), [("one", "failed"), ("two", "passed"), ("three", "passed")])
+        self.assertIn("exit(0)", run.results[0].output())
+
+    def test_a_second_record_for_a_test_fails_it_as_tampering(self) -> None:
+        run = self.run_fake({2: "duplicate"})
+        self.assertEqual(self.statuses(run), [("one", "passed"), ("two", "failed"), ("three", "passed")])
+        self.assertIn("tampering", run.results[1].output())
+        self.assertTrue(run.tampering)
+
+    def test_a_record_for_a_test_that_is_not_running_is_tampering(self) -> None:
+        run = self.run_fake({1: "forge"})
+        self.assertEqual([r.passed for r in run.results], [False, True, True])
+        self.assertIn("tampering", run.results[0].output())
+        self.assertIn("was not running", run.results[0].output())
+
+    def test_a_listed_test_without_a_result_fails(self) -> None:
+        # The trusted list has a fourth test the program never reports.
+        expected = [{"suite": "lesson01", "name": n, "file": "/t.cpp", "line": k, "description": ""}
+                    for k, n in enumerate(["one", "two", "three", "four"], start=1)]
+        run = self.run_fake({}, expected=expected)
+        self.assertEqual(self.statuses(run)[-1], ("four", "not run"))
+        self.assertIn("no result was received", run.results[-1].output())
+        self.assertEqual([r.passed for r in run.results[:3]], [True, True, True])
+
+    def test_checked_values_are_judged_by_the_grader(self) -> None:
+        # The trusted run kept: test "two" checks 2.5 and then 7 at /t.cpp:40, relative 1e-9. The program's own
+        # verdict says passed every time; only the values it sends decide.
+        def listing(values):
+            return [{"suite": "lesson01", "name": n, "file": "/t.cpp", "line": k, "description": "",
+                     **({"values": values} if n == "two" else {})} for k, n in enumerate(["one", "two", "three"], 1)]
+
+        kept = [{"file": "../../t.cpp", "line": 40, "expected": 2.5, "epsilon": 1e-9},
+                {"file": "/t.cpp", "line": 40, "expected": 7.0, "epsilon": 1e-9}]
+        for sent, passed, words in (("2.5,7.000000001", True, ""),
+                                    ("2.5,7.1", False, "is 7.1, expected 7"),
+                                    ("2.5", False, "never computed"),
+                                    ("2.5,7,9", False, "more checked value"),
+                                    ("pass", False, "never computed")):
+            behaviour = {2: sent if sent == "pass" else f"value={sent}"}
+            run = self.run_fake(behaviour, expected=listing(kept))
+            self.assertEqual(run.results[1].passed, passed, sent)
+            self.assertIn(words, run.results[1].output(), sent)
+            self.assertEqual([run.results[0].passed, run.results[2].passed], [True, True])
+
+    def test_output_is_capped_to_its_last_64_kb(self) -> None:
+        run = self.run_fake({1: "print"})
+        self.assertEqual([r.passed for r in run.results], [True, True, True])
+        self.assertLess(len(run.output), 70 * 1024)
+        self.assertIn("END-OF-OUTPUT", run.output)
+        self.assertIn("earlier bytes of output cut", run.output)
 
     def test_no_test_starts_after_the_deadline(self) -> None:
         from grading import runner
 
-        with tempfile.TemporaryDirectory() as folder:
-            program = Path(folder) / "tests_lesson01"
-            program.write_text(RERUN_PROGRAM)
-            program.chmod(0o755)
-            runner.set_deadline(0.0)
-            try:
-                run = runner.run_suite(program, "lesson01", timeout=30, test_timeout=1.0)
-            finally:
-                runner.set_deadline(None)
+        runner.set_deadline(0.0)
+        try:
+            run = self.run_fake({})
+        finally:
+            runner.set_deadline(None)
         self.assertEqual([r.status for r in run.results], ["not run"] * 3)
         self.assertIn("ILLUM_GRADE_DEADLINE", run.results[0].output())
 
-    """A crashing or hanging program still gives a result for every listed test."""
+    def test_the_records_order_is_checked(self) -> None:
+        from grading.runner import check_records
 
-    def run_fake(self, mode: str, timeout: float) -> "object":
-        from grading.runner import run_suite
+        def rec(event: str, number: int, **extra) -> dict:
+            return dict(event=event, suite="lesson01", name=f"t{number}", file="/t.cpp", line=number, **extra)
 
+        order = {TestResult.from_json(rec("listed", k)).key: k for k in (1, 2, 3)}
+        good = [rec("started", 1), rec("test_case", 1), rec("started", 2), rec("test_case", 2), {"event": "run_end"}]
+        self.assertEqual(check_records(good, order, 1).violation, "")
+        for records, words in (
+                ([rec("test_case", 1)], "was not running"),
+                ([rec("started", 1), rec("started", 2)], "while \"t1\" was still running"),
+                ([rec("started", 2), rec("test_case", 2), rec("started", 1)], "out of order"),
+                ([rec("started", 1), rec("test_case", 1), rec("test_case", 1)], "second result"),
+                ([rec("started", 9)], "not one of the graded tests"),
+                ([{"event": "run_end"}, rec("started", 1)], "after the end")):
+            checked = check_records(records, order, 1)
+            self.assertIn(words, checked.violation, records)
+        self.assertIn("not records", check_records(good, order, 1, garbage=1).violation)
+
+
+@unittest.skipUnless(os.geteuid() == 0, "a second user and its limits need root")
+class SandboxTest(unittest.TestCase):
+    """As the unprivileged user: nothing outlives the program, the process limit holds (sandbox.py)."""
+
+    def setUp(self) -> None:
+        from grading import runner
+        from grading.sandbox import Limits, Sandbox, create_account
+
+        self.account = create_account("illum-test-unit")  # its own: other tests grade side by side
+        self.sandboxes = [Sandbox(self.account, Limits(processes=64), namespace=False),
+                          Sandbox(self.account, Limits(processes=64))]
+        self.runner = runner
+
+    def tearDown(self) -> None:
+        self.runner.set_sandbox(None)
+
+    def run_as_student(self, sandbox, behaviour: dict[int, str]):
+        from grading.sandbox import user_processes
+
+        self.runner.set_sandbox(sandbox)
         with tempfile.TemporaryDirectory() as folder:
-            program = Path(folder) / "tests_lesson01"
-            shebang, body = FAKE_PROGRAM.split("\n", 1)
-            constants = (f"LISTED = {(LISTING[0] + chr(10) + LISTING[2] + chr(10))!r}\n"
-                         f"FIRST = {RUN[0]!r}\nMODE = {mode!r}\n")
-            program.write_text(shebang + "\n" + constants + body)
-            program.chmod(0o755)
-            return run_suite(program, "lesson01", timeout=timeout)
+            run = self.runner.run_suite(fake_program(folder, behaviour), "lesson01", timeout=30, test_timeout=10)
+        return run, user_processes(self.account.uid)
 
-    def test_crash(self) -> None:
-        run = self.run_fake("crash", timeout=20)
-        self.assertEqual([r.status for r in run.results], ["passed", "not run"])
-        self.assertIn("SIGSEGV", run.problem)
-        self.assertIn("SIGSEGV", run.results[1].output())
+    def test_a_daemon_does_not_outlive_the_program(self) -> None:
+        for sandbox in self.sandboxes:
+            run, alive = self.run_as_student(sandbox, {1: "daemon"})
+            self.assertEqual(alive, [], f"namespace={sandbox.namespace}")
+            self.assertEqual([r.passed for r in run.results], [True, True, True])
 
-    def test_timeout(self) -> None:
-        run = self.run_fake("hang", timeout=1.5)
-        self.assertEqual([r.status for r in run.results], ["passed", "not run"])
-        self.assertIn("did not finish", run.results[1].note)
+    def test_the_process_limit_holds(self) -> None:
+        run, alive = self.run_as_student(self.sandboxes[0], {1: "fork-many"})
+        made = int(re.search(r"forked (\d+)", run.output).group(1))
+        self.assertLess(made, 64)
+        self.assertEqual(alive, [])
+
+    def test_the_program_runs_as_the_student_with_a_private_home(self) -> None:
+        from grading.sandbox import Sandbox
+
+        sandbox = Sandbox(self.account)
+        launched = sandbox.launch(["/usr/bin/id", "-u"], records=False)
+        launched.process.wait()
+        output = os.read(launched.output_fd, 4096).decode()
+        home = launched.scratch / "home"
+        mode = home.stat().st_mode & 0o777
+        sandbox.finish(launched)
+        self.assertEqual(output.strip(), str(self.account.uid))
+        self.assertEqual(mode, 0o700)
 
 
 class ExitCodeTest(unittest.TestCase):
@@ -426,6 +611,29 @@ class AutograderTest(unittest.TestCase):
             self.assertTrue(any("unpacked `homework.zip`" in n for n in report.notes))
             self.assertFalse((Path(folder) / "evil.cpp").exists())
 
+    def test_a_symbolic_link_in_the_upload_is_not_followed(self) -> None:
+        with tempfile.TemporaryDirectory() as folder:
+            tree, submission = self.make_tree(folder)
+            secret = Path(folder) / "reference.cpp"
+            secret.write_text("the reference")
+            (submission / "sphere.cpp").symlink_to(secret)
+            report = install_submission(submission, tree, ["01"])
+            self.assertEqual(report.installed, [])
+            self.assertEqual((tree / "exercises" / "01_ray_sphere" / "sphere.cpp").read_text(), "stub")
+            self.assertIn("symbolic link", report.ignored[0]["reason"])
+
+    def test_setup_caps_its_build_jobs(self) -> None:
+        from unittest import mock
+
+        from grading import autograder
+
+        for cores, available_kb, jobs in ((64, 6 * 1024 * 1024, 4), (2, 2 * 1024 * 1024, 1), (8, 40 << 20, 4),
+                                          (1, 40 << 20, 1), (3, 5 * 1024 * 1024, 3)):
+            meminfo = f"MemTotal: 999 kB\nMemAvailable: {available_kb} kB\n"
+            with mock.patch("builtins.open", mock.mock_open(read_data=meminfo)), \
+                    mock.patch.object(autograder.os, "cpu_count", return_value=cores):
+                self.assertEqual(autograder.build_jobs(), jobs, (cores, available_kb))
+
     def test_scripts_install_the_packages_and_grade_the_lessons(self) -> None:
         setup = setup_script(["cmake", "g++"], ["01"])
         self.assertIn("packages=(cmake g++)", setup)
@@ -500,6 +708,183 @@ class FallbackTest(unittest.TestCase):
             self.assertEqual(run.fallbacks, {})
 
 
+class SuspiciousCodeTest(unittest.TestCase):
+    """The checks that flag an exercise file reaching outside the computation (suspicious.py)."""
+
+    def findings(self, text: str) -> list[str]:
+        from grading.suspicious import scan_source
+
+        return [f.what for f in scan_source(text, "exercises/01_ray_sphere/sphere.cpp")]
+
+    def test_every_stub_and_reference_unit_passes(self) -> None:
+        from grading.suspicious import scan_source
+
+        root = Path(__file__).resolve().parents[2]
+        for stub in sorted(root.glob("exercises/[0-9][0-9]_*/*.cpp")):
+            for path in [stub, *root.glob(f"lib/illum/**/{stub.name}")]:
+                self.assertEqual(scan_source(path.read_text(encoding="utf-8"), str(path)), [], path)
+
+    def test_each_rule(self) -> None:
+        base = '#include "illum/geometry/sphere.hpp"\n#include <cmath>\n#include <glm/glm.hpp>\nnamespace illum {\n'
+        self.assertEqual(self.findings(base + "double f(double x) { return std::sqrt(x); }\n}\n"), [])
+        for line, words in (
+                ("#include <unistd.h>", "outside illum/"),
+                ('#include "../../../reference/sphere.cpp"', "leaves the include folders"),
+                ('#include "illum/geometry/sphere.cpp"', "a source file"),
+                ("#include <fstream>", "may not touch files"),
+                ("#include SOMETHING", "computes the name"),
+                ("void f() { DOCTEST_CHECK(1); }", "doctest"),
+                ("void f() { if (fork() == 0) return; }", "starts a process"),
+                ("void f() { std::system(\"ls\"); }", "starts a process"),
+                ("void f() { std::exit(0); }", "ends the program"),
+                ("void f() { _exit(0); }", "ends the program"),
+                ("void f() { asm(\"nop\"); }", "inline assembly"),
+                ("long f() { return syscall(1); }", "system call"),
+                ('const char* p = "/proc/self/fd/3";', "/proc"),
+                ('extern "C" long write(int, const void*, unsigned long);', "extern \"C\""),
+                ("__attribute__((constructor)) void f() {}", "starts or ends"),
+                ("#define NAME(a, b) a##b", "token pasting"),
+                ("void f() { auto p = getenv(\"HOME\"); }", "environment")):
+            self.assertTrue(any(words in w for w in self.findings(base + line + "\n}\n")), (line, words))
+
+    def test_comments_and_names_that_only_look_alike_pass(self) -> None:
+        text = ('#include "illum/core/error.hpp"\n// exit(0) in a comment, fork() too, doctest is the framework\n'
+                "/* asm */\nnamespace illum {\ndouble coordinate_system(double x) { return x; }\n"
+                "double exit_angle(double x) { return coordinate_system(x); }\n}\n")
+        self.assertEqual(self.findings(text), [])
+
+    def test_a_rule_found_on_many_lines_is_one_finding(self) -> None:
+        text = "\n".join(["void f() { std::exit(1); }"] * 5)
+        found = self.findings(text)
+        self.assertEqual(len(found), 1)
+        self.assertIn("also lines 2, 3, 4, 5", found[0])
+
+    @unittest.skipUnless(shutil.which("c++") and shutil.which("nm"), "needs a compiler and nm")
+    def test_the_object_file_is_checked_too(self) -> None:
+        from grading.suspicious import scan_object
+
+        with tempfile.TemporaryDirectory() as folder:
+            source, obj = Path(folder) / "x.cpp", Path(folder) / "x.o"
+            # Names a text scan cannot see (built by the preprocessor from pieces) are still symbols.
+            source.write_text('#define JOIN(a, b) a##b\nextern "C" long JOIN(wri, te)(int, const void*, unsigned long n)'
+                              " { return (long)n; }\nextern \"C\" int JOIN(fo, rk)();\n"
+                              "namespace illum { int twice(int x) { return JOIN(fo, rk)() + 2 * x; } }\n")
+            subprocess.run(["c++", "-c", "-O2", str(source), "-o", str(obj)], check=True)
+            found = [f for f in scan_object(obj, "exercises/01_ray_sphere/sphere.cpp") if f.serious]
+            text = "\n".join(f.what for f in found)
+            self.assertIn("defines `write`", text)
+            self.assertIn("calls fork()", text)
+            self.assertNotIn("twice", text)
+            found = scan_object(obj, "x.cpp", library={"_ZN5illum5twiceEi": "ray.cpp.o"})
+            self.assertTrue(any("which the library already has" in f.what for f in found))
+
+
+class LinkAttributionTest(unittest.TestCase):
+    """A link error is blamed on the student's files that cause it (build.linker_blames)."""
+
+    UNITS = {"parity.cpp": "exercises/02_polygon_parity/parity.cpp",
+             "plane.cpp": "exercises/02_polygon_parity/plane.cpp",
+             "sphere.cpp": "exercises/01_ray_sphere/sphere.cpp"}
+
+    def test_a_helper_defined_twice(self) -> None:
+        from grading.build import linker_blames
+
+        output = ("/usr/bin/ld: ../libillum.a(plane.cpp.o): in function `illum::twice(double)':\n"
+                  "plane.cpp:(.text+0x0): multiple definition of `illum::twice(double)'; "
+                  "../libillum.a(parity.cpp.o):parity.cpp:(.text+0x0): first defined here\n"
+                  "collect2: error: ld returned 1 exit status\n")
+        self.assertEqual(linker_blames(output, self.UNITS), ["exercises/02_polygon_parity/parity.cpp",
+                                                             "exercises/02_polygon_parity/plane.cpp"])
+
+    def test_an_undefined_reference(self) -> None:
+        from grading.build import linker_blames
+
+        mine = ("/usr/bin/ld: ../libillum.a(sphere.cpp.o): in function `illum::intersect(illum::Ray const&, "
+                "illum::Sphere const&)':\nsphere.cpp:(.text+0x4): undefined reference to `illum::my_helper(double)'\n")
+        self.assertEqual(linker_blames(mine, self.UNITS), ["exercises/01_ray_sphere/sphere.cpp"])
+        tests = ("/usr/bin/ld: CMakeFiles/x.dir/01_ray_sphere/grading.cpp.o: in function `DOCTEST_ANON_FUNC_2()':\n"
+                 "grading.cpp:(.text+0x9): undefined reference to `illum::Sphere::Sphere(glm::vec<3, double, "
+                 "(glm::qualifier)0> const&, double)'\n")
+        owners = {"illum::Sphere::Sphere": "exercises/01_ray_sphere/sphere.cpp"}
+        self.assertEqual(linker_blames(tests, self.UNITS, owners), ["exercises/01_ray_sphere/sphere.cpp"])
+        self.assertEqual(linker_blames(tests, self.UNITS), [])
+        self.assertEqual(linker_blames("/usr/bin/ld: cannot find -lfoo\n", self.UNITS), [])
+
+
+class BatchTest(unittest.TestCase):
+    """tools/grade --batch's pure parts: the roster, the join, grades.csv and the gradebook files."""
+
+    def outcome(self, ident: str, status: str, scores: dict[str, tuple[float, float, str]]):
+        from grading.batch import Outcome
+
+        lessons = {nn: {"score": got, "max_score": top, "status": st} for nn, (got, top, st) in scores.items()}
+        gradable = [v for v in lessons.values() if v["status"] != "not gradable"]
+        total = sum(v["score"] for v in gradable) if gradable else None
+        tests = {f"lesson{nn}: t": got for nn, (got, top, st) in scores.items()}
+        return Outcome(ident, status=status, total=total, max_score=sum(v["max_score"] for v in lessons.values()),
+                       lessons=lessons, tests=tests)
+
+    def test_roster_join_by_id_or_email(self) -> None:
+        from grading.batch import Submission, read_roster
+
+        with tempfile.TemporaryDirectory() as folder:
+            path = Path(folder) / "roster.csv"
+            path.write_bytes("\ufeffNombre;Correo;Login\nAna;ANA@uni.example;a1\nBen;ben@uni.example;b2\n"
+                             "Cris;cris@uni.example;c3\n".encode("utf-8"))
+            roster = read_roster(path)
+            self.assertEqual(roster.keys, ["Correo", "Login"])
+            matched, unmatched = roster.match([Submission("ana", Path("ana")), Submission("b2", Path("b2")),
+                                               Submission("zoe", Path("zoe"))])
+            self.assertEqual({i: s.ident for i, s in matched.items()}, {0: "ana", 1: "b2"})
+            self.assertEqual([s.ident for s in unmatched], ["zoe"])
+
+    def test_grades_csv_columns_and_not_gradable(self) -> None:
+        from grading.batch import Outcome, grades_csv
+
+        rows = [self.outcome("ana", "graded", {"01": (3, 4, "graded"), "02": (1, 2, "graded")}),
+                self.outcome("ben", "partly gradable", {"01": (0, 4, "not gradable"), "02": (2, 2, "graded")}),
+                self.outcome("cris", "not gradable", {"01": (0, 4, "not gradable"), "02": (0, 2, "not gradable")}),
+                Outcome("dan", status="missing")]
+        table = list(csv.reader(io.StringIO(grades_csv(rows, ["01", "02"], None))))
+        self.assertEqual(table[0], ["id", "status", "total", "max", "lesson01", "lesson02", "lesson01: t",
+                                    "lesson02: t", "notes"])
+        self.assertEqual(table[1][:8], ["ana", "graded", "4", "6", "3", "1", "3", "1"])
+        self.assertEqual(table[2][:8], ["ben", "partly gradable", "2", "6", "not gradable", "2", "", "2"])
+        self.assertEqual(table[3][:6], ["cris", "not gradable", "", "6", "not gradable", "not gradable"])
+        self.assertEqual(table[4][:4], ["dan", "missing", "", ""])
+
+    def test_gradebook_files(self) -> None:
+        from grading.batch import Outcome, canvas_csv, moodle_csv
+
+        ana = self.outcome("ana", "graded", {"01": (3, 4, "graded")})
+        ana.roster = {"Student": "Ana A", "ID": "7", "SIS Login ID": "ana", "Section": "T1", "Email": "a@x"}
+        cris = self.outcome("cris", "not gradable", {"01": (0, 4, "not gradable")})
+        dan = Outcome("dan", status="missing")
+        canvas = list(csv.reader(io.StringIO(canvas_csv([ana, cris, dan], None, "Lab 1"))))
+        self.assertEqual(canvas[0], ["Student", "ID", "SIS User ID", "SIS Login ID", "Section", "Lab 1"])
+        self.assertEqual(canvas[1], ["Points Possible", "", "", "", "", "4"])
+        self.assertEqual(canvas[2], ["Ana A", "7", "", "ana", "T1", "3"])
+        self.assertEqual([canvas[3][5], canvas[4][5]], ["", ""])  # not gradable and missing: no grade, not 0
+        moodle = list(csv.reader(io.StringIO(moodle_csv([ana, cris, dan], None))))
+        self.assertEqual(moodle[0], ["Username", "Full name", "Grade", "Feedback comments"])
+        self.assertEqual(moodle[1][2], "3")
+        self.assertEqual(moodle[2][2], "")
+        self.assertIn("not gradable", moodle[2][3])
+        self.assertEqual(moodle[3][3], "no submission")
+
+    def test_what_results_json_says_becomes_the_row(self) -> None:
+        from grading.batch import outcome_of
+
+        run = sample_run()
+        run.fallbacks = {"exercises/01_ray_sphere/sphere.cpp": "error"}
+        data = reports.gradescope_results(run)
+        outcome = outcome_of("ana", data, "")
+        self.assertEqual(outcome.status, "not gradable")
+        self.assertIsNone(outcome.total)
+        self.assertIn("exercises/01_ray_sphere/sphere.cpp did not compile", outcome.notes)
+        self.assertEqual(outcome_of("ben", None, "").status, "grader error")
+
+
 class CommandLineTest(unittest.TestCase):
     """Wrong commands stop before anything is built (exit 2), without a traceback or a file."""
 
@@ -529,6 +914,109 @@ class CommandLineTest(unittest.TestCase):
                     self.assertIn(words, err)
                     self.assertNotIn("Traceback", err)
             self.assertEqual(list(Path(folder).iterdir()), [])  # nothing left behind
+
+    def assert_refused(self, argv: list[str], words: str) -> None:
+        status, err = self.run_main(argv)
+        self.assertEqual(status, 2, argv)
+        self.assertIn(words, err, argv)
+        self.assertNotIn("Traceback", err, argv)
+
+    def test_a_submission_info_that_is_not_json(self) -> None:
+        with tempfile.TemporaryDirectory() as folder:
+            info = Path(folder) / "info.json"
+            info.write_text("this is not JSON")
+            self.assert_refused(["--student", "--submission-info", str(info), "01"],
+                                f"--submission-info {info}: not a submission description")
+            info.write_bytes(b"\xff\xfe not utf-8")
+            self.assert_refused(["--student", "--submission-info", str(info), "01"], "--submission-info")
+            self.assert_refused(["--student", "--submission-info", f"{folder}/none.json", "01"], "--submission-info")
+
+    def test_a_results_file_under_a_file(self) -> None:
+        with tempfile.TemporaryDirectory() as folder:
+            (Path(folder) / "afile").write_text("x")
+            for option in ("--results", "--junit"):
+                self.assert_refused([option, f"{folder}/afile/x.json", "01"], f"{folder}/afile is a file, not a folder")
+
+    def test_a_build_dir_that_is_a_file_or_missing(self) -> None:
+        with tempfile.TemporaryDirectory() as folder:
+            afile = Path(folder) / "afile"
+            afile.write_text("x")
+            self.assert_refused(["--build-dir", str(afile), "01"], f"--build-dir {afile}: is a file, not a folder")
+            for check in ("--check-integrity", "--check-alone"):
+                self.assert_refused([check, "--build-dir", f"{folder}/none"], f"--build-dir {folder}/none: no such folder")
+                self.assert_refused([check, "--build-dir", str(afile)], "is a file, not a folder")
+
+    def test_mutants_of_a_lesson_that_does_not_exist(self) -> None:
+        done = subprocess.run([sys.executable, str(Path(__file__).resolve().parents[2] / "tools" / "grade"),
+                               "--mutants", "99"], capture_output=True, text=True, timeout=60)
+        self.assertEqual(done.returncode, 2)
+        self.assertIn("lesson(s) 99 have no exercise units", done.stderr)
+
+    def test_an_output_that_cannot_be_written_says_why_and_leaves_nothing(self) -> None:
+        import errno
+        from unittest import mock
+
+        from grading import driver
+
+        with tempfile.TemporaryDirectory() as folder:
+            target = Path(folder) / "results.json"
+            for number, words in ((errno.EROFS, "Read-only file system"), (errno.ENOSPC, "disk is full"),
+                                  (errno.EACCES, "Permission denied")):
+                real_open = open
+
+                def failing_open(path, *args, **kwargs):
+                    if str(path).endswith(".tmp-grade"):
+                        real_open(path, "w").close()  # the temporary exists when the write fails
+                        raise OSError(number, os.strerror(number), str(path))
+                    return real_open(path, *args, **kwargs)
+
+                with mock.patch("builtins.open", failing_open):
+                    with self.assertRaises(reports.OutputError) as raised:
+                        reports.write_text(target, "{}")
+                self.assertIn(words, str(raised.exception))
+                self.assertIn(str(target), str(raised.exception))
+                self.assertEqual(list(Path(folder).iterdir()), [], "the temporary or a half file was left")
+            with mock.patch.object(driver, "grade", side_effect=reports.OutputError("cannot write x: No space")):
+                self.assert_refused(["01"], "cannot write x: No space")
+
+    @unittest.skipUnless(os.geteuid() == 0 and shutil.which("unshare"), "mounting a file system needs root")
+    def test_a_read_only_and_a_full_file_system(self) -> None:
+        # Real file systems, mounted in a private mount namespace: a read-only tmpfs is refused before
+        # anything is built; a full one fails the write, says so, and leaves no temporary behind.
+        grade = Path(__file__).resolve().parents[2] / "tools" / "grade"
+        with tempfile.TemporaryDirectory() as folder:
+            script = (f"mount -t tmpfs -o ro,size=1m none {folder} && "
+                      f"{sys.executable} {grade} --results {folder}/r.json 01; echo status=$?; "
+                      f"mount -t tmpfs -o size=8k none {folder} && head -c 8192 /dev/zero > {folder}/fill; "
+                      f"{sys.executable} -c 'import sys; sys.path.insert(0, \"{grade.parent}\"); "
+                      "from pathlib import Path; from grading import reports; "
+                      f"reports.write_text(Path(\"{folder}/r.json\"), \"x\" * 100000)'; echo status=$?; "
+                      f"ls -A {folder}")
+            done = subprocess.run(["unshare", "--mount", "sh", "-c", script], capture_output=True, text=True,
+                                  timeout=120)
+            if "mount:" in done.stderr and "status=" not in done.stdout:
+                self.skipTest(f"cannot mount here: {done.stderr.strip()}")
+        self.assertIn(f"--results {folder}/r.json: the folder {folder} cannot be written", done.stderr)
+        self.assertIn("cannot write", done.stderr)
+        self.assertIn("No space left on device (the disk is full)", done.stderr)
+        self.assertEqual(done.stdout.split(), ["status=2", "status=1", "fill"])  # no r.json.tmp-grade
+
+    def test_batch_options(self) -> None:
+        with tempfile.TemporaryDirectory() as folder:
+            subs = Path(folder) / "subs"
+            subs.mkdir()
+            self.assert_refused(["--batch", f"{folder}/none"], "no such folder")
+            self.assert_refused(["--batch", str(subs), "--jobs", "0"], "--jobs 0")
+            self.assert_refused(["--batch", str(subs), "--roster", f"{folder}/none.csv"], "--roster")
+            self.assert_refused(["--batch", str(subs), "--student"], "does not take --student")
+            self.assert_refused(["--format", "canvas", "01"], "--format belongs with --batch")
+            self.assert_refused(["--batch", str(subs), "--out", str(subs / "out")], "inside the submissions folder")
+            self.assert_refused(["--batch", str(subs)], "no submission")
+            roster = Path(folder) / "roster.csv"
+            roster.write_text("name,grade\nAna,1\n")
+            (subs / "ana").mkdir()
+            self.assert_refused(["--batch", str(subs), "--roster", str(roster)], "no id or e-mail column")
+            self.assertEqual(sorted(p.name for p in Path(folder).iterdir()), ["roster.csv", "subs"])
 
 
 

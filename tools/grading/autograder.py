@@ -40,6 +40,7 @@ from .edition import make_student_edition
 from .project import exercise_stubs
 
 DEFAULT_ROOT = "/autograder"
+DEFAULT_USER = "illum-student"  # the unprivileged user setup.sh creates (ILLUM_GRADE_USER changes it)
 
 # Packages of tools/debian-packages.txt that grading does not need.
 NOT_FOR_GRADING = {"chromium", "nodejs", "npm", "gnuplot-nox", "zip", "libbenchmark-dev"}
@@ -51,8 +52,9 @@ MINIMUM_VERSIONS = {"g++": (11, 0), "cmake": (3, 22), "python3": (3, 10), "docte
 
 # Gradescope's default container: 0.5 vCPU, 768 MB, 10 minutes for the whole run.
 # The tests stop starting 8 minutes into tools/grade, so that results.json is written in time.
+# A test program may use 512 MB (bad_alloc beyond: "out of memory"), a build 300 s.
 RUN_LIMITS = {"CMAKE_BUILD_PARALLEL_LEVEL": "2", "ILLUM_GRADE_TEST_TIMEOUT": "30", "ILLUM_GRADE_TIMEOUT": "240",
-              "ILLUM_GRADE_DEADLINE": "480"}
+              "ILLUM_GRADE_DEADLINE": "480", "ILLUM_GRADE_MEMORY_MB": "512", "ILLUM_GRADE_BUILD_TIMEOUT": "300"}
 
 
 def debian_packages(root: Path) -> list[str]:
@@ -256,7 +258,12 @@ def install_submission(submission: Path, tree: Path, lessons: list[str]) -> Subm
         candidates: list[tuple[Path, str]] = []
         for path in sorted(submission.rglob("*")):
             relative = path.relative_to(submission)
-            if not path.is_file() or any(_skipped_part(p) for p in relative.parts):
+            if any(_skipped_part(p) for p in relative.parts):
+                continue
+            if path.is_symlink():  # it could point at the grader's own files
+                report.ignored.append({"file": relative.as_posix(), "reason": "a symbolic link, not a file"})
+                continue
+            if not path.is_file():
                 continue
             if path.suffix.lower() == ".zip":
                 continue
@@ -354,14 +361,14 @@ def check_toolchain() -> list[str]:
 
 
 def _grade(tree: Path, lessons: list[str], hidden: Path | None, results: Path,
-           extra: list[str] | None = None, quiet: bool = False) -> int:
+           extra: list[str] | None = None, quiet: bool = False, env: dict[str, str] | None = None) -> int:
     command = [sys.executable, str(tree / "tools" / "grade"), "--student", *(extra or [])]
     if hidden is not None:
         command += ["--hidden", str(hidden)]
     command += [*lessons, "--results", str(results)]
     print("$ " + " ".join(shlex.quote(c) for c in command), flush=True)
     return subprocess.run(command, check=False, stdout=subprocess.DEVNULL if quiet else None,
-                          stderr=subprocess.STDOUT if quiet else None).returncode
+                          stderr=subprocess.STDOUT if quiet else None, env=env).returncode
 
 
 def _paths(root: Path) -> tuple[Path, Path, Path | None, Path]:
@@ -369,6 +376,12 @@ def _paths(root: Path) -> tuple[Path, Path, Path | None, Path]:
     tree = source / "illum"
     hidden = source / "hidden-tests"
     return source, tree, (hidden if any(hidden.glob("*.cpp")) else None), tree / "build" / "pristine-stubs"
+
+
+def grader_folder(root: Path) -> Path:
+    """What setup keeps for the runs, readable by root only: the trusted list of tests, the hidden
+    tests' objects, which stub defines which function, the student's user."""
+    return root / "source" / "grader"
 
 
 def _restore_stubs(tree: Path, pristine: Path) -> None:
@@ -379,10 +392,109 @@ def _restore_stubs(tree: Path, pristine: Path) -> None:
             target.touch()
 
 
+def build_jobs() -> int:
+    """Build jobs for this machine: one per core, but no more than memory allows (a C++ compile of
+    this tree takes up to about 1.5 GB) and at most 4, so that setup.sh never swaps an image to death."""
+    try:
+        with open("/proc/meminfo", encoding="utf-8") as meminfo:
+            fields = dict(line.split(":", 1) for line in meminfo)
+        available_gb = int(fields["MemAvailable"].split()[0]) / (1024 * 1024)
+    except (OSError, KeyError, ValueError):
+        available_gb = 2.0
+    return max(1, min(os.cpu_count() or 1, int(available_gb / 1.5), 4))
+
+
+def _student_user(name: str) -> str | None:
+    """Creates the unprivileged user; None (and a loud warning) where that is impossible."""
+    from .sandbox import SandboxError, create_account
+
+    if os.geteuid() != 0:
+        print(f"setup: WARNING: not running as root, so there is no separate user for students' code: it will "
+              f"run as {getpass_user()}, without privilege separation (docs/grading.md, \"Threat model\")",
+              flush=True)
+        return None
+    try:
+        account = create_account(name)
+    except SandboxError as error:
+        print(f"setup: WARNING: {error}; students' code will run as root, without privilege separation "
+              "(docs/grading.md, \"Threat model\")", flush=True)
+        return None
+    print(f"setup: students' code is compiled and run as the user {account.name} (uid {account.uid})", flush=True)
+    return account.name
+
+
+def getpass_user() -> str:
+    import pwd
+
+    return pwd.getpwuid(os.geteuid()).pw_name
+
+
+def _read_results(path: Path) -> dict:
+    try:
+        return json.loads(path.read_text(encoding="utf-8")) if path.exists() else {}
+    except ValueError:
+        return {}
+
+
+def _save_hidden_objects(build_dir: Path, into: Path) -> list[Path]:
+    """Copies the objects of tests_hidden (its own sources, not the shared support objects)."""
+    objects = sorted(p for p in (build_dir / "tests" / "CMakeFiles" / "tests_hidden.dir").rglob("*.o"))
+    into.mkdir(parents=True, exist_ok=True)
+    saved = []
+    for number, obj in enumerate(objects):
+        target = into / f"{number:02d}_{obj.name}"
+        shutil.copyfile(obj, target)
+        saved.append(target)
+    return saved
+
+
+def _stub_symbols(tree: Path, build_dir: Path, lessons: list[str]) -> dict[str, str]:
+    """Demangled function name (with and without its parameters) -> the exercise unit whose stub
+    defines it, so that an undefined reference at link time is blamed on the right file."""
+    from .suspicious import object_of, object_symbols
+
+    owners: dict[str, str] = {}
+    for name, stub in sorted(exercise_stubs(tree).items()):
+        if stub.parent.name[:2] not in lessons:
+            continue
+        relative = stub.relative_to(tree).as_posix()
+        obj = object_of(build_dir, relative)
+        if obj is None:
+            continue
+        defined, _ = object_symbols(obj)
+        for kind, _mangled, shown in defined:
+            if kind in "TW" and shown.startswith("illum::"):
+                owners.setdefault(shown, relative)
+                owners.setdefault(shown.split("(", 1)[0], relative)
+    return owners
+
+
 def setup(root: Path, lessons: list[str]) -> None:
-    """setup.sh's checks: versions, the reference graded at full marks, then a warm stubs build."""
+    """setup.sh's checks: versions; the stubs built and graded (0); the hidden tests' objects kept and
+    their sources removed; the reference graded (full marks) and then removed; the stubs built again
+    as every run will find them; the trusted data kept where only root reads it."""
+    from .sandbox import Account, Sandbox, chown_tree
+
     source, tree, hidden, pristine = _paths(root)
     check_toolchain()
+    jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(build_jobs())
+    os.environ["CMAKE_BUILD_PARALLEL_LEVEL"] = jobs
+    print(f"setup: {jobs} build job(s) (CMAKE_BUILD_PARALLEL_LEVEL; from the cores and the memory available)",
+          flush=True)
+    user = _student_user(os.environ.get("ILLUM_GRADE_USER", DEFAULT_USER))
+    grader = grader_folder(root)
+    if grader.exists():
+        shutil.rmtree(grader)
+    grader.mkdir(parents=True)
+    grader.chmod(0o700)
+    build_dir = tree / "build" / "grade-student"
+    if user is not None:
+        sandbox = Sandbox(Account.lookup(user))
+        for path in (tree, build_dir.parent):
+            path.mkdir(parents=True, exist_ok=True)
+            if not sandbox.can_reach(path):
+                raise SetupError(f"the user {user} cannot reach {path}: every folder above it must be "
+                                 "searchable by others (chmod o+x), as /autograder is on Gradescope")
     # Keep the stubs as they came, for run_autograder and for the fallback of a broken file.
     if pristine.exists():
         shutil.rmtree(pristine)
@@ -398,13 +510,43 @@ def setup(root: Path, lessons: list[str]) -> None:
     for unit in references:
         if unit.name not in stubs:
             raise SetupError(f"reference/{unit.name} has no stub in exercises/: repack the autograder")
-        shutil.copyfile(unit, stubs[unit.name])
-        stubs[unit.name].touch()
-    print("\nsetup: building and grading the reference solutions (they must score full marks)", flush=True)
+    # Builds run as root here (the sources are the instructor's); the tests run as the student's user,
+    # through the same sandbox as every submission's.
+    common = ["--build-as-grader"] + (["--as-user", user] if user else [])
     with tempfile.TemporaryDirectory(prefix="illum-setup-") as folder:
+        print("\nsetup: building the stubs and the hidden tests (the warm build every submission starts from)",
+              flush=True)
+        stub_results = Path(folder) / "stubs.json"
+        _grade(tree, lessons, hidden, stub_results, common)
+        data = _read_results(stub_results)
+        if not data.get("tests"):
+            raise SetupError("the stubs could not be built or graded (see above): the tree or the hidden tests "
+                             "do not build on this image")
+        if data.get("score") != 0:
+            raise SetupError(f"the stubs scored {data.get('score')} (expected 0): the grading tests do not "
+                             "detect unwritten code")
+        hidden_objects = _save_hidden_objects(build_dir, grader / "hidden-objects") if hidden else []
+        if hidden is not None and not hidden_objects:
+            raise SetupError("the hidden tests were built but their objects were not found in "
+                             f"{build_dir}/tests/CMakeFiles/tests_hidden.dir")
+        if hidden is not None:
+            shutil.rmtree(hidden)  # compiled; no run may read them
+            print(f"setup: kept {len(hidden_objects)} hidden test object(s) where only root reads them; "
+                  "their sources are deleted", flush=True)
+
+        print("\nsetup: building and grading the reference solutions (they must score full marks)", flush=True)
+        for unit in references:
+            shutil.copyfile(unit, stubs[unit.name])
+            stubs[unit.name].touch()
         results = Path(folder) / "reference.json"
-        status = _grade(tree, lessons, hidden, results)
-        data = json.loads(results.read_text(encoding="utf-8")) if results.exists() else {}
+        # ccache off: no cache may keep an object of the reference after setup.
+        reference_env = dict(os.environ, CCACHE_DISABLE="1")
+        status = _grade(tree, lessons, None, results,
+                        common + ["--grader-data", str(grader), "--save-tests", str(grader / "tests.json")],
+                        env=reference_env)
+        data = _read_results(results)
+        _restore_stubs(tree, pristine)
+        shutil.rmtree(source / "reference")  # proved; no run may read them
         if status != 0 or not data.get("tests") or data.get("score") != data.get("max_score"):
             failed = [t["name"] for t in data.get("tests", []) if t.get("status") != "passed"]
             raise SetupError(
@@ -412,17 +554,23 @@ def setup(root: Path, lessons: list[str]) -> None:
                 f"{data.get('score')}/{data.get('max_score')}; failing: {', '.join(failed[:10]) or 'the build'}). "
                 "The grader would blame students for its own fault: fix the tree, the hidden tests or the "
                 "image, and repack.")
-        print(f"setup: the reference scored {data['score']}/{data['max_score']} over {len(data['tests'])} tests",
-              flush=True)
-        _restore_stubs(tree, pristine)
-        print("\nsetup: warming the build with the stubs (a submission then recompiles only its own files)",
-              flush=True)
-        stub_results = Path(folder) / "stubs.json"
-        _grade(tree, lessons, hidden, stub_results)
-        data = json.loads(stub_results.read_text(encoding="utf-8")) if stub_results.exists() else {}
-        if not data.get("tests") or data.get("score") != 0:
-            raise SetupError(f"the stubs scored {data.get('score')} (expected 0 over at least one test): "
-                             "the grading tests do not detect unwritten code")
+        print(f"setup: the reference scored {data['score']}/{data['max_score']} over {len(data['tests'])} tests; "
+              "its units are deleted", flush=True)
+
+        print("\nsetup: the stubs again, as every submission will find them", flush=True)
+        stub_results = Path(folder) / "stubs-again.json"
+        _grade(tree, lessons, None, stub_results, common + ["--grader-data", str(grader)])
+        again = _read_results(stub_results)
+        if again.get("score") != 0 or len(again.get("tests", [])) != len(data.get("tests", [])):
+            raise SetupError(f"the stubs graded with the kept test list scored {again.get('score')} over "
+                             f"{len(again.get('tests', []))} entries (expected 0 over {len(data['tests'])})")
+    symbols = _stub_symbols(tree, build_dir, lessons)
+    (grader / "stub-symbols.json").write_text(json.dumps(symbols, indent=1) + "\n", encoding="utf-8")
+    (grader / "config.json").write_text(json.dumps({"user": user, "lessons": lessons}) + "\n", encoding="utf-8")
+    # Nothing in source/ is writable but by root (runs make the build tree the student's while it compiles).
+    chown_tree(source, 0, 0, strip_write=True)
+    grader.chmod(0o700)
+    print(f"setup: the prepared tree is ready: {source}", flush=True)
 
 
 def _fallback_results(results: Path, message: str) -> None:
@@ -434,16 +582,24 @@ def _fallback_results(results: Path, message: str) -> None:
 
 
 def run(root: Path, lessons: list[str]) -> int:
-    """run_autograder: stubs back, the upload installed, tools/grade with Gradescope's limits."""
+    """run_autograder: stubs back, the upload installed, tools/grade with Gradescope's limits, as the
+    student's user; results.json only once nothing of theirs is alive."""
+    from .sandbox import Account, Sandbox
+
     source, tree, hidden, pristine = _paths(root)
+    grader = grader_folder(root)
     results_dir = root / "results"
     results_dir.mkdir(parents=True, exist_ok=True)
     results = results_dir / "results.json"
     results.unlink(missing_ok=True)
-    if not pristine.is_dir():
+    if not pristine.is_dir() or not (grader / "config.json").is_file():
         _fallback_results(results, "The autograder was not set up (setup.sh did not finish). This is not your "
                                    "code's fault: tell your instructor.")
         return 2
+    config = json.loads((grader / "config.json").read_text(encoding="utf-8"))
+    user = config.get("user")  # None: setup could not separate privileges (it said so, loudly)
+    if user and os.environ.get("ILLUM_GRADE_USER"):
+        user = os.environ["ILLUM_GRADE_USER"]
     _restore_stubs(tree, pristine)
     report = install_submission(root / "submission", tree, lessons)
     info = tree / "build" / "submission.json"
@@ -452,9 +608,20 @@ def run(root: Path, lessons: list[str]) -> int:
         print(f"installed {item['file']} -> {item['target']} {item['note']}".rstrip())
     for item in report.ignored:
         print(f"ignored {item['file']}: {item['reason']}")
-    status = _grade(tree, lessons, hidden, results,
-                    ["--submission-info", str(info), "--fallback-stubs", str(pristine),
-                     "--junit", str(results_dir / "junit.xml")])
+    extra = ["--submission-info", str(info), "--fallback-stubs", str(pristine),
+             "--junit", str(results_dir / "junit.xml"), "--grader-data", str(grader)]
+    if user:
+        if user != config.get("user") and os.geteuid() == 0:
+            # Several submissions graded at once (tools/grade --batch --jobs) each get a user of their own.
+            from .sandbox import create_account
+
+            create_account(user)
+        extra += ["--as-user", user]
+    status = _grade(tree, lessons, hidden, results, extra)
+    if user:
+        account = Account.lookup(user)
+        if account is not None:  # tools/grade did this before writing; again, whatever happened to it
+            Sandbox(account).reap()
     if not results.exists():
         _fallback_results(results, f"The grader failed (tools/grade exited {status}) before writing results. "
                                    "This is not your code's fault: tell your instructor.")

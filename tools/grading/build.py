@@ -9,41 +9,117 @@ from __future__ import annotations
 
 import os
 import re
+import signal
 import subprocess
 import sys
+import threading
+import time
 from dataclasses import dataclass
-from pathlib import Path
+from pathlib import Path, PurePosixPath
 from typing import Sequence
+
+# A build's output is kept up to HEAD_BYTES from its start (the first error
+# is what matters) and TAIL_BYTES from its end; a student's file can make a
+# compiler print without end.
+HEAD_BYTES = 256 * 1024
+TAIL_BYTES = 64 * 1024
 
 
 @dataclass
 class StepResult:
     ok: bool
     output: str
+    timed_out: bool = False
 
 
-def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = None) -> StepResult:
+@dataclass
+class Runner:
+    """How build commands run: as the grader (default), or in the sandbox's
+    user with its limits (``sandbox.Sandbox.build_preexec``), with a time limit."""
+
+    preexec: object = None
+    env: dict | None = None
+    timeout: float | None = None
+
+
+_runner = Runner()
+
+
+def set_runner(runner: Runner) -> None:
+    global _runner
+    _runner = runner
+
+
+def build_timeout_from_environment() -> float | None:
+    value = os.environ.get("ILLUM_GRADE_BUILD_TIMEOUT", "").strip()
+    return float(value) if value else None
+
+
+def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = None,
+                  runner: Runner | None = None) -> StepResult:
     """Runs a command, echoing its output to stderr as it comes (a build takes
-    minutes; silence would look like a hang) and keeping it for the report."""
+    minutes; silence would look like a hang) and keeping its head and tail
+    for the report."""
+    runner = runner or _runner
     if echo:
         print("$ " + " ".join(command), file=sys.stderr, flush=True)
     try:
         process = subprocess.Popen(command, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                                   text=True, errors="replace")
+                                   stdin=subprocess.DEVNULL, env=runner.env, preexec_fn=runner.preexec,
+                                   start_new_session=runner.preexec is None)
     except OSError as error:
         return StepResult(False, f"could not run {command[0]}: {error}")
-    captured: list[str] = []
+    timed_out = threading.Event()
+    if runner.timeout:
+        def stop() -> None:
+            timed_out.set()
+            try:
+                os.killpg(process.pid, signal.SIGKILL)
+            except OSError:
+                pass
+        timer = threading.Timer(runner.timeout, stop)
+        timer.daemon = True
+        timer.start()
+    head, tail, total = bytearray(), bytearray(), 0
     assert process.stdout is not None
-    for line in process.stdout:
-        captured.append(line)
-        if echo:
-            sys.stderr.write(line)
-            sys.stderr.flush()
-    return StepResult(process.wait() == 0, "".join(captured))
+    while True:
+        chunk = process.stdout.read1(1 << 16) if hasattr(process.stdout, "read1") else process.stdout.read(1 << 16)
+        if not chunk:
+            break
+        total += len(chunk)
+        if len(head) < HEAD_BYTES:
+            room = HEAD_BYTES - len(head)
+            head += chunk[:room]
+            if echo:
+                sys.stderr.write(chunk[:room].decode("utf-8", errors="replace"))
+                sys.stderr.flush()
+            chunk = chunk[room:]
+        if chunk:
+            tail += chunk
+            if len(tail) > TAIL_BYTES:
+                del tail[:len(tail) - TAIL_BYTES]
+    status = process.wait()
+    if runner.timeout:
+        timer.cancel()
+    try:
+        os.killpg(process.pid, signal.SIGKILL)  # whatever the build left behind
+    except OSError:
+        pass
+    text = head.decode("utf-8", errors="replace")
+    if tail:
+        cut = total - len(head) - len(tail)
+        if cut > 0:
+            text += f"\n[... {cut} bytes of build output cut ...]\n"
+            if echo:
+                print(f"\n[... build output cut; {total} bytes in all ...]", file=sys.stderr, flush=True)
+        text += tail.decode("utf-8", errors="replace")
+    if timed_out.is_set():
+        text += f"\nthe build did not finish within {runner.timeout:g} s and was stopped\n"
+    return StepResult(status == 0 and not timed_out.is_set(), text, timed_out.is_set())
 
 
 def configure(source: Path, build_dir: Path, exercises: Sequence[str], hidden: Path | None,
-              echo: bool = True) -> StepResult:
+              echo: bool = True, extra: Sequence[str] = ()) -> StepResult:
     """Configures a Release tree; warnings never fail a student's build.
 
     The reference build leaves ILLUM_WERROR as the tree has it, so that
@@ -58,8 +134,41 @@ def configure(source: Path, build_dir: Path, exercises: Sequence[str], hidden: P
         f"-DILLUM_EXERCISES={','.join(exercises)}",
         # Always set, so that a tree configured earlier with --hidden forgets it.
         f"-DILLUM_HIDDEN_TESTS={hidden.resolve() if hidden else ''}",
+        *(extra or hidden_objects_arguments([])),
     ]
+    if already_configured(build_dir, source, command):
+        # The same options as last time: make re-runs CMake itself if a CMakeLists.txt changed, so
+        # configuring again would only cost time (each submission of an autograder run starts here).
+        return StepResult(True, "")
     return run_streaming(command, echo)
+
+
+def already_configured(build_dir: Path, source: Path, command: Sequence[str]) -> bool:
+    """Whether ``build_dir``'s CMakeCache.txt was made from ``source`` with every -D value of ``command``."""
+    cache = build_dir / "CMakeCache.txt"
+    if not (build_dir / "Makefile").is_file() or not cache.is_file():
+        return False
+    values: dict[str, str] = {}
+    try:
+        for line in cache.read_text(encoding="utf-8", errors="replace").splitlines():
+            match = re.match(r"^([A-Za-z_][A-Za-z0-9_]*):[A-Z]+=(.*)$", line)
+            if match:
+                values[match.group(1)] = match.group(2)
+    except OSError:
+        return False
+    if values.get("CMAKE_HOME_DIRECTORY") != str(source.resolve()):
+        return False
+    for argument in command:
+        if argument.startswith("-D"):
+            name, _, value = argument[2:].partition("=")
+            if values.get(name.split(":", 1)[0]) != value:
+                return False
+    return True
+
+
+def hidden_objects_arguments(objects: Sequence[Path]) -> list[str]:
+    """-D options that link tests_hidden from objects compiled by the autograder's setup."""
+    return [f"-DILLUM_HIDDEN_OBJECTS={';'.join(str(p) for p in objects)}"]
 
 
 def jobs() -> str:
@@ -67,11 +176,11 @@ def jobs() -> str:
     return os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(os.cpu_count() or 1)
 
 
-def build(build_dir: Path, targets: Sequence[str], echo: bool = True) -> StepResult:
+def build(build_dir: Path, targets: Sequence[str], echo: bool = True, runner: Runner | None = None) -> StepResult:
     command = ["cmake", "--build", str(build_dir), "-j", jobs()]
     if targets:
         command += ["--target", *targets]
-    return run_streaming(command, echo)
+    return run_streaming(command, echo, runner=runner)
 
 
 # A compiler or make error line that names an exercise unit, e.g.
@@ -93,6 +202,50 @@ def failed_exercise_files(output: str) -> list[str]:
         if _ERROR_LINE.search(line) or line.lstrip().startswith("In file included from"):
             blamed.update(_EXERCISE_FILE.findall(line))
     return sorted(blamed)
+
+
+# The linker names an archive member as libillum.a(sphere.cpp.o), an object by its path.
+_MEMBER = re.compile(r"\(([^()\s]+\.cpp)\.o\)|/([^/\s:()]+\.cpp)\.o\b")
+_UNDEFINED = re.compile(r"undefined reference to [`'‘]([^'’]+)['’]")
+
+
+def linker_blames(output: str, units: dict[str, str], symbol_units: dict[str, str] | None = None) -> list[str]:
+    """The exercise units (``exercises/NN_topic/name.cpp``) a failed link blames.
+
+    ``units``: file name -> exercise path of the units that hold the
+    student's code. A "multiple definition" names the objects that define
+    the symbol twice; an "undefined reference" is blamed on the object that
+    makes it when that is a student's, else on the unit whose stub defines
+    the symbol (``symbol_units``, demangled name -> exercise path).
+    """
+    blamed: set[str] = set()
+    lines = output.splitlines()
+    for number, line in enumerate(lines):
+        if "multiple definition of" in line:
+            # The line names the second definition; the line before ("in function") or the same one the first.
+            context = line + " " + (lines[number - 1] if number else "")
+            for member in _MEMBER.findall(context):
+                name = member[0] or member[1]
+                if name in units:
+                    blamed.add(units[name])
+        undefined = _UNDEFINED.search(line)
+        if undefined:
+            context = line + " " + (lines[number - 1] if number else "")
+            makers = [m[0] or m[1] for m in _MEMBER.findall(context)]
+            makers += re.findall(r"^([^\s:()]+\.cpp):\(", line)
+            mine = [units[m] for m in makers if m in units]
+            if mine:
+                blamed.update(mine)
+            elif symbol_units:
+                symbol = undefined.group(1)
+                owner = symbol_units.get(symbol) or symbol_units.get(symbol.split("(", 1)[0])
+                if owner:
+                    blamed.add(owner)
+    return sorted(blamed)
+
+
+def is_link_error(output: str) -> bool:
+    return bool(re.search(r"\bld returned \d+ exit status|multiple definition of|undefined reference to", output))
 
 
 def error_lines_outside(output: str, files: list[str]) -> bool:

@@ -8,7 +8,8 @@ exercises). Left out:
 * ``exercises/NN_*/`` of every lesson *not* handed out: its units ship as
   working reference code, so that the lessons handed out can use its results
   (docs/grading.md, "Choosing the lessons to hand out");
-* ``tests/hidden/`` (an instructor's hidden tests);
+* ``tests/hidden/`` (an instructor's hidden tests) and ``tests/attacks/``
+  (hostile submissions the grader is tested with);
 * ``build/`` and ``out/`` (generated).
 A ``STUDENT_EDITION`` marker file tells CMake and the driver which tree
 they are in (no integrity check, no autograder packing there).
@@ -85,6 +86,8 @@ def excluded_files(files: list[str], handed_out: list[str] | None = None) -> dic
             reasons[f] = "generated"
         elif parts[:2] == ("tests", "hidden"):
             reasons[f] = "hidden test"
+        elif parts[:2] == ("tests", "attacks"):
+            reasons[f] = "the grader's own attack tests"
         elif parts[:2] == ("lib", "illum") and f.endswith(".cpp") and parts[-1] in twins:
             reasons[f] = "reference solution of an exercise unit"
         elif parts[0] == "exercises" and len(parts) >= 3 and parts[1][:2].isdigit() and parts[1][:2] not in handed:

@@ -646,9 +646,10 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
 def choose(root: Path, args: argparse.Namespace, equivalents: Equivalents) -> list[LessonReport]:
     exercises = project.exercise_lessons(root)
     unknown = [nn for nn in args.lessons if nn not in exercises]
-    if unknown:
-        raise SystemExit(f"tools/grade --mutants: lesson(s) {', '.join(unknown)} have no exercise units; "
-                         f"lessons with exercises: {', '.join(exercises)}")
+    if unknown:  # a wrong command: exit status 2, as every tools/grade command
+        print(f"tools/grade --mutants: lesson(s) {', '.join(unknown)} have no exercise units; "
+              f"lessons with exercises: {', '.join(exercises)}", file=sys.stderr)
+        raise SystemExit(2)
     reports = []
     for lesson in args.lessons or exercises:
         report = LessonReport(lesson)

@@ -4,7 +4,9 @@ are tested without building anything (tests/tools/test_grade.py).
 """
 from __future__ import annotations
 
+import errno
 import json
+import os
 import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
@@ -38,6 +40,7 @@ class GradeRun:
     # Attributed build failure: only the student's files named here failed;
     # each was replaced by its stub and the rest was graded (file -> compiler output).
     fallbacks: dict[str, str] = field(default_factory=dict)
+    link_failures: set[str] = field(default_factory=set)  # the fallbacks that compiled but did not link
     # The instructor's hidden tests did not build: the grader is misconfigured.
     hidden_build_failed: bool = False
     hidden_build_output: str = ""
@@ -46,6 +49,25 @@ class GradeRun:
     submission: dict[str, Any] | None = None
     # False when the build failure is not the student's (a broken tree).
     blame_student: bool = True
+    # Exercise files the suspicious-code checks flagged (file -> what was found); every test of
+    # their lesson fails, saying why (suspicious.py).
+    flagged: dict[str, list[str]] = field(default_factory=dict)
+    # For instructors only: findings that fail nothing, tampering the runner saw, processes killed.
+    review: list[str] = field(default_factory=list)
+
+    def lesson_of(self, file: str) -> str:
+        match = re.search(r"exercises/(\d\d)_", file)
+        return match.group(1) if match else ""
+
+    def lesson_status(self, lesson: str) -> str:
+        """"graded", "not gradable" (a file of the lesson did not compile or link) or "flagged"."""
+        if self.build_failed:
+            return "not gradable" if self.blame_student else "grader error"
+        if any(self.lesson_of(f) == lesson for f in self.flagged):
+            return "flagged"
+        if any(self.lesson_of(f) == lesson for f in self.fallbacks):
+            return "not gradable"
+        return "graded"
 
     @property
     def score(self) -> float:
@@ -125,7 +147,8 @@ def score_table(run: GradeRun, for_students: bool = False) -> str:
 def _visible_problems(run: GradeRun) -> list[str]:
     """Problems a student may read: none about the hidden tests' program, and
     the ones of a single test only counted (each test's entry says why)."""
-    problems = [p for p in run.problems if "tests_hidden" not in p]
+    hidden_names = [r.name for r in run.results if r.hidden and r.name]
+    problems = [p for p in run.problems if "tests_hidden" not in p and not any(n in p for n in hidden_names)]
     per_test = sum(part.count(': test "') for part in problems)
     general = [part for p in problems for part in p.split("; ") if ': test "' not in part]
     lines = [f"{per_test} test(s) crashed or did not finish; their entries say which and why"] if per_test else []
@@ -186,6 +209,37 @@ def submission_summary(run: GradeRun) -> str:
     return "\n".join(lines)
 
 
+def flagged_summary(run: GradeRun) -> str:
+    """Markdown: the files flagged by the suspicious-code checks, and what that costs."""
+    if not run.flagged:
+        return ""
+    lines = ["**Some of your files do more than compute, so their lessons were not graded** (every test of the "
+             "lesson fails). Exercise code may only compute: no processes, no exit(), no files, no access to the "
+             "tests or the program around it. What was found:"]
+    for file, findings in run.flagged.items():
+        lines.append(f"- `{file}`: " + "; ".join(findings[:6]) + (" …" if len(findings) > 6 else ""))
+    return "\n".join(lines)
+
+
+def machine_summary(run: GradeRun) -> dict[str, Any]:
+    """results.json's ``extra_data``: what tools/grade --batch reads back (per lesson, flags, build problems)."""
+    lessons = {}
+    for lesson in run.lessons:
+        group = [r for r in run.results if r.lesson == lesson]
+        lessons[lesson] = {"status": run.lesson_status(lesson), "score": sum(r.score for r in group),
+                           "max_score": sum(r.points for r in group)}
+    return {"illum": {
+        "lessons": lessons,
+        "tests": [{"name": test_name(r), "lesson": r.lesson, "hidden": r.hidden, "score": r.score,
+                   "max_score": r.points} for r in run.results],
+        "not_gradable": ([f"{f} did not {'link' if f in run.link_failures else 'compile'}" for f in run.fallbacks]
+                         if not run.build_failed else ["the build failed"] if run.blame_student else []),
+        "flagged": {f: list(v) for f, v in run.flagged.items()},
+        "review": list(run.review),
+        "grader_error": bool(run.build_failed and not run.blame_student),
+    }}
+
+
 def _compiler_messages(output: str) -> str:
     """A build log without make's progress lines, which say nothing about the error."""
     return "\n".join(line for line in output.splitlines()
@@ -219,15 +273,21 @@ def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any
             "score": 0,
             "output": "\n\n".join(part for part in (summary, headline) if part),
             **common,
-            "tests": [_build_entry("build", run.build_output)],
+            "tests": [_build_entry("build", run.build_output)] + _review_entries(run),
+            "extra_data": machine_summary(run),
         }
     tests = []
+    for flagged_file, findings in run.flagged.items():
+        tests.append({"name": f"flagged: {flagged_file} (its lesson was not graded)", "score": 0, "max_score": 0,
+                      "status": "failed", "output": _truncate("\n".join(findings)), "output_format": "text",
+                      "visibility": "visible"})
     for failed_file, output in run.fallbacks.items():
-        tests.append(_build_entry(f"build: {failed_file} did not compile (graded as the stub)", output))
+        what = "did not link" if failed_file in run.link_failures else "did not compile"
+        tests.append(_build_entry(f"build: {failed_file} {what} (graded as the stub)", output))
     if run.hidden_build_failed:
         # Not the student's fault, and the hidden tests' source must not reach students.
         tests.append(_build_entry("hidden tests: build (instructors only)",
-                                  "The instructor's hidden tests did not compile; they were not graded.\n\n"
+                                  "The instructor's hidden tests did not build; they were not graded.\n\n"
                                   + run.hidden_build_output, visibility=HIDDEN_VISIBILITY))
     for number, result in enumerate(run.results, start=1):
         tests.append({
@@ -240,11 +300,19 @@ def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any
             "output_format": "text",
             "visibility": HIDDEN_VISIBILITY if result.hidden else "visible",
         })
-    parts = [summary]
+    tests.extend(_review_entries(run))
+    parts = [summary, flagged_summary(run)]
     if run.fallbacks:
-        parts.append("**Some of your files did not compile.** Each was replaced by its stub, so only its lesson "
-                     "lost points; the compiler's messages are in the `build:` entries below:\n"
-                     + "\n".join(f"- `{name}`" for name in run.fallbacks))
+        linked = run.link_failures & set(run.fallbacks)
+        what = ("did not compile" if not linked else "did not link" if linked == set(run.fallbacks)
+                else "did not compile or link")
+        words = ("the compiler's" if not linked else "the linker's" if linked == set(run.fallbacks)
+                 else "the compiler's and the linker's")
+        parts.append(f"**Some of your files {what}.** Each was replaced by its stub, so only its lesson lost "
+                     f"points; {words} messages are in the `build:` entries below:\n"
+                     + "\n".join(f"- `{name}`" + (" (a link error: a name defined twice, or declared and never "
+                                                   "defined)" if name in run.link_failures else "")
+                                   for name in run.fallbacks))
     if run.hidden_build_failed:
         parts.append("The grader is misconfigured: some of the instructor's tests could not be built. This is not "
                      "your code's fault; your visible tests were graded, and your instructor has been shown why.")
@@ -255,7 +323,16 @@ def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any
         "output": "\n\n".join(part for part in parts if part),
         **common,
         "tests": tests,
+        "extra_data": machine_summary(run),
     }
+
+
+def _review_entries(run: GradeRun) -> list[dict[str, Any]]:
+    """One entry hidden from students: what an instructor may want to look at (nothing fails for it)."""
+    if not run.review:
+        return []
+    return [{"name": "review (instructors only)", "score": 0, "max_score": 0, "status": "passed",
+             "output": _truncate("\n".join(run.review)), "output_format": "text", "visibility": HIDDEN_VISIBILITY}]
 
 
 # Characters XML 1.0 cannot hold; a student's output may contain them.
@@ -305,12 +382,31 @@ def junit_xml(run: GradeRun, root: Path | None = None) -> str:
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(suites, encoding="unicode") + "\n"
 
 
+class OutputError(Exception):
+    """An output file could not be written (its message names the file and why)."""
+
+
 def write_text(path: Path, text: str) -> None:
-    """Writes through a temporary name and a rename: a reader never sees half a file."""
-    path.parent.mkdir(parents=True, exist_ok=True)
+    """Writes through a temporary name and a rename: a reader never sees half a
+    file, and a failed write (a read-only or full file system) leaves neither
+    the temporary nor a half file, only an OutputError that says why."""
     temporary = path.with_name(path.name + ".tmp-grade")
-    temporary.write_text(text, encoding="utf-8")
-    temporary.replace(path)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with open(temporary, "w", encoding="utf-8") as out:
+            out.write(text)
+            out.flush()
+            os.fsync(out.fileno())
+        temporary.replace(path)
+    except OSError as error:
+        try:
+            temporary.unlink()
+        except OSError:
+            pass
+        reason = error.strerror or str(error)
+        if error.errno == errno.ENOSPC:
+            reason = "No space left on device (the disk is full)"
+        raise OutputError(f"cannot write {path}: {reason}") from None
 
 
 def write_results_json(path: Path, run: GradeRun, root: Path | None = None) -> None:

@@ -1,0 +1,402 @@
+#!/usr/bin/env python3
+"""Hostile submissions against the Gradescope autograder (docs/grading.md, "Threat model").
+
+Packs the autograder for lessons 01 and 02 from a grader tree (this one by
+default; ``--grader-tree /path/to/an/older/checkout`` shows what an older
+grader did with the same submissions), runs its setup.sh once, then
+run_autograder on each hostile submission in a fresh copy of the prepared
+tree, as Gradescope runs it (a fresh container per submission), and checks
+that the submission got its honest score and achieved nothing else.
+
+The submissions are built from tests/attacks/: each payload there is put
+into the stub (a forgery must not turn 0 into full marks) or the reference
+(a fault must cost only what it should) of an exercise file, with a call
+to its ``attack_hook()`` at the start of a chosen function. The cases, one
+per attack class of the threat model:
+
+  fork_rewrites_results   a forked daemon rewrites results.json after the grader   stub: 0
+  fake_reporter           its own doctest reporter under the grader's name         stub: 0
+  rewrite_records         rewrites the records file named on the command line      stub: 0
+  define_write            its own write() edits the records in flight              stub: 0
+  include_reference       #include "../../../reference/sphere.cpp"                 0 (no reference to read)
+  leak_hidden_exception   an exception message quoting the hidden tests            nothing hidden in the feedback
+  leak_hidden_compile     a compile error quoting the hidden tests                 nothing hidden in the feedback
+  gigabyte_stdout         1 GiB on stdout, then correct code                       full marks, in time
+  segfault                a crash in the notes' form                               all but the notes' form tests
+  duplicate_helper        a helper defined in both of lesson 02's files            lesson 01 full, 02 costs 0, linker's words shown
+  exit_in_test            exit(0) in the notes' form                               flagged; without the scan: the
+                                                                                   notes' form tests fail, saying so
+  leave_processes         a daemon left running                                    nothing alive afterwards
+  out_of_memory           3 GiB asked for in the notes' form                       those tests fail: "out of memory"
+
+Cases of attacks that the sandbox defends on its own (not only the
+suspicious-code scan) run again with the scan switched off
+(ILLUM_GRADE_NO_SCAN=1); the process attacks do so without a pid namespace
+as well (ILLUM_GRADE_NO_PID_NAMESPACE=1, as in a Docker container), the
+harder case: only the user separates them from the grader (the pid
+namespace's own kill is tested in tests/tools/test_grade.py).
+
+run_autograder runs under an address-space limit (``--grader-memory-mb``,
+default 3072), standing in for the memory of Gradescope's container.
+
+    python3 tests/e2e/attacks_e2e.py --work-dir DIR [--grader-tree DIR] [--jobs 2] [--only CASE]
+
+Exit status 0 when every case holds; 1 with a table of what did not.
+Needs root (a second user, a pid namespace); without it, exits 77 (skipped).
+"""
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+import os
+import re
+import resource
+import shutil
+import signal
+import subprocess
+import sys
+import time
+import zipfile
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+ATTACKS = ROOT / "tests" / "attacks"
+LESSONS = ["01", "02"]
+MARKER = "3-4-5"  # in the hidden test's name (tests/hidden/lesson01_hidden.cpp): must never reach a student
+NOTES = "notes' form"  # the lesson 01 tests that call sphere_roots_notes
+
+SPHERE = ("exercises/01_ray_sphere/sphere.cpp", "lib/illum/geometry/sphere.cpp")
+PARITY = ("exercises/02_polygon_parity/parity.cpp", "lib/illum/geometry/parity.cpp")
+PLANE = ("exercises/02_polygon_parity/plane.cpp", "lib/illum/geometry/plane.cpp")
+HOOKS = {  # where attack_hook() is called: the start of this function's body
+    "constructor": r"(Sphere::Sphere\([^{]*\{)",
+    "notes": r"(SphereRoots<T> sphere_roots_notes\([^{]*\{)",
+}
+
+
+@dataclass
+class Case:
+    name: str
+    payload: str
+    base: str          # "stub", "reference" or "payload" (the payload is the whole file)
+    hook: str | None   # a key of HOOKS, or None
+    expect: str        # what the checks below test
+    modes: tuple[str, ...] = ("scan",)
+    files: tuple[tuple[str, str], ...] = (SPHERE,)
+    inject: tuple[str, ...] = ("sphere.cpp",)  # the files that get the payload
+
+
+BASELINE = Case("reference", "", "reference", None, "full", files=(SPHERE, PARITY, PLANE), inject=())
+
+
+CASES = [
+    Case("fork_rewrites_results", "fork_rewrites_results.cpp", "stub", "constructor", "honest-zero",
+         ("scan", "no-scan-no-pidns")),
+    Case("fake_reporter", "fake_reporter.cpp", "stub", None, "honest-zero", ("scan", "no-scan")),
+    Case("rewrite_records", "rewrite_records.cpp", "stub", None, "honest-zero", ("scan", "no-scan")),
+    Case("define_write", "define_write.cpp", "stub", None, "honest-zero", ("scan", "no-scan")),
+    Case("include_reference", "include_reference.cpp", "payload", None, "honest-zero", ("scan", "no-scan")),
+    Case("leak_hidden_exception", "leak_hidden_exception.cpp", "stub", "constructor", "no-leak",
+         ("scan", "no-scan")),
+    Case("leak_hidden_compile", "leak_hidden_compile_error.cpp", "payload", None, "no-leak", ("scan", "no-scan")),
+    Case("gigabyte_stdout", "gigabyte_stdout.cpp", "reference", "constructor", "full-01"),
+    Case("segfault", "segfault.cpp", "reference", "notes", "notes-fail:SIGSEGV"),
+    Case("duplicate_helper", "duplicate_helper.cpp", "reference", None, "link-02",
+         files=(SPHERE, PARITY, PLANE), inject=("parity.cpp", "plane.cpp")),
+    Case("exit_in_test", "exit_in_test.cpp", "reference", "notes", "flagged-01", ("scan",)),
+    Case("exit_in_test", "exit_in_test.cpp", "reference", "notes", "notes-fail:exit(0)", ("no-scan",)),
+    Case("leave_processes", "leave_processes.cpp", "reference", "constructor", "flagged-01", ("scan",)),
+    Case("leave_processes", "leave_processes.cpp", "reference", "constructor", "full-01", ("no-scan-no-pidns",)),
+    Case("out_of_memory", "out_of_memory.cpp", "reference", "notes", "notes-fail:out of memory"),
+]
+MODE_ENV = {"scan": {}, "no-scan": {"ILLUM_GRADE_NO_SCAN": "1"},
+            "no-scan-no-pidns": {"ILLUM_GRADE_NO_SCAN": "1", "ILLUM_GRADE_NO_PID_NAMESPACE": "1"}}
+
+
+def submission_files(case: Case) -> dict[str, str]:
+    payload = (ATTACKS / case.payload).read_text(encoding="utf-8") if case.payload else ""
+    files = {}
+    for exercise, reference in case.files:
+        name = Path(exercise).name
+        if case.base == "payload":
+            files[name] = payload
+            continue
+        text = (ROOT / (exercise if case.base == "stub" else reference)).read_text(encoding="utf-8")
+        if name in case.inject:
+            at = text.index("namespace illum {")
+            text = text[:at] + payload + "\n" + text[at:]
+            if case.hook and name == "sphere.cpp":
+                text, count = re.subn(HOOKS[case.hook], r"\1\n  attack_hook();", text, count=1)
+                if count != 1:
+                    sys.exit(f"attacks: cannot call the hook in {exercise}: {HOOKS[case.hook]!r} not found")
+        files[name] = text
+    return files
+
+
+def processes_under(folder: Path, uids: set[int]) -> list[tuple[int, str]]:
+    """Processes running a program of ``folder`` (or with a cwd there), or of one of ``uids``."""
+    found = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit() or int(entry) == os.getpid():
+            continue
+        try:
+            exe = os.readlink(f"/proc/{entry}/exe")
+        except OSError:
+            exe = ""
+        try:
+            cwd = os.readlink(f"/proc/{entry}/cwd")
+        except OSError:
+            cwd = ""
+        try:
+            uid = os.stat(f"/proc/{entry}").st_uid
+        except OSError:
+            continue
+        if exe.startswith(str(folder)) or cwd.startswith(str(folder)) or uid in uids:
+            found.append((int(entry), exe or cwd))
+    return found
+
+
+def student_visible(data: dict) -> str:
+    return "\n".join([data.get("output", "")] + [t.get("output", "") + " " + t.get("name", "")
+                                                  for t in data.get("tests", []) if t.get("visibility") != "hidden"])
+
+
+def lesson_scores(data: dict) -> dict[str, tuple[float, float]]:
+    scores: dict[str, tuple[float, float]] = {}
+    for test in data.get("tests", []):
+        match = re.match(r"lesson(\d\d)", test.get("name", ""))
+        if match:
+            got, top = scores.get(match.group(1), (0.0, 0.0))
+            scores[match.group(1)] = (got + test.get("score", 0), top + test.get("max_score", 0))
+    return scores
+
+
+@dataclass
+class Outcome:
+    case: str
+    mode: str
+    seconds: float
+    summary: str
+    problems: list[str] = field(default_factory=list)
+
+
+def judge(case: Case, data: dict, changed_after: bool, survivors: list, maxima: dict[str, float]) -> list[str]:
+    problems = []
+    scores = lesson_scores(data)
+    one = scores.get("01", (0.0, 0.0))[0]
+    two = scores.get("02", (0.0, 0.0))[0]
+    visible = student_visible(data)
+    if changed_after:
+        problems.append("results.json changed after run_autograder had finished")
+    if survivors:
+        problems.append(f"{len(survivors)} process(es) of the submission still alive afterwards: {survivors[:3]}")
+    if MARKER in visible:
+        problems.append("the hidden tests reached what the student reads")
+    expect = case.expect
+    if expect == "full" and (one, two) != (maxima["01"], maxima["02"]):
+        problems.append(f"the reference scored {one:g} + {two:g}, not full marks")
+    elif expect == "honest-zero" and (one, two) != (0, 0):
+        problems.append(f"scored {one:g} + {two:g}; the honest score is 0")
+    elif expect == "no-leak" and (one, two) != (0, 0):
+        problems.append(f"scored {one:g} + {two:g}; the honest score is 0")
+    elif expect == "full-01" and (one, two) != (maxima["01"], 0):
+        problems.append(f"scored {one:g} + {two:g}; the honest score is {maxima['01']:g} + 0")
+    elif expect == "flagged-01":
+        if one != 0:
+            problems.append(f"lesson 01 scored {one:g}; a flagged file's lesson scores 0")
+        if not any(t["name"].startswith("flagged:") and t.get("visibility") == "visible" for t in data["tests"]):
+            problems.append("no visible 'flagged:' entry says why")
+        lesson = [t for t in data["tests"] if t["name"].startswith("lesson01")]
+        if not lesson or not all("flagged" in t.get("output", "") for t in lesson):
+            problems.append("the lesson's tests do not say the file was flagged")
+    elif expect.startswith("notes-fail:"):
+        words = expect.split(":", 1)[1]
+        lesson = [t for t in data["tests"] if t["name"].startswith("lesson01")]
+        failed = [t for t in lesson if t["status"] != "passed"]
+        notes = [t for t in lesson if NOTES in t["name"]]
+        if not notes or {t["name"] for t in failed} != {t["name"] for t in notes}:
+            problems.append(f"failed: {sorted(t['name'][:50] for t in failed)}; only the {len(notes)} notes' form "
+                            "tests may fail")
+        if not all(words in t.get("output", "") for t in notes):
+            problems.append(f"a notes' form test does not say '{words}'")
+    elif expect == "link-02":
+        if (one, two) != (maxima["01"], 0):
+            problems.append(f"scored {one:g} + {two:g}; the honest score is {maxima['01']:g} + 0 (lesson 02 does "
+                            "not link)")
+        build = [t for t in data["tests"] if t["name"].startswith("build") and t.get("visibility") != "hidden"]
+        if not any("multiple definition" in t.get("output", "") for t in build):
+            problems.append("no visible build entry quotes the linker (multiple definition)")
+        if "not your code's fault" in data.get("output", ""):
+            problems.append("the link error is blamed on the grader")
+    return problems
+
+
+def run_case(case: Case, mode: str, slot_dir: Path, user: str, memory_mb: int,
+             test_timeout: str) -> tuple[dict | None, bool, list, float, str]:
+    ag = slot_dir / "autograder"
+    if ag.exists():
+        shutil.rmtree(ag)
+    subprocess.run(["cp", "-a", "--reflink=auto", str(slot_dir / "snapshot"), str(ag)], check=True)
+    submission = ag / "submission"
+    if submission.exists():
+        shutil.rmtree(submission)
+    submission.mkdir()
+    for name, text in submission_files(case).items():
+        (submission / name).write_text(text, encoding="utf-8")
+    results = ag / "results" / "results.json"
+    env = dict(os.environ, ILLUM_AUTOGRADER_ROOT=str(ag), ILLUM_GRADE_TEST_TIMEOUT=test_timeout,
+               PYTHONDONTWRITEBYTECODE="1", ILLUM_GRADE_USER=user, **MODE_ENV[mode])
+    env.pop("CMAKE_CXX_COMPILER_LAUNCHER", None)
+
+    def limit() -> None:
+        resource.setrlimit(resource.RLIMIT_AS, (memory_mb << 20, memory_mb << 20))
+
+    start = time.monotonic()
+    done = subprocess.run(["bash", str(ag / "source" / "run_autograder")], env=env, stdout=subprocess.PIPE,
+                          stderr=subprocess.STDOUT, preexec_fn=limit, check=False, timeout=900)
+    seconds = time.monotonic() - start
+    log = done.stdout.decode("utf-8", errors="replace")
+    (slot_dir / f"{case.name}-{mode}.log").write_text(log[-200000:], encoding="utf-8")
+    first = results.read_bytes() if results.exists() else b""
+    time.sleep(2.5)  # an attack that acts after the grader has finished has had time to
+    second = results.read_bytes() if results.exists() else b""
+    uids = set()
+    try:
+        import pwd
+        uids.add(pwd.getpwnam(user).pw_uid)
+    except KeyError:
+        pass
+    survivors = processes_under(ag, uids)
+    for pid, _ in survivors:  # clean up for the next case (an older grader leaves them)
+        try:
+            os.kill(pid, signal.SIGKILL)
+        except OSError:
+            pass
+    data = json.loads(second) if second else None
+    if data is not None:
+        shutil.copyfile(results, slot_dir / f"results-{case.name}-{mode}.json")
+    changed = hashlib.sha256(first).digest() != hashlib.sha256(second).digest()
+    return data, changed, survivors, seconds, log
+
+
+def main(argv: list[str]) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--work-dir", type=Path, required=True)
+    parser.add_argument("--grader-tree", type=Path, default=ROOT,
+                        help="the checkout whose tools/grade packs the autograder (default: this one)")
+    parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--only", action="append", help="run only this case (repeatable)")
+    parser.add_argument("--test-timeout", default="10")
+    parser.add_argument("--grader-memory-mb", type=int, default=3072)
+    args = parser.parse_args(argv)
+    if os.geteuid() != 0:
+        print("attacks e2e: skipped: needs root (a second user for the students' code, a pid namespace)")
+        return 77
+    work = args.work_dir.resolve()
+    if work.exists():
+        shutil.rmtree(work)
+    work.mkdir(parents=True)
+    work.chmod(0o755)
+    grader_tree = args.grader_tree.resolve()
+    env = dict(os.environ, CMAKE_BUILD_PARALLEL_LEVEL="2", PYTHONDONTWRITEBYTECODE="1")
+    if shutil.which("ccache"):  # the prepared trees reuse earlier objects (autograder_e2e's, batch_e2e's too)
+        env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_NOHASHDIR="1")
+    zip_path = work / "autograder.zip"
+    done = subprocess.run([sys.executable, str(grader_tree / "tools" / "grade"), "--pack-autograder", str(zip_path),
+                           *LESSONS], env=env, capture_output=True, text=True, check=False)
+    if done.returncode != 0:
+        print(done.stdout + done.stderr)
+        return 1
+    plan = [(case, mode) for case in CASES for mode in case.modes if not args.only or case.name in args.only]
+    slots = [work / f"slot-{k}" for k in range(1, max(1, args.jobs) + 1)]
+    # Users of its own: CTest runs the end-to-end tests side by side, and every process of a grading
+    # user is killed at the end of each run.
+    users = [f"illum-test-at{k}" for k in range(1, len(slots) + 1)]
+
+    def prepare(k: int) -> tuple[int, float, str]:
+        """A slot: the autograder unpacked and set up at the path where its submissions are graded
+        (a CMake build tree cannot move), and a snapshot to restore before each submission."""
+        ag = slots[k] / "autograder"
+        with zipfile.ZipFile(zip_path) as archive:
+            archive.extractall(ag / "source")
+        for name in ("setup.sh", "run_autograder", "illum/tools/grade"):
+            (ag / "source" / name).chmod(0o755)
+        (ag / "results").mkdir()
+        for folder in (slots[k], ag):
+            folder.chmod(0o755)
+        start = time.monotonic()
+        done = subprocess.run(["bash", str(ag / "source" / "setup.sh")],
+                              env=dict(env, ILLUM_AUTOGRADER_ROOT=str(ag), ILLUM_GRADE_USER=users[k],
+                                       CCACHE_BASEDIR=str(ag)),
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace",
+                              check=False)
+        (slots[k] / "setup.log").write_text(done.stdout, encoding="utf-8")
+        if done.returncode == 0:
+            subprocess.run(["cp", "-a", "--reflink=auto", str(ag), str(slots[k] / "snapshot")], check=True)
+        return done.returncode, time.monotonic() - start, done.stdout
+
+    for slot in slots:
+        slot.mkdir()
+    with ThreadPoolExecutor(max_workers=len(slots)) as pool:  # each finds build/release's objects in ccache
+        prepared_slots = list(pool.map(prepare, range(len(slots))))
+    for k, (status, seconds, output) in enumerate(prepared_slots):
+        print(f"setup.sh in {slots[k].name} ({grader_tree}): exit {status} in {seconds:.1f} s", flush=True)
+        if status != 0:
+            print(output[-4000:])
+            return 1
+    free = list(range(len(slots)))
+    import threading
+    lock = threading.Lock()
+
+    def one(item: tuple[Case, str]) -> tuple[Case, str, tuple]:
+        with lock:
+            k = free.pop(0)
+        try:
+            return item[0], item[1], run_case(item[0], item[1], slots[k], users[k], args.grader_memory_mb,
+                                              args.test_timeout)
+        finally:
+            with lock:
+                free.append(k)
+
+    # The reference first: the maxima every other case is judged by.
+    baseline = one((BASELINE, "scan"))
+    data = baseline[2][0]
+    maxima = {nn: top for nn, (_, top) in lesson_scores(data or {}).items()}
+    if set(maxima) != set(LESSONS):
+        print(f"attacks e2e: the reference run gave no score for lessons {', '.join(LESSONS)}; see {slots[0]}")
+        return 1
+    outcomes: list[Outcome] = []
+    with ThreadPoolExecutor(max_workers=len(slots)) as pool:
+        finished = [baseline] + list(pool.map(one, plan))
+    for case, mode, (data, changed, survivors, seconds, log) in finished:
+        if data is None:
+            outcomes.append(Outcome(case.name, mode, seconds, "no results.json", ["no results.json was written"]))
+            continue
+        scores = lesson_scores(data)
+        summary = ", ".join(f"{nn}: {got:g}/{top:g}" for nn, (got, top) in sorted(scores.items()))
+        effects = []
+        if changed:
+            effects.append("results.json rewritten afterwards")
+        if survivors:
+            effects.append(f"{len(survivors)} process(es) left alive")
+        if MARKER in student_visible(data):
+            effects.append("hidden tests shown to the student")
+        if "not your code's fault" in data.get("output", "") or "grader itself failed" in student_visible(data):
+            effects.append("blamed on the grader")
+        summary += ("; " + "; ".join(effects)) if effects else ""
+        outcomes.append(Outcome(case.name, mode, seconds, summary, judge(case, data, changed, survivors, maxima)))
+    print(f"\n{'case':<24} {'mode':<17} {'time':>6}  result")
+    for o in outcomes:
+        verdict = "ok" if not o.problems else "FAILED: " + "; ".join(o.problems)
+        print(f"{o.case:<24} {o.mode:<17} {o.seconds:5.1f}s  {o.summary}  -> {verdict}")
+    failed = [o for o in outcomes if o.problems]
+    print(f"\nattacks e2e: {len(outcomes) - len(failed)} of {len(outcomes)} cases hold"
+          + (f"; {len(failed)} FAILED" if failed else ""))
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,431 @@
+"""Running a student's code apart from the grader (docs/grading.md, "Threat model").
+
+A student's exercise files are hostile input. Whatever they compile into is
+run here:
+
+* as an **unprivileged user** (``--as-user``, created by the autograder's
+  setup.sh), with a private HOME and TMPDIR, a clean environment, and no
+  write access to the sources, the build tree while tests run, or the
+  results;
+* in a **process group of its own**, inside a **pid namespace** where the
+  platform allows one (root, and ``unshare`` permitted), whose first process
+  (``sandbox_init.py``) reports how the program ended over a pipe the
+  program never holds; the group is killed after a normal exit too, and
+  with a user, every process of that user is killed before the grader goes
+  on (``reap``);
+* under **resource limits**: memory per test program (``RLIMIT_DATA``, so
+  an allocation beyond it fails with ``std::bad_alloc``, which the results
+  call "out of memory"), processes per user (``RLIMIT_NPROC``), the size of
+  any file written, CPU time, no core files; the program's output is read
+  through a pipe and only its last ``output_bytes`` are kept.
+
+Without root there is no second user: the code runs as whoever runs the
+grader, in its own process group (and pid namespace if one can be made).
+That is the student's own machine (``tools/grade --student``), where there
+is nothing to defend; ``tools/grade --batch`` says so on stderr.
+"""
+from __future__ import annotations
+
+import json
+import os
+import pwd
+import shutil
+import signal
+import stat
+import subprocess
+import sys
+import tempfile
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+INIT = Path(__file__).resolve().with_name("sandbox_init.py")
+
+# Environment variables a test program or a build may see; everything else
+# the grader has (tokens, paths of the autograder) is left out.
+_PASSED_ENVIRONMENT = ("PATH", "LANG", "LC_ALL", "TZ", "OMP_NUM_THREADS", "OMP_PROC_BIND", "OMP_WAIT_POLICY")
+
+
+class SandboxError(Exception):
+    """The sandbox cannot be set up as asked (a user missing, no root...)."""
+
+
+@dataclass(frozen=True)
+class Account:
+    """The unprivileged user that runs students' code."""
+
+    name: str
+    uid: int
+    gid: int
+    home: str = "/nonexistent"
+
+    @staticmethod
+    def lookup(name: str) -> "Account | None":
+        try:
+            entry = pwd.getpwnam(name)
+        except KeyError:
+            return None
+        return Account(entry.pw_name, entry.pw_uid, entry.pw_gid, entry.pw_dir)
+
+
+def create_account(name: str) -> Account:
+    """The user ``name``, created (a system user with its own group, no home,
+    no login shell) if it does not exist yet. Needs root."""
+    found = Account.lookup(name)
+    if found is not None:
+        if found.uid == 0:
+            raise SandboxError(f"the user {name} is root; choose an unprivileged user")
+        return found
+    if os.geteuid() != 0:
+        raise SandboxError(f"the user {name} does not exist, and only root can create it")
+    useradd = shutil.which("useradd") or "/usr/sbin/useradd"
+    shell = "/usr/sbin/nologin" if os.path.exists("/usr/sbin/nologin") else "/bin/false"
+    command = [useradd, "--system", "--user-group", "--no-create-home", "--home-dir", "/nonexistent",
+               "--shell", shell, name]
+    try:
+        done = subprocess.run(command, capture_output=True, text=True, check=False)
+    except OSError as error:
+        raise SandboxError(f"cannot create the user {name}: {error}") from error
+    found = Account.lookup(name)
+    if found is None:
+        raise SandboxError(f"cannot create the user {name}: {' '.join(command)} said: "
+                           f"{(done.stderr or done.stdout).strip() or f'exit status {done.returncode}'}")
+    return found
+
+
+def _megabytes(name: str, default: int) -> int:
+    value = os.environ.get(name, "").strip()
+    if not value:
+        return default
+    try:
+        number = int(value)
+    except ValueError:
+        raise SandboxError(f"{name}={value!r} is not a whole number of megabytes") from None
+    if number <= 0:
+        raise SandboxError(f"{name}={value} must be positive")
+    return number
+
+
+@dataclass
+class Limits:
+    """What one test program, or one build, may use (environment variables in docs/grading.md)."""
+
+    memory_mb: int = 1024        # ILLUM_GRADE_MEMORY_MB: data memory of one test program
+    processes: int = 256         # ILLUM_GRADE_PROCESSES: processes and threads of the user at once
+    file_mb: int = 64            # largest file a test program may write
+    output_bytes: int = 64 * 1024  # the tail of a program's output that is kept
+    build_memory_mb: int = 4096  # one compiler or linker process
+
+    @staticmethod
+    def from_environment() -> "Limits":
+        return Limits(memory_mb=_megabytes("ILLUM_GRADE_MEMORY_MB", 1024),
+                      processes=_megabytes("ILLUM_GRADE_PROCESSES", 256),
+                      build_memory_mb=_megabytes("ILLUM_GRADE_BUILD_MEMORY_MB", 4096))
+
+
+_pid_namespace_works: bool | None = None
+
+
+def pid_namespace_available() -> bool:
+    """Whether ``unshare --pid --fork`` works here (root, and not forbidden by a container)."""
+    global _pid_namespace_works
+    if _pid_namespace_works is None:
+        unshare = shutil.which("unshare")
+        _pid_namespace_works = False
+        if unshare and os.geteuid() == 0 and os.environ.get("ILLUM_GRADE_NO_PID_NAMESPACE") != "1":
+            try:
+                done = subprocess.run([unshare, "--pid", "--fork", "--kill-child", "--", "true"],
+                                      capture_output=True, timeout=10, check=False)
+                _pid_namespace_works = done.returncode == 0
+            except (OSError, subprocess.TimeoutExpired):
+                _pid_namespace_works = False
+    return _pid_namespace_works
+
+
+@dataclass
+class Launched:
+    """A sandboxed program that was started: its launcher process and the pipes to read."""
+
+    process: subprocess.Popen
+    status_fd: int
+    output_fd: int
+    records_fd: int | None
+    scratch: Path
+    program_pid: int | None = None  # the program's pid as the grader sees it (None in a namespace)
+
+
+@dataclass
+class Sandbox:
+    account: Account | None = None
+    limits: Limits = field(default_factory=Limits)
+    namespace: bool | None = None  # None: use one when available
+
+    def __post_init__(self) -> None:
+        if self.account is not None and os.geteuid() != 0:
+            raise SandboxError(f"running code as the user {self.account.name} needs root")
+        if self.namespace is None:
+            self.namespace = pid_namespace_available()
+
+    # --- what the student's code sees -------------------------------------------------------
+
+    def environment(self, home: Path, extra: dict[str, str] | None = None) -> dict[str, str]:
+        env = {k: os.environ[k] for k in _PASSED_ENVIRONMENT if k in os.environ}
+        env.setdefault("PATH", "/usr/local/bin:/usr/bin:/bin")
+        # Each OpenMP thread's stack counts against the memory limit: on a machine with many cores
+        # the default (one thread per core) would spend the limit on stacks alone.
+        env.setdefault("OMP_NUM_THREADS", str(min(os.cpu_count() or 1, 4)))
+        env.setdefault("LANG", "C.UTF-8")
+        env.update(HOME=str(home), TMPDIR=str(home / "tmp"))
+        if self.account is not None:
+            env.update(USER=self.account.name, LOGNAME=self.account.name)
+        env.update(extra or {})
+        return env
+
+    def make_scratch(self) -> Path:
+        """A fresh private HOME (with TMPDIR inside) for one run, owned by the account."""
+        folder = Path(tempfile.mkdtemp(prefix="illum-run-"))
+        home = folder / "home"
+        (home / "tmp").mkdir(parents=True)
+        if self.account is not None:
+            folder.chmod(0o711)
+            for path in (home, home / "tmp"):
+                os.chown(path, self.account.uid, self.account.gid)
+                path.chmod(0o700)
+        return folder
+
+    @staticmethod
+    def remove_scratch(folder: Path) -> None:
+        shutil.rmtree(folder, ignore_errors=True)
+
+    # --- running a test program ------------------------------------------------------------
+
+    def launch(self, argv: list[str], records: bool = True, cpu_seconds: float | None = None,
+               extra_env: dict[str, str] | None = None) -> Launched:
+        """Starts ``argv`` in the sandbox. Its stdout and stderr go to one pipe
+        (``output_fd``), the reporter's records to another (``records_fd``),
+        whose write end the program finds in ILLUM_GRADE_RECORDS_FD."""
+        argv = [os.path.abspath(argv[0]) if os.sep in str(argv[0]) else str(argv[0]), *argv[1:]]
+        scratch = self.make_scratch()
+        status_r, status_w = os.pipe()
+        output_r, output_w = os.pipe()
+        records_r, records_w = os.pipe() if records else (None, None)
+        keep = [records_w] if records_w is not None else []
+        extra = dict(extra_env or {})
+        if records_w is not None:
+            extra["ILLUM_GRADE_RECORDS_FD"] = str(records_w)
+        limits = {
+            "memory_bytes": self.limits.memory_mb * 1024 * 1024,
+            "file_bytes": self.limits.file_mb * 1024 * 1024,
+            "core_bytes": 0,
+            "cpu_seconds": int(cpu_seconds) + 5 if cpu_seconds and cpu_seconds != float("inf") else None,
+        }
+        if self.account is not None:
+            limits["processes"] = self.limits.processes
+        config = {
+            "argv": [str(a) for a in argv], "status_fd": status_w, "keep_fds": keep, "limits": limits,
+            "cwd": str(scratch / "home"), "env": self.environment(scratch / "home", extra),
+            "uid": self.account.uid if self.account else None, "gid": self.account.gid if self.account else None,
+        }
+        command = [sys.executable, "-I", "-S", str(INIT), json.dumps(config)]
+        if self.namespace:
+            command = [shutil.which("unshare") or "unshare", "--pid", "--fork", "--kill-child", "--", *command]
+        try:
+            process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=output_w, stderr=output_w,
+                                       pass_fds=[status_w, *keep], start_new_session=True, close_fds=True)
+        except OSError:
+            for fd in (status_r, status_w, output_r, output_w, records_r, records_w):
+                if fd is not None:
+                    os.close(fd)
+            self.remove_scratch(scratch)
+            raise
+        for fd in (status_w, output_w, records_w):  # only the sandbox holds the write ends now
+            if fd is not None:
+                os.close(fd)
+        return Launched(process, status_r, output_r, records_r, scratch)
+
+    def stop(self, launched: Launched) -> None:
+        """Kills a launched program and everything it started."""
+        for target in (launched.process.pid, launched.program_pid):
+            if target:
+                try:
+                    os.killpg(target, signal.SIGKILL)
+                except (ProcessLookupError, PermissionError):
+                    pass
+        try:
+            launched.process.kill()
+        except ProcessLookupError:
+            pass
+
+    def finish(self, launched: Launched) -> list[str]:
+        """After a run: the launcher waited for, the program's group and (with a
+        user) every process of the user killed, the scratch folder removed.
+        Returns a description of each process that was still alive."""
+        if launched.program_pid and not self.namespace:
+            try:
+                os.killpg(launched.program_pid, signal.SIGKILL)
+            except (ProcessLookupError, PermissionError):
+                pass
+        try:
+            launched.process.wait(timeout=10)
+        except subprocess.TimeoutExpired:
+            self.stop(launched)
+            launched.process.wait()
+        survivors = self.reap()
+        for fd in (launched.status_fd, launched.output_fd, launched.records_fd):
+            if fd is not None:
+                try:
+                    os.close(fd)
+                except OSError:
+                    pass
+        self.remove_scratch(launched.scratch)
+        return survivors
+
+    # --- every process and file of the user -------------------------------------------------
+
+    def reap(self, patience: float = 10.0) -> list[str]:
+        """Kills every process of the account until none is left (fork bombs
+        included); returns what was found alive. Without an account, nothing."""
+        if self.account is None:
+            return []
+        found: list[str] = []
+        deadline = time.monotonic() + patience
+        while True:
+            alive = user_processes(self.account.uid)
+            if not alive:
+                return found
+            found.extend(f"pid {pid} ({name})" for pid, name in alive if f"pid {pid} ({name})" not in found)
+            kill_all_of(self.account)
+            if time.monotonic() > deadline:
+                raise SandboxError(f"processes of {self.account.name} survive SIGKILL: {', '.join(found[:10])}")
+            time.sleep(0.02)
+
+    def clean_shared_folders(self) -> None:
+        """Removes what the account left in the world-writable folders (a
+        channel from one run, or one student, to the next)."""
+        if self.account is None:
+            return
+        for folder in ("/tmp", "/var/tmp", "/dev/shm"):
+            try:
+                entries = list(os.scandir(folder))
+            except OSError:
+                continue
+            for entry in entries:
+                try:
+                    if entry.stat(follow_symlinks=False).st_uid != self.account.uid:
+                        continue
+                    if entry.is_dir(follow_symlinks=False):
+                        shutil.rmtree(entry.path, ignore_errors=True)
+                    else:
+                        os.unlink(entry.path)
+                except OSError:
+                    pass
+
+    def can_reach(self, path: Path) -> bool:
+        """Whether the account can list and enter ``path`` (every folder above it searchable)."""
+        if self.account is None:
+            return True
+        pid = os.fork()
+        if pid == 0:
+            try:
+                os.setgroups([])
+                os.setgid(self.account.gid)
+                os.setuid(self.account.uid)
+                os._exit(0 if os.access(path, os.R_OK | os.X_OK) else 1)
+            except BaseException:  # noqa: BLE001
+                os._exit(2)
+        _, status = os.waitpid(pid, 0)
+        return os.waitstatus_to_exitcode(status) == 0
+
+    # --- builds ----------------------------------------------------------------------------
+
+    def build_preexec(self):
+        """For subprocess.Popen(preexec_fn=...): a build step as the account,
+        with the build's limits (a compiler fed /dev/zero stops at the memory limit)."""
+        import resource
+
+        memory = self.limits.build_memory_mb * 1024 * 1024
+        account = self.account
+
+        def preexec() -> None:
+            os.setsid()
+            resource.setrlimit(resource.RLIMIT_DATA, (memory, memory))
+            resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+            if account is not None:
+                resource.setrlimit(resource.RLIMIT_NPROC, (self.limits.processes, self.limits.processes))
+                os.setgroups([])
+                os.setgid(account.gid)
+                os.setuid(account.uid)
+
+        return preexec
+
+    def build_environment(self, home: Path) -> dict[str, str]:
+        """The environment of a build: the grader's, minus what the student's
+        user must not see; ccache is off (a shared cache could carry one
+        student's objects into another's build)."""
+        env = dict(os.environ)
+        if self.account is not None:
+            env = self.environment(home)
+            for key in ("CMAKE_BUILD_PARALLEL_LEVEL", "CXX", "CC", "CXXFLAGS", "LDFLAGS"):
+                if key in os.environ:
+                    env[key] = os.environ[key]
+            env["CCACHE_DISABLE"] = "1"
+        return env
+
+    def give_tree(self, folder: Path) -> None:
+        """Makes ``folder`` (a build tree) the account's, so that its build can write there."""
+        if self.account is not None and folder.exists():
+            chown_tree(folder, self.account.uid, self.account.gid)
+
+    def take_tree(self, folder: Path) -> None:
+        """Takes ``folder`` back: root's, and writable by nobody else (tests run next)."""
+        if self.account is not None and folder.exists():
+            chown_tree(folder, 0, 0, strip_write=True)
+
+
+def chown_tree(folder: Path, uid: int, gid: int, strip_write: bool = False) -> None:
+    """chown -R without following links; ``strip_write`` also removes group
+    and other write permission (and set-id bits)."""
+    for path in [folder, *folder.rglob("*")]:
+        try:
+            info = path.lstat()
+            os.chown(path, uid, gid, follow_symlinks=False)
+            if strip_write and not stat.S_ISLNK(info.st_mode):
+                path.chmod(stat.S_IMODE(info.st_mode) & ~0o7022)
+        except OSError:
+            pass
+
+
+def user_processes(uid: int) -> list[tuple[int, str]]:
+    """(pid, name) of every process whose real or effective user is ``uid``."""
+    found = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/status", encoding="utf-8", errors="replace") as status:
+                fields = dict(line.split(":", 1) for line in status if ":" in line)
+        except OSError:
+            continue
+        uids = fields.get("Uid", "").split()
+        if fields.get("State", "").strip()[:1] in ("Z", "X"):
+            continue  # a zombie is dead already; only its parent can make it go
+        if uids and str(uid) in uids[:2]:
+            found.append((int(entry), fields.get("Name", "?").strip()))
+    return found
+
+
+def kill_all_of(account: Account) -> None:
+    """kill(-1, SIGKILL) as the account: the kernel sends it to every process
+    of that user at once, so a process that forks or changes its group
+    cannot slip through between a listing and a kill."""
+    pid = os.fork()
+    if pid == 0:
+        try:
+            os.setgroups([])
+            os.setgid(account.gid)
+            os.setuid(account.uid)
+            os.kill(-1, signal.SIGKILL)
+        except BaseException:  # noqa: BLE001
+            pass
+        os._exit(0)
+    os.waitpid(pid, 0)

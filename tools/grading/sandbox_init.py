@@ -1,0 +1,129 @@
+"""The first process of a sandboxed run (tools/grading/sandbox.py starts it).
+
+    python3 -I -S sandbox_init.py CONFIG_JSON
+
+It runs as the grader (root on an autograder), inside a fresh pid namespace
+when the platform allows one (then it is pid 1 there). It forks the test
+program, which in the child, before exec:
+
+* gets a process group of its own (the grader kills the whole group);
+* drops every file descriptor the grader did not hand it;
+* gets the resource limits of the config (memory, processes, file size,
+  CPU time, no core files);
+* becomes the unprivileged user of the config, when there is one;
+* moves to its private HOME with a clean environment.
+
+The parent waits for the program, reaping whatever else dies in the
+namespace, then kills the program's group and writes one JSON line to the
+status descriptor: ``{"pid": N}`` at the start, ``{"exited": CODE}`` or
+``{"signal": NUMBER}`` at the end. The test program never holds the status
+descriptor, so it cannot forge how it ended. When this process exits, the
+kernel kills every process left in the namespace.
+
+Standard library only, no package imports: it must start in a few
+milliseconds and trust nothing on the path (``-I -S``).
+"""
+import json
+import os
+import resource
+import signal
+import sys
+
+_LIMITS = {
+    "memory_bytes": resource.RLIMIT_DATA,
+    "address_space_bytes": resource.RLIMIT_AS,
+    "processes": resource.RLIMIT_NPROC,
+    "file_bytes": resource.RLIMIT_FSIZE,
+    "cpu_seconds": resource.RLIMIT_CPU,
+    "core_bytes": resource.RLIMIT_CORE,
+    "open_files": resource.RLIMIT_NOFILE,
+}
+
+
+def _say(fd, record):
+    try:
+        os.write(fd, (json.dumps(record) + "\n").encode())
+    except OSError:
+        pass
+
+
+def _child(config):
+    keep = sorted(int(fd) for fd in config.get("keep_fds", []))
+    os.setpgid(0, 0)
+    low = 3  # everything but stdin, stdout, stderr and the records pipe
+    for fd in keep + [resource.getrlimit(resource.RLIMIT_NOFILE)[0]]:
+        os.closerange(low, fd)
+        low = fd + 1
+    for fd in keep:
+        os.set_inheritable(fd, True)
+    for name, value in config.get("limits", {}).items():
+        if value is not None and name in _LIMITS:
+            resource.setrlimit(_LIMITS[name], (int(value), int(value)))
+    if config.get("uid") is not None:
+        os.setgroups([])
+        os.setgid(int(config["gid"]))
+        os.setuid(int(config["uid"]))
+        if os.getuid() == 0 or os.geteuid() == 0:
+            raise OSError("could not drop root privileges")
+    os.umask(0o077)
+    if config.get("cwd"):
+        os.chdir(config["cwd"])
+    argv = config["argv"]
+    os.execve(argv[0], argv, config.get("env", {}))
+
+
+def main():
+    config = json.loads(sys.argv[1])
+    status_fd = int(config["status_fd"])
+    for fd in config.get("keep_fds", []):
+        os.set_inheritable(int(fd), True)
+    pid = os.fork()
+    if pid == 0:
+        try:
+            os.close(status_fd)
+            _child(config)
+        except BaseException as error:  # noqa: BLE001 -- nothing may escape the child
+            os.write(2, f"illum sandbox: cannot start {config['argv'][0]}: {error}\n".encode())
+        os._exit(127)
+    # The grader keeps the only other copies of the pipes; ours would hide the end of the run.
+    for fd in config.get("keep_fds", []):
+        try:
+            os.close(int(fd))
+        except OSError:
+            pass
+    _say(status_fd, {"pid": pid})
+
+    def stop(signum, frame):  # the grader's time-out: the program's whole group goes
+        try:
+            os.killpg(pid, signal.SIGKILL)
+        except OSError:
+            pass
+
+    signal.signal(signal.SIGTERM, stop)
+    signal.signal(signal.SIGINT, stop)
+    status = None
+    while True:
+        try:
+            waited, raw = os.wait()
+        except ChildProcessError:
+            break
+        except InterruptedError:
+            continue
+        if waited == pid:
+            status = raw
+            break
+    try:
+        os.killpg(pid, signal.SIGKILL)  # after a normal exit too: nothing it started may outlive it
+    except OSError:
+        pass
+    if status is None:
+        _say(status_fd, {"lost": True})
+    elif os.WIFSIGNALED(status):
+        _say(status_fd, {"signal": os.WTERMSIG(status)})
+    else:
+        _say(status_fd, {"exited": os.waitstatus_to_exitcode(status)})
+    os._exit(0)
+
+
+if __name__ == "__main__":
+    main()
