@@ -7,9 +7,9 @@ Writes a C++ file defining illum::lab::lab_assets() (tools/lab/lab_assets.hpp)
 with every file of tools/lab/web/ (index.html is served at "/", the others
 under "/assets/") and three.js from SOURCE_TREE/node_modules/three, the
 version package-lock.json pins (npm ci), under "/assets/three/": the module
-build, its core, OrbitControls and the licence. OrbitControls imports the bare
-name 'three'; it is rewritten to the module's own path, so that the page
-needs no import map (and no inline script). When node_modules/three is
+build, its core, OrbitControls, the wide-line add-ons and the licence. The
+add-ons import the bare name 'three'; it is rewritten to the module's own
+path, so that the page needs no import map (and no inline script). When node_modules/three is
 missing the page is still embedded, lab_has_three() returns false, and the
 page says how to get it.
 
@@ -27,6 +27,10 @@ THREE_FILES = [  # (path under node_modules/three, name under /assets/three/)
     ("build/three.module.js", "three.module.js"),
     ("build/three.core.js", "three.core.js"),
     ("examples/jsm/controls/OrbitControls.js", "OrbitControls.js"),
+    # Lines wider than one pixel (WebGL draws plain lines 1 pixel wide).
+    ("examples/jsm/lines/LineSegments2.js", "LineSegments2.js"),
+    ("examples/jsm/lines/LineSegmentsGeometry.js", "LineSegmentsGeometry.js"),
+    ("examples/jsm/lines/LineMaterial.js", "LineMaterial.js"),
     ("LICENSE", "LICENSE.txt"),
 ]
 TYPES = {".html": "text/html; charset=utf-8", ".js": "text/javascript; charset=utf-8",
@@ -68,10 +72,10 @@ def collect(source: Path) -> tuple[list[tuple[str, str, bytes]], bool]:
     if have_three:
         for relative, name in THREE_FILES:
             data = (three / relative).read_bytes()
-            if name == "OrbitControls.js":
+            if name.endswith(".js") and not name.startswith("three."):  # an add-on: it imports 'three'
                 data = data.replace(b"from 'three';", b"from './three.module.js';")
-                if b"from 'three'" in data:
-                    raise SystemExit("embed_assets.py: OrbitControls.js still imports 'three'")
+                if b"from 'three'" in data or b'from "three"' in data:
+                    raise SystemExit(f"embed_assets.py: {name} still imports 'three'")
             assets.append((f"/assets/three/{name}", TYPES[Path(name).suffix], data))
     return assets, have_three
 

@@ -6,7 +6,7 @@
 # the generated file only when something changed).
 find_package(PkgConfig QUIET)
 if(PkgConfig_FOUND)
-  pkg_check_modules(ILLUM_HTTPLIB QUIET IMPORTED_TARGET cpp-httplib)
+  pkg_check_modules(ILLUM_HTTPLIB QUIET IMPORTED_TARGET GLOBAL cpp-httplib)
 endif()
 
 set(ILLUM_LAB_DIR ${CMAKE_CURRENT_SOURCE_DIR}/lab)
@@ -18,10 +18,14 @@ if(ILLUM_HTTPLIB_FOUND)
     BYPRODUCTS ${lab_generated}
     COMMENT "Embedding the lab's page and three.js"
     VERBATIM)
-  target_sources(illum_cli PRIVATE ${ILLUM_LAB_DIR}/lab_common.cpp ${ILLUM_LAB_DIR}/lab_trace.cpp
-                                   ${ILLUM_LAB_DIR}/lab_radiosity.cpp ${ILLUM_LAB_DIR}/lab_compare.cpp
-                                   ${ILLUM_LAB_DIR}/lab_server.cpp ${lab_generated})
-  add_dependencies(illum_cli illum_lab_assets)
+  # The lab's sources once, for illum_cli and for the test build against the stubs (tests/e2e/lab.cmake).
+  add_library(illum_lab_objects OBJECT ${ILLUM_LAB_DIR}/lab_common.cpp ${ILLUM_LAB_DIR}/lab_trace.cpp
+                                       ${ILLUM_LAB_DIR}/lab_radiosity.cpp ${ILLUM_LAB_DIR}/lab_compare.cpp
+                                       ${ILLUM_LAB_DIR}/lab_server.cpp ${lab_generated})
+  add_dependencies(illum_lab_objects illum_lab_assets)
+  target_include_directories(illum_lab_objects PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_link_libraries(illum_lab_objects PUBLIC illum_options PkgConfig::ILLUM_HTTPLIB)
+  target_sources(illum_cli PRIVATE $<TARGET_OBJECTS:illum_lab_objects>)
   target_link_libraries(illum_cli PRIVATE PkgConfig::ILLUM_HTTPLIB)
   # The lessons whose exercise units this build takes from exercises/ (the lab shows whose code runs).
   set(lab_exercises "")

@@ -119,6 +119,12 @@ int run_lab(const LabOptions& options) {
   server.set_read_timeout(10);
   server.set_write_timeout(30);
   server.set_payload_max_length(64 * 1024);
+  // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, with which a second lab could listen on
+  // the same port and take half of the first one's requests.
+  server.set_socket_options([](socket_t socket) {
+    const int yes = 1;
+    setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
 
   int port = options.port;
   if (port < 0 || port > 65535) throw std::invalid_argument("--port must lie in 0 … 65535");

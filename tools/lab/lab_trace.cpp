@@ -231,7 +231,12 @@ struct TraceLab::Request {
 
 TraceLab::TraceLab(std::vector<SceneEntry> scenes, const RenderSettings& defaults)
     : scenes_list_(std::move(scenes)), defaults_(defaults) {
-  scenes_.emplace_back(default_scene(), std::make_shared<const Scene>(load_scene(scenes_list_.front().source)));
+  try {
+    scenes_.emplace_back(default_scene(), std::make_shared<const Scene>(load_scene(scenes_list_.front().source)));
+  } catch (const NotImplemented&) {
+    // Loading it needs an exercise not written yet (a sphere needs lesson 01's Sphere): every
+    // request for it answers 501 with that function, and the other views still work.
+  }
 }
 
 std::shared_ptr<const Scene> TraceLab::scene(const std::string& name) {
