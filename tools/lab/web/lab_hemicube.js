@@ -159,7 +159,8 @@ export class HemicubeView {
       return item === -1 ? [0, 0, 0] : item === -2 ? [70, 70, 70] : patchColour(item);
     });
     const top = decodeBase64(h.deltas.top, Float32Array), side = decodeBase64(h.deltas.side, Float32Array);
-    const maxDelta = Math.max(...top);
+    let maxDelta = 0;  // (not Math.max(...top): a 512-pixel face is more arguments than a call may take)
+    for (const d of top) maxDelta = Math.max(maxDelta, d);
     drawUnfolded(document.getElementById('hc-deltas'), res, p => {
       const d = (p.face === 0 ? top : side)[p.row * res + p.col] / maxDelta;
       const g = Math.round(255 * Math.sqrt(Math.max(0, d)));

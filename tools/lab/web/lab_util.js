@@ -83,9 +83,11 @@ export function logChart(holder, series, { xLabel = '', yLabel = '', logX = fals
   holder.append(root);
   if (!all.length) return;
   const fx = v => logX ? Math.log10(v) : v;
-  let x0 = Math.min(...all.map(p => fx(p[0]))), x1 = Math.max(...all.map(p => fx(p[0])));
+  const least = values => values.reduce((a, b) => Math.min(a, b), Infinity);
+  const most = values => values.reduce((a, b) => Math.max(a, b), -Infinity);
+  let x0 = least(all.map(p => fx(p[0]))), x1 = most(all.map(p => fx(p[0])));
   if (x1 === x0) x1 = x0 + 1;
-  let y0 = Math.floor(Math.log10(Math.min(...all.map(p => p[1])))), y1 = Math.ceil(Math.log10(Math.max(...all.map(p => p[1]))));
+  let y0 = Math.floor(Math.log10(least(all.map(p => p[1])))), y1 = Math.ceil(Math.log10(most(all.map(p => p[1]))));
   if (y1 === y0) y1 = y0 + 1;
   const X = v => left + (fx(v) - x0) / (x1 - x0) * (width - left - right);
   const Y = v => top + (y1 - Math.log10(v)) / (y1 - y0) * (height - top - bottom);
