@@ -74,7 +74,6 @@ struct LabCommand {
   std::filesystem::path source = ILLUM_SOURCE_DIR, out;
 };
 
-
 // The image, its sRGB copy for the PNG and the HDR file: checked against the
 // memory budget before anything is allocated (a huge --width is refused with
 // what it would take, not a std::bad_alloc or an hour of rendering).
@@ -167,15 +166,17 @@ int main(int argc, char** argv) {
   LabCommand lab_options;
   lab_options.image.scene = "whitted";
   auto* lab_cmd = app.add_subcommand(
-      "lab", "The lab in your browser: a pixel's ray tree, radiosity shot by shot, the hemicube, your pictures");
+      "lab",
+      "The lab in your browser: a pixel's ray tree, radiosity shot by shot, the hemicube, your pictures");
   lab_cmd->add_option("scene", lab_options.image.scene, "A scene file (JSON) or the name of a shipped scene")
       ->capture_default_str();
   lab_cmd->add_option("--port", lab_options.port, "Port on 127.0.0.1 (0: any free port; it is printed)")
       ->check(CLI::Range(0, 65535))
       ->capture_default_str();
   add_image_options(*lab_cmd, lab_options.image);
-  lab_cmd->add_option("--source", lab_options.source,
-                      "The course's source tree, whose lessons/NN_topic/figures are the reference images")
+  lab_cmd
+      ->add_option("--source", lab_options.source,
+                   "The course's source tree, whose lessons/NN_topic/figures are the reference images")
       ->capture_default_str();
   lab_cmd->add_option("--out", lab_options.out,
                       "The folder of your lesson programs' outputs (OUT/lessonNN; default: SOURCE/out)");

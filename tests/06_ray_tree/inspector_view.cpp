@@ -149,7 +149,8 @@ TEST_SUITE("inspector") {
       CHECK(branch(view.nodes[0], RayKind::reflection).fate == BranchFate::cast);
       CHECK(branch(view.nodes[0], RayKind::reflection).child == 1);
       CHECK(view.nodes[1].stop == StopReason::missed);
-      CHECK(stop_text(scene, pixel, view, 1) == "missed every surface: returns the background (0.25, 0.5, 0.75)");
+      CHECK(stop_text(scene, pixel, view, 1) ==
+            "missed every surface: returns the background (0.25, 0.5, 0.75)");
     }
     // Depth 1 towards the origin from (1, 0, 1): the reflected ray runs along (−1, 0, 1) into the
     // chalk ball at (−5, 0, 5), and chalk has k_r = k_t = 0.
@@ -195,7 +196,8 @@ TEST_SUITE("inspector") {
     const RayTreeBranch& reflected = branch(root, RayKind::reflection);
     CHECK(reflected.fate == BranchFate::cast);
     CHECK(reflected.factor.r == doctest::Approx(0.9));  // k_r = 0 plus the k_t = 0.9 it received
-    CHECK(stop_text(scene, pixel, view, 0) == "no refracted ray: total internal reflection, k_t added to k_r");
+    CHECK(stop_text(scene, pixel, view, 0) ==
+          "no refracted ray: total internal reflection, k_t added to k_r");
     const auto json = nlohmann::json::parse(ray_tree_json(scene, pixel));
     CHECK(json["tree"]["branches"][0]["fate"] == "total_internal_reflection");
     CHECK(ray_tree_dot(scene, pixel).find("total internal reflection") != std::string::npos);
@@ -226,7 +228,8 @@ TEST_SUITE("inspector") {
     PixelTree pixel{.plan = plan_effects(scene, 2), .depth_requested = 2};
     SurfaceHit hit;
     hit.t = 2.0, hit.point = Point3(0, 0, 0), hit.material = 0, hit.primitive = 0;
-    record_ray(&pixel.tree, RayKind::primary, Ray(Point3(0, 0, 2), Vec3(0, 0, -1)), 0, Color(1.0), no_node, &hit);
+    record_ray(&pixel.tree, RayKind::primary, Ray(Point3(0, 0, 2), Vec3(0, 0, -1)), 0, Color(1.0), no_node,
+               &hit);
     const RayTreeView view = view_ray_tree(scene, pixel);
     REQUIRE(view.nodes.size() == 1);
     CHECK(view.nodes[0].stop == StopReason::not_cast);
@@ -273,7 +276,8 @@ TEST_SUITE("inspector") {
     int ring = 0;
     for (int dx = -6; dx <= 6; ++dx)
       for (int dy = -6; dy <= 6; ++dy)
-        if (dx * dx + dy * dy >= 16 && dx * dx + dy * dy <= 36 && near(overlay.at(100 + dx, 80 + dy), cyan)) ++ring;
+        if (dx * dx + dy * dy >= 16 && dx * dx + dy * dy <= 36 && near(overlay.at(100 + dx, 80 + dy), cyan))
+          ++ring;
     CHECK(ring >= 16);
     // The legend: a strip added below the image, holding light-grey text.
     REQUIRE(overlay.width() == 200);

@@ -34,13 +34,16 @@ int main(int argc, char** argv) {
   std::vector<double> fractions;
   const illum::Hemicube hemicube(resolution);
   // Run on until a third of the power is left (far past SHOTS on the box), recording every shot.
-  illum::progressive_on_demand(s.patches, hemicube, {.unshot_fraction = 0.3},
-                               [&](const illum::ProgressiveState&, double unshot) { fractions.push_back(unshot); });
+  illum::progressive_on_demand(
+      s.patches, hemicube, {.unshot_fraction = 0.3},
+      [&](const illum::ProgressiveState&, double unshot) { fractions.push_back(unshot); });
   if (fractions.size() < shots) {
-    std::cerr << "lab_reference: only " << fractions.size() << " shots before a third of the power was left\n";
+    std::cerr << "lab_reference: only " << fractions.size()
+              << " shots before a third of the power was left\n";
     return 1;
   }
   fractions.resize(shots);
-  std::cout << nlohmann::json{{"patches", s.patches.size()}, {"edge", edge}, {"fractions", fractions}}.dump() << "\n";
+  std::cout << nlohmann::json{{"patches", s.patches.size()}, {"edge", edge}, {"fractions", fractions}}.dump()
+            << "\n";
   return 0;
 }

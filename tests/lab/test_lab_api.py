@@ -27,6 +27,7 @@ Exit status 0 when every check passes; prints "N passed, M failed".
 from __future__ import annotations
 
 import argparse
+import base64
 import http.client
 import json
 import os
@@ -34,6 +35,7 @@ import random
 import re
 import select
 import signal
+import struct
 import subprocess
 import sys
 import threading
@@ -286,7 +288,11 @@ def check_radiosity(lab: Lab) -> None:
         start = lab.json("/api/radiosity/start", {**base, "method": method})
         expect(start["patches"] == 330, f"{method}: {start['patches']} patches (lesson 11's quick figure has 330)")
         steps = 6 if method != "southwell" else 200
-        r = lab.json("/api/radiosity/step", {"session": start["session"], "steps": steps, "vertex": 1})
+        r = lab.json("/api/radiosity/step", {"session": start["session"], "steps": steps, "vertex": 1, "row": 1})
+        for key in ("radiosity", "row", "vertex"):  # little-endian float32, base64
+            if r.get(key) is not None:
+                raw = base64.b64decode(r[key])
+                r[key] = list(struct.unpack(f"<{len(raw) // 4}f", raw))
         fractions = [f for _, f in r["points"]]
         expect(len(fractions) == steps and r["steps"] == steps, f"{method}: {len(fractions)} points")
         expect(fractions[-1] < 1.0 and abs(fractions[-1] - r["fraction"]) < 1e-15, f"{method}: {fractions[-5:]}")

@@ -65,7 +65,7 @@ async function open(hash, viewport) {
 const state = (page, id) => page.$eval(id, s => s.dataset.state);
 async function waitState(page, id, states, timeout = 60000) {
   await page.waitForFunction((sel, want) => want.includes(document.querySelector(sel).dataset.state),
-    { timeout, polling: 20 }, id, states);
+    { timeout, polling: 'mutation' }, id, states);
   const s = await state(page, id);
   const status = { '#tab-tree': '#tree-status', '#tab-radiosity': '#rad-status', '#tab-hemicube': '#hc-status', '#tab-compare': '#cmp-verdict' }[id];
   if (s === 'error') throw new Error(`${id}: ${await page.$eval(status, p => p.textContent)}`);
@@ -107,7 +107,7 @@ const press = (page, selector) => page.$eval(selector, b => b.click());
 async function radiosityStep(page, button, steps) {
   await press(page, button);
   await page.waitForFunction(n => document.querySelector('#tab-radiosity').dataset.steps === String(n) &&
-    ['ready', 'done', 'error'].includes(document.querySelector('#tab-radiosity').dataset.state), { timeout: 120000, polling: 20 }, steps);
+    ['ready', 'done', 'error'].includes(document.querySelector('#tab-radiosity').dataset.state), { timeout: 120000, polling: 'mutation' }, steps);
 }
 
 const history = page => page.$$eval('#rad-history tbody tr', rows => rows.map(r => [Number(r.dataset.step), Number(r.dataset.fraction)]).reverse());
@@ -216,40 +216,49 @@ async function bench() {
   }
   await openTab(page, 'radiosity', '#tab-radiosity');
   results.patches = Number(await page.$eval('#tab-radiosity', s => s.dataset.patches));
-  // "run": one shot per request, the picture and the chart redrawn after each.
+  // One shot per press of "1 step": the request, the repaint and the chart after every shot.
   await radiosityStep(page, '#rad-step-1', 1);
-  const started = Date.now();
+  let started = Date.now();
+  for (let k = 2; k <= options.single + 1; ++k) await radiosityStep(page, '#rad-step-1', k);
+  results.single = { shots: options.single, seconds: (Date.now() - started) / 1000 };
+  // "run": as many shots per request as keep the picture moving (lab_radiosity.js, toggleRun).
+  const before = Number(await page.$eval('#tab-radiosity', s => s.dataset.steps));
+  started = Date.now();
   await press(page, '#rad-run');
-  await page.waitForFunction(n => Number(document.querySelector('#tab-radiosity').dataset.steps) >= n, { timeout: 300000, polling: 50 }, options.shots + 1);
+  await page.waitForFunction(n => Number(document.querySelector('#tab-radiosity').dataset.steps) >= n, { timeout: 600000, polling: 50 }, before + options.shots);
   await press(page, '#rad-run');
   await waitState(page, '#tab-radiosity', ['ready', 'done']);
-  const steps = Number(await page.$eval('#tab-radiosity', s => s.dataset.steps)) - 1;
-  results.shots = { shots: steps, seconds: (Date.now() - started) / 1000 };
+  const after = Number(await page.$eval('#tab-radiosity', s => s.dataset.steps));
+  results.run = { shots: after - before, seconds: (Date.now() - started) / 1000 };
   fs.writeFileSync(output, JSON.stringify(results, null, 1));
 }
 
 async function screenshots() {
   fs.mkdirSync(output, { recursive: true });
-  const shot = async (page, file) => page.screenshot({ path: path.join(output, file) });
-  const page = await open('tree', { width: 1360, height: 860 });
+  const shot = async (page, file, height) => {
+    await page.setViewport({ width: 1200, height });
+    await page.evaluate(() => window.scrollTo(0, 0));
+    await new Promise(r => setTimeout(r, 400));  // the 3D views redraw at the new size
+    await page.screenshot({ path: path.join(output, file) });
+  };
+  const page = await open('tree', { width: 1200, height: 1000 });
   await waitState(page, '#tab-tree', ['ready']);
   await clickPixel(page, ...options.pixel);
-  await page.$eval('#tree-diagram', d => d.scrollIntoView());
-  await page.evaluate(() => window.scrollTo(0, 0));
-  await shot(page, 'lab_ray_tree.png');
+  // The shadow ray that crosses the glass, selected: its segments in the details.
+  await page.$eval('#tree-diagram .tree-node[data-kind="shadow"][data-segments="2"]', g => g.dispatchEvent(new MouseEvent('click')));
+  await shot(page, 'lab_ray_tree.png', 1000);
   await openTab(page, 'radiosity', '#tab-radiosity');
   await radiosityStep(page, '#rad-step-10', 10);
-  await shot(page, 'lab_radiosity.png');
+  await shot(page, 'lab_radiosity.png', 760);
   await setValue(page, '#rad-paint', 'row');
   await page.waitForFunction(() => document.querySelector('#rad-caption').textContent.includes('row'), { polling: 20 });
-  await new Promise(r => setTimeout(r, 300));
-  await shot(page, 'lab_radiosity_row.png');
+  await shot(page, 'lab_radiosity_row.png', 760);
   await openTab(page, 'hemicube', '#tab-hemicube', ['drawn']);
-  await hemicube(page, options.patch, 64);
-  await shot(page, 'lab_hemicube.png');
+  if (options.patch !== null) await hemicube(page, options.patch, 64);
+  await shot(page, 'lab_hemicube.png', 1180);
   await openTab(page, 'compare', '#tab-compare', ['compared', 'missing']);
   if (options.compare) await compare(page, ...options.compare);
-  await shot(page, 'lab_compare.png');
+  await shot(page, 'lab_compare.png', 640);
   fs.writeFileSync(path.join(output, 'browser.json'), JSON.stringify(seen, null, 1));
 }
 

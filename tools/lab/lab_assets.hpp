@@ -8,7 +8,7 @@
 namespace illum::lab {
 
 struct LabAsset {
-  std::string_view path;          // "/" for the page, "/assets/..." for the rest
+  std::string_view path;  // "/" for the page, "/assets/..." for the rest
   std::string_view content_type;
   std::string data;
 };

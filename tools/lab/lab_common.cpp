@@ -5,9 +5,10 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 
-#include <nlohmann/json.hpp>
 #include <stb_image_write.h>  // the implementation is compiled in lib/illum/core/image.cpp
+#include <nlohmann/json.hpp>
 
 #include "illum/io/embedded_scenes.hpp"
 
@@ -34,7 +35,8 @@ std::string known_list(const std::vector<std::string>& known) {
 Query::Query(const Params& params, std::vector<std::string> known) {
   for (const auto& [key, value] : params) {
     if (std::find(known.begin(), known.end(), key) == known.end())
-      throw BadRequest("unknown parameter " + shown(key) + " (this endpoint takes: " + known_list(known) + ")");
+      throw BadRequest("unknown parameter " + shown(key) + " (this endpoint takes: " + known_list(known) +
+                       ")");
     if (values_.count(key)) throw BadRequest("parameter '" + key + "' is given twice");
     if (value.empty()) throw BadRequest("parameter '" + key + "' is empty");
     values_[key] = value;
@@ -57,7 +59,8 @@ long long Query::integer(const std::string& name, long long lo, long long hi) co
   if (ec == std::errc::result_out_of_range || (ec == std::errc() && ptr == end && (x < lo || x > hi)))
     throw BadRequest("parameter '" + name + "' = " + shown(v) + " is outside " + std::to_string(lo) + " … " +
                      std::to_string(hi));
-  if (ec != std::errc() || ptr != end) throw BadRequest("parameter '" + name + "' = " + shown(v) + " is not an integer");
+  if (ec != std::errc() || ptr != end)
+    throw BadRequest("parameter '" + name + "' = " + shown(v) + " is not an integer");
   return x;
 }
 
@@ -113,13 +116,15 @@ std::string Query::name(const std::string& name, std::size_t max_length) const {
   return v;
 }
 
-std::string Query::name_or(const std::string& name, const std::string& fallback, std::size_t max_length) const {
+std::string Query::name_or(const std::string& name, const std::string& fallback,
+                           std::size_t max_length) const {
   return has(name) ? Query::name(name, max_length) : fallback;
 }
 
 std::vector<SceneEntry> scene_catalogue(const std::string& command_line_scene) {
   std::string id = command_line_scene;
-  if (!embedded_scene(command_line_scene)) {  // a file: named by its stem, which must not hide a shipped scene
+  if (!embedded_scene(
+          command_line_scene)) {  // a file: named by its stem, which must not hide a shipped scene
     id = std::filesystem::path(command_line_scene).stem().string();
     for (char& c : id)
       if (!(std::isalnum(static_cast<unsigned char>(c)) || std::strchr(" _-.,()", c))) c = '_';
@@ -142,7 +147,15 @@ const SceneEntry& find_scene(const std::vector<SceneEntry>& catalogue, const std
 }
 
 std::string error_json(const std::string& message) {
-  return nlohmann::json{{"error", message}}.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  return nlohmann::json{{"error", message}}.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) +
+         "\n";
+}
+
+float to_float(double value) {
+  constexpr double most = std::numeric_limits<float>::max();
+  if (value > most) return std::numeric_limits<float>::infinity();
+  if (value < -most) return -std::numeric_limits<float>::infinity();
+  return static_cast<float>(value);
 }
 
 Color cli_background() { return Color(0.35, 0.55, 0.9); }
@@ -155,7 +168,8 @@ std::string png_bytes(const Image& image) {
   }
   std::string out;
   const auto append = [](void* context, void* data, int size) {
-    static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data),
+                                               static_cast<std::size_t>(size));
   };
   if (!stbi_write_png_to_func(append, &out, image.width(), image.height(), 3, rgb.data(), image.width() * 3))
     throw std::runtime_error("could not encode a PNG");

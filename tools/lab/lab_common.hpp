@@ -47,7 +47,8 @@ class Query {
   bool flag_or(const std::string& name, bool fallback) const;
   // Letters, digits and " _-.,()" only, at most max_length bytes (names of scenes, lessons, files).
   std::string name(const std::string& name, std::size_t max_length = 80) const;
-  std::string name_or(const std::string& name, const std::string& fallback, std::size_t max_length = 80) const;
+  std::string name_or(const std::string& name, const std::string& fallback,
+                      std::size_t max_length = 80) const;
 
  private:
   const std::string& value(const std::string& name) const;
@@ -63,6 +64,10 @@ struct SceneEntry {
 std::vector<SceneEntry> scene_catalogue(const std::string& command_line_scene);
 // The entry called `id`; BadRequest naming the known ones when there is none.
 const SceneEntry& find_scene(const std::vector<SceneEntry>& catalogue, const std::string& id);
+
+// A double as a float for the browser: beyond the float range it becomes an
+// infinity (a plain cast would be undefined behaviour there).
+float to_float(double value);
 
 // {"error": message} as text.
 std::string error_json(const std::string& message);

@@ -44,12 +44,13 @@ struct Rgb {
 Rgb decode(const fs::path& path) {
   std::error_code ec;
   const auto bytes = fs::file_size(path, ec);
-  if (ec || bytes > max_file_bytes) throw BadRequest(path.filename().string() + " is unreadable or larger than 64 MB");
+  if (ec || bytes > max_file_bytes)
+    throw BadRequest(path.filename().string() + " is unreadable or larger than 64 MB");
   std::ifstream in(path, std::ios::binary);
   std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   int w = 0, h = 0, channels = 0;
-  if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(data.data()), static_cast<int>(data.size()), &w, &h,
-                             &channels) ||
+  if (!stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(data.data()), static_cast<int>(data.size()), &w,
+                             &h, &channels) ||
       w <= 0 || h <= 0 || w > max_side || h > max_side)
     throw BadRequest(path.filename().string() + " is not a PNG the lab can read (at most 8192 × 8192)");
   stbi_uc* decoded = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(data.data()),
@@ -64,7 +65,7 @@ struct Difference {
   bool same_size = false;
   std::size_t differing = 0, pixels = 0;
   int largest = 0;
-  double rms = 0;  // of every channel, in levels
+  double rms = 0;              // of every channel, in levels
   std::vector<int> per_pixel;  // largest channel difference, levels
 };
 
@@ -78,7 +79,8 @@ Difference difference(const Rgb& a, const Rgb& b) {
   for (std::size_t i = 0; i < d.pixels; ++i) {
     int worst = 0;
     for (int k = 0; k < 3; ++k) {
-      const int step = std::abs(static_cast<int>(a.pixels[3 * i + k]) - static_cast<int>(b.pixels[3 * i + k]));
+      const int step =
+          std::abs(static_cast<int>(a.pixels[3 * i + k]) - static_cast<int>(b.pixels[3 * i + k]));
       worst = std::max(worst, step);
       squares += static_cast<double>(step) * step;
     }
@@ -105,7 +107,8 @@ std::string CompareLab::list_json() const {
   std::error_code ec;
   std::vector<fs::path> folders;
   for (const auto& entry : fs::directory_iterator(source_ / "lessons", ec))
-    if (entry.is_directory() && std::regex_match(entry.path().filename().string(), std::regex(R"(\d\d_[\w\-]+)")))
+    if (entry.is_directory() &&
+        std::regex_match(entry.path().filename().string(), std::regex(R"(\d\d_[\w\-]+)")))
       folders.push_back(entry.path());
   std::sort(folders.begin(), folders.end());
   for (const fs::path& folder : folders) {
@@ -122,7 +125,9 @@ std::string CompareLab::list_json() const {
                       {"yours", fs::is_regular_file(yours / image.filename(), ec)},
                       {"plot", is_plot(yours, image)},
                       {"lab_screenshot", image.filename().string().rfind("lab_", 0) == 0}});
-    lessons.push_back({{"lesson", nn}, {"topic", folder.filename().string()}, {"images", list},
+    lessons.push_back({{"lesson", nn},
+                       {"topic", folder.filename().string()},
+                       {"images", list},
                        {"command", "lesson" + nn + " --out " + (out_ / ("lesson" + nn)).string()}});
   }
   return json{{"source", source_.string()}, {"out", out_.string()}, {"lessons", lessons}}.dump() + "\n";
@@ -131,7 +136,8 @@ std::string CompareLab::list_json() const {
 CompareLab::Pair CompareLab::pair(const Query& q) const {
   const std::string nn = q.name("lesson", 2);
   const std::string name = q.name("name", 120);
-  if (!std::regex_match(nn, std::regex(R"(\d\d)"))) throw BadRequest("parameter 'lesson' = '" + nn + "' is not two digits");
+  if (!std::regex_match(nn, std::regex(R"(\d\d)")))
+    throw BadRequest("parameter 'lesson' = '" + nn + "' is not two digits");
   if (!std::regex_match(name, std::regex(R"([A-Za-z0-9_\-.]+\.png)")) || name.find("..") != std::string::npos)
     throw BadRequest("parameter 'name' = '" + name + "' is not the name of a PNG file");
   std::error_code ec;
@@ -161,15 +167,16 @@ std::string CompareLab::image_png(const Params& params) const {
   const Rgb a = decode(p.reference), b = decode(p.yours);
   const Difference d = difference(a, b);
   if (!d.same_size)
-    throw BadRequest("the images differ in size (" + std::to_string(a.width) + " × " + std::to_string(a.height) +
-                     " against " + std::to_string(b.width) + " × " + std::to_string(b.height) + ")");
+    throw BadRequest("the images differ in size (" + std::to_string(a.width) + " × " +
+                     std::to_string(a.height) + " against " + std::to_string(b.width) + " × " +
+                     std::to_string(b.height) + ")");
   // Black where the pixels agree, grey where they differ by at most 4 levels,
   // and from dark blue to yellow as the difference grows to 64 levels and more.
   Image map(a.width, a.height);
   for (int y = 0; y < a.height; ++y)
     for (int x = 0; x < a.width; ++x) {
       const int step = d.per_pixel[static_cast<std::size_t>(y) * a.width + x];
-      map.at(x, y) = step == 0                    ? Color(0.0)
+      map.at(x, y) = step == 0                  ? Color(0.0)
                      : step <= differing_levels ? Color(0.04)
                                                 : colormap_viridis(std::min(1.0, step / 64.0));
     }
@@ -180,7 +187,9 @@ std::string CompareLab::stats_json(const Params& params) const {
   const Query q(params, {"lesson", "name"});
   const Pair p = pair(q);
   std::error_code ec;
-  json out{{"lesson", q.name("lesson", 2)}, {"name", q.name("name", 120)}, {"reference", p.reference.string()},
+  json out{{"lesson", q.name("lesson", 2)},
+           {"name", q.name("name", 120)},
+           {"reference", p.reference.string()},
            {"yours", p.yours.string()}};
   if (!fs::is_regular_file(p.yours, ec)) {
     out["have_yours"] = false;

@@ -28,15 +28,9 @@ json triple(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
 
 // Colours and factors go to the browser as floats: 7 digits are plenty to
 // paint with, and a 2,124-patch step stays small.
-json floats(const std::vector<Color>& v) {
-  json out = json::array();
-  for (const Color& c : v)
-    for (int k = 0; k < 3; ++k) out.push_back(static_cast<float>(c[k]));
-  return out;
-}
 json floats(const double* v, std::size_t n) {
   json out = json::array();
-  for (std::size_t i = 0; i < n; ++i) out.push_back(static_cast<float>(v[i]));
+  for (std::size_t i = 0; i < n; ++i) out.push_back(to_float(v[i]));
   return out;
 }
 
@@ -55,10 +49,19 @@ std::string base64(const void* data, std::size_t bytes) {
   return out;
 }
 
-// Little-endian float32 of each value, base64: a typed array for the browser.
+// Little-endian float32 of each value, base64: a typed array for the browser
+// (a 2,124-patch step is a third of its size as JSON numbers, and parses at once).
 std::string float32_base64(const std::vector<double>& v) {
-  std::vector<float> f(v.begin(), v.end());
+  std::vector<float> f(v.size());
+  std::transform(v.begin(), v.end(), f.begin(), to_float);
   return base64(f.data(), f.size() * sizeof(float));
+}
+
+std::string float32_base64(const std::vector<Color>& v) {
+  std::vector<double> flat;
+  flat.reserve(3 * v.size());
+  for (const Color& c : v) flat.insert(flat.end(), {c.r, c.g, c.b});
+  return float32_base64(flat);
 }
 
 template <class T>
@@ -125,8 +128,8 @@ std::string random_id() {
   return buf;
 }
 
-constexpr std::size_t max_patches = 20000;         // a mesh the lab meshes at most
-constexpr std::size_t max_matrix_patches = 4000;   // 128 MB of form factors
+constexpr std::size_t max_patches = 20000;        // a mesh the lab meshes at most
+constexpr std::size_t max_matrix_patches = 4000;  // 128 MB of form factors
 constexpr std::size_t max_sessions = 16, max_meshes = 4, max_matrices = 2, max_visibility = 8;
 
 }  // namespace
@@ -163,7 +166,8 @@ std::shared_ptr<const RadiosityLab::Mesh> RadiosityLab::mesh(const Query& q) {
   const bool by_edge = q.has("edge");
   const double edge_asked = by_edge ? q.number("edge", 1e-6, 1e9) : 0;
   const std::size_t wanted = static_cast<std::size_t>(q.integer_or("patches", 1, max_patches, 2000));
-  const std::string key = entry.id + (by_edge ? "|edge " + std::to_string(edge_asked) : "|at least " + std::to_string(wanted));
+  const std::string key =
+      entry.id + (by_edge ? "|edge " + std::to_string(edge_asked) : "|at least " + std::to_string(wanted));
   {
     const std::lock_guard lock(mutex_);
     if (auto m = find_cached(meshes_, key)) return m;
@@ -174,7 +178,8 @@ std::shared_ptr<const RadiosityLab::Mesh> RadiosityLab::mesh(const Query& q) {
     // Counted before meshing: the loader refuses beyond max_scene_patches, the lab beyond max_patches.
     RadiosityScene s = load_radiosity_scene(entry.source, 1e300);
     double count = 0;
-    for (const RadiositySurface& surface : s.surfaces) count += radiosity_patch_grid(surface.polygon, edge).patches;
+    for (const RadiositySurface& surface : s.surfaces)
+      count += radiosity_patch_grid(surface.polygon, edge).patches;
     if (count > static_cast<double>(max_patches)) return std::optional<RadiosityScene>();
     return std::optional<RadiosityScene>(load_radiosity_scene(entry.source, edge));
   };
@@ -199,7 +204,8 @@ std::shared_ptr<const RadiosityLab::Mesh> RadiosityLab::mesh(const Query& q) {
     };
     int lo = 0, hi = 1000;
     if (count_at(hi) < wanted)
-      throw BadRequest("scene '" + entry.id + "' cannot be meshed into " + std::to_string(wanted) + " patches");
+      throw BadRequest("scene '" + entry.id + "' cannot be meshed into " + std::to_string(wanted) +
+                       " patches");
     while (lo < hi) {
       const int mid = (lo + hi) / 2;
       if (count_at(mid) >= wanted)
@@ -216,13 +222,15 @@ std::shared_ptr<const RadiosityLab::Mesh> RadiosityLab::mesh(const Query& q) {
   }
   const std::vector<Patch>& patches = m->scene.patches;
   m->emitted = total_power(patches, emissions(patches));
-  if (!(m->emitted > 0)) throw BadRequest("no surface of scene '" + entry.id + "' emits light: nothing to solve");
+  if (!(m->emitted > 0))
+    throw BadRequest("no surface of scene '" + entry.id + "' emits light: nothing to solve");
   m->shared = share_vertices(patches);
   json surfaces = json::array();
   for (const RadiositySurface& s : m->scene.surfaces)
-    surfaces.push_back({{"name", s.name}, {"material", s.material}, {"first", s.first_patch}, {"count", s.patch_count}});
-  json vertices = json::array(), counts = json::array(), reflectance = json::array(), emission = json::array(),
-       area = json::array(), centroid = json::array(), normal = json::array();
+    surfaces.push_back(
+        {{"name", s.name}, {"material", s.material}, {"first", s.first_patch}, {"count", s.patch_count}});
+  json vertices = json::array(), counts = json::array(), reflectance = json::array(),
+       emission = json::array(), area = json::array(), centroid = json::array(), normal = json::array();
   for (const Patch& p : patches) {
     counts.push_back(p.vertices.size());
     for (const Point3& v : p.vertices)
@@ -261,7 +269,8 @@ std::shared_ptr<const RadiosityLab::Mesh> RadiosityLab::mesh(const Query& q) {
   return m;
 }
 
-std::shared_ptr<const FormFactorMatrix> RadiosityLab::matrix(const std::shared_ptr<const Mesh>& m, int resolution) {
+std::shared_ptr<const FormFactorMatrix> RadiosityLab::matrix(const std::shared_ptr<const Mesh>& m,
+                                                             int resolution) {
   const std::string key = m->key + "|" + std::to_string(resolution);
   const std::lock_guard one_at_a_time(matrix_mutex_);
   {
@@ -277,7 +286,9 @@ std::shared_ptr<const FormFactorMatrix> RadiosityLab::matrix(const std::shared_p
   auto f = std::make_shared<FormFactorMatrix>(patches.size());
   parallel_for(
       patches.size(), [] { return HemicubeBuffers(); },
-      [&](HemicubeBuffers& buffers, std::size_t i) { hemicube.form_factor_row(patches, i, f->row(i), buffers); });
+      [&](HemicubeBuffers& buffers, std::size_t i) {
+        hemicube.form_factor_row(patches, i, f->row(i), buffers);
+      });
   const std::lock_guard lock(mutex_);
   keep(matrices_, key, std::shared_ptr<const FormFactorMatrix>(f), max_matrices);
   return f;
@@ -297,7 +308,8 @@ std::shared_ptr<RadiosityLab::Session> RadiosityLab::session(const std::string& 
 
 namespace {
 
-double unshot_fraction(const std::vector<Patch>& patches, const std::vector<Color>& residual, double emitted) {
+double unshot_fraction(const std::vector<Patch>& patches, const std::vector<Color>& residual,
+                       double emitted) {
   double p = 0;  // total_power of |r|: a residual can be negative in a channel
   for (std::size_t i = 0; i < patches.size(); ++i)
     p += patches[i].area * (std::abs(residual[i].r) + std::abs(residual[i].g) + std::abs(residual[i].b));
@@ -313,9 +325,12 @@ std::string RadiosityLab::start_json(const Params& params) {
   s->id = random_id();
   s->mesh = m;
   const std::string method = q.choice_or("method", method_names, "progressive");
-  s->method = static_cast<Method>(std::find(method_names.begin(), method_names.end(), method) - method_names.begin());
+  s->method =
+      static_cast<Method>(std::find(method_names.begin(), method_names.end(), method) - method_names.begin());
   const long long resolution = q.integer_or("resolution", 2, 1024, 128);
-  if (resolution % 2) throw BadRequest("parameter 'resolution' = " + std::to_string(resolution) + " is odd: the hemicube's side faces are half as tall");
+  if (resolution % 2)
+    throw BadRequest("parameter 'resolution' = " + std::to_string(resolution) +
+                     " is odd: the hemicube's side faces are half as tall");
   s->resolution = static_cast<int>(resolution);
   s->omega = q.number_or("omega", 0.05, 1.95, 1.0);
   if (q.has("omega") && s->method != Method::gauss_seidel)
@@ -336,20 +351,15 @@ std::string RadiosityLab::start_json(const Params& params) {
     const std::lock_guard lock(mutex_);
     keep(sessions_, s->id, s, max_sessions);
   }
-  return json{{"session", s->id},
-              {"method", method},
-              {"resolution", s->resolution},
-              {"omega", s->omega},
-              {"scene", m->scene_id},
-              {"patches", n},
-              {"edge", m->edge},
-              {"fraction", 1.0}}
+  return json{{"session", s->id},  {"method", method},     {"resolution", s->resolution},
+              {"omega", s->omega}, {"scene", m->scene_id}, {"patches", n},
+              {"edge", m->edge},   {"fraction", 1.0}}
              .dump() +
          "\n";
 }
 
 std::string RadiosityLab::step_json(const Params& params) {
-  const Query q(params, {"session", "steps", "vertex", "rule"});
+  const Query q(params, {"session", "steps", "row", "vertex", "rule"});
   const std::string id = q.name("session", 32);
   const auto s = session(id);
   const std::lock_guard lock(s->mutex);
@@ -358,13 +368,13 @@ std::string RadiosityLab::step_json(const Params& params) {
   const std::size_t n = patches.size();
   const bool sweeps = s->method == Method::jacobi || s->method == Method::gauss_seidel;
   const long long steps = q.integer_or("steps", 0, sweeps ? 500 : 20000, 1);
-  const bool vertex = q.flag_or("vertex", false);
+  const bool want_row = q.flag_or("row", false), vertex = q.flag_or("vertex", false);
   const std::string rule = q.choice_or("rule", {"average", "extrapolate"}, "extrapolate");
   json points = json::array();
   Stopwatch watch;
   double row_seconds = 0;
   bool done = false;
-  s->shooter = -1;
+  if (steps > 0) s->shooter = -1;  // steps=0 asks again about the last step (its row, its vertex colours)
   for (long long k = 0; k < steps; ++k) {
     double fraction = 0;
     if (s->method == Method::progressive) {
@@ -398,21 +408,22 @@ std::string RadiosityLab::step_json(const Params& params) {
   }
   const double seconds = watch.seconds();
   const std::vector<Color>& b = s->method == Method::progressive ? s->state.radiosity : s->b;
-  json out{{"session", s->id}, {"steps", s->steps}, {"done", done}, {"points", points}, {"shooter", s->shooter},
-           {"seconds", seconds}, {"row_seconds", row_seconds}};
+  json out{{"session", s->id},          {"steps", s->steps},     {"done", done},
+           {"points", points},          {"shooter", s->shooter}, {"seconds", seconds},
+           {"row_seconds", row_seconds}};
   out["fraction"] = s->method == Method::progressive ? total_power(patches, s->state.unshot) / m.emitted
-                                                      : unshot_fraction(patches, s->residual, m.emitted);
-  out["radiosity"] = floats(b);
+                                                     : unshot_fraction(patches, s->residual, m.emitted);
+  out["radiosity"] = float32_base64(b);
   // What the shooter sent: progressive, its row F_i· (drawn by this shot's
   // hemicube); Southwell, the column F_·i that carried its residual.
   out["row"] = nullptr;
-  if (s->shooter >= 0 && s->method == Method::progressive) {
-    out["row"] = floats(s->row.data(), n);
+  if (want_row && s->shooter >= 0 && s->method == Method::progressive) {
+    out["row"] = float32_base64(s->row);
     out["row_kind"] = "row";
-  } else if (s->shooter >= 0) {
+  } else if (want_row && s->shooter >= 0) {
     std::vector<double> column(n);
     for (std::size_t j = 0; j < n; ++j) column[j] = (*s->f)(j, static_cast<std::size_t>(s->shooter));
-    out["row"] = floats(column.data(), n);
+    out["row"] = float32_base64(column);
     out["row_kind"] = "column";
   }
   out["ambient"] = nullptr;
@@ -425,11 +436,12 @@ std::string RadiosityLab::step_json(const Params& params) {
   }
   if (vertex) {
     try {
-      const auto corners = corner_radiosity(m.shared, b,  // lesson 12's exercise
-                                            rule == "average" ? VertexColourRule::average : VertexColourRule::extrapolate);
+      const auto corners =
+          corner_radiosity(m.shared, b,  // lesson 12's exercise
+                           rule == "average" ? VertexColourRule::average : VertexColourRule::extrapolate);
       std::vector<Color> flat;
       for (const auto& c : corners) flat.insert(flat.end(), c.begin(), c.end());
-      out["vertex"] = floats(flat);
+      out["vertex"] = float32_base64(flat);
     } catch (const NotImplemented& e) {
       out["vertex_error"] = e.message();
     }
@@ -471,7 +483,8 @@ struct RowErrors {
   std::size_t targets = 0;
 };
 
-RowErrors row_errors(const std::vector<double>& row, const std::vector<double>& exact, const std::vector<char>& seen) {
+RowErrors row_errors(const std::vector<double>& row, const std::vector<double>& exact,
+                     const std::vector<char>& seen) {
   RowErrors e;
   for (std::size_t j = 0; j < row.size(); ++j) {
     if (!seen[j] || !(exact[j] > 0)) continue;
@@ -495,7 +508,9 @@ std::string RadiosityLab::hemicube_json(const Params& params) {
   const std::vector<Patch>& patches = m->scene.patches;
   const auto i = static_cast<std::size_t>(q.integer("patch", 0, static_cast<long long>(patches.size()) - 1));
   const long long res = q.integer_or("resolution", 2, 512, 64);
-  if (res % 2) throw BadRequest("parameter 'resolution' = " + std::to_string(res) + " is odd: the hemicube's side faces are half as tall");
+  if (res % 2)
+    throw BadRequest("parameter 'resolution' = " + std::to_string(res) +
+                     " is odd: the hemicube's side faces are half as tall");
   const Hemicube hemicube(static_cast<int>(res));  // lesson 10's deltas
   HemicubeBuffers buffers;
   std::vector<double> row(patches.size(), 0.0);
@@ -506,9 +521,13 @@ std::string RadiosityLab::hemicube_json(const Params& params) {
   const char* names[] = {"top", "+x", "-x", "+y", "-y"};
   for (int f = 0; f < 5; ++f) {
     const auto face = static_cast<HemicubeFace>(f);
-    const int w = HemicubeBuffers::face_width(static_cast<int>(res)), h = HemicubeBuffers::face_height(static_cast<int>(res), face);
-    faces.push_back({{"name", names[f]}, {"width", w}, {"height", h},
-                     {"items", base64(buffers.face_items(face), static_cast<std::size_t>(w) * h * sizeof(std::int32_t))}});
+    const int w = HemicubeBuffers::face_width(static_cast<int>(res)),
+              h = HemicubeBuffers::face_height(static_cast<int>(res), face);
+    faces.push_back({{"name", names[f]},
+                     {"width", w},
+                     {"height", h},
+                     {"items", base64(buffers.face_items(face),
+                                      static_cast<std::size_t>(w) * h * sizeof(std::int32_t))}});
   }
   double sum = 0;
   for (const double v : row) sum += v;
@@ -516,22 +535,25 @@ std::string RadiosityLab::hemicube_json(const Params& params) {
   std::string surface;
   for (const RadiositySurface& s : m->scene.surfaces)
     if (i >= s.first_patch && i < s.first_patch + s.patch_count) surface = s.name;
-  json out{{"patch", i},
-           {"surface", surface},
-           {"centroid", triple(p.centroid)},
-           {"normal", triple(p.normal)},
-           {"area", p.area},
-           {"resolution", res},
-           {"faces", faces},
-           {"deltas", {{"top", float32_base64(hemicube.deltas().top)}, {"side", float32_base64(hemicube.deltas().side)}}},
-           {"row", floats(row.data(), row.size())},
-           {"sum", sum},
-           {"seconds", seconds}};
+  json out{
+      {"patch", i},
+      {"surface", surface},
+      {"centroid", triple(p.centroid)},
+      {"normal", triple(p.normal)},
+      {"area", p.area},
+      {"resolution", res},
+      {"faces", faces},
+      {"deltas",
+       {{"top", float32_base64(hemicube.deltas().top)}, {"side", float32_base64(hemicube.deltas().side)}}},
+      {"row", floats(row.data(), row.size())},
+      {"sum", sum},
+      {"seconds", seconds}};
   out["exact"] = nullptr;
   try {
     std::vector<double> exact(patches.size(), 0.0);
     for (std::size_t j = 0; j < patches.size(); ++j)
-      if (j != i) exact[j] = point_polygon_form_factor(p.centroid, p.normal, patches[j]);  // lesson 09, Task 2
+      if (j != i)
+        exact[j] = point_polygon_form_factor(p.centroid, p.normal, patches[j]);  // lesson 09, Task 2
     const std::vector<char>& seen = seen_whole(*m, i);
     out["exact"] = floats(exact.data(), exact.size());
     json seen_list = json::array();

@@ -28,7 +28,9 @@ namespace {
 
 using nlohmann::json;
 
-Params params_of(const httplib::Request& request) { return Params(request.params.begin(), request.params.end()); }
+Params params_of(const httplib::Request& request) {
+  return Params(request.params.begin(), request.params.end());
+}
 
 void send_json(httplib::Response& response, int status, const std::string& body) {
   response.status = status;
@@ -50,8 +52,9 @@ void guarded(httplib::Response& response, Body body) {
   } catch (const std::invalid_argument& e) {  // the library refuses what the request asked for
     send_json(response, 400, error_json(e.what()));
   } catch (const NotImplemented& e) {  // a stub of the student edition
-    send_json(response, 501,
-              json{{"error", e.message()}, {"not_implemented", e.exercise()}, {"hint", e.hint()}}.dump() + "\n");
+    send_json(
+        response, 501,
+        json{{"error", e.message()}, {"not_implemented", e.exercise()}, {"hint", e.hint()}}.dump() + "\n");
   } catch (const std::exception& e) {
     std::cerr << "illum lab: error: " << e.what() << "\n";
     send_json(response, 500, error_json(std::string("the lab failed: ") + e.what()));
@@ -119,6 +122,9 @@ int run_lab(const LabOptions& options) {
   server.set_read_timeout(10);
   server.set_write_timeout(30);
   server.set_payload_max_length(64 * 1024);
+  // Headers and body go out in separate writes: without TCP_NODELAY, Nagle's algorithm holds the
+  // body back until the browser's delayed ACK, some 40 ms per request.
+  server.set_tcp_nodelay(true);
   // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, with which a second lab could listen on
   // the same port and take half of the first one's requests.
   server.set_socket_options([](socket_t socket) {
@@ -132,9 +138,10 @@ int run_lab(const LabOptions& options) {
     port = server.bind_to_any_port("127.0.0.1");
     if (port <= 0) throw std::runtime_error("cannot listen on 127.0.0.1 on any port");
   } else if (!server.bind_to_port("127.0.0.1", port)) {
-    throw std::runtime_error("cannot listen on 127.0.0.1:" + std::to_string(port) +
-                             " (is another `illum lab` running there?): choose another port with --port N, or "
-                             "--port 0 for any free one");
+    throw std::runtime_error(
+        "cannot listen on 127.0.0.1:" + std::to_string(port) +
+        " (is another `illum lab` running there?): choose another port with --port N, or "
+        "--port 0 for any free one");
   }
   const std::string host = "127.0.0.1:" + std::to_string(port), local = "localhost:" + std::to_string(port);
 
@@ -163,7 +170,8 @@ int run_lab(const LabOptions& options) {
   server.set_error_handler([](const httplib::Request& request, httplib::Response& response) {
     if (!response.body.empty()) return;  // an endpoint's own answer
     if (response.status == 404)
-      send_json(response, 404, error_json("no such page or endpoint: " + request.path + " (see docs/lab.md)"));
+      send_json(response, 404,
+                error_json("no such page or endpoint: " + request.path + " (see docs/lab.md)"));
   });
 
   for (const LabAsset& asset : lab_assets()) {
@@ -200,20 +208,33 @@ int run_lab(const LabOptions& options) {
     });
   };
   const char* json_type = "application/json; charset=utf-8";
-  text_endpoint("/api/scene", [&](const Params& p) { return trace.geometry_json(p); }, json_type);
-  text_endpoint("/api/render", [&](const Params& p) { return trace.render_png(p); }, "image/png");
-  text_endpoint("/api/trace", [&](const Params& p) { return trace.trace_json(p); }, json_type);
-  text_endpoint("/api/radiosity/mesh", [&](const Params& p) { return radiosity.mesh_json(p); }, json_type);
-  text_endpoint("/api/radiosity/start", [&](const Params& p) { return radiosity.start_json(p); }, json_type);
-  text_endpoint("/api/radiosity/step", [&](const Params& p) { return radiosity.step_json(p); }, json_type);
-  text_endpoint("/api/hemicube", [&](const Params& p) { return radiosity.hemicube_json(p); }, json_type);
-  text_endpoint("/api/hemicube/study", [&](const Params& p) { return radiosity.hemicube_study_json(p); }, json_type);
-  text_endpoint("/api/compare", [&](const Params& p) {
-    const Query q(p, {});
-    return compare.list_json();
-  }, json_type);
-  text_endpoint("/api/compare/image", [&](const Params& p) { return compare.image_png(p); }, "image/png");
-  text_endpoint("/api/compare/stats", [&](const Params& p) { return compare.stats_json(p); }, json_type);
+  text_endpoint(
+      "/api/scene", [&](const Params& p) { return trace.geometry_json(p); }, json_type);
+  text_endpoint(
+      "/api/render", [&](const Params& p) { return trace.render_png(p); }, "image/png");
+  text_endpoint(
+      "/api/trace", [&](const Params& p) { return trace.trace_json(p); }, json_type);
+  text_endpoint(
+      "/api/radiosity/mesh", [&](const Params& p) { return radiosity.mesh_json(p); }, json_type);
+  text_endpoint(
+      "/api/radiosity/start", [&](const Params& p) { return radiosity.start_json(p); }, json_type);
+  text_endpoint(
+      "/api/radiosity/step", [&](const Params& p) { return radiosity.step_json(p); }, json_type);
+  text_endpoint(
+      "/api/hemicube", [&](const Params& p) { return radiosity.hemicube_json(p); }, json_type);
+  text_endpoint(
+      "/api/hemicube/study", [&](const Params& p) { return radiosity.hemicube_study_json(p); }, json_type);
+  text_endpoint(
+      "/api/compare",
+      [&](const Params& p) {
+        const Query q(p, {});
+        return compare.list_json();
+      },
+      json_type);
+  text_endpoint(
+      "/api/compare/image", [&](const Params& p) { return compare.image_png(p); }, "image/png");
+  text_endpoint(
+      "/api/compare/stats", [&](const Params& p) { return compare.stats_json(p); }, json_type);
 
   signals.start(server);
   std::cout << "illum lab: http://" << host << "/ (scene " << trace.default_scene()

@@ -19,9 +19,9 @@ inline constexpr int default_port = 8642;
 struct LabOptions {
   std::string scene = "whitted";
   int port = default_port;
-  RenderSettings settings;           // what /api/render and /api/trace use unless a request says otherwise
-  std::filesystem::path source;      // the source tree (reference images): lessons/NN_topic/figures
-  std::filesystem::path out;         // the lesson programs' outputs: OUT/lessonNN
+  RenderSettings settings;       // what /api/render and /api/trace use unless a request says otherwise
+  std::filesystem::path source;  // the source tree (reference images): lessons/NN_topic/figures
+  std::filesystem::path out;     // the lesson programs' outputs: OUT/lessonNN
 };
 
 // Serves until SIGINT or SIGTERM; returns the exit status (0 after a clean

@@ -70,7 +70,8 @@ struct JsonWriter {
         j["segments"].push_back(
             {{"origin", triple(s.origin)},
              {"end", triple(s.end)},
-             {"hit", s.crossed ? hit_json(scene, s.primitive, s.material, s.t, s.end, true) : nlohmann::json()},
+             {"hit",
+              s.crossed ? hit_json(scene, s.primitive, s.material, s.t, s.end, true) : nlohmann::json()},
              {"transmission", triple(s.transmission)}});
     } else if (n.hit) {
       j["hit"] = hit_json(scene, n.primitive, n.material, n.t, n.point, n.front_face);
@@ -136,8 +137,9 @@ std::string ray_tree_dot(const Scene& scene, const PixelTree& pixel) {
       for (std::size_t k = 0; k + 1 < v.segments.size(); ++k)
         label += "\\nthrough " + dot_escape(primitive_name(scene, v.segments[k].primitive)) +
                  ": transmission " + display_colour(v.segments[k].transmission);
-      label += "\\n" + dot_escape(blocked ? stop : "reached the light, transmission " +
-                                                       display_colour(v.segments.back().transmission));
+      label += "\\n" + dot_escape(blocked ? stop
+                                          : "reached the light, transmission " +
+                                                display_colour(v.segments.back().transmission));
     } else if (n.hit) {
       label += "hit " + dot_escape(primitive_name(scene, n.primitive)) + " at t = " + display_number(n.t) +
                " (" + (n.front_face ? "front" : "back") + ")\\nmaterial " +
@@ -165,15 +167,16 @@ std::string ray_tree_dot(const Scene& scene, const PixelTree& pixel) {
     // A child the tree lacks for a reason worth seeing gets a stub.
     for (const RayTreeBranch& b : v.branches) {
       const char* why = b.fate == BranchFate::total_internal_reflection ? "total internal reflection"
-                        : b.fate == BranchFate::pruned                   ? "pruned"
-                        : b.fate == BranchFate::not_cast                 ? "missing (check evaluate)"
-                                                                         : nullptr;
+                        : b.fate == BranchFate::pruned                  ? "pruned"
+                        : b.fate == BranchFate::not_cast                ? "missing (check evaluate)"
+                                                                        : nullptr;
       if (!why) continue;
       std::string parent = std::to_string(i);
       parent.insert(parent.begin(), 'n');  // (not "n" + …: GCC 12 warns falsely of overlapping copies there)
       const std::string id = parent + "_" + to_string(b.kind);
       stubs += "  " + id + " [label=\"no " + to_string(b.kind) + " ray:\\n" + why +
-               "\", shape=plaintext, style=\"\", fontcolor=\"#666666\"];\n  " + parent + " -> " + id + " [label=\"" + (b.kind == RayKind::refraction ? "k_t" : "k_r") + "\", style=dotted];\n";
+               "\", shape=plaintext, style=\"\", fontcolor=\"#666666\"];\n  " + parent + " -> " + id +
+               " [label=\"" + (b.kind == RayKind::refraction ? "k_t" : "k_r") + "\", style=dotted];\n";
     }
   }
   return s + stubs + "}\n";
@@ -275,14 +278,11 @@ struct LegendEntry {
   Color colour;
   int mark;  // 0 a line, 1 end-on towards the camera, 2 end-on away, 3 the pixel's ring
 };
-const LegendEntry legend[] = {{"primary", primary_colour, 0},
-                              {"reflection", reflection_colour, 0},
-                              {"refraction", refraction_colour, 0},
-                              {"shadow", shadow_colour, 0},
-                              {"shadow, blocked", blocked_colour, 0},
-                              {"towards the camera", Color(0.85), 1},
-                              {"away from the camera", Color(0.85), 2},
-                              {"the pixel", pixel_colour, 3}};
+const LegendEntry legend[] = {
+    {"primary", primary_colour, 0},           {"reflection", reflection_colour, 0},
+    {"refraction", refraction_colour, 0},     {"shadow", shadow_colour, 0},
+    {"shadow, blocked", blocked_colour, 0},   {"towards the camera", Color(0.85), 1},
+    {"away from the camera", Color(0.85), 2}, {"the pixel", pixel_colour, 3}};
 constexpr int legend_line = 12, legend_pad = 5, legend_swatch = 18;
 
 int legend_column_width() {
@@ -293,7 +293,8 @@ int legend_column_width() {
 
 // Columns of the legend that fit the image's width (at least one), and the strip's height.
 int legend_columns(int image_width) {
-  return std::clamp((image_width - 2 * legend_pad) / legend_column_width(), 1, static_cast<int>(std::size(legend)));
+  return std::clamp((image_width - 2 * legend_pad) / legend_column_width(), 1,
+                    static_cast<int>(std::size(legend)));
 }
 int legend_height(int image_width) {
   const int columns = legend_columns(image_width);

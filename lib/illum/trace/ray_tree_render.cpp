@@ -48,8 +48,11 @@ PixelTree trace_pixel_tree(const Scene& scene, const RenderSettings& settings, i
   require(x >= 0 && x < camera.width() && y >= 0 && y < camera.height(),
           "trace_pixel_tree: the pixel lies outside the image");
   const EffectsPlan plan = render_plan(scene, settings);
-  PixelTree pixel{
-      .x = x, .y = y, .plan = plan, .depth_requested = settings.max_depth, .min_contribution = settings.min_contribution};
+  PixelTree pixel{.x = x,
+                  .y = y,
+                  .plan = plan,
+                  .depth_requested = settings.max_depth,
+                  .min_contribution = settings.min_contribution};
   const Tracer tracer{.scene = scene,
                       .plan = plan,
                       .background = settings.background,

@@ -153,7 +153,8 @@ RayTreeView view_ray_tree(const Scene& scene, const PixelTree& pixel) {
     const RayTreeNode& n = record[i];
     require(n.parent == no_node || (n.parent >= 0 && static_cast<std::size_t>(n.parent) < i),
             "view_ray_tree: a node's parent must be an earlier node");
-    require(!n.hit || n.material < scene.materials.size(), "view_ray_tree: a hit's material is not in the scene");
+    require(!n.hit || n.material < scene.materials.size(),
+            "view_ray_tree: a hit's material is not in the scene");
     const int parent = n.parent == no_node ? -1 : view_of[static_cast<std::size_t>(n.parent)];
     if (n.kind == RayKind::shadow && parent >= 0) {
       const auto key = std::make_pair(parent, n.light);
@@ -162,12 +163,19 @@ RayTreeView view_ray_tree(const Scene& scene, const PixelTree& pixel) {
         v.rays.push_back(static_cast<int>(i));
         v.segments.push_back(segment_of(scene, n));
         view_of[i] = open->second;
-        if (!(v.segments.back().crossed && !is_black(v.segments.back().transmission))) open_shadow.erase(open);
+        if (!(v.segments.back().crossed && !is_black(v.segments.back().transmission)))
+          open_shadow.erase(open);
         continue;
       }
     }
     const int index = static_cast<int>(view.nodes.size());
-    RayTreeViewNode v{.kind = n.kind, .depth = n.depth, .parent = parent, .children = {}, .rays = {static_cast<int>(i)}, .branches = {}, .segments = {}};
+    RayTreeViewNode v{.kind = n.kind,
+                      .depth = n.depth,
+                      .parent = parent,
+                      .children = {},
+                      .rays = {static_cast<int>(i)},
+                      .branches = {},
+                      .segments = {}};
     if (n.kind == RayKind::shadow) {
       v.segments.push_back(segment_of(scene, n));
       if (parent >= 0 && v.segments.back().crossed && !is_black(v.segments.back().transmission))
@@ -215,8 +223,8 @@ std::string stop_text(const Scene& scene, const PixelTree& pixel, const RayTreeV
   const RayTreeNode& first = pixel.tree.nodes[static_cast<std::size_t>(v.rays.front())];
   const auto factor_name = [](RayKind k) { return k == RayKind::refraction ? "k_t" : "k_r"; };
   const auto branch_note = [&](const RayTreeBranch& b) -> std::string {
-    const std::string what = std::string(to_string(b.kind)) + " (" + factor_name(b.kind) + " = " +
-                             display_colour(b.factor) + ")";
+    const std::string what =
+        std::string(to_string(b.kind)) + " (" + factor_name(b.kind) + " = " + display_colour(b.factor) + ")";
     switch (b.fate) {
       case BranchFate::total_internal_reflection:
         return "no refracted ray: total internal reflection, k_t added to k_r";

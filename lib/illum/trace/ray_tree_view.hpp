@@ -72,16 +72,16 @@ struct ShadowSegment {
   Point3 origin{0.0}, end{0.0};
   bool crossed = false;  // ended on a surface (crossed it, or was stopped by it)
   std::uint32_t primitive = no_primitive, material = no_material;
-  double t = 0;                // the parameter of `end` along the piece
-  Color transmission{1.0};     // the light's share that gets this far
+  double t = 0;             // the parameter of `end` along the piece
+  Color transmission{1.0};  // the light's share that gets this far
 };
 
 struct RayTreeViewNode {
   RayKind kind = RayKind::primary;
   int depth = 0;
-  int parent = -1;                // view index
-  std::vector<int> children;      // view indices, in the order they were cast
-  std::vector<int> rays;          // the record's nodes it stands for (a shadow ray: one per segment)
+  int parent = -1;                      // view index
+  std::vector<int> children;            // view indices, in the order they were cast
+  std::vector<int> rays;                // the record's nodes it stands for (a shadow ray: one per segment)
   std::vector<RayTreeBranch> branches;  // surface hits of primary and secondary rays: reflection, refraction
   std::vector<ShadowSegment> segments;  // shadow rays
   StopReason stop = StopReason::continues;

@@ -2,13 +2,8 @@
 // buffers and delta form factors unfolded, the row they add up to, and its
 // error against the exact factor from the centroid (Lambert's contour
 // formula) as the resolution changes (GET /api/hemicube/study).
-import { api, displayNumber, el, loadThree, logChart, setStatus, threeMissing, Viewer } from './lab_util.js';
+import { api, decodeBase64, displayNumber, el, loadThree, logChart, setStatus, threeMissing, Viewer } from './lab_util.js';
 import { heat, PatchMesh } from './lab_mesh.js';
-
-function decodeBase64(text, Type) {
-  const bytes = Uint8Array.from(atob(text), c => c.charCodeAt(0));
-  return new Type(bytes.buffer);
-}
 
 // lib/illum/radiosity/hemicube.cpp's hemicube_pixel and to_face, for the unfolded drawing.
 function hemicubePixel(d, res) {
@@ -99,7 +94,7 @@ export class HemicubeView {
     const three = await this.threeReady;
     if (!three) { threeMissing(this.holder, this.info); this.viewer = null; this.patchMesh = null; return; }
     if (!this.viewer) {
-      this.viewer = new Viewer(this.holder, three);
+      this.viewer = new Viewer(this.holder, three, { antialias: false });
       this.viewer.renderer.domElement.addEventListener('click', e => {
         if (!this.patchMesh) return;
         const hit = this.viewer.pick(e, [this.patchMesh.object]);

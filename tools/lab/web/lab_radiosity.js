@@ -4,7 +4,7 @@
 // hemicube; Jacobi and Gauss–Seidel sweep the whole matrix; Southwell relaxes
 // one row. The picture shows the patches flat or with lesson 12's vertex
 // colours, or the shooter's form-factor row; the chart the unshot power.
-import { api, displayNumber, el, loadThree, logChart, setStatus, threeMissing, Viewer } from './lab_util.js';
+import { api, decodeBase64, displayNumber, el, loadThree, logChart, setStatus, threeMissing, Viewer } from './lab_util.js';
 import { exposureFor, heat, PatchMesh } from './lab_mesh.js';
 
 export class RadiosityView {
@@ -31,7 +31,8 @@ export class RadiosityView {
     this.runButton = document.getElementById('rad-run');
     this.runButton.addEventListener('click', () => this.toggleRun());
     this.paint = document.getElementById('rad-paint');
-    this.paint.addEventListener('change', () => this.paint.value === 'vertex' && this.last ? this.step(0) : this.repaint());
+    // Vertex colours and the row come with a step only when shown: ask again for the last one.
+    this.paint.addEventListener('change', () => this.paint.value !== 'flat' && this.last ? this.step(0) : this.repaint());
     this.ambient = document.getElementById('rad-ambient');
     this.ambient.addEventListener('change', () => this.repaint());
     document.getElementById('rad-camera-view').addEventListener('click', () => this.patchMesh && this.viewer && this.patchMesh.cameraView(this.viewer));
@@ -92,7 +93,7 @@ export class RadiosityView {
   async buildMesh() {
     const three = await this.threeReady;
     if (!three) { threeMissing(this.holder, this.info); this.viewer = null; this.patchMesh = null; return; }
-    if (!this.viewer) this.viewer = new Viewer(this.holder, three);
+    if (!this.viewer) this.viewer = new Viewer(this.holder, three, { antialias: false });
     this.viewer.scene.clear();
     this.patchMesh = new PatchMesh(three.THREE, this.mesh);
     this.viewer.scene.add(this.patchMesh.object);
@@ -107,7 +108,10 @@ export class RadiosityView {
       const t0 = performance.now();
       try {
         const r = await api('/api/radiosity/step', { session: this.session, steps: n,
-          vertex: this.paint.value === 'vertex' ? 1 : 0 });
+          vertex: this.paint.value === 'vertex' ? 1 : 0, row: this.paint.value === 'row' ? 1 : 0 });
+        r.radiosity = decodeBase64(r.radiosity);
+        if (r.row) r.row = decodeBase64(r.row);
+        if (r.vertex) r.vertex = decodeBase64(r.vertex);
         this.last = r;
         const body = document.querySelector('#rad-history tbody');
         for (const [s, f] of r.points) {
@@ -117,7 +121,8 @@ export class RadiosityView {
             el('td', { text: displayNumber(f) }), el('td', { text: s === r.steps && r.shooter >= 0 ? `${r.shooter} (${this.surface(r.shooter)})` : '' })));
         }
         this.repaint();
-        this.chart();
+        // While running, the chart is redrawn a few times a second, not after every step.
+        if (!this.running || !(performance.now() - (this.chartDrawn || 0) < 250)) { this.chart(); this.chartDrawn = performance.now(); }
         const ms = performance.now() - t0;
         this.section.dataset.steps = String(r.steps);
         this.section.dataset.fraction = String(r.fraction);
@@ -137,15 +142,28 @@ export class RadiosityView {
     });
   }
 
+  // Steps until paused, as many per request as keep the picture moving about seven times a second:
+  // one at first, more as long as a frame (the request, the repaint, the browser's drawing) takes
+  // less than 150 ms. Every step still adds its point to the chart and the table.
   async toggleRun() {
     this.running = !this.running;
     this.runButton.textContent = this.running ? 'pause ❚❚' : 'run ▶';
+    let batch = 1;
+    const started = performance.now(), first = this.last ? this.last.steps : 0;
     while (this.running) {
-      await this.step(1);
-      if (!this.last || this.last.done || this.last.fraction < 1e-6) break;
+      const t0 = performance.now();
+      await this.step(batch);
+      await new Promise(resolve => requestAnimationFrame(() => resolve()));
+      if (!this.last || this.last.done || this.last.fraction < 1e-6 || this.section.dataset.state === 'error') break;
+      const frame = performance.now() - t0;
+      batch = Math.max(Math.ceil(batch / 2), Math.min(2 * batch, 200, Math.round(batch * 150 / Math.max(1, frame)) || 1));
+      const rate = (this.last.steps - first) / ((performance.now() - started) / 1000);
+      this.section.dataset.runRate = rate.toFixed(1);
+      this.runButton.textContent = `pause ❚❚ (${Math.round(rate)} steps a second)`;
     }
     this.running = false;
     this.runButton.textContent = 'run ▶';
+    this.chart();
   }
 
   surface(i) { return this.patchMesh ? this.patchMesh.surfaceOf(i) : (this.mesh.surfaces.find(s => i >= s.first && i < s.first + s.count) || {}).name; }

@@ -46,6 +46,12 @@ export function displayColour(c) {
   return r === g && g === b ? r : `(${r}, ${g}, ${b})`;
 }
 
+// A little-endian typed array sent as base64 (the radiosity steps' float32 arrays, the hemicube's buffers).
+export function decodeBase64(text, Type = Float32Array) {
+  const bytes = Uint8Array.from(atob(text), c => c.charCodeAt(0));
+  return new Type(bytes.buffer);
+}
+
 export function el(tag, attributes = {}, ...children) {
   const e = document.createElement(tag);
   for (const [k, v] of Object.entries(attributes)) {
@@ -105,7 +111,11 @@ export function logChart(holder, series, { xLabel = '', yLabel = '', logX = fals
   }
   root.append(svg('text', { x: (left + width - right) / 2, y: height - 4, 'text-anchor': 'middle', text: xLabel }));
   for (const s of series) {
-    const pts = s.points.filter(p => p[1] > 0 && (!logX || p[0] > 0));
+    let pts = s.points.filter(p => p[1] > 0 && (!logX || p[0] > 0));
+    if (pts.length > 1500) {  // more points than the chart has pixels across: every k-th, and the last
+      const k = Math.ceil(pts.length / 1500);
+      pts = pts.filter((p, i) => i % k === 0 || i === pts.length - 1);
+    }
     if (!pts.length) continue;
     root.append(svg('polyline', { points: pts.map(p => `${X(p[0]).toFixed(1)},${Y(p[1]).toFixed(1)}`).join(' '), class: s.className || 'series' }));
     if (s.label) root.append(svg('text', { x: X(pts[pts.length - 1][0]) - 4, y: Y(pts[pts.length - 1][1]) - 6, 'text-anchor': 'end', text: s.label }));
@@ -128,13 +138,15 @@ export function loadThree() {
 // A renderer, a perspective camera with orbit controls and a scene, drawn on
 // demand (not every frame: the lab shares a machine with the student's builds).
 export class Viewer {
-  constructor(holder, three) {
+  // antialias: worth it for thin rays; a mesh of patches does without (and on a machine without a
+  // GPU, where WebGL runs on the CPU, multisampling costs more than the rest of a frame).
+  constructor(holder, three, { antialias = true } = {}) {
     const { THREE, OrbitControls } = three;
     this.THREE = THREE;
     this.three = three;
     this.lineMaterials = new Set();  // wide lines need the canvas size
     this.holder = holder;
-    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    this.renderer = new THREE.WebGLRenderer({ antialias });
     this.renderer.setPixelRatio(Math.min(2, window.devicePixelRatio || 1));
     this.renderer.setClearColor(0x10131a);
     holder.replaceChildren(this.renderer.domElement);
