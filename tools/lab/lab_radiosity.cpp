@@ -129,7 +129,12 @@ std::string random_id() {
 }
 
 constexpr std::size_t max_patches = 20000;        // a mesh the lab meshes at most
-constexpr std::size_t max_matrix_patches = 4000;  // 128 MB of form factors
+constexpr std::size_t max_matrix_patches = 3000;  // 72 MB of form factors
+constexpr int max_matrix_resolution = 256;        // a whole matrix of rows at most this fine
+constexpr std::size_t max_matrix_sessions = 4;    // sessions holding a whole matrix (the oldest go first)
+// A step stops after this much work, with what it has done: a request for 20,000 shots of a
+// 20,000-patch mesh must not hold the session (and Ctrl-C) for an hour.
+constexpr double step_seconds = 15;
 constexpr std::size_t max_sessions = 16, max_meshes = 4, max_matrices = 2, max_visibility = 8;
 
 }  // namespace
@@ -342,6 +347,10 @@ std::string RadiosityLab::start_json(const Params& params) {
     s->hemicube = std::make_unique<Hemicube>(s->resolution);
     s->row.assign(n, 0.0);
   } else {
+    if (s->resolution > max_matrix_resolution)
+      throw BadRequest("parameter 'resolution' = " + std::to_string(s->resolution) +
+                       ": the sweeps and Southwell draw the whole matrix, every row at most " +
+                       std::to_string(max_matrix_resolution) + " pixels across");
     s->f = matrix(m, s->resolution);
     check_radiosity_system(patches, *s->f);
     s->b.assign(n, Color(0.0));
@@ -349,6 +358,14 @@ std::string RadiosityLab::start_json(const Params& params) {
   }
   {
     const std::lock_guard lock(mutex_);
+    if (s->f) {  // at most a few sessions keep a whole matrix alive: the oldest of them go first
+      std::size_t holding = 0;
+      for (auto it = sessions_.begin(); it != sessions_.end();)
+        if (it->second->f && ++holding >= max_matrix_sessions)
+          it = sessions_.erase(it);
+        else
+          ++it;
+    }
     keep(sessions_, s->id, s, max_sessions);
   }
   return json{{"session", s->id},  {"method", method},     {"resolution", s->resolution},
@@ -375,7 +392,12 @@ std::string RadiosityLab::step_json(const Params& params) {
   double row_seconds = 0;
   bool done = false;
   if (steps > 0) s->shooter = -1;  // steps=0 asks again about the last step (its row, its vertex colours)
+  bool truncated = false;
   for (long long k = 0; k < steps; ++k) {
+    if (k > 0 && watch.seconds() > step_seconds) {
+      truncated = true;
+      break;
+    }
     double fraction = 0;
     if (s->method == Method::progressive) {
       if (!(total_power(patches, s->state.unshot) > 0)) {
@@ -408,9 +430,8 @@ std::string RadiosityLab::step_json(const Params& params) {
   }
   const double seconds = watch.seconds();
   const std::vector<Color>& b = s->method == Method::progressive ? s->state.radiosity : s->b;
-  json out{{"session", s->id},          {"steps", s->steps},     {"done", done},
-           {"points", points},          {"shooter", s->shooter}, {"seconds", seconds},
-           {"row_seconds", row_seconds}};
+  json out{{"session", s->id}, {"steps", s->steps},     {"done", done},       {"truncated", truncated},
+           {"points", points}, {"shooter", s->shooter}, {"seconds", seconds}, {"row_seconds", row_seconds}};
   out["fraction"] = s->method == Method::progressive ? total_power(patches, s->state.unshot) / m.emitted
                                                      : unshot_fraction(patches, s->residual, m.emitted);
   out["radiosity"] = float32_base64(b);
