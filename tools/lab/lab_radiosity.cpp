@@ -470,11 +470,11 @@ std::string RadiosityLab::step_json(const Params& params) {
   return out.dump() + "\n";
 }
 
-const std::vector<char>& RadiosityLab::seen_whole(const Mesh& m, std::size_t patch) {
+std::shared_ptr<const std::vector<char>> RadiosityLab::seen_whole(const Mesh& m, std::size_t patch) {
   const std::string key = m.key + "|" + std::to_string(patch);
   {
     const std::lock_guard lock(mutex_);
-    if (auto v = find_cached(visibility_, key)) return *v;
+    if (auto v = find_cached(visibility_, key)) return v;  // shared: another request may evict it meanwhile
   }
   // Seen whole: the segments from the centroid to the target's centroid and to
   // its corners pulled 2% towards its centroid (off the edges it shares) cross
@@ -494,7 +494,7 @@ const std::vector<char>& RadiosityLab::seen_whole(const Mesh& m, std::size_t pat
       });
   const std::lock_guard lock(mutex_);
   keep(visibility_, key, std::shared_ptr<const std::vector<char>>(seen), max_visibility);
-  return *seen;
+  return seen;
 }
 
 namespace {
@@ -575,7 +575,8 @@ std::string RadiosityLab::hemicube_json(const Params& params) {
     for (std::size_t j = 0; j < patches.size(); ++j)
       if (j != i)
         exact[j] = point_polygon_form_factor(p.centroid, p.normal, patches[j]);  // lesson 09, Task 2
-    const std::vector<char>& seen = seen_whole(*m, i);
+    const auto seen_list_kept = seen_whole(*m, i);
+    const std::vector<char>& seen = *seen_list_kept;
     out["exact"] = floats(exact.data(), exact.size());
     json seen_list = json::array();
     for (const char c : seen) seen_list.push_back(c != 0);
@@ -596,7 +597,8 @@ std::string RadiosityLab::hemicube_study_json(const Params& params) {
   std::vector<double> exact(patches.size(), 0.0);
   for (std::size_t j = 0; j < patches.size(); ++j)
     if (j != i) exact[j] = point_polygon_form_factor(p.centroid, p.normal, patches[j]);
-  const std::vector<char>& seen = seen_whole(*m, i);
+  const auto seen_kept = seen_whole(*m, i);
+  const std::vector<char>& seen = *seen_kept;
   json rows = json::array();
   for (const int res : {8, 16, 32, 64, 128, 256, 512}) {
     const Hemicube hemicube(res);

@@ -45,7 +45,7 @@ class RadiosityLab {
   std::shared_ptr<const Mesh> mesh(const Query& query);
   std::shared_ptr<const FormFactorMatrix> matrix(const std::shared_ptr<const Mesh>& mesh, int resolution);
   std::shared_ptr<Session> session(const std::string& id);
-  const std::vector<char>& seen_whole(const Mesh& mesh, std::size_t patch);
+  std::shared_ptr<const std::vector<char>> seen_whole(const Mesh& mesh, std::size_t patch);
 
   std::vector<SceneEntry> scenes_;
   std::mutex mutex_;  // guards the caches and the session list

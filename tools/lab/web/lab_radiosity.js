@@ -136,8 +136,13 @@ export class RadiosityView {
         document.dispatchEvent(new CustomEvent('lab:radiosity-step', { detail: { steps: r.steps, ms } }));
       } catch (e) {
         this.section.dataset.state = 'error';
-        setStatus(this.status, e.message, true);
         this.running = false;
+        if (e.status === 404) {  // the lab keeps the most recent sessions only: this one expired
+          this.session = null;
+          setStatus(this.status, `${e.message}: press a step button to start again from the beginning`, true);
+        } else {
+          setStatus(this.status, e.message, true);
+        }
       }
     });
   }
