@@ -1,9 +1,10 @@
 #include "lab/lab_compare.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstring>
 #include <fstream>
-#include <regex>
 
 #include <nlohmann/json.hpp>
 
@@ -92,6 +93,26 @@ Difference difference(const Rgb& a, const Rgb& b) {
   return d;
 }
 
+// Hand-written matches rather than <regex>, whose templates GCC 12 warns about under the sanitizers.
+bool two_digits(const std::string& s) {
+  return s.size() == 2 && std::isdigit(static_cast<unsigned char>(s[0])) &&
+         std::isdigit(static_cast<unsigned char>(s[1]));
+}
+bool name_characters(const std::string& s, const char* extra) {
+  for (const char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || std::strchr(extra, c))) return false;
+  return !s.empty();
+}
+// "NN_topic": a lesson folder.
+bool lesson_folder(const std::string& s) {
+  return s.size() > 3 && two_digits(s.substr(0, 2)) && s[2] == '_' && name_characters(s.substr(3), "_-");
+}
+// "x.png" with letters, digits and _ - . only, no "..".
+bool png_name(const std::string& s) {
+  return s.size() > 4 && s.compare(s.size() - 4, 4, ".png") == 0 && name_characters(s, "_-.") &&
+         s.find("..") == std::string::npos;
+}
+
 bool is_plot(const fs::path& out_folder, const fs::path& reference) {
   // The lesson program writes a gnuplot script beside each plot.
   std::error_code ec;
@@ -107,8 +128,7 @@ std::string CompareLab::list_json() const {
   std::error_code ec;
   std::vector<fs::path> folders;
   for (const auto& entry : fs::directory_iterator(source_ / "lessons", ec))
-    if (entry.is_directory() &&
-        std::regex_match(entry.path().filename().string(), std::regex(R"(\d\d_[\w\-]+)")))
+    if (entry.is_directory() && lesson_folder(entry.path().filename().string()))
       folders.push_back(entry.path());
   std::sort(folders.begin(), folders.end());
   for (const fs::path& folder : folders) {
@@ -136,10 +156,8 @@ std::string CompareLab::list_json() const {
 CompareLab::Pair CompareLab::pair(const Query& q) const {
   const std::string nn = q.name("lesson", 2);
   const std::string name = q.name("name", 120);
-  if (!std::regex_match(nn, std::regex(R"(\d\d)")))
-    throw BadRequest("parameter 'lesson' = '" + nn + "' is not two digits");
-  if (!std::regex_match(name, std::regex(R"([A-Za-z0-9_\-.]+\.png)")) || name.find("..") != std::string::npos)
-    throw BadRequest("parameter 'name' = '" + name + "' is not the name of a PNG file");
+  if (!two_digits(nn)) throw BadRequest("parameter 'lesson' = '" + nn + "' is not two digits");
+  if (!png_name(name)) throw BadRequest("parameter 'name' = '" + name + "' is not the name of a PNG file");
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(source_ / "lessons", ec)) {
     const std::string folder = entry.path().filename().string();
