@@ -66,6 +66,12 @@ once the program has run, beside the figure comment quoting its table.
   deterministic image is linked in out/, a timing plot is kept, a linked
   image is missing, or a file of figures/ is shown by no text.
 
+Screenshots of the lab. A kept image named lab_*.png is a screenshot of
+`illum lab` (tools/lab/screenshots.py, the main job's step "lab"): it is
+drawn into OUT/lab/, not OUT/lessonNN/, and kept and checked like the
+others except that --check compares only its size (its status lines carry
+timings, so its pixels differ from run to run).
+
 The label under a figure with timings names the run: date, the machine's
 cores and its load average at the start and end of that program's run, as
 the main job records them in OUT/run_log.json (the file's modification time
@@ -448,6 +454,16 @@ def image_links(text: Path, lines: list[str]) -> tuple[list[ImageLink], list[str
     return links, problems
 
 
+LAB_SCREENSHOT = "lab_"
+
+
+def drawn_path(out: Path, link: "ImageLink") -> Path:
+    """Where the main job draws a linked image: OUT/lessonNN/, or OUT/lab/ for a screenshot of the lab."""
+    if link.name.startswith(LAB_SCREENSHOT):
+        return out / "lab" / link.name
+    return out / f"lesson{link.lesson}" / link.name
+
+
 def timing_plot(out: Path, lesson: str, name: str) -> str | None:
     """The label that makes out/lessonNN/<name> a timing plot, or None (a render, a deterministic plot)."""
     script = out / f"lesson{lesson}" / (Path(name).stem + ".gp")
@@ -542,10 +558,9 @@ def check_images(source: Path, out: Path) -> tuple[list[str], int]:
         folder = path.parent / FIGURES_FOLDER
         for link in links:
             where = f"{rel}:{link.line + 1}"
-            drawn = out / f"lesson{link.lesson}" / link.name
+            drawn = drawn_path(out, link)
             if not drawn.is_file():
-                problems.append(f"{where}: {link.name}: the program wrote no out/lesson{link.lesson}/{link.name} "
-                                f"in {out}")
+                problems.append(f"{where}: {link.name}: the program wrote no {drawn.relative_to(out)} in {out}")
                 continue
             timing = timing_plot(out, link.lesson, link.name)
             if link.kept and timing:
@@ -562,7 +577,11 @@ def check_images(source: Path, out: Path) -> tuple[list[str], int]:
                     continue
                 compared += 1
                 try:
-                    difference = image_difference(kept.read_bytes(), drawn.read_bytes())
+                    if link.name.startswith(LAB_SCREENSHOT):  # a screenshot: its size only
+                        kept_size, drawn_size = decode_png(kept.read_bytes())[:2], decode_png(drawn.read_bytes())[:2]
+                        difference = None if kept_size == drawn_size else f"its size {kept_size} is now {drawn_size}"
+                    else:
+                        difference = image_difference(kept.read_bytes(), drawn.read_bytes())
                 except FigureError as e:
                     difference = str(e)
                 if difference:
@@ -600,9 +619,9 @@ def update_images(source: Path, out: Path, log=print) -> int:
         keep: set[str] = set()
         changed = False
         for link in reversed(links):  # right to left: earlier spans on a line stay valid
-            drawn = out / f"lesson{link.lesson}" / link.name
+            drawn = drawn_path(out, link)
             if not drawn.is_file():
-                problems.append(f"{rel}:{link.line + 1}: out/lesson{link.lesson}/{link.name} does not exist in "
+                problems.append(f"{rel}:{link.line + 1}: {drawn.relative_to(out)} does not exist in "
                                 f"{out} (run the main job first)")
                 if link.kept:
                     keep.add(link.name)  # leave it as it is

@@ -7,6 +7,9 @@ Steps (all by default; pick some with --only):
   lessons  runs every BIN/lessonNN with --out OUT/lessonNN (and --quick); the
            first failure stops the job with the program's exit code and name;
            OUT/run_log.json records each run's date, cores and load average;
+  lab      screenshots of `BIN/illum lab`'s four views in headless Chromium,
+           OUT/lab/*.png with a manifest.json (tools/lab/screenshots.py; the
+           lab is started on a free port of 127.0.0.1 and stopped again);
   figures  refreshes the figures of the lesson texts and decks from the tables
            in OUT (tools/figures.py: timings and their labels; a figure whose
            other values changed is left for `tools/figures.py --update` and
@@ -21,6 +24,7 @@ written atomically. `cmake --build --preset release --target gallery` runs it.
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
 import os
 import re
@@ -36,7 +40,7 @@ from gallery.fsutil import atomic_write_text  # noqa: E402
 from gallery.index import check_links, write_index  # noqa: E402
 
 SOURCE = Path(__file__).resolve().parent.parent
-STEPS = ("lessons", "figures", "slides", "index")
+STEPS = ("lessons", "lab", "figures", "slides", "index")
 PROGRAM = re.compile(r"^lesson(\d\d)$")
 
 
@@ -97,6 +101,18 @@ def record_run(log_path: Path, name: str, run: dict) -> None:
     atomic_write_text(log_path, json.dumps(log, indent=2, sort_keys=True) + "\n")
 
 
+def run_lab(bin_dir: Path, out: Path) -> None:
+    spec = importlib.util.spec_from_file_location("lab_screenshots", SOURCE / "tools" / "lab" / "screenshots.py")
+    screenshots = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(screenshots)
+    say("lab: screenshots of illum lab's four views")
+    start = time.monotonic()
+    if screenshots.main(["--bin", str(bin_dir), "--out", str(out)]) != 0:
+        raise JobError("the lab's screenshots failed (above); re-run them alone with: "
+                       f"tools/lab/screenshots.py --bin {bin_dir} --out {out}")
+    say(f"lab done in {time.monotonic() - start:.1f} s")
+
+
 def run_figures(source: Path, out: Path, quick: bool) -> None:
     if quick:
         say("figures: skipped (a --quick run's tables are not the ones the texts quote)")
@@ -141,8 +157,8 @@ def main(argv: list[str] | None = None) -> int:
     unknown = [s for s in steps if s not in STEPS]
     if unknown:
         parser.error(f"unknown step(s) {', '.join(unknown)}; choose from {', '.join(STEPS)}")
-    if "lessons" in steps and args.bin is None:
-        parser.error("--bin is needed to run the lessons (or leave them out with --only slides,index)")
+    if ("lessons" in steps or "lab" in steps) and args.bin is None:
+        parser.error("--bin is needed to run the lessons and the lab (or leave them out with --only slides,index)")
     source = args.source.resolve()
     out = args.out.resolve()
     slides_dir = (args.slides or source / "slides").resolve()
@@ -151,6 +167,8 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if "lessons" in steps:
             run_lessons(args.bin.resolve(), out, args.quick)
+        if "lab" in steps:
+            run_lab(args.bin.resolve(), out)
         if "figures" in steps:
             run_figures(source, out, args.quick)
         if "slides" in steps:

@@ -187,6 +187,8 @@ TEST_SUITE("trace") {
     CHECK_MESSAGE(pixel.color == render.image.at(pixel.x, pixel.y),
                   "the inspector traces what the render traced");
     const auto json = nlohmann::json::parse(ray_tree_json(scene, pixel));
+    // Opaque balls: no shadow ray crosses glass, so every ray is a node of its own.
+    CHECK(json["rays"] == pixel.tree.nodes.size());
     CHECK(json["nodes"] == pixel.tree.nodes.size());
     CHECK(json["tree"]["kind"] == "primary");
     CHECK(json["tree"]["hit"]["primitive"] == "middle");

@@ -256,6 +256,24 @@ class KeptImagesTest(unittest.TestCase):
         self.assertFalse((self.root / "lessons/01_x/figures/cost.png").exists())
         self.assertEqual(self.check(), 0, self.messages)
 
+    def test_a_screenshot_of_the_lab_is_kept_from_out_lab_and_checked_by_its_size_only(self):
+        self.write("out/lab/lab_view.png", encode_png(6, 4, picture(6, 4), [0] * 4))
+        readme = self.root / "lessons/01_x/README.md"
+        readme.write_text(readme.read_text(encoding="utf-8") + "![the lab](figures/lab_view.png)\n", encoding="utf-8")
+        self.assertEqual(self.update(), 0, self.messages)
+        self.assertEqual((self.root / "lessons/01_x/figures/lab_view.png").read_bytes(),
+                         (self.out / "lab/lab_view.png").read_bytes())
+        self.assertEqual(self.check(), 0, self.messages)
+        # Another run's screenshot: every pixel different (its timings moved), the same size: still kept.
+        self.write("out/lab/lab_view.png", encode_png(6, 4, picture(6, 4, 100), [0] * 4))
+        self.assertEqual(self.check(), 0, self.messages)
+        self.write("out/lab/lab_view.png", encode_png(7, 4, picture(7, 4), [0] * 4))
+        self.assertEqual(self.check(), 1)
+        self.assertIn("lab_view.png drifted", "\n".join(self.messages))
+        (self.out / "lab/lab_view.png").unlink()
+        self.assertEqual(self.check(), 1)
+        self.assertIn("the program wrote no lab/lab_view.png", "\n".join(self.messages))
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=1)

@@ -361,6 +361,17 @@ class IndexPage(TempDirTest):
         self.assertNotIn("<script", html)
         self.assertEqual(index.check_links(self.out / "index.html"), [])
 
+    def test_the_lab_s_screenshots_get_a_section_of_their_own(self):
+        self.assertNotIn('id="lab"', self.page())  # no OUT/lab: no section
+        self.write_lesson_output("src/out/lab", {
+            "id": "lab", "title": "The lab", "outputs": [{"kind": "image", "file": "lab_view.png", "caption": "A view"}]},
+            {"lab_view.png": make_png(8, 6)})
+        html = self.page()
+        self.assertIn('<section class="lesson" id="lab">', html)
+        self.assertIn('<a href="#lab">the lab</a>', html)
+        self.assertIn('<a href="lab/lab_view.png"><img src="lab/lab_view.png"', html)
+        self.assertEqual(index.check_links(self.out / "index.html"), [])
+
     def test_index_outside_the_source_tree_links_back_into_it(self):
         out = self.tmp / "build" / "test-out"
         shutil.copytree(self.out / "lesson01", out / "lesson01")

@@ -312,10 +312,30 @@ def _outputs_html(lesson: Lesson, out: Path) -> str:
     return "\n".join(parts) or '<p class="note">The manifest lists no outputs.</p>'
 
 
+def _lab_section(out: Path) -> str:
+    """OUT/lab, the screenshots of `illum lab` (tools/lab/screenshots.py), or '' when there are none."""
+    folder = out / "lab"
+    if not (folder / "manifest.json").is_file():
+        return ""
+    lab = Lesson("lab", output_dir=folder)
+    try:
+        lab.manifest = load_manifest(folder)
+    except ManifestError as e:
+        return f'<section class="lesson" id="lab"><h2>The lab</h2><div class="error">{_e(str(e))}</div></section>'
+    return ('<section class="lesson" id="lab"><h2>The lab: <code>illum lab</code></h2>'
+            '<p>Run <code>build/release/bin/illum lab whitted</code> (or your build\'s) and open the address it '
+            'prints: a pixel\'s ray tree, radiosity shot by shot, the hemicube, and your pictures against the '
+            'reference, computed by the build it is part of (docs/lab.md).</p>'
+            + _outputs_html(lab, out) + "</section>")
+
+
 def render_index(lessons: list[Lesson], out: Path, source: Path, note: str = "") -> str:
     """The whole page, for a file written at out/index.html."""
     out, source = Path(out), Path(source)
+    lab = _lab_section(out)
     toc = " ".join(f'<a href="#{l.id}">{l.number} · {_e(l.title)}</a>' for l in lessons)
+    if lab:
+        toc += ' <a href="#lab">the lab</a>'
     sections = []
     for lesson in lessons:
         body = [f'<section class="lesson" id="{lesson.id}">',
@@ -332,6 +352,8 @@ def render_index(lessons: list[Lesson], out: Path, source: Path, note: str = "")
         sections.append("\n".join(body))
     if not sections:
         sections.append('<p class="note">No lessons found.</p>')
+    if lab:
+        sections.append(lab)
     readme = source / "README.md"
     readme_link = f' · <a href="{href(readme, out)}">README</a>' if readme.is_file() else ""
     return f"""<!DOCTYPE html>

@@ -43,7 +43,7 @@ DEFAULT_ROOT = "/autograder"
 DEFAULT_USER = "illum-student"  # the unprivileged user setup.sh creates (ILLUM_GRADE_USER changes it)
 
 # Packages of tools/debian-packages.txt that grading does not need.
-NOT_FOR_GRADING = {"chromium", "nodejs", "npm", "gnuplot-nox", "zip", "libbenchmark-dev"}
+NOT_FOR_GRADING = {"chromium", "nodejs", "npm", "gnuplot-nox", "zip", "libbenchmark-dev", "libcpp-httplib-dev", "pkgconf"}
 
 # The oldest versions the grading build is checked against (docs/grading.md):
 # Ubuntu 22.04, Gradescope's default image.

@@ -33,7 +33,8 @@ RenderResult render_ray_tree(const Scene& scene, const RenderSettings& settings)
       const Tracer tracer{.scene = scene,
                           .plan = result.plan,
                           .background = settings.background,
-                          .stats = &row_stats[static_cast<std::size_t>(j)]};
+                          .stats = &row_stats[static_cast<std::size_t>(j)],
+                          .min_contribution = settings.min_contribution};
       for (int i = 0; i < camera.width(); ++i)
         result.image.at(i, j) = evaluate(tracer, camera.pixel_ray(i, j));
     });
@@ -47,12 +48,17 @@ PixelTree trace_pixel_tree(const Scene& scene, const RenderSettings& settings, i
   require(x >= 0 && x < camera.width() && y >= 0 && y < camera.height(),
           "trace_pixel_tree: the pixel lies outside the image");
   const EffectsPlan plan = render_plan(scene, settings);
-  PixelTree pixel{.x = x, .y = y};
+  PixelTree pixel{.x = x,
+                  .y = y,
+                  .plan = plan,
+                  .depth_requested = settings.max_depth,
+                  .min_contribution = settings.min_contribution};
   const Tracer tracer{.scene = scene,
                       .plan = plan,
                       .background = settings.background,
                       .stats = &pixel.stats,
-                      .tree = &pixel.tree};
+                      .tree = &pixel.tree,
+                      .min_contribution = settings.min_contribution};
   pixel.color = evaluate(tracer, camera.pixel_ray(x, y));
   return pixel;
 }

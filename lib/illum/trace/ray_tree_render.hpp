@@ -16,6 +16,9 @@ struct RenderSettings {
   int max_depth = 5;          // the depth limit asked for
   bool use_plan = true;       // false: every effect on (full_effects), to compare
   Color background{0.0};      // the colour of a ray that hits nothing
+  // Lesson 07's pruning by contribution (Tracer::min_contribution): 0, the
+  // default, prunes nothing.
+  double min_contribution = 0.0;
 };
 
 struct RenderResult {
@@ -32,13 +35,18 @@ PinholeCamera render_camera(const Scene& scene, const RenderSettings& settings);
 
 RenderResult render_ray_tree(const Scene& scene, const RenderSettings& settings);
 
-// The whole tree of pixel (x, y), recorded node by node (the inspector).
-// Throws std::invalid_argument when the pixel is outside the image.
+// The whole tree of pixel (x, y), recorded node by node (the inspector),
+// with what decided its shape: the plan it obeyed, the depth limit asked
+// for and the pruning threshold (ray_tree_view.hpp explains each leaf from
+// them). Throws std::invalid_argument when the pixel is outside the image.
 struct PixelTree {
   int x = 0, y = 0;
   Color color{0.0};
   RayTree tree{};
   TraceStats stats{};
+  EffectsPlan plan{};
+  int depth_requested = 0;
+  double min_contribution = 0.0;
 };
 PixelTree trace_pixel_tree(const Scene& scene, const RenderSettings& settings, int x, int y);
 

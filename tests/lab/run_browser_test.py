@@ -1,0 +1,257 @@
+#!/usr/bin/env python3
+"""The lab in real headless Chromium (CTest `lab_browser`, labels "lab" and "browser"; docs/lab.md).
+
+    run_browser_test.py --illum BIN/illum --reference BIN/lab_reference --lesson11 BIN/lesson11 --work DIR
+
+Starts `illum lab whitted`, drives the page with tools/lab/browser.mjs (a
+click, buttons, inputs, as a student would) and compares what the page
+shows with sources that are not the lab:
+* the click on Whitted's glass ball: the tree the diagram draws, node by
+  node (kind, depth, what it hit, t, why it stops, a shadow ray's segments),
+  and the rays the 3D view draws, against the ray_tree.json that
+  `illum trace whitted --pixel X Y` writes for the pixel the page resolved;
+* 10 shots on the 2,124-patch Cornell box against the library's own
+  progressive solver (lab_reference: progressive_on_demand, rows on demand
+  on every thread), every shot; and 8 shots on lesson 11's quick figure
+  (330 patches, hemicube 32) against the table `lesson11 --quick --figure`
+  writes (figure_history.csv: shots 1, 2, 4, 8);
+* the hemicube row of a floor patch near the open front of the box: the
+  box is closed but for its front, and from that patch no block stands
+  between it and the opening, so every direction either meets a patch or
+  leaves through the opening, and the row sums to 1 − F(centroid → opening),
+  Lambert's contour formula computed here;
+* your pictures: an identical image matches with 0%, a different one of the
+  same size does not, one of another size is reported as such;
+* two more tabs at once get the same ten shots; the page fetches nothing
+  from anywhere but the lab; no script error.
+
+A missing Node.js, puppeteer-core or Chromium fails the test with the advice
+to run tools/install-deps: it never passes by skipping.
+"""
+from __future__ import annotations
+
+import argparse
+import csv
+import json
+import math
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+SOURCE = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from test_lab_api import Lab  # noqa: E402
+
+HINT = "run tools/install-deps (Debian packages chromium, nodejs, npm; then npm ci for puppeteer-core)"
+GLASS_PIXEL = (285, 173)  # lesson 06's inspector pixel: on the glass ball, off its centre
+
+
+GROUPS = ["the ray tree against illum trace", "radiosity against progressive_on_demand and lesson 11's table",
+          "the hemicube row against its exact sum", "your pictures against the reference", "offline, no script error"]
+
+
+def fail(problems: list[tuple[int, str]], group: int, message: str) -> None:
+    problems.append((group, message))
+    print(f"PROBLEM ({GROUPS[group]}): {message}", flush=True)
+
+
+def flatten(node: dict, out: list[dict]) -> list[dict]:
+    out.append(node)
+    for child in node["children"]:
+        flatten(child, out)
+    return out
+
+
+def lambert(x: list[float], normal: list[float], polygon: list[list[float]]) -> float:
+    """F from the differential area at x (unit normal) to a polygon wholly above its plane:
+    (1/2π) Σ_k γ_k n·(R_k × R_k+1)/|R_k × R_k+1|, R_k = v_k − x, γ_k the angle between R_k and R_k+1."""
+    total = 0.0
+    for k in range(len(polygon)):
+        r1 = [polygon[k][i] - x[i] for i in range(3)]
+        r2 = [polygon[(k + 1) % len(polygon)][i] - x[i] for i in range(3)]
+        cross = [r1[1] * r2[2] - r1[2] * r2[1], r1[2] * r2[0] - r1[0] * r2[2], r1[0] * r2[1] - r1[1] * r2[0]]
+        norm = math.sqrt(sum(c * c for c in cross))
+        cosine = sum(a * b for a, b in zip(r1, r2)) / math.sqrt(sum(a * a for a in r1) * sum(b * b for b in r2))
+        total += math.acos(max(-1.0, min(1.0, cosine))) * sum(n * c for n, c in zip(normal, cross)) / norm
+    return abs(total) / (2 * math.pi)
+
+
+def front_opening() -> tuple[list[list[float]], float]:
+    """The Cornell box's open front: the vertices at z = 0 of scenes/cornell.json, in order round their
+    centre; and the least z of the blocks' vertices (nothing of them is nearer the front)."""
+    scene = json.loads((SOURCE / "scenes" / "cornell.json").read_text(encoding="utf-8"))
+    front, blocks = [], []
+    for p in scene["primitives"]:
+        for v in p["vertices"]:
+            if v[2] == 0 and v not in front:
+                front.append(v)
+            if "block" in p["name"]:
+                blocks.append(v[2])
+    cx, cy = sum(v[0] for v in front) / len(front), sum(v[1] for v in front) / len(front)
+    front.sort(key=lambda v: math.atan2(v[1] - cy, v[0] - cx))
+    return front, min(blocks)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--illum", type=Path, required=True)
+    parser.add_argument("--reference", type=Path, required=True)
+    parser.add_argument("--lesson11", type=Path, required=True)
+    parser.add_argument("--work", type=Path, required=True)
+    args = parser.parse_args()
+    node = shutil.which("node")
+    if not node or not (SOURCE / "node_modules" / "puppeteer-core").is_dir():
+        print(f"lab_browser: FAILED: Node.js or puppeteer-core is missing: {HINT}")
+        return 1
+    work = args.work
+    if work.exists():
+        shutil.rmtree(work)
+    work.mkdir(parents=True)
+    problems: list[tuple[int, str]] = []
+
+    # Independent sources, before the page is opened.
+    figure = work / "lesson11"
+    run = subprocess.run([str(args.lesson11), "--quick", "--figure", "--out", str(figure)], capture_output=True, text=True,
+                         stdin=subprocess.DEVNULL, timeout=300)
+    if run.returncode != 0:
+        print(f"lab_browser: FAILED: lesson11 --quick --figure: {run.stderr}")
+        return 1
+    with open(figure / "figure_history.csv", newline="", encoding="utf-8") as f:
+        lesson11 = {int(r["shots"]): float(r["unshot_fraction"]) for r in csv.DictReader(f)}
+    reference = json.loads(subprocess.run([str(args.reference), "cornell", "2000", "128", "10"], capture_output=True,
+                                          text=True, check=True, timeout=300).stdout)
+    # Your pictures: lesson 01's depth.png as drawn (a match), normals.png replaced by another picture of
+    # the same size (no match), silhouette.png by one of another size.
+    figures = SOURCE / "lessons" / "01_ray_sphere" / "figures"
+    yours = work / "out" / "lesson01"
+    yours.mkdir(parents=True)
+    shutil.copy(figures / "depth.png", yours / "depth.png")
+    shutil.copy(figures / "silhouette.png", yours / "normals.png")
+    shutil.copy(figures / "far_sphere_notes_float.png", yours / "silhouette.png")
+
+    opening, block_z = front_opening()
+    with Lab(args.illum, "whitted", "--out", str(work / "out")) as lab:
+        mesh = lab.json("/api/radiosity/mesh", {"scene": "cornell", "patches": 2000})
+        c, n = mesh["centroid"], mesh["normal"]
+        # A floor patch (normal +y) whose centroid lies in front of every block.
+        floor = [i for i in range(mesh["patches"]) if n[3 * i + 1] > 0.999 and abs(c[3 * i + 1]) < 1e-9 and c[3 * i + 2] < block_z]
+        patch = min(floor, key=lambda i: abs(c[3 * i] - 278) + abs(c[3 * i + 2] - 0.4 * block_z))
+        options = {"pixel": list(GLASS_PIXEL), "patch": patch, "resolutions": [256, 512],
+                   "compare": [["01", "depth.png"], ["01", "normals.png"], ["01", "silhouette.png"]]}
+        (work / "options.json").write_text(json.dumps(options), encoding="utf-8")
+        observed_file = work / "observed.json"
+        browser = subprocess.run([node, str(SOURCE / "tools" / "lab" / "browser.mjs"), "test", f"http://127.0.0.1:{lab.port}/",
+                                  str(work / "options.json"), str(observed_file)], cwd=SOURCE, timeout=540,
+                                 stdin=subprocess.DEVNULL)
+        if browser.returncode == 2:
+            print(f"lab_browser: FAILED: the browser could not run: {HINT}")
+            return 1
+        if browser.returncode != 0:
+            print("lab_browser: FAILED: the page did not do what was asked (above)")
+            return 1
+        origin = f"http://127.0.0.1:{lab.port}/"
+    observed = json.loads(observed_file.read_text(encoding="utf-8"))
+
+    # 1. The tree of the clicked pixel against `illum trace`.
+    x, y = observed["click"]["pixel"]
+    if abs(x - GLASS_PIXEL[0]) > 1 or abs(y - GLASS_PIXEL[1]) > 1:
+        fail(problems, 0, f"the click on pixel {GLASS_PIXEL} was read as ({x}, {y})")
+    out = work / "trace"
+    subprocess.run([str(args.illum), "trace", "whitted", "--pixel", str(x), str(y), "--out", str(out)], check=True,
+                   capture_output=True, timeout=120)
+    tree = json.loads((out / "ray_tree.json").read_text(encoding="utf-8"))
+    want = flatten(tree["tree"], [])
+    got = observed["tree"]["nodes"]
+    if want[0]["hit"]["primitive"] != "glass sphere":
+        fail(problems, 0, f"pixel ({x}, {y}) is not on the glass ball: {want[0]['hit']}")
+    if len(got) != tree["nodes"] or len(got) != len(want):
+        fail(problems, 0, f"the diagram draws {len(got)} nodes; illum trace has {tree['nodes']}")
+    for g, w in zip(got, want):
+        expected = {"id": w["id"], "kind": w["kind"], "depth": w["depth"], "stop": w["stop"]["reason"],
+                    "primitive": w["hit"]["primitive"] if w["hit"] else "", "t": w["hit"]["t"] if w["hit"] else None,
+                    "segments": len(w.get("segments", []))}
+        actual = {k: g[k] for k in expected}
+        if actual != expected:
+            fail(problems, 0, f"node {w['id']}: the page shows {actual}, illum trace has {expected}")
+    if observed["tree"]["drawnRays"] != tree["nodes"] or observed["tree"]["drawnSegments"] != tree["rays"]:
+        fail(problems, 0, f"the 3D view draws {observed['tree']['drawnRays']} rays in {observed['tree']['drawnSegments']} "
+                       f"segments; illum trace has {tree['nodes']} nodes from {tree['rays']} rays")
+    if not any(w["kind"] == "shadow" and len(w["segments"]) >= 2 for w in want):
+        fail(problems, 0, "no shadow ray of this pixel crosses the glass: the test lost its point")
+    want_stubs = sorted((w["id"], b["kind"], b["fate"]) for w in want for b in w.get("branches", [])
+                        if b["fate"] in ("total_internal_reflection", "pruned", "not_cast"))
+    got_stubs = sorted((s["parent"], s["kind"], s["fate"]) for s in observed["tree"]["stubs"])
+    if want_stubs != got_stubs:
+        fail(problems, 0, f"stubs for children not cast: the page {got_stubs}, illum trace {want_stubs}")
+    deepest = max(w["depth"] for w in want)
+    hidden = sorted(w["id"] for w in want if w["depth"] > deepest - 1)
+    if observed["depthDown"]["shown"] != str(deepest - 1) or sorted(observed["depthDown"]["hidden"]) != hidden:
+        fail(problems, 0, f"one level back: the page shows depth {observed['depthDown']['shown']} hiding "
+                       f"{observed['depthDown']['hidden']}; expected depth {deepest - 1} hiding {hidden}")
+
+    # 2. Radiosity, shot by shot.
+    if observed["patches"] != reference["patches"] or observed["patches"] != 2124:
+        fail(problems, 1, f"the page meshed {observed['patches']} patches; lab_reference {reference['patches']} (2,124 expected)")
+    shots = dict(observed["tenShots"])
+    for k, fraction in enumerate(reference["fractions"], 1):
+        if k not in shots or not math.isclose(shots[k], fraction, rel_tol=1e-9):
+            fail(problems, 1, f"shot {k}: the page shows unshot {shots.get(k)}, progressive_on_demand {fraction}")
+    quick = dict(observed["quickShots"])
+    if observed["quickPatches"] != 330:
+        fail(problems, 1, f"lesson 11's quick figure has 330 patches; the page meshed {observed['quickPatches']}")
+    for k in (1, 2, 4, 8):
+        if k not in quick or not math.isclose(quick[k], lesson11[k], rel_tol=1e-9):
+            fail(problems, 1, f"quick figure, shot {k}: the page shows {quick.get(k)}, lesson 11's table {lesson11[k]}")
+    for method in ("jacobi", "gauss_seidel", "southwell"):
+        points = observed[f"method_{method}"]
+        if [s for s, _ in points] != list(range(1, 11)) or not points[-1][1] < points[0][1] < 1:
+            fail(problems, 1, f"{method}: the page's history {points}")
+    for i, tab in enumerate(observed["twoTabs"]):
+        if tab != observed["tenShots"]:
+            fail(problems, 1, f"tab {i + 2}: its ten shots {tab} differ from the first tab's {observed['tenShots']}")
+
+    # 3. The hemicube row's sum against 1 − F(centroid → opening).
+    exact = 1 - lambert(c[3 * patch:3 * patch + 3], n[3 * patch:3 * patch + 3], opening)
+    for h in observed["hemicube"]:
+        # The error is the opening's outline aliased on the pixels (lesson 10, §5): at 256 pixels and more
+        # it is below 2e-3, while a face or a delta formula gone wrong moves the sum by several per cent.
+        if h["patch"] != patch or abs(h["sum"] - exact) > 2e-3:
+            fail(problems, 2, f"hemicube on patch {h['patch']} at {h['resolution']}: the row sums to {h['sum']}; "
+                           f"exactly 1 - F(opening) = {exact}")
+        study = dict(h["study"])
+        for r in (256, 512):
+            if abs(study.get(r, -1) - exact) > 2e-3:
+                fail(problems, 2, f"hemicube study at {r}: sum {study.get(r)}, exact {exact}")
+
+    # 4. Your pictures.
+    cmp = observed["compare"]
+    if not (cmp["01/depth.png"]["share"] == 0 and cmp["01/depth.png"]["matches"] == "true"):
+        fail(problems, 3, f"an identical image: {cmp['01/depth.png']}")
+    if not (cmp["01/normals.png"]["share"] > 0.001 and cmp["01/normals.png"]["matches"] == "false"):
+        fail(problems, 3, f"a different image: {cmp['01/normals.png']}")
+    if "sizes differ" not in cmp["01/silhouette.png"]["verdict"]:
+        fail(problems, 3, f"an image of another size: {cmp['01/silhouette.png']}")
+
+    # 5. Offline, and no script error.
+    seen = observed["seen"]
+    foreign = [u for u in seen["requests"] if not (u.startswith(origin) or u.startswith(("data:", "blob:")))]
+    if foreign:
+        fail(problems, 4, f"requests outside the lab: {foreign[:5]}")
+    if seen["errors"] or seen["failed"]:
+        fail(problems, 4, f"script errors {seen['errors'][:3]}, failed requests {seen['failed'][:3]}")
+    console = seen["console"]
+    if console:
+        fail(problems, 4, f"console errors: {console[:3]}")
+
+    print(f"lab_browser: clicked ({x}, {y}): {len(got)} nodes drawn {observed['click']['ms']:.0f} ms after the click; "
+          f"hemicube on patch {patch}: {[round(h['sum'], 6) for h in observed['hemicube']]} against {exact:.6f}")
+    failed = sorted({group for group, _ in problems})
+    for i, name in enumerate(GROUPS):
+        print(f"{'FAILED' if i in failed else 'ok'}: {name}")
+    print(f"lab_browser: {len(GROUPS) - len(failed)} passed, {len(failed)} failed")
+    return 0 if not problems else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())

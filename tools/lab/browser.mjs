@@ -1,0 +1,273 @@
+#!/usr/bin/env node
+// Drives the lab's page in headless Chromium (Debian's /usr/bin/chromium, or
+// ILLUM_CHROMIUM) through puppeteer-core, for the browser test, the benchmark
+// and the gallery's screenshots (docs/lab.md):
+//
+//   node tools/lab/browser.mjs test        URL OPTIONS.json OBSERVED.json
+//   node tools/lab/browser.mjs bench       URL OPTIONS.json RESULTS.json
+//   node tools/lab/browser.mjs screenshots URL OPTIONS.json FOLDER
+//
+// It clicks and reads the page as a student would and writes what it saw;
+// the callers (tests/lab/run_browser_test.py, tools/lab/bench.py,
+// tools/lab/screenshots.py) compare it with their own expectations. Chromium
+// runs with a fresh profile and without reaching for the network; every
+// request the page makes is recorded, so the test can check that nothing
+// comes from anywhere but the lab. Exit status 2 when it cannot run
+// (no Chromium, no puppeteer-core), 1 when the page misbehaves.
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+
+const CHROMIUM = process.env.ILLUM_CHROMIUM || '/usr/bin/chromium';
+const CHROMIUM_ARGS = ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--disable-background-networking',
+  '--disable-component-update', '--disable-sync', '--disable-quic',
+  // Tabs behind the first one keep running (the test drives several at once).
+  '--disable-background-timer-throttling', '--disable-renderer-backgrounding', '--disable-backgrounding-occluded-windows',
+  // WebGL on the CPU (SwiftShader): this machine has no GPU, and Chromium asks for the opt-in.
+  '--enable-unsafe-swiftshader'];
+
+function fatal(message, code = 2) {
+  console.error(`browser.mjs: ${message}`);
+  process.exit(code);
+}
+
+const [mode, url, optionsFile, output] = process.argv.slice(2);
+if (!['test', 'bench', 'screenshots'].includes(mode) || !url || !optionsFile || !output)
+  fatal('usage: node tools/lab/browser.mjs test|bench|screenshots URL OPTIONS.json OUTPUT');
+const options = JSON.parse(fs.readFileSync(optionsFile, 'utf8'));
+let puppeteer;
+try {
+  puppeteer = (await import('puppeteer-core')).default;
+} catch (e) {
+  fatal('puppeteer-core is missing: run tools/install-deps (npm ci)');
+}
+if (!fs.existsSync(CHROMIUM)) fatal(`no Chromium at ${CHROMIUM}: run tools/install-deps (Debian package chromium)`);
+
+const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'illum-lab-chromium-'));
+const browser = await puppeteer.launch({ executablePath: CHROMIUM, args: [...CHROMIUM_ARGS, `--user-data-dir=${profile}`],
+  defaultViewport: { width: 1400, height: 1000 } });
+const seen = { requests: [], failed: [], errors: [], console: [] };
+const t0 = Date.now();
+const log = message => console.error(`browser.mjs: ${((Date.now() - t0) / 1000).toFixed(1)} s: ${message}`);
+
+async function open(hash, viewport) {
+  const page = await browser.newPage();
+  if (viewport) await page.setViewport(viewport);
+  page.on('request', r => seen.requests.push(r.url()));
+  page.on('requestfailed', r => seen.failed.push(`${r.url()}: ${r.failure() && r.failure().errorText}`));
+  page.on('pageerror', e => seen.errors.push(e.message));
+  page.on('console', m => { if (m.type() === 'error') seen.console.push(m.text()); });
+  await page.goto(`${url}#${hash}`, { waitUntil: 'load' });
+  await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
+  return page;
+}
+
+const state = (page, id) => page.$eval(id, s => s.dataset.state);
+async function waitState(page, id, states, timeout = 60000) {
+  await page.waitForFunction((sel, want) => want.includes(document.querySelector(sel).dataset.state),
+    { timeout, polling: 'mutation' }, id, states);
+  const s = await state(page, id);
+  const status = { '#tab-tree': '#tree-status', '#tab-radiosity': '#rad-status', '#tab-hemicube': '#hc-status', '#tab-compare': '#cmp-verdict' }[id];
+  if (s === 'error') throw new Error(`${id}: ${await page.$eval(status, p => p.textContent)}`);
+}
+
+// Clicks the centre of image pixel (x, y) of the rendered scene; returns the time from the click to the drawn tree.
+async function clickPixel(page, x, y) {
+  const box = await page.$eval('#tree-image', img => {
+    const r = img.getBoundingClientRect();
+    return { left: r.left, top: r.top, width: r.width, height: r.height, w: img.naturalWidth, h: img.naturalHeight };
+  });
+  await page.mouse.click(box.left + (x + 0.5) * box.width / box.w, box.top + (y + 0.5) * box.height / box.h);
+  await waitState(page, '#tab-tree', ['drawn', 'error']);
+  return page.$eval('#tab-tree', s => ({ pixel: s.dataset.pixel.split(',').map(Number), ms: Number(s.dataset.clickMs) }));
+}
+
+async function treeObservation(page) {
+  return page.evaluate(() => ({
+    nodes: [...document.querySelectorAll('#tree-diagram .tree-node')].map(g => ({
+      id: Number(g.dataset.id), kind: g.dataset.kind, depth: Number(g.dataset.depth), stop: g.dataset.stop,
+      primitive: g.dataset.primitive, t: g.dataset.t === '' ? null : Number(g.dataset.t), segments: Number(g.dataset.segments),
+      text: [...g.querySelectorAll('text')].map(t => t.textContent) })),
+    stubs: [...document.querySelectorAll('#tree-diagram .stub')].map(g => ({ parent: Number(g.dataset.parent), kind: g.dataset.kind, fate: g.dataset.fate })),
+    drawnRays: Number(document.querySelector('#tree-3d').dataset.drawnRays),
+    drawnSegments: Number(document.querySelector('#tree-3d').dataset.drawnSegments),
+    details: document.querySelector('#tree-details').textContent,
+  }));
+}
+
+async function openTab(page, name, id, states = ['ready', 'drawn', 'compared', 'missing']) {
+  await press(page, `button[data-tab="${name}"]`);
+  await waitState(page, id, [...states, 'error'], 120000);
+}
+
+// A button pressed through the DOM: puppeteer's mouse click waits for an animation frame, which a
+// tab behind another never gets.
+const press = (page, selector) => page.$eval(selector, b => b.click());
+
+async function radiosityStep(page, button, steps) {
+  await press(page, button);
+  await page.waitForFunction(n => document.querySelector('#tab-radiosity').dataset.steps === String(n) &&
+    ['ready', 'done', 'error'].includes(document.querySelector('#tab-radiosity').dataset.state), { timeout: 120000, polling: 'mutation' }, steps);
+}
+
+const history = page => page.$$eval('#rad-history tbody tr', rows => rows.map(r => [Number(r.dataset.step), Number(r.dataset.fraction)]).reverse());
+
+async function setValue(page, selector, value) {
+  await page.$eval(selector, (e, v) => { e.value = String(v); e.dispatchEvent(new Event('change')); }, value);
+}
+
+async function hemicube(page, patch, resolution) {
+  await page.$eval('#hc-patch', (e, v) => { e.value = String(v); e.dataset.chosen = 'true'; }, patch);
+  await setValue(page, '#hc-resolution', resolution);
+  await page.waitForFunction((p, r) => { const s = document.querySelector('#tab-hemicube').dataset;
+    return s.state === 'drawn' && s.patch === String(p) && s.resolution === String(r) || s.state === 'error'; },
+  { timeout: 120000, polling: 20 }, patch, resolution);
+  await waitState(page, '#tab-hemicube', ['drawn']);
+  return page.evaluate(() => ({
+    patch: Number(document.querySelector('#tab-hemicube').dataset.patch),
+    resolution: Number(document.querySelector('#tab-hemicube').dataset.resolution),
+    sum: Number(document.querySelector('#hc-sum').dataset.value),
+    study: [...document.querySelectorAll('#hc-targets .study-row')].map(r => [Number(r.dataset.resolution), Number(r.dataset.sum)]),
+    errors: document.querySelector('#hc-errors') ? { ...document.querySelector('#hc-errors').dataset } : null,
+  }));
+}
+
+async function compare(page, lesson, image) {
+  await setValue(page, '#cmp-lesson', lesson);
+  await page.waitForFunction(() => !['loading'].includes(document.querySelector('#tab-compare').dataset.state), { polling: 20 });
+  await setValue(page, '#cmp-image', image);
+  await page.waitForFunction(() => ['compared', 'missing', 'error'].includes(document.querySelector('#tab-compare').dataset.state), { timeout: 60000, polling: 20 });
+  return page.evaluate(() => ({
+    state: document.querySelector('#tab-compare').dataset.state,
+    matches: document.querySelector('#tab-compare').dataset.matches,
+    share: document.querySelector('#cmp-number') ? Number(document.querySelector('#cmp-number').dataset.share) : null,
+    verdict: document.querySelector('#cmp-verdict').textContent,
+  }));
+}
+
+async function test() {
+  const observed = {};
+  // Wide enough that the image shows at its own size: a click lands on the pixel aimed at.
+  const page = await open('tree', { width: 1640, height: 1000 });
+  await waitState(page, '#tab-tree', ['ready']);
+  log('the tree');
+  // 1. The glass ball: the click, its tree, a step back in depth.
+  observed.click = await clickPixel(page, ...options.pixel);
+  observed.tree = await treeObservation(page);
+  await press(page, '#tree-depth-down');
+  observed.depthDown = await page.evaluate(() => ({ shown: document.querySelector('#tab-tree').dataset.shownDepth,
+    hidden: [...document.querySelectorAll('#tree-diagram .tree-node.hidden-depth')].map(g => Number(g.dataset.id)) }));
+  log('radiosity');
+  // 2. Ten shots on the 2,124-patch box, then lesson 11's quick figure shot by shot.
+  await openTab(page, 'radiosity', '#tab-radiosity');
+  observed.patches = Number(await page.$eval('#tab-radiosity', s => s.dataset.patches));
+  await radiosityStep(page, '#rad-step-10', 10);
+  observed.tenShots = await history(page);
+  await page.$eval('#rad-patches', e => { e.value = '300'; });
+  await page.$eval('#rad-resolution', e => { e.value = '32'; });
+  await press(page, '#rad-start');
+  await waitState(page, '#tab-radiosity', ['ready']);
+  observed.quickPatches = Number(await page.$eval('#tab-radiosity', s => s.dataset.patches));
+  for (let k = 1; k <= 8; ++k) await radiosityStep(page, '#rad-step-1', k);
+  observed.quickShots = await history(page);
+  for (const method of ['jacobi', 'gauss_seidel', 'southwell']) {
+    await setValue(page, '#rad-method', method);
+    await waitState(page, '#tab-radiosity', ['ready']);
+    await radiosityStep(page, '#rad-step-10', 10);
+    observed[`method_${method}`] = await history(page);
+  }
+  log('the hemicube');
+  // 3. The hemicube on the patch the caller chose, at two resolutions.
+  await openTab(page, 'hemicube', '#tab-hemicube', ['drawn']);
+  observed.hemicube = [];
+  for (const r of options.resolutions) observed.hemicube.push(await hemicube(page, options.patch, r));
+  log('your pictures');
+  // 4. Your pictures.
+  await openTab(page, 'compare', '#tab-compare', ['compared', 'missing']);
+  observed.compare = {};
+  for (const [lesson, image] of options.compare) observed.compare[`${lesson}/${image}`] = await compare(page, lesson, image);
+  log('two more tabs');
+  // 5. Two more tabs at once, each with its own session: the same ten shots.
+  const [a, b] = await Promise.all([open('radiosity'), open('radiosity')]);
+  await Promise.all([waitState(a, '#tab-radiosity', ['ready'], 120000), waitState(b, '#tab-radiosity', ['ready'], 120000)]);
+  await Promise.all([radiosityStep(a, '#rad-step-10', 10), radiosityStep(b, '#rad-step-10', 10)]);
+  observed.twoTabs = [await history(a), await history(b)];
+  log('done');
+  observed.seen = seen;
+  fs.writeFileSync(output, JSON.stringify(observed, null, 1));
+}
+
+async function bench() {
+  const results = { clicks: [], shots: [] };
+  const page = await open('tree');
+  await waitState(page, '#tab-tree', ['ready']);
+  for (const scene of options.scenes) {
+    await setValue(page, '#tree-scene', scene);
+    await waitState(page, '#tab-tree', ['ready'], 120000);
+    const size = await page.$eval('#tree-image', img => [img.naturalWidth, img.naturalHeight]);
+    // A grid of pixels over the image, each clicked once after a first warm-up click.
+    await clickPixel(page, Math.floor(size[0] / 2), Math.floor(size[1] / 2));
+    for (let i = 0; i < options.clicks; ++i) {
+      const x = Math.floor((0.1 + 0.8 * ((i * 7) % options.clicks) / options.clicks) * size[0]);
+      const y = Math.floor((0.15 + 0.7 * ((i * 3) % options.clicks) / options.clicks) * size[1]);
+      const r = await clickPixel(page, x, y);
+      results.clicks.push({ scene, pixel: r.pixel, ms: r.ms, nodes: (await treeObservation(page)).nodes.length });
+    }
+  }
+  await openTab(page, 'radiosity', '#tab-radiosity');
+  results.patches = Number(await page.$eval('#tab-radiosity', s => s.dataset.patches));
+  // One shot per press of "1 step": the request, the repaint and the chart after every shot.
+  await radiosityStep(page, '#rad-step-1', 1);
+  let started = Date.now();
+  for (let k = 2; k <= options.single + 1; ++k) await radiosityStep(page, '#rad-step-1', k);
+  results.single = { shots: options.single, seconds: (Date.now() - started) / 1000 };
+  // "run": as many shots per request as keep the picture moving (lab_radiosity.js, toggleRun).
+  const before = Number(await page.$eval('#tab-radiosity', s => s.dataset.steps));
+  started = Date.now();
+  await press(page, '#rad-run');
+  await page.waitForFunction(n => Number(document.querySelector('#tab-radiosity').dataset.steps) >= n, { timeout: 600000, polling: 50 }, before + options.shots);
+  await press(page, '#rad-run');
+  await waitState(page, '#tab-radiosity', ['ready', 'done']);
+  const after = Number(await page.$eval('#tab-radiosity', s => s.dataset.steps));
+  results.run = { shots: after - before, seconds: (Date.now() - started) / 1000 };
+  fs.writeFileSync(output, JSON.stringify(results, null, 1));
+}
+
+async function screenshots() {
+  fs.mkdirSync(output, { recursive: true });
+  const shot = async (page, file, height) => {
+    await page.setViewport({ width: 1200, height });
+    await page.evaluate(() => window.scrollTo(0, 0));
+    await new Promise(r => setTimeout(r, 400));  // the 3D views redraw at the new size
+    await page.screenshot({ path: path.join(output, file) });
+  };
+  const page = await open('tree', { width: 1200, height: 1000 });
+  await waitState(page, '#tab-tree', ['ready']);
+  await clickPixel(page, ...options.pixel);
+  // The shadow ray that crosses the glass, selected: its segments in the details.
+  await page.$eval('#tree-diagram .tree-node[data-kind="shadow"][data-segments="2"]', g => g.dispatchEvent(new MouseEvent('click')));
+  await shot(page, 'lab_ray_tree.png', 1000);
+  await openTab(page, 'radiosity', '#tab-radiosity');
+  await radiosityStep(page, '#rad-step-10', 10);
+  await shot(page, 'lab_radiosity.png', 760);
+  await setValue(page, '#rad-paint', 'row');
+  await page.waitForFunction(() => document.querySelector('#rad-caption').textContent.includes('row'), { polling: 20 });
+  await shot(page, 'lab_radiosity_row.png', 760);
+  await openTab(page, 'hemicube', '#tab-hemicube', ['drawn']);
+  if (options.patch !== null) await hemicube(page, options.patch, 64);
+  await shot(page, 'lab_hemicube.png', 1180);
+  await openTab(page, 'compare', '#tab-compare', ['compared', 'missing']);
+  if (options.compare) await compare(page, ...options.compare);
+  await shot(page, 'lab_compare.png', 640);
+  fs.writeFileSync(path.join(output, 'browser.json'), JSON.stringify(seen, null, 1));
+}
+
+try {
+  await { test, bench, screenshots }[mode]();
+} catch (e) {
+  console.error(`browser.mjs: ${e.stack || e}`);
+  process.exitCode = 1;
+} finally {
+  await browser.close();
+  fs.rmSync(profile, { recursive: true, force: true });
+}

@@ -1,0 +1,135 @@
+#!/usr/bin/env python3
+"""Compiles the lab's page into the `illum` binary (run by the build, tools/lab/lab.cmake).
+
+    embed_assets.py --source SOURCE_TREE --out BUILD/generated/lab_assets.cpp
+
+Writes a C++ file defining illum::lab::lab_assets() (tools/lab/lab_assets.hpp)
+with every file of tools/lab/web/ (index.html is served at "/", the others
+under "/assets/") and three.js from SOURCE_TREE/node_modules/three, the
+version package-lock.json pins (npm ci), under "/assets/three/": the module
+build, its core, OrbitControls, the wide-line add-ons and the licence. The
+add-ons import the bare name 'three'; it is rewritten to the module's own
+path, so that the page needs no import map (and no inline script). When node_modules/three is
+missing the page is still embedded, lab_has_three() returns false, and the
+page says how to get it.
+
+The file is rewritten only when its text changes, so a build that runs this
+every time recompiles nothing when nothing changed.
+"""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from pathlib import Path
+
+THREE_FILES = [  # (path under node_modules/three, name under /assets/three/)
+    ("build/three.module.js", "three.module.js"),
+    ("build/three.core.js", "three.core.js"),
+    ("examples/jsm/controls/OrbitControls.js", "OrbitControls.js"),
+    # Lines wider than one pixel (WebGL draws plain lines 1 pixel wide).
+    ("examples/jsm/lines/LineSegments2.js", "LineSegments2.js"),
+    ("examples/jsm/lines/LineSegmentsGeometry.js", "LineSegmentsGeometry.js"),
+    ("examples/jsm/lines/LineMaterial.js", "LineMaterial.js"),
+    ("LICENSE", "LICENSE.txt"),
+]
+# JavaScript as application/javascript with a charset: cpp-httplib compresses text/* (and the bare
+# application/javascript) on the fly, with brotli when the browser offers it, which takes seconds for
+# three.js; on 127.0.0.1 the bytes cost nothing.
+TYPES = {".html": "text/html; charset=utf-8", ".js": "application/javascript; charset=utf-8",
+         ".css": "text/css; charset=utf-8", ".txt": "text/plain; charset=utf-8", ".svg": "image/svg+xml"}
+# GCC's -Wpedantic warns about string literals longer than 65,536 bytes.
+CHUNK = 60_000
+
+
+def chunks(data: bytes) -> list[bytes]:
+    """Pieces of at most CHUNK bytes, never cut inside a UTF-8 sequence."""
+    out, start = [], 0
+    while start < len(data):
+        end = min(len(data), start + CHUNK)
+        while end < len(data) and (data[end] & 0xC0) == 0x80:
+            end -= 1
+        out.append(data[start:end])
+        start = end
+    return out
+
+
+def delimiter(data: bytes) -> str:
+    for n in range(1000):
+        d = f"lab{n}"
+        if f"){d}\"".encode() not in data:
+            return d
+    raise SystemExit("embed_assets.py: no raw-string delimiter fits")
+
+
+def collect(source: Path) -> tuple[list[tuple[str, str, bytes]], bool]:
+    web = source / "tools" / "lab" / "web"
+    assets = []
+    for path in sorted(web.iterdir()):
+        if not path.is_file() or path.name.startswith("."):
+            continue
+        url = "/" if path.name == "index.html" else f"/assets/{path.name}"
+        assets.append((url, TYPES.get(path.suffix, "application/octet-stream"), path.read_bytes()))
+    three = source / "node_modules" / "three"
+    have_three = all((three / f).is_file() for f, _ in THREE_FILES)
+    if have_three:
+        for relative, name in THREE_FILES:
+            data = (three / relative).read_bytes()
+            if name.endswith(".js") and not name.startswith("three."):  # an add-on: it imports 'three'
+                data = data.replace(b"from 'three';", b"from './three.module.js';")
+                if b"from 'three'" in data or b'from "three"' in data:
+                    raise SystemExit(f"embed_assets.py: {name} still imports 'three'")
+            assets.append((f"/assets/three/{name}", TYPES[Path(name).suffix], data))
+    return assets, have_three
+
+
+def cpp(assets: list[tuple[str, str, bytes]], have_three: bool) -> str:
+    lines = ["// Written by tools/lab/embed_assets.py at build time: do not edit.",
+             '#include "lab/lab_assets.hpp"', "", "namespace illum::lab {", "", "namespace {", ""]
+    for i, (_, _, data) in enumerate(assets):
+        d = delimiter(data)
+        lines.append(f"const char* const asset_{i}[] = {{")
+        for piece in chunks(data):
+            lines.append(f'R"{d}(' + piece.decode("utf-8", errors="surrogateescape") + f'){d}",')
+        lines.append("};")
+        lines.append(f"const std::size_t asset_{i}_sizes[] = {{{', '.join(str(len(p)) for p in chunks(data)) or '0'}}};")
+        lines.append("")
+    lines += ["std::string join(const char* const* pieces, const std::size_t* sizes, std::size_t count) {",
+              "  std::string out;",
+              "  for (std::size_t i = 0; i < count; ++i) out.append(pieces[i], sizes[i]);",
+              "  return out;", "}", "", "}  // namespace", "",
+              "const std::vector<LabAsset>& lab_assets() {",
+              "  static const std::vector<LabAsset> assets = {"]
+    for i, (url, kind, data) in enumerate(assets):
+        n = len(chunks(data))
+        lines.append(f'      {{"{url}", "{kind}", join(asset_{i}, asset_{i}_sizes, {n})}},')
+    lines += ["  };", "  return assets;", "}", "",
+              f"bool lab_has_three() {{ return {'true' if have_three else 'false'}; }}", "",
+              "}  // namespace illum::lab", ""]
+    return "\n".join(lines)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--source", type=Path, required=True)
+    parser.add_argument("--out", type=Path, required=True)
+    args = parser.parse_args()
+    assets, have_three = collect(args.source.resolve())
+    text = cpp(assets, have_three)
+    try:
+        if args.out.read_text(encoding="utf-8", errors="surrogateescape") == text:
+            return 0
+    except OSError:
+        pass
+    args.out.parent.mkdir(parents=True, exist_ok=True)
+    tmp = args.out.with_name(args.out.name + ".tmp")
+    tmp.write_text(text, encoding="utf-8", errors="surrogateescape")
+    os.replace(tmp, args.out)
+    if not have_three:
+        print("embed_assets.py: node_modules/three is missing (run tools/install-deps): the lab's 3D views "
+              "will say so", file=sys.stderr)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,45 @@
+# `illum lab` (docs/lab.md), part of the illum_cli target. It needs cpp-httplib
+# (Debian's libcpp-httplib-dev, found through pkg-config, which gives the
+# definitions the library was compiled with); without it `illum lab` says how
+# to get it and the rest of the build is unchanged. The page and three.js are
+# compiled into the binary by embed_assets.py, run at every build (it rewrites
+# the generated file only when something changed).
+find_package(PkgConfig QUIET)
+if(PkgConfig_FOUND)
+  pkg_check_modules(ILLUM_HTTPLIB QUIET IMPORTED_TARGET GLOBAL cpp-httplib)
+endif()
+
+set(ILLUM_LAB_DIR ${CMAKE_CURRENT_SOURCE_DIR}/lab)
+target_include_directories(illum_cli PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+if(ILLUM_HTTPLIB_FOUND)
+  set(lab_generated ${CMAKE_BINARY_DIR}/generated/lab_assets.cpp)
+  add_custom_target(illum_lab_assets
+    COMMAND ${Python3_EXECUTABLE} ${ILLUM_LAB_DIR}/embed_assets.py --source ${PROJECT_SOURCE_DIR} --out ${lab_generated}
+    BYPRODUCTS ${lab_generated}
+    COMMENT "Embedding the lab's page and three.js"
+    VERBATIM)
+  # The lab's sources once, for illum_cli and for the test build against the stubs (tests/e2e/lab.cmake).
+  add_library(illum_lab_objects OBJECT ${ILLUM_LAB_DIR}/lab_common.cpp ${ILLUM_LAB_DIR}/lab_trace.cpp
+                                       ${ILLUM_LAB_DIR}/lab_radiosity.cpp ${ILLUM_LAB_DIR}/lab_compare.cpp
+                                       ${ILLUM_LAB_DIR}/lab_server.cpp ${lab_generated})
+  add_dependencies(illum_lab_objects illum_lab_assets)
+  target_include_directories(illum_lab_objects PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  target_link_libraries(illum_lab_objects PUBLIC illum_options PkgConfig::ILLUM_HTTPLIB)
+  target_sources(illum_cli PRIVATE $<TARGET_OBJECTS:illum_lab_objects>)
+  target_link_libraries(illum_cli PRIVATE PkgConfig::ILLUM_HTTPLIB)
+  # The lessons whose exercise units this build takes from exercises/ (the lab shows whose code runs).
+  set(lab_exercises "")
+  foreach(nn IN LISTS ILLUM_UNIT_LESSONS)
+    if(ILLUM_UNITS_FROM_${nn} STREQUAL "stubs")
+      list(APPEND lab_exercises ${nn})
+    endif()
+  endforeach()
+  string(REPLACE ";" "," lab_exercises "${lab_exercises}")
+  set_source_files_properties(${ILLUM_LAB_DIR}/lab_server.cpp PROPERTIES
+                              COMPILE_DEFINITIONS "ILLUM_LAB_EXERCISES=\"${lab_exercises}\"")
+else()
+  message(STATUS "illum: cpp-httplib not found (libcpp-httplib-dev): `illum lab` will say how to get it")
+  target_sources(illum_cli PRIVATE ${ILLUM_LAB_DIR}/lab_unavailable.cpp ${ILLUM_LAB_DIR}/lab_common.cpp)
+endif()
+# Where `illum lab` finds the reference images (lessons/*/figures) and, by default, the lessons' outputs.
+target_compile_definitions(illum_cli PRIVATE ILLUM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

@@ -1,0 +1,81 @@
+#pragma once
+// What every part of `illum lab` shares (docs/lab.md): the errors a request
+// can end with, the strict reading of query parameters, and the render
+// settings `illum render`, `illum trace` and the lab have in common.
+#include <cstdint>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "illum/core/image.hpp"
+#include "illum/trace/ray_tree_render.hpp"
+
+namespace illum::lab {
+
+// A request the lab refuses: answered 400 with this message.
+struct BadRequest : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+// Something the request names that does not exist (a session that expired): 404.
+struct NotFound : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+using Params = std::multimap<std::string, std::string>;
+
+// The query parameters of one request, read strictly: a parameter the
+// endpoint does not know, one given twice, an empty value, a number that
+// does not parse completely or lies outside its range is a BadRequest whose
+// message names the parameter, the value and what was expected.
+class Query {
+ public:
+  Query(const Params& params, std::vector<std::string> known);
+
+  bool has(const std::string& name) const;
+  // An integer in [lo, hi], written as decimal digits with an optional '-'.
+  long long integer(const std::string& name, long long lo, long long hi) const;
+  long long integer_or(const std::string& name, long long lo, long long hi, long long fallback) const;
+  // A finite number in [lo, hi].
+  double number(const std::string& name, double lo, double hi) const;
+  double number_or(const std::string& name, double lo, double hi, double fallback) const;
+  // One of `allowed`.
+  std::string choice(const std::string& name, const std::vector<std::string>& allowed) const;
+  std::string choice_or(const std::string& name, const std::vector<std::string>& allowed,
+                        const std::string& fallback) const;
+  // 0/1 or false/true.
+  bool flag_or(const std::string& name, bool fallback) const;
+  // Letters, digits and " _-.,()" only, at most max_length bytes (names of scenes, lessons, files).
+  std::string name(const std::string& name, std::size_t max_length = 80) const;
+  std::string name_or(const std::string& name, const std::string& fallback,
+                      std::size_t max_length = 80) const;
+
+ private:
+  const std::string& value(const std::string& name) const;
+  std::map<std::string, std::string> values_;
+};
+
+// The scenes a request may name: the command line's (a shipped name, or a
+// file named by its stem), then every shipped scene. `source` is what
+// load_scene and load_radiosity_scene take.
+struct SceneEntry {
+  std::string id, source;
+};
+std::vector<SceneEntry> scene_catalogue(const std::string& command_line_scene);
+// The entry called `id`; BadRequest naming the known ones when there is none.
+const SceneEntry& find_scene(const std::vector<SceneEntry>& catalogue, const std::string& id);
+
+// A double as a float for the browser: beyond the float range it becomes an
+// infinity (a plain cast would be undefined behaviour there).
+float to_float(double value);
+
+// {"error": message} as text.
+std::string error_json(const std::string& message);
+
+// The sky colour every ray that misses gets in `illum render`, `illum trace` and the lab.
+Color cli_background();
+
+// A PNG of a linear image (sRGB, 8 bits), in memory.
+std::string png_bytes(const Image& image);
+
+}  // namespace illum::lab

@@ -1,0 +1,252 @@
+#include "lab/lab_server.hpp"
+
+#include <atomic>
+#include <csignal>
+#include <cstring>
+#include <iostream>
+#include <thread>
+
+#include <httplib.h>
+#include <pthread.h>
+#include <nlohmann/json.hpp>
+
+#include "illum/core/error.hpp"
+#include "lab/lab_assets.hpp"
+#include "lab/lab_compare.hpp"
+#include "lab/lab_radiosity.hpp"
+#include "lab/lab_trace.hpp"
+
+#ifndef ILLUM_LAB_EXERCISES
+#define ILLUM_LAB_EXERCISES ""
+#endif
+
+namespace illum::lab {
+
+bool lab_available() { return true; }
+
+namespace {
+
+using nlohmann::json;
+
+Params params_of(const httplib::Request& request) {
+  return Params(request.params.begin(), request.params.end());
+}
+
+void send_json(httplib::Response& response, int status, const std::string& body) {
+  response.status = status;
+  response.set_content(body, "application/json; charset=utf-8");
+}
+
+// Every endpoint's body runs here: whatever it throws becomes an answer with
+// a status and a message, never a crash of the server.
+template <class Body>
+void guarded(httplib::Response& response, Body body) {
+  try {
+    body();
+  } catch (const BadRequest& e) {
+    send_json(response, 400, error_json(e.what()));
+  } catch (const NotFound& e) {
+    send_json(response, 404, error_json(e.what()));
+  } catch (const InputError& e) {  // a scene file the lab loads on demand
+    send_json(response, 400, error_json(e.what()));
+  } catch (const std::invalid_argument& e) {  // the library refuses what the request asked for
+    send_json(response, 400, error_json(e.what()));
+  } catch (const NotImplemented& e) {  // a stub of the student edition
+    send_json(
+        response, 501,
+        json{{"error", e.message()}, {"not_implemented", e.exercise()}, {"hint", e.hint()}}.dump() + "\n");
+  } catch (const std::exception& e) {
+    std::cerr << "illum lab: error: " << e.what() << "\n";
+    send_json(response, 500, error_json(std::string("the lab failed: ") + e.what()));
+  } catch (...) {
+    std::cerr << "illum lab: error: an unknown exception\n";
+    send_json(response, 500, error_json("the lab failed with an unknown exception"));
+  }
+}
+
+// SIGINT and SIGTERM are blocked in every thread (from the start of run_lab,
+// so that every thread made afterwards, OpenMP's included, inherits the
+// mask) and taken by one that waits for them, so that the server is stopped
+// from ordinary code rather than from a signal handler; a second signal
+// while stopping ends the process at once.
+class SignalWaiter {
+ public:
+  SignalWaiter() {
+    sigemptyset(&set_);
+    sigaddset(&set_, SIGINT);
+    sigaddset(&set_, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &set_, nullptr);
+  }
+  ~SignalWaiter() {
+    done_ = true;
+    if (thread_.joinable()) thread_.join();
+    pthread_sigmask(SIG_UNBLOCK, &set_, nullptr);
+  }
+  void start(httplib::Server& server) {
+    thread_ = std::thread([this, &server] { wait(server); });
+  }
+  int signal() const { return signal_; }
+
+ private:
+  void wait(httplib::Server& server) {
+    const timespec step{0, 100'000'000};
+    while (!done_) {
+      const int s = sigtimedwait(&set_, nullptr, &step);
+      if (s <= 0) continue;
+      if (signal_ != 0) std::_Exit(128 + s);  // a second Ctrl-C: do not wait for the workers
+      signal_ = s;
+      std::cerr << "illum lab: " << (s == SIGINT ? "SIGINT" : "SIGTERM") << ": stopping\n";
+      server.stop();
+    }
+  }
+
+  sigset_t set_;
+  std::atomic<bool> done_{false};
+  std::atomic<int> signal_{0};
+  std::thread thread_;
+};
+
+}  // namespace
+
+int run_lab(const LabOptions& options) {
+  std::signal(SIGPIPE, SIG_IGN);  // a tab closed mid-answer must not end the server
+  SignalWaiter signals;
+  const std::vector<SceneEntry> catalogue = scene_catalogue(options.scene);
+  TraceLab trace(catalogue, options.settings);  // loads the scene: a bad one stops here
+  RadiosityLab radiosity(catalogue);
+  const CompareLab compare(options.source, options.out);
+
+  httplib::Server server;
+  server.new_task_queue = [] { return new httplib::ThreadPool(8); };
+  server.set_keep_alive_timeout(1);  // an idle tab's connection does not hold up Ctrl-C
+  server.set_read_timeout(10);
+  server.set_write_timeout(30);
+  server.set_payload_max_length(64 * 1024);
+  // Headers and body go out in separate writes: without TCP_NODELAY, Nagle's algorithm holds the
+  // body back until the browser's delayed ACK, some 40 ms per request.
+  server.set_tcp_nodelay(true);
+  // SO_REUSEADDR only: httplib's default adds SO_REUSEPORT, with which a second lab could listen on
+  // the same port and take half of the first one's requests.
+  server.set_socket_options([](socket_t socket) {
+    const int yes = 1;
+    setsockopt(socket, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof yes);
+  });
+
+  int port = options.port;
+  if (port < 0 || port > 65535) throw std::invalid_argument("--port must lie in 0 … 65535");
+  if (port == 0) {
+    port = server.bind_to_any_port("127.0.0.1");
+    if (port <= 0) throw std::runtime_error("cannot listen on 127.0.0.1 on any port");
+  } else if (!server.bind_to_port("127.0.0.1", port)) {
+    throw std::runtime_error(
+        "cannot listen on 127.0.0.1:" + std::to_string(port) +
+        " (is another `illum lab` running there?): choose another port with --port N, or "
+        "--port 0 for any free one");
+  }
+  const std::string host = "127.0.0.1:" + std::to_string(port), local = "localhost:" + std::to_string(port);
+
+  // Only this machine's browser, by name: a page elsewhere that resolves its
+  // own host name to 127.0.0.1 (DNS rebinding) sends another Host and is refused.
+  server.set_pre_routing_handler([&](const httplib::Request& request, httplib::Response& response) {
+    const std::string h = request.get_header_value("Host");
+    if (h != host && h != local) {
+      send_json(response, 403, error_json("the lab answers requests to " + host + " or " + local + " only"));
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    if (request.method != "GET" && request.method != "HEAD") {
+      response.set_header("Allow", "GET, HEAD");
+      send_json(response, 405, error_json("the lab answers GET requests only, not " + request.method));
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    return httplib::Server::HandlerResponse::Unhandled;
+  });
+  server.set_post_routing_handler([](const httplib::Request& request, httplib::Response& response) {
+    response.set_header("X-Content-Type-Options", "nosniff");
+    // The page loads nothing from anywhere but the lab itself.
+    response.set_header("Content-Security-Policy",
+                        "default-src 'self'; img-src 'self' blob: data:; style-src 'self' 'unsafe-inline'");
+    response.set_header("Cache-Control", request.path.rfind("/api/", 0) == 0 ? "no-store" : "no-cache");
+  });
+  server.set_error_handler([](const httplib::Request& request, httplib::Response& response) {
+    if (!response.body.empty()) return;  // an endpoint's own answer
+    if (response.status == 404)
+      send_json(response, 404,
+                error_json("no such page or endpoint: " + request.path + " (see docs/lab.md)"));
+  });
+
+  for (const LabAsset& asset : lab_assets()) {
+    const LabAsset* a = &asset;
+    server.Get(std::string(asset.path), [a](const httplib::Request&, httplib::Response& response) {
+      response.set_content(a->data, std::string(a->content_type));
+    });
+  }
+  server.Get("/api/info", [&](const httplib::Request& request, httplib::Response& response) {
+    guarded(response, [&] {
+      const Query q(params_of(request), {});
+      json scenes = json::array();
+      for (const SceneEntry& e : catalogue) scenes.push_back(e.id);
+      std::error_code ec;
+      send_json(response, 200,
+                json{{"version", "illum 0.1.0"},
+                     {"scene", trace.default_scene()},
+                     {"scenes", scenes},
+                     {"settings", json::parse(trace.settings_json())},
+                     {"exercises", ILLUM_LAB_EXERCISES},
+                     {"student_edition", std::filesystem::exists(options.source / "STUDENT_EDITION", ec)},
+                     {"three", lab_has_three()},
+                     {"port", port}}
+                        .dump() +
+                    "\n");
+    });
+  });
+  const auto text_endpoint = [&](const char* path, auto method, const char* type) {
+    server.Get(path, [&, method, type](const httplib::Request& request, httplib::Response& response) {
+      guarded(response, [&] {
+        response.status = 200;
+        response.set_content(method(params_of(request)), type);
+      });
+    });
+  };
+  const char* json_type = "application/json; charset=utf-8";
+  text_endpoint(
+      "/api/scene", [&](const Params& p) { return trace.geometry_json(p); }, json_type);
+  text_endpoint(
+      "/api/render", [&](const Params& p) { return trace.render_png(p); }, "image/png");
+  text_endpoint(
+      "/api/trace", [&](const Params& p) { return trace.trace_json(p); }, json_type);
+  text_endpoint(
+      "/api/radiosity/mesh", [&](const Params& p) { return radiosity.mesh_json(p); }, json_type);
+  text_endpoint(
+      "/api/radiosity/start", [&](const Params& p) { return radiosity.start_json(p); }, json_type);
+  text_endpoint(
+      "/api/radiosity/step", [&](const Params& p) { return radiosity.step_json(p); }, json_type);
+  text_endpoint(
+      "/api/hemicube", [&](const Params& p) { return radiosity.hemicube_json(p); }, json_type);
+  text_endpoint(
+      "/api/hemicube/study", [&](const Params& p) { return radiosity.hemicube_study_json(p); }, json_type);
+  text_endpoint(
+      "/api/compare",
+      [&](const Params& p) {
+        const Query q(p, {});
+        return compare.list_json();
+      },
+      json_type);
+  text_endpoint(
+      "/api/compare/image", [&](const Params& p) { return compare.image_png(p); }, "image/png");
+  text_endpoint(
+      "/api/compare/stats", [&](const Params& p) { return compare.stats_json(p); }, json_type);
+
+  signals.start(server);
+  std::cout << "illum lab: http://" << host << "/ (scene " << trace.default_scene()
+            << "; the ray tree, radiosity shot by shot, the hemicube and your pictures; Ctrl-C stops it)"
+            << std::endl;
+  const bool listened = server.listen_after_bind();
+  if (signals.signal() != 0) {
+    std::cerr << "illum lab: stopped\n";
+    return 0;
+  }
+  if (!listened) throw std::runtime_error("the server stopped listening on " + host);
+  return 0;
+}
+
+}  // namespace illum::lab

@@ -1,0 +1,119 @@
+#!/usr/bin/env python3
+"""Screenshots of the lab's four views, for the gallery and the lesson texts (docs/lab.md).
+
+    tools/lab/screenshots.py --bin build/release/bin --out out
+
+Starts `BIN/illum lab whitted` on a free port of 127.0.0.1 (its comparison
+view reading OUT/lessonNN, the main job's outputs), drives it in headless
+Chromium with tools/lab/browser.mjs and writes OUT/lab/: lab_ray_tree.png
+(a click on Whitted's glass ball), lab_radiosity.png (ten shots on the
+2,124-patch Cornell box), lab_radiosity_row.png (the last shooter's
+form-factor row), lab_hemicube.png and lab_compare.png, with a
+manifest.json the gallery (OUT/index.html) shows. The main job runs it
+(step "lab" of tools/main_job.py). Lessons 06, 10 and 11 show three of them,
+kept as lessons/NN_topic/figures/lab_*.png by `tools/figures.py
+--update-images` (a screenshot is compared by its size only: its status
+lines carry timings).
+
+Exit status 0 when every screenshot was written; 1 otherwise, with the reason.
+"""
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import select
+import shutil
+import signal
+import subprocess
+import sys
+import time
+import urllib.request
+from pathlib import Path
+
+SOURCE = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(SOURCE / "tools"))
+from gallery.fsutil import atomic_write_text  # noqa: E402
+
+SHOTS = {
+    "lab_ray_tree.png": "The lab's ray-tree view (illum lab whitted): a click on the glass ball, its rays in 3D over "
+                        "the scene and its tree, node by node; a shadow ray through the glass is one node with its segments.",
+    "lab_radiosity.png": "Radiosity shot by shot: the 2,124-patch Cornell box after ten shots of progressive refinement, "
+                         "the shooter outlined, the unshot power against shots.",
+    "lab_radiosity_row.png": "The same, painted with the last shooter's form-factor row (log scale).",
+    "lab_hemicube.png": "The hemicube on a floor patch: its five item buffers and delta form factors unfolded, the row "
+                        "they add up to, and its error against the exact factor as the resolution grows.",
+    "lab_compare.png": "Your picture against the reference: the kept figure, the one your build drew, a difference map "
+                       "and one number.",
+}
+
+
+def start_lab(illum: Path, out: Path) -> tuple[subprocess.Popen, int]:
+    process = subprocess.Popen([str(illum), "lab", "whitted", "--port", "0", "--out", str(out)], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True)
+    deadline = time.monotonic() + 60
+    while time.monotonic() < deadline:
+        if select.select([process.stdout], [], [], 0.2)[0]:
+            match = re.search(r"http://127\.0\.0\.1:(\d+)/", process.stdout.readline())
+            if match:
+                return process, int(match.group(1))
+            break
+        if process.poll() is not None:
+            break
+    process.kill()
+    raise RuntimeError(f"illum lab did not start: {process.stderr.read()}")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--bin", type=Path, required=True, help="the build's bin/ folder (holds illum)")
+    parser.add_argument("--out", type=Path, required=True, help="the main job's output folder (writes OUT/lab)")
+    args = parser.parse_args(argv)
+    node = shutil.which("node")
+    if node is None:
+        print("screenshots: Node.js is missing: run tools/install-deps", file=sys.stderr)
+        return 1
+    out = args.out.resolve()
+    folder = out / "lab"
+    folder.mkdir(parents=True, exist_ok=True)
+    try:
+        process, port = start_lab(args.bin.resolve() / "illum", out)
+    except RuntimeError as e:
+        print(f"screenshots: {e}", file=sys.stderr)
+        return 1
+    try:
+        # The hemicube on the floor patch nearest the middle of the box's open front: it sees the
+        # whole box, and the opening shows as the directions that meet nothing.
+        with urllib.request.urlopen(f"http://127.0.0.1:{port}/api/radiosity/mesh?scene=cornell&patches=2000") as r:
+            mesh = json.load(r)
+        c, n = mesh["centroid"], mesh["normal"]
+        floor = [i for i in range(mesh["patches"]) if n[3 * i + 1] > 0.999]
+        patch = min(floor, key=lambda i: abs(c[3 * i] - 278) + abs(c[3 * i + 2] - 25)) if floor else None
+        options = folder / "options.json"
+        options.write_text(json.dumps({"pixel": [285, 173], "patch": patch, "compare": ["06", "whitted.png"]}),
+                           encoding="utf-8")
+        run = subprocess.run([node, str(SOURCE / "tools" / "lab" / "browser.mjs"), "screenshots",
+                              f"http://127.0.0.1:{port}/", str(options), str(folder)], cwd=SOURCE,
+                             stdin=subprocess.DEVNULL, timeout=600)
+        options.unlink()
+        (folder / "browser.json").unlink(missing_ok=True)
+    finally:
+        process.send_signal(signal.SIGINT)
+        try:
+            process.wait(10)
+        except subprocess.TimeoutExpired:
+            process.kill()
+    missing = [name for name in SHOTS if not (folder / name).is_file()]
+    if run.returncode != 0 or missing:
+        print(f"screenshots: the browser failed (status {run.returncode}); missing: {', '.join(missing) or 'none'}",
+              file=sys.stderr)
+        return 1
+    manifest = {"id": "lab", "title": "The lab (illum lab): its four views",
+                "outputs": [{"kind": "image", "file": name, "caption": caption} for name, caption in SHOTS.items()]}
+    atomic_write_text(folder / "manifest.json", json.dumps(manifest, indent=2) + "\n")
+    print(f"screenshots: wrote {len(SHOTS)} screenshots of the lab in {folder}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

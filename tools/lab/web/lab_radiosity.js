@@ -1,0 +1,220 @@
+// View 2: radiosity, shot by shot. A session (GET /api/radiosity/start) is
+// solved step by step (GET /api/radiosity/step) by the build's own solvers:
+// progressive refinement shoots one patch per step, its row drawn by the
+// hemicube; Jacobi and Gauss–Seidel sweep the whole matrix; Southwell relaxes
+// one row. The picture shows the patches flat or with lesson 12's vertex
+// colours, or the shooter's form-factor row; the chart the unshot power.
+import { api, decodeBase64, displayNumber, el, loadThree, logChart, setStatus, threeMissing, Viewer } from './lab_util.js';
+import { exposureFor, heat, PatchMesh } from './lab_mesh.js';
+
+export class RadiosityView {
+  constructor(info) {
+    this.info = info;
+    this.section = document.getElementById('tab-radiosity');
+    this.status = document.getElementById('rad-status');
+    this.holder = document.getElementById('rad-3d');
+    this.sceneSelect = document.getElementById('rad-scene');
+    for (const s of info.scenes) this.sceneSelect.append(el('option', { value: s, text: s }));
+    this.sceneSelect.value = info.scenes.includes('cornell') ? 'cornell' : info.scene;
+    const resolution = document.getElementById('rad-resolution');
+    for (const r of [16, 32, 64, 96, 128, 256]) resolution.append(el('option', { value: r, text: `${r} pixels` }));
+    resolution.value = '128';
+    this.method = document.getElementById('rad-method');
+    this.method.addEventListener('change', () => {
+      document.getElementById('rad-omega-label').hidden = this.method.value !== 'gauss_seidel';
+      this.start();
+    });
+    for (const id of ['rad-scene', 'rad-patches', 'rad-resolution', 'rad-omega'])
+      document.getElementById(id).addEventListener('change', () => this.start());
+    document.getElementById('rad-start').addEventListener('click', () => this.start());
+    for (const n of [1, 10, 100]) document.getElementById(`rad-step-${n}`).addEventListener('click', () => this.step(n));
+    this.runButton = document.getElementById('rad-run');
+    this.runButton.addEventListener('click', () => this.toggleRun());
+    this.paint = document.getElementById('rad-paint');
+    // Vertex colours and the row come with a step only when shown: ask again for the last one.
+    this.paint.addEventListener('change', () => this.paint.value !== 'flat' && this.last ? this.step(0) : this.repaint());
+    this.ambient = document.getElementById('rad-ambient');
+    this.ambient.addEventListener('change', () => this.repaint());
+    document.getElementById('rad-camera-view').addEventListener('click', () => this.patchMesh && this.viewer && this.patchMesh.cameraView(this.viewer));
+    this.threeReady = info.three ? loadThree().catch(() => null) : Promise.resolve(null);
+    this.session = null;
+    this.busy = Promise.resolve();
+  }
+
+  params() {
+    const p = { scene: this.sceneSelect.value, patches: document.getElementById('rad-patches').value,
+      resolution: document.getElementById('rad-resolution').value, method: this.method.value };
+    if (this.method.value === 'gauss_seidel') p.omega = document.getElementById('rad-omega').value;
+    return p;
+  }
+
+  // Requests run one after another: a step never overtakes the session's start.
+  queue(task) {
+    this.busy = this.busy.then(task, task);
+    return this.busy;
+  }
+
+  start() {
+    this.running = false;
+    this.runButton.textContent = 'run ▶';
+    return this.queue(async () => {
+      this.section.dataset.state = 'starting';
+      const p = this.params();
+      setStatus(this.status, p.method === 'progressive' ? 'meshing…' : 'meshing and drawing the whole form-factor matrix (every row by the hemicube)…');
+      try {
+        const meshParams = { scene: p.scene, patches: p.patches };
+        const key = JSON.stringify(meshParams);
+        if (this.meshKey !== key) {
+          this.mesh = await api('/api/radiosity/mesh', meshParams);
+          this.meshKey = key;
+          await this.buildMesh();
+        }
+        const started = await api('/api/radiosity/start', p);
+        this.session = started.session;
+        this.history = [[0, 1]];
+        this.rows = [];
+        this.last = null;
+        this.section.dataset.steps = '0';
+        this.section.dataset.fraction = '1';
+        this.section.dataset.patches = String(started.patches);
+        document.querySelector('#rad-history tbody').replaceChildren();
+        this.chart();
+        this.paintFlat(new Array(3 * this.mesh.patches).fill(0), null);
+        setStatus(this.status, `${started.scene}: ${started.patches} patches (edge ${displayNumber(started.edge)}), ` +
+          `hemicube ${started.resolution}, ${p.method.replace('_', '–')}; ready`);
+        this.section.dataset.state = 'ready';
+      } catch (e) {
+        this.section.dataset.state = 'error';
+        setStatus(this.status, e.message, true);
+      }
+    });
+  }
+
+  async buildMesh() {
+    const three = await this.threeReady;
+    if (!three) { threeMissing(this.holder, this.info); this.viewer = null; this.patchMesh = null; return; }
+    if (!this.viewer) this.viewer = new Viewer(this.holder, three, { antialias: false });
+    this.viewer.scene.clear();
+    this.patchMesh = new PatchMesh(three.THREE, this.mesh);
+    this.viewer.scene.add(this.patchMesh.object);
+    this.patchMesh.cameraView(this.viewer);
+  }
+
+  step(n) {
+    if (!this.session) return this.start().then(() => this.session && this.step(n));
+    return this.queue(async () => {
+      if (!this.session) return;
+      this.section.dataset.state = 'stepping';
+      const t0 = performance.now();
+      try {
+        const r = await api('/api/radiosity/step', { session: this.session, steps: n,
+          vertex: this.paint.value === 'vertex' ? 1 : 0, row: this.paint.value === 'row' ? 1 : 0 });
+        r.radiosity = decodeBase64(r.radiosity);
+        if (r.row) r.row = decodeBase64(r.row);
+        if (r.vertex) r.vertex = decodeBase64(r.vertex);
+        this.last = r;
+        const body = document.querySelector('#rad-history tbody');
+        for (const [s, f] of r.points) {
+          this.history.push([s, f]);
+          if (body.children.length >= 200) body.lastElementChild.remove();
+          body.prepend(el('tr', { 'data-step': s, 'data-fraction': String(f) }, el('td', { text: s }),
+            el('td', { text: displayNumber(f) }), el('td', { text: s === r.steps && r.shooter >= 0 ? `${r.shooter} (${this.surface(r.shooter)})` : '' })));
+        }
+        this.repaint();
+        // While running, the chart is redrawn a few times a second, not after every step.
+        if (!this.running || !(performance.now() - (this.chartDrawn || 0) < 250)) { this.chart(); this.chartDrawn = performance.now(); }
+        const ms = performance.now() - t0;
+        this.section.dataset.steps = String(r.steps);
+        this.section.dataset.fraction = String(r.fraction);
+        const what = this.method.value === 'progressive' ? 'shots' : this.method.value === 'southwell' ? 'steps' : 'sweeps';
+        setStatus(this.status, `${r.steps} ${what}; unshot / emitted ${displayNumber(r.fraction)}` +
+          (r.shooter >= 0 ? `; last ${this.method.value === 'progressive' ? 'shooter' : 'row relaxed'}: patch ${r.shooter} (${this.surface(r.shooter)})` : '') +
+          (r.done ? '; nothing left to shoot' : '') +
+          `; ${displayNumber(r.seconds * 1000)} ms in the solver (${displayNumber(r.row_seconds * 1000)} in hemicube rows), ${Math.round(ms)} ms in all` +
+          (r.ambient_error ? `; ambient term: ${r.ambient_error}` : '') + (r.vertex_error ? `; vertex colours: ${r.vertex_error}` : ''));
+        this.section.dataset.state = r.done ? 'done' : 'ready';
+        document.dispatchEvent(new CustomEvent('lab:radiosity-step', { detail: { steps: r.steps, ms } }));
+      } catch (e) {
+        this.section.dataset.state = 'error';
+        this.running = false;
+        if (e.status === 404) {  // the lab keeps the most recent sessions only: this one expired
+          this.session = null;
+          setStatus(this.status, `${e.message}: press a step button to start again from the beginning`, true);
+        } else {
+          setStatus(this.status, e.message, true);
+        }
+      }
+    });
+  }
+
+  // Steps until paused, as many per request as keep the picture moving about seven times a second:
+  // one at first, more as long as a frame (the request, the repaint, the browser's drawing) takes
+  // less than 150 ms. Every step still adds its point to the chart and the table.
+  async toggleRun() {
+    this.running = !this.running;
+    this.runButton.textContent = this.running ? 'pause ❚❚' : 'run ▶';
+    let batch = 1;
+    const started = performance.now(), first = this.last ? this.last.steps : 0;
+    while (this.running) {
+      const t0 = performance.now();
+      await this.step(batch);
+      await new Promise(resolve => requestAnimationFrame(() => resolve()));
+      if (!this.last || this.last.done || this.last.fraction < 1e-6 || this.section.dataset.state === 'error') break;
+      const frame = performance.now() - t0;
+      batch = Math.max(Math.ceil(batch / 2), Math.min(2 * batch, 200, Math.round(batch * 150 / Math.max(1, frame)) || 1));
+      const rate = (this.last.steps - first) / ((performance.now() - started) / 1000);
+      this.section.dataset.runRate = rate.toFixed(1);
+      this.runButton.textContent = `pause ❚❚ (${Math.round(rate)} steps a second)`;
+    }
+    this.running = false;
+    this.runButton.textContent = 'run ▶';
+    this.chart();
+  }
+
+  surface(i) { return this.patchMesh ? this.patchMesh.surfaceOf(i) : (this.mesh.surfaces.find(s => i >= s.first && i < s.first + s.count) || {}).name; }
+
+  displayed() {
+    const r = this.last, m = this.mesh;
+    const b = r.radiosity.slice();
+    if (this.ambient.checked && r.ambient)
+      for (let i = 0; i < m.patches; ++i) for (let k = 0; k < 3; ++k) b[3 * i + k] += m.reflectance[3 * i + k] * r.ambient[k];
+    return b;
+  }
+
+  paintFlat(b, shooter) {
+    if (!this.patchMesh) return;
+    const exposure = exposureFor(this.mesh, b);
+    this.patchMesh.paintPatches(i => [0, 1, 2].map(k => Math.min(1, exposure * b[3 * i + k])));
+    this.patchMesh.outlinePatch(this.viewer.scene, shooter === null ? -1 : shooter);
+    this.viewer.draw();
+  }
+
+  repaint() {
+    if (!this.last || !this.patchMesh) return;
+    const r = this.last, m = this.mesh;
+    const caption = document.getElementById('rad-caption');
+    if (this.paint.value === 'row' && r.row) {
+      this.patchMesh.paintPatches(i => i === r.shooter ? [1, 0.1, 0.8] : heat(r.row[i]));
+      caption.textContent = r.row_kind === 'row'
+        ? `Patch ${r.shooter}'s row F_ij, log scale (10⁻⁶ dark blue … 1 yellow): how much of what it shoots lands on each patch.`
+        : `Column F_j${r.shooter} of the patch Southwell relaxed, log scale: how its change reaches every other residual.`;
+    } else if (this.paint.value === 'vertex' && r.vertex) {
+      const b = this.displayed();
+      const exposure = exposureFor(m, b);
+      const extra = i => this.ambient.checked && r.ambient ? [0, 1, 2].map(k => m.reflectance[3 * i + k] * r.ambient[k]) : [0, 0, 0];
+      this.patchMesh.paintCorners((c, i) => { const a = extra(i); return [0, 1, 2].map(k => Math.min(1, exposure * (r.vertex[3 * c + k] + a[k]))); });
+      caption.textContent = 'Vertex colours (lesson 12, extrapolated at the walls\' edges), Gouraud-shaded; the shooter is outlined.';
+    } else {
+      this.paintFlat(this.displayed(), r.shooter >= 0 ? r.shooter : null);
+      caption.textContent = 'One flat colour per patch' + (this.ambient.checked && r.ambient ? ', the ambient term added for display' : '') + '; the shooter is outlined.';
+      return;
+    }
+    this.patchMesh.outlinePatch(this.viewer.scene, r.shooter);
+    this.viewer.draw();
+  }
+
+  chart() {
+    logChart(document.getElementById('rad-chart'), [{ points: this.history }],
+      { xLabel: this.method.value === 'progressive' ? 'shots' : this.method.value === 'southwell' ? 'steps' : 'sweeps', yLabel: 'unshot / emitted' });
+  }
+}
