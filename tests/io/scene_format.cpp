@@ -430,12 +430,14 @@ TEST_SUITE("io") {
     CHECK(contains(missing, "\"nowhere.obj\""));
     CHECK(contains(missing, "cannot open the OBJ file"));
     CHECK(contains(missing, (folder.path / "nowhere.obj").string()));
+    // The line of the face, the corner, the index as written and the count it exceeds.
     const std::string index = refusal(mesh_scene("bad_index.obj"), "primitives[0].obj", folder.path);
-    CHECK(contains(index, "bad_index.obj: face 2 refers to vertex 9, out of range: the file has 3 vertices"));
+    CHECK(contains(index, "bad_index.obj, line 5: vertex index '9' of corner 3 is out of range"));
+    CHECK(contains(index, "the file defines 3 vertices"));
     CHECK(contains(refusal(mesh_scene("bad_normal.obj"), "primitives[0].obj", folder.path),
-                   "face 1 refers to normal 4, out of range: the file has 1 normals"));
+                   "line 5: normal index '4' of corner 3 is out of range: the file defines 1 normal"));
     CHECK(contains(refusal(mesh_scene("zero_index.obj"), "primitives[0].obj", folder.path),
-                   "not a valid OBJ file"));
+                   "line 4: vertex index '0' of corner 1 is 0: OBJ indices start at 1"));
   }
 
   TEST_CASE("a shipped scene uses shipped OBJ files only") {
