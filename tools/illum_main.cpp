@@ -162,6 +162,7 @@ int main(int argc, char** argv) {
   illum::WriteTransaction transaction(out, "--out", "illum");
   int status = 0;
   const int failed = illum::run_in_transaction("illum", transaction, [&] {
+    if (!out.empty()) illum::check_output_folder(out, "--out");
     if (version->parsed()) std::cout << "illum 0.1.0\n";
     if (list->parsed())
       for (const auto& s : illum::embedded_scenes()) std::cout << s.name << "\n";

@@ -18,6 +18,7 @@
 #include "illum/core/random.hpp"
 #include "illum/core/stopwatch.hpp"
 #include "illum/geometry/sphere.hpp"
+#include "illum/io/cli_checks.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
@@ -546,9 +547,10 @@ int main(int argc, char** argv) {
       [&](CLI::App& app) {
         app.add_option("--pixel", pixel, "Inspect the ray tree of pixel X Y of the Whitted image")
             ->expected(2);
-        app.add_option("--forward-rays", forward_most,
-                       "Most photons of the forward-tracing study (default 1e6)")
-            ->check(CLI::Range(1e3, 1e8));
+        // --quick stops the study at 1e4 photons: with it, --forward-rays would be ignored.
+        illum::exclude_quick(app, {app.add_option("--forward-rays", forward_most,
+                                                  "Most photons of the forward-tracing study (default 1e6)")
+                                       ->check(illum::number_range(1e3, 1e8))});
       },
       [&](const illum::ProgramOptions& options) {
         using namespace illum;

@@ -23,6 +23,7 @@
 #include "illum/core/error.hpp"
 #include "illum/core/memory_budget.hpp"
 #include "illum/core/stopwatch.hpp"
+#include "illum/io/cli_checks.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
@@ -770,14 +771,16 @@ void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers
                  "the figure's largest patch edge in mm (instead of --patches)")
       ->check(finite_number & CLI::Range(1.0, 10000.0))
       ->excludes(patches);
-  app.add_option("--hemicube-resolution", settings.figure_resolution,
-                 "hemicube resolution of the figure (even, 8 to 2048)")
-      ->check(even & CLI::Range(8, 2048))
-      ->capture_default_str();
+  CLI::Option* resolution = app.add_option("--hemicube-resolution", settings.figure_resolution,
+                                           "hemicube resolution of the figure (even, 8 to 2048)")
+                                ->check(even & CLI::Range(8, 2048))
+                                ->capture_default_str();
+  // --quick meshes 300 patches at resolution 32: with it, these two would be ignored.
+  exclude_quick(app, {patches, resolution});
   app.add_option("--unshot", settings.unshot_threshold,
                  "stop the figure when the unshot power is below this fraction of the emitted "
                  "(at least 0.01 with --quick)")
-      ->check(finite_number & CLI::Range(1e-9, 0.5))
+      ->check(number_range(1e-9, 0.5))
       ->capture_default_str();
   app.add_option("--row-memory", settings.row_memory_mb,
                  "MiB of hemicube rows kept for patches that shoot again (0: only the rows in flight)")
@@ -797,10 +800,19 @@ int main(int argc, char** argv) {
       "10, 100 shots; a ~2,000-patch box by progressive refinement with hemicube rows on demand."};
   Settings settings;
   std::vector<Solver> solvers;
+  const CLI::Option* unshot = nullptr;  // to tell a given --unshot from the default
   return run_program(
-      argc, argv, info, [&](CLI::App& app) { add_options(app, settings, solvers); },
+      argc, argv, info,
+      [&](CLI::App& app) {
+        add_options(app, settings, solvers);
+        unshot = app.get_option("--unshot");
+      },
       [&](const ProgramOptions& options) {
         settings.quick = options.quick;
+        if (settings.quick && unshot->count() > 0 && settings.unshot_threshold < 0.01)
+          throw InputError("command line", "--unshot", bound_text(settings.unshot_threshold),
+                           "--quick stops the figure at 0.01 of the emitted power at the earliest; give "
+                           "--unshot 0.01 or more, or leave out --quick");
         if (settings.quick) settings.unshot_threshold = std::max(settings.unshot_threshold, 0.01);
         if (!solvers.empty()) settings.solvers = solvers;
         // Validate before writing: the scene as the study meshes it.

@@ -337,6 +337,7 @@ struct Journal {
   bool open = false;
   std::string option = "--out", program = "illum";
   fs::path out_given;  // the output folder as named, absolute
+  fs::path out_shown;  // as the user wrote it, for messages
   bool staged = false;
   fs::path out_real;  // where it is (links resolved)
   fs::path staging;
@@ -452,6 +453,20 @@ void clean_stale(const fs::path& home, const std::string& prefix, const fs::path
   }
 }
 
+// The PID a lock file holds ("unknown" when it holds none yet).
+std::string lock_owner(int fd) {
+  char text[32] = {};
+  const ssize_t n = ::pread(fd, text, sizeof text - 1, 0);
+  std::string pid = n > 0 ? std::string(text, static_cast<std::size_t>(n)) : "";
+  while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' ')) pid.pop_back();
+  return pid.empty() ? "unknown" : pid;
+}
+
+std::string in_use(const std::string& option, const fs::path& folder, const std::string& owner) {
+  return option + " " + folder.string() + " is in use by another run (PID " + owner +
+         "): wait for it to end, or give this run another " + option;
+}
+
 // The lock of the output folder: an flock on a file beside it holding the
 // owner's PID. A second run finds it taken and stops with that PID.
 bool take_lock(Journal& j, const fs::path& path) {
@@ -460,14 +475,10 @@ bool take_lock(Journal& j, const fs::path& path) {
     if (fd < 0) return false;
     if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int e = errno;
-      char text[32] = {};
-      const ssize_t n = ::pread(fd, text, sizeof text - 1, 0);
+      const std::string owner = lock_owner(fd);
       ::close(fd);
       if (e != EWOULDBLOCK) fail("cannot lock " + path.string() + ": " + errno_text(e));
-      std::string pid = n > 0 ? std::string(text, static_cast<std::size_t>(n)) : "unknown";
-      while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' ')) pid.pop_back();
-      fail(j.option + " " + j.out_given.string() + " is in use by another run (PID " + pid +
-           "): wait for it to end, or give this run another " + j.option);
+      fail(in_use(j.option, j.out_shown, owner));
     }
     // The file may have been removed by the run that held it between our open and our lock.
     struct stat held {
@@ -503,12 +514,13 @@ void release_lock(Journal& j) {
 void ensure_staging(Journal& j) {
   if (j.staged) return;
   const fs::path& given = j.out_given;
+  const fs::path& shown = j.out_shown;
   struct stat st {};
   bool exists = false;
   if (::lstat(given.c_str(), &st) == 0) {
     struct stat followed {};
     if (::stat(given.c_str(), &followed) != 0 || !S_ISDIR(followed.st_mode))
-      fail(j.option + " " + given.string() + ": it is " +
+      fail(j.option + " " + shown.string() + ": it is " +
            (S_ISREG(st.st_mode) ? std::string("a file") : kind_of(st)) + ", not a folder");
     exists = true;
     j.out_real = fs::canonical(given);
@@ -517,8 +529,12 @@ void ensure_staging(Journal& j) {
     j.out_real = fs::weakly_canonical(given, ec);
     if (ec) j.out_real = given;
   } else {
-    fail(j.option + " " + given.string() + ": " + errno_text(errno));
+    fail(j.option + " " + shown.string() + ": " + errno_text(errno));
   }
+  // A folder this run cannot write into is refused now, not after its work (root passes access(), and
+  // then learns of a read-only file system from the first write).
+  if (exists && ::access(j.out_real.c_str(), W_OK | X_OK) != 0)
+    fail("cannot write into " + shown.string() + " (" + j.option + "): " + errno_text(errno));
   // Beside the folder, so that the folder itself is never touched before the
   // end; inside it (".illum-staging-…") when it is a mount point or the root,
   // or when its parent cannot be written.
@@ -530,7 +546,7 @@ void ensure_staging(Journal& j) {
     if (::stat(parent.c_str(), &p) != 0 || ::stat(j.out_real.c_str(), &d) != 0 || p.st_dev != d.st_dev)
       beside = false;
   }
-  if (beside && !exists) make_folders(j, parent, given, true);
+  if (beside && !exists) make_folders(j, parent, shown, true);
   fs::path home = beside ? parent : j.out_real;
   std::string prefix = beside ? "." + j.out_real.filename().string() + "." : ".";
   if (!take_lock(j, home / (prefix + "illum-lock"))) {
@@ -541,11 +557,11 @@ void ensure_staging(Journal& j) {
       if (!inside_instead) e = errno;
     }
     if (!inside_instead)
-      fail("cannot write into " + given.string() + " (" + j.option + "): " + errno_text(e));
+      fail("cannot write into " + shown.string() + " (" + j.option + "): " + errno_text(e));
     home = j.out_real;
     prefix = ".";
   }
-  clean_stale(home, prefix, j.out_real, given);
+  clean_stale(home, prefix, j.out_real, shown);
   for (int attempt = 0;; ++attempt) {
     const fs::path staging = home / (prefix + "illum-staging-" + random_letters(12));
     if (::mkdir(staging.c_str(), 0777) == 0) {
@@ -555,7 +571,7 @@ void ensure_staging(Journal& j) {
     if (errno != EEXIST || attempt > 100) {
       const int e = errno;
       release_lock(j);
-      fail("cannot write into " + given.string() + " (" + j.option + "): " + errno_text(e));
+      fail("cannot write into " + shown.string() + " (" + j.option + "): " + errno_text(e));
     }
   }
   copy_path(signal_state().staging, j.staging.string());
@@ -589,6 +605,7 @@ void close_journal(Journal& j) {
   j.staged = false;
   j.staging.clear();
   j.out_given.clear();
+  j.out_shown.clear();
   j.out_real.clear();
   j.created_folders.clear();
   j.pending.clear();
@@ -612,6 +629,39 @@ void create_output_directories(const fs::path& folder) {
   std::lock_guard lock(j.mutex);
   const Destination d = destination(j, folder);
   make_folders(j, d.file, d.shown, j.open && !d.staged);
+}
+
+void check_output_folder(const fs::path& folder, const std::string& option) {
+  const fs::path given = absolute_normal(folder);
+  fs::path p = given;
+  for (;; p = p.parent_path()) {
+    struct stat st {};
+    if (::lstat(p.c_str(), &st) == 0) {
+      struct stat followed {};
+      if (::stat(p.c_str(), &followed) != 0 || !S_ISDIR(followed.st_mode))
+        fail(option + " " + folder.string() + ": " + (p == given ? std::string("it") : p.string()) + " is " +
+             (S_ISREG(st.st_mode) ? std::string("a file") : kind_of(st)) + ", not a folder");
+      break;
+    }
+    if (errno != ENOENT && errno != ENOTDIR) fail(option + " " + folder.string() + ": " + errno_text(errno));
+    if (p == p.parent_path()) return;
+  }
+  if (p != given) return;  // a new folder: nobody else's run is in it
+  // Another run's lock, tried without taking it (a shared lock fails while it holds its exclusive one).
+  std::error_code ec;
+  const fs::path real = fs::canonical(given, ec);
+  if (ec || real.filename().empty()) return;
+  for (const fs::path& lock :
+       {real.parent_path() / ("." + real.filename().string() + ".illum-lock"), real / ".illum-lock"}) {
+    const int fd = ::open(lock.c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) continue;
+    if (::flock(fd, LOCK_SH | LOCK_NB) != 0 && errno == EWOULDBLOCK) {
+      const std::string owner = lock_owner(fd);
+      ::close(fd);
+      fail(in_use(option, folder, owner));
+    }
+    ::close(fd);
+  }
 }
 
 void check_replaceable(const fs::path& path, const std::string& option) {
@@ -675,6 +725,7 @@ WriteTransaction::WriteTransaction(fs::path output_folder, std::string option, s
   j.option = std::move(option);
   j.program = std::move(program);
   j.out_given = output_folder.empty() ? fs::path() : absolute_normal(output_folder);
+  j.out_shown = output_folder;
   SignalState& s = signal_state();
   copy_path(s.program, j.program);
   copy_path(s.out, output_folder.string());
@@ -711,7 +762,7 @@ void WriteTransaction::commit() {
       const bool absent = ::lstat(j.out_real.c_str(), &st) != 0 && errno == ENOENT;
       // A new folder is the staging folder renamed: all its files appear at once.
       if (!(absent && ::rename(j.staging.c_str(), j.out_real.c_str()) == 0))
-        move_into(j.staging, j.out_real, j.out_given);
+        move_into(j.staging, j.out_real, j.out_shown);
       s.has_staging.store(false);
     }
     for (const Pending& p : j.pending)

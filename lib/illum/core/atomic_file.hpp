@@ -53,6 +53,12 @@ void create_output_directories(const std::filesystem::path& folder);
 // regular files". For options checked before a run writes anything.
 void check_replaceable(const std::filesystem::path& path, const std::string& option);
 
+// Checks, before a run does any work, that `folder` can be its output
+// folder: a folder, or missing with a folder as its nearest existing
+// ancestor, and not locked by another run ("in use by PID 1234").
+// Creates nothing. Throws std::runtime_error naming `option`.
+void check_output_folder(const std::filesystem::path& folder, const std::string& option);
+
 // One per process at a time (opening a second throws std::logic_error).
 class WriteTransaction {
  public:

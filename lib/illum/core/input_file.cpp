@@ -61,7 +61,8 @@ std::string read_input_file(const std::filesystem::path& file, const std::string
   if (::fstat(in.fd, &st) != 0)
     throw InputFileError("cannot examine the " + what + ": " + std::strerror(errno));
   if (!S_ISREG(st.st_mode)) {
-    if (S_ISDIR(st.st_mode)) throw InputFileError("this is a directory, not a " + what);
+    if (S_ISDIR(st.st_mode))
+      throw InputFileError("this is a directory; the " + what + " must be a regular file");
     throw InputFileError("this is " + file_kind_name(st.st_mode) + ", not a regular file: a " + what +
                          " must be a regular file");
   }

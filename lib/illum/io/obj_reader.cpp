@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <vector>
@@ -63,8 +64,13 @@ double parse_number(std::string_view token, std::size_t line, const char* what) 
   if (digits.empty() || digits.front() == '+' || error == std::errc::invalid_argument ||
       end != digits.data() + digits.size())
     throw ObjError(line, std::string(what) + " '" + shown(token) + "' is not a number");
-  if (error == std::errc::result_out_of_range && std::abs(value) < 1.0) return 0.0;  // underflow: a denormal
-  if (error == std::errc::result_out_of_range || !std::isfinite(value))
+  if (error == std::errc::result_out_of_range) {
+    // from_chars leaves the value unset: strtod tells an overflow (±HUGE_VAL) from an underflow (0 or
+    // subnormal).
+    value = std::strtod(std::string(digits).c_str(), nullptr);
+    if (std::isfinite(value)) return value;
+  }
+  if (!std::isfinite(value))
     throw ObjError(line, std::string(what) + " '" + shown(token) + "' is not a finite number");
   return value;
 }

@@ -64,7 +64,10 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
   // signal stops it, the output folder is left as it was; commit() moves the
   // run's files in at the end (validate before write, by construction).
   WriteTransaction transaction(options.out, "--out", info.id);
-  return run_in_transaction(info.id, transaction, [&] { body(options); });
+  return run_in_transaction(info.id, transaction, [&] {
+    check_output_folder(options.out, "--out");  // before any work: a file or a busy folder is refused now
+    body(options);
+  });
 }
 
 std::string refuse_switch_values(int argc, char** argv, const CLI::App& app) {
