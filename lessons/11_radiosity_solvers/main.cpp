@@ -728,6 +728,19 @@ void scaling_section(OutputFolder& out, const Settings& settings) {
             << " patches\n";
 }
 
+// Section 10 keeps all n rows of the figure's box once (n² doubles): checked
+// before anything runs, naming --patches, not after the figure's minutes.
+void check_rows_study_memory(const Settings& settings) {
+  const double n = settings.figure_patches;
+  try {
+    check_memory("the rows study, which keeps all n rows of the figure's box of at least " +
+                     std::to_string(settings.figure_patches) + " patches",
+                 n * n, sizeof(double));
+  } catch (const std::length_error& e) {
+    throw InputError("command line", "--patches", std::to_string(settings.figure_patches), e.what());
+  }
+}
+
 // The lesson's options, validated by CLI11 (a bad value: a clear error, exit 2, nothing written).
 void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers) {
   // A whole even number (checked on the text: CLI11 runs every validator before converting).
@@ -818,6 +831,7 @@ int main(int argc, char** argv) {
         // Validate before writing: the scene as the study meshes it.
         check_usable(load_scene(settings.scene, settings.quick ? 220.0 : 75.0), settings.scene);
         if (settings.figure_edge > 0) load_scene(settings.scene, settings.figure_edge);  // and the figure's
+        if (!settings.quick) check_rows_study_memory(settings);
         OutputFolder out(options.out, info.id, info.title);
         if (settings.figure_only) {
           figure_section(out, settings);

@@ -446,6 +446,10 @@ void clean_stale(const fs::path& home, const std::string& prefix, const fs::path
   for (const auto& entry : fs::directory_iterator(home, ec)) {
     const std::string name = entry.path().filename().string();
     if (name.rfind(prefix + "illum-staging-", 0) != 0) continue;
+    // Only a folder of this user's: in a shared folder (/tmp) another user's
+    // "staging folder" must never be moved into this run's output.
+    struct stat st {};
+    if (::lstat(entry.path().c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != ::geteuid()) continue;
     if (fs::exists(entry.path() / commit_marker, ec))
       move_into(entry.path(), out_real, shown);
     else
