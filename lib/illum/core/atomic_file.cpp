@@ -288,13 +288,29 @@ void remove_tree_raw(const char* path) noexcept {
 
 constexpr int handled_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGABRT};
 
+// Ends the process by `sig` with its default action, as if it had not been caught.
+[[noreturn]] void die_of(int sig) noexcept {
+  struct sigaction fallback {};
+  fallback.sa_handler = SIG_DFL;
+  ::sigaction(sig, &fallback, nullptr);
+  sigset_t mask;
+  sigemptyset(&mask);
+  sigaddset(&mask, sig);
+  ::sigprocmask(SIG_UNBLOCK, &mask, nullptr);
+  ::raise(sig);
+  ::_exit(128 + sig);
+}
+
 void on_signal(int sig) {
   SignalState& s = signal_state();
-  if (s.phase.load() == phase_committing) {  // the files are moving in: let the move finish
-    s.deferred.store(sig);
-    return;
+  // Either this handler or commit() wins the state: a run that is moving its
+  // files in finishes the move (and the signal waits), one that is not is removed.
+  int phase = phase_open;
+  if (!s.phase.compare_exchange_strong(phase, phase_dying)) {
+    if (phase == phase_committing) s.deferred.store(sig);
+    if (phase != phase_closed) return;  // committing, or another thread is already cleaning up
+    die_of(sig);                        // the run is over: the signal's own effect
   }
-  if (s.phase.exchange(phase_dying) == phase_dying) return;  // another thread is already cleaning up
   const int saved = errno;
   terminate_running_tool();
   for (int k = s.temp_count.load() - 1; k >= 0; --k) ::unlink(s.temps[k]);
@@ -309,15 +325,7 @@ void on_signal(int sig) {
   say(s.out[0] ? s.out : "the output");
   say(" is as it was\n");
   errno = saved;
-  struct sigaction fallback {};
-  fallback.sa_handler = SIG_DFL;
-  ::sigaction(sig, &fallback, nullptr);
-  sigset_t mask;
-  sigemptyset(&mask);
-  sigaddset(&mask, sig);
-  ::sigprocmask(SIG_UNBLOCK, &mask, nullptr);
-  ::raise(sig);
-  ::_exit(128 + sig);
+  die_of(sig);
 }
 
 // A thread that writes while another cleans up after a signal waits for the end.
@@ -759,7 +767,8 @@ void WriteTransaction::commit() {
   if (!j.open) return;
   SignalState& s = signal_state();
   for (const Pending& p : j.pending) refuse_unless_replaceable(p.target, p.target, false);
-  s.phase.store(phase_committing);
+  int phase = phase_open;
+  if (!s.phase.compare_exchange_strong(phase, phase_committing)) stop_if_dying();  // a signal won: it ends us
   try {
     if (j.staged) {
       struct stat st {};
