@@ -184,14 +184,14 @@ TEST_SUITE("io") {
 
   TEST_CASE("OBJ: a mesh beyond the memory budget is refused before it is filled") {
     if (sanitized) return;
-    // 600,000 triangles at obj_bytes_per_triangle = 256 bytes: 154 MB, against a budget
-    // of half of 200 MB of address space left.
+    // 600,000 triangles at obj_bytes_per_triangle = 512 bytes (and 3 vertices of 24): 307.2 MB,
+    // against a budget of half of the 200 MB of address space left.
     std::string text = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
     for (int i = 0; i < 600000; ++i) text += "f 1 2 3\n";
     const AddressSpaceLimit limit(200e6);
     const std::string e = refusal(text);
     CHECK(e.find("a mesh of 600000 triangles") != std::string::npos);
-    CHECK(e.find("would need 153.6 MB") != std::string::npos);
+    CHECK(e.find("would need 307.2 MB") != std::string::npos);
     CHECK(e.find("ulimit -v") != std::string::npos);
   }
 

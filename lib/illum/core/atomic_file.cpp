@@ -458,10 +458,14 @@ void clean_stale(const fs::path& home, const std::string& prefix, const fs::path
     // "staging folder" must never be moved into this run's output.
     struct stat st {};
     if (::lstat(entry.path().c_str(), &st) != 0 || !S_ISDIR(st.st_mode) || st.st_uid != ::geteuid()) continue;
-    if (fs::exists(entry.path() / commit_marker, ec))
-      move_into(entry.path(), out_real, shown);
-    else
-      fs::remove_all(entry.path(), ec);
+    if (fs::exists(entry.path() / commit_marker, ec)) try {
+        move_into(entry.path(), out_real, shown);
+      } catch (const std::runtime_error&) {
+        // Something now stands where its files go: that run cannot be finished. Any of its files
+        // already moved in came after the old manifest was removed, so no manifest vouches for
+        // a mix; this run goes on.
+      }
+    fs::remove_all(entry.path(), ec);
   }
 }
 
