@@ -188,7 +188,7 @@ def prepare(case, args, work, subst, env):
             os.chmod(rest[0], 0o555)
         elif kind == "run":
             run = subprocess.run(command_of(" ".join(words[1:]), args, subst), cwd=work, capture_output=True,
-                                 text=True, timeout=300)
+                                 text=True, errors="replace", timeout=300)
             if run.returncode != 0:
                 sys.exit(f"FAIL: prepare: {action} exited {run.returncode}:\n{run.stderr}")
         elif kind == "tool":
@@ -302,7 +302,7 @@ def main():
     failures = []
     start = time.monotonic()
     process = subprocess.Popen(command, cwd=work, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                               text=True, preexec_fn=limiter(case, args))
+                               text=True, errors="replace", preexec_fn=limiter(case, args))
     other = None
     if "signal" in case:
         sig = getattr(signal, "SIG" + case["signal"])
@@ -314,7 +314,7 @@ def main():
             failures.append("the run never took its output folder's lock")
         subst["@PID@"] = str(process.pid)
         other = subprocess.run(command_of(case["concurrent"], args, subst), cwd=work, env=env,
-                               capture_output=True, text=True, timeout=timeout)
+                               capture_output=True, text=True, errors="replace", timeout=timeout)
     try:
         stdout, stderr = process.communicate(timeout=timeout)
     except subprocess.TimeoutExpired:
@@ -372,7 +372,7 @@ def main():
             failures.append(f"changed {p}")
     if "after" in case:
         later = subprocess.run(command_of(case["after"], args, subst), cwd=work, env=env, capture_output=True,
-                               text=True, timeout=300)
+                               text=True, errors="replace", timeout=300)
         if later.returncode != 0:
             failures.append(f"the later run exited {later.returncode}: {later.stderr[-400:]}")
         failures += [f"the later run left behind: {p}" for p in leftovers(work)]
