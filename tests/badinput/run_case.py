@@ -21,6 +21,9 @@ A case:
                              file PATH TEXT       a regular file
                              folder PATH          a folder
                              fifo PATH            a named pipe
+                             device PATH MAJOR MINOR  a character device of its own (mknod: as root;
+                                                  skipped otherwise), so that a faulty program
+                                                  replaces no device of the system's
                              symlink PATH TARGET  a symbolic link
                              copy SOURCE PATH     a copy of a file
                              readonly PATH        chmod a-w
@@ -180,6 +183,12 @@ def prepare(case, args, work, subst, env):
             os.makedirs(rest[0], exist_ok=True)
         elif kind == "fifo":
             os.mkfifo(rest[0])
+        elif kind == "device":
+            try:
+                os.mknod(rest[0], 0o666 | stat.S_IFCHR, os.makedev(int(rest[1]), int(rest[2])))
+            except PermissionError:
+                print(f"skipped: {args.case}: making a device needs root")
+                sys.exit(SKIP)
         elif kind == "symlink":
             os.symlink(rest[1], rest[0])
         elif kind == "copy":
