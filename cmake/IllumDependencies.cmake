@@ -22,9 +22,6 @@ illum_require(CLI11_FOUND "CLI11 (command lines)" libcli11-dev)
 find_package(nlohmann_json 3 CONFIG QUIET)
 illum_require(nlohmann_json_FOUND "nlohmann-json (scene files and reports)" nlohmann-json3-dev)
 
-find_package(tinyobjloader CONFIG QUIET)
-illum_require(tinyobjloader_FOUND "tinyobjloader (OBJ triangle meshes in scenes)" libtinyobjloader-dev)
-
 find_package(OpenMP QUIET)
 illum_require(OpenMP_CXX_FOUND "OpenMP (parallel loops)" "g++ (libgomp1)")
 

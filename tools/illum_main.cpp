@@ -19,6 +19,7 @@
 #include "illum/core/nearest_name.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
+#include "illum/io/program.hpp"
 #include "illum/io/ray_tree_files.hpp"
 #include "illum/io/scene_file.hpp"
 #include "illum/trace/ray_tree_render.hpp"
@@ -65,7 +66,11 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
   cmd.add_option("scene", o.scene, "A scene file (JSON) or the name of a shipped scene")->required();
   cmd.add_option("--out", o.out, "Folder for the outputs")->capture_default_str();
   add_image_options(cmd, o);
-  cmd.add_flag("--quick", o.quick, "A small image (96 pixels wide), for tests")->disable_flag_override();
+  // --quick sets the size: with --width or --height one of them would be ignored, so both are refused.
+  cmd.add_flag("--quick", o.quick, "A small image (96 pixels wide), for tests")
+      ->disable_flag_override()
+      ->excludes(cmd.get_option("--width"))
+      ->excludes(cmd.get_option("--height"));
 }
 
 struct LabCommand {
@@ -87,7 +92,8 @@ void check_render_memory(const RenderOptions& o, const illum::PinholeCamera& cam
   } catch (const std::length_error& e) {
     if (o.width == 0 && o.height == 0 && !o.quick)
       illum::open_scene(o.scene).root.at("camera").at("width").fail(e.what());
-    throw;
+    throw illum::InputError("command line", o.width > 0 ? "--width" : "--height",
+                            std::to_string(o.width > 0 ? o.width : o.height), e.what());
   }
 }
 
@@ -190,30 +196,42 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+  for (CLI::App* sub : {render_cmd, trace_cmd, lab_cmd})
+    if (argc > 1 && sub->get_name() == argv[1])
+      if (const std::string refused = illum::refuse_switch_values(argc, argv, *sub); !refused.empty()) {
+        std::cerr << "illum: error: " << refused << "\n";
+        return 2;
+      }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
-  // As in run_program: a failed command removes every file it wrote.
-  illum::WriteTransaction transaction;
+  // The lab writes no file: it runs outside a write transaction, and its own handlers stop it on Ctrl-C.
+  if (lab_cmd->parsed()) {
+    try {
+      return lab(lab_options);
+    } catch (const illum::NotImplemented& e) {
+      std::cerr << "illum: " << e.message() << "\n";
+      return 1;
+    } catch (const std::exception& e) {
+      std::cerr << "illum: error: " << e.what() << "\n";
+      return 1;
+    }
+  }
+  // As in run_program: the output folder is staged, and a failed command leaves it as it was.
+  const std::filesystem::path out = render_cmd->parsed()  ? render_options.out
+                                    : trace_cmd->parsed() ? trace_options.out
+                                                          : std::filesystem::path();
+  illum::WriteTransaction transaction(out, "--out", "illum");
   int status = 0;
-  try {
+  const int failed = illum::run_in_transaction("illum", transaction, [&] {
+    if (!out.empty()) illum::check_output_folder(out, "--out");
     if (version->parsed()) std::cout << "illum 0.1.0\n";
     if (list->parsed())
       for (const auto& s : illum::embedded_scenes()) std::cout << s.name << "\n";
     if (render_cmd->parsed()) status = render(render_options);
     if (trace_cmd->parsed()) status = trace(trace_options);
-    if (lab_cmd->parsed()) status = lab(lab_options);
-  } catch (const illum::NotImplemented& e) {
-    transaction.roll_back();
-    std::cerr << "illum: " << e.message() << "\n";
-    return 1;
-  } catch (const std::exception& e) {
-    transaction.roll_back();
-    std::cerr << "illum: error: " << e.what() << "\n";
-    return 1;
-  }
-  transaction.commit();
-  return status;
+  });
+  return failed ? failed : status;
 }

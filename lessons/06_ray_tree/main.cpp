@@ -13,6 +13,7 @@
 #include <CLI/CLI.hpp>
 
 #include "illum/core/error.hpp"
+#include "illum/io/cli_checks.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/io/scene_file.hpp"
@@ -68,9 +69,10 @@ int main(int argc, char** argv) {
       [&](CLI::App& app) {
         app.add_option("--pixel", pixel, "Inspect the ray tree of pixel X Y of the Whitted image")
             ->expected(2);
-        app.add_option("--forward-rays", forward_most,
-                       "Most photons of the forward-tracing study (default 1e6)")
-            ->check(CLI::Range(1e3, 1e8));
+        // --quick stops the study at 1e4 photons: with it, --forward-rays would be ignored.
+        illum::exclude_quick(app, {app.add_option("--forward-rays", forward_most,
+                                                  "Most photons of the forward-tracing study (default 1e6)")
+                                       ->check(illum::number_range(1e3, 1e8))});
       },
       [&](const ProgramOptions& options) {
         using namespace lesson06;

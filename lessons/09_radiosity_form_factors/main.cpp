@@ -15,6 +15,7 @@
 #include <CLI/CLI.hpp>
 
 #include "illum/core/image.hpp"
+#include "illum/io/cli_checks.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/radiosity/form_factor_scene.hpp"
@@ -64,14 +65,18 @@ int main(int argc, char** argv) {
       argc, argv, info,
       [&](CLI::App& app) {
         app.add_flag("--cube-only", settings.cube_only, "only the cube figure (timing of the matrix)");
-        app.add_flag("--figure", settings.figure,
-                     "the cube figure on the 864-, 2,400- and 5,400-patch cubes");
-        app.add_option("--cube-n", settings.cube_n,
-                       "patches per cube edge (at most 24: 3,456 patches, minutes per variant)")
-            ->check(CLI::Range(1, 24))
-            ->capture_default_str();
+        CLI::Option* figure = app.add_flag("--figure", settings.figure,
+                                           "the cube figure on the 864-, 2,400- and 5,400-patch cubes");
+        // --quick and --figure fix the cube's size: with either, --cube-n would be ignored.
+        CLI::Option* cube_n =
+            app.add_option("--cube-n", settings.cube_n,
+                           "patches per cube edge (at most 24: 3,456 patches, minutes per variant)")
+                ->check(CLI::Range(1, 24))
+                ->capture_default_str()
+                ->excludes(figure);
+        exclude_quick(app, {cube_n});
         app.add_option("--tolerance", settings.tolerance, "absolute tolerance of the cube image's matrix")
-            ->check(CLI::Range(1e-15, 1.0))
+            ->check(number_range(1e-15, 1.0))
             ->capture_default_str();
       },
       [&](const ProgramOptions& options) {

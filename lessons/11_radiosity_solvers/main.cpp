@@ -17,6 +17,7 @@
 
 #include "illum/core/error.hpp"
 #include "illum/core/memory_budget.hpp"
+#include "illum/io/cli_checks.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
@@ -87,6 +88,19 @@ void pictures(OutputFolder& out, const Settings& settings, const StudySystem& s,
             << " of the emitted\n";
 }
 
+// Section 10 keeps all n rows of the figure's box once (n² doubles): checked
+// before anything runs, naming --patches, not after the figure's minutes.
+void check_rows_study_memory(const Settings& settings) {
+  const double n = settings.figure_patches;
+  try {
+    check_memory("the rows study, which keeps all n rows of the figure's box of at least " +
+                     std::to_string(settings.figure_patches) + " patches",
+                 n * n, sizeof(double));
+  } catch (const std::length_error& e) {
+    throw InputError("command line", "--patches", std::to_string(settings.figure_patches), e.what());
+  }
+}
+
 // The lesson's options, validated by CLI11 (a bad value: a clear error, exit 2, nothing written).
 void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers) {
   const CLI::Validator even = even_whole_number(), finite = finite_number();
@@ -105,14 +119,16 @@ void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers
                  "the figure's largest patch edge in mm (instead of --patches)")
       ->check(finite & CLI::Range(1.0, 10000.0))
       ->excludes(patches);
-  app.add_option("--hemicube-resolution", settings.figure_resolution,
-                 "hemicube resolution of the figure (even, 8 to 2048)")
-      ->check(even & CLI::Range(8, 2048))
-      ->capture_default_str();
+  CLI::Option* resolution = app.add_option("--hemicube-resolution", settings.figure_resolution,
+                                           "hemicube resolution of the figure (even, 8 to 2048)")
+                                ->check(even & CLI::Range(8, 2048))
+                                ->capture_default_str();
+  // --quick meshes 300 patches at resolution 32: with it, these two would be ignored.
+  exclude_quick(app, {patches, resolution});
   app.add_option("--unshot", settings.unshot_threshold,
                  "stop the figure when the unshot power is below this fraction of the emitted "
                  "(at least 0.01 with --quick)")
-      ->check(finite & CLI::Range(1e-9, 0.5))
+      ->check(number_range(1e-9, 0.5))
       ->capture_default_str();
   app.add_option("--row-memory", settings.row_memory_mb,
                  "MiB of hemicube rows kept for patches that shoot again (0: only the rows in flight)")
@@ -135,16 +151,26 @@ int main(int argc, char** argv) {
       "10, 100 shots; a ~2,000-patch box by progressive refinement with hemicube rows on demand."};
   Settings settings;
   std::vector<Solver> solvers;
+  const CLI::Option* unshot = nullptr;  // to tell a given --unshot from the default
   return run_program(
-      argc, argv, info, [&](CLI::App& app) { add_options(app, settings, solvers); },
+      argc, argv, info,
+      [&](CLI::App& app) {
+        add_options(app, settings, solvers);
+        unshot = app.get_option("--unshot");
+      },
       [&](const ProgramOptions& options) {
         settings.quick = options.quick;
+        if (settings.quick && unshot->count() > 0 && settings.unshot_threshold < 0.01)
+          throw InputError("command line", "--unshot", bound_text(settings.unshot_threshold),
+                           "--quick stops the figure at 0.01 of the emitted power at the earliest; give "
+                           "--unshot 0.01 or more, or leave out --quick");
         if (settings.quick) settings.unshot_threshold = std::max(settings.unshot_threshold, 0.01);
         if (!solvers.empty()) settings.solvers = solvers;
         // Validate before writing: the scene as the study meshes it.
         check_usable(load_radiosity_scene(settings.scene, settings.quick ? 220.0 : 75.0), settings.scene);
         if (settings.figure_edge > 0)
           load_radiosity_scene(settings.scene, settings.figure_edge);  // and the figure's
+        if (!settings.quick) check_rows_study_memory(settings);
         OutputFolder out(options.out, info.id, info.title);
         if (!settings.figure_only) {
           run_section(info.id, "§6 Progressive refinement", [&] { s06_three_patch(out); });

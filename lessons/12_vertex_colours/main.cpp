@@ -20,6 +20,7 @@
 
 #include "element_render.hpp"
 #include "illum/core/error.hpp"
+#include "illum/io/cli_checks.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/io/scene_file.hpp"
@@ -99,18 +100,22 @@ void add_options(CLI::App& app, Settings& settings) {
       ->capture_default_str();
   app.add_option("--ply", settings.ply,
                  "also write the figure's binary PLY to this file (its folder must exist)")
-      ->check(file_in_existing_folder());
-  app.add_option("--elements", settings.figure_elements, "the figure's element count (about)")
-      ->check(CLI::Range(100, 200000))
-      ->capture_default_str();
-  app.add_option("--patch-edge", settings.figure_patch_edge, "the figure's largest patch edge (mm)")
-      ->check(CLI::Range(20.0, 1000.0))
-      ->capture_default_str();
+      ->check(file_in_existing_folder("--ply"));
+  CLI::Option* elements =
+      app.add_option("--elements", settings.figure_elements, "the figure's element count (about)")
+          ->check(CLI::Range(100, 200000))
+          ->capture_default_str();
+  CLI::Option* edge =
+      app.add_option("--patch-edge", settings.figure_patch_edge, "the figure's largest patch edge (mm)")
+          ->check(number_range(20.0, 1000.0))
+          ->capture_default_str();
   app.add_flag("--figure", settings.figure_only, "only the figure (section 7) and its export (section 8)");
-  app.add_option("--unshot", settings.unshot,
-                 "stop when the unshot power is below this fraction of the emitted")
-      ->check(CLI::Range(1e-6, 0.5))
-      ->capture_default_str();
+  CLI::Option* unshot = app.add_option("--unshot", settings.unshot,
+                                       "stop when the unshot power is below this fraction of the emitted")
+                            ->check(number_range(1e-6, 0.5))
+                            ->capture_default_str();
+  // --quick fixes all three (400 elements, 250 mm patches, 1e-2 unshot): with it, they would be ignored.
+  exclude_quick(app, {elements, edge, unshot});
 }
 
 }  // namespace

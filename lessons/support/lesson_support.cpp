@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "illum/core/atomic_file.hpp"
 #include "illum/core/error.hpp"
 #include "illum/core/memory_budget.hpp"
 
@@ -103,13 +104,18 @@ CLI::Validator mebibytes_within_budget() {
       "MEMORY");
 }
 
-CLI::Validator file_in_existing_folder() {
+CLI::Validator file_in_existing_folder(const std::string& option) {
   return CLI::Validator(
-      [](std::string& path) {
+      [option](std::string& path) {
         const std::filesystem::path parent = std::filesystem::path(path).parent_path();
         if (std::filesystem::path(path).filename().empty()) return std::string("names a folder, not a file");
         if (!parent.empty() && !std::filesystem::is_directory(parent))
           return "the folder " + parent.string() + " does not exist";
+        try {  // a device, a FIFO, a link or a folder is never written through or replaced
+          check_replaceable(path, option);
+        } catch (const std::runtime_error& e) {
+          return std::string(e.what());
+        }
         return std::string();
       },
       "FILE");

@@ -104,7 +104,7 @@ CLI::Validator even_whole_number();
 CLI::Validator mebibytes_within_budget();
 
 // A path naming a file (not a folder) whose folder exists.
-CLI::Validator file_in_existing_folder();
+CLI::Validator file_in_existing_folder(const std::string& option);
 
 // Refuses (illum::InputError naming the file) a radiosity scene a lesson
 // cannot draw or solve: no camera, or no surface that emits light.

@@ -86,16 +86,22 @@ TEST_SUITE("io") {
                     std::invalid_argument);
   }
 
-  TEST_CASE("bad input: a rolled-back run removes its files and folders and restores old files") {
-    const fs::path dir = fresh_folder("rollback");
+  TEST_CASE("bad input: a rolled-back run leaves its output folder exactly as it was") {
+    // Contract: while the run is open its files are staged (readable at staged_path),
+    // the folder itself is untouched; roll_back removes the staging, the lock and the
+    // folders it made, so the parent holds what it held before.
+    const fs::path parent = fresh_folder("rollback");
+    const fs::path dir = parent / "out";
     illum::write_text_file(dir / "old.txt", "old\n");
     {
-      illum::WriteTransaction t;
+      illum::WriteTransaction t(dir);
       illum::write_text_file(dir / "old.txt", "new\n");
       illum::write_text_file(dir / "sub" / "deeper" / "a.txt", "a\n");
       illum::write_text_file(dir / "b.txt", "b\n");
-      CHECK(read(dir / "old.txt") == "new\n");
-      CHECK(fs::exists(dir / "sub" / "deeper" / "a.txt"));
+      CHECK(read(dir / "old.txt") == "old\n");  // not replaced before the commit
+      CHECK(read(illum::staged_path(dir / "old.txt")) == "new\n");
+      CHECK(fs::exists(illum::staged_path(dir / "sub" / "deeper" / "a.txt")));
+      CHECK_FALSE(fs::exists(dir / "sub"));
       t.roll_back();
     }
     CHECK(read(dir / "old.txt") == "old\n");
@@ -104,23 +110,53 @@ TEST_SUITE("io") {
     int entries = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
     CHECK(entries == 1);  // old.txt alone: no temporary or moved-aside file
-    fs::remove_all(dir);
+    entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(parent)) ++entries;
+    CHECK(entries == 1);  // out alone: no staging folder, no lock file
+    fs::remove_all(parent);
   }
 
   TEST_CASE("bad input: a committed run keeps its files and leaves no moved-aside copy") {
-    const fs::path dir = fresh_folder("commit");
+    const fs::path parent = fresh_folder("commit");
+    const fs::path dir = parent / "out";
     illum::write_text_file(dir / "old.txt", "old\n");
+    illum::write_text_file(dir / "kept.txt", "kept\n");
     {
-      illum::WriteTransaction t;
+      illum::WriteTransaction t(dir);
       illum::write_text_file(dir / "old.txt", "new\n");
       illum::write_text_file(dir / "c.txt", "c\n");
       t.commit();
     }
     CHECK(read(dir / "old.txt") == "new\n");
     CHECK(read(dir / "c.txt") == "c\n");
+    CHECK(read(dir / "kept.txt") == "kept\n");  // a file the run did not write stays
     int entries = 0;
     for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
-    CHECK(entries == 2);
+    CHECK(entries == 3);
+    entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(parent)) ++entries;
+    CHECK(entries == 1);
+    fs::remove_all(parent);
+  }
+
+  TEST_CASE("bad input: a file outside the output folder appears only at the commit") {
+    const fs::path dir = fresh_folder("outside");
+    {
+      illum::WriteTransaction t(dir / "out");
+      illum::write_text_file(dir / "extra.ply", "ply\n");
+      CHECK_FALSE(fs::exists(dir / "extra.ply"));
+      CHECK(read(illum::staged_path(dir / "extra.ply")) == "ply\n");
+      t.roll_back();
+    }
+    int entries = 0;
+    for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir)) ++entries;
+    CHECK(entries == 0);
+    {
+      illum::WriteTransaction t(dir / "out");
+      illum::write_text_file(dir / "extra.ply", "ply\n");
+      t.commit();
+    }
+    CHECK(read(dir / "extra.ply") == "ply\n");
     fs::remove_all(dir);
   }
 

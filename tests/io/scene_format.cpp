@@ -10,6 +10,7 @@
 #include <string>
 
 #include "illum/core/error.hpp"
+#include "illum/core/pinhole_camera.hpp"
 #include "illum/geometry/surface_hit.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/scene_file.hpp"
@@ -430,12 +431,49 @@ TEST_SUITE("io") {
     CHECK(contains(missing, "\"nowhere.obj\""));
     CHECK(contains(missing, "cannot open the OBJ file"));
     CHECK(contains(missing, (folder.path / "nowhere.obj").string()));
+    // The line of the face, the corner, the index as written and the count it exceeds.
     const std::string index = refusal(mesh_scene("bad_index.obj"), "primitives[0].obj", folder.path);
-    CHECK(contains(index, "bad_index.obj: face 2 refers to vertex 9, out of range: the file has 3 vertices"));
+    CHECK(contains(index, "bad_index.obj, line 5: vertex index '9' of corner 3 is out of range"));
+    CHECK(contains(index, "the file defines 3 vertices"));
     CHECK(contains(refusal(mesh_scene("bad_normal.obj"), "primitives[0].obj", folder.path),
-                   "face 1 refers to normal 4, out of range: the file has 1 normals"));
+                   "line 5: normal index '4' of corner 3 is out of range: the file defines 1 normal"));
     CHECK(contains(refusal(mesh_scene("zero_index.obj"), "primitives[0].obj", folder.path),
-                   "not a valid OBJ file"));
+                   "line 4: vertex index '0' of corner 1 is 0: OBJ indices start at 1"));
+  }
+
+  TEST_CASE(
+      "hard case: cameras far out name camera.eye or camera.target; huge but valid ones make unit rays") {
+    // Contract: |eye|, |target| components up to 1e150 (so that squared distances fit a double);
+    // beyond, the field and component are named, not "up parallel" (what 1e308 used to say).
+    auto with_camera = [](const std::string& eye, const std::string& target,
+                          const std::string& up = "[0, 1, 0]") {
+      std::string text =
+          scene_text(R"({"type": "sphere", "material": "grey", "center": [0, 0, 0], "radius": 1})");
+      const std::string old_camera = R"("eye": [0, 0, 5], "target": [0, 0, 0], "up": [0, 1, 0])";
+      text.replace(text.find(old_camera), old_camera.size(),
+                   "\"eye\": " + eye + ", \"target\": " + target + ", \"up\": " + up);
+      return text;
+    };
+    CHECK(contains(refusal(with_camera("[1e308, 1e308, 1e308]", "[0, 0, 0]"), "camera.eye[0]"),
+                   "within ±1e150"));
+    CHECK(contains(refusal(with_camera("[-1e308, 0, 0]", "[1e308, 0, 0]"), "camera.eye[0]"), "-1e+308"));
+    CHECK(contains(refusal(with_camera("[0, 0, 5]", "[0, 0, -1e200]"), "camera.target[2]"), "within ±1e150"));
+    // 1e-200 apart: the square of the distance underflows to zero.
+    CHECK(
+        contains(refusal(with_camera("[0, 0, 0]", "[0, 0, 1e-200]"), "camera.target"), "more than a double"));
+    CHECK(contains(refusal(with_camera("[0, 0, 5]", "[0, 0, 0]", "[0, 1e300, 0]"), "camera.up"), "length"));
+    CHECK(contains(refusal(with_camera("[0, 0, 5]", "[0, 0, 0]", "[0, 0, 1e-9]"), "camera.up"), "parallel"));
+    // The largest accepted: eye and target 2e150 apart along a diagonal; the corner rays are unit and finite.
+    const Scene far = read_text(with_camera("[1e150, 1e150, 1e150]", "[-1e150, -1e150, -1e150]"));
+    const PinholeCamera camera(far.camera.eye, far.camera.target, far.camera.up,
+                               far.camera.vertical_fov_degrees, far.camera.width, far.camera.height);
+    for (const auto& [x, y] : {std::pair{0, 0}, {15, 11}}) {
+      const Ray ray = camera.pixel_ray(x, y);
+      CHECK(is_finite(ray.direction));
+      CHECK(length(ray.direction) == doctest::Approx(1.0));
+    }
+    // The centre ray points from the eye to the target: (−1, −1, −1)/√3.
+    check_vec(camera.ray_through(8, 6).direction, normalize(Vec3(-1.0)), 1e-12);
   }
 
   TEST_CASE("a shipped scene uses shipped OBJ files only") {

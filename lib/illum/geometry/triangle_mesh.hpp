@@ -1,6 +1,6 @@
 #pragma once
 // A triangle mesh: shared vertices and index triples, as an OBJ file gives
-// them (lesson 06 reads them with tinyobjloader; lesson 08 accelerates them).
+// them (io/obj_reader reads them for lesson 06; lesson 08 accelerates them).
 // Each triangle is tested with the watertight test of lesson 03, so a ray
 // through a shared edge hits exactly one of its two triangles.
 #include <array>

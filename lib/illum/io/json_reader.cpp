@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <sstream>
 #include <vector>
 
 #include "illum/core/error.hpp"
+#include "illum/core/input_file.hpp"
 #include "illum/core/json_text_check.hpp"
 #include "illum/core/nearest_name.hpp"
 
@@ -33,14 +33,13 @@ JsonReader JsonReader::parse_text(const std::string& text, const std::string& fi
 }
 
 JsonReader JsonReader::parse_file(const std::filesystem::path& file) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(file, ec))
-    throw InputError(file.string(), "(file)", file.string(), "this is a directory, not a JSON file");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string(), "(file)", "(unreadable)", "cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_text(text.str(), file.string());
+  std::string text;
+  try {
+    text = read_input_file(file, "JSON file", max_file_bytes);
+  } catch (const InputFileError& e) {
+    throw InputError(file.string(), "(file)", file.string(), e.what());
+  }
+  return parse_text(text, file.string());
 }
 
 void JsonReader::fail(const std::string& problem) const {

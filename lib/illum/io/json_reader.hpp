@@ -8,6 +8,7 @@
 //     const JsonReader s = root.at("spheres").at(i);
 //     double r = s.at("radius").positive_number();   // InputError if ≤ 0, NaN, or not a number
 //   }
+#include <cstdint>
 #include <filesystem>
 #include <initializer_list>
 #include <memory>
@@ -26,8 +27,13 @@ namespace illum {
 class JsonReader {
  public:
   // Reads and parses the file; throws InputError naming the file (and the
-  // parser's line and column) when it cannot be read or is not JSON.
+  // parser's line and column) when it cannot be read or is not JSON. Only a
+  // regular file of at most max_file_bytes is read (a FIFO, a device or a
+  // folder is refused at once, core/input_file.hpp).
   static JsonReader parse_file(const std::filesystem::path& file);
+  // 64 MiB: a hundred times the largest scene of the course; a parsed JSON
+  // document takes about ten times its text in memory.
+  static constexpr std::uint64_t max_file_bytes = 64ull << 20;
   // Parses text as if it came from `file_name` (for tests and embedded scenes).
   static JsonReader parse_text(const std::string& text, const std::string& file_name);
 

@@ -1,13 +1,13 @@
 #include "illum/io/plot.hpp"
 
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <map>
 #include <stdexcept>
 
 #include "illum/core/atomic_file.hpp"
+#include "illum/core/child_process.hpp"
 
 namespace illum {
 
@@ -20,12 +20,6 @@ std::string quoted(const std::string& text) {
     out += c;
   }
   return out + "\"";
-}
-
-std::string shell_quoted(const std::string& text) {
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
 }
 
 // The column names of a CSV file's header line, in order.
@@ -127,6 +121,14 @@ std::string curve_clause(const PlotCurve& c, ColumnLookup& column) {
          quoted(c.title);
 }
 
+// A PNG from its signature to its IEND chunk: a picture cut short is not.
+bool is_complete_png(const std::string& bytes) {
+  static const char signature[] = "\x89PNG\r\n\x1a\n";
+  static const char end[] = "IEND\xae\x42\x60\x82";
+  return bytes.size() >= 8 + 12 && bytes.compare(0, 8, signature, 8) == 0 &&
+         bytes.compare(bytes.size() - 8, 8, end, 8) == 0;
+}
+
 }  // namespace
 
 std::string gnuplot_script(const PlotSpec& spec, const std::string& png_name,
@@ -134,7 +136,9 @@ std::string gnuplot_script(const PlotSpec& spec, const std::string& png_name,
   std::string s;
   s += "set terminal pngcairo size " + std::to_string(spec.width) + "," + std::to_string(spec.height) +
        " enhanced font 'DejaVu Sans,11'\n";
-  s += "set output " + quoted(png_name + ".tmp") + "\n";
+  // `gnuplot NAME.gp` draws NAME.png; illum runs `gnuplot -c NAME.gp -`, which writes the
+  // picture on standard output, and writes the file itself (core/child_process.hpp).
+  s += "if (ARGC > 0) { set output } else { set output " + quoted(png_name) + " }\n";
   s += "set datafile separator ','\n";
   s += "set key " + std::string(key_placement(spec.key)) + "\nset grid\n";
   s += "set title " + quoted(spec.title) + "\n";
@@ -152,17 +156,23 @@ std::string gnuplot_script(const PlotSpec& spec, const std::string& png_name,
 
 bool draw_plot(const std::filesystem::path& folder, const std::string& name, const PlotSpec& spec) {
   const std::string png = name + ".png";
-  write_text_file(folder / (name + ".gp"), gnuplot_script(spec, png, folder));
-  const std::string command =
-      "cd " + shell_quoted(folder.string()) + " && gnuplot " + shell_quoted(name + ".gp") + " 2>/dev/null";
-  if (std::system(command.c_str()) != 0) {
-    std::cerr << "warning: gnuplot could not draw " << (folder / png).string()
-              << " (install gnuplot-nox); the script is left in " << name << ".gp\n";
-    std::error_code ec;
-    std::filesystem::remove(folder / (png + ".tmp"), ec);
+  // In a run, the CSV files are still in its staging folder: the script is checked against those.
+  const std::filesystem::path here = staged_path(folder);
+  write_text_file(folder / (name + ".gp"), gnuplot_script(spec, png, here));
+  const ToolRun run = run_tool({"gnuplot", "-c", name + ".gp", "-"}, here);
+  if (!run.found) {
+    std::cerr << "warning: gnuplot is not installed, so " << (folder / png).string()
+              << " is not drawn (install gnuplot-nox); the script is left in " << name << ".gp\n";
     return false;
   }
-  commit_temporary(folder / (png + ".tmp"), folder / png);
+  // Installed but failing (a bad script, a missing font, a file size limit) is an error, not a warning.
+  if (!run.succeeded())
+    throw std::runtime_error("gnuplot could not draw " + (folder / png).string() + " from " + name +
+                             ".gp: " + run.failure());
+  if (!is_complete_png(run.out))
+    throw std::runtime_error("gnuplot wrote an incomplete picture for " + (folder / png).string() + " (" +
+                             std::to_string(run.out.size()) + " bytes, no PNG end)");
+  write_text_file(folder / png, run.out);
   return true;
 }
 

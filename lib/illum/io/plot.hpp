@@ -75,7 +75,8 @@ std::string gnuplot_script(const PlotSpec& spec, const std::string& png_name,
 
 // Writes <folder>/<name>.gp and runs gnuplot there to draw <name>.png.
 // Returns false (and leaves the script, so the plot can be drawn later) when
-// gnuplot is not installed or fails; the reason goes to stderr.
+// gnuplot is not installed; throws std::runtime_error with gnuplot's own
+// message when it is installed but fails, or writes an incomplete picture.
 bool draw_plot(const std::filesystem::path& folder, const std::string& name, const PlotSpec& spec);
 
 }  // namespace illum

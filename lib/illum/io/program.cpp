@@ -2,6 +2,8 @@
 
 #include <charconv>
 #include <iostream>
+#include <new>
+#include <string_view>
 
 #include <unistd.h>
 #include <CLI/CLI.hpp>
@@ -44,6 +46,10 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
       ->capture_default_str()
       ->check(CLI::Range(0, max_threads));
   if (add_options) add_options(app);
+  if (const std::string refused = refuse_switch_values(argc, argv, app); !refused.empty()) {
+    std::cerr << info.id << ": error: " << refused << "\n";
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -54,21 +60,50 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
   if (options.threads > cores)
     std::cerr << info.id << ": note: --threads " << options.threads << " is more than this machine's "
               << cores << " cores\n";
-  // Every file the body writes is recorded; if it throws, they are removed
-  // and the output folder is left as it was (validate before write, by construction).
-  WriteTransaction transaction;
-  try {
+  // Every file the body writes is staged (core/atomic_file): if it throws or a
+  // signal stops it, the output folder is left as it was; commit() moves the
+  // run's files in at the end (validate before write, by construction).
+  WriteTransaction transaction(options.out, "--out", info.id);
+  return run_in_transaction(info.id, transaction, [&] {
+    check_output_folder(options.out, "--out");  // before any work: a file or a busy folder is refused now
     body(options);
+  });
+}
+
+std::string refuse_switch_values(int argc, char** argv, const CLI::App& app) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string_view arg = argv[i];
+    if (arg == "--") break;
+    const std::size_t equals = arg.find('=');
+    if (arg.rfind("--", 0) != 0 || equals == std::string_view::npos) continue;
+    const std::string name(arg.substr(2, equals - 2));
+    const CLI::Option* option = app.get_option_no_throw("--" + name);
+    if (option && option->get_expected_max() == 0)  // a switch: it takes no value
+      return "--" + name + " is a switch and takes no value; got '" + std::string(arg) + "' (write --" +
+             name + " alone)";
+  }
+  return "";
+}
+
+int run_in_transaction(const std::string& id, WriteTransaction& transaction,
+                       const std::function<void()>& body) {
+  try {
+    body();
+    transaction.commit();
   } catch (const NotImplemented& e) {
     transaction.roll_back();
-    std::cerr << info.id << ": " << e.message() << "\n";
+    std::cerr << id << ": " << e.message() << "\n";
+    return 1;
+  } catch (const std::bad_alloc&) {
+    transaction.roll_back();
+    std::cerr << id << ": error: out of memory (a request the memory checks did not foresee; "
+              << "try smaller sizes); nothing was written\n";
     return 1;
   } catch (const std::exception& e) {
     transaction.roll_back();
-    std::cerr << info.id << ": error: " << e.what() << "\n";
+    std::cerr << id << ": error: " << e.what() << "\n";
     return 1;
   }
-  transaction.commit();
   return 0;
 }
 

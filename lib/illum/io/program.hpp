@@ -35,12 +35,24 @@ struct ProgramOptions {
 constexpr int max_threads = 256;
 
 // Parses the shared flags (and any that `add_options` registers), then runs
-// `body` inside a WriteTransaction. An exception from `body` is printed as
+// `body` inside a WriteTransaction on --out. An exception from `body` is printed as
 // "<id>: error: <what>", every file the body wrote is removed (the output
 // folder is left as it was), and the exit code is 1.
 int run_program(int argc, char** argv, const ProgramInfo& info,
                 const std::function<void(CLI::App&)>& add_options,
                 const std::function<void(const ProgramOptions&)>& body);
+
+class WriteTransaction;
+
+// Runs `body`, then commits the transaction; an exception from either is
+// printed as "<id>: error: <what>" (std::bad_alloc as "out of memory"), the
+// transaction is rolled back, and the result is 1. 0 on success.
+int run_in_transaction(const std::string& id, WriteTransaction& transaction,
+                       const std::function<void()>& body);
+
+// "--quick is a switch and takes no value; got '--quick=3'" for a switch of
+// `app` given a value, or "" (CLI11's own message names neither).
+std::string refuse_switch_values(int argc, char** argv, const CLI::App& app);
 
 // Progress of long work on stderr ("lesson01: study 3/12"), overwritten in place
 // when stderr is a terminal, one line per step otherwise.

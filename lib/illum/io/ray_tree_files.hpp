@@ -10,9 +10,10 @@
 namespace illum {
 
 // Writes the four views of the pixel's tree. `render` is the image the
-// overlay is drawn on, made by `camera`. When Graphviz's `dot` is missing or
-// fails, says so on stderr (with the command that draws it later) and still
-// writes the .dot file; returns whether the drawings were made.
+// overlay is drawn on, made by `camera`. When Graphviz's `dot` is missing,
+// says so on stderr (with the command that draws it later) and still writes
+// the .dot file; returns whether the drawings were made. When dot is
+// installed but fails, throws std::runtime_error with its message.
 bool write_ray_tree_files(OutputFolder& out, const Scene& scene, const PixelTree& pixel, const Image& render,
                           const PinholeCamera& camera, const std::string& name);
 

@@ -1,15 +1,17 @@
 #include "illum/io/scene_file.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <fstream>
+#include <cstdint>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
-#include <tiny_obj_loader.h>
-
 #include "illum/core/error.hpp"
+#include "illum/core/input_file.hpp"
 #include "illum/core/memory_budget.hpp"
 #include "illum/io/embedded_scenes.hpp"
+#include "illum/io/obj_reader.hpp"
 
 namespace illum {
 namespace {
@@ -34,11 +36,30 @@ auto build_at(const JsonReader& field, F&& make) {
   }
 }
 
+// The largest |coordinate| of a camera's eye and target: every intersection
+// test squares distances from the eye, and (1e150)² stays within a double.
+constexpr double max_camera_coordinate = 1e150;
+
+// The largest |component|: a vector divided by it has a length that neither
+// overflows nor underflows, so (1e300, 0, 0) is a direction like (1, 0, 0).
+double largest_component(const Vec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+Point3 camera_point(const JsonReader& field) {
+  const Point3 p = field.vec3();
+  for (int k = 0; k < 3; ++k)
+    if (!(std::abs(p[k]) <= max_camera_coordinate))
+      field.at(static_cast<std::size_t>(k))
+          .fail(
+              "a camera coordinate must lie within ±1e150 (the squared distances every intersection "
+              "test computes from the eye would overflow a double)");
+  return p;
+}
+
 CameraSpec read_camera(const JsonReader& c) {
   c.only_fields({"eye", "target", "up", "vertical_fov_degrees", "width", "height"});
   CameraSpec camera;
-  camera.eye = c.at("eye").vec3();
-  camera.target = c.at("target").vec3();
+  camera.eye = camera_point(c.at("eye"));
+  camera.target = camera_point(c.at("target"));
   camera.up = c.at("up").vec3();
   const double fov = c.at("vertical_fov_degrees").number();
   if (!(fov > 0 && fov < 180))
@@ -47,8 +68,16 @@ CameraSpec read_camera(const JsonReader& c) {
   camera.width = c.at("width").integer(1, 16384);
   camera.height = c.at("height").integer(1, 16384);
   const Vec3 view = camera.target - camera.eye;
-  if (length(view) == 0) c.at("target").fail("the target must differ from the eye");
-  if (length(cross(view, camera.up)) <= 1e-12 * length(view) * length(camera.up))
+  const double view_scale = largest_component(view), up_scale = largest_component(camera.up);
+  if (view_scale == 0) c.at("target").fail("the target must differ from the eye");
+  if (!(length(view) > 0))  // so close that the square of their distance underflows
+    c.at("target").fail("the target must differ from the eye by more than a double can measure");
+  if (up_scale == 0) c.at("up").fail("'up' must not be zero");
+  if (!(length(camera.up) > 0 && std::isfinite(length(camera.up))))
+    c.at("up").fail("'up' must have a length a double can hold (neither below 1e-150 nor above 1e150)");
+  // Compared as directions (scaled first), so that huge or tiny vectors are judged by their angle alone.
+  const Vec3 v = normalize(view / view_scale), u = normalize(camera.up / up_scale);
+  if (length(cross(v, u)) <= 1e-12)
     c.at("up").fail("'up' must not be parallel to the view direction (or zero)");
   return camera;
 }
@@ -228,12 +257,13 @@ std::string obj_text(const JsonReader& field, const FileSource& source) {
         "no OBJ file of that name is shipped in scenes/ (a shipped scene can only use shipped OBJ files)");
   }
   const fs::path file = source.base_folder / name;
-  std::ifstream in(file, std::ios::binary);
-  if (!in)
-    field.fail("cannot open the OBJ file " + file.string() + " (OBJ paths are relative to the scene file)");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  try {
+    // A regular file only (a FIFO would block, /dev/zero never ends, a folder is no mesh),
+    // and no larger than the memory budget allows.
+    return read_input_file(file, "OBJ file", std::numeric_limits<std::uint64_t>::max());
+  } catch (const InputFileError& e) {
+    field.fail(file.string() + ": " + e.what() + " (OBJ paths are relative to the scene file)");
+  }
 }
 
 TriangleMesh read_mesh(const JsonReader& p, const FileSource& source) {
@@ -244,67 +274,25 @@ TriangleMesh read_mesh(const JsonReader& p, const FileSource& source) {
   double scale = 1.0;
   if (p.has("translate")) translate = p.at("translate").vec3();
   if (p.has("scale")) scale = p.at("scale").positive_number();
-
-  tinyobj::ObjReaderConfig config;
-  config.triangulate = false;  // faces are checked first, then fanned here
-  config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  if (!reader.ParseFromString(text, "", config))
-    field.fail(name + " is not a valid OBJ file: " + reader.Error());
-  const tinyobj::attrib_t& attrib = reader.GetAttrib();
   TriangleMesh mesh;
-  const std::size_t vertex_count = attrib.vertices.size() / 3;
-  const std::size_t normal_count = attrib.normals.size() / 3;
-  for (std::size_t i = 0; i < vertex_count; ++i) {
-    const Point3 v(attrib.vertices[3 * i], attrib.vertices[3 * i + 1], attrib.vertices[3 * i + 2]);
-    if (!is_finite(v)) field.fail(name + ": vertex " + std::to_string(i + 1) + " is not finite");
-    mesh.positions.push_back(translate + scale * v);
+  try {
+    mesh = read_obj(text);
+  } catch (const ObjError& e) {
+    field.fail(name + ", " + e.what());
   }
-  bool smooth = true;
-  std::vector<Vec3> normals;
-  std::size_t face_number = 0;
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-    std::size_t first = 0;
-    for (const unsigned char corners : shape.mesh.num_face_vertices) {
-      ++face_number;
-      const std::string face = name + ": face " + std::to_string(face_number);
-      if (corners < 3) field.fail(face + " has fewer than 3 vertices");
-      std::vector<std::uint32_t> ids;
-      for (std::size_t k = 0; k < corners; ++k) {
-        const tinyobj::index_t& idx = shape.mesh.indices[first + k];
-        if (idx.vertex_index < 0 || static_cast<std::size_t>(idx.vertex_index) >= vertex_count)
-          field.fail(face + " refers to vertex " + std::to_string(idx.vertex_index + 1) +
-                     ", out of range: the file has " + std::to_string(vertex_count) + " vertices");
-        if (idx.normal_index >= 0 && static_cast<std::size_t>(idx.normal_index) >= normal_count)
-          field.fail(face + " refers to normal " + std::to_string(idx.normal_index + 1) +
-                     ", out of range: the file has " + std::to_string(normal_count) + " normals");
-        ids.push_back(static_cast<std::uint32_t>(idx.vertex_index));
-        if (idx.normal_index < 0) {
-          smooth = false;
-          normals.emplace_back(0.0);
-        } else {
-          const auto n = static_cast<std::size_t>(idx.normal_index);
-          normals.emplace_back(attrib.normals[3 * n], attrib.normals[3 * n + 1], attrib.normals[3 * n + 2]);
-        }
-      }
-      // A fan from the first corner: exact for the convex faces OBJ exporters write.
-      const std::size_t base = normals.size() - corners;
-      for (std::size_t k = 1; k + 1 < corners; ++k) {
-        const std::array<std::uint32_t, 3> tri = {ids[0], ids[k], ids[k + 1]};
-        const Vec3 area = cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
-                                mesh.positions[tri[2]] - mesh.positions[tri[0]]);
-        if (area == Vec3(0.0)) field.fail(face + " is degenerate (its vertices are collinear or repeated)");
-        mesh.triangles.push_back(tri);
-        for (std::size_t c : {std::size_t{0}, k, k + 1}) {
-          const Vec3 n = normals[base + c];
-          mesh.corner_normals.push_back(length_squared(n) > 0 ? normalize(n) : Vec3(0.0));
-        }
-      }
-      first += corners;
-    }
+  if (translate == Vec3(0.0) && scale == 1.0) return mesh;
+  const JsonReader moved = p.at(p.has("scale") ? "scale" : "translate");  // the field to blame
+  for (Point3& v : mesh.positions) {
+    v = translate + scale * v;
+    if (!is_finite(v)) moved.fail("moves a vertex of " + name + " beyond the range of a double");
   }
-  if (mesh.triangles.empty()) field.fail(name + " has no faces");
-  if (!smooth) mesh.corner_normals.clear();
+  for (const auto& tri : mesh.triangles) {
+    const Vec3 area = cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
+                            mesh.positions[tri[2]] - mesh.positions[tri[0]]);
+    if (area == Vec3(0.0) || !is_finite(area))
+      moved.fail("makes a triangle of " + name + (area == Vec3(0.0) ? " vanish" : " overflow") +
+                 " (its area is beyond the range of a double)");
+  }
   return mesh;
 }
 

@@ -120,3 +120,53 @@ def checkered(checker):
 write("s_checker_unknown_material.json", variant(S, checkered({"material": "blak", "size": 1})))
 write("s_checker_size_zero.json", variant(S, checkered({"material": "red", "size": 0})))
 write("s_checker_size_typo.json", variant(S, checkered({"material": "red", "sise": 1})))
+
+# Cameras beyond the range where squared distances fit a double (issue 25).
+write("s_camera_far.json", variant(S, lambda s: s["camera"].update(eye=[1e308, 1e308, 1e308])))
+write("s_camera_apart.json", variant(S, lambda s: s["camera"].update(eye=[-1e308, 0, 0], target=[1e308, 0, 0])))
+write("r_camera_far.json", variant(R, lambda s: s["camera"].update(target=[50, 50, -1e308])))
+# A camera whose image cannot fit in a memory limit (run under `ulimit -v`): 13,000 × 13,000.
+write("s_big_camera.json", variant(S, lambda s: s["camera"].update(width=13000, height=13000)))
+
+
+# m_*: a scene of one OBJ mesh (illum render), and the mesh it names with one thing wrong.
+def mesh_scene(obj, **fields):
+    s = variant(S, lambda s: s["primitives"].__setitem__(
+        0, {"type": "mesh", "name": "mesh", "material": "red", "obj": obj, **fields}))
+    s["camera"].update(eye=[0.5, 0.5, 3], target=[0.5, 0.5, 0])
+    return s
+
+
+TRIANGLE = "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+MESHES = {
+    "index_wraps": TRIANGLE + "f 1 2 3\nf 1 2 4294967299\n",
+    "index_huge": TRIANGLE + "f 1 2 3\nf 1 2 99999999999999999999\n",
+    "index_zero": TRIANGLE + "f 0 1 2\n",
+    "index_negative": TRIANGLE + "f -1 -2 -3\nf -1 -2 -5\n",
+    "index_beyond": TRIANGLE + "f 1 2 3\nf 1 2 7\n",
+    "vertex_nan": "v nan 1 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    "vertex_inf": "v 0 0 0\nv 1 -inf 0\nv 0 1 0\nf 1 2 3\n",
+    "vertex_word": "v 0 one 1\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    "vertex_overflow": "v 0 0 0\nv 1 1e999 0\nv 0 1 0\nf 1 2 3\n",
+    "vertex_two_numbers": "v 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    "two_corners": TRIANGLE + "f 1 2 3\nf 1 2\n",
+    "one_corner_last": TRIANGLE + "f 1 2 3\n" * 3 + "f 3",
+    "normal_missing": TRIANGLE + "vn 0 0 1\nf 1//1 2//1 3//2\n",
+    "normal_zero": TRIANGLE + "vn 0 0 0\nf 1//1 2//1 3//1\n",
+    "corner_garbage": TRIANGLE + "f 1 2/x 3\n",
+    "degenerate": TRIANGLE + "f 1 1 2\n",
+    "free_form": TRIANGLE + "f 1 2 3\ncurv 0 1 1 2\n",
+    "unknown_statement": TRIANGLE + "f 1 2 3\nvx 1 2 3\n",
+    "no_faces": TRIANGLE,
+    "binary": "\x7fELF\x02\x01\x01\x00\x00\x00",
+}
+for name, text in MESHES.items():
+    with open(f"m_{name}.obj", "w") as f:
+        f.write(text)
+    write(f"m_{name}.json", mesh_scene(f"m_{name}.obj"))
+write("m_folder.json", mesh_scene("."))               # the scenes folder itself
+write("m_dev_zero.json", mesh_scene("/dev/zero"))     # an absolute path: a device that never ends
+write("m_fifo.json", mesh_scene("pipe.obj"))          # copied beside a FIFO named pipe.obj by the case
+write("m_scale_overflow.json", mesh_scene("m_big_vertex.obj", scale=1e300))
+with open("m_big_vertex.obj", "w") as f:
+    f.write("v 0 0 0\nv 1e10 0 0\nv 0 1 0\nf 1 2 3\n")
