@@ -109,7 +109,7 @@ TEST_SUITE("stability") {
       if (!floor) scene.primitives.erase(scene.primitives.begin());  // the cube alone, its face on z = 0
       for (const AccelKind kind : kinds) {
         use(scene, kind);
-        INFO((floor ? "on the floor" : "alone"), ", structure ", accel_kind_name(kind));
+        INFO((floor ? "on the floor" : "alone"), ", structure ", to_string(kind));
         const RenderSettings settings{.max_depth = 5};
         const RenderResult r = render_ray_tree(scene, settings);
         CHECK(r.stats.rays.primary == 48u * 36u);
@@ -148,7 +148,7 @@ TEST_SUITE("stability") {
                                            .material = add_material(scene, mirror)});
       for (const AccelKind kind : kinds) {
         use(scene, kind);
-        INFO("ground in the plane x_", axis, " = 0, structure ", accel_kind_name(kind));
+        INFO("ground in the plane x_", axis, " = 0, structure ", to_string(kind));
         Rng rng(2460 + axis);
         int hits = 0, rehits = 0, self_shadowed = 0;
         for (int k = 0; k < 600; ++k) {
@@ -206,7 +206,7 @@ TEST_SUITE("stability") {
                shape == 0   ? "polygon"
                : shape == 1 ? "mesh"
                             : "triangle",
-               ", ", accel_kind_name(kind));
+               ", ", to_string(kind));
           int checked = 0, wrong = 0;
           for (const Point3& eye : {Point3(0.3, plane + 1.7, 3.1), Point3(-2.2, plane + 0.4, 1.3),
                                     Point3(7.7, plane - 2.9, -0.6), Point3(0.0, plane + 25.0, 0.0)}) {

@@ -15,7 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "illum/io/scene_file.hpp"
-#include "illum/radiosity/progressive_on_demand.hpp"
+#include "illum/radiosity/production/progressive_on_demand.hpp"
 
 int main(int argc, char** argv) {
   if (argc != 5) {

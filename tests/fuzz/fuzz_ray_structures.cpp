@@ -30,8 +30,8 @@
 
 #include "illum/accel/brute_force.hpp"
 #include "illum/accel/bvh.hpp"
-#include "illum/accel/compact_bvh.hpp"
 #include "illum/accel/octree.hpp"
+#include "illum/accel/production/compact_bvh.hpp"
 #include "illum/accel/triangle_accel.hpp"
 #include "illum/accel/uniform_grid.hpp"
 #include "illum/core/random.hpp"

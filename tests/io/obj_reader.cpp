@@ -18,6 +18,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <sstream>
 #include <string>
 
@@ -115,7 +116,7 @@ TEST_SUITE("io") {
     std::ostringstream text;
     text.precision(17);
     for (int k = 0; k < 300; ++k) {
-      const double a = 2 * 3.141592653589793 * k / 300;
+      const double a = 2 * std::numbers::pi * k / 300;
       text << "v " << std::cos(a) << " " << std::sin(a) << " 0\n";
     }
     text << "f";

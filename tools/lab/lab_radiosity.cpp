@@ -406,9 +406,9 @@ std::string RadiosityLab::step_json(const Params& params) {
       }
       const std::size_t i = choose_shooter(patches, s->state.unshot);  // Task 6b
       Stopwatch row_watch;
-      s->hemicube->form_factor_row(patches, i, s->row.data(), s->buffers);  // lesson 10's deltas
+      s->hemicube->form_factor_row(patches, i, s->row, s->buffers);  // lesson 10's deltas
       row_seconds += row_watch.seconds();
-      shoot(patches, i, s->row.data(), s->state);  // Task 6c
+      shoot(patches, i, s->row, s->state);  // Task 6c
       s->shooter = static_cast<int>(i);
       fraction = total_power(patches, s->state.unshot) / m.emitted;
     } else if (s->method == Method::southwell) {
@@ -536,7 +536,7 @@ std::string RadiosityLab::hemicube_json(const Params& params) {
   HemicubeBuffers buffers;
   std::vector<double> row(patches.size(), 0.0);
   Stopwatch watch;
-  hemicube.form_factor_row(patches, i, row.data(), buffers);
+  hemicube.form_factor_row(patches, i, row, buffers);
   const double seconds = watch.seconds();
   json faces = json::array();
   const char* names[] = {"top", "+x", "-x", "+y", "-y"};
@@ -544,11 +544,11 @@ std::string RadiosityLab::hemicube_json(const Params& params) {
     const auto face = static_cast<HemicubeFace>(f);
     const int w = HemicubeBuffers::face_width(static_cast<int>(res)),
               h = HemicubeBuffers::face_height(static_cast<int>(res), face);
-    faces.push_back({{"name", names[f]},
-                     {"width", w},
-                     {"height", h},
-                     {"items", base64(buffers.face_items(face),
-                                      static_cast<std::size_t>(w) * h * sizeof(std::int32_t))}});
+    faces.push_back(
+        {{"name", names[f]},
+         {"width", w},
+         {"height", h},
+         {"items", base64(buffers.face_items(face).data(), buffers.face_items(face).size_bytes())}});
   }
   double sum = 0;
   for (const double v : row) sum += v;
@@ -605,7 +605,7 @@ std::string RadiosityLab::hemicube_study_json(const Params& params) {
     HemicubeBuffers buffers;
     std::vector<double> row(patches.size(), 0.0);
     Stopwatch watch;
-    hemicube.form_factor_row(patches, i, row.data(), buffers);
+    hemicube.form_factor_row(patches, i, row, buffers);
     const double seconds = watch.seconds();
     double sum = 0;
     for (const double v : row) sum += v;
