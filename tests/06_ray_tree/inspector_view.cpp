@@ -98,12 +98,42 @@ TEST_SUITE("inspector") {
     REQUIRE(json["tree"]["children"].size() == 1);
     CHECK(json["tree"]["children"][0]["segments"].size() == 3);
     CHECK(json["tree"]["children"][0]["hit"].is_null());
+    // The side of each surface met, as the hit record said: the shadow ray enters the ball at
+    // z = 1.5 (its outside, front face) and leaves it from inside at z = 2.5 (back face).
+    CHECK(pixel.tree.nodes[1].front_face);
+    CHECK_FALSE(pixel.tree.nodes[2].front_face);
+    const auto& segments = json["tree"]["children"][0]["segments"];
+    CHECK(segments[0]["hit"]["front_face"] == true);
+    CHECK(segments[1]["hit"]["front_face"] == false);
+    CHECK(segments[2]["hit"].is_null());
     CHECK(json["tree"]["children"][0]["stop"]["reason"] == "reached_light");
     // Graphviz draws one box for it, not three siblings.
     const std::string dot = ray_tree_dot(scene, pixel);
     CHECK(dot.find("n0 -> n1") != std::string::npos);
     CHECK(dot.find("n0 -> n2") == std::string::npos);
     CHECK(dot.find("through ball: transmission 0.8") != std::string::npos);
+  }
+
+  TEST_CASE("hard case: a shadow ray stopped where it leaves dark glass records the back face it met") {
+    Scene scene = glass_over_floor();
+    // k_t = 10⁻⁴: 10⁻⁴ is left after the ball's near surface (z = 1.5), 10⁻⁸ < min_shadow_transmission
+    // after its far one (z = 2.5), met from inside: the walk stops there, at a back face.
+    scene.materials[1].transmittance = Color(1e-4);
+    const PixelTree pixel = traced(scene, Ray::toward(Point3(3, 0, 3), Vec3(-1, 0, -1)), 0);
+    REQUIRE(pixel.tree.count(RayKind::shadow) == 2);
+    const RayTreeView view = view_ray_tree(scene, pixel);
+    REQUIRE(view.nodes.size() == 2);
+    CHECK(view.nodes[1].stop == StopReason::blocked);
+    REQUIRE(view.nodes[1].segments.size() == 2);
+    CHECK(view.nodes[1].segments[0].front_face);
+    CHECK_FALSE(view.nodes[1].segments[1].front_face);
+    const auto json = nlohmann::json::parse(ray_tree_json(scene, pixel));
+    const auto& shadow = json["tree"]["children"][0];
+    REQUIRE(shadow["hit"].is_object());
+    CHECK(shadow["hit"]["t"] == doctest::Approx(1.0).epsilon(1e-9));  // from z = 1.5 to z = 2.5
+    CHECK_MESSAGE(shadow["hit"]["front_face"] == false, "the record says the ray left the glass from inside");
+    CHECK(shadow["segments"][0]["hit"]["front_face"] == true);
+    CHECK(shadow["segments"][1]["hit"]["front_face"] == false);
   }
 
   TEST_CASE("hard case: an opaque plan's blocked shadow ray names the surface that blocks it") {

@@ -60,7 +60,7 @@ struct JsonWriter {
     if (v.kind == RayKind::shadow) {
       const ShadowSegment& end = v.segments.back();
       if (v.stop == StopReason::blocked && end.crossed)
-        j["hit"] = hit_json(scene, end.primitive, end.material, end.t, end.end, last.front_face);
+        j["hit"] = hit_json(scene, end.primitive, end.material, end.t, end.end, end.front_face);
       j["light"] = n.light;
       j["light_name"] = light_name(scene, n.light);
       j["light_end"] = triple(last.origin + last.range.hi * last.direction);
@@ -71,7 +71,7 @@ struct JsonWriter {
             {{"origin", triple(s.origin)},
              {"end", triple(s.end)},
              {"hit",
-              s.crossed ? hit_json(scene, s.primitive, s.material, s.t, s.end, true) : nlohmann::json()},
+              s.crossed ? hit_json(scene, s.primitive, s.material, s.t, s.end, s.front_face) : nlohmann::json()},
              {"transmission", triple(s.transmission)}});
     } else if (n.hit) {
       j["hit"] = hit_json(scene, n.primitive, n.material, n.t, n.point, n.front_face);

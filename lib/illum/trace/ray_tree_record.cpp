@@ -109,7 +109,7 @@ void record_blocker(RayTree* tree, int node, const SurfaceHit& blocker, const Co
   if (!tree || node == no_node) return;
   RayTreeNode& n = tree->nodes[static_cast<std::size_t>(node)];
   n.hit = true, n.primitive = blocker.primitive, n.material = blocker.material, n.t = blocker.t;
-  n.point = blocker.point, n.local = transmission;
+  n.point = blocker.point, n.front_face = blocker.front_face, n.local = transmission;
 }
 
 void record_total_internal_reflection(RayTree* tree, int node) {

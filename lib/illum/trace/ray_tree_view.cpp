@@ -70,6 +70,7 @@ ShadowSegment segment_of(const Scene& scene, const RayTreeNode& n) {
   ShadowSegment s{.origin = n.origin, .transmission = n.local};
   if (n.hit) {
     s.crossed = true, s.primitive = n.primitive, s.material = n.material, s.t = n.t, s.end = n.point;
+    s.front_face = n.front_face;
     return s;
   }
   s.end = n.point, s.t = n.range.hi;
@@ -79,7 +80,7 @@ ShadowSegment segment_of(const Scene& scene, const RayTreeNode& n) {
     // where the ray stops rather than drawing it on to the light.
     if (const auto blocker = scene.intersect(Ray(n.origin, n.direction, n.range))) {
       s.crossed = true, s.primitive = blocker->primitive, s.material = blocker->material;
-      s.t = blocker->t, s.end = blocker->point;
+      s.t = blocker->t, s.end = blocker->point, s.front_face = blocker->front_face;
     }
   }
   return s;
