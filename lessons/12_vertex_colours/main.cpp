@@ -134,6 +134,7 @@ int main(int argc, char** argv) {
       argc, argv, info, [&](CLI::App& app) { add_options(app, settings); },
       [&](const ProgramOptions& options) {
         settings.quick = options.quick;
+        settings.threads = options.threads;
         const RadiosityScene scene = load_radiosity_scene(settings.scene, 250.0);  // validate before writing
         require_camera_and_light(scene, settings.scene, "lesson 12");
         for (const RadiositySurface& s : scene.surfaces)

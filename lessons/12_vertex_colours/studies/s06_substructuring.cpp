@@ -153,7 +153,14 @@ void s06_substructuring(OutputFolder& out, const Settings& settings) {
   // work, not how a loaded machine schedules two threads' barriers.
   {
     const ScopedThreadCount one_thread(1);
-    report_progress(program_id, "study: the uniformly fine reference", 0, 1);
+    const std::vector<int> uniform_ks = settings.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 3, 4, 6, 8};
+    const std::vector<double> thresholds = settings.quick
+                                               ? std::vector<double>{settings.threshold}
+                                               : std::vector<double>{0.2, 0.1, 0.05, 0.025, 0.0125};
+    // One step per solve: the reference, each uniform k, each threshold; the last line says N/N.
+    const int steps = 1 + static_cast<int>(uniform_ks.size() + thresholds.size());
+    int step = 0;
+    report_progress(program_id, "study: the uniformly fine reference", step++, steps);
     const Solved reference = solve(settings, patch_edge, reference_k, shooting);
     Table table({"scheme", "knob", "patches", "elements", "shots", "seconds", "flat_mean_error",
                  "average_mean_error", "extrapolated_mean_error", "flat_max_error",
@@ -178,20 +185,18 @@ void s06_substructuring(OutputFolder& out, const Settings& settings) {
                      static_cast<std::int64_t>(s.solution.shots), seconds, e.mean[0], e.mean[1], e.mean[2],
                      e.max[0], e.max[2]});
     };
-    for (int k : settings.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 3, 4, 6, 8}) {
-      report_progress(program_id, "study: uniform k = " + std::to_string(k), k, 8);
+    for (int k : uniform_ks) {
+      report_progress(program_id, "study: uniform k = " + std::to_string(k), step++, steps);
       const Solved s = solve(settings, patch_edge, k, shooting);
       add("uniform", std::to_string(k) + "x" + std::to_string(k), s, s.solution.seconds);
     }
-    const std::vector<double> thresholds = settings.quick
-                                               ? std::vector<double>{settings.threshold}
-                                               : std::vector<double>{0.2, 0.1, 0.05, 0.025, 0.0125};
     for (double t : thresholds) {
-      report_progress(program_id, "study: adaptive, threshold " + fixed(t, 4), 0, 1);
+      report_progress(program_id, "study: adaptive, threshold " + fixed(t, 4), step++, steps);
       double seconds = 0;
       const Solved s = adaptive(settings, patch_edge, t, patch_edge / reference_k * 1.01, shooting, seconds);
       add("adaptive", fixed(t, 4), s, seconds);
     }
+    report_progress(program_id, "study: solved", steps, steps);
     out.table(table, "substructuring",
               "Uniform and adaptive substructuring of the box (" +
                   std::to_string(reference.scene.patches.size()) + " patches): error against a uniform " +

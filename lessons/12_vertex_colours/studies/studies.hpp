@@ -28,6 +28,7 @@ struct Settings {
   double figure_patch_edge = 75;  // mm: the figure's patches (the shooters)
   double unshot = 1e-3;           // stop at this fraction of the emitted power unshot
   bool figure_only = false;       // --figure: only the figure (section 7) and its export (section 8)
+  int threads = 0;                // --threads as given (0: not given); N ≥ 2 adds the figure's runs on N threads
 };
 
 // The three vertex-colour rules of §1–3 and their names, in the order the pictures show them.
@@ -58,8 +59,9 @@ Solved solve(const Settings& settings, double patch_edge, int k, const ShootingS
 // solution and time, per element count (studies/s06_substructuring.cpp).
 void s06_substructuring(OutputFolder& out, const Settings& settings);
 
-// §7: the box at about 10,000 elements, both visibility methods, one thread
-// and all; returns the ray-cast solution (studies/s07_figure.cpp).
+// §7: the box at about 10,000 elements, both visibility methods on one thread
+// (and on --threads N as well when N ≥ 2 is asked for); returns the ray-cast
+// solution of one thread (studies/s07_figure.cpp).
 Solved s07_figure(OutputFolder& out, const Settings& settings);
 
 // §8: the figure's solution as PLY and OBJ with vertex colours (studies/s08_export.cpp).
