@@ -12,13 +12,15 @@
 namespace illum {
 
 // Task 4. The shadow test: a shadow ray from the hit to the light
-// (spawn_ray_to), counted with tracer.stats->rays.count(RayKind::shadow) and
-// recorded with record_shadow_ray. Opaque plan (no shadow_attenuation): 1 or 0
-// by tracer.scene.occluded. Otherwise follow the ray through the scene: an
+// (spawn_ray_to). Opaque plan (no shadow_attenuation): 1 or 0 by
+// tracer.scene.occluded. Otherwise follow the ray through the scene: an
 // opaque surface gives 0, a transmissive one multiplies by its k_t and the
 // ray goes on from it (another spawn_ray_to) towards the same light. The walk
 // must end: return 0 right after the surface that brings every channel below
 // min_shadow_transmission, or right after the max_shadow_crossings-th surface.
+// Every segment is a ray: count each one (tracer.stats->rays.count(RayKind::shadow)),
+// pass &tracer.stats->work to scene.occluded / scene.intersect, and record it
+// (record_shadow_ray, record_blocker, record_result: the order is in ray_tree.hpp).
 Color shadow_transmission(const Tracer& tracer, const SurfaceHit& hit, const Point3& light_position, int node,
                           std::uint32_t light) {
   throw NotImplemented(
@@ -35,12 +37,14 @@ Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_
                        "ambient + emission + one shadow-tested Phong term per light (lesson 06, eq. 6.7)");
 }
 
-// Task 6. evaluar (rayo): count the ray, find the nearest hit (none: the
-// background), I_own, and below plan.max_depth the children: the refracted
-// ray (η_i/η_t = 1/η entering a front face, η leaving; total internal
-// reflection adds k_t to k_r) and the reflected ray, each spawned with
-// spawn_ray and weighed by its k. Return I_own + k_r·I_r + k_t·I_t.
-// Record the ray with record_ray and its result with record_result.
+// Task 6. evaluar (rayo): count the ray, find the nearest hit with
+// tracer.scene.intersect(ray, &tracer.stats->work) (none: the background),
+// I_own, and below plan.max_depth the children the plan allows (plan.reflection,
+// plan.refraction, plan.skip_zero_weights): the refracted ray (η_i/η_t = 1/η
+// entering a front face, η leaving; total internal reflection adds k_t to k_r)
+// and the reflected ray, each spawned with spawn_ray and weighed by its k.
+// Return I_own + k_r·I_r + k_t·I_t. Record the ray with record_ray and its
+// result with record_result (the order is in ray_tree.hpp).
 // Lesson 07 prunes the tree through this function: skip a child when
 // pruned(tracer.min_contribution, weight * k) is true (contribution_cutoff.hpp;
 // it is false whenever min_contribution is 0, the default).

@@ -16,7 +16,8 @@ double radiosity_gap(const Color& a, const Color& b) {
   throw NotImplemented("radiosity_gap", "max over r, g, b of |a - b| (lesson 12, §5)");
 }
 
-// Task 7. Mark both ends of every neighbour pair whose gap exceeds the threshold, unless already small.
+// Task 7. Mark both ends of every neighbour pair whose gap exceeds the threshold (a radiosity, compared
+// as given: the caller scales τ of eq. 12.7 by the brightest element), unless already small.
 std::vector<bool> elements_to_split(const std::vector<std::pair<int, int>>& neighbours,
                                     const std::vector<Color>& radiosity,
                                     const std::vector<double>& longest_edge, double threshold,

@@ -34,7 +34,7 @@ void resolve_t_vertices(const SharedVertexMesh& mesh, std::vector<Color>& vertex
                        "in order, value[vertex] = (1 - t) value[from] + t value[to] (lesson 12, §4)");
 }
 
-// Task 4. Per face, per corner, by the chosen rule.
+// Task 4. Per face, per corner, by the chosen rule (check the list's length first, for every rule).
 std::vector<std::vector<Color>> corner_radiosity(const SharedVertexMesh& mesh,
                                                  const std::vector<Color>& face_radiosity,
                                                  VertexColourRule rule) {

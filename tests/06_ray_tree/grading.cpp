@@ -20,6 +20,8 @@ using illum::test::add_sphere;
 using illum::test::check_vec;
 using illum::test::hand_hit;
 using illum::test::material;
+using illum::test::require_reflect;
+using illum::test::require_refract;
 
 namespace {
 
@@ -274,6 +276,7 @@ TEST_SUITE("lesson06") {
     scene.ambient_light = Color(1.0);
     // From (−2, 0, 2) towards the origin: reflected towards (2, 0, 2), the lamp's centre.
     const Ray ray = Ray::toward(Point3(-2, 0, 2), Vec3(1, 0, -1));
+    require_reflect(ray.direction, Vec3(0, 0, 1), Vec3(ray.direction.x, 0, -ray.direction.z));
     check_vec(run(scene, ray, 1).color, Color(0.1) + 0.5 * Color(1, 0, 0));
     const Run flat = run(scene, ray, 0);
     CHECK_MESSAGE(flat.stats.rays.reflection == 0, "depth limit 0: the primary ray has no children");
@@ -289,6 +292,7 @@ TEST_SUITE("lesson06") {
     add_sphere(scene, "ball", Point3(0, 0, 0), 1.0, add_material(scene, glass));
     const Color background(0.2, 0.4, 0.6);
     const Ray ray(Point3(0, 0, 5), Vec3(0, 0, -1));  // normal incidence: no bending in, none out
+    require_refract(ray.direction, Vec3(0, 0, 1), 1.0 / 1.5, ray.direction);
     check_vec(run(scene, ray, 2, background).color, 0.81 * background);
     const Run one = run(scene, ray, 1, background);
     CHECK_MESSAGE(one.stats.rays.refraction == 1, "depth 1: the ray into the glass, not the one out of it");
@@ -308,6 +312,10 @@ TEST_SUITE("lesson06") {
     // Depth 1: I_own = 0.1 here, and the reflected ray (weight k_r + k_t = 0.9) meets the
     // inside again where I_own = 0.1: 0.1 + 0.9·0.1 = 0.19. Entering instead of leaving
     // (η_i/η_t = 1/1.5) would refract out to the black background: 0.1.
+    // The surface is met at (√0.19, 0.9, 0), whose normal facing the ray is −(√0.19, 0.9, 0):
+    // N·I = −√0.19, R = I − 2(N·I)N = (1 − 2·0.19, −1.8√0.19, 0) = (0.62, −1.8√0.19, 0).
+    const double root = std::sqrt(0.19);
+    require_reflect(Vec3(1, 0, 0), Vec3(-root, -0.9, 0), Vec3(0.62, -1.8 * root, 0));
     const Run r = run(scene, Ray(Point3(0, 0.9, 0), Vec3(1, 0, 0)), 1);
     check_vec(r.color, Color(0.19));
     CHECK_MESSAGE(r.stats.rays.reflection == 1, "total internal reflection spawns the reflected ray");
@@ -325,6 +333,7 @@ TEST_SUITE("lesson06") {
     // The z axis touches the ball at (0, 0, 5), where N = (0, −1, 0) ⟂ ω: the mirror
     // direction is ω itself and it must not hit the ball again.
     const Color background(0.3, 0.6, 0.9);
+    require_reflect(Vec3(0, 0, 1), Vec3(0, -1, 0), Vec3(0, 0, 1));
     const Run r = run(scene, Ray(Point3(0, 0, 0), Vec3(0, 0, 1)), 2, background);
     REQUIRE(is_finite(r.color));
     const Color hit = Color(0.2) + 0.7 * background;  // the tangent counts as a hit (one double root)

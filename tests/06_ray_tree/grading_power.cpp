@@ -16,12 +16,15 @@
 #include "support/throws_containing.hpp"
 
 using namespace illum;
+using illum::test::add_floor;
 using illum::test::add_light;
 using illum::test::add_material;
 using illum::test::add_sphere;
 using illum::test::check_vec;
 using illum::test::hand_hit;
 using illum::test::material;
+using illum::test::require_reflect;
+using illum::test::require_refract;
 
 namespace {
 
@@ -132,6 +135,7 @@ TEST_SUITE("lesson06") {
     const Tracer tracer{.scene = scene, .plan = plan, .background = background, .stats = &stats};
     // Straight down onto the mirror: I_own = 0, the reflected ray goes straight up to the
     // background: 0.5·(0.2, 0.4, 0.6) = (0.1, 0.2, 0.3).
+    require_reflect(Vec3(0, 0, -1), Vec3(0, 0, 1), Vec3(0, 0, 1));
     check_vec(evaluate(tracer, Ray(Point3(0, 0, 2), Vec3(0, 0, -1))), Color(0.1, 0.2, 0.3));
     CHECK_MESSAGE(stats.rays.refraction == 0, "k_t = (0, 0, 0) at the mirror: no refracted ray is spawned");
     CHECK(stats.rays.reflection == 1);
@@ -157,6 +161,8 @@ TEST_SUITE("lesson06") {
     const EffectsPlan plan = plan_effects(scene, 1);
     TraceStats stats;
     const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+    const double sin_t = std::sqrt(2.0) / 3.0, cos_t = std::sqrt(7.0) / 3.0;
+    require_refract(normalize(Vec3(1, 0, -1)), Vec3(0, 0, 1), 1.0 / 1.5, Vec3(sin_t, 0, -cos_t));
     const Color c = evaluate(tracer, Ray::toward(Point3(-1, 0, 1), Vec3(1, 0, -1)));
     INFO(
         "I = I_own(glass) + k_t·I_t = 0 + 0.5·(0.2, 1.0, 0.6): the refracted ray lands at x = √(2/7) on "
@@ -254,6 +260,7 @@ TEST_SUITE("lesson06") {
     const Tracer tracer{
         .scene = scene, .plan = plan, .background = background, .stats = &stats, .tree = &tree};
     // I = k_d·(N·L = 1) + k_r·background = (0.5 + 0.1, 0.5 + 0.1, 0.5 + 0.075).
+    require_reflect(Vec3(0, 0, -1), Vec3(0, 0, 1), Vec3(0, 0, 1));
     check_vec(evaluate(tracer, Ray(Point3(0, 0, 2), Vec3(0, 0, -1))), Color(0.6, 0.6, 0.575));
     const auto find = [&](RayKind kind) {
       for (const RayTreeNode& node : tree.nodes)
@@ -291,5 +298,218 @@ TEST_SUITE("lesson06") {
     REQUIRE(refracted != nullptr);
     INFO("the refracted ray's path weight is 1·k_t = (0.5, 0.25, 0.75)");
     check_vec(refracted->weight, Color(0.5, 0.25, 0.75));
+  }
+}
+
+// What the lesson's tables are made of, graded: the shadow segments counted one by
+// one, the intersection tests counted through the work counters, every switch of the
+// plan on every kind of specular object, the records the inspector reads, and an
+// offset that follows the hit's own error (spawn_ray), not a fixed epsilon.
+namespace {
+
+// A floor point under a light, with a glass ball between them and an opaque ball off the path.
+struct GlassOverPoint {
+  Scene scene;
+  std::uint32_t floor = 0, glass = 0;
+  GlassOverPoint() {
+    floor = add_material(scene, material("floor"));
+    Material g = material("glass");
+    g.transmittance = Color(0.8, 0.5, 0.9);
+    g.index_of_refraction = 1.5;
+    glass = add_material(scene, g);
+    add_sphere(scene, "glass ball", Point3(0, 0, 2), 0.5, glass);
+    add_sphere(scene, "opaque ball", Point3(5, 0, 2), 0.5, floor);  // far from the segment x = y = 0
+  }
+};
+
+}  // namespace
+
+TEST_SUITE("lesson06") {
+  TEST_CASE("shadow test: every segment of a walk through glass is a shadow ray, its tests counted as work" *
+            doctest::description("task=4")) {
+    // The point (origin) under the light (0, 0, 4), the glass ball r = 0.5 at z = 2 between.
+    // Segments: to the ball (z = 1.5), across it (to z = 2.5), on to the light: 3 shadow rays.
+    // Each segment asks scene.intersect, which tests both primitives (brute force, scene.hpp):
+    // 3 × 2 = 6 tests; the first two segments hit the glass ball, the last nothing: 2 hits.
+    GlassOverPoint g;
+    const SurfaceHit p = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), g.floor);
+    TraceStats stats;
+    const EffectsPlan plan = full_effects(0);
+    const Tracer tracer{.scene = g.scene, .plan = plan, .stats = &stats};
+    check_vec(shadow_transmission(tracer, p, Point3(0, 0, 4)), Color(0.64, 0.25, 0.81));
+    CHECK_MESSAGE(stats.rays.shadow == 3,
+                  "one shadow ray per segment (ray_tree.hpp): to the ball, across it, on to the light = 3; got "
+                      << stats.rays.shadow << " (1 means the walk was counted once per call)");
+    CHECK_MESSAGE(stats.work.intersection_tests == 6,
+                  "pass &tracer.stats->work to scene.intersect: 3 segments × 2 primitives = 6 tests; got "
+                      << stats.work.intersection_tests);
+    CHECK_MESSAGE(stats.work.hits == 2, "the first two segments end on the glass: 2 hits; got " << stats.work.hits);
+    // The opaque plan asks scene.occluded: the light is blocked, one ray, at least one test counted.
+    EffectsPlan opaque = full_effects(0);
+    opaque.shadow_attenuation = false;
+    TraceStats opaque_stats;
+    const Tracer opaque_tracer{.scene = g.scene, .plan = opaque, .stats = &opaque_stats};
+    check_vec(shadow_transmission(opaque_tracer, p, Point3(0, 0, 4)), Color(0.0));
+    CHECK(opaque_stats.rays.shadow == 1);
+    CHECK_MESSAGE(opaque_stats.work.intersection_tests >= 1,
+                  "pass &tracer.stats->work to scene.occluded too: its tests must be counted");
+  }
+
+  TEST_CASE("evaluate: the work counters count the intersection tests of the primary and the shadow ray" *
+            doctest::description("task=3,4,5,6")) {
+    // A floor and a ball beside the ray's path, one light, depth 0 (a diffuse scene: the plan
+    // casts no secondary ray and its shadow rays stop at the first surface, scene.occluded).
+    // The primary ray straight down at (3, 0) tests both primitives and hits the floor; the
+    // shadow ray from (3, 0, 0) to the light at (3, 0, 6) is not blocked, so scene.occluded tests
+    // both as well: 4 tests, 1 hit. The colour is k_d·(N·L = 1)·I = 0.5.
+    Scene scene;
+    Material white = material("white");
+    white.diffuse = Color(0.5);
+    const auto m = add_material(scene, white);
+    add_floor(scene, "floor", 0.0, 10.0, m);
+    add_sphere(scene, "ball", Point3(-3, 0, 1), 1.0, m);
+    add_light(scene, Point3(3, 0, 6), Color(1.0));
+    const EffectsPlan plan = plan_effects(scene, 0);
+    REQUIRE(!plan.shadow_attenuation);
+    TraceStats stats;
+    const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+    check_vec(evaluate(tracer, Ray(Point3(3, 0, 5), Vec3(0, 0, -1))), Color(0.5));
+    CHECK(stats.rays.primary == 1);
+    CHECK(stats.rays.shadow == 1);
+    CHECK_MESSAGE(stats.work.intersection_tests == 4,
+                  "pass &tracer.stats->work to scene.intersect (primary: 2 tests) and scene.occluded (shadow: 2 "
+                  "tests, nothing blocks): 4; got "
+                      << stats.work.intersection_tests << " (0 means the work counters were not passed on)");
+    CHECK_MESSAGE(stats.work.hits == 1, "only the primary ray's test of the floor hits; got " << stats.work.hits);
+  }
+
+  TEST_CASE("effects plan: every switch on a mirror, on clear glass and on reflecting glass, by the ray counts" *
+            doctest::description("task=1,2,5,6")) {
+    // A square z = 0 seen straight down from (0, 0, 2), depth 1, no light, ambient 0.2: I_own = 0.2.
+    // Its reflected child goes straight up, its refracted child straight down (normal incidence does
+    // not bend): both miss and return the background b = (0.1, 0.2, 0.4). So
+    //   colour = 0.2 + [reflected cast]·k_r·b + [refracted cast]·k_t·b,
+    // and the children cast are: the notes' literal tree (full_effects) both, always, even with a zero
+    // k; skip_zero_weights only those with a k > 0; reflection off no reflected; refraction off no
+    // refracted (ray_tree.hpp, evaluate).
+    struct Object {
+      const char* name;
+      Color k_r, k_t;
+    };
+    const Object objects[] = {{"mirror", Color(0.5), Color(0.0)},
+                              {"clear glass", Color(0.0), Color(0.5)},
+                              {"reflecting glass", Color(0.25), Color(0.5)}};
+    enum class Switch { literal, skip_zero_weights, no_reflection, no_refraction };
+    const Color background(0.1, 0.2, 0.4);
+    require_reflect(Vec3(0, 0, -1), Vec3(0, 0, 1), Vec3(0, 0, 1));
+    for (const Object& object : objects)
+      for (const Switch which :
+           {Switch::literal, Switch::skip_zero_weights, Switch::no_reflection, Switch::no_refraction}) {
+        Scene scene;
+        Material m = material(object.name);
+        m.ambient = Color(0.2);
+        m.reflectance = object.k_r;
+        m.transmittance = object.k_t;
+        m.index_of_refraction = 1.5;
+        add_floor(scene, object.name, 0.0, 10.0, add_material(scene, m));
+        scene.ambient_light = Color(1.0);
+        EffectsPlan plan = full_effects(1);
+        plan.skip_zero_weights = which == Switch::skip_zero_weights;
+        plan.reflection = which != Switch::no_reflection;
+        plan.refraction = which != Switch::no_refraction;
+        const bool reflected = plan.reflection && (!plan.skip_zero_weights || object.k_r.r > 0);
+        const bool refracted = plan.refraction && (!plan.skip_zero_weights || object.k_t.r > 0);
+        TraceStats stats;
+        const Tracer tracer{.scene = scene, .plan = plan, .background = background, .stats = &stats};
+        const Color c = evaluate(tracer, Ray(Point3(0, 0, 2), Vec3(0, 0, -1)));
+        INFO(object.name, ", k_r = ", object.k_r.r, ", k_t = ", object.k_t.r, "; plan: reflection ",
+             plan.reflection ? "on" : "off", ", refraction ", plan.refraction ? "on" : "off",
+             ", skip_zero_weights ", plan.skip_zero_weights ? "on" : "off");
+        CHECK_MESSAGE(stats.rays.reflection == (reflected ? 1u : 0u),
+                      "reflected rays: expected " << (reflected ? 1 : 0) << ", got " << stats.rays.reflection);
+        CHECK_MESSAGE(stats.rays.refraction == (refracted ? 1u : 0u),
+                      "refracted rays: expected " << (refracted ? 1 : 0) << ", got " << stats.rays.refraction);
+        const Color want = Color(0.2) + (plan.reflection ? object.k_r : Color(0.0)) * background +
+                           (plan.refraction ? object.k_t : Color(0.0)) * background;
+        check_vec(c, want);
+      }
+  }
+
+  TEST_CASE("ray tree record: one record per shadow segment, in order, with the side of each surface it met" *
+            doctest::description("task=4,5,6")) {
+    // The primary ray goes from (0, 0, 0.5) straight down onto the floor's point (0, 0, 0), under
+    // the glass ball and the light (0, 0, 4), at depth 0. The records
+    // (ray_tree.hpp): node 0 the primary ray; then its shadow walk, one record per segment, each a
+    // child of node 0: 1 ends on the ball's near side (front face) with 0.8·…, 2 on its far side,
+    // met from inside (back face), with k_t², 3 reaches the light: no hit, transmission k_t².
+    GlassOverPoint g;
+    Material white = g.scene.materials[g.floor];
+    white.diffuse = Color(0.5);
+    g.scene.materials[g.floor] = white;
+    add_floor(g.scene, "floor", 0.0, 10.0, g.floor);
+    add_light(g.scene, Point3(0, 0, 4), Color(1.0));
+    const EffectsPlan plan = full_effects(0);
+    TraceStats stats;
+    RayTree tree;
+    const Tracer tracer{.scene = g.scene, .plan = plan, .stats = &stats, .tree = &tree};
+    // I = k_d·(N·L = 1)·S = 0.5·(0.64, 0.25, 0.81).
+    const Color want(0.32, 0.125, 0.405);
+    check_vec(evaluate(tracer, Ray(Point3(0, 0, 0.5), Vec3(0, 0, -1))), want);
+    REQUIRE_MESSAGE(tree.nodes.size() == 4, "the primary ray and three shadow segments: 4 records; got "
+                                                << tree.nodes.size());
+    CHECK(tree.nodes[0].kind == RayKind::primary);
+    CHECK(tree.nodes[0].hit);
+    check_vec(tree.nodes[0].local, want);
+    check_vec(tree.nodes[0].color, want);
+    const Color k_t = g.scene.materials[g.glass].transmittance;
+    for (int k = 1; k <= 3; ++k) {
+      const RayTreeNode& n = tree.nodes[static_cast<std::size_t>(k)];
+      INFO("shadow segment ", k, " (record ", k, ")");
+      CHECK(n.kind == RayKind::shadow);
+      CHECK_MESSAGE(n.parent == 0, "every segment is recorded as a child of the surface's node");
+      CHECK(n.light == 0u);
+      check_vec(n.color, Color(0.0));
+    }
+    CHECK_MESSAGE(tree.nodes[1].hit, "segment 1 ends on the ball: record_blocker");
+    CHECK(tree.nodes[1].front_face);
+    check_vec(tree.nodes[1].local, k_t);
+    CHECK_MESSAGE(tree.nodes[2].hit, "segment 2 ends on the ball's far side: record_blocker");
+    CHECK_MESSAGE(!tree.nodes[2].front_face, "segment 2 leaves the glass from inside: the hit says back face");
+    check_vec(tree.nodes[2].local, k_t * k_t);
+    CHECK_MESSAGE(!tree.nodes[3].hit, "segment 3 reaches the light");
+    check_vec(tree.nodes[3].local, k_t * k_t);
+  }
+
+  TEST_CASE("evaluate: a glass pane thinner than any fixed epsilon is crossed, both of its faces seen" *
+            doctest::description("task=2,5,6")) {
+    // Two faces of a pane 10⁻⁷ thick, z = 0 and z = −10⁻⁷ (k_t = 0.5, η = 1.5, ambient 0.2), seen
+    // straight down at depth 2. The ray enters at z = 0 (I_own = 0.2), its refracted child (normal
+    // incidence: straight down) leaves from spawn_ray's offset, a few 10⁻¹⁶ below z = 0, and meets
+    // the bottom face from inside (I_own = 0.2, η_i/η_t = 1.5: still straight down), whose
+    // refracted child misses: the background b. I = 0.2 + 0.5·(0.2 + 0.5·b).
+    // A child started a fixed 10⁻⁶ or 10⁻⁴ along its direction would begin below the pane, miss
+    // its bottom face and give 0.2 + 0.5·b with one refracted ray instead of two.
+    Scene scene;
+    Material pane = material("pane");
+    pane.ambient = Color(0.2);
+    pane.transmittance = Color(0.5);
+    pane.index_of_refraction = 1.5;
+    const auto m = add_material(scene, pane);
+    add_floor(scene, "top", 0.0, 1.0, m);  // normal +z: the ray meets its front face
+    const double z = -1e-7;                 // normal −z (clockwise from above): met from inside, a back face
+    scene.primitives.push_back(Primitive{
+        .name = "bottom",
+        .shape = Polygon({Point3(-1, -1, z), Point3(-1, 1, z), Point3(1, 1, z), Point3(1, -1, z)}),
+        .material = m});
+    scene.ambient_light = Color(1.0);
+    const Color background(0.1, 0.2, 0.4);
+    const EffectsPlan plan = plan_effects(scene, 2);
+    TraceStats stats;
+    const Tracer tracer{.scene = scene, .plan = plan, .background = background, .stats = &stats};
+    const Color c = evaluate(tracer, Ray(Point3(0.25, 0.125, 1), Vec3(0, 0, -1)));
+    INFO("spawn_ray moves the origin by the hit's error bound (about 10⁻¹⁶ here), not by a fixed epsilon");
+    check_vec(c, Color(0.2) + 0.5 * (Color(0.2) + 0.5 * background));
+    CHECK_MESSAGE(stats.rays.refraction == 2, "into the pane and out of it: 2 refracted rays; got "
+                                                  << stats.rays.refraction);
   }
 }

@@ -6,6 +6,7 @@
 
 #include <doctest/doctest.h>
 
+#include "illum/trace/optics.hpp"
 #include "illum/trace/scene.hpp"
 
 namespace illum::test {
@@ -55,6 +56,29 @@ inline void check_vec(const Vec3& got, const Vec3& want, double eps = 1e-12) {
   CHECK(got.x == doctest::Approx(want.x).epsilon(eps).scale(1.0));
   CHECK(got.y == doctest::Approx(want.y).epsilon(eps).scale(1.0));
   CHECK(got.z == doctest::Approx(want.z).epsilon(eps).scale(1.0));
+}
+
+// The directions a test needs from Tasks 1 and 2, checked before it traces: a wrong
+// reflect or refract then fails here, naming the task and the formula, rather than
+// later in spawn_ray or as a wrong colour.
+inline void require_reflect(const Vec3& incoming, const Vec3& normal, const Vec3& want) {
+  const Vec3 got = reflect(incoming, normal);
+  INFO("this test traces a mirror, so it needs Task 1 first: reflect(I, N) with I = (", incoming.x, ", ",
+       incoming.y, ", ", incoming.z, ") and N = (", normal.x, ", ", normal.y, ", ", normal.z,
+       ") is R = I − 2(N·I)N = (", want.x, ", ", want.y, ", ", want.z, "); got (", got.x, ", ", got.y, ", ", got.z,
+       ")");
+  REQUIRE(glm::length(got - want) < 1e-12);
+}
+
+inline void require_refract(const Vec3& incoming, const Vec3& normal, double eta_ratio, const Vec3& want) {
+  const Refraction got = refract(incoming, normal, eta_ratio);
+  INFO("this test traces glass, so it needs Task 2 first: refract(I, N, η_i/η_t = ", eta_ratio, ") with I = (",
+       incoming.x, ", ", incoming.y, ", ", incoming.z, ") and N = (", normal.x, ", ", normal.y, ", ", normal.z,
+       ") is T = (", want.x, ", ", want.y, ", ", want.z, ") by Snell's law; got ",
+       got.total_internal_reflection ? std::string("total internal reflection") : std::string("a direction"),
+       " (", got.direction.x, ", ", got.direction.y, ", ", got.direction.z, ")");
+  REQUIRE(!got.total_internal_reflection);
+  REQUIRE(glm::length(got.direction - want) < 1e-12);
 }
 
 }  // namespace illum::test

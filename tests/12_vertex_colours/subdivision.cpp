@@ -15,6 +15,13 @@ using namespace illum;
 
 namespace {
 
+// One flag per element, said before the flags are compared (a bare vector comparison says neither).
+bool split_is_sized(const std::vector<bool>& split, std::size_t elements) {
+  INFO("elements_to_split returns one flag per element: " << elements << " here, got " << split.size());
+  CHECK(split.size() == elements);
+  return split.size() == elements;
+}
+
 Patch square(double x0, double y0, double x1, double y1) {
   return make_patch({{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}}, Color(0.5));
 }
@@ -37,8 +44,14 @@ TEST_SUITE("lesson12") {
     const std::vector<std::pair<int, int>> pairs = {{0, 1}, {1, 2}, {2, 3}};
     const std::vector<Color> b = {Color(1), Color(2), Color(4), Color(4.5)};
     const std::vector<double> edge(4, 1.0);
+    REQUIRE(split_is_sized(elements_to_split(pairs, b, edge, 1.0, 0.1), 4));
     const std::vector<bool> split = elements_to_split(pairs, b, edge, 1.0, 0.1);
-    CHECK(split == std::vector<bool>{false, true, true, false});
+    const std::vector<bool> only_the_pair_1_2 = {false, true, true, false};
+    CHECK_MESSAGE(split == only_the_pair_1_2,
+                  "threshold 1 is compared with each gap as it is (element_subdivision.hpp: not scaled by the "
+                  "brightest element, which the lesson program does itself): only the gap 2 of (1, 2) exceeds "
+                  "it, and the gap 1 of (0, 1) equals it, which does not split; expected {0, 1, 1, 0}, got {"
+                      << split[0] << ", " << split[1] << ", " << split[2] << ", " << split[3] << "}");
     CHECK_MESSAGE(elements_to_split(pairs, b, edge, 0.4, 0.1) == std::vector<bool>(4, true),
                   "every gap (1, 2, 0.5) exceeds 0.4");
     CHECK_MESSAGE(elements_to_split(pairs, b, edge, 3.0, 0.1) == std::vector<bool>(4, false),

@@ -141,3 +141,88 @@ TEST_SUITE("lesson12") {
     check_colour(value[2], Color(1), "vertex 2 lies on face 0 only");
   }
 }
+
+// The slips a student trial found passing (issue 28): t and 1 − t swapped where every
+// T-vertex sat at t = 0.5, T-vertices left unresolved under the extrapolate rule, and
+// B_e read from the values being extrapolated instead of the averages.
+namespace {
+
+Patch rectangle(double x0, double y0, double x1, double y1) {
+  return make_patch({{x0, y0, 0}, {x1, y0, 0}, {x1, y1, 0}, {x0, y1, 0}}, Color(0.5));
+}
+
+// The corner value face f gives to the vertex at `point`.
+Color corner_of(const SharedVertexMesh& mesh, const std::vector<std::vector<Color>>& corners, int f,
+                const Point3& point) {
+  for (std::size_t k = 0; k < mesh.faces[f].size(); ++k)
+    if (length(mesh.positions[mesh.faces[f][k]] - point) < 1e-12) return corners[f][k];
+  FAIL("face " << f << " has no corner at (" << point.x << ", " << point.y << ")");
+  return Color(NAN);
+}
+
+}  // namespace
+
+TEST_SUITE("lesson12") {
+  TEST_CASE("hard case: a T-vertex a third of the way along its edge takes 1 − t of `from` and t of `to`" *
+            doctest::description("task=1,3,4")) {
+    // A big face [0,3]² (B = 9) beside [3,4]×[0,1] (B = 3) and [3,4]×[1,3] (B = 6): (3, 1) lies on the
+    // big face's edge (3,0)–(3,3), a third of the way up. Averages: (3,0) = (9 + 3)/2 = 6,
+    // (3,3) = (9 + 6)/2 = 7.5, (3,1) = (9 + 3 + 6)/3 = 6 before it is resolved. Resolved by
+    // position: 6 + (1/3)(7.5 − 6) = 6.5 (t and 1 − t swapped would give 6 + (2/3)·1.5 = 7).
+    const SharedVertexMesh mesh =
+        share_vertices({rectangle(0, 0, 3, 3), rectangle(3, 0, 4, 1), rectangle(3, 1, 4, 3)});
+    REQUIRE(mesh.t_vertices.size() == 1);
+    const TVertex& tv = mesh.t_vertices[0];
+    REQUIRE_MESSAGE(std::abs(tv.t - 0.5) > 0.1, "this test needs a T-vertex away from the middle of its edge");
+    const std::vector<Color> b = {Color(9), Color(3), Color(6)};
+    for (VertexColourRule rule : {VertexColourRule::average, VertexColourRule::extrapolate}) {
+      INFO("rule ", rule == VertexColourRule::average ? "average" : "extrapolate",
+           ": (3,0) and (3,3) keep their averages 6 and 7.5 (no edge is shared there, a T-junction), and the "
+           "T-vertex is resolved for both rules (vertex_colours.hpp, Task 4)");
+      const auto corners = corner_radiosity(mesh, b, rule);
+      check_colour(corner_of(mesh, corners, 1, {3, 1, 0}), Color(6.5),
+                   "(1 − t)·value[from] + t·value[to], t measured from `from`: 6 + (7.5 − 6)/3");
+      check_colour(corner_of(mesh, corners, 2, {3, 1, 0}), Color(6.5), "both small faces show the same value");
+      check_colour(interpolate_radiosity(rectangle(0, 0, 3, 3), corners[0], {3, 1, 0}), Color(6.5),
+                   "the big face's Gouraud value at (3, 1) meets the small faces': no crack");
+    }
+    std::vector<Color> values = average_vertex_radiosity(mesh, b);
+    resolve_t_vertices(mesh, values);
+    check_colour(values[tv.vertex], Color(6.5), "resolve_t_vertices alone: 6 + (7.5 − 6)/3");
+  }
+
+  TEST_CASE("extrapolate reads B_e from the averages, not from vertices extrapolated earlier in the loop" *
+            doctest::description("task=1,2")) {
+    // Three unit squares in an L, numbered by hand so that a vertex that is extrapolated comes
+    // before the corner that uses it as B_e:
+    //   7 (-1,2) — 5 (0,2) — 4 (1,2)
+    //   |   F2 (B = 12)  |  F1 (B = 6)  |
+    //   6 (-1,1) — 3 (0,1) — 0 (1,1)
+    //                |  F0 (B = 3)  |
+    //                1 (0,0) — 2 (1,0)
+    // Averages: 0 = (3 + 6)/2 = 4.5, 3 = (3 + 6 + 12)/3 = 7, 5 = (6 + 12)/2 = 9.
+    // Vertex 0: F0, F1 share the edge 0–3: B = 3 + 6 − 7 = 2. Vertex 5: F1, F2 share 5–3:
+    // 6 + 12 − 7 = 11. Corner 1 of F0, opposite corner 0: 2·3 − avg(0) = 6 − 4.5 = 1.5 (with
+    // vertex 0's new value 2 instead: 4). Corner 6 of F2, opposite corner 5: 2·12 − 9 = 15 (with 11: 13).
+    // Corner 2 of F0, opposite 3: 6 − 7 < 0 → 0. Corners 4 and 7: 2·6 − 7 = 5, 2·12 − 7 = 17. Vertex 3
+    // (three faces) keeps its average, 7.
+    SharedVertexMesh mesh;
+    mesh.positions = {{1, 1, 0}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 2, 0}, {0, 2, 0}, {-1, 1, 0}, {-1, 2, 0}};
+    mesh.faces = {{1, 2, 0, 3}, {3, 0, 4, 5}, {6, 3, 5, 7}};
+    mesh.group = {0, 0, 0};
+    mesh.on_boundary = std::vector<bool>(8, true);
+    mesh.neighbours = {{0, 1}, {1, 2}};
+    const std::vector<Color> value = extrapolated_vertex_radiosity(mesh, {Color(3), Color(6), Color(12)});
+    REQUIRE(value.size() == 8);
+    check_colour(value[0], Color(2), "edge vertex 0 of F0 and F1: 3 + 6 − avg(3) = 3 + 6 − 7");
+    check_colour(value[5], Color(11), "edge vertex 5 of F1 and F2: 6 + 12 − 7");
+    check_colour(value[1], Color(1.5),
+                 "corner 1 of F0: 2·3 − B_e with B_e = vertex 0's average 4.5, not its extrapolated 2");
+    check_colour(value[6], Color(15),
+                 "corner 6 of F2: 2·12 − B_e with B_e = vertex 5's average 9, not its extrapolated 11");
+    check_colour(value[2], Color(0), "corner 2 of F0: 2·3 − 7 < 0, clamped");
+    check_colour(value[4], Color(5), "corner 4 of F1: 2·6 − 7");
+    check_colour(value[7], Color(17), "corner 7 of F2: 2·12 − 7");
+    check_colour(value[3], Color(7), "vertex 3 lies on three faces: it keeps its average");
+  }
+}

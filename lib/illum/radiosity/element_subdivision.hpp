@@ -23,11 +23,16 @@ double radiosity_gap(const Color& a, const Color& b);
 // (strictly) and e is still larger than the smallest allowed element,
 // longest_edge[e] > min_edge (both ends of a pair are tested on their own:
 // a small element beside a large one may stop while the large one splits).
+// `threshold` is a gap in the radiosity's own units, compared as it is: this
+// function does not scale it. Eq. 12.7 of the lesson, gap > τ·max B, is the
+// caller's choice of threshold: the lesson program passes τ times the
+// brightest non-emitting element's largest channel, τ being its --threshold.
 // Returns one flag per element (radiosity.size()). Throws
 // std::invalid_argument when threshold is not positive and finite (its
 // message contains "threshold"),
 // min_edge is negative or not finite, longest_edge.size() !=
-// radiosity.size(), or a pair names an element out of range.
+// radiosity.size(), or a pair names an element out of range (either end
+// below 0 or at least radiosity.size()).
 std::vector<bool> elements_to_split(const std::vector<std::pair<int, int>>& neighbours,
                                     const std::vector<Color>& radiosity,
                                     const std::vector<double>& longest_edge, double threshold,

@@ -42,17 +42,23 @@ std::vector<Color> average_vertex_radiosity(const SharedVertexMesh& mesh,
                                             const std::vector<Color>& face_radiosity);
 
 // Task 2. Per vertex: the extrapolation rule above, built on Task 1's averages,
-// each channel clamped at zero. Same precondition as Task 1.
+// each channel clamped at zero. B_e is always e's *average* (a copy of Task 1's
+// result kept apart): a vertex extrapolated earlier in the loop must not change
+// a later one's B_e. T-vertices keep their average here (Task 3 sets them).
+// Same precondition as Task 1.
 std::vector<Color> extrapolated_vertex_radiosity(const SharedVertexMesh& mesh,
                                                  const std::vector<Color>& face_radiosity);
 
 // Task 3. Sets each T-vertex of mesh.t_vertices, in order, to
-// (1 − t)·value[from] + t·value[to]. Throws std::invalid_argument when
-// vertex_value.size() != mesh.positions.size().
+// (1 − t)·value[from] + t·value[to] (t is measured from `from`: 0 there, 1 at
+// `to`), so that a later entry reads an earlier one's result. Throws
+// std::invalid_argument when vertex_value.size() != mesh.positions.size().
 void resolve_t_vertices(const SharedVertexMesh& mesh, std::vector<Color>& vertex_value);
 
 // Task 4. Per face, per corner (in the order of mesh.faces[f]): the radiosity
-// the rule gives, T-vertices resolved (Task 3) for average and extrapolate.
+// the rule gives, T-vertices resolved (Task 3) for average and for extrapolate
+// alike. Throws std::invalid_argument when face_radiosity.size() !=
+// mesh.faces.size(), for every rule, patch_own included (which needs no vertex).
 std::vector<std::vector<Color>> corner_radiosity(const SharedVertexMesh& mesh,
                                                  const std::vector<Color>& face_radiosity,
                                                  VertexColourRule rule);

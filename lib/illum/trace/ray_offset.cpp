@@ -1,5 +1,8 @@
 #include "illum/trace/ray_offset.hpp"
 
+#include <sstream>
+#include <stdexcept>
+
 #include "illum/core/error.hpp"
 
 namespace illum {
@@ -12,6 +15,16 @@ constexpr double shadow_shortening = 1e-9;
 }  // namespace
 
 Ray spawn_ray(const SurfaceHit& hit, const Vec3& direction) {
+  // Said here, before Ray's own check, so that the message names where the direction comes from: in the
+  // ray tree a secondary ray's direction is what reflect or refract returned (lesson 06, Tasks 1 and 2).
+  if (!is_finite(direction) || !is_unit(direction)) {
+    std::ostringstream message;
+    message << "spawn_ray: the new ray's direction (" << direction.x << ", " << direction.y << ", "
+            << direction.z << ") has length " << length(direction)
+            << ", not 1: a reflected or refracted direction must be unit when it leaves reflect or refract "
+               "(lesson 06, Tasks 1 and 2: check the formula and its signs)";
+    throw std::invalid_argument(message.str());
+  }
   return Ray(offset_ray_origin(hit.point, hit.point_error, hit.geometric_normal, direction), direction);
 }
 

@@ -71,18 +71,26 @@ struct RayTree {
   int depth() const;
 };
 
-// The recording calls of the ray tree, one line each in evaluate; every one
-// does nothing when `tree` is null (a render) or `node` is no_node.
-// A ray and what it hit (hit = null: a miss); returns the new node's index.
+// The recording calls of the ray tree, one line each in evaluate and
+// shadow_transmission (their order is in ray_tree.hpp); every one does nothing
+// when `tree` is null (a render) or `node` is no_node. One record per ray
+// cast: a shadow ray through glass is one record per segment, which the
+// inspector joins into one node (ray_tree_view.hpp).
+// A ray and what it hit (hit = null: a miss, whose node has hit = false and,
+// after record_result, local = 0 and color = the background); returns the new
+// node's index.
 int record_ray(RayTree* tree, RayKind kind, const Ray& ray, int depth, const Color& weight, int parent,
                const SurfaceHit* hit);
-// A shadow ray from the surface of node `parent` towards light `light`.
+// A shadow ray (one segment) from the surface of node `parent` towards light
+// `light`; returns its node, which starts as a miss ending at the light.
 int record_shadow_ray(RayTree* tree, const Ray& ray, int parent, std::uint32_t light);
-// A transmissive surface that a shadow ray crossed, and the transmission so far.
+// The transmissive surface a shadow segment ended on, and the transmission so
+// far (after that surface's k_t); records the hit as it is, its front_face included.
 void record_blocker(RayTree* tree, int node, const SurfaceHit& blocker, const Color& transmission);
 // The refracted ray of this node did not exist.
 void record_total_internal_reflection(RayTree* tree, int node);
-// I_own (or a shadow ray's transmission) and the colour the ray returns.
+// I_own (or a shadow ray's transmission) and the colour the ray returns (a
+// shadow ray: Color(0)). Called once per node, last.
 void record_result(RayTree* tree, int node, const Color& local, const Color& color);
 
 }  // namespace illum
