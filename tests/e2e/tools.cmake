@@ -17,3 +17,8 @@ set_tests_properties(one_home PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRIT
 add_test(NAME tools_check_one_home_py
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_check_one_home.py)
 set_tests_properties(tools_check_one_home_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# The test programs' own per-test time limit (tests/support/test_main.cpp): the student's test
+# command stops an endless loop with a message, and stays out of the grader's way.
+add_test(NAME test_watchdog
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/e2e/watchdog_e2e.py --bin ${CMAKE_BINARY_DIR}/bin)
+set_tests_properties(test_watchdog PROPERTIES LABELS grading ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
