@@ -23,8 +23,10 @@ import xml.etree.ElementTree as ET
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+TOOLS = Path(__file__).resolve().parents[2] / "tools"
 
 from grading import reports  # noqa: E402
+
 from grading.autograder import install_submission, run_script, setup_script  # noqa: E402
 from grading.build import failed_exercise_files  # noqa: E402
 from grading.driver import main as grade_main  # noqa: E402
@@ -33,7 +35,7 @@ from grading.edition import excluded_files  # noqa: E402
 from grading.integrity import check_pair  # noqa: E402
 from grading.project import normalize_lesson  # noqa: E402
 from grading.reports import GradeRun  # noqa: E402
-from grading.results import TestResult, merge, parse_lines, points_of  # noqa: E402
+from grading.results import Failure, TestResult, merge, parse_lines, points_of  # noqa: E402
 
 NI = "NotImplemented: intersect(Ray, Sphere) — take the nearest root"
 
@@ -486,6 +488,63 @@ class SandboxTest(unittest.TestCase):
         sandbox.finish(launched)
         self.assertEqual(output.strip(), str(self.account.uid))
         self.assertEqual(mode, 0o700)
+
+
+class StudentTreeTest(unittest.TestCase):
+    """tools/grade --student builds in the student's own tree, configured as the preset does."""
+
+    def arguments(self, *argv: str):
+        from grading.driver import parse_arguments
+
+        return parse_arguments(list(argv))
+
+    def test_the_student_tree_is_the_presets(self) -> None:
+        from grading.driver import build_tree
+
+        root = Path("/course")
+        build_dir, exercises = build_tree(self.arguments("--student", "06"), root, ["06"])
+        self.assertEqual(build_dir, root / "build" / "student")
+        self.assertEqual(exercises, ["all"], "configured as `cmake --preset student`: ILLUM_EXERCISES=all")
+        build_dir, exercises = build_tree(self.arguments("--student", "--build-dir", str(root / "build/grade-student"),
+                                                         "06"), root, ["06"])
+        self.assertEqual((build_dir, exercises), (root / "build" / "grade-student", ["06"]))
+        build_dir, exercises = build_tree(self.arguments("06"), root, ["06"])
+        self.assertEqual((build_dir, exercises), (root / "build" / "grade-reference", []))
+
+    def test_the_autograder_keeps_its_own_tree(self) -> None:
+        text = (TOOLS / "grading" / "autograder.py").read_text(encoding="utf-8")
+        self.assertIn('"--build-dir", str(tree / "build" / "grade-student")', text)
+
+
+class FailureMessageTest(unittest.TestCase):
+    def test_a_failed_comparison_says_what_it_got_and_what_it_expected(self) -> None:
+        failure = Failure.from_json({
+            "kind": "assert", "file": "tests/12_vertex_colours/vertex_colours.cpp", "line": 50,
+            "expression": "got.g == doctest::Approx(want.g).epsilon(1e-12)",
+            "expansion": "0.5 == Approx( 0.25 )",
+            "message": "CHECK( got.g == doctest::Approx(want.g).epsilon(1e-12) ) is NOT correct; values: "
+                       "CHECK( 0.5 == Approx( 0.25 ) )",
+            "context": "barycentric (1 − u − v, u, v)"})
+        text = failure.describe()
+        self.assertIn("CHECK( got.g == doctest::Approx(want.g).epsilon(1e-12) ) failed", text)
+        self.assertIn("got:      0.5", text)
+        self.assertIn("expected: Approx( 0.25 )", text)
+        self.assertIn("barycentric (1 − u − v, u, v)", text)
+        other = Failure.from_json({"kind": "assert", "expression": "split.size() < 4", "expansion": "5 < 4",
+                                   "message": "CHECK( split.size() < 4 ) is NOT correct; values: CHECK( 5 < 4 )"})
+        self.assertIn("values: CHECK( 5 < 4 )", other.describe())
+
+    def test_the_summary_after_the_table_names_each_failed_check(self) -> None:
+        run = GradeRun(lessons=["12"], results=[
+            TestResult(suite="lesson12", name="gouraud: by hand", passed=False, failures=[Failure.from_json({
+                "kind": "assert", "file": "tests/x.cpp", "line": 9, "expression": "a == b",
+                "expansion": "1 == 2", "message": "CHECK( a == b ) is NOT correct; values: CHECK( 1 == 2 )"})]),
+            TestResult(suite="lesson12", name="fine", passed=True)])
+        summary = reports.failure_summary(run)
+        self.assertIn("1 test(s) failed", summary)
+        self.assertIn("lesson12: gouraud: by hand", summary)
+        self.assertIn("tests/x.cpp:9: CHECK( a == b ) failed: got 1, expected 2", summary)
+        self.assertEqual(reports.failure_summary(GradeRun(lessons=["12"])), "")
 
 
 class ExitCodeTest(unittest.TestCase):

@@ -362,7 +362,9 @@ def check_toolchain() -> list[str]:
 
 def _grade(tree: Path, lessons: list[str], hidden: Path | None, results: Path,
            extra: list[str] | None = None, quiet: bool = False, env: dict[str, str] | None = None) -> int:
-    command = [sys.executable, str(tree / "tools" / "grade"), "--student", *(extra or [])]
+    # The autograder's own tree, configured for the graded lessons alone (not the student preset's).
+    command = [sys.executable, str(tree / "tools" / "grade"), "--student",
+               "--build-dir", str(tree / "build" / "grade-student"), *(extra or [])]
     if hidden is not None:
         command += ["--hidden", str(hidden)]
     command += [*lessons, "--results", str(results)]

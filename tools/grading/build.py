@@ -1,8 +1,10 @@
 """Configuring and building a grading tree with CMake.
 
-The driver keeps its own build trees (build/grade-reference,
-build/grade-student) so that grading never disturbs a developer's
-build/release, and it builds only the test programs it runs: the lesson
+The driver grades the reference in its own tree (build/grade-reference), so
+that grading never disturbs a developer's build/release; a student's code in
+the student's own tree (build/student, configured as the `student` preset
+does, so that one cold build serves both); the autograder in
+build/grade-student. It builds only the test programs it runs: the lesson
 programs and the stub twins are not needed to grade.
 """
 from __future__ import annotations

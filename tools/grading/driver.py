@@ -54,7 +54,8 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--hidden", type=Path, metavar="DIR",
                         help="an instructor's folder of extra test files, reported as hidden")
     parser.add_argument("--build-dir", type=Path, metavar="DIR",
-                        help="build tree (default build/grade-student or build/grade-reference)")
+                        help="build tree (default: with --student, build/student, the tree of the student "
+                             "commands, configured as `cmake --preset student` does; else build/grade-reference)")
     parser.add_argument("--check-integrity", action="store_true",
                         help="check an already-built tree (--build-dir): every grading test passes on the "
                              "reference and fails with NotImplemented on the stubs")
@@ -335,11 +336,32 @@ def _save_tests(path: Path, suites: list[tuple[str, runner.SuiteRun]]) -> None:
     reports.write_text(path, json.dumps(saved, indent=1) + "\n")
 
 
+def build_tree(args: argparse.Namespace, root: Path, lessons: list[str]) -> tuple[Path, list[str]]:
+    """The tree to build in and the ILLUM_EXERCISES it is configured with.
+
+    A student's code is built in the student's own tree, build/student (the `student` preset's),
+    configured as the preset does (every exercise from exercises/), so that grading reuses the
+    student's build and their next `cmake --build --preset student` finds the tree as they left it:
+    one cold build, not two. Any other --build-dir (the autograder's build/grade-student) builds the
+    graded lessons from exercises/ and the rest from the library; the reference, nothing."""
+    student_tree = root / "build" / "student"
+    build_dir = args.build_dir or (student_tree if args.student else root / "build" / "grade-reference")
+    if not args.student:
+        return build_dir, []
+    if build_dir.resolve() == student_tree.resolve():
+        return build_dir, ["all"]
+    return build_dir, list(lessons)
+
+
 def grade(args: argparse.Namespace, root: Path) -> int:
     start = time.monotonic()
     check_lessons_exist(args, root)
     lessons = choose_lessons(args, root)
-    build_dir = args.build_dir or root / "build" / ("grade-student" if args.student else "grade-reference")
+    build_dir, exercises = build_tree(args, root, lessons)
+    if not (build_dir / "libillum.a").exists():
+        print(f"tools/grade: the first build of {build_dir} compiles the whole library: 6 to 8 minutes on two "
+              "cores (less when ccache has the objects); later runs rebuild only what changed",
+              file=sys.stderr, flush=True)
     run = GradeRun(lessons=lessons, student=args.student)
     run.submission = args.submission
     data = GraderData(args.grader_data)
@@ -380,7 +402,7 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     else:
         build.set_runner(build.Runner(timeout=build.build_timeout_from_environment()))
     try:
-        step = build.configure(root, build_dir, lessons if args.student else [], None if hidden_objects else args.hidden,
+        step = build.configure(root, build_dir, exercises, None if hidden_objects else args.hidden,
                                extra=build.hidden_objects_arguments(hidden_objects))
         if step.ok:
             # The visible tests first: an instructor's hidden tests that do not
@@ -453,6 +475,9 @@ def grade(args: argparse.Namespace, root: Path) -> int:
         print(f"tools/grade: {file} was flagged, so its lesson was not graded:\n  " + "\n  ".join(findings),
               file=sys.stderr)
     print(reports.score_table(run))
+    summary = reports.failure_summary(run, root)
+    if summary:
+        print("\n" + summary)
     if args.results:
         reports.write_results_json(args.results, run, root)
     if args.junit:

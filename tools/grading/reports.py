@@ -166,6 +166,31 @@ def failure_report(run: GradeRun, root: Path | None = None) -> str:
     return "\n\n".join(parts)
 
 
+def failure_summary(run: GradeRun, root: Path | None = None) -> str:
+    """After the score table: each failed visible test with its first failing check, one entry each,
+    so that the reason stays beside the score (the full explanations are above the table)."""
+    lines = []
+    for result in run.results:
+        if result.passed or result.hidden or result.skipped:
+            continue
+        first = next((f for f in result.failures), None)
+        if first is not None:
+            where = f"{_short(first.file, root)}:{first.line}: " if first.file else ""
+            why = where + first.headline()
+        else:
+            why = result.note or "failed"
+        lines.append(f"  lesson{result.lesson}: {result.name}\n      {why.splitlines()[0] if why else ''}")
+    if not lines:
+        return ""
+    return f"{len(lines)} test(s) failed; the first failing check of each (details above):\n" + "\n".join(lines)
+
+
+def _short(file: str, root: Path | None) -> str:
+    from .results import _short_path
+
+    return _short_path(file, root)
+
+
 def _truncate(text: str, limit: int = MAX_OUTPUT_CHARS) -> str:
     """Keeps the start of a long text, where the first compiler error is."""
     if len(text) <= limit:

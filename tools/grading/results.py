@@ -39,6 +39,8 @@ class Failure:
     exception: str = ""
     subcases: list[str] = field(default_factory=list)
     not_implemented: bool = False
+    expression: str = ""  # the check as written: "got.g == doctest::Approx(want.g).epsilon(1e-12)"
+    expansion: str = ""   # its values: "0.5 == Approx( 0.25 )"
 
     @staticmethod
     def from_json(data: dict[str, Any]) -> "Failure":
@@ -51,13 +53,38 @@ class Failure:
             exception=str(data.get("exception", "")),
             subcases=[str(s) for s in data.get("subcases", []) or []],
             not_implemented=bool(data.get("not_implemented", False)),
+            expression=str(data.get("expression", "") or ""),
+            expansion=str(data.get("expansion", "") or ""),
         )
+
+    def got_expected(self) -> tuple[str, str] | None:
+        """(got, expected) of a failed ``CHECK(actual == expected)``: the tests write the value computed
+        on the left and the expected one on the right. None for any other kind of check."""
+        if self.kind != "assert" or self.exception or " == " not in self.expression:
+            return None
+        if self.expansion.count(" == ") != 1:
+            return None
+        got, expected = self.expansion.split(" == ")
+        return got.strip(), expected.strip()
+
+    def headline(self) -> str:
+        """One line: which check, and the values it saw."""
+        if self.not_implemented:
+            return f"not implemented yet: {self.exception}"
+        pair = self.got_expected()
+        if pair:
+            return f"{self.message.split(' is NOT correct')[0]} failed: got {pair[0]}, expected {pair[1]}"
+        return self.message
 
     def describe(self, root: Path | None = None) -> str:
         """A few lines a student can act on: where, what, and the test's explanation."""
         where = f"{_short_path(self.file, root)}:{self.line}: " if self.file else ""
         if self.not_implemented:
             text = f"{where}not implemented yet: {self.exception}"
+        elif self.got_expected():
+            got, expected = self.got_expected() or ("", "")
+            text = (f"{where}{self.message.split(' is NOT correct')[0]} failed\n  got:      {got}\n"
+                    f"  expected: {expected}")
         else:
             text = f"{where}{self.message}"
         if self.subcases:
