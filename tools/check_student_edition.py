@@ -40,6 +40,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import figures  # noqa: E402
 from grading import build, project  # noqa: E402
 from grading.integrity import grading_programs  # noqa: E402
+from grading.links import broken_links  # noqa: E402
 from grading.runner import run_suite  # noqa: E402
 
 
@@ -60,6 +61,15 @@ def content_problems(edition: Path) -> list[str]:
             if link.kept and not (text.parent / figures.FIGURES_FOLDER / link.name).is_file():
                 problems.append(f"{text.relative_to(edition)}:{link.line + 1} shows "
                                 f"{figures.FIGURES_FOLDER}/{link.name}, which the student edition lacks")
+    # Every link of every Markdown file resolves in the edition (its own README included): a
+    # student never follows a link to a reference unit, a hidden test or an exercise not handed out.
+    problems += [f"dead link: {problem}" for problem in broken_links(edition)]
+    readme = (edition / "README.md").read_text(encoding="utf-8") if (edition / "README.md").is_file() else ""
+    if "student edition" not in readme.splitlines()[0] if readme else True:
+        problems.append("README.md is not the student edition's own README")
+    for instructors_only in ("## For instructors", "--pack-autograder", "--batch", "--check-integrity"):
+        if instructors_only in readme:
+            problems.append(f"README.md holds instructors' material ({instructors_only!r})")
     stubs = project.exercise_stubs(edition)
     for reference in sorted((edition / "lib").rglob("*.cpp")):
         if reference.name in stubs:

@@ -5,8 +5,12 @@ handed out keep their reference units as working code (CMake target
 ``student-edition``, lessons from ILLUM_HAND_OUT; the rules are in
 tools/grading/edition.py).
 
-    tools/student_edition.py --source . --out /tmp/edition              # every exercise
-    tools/student_edition.py --source . --out /tmp/edition --lessons 03 # lesson 03 only
+    tools/student_edition.py                                            # every exercise, into build/student-edition
+    tools/student_edition.py --lessons 03 11                            # lessons 03 and 11 only
+    tools/student_edition.py --source . --out /tmp/edition              # another source tree or folder
+
+The edition has a README of its own (what the students got, the student
+commands, the `illum` command and its lab) and no link to a file it leaves out.
 """
 from __future__ import annotations
 
@@ -22,11 +26,16 @@ from grading.project import normalize_lesson  # noqa: E402
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--source", type=Path, required=True, help="the instructors' tree")
-    parser.add_argument("--out", type=Path, required=True, help="where to write the student edition")
+    root = Path(__file__).resolve().parent.parent
+    parser.add_argument("--source", type=Path, default=root,
+                        help="the instructors' tree (default: the one this tool is in)")
+    parser.add_argument("--out", type=Path,
+                        help="where to write the student edition (default: SOURCE/build/student-edition)")
     parser.add_argument("--lessons", nargs="*", metavar="NN",
                         help="the lessons whose exercises to hand out (default: every lesson with exercises)")
     args = parser.parse_args()
+    if args.out is None:
+        args.out = args.source / "build" / "student-edition"
     try:
         lessons = None
         if args.lessons:  # "03 11", "03,11", "3"

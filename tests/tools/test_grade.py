@@ -589,6 +589,78 @@ class EditionTest(unittest.TestCase):
                                          "tests/hidden/README.md", "build/release/x", "out/index.html"})
 
 
+class LinksTest(unittest.TestCase):
+    def test_links_outside_code_with_their_text_as_written(self) -> None:
+        from grading.links import markdown_links
+
+        text = ("See [`sphere.cpp`](../../lib/illum/geometry/sphere.cpp) and ![plot](../../out/x.png).\n"
+                "`[not a link](a.md)` stays code\n```\n[nor this](b.md)\n```\n[anchor](#tasks)")
+        links = markdown_links(text)
+        self.assertEqual([(l.text, l.target, l.image) for l in links],
+                         [("`sphere.cpp`", "../../lib/illum/geometry/sphere.cpp", False),
+                          ("plot", "../../out/x.png", True), ("anchor", "#tasks", False)])
+
+    def test_broken_links_files_anchors_and_generated_outputs(self) -> None:
+        from grading.links import broken_links, heading_anchors
+
+        self.assertIn("choosing-the-lessons-to-hand-out", heading_anchors("### Choosing the lessons to hand out"))
+        self.assertEqual(heading_anchors("## 6. The study: uniform against adaptive\n## Tasks\n## Tasks"),
+                         {"6-the-study-uniform-against-adaptive", "tasks", "tasks-1"})
+        with tempfile.TemporaryDirectory() as folder:
+            root = Path(folder)
+            (root / "docs").mkdir()
+            (root / "docs" / "a.md").write_text("# A\n## The lab\n")
+            (root / "slides").mkdir()
+            (root / "slides" / "01.md").write_text("![w:3](../lesson01/x.png) [e](../../docs/a.md#the-lab)\n")
+            (root / "README.md").write_text(
+                "[ok](docs/a.md#the-lab) [gone](docs/b.md) [bad anchor](docs/a.md#nope) [run it](out/lesson01/x.png)"
+                " [web](https://example.org/x) [out of the tree](../x.md)\n")
+            problems = broken_links(root)
+            self.assertEqual(len(problems), 3, problems)
+            self.assertTrue(any("docs/b.md does not exist" in p for p in problems))
+            self.assertTrue(any("#nope" in p for p in problems))
+            self.assertTrue(any("outside the tree" in p for p in problems))
+
+    def test_the_edition_rewrites_links_to_what_it_leaves_out_and_has_its_own_readme(self) -> None:
+        from grading.edition import make_student_edition
+
+        with tempfile.TemporaryDirectory() as folder:
+            source, out = Path(folder) / "src", Path(folder) / "edition"
+            files = {
+                "README.md": "# illum\n## For instructors\n`tools/grade --batch`\n<!-- student-commands: begin -->\n"
+                             "```sh\ncmake --preset student\n```\n<!-- student-commands: end -->\n",
+                "lessons/01_ray_sphere/README.md": "# Lesson 01 — The ray and the sphere\n"
+                                                   "[`sphere.cpp`](../../lib/illum/geometry/sphere.cpp) "
+                                                   "[exercise](../../exercises/01_ray_sphere/README.md)\n",
+                "lessons/02_polygon_parity/README.md": "# Lesson 02 — Parity\n"
+                                                       "[exercise](../../exercises/02_polygon_parity/README.md) "
+                                                       "[`parity.cpp`](../../exercises/02_polygon_parity/parity.cpp)\n",
+                "lib/illum/geometry/sphere.cpp": "", "lib/illum/geometry/parity.cpp": "",
+                "exercises/01_ray_sphere/sphere.cpp": "", "exercises/01_ray_sphere/README.md": "# Exercise 01 — x\n",
+                "exercises/02_polygon_parity/parity.cpp": "", "exercises/02_polygon_parity/README.md": "# Exercise 02\n",
+                "docs/errata.md": "# Errata\n", "docs/lab.md": "# Lab\n", "docs/grading.md": "# Grading\n## Students\n",
+                "docs/scene-format.md": "# Scenes\n",
+            }
+            for name, text in files.items():
+                (source / name).parent.mkdir(parents=True, exist_ok=True)
+                (source / name).write_text(text, encoding="utf-8")
+            make_student_edition(source, out, ["01"])
+            readme = (out / "README.md").read_text(encoding="utf-8")
+            self.assertTrue(readme.startswith("# illum — student edition"))
+            self.assertNotIn("For instructors", readme)
+            self.assertNotIn("--batch", readme)
+            self.assertIn("cmake --preset student", readme)
+            self.assertIn("illum lab", readme)
+            one = (out / "lessons/01_ray_sphere/README.md").read_text(encoding="utf-8")
+            self.assertIn("[`sphere.cpp`](../../exercises/01_ray_sphere/sphere.cpp)", one, "the stub, handed out")
+            two = (out / "lessons/02_polygon_parity/README.md").read_text(encoding="utf-8")
+            self.assertIn("exercise [`parity.cpp`](../../lib/illum/geometry/parity.cpp)", two,
+                          "lesson 02 is not handed out: its exercise is text, its unit the reference")
+            from grading.links import broken_links
+
+            self.assertEqual(broken_links(out), [])
+
+
 class HandOutTest(unittest.TestCase):
     FILES = ["lib/illum/geometry/sphere.cpp", "lib/illum/geometry/parity.cpp", "lib/illum/core/ray.cpp",
              "exercises/01_ray_sphere/sphere.cpp", "exercises/01_ray_sphere/README.md",

@@ -13,15 +13,23 @@ exercises). Left out:
 * ``build/`` and ``out/`` (generated).
 A ``STUDENT_EDITION`` marker file tells CMake and the driver which tree
 they are in (no integrity check, no autograder packing there).
+
+The edition has a README of its own (``student_readme``: the lessons handed
+out, the student commands, the ``illum`` command and its lab; nothing for
+instructors), and every Markdown link to a file it leaves out is rewritten:
+to the stub, for a reference unit handed out, else to plain text
+(tools/check_student_edition.py checks that every link resolves).
 """
 from __future__ import annotations
 
 import os
+import re
 import shutil
 import subprocess
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
+from .links import GENERATED, Link, resolve, rewrite_links
 from .project import STUDENT_EDITION_MARKER
 
 _GENERATED = ("build", "out")
@@ -137,6 +145,11 @@ def make_student_edition(source: Path, out: Path, handed_out: list[str] | None =
         if needed:
             edition.notes.append(f"lesson {lesson} builds on lesson {', '.join(needed)}, also handed out: its "
                                  f"program and tests need the students' lesson {', '.join(needed)} code first")
+    kept = {f for f in files if f not in left_out and (source / f).is_file()}
+    # Where a link to an exercise unit goes in the edition: the stub of a lesson handed out, the
+    # reference (kept as working code) of a lesson that is not.
+    twins = {PurePosixPath(f).name: f for f in kept if f.startswith("lib/") and f.endswith(".cpp")}
+    twins.update({PurePosixPath(f).name: f for f in kept if _stub_lesson(f) in chosen})
     for relative in files:
         if relative in left_out:
             continue
@@ -145,7 +158,14 @@ def make_student_edition(source: Path, out: Path, handed_out: list[str] | None =
             continue
         target = out / relative
         target.parent.mkdir(parents=True, exist_ok=True)
-        shutil.copy2(origin, target)
+        if relative == "README.md":
+            target.write_text(student_readme(source, files, chosen), encoding="utf-8")
+        elif relative.endswith(".md"):
+            text = origin.read_text(encoding="utf-8")
+            target.write_text(_edition_links(text, out, target, kept, twins), encoding="utf-8")
+            shutil.copymode(origin, target)
+        else:
+            shutil.copy2(origin, target)
         edition.copied += 1
     version = _git_describe(source)
     given = [nn for nn in lessons if nn not in chosen]
@@ -160,3 +180,157 @@ def make_student_edition(source: Path, out: Path, handed_out: list[str] | None =
         "    tools/grade --student NN\n"
         "(see docs/grading.md).\n", encoding="utf-8")
     return edition
+
+
+# --- the edition's own texts ---------------------------------------------------------------------
+
+def _edition_links(text: str, out: Path, file: Path, kept: set[str], stubs: dict[str, str]) -> str:
+    """``text`` with every link to a file or folder the edition leaves out rewritten: a reference
+    unit handed out points to its stub (what the student edits); anything else keeps its words,
+    unlinked. ``kept``: the files (and so the folders) the edition holds."""
+
+    def replace(link: Link) -> str | None:
+        if link.external:
+            return None
+        path, _anchor = link.split()
+        target = resolve(out, file, path) if path else None
+        if target is None:
+            return None
+        key = target.as_posix()
+        if target.parts and target.parts[0] in GENERATED:
+            return None  # written by the programs or the build
+        if key == "." or key in kept or any(f.startswith(key + "/") for f in kept):
+            return None
+        # A unit's file: the stub where the lesson is handed out, the reference where it is not.
+        twin = stubs.get(target.name) if target.suffix == ".cpp" else None
+        if twin is not None:
+            here = PurePosixPath(file.relative_to(out).as_posix()).parent
+            return f"{'!' if link.image else ''}[{link.text}]({_relative(twin, here)})"
+        return link.text
+
+    return rewrite_links(text, replace)
+
+
+def _relative(path: str, start: PurePosixPath) -> str:
+    """``path`` (from the tree's root) relative to the folder ``start``."""
+    return os.path.relpath(path, start.as_posix() or ".").replace(os.sep, "/")
+
+
+def _lesson_titles(source: Path, files: list[str], folder: str) -> dict[str, tuple[str, str]]:
+    """NN -> (path of the folder's README, its title without "Lesson NN —") for lessons/ or exercises/."""
+    titles = {}
+    for f in files:
+        parts = PurePosixPath(f).parts
+        if len(parts) == 3 and parts[0] == folder and parts[2] == "README.md" and parts[1][:2].isdigit():
+            first = (source / f).read_text(encoding="utf-8").splitlines()[:1]
+            title = re.sub(r"^#\s*(Lesson|Exercise)\s+\d+\s*[—-]\s*", "", first[0]) if first else parts[1]
+            titles[parts[1][:2]] = (f, title.strip())
+    return titles
+
+
+def _student_commands(source: Path) -> str:
+    """The student build commands, as the top-level README holds them (tools/task_tables.py writes
+    the block), so that the edition's README shows the same set."""
+    text = (source / "README.md").read_text(encoding="utf-8")
+    match = re.search(r"<!-- student-commands: begin[^>]*-->\n(.*?)<!-- student-commands: end -->", text, re.S)
+    if not match:
+        raise ValueError("README.md has no student-commands block (tools/task_tables.py --update writes it)")
+    return match.group(1).strip()
+
+
+def student_readme(source: Path, files: list[str], handed_out: list[str]) -> str:
+    """The README of the student edition: what the students got, and how to build, test, see and
+    grade their code. Every link points into the edition (tools/check_student_edition.py checks)."""
+    lessons = _lesson_titles(source, files, "lessons")
+    exercises = _lesson_titles(source, files, "exercises")
+    slides = {PurePosixPath(f).name[:2]: f for f in files
+              if PurePosixPath(f).parent.as_posix() == "slides" and f.endswith(".md") and PurePosixPath(f).name[:2].isdigit()}
+    rows = []
+    for nn in sorted(lessons):
+        text, title = lessons[nn]
+        exercise = (f"[exercise {nn}]({exercises[nn][0]}) (yours to write)" if nn in handed_out and nn in exercises
+                    else "not handed out: its code is in `lib/` as working reference code")
+        deck = f"[slides]({slides[nn]})" if nn in slides else ""
+        rows.append(f"| {nn} | [{title}]({text}) | {exercise} | {deck} |")
+    given = [nn for nn in sorted(lessons) if nn not in handed_out]
+    commands = _student_commands(source)
+    first = handed_out[0] if handed_out else "NN"
+    return f"""# illum — student edition
+
+illum is a course toolkit that teaches global illumination the way the
+course notes *Tema 4. Modelos de Iluminación Global* do: backward ray
+tracing, the ray tree and the structures that make it cheap, then
+radiosity, form factors, the hemicube, the solvers and vertex colours.
+Each lesson has a text, a program that draws its figures, an exercise and
+the tests that grade it. This copy is yours: the exercises of lessons
+{", ".join(handed_out)} are handed out{"" if not given else " (lessons " + ", ".join(given) + " are working code you can read and use)"};
+their reference solutions are not here.
+
+## Your lessons
+
+| # | lesson text | exercise | slides |
+|---|---|---|---|
+{chr(10).join(rows)}
+
+Read a lesson's text first, then its exercise's README (Build and test ·
+Tasks · Hints · Grading), and write the functions of
+`exercises/NN_topic/*.cpp`. Each stub throws `NotImplemented` with a hint
+until you write it. The errata of the course notes that the texts cite are
+in [docs/errata.md](docs/errata.md).
+
+## Build, test and grade your code
+
+On Debian 12 (or Ubuntu 22.04), install what the build needs once with
+`tools/install-deps` (it asks for `sudo`). Then, with NN the lesson's number
+(e.g. {first}):
+
+{commands}
+
+* **The first build** compiles the whole library with your files: 6 to 8
+  minutes on two cores (less when `ccache` is installed and has seen these
+  sources). After that, a change to one of your files recompiles that file
+  and relinks: a few seconds.
+* **The tests** say, for each failed check, what they computed and what
+  they expected, and the mathematics behind it. A test that runs longer
+  than the grader allows one (60 s; `ILLUM_GRADE_TEST_TIMEOUT` changes it)
+  is stopped with a message naming it: a loop in your code that never ends.
+* **`tools/grade --student NN`** builds in the same `build/student` tree and
+  prints your score as the autograder computes it, then each failed test's
+  first failing check. It also checks your files as the autograder does
+  (an exercise only computes: no files, no processes, no `exit()`) and says
+  what it finds ([docs/grading.md](docs/grading.md#students)).
+* Each exercise's README ends with what to upload to the autograder.
+
+## See your code at work: the `illum` command and the lab
+
+Your build has a command line, `illum`, that runs your code on the shipped
+scenes (`build/student/bin/illum --help` lists its commands):
+
+```sh
+cmake --build --preset student --target illum_cli                        # once, and after each change
+build/student/bin/illum scenes                                           # the scenes you can name
+build/student/bin/illum render whitted --out out/whitted                 # a picture, drawn by your evaluate
+build/student/bin/illum trace whitted --pixel 300 160 --out out/tree     # one pixel's ray tree: JSON, drawing
+build/student/bin/illum lab whitted                                      # the lab: open http://127.0.0.1:8642/
+```
+
+The lab ([docs/lab.md](docs/lab.md)) is a local web page (on 127.0.0.1
+only; Ctrl-C stops it): click a pixel and see the ray tree your `evaluate`
+casts (lesson 06), each leaf saying why it stops; step radiosity one shot
+at a time with your solvers (lesson 11); place the hemicube on any patch
+with your delta form factors (lesson 10); and hold the pictures your lesson
+programs drew in `out/lessonNN/` against the reference images of the
+texts. A function you have not written yet is named in the page.
+
+## Where things are
+
+| path | what lives there |
+|---|---|
+| `exercises/NN_topic/` | your exercises: the tasks (README) and the files you write |
+| `lessons/NN_topic/` | the lesson texts and the programs that draw their figures |
+| `lib/illum/` | the shared library your files are part of; each header states the contract of every function you write |
+| `tests/NN_topic/` | the grading tests (suite `lessonNN`) |
+| `slides/` | one slide deck per lesson |
+| `scenes/` | the scenes the programs and `illum` load ([docs/scene-format.md](docs/scene-format.md)) |
+| `docs/` | how the toolkit is built, the scene format, grading, the lab |
+"""
