@@ -9,6 +9,7 @@
 
 #include "illum/core/ray.hpp"
 #include "illum/geometry/sphere.hpp"
+#include "support/grade_values.hpp"
 
 using illum::Interval;
 using illum::Point3;
@@ -98,5 +99,55 @@ TEST_SUITE("lesson01") {
     CHECK(out->s == doctest::Approx(0.4).epsilon(1e-13));
     CHECK(out->normal.x == doctest::Approx(1.0));
     CHECK_MESSAGE(out->from_inside, "|P0 − Pc| = 0.1 < r = 0.5: strictly inside");
+  }
+}
+
+// Slips of the roots and of the side test that spheres of radius 1 and spheres in front of the ray do
+// not show (the mutation report with the factor-dropping and argument operators, issue 28).
+TEST_SUITE("lesson01") {
+  TEST_CASE("notes' form: a sphere of radius 3 at z = 10 gives 7 and 13 (r² in C, not r)" *
+            doctest::description("task=2")) {
+    // ΔP = (0, 0, 10), B = −20, C = 100 − 3² = 91, B² − 4C = 400 − 364 = 36, s = (20 ∓ 6)/2 = 7, 13.
+    const auto r = illum::sphere_roots_notes(Vec3(0), Vec3(0, 0, 1), Vec3(0, 0, 10), 3.0);
+    REQUIRE_MESSAGE(r.count == 2, "C = |ΔP|² − r² = 100 − 9: the ray crosses the sphere twice");
+    ILLUM_CHECK_APPROX_MESSAGE(r.s_near, 7.0, 1e-15, "s = (20 − 6)/2: C uses r² = 9");
+    ILLUM_CHECK_APPROX_MESSAGE(r.s_far, 13.0, 1e-15, "s = (20 + 6)/2");
+    const auto stable = illum::sphere_roots_stable(Vec3(0), Vec3(0, 0, 1), Vec3(0, 0, 10), 3.0);
+    REQUIRE(stable.count == 2);
+    ILLUM_CHECK_APPROX(stable.s_near, 7.0, 1e-15);
+    ILLUM_CHECK_APPROX(stable.s_far, 13.0, 1e-15);
+  }
+
+  TEST_CASE("hard case: stable form for a sphere just behind the origin keeps both roots" *
+            doctest::description("task=3")) {
+    // The unit sphere at the world's origin, the ray starting at z0 = 1 + 10⁻¹² (just outside it,
+    // not exact in binary) and going away along +z: both roots lie behind, at −(z0 − 1) and
+    // −(z0 + 1). ω·ΔP = −z0 < 0, so the root of larger magnitude is q = ω·ΔP − √(r² − d²) = −(z0 + 1),
+    // computed without cancellation, and Vieta gives the other, C/q. Adding √ instead of
+    // subtracting it (the sign of ω·ΔP ignored) makes q = 1 − z0, about 10⁻¹², and C/q, the root
+    // near −2, comes out wrong in the fourth digit.
+    const double z0 = 1 + 1e-12;
+    const auto r = illum::sphere_roots_stable(Vec3(0, 0, z0), Vec3(0, 0, 1), Vec3(0), 1.0);
+    REQUIRE(r.count == 2);
+    INFO("roots −(z0 + 1) and −(z0 − 1), with z0 − 1 exact (Sterbenz) and z0 + 1 rounded once");
+    CHECK(r.s_near == doctest::Approx(-(z0 + 1)).epsilon(1e-14));
+    CHECK(r.s_far == doctest::Approx(-(z0 - 1)).epsilon(1e-3));
+    CHECK_MESSAGE(r.s_near < r.s_far, "s_near < s_far");
+  }
+
+  TEST_CASE("intersect: inside means |P0 − Pc| < r, tested with r² on spheres of radius 2 and 0.5" *
+            doctest::description("task=1,3,4")) {
+    // Radius 2, origin 1.5 from the centre: 2.25 < 4, inside (the far root, 0.5 + … ahead).
+    const Sphere big(Point3(1, 1, 1), 2.0);
+    const auto inside = illum::intersect(Ray(Point3(1, 1, 2.5), Vec3(0, 0, 1)), big);
+    REQUIRE(inside.has_value());
+    CHECK_MESSAGE(inside->from_inside, "|P0 − Pc|² = 2.25 < r² = 4: the origin is inside");
+    CHECK(inside->s == doctest::Approx(0.5));  // up to z = 3
+    // Radius 0.5, origin 0.6 from the centre: 0.36 > 0.25, outside, though 0.36 < 0.5 = r.
+    const Sphere small(Point3(-2, 0, 0), 0.5);
+    const auto outside = illum::intersect(Ray(Point3(-2, -0.6, 0), Vec3(0, 1, 0)), small);
+    REQUIRE(outside.has_value());
+    CHECK_MESSAGE(!outside->from_inside, "|P0 − Pc|² = 0.36 > r² = 0.25: the origin is outside");
+    CHECK(outside->s == doctest::Approx(0.1));
   }
 }

@@ -215,4 +215,28 @@ TEST_SUITE("lesson03") {
         "(p.y − p.x, p.z) the perturbed ray lies at X > 0, inside triangle A");
     CHECK(hit_a->s == doctest::Approx(std::sqrt(2.0)).epsilon(1e-12));
   }
+
+  TEST_CASE("hard case: looking down −z the frame's axes are swapped, so the other triangle claims the diagonal" *
+            doctest::description("task=7")) {
+    // Two triangles of the plane z = 0 share the diagonal (−1, −1)–(1, 1): A lies where x > y, B
+    // where x < y. A ray along ±z aimed at (0.25, 0.25, 0) meets the diagonal exactly, every edge
+    // function through it is 0, and the symbolic perturbation moves the ray by (ε, ε²) in the frame
+    // (kx, ky). Along +z: kz = z, kx = x, ky = y, so the ray moves to x − y = ε − ε² > 0: triangle A.
+    // Along −z the header swaps kx and ky (ω[kz] < 0, to keep the winding): the frame is (y, x), the
+    // ray moves to y − x > 0: triangle B. Without the swap both directions would give A.
+    const Triangle a(Point3(-1, -1, 0), Point3(1, -1, 0), Point3(1, 1, 0));
+    const Triangle b(Point3(-1, -1, 0), Point3(1, 1, 0), Point3(-1, 1, 0));
+    for (const double dz : {1.0, -1.0}) {
+      const Ray ray(Point3(0.25, 0.25, -2 * dz), Vec3(0, 0, dz));
+      const auto hit_a = intersect(ray, a);
+      const auto hit_b = intersect(ray, b);
+      INFO("ray along ", dz > 0 ? "+z" : "−z", ": the frame is ", dz > 0 ? "(x, y)" : "(y, x), swapped",
+           ", so the perturbed ray lies on the side of triangle ", dz > 0 ? "A (x > y)" : "B (x < y)");
+      CHECK_MESSAGE(hit_a.has_value() != hit_b.has_value(), "watertight: exactly one triangle of a shared edge");
+      CHECK(hit_a.has_value() == (dz > 0));
+      CHECK(hit_b.has_value() == (dz < 0));
+      const auto hit = dz > 0 ? hit_a : hit_b;
+      if (hit) CHECK(hit->s == doctest::Approx(2.0).epsilon(1e-15));
+    }
+  }
 }

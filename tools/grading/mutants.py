@@ -261,6 +261,106 @@ def _top_level_commas(tokens: list[Token], open_index: int, close_index: int) ->
     return commas
 
 
+def _matching_back(tokens: list[Token], index: int) -> int:
+    """Index of the bracket opening tokens[index] (a ')' or ']'), or -1."""
+    closing = tokens[index].text
+    opening = {")": "(", "]": "["}[closing]
+    depth = 0
+    for j in range(index, -1, -1):
+        if tokens[j].text == closing:
+            depth += 1
+        elif tokens[j].text == opening:
+            depth -= 1
+            if depth == 0:
+                return j
+    return -1
+
+
+def _operand_after(tokens: list[Token], index: int) -> int:
+    """The index of the last token of the operand that starts at tokens[index]
+    (a name with its calls, subscripts and members, a number, a parenthesised
+    expression), or -1 when it is not one of those."""
+    if index >= len(tokens):
+        return -1
+    token = tokens[index]
+    if token.text == "(":
+        return _matching(tokens, index)
+    if token.kind == "number":
+        return index
+    if token.kind != "ident" or token.text in _TYPE_WORDS:
+        return -1
+    j = index
+    while j + 1 < len(tokens):
+        after = tokens[j + 1]
+        if after.text in ("::", ".", "->") and j + 2 < len(tokens) and tokens[j + 2].kind == "ident":
+            j += 2
+        elif after.text in ("(", "["):
+            close = _matching(tokens, j + 1)
+            if close < 0:
+                return -1
+            j = close
+        elif after.text == "<" and after.template:
+            depth, k = 0, j + 1
+            while k < len(tokens):
+                if tokens[k].text == "<" and tokens[k].template:
+                    depth += 1
+                elif tokens[k].text in (">", ">>") and tokens[k].template:
+                    depth -= 1 if tokens[k].text == ">" else 2
+                    if depth <= 0:
+                        break
+                k += 1
+            if k >= len(tokens):
+                return -1
+            j = k
+        else:
+            break
+    return j
+
+
+def _operand_before(tokens: list[Token], index: int) -> int:
+    """The index of the first token of the operand that ends at tokens[index], or -1."""
+    if index < 0:
+        return -1
+    token = tokens[index]
+    j = index
+    if token.text in (")", "]"):
+        j = _matching_back(tokens, index)
+        if j < 0:
+            return -1
+        if token.text == "(" or j == 0 or tokens[j - 1].kind != "ident" or tokens[j - 1].text in _TYPE_WORDS \
+                or tokens[j - 1].text in ("if", "while", "for", "return", "switch"):
+            if tokens[index].text == ")" and (j == 0 or tokens[j - 1].kind != "ident"
+                                              or tokens[j - 1].text in ("if", "while", "for", "return", "switch")):
+                return j
+        j -= 1  # the called name
+        if tokens[j].text in _TYPE_WORDS or tokens[j].text in ("if", "while", "for", "return", "switch"):
+            return j + 1
+    elif token.kind == "number":
+        return index
+    elif token.kind != "ident" or token.text in _TYPE_WORDS:
+        return -1
+    # A member or scope chain: a.b, a->b, ns::f, v[i].x.
+    while j >= 2 and tokens[j - 1].text in ("::", ".", "->"):
+        before = tokens[j - 2]
+        if before.kind == "ident":
+            j -= 2
+        elif before.text in (")", "]"):
+            opening = _matching_back(tokens, j - 2)
+            if opening < 0:
+                return -1
+            j = opening - 1 if opening >= 1 and tokens[opening - 1].kind == "ident" else opening
+        else:
+            break
+    return j
+
+
+def _simple_argument(tokens: list[Token], first: int, last: int) -> bool:
+    """An argument a student could write in the neighbour's place: a name, a member, a subscript, a number."""
+    if last < first or last - first > 8:
+        return False
+    return all(t.kind in ("ident", "number") or t.text in (".", "->", "::", "[", "]") for t in tokens[first:last + 1])
+
+
 def _is_float_literal(text: str) -> bool:
     return any(c in text for c in ".eE") and not text.lower().startswith("0x")
 
@@ -356,6 +456,20 @@ def generate(lesson: str, unit: Path, source: str, stub_lines: set[str]) -> list
                     bound_end = tokens[semis[1] - 1].end
                     bound = source[ops[0].end:bound_end]
                     add("loop bound", ops[0].end, bound_end, f"{bound} - 1", token.line)
+                downward = [t for t in condition if t.text in (">", ">=") and not t.template]
+                if len(downward) == 1 and not ops and not compound:
+                    # `i >= 0` -> `i >= 0 + 1`: a loop that counts down stops one early.
+                    bound_end = tokens[semis[1] - 1].end
+                    bound = source[downward[0].end:bound_end]
+                    add("loop bound", downward[0].end, bound_end, f"{bound} + 1", token.line)
+                # The start shifted: `i = first` -> `i = first + 1` (a literal start is nudged as a constant).
+                init = tokens[index + 2:semis[0]]
+                assign = [k for k, t in enumerate(init) if t.text == "="]
+                if len(assign) == 1 and assign[0] + 1 < len(init) and not any(t.text == "," for t in init):
+                    start_tokens = init[assign[0] + 1:]
+                    if not (len(start_tokens) == 1 and start_tokens[0].kind == "number"):
+                        first = source[start_tokens[0].start:start_tokens[-1].end]
+                        add("loop bound", start_tokens[0].start, start_tokens[-1].end, f"{first} + 1", token.line)
         elif token.kind == "ident" and text in subscript_names and index >= 1 and tokens[index - 1].text == "[" \
                 and index + 1 < len(tokens) and tokens[index + 1].text == "]":
             partner = _index_partner(text, subscript_names)
@@ -363,6 +477,57 @@ def generate(lesson: str, unit: Path, source: str, stub_lines: set[str]) -> list
             nearby = {t.text for t in tokens[max(0, index - 80):index] if t.kind == "ident" and t.line >= token.line - 6}
             if partner and partner in nearby:
                 add("index swap", token.start, token.end, partner, token.line)
+        # The operators of the slips a mutation run of the classic kinds missed (issue 28):
+        if token.kind == "op" and text in ("*", "/") and _is_binary(tokens, index):
+            # A factor or a division dropped: `a * b` -> `a` and `b`, `a / b` -> `a`.
+            right = _operand_after(tokens, index + 1)
+            if right > index and (right + 1 >= len(tokens) or tokens[right + 1].text not in ("(", "[")):
+                name = "factor dropped" if text == "*" else "division dropped"
+                add(name, tokens[index - 1].end, tokens[right].end, "", token.line)
+            left = _operand_before(tokens, index - 1)
+            if text == "*" and 0 <= left < index and (left == 0 or tokens[left - 1].text not in (".", "->", "::")):
+                add("factor dropped", tokens[left].start, tokens[index + 1].start, "", token.line)
+        if token.kind == "ident" and text in _MIN_MAX and index + 1 < len(tokens) and tokens[index + 1].text == "(" \
+                and not (index >= 1 and tokens[index - 1].text in (".", "->")):
+            # A clamp dropped: max(0.0, x) -> x (either argument kept alone).
+            close = _matching(tokens, index + 1)
+            commas = _top_level_commas(tokens, index + 1, close) if close > 0 else []
+            if close > 0 and len(commas) == 1 and tokens[index + 2].text != "{":
+                start = tokens[index - 2].start if index >= 2 and tokens[index - 1].text == "::" else token.start
+                if index >= 4 and tokens[index - 1].text == "::" and tokens[index - 3].text == "::":
+                    start = tokens[index - 4].start
+                for first, last in ((index + 2, commas[0] - 1), (commas[0] + 1, close - 1)):
+                    kept = source[tokens[first].start:tokens[last].end].strip()
+                    if kept:
+                        add("clamp dropped", start, tokens[close].end, f"({kept})", token.line)
+        if token.kind == "op" and text == "(" and index >= 1 and tokens[index - 1].kind == "ident" \
+                and tokens[index - 1].text not in ("if", "while", "for", "switch", "return", "sizeof") \
+                and tokens[index - 1].text not in _TYPE_WORDS:
+            # An argument replaced by its neighbour: f(a, b) -> f(a, a) and f(b, b).
+            close = _matching(tokens, index)
+            commas = _top_level_commas(tokens, index, close) if close > 0 else []
+            if close > 0 and commas:
+                bounds = [index + 1, *(c + 1 for c in commas)]
+                ends = [*(c - 1 for c in commas), close - 1]
+                arguments = list(zip(bounds, ends))
+                for (a_first, a_last), (b_first, b_last) in zip(arguments, arguments[1:]):
+                    if not (_simple_argument(tokens, a_first, a_last) and _simple_argument(tokens, b_first, b_last)):
+                        continue
+                    a_text = source[tokens[a_first].start:tokens[a_last].end]
+                    b_text = source[tokens[b_first].start:tokens[b_last].end]
+                    if a_text == b_text:
+                        continue
+                    add("argument neighbour", tokens[a_first].start, tokens[a_last].end, b_text, token.line)
+                    add("argument neighbour", tokens[b_first].start, tokens[b_last].end, a_text, token.line)
+        if token.kind == "ident" and text == "double" and not (index >= 1 and tokens[index - 1].text == "long"):
+            # Float arithmetic where the reference computes in double: a local or a cast.
+            after = tokens[index + 1] if index + 1 < len(tokens) else None
+            declares = after is not None and after.kind == "ident" and index + 2 < len(tokens) \
+                and tokens[index + 2].text in ("=", "{", "(", ";", ",", "[")
+            casts = after is not None and after.text == ">" and index >= 2 and tokens[index - 1].text == "<" \
+                and tokens[index - 2].text == "static_cast"
+            if declares or casts:
+                add("float for double", token.start, token.end, "float", token.line)
         if token.kind == "op" and text == "(" and index >= 1 and tokens[index - 1].kind == "ident":
             # f(i, j) -> f(j, i): two plain index names swapped in a call.
             close = _matching(tokens, index)
@@ -441,6 +606,97 @@ def read_equivalents(path: Path) -> Equivalents:
         original, _, mutated = lines.partition(" => ")
         result.reasons[f"{unit.strip()}: {_code_only(original)} => {_code_only(mutated)}"] = reason.strip()
     return result
+
+
+# ---------------------------------------------------------------------------
+# Student bugs written by hand (tests/mutants/student_bugs/*.bug): realistic
+# mistakes the generator does not make (a count in the wrong place, a loop
+# that reads what it writes, a fixed epsilon), run like mutants.
+
+BUGS_FOLDER = Path("tests") / "mutants" / "student_bugs"
+
+
+@dataclass
+class BugFile:
+    path: Path
+    lesson: str = ""
+    unit: Path = Path()
+    title: str = ""
+    caught_by: str = ""  # the test the bug's author expects to fail first (for the reader; not enforced)
+    edits: list[tuple[str, str]] = field(default_factory=list)  # (find, replace), each found exactly once
+
+
+def read_bug(path: Path) -> BugFile:
+    """A ``.bug`` file: ``key: value`` lines (lesson, unit, title, caught-by; # comments), then one or
+    more ``--- find`` / ``+++ replace`` pairs, each followed by its lines verbatim."""
+    bug = BugFile(path)
+    mode, find, replace = "header", [], []
+    for raw in path.read_text(encoding="utf-8").splitlines():
+        if raw == "--- find":
+            if mode == "replace":
+                bug.edits.append(("\n".join(find), "\n".join(replace)))
+            mode, find, replace = "find", [], []
+            continue
+        if raw == "+++ replace":
+            if mode != "find":
+                raise ValueError(f"{path}: '+++ replace' without a '--- find' before it")
+            mode = "replace"
+            continue
+        if mode == "header":
+            line = raw.strip()
+            if not line or line.startswith("#"):
+                continue
+            key, sep, value = line.partition(":")
+            if not sep:
+                raise ValueError(f"{path}: expected 'key: value', got {line!r}")
+            key, value = key.strip(), value.strip()
+            if key == "lesson":
+                bug.lesson = value
+            elif key == "unit":
+                bug.unit = Path(value)
+            elif key == "title":
+                bug.title = value
+            elif key == "caught-by":
+                bug.caught_by = value
+            else:
+                raise ValueError(f"{path}: unknown key {key!r} (lesson, unit, title, caught-by)")
+        elif mode == "find":
+            find.append(raw)
+        else:
+            replace.append(raw)
+    if mode == "replace":
+        bug.edits.append(("\n".join(find), "\n".join(replace)))
+    if not (bug.lesson and str(bug.unit) != "." and bug.title and bug.edits):
+        raise ValueError(f"{path}: needs lesson, unit, title and at least one --- find / +++ replace pair")
+    return bug
+
+
+def bug_mutant(root: Path, bug: BugFile) -> Mutant:
+    """The bug as a mutant of its unit: the whole file replaced by the edited one."""
+    source = (root / bug.unit).read_text(encoding="utf-8")
+    edited = source
+    for find, replace in bug.edits:
+        count = edited.count(find)
+        if count != 1:
+            raise ValueError(f"{bug.path.name}: the text to find occurs {count} times in {bug.unit} "
+                             f"(expected once):\n{find}")
+        edited = edited.replace(find, replace)
+    first = next(i for i, (a, b) in enumerate(zip(source, edited + "\0")) if a != b)
+    line = source.count("\n", 0, first) + 1
+    return Mutant(bug.lesson, bug.unit, line, f"student bug {bug.path.stem}", 0, len(source), source, edited,
+                  source_line=bug.title, mutated_line=bug.caught_by, source=source)
+
+
+def read_bugs(root: Path, folder: Path) -> tuple[list[tuple[BugFile, Mutant]], list[str]]:
+    """Every bug of ``folder`` with its mutant, and the problems of the files that could not be read."""
+    found, problems = [], []
+    for path in sorted(folder.glob("*.bug")):
+        try:
+            bug = read_bug(path)
+            found.append((bug, bug_mutant(root, bug)))
+        except (ValueError, OSError) as error:
+            problems.append(str(error))
+    return found, problems
 
 
 # ---------------------------------------------------------------------------
@@ -564,6 +820,8 @@ def run_grading(workspace: Workspace, lesson: str, timeout: float, extra: tuple[
                                   text=True, errors="replace", timeout=timeout)
         except subprocess.TimeoutExpired:
             return "timed out", ""
+        if done.returncode == 124 and "(an endless loop?)" in done.stdout:
+            return "timed out", ""  # the test program's own per-test limit (tests/support/test_main.cpp)
         if done.returncode != 0:
             found = _TEST_CASE_LINE.search(done.stdout)
             if found:
@@ -631,6 +889,9 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--work-dir", type=Path, metavar="DIR", help=f"workers' trees (default {WORK_DIR})")
     parser.add_argument("--fail-under", type=float, metavar="PERCENT",
                         help="exit 1 if a lesson scores below PERCENT")
+    parser.add_argument("--bugs", nargs="?", const=str(BUGS_FOLDER), metavar="DIR",
+                        help="run the hand-written student bugs of DIR (default tests/mutants/student_bugs, "
+                             "*.bug files) instead of generated mutants")
     args = parser.parse_args(argv)
     try:
         args.lessons = sorted(set(project.normalize_lesson(text) for text in args.lessons))
@@ -651,6 +912,21 @@ def choose(root: Path, args: argparse.Namespace, equivalents: Equivalents) -> li
               f"lessons with exercises: {', '.join(exercises)}", file=sys.stderr)
         raise SystemExit(2)
     reports = []
+    if getattr(args, "bugs", None):
+        bugs, problems = read_bugs(root, root / args.bugs if not Path(args.bugs).is_absolute() else Path(args.bugs))
+        for problem in problems:
+            print(f"tools/grade --mutants --bugs: {problem}", file=sys.stderr)
+        if problems:
+            raise SystemExit(2)
+        for lesson in args.lessons or exercises:
+            report = LessonReport(lesson)
+            report.mutants = [m for bug, m in bugs if bug.lesson == lesson]
+            report.generated = len(report.mutants)
+            if args.only:
+                report.mutants = [m for m in report.mutants if m.ident in args.only]
+            if report.generated:
+                reports.append(report)
+        return reports
     for lesson in args.lessons or exercises:
         report = LessonReport(lesson)
         every = all_mutants(root, lesson)
@@ -679,9 +955,11 @@ class Progress:
             self.done += 1
             elapsed = time.monotonic() - self.start
             left = elapsed / self.done * (self.total - self.done)
+            what = (f"{mutant.source_line}" if mutant.operator.startswith("student bug") else
+                    f"{mutant.original!r} -> {mutant.replacement!r}")
             print(f"[{self.done}/{self.total} {elapsed:5.0f} s, ~{left:4.0f} s left] {mutant.status:13} "
-                  f"{mutant.unit.name}:{mutant.line} {mutant.operator}: {mutant.original!r} -> "
-                  f"{mutant.replacement!r}" + (f"  ({mutant.failed_test})" if mutant.failed_test else ""),
+                  f"{mutant.unit.name}:{mutant.line} {mutant.operator}: {what}"
+                  + (f"  ({mutant.failed_test})" if mutant.failed_test else ""),
                   file=sys.stderr, flush=True)
 
 
@@ -809,6 +1087,26 @@ def markdown_report(reports: list[LessonReport], root: Path, command: str, compa
     return "\n".join(parts).rstrip("\n") + "\n"
 
 
+def bugs_report(reports: list[LessonReport], command: str) -> str:
+    """Markdown: every hand-written student bug, whether the grading suite catches it, and by which test."""
+    lines = ["# Student bugs: does the grading suite catch them?", "",
+             "Produced by `tools/grade --mutants --bugs` (docs/grading.md). Regenerate with:", "", "```sh",
+             command, "```", "",
+             "Each bug is a mistake written by hand into a copy of a reference exercise unit "
+             "(`tests/mutants/student_bugs/*.bug`), built and graded like a mutant.", "",
+             "| lesson | bug | what the student did | status | first test that fails |", "|---|---|---|---|---|"]
+    for r in reports:
+        for m in r.mutants:
+            name = m.operator.removeprefix("student bug ")
+            test = m.failed_test.replace("|", "\\|") or "—"
+            title = m.source_line.replace("|", "\\|")
+            lines.append(f"| {r.lesson} | `{name}` | {title} | {m.status} | {test} |")
+    caught = sum(r.detected() for r in reports)
+    scored = sum(r.scored() for r in reports)
+    lines += ["", f"Caught: {caught} of {scored}" + (f" ({100.0 * caught / scored:.0f}%)." if scored else "."), ""]
+    return "\n".join(lines)
+
+
 def main(argv: list[str]) -> int:
     args = parse_arguments(argv)
     root = project.ROOT
@@ -822,6 +1120,12 @@ def main(argv: list[str]) -> int:
     if equivalents.problems:
         return 2
     reports = choose(root, args, equivalents)
+    if args.list and args.bugs:
+        for r in reports:
+            for m in r.mutants:
+                print(f"{m.ident} lesson{r.lesson} {m.operator.removeprefix('student bug ')} "
+                      f"{m.unit.as_posix()}:{m.line}: {m.source_line}")
+        return 0
     if args.list:
         for r in reports:
             for m in r.mutants:
@@ -844,15 +1148,20 @@ def main(argv: list[str]) -> int:
         run_lesson(report, workspaces, args.timeout, args.compare_without)
         if report.problem:
             print(f"tools/grade --mutants: lesson {report.lesson}: {report.problem}", file=sys.stderr)
-    print(summary_table(reports, args.compare_without))
-    for r in reports:
-        for m in (m for m in r.mutants if m.status == "survived"):
-            print(f"survived: {m.ident} {m.unit.as_posix()}:{m.line} {m.operator}: {m.source_line}  =>  "
-                  f"{m.mutated_line}")
+    command = "tools/grade " + shlex.join(argv if "--mutants" in argv else ["--mutants", *argv])
+    if args.bugs:
+        text = bugs_report(reports, command)
+        print(text)
+    else:
+        print(summary_table(reports, args.compare_without))
+        for r in reports:
+            for m in (m for m in r.mutants if m.status == "survived"):
+                print(f"survived: {m.ident} {m.unit.as_posix()}:{m.line} {m.operator}: {m.source_line}  =>  "
+                      f"{m.mutated_line}")
+        text = markdown_report(reports, root, command, args.compare_without)
     if args.report:
-        command = "tools/grade " + shlex.join(argv if "--mutants" in argv else ["--mutants", *argv])
         args.report.parent.mkdir(parents=True, exist_ok=True)
-        args.report.write_text(markdown_report(reports, root, command, args.compare_without), encoding="utf-8")
+        args.report.write_text(text, encoding="utf-8")
         print(f"wrote {args.report}", file=sys.stderr)
     if any(r.problem for r in reports):
         return 2
