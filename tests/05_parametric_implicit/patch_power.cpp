@@ -201,3 +201,47 @@ TEST_SUITE("lesson05") {
     CHECK_THROWS_AS(patch_newton(patch, ray, planes, Vec2(0.5, 0.5), 1e-13, 0), std::invalid_argument);
   }
 }
+
+// What the subdivision prunes, and where Newton's convergence test looks, on inputs where a slip shows
+// (the mutation report with the factor-dropping operator, issue 28).
+TEST_SUITE("lesson05") {
+  TEST_CASE("intersect_patch on a patch 10⁻⁴ wide prunes every leaf box the ray misses: one Newton start" *
+            doctest::description("task=5,6,7")) {
+    // The flat square [0, 10⁻⁴]² of z = 0 (a bilinear patch: x = 10⁻⁴u, y = 10⁻⁴v), max_depth 2: the
+    // root box, its 4 children, and the 4 children of the one the ray enters are tested (9 boxes);
+    // one leaf holds the ray at (u, v) = (0.3, 0.375), 5·10⁻⁶ from its neighbour across u = 0.25: a
+    // box padding relative to the box's size (10⁻⁹ of it) keeps that neighbour out, so Newton starts
+    // once. A padding that grew as the boxes shrink would open the neighbours too.
+    const double c = 1e-4;
+    const BezierPatch square =
+        BezierPatch::bilinear(Point3(0, 0, 0), Point3(c, 0, 0), Point3(0, c, 0), Point3(c, c, 0));
+    PatchOptions options;
+    options.max_depth = 2;
+    PatchStats stats;
+    const std::optional<PatchHit> hit =
+        intersect_patch(Ray(Point3(0.3 * c, 0.375 * c, 1), Vec3(0, 0, -1)), square, options, &stats);
+    REQUIRE(hit);
+    CHECK(hit->u == doctest::Approx(0.3).epsilon(1e-9));
+    CHECK(hit->v == doctest::Approx(0.375).epsilon(1e-9));
+    CHECK_MESSAGE(stats.boxes_tested == 9, "1 + 4 + 4 boxes tested; got " << stats.boxes_tested);
+    CHECK_MESSAGE(stats.newton_starts == 1, "one leaf box holds the ray; got " << stats.newton_starts);
+  }
+
+  TEST_CASE("patch_newton: a start on one plane but far below the other is not yet a hit (|F₂|, not F₂)" *
+            doctest::description("task=5,6")) {
+    // The saddle S = (u, v, uv), a vertical ray at (0.3, 0.7): F₁, F₂ are the signed distances of S
+    // from the two vertical planes through the ray. Start at the point 0.4 along −N₂ from the ray:
+    // F₁ = 0 and F₂ = −0.4. A convergence test on max(|F₁|, F₂) would accept it at once; Newton must
+    // step (F is linear in (u, v) here: one step) to (0.3, 0.7).
+    const BezierPatch patch = scaled_saddle(1.0);
+    const Ray ray(Point3(0.3, 0.7, 5.0), Vec3(0.0, 0.0, -1.0));
+    const RayPlanes planes = ray_planes(ray);
+    REQUIRE(std::abs(planes.n2.z) < 1e-15);  // vertical planes: N₂ lies in the xy plane
+    const Vec2 start(0.3 - 0.4 * planes.n2.x, 0.7 - 0.4 * planes.n2.y);
+    const std::optional<PatchHit> hit = patch_newton(patch, ray, planes, start, 1e-13, 20);
+    REQUIRE(hit);
+    CHECK_MESSAGE(hit->iterations == 1, "F₂ = −0.4 is far from 0: one Newton step, not none");
+    CHECK(std::abs(hit->u - 0.3) <= 1e-14);
+    CHECK(std::abs(hit->v - 0.7) <= 1e-14);
+  }
+}

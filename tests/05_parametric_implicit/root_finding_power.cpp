@@ -135,3 +135,34 @@ TEST_SUITE("lesson05") {
                   "sphere_trace: the step that passes range.hi counts)");
   }
 }
+
+// Counts and ranges the mutation report with the factor-dropping operator found untested (issue 28).
+TEST_SUITE("lesson05") {
+  TEST_CASE("Newton at a flat start has taken no step; safeguarded Newton starts at the bracket's midpoint" *
+            doctest::description("task=2,3")) {
+    // f(s) = s² + 1 at s0 = 0: f'(0) = 0 before any step (root_finding.hpp: iterations = steps taken).
+    const Function no_root([](double s) { return s * s + 1.0; }, [](double s) { return 2.0 * s; });
+    const RootResult flat = newton(no_root, 0.0, 1e-12, 10);
+    CHECK(flat.status == RootStatus::flat_derivative);
+    CHECK_MESSAGE(flat.iterations == 0, "f'(s0) = 0: no Newton step was taken, iterations = 0");
+    CHECK(flat.s == 0.0);
+    // f(s) = s − 2.3 on the bracket [2, 3]: the first iterate is the midpoint 2.5, where Newton's step
+    // f/f' = 2.5 − 2.3 lands on 2.3 itself (f = 0 there): converged after 1 step. A start anywhere
+    // else (not the midpoint of [a, b]) takes other steps.
+    const Function line([](double s) { return s - 2.3; }, [](double) { return 1.0; });
+    const RootResult r = safeguarded_newton(line, {2.0, 3.0}, 1e-13, 50);
+    REQUIRE(r.converged());
+    CHECK(r.s == 2.3);
+    CHECK_MESSAGE(r.iterations == 1, "from the midpoint 2.5 one Newton step reaches 2.3; got " << r.iterations);
+  }
+
+  TEST_CASE("hard case: sphere tracing on a range of one point [t, t] (not empty: it holds t)" *
+            doctest::description("task=4")) {
+    // distance(s) = 2 − s vanishes at s = 2: the range [2, 2] holds the hit, which is found at once.
+    const Function distance([](double s) { return 2.0 - s; }, [](double) { return -1.0; });
+    const RootResult r = sphere_trace(distance, {2.0, 2.0}, 1.0, 1e-12, 10);
+    CHECK_MESSAGE(r.converged(), "the range [2, 2] is not empty (root_finding.hpp refuses empty ranges only)");
+    CHECK(r.s == 2.0);
+    CHECK(r.iterations == 0);
+  }
+}

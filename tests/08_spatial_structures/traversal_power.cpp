@@ -446,3 +446,69 @@ TEST_SUITE("lesson08") {
                   "no ray had its slab exit short of the hit: the test proves nothing");
   }
 }
+
+// The widening of the ranges the boxes are clipped against, and the walk's parallel axes, where the
+// factor-dropping and constant operators of the mutation report found them untested (issue 28).
+TEST_SUITE("lesson08") {
+  TEST_CASE("BVH: boxes are clipped against the range widened by a relative 1e-9, at both ends" *
+            doctest::description("task=1,3a")) {
+    // Flat leaves (one triangle across the z axis each) under one root; the ray goes up the z axis.
+    // Start of the range: [1000, ∞) widened to [1000 − 10⁻⁶, ∞). Leaf A at z = 1000 − 5·10⁻⁷ lies
+    // inside the widening: its box is entered and its triangle tested (and missed: s < 1000). Leaf B
+    // at z = 500 lies far before it: culled. Root, both children: 3 box tests, 1 triangle test.
+    // Widening by 10⁻⁹ absolute would cull A (and the root), by |lo| (the 10⁻⁹ lost) would open B.
+    const std::vector<BvhNode> start_nodes{inner(box(Point3(-1, -1, 500), Point3(1, 1, 1000 - 5e-7)), 2),
+                                           leaf(box(Point3(-1, -1, 1000 - 5e-7), Point3(1, 1, 1000 - 5e-7)), 0, 1),
+                                           leaf(box(Point3(-1, -1, 500), Point3(1, 1, 500)), 1, 1)};
+    const std::vector<Triangle> start_tris{across_axis(1000 - 5e-7), across_axis(500)};
+    const std::vector<std::uint32_t> ids{1, 2};
+    {
+      TraversalCounters c;
+      const Ray ray(Point3(0, 0, 0), Vec3(0, 0, 1), Interval(1000, infinity));
+      CHECK_FALSE(bvh_closest_hit(BvhView{start_nodes, start_tris, ids}, ray, c).has_value());
+      INFO("range [1000, ∞): clipped against [1000 − 1000·10⁻⁹, ∞); leaf A (z = 1000 − 5·10⁻⁷) is within "
+           "the widening, leaf B (z = 500) is not");
+      CHECK(c.nodes_visited == 3);
+      CHECK(c.triangle_tests == 1);
+    }
+    // End of the range: [0, 1000] widened to [0, 1000 + 10⁻⁶]. Leaf A at z = 1000 + 5·10⁻⁷ is
+    // entered and tested (missed: s > 1000); leaf B at z = 1500 is culled.
+    const std::vector<BvhNode> end_nodes{inner(box(Point3(-1, -1, 1000 + 5e-7), Point3(1, 1, 1500)), 2),
+                                         leaf(box(Point3(-1, -1, 1000 + 5e-7), Point3(1, 1, 1000 + 5e-7)), 0, 1),
+                                         leaf(box(Point3(-1, -1, 1500), Point3(1, 1, 1500)), 1, 1)};
+    const std::vector<Triangle> end_tris{across_axis(1000 + 5e-7), across_axis(1500)};
+    {
+      TraversalCounters c;
+      const Ray ray(Point3(0, 0, 0), Vec3(0, 0, 1), Interval(0, 1000));
+      CHECK_FALSE(bvh_closest_hit(BvhView{end_nodes, end_tris, ids}, ray, c).has_value());
+      INFO("range [0, 1000]: clipped against [0, 1000 + 1000·10⁻⁹]; leaf A (z = 1000 + 5·10⁻⁷) is within "
+           "the widening, leaf B (z = 1500) is not");
+      CHECK(c.nodes_visited == 3);
+      CHECK(c.triangle_tests == 1);
+      TraversalCounters shadow;
+      CHECK_FALSE(bvh_any_hit(BvhView{end_nodes, end_tris, ids}, ray, shadow));
+      INFO("any hit: the root, its two children (popped in turn): 3 box tests, leaf A's triangle only");
+      CHECK(shadow.nodes_visited == 3);
+      CHECK(shadow.triangle_tests == 1);
+    }
+  }
+
+  TEST_CASE("hard case: 3DDA with a direction component whose inverse overflows walks that axis as parallel" *
+            doctest::description("task=1,2a,2b")) {
+    // The grid x ∈ [0, 4] (4 cells), y ∈ [−2⁻¹⁰²⁰, 2⁻¹⁰²⁰] (2 cells, the boundary between them at
+    // y = 0), z ∈ [0, 1]; every bound exact in binary. The ray starts at y = −2⁻¹⁰³⁰, in the lower row
+    // ((p − lo)/h = 1 − 2⁻¹⁰, floor 0), with ω = (1, 2⁻¹⁰²⁸, 0): 1/ω.y = 2¹⁰²⁸ overflows to ∞, so the
+    // slab test treats y as parallel, and the walk must too (grid_dda.hpp: step 0, s_next = ∞). Taken
+    // literally, (0 + 2⁻¹⁰³⁰)/ω.y = 0.25 would step into the upper row at s = 0.25.
+    GridFrame f;
+    f.bounds = box(Point3(0, -0x1p-1020, 0), Point3(4, 0x1p-1020, 1));
+    f.cells = {4, 2, 1};
+    const Ray ray(Point3(0.5, -0x1p-1030, 0.5), Vec3(1, 0x1p-1028, 0));
+    REQUIRE(!std::isfinite(1.0 / ray.direction.y));
+    const DdaWalk start = dda_start(f, ray);
+    REQUIRE(!start.done);
+    CHECK_MESSAGE(start.step[1] == 0, "1/ω.y is not finite: the walk takes y as parallel (step 0)");
+    const Cells lower_row{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
+    CHECK_MESSAGE(dda_cells(f, ray) == lower_row, "the lower row only, x cells 0 to 3");
+  }
+}
