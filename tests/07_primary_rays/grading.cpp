@@ -406,4 +406,24 @@ TEST_SUITE("lesson07") {
     CHECK_THROWS_AS(branch_contributes(Color(1.0), nan), std::invalid_argument);
     CHECK_THROWS_AS(branch_contributes(Color(1.0), -0.01), std::invalid_argument);
   }
+
+  TEST_CASE("adaptive: a square is cut when only one corner differs, whichever corner it is" *
+            doctest::description("task=1,2,3")) {
+    // One pixel, depth 1, threshold 0.5; the image is 1 at one corner of the pixel and 0 elsewhere.
+    // The four corners spread 1 > 0.5: the pixel is cut; the quarter holding the bright corner
+    // has ColorP₁ = ¼(1 + 0 + 0 + 0) and the other three 0: the pixel is ¼·¼ = 0.0625, with the
+    // 3 × 3 lattice points traced. A square that ignored that corner would keep ¼ with 4 rays.
+    const std::pair<double, double> corners[] = {{0, 0}, {1, 0}, {0, 1}, {1, 1}};
+    for (const auto& [cx, cy] : corners) {
+      Recorder rec;
+      const double bright_x = cx, bright_y = cy;
+      const ImageFunction f = rec.wrap([bright_x, bright_y](double x, double y) {
+        return Color(x == bright_x && y == bright_y ? 1.0 : 0.0);
+      });
+      const AdaptiveRun run = adaptive_image(f, 1, 1, {.threshold = 0.5, .max_depth = 1});
+      INFO("the bright corner at (", cx, ", ", cy, ")");
+      check_grey(run.pixels[0], 0.0625);
+      CHECK_MESSAGE(run.rays == 9, "the corners disagree: cut once, 3 × 3 lattice points");
+    }
+  }
 }

@@ -14,6 +14,7 @@
 
 #include "closed_forms.hpp"
 #include "illum/core/random.hpp"
+#include "illum/radiosity/form_factor_analytic.hpp"
 #include "illum/radiosity/form_factor_contour.hpp"
 #include "illum/radiosity/form_factor_hierarchical.hpp"
 #include "illum/radiosity/form_factor_sampling.hpp"
@@ -126,5 +127,129 @@ TEST_SUITE("lesson09") {
         "with max_depth = 0 a quad is split once through its edge midpoints and its centre "
         "(v0 + v1 + v2 + v3)/4, and F is the area-weighted mean of the four children's point factors "
         "at their centroids");
+  }
+}
+
+// Estimators on inputs where each term matters (issue 28): areas other than 1 and unequal, radiance
+// that varies with direction, pairs that face away from each other or sit back to back, a
+// triangle split, and a point a hair in front of a tiny patch. Statistical tests here: three
+// z-tests with fixed seeds, each at |z| < 4 (two-sided α = 6.3·10⁻⁵ each, 1.9·10⁻⁴ together).
+namespace {
+
+constexpr double z_limit = 4.0;
+
+Patch rectangle_up(double x0, double x1, double y0, double y1, double z) {  // normal +z
+  return make_patch({{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}});
+}
+Patch rectangle_down(double x0, double x1, double y0, double y1, double z) {  // normal −z
+  return make_patch({{x0, y0, z}, {x0, y1, z}, {x1, y1, z}, {x1, y0, z}});
+}
+
+}  // namespace
+
+TEST_SUITE("lesson09") {
+  TEST_CASE("Monte Carlo area to area with unequal areas (0.75 → 2): the estimate carries A_j, a z-test" *
+            doctest::description("task=5")) {
+    // Floor i = [0, 1.5] × [0, 0.5] at z = 0 (A_i = 0.75, normal +z), ceiling j = [0, 1] × [0, 2] at
+    // z = 0.8 (A_j = 2, normal −z). Kernel k = c²/(π r⁴), c = 0.8, r ≥ 0.8 (smooth): F and the
+    // estimator's second moment E[X²] = A_j ∫∫ k²/A_i follow from a 12-point Gauss–Legendre product
+    // rule over the four coordinates (an independent, slower exact method).
+    const double c = 0.8;
+    double nodes[12], weights[12];
+    gauss_legendre_01(12, nodes, weights);
+    double f = 0, second = 0;
+    for (int a = 0; a < 12; ++a)
+      for (int b = 0; b < 12; ++b)
+        for (int p = 0; p < 12; ++p)
+          for (int q = 0; q < 12; ++q) {
+            const double dx = 1.5 * nodes[a] - nodes[p], dy = 0.5 * nodes[b] - 2 * nodes[q];
+            const double r2 = dx * dx + dy * dy + c * c;
+            const double k = c * c / (pi * r2 * r2);
+            const double w = weights[a] * weights[b] * weights[p] * weights[q];
+            f += w * k * 2.0;              // (1/A_i)∫_i∫_j k = ∫∫ k over [0,1]⁴ times A_i A_j / A_i
+            second += w * k * k * 4.0;     // E[X²] with X = A_j k: A_j² E[k²]
+          }
+    const Patch floor = rectangle_up(0, 1.5, 0, 0.5, 0), ceiling = rectangle_down(0, 1, 0, 2, c);
+    const int n = 100000;
+    Rng rng(909);
+    const double estimate = form_factor_monte_carlo(floor, ceiling, {}, n, rng);
+    const double z = (estimate - f) / std::sqrt((second - f * f) / n);
+    INFO("estimate ", estimate, " against ", f, " (quadrature), z = ", z,
+         "; the estimator is A_j·mean of cos θ_x cos θ_y/(π r²), with A_j = 2, not A_i = 0.75, not 1");
+    CHECK(std::abs(z) < z_limit);
+  }
+
+  TEST_CASE("B by Monte Carlo for radiances that vary with φ and with θ, z-tests" *
+            doctest::description("task=11")) {
+    // B = ∫ I(φ, θ) cos φ dω. I = cos φ: B = 2π·∫₀¹ u² du = 2π/3; the estimator X = 2π I cos φ
+    // with u = cos φ uniform has E[X²] = 4π²/5. I = cos²θ: B = π·½ = π/2, E[X²] = 4π²·(3/8)(1/3) = π²/2.
+    // A constant radiance cannot tell which angle is passed where.
+    const int n = 200000;
+    Rng rng(1211);
+    const double by_phi = exitance_from_radiance_monte_carlo([](double phi, double) { return std::cos(phi); }, n, rng);
+    const double z_phi = (by_phi - 2 * pi / 3) / std::sqrt((4 * pi * pi / 5 - 4 * pi * pi / 9) / n);
+    INFO("I = cos φ: estimate ", by_phi, " against 2π/3, z = ", z_phi);
+    CHECK(std::abs(z_phi) < z_limit);
+    const double by_theta =
+        exitance_from_radiance_monte_carlo([](double, double theta) { return std::pow(std::cos(theta), 2); }, n, rng);
+    const double z_theta = (by_theta - pi / 2) / std::sqrt((pi * pi / 2 - pi * pi / 4) / n);
+    INFO("I = cos²θ: estimate ", by_theta, " against π/2, z = ", z_theta);
+    CHECK(std::abs(z_theta) < z_limit);
+  }
+
+  TEST_CASE("hard case: patches that face away from each other or sit back to back exchange nothing" *
+            doctest::description("task=1,2,3,4,5,6,7,8,9")) {
+    // (a) facing away: i = [0, 1]² at z = 0 facing −z, j = [0, 1]² at z = 1 facing +z; each sees
+    //     the other's back from its own back. (b) back to back: i facing +z at z = 0 over j facing
+    //     −z at z = −1: each lies behind the other. (c) j behind i: i facing +z at z = 0, j facing +z
+    //     at z = −1, under it: i's front does not see j, and j sees only i's back.
+    // One-sided patches (cosines below 0 count as 0) give exactly 0 in every estimator, both ways.
+    struct Pair {
+      const char* name;
+      Patch i, j;
+    };
+    const Pair pairs[] = {{"facing away", rectangle_down(0, 1, 0, 1, 0), rectangle_up(0, 1, 0, 1, 1)},
+                          {"back to back", rectangle_up(0, 1, 0, 1, 0), rectangle_down(0, 1, 0, 1, -1)},
+                          {"j behind i", rectangle_up(0, 1, 0, 1, 0), rectangle_up(0, 1, 0, 1, -1)}};
+    for (const Pair& pair : pairs)
+      for (const bool swap : {false, true}) {
+        const Patch& from = swap ? pair.j : pair.i;
+        const Patch& to = swap ? pair.i : pair.j;
+        INFO(pair.name, swap ? ", from j to i" : ", from i to j");
+        const Point3 x = from.centroid;
+        Rng rng(7);
+        CHECK(point_polygon_form_factor(x, from.normal, to) == 0.0);
+        CHECK(polygon_polygon_form_factor(from, to) == 0.0);
+        CHECK(form_factor_monte_carlo(from, to, {}, 500, rng) == 0.0);
+        CHECK(form_factor_area_sampling(x, from.normal, to, {}, 500, rng) == 0.0);
+        CHECK(form_factor_hemisphere_uniform(x, from.normal, to, {}, 500, rng) == 0.0);
+        CHECK(form_factor_hemisphere_cosine(x, from.normal, to, {}, 500, rng) == 0.0);
+        CHECK(form_factor_nusselt(x, from.normal, to, 8) == 0.0);
+        CHECK(form_factor_hierarchical(from, to, 1e-3).value == 0.0);
+      }
+  }
+
+  TEST_CASE("hierarchical: a triangle half of a square sees a centred square as the square does" *
+            doctest::description("task=1,2,4")) {
+    // The unit square S = [0, 1]² of z = 0 under T = [0, 1]² at z = 1 (Howell C-11: F = 0.19982).
+    // The diagonal from (0, 0) to (1, 1) cuts S into two triangles that the reflection x ↔ y swaps,
+    // and that reflection maps T onto itself: both triangles see T alike, and since
+    // A_S F_S = A_1 F_1 + A_2 F_2 with F_1 = F_2 and A_1 = A_2 = A_S/2, each has F = F_S.
+    const Patch triangle = make_patch({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}});
+    const double exact = parallel_rectangles(1, 1, 1);
+    const HierarchicalResult r = form_factor_hierarchical(triangle, rectangle_down(0, 1, 0, 1, 1), 1e-7, 12);
+    INFO("a triangle's four children are the corner triangles at its vertices and the middle one");
+    CHECK(r.value == doctest::Approx(exact).epsilon(1e-5));
+  }
+
+  TEST_CASE("hard case: a point 10⁻¹⁴ in front of a patch 10⁻⁶ wide sees it fill its hemisphere" *
+            doctest::description("task=1,2")) {
+    // The square [−10⁻⁶, 10⁻⁶]² of z = 0 facing +z, seen from 10⁻¹⁴ above its centre, looking down:
+    // F = 1 − O(10⁻⁸). The point is in front of the patch by far more than rounding (10⁻¹⁴ against
+    // coordinates of 10⁻⁶), so the test "in front?" must be relative to the patch's size.
+    const double l = 1e-6;
+    const Patch tiny = rectangle_up(-l, l, -l, l, 0);
+    CHECK(point_polygon_form_factor(Point3(0, 0, 1e-14), Vec3(0, 0, -1), tiny) ==
+          doctest::Approx(1.0).epsilon(1e-6));
   }
 }
