@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cmath>
+#include <stdexcept>
 #include <vector>
 
 #include "illum/radiosity/radiosity_solvers.hpp"
@@ -315,5 +316,14 @@ TEST_SUITE("lesson11") {
            ": partial pivoting, elimination of every row below, back substitution over every column");
       CHECK(got[i] == doctest::Approx(x[i]).epsilon(1e-13));
     }
+  }
+
+  TEST_CASE("hard case: gaussian elimination of a 1 × 1 system, and of an empty one" * doctest::description("task=1")) {
+    // 2.5·x = 7.5: x = 3, the smallest system there is (one patch alone under the direct solver).
+    const std::vector<double> x = gaussian_elimination({2.5}, {7.5});
+    REQUIRE(x.size() == 1);
+    CHECK(x[0] == doctest::Approx(3.0).epsilon(1e-15));
+    INFO("contract of gaussian_elimination: n = b.size() > 0 and A has n × n entries");
+    CHECK_THROWS_AS(gaussian_elimination({}, {}), std::invalid_argument);
   }
 }

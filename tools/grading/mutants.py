@@ -537,9 +537,10 @@ def generate(lesson: str, unit: Path, source: str, stub_lines: set[str]) -> list
                     and tokens[index + 1].text != tokens[index + 3].text:
                 a, b = tokens[index + 1], tokens[index + 3]
                 add("index swap", a.start, b.end, f"{b.text}, {a.text}", token.line)
-    unique: dict[tuple[int, int, str], Mutant] = {}
-    for m in mutants:
-        unique.setdefault((m.start, m.end, m.replacement), m)
+    # One mutant per resulting program: `a * pi * b` loses pi as ' * pi' or as 'pi * ', the same text.
+    unique: dict[tuple[int, str], Mutant] = {}
+    for m in sorted(mutants, key=lambda m: (m.start, m.operator)):
+        unique.setdefault((m.line, m.mutated_line), m)
     return sorted(unique.values(), key=lambda m: (m.start, m.operator))
 
 
