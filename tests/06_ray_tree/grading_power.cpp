@@ -271,6 +271,14 @@ TEST_SUITE("lesson06") {
     const RayTreeNode* reflected = find(RayKind::reflection);
     REQUIRE(shadow != nullptr);
     REQUIRE(reflected != nullptr);
+    REQUIRE(!tree.nodes.empty());
+    {
+      INFO("the primary ray's record: I_own = k_d·(N·L) = 0.5 and the colour it returns, I_own + k_r·I_r, "
+           "recorded last (record_result after the children, ray_tree.hpp)");
+      CHECK(tree.nodes[0].kind == RayKind::primary);
+      check_vec(tree.nodes[0].local, Color(0.5));
+      check_vec(tree.nodes[0].color, Color(0.6, 0.6, 0.575));
+    }
     INFO("the shadow ray: nothing blocks it, transmission (local) 1; it returns no colour of its own");
     check_vec(shadow->local, Color(1.0));
     check_vec(shadow->color, Color(0.0));
