@@ -273,8 +273,9 @@ TEST_SUITE("lesson06") {
     REQUIRE(reflected != nullptr);
     REQUIRE(!tree.nodes.empty());
     {
-      INFO("the primary ray's record: I_own = k_d·(N·L) = 0.5 and the colour it returns, I_own + k_r·I_r, "
-           "recorded last (record_result after the children, ray_tree.hpp)");
+      INFO(
+          "the primary ray's record: I_own = k_d·(N·L) = 0.5 and the colour it returns, I_own + k_r·I_r, "
+          "recorded last (record_result after the children, ray_tree.hpp)");
       CHECK(tree.nodes[0].kind == RayKind::primary);
       check_vec(tree.nodes[0].local, Color(0.5));
       check_vec(tree.nodes[0].color, Color(0.6, 0.6, 0.575));
@@ -345,13 +346,15 @@ TEST_SUITE("lesson06") {
     const EffectsPlan plan = full_effects(0);
     const Tracer tracer{.scene = g.scene, .plan = plan, .stats = &stats};
     check_vec(shadow_transmission(tracer, p, Point3(0, 0, 4)), Color(0.64, 0.25, 0.81));
-    CHECK_MESSAGE(stats.rays.shadow == 3,
-                  "one shadow ray per segment (ray_tree.hpp): to the ball, across it, on to the light = 3; got "
-                      << stats.rays.shadow << " (1 means the walk was counted once per call)");
+    CHECK_MESSAGE(
+        stats.rays.shadow == 3,
+        "one shadow ray per segment (ray_tree.hpp): to the ball, across it, on to the light = 3; got "
+            << stats.rays.shadow << " (1 means the walk was counted once per call)");
     CHECK_MESSAGE(stats.work.intersection_tests == 6,
                   "pass &tracer.stats->work to scene.intersect: 3 segments × 2 primitives = 6 tests; got "
                       << stats.work.intersection_tests);
-    CHECK_MESSAGE(stats.work.hits == 2, "the first two segments end on the glass: 2 hits; got " << stats.work.hits);
+    CHECK_MESSAGE(stats.work.hits == 2,
+                  "the first two segments end on the glass: 2 hits; got " << stats.work.hits);
     // The opaque plan asks scene.occluded: the light is blocked, one ray, at least one test counted.
     EffectsPlan opaque = full_effects(0);
     opaque.shadow_attenuation = false;
@@ -384,15 +387,18 @@ TEST_SUITE("lesson06") {
     check_vec(evaluate(tracer, Ray(Point3(3, 0, 5), Vec3(0, 0, -1))), Color(0.5));
     CHECK(stats.rays.primary == 1);
     CHECK(stats.rays.shadow == 1);
-    CHECK_MESSAGE(stats.work.intersection_tests == 4,
-                  "pass &tracer.stats->work to scene.intersect (primary: 2 tests) and scene.occluded (shadow: 2 "
-                  "tests, nothing blocks): 4; got "
-                      << stats.work.intersection_tests << " (0 means the work counters were not passed on)");
-    CHECK_MESSAGE(stats.work.hits == 1, "only the primary ray's test of the floor hits; got " << stats.work.hits);
+    CHECK_MESSAGE(
+        stats.work.intersection_tests == 4,
+        "pass &tracer.stats->work to scene.intersect (primary: 2 tests) and scene.occluded (shadow: 2 "
+        "tests, nothing blocks): 4; got "
+            << stats.work.intersection_tests << " (0 means the work counters were not passed on)");
+    CHECK_MESSAGE(stats.work.hits == 1,
+                  "only the primary ray's test of the floor hits; got " << stats.work.hits);
   }
 
-  TEST_CASE("effects plan: every switch on a mirror, on clear glass and on reflecting glass, by the ray counts" *
-            doctest::description("task=1,2,5,6")) {
+  TEST_CASE(
+      "effects plan: every switch on a mirror, on clear glass and on reflecting glass, by the ray counts" *
+      doctest::description("task=1,2,5,6")) {
     // A square z = 0 seen straight down from (0, 0, 2), depth 1, no light, ambient 0.2: I_own = 0.2.
     // Its reflected child goes straight up, its refracted child straight down (normal incidence does
     // not bend): both miss and return the background b = (0.1, 0.2, 0.4). So
@@ -433,10 +439,12 @@ TEST_SUITE("lesson06") {
         INFO(object.name, ", k_r = ", object.k_r.r, ", k_t = ", object.k_t.r, "; plan: reflection ",
              plan.reflection ? "on" : "off", ", refraction ", plan.refraction ? "on" : "off",
              ", skip_zero_weights ", plan.skip_zero_weights ? "on" : "off");
-        CHECK_MESSAGE(stats.rays.reflection == (reflected ? 1u : 0u),
-                      "reflected rays: expected " << (reflected ? 1 : 0) << ", got " << stats.rays.reflection);
-        CHECK_MESSAGE(stats.rays.refraction == (refracted ? 1u : 0u),
-                      "refracted rays: expected " << (refracted ? 1 : 0) << ", got " << stats.rays.refraction);
+        CHECK_MESSAGE(stats.rays.reflection == (reflected ? 1u : 0u), "reflected rays: expected "
+                                                                          << (reflected ? 1 : 0) << ", got "
+                                                                          << stats.rays.reflection);
+        CHECK_MESSAGE(stats.rays.refraction == (refracted ? 1u : 0u), "refracted rays: expected "
+                                                                          << (refracted ? 1 : 0) << ", got "
+                                                                          << stats.rays.refraction);
         const Color want = Color(0.2) + (plan.reflection ? object.k_r : Color(0.0)) * background +
                            (plan.refraction ? object.k_t : Color(0.0)) * background;
         check_vec(c, want);
@@ -463,8 +471,8 @@ TEST_SUITE("lesson06") {
     // I = k_d·(N·L = 1)·S = 0.5·(0.64, 0.25, 0.81).
     const Color want(0.32, 0.125, 0.405);
     check_vec(evaluate(tracer, Ray(Point3(0, 0, 0.5), Vec3(0, 0, -1))), want);
-    REQUIRE_MESSAGE(tree.nodes.size() == 4, "the primary ray and three shadow segments: 4 records; got "
-                                                << tree.nodes.size());
+    REQUIRE_MESSAGE(tree.nodes.size() == 4,
+                    "the primary ray and three shadow segments: 4 records; got " << tree.nodes.size());
     CHECK(tree.nodes[0].kind == RayKind::primary);
     CHECK(tree.nodes[0].hit);
     check_vec(tree.nodes[0].local, want);
@@ -482,7 +490,8 @@ TEST_SUITE("lesson06") {
     CHECK(tree.nodes[1].front_face);
     check_vec(tree.nodes[1].local, k_t);
     CHECK_MESSAGE(tree.nodes[2].hit, "segment 2 ends on the ball's far side: record_blocker");
-    CHECK_MESSAGE(!tree.nodes[2].front_face, "segment 2 leaves the glass from inside: the hit says back face");
+    CHECK_MESSAGE(!tree.nodes[2].front_face,
+                  "segment 2 leaves the glass from inside: the hit says back face");
     check_vec(tree.nodes[2].local, k_t * k_t);
     CHECK_MESSAGE(!tree.nodes[3].hit, "segment 3 reaches the light");
     check_vec(tree.nodes[3].local, k_t * k_t);
@@ -504,11 +513,11 @@ TEST_SUITE("lesson06") {
     pane.index_of_refraction = 1.5;
     const auto m = add_material(scene, pane);
     add_floor(scene, "top", 0.0, 1.0, m);  // normal +z: the ray meets its front face
-    const double z = -1e-7;                 // normal −z (clockwise from above): met from inside, a back face
-    scene.primitives.push_back(Primitive{
-        .name = "bottom",
-        .shape = Polygon({Point3(-1, -1, z), Point3(-1, 1, z), Point3(1, 1, z), Point3(1, -1, z)}),
-        .material = m});
+    const double z = -1e-7;                // normal −z (clockwise from above): met from inside, a back face
+    scene.primitives.push_back(
+        Primitive{.name = "bottom",
+                  .shape = Polygon({Point3(-1, -1, z), Point3(-1, 1, z), Point3(1, 1, z), Point3(1, -1, z)}),
+                  .material = m});
     scene.ambient_light = Color(1.0);
     const Color background(0.1, 0.2, 0.4);
     const EffectsPlan plan = plan_effects(scene, 2);
@@ -517,7 +526,7 @@ TEST_SUITE("lesson06") {
     const Color c = evaluate(tracer, Ray(Point3(0.25, 0.125, 1), Vec3(0, 0, -1)));
     INFO("spawn_ray moves the origin by the hit's error bound (about 10⁻¹⁶ here), not by a fixed epsilon");
     check_vec(c, Color(0.2) + 0.5 * (Color(0.2) + 0.5 * background));
-    CHECK_MESSAGE(stats.rays.refraction == 2, "into the pane and out of it: 2 refracted rays; got "
-                                                  << stats.rays.refraction);
+    CHECK_MESSAGE(stats.rays.refraction == 2,
+                  "into the pane and out of it: 2 refracted rays; got " << stats.rays.refraction);
   }
 }
