@@ -10,8 +10,8 @@ worked out here, not read from the grader:
   ana      folder  the reference unit                      every test: full marks
   ben      zip     the untouched stub                      0
   carla    folder  one bug (a zero radius accepted)        all but the radius test
-  dario    folder  a crash in the notes' form              all but the 3 notes' form tests
-  elena    zip     an endless loop in the notes' form      all but the 3 notes' form tests
+  dario    folder  a crash in the notes' form              all but the 4 notes' form tests
+  elena    zip     an endless loop in the notes' form      all but the 4 notes' form tests
   fede     folder  an attacker: a stub that forks a daemon to rewrite results.json
                                                           0, flagged, nothing alive afterwards
   gala     folder  a file that does not compile            "not gradable", no total (not 0)
@@ -140,7 +140,7 @@ def main(argv: list[str]) -> int:
     check("lesson01" in header and "total" in header and "status" in header, "a column is missing")
     check(len(tests) >= 10, f"only {len(tests)} per-test columns")
     notes_tests = [h for h in tests if NOTES in h]
-    check(len(notes_tests) == 3, f"expected the 3 notes' form tests among the columns, found {len(notes_tests)}")
+    check(len(notes_tests) == 4, f"expected the 4 notes' form tests (3 in grading.cpp, 1 in grading_power.cpp) among the columns, found {len(notes_tests)}")
     ana = by_id.get("ana", {})
     full = float(ana["total"]) if ana.get("total") else 0.0
     check(full > 0 and ana.get("max") == ana.get("total"), f"ana (the reference) scored {ana.get('total')!r} of "
