@@ -31,13 +31,16 @@ TEST_SUITE("io") {
         .title = "t",
         .curves = {{.table = "t.csv", .x = "n", .y = "error", .where = {{"method", "notes"}}, .title = "a"}}};
     const std::string script = illum::gnuplot_script(spec, "t.png", folder);
-    CHECK(contains(script, "using (column(2)):(((strcol(1) eq 'notes') ? column(4) : 1/0))"));
+    CHECK(contains(script,
+                   "using (column(2)):(((strcol(1) eq 'notes') && finite(column(2)) && finite(column(4))) ? "
+                   "column(4) : NaN)"));
   }
 
   TEST_CASE("a column added in front moves the numbers, not the curve") {
     const auto folder = folder_with("extra,method,n,time,error");
     const illum::PlotSpec spec{.curves = {{.table = "t.csv", .x = "n", .y = "error", .title = "a"}}};
-    CHECK(contains(illum::gnuplot_script(spec, "t.png", folder), "using (column(3)):(column(5))"));
+    CHECK(contains(illum::gnuplot_script(spec, "t.png", folder),
+                   "using (column(3)):((finite(column(3)) && finite(column(5))) ? column(5) : NaN)"));
   }
 
   TEST_CASE("typed conditions: several matches, positive x and y, quotes in values") {
@@ -55,7 +58,8 @@ TEST_SUITE("io") {
     const std::string script = illum::gnuplot_script(spec, "t.png", folder);
     CHECK(contains(
         script,
-        "((strcol(1) eq 'it''s' && strcol(3) eq '1' && column(2) > 0 && column(4) > 0) ? column(4) : 1/0)"));
+        "((strcol(1) eq 'it''s' && strcol(3) eq '1' && finite(column(2)) && finite(column(4)) && column(2) > 0 "
+        "&& column(4) > 0) ? column(4) : NaN)"));
     CHECK(contains(script, "with points dt 2 lc 3 title"));
   }
 
@@ -67,8 +71,8 @@ TEST_SUITE("io") {
         .curves = {{.table = "t.csv", .x = "time", .y = "error", .where = {{"radius", 0.004}}, .title = "a"},
                    {.table = "t.csv", .x = "time", .y = "error", .where = {{"radius", 1.0}}, .title = "b"}}};
     const std::string script = illum::gnuplot_script(spec, "t.png", folder);
-    CHECK(contains(script, "((column(2) == 0.0040000000000000001) ? column(4) : 1/0)"));
-    CHECK(contains(script, "((column(2) == 1) ? column(4) : 1/0)"));
+    CHECK(contains(script, "((column(2) == 0.0040000000000000001 && finite(column(3))"));
+    CHECK(contains(script, "((column(2) == 1 && finite(column(3))"));
   }
 
   TEST_CASE("the key goes beside the plot unless the spec puts it inside or below") {
