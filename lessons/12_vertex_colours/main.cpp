@@ -92,8 +92,10 @@ void vertex_colours(OutputFolder& out, const Settings& settings) {
   const auto [low, high] = stretch_contrast(closeups);
   out.image(side_by_side(closeups, Color(1.0)), "mach_bands",
             "Close-up of the floor along the red wall, same three rules, its contrast stretched (linear "
-            "radiance " + fixed(low, 3) + " to " + fixed(high, 3) + " of the exposed picture shown black to "
-            "white): flat tiles, then Gouraud, whose slope breaks at every element edge (Mach bands)");
+            "radiance " +
+                fixed(low, 3) + " to " + fixed(high, 3) +
+                " of the exposed picture shown black to "
+                "white): flat tiles, then Gouraud, whose slope breaks at every element edge (Mach bands)");
   out.table(table, "vertex_rules", "Vertex values of each rule; the extrapolation's clamps at zero");
   std::cout << s.scene.name << ": " << s.scene.patches.size() << " patches shoot, " << s.mesh.elements.size()
             << " elements receive, " << s.shared.positions.size() << " shared vertices, " << s.solution.shots

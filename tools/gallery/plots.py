@@ -90,7 +90,8 @@ def evaluate(gp: Path, gnuplot: str) -> tuple[list[Curve], dict[str, float], dic
         body = []
         for line in kept:
             if line.startswith("plot "):
-                body.append(f"set table '{table}'")
+                # The table is written in the axes' formats: full precision, not the tic labels'.
+                body += ["set format x '%.17g'", "set format y '%.17g'", f"set table '{table}'"]
             body.append(line)
         body += ["unset table",
                  'print sprintf("RANGE %.17g %.17g %.17g %.17g", GPVAL_X_MIN, GPVAL_X_MAX, GPVAL_Y_MIN, GPVAL_Y_MAX)']

@@ -182,7 +182,10 @@ struct CurveFilter {
 };
 
 CurveFilter curve_filter(const PlotCurve& c, const PlotSpec& spec, TableCache& tables) {
-  CurveFilter f{tables.index(c.table, c.x), tables.index(c.table, c.y), {}, c.x_positive || spec.log_x,
+  CurveFilter f{tables.index(c.table, c.x),
+                tables.index(c.table, c.y),
+                {},
+                c.x_positive || spec.log_x,
                 c.y_positive || spec.log_y};
   for (const RowMatch& m : c.where) f.matches.emplace_back(tables.index(c.table, m.column), m);
   if (!c.point_labels.empty()) f.labels = tables.index(c.table, c.point_labels);
@@ -209,12 +212,19 @@ std::string curve_clause(const PlotCurve& c, const CurveFilter& f) {
   std::string style = mark_style(c.mark);
   if (c.dashed) style += " dt 2";
   if (c.colour > 0) style += " lc " + std::to_string(c.colour);
-  const std::string using_xy = quoted(c.table) + " skip 1 using (" + x + "):((" + condition + ") ? " + y + " : NaN)";
-  std::string clause = using_xy + " with " + style + " title " + quoted(c.title);
-  if (f.labels)
-    clause += ", \\\n     " + using_xy + ":(strcol(" + std::to_string(*f.labels + 1) +
-              ")) with labels left offset char 0.7,0.5 font ',9' tc " +
-              (c.colour > 0 ? "lt " + std::to_string(c.colour) : std::string("rgb '#333333'")) + " notitle";
+  const std::string source = quoted(c.table) + " skip 1 using (" + x + "):";
+  std::string clause =
+      source + "((" + condition + ") ? " + y + " : NaN) with " + style + " title " + quoted(c.title);
+  if (f.labels) {
+    // Labels above the points of even rows and below those of odd rows, so that two
+    // neighbouring rows' labels at about the same place do not print over each other.
+    const std::string colour = c.colour > 0 ? "lt " + std::to_string(c.colour) : std::string("rgb '#333333'");
+    for (const auto& [parity, dy] : {std::pair{"0", "0.6"}, std::pair{"1", "-0.6"}})
+      clause += ", \\\n     " + source + "((" + condition + " && int(column(0)) % 2 == " + parity + ") ? " +
+                y + " : NaN):(strcol(" + std::to_string(*f.labels + 1) +
+                ")) with labels left offset char 0.7," + dy + " font ',9' tc " + colour +
+                " noenhanced notitle";
+  }
   return clause;
 }
 
@@ -254,7 +264,8 @@ std::string axis_commands(char axis, bool log, const std::vector<double>& values
       s += std::string("set format ") + axis + " '10^{%L}'\n";
     } else {
       std::string tics;
-      for (const std::vector<double>& mantissas : {std::vector<double>{1, 2, 5}, {1, 2, 3, 4, 5, 6, 7, 8, 9}}) {
+      for (const std::vector<double>& mantissas :
+           {std::vector<double>{1, 2, 5}, {1, 2, 3, 4, 5, 6, 7, 8, 9}}) {
         tics.clear();
         int count = 0;
         for (int e = static_cast<int>(std::floor(l)); e <= static_cast<int>(std::ceil(h)); ++e)
