@@ -44,6 +44,7 @@ void s07_inspector(OutputFolder& out, const Scene& scene, const RenderResult& re
   const std::array<int, 2> xy = requested ? *requested : glass_pixel(scene, camera);
   const PixelTree pixel = trace_pixel_tree(scene, settings, xy[0], xy[1]);
   write_ray_tree_files(out, scene, pixel, render.image, camera, "ray_tree");
+  write_ray_tree_summary(out, scene, pixel, "ray_tree_summary");  // the deck's drawing
   std::cout << "ray tree of pixel (" << xy[0] << ", " << xy[1] << "): " << pixel.tree.nodes.size()
             << " rays, depth " << pixel.tree.depth() << "; " << pixel.stats.rays.summary() << "\n";
 }

@@ -312,7 +312,7 @@ std::string gnuplot_script(const PlotSpec& spec, const std::string& png_name,
   }
   std::string s;
   s += "set terminal pngcairo size " + std::to_string(spec.width) + "," + std::to_string(spec.height) +
-       " enhanced font 'DejaVu Sans,11'\n";
+       " enhanced font 'DejaVu Sans,13'\n";
   // `gnuplot NAME.gp` draws NAME.png; illum runs `gnuplot -c NAME.gp -`, which writes the
   // picture on standard output, and writes the file itself (core/child_process.hpp).
   s += "if (ARGC > 0) { set output } else { set output " + quoted(png_name) + " }\n";
