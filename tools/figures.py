@@ -75,10 +75,12 @@ same text, on a line of its own:
     <!-- value ratio: name / other_name format=fixed:1 -->
 
 A cell is picked like a figure's rows (row=, where=, table=) and one
-column=; arithmetic (+ - * / and numbers) combines values of the same text.
+column=; a table may also be a Markdown file of the source tree
+(exercises/NN_topic/README.md), and format=rows counts the rows picked;
+arithmetic (+ - * / ** and numbers) combines values of the same text.
 format= writes the number: cell (as printed, the default for a cell),
 fixed:N (N decimals), sig:N (N significant digits), percent:N (times 100,
-N decimals), int, thousands (9,600). The marker vouches for the text right
+N decimals), int, thousands (9,600), rows. The marker vouches for the text right
 before it, without a space: a number, or a `code span`. `--check` fails when
 that text differs from the value (unless the value depends on a timing),
 when a marker has no definition or a definition no marker; the refresh
@@ -428,7 +430,7 @@ VALUE_DEF = re.compile(r"^\s*<!--\s*value\s+(?P<name>[A-Za-z_]\w*)\s*:\s*(?P<spe
 # a `code span`, or a run of characters that are not spaces and not opening
 # brackets or quotes ("(43.6" vouches for 43.6).
 VALUE_TEXT = re.compile(r"(?:`[^`]+`|[^\s(\[{\"'“‘`]+)$")
-VALUE_FORMATS = "cell, fixed:N, sig:N, percent:N, int, thousands"
+VALUE_FORMATS = "cell, fixed:N, sig:N, percent:N, int, thousands, rows"
 
 
 @dataclass
@@ -446,19 +448,27 @@ def parse_value_def(name: str, line: int, text: str) -> ValueDef:
     fmt = re.search(r"(?:^|\s)format=(\S+)\s*$", text)
     body = text[:fmt.start()].strip() if fmt else text.strip()
     value = ValueDef(name, line, format=fmt.group(1) if fmt else "cell")
-    if not re.fullmatch(r"cell|int|thousands|(?:fixed|sig|percent):\d{1,2}", value.format):
+    if not re.fullmatch(r"cell|int|thousands|rows|(?:fixed|sig|percent):\d{1,2}", value.format):
         raise FigureError(f"value {name}: unknown format '{value.format}' (one of {VALUE_FORMATS})")
-    if body.startswith("out/"):
+    first = body.split(None, 1)[0] if body else ""
+    if first.startswith("out/") or re.fullmatch(r"[\w\-]+(?:/[\w\-.]+)*\.md", first):
         try:
             parts = shlex.split(body)
         except ValueError as e:
             raise FigureError(f"value {name}: cannot read '{body}': {e}") from None
+        if ".." in parts[0]:
+            raise FigureError(f"value {name}: '{parts[0]}' must name a table under out/ or in the source tree")
         options = [p for p in parts[1:] if not p.startswith("column=")]
         columns = [p[len("column="):] for p in parts[1:] if p.startswith("column=")]
-        if len(columns) != 1:
+        if value.format == "rows" and columns:
+            raise FigureError(f"value {name}: format=rows counts rows; it names no column=")
+        if value.format != "rows" and len(columns) != 1:
             raise FigureError(f"value {name}: name exactly one column= (the cell's column)")
-        value.path, value.column = parts[0], columns[0]
-        value.spec = parse_spec(" ".join(shlex.quote(p) for p in [parts[0]] + options))
+        value.path, value.column = parts[0], columns[0] if columns else None
+        # parse_spec checks the options; a source-tree table is read from SOURCE, not OUT.
+        spec_path = parts[0] if parts[0].startswith("out/") else "out/" + parts[0]
+        value.spec = parse_spec(" ".join(shlex.quote(p) for p in [spec_path] + options))
+        value.spec.path = parts[0]
         if value.spec.columns is not None:
             raise FigureError(f"value {name}: columns= picks a figure's columns; a value names one column=")
     else:
@@ -497,7 +507,8 @@ def _evaluate(expression: str, known: dict[str, float], name: str) -> float:
     except SyntaxError:
         raise FigureError(f"value {name}: cannot read the arithmetic '{expression}'") from None
     operators = {ast.Add: lambda a, b: a + b, ast.Sub: lambda a, b: a - b,
-                 ast.Mult: lambda a, b: a * b, ast.Div: lambda a, b: a / b}
+                 ast.Mult: lambda a, b: a * b, ast.Div: lambda a, b: a / b,
+                 ast.Pow: lambda a, b: abs(a) ** b}  # a rate per step: (e4 / e10) ** (1 / 6)
 
     def walk(node: ast.AST) -> float:
         if isinstance(node, ast.BinOp) and type(node.op) in operators:
@@ -513,11 +524,11 @@ def _evaluate(expression: str, known: dict[str, float], name: str) -> float:
             if node.id not in known:
                 raise FigureError(f"value {name}: '{node.id}' is not a value defined in this file")
             return known[node.id]
-        raise FigureError(f"value {name}: '{expression}' may use only + - * /, numbers and other values")
+        raise FigureError(f"value {name}: '{expression}' may use only + - * / **, numbers and other values")
     return walk(tree.body)
 
 
-def resolve_values(out: Path, defs: dict[str, ValueDef]) -> dict[str, tuple[str, bool]]:
+def resolve_values(out: Path, defs: dict[str, ValueDef], source: Path = SOURCE) -> dict[str, tuple[str, bool]]:
     """Each value's text as the program's tables give it, and whether it depends on a timing."""
     resolved: dict[str, tuple[str, bool]] = {}
     numbers: dict[str, float] = {}
@@ -527,7 +538,12 @@ def resolve_values(out: Path, defs: dict[str, ValueDef]) -> dict[str, tuple[str,
         waiting = []
         for d in pending:
             if d.path is not None:
-                table = select(read_table(out / Path(d.path).relative_to("out"), d.spec.table), d.spec, d.path)
+                where = out / Path(d.path).relative_to("out") if d.path.startswith("out/") else source / d.path
+                table = select(read_table(where, d.spec.table), d.spec, d.path)
+                if d.format == "rows":
+                    numbers[d.name], timings[d.name] = float(len(table.rows)), False
+                    resolved[d.name] = (str(len(table.rows)), False)
+                    continue
                 if d.column not in table.header:
                     raise FigureError(f"value {d.name}: {d.path} has no column '{d.column}' "
                                       f"(it has: {', '.join(table.header)})")
@@ -614,13 +630,13 @@ def find_values(path: Path, lines: list[str], blocks: list[Block]) -> tuple[dict
 
 
 def process_values(out: Path, path: Path, lines: list[str], blocks: list[Block], mode: str,
-                   problems: list[str], left: list[str]) -> tuple[bool, int]:
+                   problems: list[str], left: list[str], source: Path = SOURCE) -> tuple[bool, int]:
     """Checks (mode 'check') or rewrites the values in one text: (whether `lines` changed, values seen)."""
     try:
         defs, uses = find_values(path, lines, blocks)
         if not defs:
             return False, 0
-        resolved = resolve_values(out, defs)
+        resolved = resolve_values(out, defs, source)
     except FigureError as e:
         problems.append(str(e) if str(e).startswith(str(path)) else f"{path}: {e}")
         return False, 0
@@ -938,7 +954,7 @@ def process(source: Path, out: Path, mode: str, log=print, plots: bool = True) -
                 problems += hand_timings(rel, lines, blocks)
             problems += unlinked_errata(rel, lines)
         # Values first: they change text within lines, the figures change the number of lines.
-        changed, found = process_values(out, rel, lines, blocks, mode, problems, left)
+        changed, found = process_values(out, rel, lines, blocks, mode, problems, left, source)
         values += found
         for block in reversed(blocks):  # bottom up: earlier line numbers stay valid
             figures += 1

@@ -156,6 +156,18 @@ class FiguresTest(unittest.TestCase):
         self.assertEqual(self.run_mode("refresh"), 0, self.messages)
         self.assertIn("tests take `10.0`<!--=t--> and the run slows by 1.3<!--=slow-->×.", self.text())
 
+    def test_a_value_can_count_the_rows_of_a_source_tree_table(self):
+        self.run_mode("update")
+        self.write("exercises/01_x/README.md", "# Exercise\n\n| test | task |\n|---|---|\n| a | 1 |\n| b | 1 |\n"
+                                               "| c | 2 |\n")
+        self.value_text("The exercise has 3<!--=tests--> tests, 2<!--=task1--> for task 1.",
+                        '<!-- value tests: exercises/01_x/README.md format=rows -->\n'
+                        '<!-- value task1: exercises/01_x/README.md where="task=1" format=rows -->')
+        self.assertEqual(self.run_mode("check"), 0, self.messages)
+        self.write("exercises/01_x/README.md", "# Exercise\n\n| test | task |\n|---|---|\n| a | 1 |\n")
+        self.assertEqual(self.run_mode("check"), 1)
+        self.assertIn("value tests: the text says 3, the program wrote 1", "\n".join(self.messages))
+
     def test_bad_values_are_errors_naming_the_line(self):
         self.run_mode("update")
         cases = [
