@@ -46,25 +46,51 @@ verdicts) must not. So:
   program's results, to be reviewed with `git diff`).
 
 Images. A lesson text (lessons/NN_topic/README.md) shows its program's
-images where a student reads it, before anything has run: every image it
-links whose pixels do not depend on timing (renders, diagrams, error and
-count plots) is kept in the repository as lessons/NN_topic/figures/x.png, a
-byte copy of out/lessonNN/x.png, and linked as `figures/x.png`. A timing plot
--- its gnuplot script (out/lessonNN/x.gp) has a title or axis label with a
-word of TIMING_WORDS, or "Mrays"/"throughput" -- differs on every run: it is
-not kept, and the text links it in out/ (`../../out/lessonNN/x.png`), shown
-once the program has run, beside the figure comment quoting its table.
+images where a student reads it, before anything has run (the repository
+browser, a fresh clone, the student edition): every image it links is kept
+in the repository as lessons/NN_topic/figures/x.png, a byte copy of
+out/lessonNN/x.png, and linked as `figures/x.png`. A timing plot -- its
+gnuplot script (out/lessonNN/x.gp) has a title or axis label with a word of
+TIMING_WORDS, or "Mrays"/"throughput" -- differs on every run: its kept copy
+shows one run (the one --update-images copied), and the gallery's rendered
+page of the text shows the latest run's drawing from out/ beside the
+latest run's table.
 
-* `--update-images` copies every kept image from OUT, relinks each image
-  link of the lesson texts to figures/ or out/ by that rule, and deletes
-  kept images no text shows any more (add an image: link it as
+* `--update-images` copies every linked image from OUT into figures/,
+  relinks each image link of the lesson texts to figures/, and deletes kept
+  images no text shows any more (add an image: link it as
   `../../out/lessonNN/x.png` and run this);
 * `--check` also fails when a kept image drifts from what the program drew:
   sizes differ, or more than PIXEL_SHARE of the pixels differ by more than
   PIXEL_LEVELS levels in a channel (the PNGs are decoded, so a different
-  encoder or a last-bit difference of a float does not count), when a
-  deterministic image is linked in out/, a timing plot is kept, a linked
+  encoder or a last-bit difference of a float does not count; a timing plot
+  is compared by its size only), when an image is linked in out/, a linked
   image is missing, or a file of figures/ is shown by no text.
+
+Values in sentences. A number in a sentence that restates a program's
+result is followed by a marker, `43.6<!--=name-->`, and defined once in the
+same text, on a line of its own:
+
+    <!-- value name: out/lessonNN/table.md row="col=v" column="other col" [format=F] -->
+    <!-- value ratio: name / other_name format=fixed:1 -->
+
+A cell is picked like a figure's rows (row=, where=, table=) and one
+column=; a table may also be a Markdown file of the source tree
+(exercises/NN_topic/README.md), and format=rows counts the rows picked;
+arithmetic (+ - * / ** and numbers) combines values of the same text.
+format= writes the number: cell (as printed, the default for a cell),
+fixed:N (N decimals), sig:N (N significant digits), percent:N (times 100,
+N decimals), int, thousands (9,600), rows. The marker vouches for the text right
+before it, without a space: a number, or a `code span`. `--check` fails when
+that text differs from the value (unless the value depends on a timing),
+when a marker has no definition or a definition no marker; the refresh
+rewrites values that depend on a timing, `--update` every value.
+
+Links. `--check` (and `--links`, which needs no OUT) fails when a link or
+an image of a text (README.md, CONTRIBUTING.md, the lesson texts, the
+exercises, docs/, slides/README.md) names a file missing from the source
+tree, a file in out/ (absent from a fresh clone), or a heading the linked
+text does not have (tools/gallery/text_links.py).
 
 Screenshots of the lab. A kept image named lab_*.png is a screenshot of
 `illum lab` (tools/lab/screenshots.py, the main job's step "lab"): it is
@@ -80,9 +106,11 @@ and "load not recorded" when the program was run by hand).
 from __future__ import annotations
 
 import argparse
+import ast
 import csv
 import io
 import json
+import math
 import os
 import re
 import shlex
@@ -94,6 +122,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from gallery.markdown_table import is_separator_line, split_table_row
+from gallery.plots import PlotCheckError, check_plots
+from gallery.text_links import check_text_links
 
 SOURCE = Path(__file__).resolve().parent.parent
 # The Markdown files that may hold figures, relative to the source tree.
@@ -381,6 +411,257 @@ def unlinked_errata(path: Path, lines: list[str]) -> list[str]:
     return problems
 
 
+
+# --- values in sentences ---------------------------------------------------------------
+#
+# A number in a sentence that restates a program's result is written where it
+# stands, followed by a marker naming it, and defined once in the same file:
+#
+#     ... at the price of 43.6<!--=bvh_nodes--> box tests per shadow ray ...
+#     <!-- value bvh_nodes: out/lesson08/light_buffer.md row="method=BVH (any hit)" column="nodes or cells per shadow ray" -->
+#
+# Rendered (GitHub, the gallery's pages, a deck) both comments vanish and the
+# sentence reads "43.6 box tests"; raw, the marker says where the number comes
+# from and the definition, on a line of its own, says exactly which cell.
+
+VALUE_MARKER = re.compile(r"<!--\s*=(?P<name>[A-Za-z_]\w*)\s*-->")
+VALUE_DEF = re.compile(r"^\s*<!--\s*value\s+(?P<name>[A-Za-z_]\w*)\s*:\s*(?P<spec>.*?)\s*-->\s*$")
+# The text a marker vouches for: what stands right before it, without a space:
+# a `code span`, or a run of characters that are not spaces and not opening
+# brackets or quotes ("(43.6" vouches for 43.6).
+VALUE_TEXT = re.compile(r"(?:`[^`]+`|[^\s(\[{\"'“‘`]+)$")
+VALUE_FORMATS = "cell, fixed:N, sig:N, percent:N, int, thousands, rows"
+
+
+@dataclass
+class ValueDef:
+    name: str
+    line: int                       # 0-based
+    path: str | None = None         # a cell: out/... and its spec
+    spec: Spec | None = None
+    column: str | None = None
+    expression: str | None = None   # or arithmetic over other values of the file
+    format: str = "cell"
+
+
+def parse_value_def(name: str, line: int, text: str) -> ValueDef:
+    fmt = re.search(r"(?:^|\s)format=(\S+)\s*$", text)
+    body = text[:fmt.start()].strip() if fmt else text.strip()
+    value = ValueDef(name, line, format=fmt.group(1) if fmt else "cell")
+    if not re.fullmatch(r"cell|int|thousands|rows|(?:fixed|sig|percent):\d{1,2}", value.format):
+        raise FigureError(f"value {name}: unknown format '{value.format}' (one of {VALUE_FORMATS})")
+    first = body.split(None, 1)[0] if body else ""
+    if first.startswith("out/") or re.fullmatch(r"[\w\-]+(?:/[\w\-.]+)*\.md", first):
+        try:
+            parts = shlex.split(body)
+        except ValueError as e:
+            raise FigureError(f"value {name}: cannot read '{body}': {e}") from None
+        if ".." in parts[0]:
+            raise FigureError(f"value {name}: '{parts[0]}' must name a table under out/ or in the source tree")
+        options = [p for p in parts[1:] if not p.startswith("column=")]
+        columns = [p[len("column="):] for p in parts[1:] if p.startswith("column=")]
+        if value.format == "rows" and columns:
+            raise FigureError(f"value {name}: format=rows counts rows; it names no column=")
+        if value.format != "rows" and len(columns) != 1:
+            raise FigureError(f"value {name}: name exactly one column= (the cell's column)")
+        value.path, value.column = parts[0], columns[0] if columns else None
+        # parse_spec checks the options; a source-tree table is read from SOURCE, not OUT.
+        spec_path = parts[0] if parts[0].startswith("out/") else "out/" + parts[0]
+        value.spec = parse_spec(" ".join(shlex.quote(p) for p in [spec_path] + options))
+        value.spec.path = parts[0]
+        if value.spec.columns is not None:
+            raise FigureError(f"value {name}: columns= picks a figure's columns; a value names one column=")
+    else:
+        if value.format == "cell":
+            raise FigureError(f"value {name}: arithmetic '{body}' needs a format= ({VALUE_FORMATS})")
+        value.expression = body
+        names = re.findall(r"[A-Za-z_]\w*", body)
+        _evaluate(body, {n: 1.0 + 0.37 * i for i, n in enumerate(names)}, name)  # its form, not its value
+    return value
+
+
+def format_value(number_text: str, fmt: str, name: str) -> str:
+    if fmt == "cell":
+        return number_text
+    try:
+        x = float(number_text)
+    except ValueError:
+        raise FigureError(f"value {name}: '{number_text}' is not a number (format={fmt})") from None
+    if not math.isfinite(x):
+        raise FigureError(f"value {name}: {number_text} cannot be written with format={fmt}")
+    kind, _, digits = fmt.partition(":")
+    if kind == "int":
+        return str(round(x))
+    if kind == "thousands":
+        return f"{round(x):,}"
+    if kind == "fixed":
+        return f"{x:.{int(digits)}f}"
+    if kind == "percent":
+        return f"{100 * x:.{int(digits)}f}"
+    return f"{x:.{int(digits)}g}"  # sig
+
+
+def _evaluate(expression: str, known: dict[str, float], name: str) -> float:
+    try:
+        tree = ast.parse(expression, mode="eval")
+    except SyntaxError:
+        raise FigureError(f"value {name}: cannot read the arithmetic '{expression}'") from None
+    operators = {ast.Add: lambda a, b: a + b, ast.Sub: lambda a, b: a - b,
+                 ast.Mult: lambda a, b: a * b, ast.Div: lambda a, b: a / b,
+                 ast.Pow: lambda a, b: abs(a) ** b}  # a rate per step: (e4 / e10) ** (1 / 6)
+
+    def walk(node: ast.AST) -> float:
+        if isinstance(node, ast.BinOp) and type(node.op) in operators:
+            left, right = walk(node.left), walk(node.right)
+            if isinstance(node.op, ast.Div) and right == 0:
+                raise FigureError(f"value {name}: '{expression}' divides by zero")
+            return operators[type(node.op)](left, right)
+        if isinstance(node, ast.UnaryOp) and isinstance(node.op, ast.USub):
+            return -walk(node.operand)
+        if isinstance(node, ast.Constant) and isinstance(node.value, (int, float)):
+            return float(node.value)
+        if isinstance(node, ast.Name):
+            if node.id not in known:
+                raise FigureError(f"value {name}: '{node.id}' is not a value defined in this file")
+            return known[node.id]
+        raise FigureError(f"value {name}: '{expression}' may use only + - * / **, numbers and other values")
+    return walk(tree.body)
+
+
+def resolve_values(out: Path, defs: dict[str, ValueDef], source: Path = SOURCE) -> dict[str, tuple[str, bool]]:
+    """Each value's text as the program's tables give it, and whether it depends on a timing."""
+    resolved: dict[str, tuple[str, bool]] = {}
+    numbers: dict[str, float] = {}
+    timings: dict[str, bool] = {}
+    pending = sorted(defs.values(), key=lambda d: d.expression is not None)  # cells first
+    for _ in range(len(pending) + 1):
+        waiting = []
+        for d in pending:
+            if d.path is not None:
+                where = out / Path(d.path).relative_to("out") if d.path.startswith("out/") else source / d.path
+                table = select(read_table(where, d.spec.table), d.spec, d.path)
+                if d.format == "rows":
+                    numbers[d.name], timings[d.name] = float(len(table.rows)), False
+                    resolved[d.name] = (str(len(table.rows)), False)
+                    continue
+                if d.column not in table.header:
+                    raise FigureError(f"value {d.name}: {d.path} has no column '{d.column}' "
+                                      f"(it has: {', '.join(table.header)})")
+                if len(table.rows) != 1:
+                    raise FigureError(f"value {d.name}: row=/where= pick {len(table.rows)} rows of {d.path}; "
+                                      "a value is one cell")
+                c = table.header.index(d.column)
+                cell = table.rows[0][c] if c < len(table.rows[0]) else ""
+                timings[d.name] = table.timing_mask()[0][c]
+                try:
+                    numbers[d.name] = float(cell)
+                except ValueError:
+                    pass
+                resolved[d.name] = (format_value(cell, d.format, d.name), timings[d.name])
+            else:
+                names = set(re.findall(r"[A-Za-z_]\w*", d.expression))
+                if not names <= set(numbers):
+                    if names - set(defs):
+                        raise FigureError(f"value {d.name}: {', '.join(sorted(names - set(defs)))} is not "
+                                          "defined in this file")
+                    waiting.append(d)
+                    continue
+                x = _evaluate(d.expression, numbers, d.name)
+                numbers[d.name] = x
+                timings[d.name] = any(timings[n] for n in names)
+                resolved[d.name] = (format_value(repr(x), d.format, d.name), timings[d.name])
+        if not waiting:
+            return resolved
+        pending = waiting
+    raise FigureError("values defined in terms of each other: " + ", ".join(d.name for d in pending))
+
+
+@dataclass
+class ValueUse:
+    name: str
+    line: int       # 0-based
+    start: int      # span of the text it vouches for
+    end: int
+
+
+def find_values(path: Path, lines: list[str], blocks: list[Block]) -> tuple[dict[str, ValueDef], list[ValueUse]]:
+    """The value definitions and the markers of a text (outside code fences and figures)."""
+    inside = set()
+    for b in blocks:
+        inside.update(range(b.open_line, b.close_line + 1))
+    defs: dict[str, ValueDef] = {}
+    uses: list[ValueUse] = []
+    fence = False
+    for i, line in enumerate(lines):
+        if line.lstrip().startswith("```"):
+            fence = not fence
+            continue
+        if fence or i in inside:
+            continue
+        m = VALUE_DEF.match(line)
+        if m:
+            if m["name"] in defs:
+                raise FigureError(f"{path}:{i + 1}: value {m['name']} is defined twice (first on line "
+                                  f"{defs[m['name']].line + 1})")
+            try:
+                defs[m["name"]] = parse_value_def(m["name"], i, m["spec"])
+            except FigureError as e:
+                raise FigureError(f"{path}:{i + 1}: {e}") from None
+            continue
+        for u in VALUE_MARKER.finditer(line):
+            text = VALUE_TEXT.search(line[:u.start()])
+            if not text:
+                raise FigureError(f"{path}:{i + 1}: the marker <!--={u['name']}--> follows no value: write it "
+                                  "right after the number, without a space (43.6<!--=name-->)")
+            uses.append(ValueUse(u["name"], i, text.start(), text.end()))
+    used = {u.name for u in uses}
+    for u in uses:
+        if u.name not in defs:
+            raise FigureError(f"{path}:{u.line + 1}: value {u.name} is used but not defined: add a line "
+                              f"<!-- value {u.name}: out/lessonNN/table.md row=\"…\" column=\"…\" -->")
+    referenced = set()
+    for d in defs.values():
+        if d.expression:
+            referenced |= set(re.findall(r"[A-Za-z_]\w*", d.expression))
+    for d in defs.values():
+        if d.name not in used and d.name not in referenced:
+            raise FigureError(f"{path}:{d.line + 1}: value {d.name} is defined but no sentence uses it")
+    return defs, uses
+
+
+def process_values(out: Path, path: Path, lines: list[str], blocks: list[Block], mode: str,
+                   problems: list[str], left: list[str], source: Path = SOURCE) -> tuple[bool, int]:
+    """Checks (mode 'check') or rewrites the values in one text: (whether `lines` changed, values seen)."""
+    try:
+        defs, uses = find_values(path, lines, blocks)
+        if not defs:
+            return False, 0
+        resolved = resolve_values(out, defs, source)
+    except FigureError as e:
+        problems.append(str(e) if str(e).startswith(str(path)) else f"{path}: {e}")
+        return False, 0
+    changed = False
+    for u in reversed(uses):  # right to left: earlier spans on a line stay valid
+        line = lines[u.line]
+        written = line[u.start:u.end]
+        shown = written[1:-1] if written.startswith("`") and written.endswith("`") and len(written) > 1 else written
+        value, timing = resolved[u.name]
+        if shown == value:
+            continue
+        difference = f"{path}:{u.line + 1}: value {u.name}: the text says {shown}, the program wrote {value}"
+        if mode == "check":
+            if not timing:
+                problems.append(difference)
+            continue
+        if mode == "refresh" and not timing:
+            left.append(difference)
+            continue
+        replacement = f"`{value}`" if written.startswith("`") else value
+        lines[u.line] = line[:u.start] + replacement + line[u.end:]
+        changed = True
+    return changed, len(uses)
+
+
 def texts(source: Path) -> list[Path]:
     found: list[Path] = []
     for pattern in TEXT_GLOBS:
@@ -392,12 +673,11 @@ def texts(source: Path) -> list[Path]:
 #
 # A lesson text shows its program's images where a student reads it: in the
 # repository browser and in the student edition, before anything has run. So
-# every deterministic image a lesson text links (renders, diagrams, error and
-# count plots) is kept in the repository, in lessons/NN_topic/figures/, a copy
-# of what the main job drew in out/lessonNN/; the text links `figures/x.png`.
-# A timing plot (its title or an axis label names a time, or a throughput) is
-# different on every run: it is not kept, the text links it in the program's
-# output, `../../out/lessonNN/x.png`, and quotes its table in a figure comment.
+# every image a lesson text links is kept in the repository, in
+# lessons/NN_topic/figures/, a copy of what the main job drew in
+# out/lessonNN/; the text links `figures/x.png`. A timing plot (its title or
+# an axis label names a time, or a throughput) is different on every run: its
+# kept copy is compared by size only, and the rendered page shows the run's.
 
 FIGURES_FOLDER = "figures"
 IMAGE_LINK = re.compile(r"!\[[^\]]*\]\((?P<target>[^()\s]+\.png)\)")
@@ -414,7 +694,7 @@ PLOT_TIMING_WORDS = TIMING_WORDS | {"mrays", "throughput"}
 PIXEL_LEVELS = 4
 PIXEL_SHARE = 0.001
 # The repository stays small: all kept images together (CONTRIBUTING.md, "Images show where students read").
-KEPT_BUDGET_BYTES = 5_000_000
+KEPT_BUDGET_BYTES = 6_000_000
 
 
 def lesson_texts(source: Path) -> list[Path]:
@@ -563,13 +843,10 @@ def check_images(source: Path, out: Path) -> tuple[list[str], int]:
                 problems.append(f"{where}: {link.name}: the program wrote no {drawn.relative_to(out)} in {out}")
                 continue
             timing = timing_plot(out, link.lesson, link.name)
-            if link.kept and timing:
-                problems.append(f"{where}: {link.name} is a timing plot ('{timing}'): it is not kept; link "
-                                f"../../out/lesson{link.lesson}/{link.name} (tools/figures.py --update-images)")
-            elif not link.kept and not timing:
-                problems.append(f"{where}: {link.name} is deterministic but linked in out/, which is empty until "
-                                f"the program has run: keep it with tools/figures.py --update-images")
-            elif link.kept:
+            if not link.kept:
+                problems.append(f"{where}: {link.name} is linked in out/, which is empty until the program has run "
+                                f"(and in a fresh clone): keep it with tools/figures.py --update-images")
+            else:
                 kept = folder / link.name
                 if not kept.is_file():
                     problems.append(f"{where}: {rel.parent}/{FIGURES_FOLDER}/{link.name} is missing "
@@ -577,7 +854,7 @@ def check_images(source: Path, out: Path) -> tuple[list[str], int]:
                     continue
                 compared += 1
                 try:
-                    if link.name.startswith(LAB_SCREENSHOT):  # a screenshot: its size only
+                    if link.name.startswith(LAB_SCREENSHOT) or timing:  # a screenshot, a timing plot: its size only
                         kept_size, drawn_size = decode_png(kept.read_bytes())[:2], decode_png(drawn.read_bytes())[:2]
                         difference = None if kept_size == drawn_size else f"its size {kept_size} is now {drawn_size}"
                     else:
@@ -626,17 +903,14 @@ def update_images(source: Path, out: Path, log=print) -> int:
                 if link.kept:
                     keep.add(link.name)  # leave it as it is
                 continue
-            if timing_plot(out, link.lesson, link.name):
-                target = f"../../out/lesson{link.lesson}/{link.name}"
-            else:
-                target = f"{FIGURES_FOLDER}/{link.name}"
-                keep.add(link.name)
-                kept = folder / link.name
-                data = drawn.read_bytes()
-                if not kept.is_file() or kept.read_bytes() != data:
-                    folder.mkdir(exist_ok=True)
-                    kept.write_bytes(data)
-                    copied += 1
+            target = f"{FIGURES_FOLDER}/{link.name}"
+            keep.add(link.name)
+            kept = folder / link.name
+            data = drawn.read_bytes()
+            if not kept.is_file() or kept.read_bytes() != data:
+                folder.mkdir(exist_ok=True)
+                kept.write_bytes(data)
+                copied += 1
             line = lines[link.line]
             if line[link.start:link.end] != target:
                 lines[link.line] = line[:link.start] + target + line[link.end:]
@@ -644,7 +918,7 @@ def update_images(source: Path, out: Path, log=print) -> int:
         for orphan in sorted(folder.glob("*")) if folder.is_dir() else []:
             if orphan.name not in keep:
                 orphan.unlink()
-                log(f"figures: removed {orphan.relative_to(source)} (no longer shown, or a timing plot)")
+                log(f"figures: removed {orphan.relative_to(source)} (no longer shown)")
         if folder.is_dir() and not any(folder.iterdir()):
             folder.rmdir()
         kept_total += len(keep)
@@ -659,11 +933,12 @@ def update_images(source: Path, out: Path, log=print) -> int:
     return 1 if problems else 0
 
 
-def process(source: Path, out: Path, mode: str, log=print) -> int:
-    """mode: 'refresh', 'check' or 'update'. Returns the exit code."""
+def process(source: Path, out: Path, mode: str, log=print, plots: bool = True) -> int:
+    """mode: 'refresh', 'check' or 'update' (check: also the plots in OUT unless `plots` is False).
+    Returns the exit code."""
     problems: list[str] = []
     left: list[str] = []
-    written = figures = 0
+    written = figures = values = 0
     for path in texts(source):
         rel = path.relative_to(source)
         lines = path.read_text(encoding="utf-8").splitlines()
@@ -678,7 +953,9 @@ def process(source: Path, out: Path, mode: str, log=print) -> int:
             if rel.parts[0] in ("lessons", "slides"):
                 problems += hand_timings(rel, lines, blocks)
             problems += unlinked_errata(rel, lines)
-        changed = False
+        # Values first: they change text within lines, the figures change the number of lines.
+        changed, found = process_values(out, rel, lines, blocks, mode, problems, left, source)
+        values += found
         for block in reversed(blocks):  # bottom up: earlier line numbers stay valid
             figures += 1
             try:
@@ -710,17 +987,44 @@ def process(source: Path, out: Path, mode: str, log=print) -> int:
             log(f"figures:   {p}")
     if mode == "check":
         image_problems, compared = check_images(source, out)
-        for p in image_problems:
+        links, link_count = link_problems(source)
+        plot_count = 0
+        try:
+            if plots:
+                plots, plot_count = check_plots(out)
+            else:
+                plots = []
+        except PlotCheckError as e:
+            plots = [f"cannot check the plots: {e}"]
+        for p in image_problems + links + plots:
             log(f"figures: {p}")
-        problems += image_problems
+        problems += image_problems + links + plots
         if problems:
-            log(f"figures: FAILED: {len(problems)} problem(s) in {figures} figure(s) and the lesson texts' images")
+            log(f"figures: FAILED: {len(problems)} problem(s) in {figures} figure(s), {values} value(s), the "
+                "lesson texts' images and links, and the plots")
             return 1
-        log(f"figures: OK: the non-timing values of {figures} figure(s) match the tables in {out}, "
-            f"no text quotes a timing by hand, and the {compared} kept image(s) match what the programs drew")
+        log(f"figures: OK: the non-timing values of {figures} figure(s) and {values} value(s) in sentences "
+            f"match the tables in {out}, no text quotes a timing by hand, the {compared} kept image(s) match "
+            f"what the programs drew, the texts' {link_count} links resolve, and the {plot_count} plots show "
+            "all their points")
         return 0
     log(f"figures: {figures} figure(s), {written} file(s) rewritten")
     return 1 if problems else 0
+
+
+def link_problems(source: Path) -> tuple[list[str], int]:
+    return check_text_links(source)
+
+
+def check_links_only(source: Path, log=print) -> int:
+    problems, checked = link_problems(source)
+    for p in problems:
+        log(f"figures: {p}")
+    if problems:
+        log(f"figures: FAILED: {len(problems)} of {checked} links and images of the texts do not resolve")
+        return 1
+    log(f"figures: OK: the {checked} links and images of the texts resolve in {source}")
+    return 0
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -731,8 +1035,11 @@ def main(argv: list[str] | None = None) -> int:
     group.add_argument("--check", action="store_true", help="compare, write nothing; exit 1 on a difference")
     group.add_argument("--update", action="store_true", help="rewrite every figure from its table")
     group.add_argument("--update-images", action="store_true",
-                       help="keep a copy of every deterministic image the lesson texts show in "
-                            "lessons/NN_topic/figures/ and link it; timing plots stay linked in out/")
+                       help="keep a copy of every image the lesson texts show in "
+                            "lessons/NN_topic/figures/ and link it there")
+    group.add_argument("--links", action="store_true",
+                       help="only check that every link and image of the texts resolves in the source tree "
+                            "(needs no OUT)")
     parser.add_argument("--out", type=Path, default=None, help="the main job's output folder (default: SOURCE/out)")
     parser.add_argument("--source", type=Path, default=SOURCE, help="the source tree (default: this checkout)")
     args = parser.parse_args(argv)
@@ -740,6 +1047,8 @@ def main(argv: list[str] | None = None) -> int:
     out = (args.out or source / "out").resolve()
     if args.update_images:
         return update_images(source, out)
+    if args.links:
+        return check_links_only(source)
     mode = "check" if args.check else "update" if args.update else "refresh"
     return process(source, out, mode)
 

@@ -15,6 +15,10 @@ Steps (all by default; pick some with --only):
            other values changed is left for `tools/figures.py --update` and
            listed); skipped after a --quick run, whose tables are small;
   slides   builds every slides/NN_*.md deck to OUT/slides/NN_*.html (Marp);
+  texts    renders every lesson text, exercise README and document to
+           OUT/pages/ (HTML with KaTeX maths, the run's figures, links between
+           the pages and to pages of the source files they cite;
+           tools/gallery/render_texts.mjs), then checks every page's links;
   index    writes OUT/index.html, linking every lesson's outputs, deck, lesson
            text and exercise; --check-links then verifies every local link.
 
@@ -38,9 +42,10 @@ import figures  # noqa: E402
 from gallery.decks import DeckError, build_decks, find_decks  # noqa: E402
 from gallery.fsutil import atomic_write_text  # noqa: E402
 from gallery.index import check_links, write_index  # noqa: E402
+from gallery.texts import TextsError, build_texts  # noqa: E402
 
 SOURCE = Path(__file__).resolve().parent.parent
-STEPS = ("lessons", "lab", "figures", "slides", "index")
+STEPS = ("lessons", "lab", "figures", "slides", "texts", "index")
 PROGRAM = re.compile(r"^lesson(\d\d)$")
 
 
@@ -138,6 +143,22 @@ def run_slides(source: Path, slides_dir: Path, out: Path) -> None:
     say(f"slides done in {time.monotonic() - start:.1f} s")
 
 
+def run_texts(source: Path, out: Path) -> None:
+    say("texts: rendering the lesson texts, exercises and documents into " + str(out / "pages"))
+    start = time.monotonic()
+    try:
+        for line in build_texts(source, out):
+            say(f"  {line}")
+    except TextsError as e:
+        raise JobError(str(e)) from None
+    broken = []
+    for page in sorted((out / "pages").rglob("*.html")):
+        broken += [f"{page.relative_to(out)}: {p}" for p in check_links(page)]
+    if broken:
+        raise JobError(f"{len(broken)} broken link(s) in the rendered texts:\n  " + "\n  ".join(broken[:40]))
+    say(f"texts done in {time.monotonic() - start:.1f} s")
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter,
@@ -173,6 +194,8 @@ def main(argv: list[str] | None = None) -> int:
             run_figures(source, out, args.quick)
         if "slides" in steps:
             run_slides(source, slides_dir, out)
+        if "texts" in steps:
+            run_texts(source, out)
         if "index" in steps:
             note = "(Quick run: small sizes.)" if args.quick else ""
             index = write_index(source, out, slides_dir, note)

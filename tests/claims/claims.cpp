@@ -217,4 +217,31 @@ TEST_SUITE("claims") {
     INFO("log-log slope of the second moment against the gap: ", slope);
     CHECK(std::abs(slope + 1) < 0.05);
   }
+
+  TEST_CASE("claims: the mesh grading that minimises the mean error is h ∝ g^(−1/3) (lesson 12, §6)") {
+    // Two regions of areas A1, A2 where the radiosity has gradients g1, g2, meshed
+    // with elements of sizes h1, h2. A flat element's mean error is proportional to
+    // g·h, so the area-weighted mean error is E = A1 g1 h1 + A2 g2 h2, for
+    // N = A1/h1² + A2/h2² elements. For a fixed N, search h1 on a fine grid (h2
+    // follows from N) and compare the best ratio h1/h2 with (g1/g2)^(−1/3), and not
+    // with the −1/5 power the text once gave, nor the gap test's 1/g.
+    const double a1 = 0.3, a2 = 0.7, n = 2000;
+    for (const double g_ratio : {8.0, 27.0, 0.2}) {
+      const double g1 = g_ratio, g2 = 1.0;
+      double best_error = INFINITY, best_h1 = 0, best_h2 = 0;
+      const double h1_min = std::sqrt(a1 / n);  // all N elements in region 1
+      for (int k = 1; k < 200000; ++k) {
+        const double h1 = h1_min * std::pow(100.0, k / 200000.0);  // a geometric grid up to 100·h1_min
+        const double rest = n - a1 / (h1 * h1);
+        if (rest <= 0) continue;
+        const double h2 = std::sqrt(a2 / rest);
+        const double error = a1 * g1 * h1 + a2 * g2 * h2;
+        if (error < best_error) best_error = error, best_h1 = h1, best_h2 = h2;
+      }
+      INFO("g1/g2 = ", g_ratio, ": best h1/h2 = ", best_h1 / best_h2);
+      CHECK(best_h1 / best_h2 == doctest::Approx(std::pow(g_ratio, -1.0 / 3.0)).epsilon(1e-3));
+      CHECK(std::abs(best_h1 / best_h2 - std::pow(g_ratio, -1.0 / 5.0)) > 0.05);
+      CHECK(std::abs(best_h1 / best_h2 - 1.0 / g_ratio) > 0.05);
+    }
+  }
 }

@@ -28,3 +28,20 @@ set_tests_properties(gallery_index PROPERTIES FIXTURES_REQUIRED lesson_outputs D
 add_test(NAME gallery_tools
          COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/tools/test_gallery.py)
 set_tests_properties(gallery_tools PROPERTIES LABELS slides TIMEOUT 300)
+
+# The texts as pages (tools/gallery/render_texts.mjs, the main job's step "texts"):
+#   text_pages                        renders every text into test-out/pages and opens lesson 06's,
+#                                     lesson 09's, the errata and an exercise in headless Chromium:
+#                                     formulas render in KaTeX's fonts, images load, links resolve
+#   text_pages_checker_catches_errors the checker must name a KaTeX error, a missing image and a
+#                                     link to a missing anchor planted in a page
+add_test(NAME text_pages
+         COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/texts/run_page_test.py pages
+                 --out ${ILLUM_TEST_OUT})
+set_tests_properties(text_pages PROPERTIES FIXTURES_REQUIRED lesson_outputs LABELS slides TIMEOUT 600
+                                           ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+add_test(NAME text_pages_checker_catches_errors
+         COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/texts/run_page_test.py expect-failure
+                 --out ${ILLUM_TEST_OUT}/pages-fixture)
+set_tests_properties(text_pages_checker_catches_errors PROPERTIES LABELS slides TIMEOUT 300
+                                                                  ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)

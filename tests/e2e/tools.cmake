@@ -22,3 +22,15 @@ set_tests_properties(tools_check_one_home_py PROPERTIES LABELS tools ENVIRONMENT
 add_test(NAME test_watchdog
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/e2e/watchdog_e2e.py --bin ${CMAKE_BINARY_DIR}/bin)
 set_tests_properties(test_watchdog PROPERTIES LABELS grading ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# The plot check (tools/gallery/plots.py): gnuplot's own reading of small scripts, broken and whole.
+add_test(NAME plots_tool COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_plots.py)
+set_tests_properties(plots_tool PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# Every plot the e2e runs drew (test-out/lessonNN/*.gp) joins its lines and shows every point
+# inside its frame; CI's tools/figures.py --check does the same for the main job's plots.
+add_test(NAME plots COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/check_plots.py
+                            --out ${CMAKE_BINARY_DIR}/test-out)
+set_tests_properties(plots PROPERTIES FIXTURES_REQUIRED lesson_outputs LABELS tools
+                                      ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# Every link and image of the texts resolves in the source tree (a fresh clone has no out/).
+add_test(NAME text_links COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/figures.py --links)
+set_tests_properties(text_links PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)

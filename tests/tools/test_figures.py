@@ -118,6 +118,79 @@ class FiguresTest(unittest.TestCase):
         self.assertEqual(self.run_mode("check"), 1)
         self.assertIn("under out/", "\n".join(self.messages))
 
+    def value_text(self, sentence: str, definitions: str) -> None:
+        if not hasattr(self, "base"):
+            self.base = self.text()  # after update: the figure holds its table
+        self.write("lessons/01_x/README.md", self.base + "\n" + sentence + "\n\n" + definitions + "\n")
+
+    def test_a_value_in_a_sentence_is_checked_against_its_cell(self):
+        self.run_mode("update")
+        self.value_text("At n = 2 the error is 0.25<!--=e2-->, a quarter.",
+                        '<!-- value e2: out/lesson01/t.md row="n=2" column=error -->')
+        self.assertEqual(self.run_mode("check"), 0, self.messages)
+        self.assertIn("1 value(s) in sentences", "\n".join(self.messages))
+        self.write("out/lesson01/t.md", TABLE.replace("| 0.25 |", "| 0.3 |"))
+        self.assertEqual(self.run_mode("check"), 1)
+        self.assertIn("value e2: the text says 0.25, the program wrote 0.3", "\n".join(self.messages))
+        # refresh leaves a changed value for --update, which writes it
+        self.assertEqual(self.run_mode("refresh"), 0, self.messages)
+        self.assertIn("is 0.25<!--=e2-->,", self.text())
+        self.assertEqual(self.run_mode("update"), 0, self.messages)
+        self.assertIn("is 0.3<!--=e2-->, a quarter.", self.text())
+
+    def test_values_are_formatted_and_combined_and_timings_refresh(self):
+        self.run_mode("update")
+        self.value_text("Halving n halves the error (ratio 2.0<!--=r-->), 25<!--=p-->% at n = 2, "
+                        "tests take `12.1`<!--=t--> and the run slows by 1.1<!--=slow-->×.",
+                        '<!-- value e1: out/lesson01/t.md row="n=1" column=error -->\n'
+                        '<!-- value e2: out/lesson01/t.md where="n=2" column=error -->\n'
+                        '<!-- value r: e1 / e2 format=fixed:1 -->\n'
+                        '<!-- value p: out/lesson01/t.md row="n=2" column=error format=percent:0 -->\n'
+                        '<!-- value t: out/lesson01/t.md row="n=1" column=ns_per_test -->\n'
+                        '<!-- value t2: out/lesson01/t.md row="n=2" column=ns_per_test -->\n'
+                        '<!-- value slow: t2 / t format=fixed:1 -->')
+        self.assertEqual(self.run_mode("check"), 0, self.messages)
+        # Timings (and values computed from one) are not compared; refresh rewrites them.
+        self.write("out/lesson01/t.md", TABLE.replace("12.1", "10.0"))
+        self.assertEqual(self.run_mode("check"), 0, self.messages)
+        self.assertEqual(self.run_mode("refresh"), 0, self.messages)
+        self.assertIn("tests take `10.0`<!--=t--> and the run slows by 1.3<!--=slow-->×.", self.text())
+
+    def test_a_value_can_count_the_rows_of_a_source_tree_table(self):
+        self.run_mode("update")
+        self.write("exercises/01_x/README.md", "# Exercise\n\n| test | task |\n|---|---|\n| a | 1 |\n| b | 1 |\n"
+                                               "| c | 2 |\n")
+        self.value_text("The exercise has 3<!--=tests--> tests, 2<!--=task1--> for task 1.",
+                        '<!-- value tests: exercises/01_x/README.md format=rows -->\n'
+                        '<!-- value task1: exercises/01_x/README.md where="task=1" format=rows -->')
+        self.assertEqual(self.run_mode("check"), 0, self.messages)
+        self.write("exercises/01_x/README.md", "# Exercise\n\n| test | task |\n|---|---|\n| a | 1 |\n")
+        self.assertEqual(self.run_mode("check"), 1)
+        self.assertIn("value tests: the text says 3, the program wrote 1", "\n".join(self.messages))
+
+    def test_bad_values_are_errors_naming_the_line(self):
+        self.run_mode("update")
+        cases = [
+            ("the error is 0.25<!--=e-->.", "", "value e is used but not defined"),
+            ("the error is 0.25.", '<!-- value e: out/lesson01/t.md row="n=2" column=error -->',
+             "value e is defined but no sentence uses it"),
+            ("the error is 0.25<!--=e-->.", '<!-- value e: out/lesson01/t.md column=error -->',
+             "pick 3 rows"),
+            ("the error is 0.25<!--=e-->.", '<!-- value e: out/lesson01/t.md row="n=2" column=err -->',
+             "has no column 'err'"),
+            ("the error is 0.25<!--=e-->.", '<!-- value e: out/lesson01/t.md row="n=2" column=error format=pct -->',
+             "unknown format 'pct'"),
+            ("the error is <!--=e-->.", '<!-- value e: out/lesson01/t.md row="n=2" column=error -->',
+             "follows no value"),
+            ("ratio 1<!--=r-->.", '<!-- value r: e1 / 2 -->', "needs a format="),
+            ("ratio 1<!--=r-->.", '<!-- value r: __import__("os") format=int -->', "may use only"),
+        ]
+        for sentence, definition, message in cases:
+            with self.subTest(message=message):
+                self.value_text(sentence, definition)
+                self.assertEqual(self.run_mode("check"), 1, sentence)
+                self.assertIn(message, "\n".join(self.messages))
+
     def test_check_flags_timings_typed_by_hand(self):
         self.run_mode("update")
         self.write("slides/01_x.md", "- about 0.2 s on this machine\n- 19 ns against 12 ns\n"
@@ -171,7 +244,7 @@ def picture(width: int, height: int, shift: int = 0) -> bytes:
 
 
 class KeptImagesTest(unittest.TestCase):
-    """Lesson texts show deterministic images from figures/, timing plots from out/."""
+    """Lesson texts show their images from figures/, kept copies of what the programs drew."""
 
     def setUp(self) -> None:
         self._tmp = tempfile.TemporaryDirectory(prefix="illum-figures-images-")
@@ -204,23 +277,33 @@ class KeptImagesTest(unittest.TestCase):
 
     def check(self) -> int:
         self.messages = []
-        return figures.process(self.root, self.out, "check", log=self.messages.append)
+        # The fixture's gnuplot scripts hold labels only: the plots are tested in test_plots.py.
+        return figures.process(self.root, self.out, "check", log=self.messages.append, plots=False)
 
     def test_the_decoder_undoes_each_of_the_five_row_filters(self):
         width, height, channels, pixels = figures.decode_png(self.render)
         self.assertEqual((width, height, channels), (20, 10, 3))
         self.assertEqual(pixels, picture(20, 10))
 
-    def test_update_keeps_renders_and_error_plots_and_leaves_timing_plots_in_out(self):
+    def test_update_keeps_every_image_a_text_shows(self):
         self.assertEqual(self.update(), 0, self.messages)
         text = (self.root / "lessons/01_x/README.md").read_text(encoding="utf-8")
         self.assertIn("![a render](figures/render.png)", text)
         self.assertIn("![error](figures/error.png)", text)
-        self.assertIn("![cost](../../out/lesson01/cost.png)", text)     # "ns per query": a timing plot
+        self.assertIn("![cost](figures/cost.png)", text)                # a timing plot is kept too
         self.assertIn("![in code](../../out/lesson01/none.png)", text)  # inside a code fence: not a link
         kept = sorted(p.name for p in (self.root / "lessons/01_x/figures").iterdir())
-        self.assertEqual(kept, ["error.png", "render.png"])
+        self.assertEqual(kept, ["cost.png", "error.png", "render.png"])
         self.assertEqual(self.check(), 0, self.messages)
+
+    def test_a_kept_timing_plot_is_checked_by_its_size_only(self):
+        self.update()
+        self.write("out/lesson01/cost.png", encode_png(4, 5, picture(4, 5, 90), [4] * 5))  # another run
+        self.assertEqual(self.check(), 0, self.messages)
+        self.write("out/lesson01/cost.png", encode_png(5, 5, picture(5, 5), [4] * 5))
+        self.assertEqual(self.check(), 1)
+        self.assertIn("cost.png drifted from what lesson01 draws: its size (4, 5) is now (5, 5)",
+                      "\n".join(self.messages))
 
     def test_check_accepts_a_level_of_rounding_and_fails_on_a_changed_drawing(self):
         self.update()
@@ -237,23 +320,22 @@ class KeptImagesTest(unittest.TestCase):
         self.assertEqual(self.check(), 1)
         self.assertIn("the kept figure is 20×10 with 3 channel(s), the program drew 10×20", "\n".join(self.messages))
 
-    def test_check_fails_on_an_unkept_render_a_kept_timing_plot_and_an_orphan_and_update_repairs(self):
+    def test_check_fails_on_an_image_linked_in_out_and_an_orphan_and_update_repairs(self):
         self.update()
         readme = self.root / "lessons/01_x/README.md"
         text = readme.read_text(encoding="utf-8")
         readme.write_text(text.replace("figures/render.png", "../../out/lesson01/render.png")
-                          .replace("../../out/lesson01/cost.png", "figures/cost.png"), encoding="utf-8")
-        self.write("lessons/01_x/figures/cost.png", b"")
+                          .replace("figures/cost.png", "../../out/lesson01/cost.png"), encoding="utf-8")
         self.write("lessons/01_x/figures/old.png", b"")
         self.assertEqual(self.check(), 1)
         joined = "\n".join(self.messages)
-        self.assertIn("render.png is deterministic but linked in out/", joined)
-        self.assertIn("cost.png is a timing plot ('ns per query')", joined)
+        self.assertIn("render.png is linked in out/", joined)
+        self.assertIn("cost.png is linked in out/", joined)
+        self.assertIn("the image '../../out/lesson01/render.png' points into out/", joined)
         self.assertIn("lessons/01_x/figures/old.png is not shown by lessons/01_x/README.md", joined)
         self.assertEqual(self.update(), 0, self.messages)
         self.assertEqual(readme.read_text(encoding="utf-8"), text)
         self.assertFalse((self.root / "lessons/01_x/figures/old.png").exists())
-        self.assertFalse((self.root / "lessons/01_x/figures/cost.png").exists())
         self.assertEqual(self.check(), 0, self.messages)
 
     def test_a_screenshot_of_the_lab_is_kept_from_out_lab_and_checked_by_its_size_only(self):
@@ -273,6 +355,53 @@ class KeptImagesTest(unittest.TestCase):
         (self.out / "lab/lab_view.png").unlink()
         self.assertEqual(self.check(), 1)
         self.assertIn("the program wrote no lab/lab_view.png", "\n".join(self.messages))
+
+
+class TextLinksTest(unittest.TestCase):
+    """Every link and image of a text resolves in the source tree, headings included."""
+
+    def setUp(self) -> None:
+        self._tmp = tempfile.TemporaryDirectory(prefix="illum-figures-links-")
+        self.root = Path(self._tmp.name)
+        for rel, text in {
+            "lessons/01_x/README.md": "# Lesson 01\n\n## 2. The slab test: \"comprobar (nodo, rayo)\"\n\n"
+                                      "## Hard cases\n\n## Hard cases\n",
+            "lessons/01_x/figures/a.png": "",
+            "lib/illum/core/x.hpp": "",
+            "docs/errata.md": "# Errata\n\n## Erratum 4\n",
+        }.items():
+            path = self.root / rel
+            path.parent.mkdir(parents=True, exist_ok=True)
+            path.write_text(text, encoding="utf-8")
+
+    def tearDown(self) -> None:
+        self._tmp.cleanup()
+
+    def links(self, text: str) -> list[str]:
+        path = self.root / "exercises/01_x/README.md"
+        path.parent.mkdir(parents=True, exist_ok=True)
+        path.write_text(text, encoding="utf-8")
+        messages: list[str] = []
+        figures.check_links_only(self.root, log=messages.append)
+        return [m for m in messages if "exercises/01_x/README.md" in m]
+
+    def test_links_into_the_tree_and_to_headings_resolve(self):
+        good = ("[text](../../lessons/01_x/README.md#2-the-slab-test-comprobar-nodo-rayo) "
+                "[again](../../lessons/01_x/README.md#hard-cases-1) ![a](../../lessons/01_x/figures/a.png) "
+                "[h](../../lib/illum/core/x.hpp) [folder](../../lib/illum/) [erratum 4](../../docs/errata.md#erratum-4) "
+                "[web](https://example.org/x) [top](#exercise)\n\n# Exercise\n\n`[not a link](nowhere.md)`\n"
+                "```\n[in code](nowhere.md)\n```\n")
+        self.assertEqual(self.links(good), [])
+
+    def test_missing_files_out_and_unknown_headings_are_named(self):
+        problems = "\n".join(self.links(
+            "![plot](../../out/lesson01/p.png) [gone](../../lib/illum/core/y.hpp) "
+            "[h](../../lessons/01_x/README.md#2-the-slab-test) [up](../../../etc/passwd) [self](#nothing)\n"))
+        self.assertIn("'../../out/lesson01/p.png' points into out/", problems)
+        self.assertIn("names lib/illum/core/y.hpp, which does not exist", problems)
+        self.assertIn("'../../lessons/01_x/README.md#2-the-slab-test' names no heading", problems)
+        self.assertIn("'../../../etc/passwd' leaves the repository", problems)
+        self.assertIn("'#nothing' names no heading", problems)
 
 
 if __name__ == "__main__":

@@ -5,7 +5,9 @@ lessons/NN_*/, exercises/NN_*/, slides/NN_*.md or OUT/lessonNN/manifest.json
 exists. Per lesson the page shows its title (from the manifest), images and
 plots as thumbnails linking to full size, tables rendered from their Markdown
 with a link to the CSV, every other file as a link, and links to the built
-deck, the lesson text and the exercise (relative paths into the source tree).
+deck, the lesson text and the exercise: their rendered pages in OUT/pages/
+when the main job's step "texts" wrote them (tools/gallery/texts.py), with
+the Markdown beside them (relative paths into the source tree).
 
 The page has inline CSS only and no external assets. `check_links` verifies
 that every local href/src in a written page resolves.
@@ -129,6 +131,7 @@ section.lesson h2 { margin:0 0 6px; font-size:21px; }
 section.lesson h2 .num { color:var(--muted); font-weight:500; margin-right:8px; }
 ul.links { list-style:none; padding:0; margin:0 0 14px; display:flex; flex-wrap:wrap; gap:4px 18px; }
 ul.links .missing { color:var(--muted); }
+ul.links a.raw { font-size:12px; color:var(--muted); }
 h3 { font-size:15px; text-transform:uppercase; letter-spacing:.04em; color:var(--muted); margin:18px 0 8px; }
 .figures { display:grid; grid-template-columns:repeat(auto-fill,minmax(220px,1fr)); gap:14px; }
 figure { margin:0; }
@@ -207,6 +210,28 @@ def _read(path: Path) -> str:
         return ""
 
 
+def rendered_page(source: Path, out: Path, text: Path) -> Path | None:
+    """OUT/pages/<text>.html when the main job rendered the text (tools/gallery/texts.py), else None."""
+    try:
+        rel = Path(text).resolve().relative_to(Path(source).resolve())
+    except ValueError:
+        return None
+    page = Path(out) / "pages" / rel.with_suffix(".html")
+    return page if page.is_file() else None
+
+
+def _documents(source: Path, out: Path) -> str:
+    """Links to the rendered README, CONTRIBUTING and docs/*.md, when the pages exist."""
+    texts = [Path(source) / "README.md", Path(source) / "CONTRIBUTING.md"]
+    texts += sorted((Path(source) / "docs").glob("*.md"))
+    items = []
+    for text in texts:
+        page = rendered_page(source, out, text)
+        if page is not None:
+            items.append(f'<a href="{href(page, out)}">{_e(_first_heading(text) or text.name)}</a>')
+    return ('<nav class="toc docs"><span class="note">Documents:</span> ' + " ".join(items) + "</nav>") if items else ""
+
+
 def _lesson_links(lesson: Lesson, out: Path, source: Path) -> str:
     items = []
 
@@ -216,14 +241,23 @@ def _lesson_links(lesson: Lesson, out: Path, source: Path) -> str:
         else:
             items.append(f'<li class="missing">{_e(missing)}</li>')
 
+    def text_link(text: Path | None, label: str, missing: str) -> None:
+        """The rendered page of a text (main job step "texts"), with its Markdown beside it."""
+        page = rendered_page(source, out, text) if text is not None else None
+        if page is None:
+            link(text, label, missing)
+            return
+        items.append(f'<li><a href="{href(page, out)}">{_e(label)}</a> '
+                     f'<a class="raw" href="{href(text, out)}">(Markdown)</a></li>')
+
     if lesson.deck_html:
         link(lesson.deck_html, "Slides", "")
     elif lesson.deck_source:
         link(lesson.deck_source, "Slides (Markdown source; deck not built)", "")
     else:
         items.append('<li class="missing">no slides yet</li>')
-    link(lesson.lesson_readme, "Lesson text", "no lesson text yet")
-    link(lesson.exercise_readme, "Exercise", "no exercise text yet")
+    text_link(lesson.lesson_readme, "Lesson text", "no lesson text yet")
+    text_link(lesson.exercise_readme, "Exercise", "no exercise text yet")
     if lesson.output_dir is not None:
         link(lesson.output_dir / "manifest.json", "manifest.json", "")
     return '<ul class="links">' + "".join(items) + "</ul>"
@@ -369,6 +403,7 @@ def render_index(lessons: list[Lesson], out: Path, source: Path, note: str = "")
 <h1>illum — global illumination, step by step</h1>
 <p>Every lesson's reference run, its slides, lesson text and exercise.{_e(' ' + note) if note else ''}</p>
 <nav class="toc">{toc}</nav>
+{_documents(source, out)}
 </header>
 <main>
 {chr(10).join(sections)}

@@ -6,6 +6,7 @@
 // Graphviz and an overlay of its rays on the image (io/ray_tree_files.hpp).
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <iostream>
 #include <optional>
 #include <variant>
@@ -44,6 +45,17 @@ void s07_inspector(OutputFolder& out, const Scene& scene, const RenderResult& re
   const std::array<int, 2> xy = requested ? *requested : glass_pixel(scene, camera);
   const PixelTree pixel = trace_pixel_tree(scene, settings, xy[0], xy[1]);
   write_ray_tree_files(out, scene, pixel, render.image, camera, "ray_tree");
+  write_ray_tree_summary(out, scene, pixel, "ray_tree_summary");  // the deck's drawing
+  const RayCounts& rays = pixel.stats.rays;
+  Table counts({"pixel_x", "pixel_y", "rays", "depth", "primary", "reflection", "refraction", "shadow"});
+  counts.add_row({static_cast<std::int64_t>(xy[0]), static_cast<std::int64_t>(xy[1]),
+                  static_cast<std::int64_t>(pixel.tree.nodes.size()),
+                  static_cast<std::int64_t>(pixel.tree.depth()), static_cast<std::int64_t>(rays.primary),
+                  static_cast<std::int64_t>(rays.reflection), static_cast<std::int64_t>(rays.refraction),
+                  static_cast<std::int64_t>(rays.shadow)});
+  out.table(
+      counts, "ray_tree_counts",
+      "The inspected pixel's tree: rays cast (a shadow ray through glass counts once per piece) and depth");
   std::cout << "ray tree of pixel (" << xy[0] << ", " << xy[1] << "): " << pixel.tree.nodes.size()
             << " rays, depth " << pixel.tree.depth() << "; " << pixel.stats.rays.summary() << "\n";
 }

@@ -18,14 +18,22 @@ namespace illum::lesson08 {
 
 namespace {
 
-PlotSpec per_ray_plot(const std::string& title, const std::string& y_label, const std::string& y_column) {
+// `brute_force = false` leaves brute force out (it visits no nodes: nothing to draw on a log axis).
+PlotSpec per_ray_plot(const std::string& title, const std::string& y_label, const std::string& y_column,
+                      bool brute_force = true) {
   PlotSpec spec{.title = title, .x_label = "triangles N", .y_label = y_label, .log_x = true, .log_y = true};
-  for (const char* s : {"brute_force", "grid", "octree", "bvh"})
+  // Each structure keeps its colour in every plot, with or without brute force.
+  const char* structures[] = {"brute_force", "grid", "octree", "bvh"};
+  for (int k = 0; k < 4; ++k) {
+    const std::string s = structures[k];
+    if (!brute_force && s == "brute_force") continue;
     spec.curves.push_back({.table = "scaling.csv",
                            .x = "triangles",
                            .y = y_column,
                            .where = {{"structure", s}},
-                           .title = s == std::string("brute_force") ? "brute force" : s});
+                           .title = s == "brute_force" ? "brute force" : s,
+                           .colour = k + 1});
+  }
   return spec;
 }
 
@@ -79,7 +87,7 @@ void s06a_scaling(OutputFolder& out, const Settings& settings) {
   out.plot(per_ray_plot("Ray-triangle tests per camera ray", "tests per ray", "triangle tests per ray"),
            "scaling_tests", "Triangle tests per ray: N for brute force, flat-ish for grid and BVH");
   out.plot(per_ray_plot("Cells or nodes visited per camera ray", "nodes or cells per ray",
-                        "nodes or cells per ray"),
+                        "nodes or cells per ray", false),
            "scaling_nodes", "Cells (grid) or nodes (BVH) visited per ray");
   out.plot(per_ray_plot("Throughput", "Mrays/s, one thread", "Mrays per second (1 thread)"),
            "scaling_throughput", "Closest-hit queries per second on one thread");

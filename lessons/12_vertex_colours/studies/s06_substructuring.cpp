@@ -7,6 +7,7 @@
 // elements a uniform mesh needs for each adaptive mesh's error; and the time,
 // on one thread.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -167,16 +168,30 @@ void s06_substructuring(OutputFolder& out, const Settings& settings) {
                  "average_mean_error", "extrapolated_mean_error", "flat_max_error",
                  "extrapolated_max_error"});
     std::vector<std::pair<double, double>> uniform_mean, uniform_max;  // (elements, flat error)
+    // Each uniform mesh's four errors (flat and extrapolated, mean and largest), and each adaptive
+    // mesh's count of the uniform meshes it is more accurate than, measure by measure.
+    std::vector<std::array<double, 4>> uniform_errors;
+    Table beaten({"threshold", "adaptive elements", "uniform meshes", "less accurate on flat_max_error",
+                  "less accurate on extrapolated_max_error", "less accurate on flat_mean_error",
+                  "less accurate on extrapolated_mean_error"});
     Table equal({"threshold", "adaptive elements", "flat_max_error", "uniform elements at that max error",
                  "flat_mean_error", "uniform elements at that mean error"});
     const auto add = [&](const std::string& scheme, const std::string& knob, const Solved& s,
                          double seconds) {
       const Errors e = errors_against(s, reference);
       const auto elements = static_cast<double>(s.mesh.elements.size());
+      const std::array<double, 4> four{e.max[0], e.max[2], e.mean[0], e.mean[2]};
       if (scheme == "uniform") {
         uniform_mean.push_back({elements, e.mean[0]});
         uniform_max.push_back({elements, e.max[0]});
+        uniform_errors.push_back(four);
       } else {
+        std::array<std::int64_t, 4> less_accurate{};
+        for (const auto& u : uniform_errors)
+          for (std::size_t m = 0; m < 4; ++m) less_accurate[m] += u[m] > four[m] ? 1 : 0;
+        beaten.add_row({knob, static_cast<std::int64_t>(elements),
+                        static_cast<std::int64_t>(uniform_errors.size()), less_accurate[0], less_accurate[1],
+                        less_accurate[2], less_accurate[3]});
         equal.add_row({knob, static_cast<std::int64_t>(elements), e.max[0],
                        uniform_elements_at(uniform_max, e.max[0]), e.mean[0],
                        uniform_elements_at(uniform_mean, e.mean[0])});
@@ -207,6 +222,8 @@ void s06_substructuring(OutputFolder& out, const Settings& settings) {
     out.table(equal, "equal_error",
               "Elements a uniform mesh needs for each adaptive mesh's flat errors (log-log interpolation "
               "between the uniform runs)");
+    out.table(beaten, "adaptive_against_uniform",
+              "How many of the uniform meshes each adaptive mesh is more accurate than, error by error");
   }
   study_plots(out);
 }

@@ -1,6 +1,14 @@
 #pragma once
 // Plots drawn by gnuplot from CSV files that sit beside them.
 //
+// Every point shows and every line joins: a row a curve does not use is
+// written as NaN, which the script declares missing (`set datafile missing
+// NaN`), so a curve's line runs across the rows of other series interleaved
+// with its own, where an undefined 1/0 would break it into loose points; and
+// each axis spans the data with a margin, so that no point sits on the frame,
+// where gnuplot's border hides it (tools/check_plots.py checks both on every
+// plot the programs draw).
+//
 // A curve names its table's columns by their header ("resolution",
 // "mean_rel_error") and picks its rows with typed conditions, so adding a
 // column to a table never shifts a plot; the names are looked up in the CSV's
@@ -40,6 +48,9 @@ struct PlotCurve {
   PlotMark mark = PlotMark::lines_points;
   int colour = 0;  // gnuplot's colour index (1, 2, …); 0 = the next in turn
   bool dashed = false;
+  // A column whose text is written beside each point of the curve (which
+  // volume, which method a point is); empty = no labels.
+  std::string point_labels{};
 };
 
 // Where the key (the curves' titles) goes. Beside the plot suits a wide

@@ -45,4 +45,15 @@ bool write_ray_tree_files(OutputFolder& out, const Scene& scene, const PixelTree
   return false;
 }
 
+bool write_ray_tree_summary(OutputFolder& out, const Scene& scene, const PixelTree& pixel,
+                            const std::string& name) {
+  const std::string where = "pixel (" + std::to_string(pixel.x) + ", " + std::to_string(pixel.y) + ")";
+  out.text(name + ".dot", ray_tree_dot(scene, pixel, TreeDetail::summary),
+           "The ray tree of " + where + " in summary, as a Graphviz graph");
+  if (!run_dot(out.folder(), name, "png")) return false;
+  out.add_file("image", name + ".png",
+               "The ray tree of " + where + " in summary (kind, what it hit, weight), drawn by Graphviz");
+  return true;
+}
+
 }  // namespace illum

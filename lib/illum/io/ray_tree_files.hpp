@@ -17,4 +17,9 @@ namespace illum {
 bool write_ray_tree_files(OutputFolder& out, const Scene& scene, const PixelTree& pixel, const Image& render,
                           const PinholeCamera& camera, const std::string& name);
 
+// <name>.dot and <name>.png of the summary drawing (TreeDetail::summary: three
+// lines a box, a larger font), for a slide. Returns false when dot is missing.
+bool write_ray_tree_summary(OutputFolder& out, const Scene& scene, const PixelTree& pixel,
+                            const std::string& name);
+
 }  // namespace illum

@@ -118,13 +118,15 @@ std::string ray_tree_json(const Scene& scene, const PixelTree& pixel) {
   return j.dump(2) + "\n";
 }
 
-std::string ray_tree_dot(const Scene& scene, const PixelTree& pixel) {
+std::string ray_tree_dot(const Scene& scene, const PixelTree& pixel, TreeDetail detail) {
   const RayTreeView view = view_ray_tree(scene, pixel);
+  const bool summary = detail == TreeDetail::summary;
   std::string s = "digraph ray_tree {\n  graph [rankdir=TB, fontname=\"Helvetica\", label=\"" +
                   dot_escape(scene.name) + ": ray tree of pixel (" + std::to_string(pixel.x) + ", " +
-                  std::to_string(pixel.y) + "), colour " + display_colour(pixel.color) +
-                  "\", labelloc=t];\n  node [shape=box, style=\"rounded,filled\", fontname=\"Helvetica\", "
-                  "fontsize=10];\n";
+                  std::to_string(pixel.y) + "), colour " + display_colour(pixel.color) + "\", labelloc=t" +
+                  (summary ? ", fontsize=22, nodesep=0.15, ranksep=0.3" : "") +
+                  "];\n  node [shape=box, style=\"rounded,filled\", fontname=\"Helvetica\", fontsize=" +
+                  (summary ? "20" : "10") + "];\n" + (summary ? "  edge [fontsize=18];\n" : "");
   std::string stubs;
   for (std::size_t i = 0; i < view.nodes.size(); ++i) {
     const RayTreeViewNode& v = view.nodes[i];
@@ -132,7 +134,17 @@ std::string ray_tree_dot(const Scene& scene, const PixelTree& pixel) {
     const std::string stop = stop_text(scene, pixel, view, static_cast<int>(i));
     std::string label = std::string(to_string(v.kind)) + " (depth " + std::to_string(v.depth) + ")\\n";
     const bool blocked = v.stop == StopReason::blocked;
-    if (v.kind == RayKind::shadow) {
+    if (summary) {
+      if (v.kind == RayKind::shadow)
+        label += blocked ? dot_escape(stop)
+                         : "reached " + dot_escape(light_name(scene, n.light)) +
+                               (v.segments.size() > 1 ? " through glass" : "");
+      else if (n.hit)
+        label +=
+            dot_escape(primitive_name(scene, n.primitive)) + " (" + (n.front_face ? "front" : "back") + ")";
+      else
+        label += "missed: background";
+    } else if (v.kind == RayKind::shadow) {
       label += "to " + dot_escape(light_name(scene, n.light));
       for (std::size_t k = 0; k + 1 < v.segments.size(); ++k)
         label += "\\nthrough " + dot_escape(primitive_name(scene, v.segments[k].primitive)) +

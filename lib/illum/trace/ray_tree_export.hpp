@@ -32,7 +32,12 @@ std::string ray_tree_json(const Scene& scene, const PixelTree& pixel);
 // or "shadow"), shadow rays dashed and red when blocked, and a dotted stub
 // for a child that total internal reflection, pruning or a missing call took
 // away. Numbers rounded by display_colour.
-std::string ray_tree_dot(const Scene& scene, const PixelTree& pixel);
+//
+// `TreeDetail::summary` keeps three lines per box (the kind and depth, what
+// it hit or why it ended, the weight) in a larger font: a drawing that stays
+// readable on a slide, where the full one's boxes shrink to a few pixels.
+enum class TreeDetail { full, summary };
+std::string ray_tree_dot(const Scene& scene, const PixelTree& pixel, TreeDetail detail = TreeDetail::full);
 
 // Where a point appears in the image of `camera` (pixel coordinates, x to
 // the right, y down), or nothing when it lies behind the eye.

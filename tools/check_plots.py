@@ -1,0 +1,48 @@
+#!/usr/bin/env python3
+"""Every plot the lesson programs drew shows all its data: lines join, no point is lost on the frame.
+
+    tools/check_plots.py [--out out] [SCRIPT.gp ...]
+
+gnuplot evaluates each OUT/*/NAME.gp (the script a program writes beside
+NAME.png) into a table of the points it plots and the ranges it draws; the
+check fails on a line broken by an undefined point, a curve with no point
+(or a line of one), and a point outside the frame or on its edge
+(tools/gallery/plots.py). Exit code 0 when every plot is whole, 1 when
+some is not (one line per problem), 2 when gnuplot is missing.
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from gallery.plots import PlotCheckError, check_plots  # noqa: E402
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", type=Path, default=Path(__file__).resolve().parent.parent / "out",
+                        help="the folder of the programs' outputs (default: out/)")
+    parser.add_argument("scripts", nargs="*", type=Path, help="check only these .gp scripts")
+    args = parser.parse_args(argv)
+    try:
+        problems, checked = check_plots(args.out, [p.resolve() for p in args.scripts] or None)
+    except PlotCheckError as e:
+        print(f"check_plots: cannot run: {e}", file=sys.stderr)
+        return 2
+    for p in problems:
+        print(f"check_plots: {p}")
+    if not checked:
+        print(f"check_plots: FAILED: no plot scripts (*/NAME.gp beside NAME.png) in {args.out}")
+        return 1
+    if problems:
+        print(f"check_plots: FAILED: {len(problems)} problem(s) in {checked} plot(s)")
+        return 1
+    print(f"check_plots: OK: the {checked} plot(s) in {args.out} draw every point inside their frame, "
+          "and their lines are unbroken")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

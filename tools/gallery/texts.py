@@ -1,0 +1,57 @@
+"""The texts as pages: OUT/pages/X.html for each Markdown text X.md (render_texts.mjs).
+
+Node.js renders them with the repository's node_modules (markdown-it, KaTeX
+and highlight.js from package-lock.json; `npm ci`, done by tools/install-deps):
+nothing is fetched at run time, and the pages need no script to show their
+maths. `page_of` names the page of a text, for the gallery's index.
+"""
+from __future__ import annotations
+
+import shutil
+import subprocess
+from pathlib import Path
+
+RENDERER = Path(__file__).resolve().parent / "render_texts.mjs"
+INSTALL_HINT = "run tools/install-deps (it installs Node.js and runs `npm ci` in the repository root)"
+
+
+class TextsError(Exception):
+    """Node.js or the renderer's packages are missing, or a text did not render cleanly."""
+
+
+def page_of(source: Path, out: Path, text: Path) -> Path:
+    """OUT/pages/<text's path in the tree, .md replaced by .html>."""
+    rel = Path(text).resolve().relative_to(Path(source).resolve())
+    return Path(out) / "pages" / rel.with_suffix(".html")
+
+
+def build_texts(source: Path, out: Path) -> list[str]:
+    """Renders every text into OUT/pages; returns the renderer's report (one line per note).
+
+    The pages are written into a fresh folder beside OUT/pages (links are relative, so they
+    hold there too), which then replaces it: no page of a removed text stays behind, and a
+    failed run leaves the previous pages as they were."""
+    node = shutil.which("node")
+    if node is None:
+        raise TextsError(f"Node.js is not installed: {INSTALL_HINT}")
+    if not (Path(source) / "node_modules" / "markdown-it").is_dir():
+        raise TextsError(f"markdown-it is not installed in {Path(source) / 'node_modules'}: {INSTALL_HINT}")
+    out = Path(out)
+    fresh, old = out / "pages.new", out / "pages.old"
+    for folder in (fresh, old):
+        shutil.rmtree(folder, ignore_errors=True)
+    try:
+        result = subprocess.run([node, str(RENDERER), "--source", str(source), "--out", str(out),
+                                 "--pages", fresh.name], cwd=source, stdin=subprocess.DEVNULL,
+                                capture_output=True, text=True, errors="replace", timeout=600)
+        lines = [line for line in (result.stdout + result.stderr).splitlines() if line.strip()]
+        if result.returncode != 0:
+            raise TextsError("the texts did not render cleanly:\n  " + "\n  ".join(lines))
+        pages = out / "pages"
+        if pages.exists():
+            pages.rename(old)
+        fresh.rename(pages)
+        shutil.rmtree(old, ignore_errors=True)
+        return lines
+    finally:
+        shutil.rmtree(fresh, ignore_errors=True)
