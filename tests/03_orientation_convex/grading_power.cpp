@@ -216,8 +216,9 @@ TEST_SUITE("lesson03") {
     CHECK(hit_a->s == doctest::Approx(std::sqrt(2.0)).epsilon(1e-12));
   }
 
-  TEST_CASE("hard case: looking down −z the frame's axes are swapped, so the other triangle claims the diagonal" *
-            doctest::description("task=7")) {
+  TEST_CASE(
+      "hard case: looking down −z the frame's axes are swapped, so the other triangle claims the diagonal" *
+      doctest::description("task=7")) {
     // Two triangles of the plane z = 0 share the diagonal (−1, −1)–(1, 1): A lies where x > y, B
     // where x < y. A ray along ±z aimed at (0.25, 0.25, 0) meets the diagonal exactly, every edge
     // function through it is 0, and the symbolic perturbation moves the ray by (ε, ε²) in the frame
@@ -232,7 +233,8 @@ TEST_SUITE("lesson03") {
       const auto hit_b = intersect(ray, b);
       INFO("ray along ", dz > 0 ? "+z" : "−z", ": the frame is ", dz > 0 ? "(x, y)" : "(y, x), swapped",
            ", so the perturbed ray lies on the side of triangle ", dz > 0 ? "A (x > y)" : "B (x < y)");
-      CHECK_MESSAGE(hit_a.has_value() != hit_b.has_value(), "watertight: exactly one triangle of a shared edge");
+      CHECK_MESSAGE(hit_a.has_value() != hit_b.has_value(),
+                    "watertight: exactly one triangle of a shared edge");
       CHECK(hit_a.has_value() == (dz > 0));
       CHECK(hit_b.has_value() == (dz < 0));
       const auto hit = dz > 0 ? hit_a : hit_b;

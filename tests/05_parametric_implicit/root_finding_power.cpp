@@ -153,7 +153,8 @@ TEST_SUITE("lesson05") {
     const RootResult r = safeguarded_newton(line, {2.0, 3.0}, 1e-13, 50);
     REQUIRE(r.converged());
     CHECK(r.s == 2.3);
-    CHECK_MESSAGE(r.iterations == 1, "from the midpoint 2.5 one Newton step reaches 2.3; got " << r.iterations);
+    CHECK_MESSAGE(r.iterations == 1,
+                  "from the midpoint 2.5 one Newton step reaches 2.3; got " << r.iterations);
   }
 
   TEST_CASE("hard case: sphere tracing on a range of one point [t, t] (not empty: it holds t)" *
@@ -161,7 +162,8 @@ TEST_SUITE("lesson05") {
     // distance(s) = 2 − s vanishes at s = 2: the range [2, 2] holds the hit, which is found at once.
     const Function distance([](double s) { return 2.0 - s; }, [](double) { return -1.0; });
     const RootResult r = sphere_trace(distance, {2.0, 2.0}, 1.0, 1e-12, 10);
-    CHECK_MESSAGE(r.converged(), "the range [2, 2] is not empty (root_finding.hpp refuses empty ranges only)");
+    CHECK_MESSAGE(r.converged(),
+                  "the range [2, 2] is not empty (root_finding.hpp refuses empty ranges only)");
     CHECK(r.s == 2.0);
     CHECK(r.iterations == 0);
   }

@@ -65,16 +65,16 @@ inline void require_reflect(const Vec3& incoming, const Vec3& normal, const Vec3
   const Vec3 got = reflect(incoming, normal);
   INFO("this test traces a mirror, so it needs Task 1 first: reflect(I, N) with I = (", incoming.x, ", ",
        incoming.y, ", ", incoming.z, ") and N = (", normal.x, ", ", normal.y, ", ", normal.z,
-       ") is R = I − 2(N·I)N = (", want.x, ", ", want.y, ", ", want.z, "); got (", got.x, ", ", got.y, ", ", got.z,
-       ")");
+       ") is R = I − 2(N·I)N = (", want.x, ", ", want.y, ", ", want.z, "); got (", got.x, ", ", got.y, ", ",
+       got.z, ")");
   REQUIRE(glm::length(got - want) < 1e-12);
 }
 
 inline void require_refract(const Vec3& incoming, const Vec3& normal, double eta_ratio, const Vec3& want) {
   const Refraction got = refract(incoming, normal, eta_ratio);
-  INFO("this test traces glass, so it needs Task 2 first: refract(I, N, η_i/η_t = ", eta_ratio, ") with I = (",
-       incoming.x, ", ", incoming.y, ", ", incoming.z, ") and N = (", normal.x, ", ", normal.y, ", ", normal.z,
-       ") is T = (", want.x, ", ", want.y, ", ", want.z, ") by Snell's law; got ",
+  INFO("this test traces glass, so it needs Task 2 first: refract(I, N, η_i/η_t = ", eta_ratio,
+       ") with I = (", incoming.x, ", ", incoming.y, ", ", incoming.z, ") and N = (", normal.x, ", ",
+       normal.y, ", ", normal.z, ") is T = (", want.x, ", ", want.y, ", ", want.z, ") by Snell's law; got ",
        got.total_internal_reflection ? std::string("total internal reflection") : std::string("a direction"),
        " (", got.direction.x, ", ", got.direction.y, ", ", got.direction.z, ")");
   REQUIRE(!got.total_internal_reflection);

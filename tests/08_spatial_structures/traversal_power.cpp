@@ -457,32 +457,36 @@ TEST_SUITE("lesson08") {
     // inside the widening: its box is entered and its triangle tested (and missed: s < 1000). Leaf B
     // at z = 500 lies far before it: culled. Root, both children: 3 box tests, 1 triangle test.
     // Widening by 10⁻⁹ absolute would cull A (and the root), by |lo| (the 10⁻⁹ lost) would open B.
-    const std::vector<BvhNode> start_nodes{inner(box(Point3(-1, -1, 500), Point3(1, 1, 1000 - 5e-7)), 2),
-                                           leaf(box(Point3(-1, -1, 1000 - 5e-7), Point3(1, 1, 1000 - 5e-7)), 0, 1),
-                                           leaf(box(Point3(-1, -1, 500), Point3(1, 1, 500)), 1, 1)};
+    const std::vector<BvhNode> start_nodes{
+        inner(box(Point3(-1, -1, 500), Point3(1, 1, 1000 - 5e-7)), 2),
+        leaf(box(Point3(-1, -1, 1000 - 5e-7), Point3(1, 1, 1000 - 5e-7)), 0, 1),
+        leaf(box(Point3(-1, -1, 500), Point3(1, 1, 500)), 1, 1)};
     const std::vector<Triangle> start_tris{across_axis(1000 - 5e-7), across_axis(500)};
     const std::vector<std::uint32_t> ids{1, 2};
     {
       TraversalCounters c;
       const Ray ray(Point3(0, 0, 0), Vec3(0, 0, 1), Interval(1000, infinity));
       CHECK_FALSE(bvh_closest_hit(BvhView{start_nodes, start_tris, ids}, ray, c).has_value());
-      INFO("range [1000, ∞): clipped against [1000 − 1000·10⁻⁹, ∞); leaf A (z = 1000 − 5·10⁻⁷) is within "
-           "the widening, leaf B (z = 500) is not");
+      INFO(
+          "range [1000, ∞): clipped against [1000 − 1000·10⁻⁹, ∞); leaf A (z = 1000 − 5·10⁻⁷) is within "
+          "the widening, leaf B (z = 500) is not");
       CHECK(c.nodes_visited == 3);
       CHECK(c.triangle_tests == 1);
     }
     // End of the range: [0, 1000] widened to [0, 1000 + 10⁻⁶]. Leaf A at z = 1000 + 5·10⁻⁷ is
     // entered and tested (missed: s > 1000); leaf B at z = 1500 is culled.
-    const std::vector<BvhNode> end_nodes{inner(box(Point3(-1, -1, 1000 + 5e-7), Point3(1, 1, 1500)), 2),
-                                         leaf(box(Point3(-1, -1, 1000 + 5e-7), Point3(1, 1, 1000 + 5e-7)), 0, 1),
-                                         leaf(box(Point3(-1, -1, 1500), Point3(1, 1, 1500)), 1, 1)};
+    const std::vector<BvhNode> end_nodes{
+        inner(box(Point3(-1, -1, 1000 + 5e-7), Point3(1, 1, 1500)), 2),
+        leaf(box(Point3(-1, -1, 1000 + 5e-7), Point3(1, 1, 1000 + 5e-7)), 0, 1),
+        leaf(box(Point3(-1, -1, 1500), Point3(1, 1, 1500)), 1, 1)};
     const std::vector<Triangle> end_tris{across_axis(1000 + 5e-7), across_axis(1500)};
     {
       TraversalCounters c;
       const Ray ray(Point3(0, 0, 0), Vec3(0, 0, 1), Interval(0, 1000));
       CHECK_FALSE(bvh_closest_hit(BvhView{end_nodes, end_tris, ids}, ray, c).has_value());
-      INFO("range [0, 1000]: clipped against [0, 1000 + 1000·10⁻⁹]; leaf A (z = 1000 + 5·10⁻⁷) is within "
-           "the widening, leaf B (z = 1500) is not");
+      INFO(
+          "range [0, 1000]: clipped against [0, 1000 + 1000·10⁻⁹]; leaf A (z = 1000 + 5·10⁻⁷) is within "
+          "the widening, leaf B (z = 1500) is not");
       CHECK(c.nodes_visited == 3);
       CHECK(c.triangle_tests == 1);
       TraversalCounters shadow;

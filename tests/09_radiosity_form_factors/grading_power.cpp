@@ -166,8 +166,8 @@ TEST_SUITE("lesson09") {
             const double r2 = dx * dx + dy * dy + c * c;
             const double k = c * c / (pi * r2 * r2);
             const double w = weights[a] * weights[b] * weights[p] * weights[q];
-            f += w * k * 2.0;              // (1/A_i)∫_i∫_j k = ∫∫ k over [0,1]⁴ times A_i A_j / A_i
-            second += w * k * k * 4.0;     // E[X²] with X = A_j k: A_j² E[k²]
+            f += w * k * 2.0;           // (1/A_i)∫_i∫_j k = ∫∫ k over [0,1]⁴ times A_i A_j / A_i
+            second += w * k * k * 4.0;  // E[X²] with X = A_j k: A_j² E[k²]
           }
     const Patch floor = rectangle_up(0, 1.5, 0, 0.5, 0), ceiling = rectangle_down(0, 1, 0, 2, c);
     const int n = 100000;
@@ -186,12 +186,13 @@ TEST_SUITE("lesson09") {
     // A constant radiance cannot tell which angle is passed where.
     const int n = 200000;
     Rng rng(1211);
-    const double by_phi = exitance_from_radiance_monte_carlo([](double phi, double) { return std::cos(phi); }, n, rng);
+    const double by_phi =
+        exitance_from_radiance_monte_carlo([](double phi, double) { return std::cos(phi); }, n, rng);
     const double z_phi = (by_phi - 2 * pi / 3) / std::sqrt((4 * pi * pi / 5 - 4 * pi * pi / 9) / n);
     INFO("I = cos φ: estimate ", by_phi, " against 2π/3, z = ", z_phi);
     CHECK(std::abs(z_phi) < z_limit);
-    const double by_theta =
-        exitance_from_radiance_monte_carlo([](double, double theta) { return std::pow(std::cos(theta), 2); }, n, rng);
+    const double by_theta = exitance_from_radiance_monte_carlo(
+        [](double, double theta) { return std::pow(std::cos(theta), 2); }, n, rng);
     const double z_theta = (by_theta - pi / 2) / std::sqrt((pi * pi / 2 - pi * pi / 4) / n);
     INFO("I = cos²θ: estimate ", by_theta, " against π/2, z = ", z_theta);
     CHECK(std::abs(z_theta) < z_limit);

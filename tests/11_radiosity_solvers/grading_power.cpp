@@ -318,7 +318,8 @@ TEST_SUITE("lesson11") {
     }
   }
 
-  TEST_CASE("hard case: gaussian elimination of a 1 × 1 system, and of an empty one" * doctest::description("task=1")) {
+  TEST_CASE("hard case: gaussian elimination of a 1 × 1 system, and of an empty one" *
+            doctest::description("task=1")) {
     // 2.5·x = 7.5: x = 3, the smallest system there is (one patch alone under the direct solver).
     const std::vector<double> x = gaussian_elimination({2.5}, {7.5});
     REQUIRE(x.size() == 1);

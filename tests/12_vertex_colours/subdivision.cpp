@@ -47,11 +47,12 @@ TEST_SUITE("lesson12") {
     REQUIRE(split_is_sized(elements_to_split(pairs, b, edge, 1.0, 0.1), 4));
     const std::vector<bool> split = elements_to_split(pairs, b, edge, 1.0, 0.1);
     const std::vector<bool> only_the_pair_1_2 = {false, true, true, false};
-    CHECK_MESSAGE(split == only_the_pair_1_2,
-                  "threshold 1 is compared with each gap as it is (element_subdivision.hpp: not scaled by the "
-                  "brightest element, which the lesson program does itself): only the gap 2 of (1, 2) exceeds "
-                  "it, and the gap 1 of (0, 1) equals it, which does not split; expected {0, 1, 1, 0}, got {"
-                      << split[0] << ", " << split[1] << ", " << split[2] << ", " << split[3] << "}");
+    CHECK_MESSAGE(
+        split == only_the_pair_1_2,
+        "threshold 1 is compared with each gap as it is (element_subdivision.hpp: not scaled by the "
+        "brightest element, which the lesson program does itself): only the gap 2 of (1, 2) exceeds "
+        "it, and the gap 1 of (0, 1) equals it, which does not split; expected {0, 1, 1, 0}, got {"
+            << split[0] << ", " << split[1] << ", " << split[2] << ", " << split[3] << "}");
     CHECK_MESSAGE(elements_to_split(pairs, b, edge, 0.4, 0.1) == std::vector<bool>(4, true),
                   "every gap (1, 2, 0.5) exceeds 0.4");
     CHECK_MESSAGE(elements_to_split(pairs, b, edge, 3.0, 0.1) == std::vector<bool>(4, false),

@@ -173,7 +173,8 @@ TEST_SUITE("lesson12") {
         share_vertices({rectangle(0, 0, 3, 3), rectangle(3, 0, 4, 1), rectangle(3, 1, 4, 3)});
     REQUIRE(mesh.t_vertices.size() == 1);
     const TVertex& tv = mesh.t_vertices[0];
-    REQUIRE_MESSAGE(std::abs(tv.t - 0.5) > 0.1, "this test needs a T-vertex away from the middle of its edge");
+    REQUIRE_MESSAGE(std::abs(tv.t - 0.5) > 0.1,
+                    "this test needs a T-vertex away from the middle of its edge");
     const std::vector<Color> b = {Color(9), Color(3), Color(6)};
     for (VertexColourRule rule : {VertexColourRule::average, VertexColourRule::extrapolate}) {
       INFO("rule ", rule == VertexColourRule::average ? "average" : "extrapolate",
@@ -182,7 +183,8 @@ TEST_SUITE("lesson12") {
       const auto corners = corner_radiosity(mesh, b, rule);
       check_colour(corner_of(mesh, corners, 1, {3, 1, 0}), Color(6.5),
                    "(1 − t)·value[from] + t·value[to], t measured from `from`: 6 + (7.5 − 6)/3");
-      check_colour(corner_of(mesh, corners, 2, {3, 1, 0}), Color(6.5), "both small faces show the same value");
+      check_colour(corner_of(mesh, corners, 2, {3, 1, 0}), Color(6.5),
+                   "both small faces show the same value");
       check_colour(interpolate_radiosity(rectangle(0, 0, 3, 3), corners[0], {3, 1, 0}), Color(6.5),
                    "the big face's Gouraud value at (3, 1) meets the small faces': no crack");
     }
@@ -207,7 +209,8 @@ TEST_SUITE("lesson12") {
     // Corner 2 of F0, opposite 3: 6 − 7 < 0 → 0. Corners 4 and 7: 2·6 − 7 = 5, 2·12 − 7 = 17. Vertex 3
     // (three faces) keeps its average, 7.
     SharedVertexMesh mesh;
-    mesh.positions = {{1, 1, 0}, {0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 2, 0}, {0, 2, 0}, {-1, 1, 0}, {-1, 2, 0}};
+    mesh.positions = {{1, 1, 0}, {0, 0, 0}, {1, 0, 0},  {0, 1, 0},
+                      {1, 2, 0}, {0, 2, 0}, {-1, 1, 0}, {-1, 2, 0}};
     mesh.faces = {{1, 2, 0, 3}, {3, 0, 4, 5}, {6, 3, 5, 7}};
     mesh.group = {0, 0, 0};
     mesh.on_boundary = std::vector<bool>(8, true);

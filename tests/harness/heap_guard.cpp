@@ -67,7 +67,8 @@ TEST_SUITE("harness") {
       std::vector<double> v(8);
       v.data()[opaque(8)] = 1.0;  // 8 doubles = 64 bytes: index 8 is one past the end
     });
-    CHECK_MESSAGE(r.aborted, "the child should abort; it exited with " << r.exit_status << ": " << r.stderr_text);
+    CHECK_MESSAGE(r.aborted,
+                  "the child should abort; it exited with " << r.exit_status << ": " << r.stderr_text);
     CHECK(r.stderr_text.find("wrote past the end of a block of 64 bytes") != std::string::npos);
     CHECK(r.stderr_text.find("in the test case \"a vector of 8 doubles\"") != std::string::npos);
     CHECK(r.stderr_text.find("one past the last element") != std::string::npos);
@@ -79,7 +80,8 @@ TEST_SUITE("harness") {
       std::vector<int> a(6);
       a.data()[opaque(-1)] = 7;  // 6 ints = 24 bytes
     });
-    CHECK_MESSAGE(r.aborted, "the child should abort; it exited with " << r.exit_status << ": " << r.stderr_text);
+    CHECK_MESSAGE(r.aborted,
+                  "the child should abort; it exited with " << r.exit_status << ": " << r.stderr_text);
     CHECK(r.stderr_text.find("wrote just before a block of 24 bytes") != std::string::npos);
   }
 
@@ -87,14 +89,14 @@ TEST_SUITE("harness") {
     const ChildResult r = in_child([] {
       std::vector<double> v(7);
       for (std::size_t i = 0; i < v.size(); ++i) v[i] = -1.0;  // up to the last byte of the block
-      v.push_back(2.0);                                          // reallocates: the old block is freed
+      v.push_back(2.0);                                        // reallocates: the old block is freed
       char* bytes = new char[1];
       bytes[0] = '\xff';
       delete[] bytes;
       auto* nothrow = new (std::nothrow) long[3]{1, 2, 3};
       delete[] nothrow;
       void* empty = ::operator new(0);  // zero bytes: a unique pointer all the same
-      ::operator delete(empty, std::size_t{0});
+      ::operator delete (empty, std::size_t{0});
       auto shared = std::make_shared<std::vector<int>>(5, 9);
       shared.reset();
     });

@@ -76,7 +76,8 @@ void write_stderr(const char* text) {
                 "(an index %s of a std::vector or an array: a loop bound `<=` where `<` was meant, or a "
                 "count one too large?). The block was being freed; the write happened earlier, in the code "
                 "that filled it.\n",
-                past_end ? "past the end of" : "just before", size, test != nullptr ? ", in the test case \"" : "", test != nullptr ? test : "",
+                past_end ? "past the end of" : "just before", size,
+                test != nullptr ? ", in the test case \"" : "", test != nullptr ? test : "",
                 test != nullptr ? "\"" : "",
                 past_end ? "one past the last element" : "before the first element");
   write_stderr(text);

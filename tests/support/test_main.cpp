@@ -85,8 +85,9 @@ class Watchdog {
     name_ = name;
     running_ = true;
     ++generation_;
-    deadline_ = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                       std::chrono::duration<double>(seconds_));
+    deadline_ =
+        std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                               std::chrono::duration<double>(seconds_));
     changed_.notify_all();
   }
   void ended() {

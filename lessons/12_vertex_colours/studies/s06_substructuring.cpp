@@ -153,7 +153,8 @@ void s06_substructuring(OutputFolder& out, const Settings& settings) {
   // work, not how a loaded machine schedules two threads' barriers.
   {
     const ScopedThreadCount one_thread(1);
-    const std::vector<int> uniform_ks = settings.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 3, 4, 6, 8};
+    const std::vector<int> uniform_ks =
+        settings.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 3, 4, 6, 8};
     const std::vector<double> thresholds = settings.quick
                                                ? std::vector<double>{settings.threshold}
                                                : std::vector<double>{0.2, 0.1, 0.05, 0.025, 0.0125};

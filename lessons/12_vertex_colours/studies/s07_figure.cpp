@@ -71,9 +71,10 @@ Solved s07_figure(OutputFolder& out, const Settings& settings) {
   for (const auto& [visibility, name] : {std::pair{ShotVisibility::ray_cast, "ray_cast_bvh"},
                                          std::pair{ShotVisibility::hemicube, "hemicube_128"}})
     for (const int t : thread_counts) {
-      report_progress(program_id,
-                      std::string("figure: ") + name + ", " + std::to_string(t) + (t == 1 ? " thread" : " threads"),
-                      run_index++, runs);
+      report_progress(
+          program_id,
+          std::string("figure: ") + name + ", " + std::to_string(t) + (t == 1 ? " thread" : " threads"),
+          run_index++, runs);
       // Processor time of every thread: other programs' load does not inflate it.
       const std::clock_t cpu_start = std::clock();
       Solved s = [&] {

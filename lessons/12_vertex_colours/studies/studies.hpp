@@ -28,7 +28,7 @@ struct Settings {
   double figure_patch_edge = 75;  // mm: the figure's patches (the shooters)
   double unshot = 1e-3;           // stop at this fraction of the emitted power unshot
   bool figure_only = false;       // --figure: only the figure (section 7) and its export (section 8)
-  int threads = 0;                // --threads as given (0: not given); N ≥ 2 adds the figure's runs on N threads
+  int threads = 0;  // --threads as given (0: not given); N ≥ 2 adds the figure's runs on N threads
 };
 
 // The three vertex-colour rules of §1–3 and their names, in the order the pictures show them.

@@ -70,8 +70,8 @@ struct JsonWriter {
         j["segments"].push_back(
             {{"origin", triple(s.origin)},
              {"end", triple(s.end)},
-             {"hit",
-              s.crossed ? hit_json(scene, s.primitive, s.material, s.t, s.end, s.front_face) : nlohmann::json()},
+             {"hit", s.crossed ? hit_json(scene, s.primitive, s.material, s.t, s.end, s.front_face)
+                               : nlohmann::json()},
              {"transmission", triple(s.transmission)}});
     } else if (n.hit) {
       j["hit"] = hit_json(scene, n.primitive, n.material, n.t, n.point, n.front_face);

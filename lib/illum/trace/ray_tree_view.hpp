@@ -72,8 +72,9 @@ struct ShadowSegment {
   Point3 origin{0.0}, end{0.0};
   bool crossed = false;  // ended on a surface (crossed it, or was stopped by it)
   std::uint32_t primitive = no_primitive, material = no_material;
-  double t = 0;             // the parameter of `end` along the piece
-  bool front_face = true;   // the surface's side met, as the hit record said (false: leaving glass from inside)
+  double t = 0;  // the parameter of `end` along the piece
+  bool front_face =
+      true;  // the surface's side met, as the hit record said (false: leaving glass from inside)
   Color transmission{1.0};  // the light's share that gets this far
 };
 
