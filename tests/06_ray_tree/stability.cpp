@@ -163,7 +163,8 @@ TEST_SUITE("trace") {
 
   TEST_CASE("effects plan: the depth limit is cut where max(k_r + k_t)^d < 1/1024") {
     Scene scene = balls_on_floor(true);
-    scene.materials[2].reflectance = Color(0.25);  // 0.25^5 = 1/1024: depth 5 is the last that may count
+    // 0.25^4 = 1/256 > 1/1024 = 0.25^5: depth 5 is the first at or below the threshold (effects_plan.hpp).
+    scene.materials[2].reflectance = Color(0.25);
     CHECK(plan_effects(scene, 16).max_depth == 5);
     CHECK(plan_effects(scene, 3).max_depth == 3);
   }

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "illum/accel/bvh_traversal.hpp"
@@ -514,5 +515,56 @@ TEST_SUITE("lesson08") {
     CHECK_MESSAGE(start.step[1] == 0, "1/ω.y is not finite: the walk takes y as parallel (step 0)");
     const Cells lower_row{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
     CHECK_MESSAGE(dda_cells(f, ray) == lower_row, "the lower row only, x cells 0 to 3");
+  }
+}
+
+// The counters add up over calls (issue 28's second student trial): the sphereflake's table divides
+// one TraversalCounters, summed over every camera and shadow ray of the picture, by its rays.
+TEST_SUITE("lesson08") {
+  TEST_CASE("BVH counters add up over calls: one ray per call, closest hit and any hit, hit or miss" *
+            doctest::description("task=1,3a,3b")) {
+    // The tree of the first counters test: root 0 over leaf 1 (triangle at z = 1e-6, id 10) and
+    // leaf 2 (triangle at z = 1.01e-4, id 11). The counters start at rays 5, nodes 7, tests 11, as
+    // after earlier rays of a picture; bvh_traversal.hpp: each call adds, never resets.
+    //   closest hit up the z axis: +1 ray, +3 box tests (root, both children), +1 triangle test
+    //     → 6, 10, 12;
+    //   any hit, same ray: +1 ray, +2 box tests (root, near leaf), +1 triangle test → 7, 12, 13;
+    //   closest hit of a ray beside the root's box (x = 5, up z): +1 ray, +1 box test (the root's,
+    //     which it misses), no triangle test → 8, 13, 13;
+    //   any hit of that ray: the same, +1 ray, +1 box test → 9, 14, 13.
+    const auto slab = [](double z0, double z1) { return box(Point3(-1, -1, z0), Point3(1, 1, z1)); };
+    const std::vector<BvhNode> nodes{inner(slab(1e-6, 1.01e-4), 2), leaf(slab(1e-6, 1e-6), 0, 1),
+                                     leaf(slab(1.01e-4, 1.01e-4), 1, 1)};
+    const std::vector<Triangle> tris{across_axis(1e-6), across_axis(1.01e-4)};
+    const std::vector<std::uint32_t> ids{10, 11};
+    const BvhView view{nodes, tris, ids};
+    TraversalCounters c;
+    c.rays = 5, c.nodes_visited = 7, c.triangle_tests = 11;
+    const auto counts = [&] {
+      return "rays " + std::to_string(c.rays) + ", nodes " + std::to_string(c.nodes_visited) + ", tests " +
+             std::to_string(c.triangle_tests);
+    };
+    const Ray up(Point3(0, 0, 0), Vec3(0, 0, 1));
+    REQUIRE(bvh_closest_hit(view, up, c).has_value());
+    INFO("after the closest hit: " << counts());
+    CHECK_MESSAGE(c.rays == 6, "the counters started at 5 rays: one more, 6 (add to them, never reset)");
+    CHECK_MESSAGE(c.nodes_visited == 10, "7 box tests before, 3 in this walk: 10");
+    CHECK_MESSAGE(c.triangle_tests == 12, "11 triangle tests before, 1 in this walk: 12");
+    CHECK(bvh_any_hit(view, up, c));
+    INFO("after the any hit: " << counts());
+    CHECK_MESSAGE(c.rays == 7, "any hit counts its ray too (a shadow ray is a ray of the picture): 7");
+    CHECK_MESSAGE(c.nodes_visited == 12, "any hit: the root and the near leaf, 2 more: 12");
+    CHECK_MESSAGE(c.triangle_tests == 13, "any hit: 1 triangle test more: 13");
+    const Ray beside(Point3(5, 0, 0), Vec3(0, 0, 1));
+    CHECK_FALSE(bvh_closest_hit(view, beside, c).has_value());
+    INFO("after the closest hit that misses the root: " << counts());
+    CHECK_MESSAGE(c.rays == 8, "a ray that misses is still a ray: 8");
+    CHECK_MESSAGE(c.nodes_visited == 13, "the root's box was tested (and missed): 1 more, 13");
+    CHECK_MESSAGE(c.triangle_tests == 13, "no triangle tested: still 13");
+    CHECK_FALSE(bvh_any_hit(view, beside, c));
+    INFO("after the any hit that misses the root: " << counts());
+    CHECK(c.rays == 9);
+    CHECK(c.nodes_visited == 14);
+    CHECK(c.triangle_tests == 13);
   }
 }

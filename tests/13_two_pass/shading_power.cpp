@@ -179,3 +179,74 @@ TEST_SUITE("lesson13") {
         "face each other");
   }
 }
+
+// Rules of the plan and of eq. 13.2 that the lesson's tables depend on and that no test above
+// checked (issue 28's second student trial): who receives caustic deposits, which diffuse surfaces
+// a point light or an emitter lights by shadow rays, and k_r + k_t ≤ 1 taken per channel.
+TEST_SUITE("lesson13") {
+  TEST_CASE(
+      "the caustic pass deposits on meshed surfaces only: a diffuse sphere cannot receive, glass focuses" *
+      doctest::description("task=1")) {
+    // two_pass_plan.hpp: the caustic pass needs a diffuse surface pass one meshes (diffuse_surfaces),
+    // because the deposits live on its patches; a diffuse sphere (other_diffuse) has none.
+    const SceneInventory sphere_only{.emitters = 1, .glass = 1, .other_diffuse = 1, .heaviest_specular = 1.0};
+    const TwoPassPlan plan = plan_two_pass(sphere_only, TwoPassRequest{.caustics = true});
+    INFO("reasons:\n" << plan.reasons);
+    CHECK_MESSAGE(!plan.caustic_pass,
+                  "the only diffuse thing is a sphere, which pass one does not mesh: nowhere to deposit");
+    CHECK_MESSAGE(!plan.radiosity_pass, "no caustic pass and no facing pair: no pass one");
+    CHECK_MESSAGE(plan.shadow_rays, "the emitter lights the sphere directly, by shadow rays");
+    // Glass alone (no mirror) focuses light as well as a mirror does: a floor under a glass sphere.
+    const SceneInventory glass_over_floor{
+        .diffuse_surfaces = 1, .emitters = 1, .glass = 1, .heaviest_specular = 1.0};
+    const TwoPassPlan glass =
+        plan_two_pass(glass_over_floor, TwoPassRequest{.max_depth = 4, .caustics = true});
+    CHECK_MESSAGE(glass.caustic_pass, "an emitter, glass and a meshed floor: the caustic pass runs");
+    CHECK_MESSAGE(glass.radiosity_pass, "the deposits need pass one's patches");
+    CHECK_MESSAGE(glass.reflection, "glass reflects (totally, from inside): reflected rays too");
+    CHECK(glass.refraction);
+    CHECK_MESSAGE(!glass.shadow_rays, "the floor's direct light is in B: no shadow rays");
+    CHECK_MESSAGE(glass.max_depth == 4, "k_r + k_t = 1: the request stands");
+  }
+
+  TEST_CASE("shadow rays go to a point light for any diffuse surface, and to an emitter for an unmeshed one" *
+            doctest::description("task=1")) {
+    // two_pass_plan.hpp: shadow rays for any point light with a diffuse surface, meshed or not, and for
+    // an emitter with other_diffuse > 0 (or meshed surfaces when pass one does not run).
+    // A diffuse sphere under a point light: no emitter, so no pass one; the sphere is lit directly.
+    const TwoPassPlan sphere = plan_two_pass(SceneInventory{.point_lights = 1, .other_diffuse = 1}, {});
+    CHECK(!sphere.radiosity_pass);
+    CHECK_MESSAGE(sphere.shadow_rays, "a point light and a diffuse sphere: shadow rays light the sphere");
+    // Two facing walls under a point light: pass one has no emitter to distribute (a point light
+    // never feeds it), so the walls' direct light is pass two's.
+    const TwoPassPlan walls =
+        plan_two_pass(SceneInventory{.diffuse_surfaces = 2, .facing_pairs = 1, .point_lights = 1}, {});
+    CHECK_MESSAGE(!walls.radiosity_pass, "no emitter: a point light does not feed pass one");
+    CHECK_MESSAGE(walls.shadow_rays, "the walls are lit by the point light, directly: shadow rays");
+    // An area light over a diffuse sphere, nothing meshed: no pass one, shadow rays to the emitter.
+    const TwoPassPlan lamp = plan_two_pass(SceneInventory{.emitters = 1, .other_diffuse = 2}, {});
+    CHECK(!lamp.radiosity_pass);
+    CHECK_MESSAGE(lamp.shadow_rays, "the spheres are not in B: shadow rays to the emitter");
+  }
+
+  TEST_CASE("pass two at a hit: k_r + k_t ≤ 1 is a rule per channel, not across channels" *
+            doctest::description("task=4")) {
+    // two_pass_shading.hpp: refused when k_r + k_t > 1 *in a channel*. k_r = (0.9, 0, 0.1) and
+    // k_t = (0, 0.9, 0.9) sum to 0.9, 0.9 and 1.0 channel by channel: allowed (the largest k_r plus
+    // the largest k_t, 0.9 + 0.9, is no channel's sum). With D = (0.1, 0.2, 0.3), I_r = (1, 2, 4),
+    // I_t = (2, 1, 0.5):
+    //   red   0.1 + 0.9·1 + 0·2     = 1.0
+    //   green 0.2 + 0·2   + 0.9·1   = 1.1
+    //   blue  0.3 + 0.1·4 + 0.9·0.5 = 1.15
+    Color got(0.0);
+    REQUIRE_NOTHROW(got = second_pass_radiance(Color(0.1, 0.2, 0.3), Color(0.9, 0.0, 0.1), Color(1, 2, 4),
+                                               Color(0.0, 0.9, 0.9), Color(2, 1, 0.5)));
+    CHECK(got.r == doctest::Approx(1.0).epsilon(1e-15));
+    CHECK(got.g == doctest::Approx(1.1).epsilon(1e-15));
+    CHECK(got.b == doctest::Approx(1.15).epsilon(1e-15));
+    // One channel over 1 is enough to refuse: green 0.5 + 0.6 = 1.1, the others 0.
+    CHECK_THROWS_AS(static_cast<void>(second_pass_radiance(Color(0.0), Color(0.0, 0.5, 0.0), Color(1.0),
+                                                           Color(0.0, 0.6, 0.0), Color(1.0))),
+                    std::invalid_argument);
+  }
+}
