@@ -250,3 +250,78 @@ TEST_SUITE("lesson13") {
                     std::invalid_argument);
   }
 }
+
+TEST_SUITE("lesson13") {
+  TEST_CASE("surface coordinates on a trapezoid whose slanted sides meet just behind its first edge" *
+            doctest::description("task=2")) {
+    // p0 = (0,0,0), p1 = (1,0,0), p2 = (5,1,0), p3 = (0,1,0): the sides p0p3 (x = 0) and p1p2
+    // (x = 1 + 4v) meet at v = −¼, so the quadratic's second root is −¼ for every point, smaller in
+    // magnitude than the true v when v > ¼: then the true root is the *larger* one, q/k2, not k0/q.
+    // By hand for P(½, ½) = p0 + ½e + ½f + ¼g = (1.5, 0.5, 0), with e = (1, 0), f = (0, 1),
+    // g = p0 − p1 + p2 − p3 = (4, 0), h = (1.5, 0.5):
+    //   k2 = cross(g, f) = 4, k1 = cross(e, f) + cross(h, g) = 1 − 2 = −1, k0 = cross(h, e) = −½;
+    //   4v² − v − ½ = 0: Δ = 1 + 8 = 9, q = −(k1 + sign(k1)·3)/2 = 2, roots q/k2 = ½ and k0/q = −¼;
+    //   then u = (h − f v)/(e + g v) = (1.5, 0)/(3, 0) = ½.
+    // And P(¼, ¾) = (0.25 + 0.1875·4, 0.75, 0) = (1, 0.75, 0): roots ¾ and −¼.
+    const std::array<Point3, 4> q{Point3(0, 0, 0), Point3(1, 0, 0), Point3(5, 1, 0), Point3(0, 1, 0)};
+    const Vec2 half = surface_coordinates(q, Point3(1.5, 0.5, 0));
+    CHECK_MESSAGE(half.y == doctest::Approx(0.5).epsilon(1e-14),
+                  "v = ½ is the root q/k2 of 4v² − v − ½ = 0; the other root, k0/q = −¼, is outside [0, 1]");
+    CHECK(half.x == doctest::Approx(0.5).epsilon(1e-14));
+    const Vec2 other = surface_coordinates(q, Point3(1.0, 0.75, 0));
+    CHECK(other.x == doctest::Approx(0.25).epsilon(1e-14));
+    CHECK(other.y == doctest::Approx(0.75).epsilon(1e-14));
+    check_uv(q, 0.9, 0.3, 1e-12);  // the forward map, for a point not worked out by hand
+  }
+}
+
+TEST_SUITE("lesson13") {
+  TEST_CASE(
+      "hard case: a point a rounding error past the hypotenuse is clamped to its row's last cell, weights "
+      "adding to 1" *
+      doctest::description("task=3")) {
+    // two_pass_shading.hpp: a point a rounding error past u + v = 1 belongs to its row's last "up"
+    // triangle, and the patch index is below n². Here u is the coordinate past the edge, so
+    // ⌊u·n⌋ lands one column beyond the row's last cell i = n − 1 − j and must be clamped to it.
+    //   n = 2, (½ + 1e-12, ½): j = ⌊1⌋ = 1, ⌊1 + 2e-12⌋ = 1 > n − 1 − j = 0, so i = 0: up(0, 1),
+    //   patch 3 (row 1 starts at 1·(4 − 1) = 3); the point is its corner (i + 1, j) = (1, 1).
+    //   n = 4, (¾ + 1e-12, ¼): j = 1, ⌊3 + 4e-12⌋ = 3 > 4 − 1 − 1 = 2, so i = 2; row 1 starts at
+    //   1·(8 − 1) = 7 and lists up(0,1) = 7, down(0,1) = 8, up(1,1) = 9, down(1,1) = 10,
+    //   up(2,1) = 11; the point is its corner (3, 1), weight 1 on corner 1.
+    struct Case {
+      Vec2 uv;
+      int n;
+      std::size_t patch;
+    };
+    for (const Case& c : {Case{Vec2(0.5 + 1e-12, 0.5), 2, 3}, Case{Vec2(0.75 + 1e-12, 0.25), 4, 11}}) {
+      const PatchCell cell = locate_patch(c.uv, c.n, 0, 3);
+      INFO("n = " << c.n << ", (u, v) = (" << c.uv.x << ", " << c.uv.y << ")");
+      CHECK_MESSAGE(cell.patch == c.patch, "⌊u·n⌋ is clamped to the row's last column n − 1 − j: patch "
+                                               << c.patch << " (of " << c.n * c.n << ")");
+      CHECK(cell.corners == 3);
+      CHECK(cell.weight[1] == doctest::Approx(1.0).epsilon(1e-9));
+      double sum = 0;
+      for (double w : cell.weight) {
+        CHECK(w >= 0.0);
+        sum += w;
+      }
+      CHECK(sum == doctest::Approx(1.0).epsilon(1e-12));
+    }
+    // Past the hypotenuse in both coordinates: n = 1, (¼, ¾ + 1e-9), s = ¼, t = ¾ + 1e-9, s + t = 1 + 1e-9.
+    // The point is taken at the hypotenuse's nearest point along the ray from corner 0, (s, t)/(s + t):
+    // weights (0, ¼/(1 + 1e-9), (¾ + 1e-9)/(1 + 1e-9)), which add up to 1 (two_pass_shading.hpp);
+    // dividing one coordinate and not the other leaves a sum of about 1 + 7.5e-10.
+    const PatchCell past = locate_patch(Vec2(0.25, 0.75 + 1e-9), 1, 0, 3);
+    CHECK(past.patch == 0);
+    double sum = 0;
+    for (double w : past.weight) {
+      CHECK(w >= 0.0);
+      sum += w;
+    }
+    CHECK_MESSAGE(
+        sum == doctest::Approx(1.0).epsilon(1e-12),
+        "the corner weights add up to 1 even a hair past the hypotenuse: both s and t are divided by s + t");
+    CHECK(past.weight[1] == doctest::Approx(0.25 / (1 + 1e-9)).epsilon(1e-12));
+    CHECK(past.weight[2] == doctest::Approx((0.75 + 1e-9) / (1 + 1e-9)).epsilon(1e-12));
+  }
+}
