@@ -167,6 +167,10 @@ TEST_SUITE("trace") {
     scene.materials[2].reflectance = Color(0.25);
     CHECK(plan_effects(scene, 16).max_depth == 5);
     CHECK(plan_effects(scene, 3).max_depth == 3);
+    // 1 − 1e-12 falls to 1/1024 only after about 6.9·10¹² levels (ln 1024/1e-12), more than an int
+    // holds: no cut, the request stands (not depth 1 from an overflowed conversion).
+    scene.materials[2].reflectance = Color(1.0 - 1e-12);
+    CHECK(plan_effects(scene, 16).max_depth == 16);
   }
 
   TEST_CASE("inspector: the pixel's tree holds every ray counted, and its JSON nests them") {

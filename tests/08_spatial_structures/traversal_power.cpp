@@ -568,3 +568,30 @@ TEST_SUITE("lesson08") {
     CHECK(c.triangle_tests == 13);
   }
 }
+
+TEST_SUITE("lesson08") {
+  TEST_CASE(
+      "3DDA: a diagonal through the corners of cells half as tall as wide steps both axes at each corner" *
+      doctest::description("task=1,2a,2b")) {
+    // The grid [0,4] × [0,4] × [0,1] cut 4 × 8 × 1: cells 1 wide in x, ½ tall in y (boundaries x = k,
+    // y = m/2, exact in binary). The ray (−1, −1, ½) + s(1, 1, 0)/√2 runs along y = x: at x = k it
+    // meets y = k, a y boundary too, so it passes through a corner and both axes step at once; between
+    // corners it crosses y = k + ½ alone. The cells, by hand: (0,0), (0,1) [y = ½], (1,2) [corner (1,1)],
+    // (1,3) [y = 1.5], (2,4) [corner (2,2)], (2,5), (3,6) [corner (3,3)], (3,7); out at (4, 4).
+    // Recomputed from the boundaries, the crossings tie exactly: x = k at (k + 1)/ω.x, y = m/2 = k at
+    // (k + 1)/ω.y, the same two doubles (ω.x = ω.y). Accumulated, x adds 1/ω.x per step and y adds
+    // ½/ω.y per step, rounded differently: the tie breaks and the walk visits a cell it only touches
+    // (grid_dda.hpp: recompute s_next from frame.boundary(), do not add |h/ω|).
+    GridFrame f;
+    f.bounds = box(Point3(0, 0, 0), Point3(4, 4, 1));
+    f.cells = {4, 8, 1};
+    const Ray ray = Ray::toward(Point3(-1, -1, 0.5), Vec3(1, 1, 0));
+    const Cells expected{{0, 0, 0}, {0, 1, 0}, {1, 2, 0}, {1, 3, 0},
+                         {2, 4, 0}, {2, 5, 0}, {3, 6, 0}, {3, 7, 0}};
+    const Cells got = dda_cells(f, ray);
+    INFO("got " << got.size() << " cells, expected 8");
+    CHECK_MESSAGE(got == expected,
+                  "at each corner (1,1), (2,2), (3,3) both axes step at once: s_next recomputed from the "
+                  "boundary ties exactly, an accumulated one does not");
+  }
+}

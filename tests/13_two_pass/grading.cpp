@@ -149,6 +149,18 @@ TEST_SUITE("lesson13") {
     CHECK(weak.refraction);
   }
 
+  TEST_CASE("hard case: k_r + k_t a hair below 1 keeps the requested depth" *
+            doctest::description("task=1")) {
+    // k = 1 − 1e-12: k^d falls to 1/1024 only at d = ln(1024)/1e-12 ≈ 6.9·10¹² levels, far past any
+    // request and past what an int holds (2³¹ − 1 ≈ 2.1·10⁹): two_pass_plan.hpp, the request stands.
+    // A depth computed in int first overflows (undefined; in practice INT_MIN, then clamped to 1).
+    SceneInventory s{.diffuse_surfaces = 1, .emitters = 1, .glass = 1, .heaviest_specular = 1.0 - 1e-12};
+    CHECK_MESSAGE(plan_two_pass(s, TwoPassRequest{.max_depth = 9}).max_depth == 9,
+                  "(1 − 1e-12)^9 is far above 1/1024: the request of 9 stands");
+    s.heaviest_specular = 0.999;  // 0.999^d ≤ 1/1024 from d = ⌈ln 1024/−ln 0.999⌉ = ⌈6928.005⌉ = 6929 on
+    CHECK(plan_two_pass(s, TwoPassRequest{.max_depth = 64}).max_depth == 64);
+  }
+
   TEST_CASE("point lights are not in B: with pass one, shadow rays still go to them" *
             doctest::description("task=1")) {
     SceneInventory box = cornell_box();

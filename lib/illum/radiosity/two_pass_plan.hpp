@@ -68,7 +68,9 @@ struct TwoPassPlan {
 //   06's plan cuts it: to the first depth d with heaviest_specular^d ≤
 //   contribution_threshold, at or below it (0.3 → 6, as 0.3^5 > 1/1024 ≥
 //   0.3^6; 0.5 → 10, as 0.5^10 = 1/1024 exactly). No cut when
-//   heaviest_specular is 1: lossless glass never falls to the threshold.
+//   heaviest_specular is 1: lossless glass never falls to the threshold;
+//   nor, in practice, when it is a hair below 1 (1 − 1e-12 needs about
+//   7·10¹² levels, far more than an int holds: count in double).
 // * shadow rays when a light reaches a diffuse surface whose direct light B
 //   does not hold: any point light with a diffuse surface (meshed or not);
 //   an emitter with other_diffuse > 0, or with diffuse_surfaces > 0 when
