@@ -467,7 +467,8 @@ TEST_SUITE("lesson08") {
     {
       TraversalCounters c;
       const Ray ray(Point3(0, 0, 0), Vec3(0, 0, 1), Interval(1000, infinity));
-      CHECK_FALSE(bvh_closest_hit(BvhView{start_nodes, start_tris, ids}, ray, c).has_value());
+      const bool found = bvh_closest_hit(BvhView{start_nodes, start_tris, ids}, ray, c).has_value();
+      CHECK_FALSE(found);
       INFO(
           "range [1000, ∞): clipped against [1000 − 1000·10⁻⁹, ∞); leaf A (z = 1000 − 5·10⁻⁷) is within "
           "the widening, leaf B (z = 500) is not");
@@ -484,14 +485,16 @@ TEST_SUITE("lesson08") {
     {
       TraversalCounters c;
       const Ray ray(Point3(0, 0, 0), Vec3(0, 0, 1), Interval(0, 1000));
-      CHECK_FALSE(bvh_closest_hit(BvhView{end_nodes, end_tris, ids}, ray, c).has_value());
+      const bool found = bvh_closest_hit(BvhView{end_nodes, end_tris, ids}, ray, c).has_value();
+      CHECK_FALSE(found);
       INFO(
           "range [0, 1000]: clipped against [0, 1000 + 1000·10⁻⁹]; leaf A (z = 1000 + 5·10⁻⁷) is within "
           "the widening, leaf B (z = 1500) is not");
       CHECK(c.nodes_visited == 3);
       CHECK(c.triangle_tests == 1);
       TraversalCounters shadow;
-      CHECK_FALSE(bvh_any_hit(BvhView{end_nodes, end_tris, ids}, ray, shadow));
+      const bool blocked = bvh_any_hit(BvhView{end_nodes, end_tris, ids}, ray, shadow);
+      CHECK_FALSE(blocked);
       INFO("any hit: the root, its two children (popped in turn): 3 box tests, leaf A's triangle only");
       CHECK(shadow.nodes_visited == 3);
       CHECK(shadow.triangle_tests == 1);
