@@ -15,13 +15,16 @@ not registered there.
 With ``--lesson NN`` (an instructor's re-verification, too slow for CI: two
 builds of the library and the lesson program's full run), it checks instead
 what a student handed out only lesson NN gets: the edition of that lesson
-alone (tools/student_edition.py --lessons NN) is written to the work folder;
-the student commands of the top-level README build it (``cmake --preset
-student``, then the lesson's tests and program); ``tools/grade --student NN``
-scores 0 on the untouched stubs; the reference units of lesson NN
-(``lib/illum/<area>/<unit>.cpp`` of this tree) are copied over the stubs as
-the student's files; the lesson program then runs to completion (``--quick``
-with ``--quick``) and ``tools/grade --student NN`` scores 100%.
+alone (tools/student_edition.py --lessons NN) is written to the work folder,
+and the student commands of *the edition's own README* (its "Build, test and
+grade your code" block, NN replaced) are run in it: ``cmake --preset
+student`` and the build of the lesson's tests and program; the test command
+(``build/student/bin/tests_lessonNN -ts=lessonNN``) fails naming
+NotImplemented and ``tools/grade --student NN`` scores 0 on the untouched
+stubs; the reference units of lesson NN (``lib/illum/<area>/<unit>.cpp`` of
+this tree) are copied over the stubs as the student's files; then the build
+succeeds, the test command passes, the lesson program runs to completion
+(``--quick`` with ``--quick``) and ``tools/grade --student NN`` scores 100%.
 
     tools/check_student_edition.py --lesson 07 --work-dir /tmp/ed07
 """
@@ -29,6 +32,8 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
+import shlex
 import shutil
 import subprocess
 import sys
@@ -78,11 +83,37 @@ def content_problems(edition: Path) -> list[str]:
     return problems
 
 
-def _grade(edition: Path, lesson: str, results: Path) -> tuple[int, float | None, int]:
-    """Runs the edition's own ``tools/grade --student NN``: (exit status, score %, grading tests)."""
+def readme_commands(edition: Path, lesson: str) -> tuple[dict[str, list[str]], list[str]]:
+    """The student commands of the edition's own README (its "Build, test and grade your code"
+    block), with NN replaced by the lesson, by what each does: configure, build, test, program,
+    grade. Returns them and the problems found (a command missing, a block missing)."""
+    readme = edition / "README.md"
+    text = readme.read_text(encoding="utf-8") if readme.is_file() else ""
+    section = text.split("## Build, test and grade your code", 1)
+    block = re.search(r"```sh\n(.*?)```", section[1], re.S) if len(section) == 2 else None
+    if block is None:
+        return {}, ["the edition's README.md has no ```sh block under \"Build, test and grade your code\""]
+    commands: dict[str, list[str]] = {}
+    for line in block.group(1).splitlines():
+        words = shlex.split(line.split("#", 1)[0].replace("NN", lesson))
+        if not words:
+            continue
+        kind = ("configure" if words[:2] == ["cmake", "--preset"] else
+                "build" if words[:2] == ["cmake", "--build"] else
+                "test" if words[0].endswith(f"/tests_lesson{lesson}") else
+                "program" if words[0].endswith(f"/lesson{lesson}") else
+                "grade" if words[0] == "tools/grade" else "other")
+        commands.setdefault(kind, words)
+    missing = [k for k in ("configure", "build", "test", "program", "grade") if k not in commands]
+    return commands, [f"the edition's README.md has no {k} command in its student block" for k in missing]
+
+
+def _grade(edition: Path, command: list[str], results: Path) -> tuple[int, float | None, int]:
+    """Runs the README's grade command (``tools/grade --student NN``) with a results file:
+    (exit status, score %, grading tests)."""
     results.unlink(missing_ok=True)
-    step = build.run_streaming([sys.executable, str(edition / "tools" / "grade"), "--student", lesson,
-                                "--results", str(results)], cwd=edition)
+    step = build.run_streaming([sys.executable, str(edition / command[0]), *command[1:], "--results", str(results)],
+                               cwd=edition)
     status = 0 if step.ok else 1
     if not results.is_file():
         return 2, None, 0
@@ -92,7 +123,8 @@ def _grade(edition: Path, lesson: str, results: Path) -> tuple[int, float | None
 
 
 def check_one_lesson(lesson: str, work: Path, quick: bool) -> list[str]:
-    """The student's path for one lesson handed out alone; the problems found."""
+    """The student's path for one lesson handed out alone, by the commands of the edition's own
+    README; the problems found."""
     from grading.edition import make_student_edition
 
     problems: list[str] = []
@@ -102,16 +134,25 @@ def check_one_lesson(lesson: str, work: Path, quick: bool) -> list[str]:
     stubs = sorted((edition / "exercises").glob(f"{lesson}_*/*.cpp"))
     print(f"lesson {lesson}: edition in {edition} ({made.copied} files); exercise units: "
           f"{', '.join(s.name for s in stubs)}")
-    # The top-level README's student commands (the `student` preset, two jobs).
-    student_build = [["cmake", "--preset", "student"],
-                     ["cmake", "--build", "--preset", "student", "--target", f"tests_lesson{lesson}",
-                      f"lesson{lesson}"]]
-    for command in student_build:
-        if not build.run_streaming(command, cwd=edition).ok:
-            return problems + [f"lesson {lesson}: `{' '.join(command)}` fails in the edition on the stubs"]
+    commands, missing = readme_commands(edition, lesson)
+    if missing:
+        return problems + [f"lesson {lesson}: {problem}" for problem in missing]
+    print(f"lesson {lesson}: the edition's README says: " + "; ".join(" ".join(c) for c in commands.values()))
+    for kind in ("configure", "build"):
+        if not build.run_streaming(commands[kind], cwd=edition).ok:
+            return problems + [f"lesson {lesson}: `{' '.join(commands[kind])}` (the README's) fails in the edition "
+                               "on the stubs"]
+    # The README's test command on the stubs: it runs, fails, and says which functions are not written.
+    tested = build.run_streaming(commands["test"], cwd=edition)
+    print(f"lesson {lesson}: on the untouched stubs, `{' '.join(commands['test'])}` "
+          + ("passes" if tested.ok else "fails") + (", naming NotImplemented" if "NotImplemented" in tested.output
+                                                    else ""))
+    if tested.ok or "NotImplemented" not in tested.output:
+        problems.append(f"lesson {lesson}: on the stubs `{' '.join(commands['test'])}` should fail with "
+                        "NotImplemented")
     results = work / f"grade-{lesson}.json"
-    status, score, tests = _grade(edition, lesson, results)
-    print(f"lesson {lesson}: on the untouched stubs, tools/grade --student {lesson} exits {status}, "
+    status, score, tests = _grade(edition, commands["grade"], results)
+    print(f"lesson {lesson}: on the untouched stubs, {' '.join(commands['grade'])} exits {status}, "
           f"score {score}% over {tests} grading test(s)")
     if status != 1 or score != 0 or not tests:
         problems.append(f"lesson {lesson}: the stubs score {score}% (exit {status}, {tests} tests); expected 0%")
@@ -123,22 +164,28 @@ def check_one_lesson(lesson: str, work: Path, quick: bool) -> list[str]:
         shutil.copyfile(references[0], stub)
         print(f"lesson {lesson}: {references[0].relative_to(project.ROOT)} copied over "
               f"{stub.relative_to(edition)}")
-    for command in student_build[1:]:
-        if not build.run_streaming(command, cwd=edition).ok:
-            return problems + [f"lesson {lesson}: the edition does not build with the reference units as "
-                               "the student's files"]
+    if not build.run_streaming(commands["build"], cwd=edition).ok:
+        return problems + [f"lesson {lesson}: the edition does not build with the reference units as "
+                           "the student's files"]
+    tested = build.run_streaming(commands["test"], cwd=edition)
+    print(f"lesson {lesson}: with the reference units, `{' '.join(commands['test'])}` "
+          + ("passes" if tested.ok else "FAILS"))
+    if not tested.ok:
+        problems.append(f"lesson {lesson}: with the reference units as the student's files "
+                        f"`{' '.join(commands['test'])}` fails: "
+                        f"{(tested.output.strip().splitlines() or ['(no output)'])[-1]}")
     out = work / f"out-{lesson}"
     shutil.rmtree(out, ignore_errors=True)
-    program = [str(edition / "build" / "student" / "bin" / f"lesson{lesson}"), *(["--quick"] if quick else []),
-               "--out", str(out / f"lesson{lesson}")]
+    program = [str(edition / commands["program"][0]), *(["--quick"] if quick else []), "--out",
+               str(out / f"lesson{lesson}")]
     run = build.run_streaming(program, echo=True, cwd=edition)
     print(f"lesson {lesson}: `lesson{lesson}{' --quick' if quick else ''}` "
           + ("runs to completion" if run.ok else "FAILS"))
     if not run.ok:
         problems.append(f"lesson {lesson}: the lesson program stops on the reference units placed as the "
                         f"student's: {(run.output.strip().splitlines() or ['(no output)'])[-1]}")
-    status, score, tests = _grade(edition, lesson, results)
-    print(f"lesson {lesson}: with the reference units as the student's files, tools/grade --student {lesson} "
+    status, score, tests = _grade(edition, commands["grade"], results)
+    print(f"lesson {lesson}: with the reference units as the student's files, {' '.join(commands['grade'])} "
           f"exits {status}, score {score}% over {tests} grading test(s)")
     if status != 0 or score != 100.0:
         problems.append(f"lesson {lesson}: the reference units score {score}% (exit {status}); expected 100%")

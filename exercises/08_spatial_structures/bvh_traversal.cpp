@@ -18,8 +18,10 @@ namespace illum {
 // both children (slab_clip with slab_far_slack) and push the farther first.
 // Clip every box, the root too, against the range with both ends widened by
 // a relative 1e-9 (a range [t, t] at a hit on a box's face must reach it).
-// Count each box test in counters.nodes_visited and each triangle test in
-// counters.triangle_tests; count the ray in counters.rays.
+// Count each box test in counters.nodes_visited (the root's too, even on a
+// miss) and each triangle test in counters.triangle_tests; count the ray in
+// counters.rays. Add to the counters, never reset them: one set sums a
+// whole picture.
 std::optional<AccelHit> bvh_closest_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters) {
   throw NotImplemented("bvh_closest_hit",
                        "visit the nearer child first and skip nodes that begin beyond the best hit "
@@ -28,6 +30,7 @@ std::optional<AccelHit> bvh_closest_hit(const BvhView& bvh, const Ray& ray, Trav
 
 // Task 3b. Any hit: the same walk, returning true at the first triangle hit;
 // the boxes clipped against ray.range with both ends widened the same way.
+// Counted as in 3a: the ray, each box test, each triangle test, added.
 bool bvh_any_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters) {
   throw NotImplemented("bvh_any_hit",
                        "return at the first hit in range; order does not matter (lesson 08, §4)");

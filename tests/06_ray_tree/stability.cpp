@@ -163,9 +163,14 @@ TEST_SUITE("trace") {
 
   TEST_CASE("effects plan: the depth limit is cut where max(k_r + k_t)^d < 1/1024") {
     Scene scene = balls_on_floor(true);
-    scene.materials[2].reflectance = Color(0.25);  // 0.25^5 = 1/1024: depth 5 is the last that may count
+    // 0.25^4 = 1/256 > 1/1024 = 0.25^5: depth 5 is the first at or below the threshold (effects_plan.hpp).
+    scene.materials[2].reflectance = Color(0.25);
     CHECK(plan_effects(scene, 16).max_depth == 5);
     CHECK(plan_effects(scene, 3).max_depth == 3);
+    // 1 − 1e-12 falls to 1/1024 only after about 6.9·10¹² levels (ln 1024/1e-12), more than an int
+    // holds: no cut, the request stands (not depth 1 from an overflowed conversion).
+    scene.materials[2].reflectance = Color(1.0 - 1e-12);
+    CHECK(plan_effects(scene, 16).max_depth == 16);
   }
 
   TEST_CASE("inspector: the pixel's tree holds every ray counted, and its JSON nests them") {

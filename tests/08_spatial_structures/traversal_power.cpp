@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "illum/accel/bvh_traversal.hpp"
@@ -466,7 +467,8 @@ TEST_SUITE("lesson08") {
     {
       TraversalCounters c;
       const Ray ray(Point3(0, 0, 0), Vec3(0, 0, 1), Interval(1000, infinity));
-      REQUIRE_FALSE(bvh_closest_hit(BvhView{start_nodes, start_tris, ids}, ray, c).has_value());
+      const bool found = bvh_closest_hit(BvhView{start_nodes, start_tris, ids}, ray, c).has_value();
+      CHECK_FALSE(found);
       INFO(
           "range [1000, ∞): clipped against [1000 − 1000·10⁻⁹, ∞); leaf A (z = 1000 − 5·10⁻⁷) is within "
           "the widening, leaf B (z = 500) is not");
@@ -483,14 +485,16 @@ TEST_SUITE("lesson08") {
     {
       TraversalCounters c;
       const Ray ray(Point3(0, 0, 0), Vec3(0, 0, 1), Interval(0, 1000));
-      REQUIRE_FALSE(bvh_closest_hit(BvhView{end_nodes, end_tris, ids}, ray, c).has_value());
+      const bool found = bvh_closest_hit(BvhView{end_nodes, end_tris, ids}, ray, c).has_value();
+      CHECK_FALSE(found);
       INFO(
           "range [0, 1000]: clipped against [0, 1000 + 1000·10⁻⁹]; leaf A (z = 1000 + 5·10⁻⁷) is within "
           "the widening, leaf B (z = 1500) is not");
       CHECK(c.nodes_visited == 3);
       CHECK(c.triangle_tests == 1);
       TraversalCounters shadow;
-      REQUIRE_FALSE(bvh_any_hit(BvhView{end_nodes, end_tris, ids}, ray, shadow));
+      const bool blocked = bvh_any_hit(BvhView{end_nodes, end_tris, ids}, ray, shadow);
+      CHECK_FALSE(blocked);
       INFO("any hit: the root, its two children (popped in turn): 3 box tests, leaf A's triangle only");
       CHECK(shadow.nodes_visited == 3);
       CHECK(shadow.triangle_tests == 1);
@@ -514,5 +518,83 @@ TEST_SUITE("lesson08") {
     CHECK_MESSAGE(start.step[1] == 0, "1/ω.y is not finite: the walk takes y as parallel (step 0)");
     const Cells lower_row{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {3, 0, 0}};
     CHECK_MESSAGE(dda_cells(f, ray) == lower_row, "the lower row only, x cells 0 to 3");
+  }
+}
+
+// The counters add up over calls (issue 28's second student trial): the sphereflake's table divides
+// one TraversalCounters, summed over every camera and shadow ray of the picture, by its rays.
+TEST_SUITE("lesson08") {
+  TEST_CASE("BVH counters add up over calls: one ray per call, closest hit and any hit, hit or miss" *
+            doctest::description("task=1,3a,3b")) {
+    // The tree of the first counters test: root 0 over leaf 1 (triangle at z = 1e-6, id 10) and
+    // leaf 2 (triangle at z = 1.01e-4, id 11). The counters start at rays 5, nodes 7, tests 11, as
+    // after earlier rays of a picture; bvh_traversal.hpp: each call adds, never resets.
+    //   closest hit up the z axis: +1 ray, +3 box tests (root, both children), +1 triangle test
+    //     → 6, 10, 12;
+    //   any hit, same ray: +1 ray, +2 box tests (root, near leaf), +1 triangle test → 7, 12, 13;
+    //   closest hit of a ray beside the root's box (x = 5, up z): +1 ray, +1 box test (the root's,
+    //     which it misses), no triangle test → 8, 13, 13;
+    //   any hit of that ray: the same, +1 ray, +1 box test → 9, 14, 13.
+    const auto slab = [](double z0, double z1) { return box(Point3(-1, -1, z0), Point3(1, 1, z1)); };
+    const std::vector<BvhNode> nodes{inner(slab(1e-6, 1.01e-4), 2), leaf(slab(1e-6, 1e-6), 0, 1),
+                                     leaf(slab(1.01e-4, 1.01e-4), 1, 1)};
+    const std::vector<Triangle> tris{across_axis(1e-6), across_axis(1.01e-4)};
+    const std::vector<std::uint32_t> ids{10, 11};
+    const BvhView view{nodes, tris, ids};
+    TraversalCounters c;
+    c.rays = 5, c.nodes_visited = 7, c.triangle_tests = 11;
+    const auto counts = [&] {
+      return "rays " + std::to_string(c.rays) + ", nodes " + std::to_string(c.nodes_visited) + ", tests " +
+             std::to_string(c.triangle_tests);
+    };
+    const Ray up(Point3(0, 0, 0), Vec3(0, 0, 1));
+    REQUIRE(bvh_closest_hit(view, up, c).has_value());
+    INFO("after the closest hit: " << counts());
+    CHECK_MESSAGE(c.rays == 6, "the counters started at 5 rays: one more, 6 (add to them, never reset)");
+    CHECK_MESSAGE(c.nodes_visited == 10, "7 box tests before, 3 in this walk: 10");
+    CHECK_MESSAGE(c.triangle_tests == 12, "11 triangle tests before, 1 in this walk: 12");
+    CHECK(bvh_any_hit(view, up, c));
+    INFO("after the any hit: " << counts());
+    CHECK_MESSAGE(c.rays == 7, "any hit counts its ray too (a shadow ray is a ray of the picture): 7");
+    CHECK_MESSAGE(c.nodes_visited == 12, "any hit: the root and the near leaf, 2 more: 12");
+    CHECK_MESSAGE(c.triangle_tests == 13, "any hit: 1 triangle test more: 13");
+    const Ray beside(Point3(5, 0, 0), Vec3(0, 0, 1));
+    CHECK_FALSE(bvh_closest_hit(view, beside, c).has_value());
+    INFO("after the closest hit that misses the root: " << counts());
+    CHECK_MESSAGE(c.rays == 8, "a ray that misses is still a ray: 8");
+    CHECK_MESSAGE(c.nodes_visited == 13, "the root's box was tested (and missed): 1 more, 13");
+    CHECK_MESSAGE(c.triangle_tests == 13, "no triangle tested: still 13");
+    CHECK_FALSE(bvh_any_hit(view, beside, c));
+    INFO("after the any hit that misses the root: " << counts());
+    CHECK(c.rays == 9);
+    CHECK(c.nodes_visited == 14);
+    CHECK(c.triangle_tests == 13);
+  }
+}
+
+TEST_SUITE("lesson08") {
+  TEST_CASE(
+      "3DDA: a diagonal through the corners of cells half as tall as wide steps both axes at each corner" *
+      doctest::description("task=1,2a,2b")) {
+    // The grid [0,4] × [0,4] × [0,1] cut 4 × 8 × 1: cells 1 wide in x, ½ tall in y (boundaries x = k,
+    // y = m/2, exact in binary). The ray (−1, −1, ½) + s(1, 1, 0)/√2 runs along y = x: at x = k it
+    // meets y = k, a y boundary too, so it passes through a corner and both axes step at once; between
+    // corners it crosses y = k + ½ alone. The cells, by hand: (0,0), (0,1) [y = ½], (1,2) [corner (1,1)],
+    // (1,3) [y = 1.5], (2,4) [corner (2,2)], (2,5), (3,6) [corner (3,3)], (3,7); out at (4, 4).
+    // Recomputed from the boundaries, the crossings tie exactly: x = k at (k + 1)/ω.x, y = m/2 = k at
+    // (k + 1)/ω.y, the same two doubles (ω.x = ω.y). Accumulated, x adds 1/ω.x per step and y adds
+    // ½/ω.y per step, rounded differently: the tie breaks and the walk visits a cell it only touches
+    // (grid_dda.hpp: recompute s_next from frame.boundary(), do not add |h/ω|).
+    GridFrame f;
+    f.bounds = box(Point3(0, 0, 0), Point3(4, 4, 1));
+    f.cells = {4, 8, 1};
+    const Ray ray = Ray::toward(Point3(-1, -1, 0.5), Vec3(1, 1, 0));
+    const Cells expected{{0, 0, 0}, {0, 1, 0}, {1, 2, 0}, {1, 3, 0},
+                         {2, 4, 0}, {2, 5, 0}, {3, 6, 0}, {3, 7, 0}};
+    const Cells got = dda_cells(f, ray);
+    INFO("got " << got.size() << " cells, expected 8");
+    CHECK_MESSAGE(got == expected,
+                  "at each corner (1,1), (2,2), (3,3) both axes step at once: s_next recomputed from the "
+                  "boundary ties exactly, an accumulated one does not");
   }
 }

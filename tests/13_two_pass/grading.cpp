@@ -124,6 +124,43 @@ TEST_SUITE("lesson13") {
     CHECK(plan_two_pass(s, TwoPassRequest{.max_depth = 10}).max_depth == 2);
   }
 
+  TEST_CASE("hard case: a path weight that reaches 1/1024 exactly is cut there (0.5^10, 0.25^5)" *
+            doctest::description("task=1")) {
+    // two_pass_plan.hpp: the first depth d with k^d ≤ 1/1024, at or below the threshold. Powers of
+    // two are exact in binary: 0.5^9 = 2⁻⁹ = 1/512 > 1/1024 = 2⁻¹⁰ = 0.5^10, so d = 10 (a test
+    // written k^d < 1/1024 walks on to 11); 0.25^4 = 2⁻⁸ > 2⁻¹⁰ = 0.25^5, so d = 5. Lesson 06's
+    // plan cuts the same way, and pass two must trace the trees lesson 06 traces.
+    SceneInventory s{.diffuse_surfaces = 1, .emitters = 1, .glass = 1, .heaviest_specular = 0.5};
+    CHECK_MESSAGE(plan_two_pass(s, TwoPassRequest{.max_depth = 20}).max_depth == 10,
+                  "0.5^10 = 1/1024 exactly: depth 10 is the first at or below the threshold");
+    CHECK_MESSAGE(plan_two_pass(s, TwoPassRequest{.max_depth = 10}).max_depth == 10,
+                  "a request equal to the cut is kept");
+    s.heaviest_specular = 0.25;
+    CHECK_MESSAGE(plan_two_pass(s, TwoPassRequest{.max_depth = 20}).max_depth == 5,
+                  "0.25^5 = 1/1024 exactly: depth 5");
+    // Weaker than the threshold at the first bounce: 0.0009765625 = 2⁻¹⁰ and 0.0005 both give d = 1
+    // (k^1 ≤ 1/1024), never 0: the plan keeps the specular rays it said it casts.
+    s.heaviest_specular = 0x1p-10;
+    CHECK(plan_two_pass(s, TwoPassRequest{.max_depth = 20}).max_depth == 1);
+    s.heaviest_specular = 0.0005;
+    const TwoPassPlan weak = plan_two_pass(s, TwoPassRequest{.max_depth = 20});
+    CHECK(weak.max_depth == 1);
+    CHECK(weak.reflection);
+    CHECK(weak.refraction);
+  }
+
+  TEST_CASE("hard case: k_r + k_t a hair below 1 keeps the requested depth" *
+            doctest::description("task=1")) {
+    // k = 1 − 1e-12: k^d falls to 1/1024 only at d = ln(1024)/1e-12 ≈ 6.9·10¹² levels, far past any
+    // request and past what an int holds (2³¹ − 1 ≈ 2.1·10⁹): two_pass_plan.hpp, the request stands.
+    // A depth computed in int first overflows (undefined; in practice INT_MIN, then clamped to 1).
+    SceneInventory s{.diffuse_surfaces = 1, .emitters = 1, .glass = 1, .heaviest_specular = 1.0 - 1e-12};
+    CHECK_MESSAGE(plan_two_pass(s, TwoPassRequest{.max_depth = 9}).max_depth == 9,
+                  "(1 − 1e-12)^9 is far above 1/1024: the request of 9 stands");
+    s.heaviest_specular = 0.999;  // 0.999^d ≤ 1/1024 from d = ⌈ln 1024/−ln 0.999⌉ = ⌈6928.005⌉ = 6929 on
+    CHECK(plan_two_pass(s, TwoPassRequest{.max_depth = 64}).max_depth == 64);
+  }
+
   TEST_CASE("point lights are not in B: with pass one, shadow rays still go to them" *
             doctest::description("task=1")) {
     SceneInventory box = cornell_box();

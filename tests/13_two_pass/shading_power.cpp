@@ -179,3 +179,149 @@ TEST_SUITE("lesson13") {
         "face each other");
   }
 }
+
+// Rules of the plan and of eq. 13.2 that the lesson's tables depend on and that no test above
+// checked (issue 28's second student trial): who receives caustic deposits, which diffuse surfaces
+// a point light or an emitter lights by shadow rays, and k_r + k_t ≤ 1 taken per channel.
+TEST_SUITE("lesson13") {
+  TEST_CASE(
+      "the caustic pass deposits on meshed surfaces only: a diffuse sphere cannot receive, glass focuses" *
+      doctest::description("task=1")) {
+    // two_pass_plan.hpp: the caustic pass needs a diffuse surface pass one meshes (diffuse_surfaces),
+    // because the deposits live on its patches; a diffuse sphere (other_diffuse) has none.
+    const SceneInventory sphere_only{.emitters = 1, .glass = 1, .other_diffuse = 1, .heaviest_specular = 1.0};
+    const TwoPassPlan plan = plan_two_pass(sphere_only, TwoPassRequest{.caustics = true});
+    INFO("reasons:\n" << plan.reasons);
+    CHECK_MESSAGE(!plan.caustic_pass,
+                  "the only diffuse thing is a sphere, which pass one does not mesh: nowhere to deposit");
+    CHECK_MESSAGE(!plan.radiosity_pass, "no caustic pass and no facing pair: no pass one");
+    CHECK_MESSAGE(plan.shadow_rays, "the emitter lights the sphere directly, by shadow rays");
+    // Glass alone (no mirror) focuses light as well as a mirror does: a floor under a glass sphere.
+    const SceneInventory glass_over_floor{
+        .diffuse_surfaces = 1, .emitters = 1, .glass = 1, .heaviest_specular = 1.0};
+    const TwoPassPlan glass =
+        plan_two_pass(glass_over_floor, TwoPassRequest{.max_depth = 4, .caustics = true});
+    CHECK_MESSAGE(glass.caustic_pass, "an emitter, glass and a meshed floor: the caustic pass runs");
+    CHECK_MESSAGE(glass.radiosity_pass, "the deposits need pass one's patches");
+    CHECK_MESSAGE(glass.reflection, "glass reflects (totally, from inside): reflected rays too");
+    CHECK(glass.refraction);
+    CHECK_MESSAGE(!glass.shadow_rays, "the floor's direct light is in B: no shadow rays");
+    CHECK_MESSAGE(glass.max_depth == 4, "k_r + k_t = 1: the request stands");
+  }
+
+  TEST_CASE("shadow rays go to a point light for any diffuse surface, and to an emitter for an unmeshed one" *
+            doctest::description("task=1")) {
+    // two_pass_plan.hpp: shadow rays for any point light with a diffuse surface, meshed or not, and for
+    // an emitter with other_diffuse > 0 (or meshed surfaces when pass one does not run).
+    // A diffuse sphere under a point light: no emitter, so no pass one; the sphere is lit directly.
+    const TwoPassPlan sphere = plan_two_pass(SceneInventory{.point_lights = 1, .other_diffuse = 1}, {});
+    CHECK(!sphere.radiosity_pass);
+    CHECK_MESSAGE(sphere.shadow_rays, "a point light and a diffuse sphere: shadow rays light the sphere");
+    // Two facing walls under a point light: pass one has no emitter to distribute (a point light
+    // never feeds it), so the walls' direct light is pass two's.
+    const TwoPassPlan walls =
+        plan_two_pass(SceneInventory{.diffuse_surfaces = 2, .facing_pairs = 1, .point_lights = 1}, {});
+    CHECK_MESSAGE(!walls.radiosity_pass, "no emitter: a point light does not feed pass one");
+    CHECK_MESSAGE(walls.shadow_rays, "the walls are lit by the point light, directly: shadow rays");
+    // An area light over a diffuse sphere, nothing meshed: no pass one, shadow rays to the emitter.
+    const TwoPassPlan lamp = plan_two_pass(SceneInventory{.emitters = 1, .other_diffuse = 2}, {});
+    CHECK(!lamp.radiosity_pass);
+    CHECK_MESSAGE(lamp.shadow_rays, "the spheres are not in B: shadow rays to the emitter");
+  }
+
+  TEST_CASE("pass two at a hit: k_r + k_t ≤ 1 is a rule per channel, not across channels" *
+            doctest::description("task=4")) {
+    // two_pass_shading.hpp: refused when k_r + k_t > 1 *in a channel*. k_r = (0.9, 0, 0.1) and
+    // k_t = (0, 0.9, 0.9) sum to 0.9, 0.9 and 1.0 channel by channel: allowed (the largest k_r plus
+    // the largest k_t, 0.9 + 0.9, is no channel's sum). With D = (0.1, 0.2, 0.3), I_r = (1, 2, 4),
+    // I_t = (2, 1, 0.5):
+    //   red   0.1 + 0.9·1 + 0·2     = 1.0
+    //   green 0.2 + 0·2   + 0.9·1   = 1.1
+    //   blue  0.3 + 0.1·4 + 0.9·0.5 = 1.15
+    Color got(0.0);
+    REQUIRE_NOTHROW(got = second_pass_radiance(Color(0.1, 0.2, 0.3), Color(0.9, 0.0, 0.1), Color(1, 2, 4),
+                                               Color(0.0, 0.9, 0.9), Color(2, 1, 0.5)));
+    CHECK(got.r == doctest::Approx(1.0).epsilon(1e-15));
+    CHECK(got.g == doctest::Approx(1.1).epsilon(1e-15));
+    CHECK(got.b == doctest::Approx(1.15).epsilon(1e-15));
+    // One channel over 1 is enough to refuse: green 0.5 + 0.6 = 1.1, the others 0.
+    CHECK_THROWS_AS(static_cast<void>(second_pass_radiance(Color(0.0), Color(0.0, 0.5, 0.0), Color(1.0),
+                                                           Color(0.0, 0.6, 0.0), Color(1.0))),
+                    std::invalid_argument);
+  }
+}
+
+TEST_SUITE("lesson13") {
+  TEST_CASE("surface coordinates on a trapezoid whose slanted sides meet just behind its first edge" *
+            doctest::description("task=2")) {
+    // p0 = (0,0,0), p1 = (1,0,0), p2 = (5,1,0), p3 = (0,1,0): the sides p0p3 (x = 0) and p1p2
+    // (x = 1 + 4v) meet at v = −¼, so the quadratic's second root is −¼ for every point, smaller in
+    // magnitude than the true v when v > ¼: then the true root is the *larger* one, q/k2, not k0/q.
+    // By hand for P(½, ½) = p0 + ½e + ½f + ¼g = (1.5, 0.5, 0), with e = (1, 0), f = (0, 1),
+    // g = p0 − p1 + p2 − p3 = (4, 0), h = (1.5, 0.5):
+    //   k2 = cross(g, f) = 4, k1 = cross(e, f) + cross(h, g) = 1 − 2 = −1, k0 = cross(h, e) = −½;
+    //   4v² − v − ½ = 0: Δ = 1 + 8 = 9, q = −(k1 + sign(k1)·3)/2 = 2, roots q/k2 = ½ and k0/q = −¼;
+    //   then u = (h − f v)/(e + g v) = (1.5, 0)/(3, 0) = ½.
+    // And P(¼, ¾) = (0.25 + 0.1875·4, 0.75, 0) = (1, 0.75, 0): roots ¾ and −¼.
+    const std::array<Point3, 4> q{Point3(0, 0, 0), Point3(1, 0, 0), Point3(5, 1, 0), Point3(0, 1, 0)};
+    const Vec2 half = surface_coordinates(q, Point3(1.5, 0.5, 0));
+    CHECK_MESSAGE(half.y == doctest::Approx(0.5).epsilon(1e-14),
+                  "v = ½ is the root q/k2 of 4v² − v − ½ = 0; the other root, k0/q = −¼, is outside [0, 1]");
+    CHECK(half.x == doctest::Approx(0.5).epsilon(1e-14));
+    const Vec2 other = surface_coordinates(q, Point3(1.0, 0.75, 0));
+    CHECK(other.x == doctest::Approx(0.25).epsilon(1e-14));
+    CHECK(other.y == doctest::Approx(0.75).epsilon(1e-14));
+    check_uv(q, 0.9, 0.3, 1e-12);  // the forward map, for a point not worked out by hand
+  }
+}
+
+TEST_SUITE("lesson13") {
+  TEST_CASE(
+      "hard case: a point a rounding error past the hypotenuse is clamped to its row's last cell, weights "
+      "adding to 1" *
+      doctest::description("task=3")) {
+    // two_pass_shading.hpp: a point a rounding error past u + v = 1 belongs to its row's last "up"
+    // triangle, and the patch index is below n². Here u is the coordinate past the edge, so
+    // ⌊u·n⌋ lands one column beyond the row's last cell i = n − 1 − j and must be clamped to it.
+    //   n = 2, (½ + 1e-12, ½): j = ⌊1⌋ = 1, ⌊1 + 2e-12⌋ = 1 > n − 1 − j = 0, so i = 0: up(0, 1),
+    //   patch 3 (row 1 starts at 1·(4 − 1) = 3); the point is its corner (i + 1, j) = (1, 1).
+    //   n = 4, (¾ + 1e-12, ¼): j = 1, ⌊3 + 4e-12⌋ = 3 > 4 − 1 − 1 = 2, so i = 2; row 1 starts at
+    //   1·(8 − 1) = 7 and lists up(0,1) = 7, down(0,1) = 8, up(1,1) = 9, down(1,1) = 10,
+    //   up(2,1) = 11; the point is its corner (3, 1), weight 1 on corner 1.
+    struct Case {
+      Vec2 uv;
+      int n;
+      std::size_t patch;
+    };
+    for (const Case& c : {Case{Vec2(0.5 + 1e-12, 0.5), 2, 3}, Case{Vec2(0.75 + 1e-12, 0.25), 4, 11}}) {
+      const PatchCell cell = locate_patch(c.uv, c.n, 0, 3);
+      INFO("n = " << c.n << ", (u, v) = (" << c.uv.x << ", " << c.uv.y << ")");
+      CHECK_MESSAGE(cell.patch == c.patch, "⌊u·n⌋ is clamped to the row's last column n − 1 − j: patch "
+                                               << c.patch << " (of " << c.n * c.n << ")");
+      CHECK(cell.corners == 3);
+      CHECK(cell.weight[1] == doctest::Approx(1.0).epsilon(1e-9));
+      double sum = 0;
+      for (double w : cell.weight) {
+        CHECK(w >= 0.0);
+        sum += w;
+      }
+      CHECK(sum == doctest::Approx(1.0).epsilon(1e-12));
+    }
+    // Past the hypotenuse in both coordinates: n = 1, (¼, ¾ + 1e-9), s = ¼, t = ¾ + 1e-9, s + t = 1 + 1e-9.
+    // The point is taken at the hypotenuse's nearest point along the ray from corner 0, (s, t)/(s + t):
+    // weights (0, ¼/(1 + 1e-9), (¾ + 1e-9)/(1 + 1e-9)), which add up to 1 (two_pass_shading.hpp);
+    // dividing one coordinate and not the other leaves a sum of about 1 + 7.5e-10.
+    const PatchCell past = locate_patch(Vec2(0.25, 0.75 + 1e-9), 1, 0, 3);
+    CHECK(past.patch == 0);
+    double sum = 0;
+    for (double w : past.weight) {
+      CHECK(w >= 0.0);
+      sum += w;
+    }
+    CHECK_MESSAGE(
+        sum == doctest::Approx(1.0).epsilon(1e-12),
+        "the corner weights add up to 1 even a hair past the hypotenuse: both s and t are divided by s + t");
+    CHECK(past.weight[1] == doctest::Approx(0.25 / (1 + 1e-9)).epsilon(1e-12));
+    CHECK(past.weight[2] == doctest::Approx((0.75 + 1e-9) / (1 + 1e-9)).epsilon(1e-12));
+  }
+}

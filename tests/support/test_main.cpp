@@ -21,6 +21,7 @@
 #include <thread>
 
 #include "illum/core/error.hpp"
+#include "support/heap_guard.hpp"
 
 // A stub's exception is reported by name and hint, not as "unknown exception",
 // so a student sees which function is still to be written.
@@ -144,10 +145,12 @@ class WatchdogListener : public doctest::IReporter {
   void test_run_start() override {}
   void test_run_end(const doctest::TestRunStats&) override {}
   void test_case_start(const doctest::TestCaseData& test) override {
+    illum::test::heap_guard_test_started(test.m_name);
     if (active_watchdog != nullptr) active_watchdog->started(test.m_name);
   }
   void test_case_reenter(const doctest::TestCaseData&) override {}
   void test_case_end(const doctest::CurrentTestCaseStats&) override {
+    illum::test::heap_guard_test_ended();
     if (active_watchdog != nullptr) active_watchdog->ended();
   }
   void test_case_exception(const doctest::TestCaseException&) override {}

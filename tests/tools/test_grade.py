@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import csv
 import io
+import importlib.util
 import json
 import os
 import re
@@ -1169,6 +1170,46 @@ class CheckStudentEditionOptionsTest(unittest.TestCase):
                 self.assertIn(words, done.stderr)
                 self.assertNotIn("Traceback", done.stderr)
                 self.assertFalse(work.exists(), "nothing may be made before the options are checked")
+
+
+class CheckStudentEditionCommandsTest(unittest.TestCase):
+    """check_student_edition.py --lesson runs the commands of the edition's own README: they are read
+    from its "Build, test and grade your code" block, NN replaced, each by what it does; a README that
+    lacks one is a problem named, not a command guessed."""
+
+    def load(self):
+        tools = Path(__file__).resolve().parents[2] / "tools"
+        sys.path.insert(0, str(tools))
+        spec = importlib.util.spec_from_file_location("check_student_edition", tools / "check_student_edition.py")
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        from grading.edition import student_readme
+        return module, student_readme
+
+    def test_the_editions_readme_holds_every_student_command(self) -> None:
+        module, student_readme = self.load()
+        root = Path(__file__).resolve().parents[2]
+        with tempfile.TemporaryDirectory() as folder:
+            edition = Path(folder)
+            text = student_readme(root, ["lessons/13_two_pass/README.md", "exercises/13_two_pass/README.md"], ["13"])
+            (edition / "README.md").write_text(text, encoding="utf-8")
+            commands, problems = module.readme_commands(edition, "13")
+            self.assertEqual(problems, [])
+            self.assertEqual(commands["configure"], ["cmake", "--preset", "student"])
+            self.assertEqual(commands["build"][:4], ["cmake", "--build", "--preset", "student"])
+            self.assertIn("tests_lesson13", commands["build"])
+            self.assertEqual(commands["test"], ["build/student/bin/tests_lesson13", "-ts=lesson13"])
+            self.assertEqual(commands["program"][0], "build/student/bin/lesson13")
+            self.assertEqual(commands["grade"], ["tools/grade", "--student", "13"])
+            # Without the test command the check names the gap.
+            (edition / "README.md").write_text(
+                "\n".join(line for line in text.splitlines() if "tests_lessonNN -ts" not in line), encoding="utf-8")
+            _, problems = module.readme_commands(edition, "13")
+            self.assertEqual(problems, ["the edition's README.md has no test command in its student block"])
+            (edition / "README.md").write_text("# illum — student edition\n", encoding="utf-8")
+            _, problems = module.readme_commands(edition, "13")
+            self.assertEqual(len(problems), 1)
+            self.assertIn("no ```sh block", problems[0])
 
 
 if __name__ == "__main__":

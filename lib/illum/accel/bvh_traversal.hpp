@@ -20,7 +20,13 @@
 // hit ([t, t], [t, ∞), a shadow ray ending on a surface) must still reach the
 // box. The triangle tests use the range itself: it stays closed, a hit at
 // exactly range.lo or range.hi counts, as brute force counts it.
-// Each node whose box test is done counts as one node visit; each ray–triangle test as one test.
+// The counters (both functions): each call *adds* to `counters`, never resets
+// or overwrites it, since one TraversalCounters sums a whole picture and the
+// lesson's tables divide those sums by the rays (shadow rays included):
+//   rays += 1 per call, hit or miss, closest hit and any hit alike;
+//   nodes_visited += 1 per node whose box test is done, the root's included
+//     (a ray that misses the root's box still counts 1);
+//   triangle_tests += 1 per ray–triangle test.
 #include <cstdint>
 #include <optional>
 #include <span>

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "illum/core/error.hpp"
 
@@ -21,6 +23,20 @@ double max_component(const Vec3& v) { return std::max({v.x, v.y, v.z}); }
 // tiny mesh far away (its cells may be a few ulps wide); more exit slack costs nothing.
 constexpr double listing_slack = 8.0 * std::numeric_limits<double>::epsilon();
 constexpr double exit_slack = 64.0 * std::numeric_limits<double>::epsilon();
+
+// The walk (grid_dda.cpp, lesson 08's exercise) hands the grid a cell to open; one outside the grid
+// would index past its cell lists. Name the mistake instead of reading out of bounds.
+void check_walk_cell(const GridFrame& frame, const DdaWalk& walk) {
+  for (int a = 0; a < 3; ++a)
+    if (walk.cell[a] < 0 || walk.cell[a] >= frame.cells[a])
+      throw std::logic_error("UniformGrid: the 3DDA walk (dda_start/dda_step) gave the cell (" +
+                             std::to_string(walk.cell[0]) + ", " + std::to_string(walk.cell[1]) + ", " +
+                             std::to_string(walk.cell[2]) + "), outside the grid's " +
+                             std::to_string(frame.cells[0]) + " × " + std::to_string(frame.cells[1]) + " × " +
+                             std::to_string(frame.cells[2]) +
+                             " cells (indices 0 … cells − 1): a walk that leaves the grid must end with "
+                             "done = true, and the entry cell must be clamped inside (grid_dda.hpp)");
+}
 
 }  // namespace
 
@@ -116,6 +132,7 @@ std::optional<AccelHit> UniformGrid::intersect(const Ray& ray, TraversalCounters
   };
   const Ray segment = walked(ray);
   for (DdaWalk walk = dda_start(frame_, segment); !walk.done; dda_step(frame_, segment, walk)) {
+    check_walk_cell(frame_, walk);
     test_cell(walk.cell);
     // The hit lies in this cell: nothing closer remains. The exit is a rounded crossing
     // (P0 + s·ω reaching a rounded boundary): a hit within a few ulps of |s| of it may lie in
@@ -142,8 +159,10 @@ bool UniformGrid::occluded(const Ray& ray, TraversalCounters& counters) const {
   };
   // Any hit in range will do, wherever it lies.
   const Ray segment = walked(ray);
-  for (DdaWalk walk = dda_start(frame_, segment); !walk.done; dda_step(frame_, segment, walk))
+  for (DdaWalk walk = dda_start(frame_, segment); !walk.done; dda_step(frame_, segment, walk)) {
+    check_walk_cell(frame_, walk);
     if (blocked_in(walk.cell)) return true;
+  }
   return false;
 }
 

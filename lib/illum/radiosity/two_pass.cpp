@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 
 #include "illum/core/error.hpp"
 #include "illum/core/frame.hpp"
@@ -82,6 +83,23 @@ void tessellate_sphere(const Sphere& s, int rings, std::vector<Patch>& out) {
       }
       out.push_back(std::move(p));
     }
+}
+
+// The patch lesson 13's locate_patch (an exercise) found for a point of `surface`, checked before it
+// indexes the surface's patches: a cell past the end or a wrong corner count would read another
+// surface's radiosity, or past the arrays, in silence. The message names the mistake.
+std::size_t located_patch(const RadiositySurface& surface, const PatchCell& cell, int n, int m) {
+  const std::size_t corners = surface.polygon.size();
+  if (cell.patch >= surface.patch_count || static_cast<std::size_t>(cell.corners) != corners)
+    throw std::logic_error(
+        "locate_patch gave patch " + std::to_string(cell.patch) + " with " + std::to_string(cell.corners) +
+        " corners for a " +
+        (corners == 4 ? "quad meshed " + std::to_string(n) + " × " + std::to_string(m)
+                      : "triangle meshed with n = " + std::to_string(n)) +
+        ", which has patches 0 … " + std::to_string(surface.patch_count - 1) + " of " +
+        std::to_string(corners) +
+        " corners: a point on the far edge belongs to the last cell (two_pass_shading.hpp)");
+  return surface.first_patch + cell.patch;
 }
 
 }  // namespace
@@ -229,8 +247,7 @@ Color radiosity_at(const TwoPassMesh& mesh, const CornerRadiosity& corners, std:
   const auto [n, m] = mesh.grid[static_cast<std::size_t>(s)];
   const PatchCell cell =
       locate_patch(surface_coordinates(surface.polygon, x), n, m, static_cast<int>(surface.polygon.size()));
-  const std::array<Color, 4>& c =
-      corners[surface.first_patch + std::min(cell.patch, surface.patch_count - 1)];
+  const std::array<Color, 4>& c = corners[located_patch(surface, cell, n, m)];
   Color b(0.0);
   for (int k = 0; k < cell.corners; ++k)
     b += cell.weight[static_cast<std::size_t>(k)] * c[static_cast<std::size_t>(k)];
@@ -310,7 +327,7 @@ CausticPass caustic_pass(const Scene& scene, const TwoPassMesh& mesh, std::uint6
             const auto [gn, gm] = mesh.grid[static_cast<std::size_t>(s)];
             const PatchCell cell = locate_patch(surface_coordinates(surface.polygon, hit->point), gn, gm,
                                                 static_cast<int>(surface.polygon.size()));
-            const std::size_t j = surface.first_patch + std::min(cell.patch, surface.patch_count - 1);
+            const std::size_t j = located_patch(surface, cell, gn, gm);
             const Patch& patch = mesh.radiosity.patches[j];
             deposits[t].emplace_back(j, patch.reflectance * power / patch.area);
           }

@@ -44,9 +44,9 @@ TwoPassPlan plan_two_pass(const SceneInventory& scene, const TwoPassRequest& req
   } else {
     plan.max_depth = request.max_depth;
     if (scene.heaviest_specular < 1.0 && scene.heaviest_specular > 0.0) {
-      const int useful =
-          static_cast<int>(std::ceil(std::log(contribution_threshold) / std::log(scene.heaviest_specular)));
-      plan.max_depth = std::min(plan.max_depth, std::max(useful, 1));
+      // Compared in double: a weight a hair below 1 needs more levels than an int holds.
+      const double useful = std::ceil(std::log(contribution_threshold) / std::log(scene.heaviest_specular));
+      if (useful < plan.max_depth) plan.max_depth = std::max(static_cast<int>(useful), 1);
     }
     why += std::string(plan.refraction ? "  glass: reflected and refracted rays"
                                        : "  mirrors only: reflected rays, no refracted ones") +

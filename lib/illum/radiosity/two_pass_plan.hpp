@@ -58,12 +58,19 @@ struct TwoPassPlan {
 //   emitter and at least one facing pair. A wall and a light have no pair:
 //   pass two lights the wall directly, there is nothing to solve.
 // * the caustic pass runs when it is requested and the scene has an
-//   emitter, a mirror or glass, and a diffuse surface to receive; it forces
-//   pass one, whose patches carry the deposits and spread them further.
+//   emitter, a mirror or glass, and a diffuse surface pass one meshes
+//   (diffuse_surfaces > 0; a diffuse sphere, other_diffuse, has no patches
+//   to receive); it forces pass one, whose patches carry the deposits and
+//   spread them further.
 // * reflected rays when there is a mirror or glass (glass reflects totally
 //   inside); refracted rays when there is glass; none of either → depth 0.
-// * the depth limit is the request, cut as lesson 06's plan cuts it: to the
-//   first depth d with heaviest_specular^d < contribution_threshold.
+// * the depth limit is the request (kept when it is smaller), cut as lesson
+//   06's plan cuts it: to the first depth d with heaviest_specular^d ≤
+//   contribution_threshold, at or below it (0.3 → 6, as 0.3^5 > 1/1024 ≥
+//   0.3^6; 0.5 → 10, as 0.5^10 = 1/1024 exactly). No cut when
+//   heaviest_specular is 1: lossless glass never falls to the threshold;
+//   nor, in practice, when it is a hair below 1 (1 − 1e-12 needs about
+//   7·10¹² levels, far more than an int holds: count in double).
 // * shadow rays when a light reaches a diffuse surface whose direct light B
 //   does not hold: any point light with a diffuse surface (meshed or not);
 //   an emitter with other_diffuse > 0, or with diffuse_surfaces > 0 when

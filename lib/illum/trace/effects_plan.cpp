@@ -65,9 +65,11 @@ EffectsPlan plan_effects(const Scene& scene, int max_depth) {
     why += "  no secondary rays: depth limit 0\n";
   } else if (heaviest < 1.0) {
     // Depth d weighs at most heaviest^d: stop where that is below the threshold.
-    const int useful = static_cast<int>(std::ceil(std::log(contribution_threshold) / std::log(heaviest)));
+    // Compared in double: a weight a hair below 1 (1 − 1e-12) needs about 7·10¹² levels, more than
+    // an int holds (the conversion would be undefined, and in practice INT_MIN: depth 1).
+    const double useful = std::ceil(std::log(contribution_threshold) / std::log(heaviest));
     if (useful < plan.max_depth) {
-      plan.max_depth = std::max(useful, 1);
+      plan.max_depth = std::max(static_cast<int>(useful), 1);
       why += "  max(k_r + k_t) = " + std::to_string(heaviest) + ": depth " + std::to_string(plan.max_depth) +
              " already weighs < 1/1024, the depth limit is cut to it\n";
     }

@@ -15,10 +15,11 @@
 //   the first surface (there is no glass to see a light through);
 // * no light → no shadow rays (I_own is the ambient and emitted terms alone);
 // * the depth limit is cut to 0 without secondary rays, and otherwise to the
-//   depth where the heaviest path weight max(k_r + k_t)^d falls below
-//   `contribution_threshold` (Whitted's adaptive tree depth, with the bound
-//   taken over the materials instead of per ray). Only this last cut may
-//   change a pixel, by less than the threshold times the brightest radiance.
+//   first depth d where the heaviest path weight max(k_r + k_t)^d falls to
+//   `contribution_threshold` or below (0.5 gives 10: 0.5^10 = 1/1024
+//   exactly), Whitted's adaptive tree depth with the bound taken over the
+//   materials instead of per ray. Only this last cut may
+//   change a pixel, by at most the threshold times the brightest radiance.
 #include <string>
 
 #include "illum/trace/scene.hpp"
