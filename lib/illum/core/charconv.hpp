@@ -3,7 +3,8 @@
 // Apple's in Xcode) had no floating-point from_chars until LLVM 20, so a call
 // of std::from_chars(first, last, double&) does not compile on a Mac or with
 // Clang's libc++ 14; every parse of a double in illum goes through here
-// instead (CTest `one_home` checks it).
+// instead (CI's libc++ stage, tools/check_platforms libcxx, fails on a
+// direct call).
 //
 // Same contract as std::from_chars with std::chars_format::general: no
 // leading whitespace, no '+', no hexadecimal; "inf", "infinity" and
