@@ -75,7 +75,11 @@ function(illum_collect_sources)
   endforeach()
 
   # A stub's parameters are unused until the student writes the body.
-  set_source_files_properties(${all_stubs} PROPERTIES COMPILE_OPTIONS "-Wno-unused-parameter")
+  if(MSVC)
+    set_source_files_properties(${all_stubs} PROPERTIES COMPILE_OPTIONS "/wd4100")
+  else()
+    set_source_files_properties(${all_stubs} PROPERTIES COMPILE_OPTIONS "-Wno-unused-parameter")
+  endif()
 
   list(LENGTH selected n_units)
   message(STATUS "illum: ${n_units} exercise unit(s); ILLUM_EXERCISES='${ILLUM_EXERCISES}'")

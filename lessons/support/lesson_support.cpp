@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "illum/core/atomic_file.hpp"
+#include "illum/core/charconv.hpp"
 #include "illum/core/error.hpp"
 #include "illum/core/memory_budget.hpp"
 
@@ -74,7 +75,7 @@ CLI::Validator finite_number() {
   return CLI::Validator(
       [](std::string& s) {
         double value = 0;
-        const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), value);
+        const auto [end, error] = from_chars_double(s.data(), s.data() + s.size(), value);
         return error == std::errc() && end == s.data() + s.size() && std::isfinite(value)
                    ? std::string()
                    : "'" + s + "' is not a finite number";

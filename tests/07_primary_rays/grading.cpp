@@ -88,7 +88,9 @@ TEST_SUITE("lesson07") {
                                            3, {.threshold = 0.0, .max_depth = 3});
     CHECK_MESSAGE(run.rays == 20, "a constant image needs its (W+1)(H+1) pixel corners and nothing else");
     CHECK(rec.points.size() == 20);
-    for (const auto& [p, n] : rec.counts()) {
+    for (const auto& [point, times] : rec.counts()) {
+      const auto p = point;  // copies: doctest's macros capture them (Clang < 16 cannot capture a binding)
+      const auto n = times;
       INFO("point (", p.first, ", ", p.second, ")");
       CHECK_MESSAGE(p.first == std::floor(p.first), "only pixel corners (integer points) are traced");
       CHECK(p.second == std::floor(p.second));
@@ -106,7 +108,8 @@ TEST_SUITE("lesson07") {
     const AdaptiveRun run = adaptive_image(rec.wrap([](double, double) { return Color(0.5); }), 2, 1,
                                            {.threshold = 0.1, .max_depth = 3, .min_depth = 2});
     CHECK_MESSAGE(run.rays == 45, "min_depth 2: the first spacing is 1/4 pixel, nothing finer is traced");
-    for (const auto& [p, n] : rec.counts()) CHECK(4 * p.first == std::floor(4 * p.first));
+    for (const auto& point_times : rec.counts())
+      CHECK(4 * point_times.first.first == std::floor(4 * point_times.first.first));
     SampleLattice lattice(1, 1, 2);
     const ImageFunction f = [](double, double) { return Color(0.0); };
     LatticeRow row(lattice, 0, f);
@@ -130,7 +133,9 @@ TEST_SUITE("lesson07") {
       CHECK_MESSAGE(run.rays == static_cast<std::uint64_t>(side * side),
                     "threshold 0 must cut every square whose corners differ, down to the maximum depth");
       CHECK(rec.counts().size() == static_cast<std::size_t>(side * side));
-      for (const auto& [p, n] : rec.counts()) {
+      for (const auto& [point, times] : rec.counts()) {
+        const auto p = point;  // copies: doctest's macros capture them (Clang < 16 cannot capture a binding)
+        const auto n = times;
         const double step = 1.0 / (1 << d);
         CHECK_MESSAGE(p.first / step == std::floor(p.first / step), "no point finer than 1/2^d is traced");
         CHECK(n == 1);
@@ -149,7 +154,9 @@ TEST_SUITE("lesson07") {
                                            3, 2, {.threshold = 0.0, .max_depth = 2});
     CHECK_MESSAGE(run.rays == 117, "13 × 9 lattice points, each traced once");
     CHECK(rec.points.size() == 117);
-    for (const auto& [p, n] : rec.counts()) {
+    for (const auto& [point, times] : rec.counts()) {
+      const auto p = point;  // copies: doctest's macros capture them (Clang < 16 cannot capture a binding)
+      const auto n = times;
       INFO("point (", p.first, ", ", p.second, ") was traced ", n, " times");
       CHECK(n == 1);
     }

@@ -5,7 +5,9 @@
 // conservativeness against the mesh they bound.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "illum/accel/brute_force.hpp"

@@ -15,7 +15,8 @@ TEST_SUITE("stability") {
     const IndexedTriangles flake = sphereflake({.levels = 1, .slices = 12});
     const TriangleSet set = TriangleSet::from_mesh(flake.vertices, flake.faces, "sphereflake");
     const BruteForce brute(set);
-    for (const auto& [w, h] : {std::pair{64, 48}, std::pair{50, 50}}) {
+    for (const auto& size : {std::pair{64, 48}, std::pair{50, 50}}) {
+      const int w = size.first, h = size.second;  // not a binding: CAPTURE captures it (Clang < 16 cannot)
       CAPTURE(w);
       const PinholeCamera camera(Point3(1.3, -3.9, 2.2), Point3(0.0, 0.0, 0.1), Vec3(0, 0, 1), 45.0, w, h);
       const ItemBuffer buffer = ItemBuffer::render(camera, set, 1e-6);

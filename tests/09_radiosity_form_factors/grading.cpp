@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 #include "closed_forms.hpp"
@@ -164,7 +165,10 @@ TEST_SUITE("lesson09") {
 
   TEST_CASE("point to polygon: a parallel rectangle above a corner, against Howell B-3" *
             doctest::description("task=1,2")) {
-    for (const auto& [a, b, c] : {std::tuple{1.0, 1.0, 1.0}, {2.0, 0.5, 1.5}, {3.0, 1.0, 0.2}}) {
+    for (const auto& abc : {std::tuple{1.0, 1.0, 1.0}, {2.0, 0.5, 1.5}, {3.0, 1.0, 0.2}}) {
+      // Not a structured binding: doctest's macros capture a, b and c, which Clang < 16 refuses for a
+      // binding.
+      const double a = std::get<0>(abc), b = std::get<1>(abc), c = std::get<2>(abc);
       const Patch rect = ceiling_rect(0, a, 0, b, c);
       INFO("a = ", a, ", b = ", b, ", c = ", c);
       CHECK(point_polygon_form_factor({0, 0, 0}, up, rect) ==
@@ -254,7 +258,8 @@ TEST_SUITE("lesson09") {
   TEST_CASE("contour integral: parallel rectangles against Howell C-11 (unit squares at 1: 0.19982)" *
             doctest::description("task=3")) {
     CHECK(parallel_rectangles(1, 1, 1) == doctest::Approx(0.19982).epsilon(1e-4));  // the table value
-    for (const auto& [a, b, c] : {std::tuple{1.0, 1.0, 1.0}, {2.0, 1.0, 0.5}, {0.3, 0.7, 2.0}}) {
+    for (const auto& abc : {std::tuple{1.0, 1.0, 1.0}, {2.0, 1.0, 0.5}, {0.3, 0.7, 2.0}}) {
+      const double a = std::get<0>(abc), b = std::get<1>(abc), c = std::get<2>(abc);
       INFO("a = ", a, ", b = ", b, ", c = ", c);
       CHECK(polygon_polygon_form_factor(floor_rect(0, a, 0, b, 0), ceiling_rect(0, a, 0, b, c)) ==
             doctest::Approx(parallel_rectangles(a, b, c)).epsilon(1e-10));
@@ -266,7 +271,8 @@ TEST_SUITE("lesson09") {
   TEST_CASE("hard case: adjacent perpendicular rectangles sharing an edge, against Howell C-14 (0.20004)" *
             doctest::description("task=3")) {
     CHECK(perpendicular_rectangles_common_edge(1, 1, 1) == doctest::Approx(0.20004).epsilon(1e-4));
-    for (const auto& [w, h, l] : {std::tuple{1.0, 1.0, 1.0}, {0.5, 2.0, 1.5}, {2.0, 0.25, 1.0}}) {
+    for (const auto& whl : {std::tuple{1.0, 1.0, 1.0}, {0.5, 2.0, 1.5}, {2.0, 0.25, 1.0}}) {
+      const double w = std::get<0>(whl), h = std::get<1>(whl), l = std::get<2>(whl);
       // Floor x ∈ [0, w], y ∈ [0, l]; wall x = 0, z ∈ [0, h]: they share the edge x = z = 0.
       const Patch floor = floor_rect(0, w, 0, l, 0), wall = wall_x(0, 0, l, 0, h, true);
       INFO("w = ", w, ", h = ", h, ", l = ", l, ": ln r is singular along the shared edge");

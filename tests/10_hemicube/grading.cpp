@@ -142,7 +142,8 @@ TEST_SUITE("lesson10") {
   }
 
   TEST_CASE("top-face delta is cos φ_i cos φ_p / (π r²) ΔA (eq. 10.2)" * doctest::description("task=1")) {
-    for (auto [x, y] : std::vector<std::array<double, 2>>{{0, 0}, {0.3, -0.7}, {-0.95, 0.95}, {1, 0}}) {
+    for (const auto& xy : std::vector<std::array<double, 2>>{{0, 0}, {0.3, -0.7}, {-0.95, 0.95}, {1, 0}}) {
+      const double x = xy[0], y = xy[1];  // not a binding: INFO captures them (Clang < 16 cannot)
       const Vec3 p(x, y, 1);  // pixel centre on the top face; patch normal and face normal are both +z
       const double r = length(p), cos_i = p.z / r, cos_p = p.z / r;
       const double expected = cos_i * cos_p / (kPi * r * r) * 0.01;
@@ -152,8 +153,9 @@ TEST_SUITE("lesson10") {
   }
 
   TEST_CASE("side-face delta uses r² = y² + z² + 1 (eq. 10.3, erratum 6)" * doctest::description("task=2")) {
-    for (auto [y, z] : std::vector<std::array<double, 2>>{{0, 0.5}, {0.4, 0.1}, {-0.9, 0.99}, {0.2, 0}}) {
-      const Vec3 p(1, y, z);  // pixel centre on the face x = 1
+    for (const auto& yz : std::vector<std::array<double, 2>>{{0, 0.5}, {0.4, 0.1}, {-0.9, 0.99}, {0.2, 0}}) {
+      const double y = yz[0], z = yz[1];  // not a binding: INFO captures them (Clang < 16 cannot)
+      const Vec3 p(1, y, z);              // pixel centre on the face x = 1
       const double r = length(p);
       const double cos_i = dot(p, Vec3(0, 0, 1)) / r;  // angle to the patch's normal: z/r
       const double cos_p = dot(p, Vec3(1, 0, 0)) / r;  // angle to the face's normal: 1/r

@@ -32,8 +32,10 @@ std::vector<Patch> cube_at(const Point3& o, double s, int m) {
 
 TEST_SUITE("stability") {
   TEST_CASE("hard case: a closed cube far from the origin, tiny and huge, still sums to one") {
-    for (const auto& [origin, size] : std::vector<std::pair<Point3, double>>{
+    for (const auto& placed : std::vector<std::pair<Point3, double>>{
              {Point3(1e4, -2e4, 3e3), 1.0}, {Point3(0.0), 1e-3}, {Point3(-5e3, 0, 0), 1e4}}) {
+      const Point3 origin = placed.first;  // not a binding: INFO captures it (Clang < 16 cannot)
+      const double size = placed.second;
       const auto cube = cube_at(origin, size, 3);
       const FormFactorMatrix f = hemicube_form_factors(cube, 20, true, 11);
       double worst = 0;

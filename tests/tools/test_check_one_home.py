@@ -56,6 +56,29 @@ class OneHomeTest(unittest.TestCase):
         })
         self.assertEqual(found, [])
 
+    def test_platform_calls_are_found_outside_their_homes(self) -> None:
+        code = "\n".join([
+            "#include <unistd.h>",                                    # 1
+            "#include <sys/stat.h>",                                  # 2
+            "const int k = __builtin_ctz(mask);",                     # 3
+            "__attribute__((flatten)) void f();",                     # 4
+            "__extension__ typedef __int128 Int128;",                 # 5
+            "asm volatile(\"\" : : \"r\"(x));",                       # 6
+            "void* p = std::aligned_alloc(64, n);",                   # 7
+            "clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);",            # 8
+            "const bool tty = ::isatty(2) != 0;",                     # 9
+            "const int k2 = std::countr_zero(mask);",                 # 10: standard C++
+            "// isatty(2) and __builtin_ctz in a comment",            # 11
+            "#include <csignal>",                                     # 12: standard C++
+        ])
+        found = self.problems({"lessons/01_x/main.cpp": code, "lib/illum/core/platform.cpp": code,
+                               "tests/io/x.cpp": code})
+        self.assertEqual(sorted({int(p.split(":")[1]) for p in found if p.startswith("lessons/")}),
+                         [1, 2, 3, 4, 5, 6, 7, 8, 9])
+        # platform.cpp may call the system, not use compiler extensions; tests are not checked.
+        self.assertEqual(sorted({int(p.split(":")[1]) for p in found if p.startswith("lib/")}), [3, 4, 5, 6])
+        self.assertFalse([p for p in found if p.startswith("tests/")])
+
     def test_the_tree_has_every_helper_in_its_home(self) -> None:
         self.assertEqual(check_one_home.problems_found(check_one_home.ROOT), [])
 

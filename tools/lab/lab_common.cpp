@@ -10,6 +10,7 @@
 #include <stb_image_write.h>  // the implementation is compiled in lib/illum/core/image.cpp
 #include <nlohmann/json.hpp>
 
+#include "illum/core/charconv.hpp"
 #include "illum/io/embedded_scenes.hpp"
 
 namespace illum::lab {
@@ -72,7 +73,7 @@ double Query::number(const std::string& name, double lo, double hi) const {
   const std::string& v = value(name);
   double x = 0;
   const char* end = v.data() + v.size();
-  const auto [ptr, ec] = std::from_chars(v.data(), end, x, std::chars_format::general);
+  const auto [ptr, ec] = from_chars_double(v.data(), end, x);
   if (ec != std::errc() || ptr != end || !std::isfinite(x))
     throw BadRequest("parameter '" + name + "' = " + shown(v) + " is not a finite number");
   if (x < lo || x > hi)

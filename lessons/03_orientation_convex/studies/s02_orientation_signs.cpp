@@ -6,6 +6,9 @@
 // exact oracle in 128-bit integers (independent of both predicates).
 #include <algorithm>
 #include <cmath>
+#include <compare>
+#include <cstdint>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -17,14 +20,40 @@
 namespace illum::lesson03 {
 namespace {
 
-__extension__ typedef __int128 Int128;
+// An unsigned 128-bit number, high word first (so that <=> orders it), in
+// standard C++: no compiler's __int128.
+struct Unsigned128 {
+  std::uint64_t high = 0, low = 0;
+  auto operator<=>(const Unsigned128&) const = default;
+};
+
+// x·y exactly, from the products of 32-bit halves (schoolbook multiplication).
+Unsigned128 multiply(std::uint64_t x, std::uint64_t y) {
+  const std::uint64_t x0 = x & 0xffffffffu, x1 = x >> 32, y0 = y & 0xffffffffu, y1 = y >> 32;
+  const std::uint64_t p00 = x0 * y0, p01 = x0 * y1, p10 = x1 * y0, p11 = x1 * y1;
+  const std::uint64_t middle = (p00 >> 32) + (p01 & 0xffffffffu) + (p10 & 0xffffffffu);  // < 3·2³²
+  return {p11 + (p01 >> 32) + (p10 >> 32) + (middle >> 32), (middle << 32) | (p00 & 0xffffffffu)};
+}
+
+int sign_of(std::int64_t x) { return (x > 0) - (x < 0); }
+
+// The sign of p·q − r·s, exactly, for |p|, |q|, |r|, |s| < 2⁶³.
+int sign_of_difference(std::int64_t p, std::int64_t q, std::int64_t r, std::int64_t s) {
+  const int left = sign_of(p) * sign_of(q), right = sign_of(r) * sign_of(s);
+  if (left != right) return left > right ? 1 : -1;
+  if (left == 0) return 0;
+  const auto magnitude = [](std::int64_t x) { return static_cast<std::uint64_t>(std::llabs(x)); };
+  const auto order = multiply(magnitude(p), magnitude(q)) <=> multiply(magnitude(r), magnitude(s));
+  const int bigger = order > 0 ? 1 : (order < 0 ? -1 : 0);
+  return left > 0 ? bigger : -bigger;
+}
 
 // The exact sign for coordinates on the grid k·2⁻⁵² in [0, 32): integers
-// below 2⁵⁷ once scaled, products below 2¹¹⁶. Independent of both predicates.
+// below 2⁵⁷ once scaled, differences below 2⁵⁸, products below 2¹¹⁶.
+// Independent of both predicates.
 int oracle(const Vec2& a, const Vec2& b, const Vec2& c) {
-  const auto s = [](double x) { return static_cast<Int128>(std::ldexp(x, 52)); };
-  const Int128 det = (s(a.x) - s(c.x)) * (s(b.y) - s(c.y)) - (s(a.y) - s(c.y)) * (s(b.x) - s(c.x));
-  return (det > 0) - (det < 0);
+  const auto s = [](double x) { return static_cast<std::int64_t>(std::ldexp(x, 52)); };
+  return sign_of_difference(s(a.x) - s(c.x), s(b.y) - s(c.y), s(a.y) - s(c.y), s(b.x) - s(c.x));
 }
 
 int sign_of(double x) { return (x > 0.0) - (x < 0.0); }

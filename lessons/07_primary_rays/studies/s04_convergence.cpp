@@ -82,7 +82,8 @@ void s04_convergence(OutputFolder& out, const Shot& shot, const Image& reference
                    e.max, t.seconds});
     report_progress("lesson07", "convergence study", static_cast<int>(k + 1), static_cast<int>(knobs.size()));
   }
-  for (auto& [method, c] : curves) {
+  for (auto& [method, curve] : curves) {
+    const Curve& c = curve;  // a reference the lambda below may capture (Clang < 16 cannot capture a binding)
     std::vector<std::size_t> order(c.rays.size());  // by rays, for the crossing
     for (std::size_t k = 0; k < order.size(); ++k) order[k] = k;
     std::sort(order.begin(), order.end(),

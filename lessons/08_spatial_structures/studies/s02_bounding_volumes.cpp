@@ -63,7 +63,8 @@ std::vector<Ray> rays_around(const BoundingSphere& ball, int count) {
 void s02_bounding_volumes(OutputFolder& out, const Settings& settings) {
   const bool quick = settings.quick;
   Table table({"mesh", "volume", "slabs", "hits per 26-DOP hit", "ns per ray test"});
-  for (const auto& [name, points] : bounding_study_meshes()) {
+  for (const auto& [mesh_name, points] : bounding_study_meshes()) {
+    const std::string& name = mesh_name;  // captured by `row` below (Clang < 16 cannot capture a binding)
     const BoundingSphere sphere = BoundingSphere::around(points);
     const OrientedBox obb = OrientedBox::around(points);
     const KDop d6 = KDop::around(points, 6), d14 = KDop::around(points, 14), d18 = KDop::around(points, 18),

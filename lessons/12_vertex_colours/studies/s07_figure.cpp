@@ -77,7 +77,7 @@ Solved s07_figure(OutputFolder& out, const Settings& settings) {
           run_index++, runs);
       // Processor time of every thread: other programs' load does not inflate it.
       const std::clock_t cpu_start = std::clock();
-      Solved s = [&] {
+      Solved s = [&, visibility = visibility] {  // a copy: Clang < 16 cannot capture a binding
         const ScopedThreadCount scoped(t);
         return solve(settings, edge, k,
                      {.visibility = visibility,

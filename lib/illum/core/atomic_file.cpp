@@ -13,16 +13,22 @@
 #include <system_error>
 #include <vector>
 
+#if defined(_WIN32)
+#error \
+    "illum's files, folders and child processes are written against POSIX (Linux, macOS): on Windows, build in WSL 2 or the development container (README, \"Windows\")"
+#endif
 #include <dirent.h>
 #include <fcntl.h>
 #include <limits.h>
 #include <sys/file.h>
-#include <sys/random.h>
 #include <sys/stat.h>
-#include <sys/syscall.h>
+#if defined(__linux__)
+#include <sys/syscall.h>  // getdents64: listing a folder inside a signal handler
+#endif
 #include <unistd.h>
 
 #include "illum/core/child_process.hpp"
+#include "illum/core/platform.hpp"
 
 namespace illum {
 
@@ -47,12 +53,10 @@ std::string errno_text(int e) {
 std::string random_letters(std::size_t count) {
   static const char letters[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
   std::vector<unsigned char> bytes(count);
-  std::size_t got = 0;
-  while (got < count) {
-    const ssize_t n = ::getrandom(bytes.data() + got, count - got, 0);
-    if (n < 0 && errno == EINTR) continue;
-    if (n < 0) fail(std::string("cannot draw a random temporary name: ") + std::strerror(errno));
-    got += static_cast<std::size_t>(n);
+  try {
+    random_bytes(bytes);
+  } catch (const std::runtime_error& e) {
+    fail(std::string("cannot draw a random temporary name: ") + e.what());
   }
   std::string out;
   for (const unsigned char b : bytes) out += letters[b % (sizeof letters - 1)];
@@ -242,6 +246,7 @@ void say(const char* text) {
   [[maybe_unused]] const ssize_t w = ::write(2, text, n);
 }
 
+#if defined(__linux__)
 struct RawDirent {  // the kernel's linux_dirent64
   std::uint64_t ino;
   std::int64_t off;
@@ -285,6 +290,11 @@ void remove_tree_raw(const char* path) noexcept {
   ::close(dir);
   ::rmdir(path);
 }
+#else
+// Elsewhere no folder listing is async-signal-safe (readdir allocates): the
+// staging folder stays, and the next run on the output folder removes it as stale.
+void remove_tree_raw(const char* path) noexcept { ::rmdir(path); }
+#endif
 
 constexpr int handled_signals[] = {SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE, SIGABRT};
 

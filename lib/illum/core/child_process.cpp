@@ -6,6 +6,10 @@
 #include <cstring>
 #include <stdexcept>
 
+#if defined(_WIN32)
+#error \
+    "illum's files, folders and child processes are written against POSIX (Linux, macOS): on Windows, build in WSL 2 or the development container (README, \"Windows\")"
+#endif
 #include <fcntl.h>
 #include <poll.h>
 #include <spawn.h>
@@ -23,8 +27,14 @@ std::atomic<pid_t> running_tool{0};
 struct Pipe {
   int fd[2] = {-1, -1};
   Pipe() {
+#if defined(__linux__) || defined(__FreeBSD__)
     if (::pipe2(fd, O_CLOEXEC) != 0)
       throw std::runtime_error(std::string("cannot make a pipe: ") + std::strerror(errno));
+#else  // macOS has no pipe2: close-on-exec set just after (the spawn below is the only exec)
+    if (::pipe(fd) != 0 || ::fcntl(fd[0], F_SETFD, FD_CLOEXEC) != 0 ||
+        ::fcntl(fd[1], F_SETFD, FD_CLOEXEC) != 0)
+      throw std::runtime_error(std::string("cannot make a pipe: ") + std::strerror(errno));
+#endif
   }
   ~Pipe() { close_both(); }
   void close_end(int k) {

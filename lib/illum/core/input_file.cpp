@@ -3,6 +3,10 @@
 #include <cerrno>
 #include <cstring>
 
+#if defined(_WIN32)
+#error \
+    "illum's files, folders and child processes are written against POSIX (Linux, macOS): on Windows, build in WSL 2 or the development container (README, \"Windows\")"
+#endif
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>

@@ -7,8 +7,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <sys/resource.h>
-#include <unistd.h>
+#if !defined(_WIN32)
+#include <sys/resource.h>  // getrlimit: POSIX
+#endif
+
+#include "illum/core/platform.hpp"
 
 namespace illum {
 
@@ -76,9 +79,8 @@ const MemoryLimit& fixed_limit() {
   static const MemoryLimit fixed = [] {
     const double eight_gib = 8.0 * 1024 * 1024 * 1024;
     MemoryLimit best{eight_gib, "half this machine's memory, at most 8 GiB"};
-    const double page = static_cast<double>(::sysconf(_SC_PAGESIZE));
-    const double pages = static_cast<double>(::sysconf(_SC_PHYS_PAGES));
-    if (page > 0 && pages > 0) consider(best, 0.5 * page * pages, best.reason);
+    const double physical = physical_memory_bytes();
+    if (physical > 0) consider(best, 0.5 * physical, best.reason);
     consider_cgroups(best);
     return best;
   }();
@@ -89,7 +91,9 @@ const MemoryLimit& fixed_limit() {
 
 MemoryLimit memory_limit() {
   MemoryLimit best = fixed_limit();
-  // The process's own limits, against what it uses now.
+  // The process's own limits, against what it uses now (POSIX; /proc/self/status on Linux only, so
+  // elsewhere the whole limit counts).
+#if !defined(_WIN32)
   struct rlimit limit {};
   if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
     consider(best, 0.5 * std::max(0.0, static_cast<double>(limit.rlim_cur) - status_bytes("VmSize")),
@@ -97,6 +101,7 @@ MemoryLimit memory_limit() {
   if (::getrlimit(RLIMIT_DATA, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
     consider(best, 0.5 * std::max(0.0, static_cast<double>(limit.rlim_cur) - status_bytes("VmData")),
              "half of what the data-segment limit (ulimit -d) leaves");
+#endif
   return best;
 }
 

@@ -7,6 +7,8 @@
 #include <limits>
 #include <vector>
 
+#include "illum/core/platform.hpp"
+
 namespace illum {
 
 class Stopwatch {
@@ -24,7 +26,11 @@ class Stopwatch {
 // Keeps the compiler from removing a computation whose result is unused.
 template <class T>
 inline void do_not_optimize(const T& value) {
+#if defined(__GNUC__) || defined(__clang__)
   asm volatile("" : : "r,m"(value) : "memory");
+#else
+  escape(&value);  // an opaque call (core/platform.hpp)
+#endif
 }
 
 // Nanoseconds per call of `call(i)`, for i = 0, 1, 2, …: the loop doubles its

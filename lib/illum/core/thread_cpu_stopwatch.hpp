@@ -2,7 +2,7 @@
 // The calling thread's CPU time, for timings on a shared machine: wall time
 // (Stopwatch) also counts the slices other processes took from this thread;
 // this counts only the time the thread ran. Studies and benchmarks only.
-#include <ctime>
+#include "illum/core/platform.hpp"
 
 namespace illum {
 
@@ -13,11 +13,7 @@ class ThreadCpuStopwatch {
   double seconds() const { return now() - start_; }
 
  private:
-  static double now() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-  }
+  static double now() { return thread_cpu_seconds(); }
   double start_;
 };
 

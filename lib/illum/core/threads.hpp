@@ -16,9 +16,20 @@
 //   }                                  // the previous count again, even after a throw
 #ifdef _OPENMP
 #include <omp.h>
+#else
+#include <algorithm>
+#include <thread>
 #endif
 
 namespace illum {
+
+// Whether this build has OpenMP (CMake option ILLUM_OPENMP): without it a
+// parallel region runs on the calling thread alone.
+#ifdef _OPENMP
+inline constexpr bool has_openmp = true;
+#else
+inline constexpr bool has_openmp = false;
+#endif
 
 // The threads the next parallel region will use (OpenMP's omp_get_max_threads).
 inline int available_threads() {
@@ -52,7 +63,7 @@ inline int processor_count() {
 #ifdef _OPENMP
   return omp_get_num_procs();
 #else
-  return 1;
+  return std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
 #endif
 }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "illum/core/charconv.hpp"
+
 namespace illum {
 
 std::string bound_text(double value) {
@@ -16,7 +18,7 @@ CLI::Validator number_range(double lo, double hi) {
   return CLI::Validator(
       [lo, hi](std::string& s) -> std::string {
         double value = 0;
-        const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), value);
+        const auto [end, error] = from_chars_double(s.data(), s.data() + s.size(), value);
         if (s.empty() || error != std::errc() || end != s.data() + s.size() || !std::isfinite(value))
           return "'" + s + "' is not a finite number";
         if (!(value >= lo && value <= hi))

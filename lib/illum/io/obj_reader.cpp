@@ -10,6 +10,7 @@
 #include <limits>
 #include <vector>
 
+#include "illum/core/charconv.hpp"
 #include "illum/core/memory_budget.hpp"
 
 namespace illum {
@@ -60,7 +61,7 @@ double parse_number(std::string_view token, std::size_t line, const char* what) 
   std::string_view digits = token;
   if (!digits.empty() && digits.front() == '+') digits.remove_prefix(1);  // from_chars takes no '+'
   double value = 0;
-  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  const auto [end, error] = from_chars_double(digits.data(), digits.data() + digits.size(), value);
   if (digits.empty() || digits.front() == '+' || error == std::errc::invalid_argument ||
       end != digits.data() + digits.size())
     throw ObjError(line, std::string(what) + " '" + shown(token) + "' is not a number");

@@ -5,11 +5,11 @@
 #include <new>
 #include <string_view>
 
-#include <unistd.h>
 #include <CLI/CLI.hpp>
 
 #include "illum/core/atomic_file.hpp"
 #include "illum/core/error.hpp"
+#include "illum/core/platform.hpp"
 #include "illum/core/threads.hpp"
 
 namespace illum {
@@ -60,6 +60,9 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
   if (options.threads > cores)
     std::cerr << info.id << ": note: --threads " << options.threads << " is more than this machine's "
               << cores << " cores\n";
+  if (options.threads > 1 && !has_openmp)
+    std::cerr << info.id
+              << ": note: this build has no OpenMP (ILLUM_OPENMP): every loop runs on one thread\n";
   // Every file the body writes is staged (core/atomic_file): if it throws or a
   // signal stops it, the output folder is left as it was; commit() moves the
   // run's files in at the end (validate before write, by construction).
@@ -108,7 +111,7 @@ int run_in_transaction(const std::string& id, WriteTransaction& transaction,
 }
 
 void report_progress(const std::string& id, const std::string& what, int done, int total) {
-  static const bool terminal = ::isatty(2) != 0;
+  static const bool terminal = stderr_is_terminal();
   std::cerr << (terminal ? "\r" : "") << id << ": " << what << " " << done << "/" << total
             << (terminal && done < total ? "" : "\n") << std::flush;
 }

@@ -10,8 +10,9 @@
 // The kernel's loop compiled twice where the compiler can pick at load time
 // (GCC and Clang on x86-64 Linux): for AVX2 (four lanes a vector, about twice
 // the speed) and for the baseline. Both do the same IEEE operations in the
-// same order (no fused multiply-add: -std=c++20 leaves contraction off), so
-// the values are the same bit for bit on every machine.
+// same order: no fused multiply-add, because the build turns contraction off
+// (-ffp-contract=off, CMakeLists.txt; GCC would otherwise fuse on arm64 and
+// on FMA targets), so the values are the same bit for bit on every machine.
 #if defined(__x86_64__) && defined(__linux__) && (defined(__GNUC__) || defined(__clang__))
 #define ILLUM_AVX2_CLONE __attribute__((target_clones("avx2", "default")))
 #else

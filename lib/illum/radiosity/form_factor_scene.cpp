@@ -45,7 +45,7 @@ bool coplanar(const Patch& a, const Patch& b) {
 // OpenMP region (it would terminate the program), so the first one is kept
 // and rethrown here: a stub's NotImplemented reaches the caller.
 template <class Body>
-void parallel_for(long count, long chunk, Body body) {
+void parallel_for(long count, [[maybe_unused]] long chunk, Body body) {  // chunk: read by the pragma only
   std::exception_ptr error;
 #pragma omp parallel for schedule(dynamic, chunk)
   for (long k = 0; k < count; ++k) {

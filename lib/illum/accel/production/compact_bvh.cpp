@@ -19,10 +19,15 @@
 #include <immintrin.h>
 #endif
 
+#include "illum/core/platform.hpp"
+
 namespace illum {
 namespace {
 
 constexpr float float_infinity = std::numeric_limits<float>::infinity();
+
+// The index of the lowest set bit of a non-zero lane mask (std::countr_zero: no compiler builtin).
+inline int lowest_lane(int mask) { return std::countr_zero(static_cast<unsigned>(mask)); }
 // 2γ₃ in float: the widening of each exit, as slab_far_slack is for doubles.
 constexpr float float_far_slack = 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 // A stacked child is skipped when its entry lies beyond the best hit by more than this (relative).
@@ -456,8 +461,7 @@ constexpr std::size_t huge_page = std::size_t{1} << 21;
 void* allocate_layout(std::size_t bytes, std::size_t alignment) {
   if (bytes < huge_page) return ::operator new(bytes, std::align_val_t(alignment));
   const std::size_t rounded = (bytes + huge_page - 1) / huge_page * huge_page;
-  void* block = std::aligned_alloc(huge_page, rounded);
-  if (block == nullptr) throw std::bad_alloc();
+  void* block = ::operator new(rounded, std::align_val_t(huge_page));  // throws std::bad_alloc
 #if defined(__linux__) && defined(MADV_HUGEPAGE)
   madvise(block, rounded, MADV_HUGEPAGE);  // advice only: without huge pages the block still works
 #endif
@@ -465,10 +469,7 @@ void* allocate_layout(std::size_t bytes, std::size_t alignment) {
 }
 
 void free_layout(void* block, std::size_t bytes, std::size_t alignment) {
-  if (bytes < huge_page)
-    ::operator delete(block, std::align_val_t(alignment));
-  else
-    std::free(block);
+  ::operator delete(block, std::align_val_t(bytes < huge_page ? alignment : huge_page));
 }
 
 CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
@@ -543,8 +544,8 @@ std::optional<AccelHit> CompactBvh::intersect_avx(const Ray& ray, TraversalCount
 }
 #endif
 
-__attribute__((flatten)) std::optional<AccelHit> CompactBvh::intersect_sse2(
-    const Ray& ray, TraversalCounters& counters) const {
+ILLUM_FLATTEN std::optional<AccelHit> CompactBvh::intersect_sse2(const Ray& ray,
+                                                                 TraversalCounters& counters) const {
   return closest<false>(ray, counters);
 }
 
@@ -614,13 +615,13 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
       int inside = clip_node(r, node_ref, lo, reach_float, entry);
 #endif
       if (inside != 0 && (inside & (inside - 1)) == 0) {  // one child entered: no sorting, no stack
-        const int k = __builtin_ctz(inside);
+        const int k = lowest_lane(inside);
         current = Entry{node.child[k], node.count[k], entry[k]};
         prefetch(&current);
         continue;
       }
-      if (inside != 0 && __builtin_popcount(static_cast<unsigned>(inside)) == 2) {  // the common pair
-        const int k0 = __builtin_ctz(inside), k1 = __builtin_ctz(inside & (inside - 1));
+      if (inside != 0 && std::popcount(static_cast<unsigned>(inside)) == 2) {  // the common pair
+        const int k0 = lowest_lane(inside), k1 = lowest_lane(inside & (inside - 1));
         const int near = entry[k1] < entry[k0] ? k1 : k0, far = near == k0 ? k1 : k0;
         stack[top] = Entry{node.child[far], node.count[far], entry[far]};
         prefetch(&stack[top++]);
@@ -632,7 +633,7 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
         Entry hits[compact_bvh_width];
         int n = 0;
         for (; inside != 0; inside &= inside - 1) {
-          const int k = __builtin_ctz(inside);
+          const int k = lowest_lane(inside);
           // Insertion by entry, nearest first.
           int j = n++;
           for (; j > 0 && hits[j - 1].enter > entry[k]; --j) hits[j] = hits[j - 1];
@@ -661,7 +662,7 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
         int lanes = may_hit(pr, packs_[p], t_lo, t_hi, sure_lo, &sure) & ((1 << used) - 1);
 #endif
         for (; lanes != 0; lanes &= lanes - 1) {
-          const int lane = __builtin_ctz(lanes);
+          const int lane = lowest_lane(lanes);
           const std::uint32_t k = 4 * p + static_cast<std::uint32_t>(lane);
           if ((sure.lanes >> lane & 1) != 0) {
             // A sure hit: its exact test waits (its data loading meanwhile), its bound on t culls now.
@@ -719,7 +720,7 @@ bool CompactBvh::occluded(const Ray& ray, TraversalCounters& counters) const {
       counters.nodes_visited += compact_bvh_width;
       float entry[compact_bvh_width];
       for (int inside = clip_node(r, node, lo, hi, entry); inside != 0; inside &= inside - 1) {
-        const int k = __builtin_ctz(inside);
+        const int k = lowest_lane(inside);
         stack[top++] = Entry{node.child[k], node.count[k], entry[k]};
       }
     } else {
@@ -727,7 +728,7 @@ bool CompactBvh::occluded(const Ray& ray, TraversalCounters& counters) const {
       for (std::uint32_t p = current.child, left = current.count; left > 0; ++p, left -= std::min(left, 4u)) {
         int lanes = may_hit(pr, packs_[p], t_lo, t_hi) & ((1 << std::min(left, 4u)) - 1);
         for (; lanes != 0; lanes &= lanes - 1)
-          if (illum::intersect(ray, triangles_[4 * p + static_cast<std::uint32_t>(__builtin_ctz(lanes))]))
+          if (illum::intersect(ray, triangles_[4 * p + static_cast<std::uint32_t>(lowest_lane(lanes))]))
             return true;
       }
     }

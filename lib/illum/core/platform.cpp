@@ -1,0 +1,92 @@
+#include "illum/core/platform.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <ctime>
+#include <stdexcept>
+#include <string>
+
+#if defined(_WIN32)
+#define NOMINMAX
+#define WIN32_LEAN_AND_MEAN
+#include <bcrypt.h>
+#include <io.h>
+#include <windows.h>
+#pragma comment(lib, "bcrypt")
+#else
+#include <unistd.h>
+#if defined(__APPLE__)
+#include <sys/random.h>  // getentropy
+#include <sys/sysctl.h>
+#endif
+#endif
+
+namespace illum {
+
+double thread_cpu_seconds() {
+#if defined(_WIN32)
+  FILETIME created, exited, kernel, user;
+  if (GetThreadTimes(GetCurrentThread(), &created, &exited, &kernel, &user)) {
+    const auto ticks = [](const FILETIME& t) {
+      return static_cast<double>((static_cast<unsigned long long>(t.dwHighDateTime) << 32) | t.dwLowDateTime);
+    };
+    return 1e-7 * (ticks(kernel) + ticks(user));  // 100 ns ticks
+  }
+#elif defined(CLOCK_THREAD_CPUTIME_ID)
+  timespec t{};
+  if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t) == 0)
+    return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+#endif
+  return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
+}
+
+bool stderr_is_terminal() {
+#if defined(_WIN32)
+  return _isatty(_fileno(stderr)) != 0;
+#else
+  return ::isatty(STDERR_FILENO) != 0;
+#endif
+}
+
+double physical_memory_bytes() {
+#if defined(_WIN32)
+  MEMORYSTATUSEX status{};
+  status.dwLength = sizeof status;
+  return GlobalMemoryStatusEx(&status) ? static_cast<double>(status.ullTotalPhys) : 0.0;
+#elif defined(__APPLE__)
+  unsigned long long bytes = 0;
+  std::size_t size = sizeof bytes;
+  return ::sysctlbyname("hw.memsize", &bytes, &size, nullptr, 0) == 0 ? static_cast<double>(bytes) : 0.0;
+#else
+  const long page = ::sysconf(_SC_PAGESIZE), pages = ::sysconf(_SC_PHYS_PAGES);
+  return page > 0 && pages > 0 ? static_cast<double>(page) * static_cast<double>(pages) : 0.0;
+#endif
+}
+
+void random_bytes(std::span<unsigned char> bytes) {
+#if defined(_WIN32)
+  if (!BCRYPT_SUCCESS(BCryptGenRandom(nullptr, bytes.data(), static_cast<ULONG>(bytes.size()),
+                                      BCRYPT_USE_SYSTEM_PREFERRED_RNG)))
+    throw std::runtime_error("cannot draw random bytes: BCryptGenRandom failed");
+#else
+  // getentropy (glibc 2.25, macOS 10.12, the BSDs) gives at most 256 bytes a call.
+  for (std::size_t done = 0; done < bytes.size();) {
+    const std::size_t n = std::min<std::size_t>(256, bytes.size() - done);
+    if (::getentropy(bytes.data() + done, n) != 0)
+      throw std::runtime_error(std::string("cannot draw random bytes: ") + std::strerror(errno));
+    done += n;
+  }
+#endif
+}
+
+void escape(const volatile void* pointer) {
+  // Out of line, and the address stored where another thread could read it:
+  // the compiler must assume the value behind it is used.
+  static std::atomic<const volatile void*> sink{nullptr};
+  sink.store(pointer, std::memory_order_relaxed);
+}
+
+}  // namespace illum
