@@ -67,7 +67,7 @@ std::string read_input_file(const std::filesystem::path& file, const std::string
   if (!S_ISREG(st.st_mode)) {
     if (S_ISDIR(st.st_mode))
       throw InputFileError("this is a directory; the " + what + " must be a regular file");
-    throw InputFileError("this is " + file_kind_name(st.st_mode) + ", not a regular file: a " + what +
+    throw InputFileError("this is " + file_kind_name(st.st_mode) + ", not a regular file: the " + what +
                          " must be a regular file");
   }
   const auto size = static_cast<std::uint64_t>(st.st_size);
