@@ -428,7 +428,7 @@ TEST_SUITE("lesson07") {
         return Color(x == bright_x && y == bright_y ? 1.0 : 0.0);
       });
       const AdaptiveRun run = adaptive_image(f, 1, 1, {.threshold = 0.5, .max_depth = 1});
-      INFO("the bright corner at (", cx, ", ", cy, ")");
+      INFO("the bright corner at (", bright_x, ", ", bright_y, ")");
       check_grey(run.pixels[0], 0.0625);
       CHECK_MESSAGE(run.rays == 9, "the corners disagree: cut once, 3 × 3 lattice points");
     }
