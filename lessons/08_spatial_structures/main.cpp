@@ -20,6 +20,35 @@
 #include "studies/studies.hpp"
 #include "support/lesson_support.hpp"
 
+namespace {
+
+// The demonstration: the sphereflake through the chosen structure, on every thread; then the
+// thread study of §6 on the same picture.
+void render_demonstration(illum::OutputFolder& out, const illum::lesson08::Settings& settings) {
+  using namespace illum;
+  using namespace lesson08;
+  const TriangleSet set = flake_with_about(settings.quick ? 5000 : 100000);
+  const std::unique_ptr<TriangleAccel> structure = make_accel(set, {.kind = settings.accel});
+  const PictureSize size = picture_size(settings.quick);
+  const FlakePicture picture =
+      render_flake(*structure, flake_camera(size.width, size.height), size.side, available_threads());
+  const TraversalCounters& c = picture.counters;
+  out.image(picture.image, "sphereflake",
+            "A sphereflake of " + std::to_string(set.size()) + " triangles through the " +
+                (settings.accel == AccelKind::bvh ? std::string("BVH") : to_string(settings.accel)) +
+                ", with a shadow ray per lit pixel");
+  const std::string counts = "rays " + std::to_string(c.rays) + "; nodes visited " +
+                             std::to_string(c.nodes_visited) + "; triangle tests " +
+                             std::to_string(c.triangle_tests) + "; triangles " + std::to_string(set.size()) +
+                             "; degenerate faces left out " + std::to_string(set.degenerate.size());
+  out.text("render_counts.txt", counts + "\n", "Work counted while rendering the sphereflake");
+  std::cout << "sphereflake through " << structure->name() << ": " << counts << "\n";
+
+  s06e_render_threads(out, settings, *structure, picture.image);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   using namespace illum;
   const ProgramInfo info{
@@ -59,26 +88,7 @@ int main(int argc, char** argv) {
           s06c_bvh_leaf_size(out, settings);
           s06d_octree_depth(out, settings);
 
-          // The demonstration: the sphereflake through the chosen structure, on every thread.
-          const TriangleSet set = flake_with_about(settings.quick ? 5000 : 100000);
-          const std::unique_ptr<TriangleAccel> structure = make_accel(set, {.kind = settings.accel});
-          const PictureSize size = picture_size(settings.quick);
-          const FlakePicture picture =
-              render_flake(*structure, flake_camera(size.width, size.height), size.side, available_threads());
-          const TraversalCounters& c = picture.counters;
-          out.image(picture.image, "sphereflake",
-                    "A sphereflake of " + std::to_string(set.size()) + " triangles through the " +
-                        (settings.accel == AccelKind::bvh ? std::string("BVH") : to_string(settings.accel)) +
-                        ", with a shadow ray per lit pixel");
-          const std::string counts = "rays " + std::to_string(c.rays) + "; nodes visited " +
-                                     std::to_string(c.nodes_visited) + "; triangle tests " +
-                                     std::to_string(c.triangle_tests) + "; triangles " +
-                                     std::to_string(set.size()) + "; degenerate faces left out " +
-                                     std::to_string(set.degenerate.size());
-          out.text("render_counts.txt", counts + "\n", "Work counted while rendering the sphereflake");
-          std::cout << "sphereflake through " << structure->name() << ": " << counts << "\n";
-
-          s06e_render_threads(out, settings, *structure, picture.image);
+          render_demonstration(out, settings);
         });
         run_section(info.id, "§8 The structures at work elsewhere in the course",
                     [&] { s08_form_factor_visibility(out, settings); });

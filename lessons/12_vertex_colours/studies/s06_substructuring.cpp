@@ -152,79 +152,74 @@ void s06_substructuring(OutputFolder& out, const Settings& settings) {
   const ShootingSettings shooting{.unshot_fraction = settings.quick ? 1e-2 : 1e-3};
   // On one thread, like lesson 11's study: the seconds compare the methods'
   // work, not how a loaded machine schedules two threads' barriers.
-  {
-    const ScopedThreadCount one_thread(1);
-    const std::vector<int> uniform_ks =
-        settings.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 3, 4, 6, 8};
-    const std::vector<double> thresholds = settings.quick
-                                               ? std::vector<double>{settings.threshold}
-                                               : std::vector<double>{0.2, 0.1, 0.05, 0.025, 0.0125};
-    // One step per solve: the reference, each uniform k, each threshold; the last line says N/N.
-    const int steps = 1 + static_cast<int>(uniform_ks.size() + thresholds.size());
-    int step = 0;
-    report_progress(program_id, "study: the uniformly fine reference", step++, steps);
-    const Solved reference = solve(settings, patch_edge, reference_k, shooting);
-    Table table({"scheme", "knob", "patches", "elements", "shots", "seconds", "flat_mean_error",
-                 "average_mean_error", "extrapolated_mean_error", "flat_max_error",
-                 "extrapolated_max_error"});
-    std::vector<std::pair<double, double>> uniform_mean, uniform_max;  // (elements, flat error)
-    // Each uniform mesh's four errors (flat and extrapolated, mean and largest), and each adaptive
-    // mesh's count of the uniform meshes it is more accurate than, measure by measure.
-    std::vector<std::array<double, 4>> uniform_errors;
-    Table beaten({"threshold", "adaptive elements", "uniform meshes", "less accurate on flat_max_error",
-                  "less accurate on extrapolated_max_error", "less accurate on flat_mean_error",
-                  "less accurate on extrapolated_mean_error"});
-    Table equal({"threshold", "adaptive elements", "flat_max_error", "uniform elements at that max error",
-                 "flat_mean_error", "uniform elements at that mean error"});
-    const auto add = [&](const std::string& scheme, const std::string& knob, const Solved& s,
-                         double seconds) {
-      const Errors e = errors_against(s, reference);
-      const auto elements = static_cast<double>(s.mesh.elements.size());
-      const std::array<double, 4> four{e.max[0], e.max[2], e.mean[0], e.mean[2]};
-      if (scheme == "uniform") {
-        uniform_mean.push_back({elements, e.mean[0]});
-        uniform_max.push_back({elements, e.max[0]});
-        uniform_errors.push_back(four);
-      } else {
-        std::array<std::int64_t, 4> less_accurate{};
-        for (const auto& u : uniform_errors)
-          for (std::size_t m = 0; m < 4; ++m) less_accurate[m] += u[m] > four[m] ? 1 : 0;
-        beaten.add_row({knob, static_cast<std::int64_t>(elements),
-                        static_cast<std::int64_t>(uniform_errors.size()), less_accurate[0], less_accurate[1],
-                        less_accurate[2], less_accurate[3]});
-        equal.add_row({knob, static_cast<std::int64_t>(elements), e.max[0],
-                       uniform_elements_at(uniform_max, e.max[0]), e.mean[0],
-                       uniform_elements_at(uniform_mean, e.mean[0])});
-      }
-      table.add_row({scheme, knob, static_cast<std::int64_t>(s.scene.patches.size()),
-                     static_cast<std::int64_t>(s.mesh.elements.size()),
-                     static_cast<std::int64_t>(s.solution.shots), seconds, e.mean[0], e.mean[1], e.mean[2],
-                     e.max[0], e.max[2]});
-    };
-    for (int k : uniform_ks) {
-      report_progress(program_id, "study: uniform k = " + std::to_string(k), step++, steps);
-      const Solved s = solve(settings, patch_edge, k, shooting);
-      add("uniform", std::to_string(k) + "x" + std::to_string(k), s, s.solution.seconds);
+  const ScopedThreadCount one_thread(1);
+  const std::vector<int> uniform_ks =
+      settings.quick ? std::vector<int>{1, 2} : std::vector<int>{1, 2, 3, 4, 6, 8};
+  const std::vector<double> thresholds = settings.quick ? std::vector<double>{settings.threshold}
+                                                        : std::vector<double>{0.2, 0.1, 0.05, 0.025, 0.0125};
+  // One step per solve: the reference, each uniform k, each threshold; the last line says N/N.
+  const int steps = 1 + static_cast<int>(uniform_ks.size() + thresholds.size());
+  int step = 0;
+  report_progress(program_id, "study: the uniformly fine reference", step++, steps);
+  const Solved reference = solve(settings, patch_edge, reference_k, shooting);
+  Table table({"scheme", "knob", "patches", "elements", "shots", "seconds", "flat_mean_error",
+               "average_mean_error", "extrapolated_mean_error", "flat_max_error", "extrapolated_max_error"});
+  std::vector<std::pair<double, double>> uniform_mean, uniform_max;  // (elements, flat error)
+  // Each uniform mesh's four errors (flat and extrapolated, mean and largest), and each adaptive
+  // mesh's count of the uniform meshes it is more accurate than, measure by measure.
+  std::vector<std::array<double, 4>> uniform_errors;
+  Table beaten({"threshold", "adaptive elements", "uniform meshes", "less accurate on flat_max_error",
+                "less accurate on extrapolated_max_error", "less accurate on flat_mean_error",
+                "less accurate on extrapolated_mean_error"});
+  Table equal({"threshold", "adaptive elements", "flat_max_error", "uniform elements at that max error",
+               "flat_mean_error", "uniform elements at that mean error"});
+  const auto add = [&](const std::string& scheme, const std::string& knob, const Solved& s, double seconds) {
+    const Errors e = errors_against(s, reference);
+    const auto elements = static_cast<double>(s.mesh.elements.size());
+    const std::array<double, 4> four{e.max[0], e.max[2], e.mean[0], e.mean[2]};
+    if (scheme == "uniform") {
+      uniform_mean.push_back({elements, e.mean[0]});
+      uniform_max.push_back({elements, e.max[0]});
+      uniform_errors.push_back(four);
+    } else {
+      std::array<std::int64_t, 4> less_accurate{};
+      for (const auto& u : uniform_errors)
+        for (std::size_t m = 0; m < 4; ++m) less_accurate[m] += u[m] > four[m] ? 1 : 0;
+      beaten.add_row({knob, static_cast<std::int64_t>(elements),
+                      static_cast<std::int64_t>(uniform_errors.size()), less_accurate[0], less_accurate[1],
+                      less_accurate[2], less_accurate[3]});
+      equal.add_row({knob, static_cast<std::int64_t>(elements), e.max[0],
+                     uniform_elements_at(uniform_max, e.max[0]), e.mean[0],
+                     uniform_elements_at(uniform_mean, e.mean[0])});
     }
-    for (double t : thresholds) {
-      report_progress(program_id, "study: adaptive, threshold " + fixed(t, 4), step++, steps);
-      double seconds = 0;
-      const Solved s = adaptive(settings, patch_edge, t, patch_edge / reference_k * 1.01, shooting, seconds);
-      add("adaptive", fixed(t, 4), s, seconds);
-    }
-    report_progress(program_id, "study: solved", steps, steps);
-    out.table(table, "substructuring",
-              "Uniform and adaptive substructuring of the box (" +
-                  std::to_string(reference.scene.patches.size()) + " patches): error against a uniform " +
-                  std::to_string(reference_k) + "x" + std::to_string(reference_k) + " solution (" +
-                  std::to_string(reference.mesh.elements.size()) +
-                  " elements), and time (adaptive: all its solves)");
-    out.table(equal, "equal_error",
-              "Elements a uniform mesh needs for each adaptive mesh's flat errors (log-log interpolation "
-              "between the uniform runs)");
-    out.table(beaten, "adaptive_against_uniform",
-              "How many of the uniform meshes each adaptive mesh is more accurate than, error by error");
+    table.add_row({scheme, knob, static_cast<std::int64_t>(s.scene.patches.size()),
+                   static_cast<std::int64_t>(s.mesh.elements.size()),
+                   static_cast<std::int64_t>(s.solution.shots), seconds, e.mean[0], e.mean[1], e.mean[2],
+                   e.max[0], e.max[2]});
+  };
+  for (int k : uniform_ks) {
+    report_progress(program_id, "study: uniform k = " + std::to_string(k), step++, steps);
+    const Solved s = solve(settings, patch_edge, k, shooting);
+    add("uniform", std::to_string(k) + "x" + std::to_string(k), s, s.solution.seconds);
   }
+  for (double t : thresholds) {
+    report_progress(program_id, "study: adaptive, threshold " + fixed(t, 4), step++, steps);
+    double seconds = 0;
+    const Solved s = adaptive(settings, patch_edge, t, patch_edge / reference_k * 1.01, shooting, seconds);
+    add("adaptive", fixed(t, 4), s, seconds);
+  }
+  report_progress(program_id, "study: solved", steps, steps);
+  out.table(table, "substructuring",
+            "Uniform and adaptive substructuring of the box (" +
+                std::to_string(reference.scene.patches.size()) + " patches): error against a uniform " +
+                std::to_string(reference_k) + "x" + std::to_string(reference_k) + " solution (" +
+                std::to_string(reference.mesh.elements.size()) +
+                " elements), and time (adaptive: all its solves)");
+  out.table(equal, "equal_error",
+            "Elements a uniform mesh needs for each adaptive mesh's flat errors (log-log interpolation "
+            "between the uniform runs)");
+  out.table(beaten, "adaptive_against_uniform",
+            "How many of the uniform meshes each adaptive mesh is more accurate than, error by error");
   study_plots(out);
 }
 
