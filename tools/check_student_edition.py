@@ -5,8 +5,9 @@ NotImplemented (so a student starts at 0 and every failure names the
 function still to write).
 
 Steps: build the ``student-edition`` target of a configured tree; check the
-edition holds no reference unit and no hidden test; configure and build it
-in a temporary folder; run each ``tests_lessonNN`` on suite ``lessonNN``
+edition holds no reference unit and no hidden test; configure it in a
+temporary folder and build what a student builds there (the lesson programs,
+the illum command, every ``tests_lessonNN``); run each ``tests_lessonNN`` on suite ``lessonNN``
 through the illum-grade reporter (every test of a lesson handed out must fail
 with NotImplemented, every test of a lesson shipped as reference code must
 pass); check that the grading_integrity test is
@@ -236,7 +237,10 @@ def main() -> int:
     with tempfile.TemporaryDirectory(prefix="illum-student-edition-") as temporary:
         work = args.work_dir or Path(temporary)
         command = ["cmake", "-S", str(edition), "-B", str(work), "-DCMAKE_BUILD_TYPE=Release", "-DILLUM_WERROR=ON"]
-        if not build.run_streaming(command).ok or not build.build(work, []).ok:
+        # What a student builds: the lesson programs, the illum command and every lesson's test
+        # program (not the stub twins, fuzz replays or benchmarks, which only instructors' checks use).
+        targets = ["programs"] + [f"tests_lesson{nn}" for nn in project.test_lessons(edition)]
+        if not build.run_streaming(command).ok or not build.build(work, targets).ok:
             print("check_student_edition: the student edition does not build", file=sys.stderr)
             return 2
         programs = grading_programs(work / "bin")

@@ -24,16 +24,9 @@
 // Chromium is Debian's /usr/bin/chromium (override with ILLUM_CHROMIUM), run
 // with flags that keep it from reaching for the network, and a fresh profile.
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
-import { pathToFileURL, fileURLToPath } from 'node:url';
-
-const INSTALL_HINT = 'run tools/install-deps (Debian packages chromium, nodejs, npm; then npm ci)';
-const CHROMIUM = process.env.ILLUM_CHROMIUM || '/usr/bin/chromium';
-const CHROMIUM_ARGS = [
-  '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-  '--disable-background-networking', '--disable-component-update', '--disable-sync',
-];
+import { pathToFileURL } from 'node:url';
+import { keepOffline, startChromium } from '../../tools/browser/chromium.mjs';
 
 function fatal(message) {
   console.error(`check_decks: cannot run: ${message}`);
@@ -186,22 +179,8 @@ async function checkDeck(browser, deck, timeoutMs) {
   const add = (slide, reason) => problems.push({ deck, slide, reason });
   const page = await browser.newPage();
   try {
-    await page.setRequestInterception(true);
-    page.on('request', (request) => {
-      const url = request.url();
-      if (/^(file|data|blob|about):/.test(url)) request.continue();
-      else {
-        add('-', `fetches ${url} from the network (a deck must work offline)`);
-        request.abort();
-      }
-    });
-    page.on('requestfailed', (request) => {
-      const url = request.url();
-      // Images are reported with their slide below; network requests above.
-      if (url.startsWith('file:') && request.resourceType() !== 'image')
-        add('-', `${request.resourceType()} failed to load: ${url} (${request.failure()?.errorText})`);
-    });
-    page.on('pageerror', (error) => add('-', `script error: ${error.message.split('\n')[0]}`));
+    // Images are reported with their slide below.
+    await keepOffline(page, (reason) => add('-', reason), 'a deck');
     await page.setViewport(DEFAULT_SIZE);
     await page.goto(pathToFileURL(deck).href, { waitUntil: 'load', timeout: timeoutMs });
     // Open the deck at its own size (the slides' viewBox), so one slide fills the window unscaled.
@@ -223,31 +202,13 @@ async function checkDeck(browser, deck, timeoutMs) {
 async function main() {
   const options = parseArgs(process.argv.slice(2));
   const decks = findDecks(options.paths);
-  if (!fs.existsSync(CHROMIUM)) fatal(`Chromium not found at ${CHROMIUM}: ${INSTALL_HINT}`);
-  let puppeteer;
-  try {
-    puppeteer = (await import('puppeteer-core')).default;
-  } catch (e) {
-    const here = path.dirname(fileURLToPath(import.meta.url));
-    fatal(`puppeteer-core is not installed (node_modules missing next to ${path.resolve(here, '../..')}): ` +
-          `${INSTALL_HINT}\n  (${e.message.split('\n')[0]})`);
-  }
   const watchdog = setTimeout(() => fatal(`gave up after ${options.timeout * (decks.length + 1)} s ` +
       '(Chromium hung? it must run headless with the network flags)'), options.timeout * 1000 * (decks.length + 1));
   watchdog.unref();
 
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'illum-chromium-'));
-  let browser;
+  const { browser, close } = await startChromium(fatal, { timeout: options.timeout });
   const all = [];
   try {
-    try {
-      browser = await puppeteer.launch({
-        executablePath: CHROMIUM, headless: true, args: CHROMIUM_ARGS, userDataDir: profile,
-        timeout: options.timeout * 1000,
-      });
-    } catch (e) {
-      fatal(`Chromium (${CHROMIUM}) did not start: ${e.message.split('\n')[0]}\n  ${INSTALL_HINT}`);
-    }
     for (const deck of decks) {
       let result;
       try {
@@ -261,8 +222,7 @@ async function main() {
       all.push(...result.problems);
     }
   } finally {
-    if (browser) await browser.close().catch(() => {});
-    fs.rmSync(profile, { recursive: true, force: true });
+    await close();
   }
   if (all.length) {
     console.log(`\ncheck_decks: ${all.length} problem(s):`);

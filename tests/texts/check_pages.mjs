@@ -16,17 +16,9 @@
 // could not run (no Chromium, no puppeteer-core, no such page).
 // Chromium is Debian's /usr/bin/chromium (override with ILLUM_CHROMIUM).
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
 import { pathToFileURL, fileURLToPath } from 'node:url';
-
-const INSTALL_HINT = 'run tools/install-deps (Debian packages chromium, nodejs, npm; then npm ci)';
-const CHROMIUM = process.env.ILLUM_CHROMIUM || '/usr/bin/chromium';
-const CHROMIUM_ARGS = [
-  '--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
-  '--disable-background-networking', '--disable-component-update', '--disable-sync',
-  '--allow-file-access-from-files',
-];
+import { keepOffline, startChromium } from '../../tools/browser/chromium.mjs';
 
 function fatal(message) {
   console.error(`check_pages: cannot run: ${message}`);
@@ -81,21 +73,7 @@ async function checkPage(browser, file, options) {
   const page = await browser.newPage();
   try {
     await page.setViewport({ width: 1100, height: 900 });
-    await page.setRequestInterception(true);
-    page.on('request', (request) => {
-      const url = request.url();
-      if (/^(file|data|blob|about):/.test(url)) request.continue();
-      else {
-        add(`fetches ${url} from the network (a page must work offline)`);
-        request.abort();
-      }
-    });
-    page.on('requestfailed', (request) => {
-      const url = request.url();
-      if (url.startsWith('file:') && request.resourceType() !== 'image')
-        add(`${request.resourceType()} failed to load: ${url} (${request.failure()?.errorText})`);
-    });
-    page.on('pageerror', (error) => add(`script error: ${error.message.split('\n')[0]}`));
+    await keepOffline(page, add, 'a page');
     await page.goto(pathToFileURL(file).href, { waitUntil: 'load', timeout: options.timeout * 1000 });
     await page.evaluate(() => document.fonts.ready.then(() => true));
     const seen = await page.evaluate(inspect);
@@ -128,25 +106,11 @@ async function checkPage(browser, file, options) {
 
 async function main() {
   const options = parseArgs(process.argv.slice(2));
-  let puppeteer;
-  try {
-    puppeteer = (await import('puppeteer-core')).default;
-  } catch (e) {
-    fatal(`puppeteer-core is not installed: ${INSTALL_HINT}`);
-  }
-  if (!fs.existsSync(CHROMIUM)) fatal(`Chromium is not installed at ${CHROMIUM}: ${INSTALL_HINT}`);
-  const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'illum-pages-'));
-  let browser;
+  const { browser, close } = await startChromium(fatal, {
+    extraArgs: ['--allow-file-access-from-files'], timeout: options.timeout,
+  });
   const all = [];
   try {
-    try {
-      browser = await puppeteer.launch({
-        executablePath: CHROMIUM, headless: true, args: CHROMIUM_ARGS, userDataDir: profile,
-        timeout: options.timeout * 1000,
-      });
-    } catch (e) {
-      fatal(`Chromium (${CHROMIUM}) did not start: ${e.message.split('\n')[0]}\n  ${INSTALL_HINT}`);
-    }
     for (const file of options.pages) {
       let result;
       try {
@@ -160,8 +124,7 @@ async function main() {
       all.push(...result.problems);
     }
   } finally {
-    if (browser) await browser.close().catch(() => {});
-    fs.rmSync(profile, { recursive: true, force: true });
+    await close();
   }
   if (all.length) {
     console.log(`\ncheck_pages: ${all.length} problem(s):`);

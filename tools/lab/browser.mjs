@@ -15,12 +15,10 @@
 // comes from anywhere but the lab. Exit status 2 when it cannot run
 // (no Chromium, no puppeteer-core), 1 when the page misbehaves.
 import fs from 'node:fs';
-import os from 'node:os';
 import path from 'node:path';
+import { startChromium } from '../browser/chromium.mjs';
 
-const CHROMIUM = process.env.ILLUM_CHROMIUM || '/usr/bin/chromium';
-const CHROMIUM_ARGS = ['--headless', '--no-sandbox', '--disable-gpu', '--no-first-run', '--disable-background-networking',
-  '--disable-component-update', '--disable-sync', '--disable-quic',
+const LAB_ARGS = [
   // Tabs behind the first one keep running (the test drives several at once).
   '--disable-background-timer-throttling', '--disable-renderer-backgrounding', '--disable-backgrounding-occluded-windows',
   // WebGL on the CPU (SwiftShader): this machine has no GPU, and Chromium asks for the opt-in.
@@ -35,17 +33,8 @@ const [mode, url, optionsFile, output] = process.argv.slice(2);
 if (!['test', 'bench', 'screenshots'].includes(mode) || !url || !optionsFile || !output)
   fatal('usage: node tools/lab/browser.mjs test|bench|screenshots URL OPTIONS.json OUTPUT');
 const options = JSON.parse(fs.readFileSync(optionsFile, 'utf8'));
-let puppeteer;
-try {
-  puppeteer = (await import('puppeteer-core')).default;
-} catch (e) {
-  fatal('puppeteer-core is missing: run tools/install-deps (npm ci)');
-}
-if (!fs.existsSync(CHROMIUM)) fatal(`no Chromium at ${CHROMIUM}: run tools/install-deps (Debian package chromium)`);
-
-const profile = fs.mkdtempSync(path.join(os.tmpdir(), 'illum-lab-chromium-'));
-const browser = await puppeteer.launch({ executablePath: CHROMIUM, args: [...CHROMIUM_ARGS, `--user-data-dir=${profile}`],
-  defaultViewport: { width: 1400, height: 1000 } });
+const { browser, close } = await startChromium(fatal, {
+  extraArgs: LAB_ARGS, launch: { defaultViewport: { width: 1400, height: 1000 } } });
 const seen = { requests: [], failed: [], errors: [], console: [] };
 const t0 = Date.now();
 const log = message => console.error(`browser.mjs: ${((Date.now() - t0) / 1000).toFixed(1)} s: ${message}`);
@@ -268,6 +257,5 @@ try {
   console.error(`browser.mjs: ${e.stack || e}`);
   process.exitCode = 1;
 } finally {
-  await browser.close();
-  fs.rmSync(profile, { recursive: true, force: true });
+  await close();
 }
