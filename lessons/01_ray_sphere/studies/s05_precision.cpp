@@ -39,7 +39,9 @@ struct Case {
 std::vector<Case> make_cases(double distance, double radius, int count, Rng& rng) {
   std::vector<Case> cases;
   for (int k = 0; k < count; ++k) {
-    const glm::dvec3 origin(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    // Drawn last coordinate first, each into its own variable: core/random.hpp, "Order of draws".
+    const double origin_z = rng.uniform(-1, 1), origin_y = rng.uniform(-1, 1), origin_x = rng.uniform(-1, 1);
+    const glm::dvec3 origin(origin_x, origin_y, origin_z);
     const double z = rng.uniform(-1, 1), phi = 2.0 * pi * rng.uniform();
     const glm::dvec3 w(std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z);
     // A unit vector across the ray: −t1 of the Gram–Schmidt frame (core/frame.hpp).

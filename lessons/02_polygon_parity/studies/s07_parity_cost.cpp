@@ -23,7 +23,11 @@ void s07_parity_cost(OutputFolder& out, const Settings& settings) {
     const Polygon p(place(star(n / 2, 1.0, 0.5), Point3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)));
     std::vector<Vec2> queries(1024);
     std::vector<Ray> rays;
-    for (Vec2& q : queries) q = Vec2(rng.uniform(-1, 1), rng.uniform(-1, 1));
+    for (Vec2& q : queries) {
+      // Drawn last coordinate first, each into its own variable: core/random.hpp, "Order of draws".
+      const double y = rng.uniform(-1, 1), x = rng.uniform(-1, 1);
+      q = Vec2(x, y);
+    }
     for (const Vec2& q : queries)
       rays.push_back(Ray::toward(Point3(0.1, -0.2, 3), Point3(q, 0) - Point3(0.1, -0.2, 3)));
     // One thread, best of three runs.

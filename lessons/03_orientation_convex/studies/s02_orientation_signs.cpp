@@ -116,10 +116,14 @@ void orientation_sign_study(OutputFolder& out, bool quick, Rng& rng) {
     const double delta = std::pow(10.0, -k);
     int wrong_naive = 0, wrong_robust = 0;
     for (int n = 0; n < samples; ++n) {
-      const Vec2 a(snap(rng.uniform()), snap(rng.uniform())), b(snap(rng.uniform()), snap(rng.uniform()));
+      // Drawn last coordinate first, each into its own variable: core/random.hpp, "Order of draws".
+      const double ay = snap(rng.uniform()), ax = snap(rng.uniform());
+      const double by = snap(rng.uniform()), bx = snap(rng.uniform());
+      const Vec2 a(ax, ay), b(bx, by);
       const Vec2 d = b - a;
       const Vec2 normal = Vec2(-d.y, d.x) / std::max(length(d), 1e-300);
-      const Vec2 c0 = a + rng.uniform() * d + (rng.uniform() < 0.5 ? -delta : delta) * normal;
+      const double side = rng.uniform() < 0.5 ? -delta : delta, along = rng.uniform();
+      const Vec2 c0 = a + along * d + side * normal;
       const Vec2 c(snap(std::clamp(c0.x, 0.0, 0.999)), snap(std::clamp(c0.y, 0.0, 0.999)));
       const int truth = oracle(a, b, c);
       wrong_naive += sign_of(orient2d_naive(a, b, c)) != truth;

@@ -58,7 +58,9 @@ std::vector<Ray> rays_at_edges(int m, int count, Rng& rng) {
     const Point3 ends[4] = {v, vertex(i + 1, j), vertex(i, j + 1), vertex(i + 1, j + 1)};
     const int e = static_cast<int>(rng.below(4));
     const Point3 target = e == 0 ? v : v + rng.uniform() * (ends[e] - v);
-    const Point3 origin = target + Vec3(rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), 2.0);
+    // Drawn last coordinate first, each into its own variable: core/random.hpp, "Order of draws".
+    const double dy = rng.uniform(-0.5, 0.5), dx = rng.uniform(-0.5, 0.5);
+    const Point3 origin = target + Vec3(dx, dy, 2.0);
     rays.push_back(Ray::toward(origin, target - origin));
   }
   return rays;

@@ -80,8 +80,11 @@ void patch_accuracy_study(OutputFolder& out, const Settings& options, Rng& rng) 
   };
   std::vector<Case> cases;
   while (static_cast<int>(cases.size()) < (options.quick ? 60 : 1000)) {
-    const Point3 target = bilinear.point(rng.uniform(0.02, 0.98), rng.uniform(0.02, 0.98));
-    const Vec3 from(rng.uniform(-3, 5), rng.uniform(-3, 5), rng.uniform(2, 5));
+    // Drawn last coordinate first, each into its own variable: core/random.hpp, "Order of draws".
+    const double v = rng.uniform(0.02, 0.98), u = rng.uniform(0.02, 0.98);
+    const Point3 target = bilinear.point(u, v);
+    const double from_z = rng.uniform(2, 5), from_y = rng.uniform(-3, 5), from_x = rng.uniform(-3, 5);
+    const Vec3 from(from_x, from_y, from_z);
     const Ray ray = Ray::toward(from, target - from);
     if (const auto exact = bilinear_exact_s(ray, bilinear)) cases.push_back({ray, *exact});
   }
@@ -135,9 +138,11 @@ void patch_depth_study(OutputFolder& out, const Settings& options, Rng& rng) {
   const PatchBox box = wavy.bounds();
   std::vector<Ray> rays;
   while (static_cast<int>(rays.size()) < (options.quick ? 100 : 2000)) {
-    const Point3 target(rng.uniform(box.lo.x, box.hi.x), rng.uniform(box.lo.y, box.hi.y),
-                        rng.uniform(box.lo.z, box.hi.z));
-    const Point3 from(rng.uniform(-4, 2), rng.uniform(-3, 3), rng.uniform(-1, 3) + 2.5);
+    // Drawn last coordinate first, each into its own variable: core/random.hpp, "Order of draws".
+    const double target_z = rng.uniform(box.lo.z, box.hi.z), target_y = rng.uniform(box.lo.y, box.hi.y),
+                 target_x = rng.uniform(box.lo.x, box.hi.x);
+    const double from_z = rng.uniform(-1, 3) + 2.5, from_y = rng.uniform(-3, 3), from_x = rng.uniform(-4, 2);
+    const Point3 target(target_x, target_y, target_z), from(from_x, from_y, from_z);
     rays.push_back(Ray::toward(from, target - from));
   }
   PatchOptions deep;

@@ -56,7 +56,10 @@ RehitRates rehit_rates(const OffsetCase& c, Leave leave, int count, std::uint64_
   for (int k = 0; k < count; ++k) {
     const double z = rng.uniform(-1, 1), phi = 2 * std::numbers::pi * rng.uniform();
     const V n(T(std::sqrt(1 - z * z) * std::cos(phi)), T(std::sqrt(1 - z * z) * std::sin(phi)), T(z));
-    const V jitter(T(rng.uniform(-0.5, 0.5)), T(rng.uniform(-0.5, 0.5)), T(rng.uniform(-0.5, 0.5)));
+    // Drawn last coordinate first, each into its own variable: core/random.hpp, "Order of draws".
+    const double jitter_z = rng.uniform(-0.5, 0.5), jitter_y = rng.uniform(-0.5, 0.5),
+                 jitter_x = rng.uniform(-0.5, 0.5);
+    const V jitter{T(jitter_x), T(jitter_y), T(jitter_z)};
     const V origin = centre + T(4) * radius * glm::normalize(n + jitter);
     const V dir = glm::normalize(centre + radius * n - origin);
     const auto roots = sphere_roots_stable(origin, dir, centre, radius);

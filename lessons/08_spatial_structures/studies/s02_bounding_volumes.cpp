@@ -49,8 +49,10 @@ std::vector<Ray> rays_around(const BoundingSphere& ball, int count) {
   Rng rng(808);
   std::vector<Ray> rays;
   while (static_cast<int>(rays.size()) < count) {
-    const Vec3 u(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
-    const Vec3 v(rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(-1, 1));
+    // Drawn last coordinate first, each into its own variable: core/random.hpp, "Order of draws".
+    const double uz = rng.uniform(-1, 1), uy = rng.uniform(-1, 1), ux = rng.uniform(-1, 1);
+    const double vz = rng.uniform(-1, 1), vy = rng.uniform(-1, 1), vx = rng.uniform(-1, 1);
+    const Vec3 u(ux, uy, uz), v(vx, vy, vz);
     if (dot(u, u) > 1 || dot(u, u) < 1e-4 || dot(v, v) > 1) continue;
     const Point3 o = ball.center + 2 * ball.radius * normalize(u);
     rays.push_back(Ray::toward(o, ball.center + ball.radius * v - o));

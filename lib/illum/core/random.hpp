@@ -6,6 +6,15 @@
 // statistical grading tests need the same samples everywhere. This is
 // PCG32 (O'Neill 2014, "PCG: a family of simple fast space-efficient
 // statistically good algorithms"), with doubles built from 53 random bits.
+//
+// Order of draws. The same generator gives the same points everywhere only if
+// the draws happen in the same order, and C++ leaves the order of a call's
+// arguments unspecified: `Vec3(rng.uniform(), rng.uniform(), rng.uniform())`
+// draws z first with GCC on x86-64 and x first with GCC on arm64 and with
+// Clang, so a study written that way printed other tables on a Mac or an
+// arm64 laptop. Draw each value into its own variable (a declaration's
+// initialisers run in order). The lessons' studies draw the last coordinate
+// first, the order their published tables were made with.
 #include <cstdint>
 
 namespace illum {

@@ -465,7 +465,7 @@ RadiosityScene radiosity_from(const JsonReader& root, const FileSource& source, 
   require(std::isfinite(max_patch_edge) && max_patch_edge > 0.0,
           "load_radiosity_scene: max_patch_edge must be positive and finite");
   // The radiosity checks of each polygon come first, so that their own
-  // messages (an emitter of zero area, a wall off its plane by 1.6 mm) are
+  // messages (an emitter of zero area, a wall whose vertices are 0.8 mm off its plane) are
   // the ones a user sees, not the general polygon constructor's.
   // A misspelt field gets its "did you mean" here too, not "field required".
   only_top_fields(root);
