@@ -245,3 +245,45 @@ TEST_SUITE("lesson05") {
     CHECK(std::abs(hit->v - 0.7) <= 1e-14);
   }
 }
+
+// Where the normal comes from next to a fold of the parametrisation (issue 28: a nudge that goes the wrong
+// way, or only one way, passes every test on patches whose tangents never become parallel).
+TEST_SUITE("lesson05") {
+  TEST_CASE(
+      "hard case: next to a fold (S_u ∥ S_v) the normal is taken towards the centre, on the hit's side" *
+      doctest::description("task=5,6")) {
+    // The biquadratic S(u, v) = (u + v, (u − ½)² + (v − ½)², 0), control points P_ij = (i/2 + j/2, c_i + c_j,
+    // 0) with c = (¼, −¼, ¼) (the Bernstein coefficients of (t − ½)² = t² − t + ¼ of degree 2: t² → (0, 0,
+    // 1), t → (0, ½, 1)), all exact in binary. S_u = (1, 2(u − ½), 0), S_v = (1, 2(v − ½), 0), so S_u × S_v =
+    // (0, 0, 2(v − u)): the sheet folds over along u = v, where the tangents are parallel and the normal
+    // flips from −z (v < u) to +z (v > u). At a start 10⁻¹⁰ off the fold, |S_u × S_v| = 2·10⁻¹⁰ ≤
+    // 10⁻⁹|S_u||S_v|: the header's "nearly vanishes" case, where the normal is taken a little way towards the
+    // centre (½, ½): there v' − u' = (1 − ε)(v − u) keeps the sign of v − u for any step ε < 1, so the normal
+    // is (0, 0, sign(v − u)). A step away from the centre, or along one parameter only, crosses the fold for
+    // some of these starts and turns the normal over. Vertical rays through S(u, v) itself, from 1 above: F =
+    // 0 at the start, so patch_newton accepts it with no step (ω·(S_u × S_v) = ∓2·10⁻¹⁰ is above
+    // 10⁻¹²|S_u||S_v|: not singular), s = 1.
+    const double c[3] = {0.25, -0.25, 0.25};
+    std::vector<Point3> control;
+    for (int j = 0; j <= 2; ++j)
+      for (int i = 0; i <= 2; ++i) control.emplace_back(0.5 * i + 0.5 * j, c[i] + c[j], 0.0);
+    const BezierPatch fold(2, 2, control);
+    for (const double u : {0.2, 0.7})
+      for (const double offset : {1e-10, -1e-10}) {
+        const double v = u + offset;
+        const Point3 at(u + v, (u - 0.5) * (u - 0.5) + (v - 0.5) * (v - 0.5), 0.0);
+        const Ray ray(at + Vec3(0, 0, 1), Vec3(0, 0, -1));
+        INFO("start (u, v) = (", u, ", u ", offset > 0 ? "+" : "−", " 10⁻¹⁰): the normal is ",
+             offset > 0 ? "+z" : "−z");
+        const std::optional<PatchHit> hit = patch_newton(fold, ray, ray_planes(ray), Vec2(u, v), 1e-12, 10);
+        REQUIRE_MESSAGE(hit, "the start lies on the ray (F = 0) inside [0, 1]², and det J ≠ 0");
+        CHECK(hit->iterations == 0);
+        CHECK(std::abs(hit->s - 1.0) <= 1e-12);
+        CHECK(std::abs(hit->u - u) <= 1e-12);
+        CHECK(std::abs(hit->v - v) <= 1e-12);
+        CHECK_MESSAGE(length(hit->normal - Vec3(0, 0, offset > 0 ? 1.0 : -1.0)) <= 1e-9,
+                      "S_u × S_v = (0, 0, 2(v − u)) on this side of the fold; a nudge towards (½, ½) keeps "
+                      "the side, one away from it (or in one parameter only) can cross the fold");
+      }
+  }
+}

@@ -254,3 +254,42 @@ TEST_SUITE("lesson09") {
           doctest::Approx(1.0).epsilon(1e-6));
   }
 }
+
+// B from I at the ends of the quadrature orders, and a Monte Carlo radiance whose every sample is known
+// (issue 28: estimators tested only with constant radiance, and a float sum, pass the z-tests).
+TEST_SUITE("lesson09") {
+  TEST_CASE("B by Gauss–Legendre at the highest orders (up to 64, the header's limit) of a mixed radiance" *
+            doctest::description("task=10")) {
+    // I(φ, θ) = 0.37 + cos φ cos²θ: B = ∫∫ I cos φ sin φ dφ dθ = 0.37·π + (∫₀^{π/2} cos²φ sin φ dφ)(∫₀^{2π}
+    // cos²θ dθ) = 0.37π + (1/3)·π. The integrands are smooth (analytic), so 48 points and more reach it to
+    // rounding. The header accepts n in 1 … 64: 64 is a valid order, 65 is not.
+    const auto radiance = [](double phi, double theta) {
+      return 0.37 + std::cos(phi) * std::pow(std::cos(theta), 2);
+    };
+    for (const int n : {64, 63, 48}) {
+      INFO("n = ", n);
+      CHECK(exitance_from_radiance_quadrature(radiance, n) ==
+            doctest::Approx(pi * (0.37 + 1.0 / 3.0)).epsilon(1e-12));
+    }
+    CHECK_THROWS_AS(exitance_from_radiance_quadrature(radiance, 65), std::invalid_argument);
+  }
+
+  TEST_CASE("B by Monte Carlo of I = c/cos φ: every sample scores 2πc, so B̂ = 2πc to rounding" *
+            doctest::description("task=11")) {
+    // The header: directions uniform on the hemisphere, each scoring 2π I cos φ. With I = c/cos φ every
+    // score is 2πc whatever the direction, so the mean of n scores is 2πc up to rounding (about 10⁻¹⁶
+    // per score; |cos(acos u) − u| ≤ 2·10⁻¹⁶ even for u near 0), and so is the exact
+    // B = ∫ (c/cos φ) cos φ dω = 2πc. A sum kept in float (24 bits) rounds each addition by up to half
+    // an ulp of the running sum (2⁻²⁵ of it), the same way for equal scores: 10⁻⁷ relative after 7
+    // scores, 10⁻⁶–10⁻⁵ after 1000, far outside 10⁻⁹.
+    const double c = 0.37;
+    const auto radiance = [c](double phi, double) { return c / std::cos(phi); };
+    for (const int n : {1, 7, 1000, 100000}) {
+      Rng rng(4242 + static_cast<std::uint64_t>(n));
+      INFO("samples = ", n);
+      CHECK_MESSAGE(
+          exitance_from_radiance_monte_carlo(radiance, n, rng) == doctest::Approx(2 * pi * c).epsilon(1e-9),
+          "the mean of n equal scores 2πc is 2πc: sum in double, divide by n");
+    }
+  }
+}

@@ -58,8 +58,11 @@ RayPlanes ray_planes(const Ray& ray);
 // leaves the parameter square by more than ½, when J is singular
 // (|det J| = |ω·(S_u × S_v)| ≤ 1e-12·|S_u||S_v|: the ray runs along the
 // surface, the patch is seen edge-on, or the edge there is collapsed), or
-// when it does not converge. At a point where S_u × S_v = 0 (a collapsed
-// edge) the normal is taken a little way into the patch. Throws
+// when it does not converge. Where S_u × S_v nearly vanishes (|S_u × S_v| ≤
+// 10⁻⁹|S_u||S_v|: a collapsed edge, or a fold where S_u ∥ S_v) the normal is
+// S_u × S_v taken a little way (10⁻⁶ of the way) from (u, v) towards the
+// centre (½, ½) of the square, in both parameters: next to a fold that stays
+// on the hit's side. Throws
 // std::invalid_argument for a non-finite start, tolerance ≤ 0 or
 // max_iterations < 1.
 std::optional<PatchHit> patch_newton(const BezierPatch& patch, const Ray& ray, const RayPlanes& planes,
