@@ -287,3 +287,94 @@ TEST_SUITE("lesson05") {
       }
   }
 }
+
+// Box padding far from the origin (issue 28: a pad that does not grow with the coordinates loses rays
+// through a patch's boundary to rounding once the patch lies far away).
+TEST_SUITE("lesson05") {
+  TEST_CASE("hard case: rays from the origin through the boundary of a small flat patch 940 away all hit it" *
+            doctest::description("task=5,6,7")) {
+    // The flat square x ∈ [500.1, 500.11], y ∈ [400.2, 400.21] of the plane z = 700.3 (a bilinear patch:
+    // x = 500.1 + 0.01u, y = 400.2 + 0.01v), searched to max_depth 8 (leaf boxes 0.01/256 = 3.9·10⁻⁵
+    // wide, flat in z). Rays from near the origin aim at points of its four edges and at its corners.
+    // The direction is rounded to about 10⁻¹⁶, so 940 away a ray passes up to ~2·10⁻¹³ beside the point
+    // it aims at: just outside the square for about half of them. That is u or v 2·10⁻¹¹ outside [0, 1],
+    // within the header's 10⁻⁹: a hit. But the ray's line then also grazes the leaf box from outside by
+    // 10⁻¹³, more than 10⁻⁹ of the box's size (4·10⁻¹⁴): the box must be padded by more than rounding at
+    // these coordinates (the header: a pad that grows with |hi|), or the only box holding the hit is
+    // pruned and the ray misses.
+    const double x0 = 500.1, y0 = 400.2, z = 700.3, w = 0.01;
+    const BezierPatch square = BezierPatch::bilinear(Point3(x0, y0, z), Point3(x0 + w, y0, z),
+                                                     Point3(x0, y0 + w, z), Point3(x0 + w, y0 + w, z));
+    PatchOptions options;
+    options.max_depth = 8;
+    const Point3 origins[] = {Point3(0.3, -0.2, 0.1), Point3(-0.7, 0.45, -0.15), Point3(1e-3, 2e-3, 1.9)};
+    int rays = 0, missed = 0;
+    for (int k = 0; k <= 16; ++k) {
+      const double t = k / 16.0;
+      // (u, v) on the four edges: (t, 0), (1, t), (1 − t, 1), (0, 1 − t); corners at t = 0 and 1.
+      const double uv[4][2] = {{t, 0.0}, {1.0, t}, {1.0 - t, 1.0}, {0.0, 1.0 - t}};
+      for (const auto& p : uv)
+        for (const Point3& origin : origins) {
+          const Point3 target(x0 + w * p[0], y0 + w * p[1], z);
+          const std::optional<PatchHit> hit =
+              intersect_patch(Ray::toward(origin, target - origin), square, options);
+          ++rays;
+          if (!hit) {
+            ++missed;
+            continue;
+          }
+          INFO("aimed at (u, v) = (", p[0], ", ", p[1], ")");
+          CHECK(std::abs(hit->u - p[0]) <= 1e-8);
+          CHECK(std::abs(hit->v - p[1]) <= 1e-8);
+          CHECK(std::abs(hit->s - length(target - origin)) <= 1e-8);
+        }
+    }
+    CHECK(rays == 17 * 4 * 3);
+    CHECK_MESSAGE(missed == 0,
+                  "a ray through the boundary of the parameter square hits (it is closed, up to "
+                  "10⁻⁹); pad the boxes by more than rounding at |P| ≈ 940");
+  }
+}
+
+TEST_SUITE("lesson05") {
+  TEST_CASE(
+      "hard case: a Newton iterate exactly ½ outside the square has run off, even if it would come back" *
+      doctest::description("task=5,6")) {
+    // x = g(u) cubic, y = v (or the same with u and v exchanged), z = 0, a vertical ray at x = ½. Ray along
+    // −z: N₁ = (0, −1, 0), N₂ = (−1, 0, 0), so Newton's u-step is (½ − g(u))/g'(u), all in exact dyadics.
+    // g(u) = u³ (control x 0, 0, 0, 1) from u = −1: g = −1, g' = 3, u ← −1 + 1.5/3 = −½ exactly.
+    // g(u) = 1 − (1 − u)³ (control x 0, 1, 1, 1) from u = 2: g = 2, g' = 3, u ← 2 − 1.5/3 = 1½ exactly.
+    // The header: an iterate outside the open square (−½, 1½)² has run off: nothing, although Newton
+    // would go on to the roots u = ∛½ = 0.794 and u = 1 − ∛½ = 0.206, inside [0, 1].
+    struct Case {
+      std::vector<double> g;
+      double start;
+    };
+    const Case cases[] = {{{0, 0, 0, 1}, -1.0}, {{0, 1, 1, 1}, 2.0}};
+    for (const Case& c : cases)
+      for (const bool along_v : {false, true}) {
+        std::vector<Point3> control;
+        if (!along_v) {  // degree 3 in u, 1 in v: P_ij = (g_i, j, 0)
+          for (int j = 0; j <= 1; ++j)
+            for (int i = 0; i <= 3; ++i) control.emplace_back(c.g[static_cast<std::size_t>(i)], j, 0.0);
+        } else {  // degree 1 in u, 3 in v: P_ij = (i, g_j, 0), so y = g(v), x = u
+          for (int j = 0; j <= 3; ++j)
+            for (int i = 0; i <= 1; ++i) control.emplace_back(i, c.g[static_cast<std::size_t>(j)], 0.0);
+        }
+        const BezierPatch patch = along_v ? BezierPatch(1, 3, control) : BezierPatch(3, 1, control);
+        // The ray at ½ on the cubic's axis and 0.3 on the linear one.
+        const Ray ray(along_v ? Point3(0.3, 0.5, 1.0) : Point3(0.5, 0.3, 1.0), Vec3(0, 0, -1));
+        const Vec2 start = along_v ? Vec2(0.3, c.start) : Vec2(c.start, 0.3);
+        INFO((along_v ? "v" : "u"), " from ", c.start, ": the first step lands exactly on ",
+             c.start < 0 ? "−½" : "1½");
+        CHECK_FALSE_MESSAGE(patch_newton(patch, ray, ray_planes(ray), start, 1e-12, 50),
+                            "an iterate on the border of (−½, 1½)² has left the open square: nothing");
+        // From the cubic's other side the same patch is hit at the root (a control of the construction).
+        const Vec2 good = along_v ? Vec2(0.3, 0.5) : Vec2(0.5, 0.3);
+        const std::optional<PatchHit> hit = patch_newton(patch, ray, ray_planes(ray), good, 1e-12, 50);
+        REQUIRE(hit);
+        const double root = c.start < 0 ? std::cbrt(0.5) : 1.0 - std::cbrt(0.5);
+        CHECK(std::abs((along_v ? hit->v : hit->u) - root) <= 1e-9);
+      }
+  }
+}
