@@ -6,6 +6,7 @@
 // through the paths that return early.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
@@ -388,5 +389,32 @@ TEST_SUITE("lesson09") {
           doctest::Approx(4 * a * a / (pi * r1 * r1)).epsilon(1e-12));
     CHECK(form_factor_nusselt(x, Vec3(0, 0, 1), to, 2) ==
           doctest::Approx(4 * a * a / (pi * r1 * r2)).epsilon(1e-12));
+  }
+}
+
+TEST_SUITE("lesson09") {
+  TEST_CASE(
+      "hard case: F_ii = 0 and coplanar neighbours exchange nothing, for patches 700 wide on a tilted plane" *
+      doctest::description("task=3")) {
+    // Squares of side L = 700 on the plane through o = (1000.1, 2000.3, −500.7) spanned by the orthonormal
+    // u = (0.6, 0.8, 0) and v = (−0.48, 0.36, 0.8) (u·v = −0.288 + 0.288 = 0): coordinates no double holds
+    // exactly, so a vertex's height above the other patch's plane is rounding, about 10⁻¹³ — not 0, but
+    // far below the patches' size. Coplanar patches exchange nothing (every cosine is 0): F = 0 exactly,
+    // the header's "zero for coplanar patches (so F_ii = 0)", whichever way the heights are rounded (Stokes's
+    // theorem, which turns the area integrals into the contour sum, does not hold for a patch with itself).
+    const double l = 700;
+    const Point3 o(1000.1, 2000.3, -500.7);
+    const Vec3 u(0.6, 0.8, 0), v(-0.48, 0.36, 0.8);
+    const Patch a = make_patch({o, o + l * u, o + l * u + l * v, o + l * v});
+    const Patch b = make_patch({o + l * u, o + 2 * l * u, o + 2 * l * u + l * v, o + l * u + l * v});
+    double height =
+        0;  // self-check: the vertices are off each other's planes by rounding, not exactly on them
+    for (const Point3& p : b.vertices) height = std::max(height, std::abs(dot(a.normal, p - a.centroid)));
+    for (const Point3& p : a.vertices) height = std::max(height, std::abs(dot(a.normal, p - a.centroid)));
+    REQUIRE(height > 0);
+    REQUIRE(height < 1e-9);
+    CHECK_MESSAGE(polygon_polygon_form_factor(a, a) == 0.0, "F_ii = 0: a flat patch does not see itself");
+    CHECK_MESSAGE(polygon_polygon_form_factor(a, b) == 0.0, "coplanar neighbours: every cosine is 0");
+    CHECK(polygon_polygon_form_factor(b, a) == 0.0);
   }
 }
