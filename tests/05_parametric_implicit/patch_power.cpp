@@ -8,6 +8,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "illum/geometry/bezier_patch.hpp"
@@ -340,17 +341,20 @@ TEST_SUITE("lesson05") {
   TEST_CASE(
       "hard case: a Newton iterate exactly ½ outside the square has run off, even if it would come back" *
       doctest::description("task=5,6")) {
-    // x = g(u) cubic, y = v (or the same with u and v exchanged), z = 0, a vertical ray at x = ½. Ray along
-    // −z: N₁ = (0, −1, 0), N₂ = (−1, 0, 0), so Newton's u-step is (½ − g(u))/g'(u), all in exact dyadics.
-    // g(u) = u³ (control x 0, 0, 0, 1) from u = −1: g = −1, g' = 3, u ← −1 + 1.5/3 = −½ exactly.
-    // g(u) = 1 − (1 − u)³ (control x 0, 1, 1, 1) from u = 2: g = 2, g' = 3, u ← 2 − 1.5/3 = 1½ exactly.
-    // The header: an iterate outside the open square (−½, 1½)² has run off: nothing, although Newton
-    // would go on to the roots u = ∛½ = 0.794 and u = 1 − ∛½ = 0.206, inside [0, 1].
+    // x = g(u) cubic, y = v (or the same with u and v exchanged), z = 0, a vertical ray at x = x*. Ray along
+    // −z: N₁ = (0, −1, 0), N₂ = (−1, 0, 0), so Newton's u-step is (x* − g(u))/g'(u), in exact dyadics here.
+    // g(u) = u³ + ¾u (Bernstein coefficients 0, ¼, ½, 7/4), x* = 1/8, from u = −1: g = −7/4, g' = 15/4,
+    // u ← −1 + (15/8)/(15/4) = −½ exactly. Mirrored, g(u) = 1 − (1 − u)³ − ¾(1 − u) (coefficients
+    // −¾, ½, ¾, 1), x* = 7/8, from u = 2: u ← 1½ exactly. The header: an iterate outside the open square
+    // (−½, 1½)² has run off: nothing -- although Newton would go on (−½ → −0.083 → 0.161 …) to the root
+    // r of t³ + ¾t = 1/8 (Cardano: r = ∛(1/16 + √Δ) + ∛(1/16 − √Δ), Δ = 1/256 + 1/64), or 1 − r, inside.
     struct Case {
       std::vector<double> g;
-      double start;
+      double target, start;
     };
-    const Case cases[] = {{{0, 0, 0, 1}, -1.0}, {{0, 1, 1, 1}, 2.0}};
+    const double delta = 1.0 / 256 + 1.0 / 64;
+    const double r = std::cbrt(1.0 / 16 + std::sqrt(delta)) + std::cbrt(1.0 / 16 - std::sqrt(delta));
+    const Case cases[] = {{{0, 0.25, 0.5, 1.75}, 0.125, -1.0}, {{-0.75, 0.5, 0.75, 1}, 0.875, 2.0}};
     for (const Case& c : cases)
       for (const bool along_v : {false, true}) {
         std::vector<Point3> control;
@@ -362,18 +366,18 @@ TEST_SUITE("lesson05") {
             for (int i = 0; i <= 1; ++i) control.emplace_back(i, c.g[static_cast<std::size_t>(j)], 0.0);
         }
         const BezierPatch patch = along_v ? BezierPatch(1, 3, control) : BezierPatch(3, 1, control);
-        // The ray at ½ on the cubic's axis and 0.3 on the linear one.
-        const Ray ray(along_v ? Point3(0.3, 0.5, 1.0) : Point3(0.5, 0.3, 1.0), Vec3(0, 0, -1));
-        const Vec2 start = along_v ? Vec2(0.3, c.start) : Vec2(c.start, 0.3);
-        INFO((along_v ? "v" : "u"), " from ", c.start, ": the first step lands exactly on ",
-             c.start < 0 ? "−½" : "1½");
+        // The ray at x* on the cubic's axis and ¼ on the linear one (dyadic, so the blend in it is exact).
+        const Ray ray(along_v ? Point3(0.25, c.target, 1.0) : Point3(c.target, 0.25, 1.0), Vec3(0, 0, -1));
+        const Vec2 start = along_v ? Vec2(0.25, c.start) : Vec2(c.start, 0.25);
+        INFO(std::string(along_v ? "v" : "u"), " from ", c.start, ": the first step lands exactly on ",
+             std::string(c.start < 0 ? "−½" : "1½"));
         CHECK_FALSE_MESSAGE(patch_newton(patch, ray, ray_planes(ray), start, 1e-12, 50),
                             "an iterate on the border of (−½, 1½)² has left the open square: nothing");
-        // From the cubic's other side the same patch is hit at the root (a control of the construction).
-        const Vec2 good = along_v ? Vec2(0.3, 0.5) : Vec2(0.5, 0.3);
+        // Started inside, Newton reaches the root (a control of the construction).
+        const Vec2 good = along_v ? Vec2(0.25, 0.5) : Vec2(0.5, 0.25);
         const std::optional<PatchHit> hit = patch_newton(patch, ray, ray_planes(ray), good, 1e-12, 50);
         REQUIRE(hit);
-        const double root = c.start < 0 ? std::cbrt(0.5) : 1.0 - std::cbrt(0.5);
+        const double root = c.start < 0 ? r : 1.0 - r;
         CHECK(std::abs((along_v ? hit->v : hit->u) - root) <= 1e-9);
       }
   }
