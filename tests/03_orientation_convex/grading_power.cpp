@@ -11,8 +11,11 @@
 // it really does, so the test cannot quietly lose its power).
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include "illum/geometry/convex.hpp"
@@ -240,5 +243,142 @@ TEST_SUITE("lesson03") {
       const auto hit = dz > 0 ? hit_a : hit_b;
       if (hit) CHECK(hit->s == doctest::Approx(2.0).epsilon(1e-15));
     }
+  }
+}
+
+// The ray frame for every dominant axis, ranges that end exactly on the triangle, and the side of a
+// long slanted edge for points a hair from it (the classes of slip the outside check of issue 28 seeds).
+TEST_SUITE("lesson03") {
+  TEST_CASE("ray-triangle: rays along ±x, ±y, ±z and slanted ones with a zero component, both windings" *
+            doctest::description("task=7")) {
+    // For each axis k (then k1 = k + 1, k2 = k + 2, mod 3) the triangle a = 3e_k, b = 3e_k + 2e_k1,
+    // c = 3e_k + 2e_k2 lies in the plane x_k = 3. The target P = 3e_k + 0.5e_k1 + 0.8e_k2 is
+    // a + β(b − a) + γ(c − a) with β = 0.5/2 = 0.25, γ = 0.8/2 = 0.4, so λ = (0.35, 0.25, 0.4).
+    // Each ray starts at P − sω with s = 5 (s = |P − P0|, ω unit). The dominant |ω_k| picks the frame
+    // (header: kz is the axis of the largest |ω_k|): along e_k with a zero component elsewhere, a frame
+    // built on another axis divides by ω = 0. Listing the triangle a, c, b (the other winding) swaps
+    // λb and λc and flips the normal (Triangle::normal(), never turned towards the ray).
+    for (int k = 0; k < 3; ++k) {
+      const int k1 = (k + 1) % 3, k2 = (k + 2) % 3;
+      Vec3 ek(0.0), ek1(0.0), ek2(0.0);
+      ek[k] = 1.0;
+      ek1[k1] = 1.0;
+      ek2[k2] = 1.0;
+      const Point3 a = 3.0 * ek, b = 3.0 * ek + 2.0 * ek1, c = 3.0 * ek + 2.0 * ek2;
+      const Point3 target = 3.0 * ek + 0.5 * ek1 + 0.8 * ek2;
+      const Vec3 directions[] = {ek, -ek, 0.8 * ek + 0.6 * ek2, 0.8 * ek - 0.6 * ek1, -0.8 * ek + 0.6 * ek1};
+      for (const Vec3& omega : directions)
+        for (const bool ccw : {true, false}) {
+          const Triangle tri = ccw ? Triangle(a, b, c) : Triangle(a, c, b);
+          const Ray ray(target - 5.0 * omega, omega);
+          INFO("plane x", k, " = 3, ω = (", omega.x, ", ", omega.y, ", ", omega.z, "), ",
+               ccw ? "a, b, c" : "a, c, b");
+          const auto hit = intersect(ray, tri);
+          REQUIRE_MESSAGE(hit.has_value(),
+                          "the ray passes through (0.5, 0.8) of the triangle's legs of 2: "
+                          "kz must be the axis of the largest |ω_k|, never one where ω is 0");
+          CHECK(hit->s == doctest::Approx(5.0).epsilon(1e-12));
+          CHECK(hit->barycentric.x == doctest::Approx(0.35).epsilon(1e-12));
+          CHECK(hit->barycentric.y == doctest::Approx(ccw ? 0.25 : 0.4).epsilon(1e-12));
+          CHECK(hit->barycentric.z == doctest::Approx(ccw ? 0.4 : 0.25).epsilon(1e-12));
+          CHECK(length(hit->point - target) <= 1e-12);
+          // (b − a) × (c − a) = 4 e_k1 × e_k2 = 4 e_k for a, b, c; −4 e_k for a, c, b.
+          CHECK(length(hit->normal - (ccw ? ek : -ek)) <= 1e-15);
+        }
+    }
+  }
+
+  TEST_CASE("hard case: a range that starts or ends exactly on the triangle holds the hit (it is closed)" *
+            doctest::description("task=7")) {
+    // Triangle of the plane z = 5; rays along ±z through (1, 1): every vertex's depth p[kz] − P0[kz] is an
+    // exact small integer, so s is exactly the distance, with no rounding. ray.range is a closed interval
+    // (illum/core/interval.hpp): s = range.lo or s = range.hi is inside it.
+    const Triangle tri(Point3(0, 0, 5), Point3(4, 0, 5), Point3(0, 4, 5));
+    const auto on_lo = intersect(Ray(Point3(1, 1, 0), Vec3(0, 0, 1), Interval(5, 10)), tri);
+    REQUIRE_MESSAGE(on_lo.has_value(), "s = 5 = range.lo: the closed range [5, 10] holds it");
+    CHECK(on_lo->s == 5.0);
+    const auto on_hi = intersect(Ray(Point3(1, 1, 0), Vec3(0, 0, 1), Interval(0, 5)), tri);
+    REQUIRE_MESSAGE(on_hi.has_value(), "s = 5 = range.hi: the closed range [0, 5] holds it");
+    CHECK(on_hi->s == 5.0);
+    const auto origin_on = intersect(Ray(Point3(1, 1, 5), Vec3(0, 0, -1), Interval::ahead()), tri);
+    REQUIRE_MESSAGE(origin_on.has_value(),
+                    "a ray starting on the triangle with range [0, ∞) hits it at s = 0");
+    CHECK(origin_on->s == 0.0);
+    CHECK(origin_on->barycentric.x == doctest::Approx(0.5));
+    CHECK_FALSE_MESSAGE(intersect(Ray(Point3(1, 1, 0), Vec3(0, 0, 1), Interval(5.000000001, 10)), tri),
+                        "s = 5 lies just below the range [5 + 10⁻⁹, 10]");
+    CHECK_FALSE_MESSAGE(intersect(Ray(Point3(1, 1, 0), Vec3(0, 0, 1), Interval(0, 4.999999999)), tri),
+                        "s = 5 lies just above the range [0, 5 − 10⁻⁹]");
+  }
+
+  TEST_CASE("hard case: points 10⁻⁶ from a slanted edge 2600 long fall on the side exact arithmetic says" *
+            doctest::description("task=7")) {
+    // Two triangles of z = 0.3 share the long edge P = (−1000.1, −600.7) → Q = (1000.3, 700.9): A (P, Q, R)
+    // with R = (−1000.1, 700.9) above it (counter-clockwise), B (Q, P, S) with S = (1000.3, −600.7) below it,
+    // listed so that it is counter-clockwise too… and its mirror listing (P, Q, S), clockwise. Targets sit
+    // 10⁻⁶ off the edge, left or right, at fractions t of it away from the ends; oblique rays aim at them
+    // from 20 away. Which side a target is on is computed here in long double from the cross product
+    // (Q − P) × (X − P), whose size (|PQ|·10⁻⁶ ≈ 2.4·10⁻³) dwarfs its rounding (10⁻¹³). In the ray's
+    // frame the vertices are about 1000 from the ray: in float (24 bits) their positions are rounded by
+    // about 3·10⁻⁵, thirty times the offset, so float arithmetic in the side tests gets many of these
+    // wrong; double (53 bits) rounds them by about 10⁻¹³.
+    const Point3 p(-1000.1, -600.7, 0.3), q(1000.3, 700.9, 0.3);
+    const Triangle above(p, q, Point3(-1000.1, 700.9, 0.3));
+    const Triangle below_ccw(q, p, Point3(1000.3, -600.7, 0.3));
+    const Triangle below_cw(p, q, Point3(1000.3, -600.7, 0.3));
+    const Vec2 edge(q.x - p.x, q.y - p.y);
+    const Vec2 left = Vec2(-edge.y, edge.x) / std::hypot(edge.x, edge.y);  // unit, towards R
+    const Vec3 directions[] = {normalize(Vec3(0.1, -0.2, -1.0)), normalize(Vec3(-0.3, 0.05, 1.0)),
+                               normalize(Vec3(0.7, 0.6, -0.4))};
+    int on_left = 0, checked = 0, wrong_above = 0, wrong_below = 0;
+    for (int i = 1; i < 40; ++i) {
+      const double t = i / 40.0 + 0.00123;
+      for (const double side : {1.0, -1.0}) {
+        const Vec2 x2 = Vec2(p.x, p.y) + t * edge + side * 1e-6 * left;
+        const Point3 target(x2.x, x2.y, 0.3);
+        const long double cross_z =
+            (static_cast<long double>(q.x) - p.x) * (static_cast<long double>(target.y) - p.y) -
+            (static_cast<long double>(q.y) - p.y) * (static_cast<long double>(target.x) - p.x);
+        REQUIRE(std::abs(static_cast<double>(cross_z)) > 1e-3);  // far from 0 next to its rounding
+        const bool is_left = cross_z > 0;
+        for (const Vec3& omega : directions) {
+          const Ray ray(target - 20.0 * omega, omega);
+          wrong_above += intersect(ray, above).has_value() != is_left ? 1 : 0;
+          wrong_below += intersect(ray, below_ccw).has_value() != !is_left ? 1 : 0;
+          wrong_below += intersect(ray, below_cw).has_value() != !is_left ? 1 : 0;
+          ++checked;
+        }
+        on_left += is_left ? 1 : 0;
+      }
+    }
+    REQUIRE(checked == 39 * 2 * 3);
+    REQUIRE(on_left == 39);  // self-check: half the targets on each side
+    CHECK_MESSAGE(wrong_above == 0,
+                  "a target 10⁻⁶ left of PQ is inside (P, Q, R), one right of it is not: "
+                  "the shear and the edge functions need double, not float");
+    CHECK_MESSAGE(wrong_below == 0, "a target 10⁻⁶ right of PQ is inside the triangle below, either winding");
+  }
+}
+
+TEST_SUITE("lesson03") {
+  TEST_CASE("convexity: an L-shape whose reflex corner is listed first, or last, or anywhere, both windings" *
+            doctest::description("task=4,5")) {
+    // The L (0,0) → (2,0) → (2,1) → (1,1) → (1,2) → (0,2), counter-clockwise, turns right once, at (1,1)
+    // (there (−1, 0) then (0, 1): cross product −1); every other corner turns left. Its edges' u and v
+    // components change sign twice each (u: +, −, −; v: +, +, −), so the sign-change count cannot see
+    // the dent: only the turn test at the reflex corner can, and it must look at every vertex -- the
+    // first one (its neighbours wrap round: loop[n − 1], loop[0], loop[1]) and the last one too.
+    const std::vector<Vec2> ell = {{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 2}, {0, 2}};
+    for (std::size_t start = 0; start < ell.size(); ++start)
+      for (const bool ccw : {true, false}) {
+        std::vector<Vec2> loop;
+        for (std::size_t k = 0; k < ell.size(); ++k)
+          loop.push_back(ell[ccw ? (start + k) % ell.size() : (start + ell.size() - k) % ell.size()]);
+        INFO("listed from (", loop[0].x, ", ", loop[0].y, "), ", ccw ? "counter-clockwise" : "clockwise");
+        CHECK_FALSE_MESSAGE(
+            is_convex(flat_polygon(loop)),
+            "the corner (1, 1) turns the other way: the L is concave wherever it is listed from");
+        CHECK_THROWS_AS(ConvexPolygon(flat_polygon(loop)), std::invalid_argument);
+      }
   }
 }

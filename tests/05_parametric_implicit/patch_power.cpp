@@ -8,6 +8,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "illum/geometry/bezier_patch.hpp"
@@ -243,5 +244,141 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(hit->iterations == 1, "F₂ = −0.4 is far from 0: one Newton step, not none");
     CHECK(std::abs(hit->u - 0.3) <= 1e-14);
     CHECK(std::abs(hit->v - 0.7) <= 1e-14);
+  }
+}
+
+// Where the normal comes from next to a fold of the parametrisation (issue 28: a nudge that goes the wrong
+// way, or only one way, passes every test on patches whose tangents never become parallel).
+TEST_SUITE("lesson05") {
+  TEST_CASE(
+      "hard case: next to a fold (S_u ∥ S_v) the normal is taken towards the centre, on the hit's side" *
+      doctest::description("task=5,6")) {
+    // The biquadratic S(u, v) = (u + v, (u − ½)² + (v − ½)², 0), control points P_ij = (i/2 + j/2, c_i + c_j,
+    // 0) with c = (¼, −¼, ¼) (the Bernstein coefficients of (t − ½)² = t² − t + ¼ of degree 2: t² → (0, 0,
+    // 1), t → (0, ½, 1)), all exact in binary. S_u = (1, 2(u − ½), 0), S_v = (1, 2(v − ½), 0), so S_u × S_v =
+    // (0, 0, 2(v − u)): the sheet folds over along u = v, where the tangents are parallel and the normal
+    // flips from −z (v < u) to +z (v > u). At a start 10⁻¹⁰ off the fold, |S_u × S_v| = 2·10⁻¹⁰ ≤
+    // 10⁻⁹|S_u||S_v|: the header's "nearly vanishes" case, where the normal is taken a little way towards the
+    // centre (½, ½): there v' − u' = (1 − ε)(v − u) keeps the sign of v − u for any step ε < 1, so the normal
+    // is (0, 0, sign(v − u)). A step away from the centre, or along one parameter only, crosses the fold for
+    // some of these starts and turns the normal over. Vertical rays through S(u, v) itself, from 1 above: F =
+    // 0 at the start, so patch_newton accepts it with no step (ω·(S_u × S_v) = ∓2·10⁻¹⁰ is above
+    // 10⁻¹²|S_u||S_v|: not singular), s = 1.
+    const double c[3] = {0.25, -0.25, 0.25};
+    std::vector<Point3> control;
+    for (int j = 0; j <= 2; ++j)
+      for (int i = 0; i <= 2; ++i) control.emplace_back(0.5 * i + 0.5 * j, c[i] + c[j], 0.0);
+    const BezierPatch fold(2, 2, control);
+    for (const double u : {0.2, 0.7})
+      for (const double offset : {1e-10, -1e-10}) {
+        const double v = u + offset;
+        const Point3 at(u + v, (u - 0.5) * (u - 0.5) + (v - 0.5) * (v - 0.5), 0.0);
+        const Ray ray(at + Vec3(0, 0, 1), Vec3(0, 0, -1));
+        INFO("start (u, v) = (", u, ", u ", offset > 0 ? "+" : "−", " 10⁻¹⁰): the normal is ",
+             offset > 0 ? "+z" : "−z");
+        const std::optional<PatchHit> hit = patch_newton(fold, ray, ray_planes(ray), Vec2(u, v), 1e-12, 10);
+        REQUIRE_MESSAGE(hit, "the start lies on the ray (F = 0) inside [0, 1]², and det J ≠ 0");
+        CHECK(hit->iterations == 0);
+        CHECK(std::abs(hit->s - 1.0) <= 1e-12);
+        CHECK(std::abs(hit->u - u) <= 1e-12);
+        CHECK(std::abs(hit->v - v) <= 1e-12);
+        CHECK_MESSAGE(length(hit->normal - Vec3(0, 0, offset > 0 ? 1.0 : -1.0)) <= 1e-9,
+                      "S_u × S_v = (0, 0, 2(v − u)) on this side of the fold; a nudge towards (½, ½) keeps "
+                      "the side, one away from it (or in one parameter only) can cross the fold");
+      }
+  }
+}
+
+// Box padding far from the origin (issue 28: a pad that does not grow with the coordinates loses rays
+// through a patch's boundary to rounding once the patch lies far away).
+TEST_SUITE("lesson05") {
+  TEST_CASE("hard case: rays from the origin through the boundary of a small flat patch 940 away all hit it" *
+            doctest::description("task=5,6,7")) {
+    // The flat square x ∈ [500.1, 500.11], y ∈ [400.2, 400.21] of the plane z = 700.3 (a bilinear patch:
+    // x = 500.1 + 0.01u, y = 400.2 + 0.01v), searched to max_depth 8 (leaf boxes 0.01/256 = 3.9·10⁻⁵
+    // wide, flat in z). Rays from near the origin aim at points of its four edges and at its corners.
+    // The direction is rounded to about 10⁻¹⁶, so 940 away a ray passes up to ~2·10⁻¹³ beside the point
+    // it aims at: just outside the square for about half of them. That is u or v 2·10⁻¹¹ outside [0, 1],
+    // within the header's 10⁻⁹: a hit. But the ray's line then also grazes the leaf box from outside by
+    // 10⁻¹³, more than 10⁻⁹ of the box's size (4·10⁻¹⁴): the box must be padded by more than rounding at
+    // these coordinates (the header: a pad that grows with |hi|), or the only box holding the hit is
+    // pruned and the ray misses.
+    const double x0 = 500.1, y0 = 400.2, z = 700.3, w = 0.01;
+    const BezierPatch square = BezierPatch::bilinear(Point3(x0, y0, z), Point3(x0 + w, y0, z),
+                                                     Point3(x0, y0 + w, z), Point3(x0 + w, y0 + w, z));
+    PatchOptions options;
+    options.max_depth = 8;
+    const Point3 origins[] = {Point3(0.3, -0.2, 0.1), Point3(-0.7, 0.45, -0.15), Point3(1e-3, 2e-3, 1.9)};
+    int rays = 0, missed = 0;
+    for (int k = 0; k <= 16; ++k) {
+      const double t = k / 16.0;
+      // (u, v) on the four edges: (t, 0), (1, t), (1 − t, 1), (0, 1 − t); corners at t = 0 and 1.
+      const double uv[4][2] = {{t, 0.0}, {1.0, t}, {1.0 - t, 1.0}, {0.0, 1.0 - t}};
+      for (const auto& p : uv)
+        for (const Point3& origin : origins) {
+          const Point3 target(x0 + w * p[0], y0 + w * p[1], z);
+          const std::optional<PatchHit> hit =
+              intersect_patch(Ray::toward(origin, target - origin), square, options);
+          ++rays;
+          if (!hit) {
+            ++missed;
+            continue;
+          }
+          INFO("aimed at (u, v) = (", p[0], ", ", p[1], ")");
+          CHECK(std::abs(hit->u - p[0]) <= 1e-8);
+          CHECK(std::abs(hit->v - p[1]) <= 1e-8);
+          CHECK(std::abs(hit->s - length(target - origin)) <= 1e-8);
+        }
+    }
+    CHECK(rays == 17 * 4 * 3);
+    CHECK_MESSAGE(missed == 0,
+                  "a ray through the boundary of the parameter square hits (it is closed, up to "
+                  "10⁻⁹); pad the boxes by more than rounding at |P| ≈ 940");
+  }
+}
+
+TEST_SUITE("lesson05") {
+  TEST_CASE(
+      "hard case: a Newton iterate exactly ½ outside the square has run off, even if it would come back" *
+      doctest::description("task=5,6")) {
+    // x = g(u) cubic, y = v (or the same with u and v exchanged), z = 0, a vertical ray at x = x*. Ray along
+    // −z: N₁ = (0, −1, 0), N₂ = (−1, 0, 0), so Newton's u-step is (x* − g(u))/g'(u), in exact dyadics here.
+    // g(u) = u³ + ¾u (Bernstein coefficients 0, ¼, ½, 7/4), x* = 1/8, from u = −1: g = −7/4, g' = 15/4,
+    // u ← −1 + (15/8)/(15/4) = −½ exactly. Mirrored, g(u) = 1 − (1 − u)³ − ¾(1 − u) (coefficients
+    // −¾, ½, ¾, 1), x* = 7/8, from u = 2: u ← 1½ exactly. The header: an iterate outside the open square
+    // (−½, 1½)² has run off: nothing -- although Newton would go on (−½ → −0.083 → 0.161 …) to the root
+    // r of t³ + ¾t = 1/8 (Cardano: r = ∛(1/16 + √Δ) + ∛(1/16 − √Δ), Δ = 1/256 + 1/64), or 1 − r, inside.
+    struct Case {
+      std::vector<double> g;
+      double target, start;
+    };
+    const double delta = 1.0 / 256 + 1.0 / 64;
+    const double r = std::cbrt(1.0 / 16 + std::sqrt(delta)) + std::cbrt(1.0 / 16 - std::sqrt(delta));
+    const Case cases[] = {{{0, 0.25, 0.5, 1.75}, 0.125, -1.0}, {{-0.75, 0.5, 0.75, 1}, 0.875, 2.0}};
+    for (const Case& c : cases)
+      for (const bool along_v : {false, true}) {
+        std::vector<Point3> control;
+        if (!along_v) {  // degree 3 in u, 1 in v: P_ij = (g_i, j, 0)
+          for (int j = 0; j <= 1; ++j)
+            for (int i = 0; i <= 3; ++i) control.emplace_back(c.g[static_cast<std::size_t>(i)], j, 0.0);
+        } else {  // degree 1 in u, 3 in v: P_ij = (i, g_j, 0), so y = g(v), x = u
+          for (int j = 0; j <= 3; ++j)
+            for (int i = 0; i <= 1; ++i) control.emplace_back(i, c.g[static_cast<std::size_t>(j)], 0.0);
+        }
+        const BezierPatch patch = along_v ? BezierPatch(1, 3, control) : BezierPatch(3, 1, control);
+        // The ray at x* on the cubic's axis and ¼ on the linear one (dyadic, so the blend in it is exact).
+        const Ray ray(along_v ? Point3(0.25, c.target, 1.0) : Point3(c.target, 0.25, 1.0), Vec3(0, 0, -1));
+        const Vec2 start = along_v ? Vec2(0.25, c.start) : Vec2(c.start, 0.25);
+        INFO(std::string(along_v ? "v" : "u"), " from ", c.start, ": the first step lands exactly on ",
+             std::string(c.start < 0 ? "−½" : "1½"));
+        CHECK_FALSE_MESSAGE(patch_newton(patch, ray, ray_planes(ray), start, 1e-12, 50),
+                            "an iterate on the border of (−½, 1½)² has left the open square: nothing");
+        // Started inside, Newton reaches the root (a control of the construction).
+        const Vec2 good = along_v ? Vec2(0.25, 0.5) : Vec2(0.5, 0.25);
+        const std::optional<PatchHit> hit = patch_newton(patch, ray, ray_planes(ray), good, 1e-12, 50);
+        REQUIRE(hit);
+        const double root = c.start < 0 ? r : 1.0 - r;
+        CHECK(std::abs((along_v ? hit->v : hit->u) - root) <= 1e-9);
+      }
   }
 }

@@ -173,3 +173,87 @@ TEST_SUITE("lesson05") {
     CHECK(r.iterations == 0);
   }
 }
+
+// Values of f below float's range (issue 28: float for double in the root finders passes on functions of
+// size 1).
+TEST_SUITE("lesson05") {
+  TEST_CASE("hard case: f = 10⁻³⁰⁰·(s² − 2) has the root √2 like s² − 2: keep f(s) in double" *
+            doctest::description("task=1,2,3")) {
+    // Scaling f by c > 0 moves no root and changes no sign, and Newton's step f/f' is the same: every
+    // method must find √2. Here |f| ≤ 4·10⁻³⁰⁰, far below the smallest float (1.4·10⁻⁴⁵): stored in a
+    // float, f(a) = −10⁻³⁰⁰ becomes −0, which reads as "f(a) = 0, a is the root" or as no sign at all.
+    const double c = 1e-300;
+    const RootResult halving = bisection(scaled_square(c), {1.0, 2.0}, 1e-10, 100);
+    REQUIRE_MESSAGE(halving.converged(), "f(1) = −10⁻³⁰⁰ < 0 < f(2) = 2·10⁻³⁰⁰: a sign change, bisect it");
+    CHECK(std::abs(halving.s - std::sqrt(2.0)) <= 1e-10);
+    CHECK_MESSAGE(halving.iterations == 33, "[1, 2] halved until 2^−(k+1) ≤ 1e−10: k = 33");
+    const RootResult falling = bisection(scaled_square(-c), {1.0, 2.0}, 1e-10, 100);
+    REQUIRE(falling.converged());
+    CHECK(std::abs(falling.s - std::sqrt(2.0)) <= 1e-10);
+    const RootResult plain = newton(scaled_square(c), 1.0, 1e-10, 60);
+    REQUIRE_MESSAGE(plain.converged(), "f(1) = −10⁻³⁰⁰ is not 0: take Newton's steps");
+    CHECK(std::abs(plain.s - std::sqrt(2.0)) <= 1e-9);
+    // 1 → 1.5 → 1.41667 → 1.4142157 → 1.41421356237469 → 1.414213562373095: the fifth step, 1.6e−12, is
+    // the first within 1e−10, as for s² − 2 itself.
+    CHECK(plain.iterations == 5);
+    const RootResult safe = safeguarded_newton(scaled_square(c), {1.0, 2.0}, 1e-10, 100);
+    REQUIRE(safe.converged());
+    CHECK(std::abs(safe.s - std::sqrt(2.0)) <= 1e-9);
+    const RootResult safe_falling = safeguarded_newton(scaled_square(-c), {1.0, 2.0}, 1e-10, 100);
+    REQUIRE(safe_falling.converged());
+    CHECK(std::abs(safe_falling.s - std::sqrt(2.0)) <= 1e-9);
+  }
+}
+
+TEST_SUITE("lesson05") {
+  TEST_CASE("sphere tracing with a Lipschitz bound of 2: the budget is max_iterations evaluations, no fewer" *
+            doctest::description("task=4")) {
+    // Distance 5 − s (a wall at s = 5), L = 2: each step is half the distance left, so after k steps
+    // d = 5·2⁻ᵏ (exact in binary). With tolerance 10⁻³: d = 5/4096 = 1.2·10⁻³ after 12 steps is not yet
+    // within it, 5/8192 = 6.1·10⁻⁴ after 13 is: the hit is s = 5 − 5/8192, found at the 14th evaluation.
+    // The header: at most max_iterations evaluations, so 14 is enough and 13 is not.
+    const Function wall([](double s) { return 5.0 - s; }, [](double) { return -1.0; });
+    const RootResult enough = sphere_trace(wall, {0.0, 100.0}, 2.0, 1e-3, 14);
+    REQUIRE_MESSAGE(enough.converged(), "14 evaluations: d after 0, 1, …, 13 steps; the last is within 10⁻³");
+    CHECK(enough.iterations == 13);
+    CHECK(enough.s == 5.0 - 5.0 / 8192.0);
+    const RootResult short_budget = sphere_trace(wall, {0.0, 100.0}, 2.0, 1e-3, 13);
+    CHECK_MESSAGE(short_budget.status == RootStatus::max_iterations,
+                  "13 evaluations see d after at most 12 steps, 1.2·10⁻³ > 10⁻³: the budget runs out");
+  }
+}
+
+TEST_SUITE("lesson05") {
+  TEST_CASE("bisection: roots exactly at the bracket's ends, and an end where f = 1 is no root" *
+            doctest::description("task=1")) {
+    // f = s − 2 on [1, 2]: f(b) = 0, b is the root, found before any halving; on [2, 3.5]: f(a) = 0.
+    const Function line([](double s) { return s - 2.0; }, [](double) { return 1.0; });
+    const RootResult at_b = bisection(line, {1.0, 2.0}, 1e-12, 50);
+    REQUIRE_MESSAGE(at_b.converged(), "f(b) = 0: b is a root (no sign change is needed)");
+    CHECK(at_b.s == 2.0);
+    CHECK(at_b.iterations == 0);
+    const RootResult at_a = bisection(line, {2.0, 3.5}, 1e-12, 50);
+    REQUIRE(at_a.converged());
+    CHECK(at_a.s == 2.0);
+    CHECK(at_a.iterations == 0);
+    // f = s − 2 on [0, 3]: f(3) = 1 is no root; the root 2 is found by halving (half width 3·2^−(k+1)
+    // ≤ 1e−6 at k = 21).
+    const RootResult inside = bisection(line, {0.0, 3.0}, 1e-6, 50);
+    REQUIRE(inside.converged());
+    CHECK_MESSAGE(std::abs(inside.s - 2.0) <= 1e-6, "f(3) = 1 at b is not a root; the root is 2");
+    CHECK(inside.iterations == 21);
+  }
+
+  TEST_CASE("safeguarded Newton: the first Newton step is measured against the bracket's width" *
+            doctest::description("task=3")) {
+    // f = s + 1/8 on [−1.5, 0.5] (all exact in binary): the midpoint −0.5 has f = −3/8 < 0, so the bracket
+    // becomes [−0.5, 0.5], width 1. Newton's step from −0.5 is 3/8 ≤ ½·1, to −1/8, inside (−0.5, 0.5):
+    // accepted, and f(−1/8) = 0: one iteration. (A first "previous step" of a + b = 0, say, would
+    // refuse it and bisect to 0 first: two iterations.)
+    const Function line([](double s) { return s + 0.125; }, [](double) { return 1.0; });
+    const RootResult r = safeguarded_newton(line, {-1.5, 0.5}, 1e-12, 50);
+    REQUIRE(r.converged());
+    CHECK(r.s == -0.125);
+    CHECK_MESSAGE(r.iterations == 1, "the first Newton step, 3/8, is at most half the bracket's width 1");
+  }
+}

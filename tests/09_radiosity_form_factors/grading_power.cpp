@@ -6,10 +6,12 @@
 // through the paths that return early.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "closed_forms.hpp"
@@ -20,6 +22,7 @@
 #include "illum/radiosity/form_factor_sampling.hpp"
 #include "illum/radiosity/patch.hpp"
 #include "illum/radiosity/radiosity_equation.hpp"
+#include "support/throws_containing.hpp"
 
 using namespace illum;
 using namespace lesson09_test;
@@ -252,5 +255,168 @@ TEST_SUITE("lesson09") {
     const Patch tiny = rectangle_up(-l, l, -l, l, 0);
     CHECK(point_polygon_form_factor(Point3(0, 0, 1e-14), Vec3(0, 0, -1), tiny) ==
           doctest::Approx(1.0).epsilon(1e-6));
+  }
+}
+
+// B from I at the ends of the quadrature orders, and a Monte Carlo radiance whose every sample is known
+// (issue 28: estimators tested only with constant radiance, and a float sum, pass the z-tests).
+TEST_SUITE("lesson09") {
+  TEST_CASE("B by Gauss–Legendre at the highest orders (up to 64, the header's limit) of a mixed radiance" *
+            doctest::description("task=10")) {
+    // I(φ, θ) = 0.37 + cos φ cos²θ + 0.5 sin θ: B = ∫∫ I cos φ sin φ dφ dθ = 0.37·π + (∫₀^{π/2} cos²φ sin φ
+    // dφ) (∫₀^{2π} cos²θ dθ) + 0.5·(½)(∫₀^{2π} sin θ dθ) = 0.37π + (1/3)·π + 0. The sin θ term integrates to
+    // 0 only over the whole turn θ ∈ [0, 2π] (over [0, π] it would give 2). The integrands are smooth
+    // (analytic), so 48 points and more reach B to rounding. The header accepts n in 1 … 64: 64 is a valid
+    // order; 0 and 65 are refused, by this function (its message names it, as every error here does).
+    const auto radiance = [](double phi, double theta) {
+      return 0.37 + std::cos(phi) * std::pow(std::cos(theta), 2) + 0.5 * std::sin(theta);
+    };
+    for (const int n : {64, 63, 48}) {
+      INFO("n = ", n);
+      CHECK(exitance_from_radiance_quadrature(radiance, n) ==
+            doctest::Approx(pi * (0.37 + 1.0 / 3.0)).epsilon(1e-12));
+    }
+    ILLUM_CHECK_THROWS_CONTAINING(exitance_from_radiance_quadrature(radiance, 65),
+                                  "exitance_from_radiance_quadrature", std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(exitance_from_radiance_quadrature(radiance, 0),
+                                  "exitance_from_radiance_quadrature", std::invalid_argument);
+  }
+
+  TEST_CASE("B by Monte Carlo of I = c/cos φ: every sample scores 2πc, so B̂ = 2πc to rounding" *
+            doctest::description("task=11")) {
+    // The header: directions uniform on the hemisphere, each scoring 2π I cos φ. With I = c/cos φ every
+    // score is 2πc whatever the direction, so the mean of n scores is 2πc up to rounding (about 10⁻¹⁶
+    // per score; |cos(acos u) − u| ≤ 2·10⁻¹⁶ even for u near 0), and so is the exact
+    // B = ∫ (c/cos φ) cos φ dω = 2πc. A sum kept in float (24 bits) rounds each addition by up to half
+    // an ulp of the running sum (2⁻²⁵ of it), the same way for equal scores: 10⁻⁷ relative after 7
+    // scores, 10⁻⁶–10⁻⁵ after 1000, far outside 10⁻⁹.
+    const double c = 0.37;
+    const auto radiance = [c](double phi, double) { return c / std::cos(phi); };
+    for (const int n : {1, 7, 1000, 100000}) {
+      Rng rng(4242 + static_cast<std::uint64_t>(n));
+      INFO("samples = ", n);
+      CHECK_MESSAGE(
+          exitance_from_radiance_monte_carlo(radiance, n, rng) == doctest::Approx(2 * pi * c).epsilon(1e-9),
+          "the mean of n equal scores 2πc is 2πc: sum in double, divide by n");
+    }
+  }
+}
+
+// Per-sample values that are all the same (tiny patches), and the fan of a hexagon (issue 28: a float
+// cosine or a tolerance dropped on one path passes statistical or converged tests).
+namespace {
+
+// The point factor from (x, y, 0), facing +z, to the rectangle [0, 2] × [0, 1.5] at height c facing down,
+// for (x, y) under it: the sum of four corner rectangles (Howell B-3).
+double under_ceiling(double x, double y, double c) {
+  return point_to_parallel_rectangle_corner(2 - x, 1.5 - y, c) +
+         point_to_parallel_rectangle_corner(x, 1.5 - y, c) + point_to_parallel_rectangle_corner(2 - x, y, c) +
+         point_to_parallel_rectangle_corner(x, y, c);
+}
+
+}  // namespace
+
+TEST_SUITE("lesson09") {
+  TEST_CASE("hierarchical: a hexagon is a fan of six triangles, each trusted at its first split" *
+            doctest::description("task=1,2,4")) {
+    // A regular hexagon of radius 0.5 about (1, 0.75) in z = 0 (normal +z), under the ceiling
+    // [0, 2] × [0, 1.5] at c = 0.8. The header: more than four vertices → the fan of six triangles
+    // (centre, v_k, v_k+1) of equal area A/6; each is split by its midpoints into four of area A/24;
+    // with tolerance 1 (no two point factors differ by more: F lies in [0, 1]) every first split is
+    // trusted and contributes its children's mean. So F is the plain mean of the point factors at the
+    // 24 children's centroids (the means of their vertices), each by Howell B-3.
+    const double c = 0.8, pi_3 = pi / 3;
+    const Point3 centre(1.0, 0.75, 0.0);
+    std::vector<Point3> hexagon;
+    for (int k = 0; k < 6; ++k)
+      hexagon.push_back(centre + 0.5 * Vec3(std::cos(k * pi_3 + 0.2), std::sin(k * pi_3 + 0.2), 0.0));
+    const Patch from = make_patch(hexagon);
+    const Patch to = make_patch({{0, 0, c}, {0, 1.5, c}, {2, 1.5, c}, {2, 0, c}});
+    double expected = 0;
+    for (int k = 0; k < 6; ++k) {
+      const Point3 v0 = centre, v1 = hexagon[static_cast<std::size_t>(k)],
+                   v2 = hexagon[static_cast<std::size_t>((k + 1) % 6)];
+      const Point3 m01 = 0.5 * (v0 + v1), m12 = 0.5 * (v1 + v2), m20 = 0.5 * (v2 + v0);
+      for (const Point3& g :
+           {(v0 + m01 + m20) / 3.0, (m01 + v1 + m12) / 3.0, (m20 + m12 + v2) / 3.0, (m01 + m12 + m20) / 3.0})
+        expected += under_ceiling(g.x, g.y, c) / 24;
+    }
+    const HierarchicalResult r = form_factor_hierarchical(from, to, 1.0, 3);
+    CHECK_MESSAGE(r.value == doctest::Approx(expected).epsilon(1e-12),
+                  "six fan triangles, each split once and trusted (tolerance 1): the mean of the 24 "
+                  "children's point factors");
+    CHECK_MESSAGE(r.evaluations == 30, "6 fan triangles, each estimated once and its 4 children once");
+  }
+
+  TEST_CASE("Monte Carlo and area sampling between squares 10⁻⁵ wide: every sample is A_j/(πc²)" *
+            doctest::description("task=5,6")) {
+    // Squares of side w = 10⁻⁵ facing each other across c = 0.7 (off the axes: x ∈ [0.3, 0.3 + w],
+    // y ∈ [0.2, 0.2 + w]). Every pair of points is at r² = c² + ρ² with ρ² ≤ 2w², so each sample
+    // A_j cos φ_i cos φ_j/(π r²) = A_j c²/(π r⁴) is A_j/(πc²)·(1 − 2ρ²/c² + …): equal to 4·10⁻¹⁰
+    // relative, whatever the random points. So the estimate is A_j/(πc²) = w²/(πc²) to that, for any
+    // seed and any number of samples. (The cosines in float would be rounded by up to 3·10⁻⁸, and
+    // cos φ = 0.7 is not a float: far outside 10⁻⁹.) A_j = 10⁻¹⁰ is no unit area either.
+    const double w = 1e-5, c = 0.7;
+    const Patch lower = rectangle_up(0.3, 0.3 + w, 0.2, 0.2 + w, 0);
+    const Patch upper = rectangle_down(0.3, 0.3 + w, 0.2, 0.2 + w, c);
+    const double expected = w * w / (pi * c * c);
+    // Relative to F itself (F ≈ 6.5·10⁻¹¹: doctest's Approx would add an absolute 10⁻⁹ to its epsilon).
+    const auto relative_error = [&](double estimate) { return std::abs(estimate - expected) / expected; };
+    for (const int n : {1, 50}) {
+      INFO("samples = ", n, ", F = w²/(πc²) = ", expected);
+      Rng rng(99 + static_cast<std::uint64_t>(n));
+      CHECK(relative_error(form_factor_monte_carlo(lower, upper, {}, n, rng)) <= 1e-9);
+      CHECK(relative_error(form_factor_monte_carlo(upper, lower, {}, n, rng)) <= 1e-9);
+      CHECK(relative_error(form_factor_area_sampling(lower.centroid, lower.normal, upper, {}, n, rng)) <=
+            1e-9);
+    }
+  }
+}
+
+TEST_SUITE("lesson09") {
+  TEST_CASE(
+      "Nusselt with one and two chords per edge: the projected polygon of the vertices (and midpoints)" *
+      doctest::description("task=9")) {
+    // The square [−a, a]² at height h above x = (0.1, 0.2, 0.3) (a = 0.6, h = 0.9), facing down, x facing
+    // up. The header: each edge is split into segments_per_edge chords, whose ends go to the hemisphere
+    // and down to the disc. One chord per edge: the corners go to (±a, ±a)/R₁, R₁ = √(2a² + h²), a square
+    // of area 4a²/R₁², so F = 4a²/(πR₁²). Two chords: the midpoints (±a, 0)/R₂, (0, ±a)/R₂,
+    // R₂ = √(a² + h²), join them: an octagon of 8 triangles (centre, midpoint, corner) of area
+    // ½(a/R₂)(a/R₁) each, F = 4a²/(πR₁R₂). Every chord counts, the first one of each edge included.
+    const double a = 0.6, h = 0.9;
+    const Point3 x(0.1, 0.2, 0.3);
+    const Patch to = rectangle_down(x.x - a, x.x + a, x.y - a, x.y + a, x.z + h);
+    const double r1 = std::sqrt(2 * a * a + h * h), r2 = std::sqrt(a * a + h * h);
+    CHECK(form_factor_nusselt(x, Vec3(0, 0, 1), to, 1) ==
+          doctest::Approx(4 * a * a / (pi * r1 * r1)).epsilon(1e-12));
+    CHECK(form_factor_nusselt(x, Vec3(0, 0, 1), to, 2) ==
+          doctest::Approx(4 * a * a / (pi * r1 * r2)).epsilon(1e-12));
+  }
+}
+
+TEST_SUITE("lesson09") {
+  TEST_CASE(
+      "hard case: F_ii = 0 and coplanar neighbours exchange nothing, for patches 700 wide on a tilted plane" *
+      doctest::description("task=3")) {
+    // Squares of side L = 700 on the plane through o = (1000.1, 2000.3, −500.7) spanned by the orthonormal
+    // u = (0.6, 0.8, 0) and v = (−0.48, 0.36, 0.8) (u·v = −0.288 + 0.288 = 0): coordinates no double holds
+    // exactly, so a vertex's height above the other patch's plane is rounding, about 10⁻¹³ — not 0, but
+    // far below the patches' size. Coplanar patches exchange nothing (every cosine is 0): F = 0 exactly,
+    // the header's "zero for coplanar patches (so F_ii = 0)", whichever way the heights are rounded (Stokes's
+    // theorem, which turns the area integrals into the contour sum, does not hold for a patch with itself).
+    const double l = 700;
+    const Point3 o(1000.1, 2000.3, -500.7);
+    const Vec3 u(0.6, 0.8, 0), v(-0.48, 0.36, 0.8);
+    const Patch a = make_patch({o, o + l * u, o + l * u + l * v, o + l * v});
+    const Patch b = make_patch({o + l * u, o + 2 * l * u, o + 2 * l * u + l * v, o + l * u + l * v});
+    double height =
+        0;  // self-check: the vertices are off each other's planes by rounding, not exactly on them
+    for (const Point3& p : b.vertices) height = std::max(height, std::abs(dot(a.normal, p - a.centroid)));
+    for (const Point3& p : a.vertices) height = std::max(height, std::abs(dot(a.normal, p - a.centroid)));
+    REQUIRE(height > 0);
+    REQUIRE(height < 1e-9);
+    CHECK_MESSAGE(polygon_polygon_form_factor(a, a) == 0.0, "F_ii = 0: a flat patch does not see itself");
+    CHECK_MESSAGE(polygon_polygon_form_factor(a, b) == 0.0, "coplanar neighbours: every cosine is 0");
+    CHECK(polygon_polygon_form_factor(b, a) == 0.0);
   }
 }

@@ -54,12 +54,16 @@ RayPlanes ray_planes(const Ray& ray);
 
 // Newton's method in (u, v) from `start`. A hit when max(|F₁|, |F₂|) ≤
 // tolerance within max_iterations, with (u, v) in [0, 1]² (up to 1e-9,
-// then clamped) and s = ω·(S − P0) inside ray.range. Nothing when Newton
-// leaves the parameter square by more than ½, when J is singular
+// then clamped) and s = ω·(S − P0) inside ray.range. Nothing when a Newton
+// iterate leaves the open square (−½, 1½)² (½ or more outside [0, 1]²: it
+// ran off the patch, even if later steps would come back), when J is singular
 // (|det J| = |ω·(S_u × S_v)| ≤ 1e-12·|S_u||S_v|: the ray runs along the
 // surface, the patch is seen edge-on, or the edge there is collapsed), or
-// when it does not converge. At a point where S_u × S_v = 0 (a collapsed
-// edge) the normal is taken a little way into the patch. Throws
+// when it does not converge. Where S_u × S_v nearly vanishes (|S_u × S_v| ≤
+// 10⁻⁹|S_u||S_v|: a collapsed edge, or a fold where S_u ∥ S_v) the normal is
+// S_u × S_v taken a little way (10⁻⁶ of the way) from (u, v) towards the
+// centre (½, ½) of the square, in both parameters: next to a fold that stays
+// on the hit's side. Throws
 // std::invalid_argument for a non-finite start, tolerance ≤ 0 or
 // max_iterations < 1.
 std::optional<PatchHit> patch_newton(const BezierPatch& patch, const Ray& ray, const RayPlanes& planes,
@@ -68,6 +72,9 @@ std::optional<PatchHit> patch_newton(const BezierPatch& patch, const Ray& ray, c
 // The nearest hit of the ray with the patch: subdivide to options.max_depth,
 // pruning sub-patches whose box the ray misses, start patch_newton (on the
 // whole patch) at the centre of every surviving leaf, keep the smallest s.
+// Each box is padded by a hair before the test, 10⁻⁹(hi − lo) + 10⁻¹²(1 + |hi|)
+// on every axis: rounding grows with the coordinates, so a ray through the
+// boundary of a small patch far from the origin is not pruned by it.
 // Throws std::invalid_argument for max_depth outside 0..12 or bad options.
 std::optional<PatchHit> intersect_patch(const Ray& ray, const BezierPatch& patch,
                                         const PatchOptions& options = {}, PatchStats* stats = nullptr);

@@ -62,8 +62,10 @@ RootResult newton(const RealFunction& f, double s0, double tolerance, int max_it
 
 // Newton kept inside a bracket (lesson 05, §5): starts at the midpoint; a
 // Newton step that leaves the bracket, meets f' = 0, or shrinks the step by
-// less than half is replaced by a bisection step. The bracket shrinks after
-// every evaluation. Converged when |Δs| ≤ tolerance or the bracket's half
+// less than half is replaced by a bisection step (before the first step,
+// "the previous step" is the width b − a of the bracket that the midpoint's
+// value left). The bracket shrinks after every evaluation. Converged when
+// |Δs| ≤ tolerance or the bracket's half
 // width is ≤ tolerance. Same preconditions and no_sign_change as bisection.
 RootResult safeguarded_newton(const RealFunction& f, Interval bracket, double tolerance, int max_iterations);
 
@@ -73,9 +75,11 @@ RootResult safeguarded_newton(const RealFunction& f, Interval bracket, double to
 // range.lo. Converged when distance(s) ≤ tolerance (s is then the hit;
 // iterations = the steps taken before it, 0 when range.lo is already within
 // tolerance); missed when a step passes range.hi (s = range.hi, and that step
-// is counted in iterations). Throws std::invalid_argument when the range
-// is empty or NaN (range.hi may be +∞), lipschitz or tolerance is not
-// positive and finite, or max_iterations < 1.
+// is counted in iterations). The budget: at most max_iterations evaluations
+// of `distance`, so a hit is found after at most max_iterations − 1 steps;
+// when the evaluations run out first the status is max_iterations. Throws
+// std::invalid_argument when the range is empty or NaN (range.hi may be +∞),
+// lipschitz or tolerance is not positive and finite, or max_iterations < 1.
 RootResult sphere_trace(const RealFunction& distance, Interval range, double lipschitz, double tolerance,
                         int max_iterations);
 

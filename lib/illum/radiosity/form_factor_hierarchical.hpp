@@ -7,7 +7,10 @@
 // A piece is split in four (quads through their edge midpoints, triangles by
 // their midpoints, other polygons into a fan around the centroid) and the
 // estimate is trusted when the children's area-weighted mean agrees with it
-// within the tolerance; otherwise each child is refined the same way. A
+// within the tolerance, and the piece then contributes that mean (the finer
+// estimate); otherwise each child is refined the same way. A polygon of more
+// than four vertices is first cut into the fan of triangles around its
+// centroid, each refined on its own with the same tolerance. A
 // quad's four children meet at its centre, the mean (v0 + v1 + v2 + v3)/4 of
 // its vertices; a piece's estimate is the point factor at its area centroid.
 #include "illum/radiosity/patch.hpp"

@@ -23,8 +23,9 @@ namespace illum {
 using RadianceFunction = std::function<double(double phi, double theta)>;
 
 // Task 10. B by an n × n tensor Gauss–Legendre rule over φ ∈ [0, π/2]
-// and θ ∈ [0, 2π] of I cos φ sin φ. Throws std::invalid_argument for n
-// outside 1 … 64.
+// and θ ∈ [0, 2π] of I cos φ sin φ. Throws std::invalid_argument, its
+// message naming this function, for n outside 1 … 64 (checked here, not
+// left to gauss_legendre).
 double exitance_from_radiance_quadrature(const RadianceFunction& radiance, int n);
 
 // Task 11. B by Monte Carlo: directions uniform on the hemisphere
