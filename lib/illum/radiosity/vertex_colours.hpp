@@ -18,7 +18,12 @@
 //                 at zero (a radiosity is never negative; the extrapolation
 //                 of a steep gradient can be).
 // Every other boundary vertex (three or more faces, a triangle's corner,
-// faces that share no edge at the vertex) keeps its average.
+// faces that share no edge at the vertex) keeps its average. Any vertex can
+// be e, vertex 0 included.
+//
+// The faces are mesh.faces[0 … faces.size() − 1], exactly: a mesh edited in
+// place (a face removed) keeps a std::vector's spare capacity, whose stale
+// bytes past the end are no face and must never be read.
 //
 // T-vertices: after the vertex values are set, each T-vertex takes the value
 // interpolated along the edge it lies on, in the mesh's t_vertices order,
