@@ -341,8 +341,9 @@ TEST_SUITE("lesson11") {
 // singular-to-precision matrix of huge ones is refused; Southwell's
 // |r| sums and the shooter's powers are compared in double precision.
 TEST_SUITE("lesson11") {
-  TEST_CASE("hard case: gaussian elimination finds the only usable pivot in the last row, column after column" *
-            doctest::description("task=1")) {
+  TEST_CASE(
+      "hard case: gaussian elimination finds the only usable pivot in the last row, column after column" *
+      doctest::description("task=1")) {
     // Solution chosen first, x* = (1, −2, 0.5, 3); b = A x* = (0.5, 4, 9.5, −1), every product exact.
     // By hand: column 0 is 0 in rows 0–2, so the pivot is row 3 (−2, negative: compare |A_ik|);
     // after the swap the rows are (−2 1 0 1), (0 0 2 1), (0 0 1 3), (0 3 1 2), nothing to eliminate.
@@ -382,8 +383,9 @@ TEST_SUITE("lesson11") {
     }
     // d = 2: the pivot 2ε is below 3ε: refused.
     const std::vector<double> two_eps = {0, 0, 1, 0, 2 * eps, 0, 1, 0, 0};
-    INFO("contract: std::invalid_argument mentioning \"singular\" when the best pivot is ≤ n·ε·max|A|, "
-         "max|A| over every entry of the matrix given");
+    INFO(
+        "contract: std::invalid_argument mentioning \"singular\" when the best pivot is ≤ n·ε·max|A|, "
+        "max|A| over every entry of the matrix given");
     ILLUM_CHECK_THROWS_CONTAINING(gaussian_elimination(two_eps, {1, 2 * eps, 1}), "singular",
                                   std::invalid_argument);
     // d = 3: the pivot equals the bound, and the bound is inclusive: refused.
@@ -396,15 +398,16 @@ TEST_SUITE("lesson11") {
     const double s = std::ldexp(1.0, -100);
     const std::vector<double> small = gaussian_elimination({2 * s, s, s, 3 * s}, {3 * s, 4 * s});
     REQUIRE(small.size() == 2);
-    INFO("a well-conditioned matrix whose entries are all near 2^−100 is not singular: the bound scales "
-         "with max|A|");
+    INFO(
+        "a well-conditioned matrix whose entries are all near 2^−100 is not singular: the bound scales "
+        "with max|A|");
     CHECK(small[0] == doctest::Approx(1.0).epsilon(1e-15));
     CHECK(small[1] == doctest::Approx(1.0).epsilon(1e-15));
     // S·[[1, 1], [1, 1 + ε]] with S = 2^100: after eliminating with m = 1 the second pivot is
     // S·ε = 2^48, huge in absolute terms but ≤ 2·ε·max|A| = 2^49(1 + ε): singular to working precision.
     const double big = std::ldexp(1.0, 100);
-    ILLUM_CHECK_THROWS_CONTAINING(gaussian_elimination({big, big, big, big * (1 + eps)}, {big, big}), "singular",
-                                  std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(gaussian_elimination({big, big, big, big * (1 + eps)}, {big, big}),
+                                  "singular", std::invalid_argument);
   }
 
   TEST_CASE("Southwell compares the |r| sums in double precision: rows 2^−30 apart are told apart" *
@@ -438,7 +441,8 @@ TEST_SUITE("lesson11") {
     // In float all three round to 3: a float power makes them a three-way tie (patch 0, the first),
     // a float running maximum lets patch 2 seem to beat patch 1. Patch 1 shoots.
     const GeneralSystem s = general_system();
-    const std::vector<Color> unshot = {Color(1.0, 0.5, 0.5), Color(4.0 * (1.0 + std::ldexp(1.0, -30)), 0.0, 0.0),
+    const std::vector<Color> unshot = {Color(1.0, 0.5, 0.5),
+                                       Color(4.0 * (1.0 + std::ldexp(1.0, -30)), 0.0, 0.0),
                                        Color(1.0 + std::ldexp(1.0, -31), 0.0, 0.0)};
     const std::size_t shooter = choose_shooter(s.patches, unshot);
     CHECK_MESSAGE(shooter == 1,
@@ -465,8 +469,9 @@ std::vector<Patch> decimal_patches() {
 }  // namespace
 
 TEST_SUITE("lesson11") {
-  TEST_CASE("shoot with areas that are not binary fractions: ΔB_j = ρ_j F_ij (A_i/A_j) Δ in double precision" *
-            doctest::description("task=6a,6c")) {
+  TEST_CASE(
+      "shoot with areas that are not binary fractions: ΔB_j = ρ_j F_ij (A_i/A_j) Δ in double precision" *
+      doctest::description("task=6a,6c")) {
     const std::vector<Patch> patches = decimal_patches();
     ProgressiveState state = progressive_start(patches);
     state.unshot = {Color(0.1, 0.2, 0.3), Color(0.7, 0.0, 0.9), Color(0.3, 0.6, 0.1)};
@@ -524,7 +529,8 @@ TEST_SUITE("lesson11") {
     REQUIRE(x.size() == 3);
     const double expected[3] = {1, 2, 3};
     for (std::size_t i = 0; i < 3; ++i) {
-      INFO("x_", i, ": the pivot of column k is the row with the largest |A_ik|, each candidate compared with "
+      INFO("x_", i,
+           ": the pivot of column k is the row with the largest |A_ik|, each candidate compared with "
            "|A_pk| of the best row p so far (same column k)");
       CHECK(x[i] == doctest::Approx(expected[i]).epsilon(1e-14));
     }
@@ -549,9 +555,31 @@ TEST_SUITE("lesson11") {
     REQUIRE(x.size() == 3);
     const double expected[3] = {1, 2, 0};
     for (std::size_t i = 0; i < 3; ++i) {
-      INFO("x_", i, ": eliminating row i with pivot row k changes columns k … n − 1 of row i only; a row with "
+      INFO("x_", i,
+           ": eliminating row i with pivot row k changes columns k … n − 1 of row i only; a row with "
            "A_ik = 0 is not changed at all");
       CHECK(std::abs(x[i] - expected[i]) <= 1e-14);
+    }
+  }
+}
+
+TEST_SUITE("lesson11") {
+  TEST_CASE("jacobi_sweep resizes `next` to one value per patch, whatever it held before" *
+            doctest::description("task=3")) {
+    // Contract (radiosity_solvers.hpp, Task 3): `next` is resized to fit. A `next` left over from a
+    // larger scene (five stale values) must come back with three, each by Jacobi's definition.
+    const GeneralSystem s = general_system();
+    const std::vector<Color> b = {Color(0.5, 1.0, 0.25), Color(2.0, 0.5, 1.0), Color(0.75, 0.125, 2.0)};
+    std::vector<Color> next(5, Color(7.0));
+    jacobi_sweep(s.patches, s.f, b, next);
+    REQUIRE_MESSAGE(next.size() == n, "next holds one value per patch (3), not the 5 it held");
+    for (std::size_t i = 0; i < n; ++i) {
+      Color gathered(0.0);
+      for (std::size_t j = 0; j < n; ++j)
+        if (j != i) gathered += s.f(i, j) * b[j];
+      const Patch& p = s.patches[i];
+      check_close(next[i], (p.emission + p.reflectance * gathered) / (1.0 - p.reflectance * s.f(i, i)), 1e-14,
+                  "next_i = (E_i + ρ_i Σ_{j≠i} F_ij b_j) / (1 − ρ_i F_ii)");
     }
   }
 }

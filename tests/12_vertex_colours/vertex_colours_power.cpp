@@ -8,6 +8,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -284,8 +285,8 @@ TEST_SUITE("lesson12") {
     check_colour(value[4], Color(3.25), "corner 4 of F3: 2·3 − 2.75");
   }
 
-  TEST_CASE("average and extrapolate read only the faces the mesh lists, not the stale slot past its end" *
-            doctest::description("task=1,2")) {
+  TEST_CASE("vertex colours read only the faces the mesh lists, not the stale slot past its end" *
+            doctest::description("task=1,2,3,4")) {
     // The grid above with a fifth face appended and removed again (a mesh edited in place keeps
     // the capacity). The removed face listed only vertex 3, and a list of the same length, all 3s,
     // is still alive while the functions run, so the bytes past the end of mesh.faces may well
@@ -298,7 +299,8 @@ TEST_SUITE("lesson12") {
     mesh.faces.reserve(mesh.faces.size() + 1);
     mesh.faces.push_back(std::vector<int>(length, 3));
     mesh.faces.pop_back();
-    const std::vector<int> stale(length, 3);  // the same size: the allocator tends to hand back the freed list
+    const std::vector<int> stale(length,
+                                 3);  // the same size: the allocator tends to hand back the freed list
     REQUIRE(mesh.faces.size() == 4);
     const std::vector<Color> b = {Color(1), Color(2), Color(5), Color(3)};
     const std::vector<Color> average = average_vertex_radiosity(mesh, b);
@@ -309,6 +311,16 @@ TEST_SUITE("lesson12") {
     check_colour(average[3], Color(5), "vertex 3 lies on F2 only: its average is B(F2) = 5");
     check_colour(average[0], Color(2.75), "the centre: (1 + 2 + 5 + 3)/4");
     check_colour(extrapolated[3], Color(7.25), "corner 3 of F2, opposite the centre: 2·5 − 2.75");
+    for (VertexColourRule rule :
+         {VertexColourRule::patch_own, VertexColourRule::average, VertexColourRule::extrapolate}) {
+      INFO("corner_radiosity, rule ", static_cast<int>(rule), ": one list per face of mesh.faces, no more");
+      const auto corners = corner_radiosity(mesh, b, rule);
+      REQUIRE(corners.size() == 4);
+      const Color at_3 = rule == VertexColourRule::patch_own ? Color(5)
+                         : rule == VertexColourRule::average ? Color(5)
+                                                             : Color(7.25);
+      check_colour(corners[2][2], at_3, "F2's corner at vertex 3 (its third corner)");
+    }
     CHECK(stale == std::vector<int>(length, 3));
   }
 }
@@ -326,8 +338,10 @@ int vertex_at(const SharedVertexMesh& mesh, const Point3& point) {
 }  // namespace
 
 TEST_SUITE("lesson12") {
-  TEST_CASE("extrapolate leaves a T-vertex on the boundary at its average; corner_radiosity resolves it at t = 1/4" *
-            doctest::description("task=1,2,3,4,5")) {
+  TEST_CASE(
+      "extrapolate leaves a T-vertex on the boundary at its average; corner_radiosity resolves it at t = "
+      "1/4" *
+      doctest::description("task=1,2,3,4,5")) {
     // Big face F0 = [0,2]² (B = (8, 4, 2)) and one small face F1 = [2,3]×[0,0.5] (B = (2, 6, 1)). The
     // small face's corner (2, 0.5) lies inside the big face's edge (2,0)–(2,2), a quarter of the way
     // up: a T-vertex, and on the boundary (nothing covers the edge (2,0.5)–(3,0.5) but F1).
@@ -381,23 +395,60 @@ TEST_SUITE("lesson12") {
     // Barycentric (1 − u − v, u, v) = (0.2, 0.1, 0.7) on the unit corners.
     check_colour(gouraud({Color(1, 0, 0), Color(0, 1, 0), Color(0, 0, 1)}, 0.1, 0.7), Color(0.2, 0.1, 0.7),
                  "barycentric weights (1 − u − v, u, v) = (0.2, 0.1, 0.7)");
+    INFO("contract of gouraud: 3 or 4 corners, std::invalid_argument for any other number");
+    CHECK_THROWS_AS(gouraud(std::vector<Color>(5, Color(1)), 0.1, 0.7), std::invalid_argument);
+    CHECK_THROWS_AS(gouraud({}, 0.1, 0.7), std::invalid_argument);
   }
 
   TEST_CASE("the gap is a double: a gap 2^−30 above the threshold splits, one 2^−30 below does not" *
             doctest::description("task=6,7")) {
     const double above = 1.0 + std::ldexp(1.0, -30);  // exact in double, 1 in float
     const double gap = radiosity_gap(Color(0.5, 0.0, 0.25), Color(0.5, above, 0.25));
-    CHECK_MESSAGE(gap == above, "the gap of (0.5, 0, 0.25) and (0.5, 1 + 2^-30, 0.25) is exactly 1 + 2^-30 in double");
-    CHECK_MESSAGE(radiosity_gap(Color(0.1, 0.5, 0.3), Color(0.4, 0.45, 0.3)) == doctest::Approx(0.3).epsilon(1e-15),
-                  "max(|0.1 − 0.4|, |0.5 − 0.45|, 0) = 0.3");
+    CHECK_MESSAGE(gap == above,
+                  "the gap of (0.5, 0, 0.25) and (0.5, 1 + 2^-30, 0.25) is exactly 1 + 2^-30 in double");
+    CHECK_MESSAGE(
+        radiosity_gap(Color(0.1, 0.5, 0.3), Color(0.4, 0.45, 0.3)) == doctest::Approx(0.3).epsilon(1e-15),
+        "max(|0.1 − 0.4|, |0.5 − 0.45|, 0) = 0.3");
     const std::vector<Color> b = {Color(0.0), Color(0.0, above, 0.0), Color(0.0, 2.0 * above, 0.0)};
     const std::vector<double> edge(3, 1.0);
     // Pairs (0, 1) and (1, 2): gaps 1 + 2^−30 each. Threshold 1: both exceed it, every element splits.
-    CHECK_MESSAGE(elements_to_split({{0, 1}, {1, 2}}, b, edge, 1.0, 0.1) == std::vector<bool>(3, true),
-                  "gaps of 1 + 2^-30 exceed the threshold 1 (a gap rounded to float would equal it and not split)");
+    CHECK_MESSAGE(
+        elements_to_split({{0, 1}, {1, 2}}, b, edge, 1.0, 0.1) == std::vector<bool>(3, true),
+        "gaps of 1 + 2^-30 exceed the threshold 1 (a gap rounded to float would equal it and not split)");
     // Threshold 1 + 2^−29: above both gaps, nothing splits.
     CHECK_MESSAGE(elements_to_split({{0, 1}, {1, 2}}, b, edge, 1.0 + std::ldexp(1.0, -29), 0.1) ==
                       std::vector<bool>(3, false),
                   "gaps of 1 + 2^-30 stay below the threshold 1 + 2^-29");
+  }
+}
+
+TEST_SUITE("lesson12") {
+  TEST_CASE("corner_radiosity gives every face, the first included, one value per corner under every rule" *
+            doctest::description("task=1,2,3,4")) {
+    // Contract (vertex_colours.hpp, Task 4): per face, per corner in the order of mesh.faces[f]. The
+    // centre-first grid: four quads, B = 1, 2, 5, 3. patch_own: face f's four corners all hold B_f.
+    // average: F0 = (1, 5, 0, 8) holds (1, 1.5, 2.75, 2) (vertex 1 on F0 only; 5 on F0, F1; 0 on all
+    // four; 8 on F3, F0). extrapolate: (0, 0.25, 2.75, 1.25) from the values worked out above.
+    const SharedVertexMesh mesh = grid_centre_first();
+    const std::vector<Color> b = {Color(1), Color(2), Color(5), Color(3)};
+    const auto own = corner_radiosity(mesh, b, VertexColourRule::patch_own);
+    const auto average = corner_radiosity(mesh, b, VertexColourRule::average);
+    const auto extrapolated = corner_radiosity(mesh, b, VertexColourRule::extrapolate);
+    for (const auto* corners : {&own, &average, &extrapolated}) {
+      REQUIRE(corners->size() == 4);
+      for (std::size_t f = 0; f < 4; ++f) {
+        INFO("face ", f, ": one value per corner of mesh.faces[f] (4), face 0 included");
+        CHECK((*corners)[f].size() == 4);
+      }
+    }
+    for (std::size_t f = 0; f < 4; ++f)
+      for (const Color& c : own[f]) check_colour(c, b[f], "patch_own: every corner of face f holds B_f");
+    const Color f0_average[4] = {Color(1), Color(1.5), Color(2.75), Color(2)};
+    const Color f0_extrapolated[4] = {Color(0), Color(0.25), Color(2.75), Color(1.25)};
+    for (std::size_t k = 0; k < 4; ++k) {
+      INFO("face 0 = (1, 5, 0, 8), corner ", k);
+      check_colour(average[0][k], f0_average[k], "average, in the order of mesh.faces[0]");
+      check_colour(extrapolated[0][k], f0_extrapolated[k], "extrapolate, in the order of mesh.faces[0]");
+    }
   }
 }
