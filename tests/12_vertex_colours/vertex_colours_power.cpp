@@ -5,6 +5,12 @@
 // the others, two faces meet at a single vertex, triangles meet along an edge.
 // Every expected value is worked out in the comment beside it from the
 // formulas of vertex_colours.hpp.
+//
+// Later sections (contracts stated above each): B_e at vertex 0, a face list
+// with a stale slot past its end (only mesh.faces[0 … size − 1] are faces),
+// one corner value per corner of every face, a boundary T-vertex left at its
+// average by Task 2 and resolved at t = 1/4 by Task 4, Gouraud weights and
+// gaps in double precision.
 #include <doctest/doctest.h>
 
 #include <cmath>

@@ -84,7 +84,8 @@ std::size_t choose_shooter(const std::vector<Patch>& patches, const std::vector<
 // F_i· (row[j] = F_ij, j = 0 … n−1): with Δ = Δ_i, set Δ_i = 0, then for every j
 //   ΔB_j = ρ_j F_ji Δ = ρ_j F_ij (A_i / A_j) Δ    (erratum 8 of docs/errata.md)
 //   B_j += ΔB_j,  Δ_j += ΔB_j,
-// and counts the shot: state.shots += 1. Only row i is needed: the hemicube
+// and counts the shot: state.shots += 1 (all in double: areas such as 0.3 or
+// 0.7 are not binary fractions, and a float ratio is visibly off). Only row i is needed: the hemicube
 // placed on the shooter gives it. Throws std::invalid_argument, before
 // changing the state, for i out of range, a row without one value per patch,
 // or a state whose vectors have not one value per patch.

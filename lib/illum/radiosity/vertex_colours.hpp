@@ -71,7 +71,8 @@ std::vector<std::vector<Color>> corner_radiosity(const SharedVertexMesh& mesh,
 // Task 5. Gouraud interpolation inside one face from its corner values:
 // bilinear for 4 corners,
 //   (1 − u)(1 − v) c₀ + u(1 − v) c₁ + u v c₂ + (1 − u) v c₃,
-// barycentric for 3, (1 − u − v) c₀ + u c₁ + v c₂. Throws
+// barycentric for 3, (1 − u − v) c₀ + u c₁ + v c₂, the weights in double
+// (u, v such as 0.1 and 0.7 are not binary fractions). Throws
 // std::invalid_argument for another number of corners.
 Color gouraud(const std::vector<Color>& corners, double u, double v);
 
