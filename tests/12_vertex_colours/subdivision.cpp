@@ -105,8 +105,14 @@ TEST_SUITE("lesson12") {
                                     std::invalid_argument);
     }
     CHECK_THROWS_AS(elements_to_split({{0, 1}}, b, edge, 1.0, -0.5), std::invalid_argument);
+    // Two elements: valid indices are 0 and 1. Each end of a pair is checked on both sides of the range.
+    INFO(
+        "contract of elements_to_split: a pair naming an element below 0 or at least radiosity.size() (2) "
+        "is refused, whichever end it is");
     CHECK_THROWS_AS(elements_to_split({{0, 2}}, b, edge, 1.0, 0.1), std::invalid_argument);
+    CHECK_THROWS_AS(elements_to_split({{2, 0}}, b, edge, 1.0, 0.1), std::invalid_argument);
     CHECK_THROWS_AS(elements_to_split({{-1, 0}}, b, edge, 1.0, 0.1), std::invalid_argument);
+    CHECK_THROWS_AS(elements_to_split({{0, -1}}, b, edge, 1.0, 0.1), std::invalid_argument);
     CHECK_THROWS_AS(elements_to_split({{0, 1}}, b, {1.0}, 1.0, 0.1), std::invalid_argument);
   }
 }

@@ -15,7 +15,8 @@
 namespace illum {
 
 // Task 6. The gap between two radiosities: the largest of the three channel
-// differences, max(|a.r − b.r|, |a.g − b.g|, |a.b − b.b|). Symmetric, ≥ 0.
+// differences, max(|a.r − b.r|, |a.g − b.g|, |a.b − b.b|). Symmetric, ≥ 0,
+// a double (a gap 2^−30 above the threshold must still split in Task 7).
 double radiosity_gap(const Color& a, const Color& b);
 
 // Task 7. Which elements to split: element e is marked when some pair

@@ -16,9 +16,12 @@ namespace illum {
 
 // Task 1. Solves A·x = b (A is n × n, row-major, n = b.size()) by Gaussian
 // elimination with partial pivoting: at column k, swap up the row with the
-// largest |A_ik| (i ≥ k), eliminate below it, then back-substitute.
-// Throws std::invalid_argument when A is not n × n or is singular to working
-// precision (the best pivot is ≤ n·ε·max|A|); the message then contains "singular".
+// largest |A_ik| (i ≥ k, the last row included), eliminate below it, then
+// back-substitute. Throws std::invalid_argument when A is not n × n or is
+// singular to working precision: the best pivot is ≤ n·ε·max|A| (ε =
+// std::numeric_limits<double>::epsilon(), max|A| over the matrix given; the
+// bound is relative, so a regular matrix of tiny entries is solved and one of
+// huge entries can be singular); the message then contains "singular".
 std::vector<double> gaussian_elimination(std::vector<double> a, std::vector<double> b);
 
 // Task 2. The exact reference: builds M = I − diag(ρ)·F for each channel
@@ -47,8 +50,9 @@ void gauss_seidel_sweep(const std::vector<Patch>& patches, const FormFactorMatri
                         double omega = 1.0);
 
 // Task 5. One Southwell step: relax the row i with the largest residual
-// (largest |r_i.r| + |r_i.g| + |r_i.b|, first on ties) so that r_i becomes
-// 0, and update every other residual:
+// (largest |r_i.r| + |r_i.g| + |r_i.b|, first on ties; the sums are kept and
+// compared as doubles: rows whose sums differ below float's resolution are
+// told apart) so that r_i becomes 0, and update every other residual:
 //   δ = r_i / (1 − ρ_i F_ii),  b_i += δ,  r_j += ρ_j F_ji δ (j ≠ i),  r_i = 0.
 // `residual` must hold E − M·b on entry (for b = 0: r = E). Returns i.
 // Checks only the sizes (std::invalid_argument): check the system once with
@@ -71,6 +75,8 @@ ProgressiveState progressive_start(const std::vector<Patch>& patches);
 
 // Task 6b. The patch with the most unshot power A_i (Δ_i.r + Δ_i.g + Δ_i.b),
 // first on ties (erratum 8 of docs/errata.md: power, not radiosity, once areas differ).
+// Powers are computed and compared as doubles (two that differ below float's
+// resolution are told apart).
 // Throws std::invalid_argument when there are no patches or `unshot` has not one value per patch.
 std::size_t choose_shooter(const std::vector<Patch>& patches, const std::vector<Color>& unshot);
 
@@ -78,7 +84,8 @@ std::size_t choose_shooter(const std::vector<Patch>& patches, const std::vector<
 // F_i· (row[j] = F_ij, j = 0 … n−1): with Δ = Δ_i, set Δ_i = 0, then for every j
 //   ΔB_j = ρ_j F_ji Δ = ρ_j F_ij (A_i / A_j) Δ    (erratum 8 of docs/errata.md)
 //   B_j += ΔB_j,  Δ_j += ΔB_j,
-// and counts the shot: state.shots += 1. Only row i is needed: the hemicube
+// and counts the shot: state.shots += 1 (all in double: areas such as 0.3 or
+// 0.7 are not binary fractions, and a float ratio is visibly off). Only row i is needed: the hemicube
 // placed on the shooter gives it. Throws std::invalid_argument, before
 // changing the state, for i out of range, a row without one value per patch,
 // or a state whose vectors have not one value per patch.

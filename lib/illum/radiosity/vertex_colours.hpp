@@ -18,7 +18,12 @@
 //                 at zero (a radiosity is never negative; the extrapolation
 //                 of a steep gradient can be).
 // Every other boundary vertex (three or more faces, a triangle's corner,
-// faces that share no edge at the vertex) keeps its average.
+// faces that share no edge at the vertex) keeps its average. Any vertex can
+// be e, vertex 0 included.
+//
+// The faces are mesh.faces[0 … faces.size() − 1], exactly: a mesh edited in
+// place (a face removed) keeps a std::vector's spare capacity, whose stale
+// bytes past the end are no face and must never be read.
 //
 // T-vertices: after the vertex values are set, each T-vertex takes the value
 // interpolated along the edge it lies on, in the mesh's t_vertices order,
@@ -66,7 +71,8 @@ std::vector<std::vector<Color>> corner_radiosity(const SharedVertexMesh& mesh,
 // Task 5. Gouraud interpolation inside one face from its corner values:
 // bilinear for 4 corners,
 //   (1 − u)(1 − v) c₀ + u(1 − v) c₁ + u v c₂ + (1 − u) v c₃,
-// barycentric for 3, (1 − u − v) c₀ + u c₁ + v c₂. Throws
+// barycentric for 3, (1 − u − v) c₀ + u c₁ + v c₂, the weights in double
+// (u, v such as 0.1 and 0.7 are not binary fractions). Throws
 // std::invalid_argument for another number of corners.
 Color gouraud(const std::vector<Color>& corners, double u, double v);
 
