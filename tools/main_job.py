@@ -6,7 +6,9 @@
 Steps (all by default; pick some with --only):
   lessons  runs every BIN/lessonNN with --out OUT/lessonNN (and --quick); the
            first failure stops the job with the program's exit code and name;
-           OUT/run_log.json records each run's date, cores and load average;
+           OUT/run_log.json records each run's date, seconds, processor
+           seconds (all its threads: a busy machine stretches the seconds,
+           not these), cores and load average;
   lab      screenshots of `BIN/illum lab`'s four views in headless Chromium,
            OUT/lab/*.png with a manifest.json (tools/lab/screenshots.py; the
            lab is started on a free port of 127.0.0.1 and stopped again);
@@ -22,8 +24,10 @@ Steps (all by default; pick some with --only):
   index    writes OUT/index.html, linking every lesson's outputs, deck, lesson
            text and exercise; --check-links then verifies every local link.
 
-Lessons, programs and decks are discovered, never listed. Every file is
-written atomically. `cmake --build --preset release --target gallery` runs it.
+The steps run in the order above, except that the lab's screenshots and the
+slides run side by side after the figures step (neither times anything; both
+mostly wait on Chromium and Node). Lessons, programs and decks are
+discovered, never listed. Every file is written atomically. `cmake --build --preset release --target gallery` runs it.
 """
 from __future__ import annotations
 
@@ -34,6 +38,7 @@ import os
 import re
 import subprocess
 import sys
+import threading
 import time
 from pathlib import Path
 
@@ -69,22 +74,39 @@ def run_lessons(bin_dir: Path, out: Path, quick: bool) -> None:
     if not programs:
         raise JobError(f"no lessonNN programs in {bin_dir} (build them first: cmake --build --preset release)")
     log_path = out / "run_log.json"
+    all_start, all_cpu = time.monotonic(), children_cpu_seconds()
     for i, program in enumerate(programs, 1):
         cmd = [str(program), "--out", str(out / program.name)] + (["--quick"] if quick else [])
         say(f"[{i}/{len(programs)}] {' '.join(cmd)}")
         start = time.monotonic()
         started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
         load_before = load_average()
+        cpu_before = children_cpu_seconds()
         # Output passes straight through: progress on stderr stays visible.
         code = subprocess.call(cmd, cwd=out, stdin=subprocess.DEVNULL)
         if code != 0:
             raise JobError(f"{program.name} failed (exit code {code}); its messages are above. "
                            f"Re-run it alone with: {' '.join(cmd)}")
         seconds = time.monotonic() - start
+        cpu = children_cpu_seconds() - cpu_before
         record_run(log_path, program.name, {
-            "started": started, "seconds": round(seconds, 1), "cores": os.cpu_count(),
-            "load_before": load_before, "load_after": load_average(), "quick": quick})
-        say(f"{program.name} done in {seconds:.1f} s")
+            "started": started, "seconds": round(seconds, 1), "cpu_seconds": round(cpu, 1),
+            "cores": os.cpu_count(), "load_before": load_before, "load_after": load_average(), "quick": quick})
+        say(f"{program.name} done in {seconds:.1f} s ({cpu:.1f} s of processor time, all its threads)")
+    say(f"lessons done in {time.monotonic() - all_start:.1f} s "
+        f"({children_cpu_seconds() - all_cpu:.1f} s of processor time; load average now {load_average()})")
+
+
+def children_cpu_seconds() -> float:
+    """Processor seconds (user + system) of every finished child so far, all their threads and
+    their own waited-for children (gnuplot) included: what a program cost, whatever else the
+    machine was running, unlike its seconds, which a busy machine stretches."""
+    try:
+        import resource  # POSIX only
+    except ImportError:
+        return 0.0
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
 
 
 def load_average() -> list[float]:
@@ -143,6 +165,30 @@ def run_slides(source: Path, slides_dir: Path, out: Path) -> None:
     say(f"slides done in {time.monotonic() - start:.1f} s")
 
 
+def side_by_side(*steps: list) -> None:
+    """Runs each list of steps at once, the first in this thread and the others in threads of their
+    own, waits for all, and raises the first JobError (or other exception) any of them raised."""
+    steps = [s for s in steps if s]
+    errors: list[BaseException] = []
+
+    def run(todo: list) -> None:
+        try:
+            for step in todo:
+                step()
+        except BaseException as e:  # re-raised below, in this thread
+            errors.append(e)
+
+    threads = [threading.Thread(target=run, args=(todo,)) for todo in steps[1:]]
+    for thread in threads:
+        thread.start()
+    if steps:
+        run(steps[0])
+    for thread in threads:
+        thread.join()
+    if errors:
+        raise errors[0]
+
+
 def run_texts(source: Path, out: Path) -> None:
     say("texts: rendering the lesson texts, exercises and documents into " + str(out / "pages"))
     start = time.monotonic()
@@ -199,12 +245,13 @@ def main(argv: list[str] | None = None) -> int:
     try:
         if "lessons" in steps:
             run_lessons(args.bin.resolve(), out, args.quick)
-        if "lab" in steps:
-            run_lab(args.bin.resolve(), out)
+        # The figures first (they rewrite the decks); then the lab's screenshots and the decks side by
+        # side: both wait on Chromium and Node, time nothing, write to folders of their own, and
+        # follow every timed lesson run (on a two-core machine they would slow its timings).
         if "figures" in steps:
             run_figures(source, out, args.quick)
-        if "slides" in steps:
-            run_slides(source, slides_dir, out)
+        side_by_side([lambda: run_lab(args.bin.resolve(), out)] if "lab" in steps else [],
+                     [lambda: run_slides(source, slides_dir, out)] if "slides" in steps else [])
         if "texts" in steps:
             run_texts(source, out)
         if "index" in steps:

@@ -454,6 +454,35 @@ class MainJob(TempDirTest):
         self.assertIn('id="lesson04"', html)
         self.assertIn("Quick run", html)
 
+    def test_the_run_log_records_each_programs_seconds_and_processor_seconds(self):
+        # A fake lesson that burns processor time in a child it waits for (as a lesson waits for
+        # gnuplot): the log counts the child's processor seconds too, and never more than the
+        # program's own seconds times the cores (a wrong counter, e.g. the job's own, would).
+        (self.tmp / "bin").mkdir()
+        burner = self.write("bin/lesson05", "#!/bin/sh\n" + f"{sys.executable} -c "
+                            "'import time\nend = time.process_time() + 0.4\n"
+                            "while time.process_time() < end: pass'\n")
+        burner.chmod(0o755)
+        out = self.tmp / "out"
+        code, text = self.run_job("--bin", str(self.tmp / "bin"), "--out", str(out), "--only", "lessons")
+        self.assertEqual(code, 0, text)
+        run = json.loads((out / "run_log.json").read_text())["lesson05"]
+        self.assertGreaterEqual(run["cpu_seconds"], 0.3)
+        self.assertLessEqual(run["cpu_seconds"], run["seconds"] * run["cores"] + 0.1)
+        self.assertIn("of processor time", text)
+
+    def test_side_by_side_runs_every_list_and_raises_the_first_error(self):
+        done: list[str] = []
+
+        def fail() -> None:
+            raise main_job.JobError("the lab failed")
+
+        main_job.side_by_side([lambda: done.append("lab")], [lambda: done.append("slides")], [])
+        self.assertEqual(sorted(done), ["lab", "slides"])
+        with self.assertRaisesRegex(main_job.JobError, "the lab failed"):
+            main_job.side_by_side([lambda: done.append("figures"), fail], [lambda: done.append("decks")])
+        self.assertIn("decks", done)  # the other list ran to its end before the error was raised
+
     def test_a_failing_lesson_stops_the_job_and_is_named(self):
         (self.tmp / "bin").mkdir()
         (self.tmp / "bin" / "lesson03").symlink_to(FAKE_LESSON)

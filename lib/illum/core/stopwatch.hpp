@@ -33,25 +33,55 @@ inline void do_not_optimize(const T& value) {
 #endif
 }
 
-// Nanoseconds per call of `call(i)`, for i = 0, 1, 2, …: the loop doubles its
-// length until it runs for at least `min_seconds`, then reports the mean.
+// One timed loop of `call(i)` long enough to measure: its nanoseconds per
+// call and the number of calls it took (where a repeat can start).
+struct CallTiming {
+  double nanoseconds = 0;
+  std::uint64_t calls = 0;
+};
+
+// Times loops of `call(i)`, for i = 0, 1, 2, …, starting with `calls` calls,
+// until one runs for at least `min_seconds`, and reports that loop's mean.
+// A loop too short to time is followed by one ten times longer; once one has
+// run for a hundredth of `min_seconds`, its rate says how many calls fill
+// `min_seconds`, and the next loop makes 1.2 times that many (at most ten
+// times as many as before), so the loops before the measured one cost about
+// a tenth of it instead of as much as it (doubling). The measured loop is the
+// same either way: at least `min_seconds` of calls.
 template <class F>
-double nanoseconds_per_call(F&& call, double min_seconds = 0.05) {
-  for (std::uint64_t n = 64;; n *= 2) {
+CallTiming time_calls(F&& call, double min_seconds, std::uint64_t calls = 64) {
+  constexpr std::uint64_t most = std::uint64_t{1} << 40;
+  for (std::uint64_t n = std::max<std::uint64_t>(calls, 1);;) {
     Stopwatch watch;
     for (std::uint64_t i = 0; i < n; ++i) call(i);
     const double t = watch.seconds();
-    if (t >= min_seconds || n >= (std::uint64_t{1} << 40)) return 1e9 * t / static_cast<double>(n);
+    if (t >= min_seconds || n >= most) return {1e9 * t / static_cast<double>(n), n};
+    const double grow = t >= min_seconds / 100 ? std::clamp(1.2 * min_seconds / t, 1.1, 10.0) : 10.0;
+    n = std::min(most, std::max(n + 1, static_cast<std::uint64_t>(static_cast<double>(n) * grow)));
   }
+}
+
+// Nanoseconds per call of `call(i)`, for i = 0, 1, 2, …: the mean of a loop
+// that runs for at least `min_seconds` (time_calls).
+template <class F>
+double nanoseconds_per_call(F&& call, double min_seconds = 0.05) {
+  return time_calls(call, min_seconds).nanoseconds;
 }
 
 // The best of `runs` measurements of nanoseconds_per_call(call, min_seconds).
 // Other work on the machine only ever adds time, so the minimum is the cost
 // of the call itself. Every best-of-N timing in the lessons goes through here.
+// Each run after the first starts at the length the one before it measured
+// (at least `min_seconds` of calls), so only the first searches for it.
 template <class F>
 double best_nanoseconds_per_call(int runs, F&& call, double min_seconds = 0.05) {
   double best = std::numeric_limits<double>::infinity();
-  for (int run = 0; run < runs; ++run) best = std::min(best, nanoseconds_per_call(call, min_seconds));
+  std::uint64_t calls = 64;
+  for (int run = 0; run < runs; ++run) {
+    const CallTiming timing = time_calls(call, min_seconds, calls);
+    best = std::min(best, timing.nanoseconds);
+    calls = timing.calls;
+  }
   return best;
 }
 
