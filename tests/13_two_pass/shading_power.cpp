@@ -325,3 +325,69 @@ TEST_SUITE("lesson13") {
     CHECK(past.weight[2] == doctest::Approx((0.75 + 1e-9) / (1 + 1e-9)).epsilon(1e-12));
   }
 }
+
+// Slips of a student trial of lesson 13 that passed every test above (issue 28): the line
+// saying why pass two casts no shadow ray written under the wrong condition, and a
+// discriminant that rounds below 0 taken to √ (NaN) instead of as 0.
+TEST_SUITE("lesson13") {
+  TEST_CASE("the plan's reasons say \"no shadow rays\" exactly when pass two casts none" *
+            doctest::description("task=1")) {
+    // two_pass_plan.hpp, reasons: "no shadow rays" appears exactly when shadow_rays is false. The
+    // decisions, by the header's rules:
+    //   the Cornell box (an emitter, 5 walls facing in 10 pairs): pass one holds every wall's
+    //     light, nothing else is diffuse: no shadow rays;
+    //   an empty scene: nothing is lit: no shadow rays;
+    //   a wall and a light: no pass one, the wall is lit directly: shadow rays;
+    //   the Cornell box and a point light: pass one never holds a point light's light: shadow rays;
+    //   the Cornell box and a diffuse sphere (other_diffuse): the sphere is not in B: shadow rays.
+    struct Case {
+      const char* scene;
+      SceneInventory inventory;
+      bool shadow_rays;
+    };
+    const Case cases[] = {
+        {"the Cornell box", SceneInventory{.diffuse_surfaces = 5, .facing_pairs = 10, .emitters = 1}, false},
+        {"an empty scene", SceneInventory{}, false},
+        {"a wall and a light", SceneInventory{.diffuse_surfaces = 1, .emitters = 1}, true},
+        {"the Cornell box and a point light",
+         SceneInventory{.diffuse_surfaces = 5, .facing_pairs = 10, .emitters = 1, .point_lights = 1}, true},
+        {"the Cornell box and a diffuse sphere",
+         SceneInventory{.diffuse_surfaces = 5, .facing_pairs = 10, .emitters = 1, .other_diffuse = 1}, true},
+    };
+    for (const Case& c : cases) {
+      const TwoPassPlan plan = plan_two_pass(c.inventory, {});
+      INFO(c.scene << ", reasons:\n" << plan.reasons);
+      CHECK(plan.shadow_rays == c.shadow_rays);
+      const bool says_none = plan.reasons.find("no shadow rays") != std::string::npos;
+      CHECK_MESSAGE(says_none == !c.shadow_rays,
+                    (c.shadow_rays ? "pass two casts shadow rays: the reasons must not say \"no shadow rays\""
+                                   : "pass two casts no shadow ray: one line must say \"no shadow rays\""));
+    }
+  }
+
+  TEST_CASE("hard case: a nearly triangular quad, where the discriminant rounds below 0 at its short side" *
+            doctest::description("task=2")) {
+    // p0 = (0,0,0), p1 = (0.7,0,0), p3 = (0,0.7,0), p2 = (0.7δ, 0.7, 0) with δ = 1e-8: a convex quad
+    // whose top side p3p2 is 7e-9 long. By hand at x = p3 (the point P(0, 1), so (u, v) = (0, 1)):
+    // e = (0.7, 0), f = (0, 0.7), g = p0 − p1 + p2 − p3 = (0.7δ − 0.7, 0), h = (0, 0.7);
+    //   k2 = cross(g, f) = 0.49(δ − 1), k1 = cross(e, f) + cross(h, g) = 0.49 + 0.49(1 − δ) = 0.49(2 − δ),
+    //   k0 = cross(h, e) = −0.49;
+    //   Δ = 0.49²((2 − δ)² − 4(1 − δ)) = 0.49²δ² ≈ 2.4e-17, and the roots are 1 and 1/(1 − δ).
+    // Δ is the difference of k1² ≈ 0.96 and 4k2k0 ≈ 0.96, each rounded to about 1e-16: in double it
+    // comes out about −1.1e-16. Taken as 0 (two_pass_shading.hpp), the roots are (2 − δ)/(2(1 − δ))
+    // and 2/(2 − δ), both 1 + O(δ): v = 1 after the clamp, and u = (h − f v)/(e + g v) = 0/(0.7δ) = 0.
+    // √ of the negative Δ is NaN, and NaN survives the clamp (every comparison is false).
+    const double d = 1e-8;
+    const std::array<Point3, 4> q{Point3(0, 0, 0), Point3(0.7, 0, 0), Point3(0.7 * d, 0.7, 0),
+                                  Point3(0, 0.7, 0)};
+    const Vec2 corner = surface_coordinates(q, q[3]);
+    INFO("(u, v) of p3 = (" << corner.x << ", " << corner.y << ")");
+    CHECK_MESSAGE(!std::isnan(corner.x), "u is a number: a discriminant a hair below 0 is taken as 0");
+    CHECK_MESSAGE(!std::isnan(corner.y), "v is a number: a discriminant a hair below 0 is taken as 0");
+    CHECK_MESSAGE(std::abs(corner.y - 1.0) <= 1e-7, "p3 = P(0, 1): v = 1");
+    CHECK_MESSAGE(std::abs(corner.x) <= 1e-7, "p3 = P(0, 1): u = 0");
+    // Inside, away from the short side, the quad behaves: P(¼, ½) and P(¾, ¼) map back.
+    check_uv(q, 0.25, 0.5, 1e-9);
+    check_uv(q, 0.75, 0.25, 1e-9);
+  }
+}

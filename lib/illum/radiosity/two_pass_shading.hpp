@@ -21,7 +21,7 @@
 
 namespace illum {
 
-// Task 2. (u, v) of the point x of a planar quad (4 vertices) or triangle (3) in the
+// Task 2. (u, v) of the point x of a planar convex quad (4 vertices) or triangle (3) in the
 // parametrisation above. For a quad this inverts the bilinear map: with
 // e = p1 − p0, f = p3 − p0, g = p0 − p1 + p2 − p3, h = x − p0, projected on
 // the plane of the two largest components of the normal, and
@@ -30,9 +30,11 @@ namespace illum {
 // a linear equation when g = 0 (a parallelogram), and then
 // u = (h − f v) / (e + g v) (the component with the larger denominator).
 // Of the quadratic's two roots, the one in [0, 1] (with a small tolerance);
-// the result is clamped to [0, 1]². For a triangle, (u, v) are the
-// barycentric weights of b and c. Throws std::invalid_argument unless the
-// polygon has 3 or 4 vertices.
+// the result is clamped to [0, 1]², and never NaN: the discriminant, ≥ 0 for a
+// point of the quad, can round a hair below 0 where the two roots nearly meet
+// (at the short side of a nearly triangular quad), and is then taken as 0.
+// For a triangle, (u, v) are the barycentric weights of b and c. Throws
+// std::invalid_argument unless the polygon has 3 or 4 vertices.
 Vec2 surface_coordinates(std::span<const Point3> polygon, const Point3& x);
 
 // The patch of a meshed surface that holds the point of coordinates (u, v),
