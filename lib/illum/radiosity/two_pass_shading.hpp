@@ -50,7 +50,9 @@ struct PatchCell {
 // Task 3. `vertex_count` is 4 (a quad meshed n × m) or 3 (a triangle meshed n², m
 // ignored). A point on the far edge (u = 1) belongs to the last cell, not to
 // a cell past the end; on a triangle, a point on or a rounding error past the
-// hypotenuse u + v = 1 belongs to its row's last "up" triangle. The patch
+// hypotenuse u + v = 1 belongs to its row's last "up" triangle; a point on
+// the diagonal an up and a down triangle share may go to either (both give
+// the same weights to the two corners of that side, and 0 to the third). The patch
 // index is always below the surface's patch count (n·m, or n²). A (u, v) a
 // rounding error outside [0, 1]² is taken at the nearest point of the square
 // (weights stay ≥ 0). Throws
