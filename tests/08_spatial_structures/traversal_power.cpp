@@ -101,6 +101,12 @@ TEST_SUITE("lesson08") {
     const BvhView view{nodes, std::span<const Triangle>(storage.data(), 1),
                        std::span<const std::uint32_t>(id_storage.data(), 1)};
     const Ray ray(Point3(0, 0, -1), Vec3(0, 0, 1));
+    // The exercise units are compiled with array bounds checks that trap (CMakeLists.txt): a
+    // fixed stack one entry short stops here instead of passing by luck.
+    INFO(
+        "if this test CRASHED (SIGILL, or 'stack smashing detected'), a fixed-size stack is too short: the "
+        "deepest tree needs bvh_max_depth + 1 = "
+        << bvh_max_depth + 1 << " entries (bvh_traversal.hpp)");
     TraversalCounters c;
     const auto hit = bvh_closest_hit(view, ray, c);
     CHECK_MESSAGE(
@@ -141,6 +147,12 @@ TEST_SUITE("lesson08") {
     for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = static_cast<std::uint32_t>(k);
     const BvhView view{nodes, tris, ids};
     const Ray ray(Point3(0, 0, -1), Vec3(0, 0, 1));
+    // The exercise units are compiled with array bounds checks that trap (CMakeLists.txt): a
+    // fixed stack one entry short stops here instead of passing by luck.
+    INFO(
+        "if this test CRASHED (SIGILL, or 'stack smashing detected'), a fixed-size stack is too short: the "
+        "deepest tree needs bvh_max_depth + 1 = "
+        << bvh_max_depth + 1 << " entries (bvh_traversal.hpp)");
     TraversalCounters c;
     const auto hit = bvh_closest_hit(view, ray, c);
     REQUIRE_MESSAGE(hit.has_value(), "the root's second child holds a triangle across the axis at z = 2");
@@ -596,5 +608,75 @@ TEST_SUITE("lesson08") {
     CHECK_MESSAGE(got == expected,
                   "at each corner (1,1), (2,2), (3,3) both axes step at once: s_next recomputed from the "
                   "boundary ties exactly, an accumulated one does not");
+  }
+}
+
+// What a walk's fields hold (grid_dda.hpp, DdaWalk): the grid's traversal reads s_enter and
+// exit() to accept only hits inside the current cell, so they are part of the contract.
+TEST_SUITE("lesson08") {
+  TEST_CASE("3DDA: a walk's s_enter, s_next and s_end, from the grid's entry to where the segment ends" *
+            doctest::description("task=1,2a,2b")) {
+    // The grid [0,4] × [0,2] × [0,3], unit cells; the ray (−1, 0.5, 0.5) + s(1, 0, 0), range [0, ∞):
+    // it enters the grid at x = 0 (s = 1) and leaves at x = 4 (s = 5): s_enter = 1, s_end = 5 (where
+    // the segment leaves the grid, not the range's ∞). In cell (0, 0, 0) the next x boundary is x = 1,
+    // s = 2; y and z are parallel: s_next = ∞. After one step: cell (1, 0, 0), s_enter = 2, s_next.x = 3.
+    const GridFrame f = unit_frame();
+    const Ray ray(Point3(-1, 0.5, 0.5), Vec3(1, 0, 0));
+    DdaWalk w = dda_start(f, ray);
+    REQUIRE(!w.done);
+    CHECK((w.cell == CellIndex{0, 0, 0}));
+    CHECK_MESSAGE(w.s_enter == 1.0, "the ray enters the grid at x = 0, s = 1");
+    CHECK_MESSAGE(w.s_end == 5.0,
+                  "s_end: where the segment leaves the grid (x = 4, s = 5), not ray.range.hi");
+    CHECK_MESSAGE(w.s_next[0] == 2.0, "the next x boundary ahead is x = 1, at s = 2");
+    CHECK_MESSAGE(w.s_next[1] == infinity, "parallel to y: s_next = +∞");
+    CHECK_MESSAGE(w.s_next[2] == infinity, "parallel to z: s_next = +∞");
+    dda_step(f, ray, w);
+    REQUIRE(!w.done);
+    CHECK((w.cell == CellIndex{1, 0, 0}));
+    CHECK_MESSAGE(w.s_enter == 2.0, "the second cell is entered where the first is left, s = 2");
+    CHECK(w.s_next[0] == 3.0);
+    CHECK(w.s_end == 5.0);
+    // The same ray ending inside the grid, range [0, 2.5]: s_end is the range's end, 2.5, and the walk
+    // stops in cell (1, 0, 0) (x from 1 to 1.5), whose exit() is 2.5.
+    Ray short_ray = ray;
+    short_ray.range = Interval(0.0, 2.5);
+    DdaWalk s = dda_start(f, short_ray);
+    REQUIRE(!s.done);
+    CHECK_MESSAGE(s.s_end == 2.5, "the range ends inside the grid: s_end = range.hi = 2.5");
+    dda_step(f, short_ray, s);
+    REQUIRE(!s.done);
+    CHECK(s.exit() == 2.5);
+    dda_step(f, short_ray, s);
+    CHECK_MESSAGE(s.done, "s_next.x = 3 lies past s_end = 2.5: the walk ends in cell (1, 0, 0)");
+  }
+}
+
+TEST_SUITE("lesson08") {
+  TEST_CASE("BVH: the child the ray enters first goes first, not the child whose centre is nearer" *
+            doctest::description("task=1,3a")) {
+    // Root (node 0) over two leaves. Node 1, the first child: a thin box z ∈ [2, 3] holding a triangle
+    // across the axis at z = 2.5 (triangle 0). Node 2, the second child: a tall box z ∈ [1, 10] holding
+    // one at z = 1.5 (triangle 1). The ray goes up the z axis from the origin.
+    //   Entry order (bvh_traversal.hpp): node 2 is entered at s = 1, node 1 at s = 2: node 2 first, its
+    //   triangle is hit at 1.5, and node 1, entered at 2 > 1.5, is skipped: 1 triangle test, 3 box tests
+    //   (the root's and its two children's).
+    //   Ordering by the boxes' centres (node 1's at z = 2.5, node 2's at 5.5) or first child first visits
+    //   node 1 first: its triangle is hit at 2.5, node 2 is entered at 1 < 2.5 and tested too: 2 tests.
+    const Aabb all = box(Point3(-1, -1, 1), Point3(1, 1, 10));
+    const std::vector<BvhNode> nodes{inner(all, 2), leaf(box(Point3(-1, -1, 2), Point3(1, 1, 3)), 0, 1),
+                                     leaf(all, 1, 1)};
+    const std::vector<Triangle> tris{across_axis(2.5), across_axis(1.5)};
+    const std::vector<std::uint32_t> ids{0, 1};
+    const BvhView view{nodes, tris, ids};
+    TraversalCounters c;
+    const auto hit = bvh_closest_hit(view, Ray(Point3(0, 0, 0), Vec3(0, 0, 1)), c);
+    REQUIRE(hit.has_value());
+    CHECK_MESSAGE(hit->triangle == 1, "the closest hit is triangle 1, at z = 1.5");
+    CHECK(hit->hit.s == doctest::Approx(1.5));
+    CHECK_MESSAGE(c.triangle_tests == 1u,
+                  "node 2 is entered first (s = 1 < 2): its hit at 1.5 prunes node 1 (entered at 2)");
+    CHECK_MESSAGE(c.nodes_visited == 3u, "the root's box and both children's boxes");
+    CHECK(c.rays == 1u);
   }
 }
