@@ -66,7 +66,8 @@ PatchCell locate_patch(const Vec2& uv, int n, int m, int vertex_count);
 // channel adds nothing there, even when its ray was not cast and the value
 // passed is not a number. Throws std::invalid_argument when a factor is
 // negative, or when k_r + k_t > 1 in a channel (its message contains
-// "k_r + k_t").
+// "k_r + k_t"); the bound has no tolerance: a sum of exactly 1 is allowed, the
+// scene loader refuses the same sums.
 Color second_pass_radiance(const Color& diffuse, const Color& k_r, const Color& reflected, const Color& k_t,
                            const Color& transmitted);
 
