@@ -680,3 +680,57 @@ TEST_SUITE("lesson08") {
     CHECK(c.rays == 1u);
   }
 }
+
+TEST_SUITE("lesson08") {
+  TEST_CASE(
+      "hard case: BVH, a range [t, t] behind the origin (t < 0) on a box's near or far face still finds it" *
+      doctest::description("task=1,3a,3b")) {
+    // The scene of the test above: triangle A in the plane x = c = 0.37 (its leaf box flat there, and the
+    // root's +x face), B at x ≤ −0.5. Ranges are intervals of s of any sign (a range behind the origin is
+    // as valid as one ahead), and bvh_traversal.hpp widens both ends *outwards* by a relative 1e-9: the
+    // low end to lo − 1e-9·|lo|, the high end to hi + 1e-9·|hi|. Widening by 1e-9 of the signed value
+    // (hi + 1e-9·hi) pulls a negative end inwards by 1e-9·|t|, far more than the slab's rounding, and the
+    // box is missed every time.
+    //   Along −x from x0 = c − r (r > 0): A is r behind the origin, s = −r, on the entry face of both
+    //   boxes (the root's slab x ∈ [x0 − c, x0 + 2]): the range's high end must widen to −r(1 − 1e-9).
+    //   Along +x from x0 = c + r: A is at s = −r again, now on the root's exit face (its slab is
+    //   [−2 − x0, c − x0]): the range's low end must widen to −r(1 + 1e-9).
+    const double c = 0.37;
+    const Triangle a(Point3(c, -1.1, -0.9), Point3(c, 1.3, -0.8), Point3(c, 0.1, 1.2));
+    const Triangle b(Point3(-2.0, -1.0, -1.0), Point3(-0.5, 1.0, -1.0), Point3(-1.0, 0.0, 1.0));
+    const Aabb box_a = bounds_of(a), box_b = bounds_of(b);
+    Aabb root = box_a;
+    root.grow(box_b);
+    REQUIRE(root.hi.x == c);
+    const std::vector<BvhNode> nodes{inner(root, 2), leaf(box_a, 0, 1), leaf(box_b, 1, 1)};
+    const std::vector<Triangle> tris{a, b};
+    const std::vector<std::uint32_t> ids{0, 1};
+    const BvhView view{nodes, tris, ids};
+    Rng rng(0x0825);
+    int missed = 0;
+    for (int k = 0; k < 200; ++k) {
+      const double r = rng.uniform(0.01, 0.8);
+      const double sense = k % 2 == 0 ? -1.0 : 1.0;  // −x: A on the near face; +x: on the far face
+      const Point3 o(c + sense * r, rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3));
+      const Vec3 d(sense, 0, 0);
+      // The hit's s as lesson 03's test computes it, from a range that holds it.
+      const auto hit = intersect(Ray(o, d, Interval(-10.0, 10.0)), a);
+      REQUIRE(hit.has_value());
+      const double s = hit->s;
+      REQUIRE(s < 0.0);
+      const Ray ray(o, d, Interval(s, s));
+      TraversalCounters counters;
+      const auto got = bvh_closest_hit(view, ray, counters);
+      const bool found = got && got->triangle == 0 && got->hit.s == s;
+      const bool blocked = bvh_any_hit(view, ray, counters);
+      if ((!found || !blocked) && ++missed <= 3) {
+        INFO("ray along " << (sense < 0 ? "−x (A on the boxes' near face)" : "+x (A on the root's far face)")
+                          << " from x0 = " << o.x << ", range [s, s], s = " << s);
+        CHECK_MESSAGE(found,
+                      "closest hit: [s, s] holds s, the hit on A must be returned (widen |s| outwards)");
+        CHECK_MESSAGE(blocked, "any hit: [s, s] holds s, A blocks the ray (widen |s| outwards)");
+      }
+    }
+    CHECK(missed == 0);
+  }
+}
