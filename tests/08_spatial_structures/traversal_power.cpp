@@ -734,3 +734,45 @@ TEST_SUITE("lesson08") {
     CHECK(missed == 0);
   }
 }
+
+TEST_SUITE("lesson08") {
+  TEST_CASE(
+      "hard case: 3DDA entering a hair past boundary x = 3, where the rounded entry point falls short of it" *
+      doctest::description("task=1,2a")) {
+    // The mirror of the test above, moving +x: rays from (x0, −3, 0.5) along normalize(0.96, 1, 0) enter
+    // the grid [0,4]×[0,2]×[0,3] through its face y = 0 at s_in = 3·(1/ω.y), near boundary x = 3. For x0
+    // stepped ulp by ulp around 3 − 3·0.96, the crossing of x = 3, (3 − x0)/ω.x, is at or before s_in on
+    // some rays while the rounded entry point x0 + s_in·ω.x lies a hair below 3: its floor is cell 2, and
+    // the start cell must be moved forward to 3 (grid_dda.hpp: the cell whose near boundary does not lie
+    // strictly ahead of s_enter and whose far boundary does). The criterion is checked on every ray; the
+    // rays where the rounded point falls short are counted (with s_in computed here), so the test is
+    // known to reach the case.
+    const GridFrame f = unit_frame();
+    const Vec3 dir = normalize(Vec3(0.96, 1.0, 0.0));
+    double x0 = 3.0 - 3.0 * 0.96;
+    for (int k = 0; k < 40; ++k) x0 = std::nextafter(x0, -10.0);
+    int rounded_short = 0;
+    for (int k = 0; k < 80; ++k, x0 = std::nextafter(x0, 10.0)) {
+      const Ray ray(Point3(x0, -3.0, 0.5), dir);
+      const double s_in = 3.0 * (1.0 / dir.y);
+      const double cross3 = (3.0 - x0) / dir.x;
+      rounded_short += std::floor(x0 + s_in * dir.x) == 2.0 && cross3 <= s_in ? 1 : 0;
+      const DdaWalk w = dda_start(f, ray);
+      REQUIRE(!w.done);
+      const int c = w.cell[0];
+      REQUIRE(c >= 0);
+      REQUIRE(c < 4);
+      const double near = (f.boundary(0, c) - x0) / dir.x, far = (f.boundary(0, c + 1) - x0) / dir.x;
+      INFO("x0 = " << x0 << ", start cell " << c << ", s_enter " << w.s_enter
+                   << ", x = 3 crossed at s = " << cross3);
+      CHECK_MESSAGE((far > w.s_enter || c == 3),
+                    "the start cell's far boundary must lie strictly ahead of s_enter");
+      CHECK_MESSAGE(
+          (!(near > w.s_enter) || c == 0),
+          "the start cell's near boundary must not lie strictly ahead of s_enter: the entry point's "
+          "floor can be one cell short, move it forward");
+    }
+    CHECK_MESSAGE(rounded_short > 0,
+                  "no ray had its rounded entry point short of x = 3: the test proves nothing");
+  }
+}
