@@ -102,11 +102,8 @@ TEST_SUITE("lesson08") {
                        std::span<const std::uint32_t>(id_storage.data(), 1)};
     const Ray ray(Point3(0, 0, -1), Vec3(0, 0, 1));
     // The exercise units are compiled with array bounds checks that trap (CMakeLists.txt): a
-    // fixed stack one entry short stops here instead of passing by luck.
-    INFO(
-        "if this test CRASHED (SIGILL, or 'stack smashing detected'), a fixed-size stack is too short: the "
-        "deepest tree needs bvh_max_depth + 1 = "
-        << bvh_max_depth + 1 << " entries (bvh_traversal.hpp)");
+    // fixed stack one entry short stops here, and doctest reports this test case as CRASHED
+    // (SIGILL), instead of passing by luck (bvh_traversal.hpp: bvh_max_depth + 1 entries).
     TraversalCounters c;
     const auto hit = bvh_closest_hit(view, ray, c);
     CHECK_MESSAGE(
