@@ -101,6 +101,9 @@ TEST_SUITE("lesson08") {
     const BvhView view{nodes, std::span<const Triangle>(storage.data(), 1),
                        std::span<const std::uint32_t>(id_storage.data(), 1)};
     const Ray ray(Point3(0, 0, -1), Vec3(0, 0, 1));
+    // The exercise units are compiled with array bounds checks that trap (CMakeLists.txt): a
+    // fixed stack one entry short stops here, and doctest reports this test case as CRASHED
+    // (SIGILL), instead of passing by luck (bvh_traversal.hpp: bvh_max_depth + 1 entries).
     TraversalCounters c;
     const auto hit = bvh_closest_hit(view, ray, c);
     CHECK_MESSAGE(
@@ -141,6 +144,12 @@ TEST_SUITE("lesson08") {
     for (std::size_t k = 0; k < ids.size(); ++k) ids[k] = static_cast<std::uint32_t>(k);
     const BvhView view{nodes, tris, ids};
     const Ray ray(Point3(0, 0, -1), Vec3(0, 0, 1));
+    // The exercise units are compiled with array bounds checks that trap (CMakeLists.txt): a
+    // fixed stack one entry short stops here instead of passing by luck.
+    INFO(
+        "if this test CRASHED (SIGILL, or 'stack smashing detected'), a fixed-size stack is too short: the "
+        "deepest tree needs bvh_max_depth + 1 = "
+        << bvh_max_depth + 1 << " entries (bvh_traversal.hpp)");
     TraversalCounters c;
     const auto hit = bvh_closest_hit(view, ray, c);
     REQUIRE_MESSAGE(hit.has_value(), "the root's second child holds a triangle across the axis at z = 2");
@@ -596,5 +605,171 @@ TEST_SUITE("lesson08") {
     CHECK_MESSAGE(got == expected,
                   "at each corner (1,1), (2,2), (3,3) both axes step at once: s_next recomputed from the "
                   "boundary ties exactly, an accumulated one does not");
+  }
+}
+
+// What a walk's fields hold (grid_dda.hpp, DdaWalk): the grid's traversal reads s_enter and
+// exit() to accept only hits inside the current cell, so they are part of the contract.
+TEST_SUITE("lesson08") {
+  TEST_CASE("3DDA: a walk's s_enter, s_next and s_end, from the grid's entry to where the segment ends" *
+            doctest::description("task=1,2a,2b")) {
+    // The grid [0,4] × [0,2] × [0,3], unit cells; the ray (−1, 0.5, 0.5) + s(1, 0, 0), range [0, ∞):
+    // it enters the grid at x = 0 (s = 1) and leaves at x = 4 (s = 5): s_enter = 1, s_end = 5 (where
+    // the segment leaves the grid, not the range's ∞). In cell (0, 0, 0) the next x boundary is x = 1,
+    // s = 2; y and z are parallel: s_next = ∞. After one step: cell (1, 0, 0), s_enter = 2, s_next.x = 3.
+    const GridFrame f = unit_frame();
+    const Ray ray(Point3(-1, 0.5, 0.5), Vec3(1, 0, 0));
+    DdaWalk w = dda_start(f, ray);
+    REQUIRE(!w.done);
+    CHECK((w.cell == CellIndex{0, 0, 0}));
+    CHECK_MESSAGE(w.s_enter == 1.0, "the ray enters the grid at x = 0, s = 1");
+    CHECK_MESSAGE(w.s_end == 5.0,
+                  "s_end: where the segment leaves the grid (x = 4, s = 5), not ray.range.hi");
+    CHECK_MESSAGE(w.s_next[0] == 2.0, "the next x boundary ahead is x = 1, at s = 2");
+    CHECK_MESSAGE(w.s_next[1] == infinity, "parallel to y: s_next = +∞");
+    CHECK_MESSAGE(w.s_next[2] == infinity, "parallel to z: s_next = +∞");
+    dda_step(f, ray, w);
+    REQUIRE(!w.done);
+    CHECK((w.cell == CellIndex{1, 0, 0}));
+    CHECK_MESSAGE(w.s_enter == 2.0, "the second cell is entered where the first is left, s = 2");
+    CHECK(w.s_next[0] == 3.0);
+    CHECK(w.s_end == 5.0);
+    // The same ray ending inside the grid, range [0, 2.5]: s_end is the range's end, 2.5, and the walk
+    // stops in cell (1, 0, 0) (x from 1 to 1.5), whose exit() is 2.5.
+    Ray short_ray = ray;
+    short_ray.range = Interval(0.0, 2.5);
+    DdaWalk s = dda_start(f, short_ray);
+    REQUIRE(!s.done);
+    CHECK_MESSAGE(s.s_end == 2.5, "the range ends inside the grid: s_end = range.hi = 2.5");
+    dda_step(f, short_ray, s);
+    REQUIRE(!s.done);
+    CHECK(s.exit() == 2.5);
+    dda_step(f, short_ray, s);
+    CHECK_MESSAGE(s.done, "s_next.x = 3 lies past s_end = 2.5: the walk ends in cell (1, 0, 0)");
+  }
+}
+
+TEST_SUITE("lesson08") {
+  TEST_CASE("BVH: the child the ray enters first goes first, not the child whose centre is nearer" *
+            doctest::description("task=1,3a")) {
+    // Root (node 0) over two leaves. Node 1, the first child: a thin box z ∈ [2, 3] holding a triangle
+    // across the axis at z = 2.5 (triangle 0). Node 2, the second child: a tall box z ∈ [1, 10] holding
+    // one at z = 1.5 (triangle 1). The ray goes up the z axis from the origin.
+    //   Entry order (bvh_traversal.hpp): node 2 is entered at s = 1, node 1 at s = 2: node 2 first, its
+    //   triangle is hit at 1.5, and node 1, entered at 2 > 1.5, is skipped: 1 triangle test, 3 box tests
+    //   (the root's and its two children's).
+    //   Ordering by the boxes' centres (node 1's at z = 2.5, node 2's at 5.5) or first child first visits
+    //   node 1 first: its triangle is hit at 2.5, node 2 is entered at 1 < 2.5 and tested too: 2 tests.
+    const Aabb all = box(Point3(-1, -1, 1), Point3(1, 1, 10));
+    const std::vector<BvhNode> nodes{inner(all, 2), leaf(box(Point3(-1, -1, 2), Point3(1, 1, 3)), 0, 1),
+                                     leaf(all, 1, 1)};
+    const std::vector<Triangle> tris{across_axis(2.5), across_axis(1.5)};
+    const std::vector<std::uint32_t> ids{0, 1};
+    const BvhView view{nodes, tris, ids};
+    TraversalCounters c;
+    const auto hit = bvh_closest_hit(view, Ray(Point3(0, 0, 0), Vec3(0, 0, 1)), c);
+    REQUIRE(hit.has_value());
+    CHECK_MESSAGE(hit->triangle == 1, "the closest hit is triangle 1, at z = 1.5");
+    CHECK(hit->hit.s == doctest::Approx(1.5));
+    CHECK_MESSAGE(c.triangle_tests == 1u,
+                  "node 2 is entered first (s = 1 < 2): its hit at 1.5 prunes node 1 (entered at 2)");
+    CHECK_MESSAGE(c.nodes_visited == 3u, "the root's box and both children's boxes");
+    CHECK(c.rays == 1u);
+  }
+}
+
+TEST_SUITE("lesson08") {
+  TEST_CASE(
+      "hard case: BVH, a range [t, t] behind the origin (t < 0) on a box's near or far face still finds it" *
+      doctest::description("task=1,3a,3b")) {
+    // The scene of the test above: triangle A in the plane x = c = 0.37 (its leaf box flat there, and the
+    // root's +x face), B at x ≤ −0.5. Ranges are intervals of s of any sign (a range behind the origin is
+    // as valid as one ahead), and bvh_traversal.hpp widens both ends *outwards* by a relative 1e-9: the
+    // low end to lo − 1e-9·|lo|, the high end to hi + 1e-9·|hi|. Widening by 1e-9 of the signed value
+    // (hi + 1e-9·hi) pulls a negative end inwards by 1e-9·|t|, far more than the slab's rounding, and the
+    // box is missed every time.
+    //   Along −x from x0 = c − r (r > 0): A is r behind the origin, s = −r, on the entry face of both
+    //   boxes (the root's slab x ∈ [x0 − c, x0 + 2]): the range's high end must widen to −r(1 − 1e-9).
+    //   Along +x from x0 = c + r: A is at s = −r again, now on the root's exit face (its slab is
+    //   [−2 − x0, c − x0]): the range's low end must widen to −r(1 + 1e-9).
+    const double c = 0.37;
+    const Triangle a(Point3(c, -1.1, -0.9), Point3(c, 1.3, -0.8), Point3(c, 0.1, 1.2));
+    const Triangle b(Point3(-2.0, -1.0, -1.0), Point3(-0.5, 1.0, -1.0), Point3(-1.0, 0.0, 1.0));
+    const Aabb box_a = bounds_of(a), box_b = bounds_of(b);
+    Aabb root = box_a;
+    root.grow(box_b);
+    REQUIRE(root.hi.x == c);
+    const std::vector<BvhNode> nodes{inner(root, 2), leaf(box_a, 0, 1), leaf(box_b, 1, 1)};
+    const std::vector<Triangle> tris{a, b};
+    const std::vector<std::uint32_t> ids{0, 1};
+    const BvhView view{nodes, tris, ids};
+    Rng rng(0x0825);
+    int missed = 0;
+    for (int k = 0; k < 200; ++k) {
+      const double r = rng.uniform(0.01, 0.8);
+      const double sense = k % 2 == 0 ? -1.0 : 1.0;  // −x: A on the near face; +x: on the far face
+      const Point3 o(c + sense * r, rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3));
+      const Vec3 d(sense, 0, 0);
+      // The hit's s as lesson 03's test computes it, from a range that holds it.
+      const auto hit = intersect(Ray(o, d, Interval(-10.0, 10.0)), a);
+      REQUIRE(hit.has_value());
+      const double s = hit->s;
+      REQUIRE(s < 0.0);
+      const Ray ray(o, d, Interval(s, s));
+      TraversalCounters counters;
+      const auto got = bvh_closest_hit(view, ray, counters);
+      const bool found = got && got->triangle == 0 && got->hit.s == s;
+      const bool blocked = bvh_any_hit(view, ray, counters);
+      if ((!found || !blocked) && ++missed <= 3) {
+        INFO("ray along " << (sense < 0 ? "−x (A on the boxes' near face)" : "+x (A on the root's far face)")
+                          << " from x0 = " << o.x << ", range [s, s], s = " << s);
+        CHECK_MESSAGE(found,
+                      "closest hit: [s, s] holds s, the hit on A must be returned (widen |s| outwards)");
+        CHECK_MESSAGE(blocked, "any hit: [s, s] holds s, A blocks the ray (widen |s| outwards)");
+      }
+    }
+    CHECK(missed == 0);
+  }
+}
+
+TEST_SUITE("lesson08") {
+  TEST_CASE(
+      "hard case: 3DDA entering a hair past boundary x = 3, where the rounded entry point falls short of it" *
+      doctest::description("task=1,2a")) {
+    // The mirror of the test above, moving +x: rays from (x0, −3, 0.5) along normalize(0.96, 1, 0) enter
+    // the grid [0,4]×[0,2]×[0,3] through its face y = 0 at s_in = 3·(1/ω.y), near boundary x = 3. For x0
+    // stepped ulp by ulp around 3 − 3·0.96, the crossing of x = 3, (3 − x0)/ω.x, is at or before s_in on
+    // some rays while the rounded entry point x0 + s_in·ω.x lies a hair below 3: its floor is cell 2, and
+    // the start cell must be moved forward to 3 (grid_dda.hpp: the cell whose near boundary does not lie
+    // strictly ahead of s_enter and whose far boundary does). The criterion is checked on every ray; the
+    // rays where the rounded point falls short are counted (with s_in computed here), so the test is
+    // known to reach the case.
+    const GridFrame f = unit_frame();
+    const Vec3 dir = normalize(Vec3(0.96, 1.0, 0.0));
+    double x0 = 3.0 - 3.0 * 0.96;
+    for (int k = 0; k < 40; ++k) x0 = std::nextafter(x0, -10.0);
+    int rounded_short = 0;
+    for (int k = 0; k < 80; ++k, x0 = std::nextafter(x0, 10.0)) {
+      const Ray ray(Point3(x0, -3.0, 0.5), dir);
+      const double s_in = 3.0 * (1.0 / dir.y);
+      const double cross3 = (3.0 - x0) / dir.x;
+      rounded_short += std::floor(x0 + s_in * dir.x) == 2.0 && cross3 <= s_in ? 1 : 0;
+      const DdaWalk w = dda_start(f, ray);
+      REQUIRE(!w.done);
+      const int c = w.cell[0];
+      REQUIRE(c >= 0);
+      REQUIRE(c < 4);
+      const double near = (f.boundary(0, c) - x0) / dir.x, far = (f.boundary(0, c + 1) - x0) / dir.x;
+      INFO("x0 = " << x0 << ", start cell " << c << ", s_enter " << w.s_enter
+                   << ", x = 3 crossed at s = " << cross3);
+      CHECK_MESSAGE((far > w.s_enter || c == 3),
+                    "the start cell's far boundary must lie strictly ahead of s_enter");
+      CHECK_MESSAGE(
+          (!(near > w.s_enter) || c == 0),
+          "the start cell's near boundary must not lie strictly ahead of s_enter: the entry point's "
+          "floor can be one cell short, move it forward");
+    }
+    CHECK_MESSAGE(rounded_short > 0,
+                  "no ray had its rounded entry point short of x = 3: the test proves nothing");
   }
 }

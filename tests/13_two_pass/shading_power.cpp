@@ -10,12 +10,14 @@
 
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 
 #include "13_two_pass/support.hpp"
 #include "illum/radiosity/two_pass_plan.hpp"
 #include "illum/radiosity/two_pass_shading.hpp"
+#include "support/throws_containing.hpp"
 
 using namespace illum;
 using lesson13::bilinear;
@@ -323,5 +325,179 @@ TEST_SUITE("lesson13") {
         "the corner weights add up to 1 even a hair past the hypotenuse: both s and t are divided by s + t");
     CHECK(past.weight[1] == doctest::Approx(0.25 / (1 + 1e-9)).epsilon(1e-12));
     CHECK(past.weight[2] == doctest::Approx((0.75 + 1e-9) / (1 + 1e-9)).epsilon(1e-12));
+  }
+}
+
+// Slips of a student trial of lesson 13 that passed every test above (issue 28): the line
+// saying why pass two casts no shadow ray written under the wrong condition, and a
+// discriminant that rounds below 0 taken to √ (NaN) instead of as 0.
+TEST_SUITE("lesson13") {
+  TEST_CASE("the plan's reasons say \"no shadow rays\" exactly when pass two casts none" *
+            doctest::description("task=1")) {
+    // two_pass_plan.hpp, reasons: "no shadow rays" appears exactly when shadow_rays is false. The
+    // decisions, by the header's rules:
+    //   the Cornell box (an emitter, 5 walls facing in 10 pairs): pass one holds every wall's
+    //     light, nothing else is diffuse: no shadow rays;
+    //   an empty scene: nothing is lit: no shadow rays;
+    //   a wall and a light: no pass one, the wall is lit directly: shadow rays;
+    //   the Cornell box and a point light: pass one never holds a point light's light: shadow rays;
+    //   the Cornell box and a diffuse sphere (other_diffuse): the sphere is not in B: shadow rays.
+    struct Case {
+      const char* scene;
+      SceneInventory inventory;
+      bool shadow_rays;
+    };
+    const Case cases[] = {
+        {"the Cornell box", SceneInventory{.diffuse_surfaces = 5, .facing_pairs = 10, .emitters = 1}, false},
+        {"an empty scene", SceneInventory{}, false},
+        {"a wall and a light", SceneInventory{.diffuse_surfaces = 1, .emitters = 1}, true},
+        {"the Cornell box and a point light",
+         SceneInventory{.diffuse_surfaces = 5, .facing_pairs = 10, .emitters = 1, .point_lights = 1}, true},
+        {"the Cornell box and a diffuse sphere",
+         SceneInventory{.diffuse_surfaces = 5, .facing_pairs = 10, .emitters = 1, .other_diffuse = 1}, true},
+    };
+    for (const Case& c : cases) {
+      const TwoPassPlan plan = plan_two_pass(c.inventory, {});
+      INFO(c.scene << ", reasons:\n" << plan.reasons);
+      CHECK(plan.shadow_rays == c.shadow_rays);
+      const bool says_none = plan.reasons.find("no shadow rays") != std::string::npos;
+      CHECK_MESSAGE(says_none == !c.shadow_rays,
+                    (c.shadow_rays ? "pass two casts shadow rays: the reasons must not say \"no shadow rays\""
+                                   : "pass two casts no shadow ray: one line must say \"no shadow rays\""));
+    }
+  }
+
+  TEST_CASE("hard case: a nearly triangular quad, where the discriminant rounds below 0 at its short side" *
+            doctest::description("task=2")) {
+    // p0 = (0,0,0), p1 = (0.7,0,0), p3 = (0,0.7,0), p2 = (0.7δ, 0.7, 0) with δ = 1e-8: a convex quad
+    // whose top side p3p2 is 7e-9 long. By hand at x = p3 (the point P(0, 1), so (u, v) = (0, 1)):
+    // e = (0.7, 0), f = (0, 0.7), g = p0 − p1 + p2 − p3 = (0.7δ − 0.7, 0), h = (0, 0.7);
+    //   k2 = cross(g, f) = 0.49(δ − 1), k1 = cross(e, f) + cross(h, g) = 0.49 + 0.49(1 − δ) = 0.49(2 − δ),
+    //   k0 = cross(h, e) = −0.49;
+    //   Δ = 0.49²((2 − δ)² − 4(1 − δ)) = 0.49²δ² ≈ 2.4e-17, and the roots are 1 and 1/(1 − δ).
+    // Δ is the difference of k1² ≈ 0.96 and 4k2k0 ≈ 0.96, each rounded to about 1e-16: in double it
+    // comes out about −1.1e-16. Taken as 0 (two_pass_shading.hpp), the roots are (2 − δ)/(2(1 − δ))
+    // and 2/(2 − δ), both 1 + O(δ): v = 1 after the clamp, and u = (h − f v)/(e + g v) = 0/(0.7δ) = 0.
+    // √ of the negative Δ is NaN, and NaN survives the clamp (every comparison is false).
+    const double d = 1e-8;
+    const std::array<Point3, 4> q{Point3(0, 0, 0), Point3(0.7, 0, 0), Point3(0.7 * d, 0.7, 0),
+                                  Point3(0, 0.7, 0)};
+    const Vec2 corner = surface_coordinates(q, q[3]);
+    INFO("(u, v) of p3 = (" << corner.x << ", " << corner.y << ")");
+    CHECK_MESSAGE(!std::isnan(corner.x), "u is a number: a discriminant a hair below 0 is taken as 0");
+    CHECK_MESSAGE(!std::isnan(corner.y), "v is a number: a discriminant a hair below 0 is taken as 0");
+    CHECK_MESSAGE(std::abs(corner.y - 1.0) <= 1e-7, "p3 = P(0, 1): v = 1");
+    CHECK_MESSAGE(std::abs(corner.x) <= 1e-7, "p3 = P(0, 1): u = 0");
+    // Inside, away from the short side, the quad behaves: P(¼, ½) and P(¾, ¼) map back.
+    check_uv(q, 0.25, 0.5, 1e-9);
+    check_uv(q, 0.75, 0.25, 1e-9);
+  }
+}
+
+// More slips of the same trial: the textbook quadratic formula (exact on the quads above only by
+// luck: their discriminants are perfect squares), u taken from the x component whenever it is not
+// zero, a down triangle's weights of corners 0 and 2 swapped (every triangle point above lay in an
+// up triangle or on a diagonal), and a triangle's (u, v) a hair below 0 given a negative weight.
+TEST_SUITE("lesson13") {
+  TEST_CASE(
+      "hard case: a nearly parallel quad with no side along an axis, where the textbook root loses digits" *
+      doctest::description("task=2")) {
+    // p0 = (0.1, 0, 0.2), p1 = (1.3, 0, 0.1), p3 = (0.2, 0, 1.1) and p2 = p1 + p3 − p0 + (1e-9, 0, −2e-9): a
+    // parallelogram spoiled by 2e-9, so g = p0 − p1 + p2 − p3 = (1e-9, 0, −2e-9) and k2 = cross(g, f) is
+    // about 2e-9 of k1 (the quadratic branch, not the linear one). The root near v is then (−k1 ± √Δ)/(2k2)
+    // with −k1 and √Δ equal to 8 or 9 digits: the textbook formula keeps about 7 (errors of 3e-9 to 5e-8 at
+    // these points); q = −(k1 + sign(k1)√Δ)/2 and k0/q keep them all (two_pass_shading.hpp). The quad with g
+    // along one axis only (the test of grading.cpp) has Δ = (1 + g·h)², a perfect square, which hides the
+    // loss. The expected (u, v) are the points' own: the round trip through the bilinear map.
+    const Point3 p0(0.1, 0, 0.2), p1(1.3, 0, 0.1), p3(0.2, 0, 1.1);
+    const std::array<Point3, 4> q{p0, p1, p1 + (p3 - p0) + Vec3(1e-9, 0, -2e-9), p3};
+    check_uv(q, 0.3, 0.6, 1e-12);
+    check_uv(q, 0.25, 0.75, 1e-12);
+    check_uv(q, 0.6, 0.3, 1e-12);
+  }
+
+  TEST_CASE("surface coordinates on a parallelogram whose first side runs along y, tilted by 1e-8" *
+            doctest::description("task=2")) {
+    // p0 = (0.3, 0.2, 0), e = p1 − p0 = (1e-8, 1.1, 0), f = p3 − p0 = (−0.9, 1e-8, 0), p2 = p1 + f: a wall
+    // turned by a hair off the axes. v comes from the linear equation (g = 0 up to rounding); then u = (h − f
+    // v)/(e + g v), whose denominator is (1e-8, 1.1): its x component is 1e-8, so h.x − f.x·v, rounded to
+    // about 1e-17, divided by it is off by about 1e-8. two_pass_shading.hpp: divide by the component with the
+    // larger denominator, here y (1.1), which keeps every digit.
+    const std::array<Point3, 4> q{Point3(0.3, 0.2, 0), Point3(0.3 + 1e-8, 1.3, 0),
+                                  Point3(-0.6 + 1e-8, 1.3 + 1e-8, 0), Point3(-0.6, 0.2 + 1e-8, 0)};
+    check_uv(q, 0.3, 0.6, 1e-12);
+    check_uv(q, 0.25, 0.75, 1e-12);
+    check_uv(q, 0.7, 0.4, 1e-12);
+  }
+
+  TEST_CASE("locate a point strictly inside a down triangle, and a triangle's (u, v) a hair below 0" *
+            doctest::description("task=3")) {
+    // two_pass_shading.hpp: the down triangle (i+1, j), (i+1, j+1), (i, j+1) of the cell whose local
+    // coordinates are s = u·n − i, t = v·n − j. Its corners, in that order, are (i + 1, j), (i + 1, j + 1)
+    // and (i, j + 1): weights w0, w1, w2 with w0 + w1 = s, w1 + w2 = t, w0 + w1 + w2 = 1, so
+    //   w0 = 1 − t, w1 = s + t − 1, w2 = 1 − s.
+    // n = 5, (0.17, 0.33): u·n = 0.85, v·n = 1.65: i = 0, j = 1, s = 0.85, t = 0.65, s + t > 1: down (0, 1);
+    //   row 1 starts at 1·(10 − 1) = 9 with up (0, 1) = 9, so down (0, 1) = 10; w = (0.35, 0.5, 0.15).
+    // n = 5, (0.52, 0.14): u·n = 2.6, v·n = 0.7: i = 2, j = 0, s = 0.6, t = 0.7: down (2, 0); row 0 lists
+    //   up (0,0) = 0, down (0,0) = 1, up (1,0) = 2, down (1,0) = 3, up (2,0) = 4, down (2,0) = 5; w = (0.3,
+    //   0.3, 0.4).
+    struct Case {
+      Vec2 uv;
+      std::size_t patch;
+      std::array<double, 3> weight;
+    };
+    for (const Case& c :
+         {Case{Vec2(0.17, 0.33), 10, {0.35, 0.5, 0.15}}, Case{Vec2(0.52, 0.14), 5, {0.3, 0.3, 0.4}}}) {
+      const PatchCell cell = locate_patch(c.uv, 5, 0, 3);
+      INFO("(u, v) = (" << c.uv.x << ", " << c.uv.y << "), n = 5");
+      CHECK_MESSAGE(cell.patch == c.patch, "the down triangle of its cell: patch " << c.patch);
+      CHECK(cell.corners == 3);
+      for (std::size_t k = 0; k < 3; ++k)
+        CHECK_MESSAGE(cell.weight[k] == doctest::Approx(c.weight[k]).epsilon(1e-12),
+                      "corner " << k << ": w0 = 1 − t, w1 = s + t − 1, w2 = 1 − s");
+      CHECK(cell.weight[3] == 0.0);
+    }
+    // (u, v) a rounding error below 0 on a triangle (two_pass_shading.hpp: taken at the nearest point of
+    // the square, weights ≥ 0). n = 2, (−1e-12, 0.3) is the point (0, 0.3): j = ⌊0.6⌋ = 0, i = 0 (⌊−2e-12⌋
+    // = −1, clamped), s = 0, t = 0.6, in the up triangle (0, 0): weights (0.4, 0, 0.6). And (¼, −1e-12) is
+    // (¼, 0): s = ½, t = 0, weights (½, ½, 0).
+    struct Outside {
+      Vec2 uv;
+      std::array<double, 3> weight;
+    };
+    for (const Outside& c :
+         {Outside{Vec2(-1e-12, 0.3), {0.4, 0.0, 0.6}}, Outside{Vec2(0.25, -1e-12), {0.5, 0.5, 0.0}}}) {
+      const PatchCell cell = locate_patch(c.uv, 2, 0, 3);
+      INFO("(u, v) = (" << c.uv.x << ", " << c.uv.y << "), n = 2");
+      CHECK(cell.patch == 0);
+      for (std::size_t k = 0; k < 3; ++k) {
+        CHECK_MESSAGE(cell.weight[k] >= 0.0, "a point a rounding error outside gets no negative weight");
+        CHECK(cell.weight[k] == doctest::Approx(c.weight[k]).epsilon(1e-9));
+      }
+    }
+  }
+}
+
+// k_r + k_t ≤ 1 has no tolerance in the headers (nor in the scene loader, which refuses the same
+// sums): exactly 1 is lossless glass and allowed, 1 + 1e-9 creates light and is refused. A check
+// written with a slack (≤ 1 + 1e-6, "for rounding") let the second through.
+TEST_SUITE("lesson13") {
+  TEST_CASE("hard case: k_r + k_t = 1 exactly is allowed, 1 + 1e-9 is refused (plan and pass two)" *
+            doctest::description("task=1,4")) {
+    // Pass two: k_r = k_t = ½ (sum exactly 1), D = 0.25, I_r = 2, I_t = 4: I = 0.25 + 1 + 2 = 3.25.
+    const Color got = second_pass_radiance(Color(0.25), Color(0.5), Color(2.0), Color(0.5), Color(4.0));
+    CHECK(got.r == doctest::Approx(3.25).epsilon(1e-15));
+    CHECK(got.b == doctest::Approx(3.25).epsilon(1e-15));
+    // k_t = 0.500000001: the sum is 1 + 1e-9 (to 1e-16) in the green channel only.
+    ILLUM_CHECK_THROWS_CONTAINING(
+        second_pass_radiance(Color(0.25), Color(0.5), Color(2.0), Color(0.5, 0.500000001, 0.5), Color(4.0)),
+        "k_r + k_t", std::invalid_argument);
+    // The plan: heaviest_specular = 1 is lossless glass (kept), 1 + 1e-9 is refused.
+    const SceneInventory glass{.diffuse_surfaces = 1, .emitters = 1, .glass = 1, .heaviest_specular = 1.0};
+    CHECK(plan_two_pass(glass, TwoPassRequest{.max_depth = 3}).max_depth == 3);
+    SceneInventory brighter = glass;
+    brighter.heaviest_specular = 1.0 + 1e-9;
+    ILLUM_CHECK_THROWS_CONTAINING(plan_two_pass(brighter, TwoPassRequest{}), "k_r + k_t",
+                                  std::invalid_argument);
   }
 }

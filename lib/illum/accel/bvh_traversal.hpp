@@ -13,8 +13,14 @@
 //     when both are entered at the same s, the first child (node + 1) first;
 //   * at a leaf every triangle is tested against the shrunken range.
 // Any hit (shadow rays): the same walk, returning at the first hit.
+// The stack: a tree is at most bvh_max_depth levels deep below its root (bvh.hpp),
+// and a depth-first walk holds at most one pending sibling per level plus the two
+// children just pushed, so a fixed-size stack needs bvh_max_depth + 1 entries (the
+// tests walk a tree that deep; the exercise units are built with array bounds checks,
+// so a stack one entry short stops the test program instead of passing by luck).
 // Every box, the root's included, is clipped against the range with both
-// ends widened by that relative 1e-9 (for any hit, ray.range so widened): a
+// ends widened outwards by that relative 1e-9, [lo − 1e-9·|lo|, hi + 1e-9·|hi|]
+// whatever their signs (for any hit, ray.range so widened): a
 // triangle on a box's face is hit at an s that the slab entry or exit of that
 // face may miss by a few ulps, and a range that begins or ends exactly at the
 // hit ([t, t], [t, ∞), a shadow ray ending on a surface) must still reach the

@@ -18,6 +18,9 @@
 //     at that point are not visited;
 //   * an axis the ray is parallel to never steps (its s_next is +∞), so
 //     axis-parallel rays walk a straight row of cells and the walk ends.
+//     Parallel means what it means to the slab test: ω[a] = 0, or so small
+//     that 1/ω[a] is not finite (the clip took that axis as parallel, so the
+//     walk must not step across it either).
 // The boundary parameters are computed from the boundary's coordinate
 // (lo + k·h − P0)/ω each time, not accumulated, so that rays through corners
 // tie exactly.

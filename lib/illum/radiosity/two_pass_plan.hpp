@@ -46,7 +46,8 @@ struct TwoPassPlan {
   bool shadow_rays = false;     // pass two lights some diffuse surface directly (light not in B)
   int max_depth = 0;            // the depth limit of pass two's specular rays (0: primary rays only)
   // One line per decision, saying why; the word "caustic" appears only when caustics were asked
-  // for, and "no emitter" only when pass one does not run for want of an emitter.
+  // for, "no emitter" only when pass one does not run for want of an emitter, and "no shadow rays"
+  // exactly when shadow_rays is false (its line then says why none are needed).
   std::string reasons;
 
   // The decisions and their reasons, one per line (defined in two_pass.cpp).
@@ -76,7 +77,8 @@ struct TwoPassPlan {
 //   an emitter with other_diffuse > 0, or with diffuse_surfaces > 0 when
 //   pass one does not run.
 // Throws std::invalid_argument when request.max_depth < 0 (its message
-// contains "depth") or when heaviest_specular > 1 or is not a number (its
+// contains "depth") or when heaviest_specular > 1 (no tolerance: exactly 1 is
+// lossless glass and allowed) or is not a number (its
 // message contains "k_r + k_t"; k_r + k_t > 1 creates energy: a ray tree that
 // reflects more than it receives diverges with depth).
 TwoPassPlan plan_two_pass(const SceneInventory& scene, const TwoPassRequest& request);

@@ -21,7 +21,7 @@
 
 namespace illum {
 
-// Task 2. (u, v) of the point x of a planar quad (4 vertices) or triangle (3) in the
+// Task 2. (u, v) of the point x of a planar convex quad (4 vertices) or triangle (3) in the
 // parametrisation above. For a quad this inverts the bilinear map: with
 // e = p1 − p0, f = p3 − p0, g = p0 − p1 + p2 − p3, h = x − p0, projected on
 // the plane of the two largest components of the normal, and
@@ -30,9 +30,11 @@ namespace illum {
 // a linear equation when g = 0 (a parallelogram), and then
 // u = (h − f v) / (e + g v) (the component with the larger denominator).
 // Of the quadratic's two roots, the one in [0, 1] (with a small tolerance);
-// the result is clamped to [0, 1]². For a triangle, (u, v) are the
-// barycentric weights of b and c. Throws std::invalid_argument unless the
-// polygon has 3 or 4 vertices.
+// the result is clamped to [0, 1]², and never NaN: the discriminant, ≥ 0 for a
+// point of the quad, can round a hair below 0 where the two roots nearly meet
+// (at the short side of a nearly triangular quad), and is then taken as 0.
+// For a triangle, (u, v) are the barycentric weights of b and c. Throws
+// std::invalid_argument unless the polygon has 3 or 4 vertices.
 Vec2 surface_coordinates(std::span<const Point3> polygon, const Point3& x);
 
 // The patch of a meshed surface that holds the point of coordinates (u, v),
@@ -48,7 +50,9 @@ struct PatchCell {
 // Task 3. `vertex_count` is 4 (a quad meshed n × m) or 3 (a triangle meshed n², m
 // ignored). A point on the far edge (u = 1) belongs to the last cell, not to
 // a cell past the end; on a triangle, a point on or a rounding error past the
-// hypotenuse u + v = 1 belongs to its row's last "up" triangle. The patch
+// hypotenuse u + v = 1 belongs to its row's last "up" triangle; a point on
+// the diagonal an up and a down triangle share may go to either (both give
+// the same weights to the two corners of that side, and 0 to the third). The patch
 // index is always below the surface's patch count (n·m, or n²). A (u, v) a
 // rounding error outside [0, 1]² is taken at the nearest point of the square
 // (weights stay ≥ 0). Throws
@@ -62,7 +66,8 @@ PatchCell locate_patch(const Vec2& uv, int n, int m, int vertex_count);
 // channel adds nothing there, even when its ray was not cast and the value
 // passed is not a number. Throws std::invalid_argument when a factor is
 // negative, or when k_r + k_t > 1 in a channel (its message contains
-// "k_r + k_t").
+// "k_r + k_t"); the bound has no tolerance: a sum of exactly 1 is allowed, the
+// scene loader refuses the same sums.
 Color second_pass_radiance(const Color& diffuse, const Color& k_r, const Color& reflected, const Color& k_t,
                            const Color& transmitted);
 
