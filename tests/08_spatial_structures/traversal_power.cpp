@@ -49,6 +49,25 @@ GridFrame unit_frame() {
 
 using Cells = std::vector<CellIndex>;
 
+// Two triangles under one root: A in the plane x = c (its leaf box flat there, and the root's +x
+// face with it) and B at x ≤ −0.5. A ray along x meets A exactly on a box face.
+struct FaceScene {
+  static constexpr double c = 0.37;
+  std::vector<Triangle> triangles{
+      Triangle(Point3(c, -1.1, -0.9), Point3(c, 1.3, -0.8), Point3(c, 0.1, 1.2)),
+      Triangle(Point3(-2.0, -1.0, -1.0), Point3(-0.5, 1.0, -1.0), Point3(-1.0, 0.0, 1.0))};
+  std::vector<std::uint32_t> ids{0, 1};
+  std::vector<BvhNode> nodes = make_nodes(bounds_of(triangles[0]), bounds_of(triangles[1]));
+
+  BvhView view() const { return BvhView{nodes, triangles, ids}; }
+
+  static std::vector<BvhNode> make_nodes(const Aabb& box_a, const Aabb& box_b) {
+    Aabb root = box_a;
+    root.grow(box_b);
+    return {inner(root, 2), leaf(box_a, 0, 1), leaf(box_b, 1, 1)};
+  }
+};
+
 }  // namespace
 
 TEST_SUITE("lesson08") {
@@ -364,17 +383,11 @@ TEST_SUITE("lesson08") {
     // does [0, s], a shadow ray ending exactly on the surface; brute force returns the hit. Contract
     // of bvh_closest_hit and bvh_any_hit (bvh_traversal.hpp): every box, the root's included, is
     // clipped against the range with its far end widened by a relative 1e-9, so the box is entered.
-    const double c = 0.37;
-    const Triangle a(Point3(c, -1.1, -0.9), Point3(c, 1.3, -0.8), Point3(c, 0.1, 1.2));
-    const Triangle b(Point3(-2.0, -1.0, -1.0), Point3(-0.5, 1.0, -1.0), Point3(-1.0, 0.0, 1.0));
-    const Aabb box_a = bounds_of(a), box_b = bounds_of(b);
-    Aabb root = box_a;
-    root.grow(box_b);
-    REQUIRE(root.hi.x == c);
-    const std::vector<BvhNode> nodes{inner(root, 2), leaf(box_a, 0, 1), leaf(box_b, 1, 1)};
-    const std::vector<Triangle> tris{a, b};
-    const std::vector<std::uint32_t> ids{0, 1};
-    const BvhView view{nodes, tris, ids};
+    const FaceScene scene;
+    const double c = FaceScene::c;
+    const Triangle& a = scene.triangles[0];
+    REQUIRE(scene.nodes[0].box.hi.x == c);
+    const BvhView view = scene.view();
     Rng rng(0x0824);
     int entry_past_hit = 0, missed = 0;
     for (int k = 0; k < 400; ++k) {
@@ -692,17 +705,11 @@ TEST_SUITE("lesson08") {
     //   boxes (the root's slab x ∈ [x0 − c, x0 + 2]): the range's high end must widen to −r(1 − 1e-9).
     //   Along +x from x0 = c + r: A is at s = −r again, now on the root's exit face (its slab is
     //   [−2 − x0, c − x0]): the range's low end must widen to −r(1 + 1e-9).
-    const double c = 0.37;
-    const Triangle a(Point3(c, -1.1, -0.9), Point3(c, 1.3, -0.8), Point3(c, 0.1, 1.2));
-    const Triangle b(Point3(-2.0, -1.0, -1.0), Point3(-0.5, 1.0, -1.0), Point3(-1.0, 0.0, 1.0));
-    const Aabb box_a = bounds_of(a), box_b = bounds_of(b);
-    Aabb root = box_a;
-    root.grow(box_b);
-    REQUIRE(root.hi.x == c);
-    const std::vector<BvhNode> nodes{inner(root, 2), leaf(box_a, 0, 1), leaf(box_b, 1, 1)};
-    const std::vector<Triangle> tris{a, b};
-    const std::vector<std::uint32_t> ids{0, 1};
-    const BvhView view{nodes, tris, ids};
+    const FaceScene scene;
+    const double c = FaceScene::c;
+    const Triangle& a = scene.triangles[0];
+    REQUIRE(scene.nodes[0].box.hi.x == c);
+    const BvhView view = scene.view();
     Rng rng(0x0825);
     int missed = 0;
     for (int k = 0; k < 200; ++k) {

@@ -84,6 +84,14 @@ GeneralSystem general_system() {
   return s;
 }
 
+// b = A x for a row-major 4 × 4 matrix (the right-hand side of a system whose solution was chosen first).
+std::vector<double> times_4x4(const std::vector<double>& a, const double (&x)[4]) {
+  std::vector<double> b(4, 0.0);
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t j = 0; j < 4; ++j) b[i] += a[i * 4 + j] * x[j];
+  return b;
+}
+
 // E_i + ρ_i Σ_j F_ij B_j − B_i, every term written out (eq. 11.3).
 Color residual_of(const GeneralSystem& s, const std::vector<Color>& b, std::size_t i) {
   Color gathered(0.0);
@@ -316,9 +324,7 @@ TEST_SUITE("lesson11") {
                                    -1,  0.5, 2,   4,     //
                                    0.5, -3,  1,   2};
     const double x[4] = {1, -2, 3, 0.5};
-    std::vector<double> b(4, 0.0);
-    for (std::size_t i = 0; i < 4; ++i)
-      for (std::size_t j = 0; j < 4; ++j) b[i] += a[i * 4 + j] * x[j];
+    const std::vector<double> b = times_4x4(a, x);
     const std::vector<double> got = gaussian_elimination(a, b);
     REQUIRE(got.size() == 4);
     for (std::size_t i = 0; i < 4; ++i) {
@@ -364,9 +370,7 @@ TEST_SUITE("lesson11") {
                                    0,  0, 1, 3,  //
                                    -2, 1, 0, 1};
     const double x[4] = {1, -2, 0.5, 3};
-    std::vector<double> b(4, 0.0);
-    for (std::size_t i = 0; i < 4; ++i)
-      for (std::size_t j = 0; j < 4; ++j) b[i] += a[i * 4 + j] * x[j];
+    const std::vector<double> b = times_4x4(a, x);
     const std::vector<double> got = gaussian_elimination(a, b);
     REQUIRE(got.size() == 4);
     for (std::size_t i = 0; i < 4; ++i) {
