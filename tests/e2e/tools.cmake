@@ -34,3 +34,6 @@ set_tests_properties(plots PROPERTIES FIXTURES_REQUIRED lesson_outputs LABELS to
 # Every link and image of the texts resolves in the source tree (a fresh clone has no out/).
 add_test(NAME text_links COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/figures.py --links)
 set_tests_properties(text_links PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# tools/compare_runs.py (the arm64 stage of tools/check_platforms): tables agree but for timings.
+add_test(NAME compare_runs_tool COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_compare_runs.py)
+set_tests_properties(compare_runs_tool PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
