@@ -42,6 +42,9 @@ struct CallTiming {
 
 // Times loops of `call(i)`, for i = 0, 1, 2, …, starting with `calls` calls,
 // until one runs for at least `min_seconds`, and reports that loop's mean.
+// Starting from one call costs a call of nanoseconds a few loops of under a
+// hundredth of `min_seconds` each, and spares a call of milliseconds (a pass
+// over thousands of rays) a first loop many times longer than `min_seconds`.
 // A loop too short to time is followed by one ten times longer; once one has
 // run for a hundredth of `min_seconds`, its rate says how many calls fill
 // `min_seconds`, and the next loop makes 1.2 times that many (at most ten
@@ -49,7 +52,7 @@ struct CallTiming {
 // a tenth of it instead of as much as it (doubling). The measured loop is the
 // same either way: at least `min_seconds` of calls.
 template <class F>
-CallTiming time_calls(F&& call, double min_seconds, std::uint64_t calls = 64) {
+CallTiming time_calls(F&& call, double min_seconds, std::uint64_t calls = 1) {
   constexpr std::uint64_t most = std::uint64_t{1} << 40;
   for (std::uint64_t n = std::max<std::uint64_t>(calls, 1);;) {
     Stopwatch watch;
@@ -76,7 +79,7 @@ double nanoseconds_per_call(F&& call, double min_seconds = 0.05) {
 template <class F>
 double best_nanoseconds_per_call(int runs, F&& call, double min_seconds = 0.05) {
   double best = std::numeric_limits<double>::infinity();
-  std::uint64_t calls = 64;
+  std::uint64_t calls = 1;
   for (int run = 0; run < runs; ++run) {
     const CallTiming timing = time_calls(call, min_seconds, calls);
     best = std::min(best, timing.nanoseconds);
