@@ -506,5 +506,22 @@ TEST_SUITE("lesson09") {
     INFO("F_ab = ", f_ab, ", F_ba = ", f_ba, "; both are at most sin²θ ≈ 1e-26");
     CHECK(std::abs(f_ab) <= 1e-20);
     CHECK(std::abs(f_ba) <= 1e-20);
+    // Scale itself: squares 3·10⁵ wide on a tilted plane about 3·10⁵ from the origin. Their vertices
+    // are off their own plane by rounding only, up to about 10⁻¹⁰ (an ulp of 3·10⁵ is 5.8·10⁻¹¹) — above
+    // an absolute 10⁻¹², far below 10⁻¹² · 3·10⁵ = 3·10⁻⁷. F_ii = 0 (a flat patch does not see itself),
+    // and here the contour sum of a patch with itself, which Stokes's theorem does not make zero, is
+    // far from 0 (about −1 for these squares).
+    const double big = 3e5;
+    const Vec3 u(0.6, 0.8, 0), v(-0.48, 0.36, 0.8);
+    for (int k = 0; k < 4; ++k) {
+      const Point3 corner(1.3 * big + 0.1 * (k + 1), 2.1 * big + 0.3, -0.7 * big + 0.7 * k);
+      const Patch c = make_patch({corner, corner + big * u, corner + big * u + big * v, corner + big * v});
+      double rounding = 0;
+      for (const Point3& p : c.vertices) rounding = std::max(rounding, std::abs(dot(c.normal, p - c.centroid)));
+      INFO("square ", k, ": its vertices are up to ", rounding, " off its plane");
+      REQUIRE(rounding < 1e-8);
+      CHECK_MESSAGE(polygon_polygon_form_factor(c, c) == 0.0,
+                    "F_ii = 0 at any scale: coplanarity is judged relative to the patches' size");
+    }
   }
 }
