@@ -51,8 +51,9 @@ TEST_SUITE("lesson07") {
     CHECK(pixel.r == doctest::Approx(0.5).epsilon(1e-12));
   }
 
-  TEST_CASE("stratified: the points are (i + (a + ξ₁)/n, j + (b + ξ₂)/n), a inside b, in the generator's order" *
-            doctest::description("task=5")) {
+  TEST_CASE(
+      "stratified: the points are (i + (a + ξ₁)/n, j + (b + ξ₂)/n), a inside b, in the generator's order" *
+      doctest::description("task=5")) {
     // The header: for b = 0 … n−1 (outer) and a = 0 … n−1 (inner), ξ₁ then ξ₂ from `rng`. A copy of
     // the generator, seeded alike, gives the same ξ: the k-th point must be the one of cell
     // (a, b) = (k mod n, k div n). n = 3 over pixel (4, 6): nine points, each checked exactly (the

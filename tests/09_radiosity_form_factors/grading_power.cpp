@@ -495,8 +495,8 @@ TEST_SUITE("lesson09") {
     const double theta = 1e-13, l = 1000;
     const Point3 o(0.3, 0.7, 0);
     const Patch a = make_patch({o, o + Vec3(l, 0, 0), o + Vec3(l, l, 0), o + Vec3(0, l, 0)});
-    const Patch b = make_patch({o + Vec3(l, 0, 0), o + Vec3(2 * l, 0, theta * l), o + Vec3(2 * l, l, theta * l),
-                                o + Vec3(l, l, 0)});
+    const Patch b = make_patch(
+        {o + Vec3(l, 0, 0), o + Vec3(2 * l, 0, theta * l), o + Vec3(2 * l, l, theta * l), o + Vec3(l, l, 0)});
     REQUIRE(b.normal.z > 0);
     double height = 0;  // self-check: b's far edge is off a's plane by ~10⁻¹⁰, not by rounding
     for (const Point3& p : b.vertices) height = std::max(height, dot(a.normal, p - a.centroid));
@@ -517,7 +517,8 @@ TEST_SUITE("lesson09") {
       const Point3 corner(1.3 * big + 0.1 * (k + 1), 2.1 * big + 0.3, -0.7 * big + 0.7 * k);
       const Patch c = make_patch({corner, corner + big * u, corner + big * u + big * v, corner + big * v});
       double rounding = 0;
-      for (const Point3& p : c.vertices) rounding = std::max(rounding, std::abs(dot(c.normal, p - c.centroid)));
+      for (const Point3& p : c.vertices)
+        rounding = std::max(rounding, std::abs(dot(c.normal, p - c.centroid)));
       INFO("square ", k, ": its vertices are up to ", rounding, " off its plane");
       REQUIRE(rounding < 1e-8);
       CHECK_MESSAGE(polygon_polygon_form_factor(c, c) == 0.0,
