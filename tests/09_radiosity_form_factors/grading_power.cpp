@@ -525,4 +525,19 @@ TEST_SUITE("lesson09") {
                     "F_ii = 0 at any scale: coplanarity is judged relative to the patches' size");
     }
   }
+
+  TEST_CASE("clipping: a polygon that only touches the plane, at a vertex or along an edge, leaves nothing" *
+            doctest::description("task=1")) {
+    // The header: fewer than three vertices left (a vertex or an edge on the plane, no area) is the empty
+    // polygon. The square [0, 1.3] × [0, 0.7] of z = 0 against planes through its corner (0, 0, 0):
+    // normal (−1, −1, 0) keeps only that corner (d = 0; every other vertex has d < 0); normal (−1, 0, 0)
+    // keeps only the edge x = 0, its two vertices (0, 0) and (0, 0.7). Control: normal (1, 0, 0) keeps all
+    // four.
+    const std::vector<Point3> square{{0, 0, 0}, {1.3, 0, 0}, {1.3, 0.7, 0}, {0, 0.7, 0}};
+    CHECK_MESSAGE(clip_polygon_to_half_space(square, {0, 0, 0}, Vec3(-1, -1, 0)).size == 0,
+                  "one vertex on the plane and the rest behind it: nothing is left");
+    CHECK_MESSAGE(clip_polygon_to_half_space(square, {0, 0, 0}, Vec3(-1, 0, 0)).size == 0,
+                  "one edge on the plane and the rest behind it: nothing is left");
+    CHECK(clip_polygon_to_half_space(square, {0, 0, 0}, Vec3(1, 0, 0)).size == 4);
+  }
 }
