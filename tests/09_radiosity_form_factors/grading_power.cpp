@@ -19,6 +19,7 @@
 #include "illum/radiosity/form_factor_analytic.hpp"
 #include "illum/radiosity/form_factor_contour.hpp"
 #include "illum/radiosity/form_factor_hierarchical.hpp"
+#include "illum/radiosity/form_factor_matrix.hpp"
 #include "illum/radiosity/form_factor_sampling.hpp"
 #include "illum/radiosity/patch.hpp"
 #include "illum/radiosity/radiosity_equation.hpp"
@@ -418,5 +419,125 @@ TEST_SUITE("lesson09") {
     CHECK_MESSAGE(polygon_polygon_form_factor(a, a) == 0.0, "F_ii = 0: a flat patch does not see itself");
     CHECK_MESSAGE(polygon_polygon_form_factor(a, b) == 0.0, "coplanar neighbours: every cosine is 0");
     CHECK(polygon_polygon_form_factor(b, a) == 0.0);
+  }
+}
+
+// Slips that pass every test above (issue 28, realistic student bugs): a diagonal that ignores F_ii, a
+// hierarchical split whose children are not all alike, and coplanarity judged on an absolute scale.
+TEST_SUITE("lesson09") {
+  TEST_CASE("radiosity matrix: a patch that sees itself (F_ii > 0) keeps 1 − ρ_i F_ii on the diagonal" *
+            doctest::description("task=12")) {
+    // The header: M_ii = 1 − ρ_i F_ii, M_ij = −ρ_i F_ij. Patch 0 is concave (F_00 = 0.3, F_01 = 0.7),
+    // patch 1 flat (F_10 = 0.35, F_11 = 0), ρ = (0.6, 0.25), both reflecting:
+    //   M = [[1 − 0.6·0.3, −0.6·0.7], [−0.25·0.35, 1 − 0]] = [[0.82, −0.42], [−0.0875, 1]].
+    // By hand, E = (1, 0): B_1 = ρ_1 F_10 B_0 = 0.0875 B_0 and B_0 = 1 + 0.18 B_0 + 0.42·0.0875 B_0,
+    // so B_0 = 1/(1 − 0.18 − 0.03675) = 1/0.78325; M·B = E must hold with that B.
+    FormFactorMatrix f(2);
+    f(0, 0) = 0.3;
+    f(0, 1) = 0.7;
+    f(1, 0) = 0.35;
+    const std::vector<double> m = radiosity_matrix(f, std::vector<double>{0.6, 0.25});
+    REQUIRE(m.size() == 4);
+    CHECK_MESSAGE(m[0] == doctest::Approx(0.82).epsilon(1e-14), "M_00 = 1 − ρ_0 F_00 = 1 − 0.6·0.3");
+    CHECK(m[1] == doctest::Approx(-0.42).epsilon(1e-14));
+    CHECK(m[2] == doctest::Approx(-0.0875).epsilon(1e-14));
+    CHECK(m[3] == doctest::Approx(1.0).epsilon(1e-14));
+    const double b0 = 1 / 0.78325, b1 = 0.0875 * b0;
+    CHECK(m[0] * b0 + m[1] * b1 == doctest::Approx(1.0).epsilon(1e-12));
+    CHECK(std::abs(m[2] * b0 + m[3] * b1) < 1e-12);
+  }
+
+  TEST_CASE("hierarchical: one split of a trapezoid, children of unequal areas at their area centroids" *
+            doctest::description("task=1,2,4")) {
+    // The trapezoid v0 = (0.2, 0.3), v1 = (1.4, 0.3), v2 = (1.0, 1.1), v3 = (0.6, 1.1) in z = 0 (normal +z,
+    // area (1.2 + 0.4)/2 · 0.8 = 0.64) under the ceiling [0, 2] × [0, 1.5] at c = 0.8. max_depth = 0: one
+    // split through the edge midpoints (0.8, 0.3), (1.2, 0.7), (0.8, 1.1), (0.4, 0.7) and the centre, the
+    // vertex mean (0.8, 0.7). The four children are right trapezoids, not alike:
+    //   lower two: parallel sides 0.6 and 0.4, height 0.4, area 0.2 each;
+    //   upper two: parallel sides 0.4 and 0.2, height 0.4, area 0.12 each (0.2 + 0.2 + 0.12 + 0.12 = 0.64).
+    // Area centroid of the lower left, (0.2, 0.3), (0.8, 0.3), (0.8, 0.7), (0.4, 0.7): the rectangle
+    // [0.4, 0.8] × [0.3, 0.7] (area 0.16, centroid (0.6, 0.5)) and the triangle (0.2, 0.3), (0.4, 0.3),
+    // (0.4, 0.7) (area 0.04, centroid (1/3, 13/30)): x = (0.096 + 0.04/3)/0.2 = 41/75, y = (0.08 +
+    // 0.04·13/30)/0.2 = 73/150. Its vertex mean (0.55, 0.5) is another point. Upper left, (0.4, 0.7),
+    // (0.8, 0.7), (0.8, 1.1), (0.6, 1.1): rectangle [0.6, 0.8] × [0.7, 1.1] (0.08, (0.7, 0.9)) and triangle
+    // (0.4, 0.7), (0.6, 0.7), (0.6, 1.1) (0.04, (8/15, 5/6)): x = (0.056 + 0.04·8/15)/0.12 = 29/45,
+    // y = (0.072 + 0.04·5/6)/0.12 = 79/90. The right children mirror these about x = 0.8.
+    // F = Σ (A_k/A) F_point(centroid_k), each point factor by four Howell B-3 corners.
+    const double c = 0.8;
+    const Patch from = make_patch({{0.2, 0.3, 0}, {1.4, 0.3, 0}, {1.0, 1.1, 0}, {0.6, 1.1, 0}});
+    const Patch to = make_patch({{0, 0, c}, {0, 1.5, c}, {2, 1.5, c}, {2, 0, c}});
+    REQUIRE(from.area == doctest::Approx(0.64).epsilon(1e-14));
+    const double lower_x = 41.0 / 75, lower_y = 73.0 / 150, upper_x = 29.0 / 45, upper_y = 79.0 / 90;
+    const double expected =
+        (0.2 * (under_ceiling(lower_x, lower_y, c) + under_ceiling(1.6 - lower_x, lower_y, c)) +
+         0.12 * (under_ceiling(upper_x, upper_y, c) + under_ceiling(1.6 - upper_x, upper_y, c))) /
+        0.64;
+    const HierarchicalResult r = form_factor_hierarchical(from, to, 1e-3, 0);
+    CHECK_MESSAGE(r.value == doctest::Approx(expected).epsilon(1e-12),
+                  "the children's point factors at their area centroids, weighted by their areas "
+                  "(0.2, 0.2, 0.12, 0.12 of 0.64), not a plain mean and not at their vertex means");
+  }
+
+  TEST_CASE("hard case: patches 1000 wide coplanar within 10⁻¹³ of their size exchange nothing" *
+            doctest::description("task=3")) {
+    // a = [0.3, 1000.3] × [0.7, 1000.7] in z = 0 facing +z; b, its neighbour across the edge x = 1000.3,
+    // is tilted up by θ = 10⁻¹³ about that edge (its far edge 10⁻¹⁰ above a's plane), also facing up.
+    // Seen from any x on a, a point y of b at distance s beyond the edge is s sin θ high and at least
+    // s cos θ away horizontally: its elevation is at most θ. So b lies within the band of elevations
+    // [0, θ] of x's hemisphere, whose share of the projected hemisphere is
+    //   (1/π) ∫₀^{2π} ∫_{π/2−θ}^{π/2} cos φ sin φ dφ dθ' = sin²θ ≈ 10⁻²⁶,
+    // so F_ab ≤ 10⁻²⁶, and F_ba likewise. The header: patches coplanar within 10⁻¹² of their size
+    // (√ of the larger area, 1000 here) count as coplanar, F = 0. Here every height is about 10⁻¹⁰ —
+    // above an absolute 10⁻¹², far below 10⁻⁹ — and the contour sum of two coplanar polygons is not
+    // zero (Stokes's theorem turns the area integral into it only where cos φ_i cos φ_j/r² is
+    // integrable, which coplanar neighbours sharing an edge are not), so a threshold that ignores the
+    // patches' size returns a visibly wrong F.
+    const double theta = 1e-13, l = 1000;
+    const Point3 o(0.3, 0.7, 0);
+    const Patch a = make_patch({o, o + Vec3(l, 0, 0), o + Vec3(l, l, 0), o + Vec3(0, l, 0)});
+    const Patch b = make_patch(
+        {o + Vec3(l, 0, 0), o + Vec3(2 * l, 0, theta * l), o + Vec3(2 * l, l, theta * l), o + Vec3(l, l, 0)});
+    REQUIRE(b.normal.z > 0);
+    double height = 0;  // self-check: b's far edge is off a's plane by ~10⁻¹⁰, not by rounding
+    for (const Point3& p : b.vertices) height = std::max(height, dot(a.normal, p - a.centroid));
+    REQUIRE(height > 5e-11);
+    REQUIRE(height < 2e-10);
+    const double f_ab = polygon_polygon_form_factor(a, b), f_ba = polygon_polygon_form_factor(b, a);
+    INFO("F_ab = ", f_ab, ", F_ba = ", f_ba, "; both are at most sin²θ ≈ 1e-26");
+    CHECK(std::abs(f_ab) <= 1e-20);
+    CHECK(std::abs(f_ba) <= 1e-20);
+    // Scale itself: squares 3·10⁵ wide on a tilted plane about 3·10⁵ from the origin. Their vertices
+    // are off their own plane by rounding only, up to about 10⁻¹⁰ (an ulp of 3·10⁵ is 5.8·10⁻¹¹) — above
+    // an absolute 10⁻¹², far below 10⁻¹² · 3·10⁵ = 3·10⁻⁷. F_ii = 0 (a flat patch does not see itself),
+    // and here the contour sum of a patch with itself, which Stokes's theorem does not make zero, is
+    // far from 0 (about −1 for these squares).
+    const double big = 3e5;
+    const Vec3 u(0.6, 0.8, 0), v(-0.48, 0.36, 0.8);
+    for (int k = 0; k < 4; ++k) {
+      const Point3 corner(1.3 * big + 0.1 * (k + 1), 2.1 * big + 0.3, -0.7 * big + 0.7 * k);
+      const Patch c = make_patch({corner, corner + big * u, corner + big * u + big * v, corner + big * v});
+      double rounding = 0;
+      for (const Point3& p : c.vertices)
+        rounding = std::max(rounding, std::abs(dot(c.normal, p - c.centroid)));
+      INFO("square ", k, ": its vertices are up to ", rounding, " off its plane");
+      REQUIRE(rounding < 1e-8);
+      CHECK_MESSAGE(polygon_polygon_form_factor(c, c) == 0.0,
+                    "F_ii = 0 at any scale: coplanarity is judged relative to the patches' size");
+    }
+  }
+
+  TEST_CASE("clipping: a polygon that only touches the plane, at a vertex or along an edge, leaves nothing" *
+            doctest::description("task=1")) {
+    // The header: fewer than three vertices left (a vertex or an edge on the plane, no area) is the empty
+    // polygon. The square [0, 1.3] × [0, 0.7] of z = 0 against planes through its corner (0, 0, 0):
+    // normal (−1, −1, 0) keeps only that corner (d = 0; every other vertex has d < 0); normal (−1, 0, 0)
+    // keeps only the edge x = 0, its two vertices (0, 0) and (0, 0.7). Control: normal (1, 0, 0) keeps all
+    // four.
+    const std::vector<Point3> square{{0, 0, 0}, {1.3, 0, 0}, {1.3, 0.7, 0}, {0, 0.7, 0}};
+    CHECK_MESSAGE(clip_polygon_to_half_space(square, {0, 0, 0}, Vec3(-1, -1, 0)).size == 0,
+                  "one vertex on the plane and the rest behind it: nothing is left");
+    CHECK_MESSAGE(clip_polygon_to_half_space(square, {0, 0, 0}, Vec3(-1, 0, 0)).size == 0,
+                  "one edge on the plane and the rest behind it: nothing is left");
+    CHECK(clip_polygon_to_half_space(square, {0, 0, 0}, Vec3(1, 0, 0)).size == 4);
   }
 }

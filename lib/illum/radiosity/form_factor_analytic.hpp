@@ -65,8 +65,10 @@ class SmallPolygon {
 // n·(y − origin) ≥ 0 of the plane through `origin` (Sutherland–Hodgman
 // against one plane): vertices on the plane are kept, and a new vertex is
 // inserted where an edge crosses from one open side to the other. Returns an
-// empty polygon when nothing is left. Any number of vertices (more than 63
-// spill to the heap). Throws std::invalid_argument for a zero normal.
+// empty polygon (size 0) when fewer than three vertices are left: nothing, or
+// only a vertex or an edge lying on the plane (no area). Any number of
+// vertices (more than 63 spill to the heap). Throws std::invalid_argument for
+// a zero normal.
 SmallPolygon clip_polygon_to_half_space(std::span<const Point3> polygon, const Point3& origin,
                                         const Vec3& normal);
 

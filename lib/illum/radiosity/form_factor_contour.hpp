@@ -36,7 +36,12 @@ struct ContourOptions {
 
 // Task 3. F from `from` to the front side of `to` by the double contour
 // integral (see above). Zero for coplanar patches (so F_ii = 0) and for pairs
-// that face away. Throws std::invalid_argument when options.order is outside 1 … 64.
+// that face away. Coplanar is relative to the patches' size: a pair counts as
+// coplanar when the front part of either patch rises at most
+// 10⁻¹² · √max(A_i, A_j) above the other's plane, so that rounding (10⁻¹¹ off
+// the plane for coordinates of 10⁵) never turns F_ii into the contour sum of
+// a patch with itself. Throws std::invalid_argument when options.order is
+// outside 1 … 64.
 double polygon_polygon_form_factor(const Patch& from, const Patch& to, const ContourOptions& options = {});
 
 }  // namespace illum

@@ -21,7 +21,9 @@ namespace illum {
 PixelEstimate random_pixel(const ImageFunction& f, int i, int j, int count, Rng& rng);
 
 // Task 5. n × n jittered samples: one uniform point in each cell
-// [i + a/n, i + (a+1)/n) × [j + b/n, j + (b+1)/n). Throws
+// [i + a/n, i + (a+1)/n) × [j + b/n, j + (b+1)/n), the point
+// (i + (a + ξ₁)/n, j + (b + ξ₂)/n) with its own ξ₁ then ξ₂ from `rng`, cell by
+// cell: b the outer loop, a the inner (the tests replay the generator). Throws
 // std::invalid_argument unless n ≥ 1.
 PixelEstimate stratified_pixel(const ImageFunction& f, int i, int j, int n, Rng& rng);
 
@@ -41,7 +43,8 @@ void add_sample(SampleMoments& moments, const Color& sample);
 Color sample_variance(const SampleMoments& moments);
 
 // Task 8. The half-width z·s/√N of the confidence interval of the mean, largest over
-// the channels; infinity below two samples (nothing is known of the spread).
+// the three channels; infinity below two samples (nothing is known of the spread).
+// Computed in double throughout: the tests compare it to 10⁻¹² relative.
 double confidence_half_width(const SampleMoments& moments, double z);
 
 struct StatisticalSettings {
