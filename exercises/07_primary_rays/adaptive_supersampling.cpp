@@ -21,11 +21,11 @@ bool corners_agree(const Color& a, const Color& b, const Color& c, const Color& 
 // its four corners through row.sample (never the image function itself: the
 // lattice traces a shared corner once); at the maximum depth or when they
 // agree (but not above settings.min_depth, where a square is always cut),
-// their mean (eq. 7.3); otherwise the mean of the four half-size squares, one
-// level deeper (eq. 7.4).
+// their mean (eq. 7.5); otherwise the mean of the four half-size squares, one
+// level deeper (eq. 7.6).
 Color refine_square(LatticeRow& row, int x, int y, int size, int level, const AdaptiveSettings& settings) {
   throw NotImplemented("refine_square",
-                       "ColorP₁ = ¼(A + B + C + D), or ¼ Σ of the four quarters (lesson 07, eq. 7.3–7.4)");
+                       "ColorP₁ = ¼(A + B + C + D), or ¼ Σ of the four quarters (lesson 07, eq. 7.5–7.6)");
 }
 
 // Task 3. Pixel i of the row: refuse a threshold that is negative or not

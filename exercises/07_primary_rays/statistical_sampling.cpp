@@ -15,13 +15,13 @@ namespace illum {
 // Task 4. `count` uniform points (i + ξ₁, j + ξ₂), ξ₁ drawn before ξ₂; the
 // mean of f. Refuse count < 1 (std::invalid_argument).
 PixelEstimate random_pixel(const ImageFunction& f, int i, int j, int count, Rng& rng) {
-  throw NotImplemented("random_pixel", "the mean of f at N uniform points of the pixel (lesson 07, eq. 7.5)");
+  throw NotImplemented("random_pixel", "the mean of f at N uniform points of the pixel (lesson 07, eq. 7.3)");
 }
 
 // Task 5. One uniform point in each of the n × n cells
 // [i + a/n, i + (a+1)/n) × [j + b/n, j + (b+1)/n); refuse n < 1.
 PixelEstimate stratified_pixel(const ImageFunction& f, int i, int j, int n, Rng& rng) {
-  throw NotImplemented("stratified_pixel", "x = i + (a + ξ₁)/n, y = j + (b + ξ₂)/n (lesson 07, eq. 7.6)");
+  throw NotImplemented("stratified_pixel", "x = i + (a + ξ₁)/n, y = j + (b + ξ₂)/n (lesson 07, eq. 7.4)");
 }
 
 // Task 6. Welford's update: N ← N + 1, δ = x − mean, mean += δ/N, m2 += δ·(x − mean).

@@ -24,8 +24,8 @@ Color refine_square(LatticeRow& row, int x, int y, int size, int level, const Ad
   const Color c = row.sample(x, y + size), d = row.sample(x + size, y + size);
   if (level >= settings.max_depth ||
       (level >= settings.min_depth && corners_agree(a, b, c, d, settings.threshold)))
-    return 0.25 * (a + b + c + d);  // eq. 7.3
-  const int half = size / 2;        // eq. 7.4: the mean of the four quarters
+    return 0.25 * (a + b + c + d);  // eq. 7.5
+  const int half = size / 2;        // eq. 7.6: the mean of the four quarters
   return 0.25 * (refine_square(row, x, y, half, level + 1, settings) +
                  refine_square(row, x + half, y, half, level + 1, settings) +
                  refine_square(row, x, y + half, half, level + 1, settings) +

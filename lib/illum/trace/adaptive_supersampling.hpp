@@ -3,11 +3,11 @@
 // Adaptive supersampling, *sobremuestreo adaptativo* (lesson 07, §2; Whitted
 // 1980). A square's colour is the mean of its four corners A, B, C, D,
 //
-//   ColorP₁ = ¼ (A + B + C + D)                                   (eq. 7.3)
+//   ColorP₁ = ¼ (A + B + C + D)                                   (eq. 7.5)
 //
 // unless the corners differ by more than a threshold; then the square is cut
 // into four, each gets its colour the same way, and the square's colour is
-// the mean of the four (the notes' ColorP₂, eq. 7.4, when one level is cut):
+// the mean of the four (the notes' ColorP₂, eq. 7.6, when one level is cut):
 //
 //   ColorP₂ = ¼ [ ¼(B + I + G + H) + ¼(G + H + E + J) + ¼(D + I + H + K) + ¼(…) ]
 //
@@ -31,8 +31,8 @@ struct AdaptiveSettings {
 bool corners_agree(const Color& a, const Color& b, const Color& c, const Color& d, double threshold);
 
 // Task 2. The colour of the square with top-left lattice point (x, y) and side
-// `size` lattice steps, at level `level` (0 for a whole pixel), by eq. 7.3
-// and its recursion (eq. 7.4). `size` is 2^(row.max_depth() − level).
+// `size` lattice steps, at level `level` (0 for a whole pixel), by eq. 7.5
+// and its recursion (eq. 7.6). `size` is 2^(row.max_depth() − level).
 Color refine_square(LatticeRow& row, int x, int y, int size, int level, const AdaptiveSettings& settings);
 
 // Task 3. Pixel i of the row: refine_square on the whole pixel. The rays it cost are

@@ -6,9 +6,9 @@
 //
 // A pixel's colour is the mean of the image function over its square. With N
 // independent uniform samples the estimate is unbiased and its standard
-// error is σ/√N (eq. 7.5). Stratifying, one sample in each of n × n cells,
+// error is σ/√N (eq. 7.3). Stratifying, one sample in each of n × n cells,
 // keeps it unbiased and removes the variance between cells: along an edge
-// only the cells the edge crosses still vary (eq. 7.6). The statistical rule
+// only the cells the edge crosses still vary (eq. 7.4). The statistical rule
 // keeps adding samples until the confidence interval of the mean,
 // mean ± z·s/√N, is narrower than a tolerance (eq. 7.7).
 #include "illum/core/random.hpp"
