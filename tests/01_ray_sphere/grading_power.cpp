@@ -159,8 +159,9 @@ TEST_SUITE("lesson01") {
 // root of larger magnitude is q = b + sign(b)√(…) and the other C/q, and intersect uses these roots.
 // Each check is relative to the root it checks (doctest's Approx is absolute below 1).
 TEST_SUITE("lesson01") {
-  TEST_CASE("hard case: stable form on a far sphere off the ray's line takes d² from the perpendicular vector" *
-            doctest::description("task=3")) {
+  TEST_CASE(
+      "hard case: stable form on a far sphere off the ray's line takes d² from the perpendicular vector" *
+      doctest::description("task=3")) {
     // Centre (0, 0.6, 1e8), radius 1, ray from the origin along +z. ΔP − (ω·ΔP)ω = (0, 0.6, 0) exactly,
     // so d² = 0.36 and the roots are 1e8 ∓ √(1 − 0.36) = 1e8 ∓ 0.8. Pythagoras, |ΔP|² − (ω·ΔP)², subtracts
     // fl(1e16 + 0.36) = 1e16 (the spacing of doubles there is 2) from 1e16 and finds d² = 0: roots 1e8 ∓ 1.
@@ -176,7 +177,8 @@ TEST_SUITE("lesson01") {
             doctest::description("task=3")) {
     // The ground sphere of lesson 01 (radius 1e6), centre (1, 0, 1e6), ray from the origin along +z.
     // ΔP = (1, 0, 1e6): C = |ΔP|² − r² = 1e12 + 1 − 1e12 = 1 exactly, b = ω·ΔP = 1e6, d² = 1, and the
-    // discriminant over four is 1e12 − 1 (exact). Vieta: s_near = C / (b + √(b² − C)) = 1 / (1e6 + √(1e12 − 1))
+    // discriminant over four is 1e12 − 1 (exact). Vieta: s_near = C / (b + √(b² − C)) = 1 / (1e6 + √(1e12 −
+    // 1))
     //   = 1e-6 / (1 + √(1 − 1e-12)) = 5e-7 (1 + 2.5e-13 + O(1e-25)), the far root 1e6 + √(1e12 − 1) ≈ 2e6.
     // b − √(…) instead subtracts two numbers near 1e6 whose last bit is 1.2e-10: s_near wrong in the
     // fourth digit.
