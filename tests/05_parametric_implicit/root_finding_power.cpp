@@ -272,12 +272,12 @@ TEST_SUITE("lesson05") {
       doctest::description("task=1")) {
     // s² − 2 on [1, 2] with tolerance 1e-300: the half width never gets below it (doubles near √2 are
     // 2.2e-16 apart), but after at most 52 halvings a and b are neighbours and their midpoint rounds
-    // to one of them: converged there, within one spacing of √2 (|s − √2| ≤ 2.3e-16).
+    // to one of them: converged there, within a spacing or two of √2.
     const RootResult r = bisection(scaled_square(1.0), Interval(1, 2), 1e-300, 200);
     CHECK_MESSAGE(r.status == RootStatus::converged,
                   "the midpoint of two neighbouring doubles cannot move: that is convergence, not a budget "
                   "to run out");
-    CHECK(std::abs(r.s - std::sqrt(2.0)) <= 2.3e-16);
+    CHECK(std::abs(r.s - std::sqrt(2.0)) <= 4.5e-16);  // two spacings: f rounded near the root
     CHECK(r.iterations <= 54);
   }
 
