@@ -151,3 +151,56 @@ TEST_SUITE("lesson01") {
     CHECK(outside->s == doctest::Approx(0.1));
   }
 }
+
+// Slips of the stable form that spheres near the origin with exact square roots do not show
+// (realistic student bugs, issue 28): d² from Pythagoras, |ΔP|² − (ω·ΔP)², instead of the
+// perpendicular vector; both roots as b ∓ √(…) instead of q and C/q; intersect calling the notes'
+// roots. Contract (sphere.hpp, task 3 and 4): the discriminant over four is r² − |ΔP − (ω·ΔP)ω|², the
+// root of larger magnitude is q = b + sign(b)√(…) and the other C/q, and intersect uses these roots.
+// Each check is relative to the root it checks (doctest's Approx is absolute below 1).
+TEST_SUITE("lesson01") {
+  TEST_CASE(
+      "hard case: stable form on a far sphere off the ray's line takes d² from the perpendicular vector" *
+      doctest::description("task=3")) {
+    // Centre (0, 0.6, 1e8), radius 1, ray from the origin along +z. ΔP − (ω·ΔP)ω = (0, 0.6, 0) exactly,
+    // so d² = 0.36 and the roots are 1e8 ∓ √(1 − 0.36) = 1e8 ∓ 0.8. Pythagoras, |ΔP|² − (ω·ΔP)², subtracts
+    // fl(1e16 + 0.36) = 1e16 (the spacing of doubles there is 2) from 1e16 and finds d² = 0: roots 1e8 ∓ 1.
+    const auto r = illum::sphere_roots_stable(Vec3(0), Vec3(0, 0, 1), Vec3(0, 0.6, 1e8), 1.0);
+    REQUIRE_MESSAGE(r.count == 2, "d² = 0.36 < r² = 1: the ray crosses the sphere");
+    const double half_chord = std::sqrt(1.0 - 0.6 * 0.6);  // 0.8 to the last bit of 0.6
+    INFO("roots 1e8 ∓ 0.8: d² must come from the vector ΔP − (ω·ΔP)ω, not from |ΔP|² − (ω·ΔP)²");
+    CHECK(std::abs(r.s_near - (1e8 - half_chord)) <= 1e-7);  // a few ulps of 1e8 (1.5e-8 each)
+    CHECK(std::abs(r.s_far - (1e8 + half_chord)) <= 1e-7);
+  }
+
+  TEST_CASE("hard case: stable form keeps the small root of a ray leaving a huge sphere's surface" *
+            doctest::description("task=3")) {
+    // The ground sphere of lesson 01 (radius 1e6), centre (1, 0, 1e6), ray from the origin along +z.
+    // ΔP = (1, 0, 1e6): C = |ΔP|² − r² = 1e12 + 1 − 1e12 = 1 exactly, b = ω·ΔP = 1e6, d² = 1, and the
+    // discriminant over four is 1e12 − 1 (exact). Vieta: s_near = C / (b + √(b² − C)) = 1 / (1e6 + √(1e12 −
+    // 1))
+    //   = 1e-6 / (1 + √(1 − 1e-12)) = 5e-7 (1 + 2.5e-13 + O(1e-25)), the far root 1e6 + √(1e12 − 1) ≈ 2e6.
+    // b − √(…) instead subtracts two numbers near 1e6 whose last bit is 1.2e-10: s_near wrong in the
+    // fourth digit.
+    const auto r = illum::sphere_roots_stable(Vec3(0), Vec3(0, 0, 1), Vec3(1, 0, 1e6), 1e6);
+    REQUIRE(r.count == 2);
+    const double near = 5e-7 * (1 + 2.5e-13);
+    INFO("s_near = ", r.s_near, ", expected 5e-7·(1 + 2.5e-13): the small root must be C/q (Vieta)");
+    CHECK(std::abs(r.s_near - near) <= 1e-14 * near);
+    CHECK(r.s_far == doctest::Approx(2e6 - 5e-7).epsilon(1e-15));
+  }
+
+  TEST_CASE("hard case: intersect on a far, small sphere uses the stable roots" *
+            doctest::description("task=1,3,4")) {
+    // The sphere of the first test above: the notes' B² − 4C = 4e16 − 4·fl(1e16 − 0.64) cancels to 0 and
+    // reports a tangent hit at s = 1e8; the stable roots give s = 1e8 − 0.8, where the outward normal is
+    // (P − Pc)/r = (0, −0.6, −0.8).
+    const auto hit = illum::intersect(Ray(Point3(0), Vec3(0, 0, 1)), Sphere(Point3(0, 0.6, 1e8), 1.0));
+    REQUIRE_MESSAGE(hit.has_value(), "the ray crosses the sphere 1e8 away");
+    INFO("s = ", hit->s, ": intersect must take the stable roots (1e8 − 0.8), not the notes' ones");
+    CHECK(std::abs(hit->s - (1e8 - std::sqrt(1.0 - 0.6 * 0.6))) <= 1e-7);
+    CHECK(hit->normal.y == doctest::Approx(-0.6).epsilon(1e-6));
+    CHECK(hit->normal.z == doctest::Approx(-0.8).epsilon(1e-6));
+    CHECK_FALSE(hit->from_inside);
+  }
+}

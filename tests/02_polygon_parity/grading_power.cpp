@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <optional>
+#include <vector>
 
 #include "illum/geometry/parity.hpp"
 #include "illum/geometry/plane.hpp"
@@ -87,5 +88,89 @@ TEST_SUITE("lesson02") {
     CHECK(intersect(Ray::toward(Point3(0), Vec3(2.5, 0.25, 0.25)), triangle).has_value());
     CHECK_FALSE_MESSAGE(intersect(Ray::toward(Point3(0), Vec3(-1, 2, 2)), triangle).has_value(),
                         "(−1, 2, 2) is on the plane but outside the triangle (x < 0)");
+  }
+}
+
+// Slips that exact binary coordinates and axis-aligned edges do not show (realistic student bugs,
+// issue 28). Contracts (parity.hpp, plane.hpp, tasks 1 and 3):
+// * cross_plane decides "in the plane" by D + N·P0 == 0 exactly, with no tolerance: an origin
+//   1e-12 off the plane is off it (a ray there is parallel, and so is one 1e-12 off a plane through
+//   a far-away point).
+// * count_crossings decides the side of q by the sign of the determinant (hi − lo) × (q − lo) in
+//   double, with the edge taken lower end first: two polygons sharing an edge compute the same
+//   number for it whatever the order their loops run it in, so they claim a point near it once,
+//   and a point a micrometre from a kilometre-long edge is on the side it is on.
+TEST_SUITE("lesson02") {
+  TEST_CASE("hard case: a parallel ray a hair off the plane is parallel, not in it" *
+            doctest::description("task=1,2")) {
+    // Plane z = 0 (N = (0, 0, 1), D = 0); a ray along +x from (0, 0, 1e-12): N·ω = 0 exactly and
+    // D + N·P0 = 1e-12, not 0. The ray is parallel to the plane, 1e-12 above it, and never meets it.
+    const Plane plane(Vec3(0, 0, 1), 0.0);
+    const Ray above(Point3(0, 0, 1e-12), Vec3(1, 0, 0));
+    CHECK_MESSAGE(cross_plane(above, plane).contact == PlaneContact::parallel,
+                  "D + N·P0 = 1e-12 ≠ 0: the origin is off the plane (no tolerance decides 'on it')");
+    // The same below the plane z = 1e-9 (D = −1e-9): D + N·P0 = −1e-9 − 1e-12 ≠ 0.
+    const Plane high(Vec3(0, 0, 1), -1e-9);
+    CHECK(cross_plane(Ray(Point3(5, 5, -1e-12), Vec3(0, 1, 0)), high).contact == PlaneContact::parallel);
+    // And exactly on it: D + N·P0 = −1e-9 + 1e-9 = 0.
+    CHECK(cross_plane(Ray(Point3(5, 5, 1e-9), Vec3(0, 1, 0)), high).contact == PlaneContact::in_plane);
+  }
+
+  TEST_CASE(
+      "hard case: two triangles sharing a slanted edge with inexact coordinates claim each point near it "
+      "once" *
+      doctest::description("task=3")) {
+    // The quadrilateral A B C D cut along its diagonal A C into T1 = (A, B, C) and T2 = (A, C, D), both
+    // counter-clockwise: T1 runs the diagonal C → A, T2 runs it A → C. Points q computed as A + t(C − A)
+    // lie on the diagonal up to rounding (1e-16), some on one side of it and some on the other, none
+    // nearer than 0.02 to another edge. Every such q is inside the quadrilateral, so exactly one of
+    // the two triangles must claim it (an odd crossing count). The half-open rule makes that so only
+    // if both triangles decide the shared edge with the same number: the determinant with the lower
+    // end first. A crossing u found by division, or a determinant taken from each loop's own first
+    // end, rounds differently in the two triangles, and some q are then claimed by both or by none.
+    const Vec2 a(0.1, 0.2), b(3.3, 0.7), c(2.9, 3.1), d(0.3, 2.6);
+    const std::vector<Vec2> t1{a, b, c}, t2{a, c, d};
+    int claimed_twice = 0, claimed_never = 0, checked = 0;
+    for (int k = 10; k <= 990; ++k) {
+      const double t = k / 1000.0;
+      const Vec2 on = a + t * (c - a);
+      // q itself and its neighbours one and two units in the last place left and right.
+      double u = on.x;
+      for (int step = 0; step < 2; ++step) u = std::nextafter(u, -1.0);
+      for (int j = 0; j < 5; ++j, u = std::nextafter(u, 10.0)) {
+        const Vec2 q(u, on.y);
+        const int claims = count_crossings(t1, q) % 2 + count_crossings(t2, q) % 2;
+        claimed_twice += claims == 2;
+        claimed_never += claims == 0;
+        ++checked;
+      }
+    }
+    CHECK(checked == 981 * 5);
+    CHECK_MESSAGE(claimed_twice == 0, "points claimed by both triangles: the shared edge decided two ways");
+    CHECK_MESSAGE(claimed_never == 0, "points claimed by neither triangle: the shared edge decided two ways");
+  }
+
+  TEST_CASE(
+      "hard case: points a micrometre either side of a long slanted edge are claimed by the right triangle" *
+      doctest::description("task=3")) {
+    // The edge L → H, about 1220 long, shared by T1 = (L, H, X) on its left and T2 = (L, Y, H) on its
+    // right. q = L + t(H − L) ± 1e-6 n, with n the unit normal pointing left: the determinant
+    // (H − L) × (q − L) is ±1220 · 1e-6 ≈ ±1.2e-3, while its rounding error in double is about
+    // 1e-16 · 1e6 = 1e-10, so its sign is certain; in float (7 digits of 7e5) it is noise.
+    const Vec2 lo(0.1, 0.3), hi(1000.7, 700.9), left(-300.2, 800.4), right(1100.3, -200.6);
+    const std::vector<Vec2> t1{lo, hi, left}, t2{lo, right, hi};
+    const Vec2 e = hi - lo;
+    const Vec2 n = Vec2(-e.y, e.x) / std::sqrt(e.x * e.x + e.y * e.y);
+    int wrong = 0;
+    for (int k = 1; k < 100; ++k) {
+      const Vec2 on = lo + (k / 100.0) * e;
+      const Vec2 q_left = on + 1e-6 * n, q_right = on - 1e-6 * n;
+      wrong += count_crossings(t1, q_left) % 2 != 1;
+      wrong += count_crossings(t2, q_left) % 2 != 0;
+      wrong += count_crossings(t1, q_right) % 2 != 0;
+      wrong += count_crossings(t2, q_right) % 2 != 1;
+    }
+    CHECK_MESSAGE(wrong == 0, "the side of q must come from the determinant in double: ", wrong,
+                  " of 396 decisions went to the wrong triangle");
   }
 }

@@ -22,6 +22,7 @@
 #include "illum/geometry/orientation.hpp"
 #include "illum/geometry/triangle.hpp"
 #include "illum/geometry/winding.hpp"
+#include "support/throws_containing.hpp"
 
 using namespace illum;
 
@@ -380,5 +381,67 @@ TEST_SUITE("lesson03") {
             "the corner (1, 1) turns the other way: the L is concave wherever it is listed from");
         CHECK_THROWS_AS(ConvexPolygon(flat_polygon(loop)), std::invalid_argument);
       }
+  }
+}
+
+// Slips that interior points and the U-turn shape of the first suite (which also turns the wrong
+// way) do not show (realistic student bugs, issue 28). Contracts (winding.hpp, convex.hpp, tasks 1
+// and 4): the winding number decides points on the boundary by lesson 02's half-open rule (a vertex
+// with v = q.v counts as below the test ray, for both of its edges), so it owns the bottom and left
+// edges and the bottom-left corner, and not the top and right ones, like parity; a loop that folds
+// back along itself (a zero turn whose two edges point opposite ways) is not convex even when every
+// other turn agrees and the edge directions change sign only twice.
+TEST_SUITE("lesson03") {
+  TEST_CASE("hard case: the winding number owns the bottom and left edges of a square, as parity does" *
+            doctest::description("task=1,2,3")) {
+    // The rectangle [0.1, 0.7] × [0.3, 0.9] (coordinates not exact in binary; each edge's points use the
+    // same doubles, so they lie exactly on it). For q on the bottom edge v = 0.3, the bottom edge lies
+    // on the test ray (both ends "below": not counted), the left edge is not crossed (q right of it),
+    // the right edge is: winding ±1. For q on the top edge v = 0.9 every vertex counts as below q, no
+    // edge straddles the ray: winding 0. Reading "above" as v ≥ q.v swaps the two.
+    const std::vector<Vec2> ccw = {{0.1, 0.3}, {0.7, 0.3}, {0.7, 0.9}, {0.1, 0.9}};
+    const std::vector<Vec2> cw = {{0.1, 0.3}, {0.1, 0.9}, {0.7, 0.9}, {0.7, 0.3}};
+    struct Case {
+      Vec2 q;
+      int winding_ccw;
+      const char* why;
+    };
+    const Case cases[] = {
+        {{0.4, 0.3}, 1, "on the bottom edge: owned (closed bottom)"},
+        {{0.4, 0.9}, 0, "on the top edge: not owned (open top)"},
+        {{0.1, 0.6}, 1, "on the left edge: owned (closed left)"},
+        {{0.7, 0.6}, 0, "on the right edge: not owned (open right)"},
+        {{0.1, 0.3}, 1, "the bottom-left corner: owned"},
+        {{0.7, 0.3}, 0, "the bottom-right corner: not owned"},
+        {{0.1, 0.9}, 0, "the top-left corner: not owned"},
+        {{0.7, 0.9}, 0, "the top-right corner: not owned"},
+        {{-0.2, 0.3}, 0, "left of the rectangle, on the line of its bottom edge"},
+        {{-0.2, 0.9}, 0, "left of the rectangle, on the line of its top edge"},
+    };
+    for (const Case& c : cases) {
+      INFO("q = (", c.q.x, ", ", c.q.y, "): ", c.why);
+      CHECK(winding_number(std::span<const Vec2>(ccw), c.q) == c.winding_ccw);
+      CHECK_MESSAGE(winding_number(std::span<const Vec2>(cw), c.q) == -c.winding_ccw,
+                    "clockwise, the same points with the opposite sign");
+      CHECK(inside_nonzero(flat_polygon(ccw), c.q) == (c.winding_ccw != 0));
+    }
+  }
+
+  TEST_CASE("convexity: a loop that folds back along itself is not convex, though every other turn agrees" *
+            doctest::description("task=4,5")) {
+    // (0, 1) → (1, 0) → (1, 2) → (1, 1) → (2, 1): at (1, 2) the boundary comes back down the line
+    // x = 1 (edges (0, 2) then (0, −1): a zero turn, dot −2 < 0), and at (2, 1) back along y = 1 (edges
+    // (1, 0) then (−2, 0), dot −2). The three other turns are all left (cross products 2, 1, 2), and u
+    // and v each change sign only twice going round (u: +, 0, 0, +, −; v: −, +, −, 0, 0). Only the
+    // U-turn rule rejects it: the region it bounds is a triangle with two hairs, not a convex polygon.
+    const Polygon folded = flat_polygon({{0, 1}, {1, 0}, {1, 2}, {1, 1}, {2, 1}});
+    CHECK_FALSE_MESSAGE(is_convex(folded),
+                        "a zero turn whose edges point opposite ways (a U-turn) is not convex");
+    ILLUM_CHECK_THROWS_CONTAINING(ConvexPolygon{folded}, "not convex", std::invalid_argument);
+    // The same with the fold in a clockwise loop, coordinates scaled by 0.3 (not exact in binary).
+    const Polygon folded_cw = flat_polygon({{0.6, 0.3}, {0.3, 0.3}, {0.3, 0.6}, {0.3, 0.0}, {0.0, 0.3}});
+    CHECK_FALSE(is_convex(folded_cw));
+    // Positive control: without the hairs the triangle (0, 1) → (1, 0) → (1, 1) is convex.
+    CHECK(is_convex(flat_polygon({{0, 1}, {1, 0}, {1, 1}})));
   }
 }

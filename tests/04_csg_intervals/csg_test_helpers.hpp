@@ -3,6 +3,8 @@
 // membership test that decides "is P inside the solid?" straight from the
 // primitives' inequalities, without spans, as an independent check of the
 // interval method.
+#include <doctest/doctest.h>
+
 #include <cmath>
 #include <initializer_list>
 #include <utility>
@@ -19,6 +21,12 @@ using namespace illum;
 inline Span span(double s0, double s1, int tag_in = 0, int tag_out = -1) {
   if (tag_out < 0) tag_out = tag_in;
   return Span{Boundary{s0, Vec3(-1, 0, 0), tag_in}, Boundary{s1, Vec3(1, 0, 0), tag_out}};
+}
+
+// Checks that a result span runs from s0 to s1 (relative 1e-12).
+inline void check_span(const Span& got, double s0, double s1) {
+  CHECK(got.enter.s == doctest::Approx(s0).epsilon(1e-12));
+  CHECK(got.exit.s == doctest::Approx(s1).epsilon(1e-12));
 }
 
 inline SpanList list(std::initializer_list<Span> spans) {

@@ -13,11 +13,6 @@ using namespace csg_test;
 
 namespace {
 
-void check_span(const Span& got, double s0, double s1) {
-  CHECK(got.enter.s == doctest::Approx(s0).epsilon(1e-12));
-  CHECK(got.exit.s == doctest::Approx(s1).epsilon(1e-12));
-}
-
 void check_vec(const Vec3& got, const Vec3& expected, double tolerance = 1e-12) {
   INFO("got (" << got.x << ", " << got.y << ", " << got.z << "), expected (" << expected.x << ", "
                << expected.y << ", " << expected.z << ")");

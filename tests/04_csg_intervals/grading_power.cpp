@@ -34,3 +34,57 @@ TEST_SUITE("lesson04") {
     CHECK_FALSE(nearest_crossing(spans, Interval(5.5, 6.999)).has_value());
   }
 }
+
+// Slips that bounded spans and groups of a single changing crossing do not show (realistic student
+// bugs, issue 28). Contracts (span_combine.hpp, task 2):
+// * a span may end at s = +∞ (a half-space): that end is a crossing like any other, merged in order
+//   and kept in the result; "no more crossings in this list" is not the same as "the next s is +∞";
+// * within a group of crossings at the same s, A's crossings are taken before B's, and the result's
+//   crossing is the one after which "inside A op B" last changed, not the last one of the group.
+TEST_SUITE("lesson04") {
+  TEST_CASE("hard case: spans that reach +∞ (half-spaces) survive a union, an intersection and a difference" *
+            doctest::description("task=1,2")) {
+    // H = [3, +∞) is a half-space ahead of the ray; A = [1, 2] and C = [4, 6] are boxes.
+    const SpanList h = list({span(3, infinity, 5)}), a = list({span(1, 2, 1)}), c = list({span(4, 6, 2)});
+    const SpanList u = combine(CsgOperation::unite, a, h);
+    REQUIRE_MESSAGE(u.size() == 2, "A ∪ H = [1, 2] ∪ [3, +∞): the half-space's span ends at +∞, not never");
+    check_span(u[0], 1, 2);
+    CHECK(u[1].enter.s == 3.0);
+    CHECK(u[1].exit.s == infinity);
+    CHECK(u[1].exit.surface == 5);
+    const SpanList i = combine(CsgOperation::intersect, h, list({span(1, 5, 1)}));
+    REQUIRE(i.size() == 1);
+    check_span(i[0], 3, 5);
+    const SpanList d = combine(CsgOperation::subtract, h, c, 1e-9);
+    REQUIRE_MESSAGE(d.size() == 2, "H − C = [3, 4] ∪ [6, +∞): the part beyond the box reaches +∞");
+    check_span(d[0], 3, 4);
+    CHECK(d[1].enter.s == 6.0);
+    CHECK(d[1].exit.s == infinity);
+    // Two half-spaces facing each other cover the whole line: (−∞, 2] ∪ [1, +∞) = (−∞, +∞).
+    const SpanList whole =
+        combine(CsgOperation::unite, list({span(-infinity, 2, 1)}), list({span(1, infinity, 2)}));
+    REQUIRE(whole.size() == 1);
+    CHECK(whole[0].enter.s == -infinity);
+    CHECK(whole[0].exit.s == infinity);
+  }
+
+  TEST_CASE("hard case: coincident exits: the result's end is the crossing that changed it" *
+            doctest::description("task=1,2")) {
+    // A = [1, 3] (surfaces 1, 2) ∩ B = [2, 3] (surfaces 3, 4): at s = 3 both exit. Taking A's exit first,
+    // the result leaves the intersection there (inside A ∧ B becomes false); B's exit then changes
+    // nothing. The result [2, 3] starts on B's entry (surface 3) and ends on A's exit (surface 2).
+    const SpanList i = combine(CsgOperation::intersect, list({span(1, 3, 1, 2)}), list({span(2, 3, 3, 4)}));
+    REQUIRE(i.size() == 1);
+    check_span(i[0], 2, 3);
+    CHECK(i[0].enter.surface == 3);
+    CHECK_MESSAGE(i[0].exit.surface == 2,
+                  "A's exit changed the result; B's exit, processed after it in the group, did not");
+    // A = [1, 4] (1, 2) ∪ B = [1, 2] (3, 4): at s = 1 both enter; A's entry opens the union, B's changes
+    // nothing. The union [1, 4] starts on A's surface 1.
+    const SpanList u = combine(CsgOperation::unite, list({span(1, 4, 1, 2)}), list({span(1, 2, 3, 4)}));
+    REQUIRE(u.size() == 1);
+    check_span(u[0], 1, 4);
+    CHECK_MESSAGE(u[0].enter.surface == 1, "A's entry opened the union; B's entry at the same s did not");
+    CHECK(u[0].exit.surface == 2);
+  }
+}

@@ -382,3 +382,93 @@ TEST_SUITE("lesson05") {
       }
   }
 }
+
+// Slips that unit-sized patches in front of the ray and near the origin do not show (realistic student
+// bugs, issue 28). Contracts (patch_newton.hpp, tasks 5–7): N₁ × N₂ = ω (a right-handed frame); the hit's
+// s is ω·(S − P0), negative for a patch behind the origin (then no hit in [0, ∞)); J is singular only
+// relative to |S_u||S_v|; the boxes' pad grows with |hi|.
+TEST_SUITE("lesson05") {
+  TEST_CASE("ray planes: N₁ × N₂ = ω, a right-handed frame" * doctest::description("task=5")) {
+    const Ray rays[] = {Ray(Point3(1, 2, 3), Vec3(1, 0, 0)), Ray(Point3(-4, 0.5, 2), Vec3(0, 0, -1)),
+                        Ray::toward(Point3(0.3, -7, 1e3), Vec3(1, 1, 1)),
+                        Ray::toward(Point3(2, 2, 2), Vec3(-0.2, 0.9, 0.01))};
+    for (const Ray& ray : rays) {
+      const RayPlanes p = ray_planes(ray);
+      INFO("ω = (", ray.direction.x, ", ", ray.direction.y, ", ", ray.direction.z, ")");
+      CHECK_MESSAGE(length(cross(p.n1, p.n2) - ray.direction) <= 1e-15, "N₁ × N₂ must be ω, not −ω");
+    }
+  }
+
+  TEST_CASE("hard case: a patch behind the ray is not hit" * doctest::description("task=5,6,7")) {
+    // The saddle S(u, v) = (u, v, uv) lies below z = 1; rays start at z = 3 and go up (+z), or obliquely
+    // up. Their lines cross the saddle at (0.5, 0.25, 0.125) behind the origin, at s = −2.875 for the
+    // vertical ray: ω·(S − P0) < 0 is outside [0, ∞). A distance |S − P0| is positive and would count it.
+    const BezierPatch saddle = scaled_saddle(1.0);
+    const Ray up(Point3(0.5, 0.25, 3), Vec3(0, 0, 1));
+    CHECK_FALSE_MESSAGE(intersect_patch(up, saddle), "the saddle is 2.875 behind the ray's origin");
+    const std::optional<PatchHit> start_on_it =
+        patch_newton(saddle, up, ray_planes(up), Vec2(0.5, 0.25), 1e-12, 5);
+    CHECK_FALSE_MESSAGE(start_on_it, "F = 0 at the start, but s = ω·(S − P0) = −2.875 is not in [0, ∞)");
+    const Ray slanted = Ray::toward(Point3(0.4, 0.6, 2), Vec3(0.1, -0.1, 1));
+    CHECK_FALSE(intersect_patch(slanted, saddle));
+    // The same rays reversed hit it, at s = 2.875 for the vertical one (control: the line does meet it).
+    const std::optional<PatchHit> down = intersect_patch(Ray(Point3(0.5, 0.25, 3), Vec3(0, 0, -1)), saddle);
+    REQUIRE(down);
+    CHECK(std::abs(down->s - 2.875) <= 1e-12);
+  }
+
+  TEST_CASE("hard case: a patch 10⁻⁷ across is hit (the singularity test is relative)" *
+            doctest::description("task=5,6,7")) {
+    // The saddle scaled by c = 1e-7: |S_u||S_v| ≈ c² = 1e-14 and det J ≈ c² for a ray along −z, far
+    // below a fixed 1e-12 but far above 1e-12·|S_u||S_v|. Down onto (0.5c, 0.25c): u = 0.5, v = 0.25,
+    // z = c/8, s = 3c − c/8.
+    const double c = 1e-7;
+    const Ray ray(Point3(0.5 * c, 0.25 * c, 3 * c), Vec3(0, 0, -1));
+    PatchOptions options;
+    options.tolerance = 1e-12 * c;
+    const std::optional<PatchHit> hit = intersect_patch(ray, scaled_saddle(c), options);
+    REQUIRE_MESSAGE(hit, "det J ≈ 1e-14 is not singular for a patch whose |S_u||S_v| is 1e-14");
+    CHECK(std::abs(hit->u - 0.5) <= 1e-9);
+    CHECK(std::abs(hit->v - 0.25) <= 1e-9);
+    CHECK(std::abs(hit->s - (3 * c - c / 8)) <= 1e-9 * c);
+  }
+
+  TEST_CASE("hard case: rays through the boundary of a flat patch a million away all hit it" *
+            doctest::description("task=5,6,7")) {
+    // The flat square x ∈ [5e5, 5e5 + 10], y ∈ [4e5, 4e5 + 10] of the plane z = 7e5 + 0.3, searched to
+    // max_depth 8 (leaf boxes 0.04 wide, flat in z). Rays from near the origin aim at points of its edges;
+    // 9.5e5 away a rounded direction passes up to ~2e-10 beside the point aimed at: u or v 2e-11 outside
+    // [0, 1], a hit (within the header's 1e-9), but the line grazes the leaf box from outside by ~1e-10.
+    // The pad 10⁻⁹(hi − lo) + 10⁻¹²(1 + |hi|) ≈ 1e-6 covers that; a fixed 1e-12 does not.
+    const double x0 = 5e5, y0 = 4e5, z = 7e5 + 0.3, w = 10.0;
+    const BezierPatch square = BezierPatch::bilinear(Point3(x0, y0, z), Point3(x0 + w, y0, z),
+                                                     Point3(x0, y0 + w, z), Point3(x0 + w, y0 + w, z));
+    PatchOptions options;
+    options.max_depth = 8;
+    options.tolerance = 1e-7;  // distances to the planes are rounded to ~1e-10 at these coordinates
+    const Point3 origins[] = {Point3(0.3, -0.2, 0.1), Point3(-0.7, 0.45, -0.15), Point3(1e-3, 2e-3, 1.9)};
+    int rays = 0, missed = 0;
+    for (int k = 0; k <= 16; ++k) {
+      const double t = k / 16.0;
+      const double uv[4][2] = {{t, 0.0}, {1.0, t}, {1.0 - t, 1.0}, {0.0, 1.0 - t}};
+      for (const auto& p : uv)
+        for (const Point3& origin : origins) {
+          const Point3 target(x0 + w * p[0], y0 + w * p[1], z);
+          const std::optional<PatchHit> hit =
+              intersect_patch(Ray::toward(origin, target - origin), square, options);
+          ++rays;
+          if (!hit) {
+            ++missed;
+            continue;
+          }
+          INFO("aimed at (u, v) = (", p[0], ", ", p[1], ")");
+          CHECK(std::abs(hit->u - p[0]) <= 1e-8);
+          CHECK(std::abs(hit->v - p[1]) <= 1e-8);
+          CHECK(std::abs(hit->s - length(target - origin)) <= 1e-4);
+        }
+    }
+    CHECK(rays == 17 * 4 * 3);
+    CHECK_MESSAGE(missed == 0,
+                  "pad the boxes by more than rounding at |P| ≈ 1e6 (a pad that grows with |hi|)");
+  }
+}

@@ -257,3 +257,66 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(r.iterations == 1, "the first Newton step, 3/8, is at most half the bracket's width 1");
   }
 }
+
+// Slips that well-scaled functions, fast Newton convergence and hits inside the range do not show
+// (realistic student bugs, issue 28). Contracts (root_finding.hpp, tasks 1, 3 and 4):
+// * bisection is converged when the midpoint can no longer move in double precision, whatever the
+//   tolerance (a tolerance below the spacing of doubles does not run the budget out);
+// * safeguarded Newton takes Newton's step only when it lands strictly inside the bracket and is at
+//   most half the previous step, else a bisection step;
+// * a missed sphere trace returns s = range.hi.
+TEST_SUITE("lesson05") {
+  TEST_CASE(
+      "hard case: bisection with a tolerance finer than double precision stops when the midpoint cannot "
+      "move" *
+      doctest::description("task=1")) {
+    // s² − 2 on [1, 2] with tolerance 1e-300: the half width never gets below it (doubles near √2 are
+    // 2.2e-16 apart), but after at most 52 halvings a and b are neighbours and their midpoint rounds
+    // to one of them: converged there, within a spacing or two of √2.
+    const RootResult r = bisection(scaled_square(1.0), Interval(1, 2), 1e-300, 200);
+    CHECK_MESSAGE(r.status == RootStatus::converged,
+                  "the midpoint of two neighbouring doubles cannot move: that is convergence, not a budget "
+                  "to run out");
+    CHECK(std::abs(r.s - std::sqrt(2.0)) <= 4.5e-16);  // two spacings: f rounded near the root
+    CHECK(r.iterations <= 54);
+  }
+
+  TEST_CASE("safeguarded Newton: a slow Newton step becomes a bisection step" *
+            doctest::description("task=3")) {
+    // f(s) = (s − 0.3)⁹ on [0, 1]: Newton's step is (s − 0.3)/9, so each one is 8/9 of the previous,
+    // never at most half: the rule replaces every other step by a bisection step, and the bracket
+    // (1 wide) halves at least every two steps: |s − 0.3| ≤ 1e-12 needs at most about 2·40 steps.
+    // Taking Newton's step whenever it stays inside the bracket shrinks the error by 8/9 a step:
+    // ln(0.2/1e-12)/ln(9/8) ≈ 220 steps.
+    const Function ninth([](double s) { return std::pow(s - 0.3, 9); },
+                         [](double s) { return 9.0 * std::pow(s - 0.3, 8); });
+    const RootResult r = safeguarded_newton(ninth, Interval(0, 1), 1e-12, 100);
+    REQUIRE_MESSAGE(r.status == RootStatus::converged,
+                    "a Newton step that does not halve the previous one must become a bisection step");
+    CHECK(std::abs(r.s - 0.3) <= 1e-11);
+  }
+
+  TEST_CASE("safeguarded Newton: a Newton step onto the bracket's end becomes a bisection step" *
+            doctest::description("task=3")) {
+    // f(s) = sign(s − 1)·√|s − 1| on [0, 4]: f(0) = −1, f(4) = √3. The midpoint 2 has f = 1 > 0, so the
+    // bracket becomes [0, 2] (previous step 4). Newton from 2: f/f' = 1/0.5 = 2, the candidate 2 − 2 = 0
+    // is the bracket's end a (not strictly inside): a bisection step to 1, where f = 0 exactly. One step.
+    // Accepting the candidate 0 evaluates f at the bracket's end and needs a second step.
+    const Function root_like([](double s) { return std::copysign(std::sqrt(std::abs(s - 1.0)), s - 1.0); },
+                             [](double s) { return 0.5 / std::sqrt(std::abs(s - 1.0)); });
+    const RootResult r = safeguarded_newton(root_like, Interval(0, 4), 1e-12, 50);
+    REQUIRE(r.status == RootStatus::converged);
+    CHECK(r.s == 1.0);
+    CHECK_MESSAGE(r.iterations == 1, "Newton's candidate 0 is not strictly inside (0, 2): bisect to 1");
+  }
+
+  TEST_CASE("sphere tracing: a miss ends at range.hi" * doctest::description("task=4")) {
+    // d(s) = 1 everywhere (a surface that is never reached; |d(s) − d(t)| = 0 ≤ L|s − t| for L = 1):
+    // from 0 the steps land at 1, 2, 3; the third passes range.hi = 2.5: missed after 3 steps, s = 2.5.
+    const Function constant([](double) { return 1.0; }, [](double) { return 0.0; });
+    const RootResult r = sphere_trace(constant, Interval(0, 2.5), 1.0, 1e-9, 10);
+    CHECK(r.status == RootStatus::missed);
+    CHECK_MESSAGE(r.s == 2.5, "a miss reports s = range.hi, not the point past it");
+    CHECK(r.iterations == 3);
+  }
+}

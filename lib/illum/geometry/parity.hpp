@@ -17,6 +17,10 @@
 //   The side is the sign of the determinant (hi − lo) × (q − lo) with the
 //   edge taken lower end first, so two polygons sharing an edge compute the
 //   very same number for it and cannot disagree about a point on it.
+//   The determinant is computed in double from the edge's two ends as stored
+//   (no division, no float): a polygon sharing the edge but running it the
+//   other way decides any point near it by the same number, whatever its
+//   coordinates, and a point 1e-6 from a long edge is on its true side.
 // Consequence: a polygon owns its left and bottom boundary and not its right
 // and top boundary, and polygons that tile the plane claim every point, on
 // shared edges and vertices included, exactly once (when the determinant is

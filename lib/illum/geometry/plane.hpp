@@ -48,6 +48,8 @@ enum class PlaneContact {
   crosses,   // one crossing at parameter s (which may be negative)
   parallel,  // N·ω = 0 and the origin is off the plane: no crossing at all
   in_plane,  // N·ω = 0 and the origin is on the plane: every s is on it
+  // (both tests are exact, == 0, with no tolerance: an origin 1e-12 off the
+  // plane is off it)
 };
 
 struct PlaneCrossing {

@@ -36,7 +36,11 @@ bool inside_result(CsgOperation op, bool inside_a, bool inside_b);
 // and `out` must be a third list; `sliver_tolerance` must be >= 0. Each
 // crossing of the result keeps the surface and the normal of the crossing
 // that made it, except that crossings of B in a difference get their normal
-// reversed (the surface of the hole faces into B). Throws
+// reversed (the surface of the hole faces into B). Within a group of
+// crossings at the same s, A's are taken before B's, and the crossing that
+// made the result's is the one after which "inside A op B" last changed (for
+// A ∩ B with both exits at one s, A's exit). An end at s = ±∞ (a half-space)
+// is a crossing like any other and is kept in the result. Throws
 // std::invalid_argument on broken preconditions.
 void combine_spans(CsgOperation op, const SpanList& a, const SpanList& b, double sliver_tolerance,
                    SpanList& out);

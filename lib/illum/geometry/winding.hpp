@@ -13,7 +13,9 @@
 //
 // Boundary cases use the half-open rule of lesson 02 and the exact,
 // tie-broken orientation predicate orient2d_sign_perturbed, so the decisions
-// agree with parity and are exact for any double coordinates.
+// agree with parity and are exact for any double coordinates: a vertex with
+// v == q.v counts as below the test ray (for both of its edges), so a point on
+// the bottom or left edge has winding ±1 and one on the top or right edge 0.
 #include <span>
 
 #include "illum/geometry/polygon.hpp"
