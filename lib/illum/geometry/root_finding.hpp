@@ -65,8 +65,9 @@ RootResult newton(const RealFunction& f, double s0, double tolerance, int max_it
 // less than half is replaced by a bisection step (before the first step,
 // "the previous step" is the width b − a of the bracket that the midpoint's
 // value left). The bracket shrinks after every evaluation. Converged when
-// |Δs| ≤ tolerance or the bracket's half
-// width is ≤ tolerance. Same preconditions and no_sign_change as bisection.
+// |Δs| ≤ tolerance or the bracket's whole width b − a is ≤ tolerance (then
+// s, inside it, is within the tolerance of the root it brackets). Same
+// preconditions and no_sign_change as bisection.
 RootResult safeguarded_newton(const RealFunction& f, Interval bracket, double tolerance, int max_iterations);
 
 // Sphere tracing (lesson 05, §6). `distance` is a function that is positive
