@@ -297,6 +297,8 @@ TEST_SUITE("lesson12") {
     // the capacity). The removed face listed only vertex 3, and a list of the same length, all 3s,
     // is still alive while the functions run, so the bytes past the end of mesh.faces may well
     // describe it: a loop that runs to f <= faces.size() finds a face at vertex 3 that is not there.
+    // Whatever the allocator did, such a loop stops here: the exercise units are built with the
+    // standard library's assertions (CMakeLists.txt), and faces[faces.size()] aborts the program.
     // Expected, from the four faces alone (B = 1, 2, 5, 3): vertex 3 lies on F2 only, average 5;
     // extrapolated, it is the corner of F2 opposite the centre: 2·5 − 2.75 = 7.25 (and a fifth face
     // at vertex 3 would make it "two faces sharing no edge" and leave it at an average instead).
