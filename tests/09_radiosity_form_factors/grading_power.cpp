@@ -541,3 +541,81 @@ TEST_SUITE("lesson09") {
     CHECK(clip_polygon_to_half_space(square, {0, 0, 0}, Vec3(1, 0, 0)).size == 4);
   }
 }
+
+// Edges that meet at an angle other than 90° (a mutation survivor: the closest point of two edges found
+// with a sign slip in its last step). Contract checked (form_factor_contour.hpp): non-parallel edges that
+// come close have the outer rule split at the closest point and graded towards it, so a pair of hinged
+// rectangles, whose side edges meet at the ends of the hinge, is as exact as the rule's order allows.
+namespace {
+
+// Lambert's formula for dA at x (unit normal n) to a polygon wholly in front of it:
+// F = (1/2π) |Σ_k γ_k n·(R_k × R_{k+1})/|R_k × R_{k+1}||, R_k = v_k − x, γ_k the angle between R_k and
+// R_{k+1} (the point-to-polygon form factor of lesson 09's task 2). Written here, not taken from
+// form_factor_analytic, so the expected value does not come from a unit under test.
+double lambert_point_to_polygon(const Point3& x, const Vec3& n, const std::vector<Point3>& polygon) {
+  double sum = 0;
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    const Vec3 a = polygon[k] - x, b = polygon[(k + 1) % polygon.size()] - x, c = cross(a, b);
+    sum += std::atan2(length(c), dot(a, b)) * dot(n, c) / length(c);
+  }
+  return std::abs(sum) / (2 * pi);
+}
+
+// F from the floor [0, w] × [0, l] (z = 0, normal +z) to `wall`, by an n × n Gauss–Legendre rule over the
+// floor of Lambert's point value. The point value is smooth inside but not at the hinge x = 0 and at
+// y = 0, l (its corners), so the rule is graded there: x = w t³ and y = l (3s² − 2s³), whose Jacobians
+// vanish at those ends and leave a smooth integrand.
+double floor_to_wall_by_lambert(double w, double l, const Patch& wall, int n) {
+  double nodes[64], weights[64];
+  gauss_legendre_01(n, nodes, weights);
+  double sum = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double t = nodes[i], s = nodes[j];
+      const double x = w * t * t * t, dx = 3 * w * t * t;
+      const double y = l * (3 * s * s - 2 * s * s * s), dy = 6 * l * s * (1 - s);
+      sum +=
+          weights[i] * weights[j] * dx * dy * lambert_point_to_polygon({x, y, 0}, {0, 0, 1}, wall.vertices);
+    }
+  return sum / (w * l);
+}
+
+}  // namespace
+
+TEST_SUITE("lesson09") {
+  TEST_CASE(
+      "hard case: rectangles hinged at 45° and 120°: side edges meeting at an angle, against Lambert's "
+      "formula" *
+      doctest::description("task=3")) {
+    // The floor 0.7 × 1.3 and a wall 0.9 high hinged on its edge x = 0, at an interior angle φ: the wall
+    // runs from the hinge along u = (cos φ, 0, sin φ). Its side edges meet the floor's at the hinge's
+    // ends at the angle φ, neither parallel nor perpendicular, where ln r is singular. Expected: Lambert's
+    // formula integrated over the floor (above) at n = 64, checked against n = 48 (the two agree to
+    // about 10⁻¹²). At φ = 90° the same reference must give Howell C-14 (a check of the reference).
+    const double w = 0.7, l = 1.3, h = 0.9;
+    const Patch floor = make_patch({{0, 0, 0}, {w, 0, 0}, {w, l, 0}, {0, l, 0}});
+    ContourOptions options;
+    options.order = 16;
+    for (const double degrees : {90.0, 45.0, 120.0}) {
+      const double phi = degrees * pi / 180;
+      const Vec3 u(std::cos(phi), 0, std::sin(phi));
+      // Counter-clockwise seen from the floor's side: the normal points into the wedge.
+      const Patch wall =
+          make_patch({Point3(0, 0, 0), Point3(0, l, 0), Point3(0, l, 0) + h * u, Point3(0, 0, 0) + h * u});
+      REQUIRE(dot(wall.normal, Vec3(0.5 * w, 0.5 * l, 0) - wall.centroid) > 0);
+      const double expected = floor_to_wall_by_lambert(w, l, wall, 64);
+      REQUIRE(std::abs(expected - floor_to_wall_by_lambert(w, l, wall, 48)) <
+              1e-10);  // the reference converged
+      if (degrees == 90.0) {
+        REQUIRE(expected == doctest::Approx(perpendicular_rectangles_common_edge(w, h, l)).epsilon(1e-10));
+        continue;
+      }
+      INFO("hinged at ", degrees,
+           "°, order 16: the side edges touch at the hinge's ends; split and grade the "
+           "outer rule at their closest point (σ* is the end of one edge there)");
+      CHECK(std::abs(polygon_polygon_form_factor(floor, wall, options) - expected) <= 1e-8);
+      CHECK(std::abs(polygon_polygon_form_factor(wall, floor, options) * wall.area / floor.area - expected) <=
+            1e-8);
+    }
+  }
+}
