@@ -23,6 +23,38 @@ BezierPatch scaled_saddle(double c) {
   return BezierPatch::bilinear(Point3(0, 0, 0), Point3(c, 0, 0), Point3(0, c, 0), Point3(c, c, c));
 }
 
+// Rays from three origins near the world's origin, aimed at 17 points of each edge of the flat square
+// x ∈ [x0, x0 + w], y ∈ [y0, y0 + w] of the plane z (the bilinear patch x = x0 + wu, y = y0 + wv),
+// corners included: each that hits must hit at the (u, v) it aims at (to 1e-8) and at the distance to
+// that point (to `s_tolerance`). Returns how many of the 204 rays missed.
+int rays_missing_square_edges(double x0, double y0, double z, double w, const PatchOptions& options,
+                              double s_tolerance) {
+  const BezierPatch square = BezierPatch::bilinear(Point3(x0, y0, z), Point3(x0 + w, y0, z),
+                                                   Point3(x0, y0 + w, z), Point3(x0 + w, y0 + w, z));
+  const Point3 origins[] = {Point3(0.3, -0.2, 0.1), Point3(-0.7, 0.45, -0.15), Point3(1e-3, 2e-3, 1.9)};
+  int missed = 0;
+  for (int k = 0; k <= 16; ++k) {
+    const double t = k / 16.0;
+    // (u, v) on the four edges: (t, 0), (1, t), (1 − t, 1), (0, 1 − t); corners at t = 0 and 1.
+    const double uv[4][2] = {{t, 0.0}, {1.0, t}, {1.0 - t, 1.0}, {0.0, 1.0 - t}};
+    for (const auto& p : uv)
+      for (const Point3& origin : origins) {
+        const Point3 target(x0 + w * p[0], y0 + w * p[1], z);
+        const std::optional<PatchHit> hit =
+            intersect_patch(Ray::toward(origin, target - origin), square, options);
+        if (!hit) {
+          ++missed;
+          continue;
+        }
+        INFO("aimed at (u, v) = (", p[0], ", ", p[1], ")");
+        CHECK(std::abs(hit->u - p[0]) <= 1e-8);
+        CHECK(std::abs(hit->v - p[1]) <= 1e-8);
+        CHECK(std::abs(hit->s - length(target - origin)) <= s_tolerance);
+      }
+  }
+  return missed;
+}
+
 }  // namespace
 
 TEST_SUITE("lesson05") {
@@ -303,35 +335,9 @@ TEST_SUITE("lesson05") {
     // 10⁻¹³, more than 10⁻⁹ of the box's size (4·10⁻¹⁴): the box must be padded by more than rounding at
     // these coordinates (the header: a pad that grows with |hi|), or the only box holding the hit is
     // pruned and the ray misses.
-    const double x0 = 500.1, y0 = 400.2, z = 700.3, w = 0.01;
-    const BezierPatch square = BezierPatch::bilinear(Point3(x0, y0, z), Point3(x0 + w, y0, z),
-                                                     Point3(x0, y0 + w, z), Point3(x0 + w, y0 + w, z));
     PatchOptions options;
     options.max_depth = 8;
-    const Point3 origins[] = {Point3(0.3, -0.2, 0.1), Point3(-0.7, 0.45, -0.15), Point3(1e-3, 2e-3, 1.9)};
-    int rays = 0, missed = 0;
-    for (int k = 0; k <= 16; ++k) {
-      const double t = k / 16.0;
-      // (u, v) on the four edges: (t, 0), (1, t), (1 − t, 1), (0, 1 − t); corners at t = 0 and 1.
-      const double uv[4][2] = {{t, 0.0}, {1.0, t}, {1.0 - t, 1.0}, {0.0, 1.0 - t}};
-      for (const auto& p : uv)
-        for (const Point3& origin : origins) {
-          const Point3 target(x0 + w * p[0], y0 + w * p[1], z);
-          const std::optional<PatchHit> hit =
-              intersect_patch(Ray::toward(origin, target - origin), square, options);
-          ++rays;
-          if (!hit) {
-            ++missed;
-            continue;
-          }
-          INFO("aimed at (u, v) = (", p[0], ", ", p[1], ")");
-          CHECK(std::abs(hit->u - p[0]) <= 1e-8);
-          CHECK(std::abs(hit->v - p[1]) <= 1e-8);
-          CHECK(std::abs(hit->s - length(target - origin)) <= 1e-8);
-        }
-    }
-    CHECK(rays == 17 * 4 * 3);
-    CHECK_MESSAGE(missed == 0,
+    CHECK_MESSAGE(rays_missing_square_edges(500.1, 400.2, 700.3, 0.01, options, 1e-8) == 0,
                   "a ray through the boundary of the parameter square hits (it is closed, up to "
                   "10⁻⁹); pad the boxes by more than rounding at |P| ≈ 940");
   }
@@ -440,35 +446,10 @@ TEST_SUITE("lesson05") {
     // 9.5e5 away a rounded direction passes up to ~2e-10 beside the point aimed at: u or v 2e-11 outside
     // [0, 1], a hit (within the header's 1e-9), but the line grazes the leaf box from outside by ~1e-10.
     // The pad 10⁻⁹(hi − lo) + 10⁻¹²(1 + |hi|) ≈ 1e-6 covers that; a fixed 1e-12 does not.
-    const double x0 = 5e5, y0 = 4e5, z = 7e5 + 0.3, w = 10.0;
-    const BezierPatch square = BezierPatch::bilinear(Point3(x0, y0, z), Point3(x0 + w, y0, z),
-                                                     Point3(x0, y0 + w, z), Point3(x0 + w, y0 + w, z));
     PatchOptions options;
     options.max_depth = 8;
     options.tolerance = 1e-7;  // distances to the planes are rounded to ~1e-10 at these coordinates
-    const Point3 origins[] = {Point3(0.3, -0.2, 0.1), Point3(-0.7, 0.45, -0.15), Point3(1e-3, 2e-3, 1.9)};
-    int rays = 0, missed = 0;
-    for (int k = 0; k <= 16; ++k) {
-      const double t = k / 16.0;
-      const double uv[4][2] = {{t, 0.0}, {1.0, t}, {1.0 - t, 1.0}, {0.0, 1.0 - t}};
-      for (const auto& p : uv)
-        for (const Point3& origin : origins) {
-          const Point3 target(x0 + w * p[0], y0 + w * p[1], z);
-          const std::optional<PatchHit> hit =
-              intersect_patch(Ray::toward(origin, target - origin), square, options);
-          ++rays;
-          if (!hit) {
-            ++missed;
-            continue;
-          }
-          INFO("aimed at (u, v) = (", p[0], ", ", p[1], ")");
-          CHECK(std::abs(hit->u - p[0]) <= 1e-8);
-          CHECK(std::abs(hit->v - p[1]) <= 1e-8);
-          CHECK(std::abs(hit->s - length(target - origin)) <= 1e-4);
-        }
-    }
-    CHECK(rays == 17 * 4 * 3);
-    CHECK_MESSAGE(missed == 0,
+    CHECK_MESSAGE(rays_missing_square_edges(5e5, 4e5, 7e5 + 0.3, 10.0, options, 1e-4) == 0,
                   "pad the boxes by more than rounding at |P| ≈ 1e6 (a pad that grows with |hi|)");
   }
 }
