@@ -213,6 +213,25 @@ TEST_SUITE("lesson05") {
     CHECK(std::abs(hit->s - (5 - 0.21)) <= 1e-12);
   }
 
+  TEST_CASE("intersect_patch checks its options before any work, even for a ray that misses the patch" *
+            doctest::description("task=7")) {
+    // The ray runs beside the saddle (x = 3, outside [0, 1]): it meets no box, so patch_newton is never
+    // called and cannot be the one to refuse a bad option. intersect_patch must refuse it itself.
+    const Ray beside(Point3(3.0, 0.5, 5.0), Vec3(0.0, 0.0, -1.0));
+    PatchOptions options;
+    CHECK_FALSE(intersect_patch(beside, scaled_saddle(1.0), options));
+    options.tolerance = 0.0;
+    CHECK_THROWS_AS(intersect_patch(beside, scaled_saddle(1.0), options), std::invalid_argument);
+    options.tolerance = -1e-12;
+    CHECK_THROWS_AS(intersect_patch(beside, scaled_saddle(1.0), options), std::invalid_argument);
+    options.tolerance = 1e-12;
+    options.max_iterations = 0;
+    CHECK_THROWS_AS(intersect_patch(beside, scaled_saddle(1.0), options), std::invalid_argument);
+    options.max_iterations = 20;
+    options.max_depth = 13;
+    CHECK_THROWS_AS(intersect_patch(beside, scaled_saddle(1.0), options), std::invalid_argument);
+  }
+
   TEST_CASE("patch_newton: one step where F is linear in (u, v), and max_iterations at its bounds" *
             doctest::description("task=5,6")) {
     // A vertical ray: both planes are vertical, so F₁, F₂ depend on x = u and

@@ -296,18 +296,42 @@ TEST_SUITE("lesson05") {
     CHECK(std::abs(r.s - 0.3) <= 1e-11);
   }
 
-  TEST_CASE("safeguarded Newton: a Newton step onto the bracket's end becomes a bisection step" *
+  TEST_CASE("safeguarded Newton: a Newton step across the whole bracket becomes a bisection step" *
             doctest::description("task=3")) {
     // f(s) = sign(s − 1)·√|s − 1| on [0, 4]: f(0) = −1, f(4) = √3. The midpoint 2 has f = 1 > 0, so the
-    // bracket becomes [0, 2] (previous step 4). Newton from 2: f/f' = 1/0.5 = 2, the candidate 2 − 2 = 0
-    // is the bracket's end a (not strictly inside): a bisection step to 1, where f = 0 exactly. One step.
-    // Accepting the candidate 0 evaluates f at the bracket's end and needs a second step.
+    // bracket becomes [0, 2], and the previous step is its width 2 (the header). Newton from 2: f/f' =
+    // 1/0.5 = 2, the candidate 2 − 2 = 0 is the bracket's end a, a step of 2, more than half the previous
+    // one: a bisection step to 1, where f = 0 exactly. One step. Accepting the candidate 0 evaluates f
+    // at the bracket's end and needs a second step. (A candidate exactly on an end is always turned
+    // down by the halving rule: the previous step is never shorter than the bracket, whose width such a
+    // step would be; tests/mutants/equivalent.txt gives the induction.)
     const Function root_like([](double s) { return std::copysign(std::sqrt(std::abs(s - 1.0)), s - 1.0); },
                              [](double s) { return 0.5 / std::sqrt(std::abs(s - 1.0)); });
     const RootResult r = safeguarded_newton(root_like, Interval(0, 4), 1e-12, 50);
     REQUIRE(r.status == RootStatus::converged);
     CHECK(r.s == 1.0);
     CHECK_MESSAGE(r.iterations == 1, "Newton's candidate 0 is not strictly inside (0, 2): bisect to 1");
+  }
+
+  TEST_CASE("safeguarded Newton: a root at the midpoint takes no step; a step equal to the tolerance stops" *
+            doctest::description("task=3")) {
+    // f = s − 2 on [0, 4]: the start, the midpoint 2, is the root: converged before any step.
+    const Function line([](double s) { return s - 2.0; }, [](double) { return 1.0; });
+    const RootResult at_start = safeguarded_newton(line, Interval(0, 4), 1e-12, 50);
+    REQUIRE(at_start.converged());
+    CHECK(at_start.s == 2.0);
+    CHECK_MESSAGE(at_start.iterations == 0,
+                  "the midpoint start is not an iteration (iterations = steps taken)");
+    // A step function, −1 below 0.3 and +1 from there, whose derivative is 0 wherever it exists: every
+    // Newton step meets f' = 0 and becomes a bisection step. On [0, 1] with tolerance 0.25 (all exact in
+    // binary): the midpoint 0.5 has f = 1, the bracket becomes [0, 0.5]; step 1 bisects to 0.25, a step
+    // of −0.25: |Δs| = 0.25 ≤ tolerance, converged there (the width 0.5 is not yet ≤ 0.25). Stopping only
+    // on |Δs| < tolerance takes a second step, to 0.375.
+    const Function step([](double s) { return s < 0.3 ? -1.0 : 1.0; }, [](double) { return 0.0; });
+    const RootResult r = safeguarded_newton(step, Interval(0, 1), 0.25, 50);
+    REQUIRE(r.converged());
+    CHECK_MESSAGE(r.s == 0.25, "|Δs| = 0.25 equals the tolerance: converged at 0.25 (≤, not <)");
+    CHECK(r.iterations == 1);
   }
 
   TEST_CASE("sphere tracing: a miss ends at range.hi" * doctest::description("task=4")) {

@@ -349,6 +349,25 @@ TEST_SUITE("lesson09") {
     CHECK_MESSAGE(r.evaluations == 30, "6 fan triangles, each estimated once and its 4 children once");
   }
 
+  TEST_CASE("hierarchical: levels count from 0 at the root, as max_depth does" *
+            doctest::description("task=4")) {
+    // The unit square z = 0 under the ceiling [0, 1]² at c = 1. The header: max_depth = 0 is one
+    // split, so the root is level 0 and a piece split at level L has children at level L + 1;
+    // deepest_level is the deepest level split, never above max_depth. By hand:
+    // - tolerance 1 (no two point factors differ by more) trusts the root's first split: 1 + 4
+    //   evaluations, deepest level 0, whatever max_depth allows;
+    // - a tolerance no estimate meets (10⁻³⁰⁰) splits every piece down to max_depth = 2: 1 + 4 + 4² +
+    //   4³ = 85 evaluations, deepest level 2.
+    const Patch from = make_patch({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}});
+    const Patch to = make_patch({{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}});
+    const HierarchicalResult trusted = form_factor_hierarchical(from, to, 1.0, 5);
+    CHECK_MESSAGE(trusted.evaluations == 5, "the root once and its four children once");
+    CHECK_MESSAGE(trusted.deepest_level == 0, "only the root (level 0) was split");
+    const HierarchicalResult full = form_factor_hierarchical(from, to, 1e-300, 2);
+    CHECK_MESSAGE(full.evaluations == 85, "every piece split down to level 2: 1 + 4 + 16 + 64 estimates");
+    CHECK_MESSAGE(full.deepest_level == 2, "pieces at level 2 = max_depth are split once and not refined");
+  }
+
   TEST_CASE("Monte Carlo and area sampling between squares 10⁻⁵ wide: every sample is A_j/(πc²)" *
             doctest::description("task=5,6")) {
     // Squares of side w = 10⁻⁵ facing each other across c = 0.7 (off the axes: x ∈ [0.3, 0.3 + w],

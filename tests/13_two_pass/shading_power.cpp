@@ -501,3 +501,46 @@ TEST_SUITE("lesson13") {
                                   std::invalid_argument);
   }
 }
+
+// Gaps the mutation report's second sample (seed 23) found: a depth limit of exactly 0, a scene with
+// exactly one facing pair, and a triangle's normal equations held in float.
+TEST_SUITE("lesson13") {
+  TEST_CASE("hard case: a depth limit of 0 is allowed, and one facing pair is enough for pass one" *
+            doctest::description("task=1")) {
+    // The header: max_depth ≥ 0 (0 asks for primary rays only), and pass one runs for an emitter and
+    // "at least one facing pair". A mirror scene asked for depth 0 keeps 0; the smallest scene that
+    // bounces light, one emitter and one pair of facing walls, runs pass one.
+    SceneInventory scene;
+    scene.diffuse_surfaces = 2;
+    scene.facing_pairs = 1;
+    scene.emitters = 1;
+    scene.mirrors = 1;
+    scene.heaviest_specular = 0.5;
+    TwoPassRequest request;
+    request.max_depth = 0;
+    TwoPassPlan plan;
+    REQUIRE_NOTHROW(plan = plan_two_pass(scene, request));
+    CHECK_MESSAGE(plan.max_depth == 0, "the request's depth limit 0 is kept (it is below any cut)");
+    CHECK(plan.reflection);
+    CHECK_MESSAGE(plan.radiosity_pass,
+                  "an emitter and one facing pair: light bounces once between the walls");
+  }
+
+  TEST_CASE("surface coordinates on a slanted triangle with inexact coordinates, to rounding" *
+            doctest::description("task=2")) {
+    // a = (0.1, −0.3, 2.7), e1 = (1.7, 0.3, −0.2), e2 = (0.4, 1.1, 0.9) (no two perpendicular), and
+    // x = a + 0.31 e1 + 0.27 e2. The normal equations recover (0.31, 0.27) to a few units of double
+    // rounding (det = |e1|²|e2|² − (e1·e2)² ≈ 6.4 is far from 0); holding the dot products in float
+    // rounds each by up to 3·10⁻⁸ of itself and moves (u, v) by about 10⁻⁸.
+    const Point3 a(0.1, -0.3, 2.7);
+    const Vec3 e1(1.7, 0.3, -0.2), e2(0.4, 1.1, 0.9);
+    const std::array<Point3, 3> t{a, a + e1, a + e2};
+    for (const auto& [u, v] : {std::array<double, 2>{0.31, 0.27}, std::array<double, 2>{0.05, 0.9},
+                               std::array<double, 2>{0.62, 0.11}}) {
+      const Vec2 uv = surface_coordinates(t, a + u * e1 + v * e2);
+      INFO("x = a + ", u, " e1 + ", v, " e2");
+      CHECK_MESSAGE(std::abs(uv.x - u) <= 1e-13, "u: the weight of b, in double throughout");
+      CHECK_MESSAGE(std::abs(uv.y - v) <= 1e-13, "v: the weight of c, in double throughout");
+    }
+  }
+}

@@ -1126,7 +1126,10 @@ class CommandLineTest(unittest.TestCase):
                       f"ls -A {folder}")
             done = subprocess.run(["unshare", "--mount", "sh", "-c", script], capture_output=True, text=True,
                                   timeout=120)
-            if "mount:" in done.stderr and "status=" not in done.stdout:
+            # Where no private mount namespace can be made (a chroot, whose root is no mount point, or
+            # a container without CAP_SYS_ADMIN, such as the development container), unshare or mount
+            # stops before the script's first status line: nothing here is then the grader's doing.
+            if "status=" not in done.stdout and ("mount:" in done.stderr or "unshare:" in done.stderr):
                 self.skipTest(f"cannot mount here: {done.stderr.strip()}")
         self.assertIn(f"--results {folder}/r.json: the folder {folder} cannot be written", done.stderr)
         self.assertIn("cannot write", done.stderr)

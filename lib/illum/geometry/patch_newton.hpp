@@ -75,7 +75,9 @@ std::optional<PatchHit> patch_newton(const BezierPatch& patch, const Ray& ray, c
 // Each box is padded by a hair before the test, 10⁻⁹(hi − lo) + 10⁻¹²(1 + |hi|)
 // on every axis: rounding grows with the coordinates, so a ray through the
 // boundary of a small patch far from the origin is not pruned by it.
-// Throws std::invalid_argument for max_depth outside 0..12 or bad options.
+// Throws std::invalid_argument, before any work (whether or not the ray meets
+// the patch), for max_depth outside 0..12, a tolerance that is not positive
+// and finite, or max_iterations < 1.
 std::optional<PatchHit> intersect_patch(const Ray& ray, const BezierPatch& patch,
                                         const PatchOptions& options = {}, PatchStats* stats = nullptr);
 

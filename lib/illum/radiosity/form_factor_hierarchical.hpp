@@ -20,7 +20,7 @@ namespace illum {
 struct HierarchicalResult {
   double value = 0;       // the estimate of F_ij
   long evaluations = 0;   // point factors computed
-  int deepest_level = 0;  // how many times the finest piece was split
+  int deepest_level = 0;  // the deepest level split: 0 is the root, as max_depth counts (≤ max_depth)
 };
 
 // Task 4. F from `from` to the front side of `to` (no occlusion) by
