@@ -445,3 +445,46 @@ TEST_SUITE("lesson03") {
     CHECK(is_convex(flat_polygon({{0, 1}, {1, 0}, {1, 1}})));
   }
 }
+
+// Gaps the mutation report's second sample (seed 23) found: a determinant that is exactly 1, and a
+// sign test compared with 1 instead of 0, which only coordinates below 1 show.
+TEST_SUITE("lesson03") {
+  TEST_CASE("ray-triangle: the unit right triangle, whose determinant is exactly ±1, both windings" *
+            doctest::description("task=7")) {
+    // a = (0,0,0), b = (1,0,0), c = (0,1,0): for a ray along ±z the edge functions sum to twice the
+    // projected area, det = ±1 exactly. Only det = 0 means edge-on; det = ±1 is an ordinary hit. From
+    // (0.25, 0.5, ±2) along ∓z the hit is at s = 2, λ = (0.25, 0.25, 0.5) for a, b, c (a, c, b swaps
+    // the last two).
+    const Point3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+    for (const double z : {2.0, -2.0})
+      for (const bool ccw : {true, false}) {
+        const Triangle tri = ccw ? Triangle(a, b, c) : Triangle(a, c, b);
+        const Ray ray(Point3(0.25, 0.5, z), Vec3(0, 0, z > 0 ? -1.0 : 1.0));
+        INFO("from z = ", z, ", ", ccw ? "a, b, c" : "a, c, b");
+        const auto hit = intersect(ray, tri);
+        REQUIRE_MESSAGE(hit.has_value(), "a hit through the triangle's interior; only det = 0 is edge-on");
+        CHECK(hit->s == 2.0);
+        CHECK(hit->barycentric.x == doctest::Approx(0.25).epsilon(1e-15));
+        CHECK(hit->barycentric.y == doctest::Approx(ccw ? 0.25 : 0.5).epsilon(1e-15));
+        CHECK(hit->barycentric.z == doctest::Approx(ccw ? 0.5 : 0.25).epsilon(1e-15));
+      }
+  }
+
+  TEST_CASE("convexity: a pentagram 0.6 across is not convex, however small its steps" *
+            doctest::description("task=5")) {
+    // The pentagram of radius 0.3 (every second vertex of a regular pentagon): every turn goes the
+    // same way, but the loop winds twice, so each coordinate of the edge vectors changes sign four
+    // times. Every step is shorter than 1: a sign test that compares with 1 instead of 0 sees no
+    // positive steps and no sign changes, and calls the star convex. Its convex hull, the pentagon
+    // itself, is convex.
+    std::vector<Vec2> star, pentagon;
+    for (int k = 0; k < 5; ++k) {
+      const double star_angle = std::numbers::pi / 2 + k * 4 * std::numbers::pi / 5;
+      const double pentagon_angle = std::numbers::pi / 2 + k * 2 * std::numbers::pi / 5;
+      star.push_back({0.3 * std::cos(star_angle), 0.3 * std::sin(star_angle)});
+      pentagon.push_back({0.3 * std::cos(pentagon_angle), 0.3 * std::sin(pentagon_angle)});
+    }
+    CHECK_FALSE_MESSAGE(is_convex(flat_polygon(star)), "the star winds twice: four sign changes per axis");
+    CHECK(is_convex(flat_polygon(pentagon)));
+  }
+}
