@@ -400,6 +400,11 @@ TEST_SUITE("lesson12") {
     // Weights in float are off by about 1e-8 and miss 8.24 by far more than the 1e-12 allowed.
     check_colour(gouraud({Color(0), Color(4), Color(8), Color(12)}, 0.1, 0.7), Color(8.24),
                  "bilinear weights 0.27, 0.03, 0.07, 0.63");
+    // Every corner non-zero and each channel led by another corner, so that no weight can hide behind
+    // a black corner: at (u, v) = (0.3, 0.2) the weights are 0.56, 0.24, 0.06, 0.14 on red, green,
+    // blue and white corners: (0.56 + 0.14, 0.24 + 0.14, 0.06 + 0.14) = (0.70, 0.38, 0.20).
+    check_colour(gouraud({Color(1, 0, 0), Color(0, 1, 0), Color(0, 0, 1), Color(1, 1, 1)}, 0.3, 0.2),
+                 Color(0.70, 0.38, 0.20), "bilinear weights 0.56, 0.24, 0.06, 0.14 on four coloured corners");
     // Barycentric (1 − u − v, u, v) = (0.2, 0.1, 0.7) on the unit corners.
     check_colour(gouraud({Color(1, 0, 0), Color(0, 1, 0), Color(0, 0, 1)}, 0.1, 0.7), Color(0.2, 0.1, 0.7),
                  "barycentric weights (1 − u − v, u, v) = (0.2, 0.1, 0.7)");
