@@ -207,6 +207,34 @@ TEST_SUITE("lesson06") {
     CHECK(stats.rays.shadow == 31);
   }
 
+  TEST_CASE("hard case: a transmission exactly at min_shadow_transmission is not below it" *
+            doctest::description("task=4")) {
+    // One pane at z = 1 between the point (the origin) and the light at z = 4. Its k_t has one
+    // channel exactly 10⁻⁶ (1 · 10⁻⁶ is that double exactly) and the other two at 5·10⁻⁷. The
+    // cut-off needs every channel strictly below 10⁻⁶ (ray_tree.hpp), so the walk goes on past the
+    // pane to the light: 2 shadow rays, and k_t itself is returned. Comparing with ≤ in the channel
+    // at 10⁻⁶ ends the walk at the pane: 1 ray and 0. Each channel in turn is the one at 10⁻⁶.
+    REQUIRE(min_shadow_transmission == 1e-6);
+    Scene scene;
+    const auto floor = add_material(scene, material("floor"));
+    Material glass = material("glass pane");
+    glass.index_of_refraction = 1.5;
+    const auto g = add_material(scene, glass);
+    add_floor(scene, "pane", 1, 1.0, g);
+    const SurfaceHit p = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), floor);
+    const EffectsPlan plan = full_effects(0);
+    for (int channel = 0; channel < 3; ++channel) {
+      Color k_t(5e-7);
+      k_t[channel] = 1e-6;
+      scene.materials[g].transmittance = k_t;
+      TraceStats stats;
+      const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+      INFO("channel ", channel, " at exactly 1e-6");
+      check_vec(shadow_transmission(tracer, p, Point3(0, 0, 4)), k_t, 1e-15);
+      CHECK_MESSAGE(stats.rays.shadow == 2, "to the pane, then on from it to the light: 2 shadow rays");
+    }
+  }
+
   TEST_CASE("hard case: a shadow walk through more clear panes than max_shadow_crossings stops at the limit" *
             doctest::description("task=4")) {
     // 300 panes of perfectly clear glass (k_t = 1): the transmission never falls, so only the
