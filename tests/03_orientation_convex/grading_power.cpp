@@ -471,7 +471,7 @@ TEST_SUITE("lesson03") {
   }
 
   TEST_CASE("convexity: a pentagram 0.6 across is not convex, however small its steps" *
-            doctest::description("task=5")) {
+            doctest::description("task=4")) {
     // The pentagram of radius 0.3 (every second vertex of a regular pentagon): every turn goes the
     // same way, but the loop winds twice, so each coordinate of the edge vectors changes sign four
     // times. Every step is shorter than 1: a sign test that compares with 1 instead of 0 sees no
