@@ -488,3 +488,29 @@ TEST_SUITE("lesson03") {
     CHECK(is_convex(flat_polygon(pentagon)));
   }
 }
+
+TEST_SUITE("lesson03") {
+  TEST_CASE("convexity: a hexagon whose first vertex lies low on one side, both windings" *
+            doctest::description("task=4")) {
+    // Six points of the unit circle at −20°, 30°, 90°, 150°, 260° and 300°: convex, and its first
+    // vertex is neither the highest nor the lowest. Counter-clockwise, the y steps go +, +, −, −, +, +
+    // (cyclically one run up and one down: 2 sign changes). The count must pair each edge with its own
+    // two ends, (i, i + 1 mod n): an index that wraps wrongly at i = 0 (an unsigned i − 1 taken mod 6
+    // is 3, not 5) compares vertex 0 with vertex 3, which lies above it, and adds two sign changes
+    // to a convex loop. Listed clockwise it is convex too.
+    const double degree = std::numbers::pi / 180;
+    std::vector<Vec2> ccw;
+    for (const double angle : {-20.0, 30.0, 90.0, 150.0, 260.0, 300.0})
+      ccw.push_back({std::cos(angle * degree), std::sin(angle * degree)});
+    std::vector<Vec2> cw = {ccw[0]};
+    for (std::size_t k = ccw.size() - 1; k >= 1; --k) cw.push_back(ccw[k]);
+    CHECK_MESSAGE(is_convex(flat_polygon(ccw)),
+                  "a convex hexagon, counter-clockwise, from a vertex low on its right");
+    CHECK_MESSAGE(is_convex(flat_polygon(cw)), "the same hexagon clockwise, from the same vertex");
+    // Turned by 90° ((x, y) → (−y, x)) the x steps follow the pattern the y steps had.
+    for (std::vector<Vec2>* loop : {&ccw, &cw})
+      for (Vec2& q : *loop) q = Vec2(-q.y, q.x);
+    CHECK_MESSAGE(is_convex(flat_polygon(ccw)), "the hexagon turned by 90°, counter-clockwise");
+    CHECK_MESSAGE(is_convex(flat_polygon(cw)), "the hexagon turned by 90°, clockwise");
+  }
+}

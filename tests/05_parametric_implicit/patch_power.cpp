@@ -203,6 +203,54 @@ TEST_SUITE("lesson05") {
     }
   }
 
+  TEST_CASE("hard case: oblique rays onto the edges v = 0 and v = 1 report v inside [0, 1]" *
+            doctest::description("task=5,6,7")) {
+    // The test above with u and v exchanged: rays along (0.3, ±1, −1)/|·| aimed at saddle points
+    // (u, e, u·e), e = 0 or 1. Newton may stop a hair outside the square in v; the contract clamps
+    // v as it clamps u.
+    const BezierPatch patch = scaled_saddle(1.0);
+    for (int k = 0; k <= 40; ++k) {
+      const double u = 0.05 + 0.0225 * k;
+      for (double e : {0.0, 1.0}) {
+        const Vec3 w = normalize(Vec3(0.3, e == 0.0 ? 1.0 : -1.0, -1.0));
+        const Point3 target(u, e, u * e);
+        const Ray ray(target - 2.0 * w, w);
+        INFO("edge v = ", e, ", u = ", u);
+        const std::optional<PatchHit> hit = intersect_patch(ray, patch);
+        REQUIRE(hit);
+        CHECK_MESSAGE((hit->v >= 0.0 && hit->v <= 1.0), "hit.v is clamped to [0, 1]");
+        CHECK(std::abs(hit->v - e) <= 1e-9);
+        CHECK(std::abs(hit->u - u) <= 1e-9);
+      }
+    }
+  }
+
+  TEST_CASE("intersect_patch starts Newton at each leaf's centre: a ray through it needs no step" *
+            doctest::description("task=5,6,7")) {
+    // The flat unit square z = 0 (x = u, y = v). With max_depth 0 the one leaf is the square, its
+    // centre (½, ½); with max_depth 1 the ray through (¾, ¼) enters only the leaf [½, 1] × [0, ½],
+    // whose centre is (¾, ¼). A vertical ray through the centre is already on both planes there:
+    // Newton converges with no step (patch_newton: iterations = steps taken). A start anywhere else
+    // in the leaf (its corner, the middle of a side) needs one step on this linear map.
+    const BezierPatch square =
+        BezierPatch::bilinear(Point3(0, 0, 0), Point3(1, 0, 0), Point3(0, 1, 0), Point3(1, 1, 0));
+    for (const int depth : {0, 1}) {
+      const double x = depth == 0 ? 0.5 : 0.75, y = depth == 0 ? 0.5 : 0.25;
+      PatchOptions options;
+      options.max_depth = depth;
+      PatchStats stats;
+      const std::optional<PatchHit> hit =
+          intersect_patch(Ray(Point3(x, y, 1), Vec3(0, 0, -1)), square, options, &stats);
+      INFO("max_depth ", depth, ", the ray through (", x, ", ", y, ")");
+      REQUIRE(hit);
+      CHECK(hit->u == x);
+      CHECK(hit->v == y);
+      CHECK(stats.newton_starts == 1);
+      CHECK_MESSAGE(stats.newton_iterations == 0,
+                    "Newton starts at the leaf's centre, where the ray already is");
+    }
+  }
+
   TEST_CASE("intersect_patch with max_depth 0: one Newton start at the patch's centre" *
             doctest::description("task=5,6,7")) {
     PatchOptions options;

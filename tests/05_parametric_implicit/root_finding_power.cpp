@@ -334,6 +334,25 @@ TEST_SUITE("lesson05") {
     CHECK(r.iterations == 1);
   }
 
+  TEST_CASE("iterations count the steps taken: Newton landing on a root, and no sign change" *
+            doctest::description("task=1,2,3")) {
+    // Newton on f = s − 1 from 3: one step of f/f' = 2 lands on 1, where f = 0 exactly, found when
+    // the next pass evaluates f: converged after 1 step (not 0, not 2).
+    const Function line([](double s) { return s - 1.0; }, [](double) { return 1.0; });
+    const RootResult r = newton(line, 3.0, 1e-12, 10);
+    REQUIRE(r.converged());
+    CHECK(r.s == 1.0);
+    CHECK_MESSAGE(r.iterations == 1, "one Newton step was taken; got " << r.iterations);
+    // f = s² + 1 has no root on [0, 1]: f(0) and f(1) are both positive, no step is taken.
+    const Function no_root([](double s) { return s * s + 1.0; }, [](double s) { return 2.0 * s; });
+    const RootResult b = bisection(no_root, Interval(0, 1), 1e-12, 50);
+    CHECK(b.status == RootStatus::no_sign_change);
+    CHECK_MESSAGE(b.iterations == 0, "no sign change: returned before any halving");
+    const RootResult g = safeguarded_newton(no_root, Interval(0, 1), 1e-12, 50);
+    CHECK(g.status == RootStatus::no_sign_change);
+    CHECK_MESSAGE(g.iterations == 0, "no sign change: returned before any step");
+  }
+
   TEST_CASE("sphere tracing: a miss ends at range.hi" * doctest::description("task=4")) {
     // d(s) = 1 everywhere (a surface that is never reached; |d(s) − d(t)| = 0 ≤ L|s − t| for L = 1):
     // from 0 the steps land at 1, 2, 3; the third passes range.hi = 2.5: missed after 3 steps, s = 2.5.

@@ -530,3 +530,57 @@ TEST_SUITE("lesson06") {
                   "into the pane and out of it: 2 refracted rays; got " << stats.rays.refraction);
   }
 }
+
+// Gaps the mutation report's third sample (seed 41) found: a colour taken as black when one channel
+// is not, and a child's path weight that forgets its parent's.
+TEST_SUITE("lesson06") {
+  TEST_CASE("effects plan: a pure green surface is not black, so its light's shadow ray is cast" *
+            doctest::description("task=3,4,5")) {
+    // k_d = (0, 0.5, 0), lit straight overhead (N·L = 1) by I_l = 2: the Phong factor is (0, 0.5, 0),
+    // black in red and blue only. skip_zero_weights skips a light only when all three channels are
+    // ≤ 0, so the shadow ray is cast and I_own = (0, 2·0.5, 0) = (0, 1, 0).
+    Scene scene;
+    Material m = material("green");
+    m.diffuse = Color(0.0, 0.5, 0.0);
+    const auto green = add_material(scene, m);
+    add_light(scene, Point3(0, 0, 4), Color(2.0));
+    const SurfaceHit at_origin = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), green);
+    EffectsPlan plan = full_effects(0);
+    plan.skip_zero_weights = true;
+    TraceStats stats;
+    const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+    check_vec(own_intensity(tracer, at_origin, Vec3(0, 0, 1)), Color(0.0, 1.0, 0.0));
+    CHECK_MESSAGE(stats.rays.shadow == 1, "one channel above 0 is not black: the light's shadow ray is cast");
+  }
+
+  TEST_CASE("ray tree record: a second bounce weighs the product of both mirrors' k_r" *
+            doctest::description("task=3,5,6")) {
+    // Two facing mirrors, a floor z = 0 (normal +z) and a ceiling z = 3 (normal −z), both with
+    // k_r = (0.5, 0.25, 0.125) and nothing else. A primary ray from (0, 0, 2) straight down, depth
+    // limit 2: the floor's reflected ray (depth 1) weighs 1·k_r; it meets the ceiling, whose reflected
+    // ray (depth 2) weighs k_r·k_r = (0.25, 0.0625, 0.015625), all exact in binary.
+    Scene scene;
+    Material m = material("mirror");
+    m.reflectance = Color(0.5, 0.25, 0.125);
+    const auto mirror = add_material(scene, m);
+    add_rectangle(scene, "floor", -10, 10, -10, 10, 0.0, mirror);
+    scene.primitives.push_back(Primitive{
+        .name = "ceiling",
+        .shape = Polygon({Point3(-10, -10, 3), Point3(-10, 10, 3), Point3(10, 10, 3), Point3(10, -10, 3)}),
+        .material = mirror});
+    EffectsPlan plan = full_effects(2);
+    TraceStats stats;
+    RayTree tree;
+    const Tracer tracer{
+        .scene = scene, .plan = plan, .background = Color(0.0), .stats = &stats, .tree = &tree};
+    evaluate(tracer, Ray(Point3(0, 0, 2), Vec3(0, 0, -1)));
+    int found = 0;
+    for (const RayTreeNode& node : tree.nodes) {
+      if (node.kind != RayKind::reflection) continue;
+      INFO("the reflected ray at depth ", node.depth);
+      if (node.depth == 1) check_vec(node.weight, Color(0.5, 0.25, 0.125)), ++found;
+      if (node.depth == 2) check_vec(node.weight, Color(0.25, 0.0625, 0.015625)), ++found;
+    }
+    CHECK_MESSAGE(found == 2, "one reflected ray at depth 1 and one at depth 2");
+  }
+}
