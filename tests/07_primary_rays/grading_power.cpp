@@ -96,3 +96,27 @@ TEST_SUITE("lesson07") {
     }
   }
 }
+
+// A gap the mutation report's third sample (seed 41) found: the corner spread held in float.
+TEST_SUITE("lesson07") {
+  TEST_CASE("adaptive: the corner spread is taken in double, 10⁻¹² from the threshold" *
+            doctest::description("task=1")) {
+    // Values that are not floats, within 10⁻¹² of the threshold, in each channel in turn.
+    // - Corners 0.1 and 0.15 + 10⁻¹², threshold 0.05: the spread is 0.05 + 10⁻¹² (to 10⁻¹⁷) > 0.05,
+    //   so they disagree. 0.1 in float is 0.100000001…, which would shrink the spread by 1.5·10⁻⁹.
+    // - Corners 0.2 and 0.3, threshold 0.1: the spread 0.3 − 0.2 is 0.09999999999999998 in double,
+    //   ≤ 0.1, so they agree. 0.3 in float is 0.300000012…, which would widen it by 1.2·10⁻⁸.
+    for (int k = 0; k < 3; ++k) {
+      INFO("channel ", k);
+      Color low(0.5), high(0.5);
+      low[k] = 0.1;
+      high[k] = 0.15 + 1e-12;
+      CHECK_FALSE_MESSAGE(corners_agree(low, high, high, high, 0.05),
+                          "max − min = 0.05 + 1e-12 > 0.05: the corners disagree (in double)");
+      low[k] = 0.2;
+      high[k] = 0.3;
+      CHECK_MESSAGE(corners_agree(low, low, low, high, 0.1),
+                    "max − min = 0.3 − 0.2 ≤ 0.1 in double: they agree");
+    }
+  }
+}

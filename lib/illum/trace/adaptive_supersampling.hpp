@@ -26,8 +26,8 @@ struct AdaptiveSettings {
 };
 
 // Task 1. True when the four corners agree: in every channel, the largest minus the
-// smallest of the four is at most `threshold` (≤, so that equal corners
-// agree at threshold 0).
+// smallest of the four, in double, is at most `threshold` (≤, so equal
+// corners agree at threshold 0).
 bool corners_agree(const Color& a, const Color& b, const Color& c, const Color& d, double threshold);
 
 // Task 2. The colour of the square with top-left lattice point (x, y) and side
