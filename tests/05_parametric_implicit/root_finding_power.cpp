@@ -255,6 +255,17 @@ TEST_SUITE("lesson05") {
     REQUIRE(r.converged());
     CHECK(r.s == -0.125);
     CHECK_MESSAGE(r.iterations == 1, "the first Newton step, 3/8, is at most half the bracket's width 1");
+    // The same rule 10⁻¹⁰ from its edge, on widths that are not floats: f = s − r, r = 0.0750000001, on
+    // [0, 0.1]. The midpoint 0.05 has f < 0, so the bracket becomes [0.05, 0.1], width 0.05; Newton's
+    // step from 0.05 is r − 0.05 = 0.0250000001, more than half of 0.05 by 10⁻¹⁰: refused, a bisection
+    // step to 0.075 (the midpoint of [0.05, 0.1]). With a budget of one step s is that midpoint.
+    // (Holding the width in float, 0.0500000007…, would admit the step and land on r.)
+    const double root = 0.0750000001;
+    const Function near_edge([root](double s) { return s - root; }, [](double) { return 1.0; });
+    const RootResult one = safeguarded_newton(near_edge, {0.0, 0.1}, 1e-15, 1);
+    CHECK_MESSAGE(
+        std::abs(one.s - 0.075) <= 1e-15,
+        "a Newton step 1e-10 over half the previous one becomes a bisection step; got s = " << one.s);
   }
 }
 
