@@ -535,8 +535,11 @@ TEST_SUITE("lesson13") {
     const Point3 a(0.1, -0.3, 2.7);
     const Vec3 e1(1.7, 0.3, -0.2), e2(0.4, 1.1, 0.9);
     const std::array<Point3, 3> t{a, a + e1, a + e2};
-    for (const auto& [u, v] : {std::array<double, 2>{0.31, 0.27}, std::array<double, 2>{0.05, 0.9},
-                               std::array<double, 2>{0.62, 0.11}}) {
+    // (No structured binding for (u, v): Clang before 16 cannot capture one in INFO's lambda.)
+    for (const std::array<double, 2>& weights :
+         {std::array<double, 2>{0.31, 0.27}, std::array<double, 2>{0.05, 0.9},
+          std::array<double, 2>{0.62, 0.11}}) {
+      const double u = weights[0], v = weights[1];
       const Vec2 uv = surface_coordinates(t, a + u * e1 + v * e2);
       INFO("x = a + ", u, " e1 + ", v, " e2");
       CHECK_MESSAGE(std::abs(uv.x - u) <= 1e-13, "u: the weight of b, in double throughout");
