@@ -55,6 +55,30 @@ int rays_missing_square_edges(double x0, double y0, double z, double w, const Pa
   return missed;
 }
 
+// Rays onto the saddle's edges where parameter `edge_axis` (0: u, 1: v) is 0 or 1, aimed obliquely
+// across that edge at 41 points along it: each hits at the point aimed at (1e-9) and reports the
+// edge's parameter clamped to [0, 1].
+void check_oblique_edge_hits(int edge_axis) {
+  const BezierPatch patch = scaled_saddle(1.0);
+  for (int k = 0; k <= 40; ++k) {
+    const double along = 0.05 + 0.0225 * k;
+    for (double e : {0.0, 1.0}) {
+      const double across = e == 0.0 ? 1.0 : -1.0;
+      const Vec3 w = normalize(edge_axis == 0 ? Vec3(across, 0.3, -1.0) : Vec3(0.3, across, -1.0));
+      const double u = edge_axis == 0 ? e : along, v = edge_axis == 0 ? along : e;
+      const Point3 target(u, v, u * v);
+      const Ray ray(target - 2.0 * w, w);
+      INFO("edge ", edge_axis == 0 ? "u" : "v", " = ", e, ", the other parameter ", along);
+      const std::optional<PatchHit> hit = intersect_patch(ray, patch);
+      REQUIRE(hit);
+      const double on_edge = edge_axis == 0 ? hit->u : hit->v;
+      CHECK_MESSAGE((on_edge >= 0.0 && on_edge <= 1.0), "the edge's parameter is clamped to [0, 1]");
+      CHECK(std::abs(hit->u - u) <= 1e-9);
+      CHECK(std::abs(hit->v - v) <= 1e-9);
+    }
+  }
+}
+
 }  // namespace
 
 TEST_SUITE("lesson05") {
@@ -186,43 +210,14 @@ TEST_SUITE("lesson05") {
     // Rays along (±1, 0.3, −1)/|·| aimed at saddle points (e, v, e·v), e = 0 or 1:
     // Newton stops within 1e−12 of the planes, so its u may lie a hair outside
     // the square; the contract clamps it (the 1e−9 slack admits the hit).
-    const BezierPatch patch = scaled_saddle(1.0);
-    for (int k = 0; k <= 40; ++k) {
-      const double v = 0.05 + 0.0225 * k;
-      for (double e : {0.0, 1.0}) {
-        const Vec3 w = normalize(Vec3(e == 0.0 ? 1.0 : -1.0, 0.3, -1.0));
-        const Point3 target(e, v, e * v);
-        const Ray ray(target - 2.0 * w, w);
-        INFO("edge u = ", e, ", v = ", v);
-        const std::optional<PatchHit> hit = intersect_patch(ray, patch);
-        REQUIRE(hit);
-        CHECK_MESSAGE((hit->u >= 0.0 && hit->u <= 1.0), "hit.u is clamped to [0, 1]");
-        CHECK(std::abs(hit->u - e) <= 1e-9);
-        CHECK(std::abs(hit->v - v) <= 1e-9);
-      }
-    }
+    check_oblique_edge_hits(0);
   }
 
   TEST_CASE("hard case: oblique rays onto the edges v = 0 and v = 1 report v inside [0, 1]" *
             doctest::description("task=5,6,7")) {
-    // The test above with u and v exchanged: rays along (0.3, ±1, −1)/|·| aimed at saddle points
-    // (u, e, u·e), e = 0 or 1. Newton may stop a hair outside the square in v; the contract clamps
-    // v as it clamps u.
-    const BezierPatch patch = scaled_saddle(1.0);
-    for (int k = 0; k <= 40; ++k) {
-      const double u = 0.05 + 0.0225 * k;
-      for (double e : {0.0, 1.0}) {
-        const Vec3 w = normalize(Vec3(0.3, e == 0.0 ? 1.0 : -1.0, -1.0));
-        const Point3 target(u, e, u * e);
-        const Ray ray(target - 2.0 * w, w);
-        INFO("edge v = ", e, ", u = ", u);
-        const std::optional<PatchHit> hit = intersect_patch(ray, patch);
-        REQUIRE(hit);
-        CHECK_MESSAGE((hit->v >= 0.0 && hit->v <= 1.0), "hit.v is clamped to [0, 1]");
-        CHECK(std::abs(hit->v - e) <= 1e-9);
-        CHECK(std::abs(hit->u - u) <= 1e-9);
-      }
-    }
+    // The test above with u and v exchanged: rays along (0.3, ±1, −1)/|·| aimed at (u, e, u·e).
+    // The contract clamps v as it clamps u.
+    check_oblique_edge_hits(1);
   }
 
   TEST_CASE("intersect_patch starts Newton at each leaf's centre: a ray through it needs no step" *

@@ -39,6 +39,26 @@ Run run(const Scene& scene, const Ray& ray, int max_depth, Color background = Co
   return r;
 }
 
+// Glass panes z = spacing, 2·spacing, …, `panes`·spacing (k_t given, η = 1.5) over an opaque floor
+// point at the origin, facing +z: the scene of the shadow walk's cut-off tests.
+struct PaneStack {
+  Scene scene;
+  std::uint32_t glass = 0;
+  SurfaceHit point;
+};
+
+PaneStack pane_stack(int panes, double spacing, const Color& k_t) {
+  PaneStack stack;
+  const auto floor = add_material(stack.scene, material("floor"));
+  Material glass = material("glass pane");
+  glass.transmittance = k_t;
+  glass.index_of_refraction = 1.5;
+  stack.glass = add_material(stack.scene, glass);
+  for (int k = 1; k <= panes; ++k) add_floor(stack.scene, "pane", spacing * k, 1.0, stack.glass);
+  stack.point = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), floor);
+  return stack;
+}
+
 }  // namespace
 
 TEST_SUITE("lesson06") {
@@ -178,14 +198,10 @@ TEST_SUITE("lesson06") {
     // (ray_tree.hpp): the walk ends with 0 right after the 20th pane, having cast 20 shadow
     // rays; without the cut-off it casts 31 and returns 0.5³⁰.
     REQUIRE(min_shadow_transmission == 1e-6);
-    Scene scene;
-    const auto floor = add_material(scene, material("floor"));
-    Material glass = material("glass pane");
-    glass.transmittance = Color(0.5);
-    glass.index_of_refraction = 1.5;
-    const auto g = add_material(scene, glass);
-    for (int k = 1; k <= 30; ++k) add_floor(scene, "pane", k, 1.0, g);
-    const SurfaceHit p = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), floor);
+    PaneStack stack = pane_stack(30, 1.0, Color(0.5));
+    Scene& scene = stack.scene;
+    const auto g = stack.glass;
+    const SurfaceHit p = stack.point;
     TraceStats stats;
     const EffectsPlan plan = full_effects(0);
     const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
@@ -215,13 +231,10 @@ TEST_SUITE("lesson06") {
     // pane to the light: 2 shadow rays, and k_t itself is returned. Comparing with ≤ in the channel
     // at 10⁻⁶ ends the walk at the pane: 1 ray and 0. Each channel in turn is the one at 10⁻⁶.
     REQUIRE(min_shadow_transmission == 1e-6);
-    Scene scene;
-    const auto floor = add_material(scene, material("floor"));
-    Material glass = material("glass pane");
-    glass.index_of_refraction = 1.5;
-    const auto g = add_material(scene, glass);
-    add_floor(scene, "pane", 1, 1.0, g);
-    const SurfaceHit p = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), floor);
+    PaneStack stack = pane_stack(1, 1.0, Color(1.0));
+    Scene& scene = stack.scene;
+    const auto g = stack.glass;
+    const SurfaceHit p = stack.point;
     const EffectsPlan plan = full_effects(0);
     for (int channel = 0; channel < 3; ++channel) {
       Color k_t(5e-7);
@@ -241,14 +254,9 @@ TEST_SUITE("lesson06") {
     // count can end the walk. Contract of shadow_transmission (ray_tree.hpp): right after the
     // 256th surface crossed the walk ends with 0: 256 shadow rays, not 301.
     REQUIRE(max_shadow_crossings == 256);
-    Scene scene;
-    const auto floor = add_material(scene, material("floor"));
-    Material clear = material("clear glass");
-    clear.transmittance = Color(1.0);
-    clear.index_of_refraction = 1.5;
-    const auto g = add_material(scene, clear);
-    for (int k = 1; k <= 300; ++k) add_floor(scene, "pane", 0.1 * k, 1.0, g);
-    const SurfaceHit p = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), floor);
+    const PaneStack stack = pane_stack(300, 0.1, Color(1.0));
+    const Scene& scene = stack.scene;
+    const SurfaceHit p = stack.point;
     TraceStats stats;
     const EffectsPlan plan = full_effects(0);
     const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};

@@ -10,6 +10,10 @@ set_tests_properties(figures_tool PROPERTIES LABELS tools ENVIRONMENT PYTHONDONT
 # The task tables' source reader (tools/task_tables.py; the tables themselves: CTest task_tables).
 add_test(NAME tools_task_tables_py COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_task_tables.py)
 set_tests_properties(tools_task_tables_py PROPERTIES LABELS grading ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# tools/check_fresh_debian's argument checks (the run itself needs root, the network and half an hour).
+add_test(NAME tools_check_fresh_debian_py
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_check_fresh_debian.py)
+set_tests_properties(tools_check_fresh_debian_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # One home per helper: no hand-written best-of-N timing, no π typed in, OpenMP only through
 # core/threads.hpp, no second copy of a helper that has a home (tools/check_one_home.py).
 add_test(NAME one_home COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/check_one_home.py)
