@@ -14,6 +14,11 @@ set_tests_properties(tools_task_tables_py PROPERTIES LABELS grading ENVIRONMENT 
 add_test(NAME tools_check_fresh_debian_py
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_check_fresh_debian.py)
 set_tests_properties(tools_check_fresh_debian_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# tools/check_container's argument checks (the run itself needs a container engine, the network and
+# about 25 minutes).
+add_test(NAME tools_check_container_py
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_check_container.py)
+set_tests_properties(tools_check_container_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # One home per helper: no hand-written best-of-N timing, no π typed in, OpenMP only through
 # core/threads.hpp, no second copy of a helper that has a home (tools/check_one_home.py).
 add_test(NAME one_home COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/check_one_home.py)
