@@ -7,6 +7,7 @@ happens before any of that starts. Each stops the tool with exit code 2 and a me
 problem (the option and its value, or the folder), and nothing is created beside or inside FOLDER:
   - no folder, two folders, an unknown option, or --engine without a value: the usage line;
   - --engine with a value other than docker or podman: that value;
+  - a folder whose path holds ':' or ',' (the engine's -v option would split it there): that folder;
   - a folder (or a dangling link) that already exists: that folder, left as it was;
   - no engine on PATH at all: says so, and what to install.
 """
@@ -47,6 +48,13 @@ class ArgumentsTest(unittest.TestCase):
         done = run("--engine", "lxc", str(self.parent / "new"))
         self.assertEqual(done.returncode, 2)
         self.assertIn("--engine: 'lxc' is neither docker nor podman", done.stderr)
+        self.assert_nothing_written()
+
+    def test_a_folder_the_engine_would_misread_is_refused(self) -> None:
+        for name in ("a:b", "a,b"):
+            done = run(str(self.parent / name))
+            self.assertEqual(done.returncode, 2, name)
+            self.assertIn(f"{self.parent / name}: a folder without ':' or ','", done.stderr)
         self.assert_nothing_written()
 
     def test_an_existing_folder_or_link_is_refused_and_left_as_it_was(self) -> None:
