@@ -1214,6 +1214,26 @@ class CheckStudentEditionCommandsTest(unittest.TestCase):
             self.assertEqual(len(problems), 1)
             self.assertIn("no ```sh block", problems[0])
 
+    def test_the_editions_readme_tells_windows_and_macos_students_of_the_container(self) -> None:
+        # A student on Windows or macOS has only the edition: its README must say how to get a Debian 12
+        # (the container, WSL 2), in prose, so that the student block stays the section's first ```sh block.
+        module, student_readme = self.load()
+        root = Path(__file__).resolve().parents[2]
+        files = ["lessons/13_two_pass/README.md", "exercises/13_two_pass/README.md"]
+        with tempfile.TemporaryDirectory() as folder:
+            edition = Path(folder)
+            text = student_readme(root, files + [".devcontainer/Dockerfile"], ["13"])
+            section = text.split("## Build, test and grade your code", 1)[1]
+            self.assertLess(section.index("Reopen in Container"), section.index("```sh"))
+            self.assertIn("docker build -f .devcontainer/Dockerfile -t illum-dev .", text)
+            self.assertIn("wsl --install -d Debian", text)
+            (edition / "README.md").write_text(text, encoding="utf-8")
+            commands, problems = module.readme_commands(edition, "13")
+            self.assertEqual(problems, [])
+            self.assertEqual(commands["configure"], ["cmake", "--preset", "student"])
+        # An edition without the container's files does not send the student looking for them.
+        self.assertNotIn(".devcontainer", student_readme(root, files, ["13"]))
+
 
 if __name__ == "__main__":
     unittest.main(verbosity=2)

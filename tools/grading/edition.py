@@ -255,6 +255,19 @@ def student_readme(source: Path, files: list[str], handed_out: list[str]) -> str
     given = [nn for nn in sorted(lessons) if nn not in handed_out]
     commands = _student_commands(source)
     first = handed_out[0] if handed_out else "NN"
+    # Prose only: the first ```sh block of the section is the student block check_student_edition reads.
+    other_systems = "" if ".devcontainer/Dockerfile" not in files else """On Windows or macOS, work inside the development container
+(`.devcontainer/`: Debian 12 with every package the build needs already
+installed): with Docker Desktop and VS Code's Dev Containers
+extension, open this folder and choose *Reopen in Container*; without VS
+Code, run `docker build -f .devcontainer/Dockerfile -t illum-dev .` and then
+`docker run --rm -it --shm-size=1g -v "$PWD":/workspaces/illum -w
+/workspaces/illum illum-dev` in this folder (podman takes the same
+arguments), and type the commands below in the shell it opens. On Windows,
+WSL 2 with Debian works as well (`wsl --install -d Debian`): keep this folder
+in Linux's file system (e.g. `~/illum`, not under `/mnt/c`).
+
+"""
     return f"""# illum — student edition
 
 illum is a course toolkit that teaches global illumination the way the
@@ -280,7 +293,7 @@ in [docs/errata.md](docs/errata.md).
 
 ## Build, test and grade your code
 
-On Debian 12 (or Ubuntu 22.04), install what the build needs once with
+{other_systems}On Debian 12 (or Ubuntu 22.04), install what the build needs once with
 `tools/install-deps` (it asks for `sudo`). Then, with NN the lesson's number
 (e.g. {first}):
 
