@@ -11,10 +11,23 @@ qemu-aarch64 and compares the two: with -ffp-contract=off and every random
 draw in a fixed order (core/random.hpp), a study prints the same tables on
 every machine. Exit 0 when they agree, 1 listing the first differing cells
 of each table, 2 when a folder or a table is missing.
+
+    tools/compare_runs.py --speed FIRST_FOLDER OTHER_FOLDER
+
+measures instead how much faster the other run was, cell by cell over the
+timing columns of the tables both hold alike: FIRST/OTHER for a time (seconds,
+ms, ns per ...), OTHER/FIRST for a rate (Mrays, throughput, per second); a
+speed-up column (a ratio of two times) and other timing-dependent counts are
+left out. It prints the number of cells, their median and their 10th and 90th
+percentiles: two runs alone give the noise that running beside another
+program must be compared with (README, "Quick start"). Exit 0, or 2 when a
+folder is missing or no timing cell is found.
 """
 from __future__ import annotations
 
 import csv
+import re
+import statistics
 import sys
 from pathlib import Path
 
@@ -56,7 +69,67 @@ def compare_table(expected: Path, other: Path, limit: int = 5) -> list[str]:
     return problems
 
 
+TIME_WORDS = {"ns", "us", "µs", "ms", "sec", "secs", "second", "seconds", "nanoseconds", "microseconds",
+              "milliseconds", "time", "elapsed"}
+PER_SECOND = re.compile(r"\bper\s+(s|sec|second)\b|/s\b", re.I)
+
+
+def speed_kind(name: str) -> str | None:
+    """'rate' (higher is faster), 'time' (lower is faster) or None (a speed-up, a count, no timing)."""
+    w = words(name)
+    if "speedup" in w or {"speed", "up"} <= w:
+        return None
+    if w & {"mrays", "throughput"} or PER_SECOND.search(name):
+        return "rate"
+    return "time" if w & TIME_WORDS else None
+
+
+def speed_factors(first: Path, other: Path) -> list[float]:
+    """Each timing cell's speed of OTHER against FIRST (> 1: OTHER was faster), over the tables both
+    folders hold with the same header and row count."""
+    factors = []
+    for table in sorted(first.glob("*.csv")):
+        if not (other / table.name).is_file():
+            continue
+        a, b = read(table), read(other / table.name)
+        if not a or not b or a[0] != b[0] or len(a) != len(b):
+            continue
+        kinds = [speed_kind(h) for h in a[0]]
+        for x, y in zip(a[1:], b[1:]):
+            for kind, u, v in zip(kinds, x, y):
+                try:
+                    u_value, v_value = float(u), float(v)
+                except ValueError:
+                    continue
+                if kind is None or not (u_value > 0 and v_value > 0):
+                    continue
+                factors.append(u_value / v_value if kind == "time" else v_value / u_value)
+    return factors
+
+
+def speed_main(argv: list[str]) -> int:
+    first, other = (Path(a) for a in argv)
+    for folder in (first, other):
+        if not folder.is_dir():
+            print(f"compare_runs: {folder} is not a folder", file=sys.stderr)
+            return 2
+    factors = speed_factors(first, other)
+    if len(factors) < 2:
+        print(f"compare_runs: --speed: {len(factors)} timing cell(s) in the tables {first} and {other} share; "
+              "at least 2 are needed", file=sys.stderr)
+        return 2
+    deciles = statistics.quantiles(factors, n=10, method="inclusive")
+    print(f"compare_runs: {len(factors)} timing cells; speed of {other} against {first}: "
+          f"median {statistics.median(factors):.2f}, 10th-90th percentile {deciles[0]:.2f}-{deciles[-1]:.2f}")
+    return 0
+
+
 def main(argv: list[str]) -> int:
+    if argv[:1] == ["--speed"]:
+        if len(argv) == 3:
+            return speed_main(argv[1:])
+        print(__doc__.strip(), file=sys.stderr)
+        return 2
     if len(argv) != 2 or argv[0] in ("-h", "--help"):
         print(__doc__.strip(), file=sys.stderr if len(argv) != 1 else sys.stdout)
         return 0 if argv[:1] in (["-h"], ["--help"]) else 2

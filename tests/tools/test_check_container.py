@@ -10,6 +10,7 @@ problem (the option and its value, or the folder), and nothing is created beside
   - a folder whose path holds ':' or ',' (the engine's -v option would split it there): that folder;
   - a folder (or a dangling link) that already exists: that folder, left as it was;
   - no engine on PATH at all: says so, and what to install.
+With a stand-in engine, RunTest checks the steps themselves (see its docstring).
 """
 import os
 import subprocess
@@ -86,6 +87,62 @@ class ArgumentsTest(unittest.TestCase):
         self.assertEqual(done.returncode, 2, done.stderr)
         self.assertIn("--engine podman: not on PATH", done.stderr)
         self.assertEqual(sorted(p.name for p in self.parent.iterdir()), ["bin"])
+
+
+
+FAKE_ENGINE = """#!/bin/bash
+# A stand-in for podman: records its arguments, one call per line, and plays the named outcome.
+echo "$*" >> "$FAKE_ENGINE_LOG"
+case "$1" in
+  build) echo "built" ;;
+  run) case "$*" in
+         *tools/bootstrap*) echo "==> bootstrap: done in 0m01s"; exit "${FAKE_BOOTSTRAP_STATUS:-0}" ;;
+         *) echo "test workflow done in 1 s" ;;
+       esac ;;
+esac
+"""
+
+
+class RunTest(unittest.TestCase):
+    """The steps, with a stand-in engine first on PATH: the image is built from the fresh clone's
+    Dockerfile, then each README command runs in it on the clone mounted at /workspaces/illum, in
+    order; a failed command stops the run with exit 1, its exit status and the end of its log."""
+
+    def run_with_fake_engine(self, bootstrap_status: int) -> tuple[subprocess.CompletedProcess, Path, list[str]]:
+        parent = Path(tempfile.mkdtemp())
+        self.addCleanup(lambda: subprocess.run(["rm", "-rf", str(parent)], check=True))
+        fake = parent / "bin"
+        fake.mkdir()
+        (fake / "podman").write_text(FAKE_ENGINE)
+        (fake / "podman").chmod(0o755)
+        log = parent / "engine.log"
+        env = dict(os.environ, PATH=f"{fake}:{os.environ['PATH']}", FAKE_ENGINE_LOG=str(log),
+                   FAKE_BOOTSTRAP_STATUS=str(bootstrap_status))
+        env.pop("ILLUM_CONTAINER_BUILD_ARGS", None)
+        env.pop("ILLUM_CONTAINER_RUN_ARGS", None)
+        folder = parent / "check"
+        done = run("--engine", "podman", str(folder), env=env)
+        return done, folder, log.read_text().splitlines() if log.exists() else []
+
+    def test_build_then_both_commands_on_the_mounted_clone(self) -> None:
+        done, folder, calls = self.run_with_fake_engine(0)
+        self.assertEqual(done.returncode, 0, done.stderr)
+        self.assertEqual([c.split()[0] for c in calls], ["build", "run", "run"])
+        self.assertIn(f"-f {folder}/illum/.devcontainer/Dockerfile -t illum-dev-check {folder}/illum", calls[0])
+        for call, command in zip(calls[1:], ("tools/bootstrap", "cmake --workflow --preset test")):
+            self.assertIn(f"-v {folder}/illum:/workspaces/illum -w /workspaces/illum illum-dev-check bash -c", call)
+            self.assertIn(command, call)
+        self.assertTrue((folder / "illum" / ".devcontainer" / "Dockerfile").is_file(), "a clone of HEAD")
+        self.assertEqual((folder / "bootstrap.log").read_text(), "==> bootstrap: done in 0m01s\n")
+        self.assertEqual((folder / "test.log").read_text(), "test workflow done in 1 s\n")
+
+    def test_a_failed_command_stops_the_run(self) -> None:
+        done, folder, calls = self.run_with_fake_engine(3)
+        self.assertEqual(done.returncode, 1)
+        self.assertEqual([c.split()[0] for c in calls], ["build", "run"], "the test command is not run")
+        self.assertIn("bootstrap failed (exit status 3)", done.stderr)
+        self.assertIn("==> bootstrap: done in 0m01s", done.stderr, "the end of its log")
+        self.assertFalse((folder / "test.log").exists())
 
 
 if __name__ == "__main__":

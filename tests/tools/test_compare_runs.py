@@ -70,5 +70,64 @@ class CompareRuns(unittest.TestCase):
         self.assertEqual(self.run_on({"notes.txt": "x"}, {"notes.txt": "x"}), 2)
 
 
+class Speed(unittest.TestCase):
+    """compare_runs.py --speed: each timing cell's speed of the second run against the first (a time
+    divided the first by the second, a rate the second by the first), speed-ups and counts left out."""
+
+    def speed_of(self, first: dict[str, str], second: dict[str, str], *extra: str) -> tuple[int, str, str]:
+        with tempfile.TemporaryDirectory() as temporary:
+            folders = []
+            for name, files in (("a", first), ("b", second)):
+                folder = Path(temporary) / name
+                folder.mkdir()
+                for file, text in files.items():
+                    (folder / file).write_text(text, encoding="utf-8")
+                folders.append(str(folder))
+            out, err = io.StringIO(), io.StringIO()
+            with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+                code = compare_runs.main(["--speed", *folders, *extra])
+            return code, out.getvalue(), err.getvalue()
+
+    def test_times_and_rates_each_count_the_right_way_round(self):
+        # Row 1: seconds 2 → 1 (speed 2), ms per shot 4 → 4 (1), Mrays per second 10 → 5 (0.5).
+        # Row 2: 1 → 1 (1), 1 → 1 (1), 8 → 10 (1.25). The speedup column (3 → 9) and the
+        # timing-dependent count (5 → 50) are not speeds. Sorted by hand: 0.5, 1, 1, 1, 1.25, 2;
+        # the median is 1; inclusive deciles: 10th 0.5 + 0.5·(1 − 0.5) = 0.75, 90th 1.25 + 0.5·0.75 = 1.625.
+        header = "seconds,seconds per shot (ms),Mrays per second (1 thread),speedup,rows computed (timing-dependent)\n"
+        first = header + "2,4,10,3,5\n1,1,8,1,1\n"
+        second = header + "1,4,5,9,50\n1,1,10,1,1\n"
+        with tempfile.TemporaryDirectory() as temporary:
+            a, b = Path(temporary) / "a", Path(temporary) / "b"
+            a.mkdir()
+            b.mkdir()
+            (a / "t.csv").write_text(first)
+            (b / "t.csv").write_text(second)
+            self.assertEqual(sorted(compare_runs.speed_factors(a, b)), [0.5, 1.0, 1.0, 1.0, 1.25, 2.0])
+        code, out, _ = self.speed_of({"t.csv": first}, {"t.csv": second})
+        self.assertEqual(code, 0)
+        self.assertIn("6 timing cells", out)
+        self.assertIn("median 1.00, 10th-90th percentile 0.75-1.62", out)
+
+    def test_only_tables_alike_in_both_runs_count(self):
+        table = "method,ns per test\nnotes,12\nstable,14\n"
+        faster = "method,ns per test\nnotes,6\nstable,7\n"
+        code, out, _ = self.speed_of({"t.csv": table, "u.csv": table},
+                                     {"t.csv": faster, "u.csv": "method,ns\nnotes,1\nstable,1\n"})
+        self.assertEqual(code, 0)
+        self.assertIn("2 timing cells", out)
+        self.assertIn("median 2.00, 10th-90th percentile 2.00-2.00", out)
+
+    def test_no_timing_cell_or_no_folder_is_an_error(self):
+        code, _, err = self.speed_of({"t.csv": "a,error\nx,1\ny,2\n"}, {"t.csv": "a,error\nx,1\ny,2\n"})
+        self.assertEqual(code, 2)
+        self.assertIn("0 timing cell(s)", err)
+        code, _, err = self.speed_of({"t.csv": TABLE}, {"t.csv": TABLE}, "extra")
+        self.assertEqual(code, 2)
+        self.assertIn("--speed FIRST_FOLDER OTHER_FOLDER", err)
+        with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()) as err:
+            self.assertEqual(compare_runs.main(["--speed", "/nonexistent/a", "/nonexistent/b"]), 2)
+        self.assertIn("is not a folder", err.getvalue())
+
+
 if __name__ == "__main__":
     unittest.main()
