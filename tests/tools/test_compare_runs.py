@@ -24,16 +24,22 @@ import compare_runs  # noqa: E402
 TABLE = "method,error,ns per test,Mrays/s\nnotes,1.25e-06,12,3.5\nstable,2.5e-07,14,3.1\nmedian time,0,9,0\n"
 
 
+def write_runs(parent: Path, first: dict[str, str], second: dict[str, str]) -> list[str]:
+    """Two --out folders, PARENT/a and PARENT/b, holding the given files."""
+    folders = []
+    for name, files in (("a", first), ("b", second)):
+        folder = parent / name
+        folder.mkdir()
+        for file, text in files.items():
+            (folder / file).write_text(text, encoding="utf-8")
+        folders.append(str(folder))
+    return folders
+
+
 class CompareRuns(unittest.TestCase):
     def run_on(self, first: dict[str, str], second: dict[str, str]) -> int:
         with tempfile.TemporaryDirectory() as temporary:
-            folders = []
-            for name, files in (("a", first), ("b", second)):
-                folder = Path(temporary) / name
-                folder.mkdir()
-                for file, text in files.items():
-                    (folder / file).write_text(text, encoding="utf-8")
-                folders.append(str(folder))
+            folders = write_runs(Path(temporary), first, second)
             with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
                 return compare_runs.main(folders)
 
@@ -76,13 +82,7 @@ class Speed(unittest.TestCase):
 
     def speed_of(self, first: dict[str, str], second: dict[str, str], *extra: str) -> tuple[int, str, str]:
         with tempfile.TemporaryDirectory() as temporary:
-            folders = []
-            for name, files in (("a", first), ("b", second)):
-                folder = Path(temporary) / name
-                folder.mkdir()
-                for file, text in files.items():
-                    (folder / file).write_text(text, encoding="utf-8")
-                folders.append(str(folder))
+            folders = write_runs(Path(temporary), first, second)
             out, err = io.StringIO(), io.StringIO()
             with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
                 code = compare_runs.main(["--speed", *folders, *extra])
@@ -97,12 +97,8 @@ class Speed(unittest.TestCase):
         first = header + "2,4,10,3,5\n1,1,8,1,1\n"
         second = header + "1,4,5,9,50\n1,1,10,1,1\n"
         with tempfile.TemporaryDirectory() as temporary:
-            a, b = Path(temporary) / "a", Path(temporary) / "b"
-            a.mkdir()
-            b.mkdir()
-            (a / "t.csv").write_text(first)
-            (b / "t.csv").write_text(second)
-            self.assertEqual(sorted(compare_runs.speed_factors(a, b)), [0.5, 1.0, 1.0, 1.0, 1.25, 2.0])
+            a, b = write_runs(Path(temporary), {"t.csv": first}, {"t.csv": second})
+            self.assertEqual(sorted(compare_runs.speed_factors(Path(a), Path(b))), [0.5, 1.0, 1.0, 1.0, 1.25, 2.0])
         code, out, _ = self.speed_of({"t.csv": first}, {"t.csv": second})
         self.assertEqual(code, 0)
         self.assertIn("6 timing cells", out)
