@@ -37,6 +37,7 @@ if(ILLUM_HTTPLIB_FOUND)
   string(REPLACE ";" "," lab_exercises "${lab_exercises}")
   set_source_files_properties(${ILLUM_LAB_DIR}/lab_server.cpp PROPERTIES
                               COMPILE_DEFINITIONS "ILLUM_LAB_EXERCISES=\"${lab_exercises}\"")
+  illum_unity_build(illum_lab_objects)  # after the definitions above, which keep lab_server.cpp apart
 else()
   message(STATUS "illum: cpp-httplib not found (libcpp-httplib-dev): `illum lab` will say how to get it")
   target_sources(illum_cli PRIVATE ${ILLUM_LAB_DIR}/lab_unavailable.cpp ${ILLUM_LAB_DIR}/lab_common.cpp)

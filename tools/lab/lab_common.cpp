@@ -152,6 +152,8 @@ std::string error_json(const std::string& message) {
          "\n";
 }
 
+nlohmann::json triple(const Vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
+
 float to_float(double value) {
   constexpr double most = std::numeric_limits<float>::max();
   if (value > most) return std::numeric_limits<float>::infinity();

@@ -8,7 +8,10 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
+
 #include "illum/core/image.hpp"
+#include "illum/core/vec.hpp"
 #include "illum/trace/ray_tree_render.hpp"
 
 namespace illum::lab {
@@ -68,6 +71,9 @@ const SceneEntry& find_scene(const std::vector<SceneEntry>& catalogue, const std
 // A double as a float for the browser: beyond the float range it becomes an
 // infinity (a plain cast would be undefined behaviour there).
 float to_float(double value);
+
+// A point or vector as the browser reads it: [x, y, z].
+nlohmann::json triple(const Vec3& v);
 
 // {"error": message} as text.
 std::string error_json(const std::string& message);

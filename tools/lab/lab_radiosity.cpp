@@ -20,11 +20,12 @@
 
 namespace illum::lab {
 
+// Outside the unnamed namespace: RadiosityLab::Session, a type with linkage, holds one.
+enum class Method { progressive, jacobi, gauss_seidel, southwell };
+
 namespace {
 
 using nlohmann::json;
-
-json triple(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
 
 // Colours and factors go to the browser as floats: 7 digits are plenty to
 // paint with, and a 2,124-patch step stays small.
@@ -116,7 +117,6 @@ void parallel_for(std::size_t n, Make make, Body body) {
   if (error) std::rethrow_exception(error);
 }
 
-enum class Method { progressive, jacobi, gauss_seidel, southwell };
 const std::vector<std::string> method_names = {"progressive", "jacobi", "gauss_seidel", "southwell"};
 
 std::string random_id() {

@@ -14,8 +14,6 @@ namespace {
 
 using nlohmann::json;
 
-json triple(const Vec3& v) { return json::array({v.x, v.y, v.z}); }
-
 // The caches keep the most recent entries only.
 constexpr std::size_t max_cached = 12;
 

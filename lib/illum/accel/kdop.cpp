@@ -19,7 +19,7 @@ const std::array<Vec3, 9> eighteen_normals = {Vec3(1, 0, 0),  Vec3(0, 1, 0),  Ve
                                               Vec3(1, 1, 0),  Vec3(1, -1, 0), Vec3(1, 0, 1),
                                               Vec3(1, 0, -1), Vec3(0, 1, 1),  Vec3(0, 1, -1)};
 
-constexpr double exit_slack = 8 * 0x1p-53;
+constexpr double slab_exit_slack = 8 * 0x1p-53;
 
 }  // namespace
 
@@ -32,8 +32,8 @@ void clip_by_slab(double normal_dot_origin, double normal_dot_direction, double 
   }
   double s_near = (lo - normal_dot_origin) * inverse, s_far = (hi - normal_dot_origin) * inverse;
   if (s_near > s_far) std::swap(s_near, s_far);
-  s_far += exit_slack * std::abs(s_far);
-  s_near -= exit_slack * std::abs(s_near);
+  s_far += slab_exit_slack * std::abs(s_far);
+  s_near -= slab_exit_slack * std::abs(s_near);
   if (s_near > range.lo) range.lo = s_near;
   if (s_far < range.hi) range.hi = s_far;
   if (range.lo > range.hi) range = Interval::nothing();

@@ -22,7 +22,7 @@ double max_component(const Vec3& v) { return std::max({v.x, v.y, v.z}); }
 // the current cell only 64 ulps of |s| before its exit. More listing slack costs memory on a
 // tiny mesh far away (its cells may be a few ulps wide); more exit slack costs nothing.
 constexpr double listing_slack = 8.0 * std::numeric_limits<double>::epsilon();
-constexpr double exit_slack = 64.0 * std::numeric_limits<double>::epsilon();
+constexpr double cell_exit_slack = 64.0 * std::numeric_limits<double>::epsilon();
 
 // The walk (grid_dda.cpp, lesson 08's exercise) hands the grid a cell to open; one outside the grid
 // would index past its cell lists. Name the mistake instead of reading out of bounds.
@@ -139,7 +139,7 @@ std::optional<AccelHit> UniformGrid::intersect(const Ray& ray, TraversalCounters
     // the next cell, where a triangle listed only there may be closer still; look there first.
     if (best) {
       const double exit = walk.exit();
-      if (best->hit.s <= exit - exit_slack * std::abs(exit)) break;
+      if (best->hit.s <= exit - cell_exit_slack * std::abs(exit)) break;
     }
   }
   return best;

@@ -3,6 +3,7 @@
 //
 // illum computes in double throughout (docs/architecture.md, "Numbers and errors");
 // a lesson that shows why switches to float explicitly with Vec3f.
+#include <algorithm>
 #include <limits>
 
 #include <glm/glm.hpp>
@@ -26,5 +27,11 @@ inline double length_squared(const Vec3& v) { return dot(v, v); }
 inline bool is_finite(const Vec3& v) {
   return glm::all(glm::lessThan(glm::abs(v), Vec3(std::numeric_limits<double>::infinity())));
 }
+
+// The largest of a colour's three channels.
+inline double max_channel(const Color& c) { return std::max({c.r, c.g, c.b}); }
+
+// No light in any channel (a channel at or below zero counts as none).
+inline bool is_black(const Color& c) { return c.r <= 0.0 && c.g <= 0.0 && c.b <= 0.0; }
 
 }  // namespace illum

@@ -16,6 +16,7 @@
 #include "illum/radiosity/hemicube.hpp"
 #include "illum/radiosity/radiosity_system.hpp"
 #include "illum/radiosity/two_pass_shading.hpp"
+#include "illum/trace/effects_plan.hpp"
 #include "illum/trace/light_sample.hpp"
 #include "illum/trace/optics.hpp"
 #include "illum/trace/ray_offset.hpp"
@@ -28,9 +29,7 @@ namespace {
 
 using std::numbers::pi;
 
-double max_channel(const Color& c) { return std::max({c.r, c.g, c.b}); }
 double mean(const Color& c) { return (c.r + c.g + c.b) / 3.0; }
-std::string on_off(bool on) { return on ? "on " : "off"; }
 
 bool is_specular(const Material& m) { return max_channel(m.reflectance + m.transmittance) > 0.0; }
 

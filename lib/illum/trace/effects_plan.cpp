@@ -7,13 +7,7 @@
 
 namespace illum {
 
-namespace {
-
-double max_channel(const Color& c) { return std::max({c.r, c.g, c.b}); }
-
 std::string on_off(bool on) { return on ? "on " : "off"; }
-
-}  // namespace
 
 std::string EffectsPlan::summary() const {
   std::string s = analysed ? "effects plan (from the scene):\n" : "no effects plan (every effect on):\n";

@@ -52,6 +52,9 @@ struct EffectsPlan {
   std::string reasons{};  // filled by plan_effects: why each switch is set as it is
 };
 
+// A switch as the plans' summaries print it: "on " or "off", three columns wide.
+std::string on_off(bool on);
+
 // No analysis: every kind of ray, up to `max_depth` (the "without the plan" run).
 // Throws std::invalid_argument unless 0 ≤ max_depth ≤ deepest_depth_limit.
 EffectsPlan full_effects(int max_depth);

@@ -10,8 +10,6 @@ namespace illum {
 
 namespace {
 
-bool is_black(const Color& c) { return c.r <= 0.0 && c.g <= 0.0 && c.b <= 0.0; }
-
 // Every channel below the shadow walk's cut-off (ray_tree.hpp).
 bool negligible(const Color& c) {
   return c.r < min_shadow_transmission && c.g < min_shadow_transmission && c.b < min_shadow_transmission;

@@ -16,21 +16,9 @@ namespace {
 
 nlohmann::json triple(const Vec3& v) { return nlohmann::json::array({v.x, v.y, v.z}); }
 
-bool is_black(const Color& c) { return c.r <= 0.0 && c.g <= 0.0 && c.b <= 0.0; }
-
-std::string primitive_name(const Scene& scene, std::uint32_t p) {
-  if (p == no_primitive || p >= scene.primitives.size()) return "?";
-  const std::string& name = scene.primitives[p].name;
-  return name.empty() ? "primitive " + std::to_string(p) : name;
-}
-
-std::string material_name(const Scene& scene, std::uint32_t m) {
-  return m < scene.materials.size() ? scene.materials[m].name : "?";
-}
-
 nlohmann::json hit_json(const Scene& scene, std::uint32_t primitive, std::uint32_t material, double t,
                         const Point3& point, bool front_face) {
-  return {{"primitive", primitive_name(scene, primitive)},
+  return {{"primitive", primitive_name(scene, primitive, "?")},
           {"primitive_index", primitive},
           {"t", t},
           {"point", triple(point)},
@@ -140,21 +128,21 @@ std::string ray_tree_dot(const Scene& scene, const PixelTree& pixel, TreeDetail 
                          : "reached " + dot_escape(light_name(scene, n.light)) +
                                (v.segments.size() > 1 ? " through glass" : "");
       else if (n.hit)
-        label +=
-            dot_escape(primitive_name(scene, n.primitive)) + " (" + (n.front_face ? "front" : "back") + ")";
+        label += dot_escape(primitive_name(scene, n.primitive, "?")) + " (" +
+                 (n.front_face ? "front" : "back") + ")";
       else
         label += "missed: background";
     } else if (v.kind == RayKind::shadow) {
       label += "to " + dot_escape(light_name(scene, n.light));
       for (std::size_t k = 0; k + 1 < v.segments.size(); ++k)
-        label += "\\nthrough " + dot_escape(primitive_name(scene, v.segments[k].primitive)) +
+        label += "\\nthrough " + dot_escape(primitive_name(scene, v.segments[k].primitive, "?")) +
                  ": transmission " + display_colour(v.segments[k].transmission);
       label += "\\n" + dot_escape(blocked ? stop
                                           : "reached the light, transmission " +
                                                 display_colour(v.segments.back().transmission));
     } else if (n.hit) {
-      label += "hit " + dot_escape(primitive_name(scene, n.primitive)) + " at t = " + display_number(n.t) +
-               " (" + (n.front_face ? "front" : "back") + ")\\nmaterial " +
+      label += "hit " + dot_escape(primitive_name(scene, n.primitive, "?")) +
+               " at t = " + display_number(n.t) + " (" + (n.front_face ? "front" : "back") + ")\\nmaterial " +
                dot_escape(material_name(scene, n.material)) + "\\nI_own " + display_colour(n.local) +
                "\\ncolour " + display_colour(n.color);
       if (v.stop != StopReason::continues && !stop.empty()) label += "\\nstops: " + dot_escape(stop);

@@ -54,18 +54,6 @@ const char* to_string(StopReason reason) {
 
 namespace {
 
-bool is_black(const Color& c) { return c.r <= 0.0 && c.g <= 0.0 && c.b <= 0.0; }
-
-std::string primitive_name(const Scene& scene, std::uint32_t p) {
-  if (p == no_primitive || p >= scene.primitives.size()) return "an unknown surface";
-  const std::string& name = scene.primitives[p].name;
-  return name.empty() ? "primitive " + std::to_string(p) : name;
-}
-
-std::string material_name(const Scene& scene, std::uint32_t m) {
-  return m < scene.materials.size() ? scene.materials[m].name : "?";
-}
-
 ShadowSegment segment_of(const Scene& scene, const RayTreeNode& n) {
   ShadowSegment s{.origin = n.origin, .transmission = n.local};
   if (n.hit) {
@@ -209,6 +197,16 @@ std::string display_colour(const Color& c) {
   return "(" + r + ", " + g + ", " + b + ")";
 }
 
+std::string primitive_name(const Scene& scene, std::uint32_t primitive, const std::string& unknown) {
+  if (primitive == no_primitive || primitive >= scene.primitives.size()) return unknown;
+  const std::string& name = scene.primitives[primitive].name;
+  return name.empty() ? "primitive " + std::to_string(primitive) : name;
+}
+
+std::string material_name(const Scene& scene, std::uint32_t material) {
+  return material < scene.materials.size() ? scene.materials[material].name : "?";
+}
+
 std::string light_name(const Scene& scene, std::uint32_t light) {
   std::string name;
   if (light < scene.point_lights.size())
@@ -274,7 +272,7 @@ std::string stop_text(const Scene& scene, const PixelTree& pixel, const RayTreeV
     case StopReason::blocked: {
       const ShadowSegment& last = v.segments.back();
       if (!last.crossed) return "blocked on its way to " + light_name(scene, first.light);
-      return "blocked by " + primitive_name(scene, last.primitive) + " (material " +
+      return "blocked by " + primitive_name(scene, last.primitive, "an unknown surface") + " (material " +
              material_name(scene, last.material) + ") on its way to " + light_name(scene, first.light);
     }
     case StopReason::continues: {

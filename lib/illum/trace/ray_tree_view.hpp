@@ -110,6 +110,11 @@ std::string display_number(double value);
 // "0.9" when the three channels read the same, else "(0.675, 0.101, 0.0715)".
 std::string display_colour(const Color& colour);
 
+// The name of primitive `primitive`, "primitive N" when it has none, or `unknown`
+// for no_primitive and an index past the scene's primitives.
+std::string primitive_name(const Scene& scene, std::uint32_t primitive, const std::string& unknown);
+// The name of material `material`, or "?" past the scene's materials.
+std::string material_name(const Scene& scene, std::uint32_t material);
 // The name of light `light` (points first, then areas), or "light N".
 std::string light_name(const Scene& scene, std::uint32_t light);
 
