@@ -26,6 +26,14 @@ set_tests_properties(one_home PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRIT
 add_test(NAME tools_check_one_home_py
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_check_one_home.py)
 set_tests_properties(tools_check_one_home_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# Unity builds (CMakeLists.txt, illum_unity_build): no private helper of one file is called bare by a
+# later file of the same unit, where overload resolution could pick it (tools/check_unity_units.py).
+add_test(NAME unity_units COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/check_unity_units.py
+                                  --build-dir ${CMAKE_BINARY_DIR})
+set_tests_properties(unity_units PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+add_test(NAME tools_check_unity_units_py
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_check_unity_units.py)
+set_tests_properties(tools_check_unity_units_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # The test programs' own per-test time limit (tests/support/test_main.cpp): the student's test
 # command stops an endless loop with a message, and stays out of the grader's way.
 add_test(NAME test_watchdog

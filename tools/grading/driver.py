@@ -359,8 +359,8 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     lessons = choose_lessons(args, root)
     build_dir, exercises = build_tree(args, root, lessons)
     if not (build_dir / "libillum.a").exists():
-        print(f"tools/grade: the first build of {build_dir} compiles the whole library: 6 to 8 minutes on two "
-              "cores (less when ccache has the objects); later runs rebuild only what changed",
+        print(f"tools/grade: the first build of {build_dir} compiles the whole library: 1 to 3 minutes on two "
+              "cores, about twice that on a slower machine (less when ccache has the objects); later runs rebuild only what changed",
               file=sys.stderr, flush=True)
     run = GradeRun(lessons=lessons, student=args.student)
     run.submission = args.submission

@@ -299,8 +299,9 @@ in [docs/errata.md](docs/errata.md).
 
 {commands}
 
-* **The first build** compiles the whole library with your files: 6 to 8
-  minutes on two cores (less when `ccache` is installed and has seen these
+* **The first build** compiles the whole library with your files: about a
+  minute for one lesson's tests and program on two cores, twice that on a
+  slow machine (less when `ccache` is installed and has seen these
   sources). After that, a change to one of your files recompiles that file
   and relinks: a few seconds.
 * **The tests** say, for each failed check, what they computed and what
