@@ -25,6 +25,7 @@
 #include "illum/trace/ray_tree_render.hpp"
 #include "lab/lab_common.hpp"
 #include "lab/lab_server.hpp"
+#include "source_dir.hpp"
 
 namespace {
 
@@ -76,7 +77,7 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
 struct LabCommand {
   RenderOptions image;
   int port = illum::lab::default_port;
-  std::filesystem::path source = ILLUM_SOURCE_DIR, out;
+  std::filesystem::path source = illum::source_dir(), out;
 };
 
 // The image, its sRGB copy for the PNG and the HDR file: checked against the

@@ -14,9 +14,8 @@ if(TARGET illum_lab_objects)
   add_executable(lab_reference ${CMAKE_CURRENT_SOURCE_DIR}/e2e/lab_reference.cpp)
   target_link_libraries(lab_reference PRIVATE illum::illum)
   # The same `illum` linked against every exercise stub: what a student edition runs before any code is written.
-  add_executable(illum_cli_stubs ${PROJECT_SOURCE_DIR}/tools/illum_main.cpp $<TARGET_OBJECTS:illum_lab_objects>)
-  target_include_directories(illum_cli_stubs PRIVATE ${PROJECT_SOURCE_DIR}/tools)
-  target_compile_definitions(illum_cli_stubs PRIVATE ILLUM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  add_executable(illum_cli_stubs $<TARGET_OBJECTS:illum_cli_objects> $<TARGET_OBJECTS:illum_source_dir>
+                                 $<TARGET_OBJECTS:illum_lab_objects>)
   target_link_libraries(illum_cli_stubs PRIVATE illum_stubs PkgConfig::ILLUM_HTTPLIB)
   add_test(NAME lab_api
            COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/lab/test_lab_api.py --illum $<TARGET_FILE:illum_cli>

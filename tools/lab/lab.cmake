@@ -42,5 +42,3 @@ else()
   message(STATUS "illum: cpp-httplib not found (libcpp-httplib-dev): `illum lab` will say how to get it")
   target_sources(illum_cli PRIVATE ${ILLUM_LAB_DIR}/lab_unavailable.cpp ${ILLUM_LAB_DIR}/lab_common.cpp)
 endif()
-# Where `illum lab` finds the reference images (lessons/*/figures) and, by default, the lessons' outputs.
-target_compile_definitions(illum_cli PRIVATE ILLUM_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
