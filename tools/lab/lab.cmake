@@ -8,10 +8,43 @@ find_package(PkgConfig QUIET)
 if(PkgConfig_FOUND)
   pkg_check_modules(ILLUM_HTTPLIB QUIET IMPORTED_TARGET GLOBAL cpp-httplib)
 endif()
+# Debian's cpp-httplib is a compiled library built against GCC's libstdc++: a build with another
+# standard library (Clang with libc++, as tools/check_platforms libcxx) compiles against its header
+# but cannot link it. So a small server is linked with it first; where that fails the lab is left out
+# with the reason (ILLUM_LAB_MISSING, in the configure step, in `illum lab` and in the lab tests) and
+# the rest of the build goes on, instead of a link error at the end of the build.
+set(ILLUM_LAB_MISSING "")
+if(NOT ILLUM_HTTPLIB_FOUND)
+  string(CONCAT ILLUM_LAB_MISSING "CMake did not find cpp-httplib. Install it (tools/install-deps, or apt-get "
+                "install libcpp-httplib-dev and pkgconf), then configure and build again (cmake --preset "
+                "release && cmake --build --preset release --target illum_cli)")
+else()
+  include(CheckCXXSourceCompiles)
+  set(CMAKE_REQUIRED_LIBRARIES PkgConfig::ILLUM_HTTPLIB)
+  set(CMAKE_REQUIRED_QUIET ON)
+  check_cxx_source_compiles([[
+#include <httplib.h>
+int main() {
+  httplib::Server server;
+  server.set_error_handler([](const httplib::Request&, httplib::Response& response) { response.status = 500; });
+  return server.is_running() ? 1 : 0;
+}]] ILLUM_HTTPLIB_LINKS)
+  unset(CMAKE_REQUIRED_LIBRARIES)
+  unset(CMAKE_REQUIRED_QUIET)
+  if(NOT ILLUM_HTTPLIB_LINKS)
+    string(REPLACE ";" " " found "${ILLUM_HTTPLIB_LINK_LIBRARIES}")
+    string(CONCAT ILLUM_LAB_MISSING "the cpp-httplib CMake found (${found}) does not link with this compiler "
+                  "and standard library (Debian's is compiled for GCC's libstdc++). Build the lab with GCC "
+                  "(cmake --preset release && cmake --build --preset release --target illum_cli), or with a "
+                  "cpp-httplib built for this standard library")
+  endif()
+endif()
+
+set_property(GLOBAL PROPERTY ILLUM_LAB_MISSING "${ILLUM_LAB_MISSING}")  # for tests/e2e/lab.cmake
 
 set(ILLUM_LAB_DIR ${CMAKE_CURRENT_SOURCE_DIR}/lab)
 target_include_directories(illum_cli PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
-if(ILLUM_HTTPLIB_FOUND)
+if(NOT ILLUM_LAB_MISSING)
   set(lab_generated ${CMAKE_BINARY_DIR}/generated/lab_assets.cpp)
   add_custom_target(illum_lab_assets
     COMMAND ${Python3_EXECUTABLE} ${ILLUM_LAB_DIR}/embed_assets.py --source ${PROJECT_SOURCE_DIR} --out ${lab_generated}
@@ -39,6 +72,8 @@ if(ILLUM_HTTPLIB_FOUND)
                               COMPILE_DEFINITIONS "ILLUM_LAB_EXERCISES=\"${lab_exercises}\"")
   illum_unity_build(illum_lab_objects)  # after the definitions above, which keep lab_server.cpp apart
 else()
-  message(STATUS "illum: cpp-httplib not found (libcpp-httplib-dev): `illum lab` will say how to get it")
+  message(STATUS "illum: no lab in this build (`illum lab` will say so): ${ILLUM_LAB_MISSING}")
   target_sources(illum_cli PRIVATE ${ILLUM_LAB_DIR}/lab_unavailable.cpp ${ILLUM_LAB_DIR}/lab_common.cpp)
+  set_source_files_properties(${ILLUM_LAB_DIR}/lab_unavailable.cpp PROPERTIES
+                              COMPILE_DEFINITIONS "ILLUM_LAB_MISSING=\"${ILLUM_LAB_MISSING}\"")
 endif()

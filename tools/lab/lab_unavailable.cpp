@@ -1,5 +1,6 @@
-// `illum lab` in a build configured without cpp-httplib: says how to get it.
+// `illum lab` in a build without a usable cpp-httplib: says why, and how to get the lab.
 #include <stdexcept>
+#include <string>
 
 #include "lab/lab_server.hpp"
 
@@ -8,10 +9,8 @@ namespace illum::lab {
 bool lab_available() { return false; }
 
 int run_lab(const LabOptions&) {
-  throw std::runtime_error(
-      "this build has no lab: CMake did not find cpp-httplib when it configured it. Install it "
-      "(tools/install-deps, or apt-get install libcpp-httplib-dev), then configure and build again "
-      "(cmake --preset release && cmake --build --preset release --target illum_cli)");
+  // ILLUM_LAB_MISSING: why, as tools/lab/lab.cmake found it when the build was configured.
+  throw std::runtime_error(std::string("this build has no lab: ") + ILLUM_LAB_MISSING);
 }
 
 }  // namespace illum::lab
