@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Private helpers that meet in a unity unit: fails, naming both files, where they could.
 
-    tools/check_unity_units.py --build-dir DIR [--source DIR]      (CTest `unity_units`)
+    tools/check_unity_units.py --build-dir DIR [--source DIR] [--require-units]   (CTest `unity_units`)
 
 CMakeLists.txt (`illum_unity_build`) compiles a target's sources eight to a unit:
 DIR/unity/<target>/unit_N.cpp includes them one after another, so a helper
@@ -15,8 +15,10 @@ that a later member of the same unit calls by its bare name (not as `x.f(`,
 `p->f(` or `ns::f(`). Rename one of the two, or give the helper one home in a
 header (docs/architecture.md, "Units of compilation").
 
-Exit 0 when nothing is found (or the build compiles every file alone: no
-unity/ folder), 1 otherwise, 2 on a bad argument.
+Exit 0 when nothing is found, 1 otherwise, 2 on a bad argument. A build that
+compiles every file alone (-DILLUM_UNITY_BUILD=OFF) has no unity/ folder and
+passes, unless --require-units (what CTest passes when the build makes units)
+says that units must be there: then finding none is a failure, not a pass.
 """
 from __future__ import annotations
 
@@ -102,11 +104,18 @@ def main(argv: list[str] | None = None) -> int:
                                      epilog=__doc__.split("\n\n", 1)[1])
     parser.add_argument("--build-dir", type=Path, required=True, help="a configured build folder")
     parser.add_argument("--source", type=Path, default=SOURCE, help="the source tree (default: this checkout)")
+    parser.add_argument("--require-units", action="store_true",
+                        help="fail when DIR/unity/ holds no unit (the build was configured to make them)")
     args = parser.parse_args(argv)
     if not args.build_dir.is_dir():
         print(f"check_unity_units: --build-dir {args.build_dir}: not a folder", file=sys.stderr)
         return 2
     units = sorted((args.build_dir / "unity").glob("*/unit_*.cpp"))
+    if args.require_units and not units:
+        print(f"check_unity_units: no unit in {args.build_dir / 'unity'}, though the build makes them "
+              "(ILLUM_UNITY_BUILD=ON): configure it first, or check illum_unity_build in CMakeLists.txt",
+              file=sys.stderr)
+        return 1
     problems = [p for unit in units for p in problems_in_unit(unit, args.source.resolve())]
     for problem in problems:
         print(problem)

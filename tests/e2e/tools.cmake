@@ -28,8 +28,12 @@ add_test(NAME tools_check_one_home_py
 set_tests_properties(tools_check_one_home_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # Unity builds (CMakeLists.txt, illum_unity_build): no private helper of one file is called bare by a
 # later file of the same unit, where overload resolution could pick it (tools/check_unity_units.py).
+set(unity_units_required "")
+if(ILLUM_UNITY_BUILD)
+  set(unity_units_required --require-units)  # a build that makes units must have some to check
+endif()
 add_test(NAME unity_units COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/check_unity_units.py
-                                  --build-dir ${CMAKE_BINARY_DIR})
+                                  --build-dir ${CMAKE_BINARY_DIR} ${unity_units_required})
 set_tests_properties(unity_units PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 add_test(NAME tools_check_unity_units_py
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_check_unity_units.py)

@@ -4,7 +4,9 @@
 // bound `<=` where `<` was meant) usually lands in the slack malloc leaves
 // after a block and changes nothing a test can see, so the wrong code passes;
 // with the guard the program stops at the block's delete, saying what
-// happened and in which test case.
+// happened and in which test case. (Clang with libc++ may drop a store into a
+// block that is freed before anything reads it: such a write then never
+// happens, is harmless, and is not reported.)
 //
 // Only the plain forms of new and delete are replaced (the over-aligned ones
 // keep the library's own). Under AddressSanitizer the guard is off: the

@@ -2,7 +2,8 @@
 """Unit tests of tools/check_unity_units.py on units written by hand: a private helper of an
 earlier member called bare by a later member is found, with the caller's file and line; a call
 in an earlier member, a member call, a qualified call, a declaration of a variable of that name,
-a prototype and a helper of a named namespace are not. Run: python3
+a prototype and a helper of a named namespace are not; a build that must have units and has
+none fails. Run: python3
 tests/tools/test_check_unity_units.py (ctest: tools_check_unity_units_py)."""
 from __future__ import annotations
 
@@ -85,6 +86,11 @@ class UnityUnitsTest(unittest.TestCase):
         found = self.check(["earlier.cpp", "gone.cpp"])
         self.assertEqual(len(found), 1)
         self.assertIn("gone.cpp", found[0])
+
+    def test_no_units_passes_only_when_none_are_required(self) -> None:
+        with tempfile.TemporaryDirectory() as folder:
+            self.assertEqual(check_unity_units.main(["--build-dir", folder]), 0)
+            self.assertEqual(check_unity_units.main(["--build-dir", folder, "--require-units"]), 1)
 
     def test_a_bad_build_dir_is_an_error(self) -> None:
         self.assertEqual(check_unity_units.main(["--build-dir", "/nonexistent/illum-build"]), 2)
