@@ -14,6 +14,8 @@
 //     number sit), or a code block or table wider than its own box. The page
 //     is opened at the deck's size (the slides' viewBox, 1280x720 for 16:9)
 //     and the message names the overflow in px and the element that sticks out.
+//     The page is measured once its layout has settled (Marp's script fits
+//     wide code a frame or more after 'load'; see settledInspection).
 //
 //   node tests/slides/check_decks.mjs [--timeout SECONDS] PATH...
 //
@@ -174,6 +176,35 @@ async function loadBackgrounds(backgrounds) {
   return results.filter(Boolean);
 }
 
+// Runs in the page: resolves after `frames` animation frames have been drawn.
+function afterFrames(frames) {
+  return new Promise((resolve) => {
+    const step = (left) => (left === 0 ? resolve(true) : requestAnimationFrame(() => step(left - 1)));
+    step(frames);
+    setTimeout(() => resolve(false), 2000);  // a page that draws no frames is measured as it is
+  });
+}
+
+// Marp's own script fits wide code blocks and headings to their slide: its
+// <marp-auto-scaling> elements resize an SVG from a ResizeObserver, which runs
+// only when a frame is drawn, one frame or more after 'load'. Measured before
+// that, a code line a slide shows whole sticks out by hundreds of px (CI saw
+// it on the first deck a cold Chromium opened). So the page is measured after
+// a few frames, and again until two measurements agree.
+const SETTLE_FRAMES = 3;
+const SETTLE_TRIES = 20;
+
+async function settledInspection(page) {
+  let last = null;
+  for (let attempt = 0; attempt < SETTLE_TRIES; ++attempt) {
+    await page.evaluate(afterFrames, SETTLE_FRAMES);
+    const now = await page.evaluate(inspectPage);
+    if (last && JSON.stringify(now) === JSON.stringify(last)) return now;
+    last = now;
+  }
+  return last;  // still moving after SETTLE_TRIES rounds: report the last layout seen
+}
+
 async function checkDeck(browser, deck, timeoutMs) {
   const problems = [];
   const add = (slide, reason) => problems.push({ deck, slide, reason });
@@ -188,7 +219,7 @@ async function checkDeck(browser, deck, timeoutMs) {
     if (size && (size.width !== DEFAULT_SIZE.width || size.height !== DEFAULT_SIZE.height))
       await page.setViewport(size);
     await page.evaluate(() => document.fonts.ready.then(() => true));
-    const { count, problems: found, backgrounds } = await page.evaluate(inspectPage);
+    const { count, problems: found, backgrounds } = await settledInspection(page);
     if (count === 0) add('-', 'the deck has no slides (is it a Marp deck with `marp: true`?)');
     for (const p of found) add(p.slide, p.reason);
     for (const b of await page.evaluate(loadBackgrounds, backgrounds))

@@ -9,7 +9,9 @@
         rejects it for exactly the planted reasons (bad maths on slide 2, a
         missing image on slide 3, a missing background on slide 4, content
         running off the bottom of slide 5 and off the right of slide 6)
-        and not the good first slide.
+        and not the good first slide (whose wide code line Marp scales to
+        fit, and whose over-wide box a script narrows eight frames after
+        parsing: the checker measures the page once it has settled).
 
 A missing Marp, Node.js, puppeteer-core or Chromium is a failure with the
 advice to run tools/install-deps: these tests never pass by skipping.
