@@ -99,7 +99,9 @@ others except that --check compares only its size (its status lines carry
 timings, so its pixels differ from run to run).
 
 The label under a figure with timings names the run: date, the machine's
-cores and its load average at the start and end of that program's run, as
+cores, its load average at the start and end of that program's run and the
+programs that ran beside it (the main job runs those that time one thread
+side by side), as
 the main job records them in OUT/run_log.json (the file's modification time
 and "load not recorded" when the program was run by hand).
 """
@@ -303,6 +305,11 @@ def run_label(out: Path, spec: Spec, table: Table) -> str:
         load = run.get("load_before", ["?"])[0], run.get("load_after", ["?"])[0]
         machine = (f"{run.get('cores', '?')} cores, load average {load[0]} at the start of the run "
                    f"and {load[1]} at its end")
+        beside = run.get("beside")
+        names = [f"`{name}`" for name in beside if isinstance(name, str)] if isinstance(beside, list) else []
+        if names:
+            machine += (f", side by side with {', '.join(names[:-1]) + ' and ' if len(names) > 1 else ''}"
+                        f"{names[-1]} (each times one thread)")
         date = run["started"]
     else:
         stamp = (out / Path(spec.path).relative_to("out")).stat().st_mtime

@@ -8,7 +8,13 @@ Steps (all by default; pick some with --only):
            first failure stops the job with the program's exit code and name;
            OUT/run_log.json records each run's date, seconds, processor
            seconds (all its threads: a busy machine stretches the seconds,
-           not these), cores and load average;
+           not these), cores, load average and the programs it ran beside.
+           A program whose timings all use one thread (`lessonNN
+           --timed-cores` prints "one") runs side by side with the others
+           like it, as many at once as the machine has cores, longest first
+           (by OUT/run_log.json's last record, else the later lessons first),
+           each one's output printed whole when it ends; then the others run
+           one at a time, alone, in order;
   lab      screenshots of `BIN/illum lab`'s four views in headless Chromium,
            OUT/lab/*.png with a manifest.json (tools/lab/screenshots.py; the
            lab is started on a free port of 127.0.0.1 and stopped again);
@@ -75,9 +81,21 @@ def run_lessons(bin_dir: Path, out: Path, quick: bool) -> None:
         raise JobError(f"no lessonNN programs in {bin_dir} (build them first: cmake --build --preset release)")
     log_path = out / "run_log.json"
     all_start, all_cpu = time.monotonic(), children_cpu_seconds()
-    for i, program in enumerate(programs, 1):
-        cmd = [str(program), "--out", str(out / program.name)] + (["--quick"] if quick else [])
-        say(f"[{i}/{len(programs)}] {' '.join(cmd)}")
+    numbers = {program: i for i, program in enumerate(programs, 1)}
+    one_core = [p for p in programs if timed_cores(p) == "one"]
+    cores = os.cpu_count() or 1
+    if len(one_core) < 2 or cores < 2 or not hasattr(os, "wait4"):
+        one_core = []  # nothing to gain: every program runs alone, in order
+    if one_core:
+        say(f"{len(one_core)} program(s) time one thread only: "
+            f"{', '.join(p.name for p in one_core)} run side by side, {min(cores, len(one_core))} at once")
+        run_side_by_side(longest_first(one_core, log_path), min(cores, len(one_core)), numbers, len(programs),
+                         out, quick, log_path)
+    for program in programs:
+        if program in one_core:
+            continue
+        cmd = lesson_command(program, out, quick)
+        say(f"[{numbers[program]}/{len(programs)}] {' '.join(cmd)}")
         start = time.monotonic()
         started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
         load_before = load_average()
@@ -85,16 +103,125 @@ def run_lessons(bin_dir: Path, out: Path, quick: bool) -> None:
         # Output passes straight through: progress on stderr stays visible.
         code = subprocess.call(cmd, cwd=out, stdin=subprocess.DEVNULL)
         if code != 0:
-            raise JobError(f"{program.name} failed (exit code {code}); its messages are above. "
-                           f"Re-run it alone with: {' '.join(cmd)}")
+            raise JobError(failure(program, code, cmd))
         seconds = time.monotonic() - start
         cpu = children_cpu_seconds() - cpu_before
         record_run(log_path, program.name, {
             "started": started, "seconds": round(seconds, 1), "cpu_seconds": round(cpu, 1),
-            "cores": os.cpu_count(), "load_before": load_before, "load_after": load_average(), "quick": quick})
+            "cores": os.cpu_count(), "load_before": load_before, "load_after": load_average(), "quick": quick,
+            "beside": []})
         say(f"{program.name} done in {seconds:.1f} s ({cpu:.1f} s of processor time, all its threads)")
     say(f"lessons done in {time.monotonic() - all_start:.1f} s "
         f"({children_cpu_seconds() - all_cpu:.1f} s of processor time; load average now {load_average()})")
+
+
+def lesson_command(program: Path, out: Path, quick: bool) -> list[str]:
+    return [str(program), "--out", str(out / program.name)] + (["--quick"] if quick else [])
+
+
+def failure(program: Path, code: int, cmd: list[str]) -> str:
+    return (f"{program.name} failed (exit code {code}); its messages are above. "
+            f"Re-run it alone with: {' '.join(cmd)}")
+
+
+def timed_cores(program: Path) -> str:
+    """"one" when every timing of the program runs on one thread (it says so: --timed-cores), else
+    "all". A program that cannot answer (an older build, a crash) is "all": it runs alone."""
+    try:
+        answer = subprocess.run([str(program), "--timed-cores"], capture_output=True, text=True,
+                                errors="replace", stdin=subprocess.DEVNULL, timeout=60)
+    except (OSError, subprocess.SubprocessError):
+        return "all"
+    return "one" if answer.returncode == 0 and answer.stdout.strip() == "one" else "all"
+
+
+def longest_first(programs: list[Path], log_path: Path) -> list[Path]:
+    """The programs in the order that finishes a side-by-side run soonest: longest first, by their
+    seconds in the last run_log.json; without a record, the later lessons first (they run longer)."""
+    try:
+        log = json.loads(log_path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        log = {}
+    if not isinstance(log, dict):
+        log = {}
+
+    def seconds(program: Path) -> float:
+        run = log.get(program.name)
+        value = run.get("seconds") if isinstance(run, dict) and not run.get("quick") else None
+        return value if isinstance(value, (int, float)) else -1.0
+
+    if all(seconds(p) >= 0 for p in programs):
+        return sorted(programs, key=lambda p: (-seconds(p), p.name))
+    return sorted(programs, key=lambda p: p.name, reverse=True)
+
+
+def run_side_by_side(queue: list[Path], width: int, numbers: dict, total: int, out: Path, quick: bool,
+                     log_path: Path) -> None:
+    """Runs the programs of `queue`, `width` at a time, each as soon as a place is free, and records
+    each run with the programs it overlapped. A program's output goes to a file of its own and is
+    printed whole when it ends, so two programs' lines never mix. After a failure no new program
+    starts; the ones running finish, and the first failure (in lesson order) is raised."""
+    import tempfile
+
+    lock = threading.Lock()
+    todo = list(queue)
+    spans: dict[Path, tuple[float, float]] = {}
+    runs: dict[Path, dict] = {}
+    failures: list[tuple[Path, int, list[str]]] = []
+
+    def worker() -> None:
+        while True:
+            with lock:
+                if not todo or failures:
+                    return
+                program = todo.pop(0)
+            cmd = lesson_command(program, out, quick)
+            with lock:
+                say(f"[{numbers[program]}/{total}] {' '.join(cmd)} (side by side; its output when it ends)")
+            with tempfile.TemporaryFile(mode="w+b") as log:
+                start = time.monotonic()
+                started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+                load_before = load_average()
+                proc = subprocess.Popen(cmd, cwd=out, stdin=subprocess.DEVNULL, stdout=log,
+                                        stderr=subprocess.STDOUT)
+                # wait4, not wait: this child's own processor time, whatever its neighbours use.
+                _, status, usage = os.wait4(proc.pid, 0)
+                proc.returncode = code = os.waitstatus_to_exitcode(status)
+                end = time.monotonic()
+                log.seek(0)
+                text = log.read().decode("utf-8", errors="replace")
+            with lock:
+                sys.stdout.write(text)
+                sys.stdout.flush()
+                spans[program] = (start, end)
+                if code != 0:
+                    failures.append((program, code, cmd))
+                    continue
+                cpu = usage.ru_utime + usage.ru_stime
+                runs[program] = {
+                    "started": started, "seconds": round(end - start, 1), "cpu_seconds": round(cpu, 1),
+                    "cores": os.cpu_count(), "load_before": load_before, "load_after": load_average(),
+                    "quick": quick}
+                say(f"{program.name} done in {end - start:.1f} s ({cpu:.1f} s of processor time, all its threads)")
+
+    threads = [threading.Thread(target=worker) for _ in range(width)]
+    for thread in threads:
+        thread.start()
+    try:
+        for thread in threads:
+            thread.join()
+    except BaseException:  # Ctrl-C: start nothing more (the running programs got the signal too)
+        with lock:
+            todo.clear()
+        raise
+    if failures:
+        program, code, cmd = min(failures, key=lambda f: f[0].name)
+        raise JobError(failure(program, code, cmd))
+    for program, run in sorted(runs.items()):
+        start, end = spans[program]
+        run["beside"] = sorted(other.name for other, (s, e) in spans.items()
+                               if other != program and s < end and start < e)
+        record_run(log_path, program.name, run)
 
 
 def children_cpu_seconds() -> float:

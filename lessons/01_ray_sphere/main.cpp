@@ -16,10 +16,12 @@
 
 int main(int argc, char** argv) {
   using namespace illum;
-  const ProgramInfo info{"lesson01", "Lesson 01: the ray and the sphere",
-                         "Renders spheres (silhouette, normals, depth), shows the notes' quadratic failing "
-                         "in single precision, and measures error and cost of the notes' form against the "
-                         "stable form in float and double."};
+  const ProgramInfo info{
+      "lesson01", "Lesson 01: the ray and the sphere",
+      "Renders spheres (silhouette, normals, depth), shows the notes' quadratic failing "
+      "in single precision, and measures error and cost of the notes' form against the "
+      "stable form in float and double.",
+      TimedCores::one};  // every timing on one thread: the main job may run it beside another
   return run_program(argc, argv, info, {}, [&](const ProgramOptions& options) {
     const lesson01::Settings settings{.quick = options.quick, .seed = options.seed};
     OutputFolder out(options.out, info.id, info.title);

@@ -88,10 +88,12 @@ Image render_polygons(int width, int height) {
 
 int main(int argc, char** argv) {
   using namespace illum;
-  const ProgramInfo info{"lesson02", "The plane hit and containment by parity",
-                         "Renders polygons (stars, a comb, a polygon with holes) through the pinhole camera, "
-                         "checks a tiling under three boundary rules, and measures the parity test's cost "
-                         "against the vertex count."};
+  const ProgramInfo info{
+      "lesson02", "The plane hit and containment by parity",
+      "Renders polygons (stars, a comb, a polygon with holes) through the pinhole camera, "
+      "checks a tiling under three boundary rules, and measures the parity test's cost "
+      "against the vertex count.",
+      TimedCores::one};  // every timing on one thread: the main job may run it beside another
   return run_program(argc, argv, info, {}, [&](const ProgramOptions& options) {
     const lesson02::Settings settings{.quick = options.quick, .seed = options.seed};
     OutputFolder out(options.out, info.id, info.title);

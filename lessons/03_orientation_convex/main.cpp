@@ -56,9 +56,11 @@ Image pentagram_image(int size, bool nonzero) {
 
 int main(int argc, char** argv) {
   using namespace illum;
-  const ProgramInfo info{"lesson03", "Orientation and convex tests",
-                         "Pentagram under parity and nonzero rules, naive vs robust orientation, watertight "
-                         "ray–triangle on a mesh's edges, and the cost of parity, winding and convex tests."};
+  const ProgramInfo info{
+      "lesson03", "Orientation and convex tests",
+      "Pentagram under parity and nonzero rules, naive vs robust orientation, watertight "
+      "ray–triangle on a mesh's edges, and the cost of parity, winding and convex tests.",
+      TimedCores::one};  // every timing on one thread: the main job may run it beside another
   return run_program(argc, argv, info, {}, [&](const ProgramOptions& options) {
     const lesson03::Settings settings{.quick = options.quick, .seed = options.seed};
     OutputFolder out(options.out, info.id, info.title);

@@ -88,7 +88,8 @@ int main(int argc, char** argv) {
       "lesson04", "CSG by combining ray intervals",
       "Renders a die, a lens and a drilled cube built by CSG, then measures coincident-face "
       "artefacts against the sliver tolerance and cost against tree depth with and without "
-      "bounding-box pruning."};
+      "bounding-box pruning.",
+      TimedCores::one};  // every timing on one thread: the main job may run it beside another
   return run_program(argc, argv, info, {}, [&](const ProgramOptions& options) {
     const lesson04::Settings settings{.quick = options.quick};
     OutputFolder out(options.out, info.id, info.title);

@@ -62,7 +62,8 @@ int main(int argc, char** argv) {
       "lesson05", "Parametric and implicit surfaces",
       "Renders a torus, a blob and Bezier patches; shows Newton's local minima, tangent rays "
       "and thin features; studies error vs iterations and time for bisection, Newton, "
-      "safeguarded Newton, sphere tracing and Newton on patches."};
+      "safeguarded Newton, sphere tracing and Newton on patches.",
+      TimedCores::one};  // every timing on one thread: the main job may run it beside another
   return run_program(argc, argv, info, {}, [&](const ProgramOptions& options) {
     using namespace lesson05;
     const Settings settings{.quick = options.quick, .seed = options.seed};

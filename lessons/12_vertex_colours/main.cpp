@@ -155,7 +155,8 @@ int main(int argc, char** argv) {
       program_id, "Vertex colours, substructuring and the final image",
       "The Cornell box drawn with the patch's own colour, averaged and extrapolated vertex "
       "colours; uniform against adaptive substructuring; the box at about 10,000 elements; "
-      "PLY and OBJ export."};
+      "PLY and OBJ export.",
+      TimedCores::one};  // one thread, unless --threads 2 or more (the main job passes none)
   Settings settings;
   return run_program(
       argc, argv, info, [&](CLI::App& app) { add_options(app, settings); },

@@ -32,3 +32,10 @@ add_test(NAME e2e_illum_glass_cube_on_coordinate_planes
          COMMAND ${CMAKE_COMMAND} -DILLUM=$<TARGET_FILE:illum_cli> -DSCENE=${CMAKE_CURRENT_SOURCE_DIR}/e2e/glass_cube_z0.json
                  -DOUT=${CMAKE_BINARY_DIR}/test-out/illum-glass-cube -P ${CMAKE_CURRENT_SOURCE_DIR}/e2e/expect_glass_cube.cmake)
 set_tests_properties(e2e_illum_glass_cube_on_coordinate_planes PROPERTIES LABELS e2e TIMEOUT 120)
+
+# Every lesson says how many cores its timings use (--timed-cores: the main job runs the "one"
+# programs side by side), writes nothing when asked, and a "one" wrote no table on more threads.
+add_test(NAME e2e_timed_cores
+         COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/e2e/timed_cores_e2e.py
+                 --bin $<TARGET_FILE_DIR:lesson01> --out ${CMAKE_BINARY_DIR}/test-out)
+set_tests_properties(e2e_timed_cores PROPERTIES FIXTURES_REQUIRED lesson_outputs LABELS e2e)

@@ -60,6 +60,21 @@ class FiguresTest(unittest.TestCase):
         self.assertTrue(text.endswith("The end.\n"))
         self.assertEqual(self.run_mode("check"), 0, self.messages)
 
+    def test_the_label_names_the_programs_a_run_was_side_by_side_with(self):
+        self.write("out/run_log.json", json.dumps({"lesson01": {
+            "started": "2026-12-01 20:00 UTC", "cores": 2, "load_before": [1, 1, 1], "load_after": [2, 1, 1],
+            "beside": ["lesson03", "lesson12"]}}))
+        self.assertEqual(self.run_mode("update"), 0, self.messages)
+        self.assertIn("2 at its end, side by side with `lesson03` and `lesson12` (each times one thread)",
+                      self.text())
+
+    def test_a_run_alone_says_nothing_of_neighbours(self):
+        self.write("out/run_log.json", json.dumps({"lesson01": {
+            "started": "2026-12-01 20:00 UTC", "cores": 2, "load_before": [1, 1, 1], "load_after": [2, 1, 1],
+            "beside": []}}))
+        self.assertEqual(self.run_mode("update"), 0, self.messages)
+        self.assertNotIn("side by side", self.text())
+
     def test_check_fails_on_a_changed_value_and_names_row_column_and_both_values(self):
         self.run_mode("update")
         self.write("out/lesson01/t.md", TABLE.replace("| 0.25 |", "| 0.3 |"))

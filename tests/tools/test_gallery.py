@@ -494,6 +494,67 @@ class MainJob(TempDirTest):
         self.assertIn("lesson03 failed (exit code 1)", result.stderr)
         self.assertFalse((self.tmp / "out" / "index.html").exists())
 
+    def fake_lessons(self, *names: str) -> None:
+        (self.tmp / "bin").mkdir()
+        for name in names:
+            (self.tmp / "bin" / name).symlink_to(FAKE_LESSON)
+
+    def test_programs_that_time_one_thread_run_side_by_side_and_their_output_stays_whole(self):
+        # Every fake lesson answers "one" but lesson04, which must run alone, after the others.
+        self.fake_lessons("lesson01", "lesson02", "lesson03", "lesson04")
+        out = self.tmp / "out"
+        env = dict(os.environ, FAKE_LESSON_TIMED_CORES="one", FAKE_LESSON_ALONE="lesson04",
+                   FAKE_LESSON_SLEEP="0.6")
+        result = subprocess.run([sys.executable, str(SOURCE / "tools" / "main_job.py"), "--bin",
+                                 str(self.tmp / "bin"), "--out", str(out), "--quick", "--only", "lessons"],
+                                capture_output=True, text=True, env=env)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        log = json.loads((out / "run_log.json").read_text())
+        self.assertEqual(sorted(log), ["lesson01", "lesson02", "lesson03", "lesson04"])
+        self.assertEqual(log["lesson04"]["beside"], [])
+        if (os.cpu_count() or 1) >= 2:
+            self.assertIn("run side by side, 2 at once", result.stdout)
+            # Three runs of 0.6 s, two at a time: each overlaps another.
+            for name in ("lesson01", "lesson02", "lesson03"):
+                self.assertTrue(log[name]["beside"], f"{name} ran alone: {log[name]}")
+                self.assertNotIn(name, log[name]["beside"])
+        # Each program's two lines are adjacent: outputs printed whole, never interleaved.
+        lines = [l for l in result.stdout.splitlines() if l.endswith(("first line", "last line"))]
+        self.assertEqual(len(lines), 8, result.stdout)
+        for first, last in zip(lines[::2], lines[1::2]):
+            self.assertEqual(first.split(":")[0], last.split(":")[0], result.stdout)
+        # lesson04 ran after the side-by-side ones.
+        self.assertTrue(lines[-1].startswith("lesson04:"), result.stdout)
+
+    def test_a_failure_side_by_side_starts_nothing_more_and_is_named(self):
+        # Later lessons start first (no run log yet): lesson03 and lesson02 start, lesson02 fails at
+        # once (lesson03 runs 0.5 s), so lesson01 must never start, nor lesson04 (alone, after them).
+        self.fake_lessons("lesson01", "lesson02", "lesson03", "lesson04")
+        out = self.tmp / "out"
+        env = dict(os.environ, FAKE_LESSON_TIMED_CORES="one", FAKE_LESSON_ALONE="lesson04",
+                   FAKE_LESSON_BREAK="exit", FAKE_LESSON_BREAK_ONLY="lesson02", FAKE_LESSON_SLEEP="0.5")
+        result = subprocess.run([sys.executable, str(SOURCE / "tools" / "main_job.py"), "--bin",
+                                 str(self.tmp / "bin"), "--out", str(out), "--only", "lessons"],
+                                capture_output=True, text=True, env=env)
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertIn("lesson02 failed (exit code 1)", result.stderr)
+        self.assertIn("lesson02: error: asked to fail", result.stdout)  # its own output, printed
+        if (os.cpu_count() or 1) >= 2:
+            self.assertFalse((out / "lesson01").exists(), result.stdout)
+        self.assertFalse((out / "lesson04").exists(), result.stdout)
+
+    def test_the_longest_recorded_run_starts_first(self):
+        log = self.write("run_log.json", json.dumps({
+            "lesson01": {"seconds": 11.2, "quick": False}, "lesson02": {"seconds": 4.8, "quick": False},
+            "lesson12": {"seconds": 24.1, "quick": False}}))
+        programs = [Path("lesson01"), Path("lesson02"), Path("lesson12")]
+        self.assertEqual([p.name for p in main_job.longest_first(programs, log)],
+                         ["lesson12", "lesson01", "lesson02"])
+        # A quick run's seconds say nothing of a full run's: the later lessons first, then.
+        log.write_text(json.dumps({"lesson01": {"seconds": 11.2, "quick": True}}))
+        self.assertEqual([p.name for p in main_job.longest_first(programs, log)],
+                         ["lesson12", "lesson02", "lesson01"])
+
     def test_an_empty_bin_folder_is_an_error(self):
         (self.tmp / "bin").mkdir()
         code, text = self.run_job("--bin", str(self.tmp / "bin"), "--out", str(self.tmp / "out"))

@@ -45,6 +45,10 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
                  "Threads to use (0 = all cores, at most " + std::to_string(max_threads) + ")")
       ->capture_default_str()
       ->check(CLI::Range(0, max_threads));
+  bool print_timed_cores = false;
+  app.add_flag("--timed-cores", print_timed_cores,
+               "Print how many cores this program's timings use (one or all) and exit")
+      ->disable_flag_override();
   if (add_options) add_options(app);
   if (const std::string refused = refuse_switch_values(argc, argv, app); !refused.empty()) {
     std::cerr << info.id << ": error: " << refused << "\n";
@@ -54,6 +58,10 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
+  }
+  if (print_timed_cores) {  // before any check of the machine or the output folder
+    std::cout << (info.timed_cores == TimedCores::one ? "one" : "all") << "\n";
+    return 0;
   }
   std::from_chars(seed_text.data(), seed_text.data() + seed_text.size(), options.seed);
   const ScopedThreadCount threads(options.threads);  // 0: every core, OpenMP's default

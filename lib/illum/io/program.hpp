@@ -17,10 +17,18 @@ class App;
 
 namespace illum {
 
+// How many cores a program's timings use, as the main job runs it (no --threads):
+//   one  every timed study runs on one thread (parallel loops only draw pictures),
+//        so two such programs may run side by side, each on a core of its own;
+//   all  some study times several threads: the program runs alone.
+// `--timed-cores` prints it ("one" or "all") and exits; tools/main_job.py asks.
+enum class TimedCores { one, all };
+
 struct ProgramInfo {
-  std::string id;           // "lesson01": also the default output folder out/lesson01
-  std::string title;        // "Ray and sphere"
-  std::string description;  // what the program does, for --help
+  std::string id;                            // "lesson01": also the default output folder out/lesson01
+  std::string title;                         // "Ray and sphere"
+  std::string description;                   // what the program does, for --help
+  TimedCores timed_cores = TimedCores::all;  // the safe answer: alone
 };
 
 struct ProgramOptions {
