@@ -14,7 +14,7 @@ Steps (all by default; pick some with --only):
            like it, as many at once as the machine has cores, longest first
            (by OUT/run_log.json's last record, else the later lessons first),
            each one's output printed whole when it ends; then the others run
-           one at a time, alone, in order;
+           one at a time, alone, in order (--alone: every program so);
   lab      screenshots of `BIN/illum lab`'s four views in headless Chromium,
            OUT/lab/*.png with a manifest.json (tools/lab/screenshots.py; the
            lab is started on a free port of 127.0.0.1 and stopped again);
@@ -75,14 +75,14 @@ def find_programs(bin_dir: Path) -> list[Path]:
                   if PROGRAM.match(p.name) and p.is_file() and os.access(p, os.X_OK))
 
 
-def run_lessons(bin_dir: Path, out: Path, quick: bool) -> None:
+def run_lessons(bin_dir: Path, out: Path, quick: bool, alone: bool = False) -> None:
     programs = find_programs(bin_dir)
     if not programs:
         raise JobError(f"no lessonNN programs in {bin_dir} (build them first: cmake --build --preset release)")
     log_path = out / "run_log.json"
     all_start, all_cpu = time.monotonic(), children_cpu_seconds()
     numbers = {program: i for i, program in enumerate(programs, 1)}
-    one_core = [p for p in programs if timed_cores(p) == "one"]
+    one_core = [] if alone else [p for p in programs if timed_cores(p) == "one"]
     cores = os.cpu_count() or 1
     if len(one_core) < 2 or cores < 2 or not hasattr(os, "wait4"):
         one_core = []  # nothing to gain: every program runs alone, in order
@@ -350,6 +350,9 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--bin", type=Path, help="the build's bin/ folder (needed by the lessons step)")
     parser.add_argument("--out", type=Path, required=True, help="the output folder (e.g. out)")
     parser.add_argument("--quick", action="store_true", help="run each lesson with --quick")
+    parser.add_argument("--alone", action="store_true",
+                        help="run every lesson alone, in order, even those whose timings use one core "
+                             "(slower; timings free of a neighbour's load)")
     parser.add_argument("--only", default=",".join(STEPS),
                         help=f"comma-separated steps to run, of {','.join(STEPS)} (default: all)")
     parser.add_argument("--source", type=Path, default=SOURCE, help="the source tree (default: this checkout)")
@@ -371,7 +374,7 @@ def main(argv: list[str] | None = None) -> int:
     start = time.monotonic()
     try:
         if "lessons" in steps:
-            run_lessons(args.bin.resolve(), out, args.quick)
+            run_lessons(args.bin.resolve(), out, args.quick, args.alone)
         # The figures first (they rewrite the decks); then the lab's screenshots and the decks side by
         # side: both wait on Chromium and Node, time nothing, write to folders of their own, and
         # follow every timed lesson run (on a two-core machine they would slow its timings).

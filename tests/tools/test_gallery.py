@@ -526,6 +526,20 @@ class MainJob(TempDirTest):
         # lesson04 ran after the side-by-side ones.
         self.assertTrue(lines[-1].startswith("lesson04:"), result.stdout)
 
+    def test_alone_runs_every_program_alone_in_order(self):
+        self.fake_lessons("lesson01", "lesson02", "lesson03")
+        out = self.tmp / "out"
+        env = dict(os.environ, FAKE_LESSON_TIMED_CORES="one", FAKE_LESSON_SLEEP="0.2")
+        result = subprocess.run([sys.executable, str(SOURCE / "tools" / "main_job.py"), "--bin",
+                                 str(self.tmp / "bin"), "--out", str(out), "--only", "lessons", "--alone"],
+                                capture_output=True, text=True, env=env)
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertNotIn("side by side", result.stdout)
+        log = json.loads((out / "run_log.json").read_text())
+        self.assertEqual([log[n]["beside"] for n in sorted(log)], [[], [], []])
+        firsts = [l.split(":")[0] for l in result.stdout.splitlines() if l.endswith("first line")]
+        self.assertEqual(firsts, ["lesson01", "lesson02", "lesson03"])
+
     def test_a_failure_side_by_side_starts_nothing_more_and_is_named(self):
         # Later lessons start first (no run log yet): lesson03 and lesson02 start, lesson02 fails at
         # once (lesson03 runs 0.5 s), so lesson01 must never start, nor lesson04 (alone, after them).
