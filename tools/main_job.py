@@ -160,7 +160,8 @@ def run_side_by_side(queue: list[Path], width: int, numbers: dict, total: int, o
     """Runs the programs of `queue`, `width` at a time, each as soon as a place is free, and records
     each run with the programs it overlapped. A program's output goes to a file of its own and is
     printed whole when it ends, so two programs' lines never mix. After a failure no new program
-    starts; the ones running finish, and the first failure (in lesson order) is raised."""
+    starts; the ones running finish, the runs that succeeded are recorded, and the first failure
+    (in lesson order) is raised."""
     import tempfile
 
     lock = threading.Lock()
@@ -214,14 +215,16 @@ def run_side_by_side(queue: list[Path], width: int, numbers: dict, total: int, o
         with lock:
             todo.clear()
         raise
-    if failures:
-        program, code, cmd = min(failures, key=lambda f: f[0].name)
-        raise JobError(failure(program, code, cmd))
+    # Every run that finished is recorded, even when another failed: its outputs were committed, and a
+    # stale record would give their figures the date and load of an earlier run.
     for program, run in sorted(runs.items()):
         start, end = spans[program]
         run["beside"] = sorted(other.name for other, (s, e) in spans.items()
                                if other != program and s < end and start < e)
         record_run(log_path, program.name, run)
+    if failures:
+        program, code, cmd = min(failures, key=lambda f: f[0].name)
+        raise JobError(failure(program, code, cmd))
 
 
 def children_cpu_seconds() -> float:

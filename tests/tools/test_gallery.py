@@ -556,6 +556,11 @@ class MainJob(TempDirTest):
         if (os.cpu_count() or 1) >= 2:
             self.assertFalse((out / "lesson01").exists(), result.stdout)
         self.assertFalse((out / "lesson04").exists(), result.stdout)
+        # lesson03 finished and committed its outputs: its run is recorded (not left to a stale
+        # record), and the failed lesson02's is not.
+        log = json.loads((out / "run_log.json").read_text())
+        self.assertIn("lesson03", log)
+        self.assertNotIn("lesson02", log)
 
     def test_the_longest_recorded_run_starts_first(self):
         log = self.write("run_log.json", json.dumps({
