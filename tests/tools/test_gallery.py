@@ -504,7 +504,7 @@ class MainJob(TempDirTest):
         self.fake_lessons("lesson01", "lesson02", "lesson03", "lesson04")
         out = self.tmp / "out"
         env = dict(os.environ, FAKE_LESSON_TIMED_CORES="one", FAKE_LESSON_ALONE="lesson04",
-                   FAKE_LESSON_SLEEP="0.6")
+                   FAKE_LESSON_SLEEP="1.5")
         result = subprocess.run([sys.executable, str(SOURCE / "tools" / "main_job.py"), "--bin",
                                  str(self.tmp / "bin"), "--out", str(out), "--quick", "--only", "lessons"],
                                 capture_output=True, text=True, env=env)
@@ -514,9 +514,12 @@ class MainJob(TempDirTest):
         self.assertEqual(log["lesson04"]["beside"], [])
         if (os.cpu_count() or 1) >= 2:
             self.assertIn("run side by side, 2 at once", result.stdout)
-            # Three runs of 0.6 s, two at a time: each overlaps another.
+            # Later lessons first (no run log yet): lesson03 and lesson02 start together and run
+            # 1.5 s each, so each overlaps the other whatever the load; lesson01 starts when one of
+            # them ends, and whether it meets the other depends on the machine: not asserted.
+            self.assertIn("lesson02", log["lesson03"]["beside"], log)
+            self.assertIn("lesson03", log["lesson02"]["beside"], log)
             for name in ("lesson01", "lesson02", "lesson03"):
-                self.assertTrue(log[name]["beside"], f"{name} ran alone: {log[name]}")
                 self.assertNotIn(name, log[name]["beside"])
         # Each program's two lines are adjacent: outputs printed whole, never interleaved.
         lines = [l for l in result.stdout.splitlines() if l.endswith(("first line", "last line"))]
@@ -542,11 +545,11 @@ class MainJob(TempDirTest):
 
     def test_a_failure_side_by_side_starts_nothing_more_and_is_named(self):
         # Later lessons start first (no run log yet): lesson03 and lesson02 start, lesson02 fails at
-        # once (lesson03 runs 0.5 s), so lesson01 must never start, nor lesson04 (alone, after them).
+        # once (lesson03 runs 1.5 s), so lesson01 must never start, nor lesson04 (alone, after them).
         self.fake_lessons("lesson01", "lesson02", "lesson03", "lesson04")
         out = self.tmp / "out"
         env = dict(os.environ, FAKE_LESSON_TIMED_CORES="one", FAKE_LESSON_ALONE="lesson04",
-                   FAKE_LESSON_BREAK="exit", FAKE_LESSON_BREAK_ONLY="lesson02", FAKE_LESSON_SLEEP="0.5")
+                   FAKE_LESSON_BREAK="exit", FAKE_LESSON_BREAK_ONLY="lesson02", FAKE_LESSON_SLEEP="1.5")
         result = subprocess.run([sys.executable, str(SOURCE / "tools" / "main_job.py"), "--bin",
                                  str(self.tmp / "bin"), "--out", str(out), "--only", "lessons"],
                                 capture_output=True, text=True, env=env)
