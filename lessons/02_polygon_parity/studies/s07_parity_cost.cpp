@@ -18,7 +18,7 @@ void s07_parity_cost(OutputFolder& out, const Settings& settings) {
   Table cost({"vertices", "ns per parity query", "ns per vertex", "ns per ray-polygon test"});
   Rng rng(settings.seed);
   const int max_vertices = quick ? 256 : 8192;
-  const double min_seconds = quick ? 0.002 : 0.05;
+  const double min_seconds = quick ? 0.002 : timed_loop_seconds;
   for (int n = 8; n <= max_vertices; n *= 2) {
     const Polygon p(place(star(n / 2, 1.0, 0.5), Point3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)));
     std::vector<Vec2> queries(1024);

@@ -95,7 +95,7 @@ void s05_watertight(OutputFolder& out, const Settings& settings, Rng& rng) {
           const Triangle& t = mesh[(k * 7919) % mesh.size()];
           do_not_optimize(method == 0 ? moller_trumbore(ray, t) : intersect(ray, t).has_value());
         },
-        quick ? 0.002 : 0.05);
+        quick ? 0.002 : timed_loop_seconds);
     water.add_row({std::string(method == 0 ? "Möller–Trumbore" : "watertight (exact, tie-broken)"),
                    std::int64_t{ray_count}, cracks, doubles, ns});
   }

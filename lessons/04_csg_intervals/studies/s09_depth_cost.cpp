@@ -58,7 +58,7 @@ void s09_depth_cost(OutputFolder& out, const Settings& settings) {
       const double ns = best_nanoseconds_per_call(
           3,
           [&](std::uint64_t i) { do_not_optimize(intersect(rays[i % rays.size()], tree, options, scratch)); },
-          quick ? 0.002 : 0.05);
+          quick ? 0.002 : timed_loop_seconds);
       const double per_ray = 1.0 / static_cast<double>(rays.size());
       grouped[prune ? 1 : 0].push_back({std::int64_t{tree.depth()}, std::int64_t{n},
                                         std::string(prune ? "on" : "off"),

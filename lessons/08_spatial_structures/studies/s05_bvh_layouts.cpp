@@ -25,7 +25,7 @@ void s05_bvh_layouts(OutputFolder& out, const Settings& settings) {
   Table bvhs({"BVH", "triangles", "build seconds", "bytes per triangle", "nodes per ray",
               "triangle tests per ray", "Mrays per second (1 thread)"});
   for (const AccelKind kind : {AccelKind::bvh_teaching, AccelKind::bvh}) {
-    const Measure m = measure(set, AccelSettings{.kind = kind}, rays, quick ? 0.005 : 0.05);
+    const Measure m = measure(set, AccelSettings{.kind = kind}, rays, quick ? 0.005 : timed_loop_seconds);
     bvhs.add_row({std::string(to_string(kind)), static_cast<std::int64_t>(set.size()), m.build_seconds,
                   m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});
   }

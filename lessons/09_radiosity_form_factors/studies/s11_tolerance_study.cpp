@@ -20,7 +20,7 @@ namespace illum::lesson09 {
 void s11_tolerance_study(OutputFolder& out, const Settings& settings) {
   const std::vector<Patch> patches = mesh_cube_interior(settings.quick ? 4 : settings.cube_n);
   const FormFactorMatrix exact = closed_form_rectangle_matrix(patches);
-  const int repeats = settings.quick ? 1 : 5;
+  const int repeats = settings.quick ? 1 : 3;
   Table table({"method", "tolerance", "patches", "seconds", "max abs(F - F_exact)", "target met",
                "area-rule pairs", "contour pairs"});
   for (int k = 3; k <= 13; ++k) {

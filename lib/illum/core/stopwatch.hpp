@@ -64,10 +64,18 @@ CallTiming time_calls(F&& call, double min_seconds, std::uint64_t calls = 1) {
   }
 }
 
+// How long one timed loop of the lessons' studies runs by default: 20 ms,
+// thousands of calls of the nanoseconds to microseconds the studies time,
+// and the timer's own cost (tens of nanoseconds) lost in it. Another process
+// taking the core for one 4 ms scheduler slice in the middle of a loop adds a
+// fifth, which the best of several loops drops. At 50 ms, the loops were
+// 42.9 s of the 178 s the thirteen lesson programs ran (2026-12-04).
+inline constexpr double timed_loop_seconds = 0.02;
+
 // Nanoseconds per call of `call(i)`, for i = 0, 1, 2, …: the mean of a loop
 // that runs for at least `min_seconds` (time_calls).
 template <class F>
-double nanoseconds_per_call(F&& call, double min_seconds = 0.05) {
+double nanoseconds_per_call(F&& call, double min_seconds = timed_loop_seconds) {
   return time_calls(call, min_seconds).nanoseconds;
 }
 
@@ -77,7 +85,7 @@ double nanoseconds_per_call(F&& call, double min_seconds = 0.05) {
 // Each run after the first starts at the length the one before it measured
 // (at least `min_seconds` of calls), so only the first searches for it.
 template <class F>
-double best_nanoseconds_per_call(int runs, F&& call, double min_seconds = 0.05) {
+double best_nanoseconds_per_call(int runs, F&& call, double min_seconds = timed_loop_seconds) {
   double best = std::numeric_limits<double>::infinity();
   std::uint64_t calls = 1;
   for (int run = 0; run < runs; ++run) {

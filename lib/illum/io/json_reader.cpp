@@ -10,7 +10,16 @@
 #include "illum/core/json_text_check.hpp"
 #include "illum/core/nearest_name.hpp"
 
+#include <nlohmann/json.hpp>
+
 namespace illum {
+
+struct JsonReader::Document {
+  std::string file;
+  nlohmann::json root;
+};
+
+const std::string& JsonReader::file() const { return doc_->file; }
 
 JsonReader::JsonReader(std::shared_ptr<const Document> doc, const nlohmann::json* node, std::string path)
     : doc_(std::move(doc)), node_(node), path_(std::move(path)) {}

@@ -17,7 +17,10 @@
 #include <string_view>
 #include <vector>
 
-#include <nlohmann/json.hpp>
+// Only the declarations: the whole library (about 25,000 lines of templates)
+// is parsed by json_reader.cpp and the few files that use the tree itself,
+// not by every file that reads a scene (a fifth of a lesson program's build).
+#include <nlohmann/json_fwd.hpp>
 
 #include "illum/core/nearest_name.hpp"  // nearest_name, for "did you mean"
 #include "illum/core/vec.hpp"
@@ -45,7 +48,7 @@ class JsonReader {
   static void check_text(std::string_view text, const std::string& file_name);
   static constexpr int max_depth = 64;
 
-  const std::string& file() const { return doc_->file; }
+  const std::string& file() const;
   const std::string& path() const { return path_; }  // "" for the root, then "a.b[2].c"
   const nlohmann::json& json() const { return *node_; }
 
@@ -74,10 +77,7 @@ class JsonReader {
   [[noreturn]] void fail(const std::string& problem) const;
 
  private:
-  struct Document {
-    std::string file;
-    nlohmann::json root;
-  };
+  struct Document;  // the file's name and its parsed tree (json_reader.cpp)
   JsonReader(std::shared_ptr<const Document> doc, const nlohmann::json* node, std::string path);
   std::shared_ptr<const Document> doc_;
   const nlohmann::json* node_;

@@ -13,6 +13,8 @@
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/obj_reader.hpp"
 
+#include <nlohmann/json.hpp>
+
 namespace illum {
 namespace {
 
