@@ -68,8 +68,9 @@ CallTiming time_calls(F&& call, double min_seconds, std::uint64_t calls = 1) {
 // thousands of calls of the nanoseconds to microseconds the studies time,
 // and the timer's own cost (tens of nanoseconds) lost in it. Another process
 // taking the core for one 4 ms scheduler slice in the middle of a loop adds a
-// fifth, which the best of several loops drops. At 50 ms, the loops were
-// 42.9 s of the 178 s the thirteen lesson programs ran (2026-12-04).
+// fifth, which the best of several loops drops. The studies' timed loops,
+// most of them 50 ms long then, were 42.9 s of the 178 s the thirteen lesson
+// programs ran (2026-12-04, summed inside time_calls).
 inline constexpr double timed_loop_seconds = 0.02;
 
 // Nanoseconds per call of `call(i)`, for i = 0, 1, 2, …: the mean of a loop

@@ -47,9 +47,12 @@ struct Expansion {
   }
 };
 
-}  // namespace
+// Shewchuk's bound on the error of the floating-point orient2d, relative to
+// |detleft| + |detright|: (3 + 16ε)ε with ε = 2⁻⁵³.
+constexpr double epsilon = std::numeric_limits<double>::epsilon() / 2;
+constexpr double error_bound = (3.0 + 16.0 * epsilon) * epsilon;
 
-int orient2d_exact_sign(const Vec2& a, const Vec2& b, const Vec2& c) {
+int exact_sign(const Vec2& a, const Vec2& b, const Vec2& c) {
   // Expanded so that every term is a product of two input coordinates
   // (no rounded differences): the c.x·c.y terms cancel.
   // det = ax·by − ax·cy − cx·by − ay·bx + ay·cx + cy·bx
@@ -62,6 +65,34 @@ int orient2d_exact_sign(const Vec2& a, const Vec2& b, const Vec2& c) {
     e.add(product);
   }
   return e.sign();
+}
+
+}  // namespace
+
+double orient2d_robust(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const double left = (a.x - c.x) * (b.y - c.y);
+  const double right = (a.y - c.y) * (b.x - c.x);
+  const double det = left - right;
+  // If the value exceeds the bound on its own error, its sign is right.
+  const double bound = error_bound * (std::abs(left) + std::abs(right));
+  if (det > bound || -det > bound) return det;
+  return static_cast<double>(exact_sign(a, b, c));
+}
+
+int orient2d_sign(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const double det = orient2d_robust(a, b, c);
+  return (det > 0.0) - (det < 0.0);
+}
+
+int orient2d_sign_perturbed(const Vec2& a, const Vec2& b, const Vec2& c) {
+  const int sign = orient2d_sign(a, b, c);
+  if (sign != 0) return sign;
+  // orient2d(a, b, c + (ε, ε²)) = 0 + ε·∂/∂c.x + ε²·∂/∂c.y, with
+  // ∂/∂c.x = −(b.y − a.y) and ∂/∂c.y = b.x − a.x. The sign of a difference
+  // of two doubles is always computed exactly.
+  if (b.y != a.y) return b.y < a.y ? 1 : -1;
+  if (b.x != a.x) return b.x > a.x ? 1 : -1;
+  return 0;
 }
 
 }  // namespace illum

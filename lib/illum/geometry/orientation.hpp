@@ -29,7 +29,7 @@ inline double orient2d_naive(const Vec2& a, const Vec2& b, const Vec2& c) {
 }
 
 // The exact sign of orient2d(a, b, c): +1, 0 or −1.
-inline int orient2d_sign(const Vec2& a, const Vec2& b, const Vec2& c);
+int orient2d_sign(const Vec2& a, const Vec2& b, const Vec2& c);
 
 // The same sign with ties broken by symbolic perturbation ("simulation of
 // simplicity"): when a, b, c are exactly collinear, the answer is the sign
@@ -37,49 +37,11 @@ inline int orient2d_sign(const Vec2& a, const Vec2& b, const Vec2& c);
 // half-open rule of lesson 02 written as one predicate: a point exactly on an
 // edge is decided as a point just right of it (and just above it for a
 // horizontal edge). It returns 0 only when a == b (no line to be on a side of).
-inline int orient2d_sign_perturbed(const Vec2& a, const Vec2& b, const Vec2& c);
+int orient2d_sign_perturbed(const Vec2& a, const Vec2& b, const Vec2& c);
 
 // The floating-point value with its exact sign when that sign is decided by
 // the error bound, else the exact sign as ±1 or 0: for callers that want a
 // magnitude when it is reliable.
-inline double orient2d_robust(const Vec2& a, const Vec2& b, const Vec2& c);
-
-// The sign of the true determinant, computed exactly (the slow path of
-// orient2d_robust, for the rare inputs its error bound cannot decide).
-int orient2d_exact_sign(const Vec2& a, const Vec2& b, const Vec2& c);
-
-// The three above are defined here, inline: every ray–triangle test makes
-// three of them, and a call per test into another file cost a tenth of a
-// BVH traversal's time (lesson 08). Only the exact fallback is out of line.
-
-// Shewchuk's bound on the error of the floating-point orient2d, relative to
-// |detleft| + |detright|: (3 + 16ε)ε with ε = 2⁻⁵³.
-inline constexpr double orient2d_error_bound = (3.0 + 16.0 * 0x1p-53) * 0x1p-53;
-
-inline double orient2d_robust(const Vec2& a, const Vec2& b, const Vec2& c) {
-  const double left = (a.x - c.x) * (b.y - c.y);
-  const double right = (a.y - c.y) * (b.x - c.x);
-  const double det = left - right;
-  // If the value exceeds the bound on its own error, its sign is right.
-  const double bound = orient2d_error_bound * ((left < 0 ? -left : left) + (right < 0 ? -right : right));
-  if (det > bound || -det > bound) return det;
-  return static_cast<double>(orient2d_exact_sign(a, b, c));
-}
-
-inline int orient2d_sign(const Vec2& a, const Vec2& b, const Vec2& c) {
-  const double det = orient2d_robust(a, b, c);
-  return (det > 0.0) - (det < 0.0);
-}
-
-inline int orient2d_sign_perturbed(const Vec2& a, const Vec2& b, const Vec2& c) {
-  const int sign = orient2d_sign(a, b, c);
-  if (sign != 0) return sign;
-  // orient2d(a, b, c + (ε, ε²)) = 0 + ε·∂/∂c.x + ε²·∂/∂c.y, with
-  // ∂/∂c.x = −(b.y − a.y) and ∂/∂c.y = b.x − a.x. The sign of a difference
-  // of two doubles is always computed exactly.
-  if (b.y != a.y) return b.y < a.y ? 1 : -1;
-  if (b.x != a.x) return b.x > a.x ? 1 : -1;
-  return 0;
-}
+double orient2d_robust(const Vec2& a, const Vec2& b, const Vec2& c);
 
 }  // namespace illum

@@ -17,9 +17,9 @@
 #include <string_view>
 #include <vector>
 
-// Only the declarations: the whole library (about 25,000 lines of templates)
-// is parsed by json_reader.cpp and the few files that use the tree itself,
-// not by every file that reads a scene (a fifth of a lesson program's build).
+// Only the declarations: the whole library is parsed by json_reader.cpp and
+// the few files that use the tree itself, not by every file that reads a
+// scene (it was 29,000 of the 171,000 lines lesson 11's first unit parsed).
 #include <nlohmann/json_fwd.hpp>
 
 #include "illum/core/nearest_name.hpp"  // nearest_name, for "did you mean"
