@@ -10,10 +10,7 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "illum/core/error.hpp"
-#include "illum/io/cli_checks.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/io/scene_file.hpp"
@@ -66,13 +63,14 @@ int main(int argc, char** argv) {
   double forward_most = 1e6;
   return run_program(
       argc, argv, info,
-      [&](CLI::App& app) {
-        app.add_option("--pixel", pixel, "Inspect the ray tree of pixel X Y of the Whitted image")
-            ->expected(2);
+      [&](CommandLine& command_line) {
+        command_line.add("--pixel", pixel, "Inspect the ray tree of pixel X Y of the Whitted image")
+            .expected(2);
         // --quick stops the study at 1e4 photons: with it, --forward-rays would be ignored.
-        illum::exclude_quick(app, {app.add_option("--forward-rays", forward_most,
-                                                  "Most photons of the forward-tracing study (default 1e6)")
-                                       ->check(illum::number_range(1e3, 1e8))});
+        command_line.exclude_quick({command_line
+                                        .add("--forward-rays", forward_most,
+                                             "Most photons of the forward-tracing study (default 1e6)")
+                                        .check(illum::number_range(1e3, 1e8))});
       },
       [&](const ProgramOptions& options) {
         using namespace lesson06;

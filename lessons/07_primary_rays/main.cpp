@@ -14,8 +14,6 @@
 #include <string>
 #include <utility>
 
-#include <CLI/CLI.hpp>
-
 #include "illum/core/error.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
@@ -99,12 +97,13 @@ int main(int argc, char** argv) {
   lesson07::Settings settings;
   return run_program(
       argc, argv, info,
-      [&](CLI::App& app) {
-        app.add_option("--spp", settings.spp,
-                       "Ray budget per pixel of the equal-budget images, a square (default 16)");
-        app.add_option("--threshold", settings.threshold, "Adaptive threshold of §2 (default 0.05)");
-        app.add_option("--max-depth", settings.max_depth, "Adaptive maximum depth of §2, 0 to 5 (default 3)");
-        app.add_option("--tolerance", settings.tolerance, "Statistical tolerance of §3 (default 0.02)");
+      [&](CommandLine& command_line) {
+        command_line.add("--spp", settings.spp,
+                         "Ray budget per pixel of the equal-budget images, a square (default 16)");
+        command_line.add("--threshold", settings.threshold, "Adaptive threshold of §2 (default 0.05)");
+        command_line.add("--max-depth", settings.max_depth,
+                         "Adaptive maximum depth of §2, 0 to 5 (default 3)");
+        command_line.add("--tolerance", settings.tolerance, "Statistical tolerance of §3 (default 0.02)");
       },
       [&](const ProgramOptions& options) {
         using namespace lesson07;

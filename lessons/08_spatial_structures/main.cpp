@@ -12,8 +12,6 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "flakes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
@@ -63,12 +61,13 @@ int main(int argc, char** argv) {
   for (const AccelKind kind : all_accel_kinds) structures.emplace_back(to_string(kind));
   return run_program(
       argc, argv, info,
-      [&](CLI::App& app) {
-        app.add_option("--accel", structure_name,
-                       "the structure the sphereflake is rendered through: bvh (production, the default), "
-                       "bvh_teaching (the exercise's traversal), grid, octree or brute_force")
-            ->check(CLI::IsMember(structures))
-            ->capture_default_str();
+      [&](CommandLine& command_line) {
+        command_line
+            .add("--accel", structure_name,
+                 "the structure the sphereflake is rendered through: bvh (production, the default), "
+                 "bvh_teaching (the exercise's traversal), grid, octree or brute_force")
+            .check(one_of(structures))
+            .show_default();
       },
       [&](const ProgramOptions& options) {
         using namespace lesson08;

@@ -12,10 +12,7 @@
 #include <iostream>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "illum/core/image.hpp"
-#include "illum/io/cli_checks.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/radiosity/form_factor_scene.hpp"
@@ -63,21 +60,23 @@ int main(int argc, char** argv) {
   lesson09::Settings settings;
   return run_program(
       argc, argv, info,
-      [&](CLI::App& app) {
-        app.add_flag("--cube-only", settings.cube_only, "only the cube figure (timing of the matrix)");
-        CLI::Option* figure = app.add_flag("--figure", settings.figure,
-                                           "the cube figure on the 864-, 2,400- and 5,400-patch cubes");
+      [&](CommandLine& command_line) {
+        command_line.add_flag("--cube-only", settings.cube_only,
+                              "only the cube figure (timing of the matrix)");
+        const Option figure = command_line.add_flag(
+            "--figure", settings.figure, "the cube figure on the 864-, 2,400- and 5,400-patch cubes");
         // --quick and --figure fix the cube's size: with either, --cube-n would be ignored.
-        CLI::Option* cube_n =
-            app.add_option("--cube-n", settings.cube_n,
-                           "patches per cube edge (at most 24: 3,456 patches, minutes per variant)")
-                ->check(CLI::Range(1, 24))
-                ->capture_default_str()
-                ->excludes(figure);
-        exclude_quick(app, {cube_n});
-        app.add_option("--tolerance", settings.tolerance, "absolute tolerance of the cube image's matrix")
-            ->check(number_range(1e-15, 1.0))
-            ->capture_default_str();
+        const Option cube_n =
+            command_line
+                .add("--cube-n", settings.cube_n,
+                     "patches per cube edge (at most 24: 3,456 patches, minutes per variant)")
+                .check(range(1, 24))
+                .show_default()
+                .excludes(figure);
+        command_line.exclude_quick({cube_n});
+        command_line.add("--tolerance", settings.tolerance, "absolute tolerance of the cube image's matrix")
+            .check(number_range(1e-15, 1.0))
+            .show_default();
       },
       [&](const ProgramOptions& options) {
         using namespace lesson09;

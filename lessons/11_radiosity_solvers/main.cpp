@@ -9,15 +9,11 @@
 // this order").
 #include <algorithm>
 #include <iostream>
-#include <map>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "illum/core/error.hpp"
 #include "illum/core/memory_budget.hpp"
-#include "illum/io/cli_checks.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
@@ -101,41 +97,59 @@ void check_rows_study_memory(const Settings& settings) {
   }
 }
 
-// The lesson's options, validated by CLI11 (a bad value: a clear error, exit 2, nothing written).
-void add_options(CLI::App& app, Settings& settings, std::vector<Solver>& solvers) {
-  const CLI::Validator even = even_whole_number(), finite = finite_number();
-  std::map<std::string, Solver> solver_names;
-  for (const Solver solver : all_solvers) solver_names[to_string(solver)] = solver;
-  app.add_option("--scene", settings.scene, "A radiosity scene: a JSON file, or a shipped scene's name")
-      ->capture_default_str();
-  app.add_option("--solvers", solvers,
-                 "the study's solvers (jacobi, gauss-seidel, sor-1.2, southwell, progressive)")
-      ->transform(CLI::CheckedTransformer(solver_names));
-  CLI::Option* patches =
-      app.add_option("--patches", settings.figure_patches, "patches of the figure's box (at least)")
-          ->check(CLI::Range(4, 100000))
-          ->capture_default_str();
-  app.add_option("--patch-edge", settings.figure_edge,
-                 "the figure's largest patch edge in mm (instead of --patches)")
-      ->check(finite & CLI::Range(1.0, 10000.0))
-      ->excludes(patches);
-  CLI::Option* resolution = app.add_option("--hemicube-resolution", settings.figure_resolution,
-                                           "hemicube resolution of the figure (even, 8 to 2048)")
-                                ->check(even & CLI::Range(8, 2048))
-                                ->capture_default_str();
+// The lesson's options, each value checked before anything runs (a bad value: a clear error, exit
+// 2, nothing written). `solvers` gets the names given to --solvers; `unshot` tells a given --unshot
+// from the default.
+void add_options(CommandLine& command_line, Settings& settings, std::vector<std::string>& solvers,
+                 Option& unshot) {
+  const ValueCheck even = even_whole_number(), finite = finite_number();
+  std::vector<std::string> solver_names;
+  for (const Solver solver : all_solvers) solver_names.emplace_back(to_string(solver));
+  command_line.add("--scene", settings.scene, "A radiosity scene: a JSON file, or a shipped scene's name")
+      .show_default();
+  command_line
+      .add("--solvers", solvers,
+           "the study's solvers (jacobi, gauss-seidel, sor-1.2, southwell, progressive)")
+      .check(one_of(solver_names));
+  const Option patches =
+      command_line.add("--patches", settings.figure_patches, "patches of the figure's box (at least)")
+          .check(range(4, 100000))
+          .show_default();
+  command_line
+      .add("--patch-edge", settings.figure_edge,
+           "the figure's largest patch edge in mm (instead of --patches)")
+      .check(finite & range(1.0, 10000.0))
+      .excludes(patches);
+  const Option resolution = command_line
+                                .add("--hemicube-resolution", settings.figure_resolution,
+                                     "hemicube resolution of the figure (even, 8 to 2048)")
+                                .check(even & range(8, 2048))
+                                .show_default();
   // --quick meshes 300 patches at resolution 32: with it, these two would be ignored.
-  exclude_quick(app, {patches, resolution});
-  app.add_option("--unshot", settings.unshot_threshold,
-                 "stop the figure when the unshot power is below this fraction of the emitted "
-                 "(at least 0.01 with --quick)")
-      ->check(number_range(1e-9, 0.5))
-      ->capture_default_str();
-  app.add_option("--row-memory", settings.row_memory_mb,
-                 "MiB of hemicube rows kept for patches that shoot again (0: only the rows in flight)")
-      ->check(finite & CLI::Range(0.0, 1048576.0) & mebibytes_within_budget())
-      ->capture_default_str();
-  app.add_flag("--figure", settings.figure_only,
-               "only section 10: the figure, the rows kept and the scaling study up to 8,000 patches");
+  command_line.exclude_quick({patches, resolution});
+  unshot = command_line
+               .add("--unshot", settings.unshot_threshold,
+                    "stop the figure when the unshot power is below this fraction of the emitted "
+                    "(at least 0.01 with --quick)")
+               .check(number_range(1e-9, 0.5))
+               .show_default();
+  command_line
+      .add("--row-memory", settings.row_memory_mb,
+           "MiB of hemicube rows kept for patches that shoot again (0: only the rows in flight)")
+      .check(finite & range(0.0, 1048576.0) & mebibytes_within_budget())
+      .show_default();
+  command_line.add_flag(
+      "--figure", settings.figure_only,
+      "only section 10: the figure, the rows kept and the scaling study up to 8,000 patches");
+}
+
+// The solvers --solvers named, in its order (one_of let only their names through).
+std::vector<Solver> solvers_named(const std::vector<std::string>& names) {
+  std::vector<Solver> solvers;
+  for (const std::string& name : names)
+    for (const Solver solver : all_solvers)
+      if (name == to_string(solver)) solvers.push_back(solver);
+  return solvers;
 }
 
 }  // namespace
@@ -150,22 +164,19 @@ int main(int argc, char** argv) {
       "progressive refinement on the Cornell box at several reflectance scales; the box after 1, "
       "10, 100 shots; a ~2,000-patch box by progressive refinement with hemicube rows on demand."};
   Settings settings;
-  std::vector<Solver> solvers;
-  const CLI::Option* unshot = nullptr;  // to tell a given --unshot from the default
+  std::vector<std::string> solvers;
+  Option unshot;
   return run_program(
       argc, argv, info,
-      [&](CLI::App& app) {
-        add_options(app, settings, solvers);
-        unshot = app.get_option("--unshot");
-      },
+      [&](CommandLine& command_line) { add_options(command_line, settings, solvers, unshot); },
       [&](const ProgramOptions& options) {
         settings.quick = options.quick;
-        if (settings.quick && unshot->count() > 0 && settings.unshot_threshold < 0.01)
+        if (settings.quick && unshot.given() && settings.unshot_threshold < 0.01)
           throw InputError("command line", "--unshot", bound_text(settings.unshot_threshold),
                            "--quick stops the figure at 0.01 of the emitted power at the earliest; give "
                            "--unshot 0.01 or more, or leave out --quick");
         if (settings.quick) settings.unshot_threshold = std::max(settings.unshot_threshold, 0.01);
-        if (!solvers.empty()) settings.solvers = solvers;
+        if (!solvers.empty()) settings.solvers = solvers_named(solvers);
         // Validate before writing: the scene as the study meshes it.
         check_usable(load_radiosity_scene(settings.scene, settings.quick ? 220.0 : 75.0), settings.scene);
         if (settings.figure_edge > 0)

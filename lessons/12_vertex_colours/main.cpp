@@ -17,11 +17,8 @@
 #include <utility>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "element_render.hpp"
 #include "illum/core/error.hpp"
-#include "illum/io/cli_checks.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/io/scene_file.hpp"
@@ -103,13 +100,14 @@ void vertex_colours(OutputFolder& out, const Settings& settings) {
 }
 
 // The options, each checked before anything is written.
-void add_options(CLI::App& app, Settings& settings) {
-  app.add_option("--scene", settings.scene, "A radiosity scene: a JSON file, or a shipped scene's name")
-      ->capture_default_str();
-  app.add_option("--threshold", settings.threshold,
-                 "subdivision threshold: split where neighbours differ by more than this fraction of the "
-                 "brightest element (> 0)")
-      ->check(CLI::Validator(
+void add_options(CommandLine& command_line, Settings& settings) {
+  command_line.add("--scene", settings.scene, "A radiosity scene: a JSON file, or a shipped scene's name")
+      .show_default();
+  command_line
+      .add("--threshold", settings.threshold,
+           "subdivision threshold: split where neighbours differ by more than this fraction of the "
+           "brightest element (> 0)")
+      .check(ValueCheck(
           [](std::string& text) {
             double value = NAN;
             try {
@@ -124,25 +122,27 @@ void add_options(CLI::App& app, Settings& settings) {
                              "element)";
           },
           "THRESHOLD"))
-      ->capture_default_str();
-  app.add_option("--ply", settings.ply,
-                 "also write the figure's binary PLY to this file (its folder must exist)")
-      ->check(file_in_existing_folder("--ply"));
-  CLI::Option* elements =
-      app.add_option("--elements", settings.figure_elements, "the figure's element count (about)")
-          ->check(CLI::Range(100, 200000))
-          ->capture_default_str();
-  CLI::Option* edge =
-      app.add_option("--patch-edge", settings.figure_patch_edge, "the figure's largest patch edge (mm)")
-          ->check(number_range(20.0, 1000.0))
-          ->capture_default_str();
-  app.add_flag("--figure", settings.figure_only, "only the figure (section 7) and its export (section 8)");
-  CLI::Option* unshot = app.add_option("--unshot", settings.unshot,
-                                       "stop when the unshot power is below this fraction of the emitted")
-                            ->check(number_range(1e-6, 0.5))
-                            ->capture_default_str();
+      .show_default();
+  command_line
+      .add("--ply", settings.ply, "also write the figure's binary PLY to this file (its folder must exist)")
+      .check(file_in_existing_folder("--ply"));
+  const Option elements =
+      command_line.add("--elements", settings.figure_elements, "the figure's element count (about)")
+          .check(range(100, 200000))
+          .show_default();
+  const Option edge =
+      command_line.add("--patch-edge", settings.figure_patch_edge, "the figure's largest patch edge (mm)")
+          .check(number_range(20.0, 1000.0))
+          .show_default();
+  command_line.add_flag("--figure", settings.figure_only,
+                        "only the figure (section 7) and its export (section 8)");
+  const Option unshot = command_line
+                            .add("--unshot", settings.unshot,
+                                 "stop when the unshot power is below this fraction of the emitted")
+                            .check(number_range(1e-6, 0.5))
+                            .show_default();
   // --quick fixes all three (400 elements, 250 mm patches, 1e-2 unshot): with it, they would be ignored.
-  exclude_quick(app, {elements, edge, unshot});
+  command_line.exclude_quick({elements, edge, unshot});
 }
 
 }  // namespace
@@ -159,7 +159,7 @@ int main(int argc, char** argv) {
       TimedCores::one};  // one thread, unless --threads 2 or more (the main job passes none)
   Settings settings;
   return run_program(
-      argc, argv, info, [&](CLI::App& app) { add_options(app, settings); },
+      argc, argv, info, [&](CommandLine& command_line) { add_options(command_line, settings); },
       [&](const ProgramOptions& options) {
         settings.quick = options.quick;
         settings.threads = options.threads;

@@ -15,11 +15,8 @@
 #include <variant>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
 #include "illum/core/error.hpp"
 #include "illum/core/stopwatch.hpp"
-#include "illum/io/cli_checks.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/io/scene_file.hpp"
@@ -101,20 +98,21 @@ int main(int argc, char** argv) {
       "light rays, and studies each pass's cost and error against a path-traced "
       "reference."};
   illum::lesson13::Settings s;
-  const CLI::Option *edge = nullptr, *photons = nullptr, *samples = nullptr;  // given, or the defaults?
+  illum::Option edge, photons, samples;  // given, or the defaults?
   return illum::run_program(
       argc, argv, info,
-      [&](CLI::App& app) {
-        app.add_option("--scene", s.scene, "Scene file or shipped name (default cornell_spheres)");
-        edge = app.add_option("--edge", s.edge, "Largest patch edge of pass one, scene units (default 50)")
-                   ->check(illum::number_range(1e-6, 1e9));
-        app.add_option("--depth", s.depth, "Depth limit of pass two's specular rays (default 5)")
-            ->check(CLI::Range(0, 32));
-        photons = app.add_option("--photons", s.photons, "Light rays of the caustic pass (default 1e6)")
-                      ->check(illum::number_range(1e3, 1e8));
-        samples = app.add_option("--reference-samples", s.reference_samples,
-                                 "Paths per pixel of the reference (default 1024)")
-                      ->check(CLI::Range(2, 65536));
+      [&](illum::CommandLine& command_line) {
+        command_line.add("--scene", s.scene, "Scene file or shipped name (default cornell_spheres)");
+        edge = command_line.add("--edge", s.edge, "Largest patch edge of pass one, scene units (default 50)")
+                   .check(illum::number_range(1e-6, 1e9));
+        command_line.add("--depth", s.depth, "Depth limit of pass two's specular rays (default 5)")
+            .check(illum::range(0, 32));
+        photons = command_line.add("--photons", s.photons, "Light rays of the caustic pass (default 1e6)")
+                      .check(illum::number_range(1e3, 1e8));
+        samples = command_line
+                      .add("--reference-samples", s.reference_samples,
+                           "Paths per pixel of the reference (default 1024)")
+                      .check(illum::range(2, 65536));
       },
       [&](const illum::ProgramOptions& options) {
         using namespace illum;
@@ -127,10 +125,10 @@ int main(int argc, char** argv) {
                 "command line", option, bound_text(value),
                 std::string("--quick allows at most ") + bound + "; leave out --quick or give less");
           };
-          if (photons->count() > 0 && s.photons > 1e5) beyond("--photons", s.photons, "1e+05 light rays");
-          if (samples->count() > 0 && s.reference_samples > 32)
+          if (photons.given() && s.photons > 1e5) beyond("--photons", s.photons, "1e+05 light rays");
+          if (samples.given() && s.reference_samples > 32)
             beyond("--reference-samples", s.reference_samples, "32 paths per pixel");
-          if (edge->count() > 0 && s.edge < 100.0)
+          if (edge.given() && s.edge < 100.0)
             throw InputError(
                 "command line", "--edge", bound_text(s.edge),
                 "--quick meshes with patches of at least 100; leave out --quick or give 100 or more");

@@ -7,8 +7,6 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include <CLI/CLI.hpp>
-
 #include "illum/core/atomic_file.hpp"
 #include "illum/core/charconv.hpp"
 #include "illum/core/error.hpp"
@@ -71,8 +69,8 @@ std::string fixed(double value, int decimals) {
   return buffer;
 }
 
-CLI::Validator finite_number() {
-  return CLI::Validator(
+ValueCheck finite_number() {
+  return ValueCheck(
       [](std::string& s) {
         double value = 0;
         const auto [end, error] = from_chars_double(s.data(), s.data() + s.size(), value);
@@ -83,8 +81,8 @@ CLI::Validator finite_number() {
       "FINITE");
 }
 
-CLI::Validator even_whole_number() {
-  return CLI::Validator(
+ValueCheck even_whole_number() {
+  return ValueCheck(
       [](std::string& s) {
         int value = 0;
         const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), value);
@@ -94,8 +92,8 @@ CLI::Validator even_whole_number() {
       "EVEN");
 }
 
-CLI::Validator mebibytes_within_budget() {
-  return CLI::Validator(
+ValueCheck mebibytes_within_budget() {
+  return ValueCheck(
       [](std::string& s) {
         const double mib = std::strtod(s.c_str(), nullptr);  // not a finite number: finite_number says so
         return !std::isfinite(mib) || mib * 1024 * 1024 <= memory_budget_bytes()
@@ -105,8 +103,8 @@ CLI::Validator mebibytes_within_budget() {
       "MEMORY");
 }
 
-CLI::Validator file_in_existing_folder(const std::string& option) {
-  return CLI::Validator(
+ValueCheck file_in_existing_folder(const std::string& option) {
+  return ValueCheck(
       [option](std::string& path) {
         const std::filesystem::path parent = std::filesystem::path(path).parent_path();
         if (std::filesystem::path(path).filename().empty()) return std::string("names a folder, not a file");

@@ -25,13 +25,9 @@
 #include "illum/core/stopwatch.hpp"
 #include "illum/core/threads.hpp"
 #include "illum/io/output_folder.hpp"
-#include "illum/io/program.hpp"  // report_progress
+#include "illum/io/program.hpp"  // report_progress, ValueCheck
 #include "illum/io/table.hpp"
 #include "illum/radiosity/radiosity_scene.hpp"
-
-namespace CLI {
-class Validator;  // <CLI/CLI.hpp>, included where options are added
-}
 
 namespace illum {
 
@@ -94,17 +90,17 @@ std::string fixed(double value, int decimals);
 
 // --- validators ---------------------------------------------------------------------
 
-// A finite number (CLI::Range lets NaN through: every comparison with it is false).
-CLI::Validator finite_number();
+// A finite number (range(double, double) lets NaN through: every comparison with it is false).
+ValueCheck finite_number();
 
-// A whole even number (checked on the text: CLI11 runs every validator before converting).
-CLI::Validator even_whole_number();
+// A whole even number (checked on the text: every check runs before the value is converted).
+ValueCheck even_whole_number();
 
 // A number of MiB within this machine's memory budget (core/memory_budget.hpp).
-CLI::Validator mebibytes_within_budget();
+ValueCheck mebibytes_within_budget();
 
 // A path naming a file (not a folder) whose folder exists.
-CLI::Validator file_in_existing_folder(const std::string& option);
+ValueCheck file_in_existing_folder(const std::string& option);
 
 // Refuses (illum::InputError naming the file) a radiosity scene a lesson
 // cannot draw or solve: no camera, or no surface that emits light.

@@ -1,6 +1,8 @@
 #include "illum/io/program.hpp"
 
 #include <charconv>
+#include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <new>
 #include <string_view>
@@ -8,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "illum/core/atomic_file.hpp"
+#include "illum/core/charconv.hpp"
 #include "illum/core/error.hpp"
 #include "illum/core/platform.hpp"
 #include "illum/core/threads.hpp"
@@ -15,7 +18,7 @@
 namespace illum {
 
 int run_program(int argc, char** argv, const ProgramInfo& info,
-                const std::function<void(CLI::App&)>& add_options,
+                const std::function<void(CommandLine&)>& add_options,
                 const std::function<void(const ProgramOptions&)>& body) {
   CLI::App app(info.title + "\n\n" + info.description, info.id);
   ProgramOptions options;
@@ -49,7 +52,10 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
   app.add_flag("--timed-cores", print_timed_cores,
                "Print how many cores this program's timings use (one or all) and exit")
       ->disable_flag_override();
-  if (add_options) add_options(app);
+  if (add_options) {
+    CommandLine command_line(app);
+    add_options(command_line);
+  }
   if (const std::string refused = refuse_switch_values(argc, argv, app); !refused.empty()) {
     std::cerr << info.id << ": error: " << refused << "\n";
     return 2;
@@ -122,6 +128,105 @@ void report_progress(const std::string& id, const std::string& what, int done, i
   static const bool terminal = stderr_is_terminal();
   std::cerr << (terminal ? "\r" : "") << id << ": " << what << " " << done << "/" << total
             << (terminal && done < total ? "" : "\n") << std::flush;
+}
+
+// --- a program's own options -------------------------------------------------------
+
+ValueCheck::ValueCheck(std::function<std::string(std::string&)> test, const std::string& name)
+    : validator_(std::make_shared<const CLI::Validator>(std::move(test), name)) {}
+
+ValueCheck::ValueCheck(std::shared_ptr<const CLI::Validator> validator) : validator_(std::move(validator)) {}
+
+ValueCheck operator&(const ValueCheck& first, const ValueCheck& second) {
+  return ValueCheck(std::make_shared<const CLI::Validator>(first.validator() & second.validator()));
+}
+
+ValueCheck range(int lo, int hi) {
+  return ValueCheck(std::make_shared<const CLI::Validator>(CLI::Range(lo, hi)));
+}
+
+ValueCheck range(double lo, double hi) {
+  return ValueCheck(std::make_shared<const CLI::Validator>(CLI::Range(lo, hi)));
+}
+
+ValueCheck one_of(const std::vector<std::string>& names) {
+  return ValueCheck(std::make_shared<const CLI::Validator>(CLI::IsMember(names)));
+}
+
+std::string bound_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+ValueCheck number_range(double lo, double hi) {
+  return ValueCheck(
+      [lo, hi](std::string& s) -> std::string {
+        double value = 0;
+        const auto [end, error] = from_chars_double(s.data(), s.data() + s.size(), value);
+        if (s.empty() || error != std::errc() || end != s.data() + s.size() || !std::isfinite(value))
+          return "'" + s + "' is not a finite number";
+        if (!(value >= lo && value <= hi))
+          return "Value " + s + " not in range " + bound_text(lo) + " to " + bound_text(hi);
+        return "";
+      },
+      "NUMBER in [" + bound_text(lo) + ", " + bound_text(hi) + "]");
+}
+
+Option& Option::check(const ValueCheck& check) {
+  option_->check(check.validator());
+  return *this;
+}
+
+Option& Option::expected(int count) {
+  option_->expected(count);
+  return *this;
+}
+
+Option& Option::show_default() {
+  option_->capture_default_str();
+  return *this;
+}
+
+Option& Option::excludes(const Option& other) {
+  option_->excludes(other.option_);
+  return *this;
+}
+
+bool Option::given() const { return option_ != nullptr && option_->count() > 0; }
+
+Option CommandLine::add(const std::string& name, int& value, const std::string& help) {
+  return Option(app_->add_option(name, value, help));
+}
+
+Option CommandLine::add(const std::string& name, double& value, const std::string& help) {
+  return Option(app_->add_option(name, value, help));
+}
+
+Option CommandLine::add(const std::string& name, std::string& value, const std::string& help) {
+  return Option(app_->add_option(name, value, help));
+}
+
+Option CommandLine::add(const std::string& name, std::filesystem::path& value, const std::string& help) {
+  return Option(app_->add_option(name, value, help));
+}
+
+Option CommandLine::add(const std::string& name, std::vector<int>& values, const std::string& help) {
+  return Option(app_->add_option(name, values, help));
+}
+
+Option CommandLine::add(const std::string& name, std::vector<std::string>& values, const std::string& help) {
+  return Option(app_->add_option(name, values, help));
+}
+
+Option CommandLine::add_flag(const std::string& name, bool& value, const std::string& help) {
+  return Option(app_->add_flag(name, value, help));
+}
+
+void CommandLine::exclude_quick(std::initializer_list<Option> options) {
+  CLI::Option* quick = app_->get_option_no_throw("--quick");
+  if (!quick) return;
+  for (const Option& o : options) o.option_->excludes(quick);
 }
 
 }  // namespace illum

@@ -6,14 +6,29 @@
 //     illum::ProgramInfo info{"lesson01", "Ray and sphere", "Renders ... and runs the study."};
 //     return illum::run_program(argc, argv, info, {}, [](const illum::ProgramOptions& o) { ... });
 //   }
+//
+// A program's own options go through CommandLine, Option and ValueCheck:
+//
+//   [&](illum::CommandLine& command_line) {
+//     command_line.add("--cube-n", settings.cube_n, "patches per cube edge").check(illum::range(1, 24));
+//   }
+//
+// They wrap CLI11, and program.cpp is the one library file that includes <CLI/CLI.hpp>: CLI11
+// 2.1.2 constructs its validator objects (namespace-scope constants) in every file that
+// includes it, which cost seconds of compile per file (README, "Quick start").
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <initializer_list>
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace CLI {
 class App;
-}
+class Option;
+class Validator;
+}  // namespace CLI
 
 namespace illum {
 
@@ -46,8 +61,9 @@ constexpr int max_threads = 256;
 // `body` inside a WriteTransaction on --out. An exception from `body` is printed as
 // "<id>: error: <what>", every file the body wrote is removed (the output
 // folder is left as it was), and the exit code is 1.
+class CommandLine;
 int run_program(int argc, char** argv, const ProgramInfo& info,
-                const std::function<void(CLI::App&)>& add_options,
+                const std::function<void(CommandLine&)>& add_options,
                 const std::function<void(const ProgramOptions&)>& body);
 
 class WriteTransaction;
@@ -65,5 +81,82 @@ std::string refuse_switch_values(int argc, char** argv, const CLI::App& app);
 // Progress of long work on stderr ("lesson01: study 3/12"), overwritten in place
 // when stderr is a terminal, one line per step otherwise.
 void report_progress(const std::string& id, const std::string& what, int done, int total);
+
+// --- a program's own options -------------------------------------------------------
+
+// A test of one option's value, made on its text before the value is converted (CLI11's
+// validators): the test returns "" for a good text, else what is wrong with it; CLI11 puts the
+// option's name in front.
+class ValueCheck {
+ public:
+  // `name` is what --help shows for the value ("FINITE", "EVEN").
+  ValueCheck(std::function<std::string(std::string&)> test, const std::string& name);
+  explicit ValueCheck(std::shared_ptr<const CLI::Validator> validator);
+  const CLI::Validator& validator() const { return *validator_; }
+
+ private:
+  std::shared_ptr<const CLI::Validator> validator_;  // never null
+};
+
+// Both checks: the first failure's message.
+ValueCheck operator&(const ValueCheck& first, const ValueCheck& second);
+
+// A whole number in [lo, hi] (CLI11's Range: "Value 25 not in range 1 to 24").
+ValueCheck range(int lo, int hi);
+
+// A number in [lo, hi] (CLI11's Range; it lets NaN through: every comparison with it is false).
+ValueCheck range(double lo, double hi);
+
+// A finite number in [lo, hi]. Unlike range(double, double) it refuses NaN, infinities and
+// text, and prints bounds as written (%g: "Value 0 not in range 1e-09 to 0.5", where CLI11's
+// std::to_string would print 1e-9 as "0.000000").
+ValueCheck number_range(double lo, double hi);
+
+// One of `names` ("cube not in {bvh,grid}").
+ValueCheck one_of(const std::vector<std::string>& names);
+
+// "1e-09", "0.5", "100000": a bound as a message shows it.
+std::string bound_text(double value);
+
+// One option a program added (CommandLine::add). A handle: copies name the same option.
+class Option {
+ public:
+  Option() = default;  // names no option: given() is false
+
+  Option& check(const ValueCheck& check);
+  Option& expected(int count);  // the values it takes (--pixel X Y: 2)
+  Option& show_default();       // --help shows the variable's value before parsing as the default
+  Option& excludes(const Option& other);
+
+  // Whether the command line gave it (once parsed: inside run_program's body).
+  bool given() const;
+
+ private:
+  friend class CommandLine;
+  explicit Option(CLI::Option* option) : option_(option) {}
+  CLI::Option* option_ = nullptr;
+};
+
+// The command line of one program, while run_program's `add_options` adds to it. Each option
+// is read into the variable given, which must outlive the parse (run_program's body).
+class CommandLine {
+ public:
+  explicit CommandLine(CLI::App& app) : app_(&app) {}
+
+  Option add(const std::string& name, int& value, const std::string& help);
+  Option add(const std::string& name, double& value, const std::string& help);
+  Option add(const std::string& name, std::string& value, const std::string& help);
+  Option add(const std::string& name, std::filesystem::path& value, const std::string& help);
+  Option add(const std::string& name, std::vector<int>& values, const std::string& help);
+  Option add(const std::string& name, std::vector<std::string>& values, const std::string& help);
+  Option add_flag(const std::string& name, bool& value, const std::string& help);
+
+  // Makes each of `options` exclude --quick, whose fixed small sizes would otherwise
+  // silently replace theirs ("--patches excludes --quick").
+  void exclude_quick(std::initializer_list<Option> options);
+
+ private:
+  CLI::App* app_;
+};
 
 }  // namespace illum
