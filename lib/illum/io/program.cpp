@@ -173,23 +173,31 @@ ValueCheck number_range(double lo, double hi) {
       "NUMBER in [" + bound_text(lo) + ", " + bound_text(hi) + "]");
 }
 
+// The CLI11 option behind `option`; an Option() that names none is a programming error.
+CLI::Option& Option::cli(const Option& option, const char* what) {
+  require(option.option_ != nullptr, what);
+  return *option.option_;
+}
+
 Option& Option::check(const ValueCheck& check) {
-  option_->check(check.validator());
+  cli(*this, "Option::check: the Option names no option (add it with CommandLine::add first)")
+      .check(check.validator());
   return *this;
 }
 
 Option& Option::expected(int count) {
-  option_->expected(count);
+  cli(*this, "Option::expected: the Option names no option").expected(count);
   return *this;
 }
 
 Option& Option::show_default() {
-  option_->capture_default_str();
+  cli(*this, "Option::show_default: the Option names no option").capture_default_str();
   return *this;
 }
 
 Option& Option::excludes(const Option& other) {
-  option_->excludes(other.option_);
+  cli(*this, "Option::excludes: the Option names no option")
+      .excludes(&cli(other, "Option::excludes: the other Option names no option"));
   return *this;
 }
 
@@ -224,9 +232,10 @@ Option CommandLine::add_flag(const std::string& name, bool& value, const std::st
 }
 
 void CommandLine::exclude_quick(std::initializer_list<Option> options) {
+  for (const Option& o : options) Option::cli(o, "CommandLine::exclude_quick: an Option names no option");
   CLI::Option* quick = app_->get_option_no_throw("--quick");
   if (!quick) return;
-  for (const Option& o : options) o.option_->excludes(quick);
+  for (const Option& o : options) Option::cli(o, "").excludes(quick);
 }
 
 }  // namespace illum

@@ -121,7 +121,7 @@ std::string bound_text(double value);
 // One option a program added (CommandLine::add). A handle: copies name the same option.
 class Option {
  public:
-  Option() = default;  // names no option: given() is false
+  Option() = default;  // names no option: given() is false, the others throw std::invalid_argument
 
   Option& check(const ValueCheck& check);
   Option& expected(int count);  // the values it takes (--pixel X Y: 2)
@@ -134,6 +134,7 @@ class Option {
  private:
   friend class CommandLine;
   explicit Option(CLI::Option* option) : option_(option) {}
+  static CLI::Option& cli(const Option& option, const char* what);
   CLI::Option* option_ = nullptr;
 };
 
