@@ -90,7 +90,9 @@ TEST_CASE("range: whole numbers by CLI11's message; the double range lets NaN th
   }
   {
     const illum::ValueCheck finite(
-        [](std::string& s) { return s == "nan" ? std::string("'nan' is not a finite number") : std::string(); },
+        [](std::string& s) {
+          return s == "nan" ? std::string("'nan' is not a finite number") : std::string();
+        },
         "FINITE");
     const illum::ValueCheck even([](std::string& s) { return s == "9" ? std::string("odd") : std::string(); },
                                  "EVEN");
@@ -144,7 +146,8 @@ TEST_CASE("one_of names the list; expected(2) takes two values; a list of names 
 }
 
 TEST_CASE("excludes and exclude_quick refuse the pair; given() tells a value given from the default") {
-  const auto make = [](CLI::App& app, bool& quick, int& patches, double& edge, illum::Option& patches_option) {
+  const auto make = [](CLI::App& app, bool& quick, int& patches, double& edge,
+                       illum::Option& patches_option) {
     app.add_flag("--quick", quick, "");
     illum::CommandLine command_line(app);
     patches_option = command_line.add("--patches", patches, "");
