@@ -227,7 +227,13 @@ async function screenshots() {
   const shot = async (page, file, height) => {
     await page.setViewport({ width: 1200, height });
     await page.evaluate(() => window.scrollTo(0, 0));
-    await new Promise(r => setTimeout(r, 400));  // the 3D views redraw at the new size
+    // The 3D views redraw at the new size: the ResizeObserver fires in the next frame's layout,
+    // its draw() asks for the frame after (lab_util.js), and the one after that is composited.
+    await page.evaluate(() => new Promise(done => {
+      let frames = 0;
+      const next = () => (++frames >= 3 ? done() : requestAnimationFrame(next));
+      requestAnimationFrame(next);
+    }));
     await page.screenshot({ path: path.join(output, file) });
   };
   const page = await open('tree', { width: 1200, height: 1000 });
