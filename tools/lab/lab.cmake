@@ -18,6 +18,10 @@ if(NOT ILLUM_HTTPLIB_FOUND)
   string(CONCAT ILLUM_LAB_MISSING "CMake did not find cpp-httplib. Install it (tools/install-deps, or apt-get "
                 "install libcpp-httplib-dev and pkgconf), then configure and build again (cmake --preset "
                 "release && cmake --build --preset release --target illum_cli)")
+elseif(CMAKE_CXX_COMPILER_ID STREQUAL "GNU" AND CMAKE_SYSTEM_NAME STREQUAL "Linux")
+  # GCC on Linux links libstdc++, the standard library Debian's cpp-httplib is built for: the check
+  # below (a compile and link of about 2 s in the first configure) would only pass.
+  set(ILLUM_HTTPLIB_LINKS TRUE)
 else()
   include(CheckCXXSourceCompiles)
   set(CMAKE_REQUIRED_LIBRARIES PkgConfig::ILLUM_HTTPLIB)
