@@ -13,6 +13,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -29,16 +30,43 @@ void parse(CLI::App& app, std::vector<std::string> args) {
   app.parse(static_cast<int>(argv.size()), argv.data());
 }
 
+// A command line of one option, `name`, bound to `value` (which starts at `initial`).
+template <class T>
+struct OneOption {
+  CLI::App app;
+  illum::CommandLine command_line{app};
+  T value;
+  illum::Option option;
+  OneOption(const std::string& name, T initial)
+      : value(std::move(initial)), option(command_line.add(name, value, "")) {}
+  void parse(std::vector<std::string> args) { ::parse(app, std::move(args)); }
+};
+
+// --quick, --patches (excluded by --quick) and --patch-edge (excludes --patches), as lesson 11 has them.
+struct PatchOptions {
+  CLI::App app;
+  bool quick = false;
+  int patches = 2000;
+  double edge = 0;
+  illum::Option patches_option;
+  PatchOptions() {
+    app.add_flag("--quick", quick, "");
+    illum::CommandLine command_line(app);
+    patches_option = command_line.add("--patches", patches, "");
+    command_line.add("--patch-edge", edge, "").excludes(patches_option);
+    command_line.exclude_quick({patches_option});
+  }
+  void parse(std::vector<std::string> args) { ::parse(app, std::move(args)); }
+};
+
 }  // namespace
 
 TEST_CASE("number_range: both bounds in, everything else out, bounds printed as written") {
   for (const char* good : {"1e-9", "0.5", "0.25"}) {
-    CLI::App app;
-    illum::CommandLine command_line(app);
-    double unshot = -1;
-    command_line.add("--unshot", unshot, "").check(illum::number_range(1e-9, 0.5));
-    parse(app, {"--unshot", good});
-    CHECK(unshot == std::stod(good));
+    OneOption<double> unshot("--unshot", -1);
+    unshot.option.check(illum::number_range(1e-9, 0.5));
+    unshot.parse({"--unshot", good});
+    CHECK(unshot.value == std::stod(good));
   }
   const std::vector<std::pair<std::string, std::string>> bad = {
       {"0", "--unshot: Value 0 not in range 1e-09 to 0.5"},
@@ -54,39 +82,31 @@ TEST_CASE("number_range: both bounds in, everything else out, bounds printed as 
     const std::string& text = item.first;
     const std::string& message = item.second;
     CAPTURE(text);
-    CLI::App app;
-    illum::CommandLine command_line(app);
-    double unshot = 0.25;
-    command_line.add("--unshot", unshot, "").check(illum::number_range(1e-9, 0.5));
-    ILLUM_CHECK_THROWS_CONTAINING(parse(app, {"--unshot", text}), message, CLI::ValidationError);
-    CHECK(unshot == 0.25);  // a refused value is never stored
+    OneOption<double> unshot("--unshot", 0.25);
+    unshot.option.check(illum::number_range(1e-9, 0.5));
+    ILLUM_CHECK_THROWS_CONTAINING(unshot.parse({"--unshot", text}), message, CLI::ValidationError);
+    CHECK(unshot.value == 0.25);  // a refused value is never stored
   }
 }
 
 TEST_CASE("range: whole numbers by CLI11's message; the double range lets NaN through; & reports the first") {
   {
-    CLI::App app;
-    illum::CommandLine command_line(app);
-    int n = 8;
-    command_line.add("--cube-n", n, "").check(illum::range(1, 24));
-    ILLUM_CHECK_THROWS_CONTAINING(parse(app, {"--cube-n", "25"}), "Value 25 not in range 1 to 24",
+    OneOption<int> n("--cube-n", 8);
+    n.option.check(illum::range(1, 24));
+    ILLUM_CHECK_THROWS_CONTAINING(n.parse({"--cube-n", "25"}), "Value 25 not in range 1 to 24",
                                   CLI::ValidationError);
   }
   {
-    CLI::App app;
-    illum::CommandLine command_line(app);
-    int n = 8;
-    command_line.add("--cube-n", n, "").check(illum::range(1, 24));
-    parse(app, {"--cube-n", "24"});
-    CHECK(n == 24);
+    OneOption<int> n("--cube-n", 8);
+    n.option.check(illum::range(1, 24));
+    n.parse({"--cube-n", "24"});
+    CHECK(n.value == 24);
   }
   {
-    CLI::App app;
-    illum::CommandLine command_line(app);
-    double edge = 0;
-    command_line.add("--patch-edge", edge, "").check(illum::range(1.0, 10000.0));
-    parse(app, {"--patch-edge", "nan"});
-    CHECK(std::isnan(edge));  // the reason the lessons add a finite-number check in front
+    OneOption<double> edge("--patch-edge", 0);
+    edge.option.check(illum::range(1.0, 10000.0));
+    edge.parse({"--patch-edge", "nan"});
+    CHECK(std::isnan(edge.value));  // the reason the lessons add a finite-number check in front
   }
   {
     const illum::ValueCheck finite(
@@ -102,97 +122,59 @@ TEST_CASE("range: whole numbers by CLI11's message; the double range lets NaN th
       const std::string& text = item.first;
       const std::string& message = item.second;
       CAPTURE(text);
-      CLI::App app;
-      illum::CommandLine command_line(app);
-      double value = 0;
-      command_line.add("--x", value, "").check(finite & even & illum::range(8.0, 2048.0));
-      ILLUM_CHECK_THROWS_CONTAINING(parse(app, {"--x", text}), message, CLI::ValidationError);
+      OneOption<double> x("--x", 0);
+      x.option.check(finite & even & illum::range(8.0, 2048.0));
+      ILLUM_CHECK_THROWS_CONTAINING(x.parse({"--x", text}), message, CLI::ValidationError);
     }
   }
 }
 
 TEST_CASE("one_of names the list; expected(2) takes two values; a list of names keeps its order") {
   {
-    CLI::App app;
-    illum::CommandLine command_line(app);
-    std::string accel = "bvh";
-    command_line.add("--accel", accel, "").check(illum::one_of({"bvh", "grid"}));
-    ILLUM_CHECK_THROWS_CONTAINING(parse(app, {"--accel", "cube"}), "cube not in {bvh,grid}",
+    OneOption<std::string> accel("--accel", "bvh");
+    accel.option.check(illum::one_of({"bvh", "grid"}));
+    ILLUM_CHECK_THROWS_CONTAINING(accel.parse({"--accel", "cube"}), "cube not in {bvh,grid}",
                                   CLI::ValidationError);
   }
   {
-    CLI::App app;
-    illum::CommandLine command_line(app);
-    std::vector<std::string> solvers;
-    command_line.add("--solvers", solvers, "").check(illum::one_of({"jacobi", "southwell", "progressive"}));
-    parse(app, {"--solvers", "southwell", "jacobi"});
-    CHECK(solvers == std::vector<std::string>{"southwell", "jacobi"});
+    OneOption<std::vector<std::string>> solvers("--solvers", {});
+    solvers.option.check(illum::one_of({"jacobi", "southwell", "progressive"}));
+    solvers.parse({"--solvers", "southwell", "jacobi"});
+    CHECK(solvers.value == std::vector<std::string>{"southwell", "jacobi"});
   }
   {
-    CLI::App app;
-    illum::CommandLine command_line(app);
-    std::vector<int> pixel;
-    command_line.add("--pixel", pixel, "").expected(2);
-    parse(app, {"--pixel", "3", "4"});
-    CHECK(pixel == std::vector<int>{3, 4});
+    OneOption<std::vector<int>> pixel("--pixel", {});
+    pixel.option.expected(2);
+    pixel.parse({"--pixel", "3", "4"});
+    CHECK(pixel.value == std::vector<int>{3, 4});
   }
   {
-    CLI::App app;
-    illum::CommandLine command_line(app);
-    std::vector<int> pixel;
-    command_line.add("--pixel", pixel, "").expected(2);
-    CHECK_THROWS_AS(parse(app, {"--pixel", "3"}), CLI::ParseError);
+    OneOption<std::vector<int>> pixel("--pixel", {});
+    pixel.option.expected(2);
+    CHECK_THROWS_AS(pixel.parse({"--pixel", "3"}), CLI::ParseError);
   }
 }
 
 TEST_CASE("excludes and exclude_quick refuse the pair; given() tells a value given from the default") {
-  const auto make = [](CLI::App& app, bool& quick, int& patches, double& edge,
-                       illum::Option& patches_option) {
-    app.add_flag("--quick", quick, "");
-    illum::CommandLine command_line(app);
-    patches_option = command_line.add("--patches", patches, "");
-    command_line.add("--patch-edge", edge, "").excludes(patches_option);
-    command_line.exclude_quick({patches_option});
-  };
   {
-    CLI::App app;
-    bool quick = false;
-    int patches = 2000;
-    double edge = 0;
-    illum::Option patches_option;
-    make(app, quick, patches, edge, patches_option);
-    ILLUM_CHECK_THROWS_CONTAINING(parse(app, {"--quick", "--patches", "400"}), "--quick", CLI::ParseError);
+    PatchOptions o;
+    ILLUM_CHECK_THROWS_CONTAINING(o.parse({"--quick", "--patches", "400"}), "--quick", CLI::ParseError);
   }
   {
-    CLI::App app;
-    bool quick = false;
-    int patches = 2000;
-    double edge = 0;
-    illum::Option patches_option;
-    make(app, quick, patches, edge, patches_option);
-    ILLUM_CHECK_THROWS_CONTAINING(parse(app, {"--patches", "400", "--patch-edge", "50"}), "excludes",
+    PatchOptions o;
+    ILLUM_CHECK_THROWS_CONTAINING(o.parse({"--patches", "400", "--patch-edge", "50"}), "excludes",
                                   CLI::ParseError);
   }
   {
-    CLI::App app;
-    bool quick = false;
-    int patches = 2000;
-    double edge = 0;
-    illum::Option patches_option;
-    make(app, quick, patches, edge, patches_option);
-    parse(app, {"--patch-edge", "50"});
-    CHECK_FALSE(patches_option.given());
-    CHECK(patches == 2000);
+    PatchOptions o;
+    o.parse({"--patch-edge", "50"});
+    CHECK_FALSE(o.patches_option.given());
+    CHECK(o.patches == 2000);
   }
   {
-    CLI::App app;
-    bool quick = false;
-    int patches = 2000;
-    double edge = 0;
-    illum::Option patches_option;
-    make(app, quick, patches, edge, patches_option);
-    parse(app, {"--patches", "2000"});  // the default's own value, but given
-    CHECK(patches_option.given());
+    PatchOptions o;
+    o.parse({"--patches", "2000"});  // the default's own value, but given
+    CHECK(o.patches_option.given());
   }
 }
 

@@ -229,10 +229,12 @@ async function screenshots() {
     await page.evaluate(() => window.scrollTo(0, 0));
     // The 3D views redraw at the new size: the ResizeObserver fires in the next frame's layout,
     // its draw() asks for the frame after (lab_util.js), and the one after that is composited.
+    // At most 2 s, should a page ever stop getting frames (the 400 ms this replaced, five times over).
     await page.evaluate(() => new Promise(done => {
       let frames = 0;
       const next = () => (++frames >= 3 ? done() : requestAnimationFrame(next));
       requestAnimationFrame(next);
+      setTimeout(done, 2000);
     }));
     await page.screenshot({ path: path.join(output, file) });
   };
