@@ -101,7 +101,8 @@ timings, so its pixels differ from run to run).
 The label under a figure with timings names the run: date, the machine's
 cores, its load average at the start and end of that program's run and the
 programs that ran beside it (the main job runs those that time one thread
-side by side), as
+side by side; a "mixed" one gets the whole machine for its timings on more
+threads, and its label says so), as
 the main job records them in OUT/run_log.json (the file's modification time
 and "load not recorded" when the program was run by hand).
 """
@@ -310,6 +311,8 @@ def run_label(out: Path, spec: Spec, table: Table) -> str:
         if names:
             machine += (f", side by side with {', '.join(names[:-1]) + ' and ' if len(names) > 1 else ''}"
                         f"{names[-1]} (each times one thread)")
+            if "whole_machine_seconds" in run:  # a "mixed" program (lib/illum/io/whole_machine.hpp)
+                machine += "; its timings on more threads had the machine to themselves"
         date = run["started"]
     else:
         stamp = (out / Path(spec.path).relative_to("out")).stat().st_mtime

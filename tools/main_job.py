@@ -13,8 +13,11 @@ Steps (all by default; pick some with --only):
            --timed-cores` prints "one") runs side by side with the others
            like it, as many at once as the machine has cores, longest first
            (by OUT/run_log.json's last record, else the later lessons first),
-           each one's output printed whole when it ends; then the others run
-           one at a time, alone, in order (--alone: every program so);
+           each one's output printed whole when it ends. So does a "mixed"
+           one, whose timings on more threads each ask for the whole machine
+           first (lib/illum/io/whole_machine.hpp): it gets it, through a pipe,
+           once the others are done. Then the others run one at a time,
+           alone, in order (--alone: every program so);
   lab      screenshots of `BIN/illum lab`'s four views in headless Chromium,
            OUT/lab/*.png with a manifest.json (tools/lab/screenshots.py; the
            lab is started on a free port of 127.0.0.1 and stopped again);
@@ -82,15 +85,18 @@ def run_lessons(bin_dir: Path, out: Path, quick: bool, alone: bool = False) -> N
     log_path = out / "run_log.json"
     all_start, all_cpu = time.monotonic(), children_cpu_seconds()
     numbers = {program: i for i, program in enumerate(programs, 1)}
-    one_core = [] if alone else [p for p in programs if timed_cores(p) == "one"]
+    answers = {} if alone else {p: timed_cores(p) for p in programs}
+    one_core = [p for p in programs if answers.get(p) in ("one", "mixed")]
     cores = os.cpu_count() or 1
     if len(one_core) < 2 or cores < 2 or not hasattr(os, "wait4"):
         one_core = []  # nothing to gain: every program runs alone, in order
     if one_core:
-        say(f"{len(one_core)} program(s) time one thread only: "
-            f"{', '.join(p.name for p in one_core)} run side by side, {min(cores, len(one_core))} at once")
-        run_side_by_side(longest_first(one_core, log_path), min(cores, len(one_core)), numbers, len(programs),
-                         out, quick, log_path)
+        mixed = [p.name for p in one_core if answers[p] == "mixed"]
+        say(f"{len(one_core)} program(s) time one thread"
+            + (f" ({', '.join(mixed)} but for the studies it runs with the whole machine)" if mixed else " only")
+            + f": {', '.join(p.name for p in one_core)} run side by side, {min(cores, len(one_core))} at once")
+        run_side_by_side(longest_first(one_core, log_path), min(cores, len(one_core)), answers, numbers,
+                         len(programs), out, quick, log_path)
     for program in programs:
         if program in one_core:
             continue
@@ -125,14 +131,16 @@ def failure(program: Path, code: int, cmd: list[str]) -> str:
 
 
 def timed_cores(program: Path) -> str:
-    """"one" when every timing of the program runs on one thread (it says so: --timed-cores), else
+    """"one" when every timing of the program runs on one thread (it says so: --timed-cores),
+    "mixed" when those on more threads each ask for the whole machine first (WholeMachine), else
     "all". A program that cannot answer (an older build, a crash) is "all": it runs alone."""
     try:
         answer = subprocess.run([str(program), "--timed-cores"], capture_output=True, text=True,
                                 errors="replace", stdin=subprocess.DEVNULL, timeout=60)
     except (OSError, subprocess.SubprocessError):
         return "all"
-    return "one" if answer.returncode == 0 and answer.stdout.strip() == "one" else "all"
+    word = answer.stdout.strip()
+    return word if answer.returncode == 0 and word in ("one", "mixed") else "all"
 
 
 def longest_first(programs: list[Path], log_path: Path) -> list[Path]:
@@ -146,82 +154,169 @@ def longest_first(programs: list[Path], log_path: Path) -> list[Path]:
         log = {}
 
     def seconds(program: Path) -> float:
+        """Its seconds of work: a "mixed" program's time spent waiting for the machine left out."""
         run = log.get(program.name)
         value = run.get("seconds") if isinstance(run, dict) and not run.get("quick") else None
-        return value if isinstance(value, (int, float)) else -1.0
+        if not isinstance(value, (int, float)):
+            return -1.0
+        waited = run.get("waited_seconds", 0)
+        return max(0.0, value - waited) if isinstance(waited, (int, float)) else value
 
     if all(seconds(p) >= 0 for p in programs):
         return sorted(programs, key=lambda p: (-seconds(p), p.name))
     return sorted(programs, key=lambda p: p.name, reverse=True)
 
 
-def run_side_by_side(queue: list[Path], width: int, numbers: dict, total: int, out: Path, quick: bool,
-                     log_path: Path) -> None:
+def run_side_by_side(queue: list[Path], width: int, answers: dict[Path, str], numbers: dict, total: int,
+                     out: Path, quick: bool, log_path: Path) -> None:
     """Runs the programs of `queue`, `width` at a time, each as soon as a place is free, and records
     each run with the programs it overlapped. A program's output goes to a file of its own and is
-    printed whole when it ends, so two programs' lines never mix. After a failure no new program
-    starts; the ones running finish, the runs that succeeded are recorded, and the first failure
+    printed whole when it ends, so two programs' lines never mix.
+
+    A "mixed" program (answers[program]) gets a pair of pipes, named in ILLUM_MAIN_JOB_FDS
+    (lib/illum/io/whole_machine.hpp). When it asks for the whole machine it waits, blocked, and
+    stops taking a place; the first to ask gets the machine once no program is left to start and
+    none runs on one thread (so the one-thread work is packed first, with no core left idle while
+    there is some); while it holds the machine nothing starts; after "release" it runs on as a
+    one-thread program. After a failure no new program starts; the ones running finish (a waiting
+    one is still given the machine), the runs that succeeded are recorded, and the first failure
     (in lesson order) is raised."""
     import tempfile
 
-    lock = threading.Lock()
+    cond = threading.Condition()
     todo = list(queue)
+    state: dict[Path, str] = {}  # each running program: "one", "waiting" or "holding"
+    waiting: list[Path] = []  # in the order they asked
+    grant_fds: dict[Path, int] = {}
+    asked: dict[Path, float] = {}
+    waited: dict[Path, float] = {}
+    held: dict[Path, float] = {}
     spans: dict[Path, tuple[float, float]] = {}
     runs: dict[Path, dict] = {}
     failures: list[tuple[Path, int, list[str]]] = []
 
-    def worker() -> None:
-        while True:
-            with lock:
-                if not todo or failures:
-                    return
-                program = todo.pop(0)
-            cmd = lesson_command(program, out, quick)
-            with lock:
-                say(f"[{numbers[program]}/{total}] {' '.join(cmd)} (side by side; its output when it ends)")
-            with tempfile.TemporaryFile(mode="w+b") as log:
-                start = time.monotonic()
-                started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
-                load_before = load_average()
+    def listen(program: Path, requests_fd: int) -> None:
+        """Reads the program's requests until it closes its end (it ended)."""
+        with open(requests_fd, "r", encoding="utf-8", errors="replace") as requests:
+            for line in requests:
+                word = line.strip()
+                with cond:
+                    now, current = time.monotonic(), state.get(program)
+                    if word == "machine" and current == "one":
+                        state[program] = "waiting"
+                        waiting.append(program)
+                        asked[program] = now
+                    elif word == "release" and current == "holding":
+                        state[program] = "one"
+                        held[program] = held.get(program, 0.0) + now - asked.pop(program)
+                    else:
+                        say(f"warning: {program.name} sent {word[:40]!r} while {current or 'ended'}; ignored")
+                    cond.notify_all()
+
+    def run(program: Path) -> None:
+        cmd = lesson_command(program, out, quick)
+        env, pass_fds, requests_fd = None, (), -1
+        if answers[program] == "mixed":
+            from_job_r, from_job_w = os.pipe()  # the job's answers
+            requests_fd, to_job_w = os.pipe()  # the program's requests
+            env = dict(os.environ, ILLUM_MAIN_JOB_FDS=f"{from_job_r},{to_job_w}")
+            pass_fds = (from_job_r, to_job_w)
+        with tempfile.TemporaryFile(mode="w+b") as log:
+            start = time.monotonic()
+            started = time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
+            load_before = load_average()
+            try:
                 proc = subprocess.Popen(cmd, cwd=out, stdin=subprocess.DEVNULL, stdout=log,
-                                        stderr=subprocess.STDOUT)
+                                        stderr=subprocess.STDOUT, env=env, pass_fds=pass_fds)
+            except OSError as e:  # it could not start: a failure like any other, never a hang
+                proc = None
+                log.write(f"{program.name}: cannot start {cmd[0]}: {e}\n".encode())
+            finally:
+                for fd in pass_fds:
+                    os.close(fd)  # the program's ends: its exit then closes the requests pipe
+            if proc is None:
+                for fd in (requests_fd, from_job_w) if pass_fds else ():
+                    os.close(fd)
+                pass_fds = ()
+            if pass_fds:
+                with cond:
+                    grant_fds[program] = from_job_w
+                threading.Thread(target=listen, args=(program, requests_fd), daemon=True).start()
+            if proc is None:
+                code, usage = 127, None
+            else:
                 # wait4, not wait: this child's own processor time, whatever its neighbours use.
                 _, status, usage = os.wait4(proc.pid, 0)
                 proc.returncode = code = os.waitstatus_to_exitcode(status)
-                end = time.monotonic()
-                log.seek(0)
-                text = log.read().decode("utf-8", errors="replace")
-            with lock:
-                sys.stdout.write(text)
-                sys.stdout.flush()
-                spans[program] = (start, end)
-                if code != 0:
-                    failures.append((program, code, cmd))
-                    continue
+            end = time.monotonic()
+            log.seek(0)
+            text = log.read().decode("utf-8", errors="replace")
+        with cond:
+            if state.get(program) == "holding":
+                held[program] = held.get(program, 0.0) + end - asked.pop(program)
+            if program in waiting:
+                waiting.remove(program)
+            state.pop(program, None)
+            if program in grant_fds:
+                os.close(grant_fds.pop(program))
+            sys.stdout.write(text)
+            sys.stdout.flush()
+            spans[program] = (start, end)
+            if code != 0:
+                failures.append((program, code, cmd))
+            else:
                 cpu = usage.ru_utime + usage.ru_stime
                 runs[program] = {
                     "started": started, "seconds": round(end - start, 1), "cpu_seconds": round(cpu, 1),
                     "cores": os.cpu_count(), "load_before": load_before, "load_after": load_average(),
                     "quick": quick}
-                say(f"{program.name} done in {end - start:.1f} s ({cpu:.1f} s of processor time, all its threads)")
+                extra = ""
+                if answers[program] == "mixed":
+                    runs[program]["waited_seconds"] = round(waited.get(program, 0.0), 1)
+                    runs[program]["whole_machine_seconds"] = round(held.get(program, 0.0), 1)
+                    extra = (f"; it waited {waited.get(program, 0.0):.1f} s for the whole machine and held it "
+                             f"{held.get(program, 0.0):.1f} s")
+                say(f"{program.name} done in {end - start:.1f} s ({cpu:.1f} s of processor time, all its "
+                    f"threads{extra})")
+            cond.notify_all()
 
-    threads = [threading.Thread(target=worker) for _ in range(width)]
-    for thread in threads:
-        thread.start()
     try:
-        for thread in threads:
-            thread.join()
+        with cond:
+            while True:
+                busy = sum(1 for s in state.values() if s == "one")
+                holder = "holding" in state.values()
+                while todo and not failures and not holder and busy < width:
+                    program = todo.pop(0)
+                    state[program] = "one"
+                    busy += 1
+                    say(f"[{numbers[program]}/{total}] {' '.join(lesson_command(program, out, quick))} "
+                        "(side by side; its output when it ends)")
+                    threading.Thread(target=run, args=(program,)).start()
+                if waiting and not holder and busy == 0 and (not todo or failures):
+                    program = waiting.pop(0)
+                    now = time.monotonic()
+                    waited[program] = waited.get(program, 0.0) + now - asked[program]
+                    asked[program] = now
+                    state[program] = "holding"
+                    say(f"{program.name} has the whole machine (no other program runs until it gives it back)")
+                    try:
+                        os.write(grant_fds[program], b"go\n")
+                    except OSError:
+                        pass  # it ended meanwhile: run() records that
+                if not state and (not todo or failures):
+                    break
+                cond.wait()
     except BaseException:  # Ctrl-C: start nothing more (the running programs got the signal too)
-        with lock:
+        with cond:
             todo.clear()
         raise
     # Every run that finished is recorded, even when another failed: its outputs were committed, and a
     # stale record would give their figures the date and load of an earlier run.
-    for program, run in sorted(runs.items()):
+    for program, run_record in sorted(runs.items()):
         start, end = spans[program]
-        run["beside"] = sorted(other.name for other, (s, e) in spans.items()
-                               if other != program and s < end and start < e)
-        record_run(log_path, program.name, run)
+        run_record["beside"] = sorted(other.name for other, (s, e) in spans.items()
+                                      if other != program and s < end and start < e)
+        record_run(log_path, program.name, run_record)
     if failures:
         program, code, cmd = min(failures, key=lambda f: f[0].name)
         raise JobError(failure(program, code, cmd))

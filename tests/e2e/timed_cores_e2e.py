@@ -10,7 +10,12 @@ time a second thread while another program holds the second core, so:
 * a program that says "one" wrote, in its --quick run (the e2e fixture's
   test-out/lessonNN), no table with a `threads` column holding anything but 1:
   a table that records its thread count records a timing on more threads.
-  Lessons 08 and 10, which time two threads, write such tables and say "all".
+  Lesson 10, which times two threads, writes such tables and says "all";
+* a program that says "mixed" (its timings on more threads each inside a
+  WholeMachine, lib/illum/io/whole_machine.hpp) asks for the whole machine
+  when run --quick under a stand-in for the main job, which answers "go" only
+  after WAIT seconds: it asks at least once, and while it waits it prints
+  nothing and does not end (it did wait), and it exits 0. Lesson 08 says so.
 
     python3 tests/e2e/timed_cores_e2e.py --bin build/release/bin --out build/release/test-out
 """
@@ -42,6 +47,64 @@ def tables_on_more_threads(folder: Path) -> list[str]:
     return found
 
 
+WAIT = 1.0  # seconds the stand-in main job lets a request wait
+
+
+def run_under_stand_in_job(program: Path, folder: Path) -> list[str]:
+    """Runs `program --quick --out folder` linked to a stand-in main job (the pipes of
+    tools/main_job.py) and returns what went wrong, if anything."""
+    import os
+    import threading
+    import time
+
+    from_job_r, from_job_w = os.pipe()
+    requests_r, to_job_w = os.pipe()
+    env = dict(os.environ, ILLUM_MAIN_JOB_FDS=f"{from_job_r},{to_job_w}")
+    proc = subprocess.Popen([str(program), "--quick", "--out", str(folder)], stdin=subprocess.DEVNULL,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env,
+                            pass_fds=(from_job_r, to_job_w))
+    os.close(from_job_r)
+    os.close(to_job_w)
+    printed: list[tuple[float, str]] = []
+
+    def read_output() -> None:
+        for raw in proc.stdout:
+            printed.append((time.monotonic(), raw.decode("utf-8", errors="replace").rstrip()))
+
+    reader = threading.Thread(target=read_output)
+    reader.start()
+    problems, waits = [], []
+    with open(requests_r, "r", encoding="utf-8", errors="replace") as requests:
+        for line in requests:
+            word = line.strip()
+            if word == "machine":
+                asked = time.monotonic()
+                time.sleep(WAIT)  # another program still running, as the main job would have it
+                if proc.poll() is not None:
+                    problems.append(f"{program.name} ended while it waited for the whole machine")
+                waits.append((asked, time.monotonic()))
+                try:
+                    os.write(from_job_w, b"go\n")
+                except OSError:
+                    pass
+            elif word != "release":
+                problems.append(f"{program.name} sent {word[:40]!r} (expected 'machine' or 'release')")
+    code = proc.wait(timeout=600)
+    reader.join()
+    os.close(from_job_w)
+    if code != 0:
+        problems.append(f"{program.name} --quick under the stand-in main job exited {code}: "
+                        + " | ".join(line for _, line in printed[-5:]))
+    if not waits:
+        problems.append(f"{program.name} says 'mixed' but never asked for the whole machine")
+    for asked, granted in waits:
+        early = [line for t, line in printed if asked < t < granted]
+        if early:
+            problems.append(f"{program.name} printed {early[0]!r} while it waited for the whole machine "
+                            "(it did not wait for the answer)")
+    return problems
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--bin", type=Path, required=True)
@@ -59,9 +122,10 @@ def main() -> int:
                                     stdin=subprocess.DEVNULL, timeout=60)
             written = sorted(p.name for p in Path(tmp).iterdir())
         answer = result.stdout
-        if result.returncode != 0 or answer not in ("one\n", "all\n"):
+        if result.returncode != 0 or answer not in ("one\n", "mixed\n", "all\n"):
             problems.append(f"{program.name} --timed-cores: exit {result.returncode}, printed {answer!r} "
-                            f"(expected exit 0 and exactly 'one' or 'all'); stderr {result.stderr.strip()!r}")
+                            f"(expected exit 0 and exactly 'one', 'mixed' or 'all'); "
+                            f"stderr {result.stderr.strip()!r}")
             continue
         if written:
             problems.append(f"{program.name} --timed-cores wrote {', '.join(written)} (it must write nothing)")
@@ -73,11 +137,15 @@ def main() -> int:
                 continue
             for line in tables_on_more_threads(folder):
                 problems.append(f"{program.name} says its timings use one core, but {line}")
+        if answer.strip() == "mixed":
+            with tempfile.TemporaryDirectory(prefix="illum-mixed-") as tmp:
+                problems += run_under_stand_in_job(program, Path(tmp) / program.name)
     print("timed_cores: " + ", ".join(f"{name} {answer}" for name, answer in answers.items()))
     if problems:
         print("timed_cores: FAILED:\n  " + "\n  ".join(problems))
         return 1
-    print(f"timed_cores: {len(answers)} program(s) answer, and every 'one' wrote no table on more threads")
+    print(f"timed_cores: {len(answers)} program(s) answer, every 'one' wrote no table on more threads, "
+          "and every 'mixed' waited for the whole machine")
     return 0
 
 

@@ -565,6 +565,70 @@ class MainJob(TempDirTest):
         self.assertIn("lesson03", log)
         self.assertNotIn("lesson02", log)
 
+    def run_mixed(self, *extra: str, **env_extra: str) -> tuple[subprocess.CompletedProcess, dict]:
+        """lesson01-03 answer "one" and sleep 1 s; lesson04 answers "mixed", works 1 s on one
+        thread, then asks for the whole machine and holds it 0.6 s. Returns the job's result and
+        each program's event times (fake_lesson.py)."""
+        self.fake_lessons("lesson01", "lesson02", "lesson03", "lesson04")
+        events = self.tmp / "events"
+        events.mkdir()
+        env = dict(os.environ, FAKE_LESSON_TIMED_CORES="one", FAKE_LESSON_MIXED="lesson04",
+                   FAKE_LESSON_SLEEP="1", FAKE_LESSON_MACHINE="0.6", FAKE_LESSON_EVENTS=str(events), **env_extra)
+        result = subprocess.run([sys.executable, str(SOURCE / "tools" / "main_job.py"), "--bin",
+                                 str(self.tmp / "bin"), "--out", str(self.tmp / "out"), "--only", "lessons",
+                                 *extra], capture_output=True, text=True, env=env)
+        times = {f.stem: json.loads(f.read_text()) for f in events.glob("*.json")}
+        return result, times
+
+    def test_a_mixed_program_gets_the_whole_machine_once_the_others_are_done(self):
+        if (os.cpu_count() or 1) < 2:
+            self.skipTest("one core: every program runs alone")
+        result, times = self.run_mixed()
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertEqual(sorted(times), ["lesson01", "lesson02", "lesson03", "lesson04"])
+        mixed = times["lesson04"]
+        self.assertIsNotNone(mixed["granted"], result.stdout)
+        others = [t for name, t in times.items() if name != "lesson04"]
+        # Granted only once every other program had ended (none was left to start), and nothing
+        # ran while it held the machine.
+        for other in others:
+            self.assertLessEqual(other["end"], mixed["granted"], (other, mixed))
+            self.assertFalse(other["start"] < mixed["released"] and mixed["granted"] < other["end"])
+        # While it waited it took no place: lesson01 and lesson02 ran side by side meanwhile
+        # (later lessons start first: lesson04 and lesson03 first, both ending about 1 s in).
+        self.assertLess(times["lesson01"]["start"], mixed["granted"])
+        self.assertLess(max(times["lesson01"]["start"], times["lesson02"]["start"]),
+                        min(times["lesson01"]["end"], times["lesson02"]["end"]), times)
+        # Never more programs on one thread at once than the cores the job uses (2 here): the
+        # spans in which each works on one thread, lesson04's before it asked and after it released.
+        spans = [(t["start"], t["end"]) for t in others] + [(mixed["start"], mixed["asked"]),
+                                                             (mixed["released"], mixed["end"])]
+        for start, _ in spans:
+            self.assertLessEqual(sum(1 for s, e in spans if s <= start < e), 2, spans)
+        log = json.loads((self.tmp / "out" / "run_log.json").read_text())
+        self.assertGreaterEqual(log["lesson04"]["waited_seconds"], 0.5, log["lesson04"])
+        self.assertGreaterEqual(log["lesson04"]["whole_machine_seconds"], 0.5, log["lesson04"])
+        self.assertIn("lesson03", log["lesson04"]["beside"])
+        self.assertIn("lesson04 has the whole machine", result.stdout)
+
+    def test_a_mixed_program_run_alone_is_not_linked(self):
+        # --alone: no pipes, no ILLUM_MAIN_JOB_FDS; the program never asks and runs as it would by hand.
+        result, times = self.run_mixed("--alone")
+        self.assertEqual(result.returncode, 0, result.stdout + result.stderr)
+        self.assertIsNone(times["lesson04"]["asked"])
+        self.assertNotIn("whole machine", result.stdout)
+
+    def test_a_failure_beside_a_waiting_mixed_program_still_lets_it_finish(self):
+        if (os.cpu_count() or 1) < 2:
+            self.skipTest("one core: every program runs alone")
+        result, times = self.run_mixed(FAKE_LESSON_BREAK="exit", FAKE_LESSON_BREAK_ONLY="lesson03")
+        self.assertEqual(result.returncode, 1, result.stdout + result.stderr)
+        self.assertIn("lesson03 failed (exit code 1)", result.stderr)
+        # lesson04 was waiting: it was given the machine and ended (no hang), and nothing new started.
+        self.assertIsNotNone(times["lesson04"]["granted"], result.stdout)
+        self.assertNotIn("lesson01", times)
+        self.assertIn("lesson04", json.loads((self.tmp / "out" / "run_log.json").read_text()))
+
     def test_the_longest_recorded_run_starts_first(self):
         log = self.write("run_log.json", json.dumps({
             "lesson01": {"seconds": 11.2, "quick": False}, "lesson02": {"seconds": 4.8, "quick": False},

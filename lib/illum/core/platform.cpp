@@ -89,4 +89,41 @@ void escape(const volatile void* pointer) {
   sink.store(pointer, std::memory_order_relaxed);
 }
 
+void write_line(int fd, std::string_view line) {
+  const std::string text = std::string(line) + "\n";
+  for (std::size_t done = 0; done < text.size();) {
+#if defined(_WIN32)
+    const auto n = ::_write(fd, text.data() + done, static_cast<unsigned>(text.size() - done));
+#else
+    const auto n = ::write(fd, text.data() + done, text.size() - done);
+#endif
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0)
+      throw std::runtime_error("cannot write to descriptor " + std::to_string(fd) + ": " +
+                               std::strerror(errno));
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+std::optional<std::string> read_line(int fd) {
+  std::string line;
+  for (;;) {
+    char c = 0;
+#if defined(_WIN32)
+    const auto n = ::_read(fd, &c, 1);
+#else
+    const auto n = ::read(fd, &c, 1);
+#endif
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0)
+      throw std::runtime_error("cannot read from descriptor " + std::to_string(fd) + ": " +
+                               std::strerror(errno));
+    if (n == 0) return std::nullopt;
+    if (c == '\n') return line;
+    if (line.size() == 4096)
+      throw std::runtime_error("descriptor " + std::to_string(fd) + " sent a line longer than 4 KiB");
+    line += c;
+  }
+}
+
 }  // namespace illum

@@ -10,13 +10,17 @@
 //   physical_memory_bytes()
 //   random_bytes(...)     the system's unpredictable bytes (temporary names)
 //   escape(pointer)       what do_not_optimize (core/stopwatch.hpp) calls where GNU asm is missing
+//   write_line(fd, …), read_line(fd)  a line down or up a pipe a parent process handed down
 //
 // Files, folders and child processes (core/atomic_file, core/input_file,
 // core/child_process) are written against POSIX, which Linux and macOS
 // provide; on Windows illum builds and runs in WSL 2 or the development
 // container (README, "Windows").
 #include <cstddef>
+#include <optional>
 #include <span>
+#include <string>
+#include <string_view>
 
 #if defined(__GNUC__) || defined(__clang__)
 #define ILLUM_FLATTEN __attribute__((flatten))
@@ -43,5 +47,14 @@ void random_bytes(std::span<unsigned char> bytes);
 // Makes the compiler assume `pointer`'s target is read and written here (an
 // opaque call); for compilers without GNU inline assembly.
 void escape(const volatile void* pointer);
+
+// Writes `line` and a newline on the open descriptor `fd` (a pipe a parent handed down:
+// io/whole_machine). Throws std::runtime_error with the system's reason when the write fails.
+void write_line(int fd, std::string_view line);
+
+// Reads one line from the open descriptor `fd`, without its newline, a byte at a time (so nothing
+// after it is consumed); std::nullopt when the other end closed first. Throws std::runtime_error
+// with the system's reason when the read fails, or the line passes 4 KiB.
+std::optional<std::string> read_line(int fd);
 
 }  // namespace illum

@@ -14,8 +14,21 @@
 #include "illum/core/error.hpp"
 #include "illum/core/platform.hpp"
 #include "illum/core/threads.hpp"
+#include "illum/io/whole_machine.hpp"
 
 namespace illum {
+
+const char* to_string(TimedCores cores) {
+  switch (cores) {
+    case TimedCores::one:
+      return "one";
+    case TimedCores::mixed:
+      return "mixed";
+    case TimedCores::all:
+      return "all";
+  }
+  return "?";
+}
 
 int run_program(int argc, char** argv, const ProgramInfo& info,
                 const std::function<void(CommandLine&)>& add_options,
@@ -50,7 +63,7 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
       ->check(CLI::Range(0, max_threads));
   bool print_timed_cores = false;
   app.add_flag("--timed-cores", print_timed_cores,
-               "Print how many cores this program's timings use (one or all) and exit")
+               "Print how many cores this program's timings use (one, mixed or all) and exit")
       ->disable_flag_override();
   if (add_options) {
     CommandLine command_line(app);
@@ -66,8 +79,15 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
     return app.exit(e);
   }
   if (print_timed_cores) {  // before any check of the machine or the output folder
-    std::cout << (info.timed_cores == TimedCores::one ? "one" : "all") << "\n";
+    std::cout << to_string(info.timed_cores) << "\n";
     return 0;
+  }
+  // A malformed ILLUM_MAIN_JOB_FDS is refused before any work, not at the first WholeMachine.
+  try {
+    main_job_link();
+  } catch (const std::exception& e) {
+    std::cerr << info.id << ": error: " << e.what() << "\n";
+    return 1;
   }
   std::from_chars(seed_text.data(), seed_text.data() + seed_text.size(), options.seed);
   const ScopedThreadCount threads(options.threads);  // 0: every core, OpenMP's default

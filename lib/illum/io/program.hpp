@@ -33,11 +33,15 @@ class Validator;
 namespace illum {
 
 // How many cores a program's timings use, as the main job runs it (no --threads):
-//   one  every timed study runs on one thread (parallel loops only draw pictures),
-//        so two such programs may run side by side, each on a core of its own;
-//   all  some study times several threads: the program runs alone.
-// `--timed-cores` prints it ("one" or "all") and exits; tools/main_job.py asks.
-enum class TimedCores { one, all };
+//   one    every timed study runs on one thread (parallel loops only draw pictures),
+//          so two such programs may run side by side, each on a core of its own;
+//   mixed  as one, except the studies that time several threads, each inside a
+//          WholeMachine (io/whole_machine.hpp), which asks the main job for every core
+//          and waits until no other program runs: it runs side by side too;
+//   all    some study times several threads: the program runs alone.
+// `--timed-cores` prints it ("one", "mixed" or "all") and exits; tools/main_job.py asks.
+enum class TimedCores { one, mixed, all };
+const char* to_string(TimedCores cores);  // "one", "mixed", "all"
 
 struct ProgramInfo {
   std::string id;                            // "lesson01": also the default output folder out/lesson01
