@@ -46,6 +46,17 @@ struct JobPipes {
   std::string variable() const { return std::to_string(answers[0]) + "," + std::to_string(requests[1]); }
 };
 
+// The message of the std::runtime_error `call` throws ("" when it returns).
+template <class Call>
+std::string runtime_error_of(Call call) {
+  try {
+    call();
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
 }  // namespace
 
 TEST_CASE("without the variable a WholeMachine does nothing") {
@@ -60,14 +71,9 @@ TEST_CASE("a malformed ILLUM_MAIN_JOB_FDS is refused, naming the variable and it
   for (const char* value : {"5", "a,b", "-1,3", "3,", ",3", "1,2,3", "3 ,4", "99999999999,1"}) {
     CAPTURE(value);
     const JobVariable variable(value);
-    try {
-      main_job_link();
-      FAIL("accepted");
-    } catch (const std::runtime_error& e) {
-      const std::string message = e.what();
-      CHECK(message.find("ILLUM_MAIN_JOB_FDS") != std::string::npos);
-      CHECK(message.find(std::string("'") + value + "'") != std::string::npos);
-    }
+    const std::string message = runtime_error_of([] { main_job_link(); });
+    CHECK(message.find("ILLUM_MAIN_JOB_FDS") != std::string::npos);
+    CHECK(message.find(std::string("'") + value + "'") != std::string::npos);
   }
   const JobVariable good("5,8");
   const std::optional<MainJobLink> link = main_job_link();
@@ -102,14 +108,14 @@ TEST_CASE("an answer other than go, or none, is an error naming what came back")
     const JobPipes pipes;
     const JobVariable variable(pipes.variable());
     write_line(pipes.answers[1], "later");
-    CHECK_THROWS_WITH_AS(WholeMachine(), doctest::Contains("answered 'later'"), std::runtime_error);
+    CHECK(runtime_error_of([] { const WholeMachine machine; }).find("answered 'later'") != std::string::npos);
   }
   SUBCASE("the job's end closed") {
     JobPipes pipes;
     const JobVariable variable(pipes.variable());
     ::close(pipes.answers[1]);
     pipes.answers[1] = -1;
-    CHECK_THROWS_WITH_AS(WholeMachine(), doctest::Contains("answered nothing"), std::runtime_error);
+    CHECK(runtime_error_of([] { const WholeMachine machine; }).find("answered nothing") != std::string::npos);
   }
 }
 
@@ -122,6 +128,6 @@ TEST_CASE("read_line takes one line and leaves the next; a line over 4 KiB is re
   CHECK(read_line(pipes.answers[0]) == std::optional<std::string>(""));
   CHECK(read_line(pipes.answers[0]) == std::optional<std::string>("third"));
   write_line(pipes.answers[1], std::string(5000, 'x'));  // fits the pipe's 64 KiB buffer
-  CHECK_THROWS_WITH_AS(read_line(pipes.answers[0]), doctest::Contains("longer than 4 KiB"),
-                       std::runtime_error);
+  CHECK(runtime_error_of([&] { read_line(pipes.answers[0]); }).find("longer than 4 KiB") !=
+        std::string::npos);
 }
