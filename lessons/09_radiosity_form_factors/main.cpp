@@ -15,6 +15,7 @@
 #include "illum/core/image.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
+#include "illum/io/whole_machine.hpp"
 #include "illum/radiosity/form_factor_scene.hpp"
 #include "studies/studies.hpp"
 #include "support/lesson_support.hpp"
@@ -56,7 +57,8 @@ int main(int argc, char** argv) {
   const ProgramInfo info{
       "lesson09", "The radiosity equation and form factors",
       "Checks B = pi I, measures every form-factor method against closed forms (error vs time), "
-      "and computes the cube's 864-patch form-factor matrix to tolerances from 1e-3 to 1e-13."};
+      "and computes the cube's 864-patch form-factor matrix to tolerances from 1e-3 to 1e-13.",
+      TimedCores::mixed};  // §1 and §10 on one thread; §11 on every thread, inside a WholeMachine
   lesson09::Settings settings;
   return run_program(
       argc, argv, info,
@@ -83,12 +85,16 @@ int main(int argc, char** argv) {
         settings.quick = options.quick;
         settings.seed = options.seed;
         OutputFolder out(options.out, info.id, info.title);
-        if (!settings.cube_only && !settings.figure) {
+        const bool studies = !settings.cube_only && !settings.figure;
+        if (studies) {
           run_section(info.id, "§1 Radiance and radiosity", [&] { s01_exitance(out, settings); });
           run_section(info.id, "§10 Study: error against closed forms vs time",
                       [&] { s10_form_factor_study(out, settings); });
-          run_section(info.id, "§11 The figure", [&] { s11_tolerance_study(out, settings); });
         }
+        // §11 times the cube's matrix on every thread: from here on the program has the machine to
+        // itself (the main job runs §1 and §10, which time one thread, beside other programs).
+        const WholeMachine machine;
+        if (studies) run_section(info.id, "§11 The figure", [&] { s11_tolerance_study(out, settings); });
         run_section(info.id, "§11 The figure", [&] {
           s11_cube_figure(out, settings);
           cube_image(out, settings);

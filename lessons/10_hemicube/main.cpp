@@ -16,6 +16,7 @@
 #include "illum/core/image.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
+#include "illum/io/whole_machine.hpp"
 #include "illum/radiosity/hemicube.hpp"
 #include "studies/studies.hpp"
 #include "support/lesson_support.hpp"
@@ -113,11 +114,13 @@ void draw_item_buffer(OutputFolder& out, bool quick) {
 
 int main(int argc, char** argv) {
   using namespace illum;
-  const ProgramInfo info{"lesson10", "The hemicube",
-                         "Draws a hemicube's five item-buffer faces and its delta form factors, measures the "
-                         "hemicube's error against closed forms vs resolution and time (fixed and randomly "
-                         "rotated), aliasing, point sampling near patches, and times full matrices of a "
-                         "2,000-patch room."};
+  const ProgramInfo info{
+      "lesson10", "The hemicube",
+      "Draws a hemicube's five item-buffer faces and its delta form factors, measures the "
+      "hemicube's error against closed forms vs resolution and time (fixed and randomly "
+      "rotated), aliasing, point sampling near patches, and times full matrices of a "
+      "2,000-patch room.",
+      TimedCores::mixed};  // §3-§6 on one thread; §7 on every thread, inside a WholeMachine
   return run_program(argc, argv, info, {}, [&](const ProgramOptions& options) {
     using namespace lesson10;
     const Settings settings{.quick = options.quick, .seed = options.seed};
@@ -134,6 +137,9 @@ int main(int argc, char** argv) {
     });
     run_section(info.id, "§6 The price: error against resolution and time",
                 [&] { s06_resolution_study(out, settings); });
+    // §7 times whole matrices on every thread: the machine to itself (the main job runs §3-§6,
+    // which time one thread, beside other programs).
+    const WholeMachine machine;
     run_section(info.id, "§7 Whole matrices and their time",
                 [&] { s07_room_matrices(out, settings, resolutions, mean_error); });
     out.finish();

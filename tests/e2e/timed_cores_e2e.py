@@ -10,12 +10,12 @@ time a second thread while another program holds the second core, so:
 * a program that says "one" wrote, in its --quick run (the e2e fixture's
   test-out/lessonNN), no table with a `threads` column holding anything but 1:
   a table that records its thread count records a timing on more threads.
-  Lesson 10, which times two threads, writes such tables and says "all";
+  Lessons that time two threads write such tables and say "mixed" or "all";
 * a program that says "mixed" (its timings on more threads each inside a
   WholeMachine, lib/illum/io/whole_machine.hpp) asks for the whole machine
   when run --quick under a stand-in for the main job, which answers "go" only
   after WAIT seconds: it asks at least once, and while it waits it prints
-  nothing and does not end (it did wait), and it exits 0. Lesson 08 says so.
+  nothing and does not end (it did wait), and it exits 0. Lessons 08-10 say so.
 
     python3 tests/e2e/timed_cores_e2e.py --bin build/release/bin --out build/release/test-out
 """
