@@ -310,7 +310,7 @@ def run_label(out: Path, spec: Spec, table: Table) -> str:
         names = [f"`{name}`" for name in beside if isinstance(name, str)] if isinstance(beside, list) else []
         if names:
             machine += (f", side by side with {', '.join(names[:-1]) + ' and ' if len(names) > 1 else ''}"
-                        f"{names[-1]} (each times one thread)")
+                        f"{names[-1]} (each timing one thread while they overlapped)")
             if "whole_machine_seconds" in run:  # a "mixed" program (lib/illum/io/whole_machine.hpp)
                 machine += "; its timings on more threads had the machine to themselves"
         date = run["started"]

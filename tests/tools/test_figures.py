@@ -65,7 +65,8 @@ class FiguresTest(unittest.TestCase):
             "started": "2026-12-01 20:00 UTC", "cores": 2, "load_before": [1, 1, 1], "load_after": [2, 1, 1],
             "beside": ["lesson03", "lesson12"]}}))
         self.assertEqual(self.run_mode("update"), 0, self.messages)
-        self.assertIn("2 at its end, side by side with `lesson03` and `lesson12` (each times one thread)",
+        self.assertIn("2 at its end, side by side with `lesson03` and `lesson12` (each timing one thread while they "
+                      "overlapped)",
                       self.text())
 
     def test_the_label_of_a_mixed_program_says_its_timings_on_more_threads_had_the_machine(self):
@@ -73,8 +74,8 @@ class FiguresTest(unittest.TestCase):
             "started": "2026-12-01 20:00 UTC", "cores": 2, "load_before": [1, 1, 1], "load_after": [2, 1, 1],
             "beside": ["lesson12"], "waited_seconds": 8.5, "whole_machine_seconds": 4.6}}))
         self.assertEqual(self.run_mode("update"), 0, self.messages)
-        self.assertIn("side by side with `lesson12` (each times one thread); its timings on more threads had "
-                      "the machine to themselves", self.text())
+        self.assertIn("side by side with `lesson12` (each timing one thread while they overlapped); its timings on "
+                      "more threads had the machine to themselves", self.text())
 
     def test_a_run_alone_says_nothing_of_neighbours(self):
         self.write("out/run_log.json", json.dumps({"lesson01": {
