@@ -28,6 +28,7 @@ A case:
                              copy SOURCE PATH     a copy of a file
                              readonly PATH        chmod a-w
                              run PROGRAM ARG...   a run that must succeed (an earlier output)
+                             env NAME VALUE       the run's environment variable NAME set to VALUE
                              tool NAME EXIT OUT   a fake NAME first on PATH that prints OUT
                                                   ("png-cut": a PNG cut short, else the text on
                                                   stderr) and exits with EXIT
@@ -200,6 +201,8 @@ def prepare(case, args, work, subst, env):
                                  text=True, errors="replace", timeout=300)
             if run.returncode != 0:
                 sys.exit(f"FAIL: prepare: {action} exited {run.returncode}:\n{run.stderr}")
+        elif kind == "env":
+            env[words[1]] = " ".join(words[2:])
         elif kind == "tool":
             folder = fake_tool(work, rest[0], rest[1], " ".join(rest[2:]))
             env["PATH"] = folder + os.pathsep + env.get("PATH", "")

@@ -1,7 +1,6 @@
 #include "illum/io/whole_machine.hpp"
 
 #include <charconv>
-#include <climits>
 #include <cstdlib>
 #include <stdexcept>
 #include <string_view>

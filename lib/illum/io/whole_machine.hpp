@@ -15,7 +15,6 @@
 // Without the variable (a run by hand, or the main job's --alone) both do nothing: the program
 // already has the machine, as much as it can tell.
 #include <optional>
-#include <string>
 
 namespace illum {
 
