@@ -49,9 +49,11 @@ struct RenderOptions {
 
 // The options every command that renders takes (the lab has no --out or --quick).
 void add_image_options(CLI::App& cmd, RenderOptions& o) {
+  // 0 stands for "not given" inside RenderOptions; a 0 on the command line is refused rather than
+  // silently meaning the scene's own size.
   cmd.add_option("--width", o.width, "Image width (default: the scene camera's)")
-      ->check(CLI::Range(0, 16384));
-  cmd.add_option("--height", o.height, "Image height (default: in proportion)")->check(CLI::Range(0, 16384));
+      ->check(CLI::Range(1, 16384));
+  cmd.add_option("--height", o.height, "Image height (default: in proportion)")->check(CLI::Range(1, 16384));
   cmd.add_option("--depth", o.depth, "Depth limit of the ray tree")
       ->check(CLI::Range(0, illum::deepest_depth_limit))
       ->capture_default_str();
