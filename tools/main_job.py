@@ -468,6 +468,19 @@ def main(argv: list[str] | None = None) -> int:
     source = args.source.resolve()
     out = args.out.resolve()
     slides_dir = (args.slides or source / "slides").resolve()
+    # Every folder named is checked before OUT is made: a wrong one stops the job with nothing written.
+    if not (source / "lessons").is_dir():
+        parser.error(f"--source {args.source}: not an illum source tree (no lessons/ folder in it)")
+    if ("slides" in steps or "index" in steps) and not slides_dir.is_dir():
+        parser.error(f"--slides {args.slides or slides_dir}: not a folder")
+    if "lessons" in steps and not find_programs(args.bin.resolve()):
+        parser.error(f"--bin {args.bin}: no lessonNN programs in it (build them first: "
+                     "cmake --build --preset release)")
+    if "lab" in steps and not os.access(args.bin.resolve() / "illum", os.X_OK):
+        parser.error(f"--bin {args.bin}: no illum program in it for the lab's screenshots (build it first: "
+                     "cmake --build --preset release --target illum_cli)")
+    if out.exists() and not out.is_dir():
+        parser.error(f"--out {args.out}: exists and is not a folder")
     out.mkdir(parents=True, exist_ok=True)
     start = time.monotonic()
     try:

@@ -454,6 +454,37 @@ class MainJob(TempDirTest):
         self.assertIn('id="lesson04"', html)
         self.assertIn("Quick run", html)
 
+    def test_a_wrong_folder_is_refused_before_the_output_folder_is_made(self):
+        # Each case names the option and its value, exits 2 and leaves OUT unmade (or the file
+        # that stands where OUT should be untouched).
+        (self.tmp / "bin").mkdir()
+        (self.tmp / "bin" / "lesson01").symlink_to(FAKE_LESSON)
+        (self.tmp / "empty").mkdir()
+        a_file = self.write("a_file", "keep me")
+        out = self.tmp / "out"
+        cases = [
+            (["--bin", str(self.tmp / "empty"), "--out", str(out), "--only", "lessons"], "--bin", "no lessonNN"),
+            (["--bin", str(self.tmp / "missing"), "--out", str(out), "--only", "lessons"], "--bin", "no lessonNN"),
+            (["--bin", str(self.tmp / "missing"), "--out", str(out), "--only", "lab"], "--bin", "no illum program"),
+            (["--bin", str(self.tmp / "bin"), "--out", str(out), "--only", "lab"], "--bin", "no illum program"),
+            (["--out", str(out), "--only", "index", "--source", str(self.tmp / "empty")], "--source",
+             "not an illum source tree"),
+            (["--out", str(out), "--only", "index", "--slides", str(self.tmp / "missing")], "--slides",
+             "not a folder"),
+        ]
+        for args, option, words in cases:
+            with self.subTest(args=args):
+                code, text = self.run_job(*args)
+                self.assertEqual(code, 2, text)
+                self.assertIn(option, text)
+                self.assertIn(words, text)
+                self.assertFalse(out.exists(), text)
+        code, text = self.run_job("--bin", str(self.tmp / "bin"), "--out", str(a_file), "--only", "lessons")
+        self.assertEqual(code, 2, text)
+        self.assertIn(f"--out {a_file}: exists and is not a folder", text)
+        self.assertNotIn("Traceback", text)
+        self.assertEqual(a_file.read_text(), "keep me")
+
     def test_the_run_log_records_each_programs_seconds_and_processor_seconds(self):
         # A fake lesson that burns processor time in a child it waits for (as a lesson waits for
         # gnuplot): the log counts the child's processor seconds too, and never more than the
@@ -488,7 +519,7 @@ class MainJob(TempDirTest):
         (self.tmp / "bin" / "lesson03").symlink_to(FAKE_LESSON)
         env = dict(os.environ, FAKE_LESSON_BREAK="exit")
         result = subprocess.run([sys.executable, str(SOURCE / "tools" / "main_job.py"), "--bin",
-                                 str(self.tmp / "bin"), "--out", str(self.tmp / "out")],
+                                 str(self.tmp / "bin"), "--out", str(self.tmp / "out"), "--only", "lessons,index"],
                                 capture_output=True, text=True, env=env)
         self.assertEqual(result.returncode, 1)
         self.assertIn("lesson03 failed (exit code 1)", result.stderr)
@@ -644,8 +675,9 @@ class MainJob(TempDirTest):
     def test_an_empty_bin_folder_is_an_error(self):
         (self.tmp / "bin").mkdir()
         code, text = self.run_job("--bin", str(self.tmp / "bin"), "--out", str(self.tmp / "out"))
-        self.assertEqual(code, 1)
+        self.assertEqual(code, 2)  # refused as a usage error, before anything is written
         self.assertIn("no lessonNN programs", text)
+        self.assertFalse((self.tmp / "out").exists())
 
     def test_program_discovery_ignores_other_files(self):
         (self.tmp / "bin").mkdir()
