@@ -1143,6 +1143,8 @@ class CommandLineTest(unittest.TestCase):
             self.assert_refused(["--batch", f"{folder}/none"], "no such folder")
             self.assert_refused(["--batch", str(subs), "--jobs", "0"], "--jobs 0")
             self.assert_refused(["--batch", str(subs), "--roster", f"{folder}/none.csv"], "--roster")
+            self.assert_refused(["--batch", str(subs), "--roster", "/dev/null"], "not a regular file")
+            self.assert_refused(["--batch", str(subs), "--roster", str(subs)], "not a regular file")
             self.assert_refused(["--batch", str(subs), "--student"], "does not take --student")
             self.assert_refused(["--format", "canvas", "01"], "--format belongs with --batch")
             self.assert_refused(["--batch", str(subs), "--out", str(subs / "out")], "inside the submissions folder")

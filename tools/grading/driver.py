@@ -113,7 +113,8 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
         if args.jobs is not None and args.jobs < 1:
             parser.error(f"--jobs {args.jobs}: needs at least 1")
         if args.roster is not None and not args.roster.is_file():
-            parser.error(f"--roster {args.roster}: no such file")
+            parser.error(f"--roster {args.roster}: " + ("not a regular file (a roster is a CSV file)"
+                                                         if args.roster.exists() else "no such file"))
     else:
         for option in ("out", "jobs", "roster", "format", "work_dir"):
             if getattr(args, option) is not None:
