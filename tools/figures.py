@@ -1055,6 +1055,12 @@ def main(argv: list[str] | None = None) -> int:
     args = parser.parse_args(argv)
     source = args.source.resolve()
     out = (args.out or source / "out").resolve()
+    if not (source / "lessons").is_dir():
+        parser.error(f"--source {args.source}: not an illum source tree (no lessons/ folder in it)")
+    # One clear line rather than a missing-file problem for each of the texts' figures.
+    if not args.links and not out.is_dir():
+        parser.error(f"--out {args.out or out}: not a folder of the main job's outputs (run tools/bootstrap, "
+                     "or tools/main_job.py --bin build/release/bin --out out)")
     if args.update_images:
         return update_images(source, out)
     if args.links:

@@ -267,6 +267,37 @@ def picture(width: int, height: int, shift: int = 0) -> bytes:
     return bytes((37 * i + 11 * (i // 7) + shift) % 251 for i in range(width * height * 3))
 
 
+class OptionsTest(unittest.TestCase):
+    """A wrong --out or --source is one line naming the option and the value, exit status 2, before
+    any text is read (not one missing-file problem per figure of every text)."""
+
+    def refused(self, argv: list[str]) -> str:
+        import contextlib
+        import io
+
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err), self.assertRaises(SystemExit) as stop:
+            figures.main(argv)
+        self.assertEqual(stop.exception.code, 2)
+        return err.getvalue()
+
+    def test_an_out_that_is_no_folder_is_refused(self):
+        with tempfile.TemporaryDirectory() as folder:
+            a_file = Path(folder) / "out.txt"
+            a_file.write_text("x")
+            for out in (Path(folder) / "missing", a_file):
+                text = self.refused(["--check", "--out", str(out)])
+                self.assertIn(f"--out {out}: not a folder of the main job's outputs", text)
+                self.assertEqual(text.count("error:"), 1, text)
+                self.assertNotIn("wrote no", text)  # no problem listed per figure
+            self.assertEqual(a_file.read_text(), "x")
+
+    def test_a_source_without_lessons_is_refused(self):
+        with tempfile.TemporaryDirectory() as folder:
+            text = self.refused(["--links", "--source", folder])
+            self.assertIn(f"--source {folder}: not an illum source tree", text)
+
+
 class KeptImagesTest(unittest.TestCase):
     """Lesson texts show their images from figures/, kept copies of what the programs drew."""
 

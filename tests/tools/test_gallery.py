@@ -485,6 +485,25 @@ class MainJob(TempDirTest):
         self.assertNotIn("Traceback", text)
         self.assertEqual(a_file.read_text(), "keep me")
 
+    def test_the_lab_screenshots_refuse_a_bin_without_illum_before_writing(self):
+        (self.tmp / "bin").mkdir()
+        a_file = self.write("a_file", "keep me")
+        for args, words in ((["--bin", str(self.tmp / "bin"), "--out", str(self.tmp / "out")], "no illum program"),
+                            (["--bin", str(self.tmp / "missing"), "--out", str(self.tmp / "out")], "no illum program")):
+            result = subprocess.run([sys.executable, str(SOURCE / "tools" / "lab" / "screenshots.py"), *args],
+                                    capture_output=True, text=True)
+            self.assertEqual(result.returncode, 2, result.stderr)
+            self.assertIn(words, result.stderr)
+            self.assertNotIn("Traceback", result.stderr)
+            self.assertFalse((self.tmp / "out").exists())
+        fake_illum = self.write("bin/illum", "#!/bin/sh\nexit 1\n")
+        fake_illum.chmod(0o755)
+        result = subprocess.run([sys.executable, str(SOURCE / "tools" / "lab" / "screenshots.py"), "--bin",
+                                 str(self.tmp / "bin"), "--out", str(a_file)], capture_output=True, text=True)
+        self.assertEqual(result.returncode, 2, result.stderr)
+        self.assertIn(f"--out {a_file}: exists and is not a folder", result.stderr)
+        self.assertEqual(a_file.read_text(), "keep me")
+
     def test_the_run_log_records_each_programs_seconds_and_processor_seconds(self):
         # A fake lesson that burns processor time in a child it waits for (as a lesson waits for
         # gnuplot): the log counts the child's processor seconds too, and never more than the

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import re
 import select
 import shutil
@@ -73,11 +74,17 @@ def main(argv: list[str] | None = None) -> int:
     if node is None:
         print("screenshots: Node.js is missing: run tools/install-deps", file=sys.stderr)
         return 1
+    illum = args.bin.resolve() / "illum"
+    if not os.access(illum, os.X_OK):  # checked before OUT/lab is made
+        parser.error(f"--bin {args.bin}: no illum program in it (build it first: "
+                     "cmake --build --preset release --target illum_cli)")
     out = args.out.resolve()
+    if out.exists() and not out.is_dir():
+        parser.error(f"--out {args.out}: exists and is not a folder")
     folder = out / "lab"
     folder.mkdir(parents=True, exist_ok=True)
     try:
-        process, port = start_lab(args.bin.resolve() / "illum", out)
+        process, port = start_lab(illum, out)
     except RuntimeError as e:
         print(f"screenshots: {e}", file=sys.stderr)
         return 1
