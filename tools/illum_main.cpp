@@ -140,6 +140,14 @@ int trace(const RenderOptions& o) {
 }
 
 int lab(const LabCommand& c) {
+  // The folders are checked before anything listens: a mistyped one would otherwise show a lab
+  // with no reference images, or none of the student's pictures, and no word why.
+  if (std::error_code e; !std::filesystem::is_directory(c.source / "lessons", e))
+    throw illum::InputError("command line", "--source", c.source.string(),
+                            "not the course's source tree (it has no lessons/ folder)");
+  if (std::error_code e; !c.out.empty() && !std::filesystem::is_directory(c.out, e))
+    throw illum::InputError("command line", "--out", c.out.string(),
+                            "not a folder (the outputs of your lesson programs, OUT/lessonNN)");
   // A bad scene or size is refused here, before anything listens; one that needs an exercise
   // not written yet (NotImplemented) is not: the lab says so in the page, and its other views work.
   try {
