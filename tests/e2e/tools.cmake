@@ -14,6 +14,9 @@ set_tests_properties(tools_task_tables_py PROPERTIES LABELS grading ENVIRONMENT 
 add_test(NAME tools_check_fresh_debian_py
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_check_fresh_debian.py)
 set_tests_properties(tools_check_fresh_debian_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# tools/bootstrap's arguments (it takes none: a typo is refused before the first step).
+add_test(NAME tools_bootstrap_py COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_bootstrap.py)
+set_tests_properties(tools_bootstrap_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # tools/check_container's argument checks (the run itself needs a container engine, the network and
 # about 25 minutes).
 add_test(NAME tools_check_container_py
