@@ -267,8 +267,10 @@ TraceLab::Request TraceLab::read(const Query& q) {
             .settings = defaults_,
             .camera = PinholeCamera(Point3(0, 0, 1), Point3(0.0), Vec3(0, 1, 0), 45, 1, 1)};
   r.scene = scene(r.name);
-  r.settings.width = static_cast<int>(q.integer_or("width", 0, 2048, defaults_.width));
-  r.settings.height = static_cast<int>(q.integer_or("height", 0, 2048, defaults_.height));
+  // Absent, they keep illum lab's --width/--height (0 there: the scene camera's size); given, they
+  // are a size, so 0 is refused as `illum render --width 0` is.
+  r.settings.width = static_cast<int>(q.integer_or("width", 1, 2048, defaults_.width));
+  r.settings.height = static_cast<int>(q.integer_or("height", 1, 2048, defaults_.height));
   r.settings.max_depth = static_cast<int>(q.integer_or("depth", 0, 64, defaults_.max_depth));
   r.settings.use_plan = q.flag_or("plan", defaults_.use_plan);
   r.settings.min_contribution = q.number_or("prune", 0.0, 1.0, defaults_.min_contribution);
