@@ -5,6 +5,8 @@
 """
 from __future__ import annotations
 
+import contextlib
+import io
 import json
 import struct
 import sys
@@ -272,9 +274,6 @@ class OptionsTest(unittest.TestCase):
     any text is read (not one missing-file problem per figure of every text)."""
 
     def refused(self, argv: list[str]) -> str:
-        import contextlib
-        import io
-
         err = io.StringIO()
         with contextlib.redirect_stderr(err), self.assertRaises(SystemExit) as stop:
             figures.main(argv)
