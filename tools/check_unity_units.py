@@ -3,7 +3,7 @@
 
     tools/check_unity_units.py --build-dir DIR [--source DIR] [--require-units]   (CTest `unity_units`)
 
-CMakeLists.txt (`illum_unity_build`) compiles a target's sources eight to a unit:
+CMakeLists.txt (`illum_unity_build`) compiles a target's sources sixteen to a unit:
 DIR/unity/<target>/unit_N.cpp includes them one after another, so a helper
 private to one file (in an unnamed namespace, or `static`) is visible to every
 file after it in the unit. Two private helpers of one name and signature stop
