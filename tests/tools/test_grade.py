@@ -1053,6 +1053,21 @@ class CommandLineTest(unittest.TestCase):
         self.assertIn(words, err, argv)
         self.assertNotIn("Traceback", err, argv)
 
+    def test_a_grader_data_that_is_not_a_folder(self) -> None:
+        # Refused before the build, which would take minutes and write build/student: the build
+        # step is replaced by one that fails the test if it is reached.
+        from unittest import mock
+        from grading import driver
+
+        def no_build(*_args, **_kwargs):
+            raise AssertionError("the build started before --grader-data was checked")
+
+        with tempfile.TemporaryDirectory() as folder, mock.patch.object(driver, "build_tree", no_build):
+            self.assert_refused(["--student", "--grader-data", f"{folder}/none", "01"],
+                                f"--grader-data {folder}/none: no such folder")
+            self.assert_refused(["--student", "--grader-data", "/dev/null", "01"],
+                                "--grader-data /dev/null: not a folder")
+
     def test_a_submission_info_that_is_not_json(self) -> None:
         with tempfile.TemporaryDirectory() as folder:
             info = Path(folder) / "info.json"
@@ -1141,6 +1156,9 @@ class CommandLineTest(unittest.TestCase):
             subs = Path(folder) / "subs"
             subs.mkdir()
             self.assert_refused(["--batch", f"{folder}/none"], "no such folder")
+            self.assert_refused(["--batch", "/dev/null"], "--batch /dev/null: not a folder")
+            with tempfile.NamedTemporaryFile(suffix=".zip") as one_zip:  # a submission, not their folder
+                self.assert_refused(["--batch", one_zip.name], "not a folder (--batch takes the folder")
             self.assert_refused(["--batch", str(subs), "--jobs", "0"], "--jobs 0")
             self.assert_refused(["--batch", str(subs), "--roster", f"{folder}/none.csv"], "--roster")
             self.assert_refused(["--batch", str(subs), "--roster", "/dev/null"], "not a regular file")

@@ -109,7 +109,9 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
             if getattr(args, other):
                 parser.error(f"--batch grades each submission itself; it does not take --{other.replace('_', '-')}")
         if not args.batch.is_dir():
-            parser.error(f"--batch {args.batch}: no such folder")
+            parser.error(f"--batch {args.batch}: " + ("not a folder (--batch takes the folder of the "
+                                                     "submissions, each a folder or a zip)"
+                                                     if args.batch.exists() else "no such folder"))
         if args.jobs is not None and args.jobs < 1:
             parser.error(f"--jobs {args.jobs}: needs at least 1")
         if args.roster is not None and not args.roster.is_file():
@@ -199,7 +201,8 @@ class GraderData:
         if folder is None:
             return
         if not folder.is_dir():
-            raise UsageError(f"--grader-data {folder}: no such folder (run setup.sh first)")
+            raise UsageError(f"--grader-data {folder}: " + ("not a folder" if folder.exists() else
+                                                           "no such folder (run setup.sh first)"))
         tests, symbols = folder / "tests.json", folder / "stub-symbols.json"
         if tests.is_file():
             self.tests = json.loads(tests.read_text(encoding="utf-8"))
@@ -358,6 +361,7 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     start = time.monotonic()
     check_lessons_exist(args, root)
     lessons = choose_lessons(args, root)
+    data = GraderData(args.grader_data)  # a wrong folder is refused before the build writes anything
     build_dir, exercises = build_tree(args, root, lessons)
     if not (build_dir / "libillum.a").exists():
         print(f"tools/grade: the first build of {build_dir} compiles the whole library: 1 to 3 minutes on two "
@@ -365,7 +369,6 @@ def grade(args: argparse.Namespace, root: Path) -> int:
               file=sys.stderr, flush=True)
     run = GradeRun(lessons=lessons, student=args.student)
     run.submission = args.submission
-    data = GraderData(args.grader_data)
     try:
         sandbox = _make_sandbox(args)
     except SandboxError as error:
