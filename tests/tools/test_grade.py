@@ -622,29 +622,66 @@ class LinksTest(unittest.TestCase):
             self.assertTrue(any("#nope" in p for p in problems))
             self.assertTrue(any("outside the tree" in p for p in problems))
 
+    @staticmethod
+    def write_tiny_source(source: Path) -> None:
+        """Two lessons, each with one exercise unit and its reference, and the documents the edition's
+        README links to."""
+        files = {
+            "README.md": "# illum\n## For instructors\n`tools/grade --batch`\n<!-- student-commands: begin -->\n"
+                         "```sh\ncmake --preset student\n```\n<!-- student-commands: end -->\n",
+            "lessons/01_ray_sphere/README.md": "# Lesson 01 — The ray and the sphere\n"
+                                               "[`sphere.cpp`](../../lib/illum/geometry/sphere.cpp) "
+                                               "[exercise](../../exercises/01_ray_sphere/README.md)\n",
+            "lessons/02_polygon_parity/README.md": "# Lesson 02 — Parity\n"
+                                                   "[exercise](../../exercises/02_polygon_parity/README.md) "
+                                                   "[`parity.cpp`](../../exercises/02_polygon_parity/parity.cpp)\n",
+            "lib/illum/geometry/sphere.cpp": "", "lib/illum/geometry/parity.cpp": "",
+            "exercises/01_ray_sphere/sphere.cpp": "", "exercises/01_ray_sphere/README.md": "# Exercise 01 — x\n",
+            "exercises/02_polygon_parity/parity.cpp": "", "exercises/02_polygon_parity/README.md": "# Exercise 02\n",
+            "docs/errata.md": "# Errata\n", "docs/lab.md": "# Lab\n", "docs/grading.md": "# Grading\n## Students\n",
+            "docs/scene-format.md": "# Scenes\n",
+        }
+        for name, text in files.items():
+            (source / name).parent.mkdir(parents=True, exist_ok=True)
+            (source / name).write_text(text, encoding="utf-8")
+
+    def test_the_edition_refuses_before_it_removes_or_writes_anything(self) -> None:
+        from grading.edition import make_student_edition
+        from grading.project import STUDENT_EDITION_MARKER
+
+        with tempfile.TemporaryDirectory() as folder:
+            source, out = Path(folder) / "src", Path(folder) / "edition"
+            self.write_tiny_source(source)
+            make_student_edition(source, out, ["01"])
+            marker = (out / STUDENT_EDITION_MARKER).read_text(encoding="utf-8")
+            # A lesson without exercises: refused, and the earlier edition is left whole.
+            with self.assertRaisesRegex(ValueError, "lesson.s. 99 have no exercises"):
+                make_student_edition(source, out, ["99"])
+            self.assertEqual((out / STUDENT_EDITION_MARKER).read_text(encoding="utf-8"), marker)
+            self.assertTrue((out / "README.md").is_file())
+            # A folder that is no source tree is refused before it is read (it could be / itself).
+            with self.assertRaisesRegex(ValueError, "is not an illum source tree"):
+                make_student_edition(Path(folder) / "src" / "docs", Path(folder) / "other", None)
+            self.assertFalse((Path(folder) / "other").exists())
+            # A file where the edition goes: refused, left as it was.
+            a_file = Path(folder) / "a_file"
+            a_file.write_text("keep\n")
+            with self.assertRaisesRegex(ValueError, "exists and is not a folder"):
+                make_student_edition(source, a_file, ["01"])
+            self.assertEqual(a_file.read_text(), "keep\n")
+            # A link to an earlier edition: refused; the edition it points to is not replaced through it.
+            link = Path(folder) / "link"
+            link.symlink_to(out)
+            with self.assertRaisesRegex(ValueError, "is a symbolic link"):
+                make_student_edition(source, link, ["02"])
+            self.assertEqual((out / STUDENT_EDITION_MARKER).read_text(encoding="utf-8"), marker)
+
     def test_the_edition_rewrites_links_to_what_it_leaves_out_and_has_its_own_readme(self) -> None:
         from grading.edition import make_student_edition
 
         with tempfile.TemporaryDirectory() as folder:
             source, out = Path(folder) / "src", Path(folder) / "edition"
-            files = {
-                "README.md": "# illum\n## For instructors\n`tools/grade --batch`\n<!-- student-commands: begin -->\n"
-                             "```sh\ncmake --preset student\n```\n<!-- student-commands: end -->\n",
-                "lessons/01_ray_sphere/README.md": "# Lesson 01 — The ray and the sphere\n"
-                                                   "[`sphere.cpp`](../../lib/illum/geometry/sphere.cpp) "
-                                                   "[exercise](../../exercises/01_ray_sphere/README.md)\n",
-                "lessons/02_polygon_parity/README.md": "# Lesson 02 — Parity\n"
-                                                       "[exercise](../../exercises/02_polygon_parity/README.md) "
-                                                       "[`parity.cpp`](../../exercises/02_polygon_parity/parity.cpp)\n",
-                "lib/illum/geometry/sphere.cpp": "", "lib/illum/geometry/parity.cpp": "",
-                "exercises/01_ray_sphere/sphere.cpp": "", "exercises/01_ray_sphere/README.md": "# Exercise 01 — x\n",
-                "exercises/02_polygon_parity/parity.cpp": "", "exercises/02_polygon_parity/README.md": "# Exercise 02\n",
-                "docs/errata.md": "# Errata\n", "docs/lab.md": "# Lab\n", "docs/grading.md": "# Grading\n## Students\n",
-                "docs/scene-format.md": "# Scenes\n",
-            }
-            for name, text in files.items():
-                (source / name).parent.mkdir(parents=True, exist_ok=True)
-                (source / name).write_text(text, encoding="utf-8")
+            self.write_tiny_source(source)
             make_student_edition(source, out, ["01"])
             readme = (out / "README.md").read_text(encoding="utf-8")
             self.assertTrue(readme.startswith("# illum — student edition"))

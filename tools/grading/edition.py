@@ -119,16 +119,23 @@ def make_student_edition(source: Path, out: Path, handed_out: list[str] | None =
     handing out the exercises of ``handed_out`` (None: every lesson with exercises)."""
     from .alone import declared_dependencies
 
+    if out.is_symlink():  # its target would be replaced, or written, through the link
+        raise ValueError(f"{out} is a symbolic link; refusing to write through it (give the folder itself)")
     source, out = source.resolve(), out.resolve()
+    # Everything is checked before an earlier edition is removed or a file written. A folder
+    # without lessons/ is no source tree: reading it would walk all of it (/tmp, or /).
+    if not (source / "lessons").is_dir():
+        raise ValueError(f"{source} is not an illum source tree (it has no lessons/ folder)")
     # Inside the source tree, only the generated folders are safe: anywhere
     # else the edition would be copied into itself next time.
     in_generated = any(out == source / g or source / g in out.parents for g in _GENERATED)
     if out == source or (source in out.parents and not in_generated):
         raise ValueError(f"{out} lies inside the source tree; write the edition under build/ or elsewhere")
     if out.exists():
+        if not out.is_dir():
+            raise ValueError(f"{out} exists and is not a folder; refusing to replace it")
         if any(out.iterdir()) and not (out / STUDENT_EDITION_MARKER).exists():
             raise ValueError(f"{out} exists and is not a student edition; refusing to replace it")
-        shutil.rmtree(out)
     files = tracked_files(source)
     lessons = exercise_lessons_of(files)
     unknown = sorted(set(handed_out or []) - set(lessons))
@@ -138,6 +145,8 @@ def make_student_edition(source: Path, out: Path, handed_out: list[str] | None =
     chosen = lessons if handed_out is None else sorted(set(handed_out))
     if not chosen:
         raise ValueError("no lesson to hand out")
+    if out.exists():
+        shutil.rmtree(out)  # an earlier edition (its marker says so), now that nothing is left to refuse
     left_out = excluded_files(files, chosen)
     edition = Edition(out, left_out=left_out, handed_out=chosen)
     for lesson in chosen:
