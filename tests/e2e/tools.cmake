@@ -17,6 +17,9 @@ set_tests_properties(tools_check_fresh_debian_py PROPERTIES LABELS tools ENVIRON
 # tools/bootstrap's arguments (it takes none: a typo is refused before the first step).
 add_test(NAME tools_bootstrap_py COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_bootstrap.py)
 set_tests_properties(tools_bootstrap_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# tools/fuzz's arguments (a wrong one is refused before the fuzz build).
+add_test(NAME tools_fuzz_py COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_fuzz.py)
+set_tests_properties(tools_fuzz_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # tools/check_container's argument checks (the run itself needs a container engine, the network and
 # about 25 minutes).
 add_test(NAME tools_check_container_py
