@@ -1194,6 +1194,9 @@ class CommandLineTest(unittest.TestCase):
             subs.mkdir()
             self.assert_refused(["--batch", f"{folder}/none"], "no such folder")
             self.assert_refused(["--batch", "/dev/null"], "--batch /dev/null: not a folder")
+            self.assert_refused(["--hidden", f"{folder}/none", "01"], f"--hidden {folder}/none: no such folder")
+            self.assert_refused(["--hidden", "/dev/null", "01"], "--hidden /dev/null: not a folder")
+            self.assert_refused(["--hidden", str(subs), "01"], f"--hidden {subs}: no .cpp test files there")
             with tempfile.NamedTemporaryFile(suffix=".zip") as one_zip:  # a submission, not their folder
                 self.assert_refused(["--batch", one_zip.name], "not a folder (--batch takes the folder")
             self.assert_refused(["--batch", str(subs), "--jobs", "0"], "--jobs 0")

@@ -136,8 +136,12 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
         args.lessons = sorted(set(project.normalize_lesson(text) for text in args.lessons))
     except ValueError as error:
         parser.error(str(error))
-    if args.hidden is not None and not any(args.hidden.glob("*.cpp")):
-        parser.error(f"--hidden {args.hidden}: no .cpp test files there")
+    if args.hidden is not None:
+        if not args.hidden.is_dir():
+            parser.error(f"--hidden {args.hidden}: " + ("not a folder (it takes the folder of the hidden test "
+                                                       "files)" if args.hidden.exists() else "no such folder"))
+        if not any(args.hidden.glob("*.cpp")):
+            parser.error(f"--hidden {args.hidden}: no .cpp test files there")
     return args
 
 
