@@ -676,6 +676,32 @@ class LinksTest(unittest.TestCase):
                 make_student_edition(source, link, ["02"])
             self.assertEqual((out / STUDENT_EDITION_MARKER).read_text(encoding="utf-8"), marker)
 
+    def test_a_failed_edition_leaves_the_earlier_one_whole(self) -> None:
+        from unittest import mock
+        from grading import edition
+        from grading.project import STUDENT_EDITION_MARKER
+
+        with tempfile.TemporaryDirectory() as folder:
+            source, out = Path(folder) / "src", Path(folder) / "edition"
+            self.write_tiny_source(source)
+            edition.make_student_edition(source, out, ["01"])
+            before = sorted(p.relative_to(out).as_posix() for p in out.rglob("*"))
+            marker = (out / STUDENT_EDITION_MARKER).read_text(encoding="utf-8")
+
+            def interrupted(*_args, **_kwargs):  # the README is written part way through the copy
+                raise KeyboardInterrupt
+
+            with mock.patch.object(edition, "student_readme", interrupted), self.assertRaises(KeyboardInterrupt):
+                edition.make_student_edition(source, out, ["02"])
+            self.assertEqual(sorted(p.relative_to(out).as_posix() for p in out.rglob("*")), before)
+            self.assertEqual((out / STUDENT_EDITION_MARKER).read_text(encoding="utf-8"), marker)
+            self.assertEqual(sorted(p.name for p in Path(folder).iterdir()), ["edition", "src"])  # no half copy
+            # And a run that succeeds replaces it whole, with the folder's usual mode, not mkdtemp's 0700.
+            edition.make_student_edition(source, out, ["02"])
+            self.assertIn("lessons 02", (out / STUDENT_EDITION_MARKER).read_text(encoding="utf-8"))
+            self.assertEqual(sorted(p.name for p in Path(folder).iterdir()), ["edition", "src"])
+            self.assertEqual(out.stat().st_mode & 0o777, source.stat().st_mode & 0o777)
+
     def test_the_edition_rewrites_links_to_what_it_leaves_out_and_has_its_own_readme(self) -> None:
         from grading.edition import make_student_edition
 

@@ -26,6 +26,7 @@ import os
 import re
 import shutil
 import subprocess
+import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
@@ -117,8 +118,6 @@ class Edition:
 def make_student_edition(source: Path, out: Path, handed_out: list[str] | None = None) -> Edition:
     """Writes the student edition of ``source`` to ``out`` (replacing an earlier one),
     handing out the exercises of ``handed_out`` (None: every lesson with exercises)."""
-    from .alone import declared_dependencies
-
     if out.is_symlink():  # its target would be replaced, or written, through the link
         raise ValueError(f"{out} is a symbolic link; refusing to write through it (give the folder itself)")
     source, out = source.resolve(), out.resolve()
@@ -145,8 +144,34 @@ def make_student_edition(source: Path, out: Path, handed_out: list[str] | None =
     chosen = lessons if handed_out is None else sorted(set(handed_out))
     if not chosen:
         raise ValueError("no lesson to hand out")
-    if out.exists():
-        shutil.rmtree(out)  # an earlier edition (its marker says so), now that nothing is left to refuse
+    # Written into a new folder beside `out` and renamed into place at the end: an interrupted or
+    # failed run leaves the earlier edition (or nothing) as it was, never half of a new one.
+    out.parent.mkdir(parents=True, exist_ok=True)
+    staging = Path(tempfile.mkdtemp(prefix=f".{out.name}.new.", dir=out.parent))
+    umask = os.umask(0)
+    os.umask(umask)
+    staging.chmod(0o777 & ~umask)  # mkdtemp's 0700 would become the edition's own mode
+    try:
+        edition = _write_edition(source, staging, files, lessons, chosen)
+        if out.exists():  # an earlier edition (its marker says so), now that nothing is left to refuse
+            old = Path(tempfile.mkdtemp(prefix=f".{out.name}.old.", dir=out.parent))
+            old.rmdir()
+            out.rename(old)
+            staging.rename(out)
+            shutil.rmtree(old)
+        else:
+            staging.rename(out)
+    finally:
+        if staging.exists():
+            shutil.rmtree(staging)
+    edition.out = out
+    return edition
+
+
+def _write_edition(source: Path, out: Path, files: list[str], lessons: list[str], chosen: list[str]) -> Edition:
+    """The edition's files in the empty folder ``out``, its marker last."""
+    from .alone import declared_dependencies
+
     left_out = excluded_files(files, chosen)
     edition = Edition(out, left_out=left_out, handed_out=chosen)
     for lesson in chosen:
