@@ -21,7 +21,8 @@ double form_factor_estimate(const Patch& receiver, const Patch& source) {
   throw NotImplemented("form_factor_estimate", "A_s / (π r² + A_s), r between the centroids (lesson 14, §3)");
 }
 
-// Task 2. The exact factor at the receiver's k² points, each times the fraction of the source's points it sees.
+// Task 2. The exact factor at the receiver's k² points, each times the fraction of the source's points it
+// sees.
 double link_form_factor(const Patch& receiver, const Patch& source, int points_per_side,
                         const SegmentVisible& visible) {
   throw NotImplemented("link_form_factor",
@@ -31,9 +32,10 @@ double link_form_factor(const Patch& receiver, const Patch& source, int points_p
 
 // Task 3a. The geometric test: split the larger element while an estimate is above ε_F.
 LinkAction form_factor_oracle(const Patch& receiver, const Patch& source, const RefineSettings& settings) {
-  throw NotImplemented("form_factor_oracle",
-                       "check the settings; max of both estimates > ε_F: split the larger (if above min_area), "
-                       "else link (lesson 14, §4)");
+  throw NotImplemented(
+      "form_factor_oracle",
+      "check the settings; max of both estimates > ε_F: split the larger (if above min_area), "
+      "else link (lesson 14, §4)");
 }
 
 // Task 3b. BF refinement: drop a link that carries nothing, split one that brings too much light.
@@ -54,7 +56,8 @@ void refine(ElementHierarchy& h, int receiver, int source, const RefineSettings&
 
 // Task 5. Every element's gathered radiosity from its own links.
 void gather(ElementHierarchy& h) {
-  throw NotImplemented("gather", "zero every B_g, then B_g(r) += ρ_r ⊙ B_s · F for each link (lesson 14, §5)");
+  throw NotImplemented("gather",
+                       "zero every B_g, then B_g(r) += ρ_r ⊙ B_s · F for each link (lesson 14, §5)");
 }
 
 // Task 6. Push what each element gathered down to its leaves, pull the area-weighted mean up.
@@ -66,9 +69,10 @@ void push_pull(ElementHierarchy& h) {
 
 // Task 7. Sweeps of gather and push-pull until the error bound is below the tolerance.
 SolveReport solve_links(ElementHierarchy& h, double tolerance, int max_iterations) {
-  throw NotImplemented("solve_links",
-                       "after each sweep d_k = max |ΔB|; stop when d_k = 0 or d_k q/(1 − q) ≤ tolerance · max B, "
-                       "q = d_k/d_{k−1} < 1 (lesson 14, §5)");
+  throw NotImplemented(
+      "solve_links",
+      "after each sweep d_k = max |ΔB|; stop when d_k = 0 or d_k q/(1 − q) ≤ tolerance · max B, "
+      "q = d_k/d_{k−1} < 1 (lesson 14, §5)");
 }
 
 // Task 8. Replace the links that BF refinement now splits.

@@ -39,7 +39,12 @@ Projector projector(const LeafView& view) {
   const RadiosityCamera& c = view.camera;
   const Vec3 f = normalize(c.target - c.eye), r = normalize(cross(f, c.up)), u = cross(r, f);
   const double half = std::tan(0.5 * c.vertical_fov_degrees * std::numbers::pi / 180.0);
-  return {c.eye, f, r, u, 2 * half / view.height, static_cast<double>(view.width),
+  return {c.eye,
+          f,
+          r,
+          u,
+          2 * half / view.height,
+          static_cast<double>(view.width),
           static_cast<double>(view.height)};
 }
 
@@ -47,10 +52,12 @@ Projector projector(const LeafView& view) {
 void draw_segment(Image& image, const Projector& p, const Point3& a, const Point3& b, const Color& colour) {
   double ax = 0, ay = 0, bx = 0, by = 0;
   if (!p.project(a, ax, ay) || !p.project(b, bx, by)) return;
-  const int steps = static_cast<int>(std::min(4096.0, std::ceil(std::max(std::abs(bx - ax), std::abs(by - ay)))));
+  const int steps =
+      static_cast<int>(std::min(4096.0, std::ceil(std::max(std::abs(bx - ax), std::abs(by - ay)))));
   for (int k = 0; k <= steps; ++k) {
     const double t = steps > 0 ? static_cast<double>(k) / steps : 0;
-    const int x = static_cast<int>(std::floor(ax + t * (bx - ax))), y = static_cast<int>(std::floor(ay + t * (by - ay)));
+    const int x = static_cast<int>(std::floor(ax + t * (bx - ax))),
+              y = static_cast<int>(std::floor(ay + t * (by - ay)));
     if (x >= 0 && y >= 0 && x < image.width() && y < image.height()) image.at(x, y) = colour;
   }
 }
@@ -71,8 +78,8 @@ LeafView view_leaves(const HierarchicalSolution& s, const Roots& roots, int widt
         if (const double t = hit_patch(ray, s.hierarchy.elements[r].patch); t < nearest)
           nearest = t, root = static_cast<int>(r);
       if (root >= 0)
-        view.leaf[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] =
-            leaf_at(s.hierarchy, root, ray.at(nearest));
+        view.leaf[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) +
+                  static_cast<std::size_t>(x)] = leaf_at(s.hierarchy, root, ray.at(nearest));
     }
   return view;
 }
@@ -90,14 +97,16 @@ double exposure_for(const HierarchicalSolution& s) {
 Image leaf_image(const LeafView& view, const HierarchicalSolution& s, double exposure, bool edges) {
   Image image(view.width, view.height);
   const auto at = [&](int x, int y) {
-    return view.leaf[static_cast<std::size_t>(y) * static_cast<std::size_t>(view.width) + static_cast<std::size_t>(x)];
+    return view.leaf[static_cast<std::size_t>(y) * static_cast<std::size_t>(view.width) +
+                     static_cast<std::size_t>(x)];
   };
   for (int y = 0; y < view.height; ++y)
     for (int x = 0; x < view.width; ++x) {
       const int leaf = at(x, y);
       if (leaf < 0) continue;
       image.at(x, y) = exposure * s.hierarchy[leaf].radiosity;
-      if (edges && ((x + 1 < view.width && at(x + 1, y) != leaf) || (y + 1 < view.height && at(x, y + 1) != leaf)))
+      if (edges &&
+          ((x + 1 < view.width && at(x + 1, y) != leaf) || (y + 1 < view.height && at(x, y + 1) != leaf)))
         image.at(x, y) = Color(0.15);
     }
   return image;

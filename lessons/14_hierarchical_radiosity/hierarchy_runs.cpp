@@ -41,7 +41,8 @@ Errors errors_of(const std::function<Color(int, const Point3&)>& read, const Uni
 }  // namespace
 
 SegmentVisible Roots::visible() const {
-  return [occluders = occluders](const Point3& a, const Point3& b) { return occluders->mutually_visible(a, b); };
+  return
+      [occluders = occluders](const Point3& a, const Point3& b) { return occluders->mutually_visible(a, b); };
 }
 
 Roots load_roots(const std::string& scene) {
@@ -50,7 +51,8 @@ Roots load_roots(const std::string& scene) {
   return roots;
 }
 
-HierarchicalSolution solve_hierarchy(const Roots& roots, double epsilon_f, double epsilon_bf, double min_edge) {
+HierarchicalSolution solve_hierarchy(const Roots& roots, double epsilon_f, double epsilon_bf,
+                                     double min_edge) {
   const HierarchicalSettings settings{
       .refine = {.epsilon_f = epsilon_f, .epsilon_bf = epsilon_bf, .min_area = min_edge * min_edge}};
   return solve_hierarchical(roots.scene.patches, settings, roots.visible());
@@ -83,7 +85,8 @@ Color uniform_at(const UniformRun& u, int surface, const Point3& point) {
 }
 
 Errors errors_of_hierarchy(const HierarchicalSolution& s, const Roots& roots, const UniformRun& reference) {
-  return errors_of([&](int surface, const Point3& x) { return hierarchy_at(s, roots, surface, x); }, reference);
+  return errors_of([&](int surface, const Point3& x) { return hierarchy_at(s, roots, surface, x); },
+                   reference);
 }
 
 Errors errors_of_uniform(const UniformRun& u, const UniformRun& reference) {

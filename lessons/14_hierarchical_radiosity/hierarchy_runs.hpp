@@ -26,7 +26,8 @@ Roots load_roots(const std::string& scene);
 
 // Hierarchical radiosity on the roots with these oracle knobs; elements are
 // never split below min_edge² of area.
-HierarchicalSolution solve_hierarchy(const Roots& roots, double epsilon_f, double epsilon_bf, double min_edge);
+HierarchicalSolution solve_hierarchy(const Roots& roots, double epsilon_f, double epsilon_bf,
+                                     double min_edge);
 
 // A uniform mesh solved by lesson 11's progressive refinement with hemicube
 // rows on demand (radiosity/production/progressive_on_demand.hpp) on one

@@ -1,16 +1,11 @@
 // Lesson 14: hierarchical radiosity — the demonstration.
-//
-// Loads the room (scenes/room.json: walls beside a lamp bulb, desk legs and
-// the edges of a desk), makes every surface the root of a quadtree of
-// elements, links them as the oracle decides and solves on the links
-// (radiosity/hierarchical_radiosity.hpp, the exercise; Hanrahan, Salzman and
-// Aupperle 1991); draws the room with its elements and the links of its
-// brightest element, and prints the counts. The studies the text quotes run
-// in its order, one file each in studies/ (README.md, "Read in this order").
+// The room (scenes/room.json), every surface the root of a quadtree, linked as the
+// oracle decides and solved on the links (radiosity/hierarchical_radiosity.hpp, the
+// exercise), drawn with its elements and the links of its brightest element. The
+// studies run in the text's order, one file each in studies/.
 #include <iostream>
 
 #include "hierarchy_render.hpp"
-#include "illum/io/program.hpp"
 #include "studies/studies.hpp"
 #include "support/lesson_support.hpp"
 
@@ -18,7 +13,8 @@ namespace illum::lesson14 {
 namespace {
 
 void room(OutputFolder& out, const Settings& settings, const Roots& roots) {
-  const HierarchicalSolution s = solve_hierarchy(roots, settings.epsilon_f, settings.epsilon_bf, settings.min_edge);
+  const HierarchicalSolution s =
+      solve_hierarchy(roots, settings.epsilon_f, settings.epsilon_bf, settings.min_edge);
   const LeafView view = view_leaves(s, roots, settings.quick ? 96 : 480, settings.quick ? 72 : 360);
   const double exposure = exposure_for(s);
   out.image(side_by_side({leaf_image(view, s, exposure, false), leaf_image(view, s, exposure, true)}), "room",
@@ -26,23 +22,10 @@ void room(OutputFolder& out, const Settings& settings, const Roots& roots) {
   Image links = leaf_image(view, s, exposure, true);
   const int drawn = draw_links(links, view, s, brightest_leaf(s));
   out.image(links, "room_links", "The links of the brightest element (yellow) and of its ancestors (blue)");
-  std::cout << roots.scene.name << ": " << s.hierarchy.roots << " input patches, " << s.hierarchy.elements.size()
-            << " elements (" << s.leaves << " leaves), " << s.hierarchy.links.size() << " links, "
-            << s.refinement_passes << " BF passes, " << s.iterations << " sweeps; the brightest element has "
-            << drawn << " links of its own and its ancestors'\n";
-}
-
-void add_options(CommandLine& command_line, Settings& s) {
-  command_line.add("--scene", s.scene, "A radiosity scene: a JSON file, or a shipped scene's name").show_default();
-  command_line.add("--epsilon-f", s.epsilon_f, "ε_F: split while a form factor estimate is above this")
-      .check(number_range(1e-3, 1.0)).show_default();
-  command_line.add("--epsilon-bf", s.epsilon_bf, "ε_BF: split while a link brings more radiosity than this")
-      .check(number_range(1e-6, 1e6)).show_default();
-  const Option min_edge = command_line.add("--min-edge", s.min_edge, "the smallest element's edge (scene units)")
-      .check(number_range(1e-3, 1e6)).show_default();
-  const Option reference = command_line.add("--reference-edge", s.reference_edge, "the reference's patch edge")
-      .check(number_range(1e-3, 1e6)).show_default();
-  command_line.exclude_quick({min_edge, reference});  // --quick sets both to 500
+  std::cout << roots.scene.name << ": " << s.hierarchy.roots << " input patches, "
+            << s.hierarchy.elements.size() << " elements (" << s.leaves << " leaves), "
+            << s.hierarchy.links.size() << " links, " << s.refinement_passes << " BF passes, " << s.iterations
+            << " sweeps; the brightest element has " << drawn << " links of its own and its ancestors'\n";
 }
 
 }  // namespace
@@ -51,11 +34,12 @@ void add_options(CommandLine& command_line, Settings& s) {
 int main(int argc, char** argv) {
   using namespace illum;
   using namespace illum::lesson14;
-  const ProgramInfo info{program_id, "Hierarchical radiosity",
-                         "A room and the Cornell box by hierarchical radiosity: elements and links drawn; error, "
-                         "time, links and elements against the oracle's two knobs; lesson 11's progressive "
-                         "refinement at an equal error; links against n².",
-                         TimedCores::one};
+  const ProgramInfo info{
+      program_id, "Hierarchical radiosity",
+      "A room and the Cornell box by hierarchical radiosity: elements and links drawn; error, "
+      "time, links and elements against the oracle's two knobs; lesson 11's progressive "
+      "refinement at an equal error; links against n².",
+      TimedCores::one};
   Settings settings;
   return run_program(
       argc, argv, info, [&](CommandLine& command_line) { add_options(command_line, settings); },
@@ -67,7 +51,8 @@ int main(int argc, char** argv) {
         OutputFolder out(options.out, info.id, info.title);
         run_section(info.id, "§6 The room", [&] { room(out, settings, roots); });
         run_section(info.id, "§7 The Cornell box", [&] { s07_cornell(out, settings); });
-        const KnobStudy study = run_section(info.id, "§8 The knobs", [&] { return s08_knobs(out, settings, roots); });
+        const KnobStudy study =
+            run_section(info.id, "§8 The knobs", [&] { return s08_knobs(out, settings, roots); });
         run_section(info.id, "§9 Against lesson 11", [&] { s09_equal_error(out, settings, study); });
         run_section(info.id, "§10 Links against n²", [&] { s10_growth(out, study); });
         out.finish();

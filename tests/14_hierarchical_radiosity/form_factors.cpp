@@ -42,7 +42,8 @@ bool always(const Point3&, const Point3&) { return true; }
 }  // namespace
 
 TEST_SUITE("lesson14") {
-  TEST_CASE("form_factor_estimate: the source as a head-on disc, A_s/(π r² + A_s)" * doctest::description("task=1")) {
+  TEST_CASE("form_factor_estimate: the source as a head-on disc, A_s/(π r² + A_s)" *
+            doctest::description("task=1")) {
     // Receiver 1 × 1 at the origin, source 2 × 3 (area 6) centred 4 above: r² = 16.
     const Patch receiver = square(-0.5, -0.5, 0.5, 0.5, 0);
     const Patch source = square(-1, -1.5, 1, 1.5, 4, false);
@@ -54,7 +55,8 @@ TEST_SUITE("lesson14") {
           doctest::Approx(6 / (16 * pi + 6)).epsilon(1e-12));
   }
 
-  TEST_CASE("hard case: a tiny element beside a huge wall: estimates stay below 1" * doctest::description("task=1")) {
+  TEST_CASE("hard case: a tiny element beside a huge wall: estimates stay below 1" *
+            doctest::description("task=1")) {
     // A 1e-3 × 1e-3 element 1e-3 above the centre of a 1e3 × 1e3 wall.
     const Patch tiny = square(-5e-4, -5e-4, 5e-4, 5e-4, 1e-3, false);
     const Patch wall = square(-500, -500, 500, 500, 0);
@@ -72,7 +74,8 @@ TEST_SUITE("lesson14") {
     CHECK(form_factor_estimate(floor, wall) == doctest::Approx(1 / (pi * 0.5 + 1)).epsilon(1e-12));
   }
 
-  TEST_CASE("link_form_factor with one point: the exact factor from the centroid" * doctest::description("task=2")) {
+  TEST_CASE("link_form_factor with one point: the exact factor from the centroid" *
+            doctest::description("task=2")) {
     // Receiver 2 × 2 facing up, source 1 × 1 facing down, 1.5 above, off-centre.
     const Patch receiver = square(0, 0, 2, 2, 0);
     const Patch source = square(1.2, 0.4, 2.2, 1.4, 1.5, false);
@@ -86,13 +89,15 @@ TEST_SUITE("lesson14") {
     const Patch receiver = square(0, 0, 2, 2, 0);
     const Patch source = square(1.2, 0.4, 2.2, 1.4, 1.5, false);
     double expected = 0;
-    for (const Point3& x : {Point3(0.5, 0.5, 0), Point3(1.5, 0.5, 0), Point3(0.5, 1.5, 0), Point3(1.5, 1.5, 0)})
+    for (const Point3& x :
+         {Point3(0.5, 0.5, 0), Point3(1.5, 0.5, 0), Point3(0.5, 1.5, 0), Point3(1.5, 1.5, 0)})
       expected += lambert(x, Vec3(0, 0, 1), source.vertices) / 4;
     CHECK(link_form_factor(receiver, source, 2, always) == doctest::Approx(expected).epsilon(1e-12));
     // k = 3: nine cell centres at 1/3, 1, 5/3.
     expected = 0;
     for (double x : {1.0 / 3, 1.0, 5.0 / 3})
-      for (double y : {1.0 / 3, 1.0, 5.0 / 3}) expected += lambert(Point3(x, y, 0), Vec3(0, 0, 1), source.vertices) / 9;
+      for (double y : {1.0 / 3, 1.0, 5.0 / 3})
+        expected += lambert(Point3(x, y, 0), Vec3(0, 0, 1), source.vertices) / 9;
     CHECK(link_form_factor(receiver, source, 3, always) == doctest::Approx(expected).epsilon(1e-12));
   }
 
@@ -106,19 +111,22 @@ TEST_SUITE("lesson14") {
     const Patch receiver = square(-0.5, -0.5, 0.5, 0.5, 0);
     const Patch source = square(-0.5, -0.5, 0.5, 0.5, 2, false);
     const std::vector<Patch> occluders = {square(-10, -10, -0.1, 10, 1)};
-    const SegmentVisible visible = [&](const Point3& a, const Point3& b) { return mutually_visible(a, b, occluders); };
+    const SegmentVisible visible = [&](const Point3& a, const Point3& b) {
+      return mutually_visible(a, b, occluders);
+    };
     const double f1 = lambert(Point3(0.25, 0.25, 0), Vec3(0, 0, 1), source.vertices);
     CHECK(link_form_factor(receiver, source, 2, visible) == doctest::Approx(0.75 * f1).epsilon(1e-12));
     CHECK(link_form_factor(receiver, source, 2, always) == doctest::Approx(f1).epsilon(1e-12));
     const std::vector<Patch> wall = {square(-10, -10, 10, 10, 1)};
-    CHECK_MESSAGE(link_form_factor(receiver, source, 2, [&](const Point3& a, const Point3& b) {
-                    return mutually_visible(a, b, wall);
-                  }) == 0.0,
+    CHECK_MESSAGE(link_form_factor(
+                      receiver, source, 2,
+                      [&](const Point3& a, const Point3& b) { return mutually_visible(a, b, wall); }) == 0.0,
                   "an occluder across the whole gap blocks every segment: the link carries nothing");
   }
 
-  TEST_CASE("hard case: adjacent elements sharing an edge: the link's form factor is finite and exact at points" *
-            doctest::description("task=2")) {
+  TEST_CASE(
+      "hard case: adjacent elements sharing an edge: the link's form factor is finite and exact at points" *
+      doctest::description("task=2")) {
     // Floor [0,1]² facing up and wall y = 0 facing +y: the wall stands on the floor's edge.
     const Patch floor = square(0, 0, 1, 1, 0);
     const Patch wall = make_patch({{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}}, Color(0.5));

@@ -53,9 +53,10 @@ TEST_SUITE("lesson14") {
                   "the larger element is split, whichever end it is");
     CHECK(form_factor_oracle(receiver, source, {.epsilon_f = 0.25, .epsilon_bf = off, .min_area = 0.01}) ==
           LinkAction::link);
-    CHECK_MESSAGE(form_factor_oracle(receiver, source, {.epsilon_f = 0.2, .epsilon_bf = off, .min_area = 4}) ==
-                      LinkAction::link,
-                  "the source's area 4 is not above min_area 4: it cannot be split, so the pair is linked");
+    CHECK_MESSAGE(
+        form_factor_oracle(receiver, source, {.epsilon_f = 0.2, .epsilon_bf = off, .min_area = 4}) ==
+            LinkAction::link,
+        "the source's area 4 is not above min_area 4: it cannot be split, so the pair is linked");
   }
 
   TEST_CASE("form_factor_oracle: the estimate is compared strictly, and equal areas split the receiver" *
@@ -63,10 +64,12 @@ TEST_SUITE("lesson14") {
     // Two unit squares 1 apart: both estimates 1/(π + 1) = 0.24145.
     const Patch a = square(0, 0, 1, 1, 0), b = square(0, 0, 1, 1, 1, false);
     const double estimate = 1 / (pi + 1);
-    CHECK(form_factor_oracle(a, b, {.epsilon_f = estimate * (1 - 1e-9), .epsilon_bf = off, .min_area = 0.1}) ==
-          LinkAction::split_receiver);
-    CHECK(form_factor_oracle(a, b, {.epsilon_f = estimate * (1 + 1e-9), .epsilon_bf = off, .min_area = 0.1}) ==
-          LinkAction::link);
+    CHECK(
+        form_factor_oracle(a, b, {.epsilon_f = estimate * (1 - 1e-9), .epsilon_bf = off, .min_area = 0.1}) ==
+        LinkAction::split_receiver);
+    CHECK(
+        form_factor_oracle(a, b, {.epsilon_f = estimate * (1 + 1e-9), .epsilon_bf = off, .min_area = 0.1}) ==
+        LinkAction::link);
   }
 
   TEST_CASE("brightness_oracle: BF refinement on max_c ρ_r,c B_s,c F, and drop when F is 0" *
@@ -77,32 +80,37 @@ TEST_SUITE("lesson14") {
     receiver.reflectance = Color(0.5, 0.2, 0.9);
     const Patch source = square(0, 0, 2, 2, 3, false);  // area 4: the larger
     const Color b(1, 4, 0.5);
-    CHECK(brightness_oracle(receiver, source, 0.1, b, {.epsilon_f = 1, .epsilon_bf = 0.079, .min_area = 0.5}) ==
-          LinkAction::split_source);
-    CHECK(brightness_oracle(receiver, source, 0.1, b, {.epsilon_f = 1, .epsilon_bf = 0.081, .min_area = 0.5}) ==
-          LinkAction::link);
+    CHECK(
+        brightness_oracle(receiver, source, 0.1, b, {.epsilon_f = 1, .epsilon_bf = 0.079, .min_area = 0.5}) ==
+        LinkAction::split_source);
+    CHECK(brightness_oracle(receiver, source, 0.1, b,
+                            {.epsilon_f = 1, .epsilon_bf = 0.081, .min_area = 0.5}) == LinkAction::link);
     CHECK(brightness_oracle(receiver, source, 0.1, b, {.epsilon_f = 1, .epsilon_bf = 0.079, .min_area = 4}) ==
           LinkAction::link);
-    CHECK_MESSAGE(brightness_oracle(receiver, source, 0.0, b, {.epsilon_f = 1, .epsilon_bf = 0.079, .min_area = 0.5}) ==
-                      LinkAction::drop,
-                  "a link that carries nothing (hidden) is dropped, at this level and below");
-    CHECK(brightness_oracle(source, receiver, 0.1, Color(10), {.epsilon_f = 1, .epsilon_bf = 0.1, .min_area = 0.5}) ==
+    CHECK_MESSAGE(
+        brightness_oracle(receiver, source, 0.0, b, {.epsilon_f = 1, .epsilon_bf = 0.079, .min_area = 0.5}) ==
+            LinkAction::drop,
+        "a link that carries nothing (hidden) is dropped, at this level and below");
+    CHECK(brightness_oracle(source, receiver, 0.1, Color(10),
+                            {.epsilon_f = 1, .epsilon_bf = 0.1, .min_area = 0.5}) ==
           LinkAction::split_receiver);
   }
 
   TEST_CASE("both oracles refuse settings out of range; +infinity switches a test off" *
             doctest::description("task=3a,3b")) {
     const Patch a = square(0, 0, 1, 1, 0), b = square(0, 0, 1, 1, 1, false);
-    for (const RefineSettings& bad : {RefineSettings{.epsilon_f = 0, .epsilon_bf = 1, .min_area = 1},
-                                      RefineSettings{.epsilon_f = 1, .epsilon_bf = -1, .min_area = 1},
-                                      RefineSettings{.epsilon_f = 1, .epsilon_bf = 1, .min_area = 0},
-                                      RefineSettings{.epsilon_f = 1, .epsilon_bf = 1, .min_area = off},
-                                      RefineSettings{.epsilon_f = 1, .epsilon_bf = 1, .min_area = 1, .sample_points = 0},
-                                      RefineSettings{.epsilon_f = 1, .epsilon_bf = 1, .min_area = 1, .sample_points = 9}}) {
+    for (const RefineSettings& bad :
+         {RefineSettings{.epsilon_f = 0, .epsilon_bf = 1, .min_area = 1},
+          RefineSettings{.epsilon_f = 1, .epsilon_bf = -1, .min_area = 1},
+          RefineSettings{.epsilon_f = 1, .epsilon_bf = 1, .min_area = 0},
+          RefineSettings{.epsilon_f = 1, .epsilon_bf = 1, .min_area = off},
+          RefineSettings{.epsilon_f = 1, .epsilon_bf = 1, .min_area = 1, .sample_points = 0},
+          RefineSettings{.epsilon_f = 1, .epsilon_bf = 1, .min_area = 1, .sample_points = 9}}) {
       CHECK_THROWS_AS(form_factor_oracle(a, b, bad), std::invalid_argument);
       CHECK_THROWS_AS(brightness_oracle(a, b, 0.1, Color(1), bad), std::invalid_argument);
     }
-    CHECK(form_factor_oracle(a, b, {.epsilon_f = off, .epsilon_bf = off, .min_area = 0.1}) == LinkAction::link);
+    CHECK(form_factor_oracle(a, b, {.epsilon_f = off, .epsilon_bf = off, .min_area = 0.1}) ==
+          LinkAction::link);
     CHECK(brightness_oracle(a, b, 0.5, Color(1e9), {.epsilon_f = off, .epsilon_bf = off, .min_area = 0.1}) ==
           LinkAction::link);
   }
@@ -115,7 +123,8 @@ TEST_SUITE("lesson14") {
     CHECK(h.links[0].receiver == 0);
     CHECK(h.links[0].source == 1);
     CHECK(h.links[0].form_factor ==
-          doctest::Approx(lambert(Point3(0.5, 0.5, 0), Vec3(0, 0, 1), h.elements[1].patch.vertices)).epsilon(1e-12));
+          doctest::Approx(lambert(Point3(0.5, 0.5, 0), Vec3(0, 0, 1), h.elements[1].patch.vertices))
+              .epsilon(1e-12));
     CHECK(h.elements.size() == 2);
   }
 
@@ -135,9 +144,10 @@ TEST_SUITE("lesson14") {
       CHECK(h.elements[static_cast<std::size_t>(l.source)].parent == 1);
       total += l.form_factor;
     }
-    CHECK_MESSAGE(total == doctest::Approx(lambert(Point3(0, 0, 0), Vec3(0, 0, 1), h.elements[1].patch.vertices))
-                               .epsilon(1e-12),
-                  "the four children tile the source: their exact factors from the centroid add up to the whole");
+    CHECK_MESSAGE(
+        total == doctest::Approx(lambert(Point3(0, 0, 0), Vec3(0, 0, 1), h.elements[1].patch.vertices))
+                     .epsilon(1e-12),
+        "the four children tile the source: their exact factors from the centroid add up to the whole");
   }
 
   TEST_CASE("refine: a pair facing away gets no link and no split; the same element twice is refused" *
@@ -152,8 +162,9 @@ TEST_SUITE("lesson14") {
                     std::invalid_argument);
   }
 
-  TEST_CASE("hard case: a tiny element beside a huge wall: the wall splits, the links add up to the whole wall" *
-            doctest::description("task=1,2,3a,3b,4")) {
+  TEST_CASE(
+      "hard case: a tiny element beside a huge wall: the wall splits, the links add up to the whole wall" *
+      doctest::description("task=1,2,3a,3b,4")) {
     // A 0.01 × 0.01 element 0.05 above a 100 × 100 wall, facing it. The wall is split
     // again and again near the element; the element itself never (it is the smaller).
     // The exact factors of the wall's pieces from each of the element's points add up
@@ -171,7 +182,8 @@ TEST_SUITE("lesson14") {
     }
     double whole = 0;
     for (double x : {-0.0025, 0.0025})
-      for (double y : {-0.0025, 0.0025}) whole += lambert(Point3(x, y, 0.05), Vec3(0, 0, -1), wall.vertices) / 4;
+      for (double y : {-0.0025, 0.0025})
+        whole += lambert(Point3(x, y, 0.05), Vec3(0, 0, -1), wall.vertices) / 4;
     CHECK(total == doctest::Approx(whole).epsilon(1e-9));
     CHECK(total < 1.0);
   }

@@ -28,9 +28,11 @@ ElementHierarchy pair(Color rho_a, Color e_a, Color rho_b, double f_ab, double f
 }  // namespace
 
 TEST_SUITE("lesson14") {
-  TEST_CASE("gather: ρ_r ⊙ B_s · F over each element's own links, per channel" * doctest::description("task=5")) {
-    ElementHierarchy h = make_hierarchy({square(0, 0, 1, 1, 0, Color(0.5, 0.4, 0.3)), square(0, 0, 1, 1, 1, Color(0.5)),
-                                         square(0, 0, 1, 1, 2, Color(0.5))});
+  TEST_CASE("gather: ρ_r ⊙ B_s · F over each element's own links, per channel" *
+            doctest::description("task=5")) {
+    ElementHierarchy h =
+        make_hierarchy({square(0, 0, 1, 1, 0, Color(0.5, 0.4, 0.3)), square(0, 0, 1, 1, 1, Color(0.5)),
+                        square(0, 0, 1, 1, 2, Color(0.5))});
     h.elements[0].radiosity = Color(1, 2, 3);
     h.elements[1].radiosity = Color(4, 5, 6);
     h.elements[2].radiosity = Color(10);
@@ -49,8 +51,8 @@ TEST_SUITE("lesson14") {
   TEST_CASE("push_pull: a leaf gets E, its own B_g and its ancestors'; a parent the area-weighted mean" *
             doctest::description("task=6")) {
     // A trapezoid: its four children have different areas, so the mean must weigh them.
-    ElementHierarchy h = make_hierarchy({make_patch({{0, 0, 0}, {4, 0, 0}, {3, 2, 0}, {1, 2, 0}}, Color(0.5),
-                                                    Color(0.1, 0.2, 0.3))});
+    ElementHierarchy h = make_hierarchy(
+        {make_patch({{0, 0, 0}, {4, 0, 0}, {3, 2, 0}, {1, 2, 0}}, Color(0.5), Color(0.1, 0.2, 0.3))});
     const int first = subdivide(h, 0);
     const int grandchild = subdivide(h, first + 2);
     h.elements[0].gathered = Color(1, 0, 0);
@@ -74,11 +76,13 @@ TEST_SUITE("lesson14") {
     mean = Color(0.0), area = 0;
     for (int c = first; c < first + 4; ++c) mean += a(c) * b(c), area += a(c);
     CHECK(length(b(0) - mean / area) < 1e-12);
-    CHECK_MESSAGE(a(first) != doctest::Approx(a(first + 2)), "the children's areas differ: a plain mean fails");
+    CHECK_MESSAGE(a(first) != doctest::Approx(a(first + 2)),
+                  "the children's areas differ: a plain mean fails");
     CHECK_MESSAGE(h.elements[0].gathered == Color(1, 0, 0), "push_pull leaves B_g as gather left it");
   }
 
-  TEST_CASE("solve_links converges to the closed-form solution of two elements" * doctest::description("task=5,6,7")) {
+  TEST_CASE("solve_links converges to the closed-form solution of two elements" *
+            doctest::description("task=5,6,7")) {
     // B_a = E_a + ρ_a F_ab B_b, B_b = ρ_b F_ba B_a: B_a = E_a / (1 − ρ_a F_ab ρ_b F_ba).
     ElementHierarchy h = pair(Color(0.5, 0.6, 0.7), Color(1, 2, 0), Color(0.8), 0.3, 0.6);
     const SolveReport report = solve_links(h, 1e-12, 10000);
@@ -104,9 +108,10 @@ TEST_SUITE("lesson14") {
     CHECK(h.elements[1].radiosity.r == doctest::Approx(c * exact_a).epsilon(1e-5));
   }
 
-  TEST_CASE("solve_links stops after max_iterations unconverged, at once when nothing changes, and refuses bad "
-            "arguments" *
-            doctest::description("task=5,6,7")) {
+  TEST_CASE(
+      "solve_links stops after max_iterations unconverged, at once when nothing changes, and refuses bad "
+      "arguments" *
+      doctest::description("task=5,6,7")) {
     ElementHierarchy slow = pair(Color(0.999), Color(1), Color(0.999), 0.999, 0.999);
     const SolveReport three = solve_links(slow, 1e-9, 3);
     CHECK(three.iterations == 3);

@@ -64,7 +64,8 @@ TEST_SUITE("stability") {
     ElementHierarchy h = make_hierarchy({square(0, 0, 2, 2)});
     const int first = subdivide(h, 0);
     subdivide(h, first);  // the corner child splits again
-    for (const Point3& p : {Point3(1, 1, 0), Point3(0, 0, 0), Point3(2, 2, 0), Point3(0.5, 0.5, 0), Point3(1, 0.3, 0)}) {
+    for (const Point3& p :
+         {Point3(1, 1, 0), Point3(0, 0, 0), Point3(2, 2, 0), Point3(0.5, 0.5, 0), Point3(1, 0.3, 0)}) {
       const int leaf = leaf_at(h, 0, p);
       CHECK(h.is_leaf(leaf));
       CHECK(depth_inside(h[leaf].patch, p) >= -1e-12);
@@ -73,12 +74,12 @@ TEST_SUITE("stability") {
   }
 
   TEST_CASE("hard case: faces_away for back-to-back, coplanar, and edge-sharing pairs") {
-    const Patch floor = square(0, 0, 1, 1);  // normal +z
-    const Patch ceiling = make_patch({{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}});  // normal −z
-    const Patch beside = square(1, 0, 2, 1);                                          // coplanar
+    const Patch floor = square(0, 0, 1, 1);                                            // normal +z
+    const Patch ceiling = make_patch({{0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}});    // normal −z
+    const Patch beside = square(1, 0, 2, 1);                                           // coplanar
     const Patch below = make_patch({{0, 0, -1}, {0, 1, -1}, {1, 1, -1}, {1, 0, -1}});  // faces down, under
-    const Patch wall = make_patch({{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}});     // y = 0, facing +y
-    const Patch turned = make_patch({{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}});   // the same, facing −y
+    const Patch wall = make_patch({{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}});       // y = 0, facing +y
+    const Patch turned = make_patch({{0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}});  // the same, facing −y
     CHECK_FALSE(faces_away(floor, ceiling));
     CHECK(faces_away(floor, beside));
     CHECK(faces_away(floor, below));
@@ -98,11 +99,12 @@ TEST_SUITE("stability") {
     std::vector<Patch> cube = mesh_cube_interior(1);
     for (Patch& p : cube) p.reflectance = Color(0.75);
     cube[5].emission = Color(1.0);
-    const HierarchicalSolution s = solve_hierarchical(
-        cube, {.refine = {.epsilon_f = 0.05, .epsilon_bf = 1e300, .min_area = 1e-2}},
-        [](const Point3&, const Point3&) { return true; });
+    const HierarchicalSolution s =
+        solve_hierarchical(cube, {.refine = {.epsilon_f = 0.05, .epsilon_bf = 1e300, .min_area = 1e-2}},
+                           [](const Point3&, const Point3&) { return true; });
     double power = 0;
-    for (std::size_t r = 0; r < 6; ++r) power += s.hierarchy.elements[r].patch.area * s.hierarchy.elements[r].radiosity.r;
+    for (std::size_t r = 0; r < 6; ++r)
+      power += s.hierarchy.elements[r].patch.area * s.hierarchy.elements[r].radiosity.r;
     INFO("links " << s.hierarchy.links.size() << ", leaves " << s.leaves);
     CHECK(s.converged);
     CHECK(power == doctest::Approx(4.0).epsilon(0.03));

@@ -18,13 +18,15 @@ void s07_cornell(OutputFolder& out, const Settings& settings) {
   const int size = settings.quick ? 64 : 320;
   const LeafView view = view_leaves(s, roots, size, size);
   const double exposure = exposure_for(s);
-  out.image(side_by_side({leaf_image(view, s, exposure, false), leaf_image(view, s, exposure, true)}), "cornell",
+  out.image(side_by_side({leaf_image(view, s, exposure, false), leaf_image(view, s, exposure, true)}),
+            "cornell",
             "The Cornell box by hierarchical radiosity: each leaf flat, then with the edges of the elements");
   Table table({"scene", "input patches", "elements", "leaves", "links", "BF passes", "sweeps"});
-  table.add_row(cells(roots.scene.name, static_cast<std::int64_t>(s.hierarchy.roots),
-                      static_cast<std::int64_t>(s.hierarchy.elements.size()), static_cast<std::int64_t>(s.leaves),
-                      static_cast<std::int64_t>(s.hierarchy.links.size()),
-                      static_cast<std::int64_t>(s.refinement_passes), static_cast<std::int64_t>(s.iterations)));
+  table.add_row(
+      cells(roots.scene.name, static_cast<std::int64_t>(s.hierarchy.roots),
+            static_cast<std::int64_t>(s.hierarchy.elements.size()), static_cast<std::int64_t>(s.leaves),
+            static_cast<std::int64_t>(s.hierarchy.links.size()),
+            static_cast<std::int64_t>(s.refinement_passes), static_cast<std::int64_t>(s.iterations)));
   out.table(table, "cornell", "The Cornell box by hierarchical radiosity: what the oracle built");
   std::cout << roots.scene.name << ": " << s.hierarchy.roots << " input patches, " << s.leaves << " leaves, "
             << s.hierarchy.links.size() << " links\n";

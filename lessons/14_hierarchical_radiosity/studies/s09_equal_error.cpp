@@ -49,8 +49,8 @@ const Uniform& as_accurate(const std::vector<Uniform>& runs, double error, doubl
 }
 
 Table equal_table(const std::vector<Uniform>& runs, const KnobStudy& study, double Errors::*which) {
-  Table table({"epsilon_f", "epsilon_bf", "links", "seconds", "error", "uniform n² at that error", "uniform edge",
-               "its error", "its n²", "its seconds", "n² / links", "its seconds / seconds"});
+  Table table({"epsilon_f", "epsilon_bf", "links", "seconds", "error", "uniform n² at that error",
+               "uniform edge", "its error", "its n²", "its seconds", "n² / links", "its seconds / seconds"});
   for (const KnobRun& r : study.runs) {
     const Uniform& u = as_accurate(runs, r.errors.*which, which);
     table.add_row(cells(r.epsilon_f, r.knob == "epsilon_f" ? std::string("off") : fixed(r.epsilon_bf, 4),
@@ -64,8 +64,8 @@ Table equal_table(const std::vector<Uniform>& runs, const KnobStudy& study, doub
 }  // namespace
 
 void s09_equal_error(OutputFolder& out, const Settings& settings, const KnobStudy& study) {
-  const std::vector<double> edges = settings.quick ? std::vector<double>{1200, 800}
-                                                   : std::vector<double>{800, 500, 400, 300, 250, 200};
+  const std::vector<double> edges =
+      settings.quick ? std::vector<double>{1200, 800} : std::vector<double>{800, 500, 400, 300, 250, 200};
   Table table({"edge", "patches", "n²", "rows drawn", "shots", "seconds", "mean_error", "max_error"});
   std::vector<Uniform> runs;
   for (std::size_t k = 0; k < edges.size(); ++k) {
@@ -79,8 +79,9 @@ void s09_equal_error(OutputFolder& out, const Settings& settings, const KnobStud
                         runs.back().errors.mean, runs.back().errors.max));
   }
   report_progress(program_id, "uniform meshes: done", 1, 1);
-  out.table(table, "uniform", "Lesson 11's progressive refinement (hemicube rows, one thread) on uniform meshes, "
-                              "against the same reference");
+  out.table(table, "uniform",
+            "Lesson 11's progressive refinement (hemicube rows, one thread) on uniform meshes, "
+            "against the same reference");
   out.table(equal_table(runs, study, &Errors::max), "equal_max_error",
             "Each hierarchical run beside the uniform meshes at its largest error");
   out.table(equal_table(runs, study, &Errors::mean), "equal_mean_error",

@@ -8,6 +8,7 @@
 
 #include "hierarchy_runs.hpp"
 #include "illum/io/output_folder.hpp"
+#include "illum/io/program.hpp"
 
 namespace illum::lesson14 {
 
@@ -17,12 +18,16 @@ inline constexpr const char* program_id = "lesson14";
 struct Settings {
   std::string scene = "room";
   bool quick = false;
-  double epsilon_f = 0.4;        // ε_F of the demonstration and of the ε_BF sweep
-  double epsilon_bf = 0.01;      // ε_BF of the demonstration
-  double min_edge = 150;         // elements are never split below min_edge² of area (scene units)
-  double reference_edge = 150;   // the reference's patches (scene units)
+  double epsilon_f = 0.4;         // ε_F of the demonstration and of the ε_BF sweep
+  double epsilon_bf = 0.01;       // ε_BF of the demonstration
+  double min_edge = 150;          // elements are never split below min_edge² of area (scene units)
+  double reference_edge = 150;    // the reference's patches (scene units)
   int hemicube_resolution = 128;  // lesson 11's rows, for the reference and the uniform meshes
 };
+
+// Adds the lesson's options to the command line, each read into a field of
+// `settings` (options.cpp).
+void add_options(CommandLine& command_line, Settings& settings);
 
 // One run of the knobs' study: the knob swept, its value, the solution's counts, time and errors.
 struct KnobRun {

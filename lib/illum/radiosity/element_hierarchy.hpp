@@ -17,13 +17,13 @@
 namespace illum {
 
 struct HierarchyElement {
-  Patch patch;              // its polygon, normal, centroid, area, ρ, E and surface (those of its root)
-  int parent = -1;          // −1 for a root (an input patch)
-  int first_child = -1;     // children first_child … first_child + 3; −1 for a leaf
-  int level = 0;            // 0 for a root, parent's level + 1 below it
-  Color radiosity{0.0};     // B: at a leaf E + everything gathered on it and its ancestors;
-                            // above the leaves, the area-weighted mean of its children
-  Color gathered{0.0};      // B_g: what its own links bring, ρ Σ F B_source
+  Patch patch;           // its polygon, normal, centroid, area, ρ, E and surface (those of its root)
+  int parent = -1;       // −1 for a root (an input patch)
+  int first_child = -1;  // children first_child … first_child + 3; −1 for a leaf
+  int level = 0;         // 0 for a root, parent's level + 1 below it
+  Color radiosity{0.0};  // B: at a leaf E + everything gathered on it and its ancestors;
+                         // above the leaves, the area-weighted mean of its children
+  Color gathered{0.0};   // B_g: what its own links bring, ρ Σ F B_source
 };
 
 // A link: `receiver` gathers from `source` through form_factor, the form

@@ -12,9 +12,12 @@ namespace illum {
 namespace {
 
 void check(const RefineSettings& s) {
-  require(s.epsilon_f > 0 && s.epsilon_bf > 0, "hierarchical radiosity: epsilon_f and epsilon_bf must be > 0");
-  require(s.min_area > 0 && std::isfinite(s.min_area), "hierarchical radiosity: min_area must be > 0 and finite");
-  require(s.sample_points >= 1 && s.sample_points <= 8, "hierarchical radiosity: sample_points must be 1 … 8");
+  require(s.epsilon_f > 0 && s.epsilon_bf > 0,
+          "hierarchical radiosity: epsilon_f and epsilon_bf must be > 0");
+  require(s.min_area > 0 && std::isfinite(s.min_area),
+          "hierarchical radiosity: min_area must be > 0 and finite");
+  require(s.sample_points >= 1 && s.sample_points <= 8,
+          "hierarchical radiosity: sample_points must be 1 … 8");
 }
 
 // Push-pull below element e, which receives `down` from its ancestors; returns its B.
@@ -34,7 +37,8 @@ Color push_pull_below(ElementHierarchy& h, int e, const Color& down) {
 
 // The larger of the two is split (the source when A_s > A_r), if its area is above min_area.
 LinkAction split_larger(const Patch& receiver, const Patch& source, const RefineSettings& settings) {
-  if (source.area > receiver.area) return source.area > settings.min_area ? LinkAction::split_source : LinkAction::link;
+  if (source.area > receiver.area)
+    return source.area > settings.min_area ? LinkAction::split_source : LinkAction::link;
   return receiver.area > settings.min_area ? LinkAction::split_receiver : LinkAction::link;
 }
 
@@ -147,8 +151,8 @@ std::size_t refine_links(ElementHierarchy& h, const RefineSettings& settings, co
   old.swap(h.links);
   std::size_t replaced = 0;
   for (const Link& l : old) {
-    const LinkAction action =
-        brightness_oracle(h[l.receiver].patch, h[l.source].patch, l.form_factor, h[l.source].radiosity, settings);
+    const LinkAction action = brightness_oracle(h[l.receiver].patch, h[l.source].patch, l.form_factor,
+                                                h[l.source].radiosity, settings);
     replaced += action == LinkAction::split_receiver || action == LinkAction::split_source ? 1 : 0;
     split_or_link(h, l, action, settings, visible);
   }

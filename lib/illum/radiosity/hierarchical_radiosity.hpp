@@ -121,8 +121,8 @@ void push_pull(ElementHierarchy& h);
 
 // What solve_links did.
 struct SolveReport {
-  int iterations = 0;   // sweeps of gather + push-pull
-  double change = 0;    // d_k of the last sweep
+  int iterations = 0;  // sweeps of gather + push-pull
+  double change = 0;   // d_k of the last sweep
   bool converged = false;
 };
 

@@ -4,8 +4,8 @@
 
 namespace illum {
 
-HierarchicalSolution solve_hierarchical(const std::vector<Patch>& patches, const HierarchicalSettings& settings,
-                                        const SegmentVisible& visible) {
+HierarchicalSolution solve_hierarchical(const std::vector<Patch>& patches,
+                                        const HierarchicalSettings& settings, const SegmentVisible& visible) {
   HierarchicalSolution s;
   s.hierarchy = make_hierarchy(patches);
   ElementHierarchy& h = s.hierarchy;
