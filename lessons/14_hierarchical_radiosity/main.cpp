@@ -47,7 +47,7 @@ int main(int argc, char** argv) {
         settings.quick = options.quick;
         if (settings.quick) settings.min_edge = settings.reference_edge = 500;
         const Roots roots = load_roots(settings.scene);  // validate before writing
-        require_camera_and_light(roots.scene, settings.scene, "lesson 14");
+        check_settings(settings, roots);
         OutputFolder out(options.out, info.id, info.title);
         run_section(info.id, "§6 The room", [&] { room(out, settings, roots); });
         run_section(info.id, "§7 The Cornell box", [&] { s07_cornell(out, settings); });

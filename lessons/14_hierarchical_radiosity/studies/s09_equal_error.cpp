@@ -1,6 +1,7 @@
 // §9 Against lesson 11 at an equal error.
 //
-// The scene meshed uniformly at several patch sizes and solved by lesson 11's
+// The scene meshed uniformly at several patch sizes (16/3 down to 4/3 of
+// the reference's edge) and solved by lesson 11's
 // progressive refinement (hemicube rows on demand, every row drawn once, one
 // thread) until 0.1% of the emitted power is unshot; each read against the
 // same reference as §8. For each hierarchical run of §8, the uniform mesh

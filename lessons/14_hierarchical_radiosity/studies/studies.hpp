@@ -29,6 +29,11 @@ struct Settings {
 // `settings` (options.cpp).
 void add_options(CommandLine& command_line, Settings& settings);
 
+// Refuses (illum::InputError) a scene without a camera or a light, a reference
+// edge that meshes it into more than 20,000 patches and a smallest element
+// that lets it split into more than 200,000 (options.cpp).
+void check_settings(const Settings& settings, const Roots& roots);
+
 // One run of the knobs' study: the knob swept, its value, the solution's counts, time and errors.
 struct KnobRun {
   std::string knob;  // "epsilon_f" or "epsilon_bf"
