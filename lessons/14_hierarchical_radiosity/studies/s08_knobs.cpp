@@ -6,6 +6,7 @@
 // (BF refinement off) and with ε_BF swept (at the demonstration's ε_F), each
 // timed on one thread and read against the reference at its patches' centroids.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "studies.hpp"
@@ -38,14 +39,15 @@ void plots(OutputFolder& out) {
             .y_label = "error against the reference",
             .log_x = true,
             .log_y = true,
-            .curves = {curve("knob_epsilon_f", "links", "mean_error", "mean, epsilon_F swept"),
-                       curve("knob_epsilon_f", "links", "max_error", "largest, epsilon_F swept"),
-                       curve("knob_epsilon_bf", "links", "mean_error", "mean, epsilon_BF swept"),
-                       curve("knob_epsilon_bf", "links", "max_error", "largest, epsilon_BF swept")}},
+            .curves = {curve("knob_epsilon_f", "links", "mean_error", "mean, epsilon F swept"),
+                       curve("knob_epsilon_f", "links", "max_error", "largest, epsilon F swept"),
+                       curve("knob_epsilon_bf", "links", "mean_error", "mean, epsilon BF swept"),
+                       curve("knob_epsilon_bf", "links", "max_error", "largest, epsilon BF swept")}},
            "knob_error", "Mean and largest error against the links, for both sweeps");
-  for (const std::string knob : {"epsilon_f", "epsilon_bf"})
-    out.plot({.title = "Links and leaves against " + knob,
-              .x_label = knob,
+  for (const auto& [knob, name] : {std::pair<std::string, std::string>{"epsilon_f", "epsilon F"},
+                                   std::pair<std::string, std::string>{"epsilon_bf", "epsilon BF"}})
+    out.plot({.title = "Links and leaves against " + name,
+              .x_label = name,
               .y_label = "count",
               .log_x = true,
               .log_y = true,
@@ -57,8 +59,8 @@ void plots(OutputFolder& out) {
             .y_label = "seconds (one thread)",
             .log_x = true,
             .log_y = true,
-            .curves = {curve("knob_epsilon_f", "links", "seconds", "epsilon_F swept"),
-                       curve("knob_epsilon_bf", "links", "seconds", "epsilon_BF swept")}},
+            .curves = {curve("knob_epsilon_f", "links", "seconds", "epsilon F swept"),
+                       curve("knob_epsilon_bf", "links", "seconds", "epsilon BF swept")}},
            "knob_time", "Time of the whole solution (refinement and sweeps) against its links");
 }
 
