@@ -5,6 +5,7 @@
 // (Lambert) formula, a copy of our own below.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -148,6 +149,23 @@ TEST_SUITE("lesson14") {
         total == doctest::Approx(lambert(Point3(0, 0, 0), Vec3(0, 0, 1), h.elements[1].patch.vertices))
                      .epsilon(1e-12),
         "the four children tile the source: their exact factors from the centroid add up to the whole");
+  }
+
+  TEST_CASE("refine splits the larger receiver once, then links each of its children to the source" *
+            doctest::description("task=1,2,3a,3b,4")) {
+    // The same pair as above with the roles swapped: the 4 × 4 square receives.
+    ElementHierarchy h = make_hierarchy({square(-2, -2, 2, 2, 4, false), square(-0.5, -0.5, 0.5, 0.5, 0)});
+    refine(h, 0, 1, {.epsilon_f = 0.1, .epsilon_bf = off, .min_area = 0.01, .sample_points = 1}, always);
+    CHECK(h.elements.size() == 6);
+    REQUIRE(h.links.size() == 4);
+    std::vector<int> receivers;
+    for (const Link& l : h.links) {
+      CHECK(l.source == 1);
+      receivers.push_back(l.receiver);
+    }
+    std::sort(receivers.begin(), receivers.end());
+    const std::vector<int> children = {2, 3, 4, 5};
+    CHECK_MESSAGE(receivers == children, "each of the four children gets its own link");
   }
 
   TEST_CASE("refine: a pair facing away gets no link and no split; the same element twice is refused" *
