@@ -22,7 +22,7 @@
 //   gather     B_g(r) = ρ_r Σ_links F_rs B_s                   (Task 5);
 //   push-pull  a leaf's B = E + its own B_g + everything its ancestors gathered;
 //              an element above the leaves holds the area-weighted mean of its
-//              children (Task 6); sweeps until the change is small (Task 7).
+//              children (Task 6); sweeps until the error bound is small (Task 7).
 #include <cstddef>
 #include <functional>
 
