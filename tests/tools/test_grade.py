@@ -1286,7 +1286,7 @@ class GradebookTest(unittest.TestCase):
         outcomes = [Outcome(n, status="graded", total=t, max_score=10.0, lessons={"01": {"score": t, "max_score": 10}},
                             visible={"01": (t, 10.0)}) for n, t in submissions.items()]
         matched, unmatched = roster.match(subs)
-        return roster, _roster_rows(roster, subs, outcomes, matched, unmatched)
+        return roster, _roster_rows(roster, outcomes, matched, unmatched)
 
     def test_moodle_from_a_moodle_roster(self) -> None:
         from grading.gradebook import moodle_rows
@@ -1319,6 +1319,10 @@ class GradebookTest(unittest.TestCase):
         self.assertEqual(table[0][0], "Email address")
         self.assertEqual([r[0] for r in table[1:]], ["ben@uni.example", "cris@uni.example"])
         self.assertEqual(left_out, ["1001: the roster's line 2 has no email address"])
+        # A student row without any id is kept (missing in grades.csv, said when left out), never dropped.
+        roster, rows = self.rows(self.MOODLE_ROSTER + "Dan,Soto,,U,CS,\n", {"ana": 7.5})
+        self.assertEqual([(o.ident, o.status) for o in rows][-1], ("line 5", "missing"))
+        self.assertEqual(moodle_rows(rows, roster, "Lab 1")[1], ["line 5: the roster's line 5 has no email address"])
         roster, rows = self.rows(self.MOODLE_ROSTER.replace("cris@uni.example", ""), {"ana": 7.5})
         self.assertEqual(moodle_rows(rows, roster, "Lab 1")[0][0][0], "Email address")  # 2 against 2 again
 

@@ -325,8 +325,7 @@ def _seconds(name: str, default: float | None) -> float | None:
     return value
 
 
-def _roster_rows(roster: Roster, submissions: list[Submission], outcomes: list[Outcome],
-                 matched: dict, unmatched: list[Submission]) -> list[Outcome]:
+def _roster_rows(roster: Roster, outcomes: list[Outcome], matched: dict, unmatched: list[Submission]) -> list[Outcome]:
     """The roster's rows in its order (a student without a submission is ``missing``), then the
     submissions no row matches."""
     by_ident = {o.ident: o for o in outcomes}
@@ -367,8 +366,8 @@ def _grade_batch(root: Path, args, lessons: list[str]) -> int:
     for line in skipped:
         say(f"skipped {line}")
     for submission in unmatched:
-        say(f"{submission.ident}: no row of the roster matches this submission; it is graded, listed last in "
-            "grades.csv and left out of the gradebook files")
+        say(f"{submission.ident}: no row of the roster matches this submission; it is graded and listed last in "
+            "grades.csv" + (f", and left out of grades-{args.format}.csv" if args.format else ""))
     if not privileged:
         say("WARNING: not running as root, so each submission runs as you, not as a user of its own: a hostile "
             "submission could read or change your files. Grade untrusted work with sudo (docs/grading.md, "
@@ -439,7 +438,7 @@ def _grade_batch(root: Path, args, lessons: list[str]) -> int:
         if not args.work_dir:
             shutil.rmtree(work, ignore_errors=True)
 
-    rows = _roster_rows(roster, submissions, outcomes, matched, unmatched) if roster is not None else outcomes
+    rows = _roster_rows(roster, outcomes, matched, unmatched) if roster is not None else outcomes
     files = {"grades.csv": grades_rows(rows, lessons, roster)}
     left_out: list[str] = []
     if args.format == "moodle":

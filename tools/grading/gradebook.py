@@ -224,9 +224,7 @@ def read_roster(path: Path) -> Roster:
         row: dict[str, str] = {}
         for h, value in zip(headers, fields):
             row.setdefault(h, value.strip())
-        if not any(row.get(k) for k in roster.keys):
-            continue  # no way to match it: a blank or a note line
-        for key in roster.keys:
+        for key in roster.keys:  # (a row without any stays: a student listed as missing, never dropped)
             value = row.get(key, "").casefold()
             if not value:
                 continue
