@@ -13,7 +13,7 @@ worked out here, not read from the grader:
   dario    folder  a crash in the notes' form              all but the 4 notes' form tests
   elena    zip     an endless loop in the notes' form      all but the 4 notes' form tests
   fede     folder  an attacker: a stub that forks a daemon to rewrite results.json
-                                                          0, flagged, nothing alive afterwards
+                                                          0, a note for review, nothing alive afterwards
   gala     folder  a file that does not compile            "not gradable", no total (not 0)
   hugo     -       in the roster only                      "missing"
 
@@ -199,7 +199,7 @@ def main(argv: list[str]) -> int:
     expect("dario", "graded", without(set(notes_tests)), set(notes_tests))
     expect("elena", "graded", without(set(notes_tests)), set(notes_tests))
     expect("fede", "graded", 0.0, set(tests))
-    check("flagged" in by_id.get("fede", {}).get("notes", ""), "fede: the notes do not say the file was flagged")
+    check("review" in by_id.get("fede", {}).get("notes", ""), "fede: the notes do not point to the review notes")
     expect("gala", "not gradable", None)
     check(by_id.get("gala", {}).get("lesson01") == "not gradable", "gala: lesson01 is not 'not gradable'")
     check(all(by_id.get("gala", {}).get(h, "") == "" for h in tests), "gala: test cells are not empty")

@@ -128,7 +128,6 @@ def outcome_of(ident: str, data: dict | None, log: str) -> Outcome:
         outcome.status = "graded" if all(s != "not gradable" for s in statuses) else "partly gradable"
         outcome.total = sum(float(outcome.lessons[nn].get("score", 0)) for nn in gradable)
     shared = list(info.get("not_gradable", []))
-    shared += [f"{file} flagged (its lesson not graded)" for file in info.get("flagged", {})]
     if "none of your files is an exercise file" in (data or {}).get("output", ""):
         shared.append("no exercise file in the submission")
     outcome.notes.extend(shared)

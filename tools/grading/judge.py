@@ -244,6 +244,12 @@ def judge_test(witness: list[dict], observed: list[dict], stopped: str = "", hid
             failures.append(_stopped_before(expected, stopped, hidden))
             break
         got = observed[index]
+        threw = _threw(got.get("lhs"))
+        if threw is not None and _site(got) != _site(expected):
+            # An exception in another check's expression, before this check ran (a helper with checks
+            # of its own, called inside a check): the test stopped there for the student.
+            failures.append(_stopped_before(expected, threw, hidden))
+            break
         if _site(got) != _site(expected) or got.get("kind") != expected.get("kind"):
             where = "{}:{}".format(*_site(got))
             failures.append(_failure(expected, f"the test took another path than the reference's run: its next check "
@@ -253,12 +259,13 @@ def judge_test(witness: list[dict], observed: list[dict], stopped: str = "", hid
         lhs = got.get("lhs")
         if check_passes(expected, lhs):
             continue
-        threw = _threw(lhs)
         if threw is not None:
             failures.append(_failure(expected, f"{expected.get('kind')}( {expected.get('expr', '')} ) threw: {threw}",
                                      hidden, threw.startswith(NOT_IMPLEMENTED), threw))
         else:
-            failures.append(_failure(expected, _explain(expected, lhs), hidden))
+            message = str(lhs.get("message", "")) if isinstance(lhs, dict) and lhs.get("threw") is True else ""
+            failures.append(_failure(expected, _explain(expected, lhs), hidden, message.startswith(NOT_IMPLEMENTED),
+                                     message))
         if str(expected.get("kind", "")).startswith("REQUIRE") or len(failures) >= MAX_FAILURES:
             break  # the test stops at a failed REQUIRE, in the reference's terms too
     else:
