@@ -343,7 +343,7 @@ def main(argv: list[str]) -> int:
     grader_tree = args.grader_tree.resolve()
     env = dict(os.environ, CMAKE_BUILD_PARALLEL_LEVEL="2", PYTHONDONTWRITEBYTECODE="1")
     if shutil.which("ccache"):  # the prepared trees reuse earlier objects (autograder_e2e's, batch_e2e's too)
-        env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_NOHASHDIR="1")
+        env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_NOHASHDIR="1", ILLUM_GRADE_REFERENCE_CCACHE="1")
     zip_path = work / "autograder.zip"
     done = subprocess.run([sys.executable, str(grader_tree / "tools" / "grade"), "--pack-autograder", str(zip_path),
                            *LESSONS], env=env, capture_output=True, text=True, check=False)

@@ -107,7 +107,7 @@ def mutate(text: str, pattern: str, replacement: str, what: str) -> str:
 
 
 SECRET = "SECRET_EXPECTED_VALUE_42"
-HIDDEN_NAME = "the 3-4-5 triangle says"  # in a hidden test of tests/hidden/lesson01_hidden.cpp
+HIDDEN_NAME = "the 3-4-5 " + "triangle says"  # a hidden test's name (split: this file is in the tree too)
 
 
 def submissions() -> dict[str, dict[str, str]]:
@@ -152,7 +152,8 @@ def main(argv: list[str]) -> int:
                ILLUM_GRADE_TEST_TIMEOUT=args.test_timeout, PYTHONDONTWRITEBYTECODE="1",
                ILLUM_GRADE_USER="illum-test-ag")
     if shutil.which("ccache"):
-        env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_BASEDIR=str(ag), CCACHE_NOHASHDIR="1")
+        env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_BASEDIR=str(ag), CCACHE_NOHASHDIR="1",
+                   ILLUM_GRADE_REFERENCE_CCACHE="1")
 
     zip_path = work / "autograder.zip"
     status, seconds, output = run([sys.executable, str(ROOT / "tools" / "grade"), "--pack-autograder",

@@ -138,7 +138,7 @@ def main(argv: list[str]) -> int:
     # Users of its own: CTest runs the end-to-end tests side by side, and every process of a grading
     # user is killed at the end of each run.
     env = dict(os.environ, ILLUM_GRADE_TEST_TIMEOUT="3", PYTHONDONTWRITEBYTECODE="1", ILLUM_GRADE_USER="illum-test-b",
-               PATH=path_without_git(work))
+               PATH=path_without_git(work), ILLUM_GRADE_REFERENCE_CCACHE="1")
     if shutil.which("git", path=env["PATH"]):
         sys.exit("batch e2e: git is still on the PATH meant to be without it")
     command = [sys.executable, str(ROOT / "tools" / "grade"), "--batch", str(submissions), "--out", str(out),

@@ -438,6 +438,14 @@ def _read_results(path: Path) -> dict:
         return {}
 
 
+def reference_environment() -> dict[str, str]:
+    """ccache off for the builds of the reference: no cache may keep an object of it after setup.
+    ILLUM_GRADE_REFERENCE_CCACHE=1 keeps it on, for the grader's own tests (a scratch machine)."""
+    if os.environ.get("ILLUM_GRADE_REFERENCE_CCACHE") == "1":
+        return dict(os.environ)
+    return dict(os.environ, CCACHE_DISABLE="1")
+
+
 def _build_witness(tree: Path, grader: Path, lessons: list[str], hidden: Path | None) -> None:
     """The witness: the tests built with the reference units (in place of the stubs) in a tree only
     root reads; its programs are kept in ``grader/witness``, and the hidden tests' observer objects
@@ -448,7 +456,7 @@ def _build_witness(tree: Path, grader: Path, lessons: list[str], hidden: Path | 
     work = grader / "witness-build"
     programs = [f"tests_lesson{nn}" for nn in lessons if any((tree / "tests").glob(f"{nn}_*"))]
     targets = programs + (["tests_hidden", "tests_hidden_observer"] if hidden else [])
-    build.set_runner(build.Runner(env=dict(os.environ, CCACHE_DISABLE="1"), timeout=None))
+    build.set_runner(build.Runner(env=reference_environment(), timeout=None))
     step = build.configure(tree, work, lessons, hidden)
     if step.ok:
         step = build.build(work, targets)
@@ -461,7 +469,7 @@ def _build_witness(tree: Path, grader: Path, lessons: list[str], hidden: Path | 
         if (work / "bin" / name).is_file():
             shutil.copy2(work / "bin" / name, kept / name)
     if hidden:
-        objects = sorted((work / "tests" / "CMakeFiles" / "tests_hidden_observer.dir").rglob("*.o"))
+        objects = sorted((work / "tests" / "CMakeFiles" / "tests_hidden_observer_objects.dir").rglob("*.o"))
         if not objects:
             raise SetupError(f"the hidden tests' observer objects were not found in {work}")
         (grader / "hidden-objects").mkdir()
@@ -548,11 +556,9 @@ def setup(root: Path, lessons: list[str]) -> None:
 
         print("\nsetup: grading the reference solutions as a submission (they must score full marks)", flush=True)
         results = Path(folder) / "reference.json"
-        # ccache off: no cache may keep an object of the reference after setup.
-        reference_env = dict(os.environ, CCACHE_DISABLE="1")
         status = _grade(tree, lessons, None, results,
                         common + ["--grader-data", str(grader), "--save-tests", str(grader / "tests.json")],
-                        env=reference_env)
+                        env=reference_environment())
         data = _read_results(results)
         _restore_stubs(tree, pristine)
         shutil.rmtree(source / "reference")  # proved; no run may read them

@@ -311,7 +311,9 @@ def _scan_objects(root: Path, run: GradeRun, build_dir: Path) -> list[str]:
     return findings
 
 
-def _make_sandbox(args: argparse.Namespace) -> Sandbox:
+def _make_sandbox(args: argparse.Namespace, root: Path) -> Sandbox:
+    """The student's code runs apart from the grader's folder and the test sources (a program that
+    could read the visible tests while it runs could copy their expected values)."""
     limits = Limits.from_environment()
     if not args.as_user:
         return Sandbox(None, limits)
@@ -320,7 +322,8 @@ def _make_sandbox(args: argparse.Namespace) -> Sandbox:
         raise UsageError(f"--as-user {args.as_user}: no such user (setup.sh creates it)")
     if os.geteuid() != 0:
         raise UsageError(f"--as-user {args.as_user}: running code as another user needs root")
-    return Sandbox(account, limits)
+    hide = [str(root / "tests")] + ([str(args.grader_data.resolve())] if args.grader_data else [])
+    return Sandbox(account, limits, hide=hide)
 
 
 def _save_tests(path: Path, suites: list[tuple[str, runner.SuiteRun, dict | None]]) -> None:
@@ -500,7 +503,7 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     run = GradeRun(lessons=lessons, student=args.student)
     run.submission = args.submission
     try:
-        sandbox = _make_sandbox(args)
+        sandbox = _make_sandbox(args, root)
     except SandboxError as error:
         raise UsageError(str(error)) from error
     runner.set_sandbox(sandbox)
@@ -524,7 +527,8 @@ def grade(args: argparse.Namespace, root: Path) -> int:
         planned = [(lesson, f"tests_lesson{lesson}", False) for lesson in lessons if lesson in tested]
         # The hidden tests last: nothing a student's code learns while they run can reach a visible result.
         planned += [(lesson, "tests_hidden", True) for lesson in lessons] if has_hidden else []
-        ran_suites = _run_planned(args, run, data, build_dir / "bin", planned, judged)
+        with sandbox.hidden_folders():
+            ran_suites = _run_planned(args, run, data, build_dir / "bin", planned, judged)
         if args.save_tests:
             _save_tests(args.save_tests, ran_suites)
     # Nothing of the student's may be alive, or left in the shared folders, when results are written.

@@ -117,7 +117,8 @@ def _template_end(text: str, i: int) -> int:
             if depth == 0:
                 return j + 1
         j += 1
-    raise SourceError("a template argument list that does not close")
+    raise SourceError("a '<' written against a name, which this tool reads as template arguments, does not close: "
+                      "write a comparison with spaces around it (a < b), as clang-format does")
 
 
 def split_comparison(condition: str) -> tuple[str, str, str] | None:

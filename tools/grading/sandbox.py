@@ -26,6 +26,7 @@ is nothing to defend; ``tools/grade --batch`` says so on stderr.
 """
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import pwd
@@ -206,6 +207,24 @@ class Sandbox:
                 os.chown(path, self.account.uid, self.account.gid)
                 path.chmod(0o700)
         return folder
+
+    @contextlib.contextmanager
+    def hidden_folders(self):
+        """While the student's programs run: ``hide`` out of their reach. A private mount does it
+        where there are namespaces; elsewhere the folders are closed to others (0700) meanwhile."""
+        closed: list[tuple[str, int]] = []
+        if self.account is not None and not self.private:
+            for folder in self.hide:
+                try:
+                    closed.append((folder, stat.S_IMODE(os.stat(folder).st_mode)))
+                    os.chmod(folder, 0o700)
+                except OSError:
+                    pass
+        try:
+            yield
+        finally:
+            for folder, mode in closed:
+                os.chmod(folder, mode)
 
     def _scratch_base(self) -> str | None:
         """Where runs' HOMEs go: not /tmp when a run gets a private /tmp of its own (it would hide them)."""
