@@ -207,3 +207,4 @@ write("m_bom.json", variant(mesh_scene("m_bom.obj"), lambda s: s["primitives"].a
     {"type": "sphere", "name": "ball", "material": "blak", "center": [0, 0, 0], "radius": 1})))
 # A camera twice as tall as wide: the lab's width=2048 makes a 2048 × 4096 image.
 write("s_tall_camera.json", variant(S, lambda s: s["camera"].update(width=32, height=64)))
+write("m_loop.json", mesh_scene("loop.obj"))  # copied beside a link loop named loop.obj by the case
