@@ -740,8 +740,9 @@ std::vector<std::string> remove_stale_run_files(const fs::path& folder, const st
     if (::fstat(fd, &held) == 0 && ::lstat(lock.c_str(), &named) == 0 && held.st_ino == named.st_ino)
       ::unlink(lock.c_str());
     ::close(fd);
-    const bool gone =
-        owner != "unknown" && ::kill(static_cast<pid_t>(std::atoll(owner.c_str())), 0) != 0 && errno == ESRCH;
+    const bool digits = std::all_of(owner.begin(), owner.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const long long pid = digits && owner.size() < 10 ? std::atoll(owner.c_str()) : 0;
+    const bool gone = pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
     notes.push_back("removed " + names + ", left by a run (PID " + owner +
                     (gone ? ", no longer running" : "") + ") that was killed before it finished; " +
                     folder.string() +
