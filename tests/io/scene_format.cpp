@@ -344,6 +344,14 @@ TEST_SUITE("io") {
     CHECK_FALSE(contains(refusal(R"({"primitives": []})", "format"), "older"));
   }
 
+  TEST_CASE("a scene file that starts with a UTF-8 byte-order mark is read as without it") {
+    const std::string text =
+        scene_text(R"({"type": "sphere", "material": "grey", "center": [0, 0, 0], "radius": 2})");
+    const Scene with_mark = read_text("\xEF\xBB\xBF" + text);
+    REQUIRE(with_mark.primitives.size() == 1);
+    CHECK(std::get<Sphere>(with_mark.primitives[0].shape).radius == 2.0);
+  }
+
   TEST_CASE("hard case: every coordinate and size of a scene lies within the camera's ±1e150") {
     // Contract: points and directions within ±1e150, sizes in [1e-150, 1e150], emission and
     // intensity at most 1e150, an index of refraction in [1e-6, 1e6]; each bound itself is accepted.
