@@ -287,7 +287,7 @@ int main(int argc, char** argv) {
   int status = 0;
   const int failed = illum::run_in_transaction("illum", transaction, [&] {
     if (!out.empty()) illum::check_output_folder(out, "--out");
-    if (!out.empty()) illum::remove_stale_run_files_noting("illum", out, "--out");  // a killed run's
+    if (!out.empty()) illum::remove_stale_run_files_noting("illum", out, "--out");  // what killed runs left
     if (version->parsed()) std::cout << "illum 0.1.0\n";
     if (list->parsed())
       for (const auto& s : illum::embedded_scenes()) std::cout << s.name << "\n";

@@ -468,12 +468,12 @@ def hold_and_clean(out: Path) -> tuple[int, list[str]]:
         here = Path(root)
         # Not into a lesson's folders: their files are their runs' (each cleans its own).
         dirs[:] = [d for d in dirs if not PROGRAM.match(d) and ".illum-" not in d]
-        for name in [d for d in dirs if STALE_FOLDER.fullmatch(d)]:
+        for name in [d for d in dirs if STALE_FOLDER.fullmatch(d) and not (here / d).is_symlink()]:
             shutil.rmtree(here / name, ignore_errors=True)
             dirs.remove(name)
             notes.append(f"removed {here / name}, left by a main job that was killed before it finished")
         for name in files:
-            if STALE_FILE.fullmatch(name) and (here / name).stat().st_uid == os.geteuid():
+            if STALE_FILE.fullmatch(name) and os.lstat(here / name).st_uid == os.geteuid():
                 (here / name).unlink()
                 notes.append(f"removed {here / name}, left by a main job that was killed before it finished")
     return fd, notes

@@ -35,7 +35,9 @@ def hold_and_clean(out: Path) -> tuple[int | None, list[str]]:
     (SIGKILL, a power cut) left: its new edition half written (.OUT.new.XXXXXXXX), or the earlier
     edition it had moved aside (.OUT.old.XXXXXXXX), which goes back to OUT if OUT is missing.
     Returns the descriptor (None when the folder does not exist yet) and one note per thing done."""
-    parent = out.resolve().parent
+    if out.is_symlink():  # refused by make_student_edition; nothing beside its target is this run's
+        return None, []
+    parent = out.resolve().parent  # as make_student_edition places its staging
     if not parent.is_dir():
         return None, []
     fd = os.open(parent, os.O_RDONLY | os.O_DIRECTORY | os.O_CLOEXEC)

@@ -52,7 +52,8 @@ class Query {
   std::string name(const std::string& name, std::size_t max_length = 80) const;
   std::string name_or(const std::string& name, const std::string& fallback,
                       std::size_t max_length = 80) const;
-  // The value as the request wrote it (for a message that names what was asked: "patches=5000").
+  // "patches=5000": a parameter as the request wrote it, for a message that names what was asked.
+  // For a value already read by integer(), number() or name() (and so known to be plain text).
   std::string asked(const std::string& name) const;
 
  private:
