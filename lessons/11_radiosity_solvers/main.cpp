@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "illum/core/error.hpp"
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/memory_budget.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"

@@ -10,11 +10,11 @@
 
 #include <unistd.h>
 
-#include "illum/core/atomic_file.hpp"
+#include "illum/system/atomic_file.hpp"
 #include "illum/core/error.hpp"
-#include "illum/core/json_text_check.hpp"
-#include "illum/core/memory_budget.hpp"
-#include "illum/core/nearest_name.hpp"
+#include "illum/io/json_text_check.hpp"
+#include "illum/system/memory_budget.hpp"
+#include "illum/io/nearest_name.hpp"
 #include "illum/geometry/implicit_trace.hpp"
 #include "illum/io/scene_file.hpp"
 #include "support/throws_containing.hpp"

@@ -1,5 +1,5 @@
 // The strict OBJ reader (io/obj_reader) and the regular-file reader of inputs
-// (core/input_file). Suite "io" (not graded). Contracts checked:
+// (system/input_file). Suite "io" (not graded). Contracts checked:
 //  * v (3, 4 or 6 numbers), vn, vt and f with v, v/t, v//n, v/t/n corners are
 //    read; CRLF line ends and # comments anywhere; o/g/s/usemtl/mtllib/l/p skipped;
 //  * a face of n corners is the fan (1, k, k+1) of n − 2 triangles, whatever n
@@ -26,7 +26,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "illum/core/input_file.hpp"
+#include "illum/system/input_file.hpp"
 #include "illum/io/obj_reader.hpp"
 #include "support/throws_containing.hpp"
 

@@ -4,7 +4,7 @@
 #include <cstring>
 #include <iomanip>
 
-#include "illum/core/atomic_file.hpp"
+#include "illum/system/atomic_file.hpp"
 #include "illum/core/error.hpp"
 
 namespace illum {

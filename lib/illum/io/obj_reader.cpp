@@ -10,8 +10,8 @@
 #include <limits>
 #include <vector>
 
-#include "illum/core/charconv.hpp"
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/charconv.hpp"
+#include "illum/system/memory_budget.hpp"
 
 namespace illum {
 

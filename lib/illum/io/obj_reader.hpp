@@ -6,7 +6,7 @@
 //
 // A first pass checks every line and counts what the mesh will hold without
 // allocating anything; the memory it will take is checked against the
-// budget (core/memory_budget) before the second pass fills it. So a file
+// budget (system/memory_budget) before the second pass fills it. So a file
 // of ten million faces whose last line is cut off is refused after a scan,
 // not after gigabytes of allocations, and no number is ever read by halves:
 // `v 0 one 1`, `v nan 1 0`, an index of 4294967299 or 99999999999999999999,

@@ -8,8 +8,8 @@
 #include <stdexcept>
 
 #include "illum/core/error.hpp"
-#include "illum/core/input_file.hpp"
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/input_file.hpp"
+#include "illum/system/memory_budget.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/obj_reader.hpp"
 

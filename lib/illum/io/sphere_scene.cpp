@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "illum/core/error.hpp"
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/memory_budget.hpp"
 #include "illum/core/parallel.hpp"
 #include "illum/io/scene_file.hpp"
 

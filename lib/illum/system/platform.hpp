@@ -12,8 +12,8 @@
 //   escape(pointer)       what do_not_optimize (core/stopwatch.hpp) calls where GNU asm is missing
 //   write_line(fd, …), read_line(fd)  a line down or up a pipe a parent process handed down
 //
-// Files, folders and child processes (core/atomic_file, core/input_file,
-// core/child_process) are written against POSIX, which Linux and macOS
+// Files, folders and child processes (system/atomic_file, system/input_file,
+// system/child_process) are written against POSIX, which Linux and macOS
 // provide; on Windows illum builds and runs in WSL 2 or the development
 // container (README, "Windows").
 #include <cstddef>

@@ -1,4 +1,4 @@
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/memory_budget.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 #include <sys/resource.h>  // getrlimit: POSIX
 #endif
 
-#include "illum/core/platform.hpp"
+#include "illum/system/platform.hpp"
 
 namespace illum {
 

@@ -1,4 +1,4 @@
-#include "illum/core/atomic_file.hpp"
+#include "illum/system/atomic_file.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -27,8 +27,8 @@
 #endif
 #include <unistd.h>
 
-#include "illum/core/child_process.hpp"
-#include "illum/core/platform.hpp"
+#include "illum/system/child_process.hpp"
+#include "illum/system/platform.hpp"
 
 namespace illum {
 

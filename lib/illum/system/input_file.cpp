@@ -1,4 +1,4 @@
-#include "illum/core/input_file.hpp"
+#include "illum/system/input_file.hpp"
 
 #include <cerrno>
 #include <cstring>
@@ -11,7 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/memory_budget.hpp"
 
 namespace illum {
 

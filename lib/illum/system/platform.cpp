@@ -1,4 +1,4 @@
-#include "illum/core/platform.hpp"
+#include "illum/system/platform.hpp"
 
 #include <algorithm>
 #include <atomic>
