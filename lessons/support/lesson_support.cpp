@@ -7,9 +7,9 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "illum/core/error.hpp"
 #include "illum/system/atomic_file.hpp"
 #include "illum/system/charconv.hpp"
-#include "illum/core/error.hpp"
 #include "illum/system/memory_budget.hpp"
 
 namespace illum {

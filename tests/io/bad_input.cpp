@@ -10,13 +10,13 @@
 
 #include <unistd.h>
 
-#include "illum/system/atomic_file.hpp"
 #include "illum/core/error.hpp"
-#include "illum/io/json_text_check.hpp"
-#include "illum/system/memory_budget.hpp"
-#include "illum/io/nearest_name.hpp"
 #include "illum/geometry/implicit_trace.hpp"
+#include "illum/io/json_text_check.hpp"
+#include "illum/io/nearest_name.hpp"
 #include "illum/io/scene_file.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/memory_budget.hpp"
 #include "support/throws_containing.hpp"
 
 namespace fs = std::filesystem;

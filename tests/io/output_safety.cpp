@@ -28,6 +28,7 @@
 #include "illum/system/atomic_file.hpp"
 #include "illum/system/child_process.hpp"
 #include "illum/system/memory_budget.hpp"
+#include "support/sanitized.hpp"
 #include "support/throws_containing.hpp"
 
 namespace fs = std::filesystem;
@@ -54,17 +55,7 @@ int entries(const fs::path& folder) {
   return n;
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool sanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool sanitized = true;
-#else
-constexpr bool sanitized = false;
-#endif
-#else
-constexpr bool sanitized = false;
-#endif
+using illum::test::sanitized;
 
 double status_bytes(const std::string& key) {
   std::ifstream in("/proc/self/status");

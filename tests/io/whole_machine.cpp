@@ -18,8 +18,8 @@
 
 #include <unistd.h>
 
-#include "illum/system/platform.hpp"
 #include "illum/io/whole_machine.hpp"
+#include "illum/system/platform.hpp"
 
 namespace {
 

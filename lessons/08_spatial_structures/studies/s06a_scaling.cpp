@@ -23,7 +23,7 @@ PlotSpec per_ray_plot(const std::string& title, const std::string& y_label, cons
                       bool brute_force = true) {
   PlotSpec spec{.title = title, .x_label = "triangles N", .y_label = y_label, .log_x = true, .log_y = true};
   // Each structure keeps its colour in every plot, with or without brute force.
-  const char* structures[] = {"brute_force", "grid", "octree", "bvh"};
+  const char* structures[] = {"brute_force", "grid", "octree", "compact_bvh"};
   for (int k = 0; k < 4; ++k) {
     const std::string s = structures[k];
     if (!brute_force && s == "brute_force") continue;
@@ -56,7 +56,7 @@ void s06a_scaling(OutputFolder& out, const Settings& settings) {
     report_progress(program_id, "scaling", done++, static_cast<int>(sizes.size()));
     const TriangleSet set = flake_with_about(target);
     for (const AccelKind kind :
-         {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::bvh}) {
+         {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::compact_bvh}) {
       if (kind == AccelKind::brute_force && set.size() > (quick ? 1000u : 10000u)) continue;
       const Measure m = measure(set, AccelSettings{.kind = kind}, rays, quick ? 0.005 : 0.03);
       table.add_row({std::string(to_string(kind)), static_cast<std::int64_t>(set.size()), m.build_seconds,
@@ -74,7 +74,8 @@ void s06a_scaling(OutputFolder& out, const Settings& settings) {
             "BVH leaves of 4");
   Table slopes(
       {"structure", "fit range", "slope of nodes or cells per ray", "slope of triangle tests per ray"});
-  for (const AccelKind kind : {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::bvh}) {
+  for (const AccelKind kind :
+       {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::compact_bvh}) {
     const Series& s = series[static_cast<int>(kind)];
     if (s.n.size() < 2) continue;
     slopes.add_row({std::string(to_string(kind)),

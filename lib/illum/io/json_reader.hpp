@@ -22,8 +22,8 @@
 // scene (it was 29,000 of the 171,000 lines lesson 11's first unit parsed).
 #include <nlohmann/json_fwd.hpp>
 
-#include "illum/io/nearest_name.hpp"  // nearest_name, for "did you mean"
 #include "illum/core/vec.hpp"
+#include "illum/io/nearest_name.hpp"  // nearest_name, for "did you mean"
 
 namespace illum {
 

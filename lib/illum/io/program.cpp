@@ -9,12 +9,12 @@
 
 #include <CLI/CLI.hpp>
 
-#include "illum/system/atomic_file.hpp"
-#include "illum/system/charconv.hpp"
 #include "illum/core/error.hpp"
-#include "illum/system/platform.hpp"
 #include "illum/core/threads.hpp"
 #include "illum/io/whole_machine.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/charconv.hpp"
+#include "illum/system/platform.hpp"
 
 namespace illum {
 
