@@ -27,11 +27,13 @@ PlotSpec per_ray_plot(const std::string& title, const std::string& y_label, cons
   for (int k = 0; k < 4; ++k) {
     const std::string s = structures[k];
     if (!brute_force && s == "brute_force") continue;
+    std::string legend = s;  // "compact bvh": gnuplot would set the letter after '_' as a subscript
+    std::replace(legend.begin(), legend.end(), '_', ' ');
     spec.curves.push_back({.table = "scaling.csv",
                            .x = "triangles",
                            .y = y_column,
                            .where = {{"structure", s}},
-                           .title = s == "brute_force" ? "brute force" : s,
+                           .title = legend,
                            .colour = k + 1});
   }
   return spec;
@@ -50,7 +52,7 @@ void s06a_scaling(OutputFolder& out, const Settings& settings) {
   struct Series {
     std::vector<double> n, nodes, tests;
   };
-  Series series[4];
+  Series series[all_accel_kinds.size()];  // indexed by the AccelKind
   int done = 0;
   for (const std::size_t target : sizes) {
     report_progress(program_id, "scaling", done++, static_cast<int>(sizes.size()));
