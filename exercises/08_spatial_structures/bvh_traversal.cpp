@@ -25,7 +25,7 @@ namespace illum {
 std::optional<AccelHit> bvh_closest_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters) {
   throw NotImplemented("bvh_closest_hit",
                        "visit the nearer child first and skip nodes that begin beyond the best hit "
-                       "(lesson 08, §4 \"comprobar (nodo, rayo)\")");
+                       "(lesson 08, §5 \"comprobar (nodo, rayo)\")");
 }
 
 // Task 3b. Any hit: the same walk, returning true at the first triangle hit;
@@ -33,7 +33,7 @@ std::optional<AccelHit> bvh_closest_hit(const BvhView& bvh, const Ray& ray, Trav
 // Counted as in 3a: the ray, each box test, each triangle test, added.
 bool bvh_any_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters) {
   throw NotImplemented("bvh_any_hit",
-                       "return at the first hit in range; order does not matter (lesson 08, §4)");
+                       "return at the first hit in range; order does not matter (lesson 08, §5)");
 }
 
 }  // namespace illum

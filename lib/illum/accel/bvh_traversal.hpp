@@ -1,6 +1,6 @@
 #pragma once
 // Exercise unit of lesson 08: students write bvh_traversal.cpp.
-// BVH traversal: closest hit and any hit over flattened nodes, lesson 08 (§4).
+// BVH traversal: closest hit and any hit over flattened nodes, lesson 08 (§5).
 //
 // Closest hit, with a stack of nodes still to visit:
 //   * a node is popped with the parameter at which the ray enters its box;

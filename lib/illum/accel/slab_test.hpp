@@ -1,6 +1,6 @@
 #pragma once
 // Exercise unit of lesson 08: students write slab_test.cpp.
-// The slab test: the part of a ray's parameter range inside a box, lesson 08 (§4).
+// The slab test: the part of a ray's parameter range inside a box, lesson 08 (§2).
 //
 // Along axis a the ray P0 + sω is inside the slab lo[a] ≤ x ≤ hi[a] for s
 // between (lo[a] − P0[a])/ω[a] and (hi[a] − P0[a])/ω[a]; the ray is in the box
