@@ -28,12 +28,16 @@ std::optional<AccelHit> bvh_closest_hit(const BvhView& bvh, const Ray& ray, Trav
                        "(lesson 08, §5 \"comprobar (nodo, rayo)\")");
 }
 
-// Task 3b. Any hit: the same walk, returning true at the first triangle hit;
-// the boxes clipped against ray.range with both ends widened the same way.
-// Counted as in 3a: the ray, each box test, each triangle test, added.
+// Task 3b. Any hit: a stack of nodes, no entry s and no order by distance.
+// Pop a node and clip its box against ray.range, both ends widened as in 3a
+// (one box test per popped node, the root's first); a missed box is skipped;
+// at a leaf return true at the first triangle hit; at an inner node push the
+// second child (node.first), then the first (node + 1), so the first child is
+// popped next. Counted as in 3a: the ray, each box test, each triangle test, added.
 bool bvh_any_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters) {
   throw NotImplemented("bvh_any_hit",
-                       "return at the first hit in range; order does not matter (lesson 08, §5)");
+                       "pop a node, test its box, push the second child then the first; return at the "
+                       "first hit in range (lesson 08, §5)");
 }
 
 }  // namespace illum

@@ -24,6 +24,7 @@
 
 #include "illum/radiosity/hemicube.hpp"
 #include "illum/radiosity/hemicube_deltas.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 

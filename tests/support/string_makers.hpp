@@ -1,4 +1,5 @@
-// How a failing check prints the values doctest cannot print itself: a glm
+// How a failing check prints the values doctest cannot print itself: a C
+// string that is not a literal (written as an address otherwise), a glm
 // vector (a point, a direction, a colour), a std::array (a grid cell), a
 // std::vector (a walk of cells, a row, a list of flags), a std::optional (a
 // hit or none), an Interval or an Aabb (a range, a box). Without these
@@ -65,6 +66,18 @@ std::string text(const T& value) {
 }  // namespace illum::test_strings
 
 namespace doctest {
+
+// A C string is its text, not its address: doctest 2.4 writes a `const char*` that is not a
+// literal (a ternary's, a field's) as a pointer, `logged: row 90x5576…`.
+template <>
+struct StringMaker<const char*> {
+  static String convert(const char* text) { return text ? text : "(null)"; }
+};
+
+template <>
+struct StringMaker<char*> {
+  static String convert(char* text) { return text ? text : "(null)"; }
+};
 
 template <glm::length_t L, class T, glm::qualifier Q>
 struct StringMaker<glm::vec<L, T, Q>> {
