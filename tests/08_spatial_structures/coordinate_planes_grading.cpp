@@ -10,9 +10,11 @@
 using namespace illum::test08;
 
 TEST_SUITE("lesson08") {
-  TEST_CASE("hard case: rays leaving triangles and meshes in the planes x = 0, y = 0, z = 0 (at the origin and "
-      "10⁴ from it) and x = 10⁴, …: reflected, refracted and shadow rays hit nothing, in the grid and the BVH" *
-            doctest::description("task=1,2a,2b,3a,3b")) {
+  TEST_CASE(
+      "hard case: rays leaving triangles and meshes in the planes x = 0, y = 0, z = 0 (at the origin and "
+      "10⁴ from it) and x = 10⁴, …: reflected, refracted and shadow rays hit nothing, in the grid and the "
+      "BVH" *
+      doctest::description("task=1,2a,2b,3a,3b")) {
     leaving_planes(student_structures);
   }
 
@@ -21,9 +23,10 @@ TEST_SUITE("lesson08") {
     flat_floor_far_away(student_structures);
   }
 
-  TEST_CASE("hard case: small meshes far from the origin (radius 10⁻⁶ at 10⁶ and at 10⁸): the grid and "
+  TEST_CASE(
+      "hard case: small meshes far from the origin (radius 10⁻⁶ at 10⁶ and at 10⁸): the grid and "
       "the BVH return brute force's closest hit" *
-            doctest::description("task=1,2a,2b,3a,3b")) {
+      doctest::description("task=1,2a,2b,3a,3b")) {
     small_meshes_far_away(student_structures);
   }
 
