@@ -12,8 +12,9 @@
 
 namespace illum {
 
-// Task 3a. Closest hit. Keep a stack of (node, entry s); skip a popped node
-// whose entry lies beyond the closest hit so far; at a leaf test every
+// Task 3a. Closest hit. Keep a stack of (node, entry s), s in double; skip a
+// popped node whose entry lies beyond the closest hit so far by more than a
+// relative 1e-9 of it (coplanar triangles tie); at a leaf test every
 // triangle with the range shrunk to the closest hit; at an inner node clip
 // both children (slab_clip with slab_far_slack) and push the farther first.
 // Clip every box, the root too, against the range with both ends widened by
