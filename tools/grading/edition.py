@@ -340,9 +340,9 @@ in [docs/errata.md](docs/errata.md).
   and relinks: a few seconds.
 * **The tests** say, for each failed check, what they computed and what
   they expected, and the mathematics behind it. `tests_lessonNN` holds the
-  graded tests of lesson NN and nothing else: its last line counts them
-  (`test cases: 36 | 30 passed | 6 failed`), the same tests and the same
-  points `tools/grade` counts. A test that runs longer
+  graded tests of lesson NN and nothing else: its last lines count them
+  (`test cases: 36 | 30 passed | 6 failed | 0 skipped`), the tests
+  `tools/grade` scores. A test that runs longer
   than the grader allows one (60 s; `ILLUM_GRADE_TEST_TIMEOUT` changes it)
   is stopped with a message naming it: a loop in your code that never ends.
 * **`tools/grade --student NN`** builds in the same `build/student` tree and
