@@ -46,7 +46,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 import figures  # noqa: E402
 from grading import build, project  # noqa: E402
 from grading.integrity import grading_programs  # noqa: E402
-from grading.links import broken_links  # noqa: E402
+from grading.edition import broken_links  # noqa: E402
 from grading.runner import run_suite  # noqa: E402
 
 

@@ -32,7 +32,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from figures import is_timing_name, words  # noqa: E402
+from gallery.tables import is_timing_name, words  # noqa: E402
 
 RATE_WORDS = {"mrays", "throughput", "rays_per_s", "per_s"}
 

@@ -14,7 +14,7 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from .fsutil import atomic_copy, temp_path_beside
+from common.files import atomic_copy, temp_path_beside
 
 DECK_NAME = re.compile(r"^\d\d_[A-Za-z0-9_\-]+\.md$")
 FONT_FOLDER = "katex-fonts"

@@ -24,7 +24,7 @@ from html.parser import HTMLParser
 from pathlib import Path
 from urllib.parse import quote, unquote, urlsplit
 
-from .fsutil import atomic_write_text
+from common.files import atomic_write_text
 from .outputs import Manifest, ManifestError, Output, load_manifest, parse_markdown_tables, png_size
 
 _NN_DIR = re.compile(r"^(\d\d)_[A-Za-z0-9_\-]+$")

@@ -14,12 +14,11 @@ import csv
 import io
 import json
 import re
-import struct
-import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .markdown_table import alignment, is_separator_cells, split_table_row
+from common import png
+from common.markdown import Table, parse_tables
 
 KINDS = ("image", "hdr", "table", "markdown", "plot", "script", "text", "mesh")
 # The extension each kind must have (None: any).
@@ -33,9 +32,6 @@ KIND_EXTENSIONS = {
     "text": None,
     "mesh": (".ply", ".obj"),
 }
-
-PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
-PNG_IEND = b"\x00\x00\x00\x00IEND\xaeB`\x82"
 
 
 class ManifestError(Exception):
@@ -112,33 +108,15 @@ def load_manifest(folder: Path | str) -> Manifest:
 
 
 def check_png(path: Path) -> list[str]:
-    data = Path(path).read_bytes()
-    if not data.startswith(PNG_SIGNATURE):
-        return [f"{path.name}: not a PNG (the first 8 bytes are {data[:8]!r}, not the PNG signature)"]
-    if len(data) < 8 + 25:
-        return [f"{path.name}: truncated PNG ({len(data)} bytes, too short for an IHDR chunk)"]
-    length, chunk = struct.unpack(">I4s", data[8:16])
-    if chunk != b"IHDR" or length != 13:
-        return [f"{path.name}: the first PNG chunk is {chunk!r} of length {length}, expected IHDR of length 13"]
-    width, height = struct.unpack(">II", data[16:24])
-    problems = []
-    if width == 0 or height == 0:
-        problems.append(f"{path.name}: PNG has size {width}x{height}; both must be non-zero")
-    (crc,) = struct.unpack(">I", data[29:33])
-    if zlib.crc32(data[12:29]) & 0xFFFFFFFF != crc:
-        problems.append(f"{path.name}: the IHDR chunk's CRC does not match (corrupt file)")
-    if not data.endswith(PNG_IEND):
-        problems.append(f"{path.name}: PNG does not end with an IEND chunk (truncated: was it written atomically?)")
-    return problems
+    return [f"{path.name}: {p}" for p in png.problems(Path(path).read_bytes())]
 
 
 def png_size(path: Path) -> tuple[int, int] | None:
-    """(width, height) from the IHDR chunk, or None if the file is not a PNG."""
-    with open(path, "rb") as f:
-        head = f.read(24)
-    if len(head) < 24 or not head.startswith(PNG_SIGNATURE) or head[12:16] != b"IHDR":
+    """(width, height), or None if the file is not a PNG."""
+    try:
+        return png.size(Path(path).read_bytes()[:33])
+    except png.PngError:
         return None
-    return struct.unpack(">II", head[16:24])
 
 
 _HDR_RESOLUTION = re.compile(rb"^[-+][YX] (\d+) [-+][XY] (\d+)$")
@@ -193,54 +171,8 @@ def check_csv(path: Path) -> list[str]:
     return problems
 
 
-@dataclass
-class MarkdownTable:
-    header: list[str]
-    align: list[str]  # "left", "right", "center" or "" per column
-    rows: list[list[str]]
-
-
-def parse_markdown_tables(text: str) -> tuple[list[MarkdownTable], list[str]]:
-    """Every pipe table in `text` and the problems found (line numbers are 1-based)."""
-    tables, problems = [], []
-    lines = text.splitlines()
-    i = 0
-    while i < len(lines):
-        if not lines[i].lstrip().startswith("|"):
-            i += 1
-            continue
-        start = i
-        block = []
-        while i < len(lines) and lines[i].lstrip().startswith("|"):
-            block.append(lines[i])
-            i += 1
-        if len(block) < 2:
-            problems.append(f"line {start + 1}: a table row with no separator line ('|---|---|') after it")
-            continue
-        header = split_table_row(block[0])
-        separator = split_table_row(block[1])
-        if not is_separator_cells(separator):
-            problems.append(f"line {start + 2}: expected the separator line ('|---|---|'), found {block[1].strip()!r}")
-            continue
-        if len(separator) != len(header):
-            problems.append(
-                f"line {start + 2}: the separator has {len(separator)} columns, the header has {len(header)}")
-            continue
-        align = [alignment(c) for c in separator]
-        rows = []
-        for k, line in enumerate(block[2:]):
-            cells = split_table_row(line)
-            if not line.rstrip().endswith("|"):
-                problems.append(f"line {start + 3 + k}: a table row must end with '|'")
-            if len(cells) != len(header):
-                problems.append(f"line {start + 3 + k}: {len(cells)} cells, the header has {len(header)}")
-            rows.append(cells)
-        if not rows:
-            problems.append(f"line {start + 1}: a table with a header but no rows")
-        if not block[0].rstrip().endswith("|"):
-            problems.append(f"line {start + 1}: the header row must end with '|'")
-        tables.append(MarkdownTable(header, align, rows))
-    return tables, problems
+def parse_markdown_tables(text: str) -> tuple[list[Table], list[str]]:
+    return parse_tables(text.splitlines())
 
 
 def check_markdown_table(path: Path) -> list[str]:

@@ -6,12 +6,13 @@ from __future__ import annotations
 
 import errno
 import json
-import os
 import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
+
+from common.files import atomic_write_text
 
 from .results import TestResult
 
@@ -391,25 +392,12 @@ class OutputError(Exception):
 
 
 def write_text(path: Path, text: str) -> None:
-    """Writes through a temporary name and a rename: a reader never sees half a
-    file, and a failed write (a read-only or full file system) leaves neither
-    the temporary nor a half file, only an OutputError that says why."""
-    temporary = path.with_name(path.name + ".tmp-grade")
+    """Writes atomically (never half a file, nor a temporary left behind); OutputError says why not."""
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        with open(temporary, "w", encoding="utf-8") as out:
-            out.write(text)
-            out.flush()
-            os.fsync(out.fileno())
-        temporary.replace(path)
+        atomic_write_text(path, text)
     except OSError as error:
-        try:
-            temporary.unlink()
-        except OSError:
-            pass
-        reason = error.strerror or str(error)
-        if error.errno == errno.ENOSPC:
-            reason = "No space left on device (the disk is full)"
+        reason = "No space left on device (the disk is full)" if error.errno == errno.ENOSPC else \
+            error.strerror or str(error)
         raise OutputError(f"cannot write {path}: {reason}") from None
 
 

@@ -34,7 +34,7 @@ from pathlib import Path
 
 SOURCE = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(SOURCE / "tools"))
-from gallery.fsutil import atomic_write_text  # noqa: E402
+from common.files import atomic_write_text  # noqa: E402
 
 SHOTS = {
     "lab_ray_tree.png": "The lab's ray-tree view (illum lab whitted): a click on the glass ball, its rays in 3D over "
