@@ -1,39 +1,12 @@
-"""``tools/grade --mutants``: how many plausible student bugs do the grading tests catch?
+"""`tools/grade --mutants`: how many plausible student bugs do the grading tests catch? (docs/grading.md,
+"Grading power")
 
-    tools/grade --mutants [NN ...] [--sample N] [--seed S] [--jobs J]
-                [--report FILE] [--timeout SECONDS] [--list] [--only ID ...]
-                [--compare-without GLOB] [--fail-under PERCENT] [--work-dir DIR]
-
-For each named lesson (default: every lesson with exercises) the tool makes
-*mutants* of the lesson's exercise units -- the reference file with one small
-change a student could plausibly make (``<`` for ``<=``, ``-`` for ``+``, a
-constant nudged, ``i`` for ``j``, an ``abs`` dropped, a condition negated, a
-loop bound off by one...) -- builds each one, runs the lesson's grading
-suite on it and reports it:
-
-* **killed** -- some grading test failed (or the program crashed): the
-  suite catches this bug;
-* **timed out** -- the suite did not finish in time (an endless loop): also
-  caught, a student would not get the marks;
-* **survived** -- every grading test passed: a student who made this
-  mistake would get full marks for wrong code;
-* **did not build** -- the change does not compile (with the project's
-  warnings as errors); not a mistake a student could hand in.
-
-score = (killed + timed out) / (killed + timed out + survived), leaving out
-the mutants listed as *equivalent* in ``tests/mutants/equivalent.txt``
-(changes no test could ever detect, each with a reason).
-
-Only lines a student writes are mutated: a line of the reference unit that
-also appears in the unit's stub (``exercises/NN_*/<unit>.cpp``: includes,
-signatures, provided helpers) is left alone.
-
-Builds are incremental: each worker keeps a private copy of the source tree
-and one configured build tree under ``build/mutants/wK/`` (its layout mirrors
-``build/release`` so that ccache, with a ``base_dir``, reuses objects of the
-developer's own builds); a mutant rewrites one file and rebuilds only the
-lesson's test program. The copy is refreshed from the working tree at every
-run, so uncommitted tests count.
+Each mutant is a reference exercise unit with one small change a student could make (`<` for `<=`, a
+constant nudged, `i` for `j`, an `abs` dropped, a loop bound off by one, …) on a line the student writes
+(not one of the stub's); it is built and the lesson's grading suite run on it: killed or timed out (caught),
+survived (full marks for wrong code) or did not build (not scored). Mutants listed in
+tests/mutants/equivalent.txt are left out. Each worker keeps a copy of the tree and a build tree under
+build/mutants/wK/ (laid out as build/release, so that ccache shares objects), refreshed at every run.
 """
 from __future__ import annotations
 
@@ -380,168 +353,201 @@ def _nudged_constants(text: str) -> list[str]:
 
 def generate(lesson: str, unit: Path, source: str, stub_lines: set[str]) -> list[Mutant]:
     """Every mutant of one exercise unit (in source order)."""
-    tokens = tokenize(source)
-    in_body = body_tokens(tokens)
-    line_starts = [0] + [m.end() for m in re.finditer(r"\n", source)]
+    return _Generator(lesson, unit, source, stub_lines).run()
 
-    def line_text(number: int) -> str:
-        start = line_starts[number - 1]
-        end = source.find("\n", start)
-        return source[start:end if end >= 0 else len(source)]
 
-    mutable_lines = {n for n in range(1, len(line_starts) + 1) if line_text(n).strip() not in stub_lines}
-    mutants: list[Mutant] = []
+class _Generator:
+    """The mutants of one unit: each operator a method that looks at one token of a function body."""
 
-    def add(operator: str, start: int, end: int, replacement: str, line: int) -> None:
-        if line not in mutable_lines:
+    def __init__(self, lesson: str, unit: Path, source: str, stub_lines: set[str]):
+        self.lesson, self.unit, self.source = lesson, unit, source
+        self.tokens = tokenize(source)
+        self.line_starts = [0] + [m.end() for m in re.finditer(r"\n", source)]
+        self.mutable = {n for n in range(1, len(self.line_starts) + 1) if self.line_text(n).strip() not in stub_lines}
+        self.mutants: list[Mutant] = []
+        # Index names used alone in a subscript, for the i <-> j swap.
+        t = self.tokens
+        self.subscripts = [t[k + 1].text for k in range(len(t) - 2)
+                           if t[k].text == "[" and t[k + 1].kind == "ident" and t[k + 2].text == "]"]
+
+    def line_text(self, number: int) -> str:
+        start = self.line_starts[number - 1]
+        end = self.source.find("\n", start)
+        return self.source[start:end if end >= 0 else len(self.source)]
+
+    def add(self, operator: str, start: int, end: int, replacement: str, line: int) -> None:
+        """A mutant, unless its line is one of the stub's (a student does not write it)."""
+        if line not in self.mutable:
             return
-        m = Mutant(lesson, unit, line, operator, start, end, source[start:end], replacement, source=source)
-        mutated = m.apply(source)
-        first = line_starts[line - 1]
-        m.source_line = line_text(line).strip()
-        # The mutated line: same start, end at the next newline of the mutated text.
+        m = Mutant(self.lesson, self.unit, line, operator, start, end, self.source[start:end], replacement,
+                   source=self.source)
+        mutated, first = m.apply(), self.line_starts[line - 1]
         end_of_line = mutated.find("\n", first)
+        m.source_line = self.line_text(line).strip()
         m.mutated_line = mutated[first:end_of_line if end_of_line >= 0 else len(mutated)].strip()
-        mutants.append(m)
+        self.mutants.append(m)
 
-    # Index names used alone in a subscript, for the i <-> j swap.
-    subscript_names = [tokens[k + 1].text for k in range(len(tokens) - 2)
-                       if tokens[k].text == "[" and tokens[k + 1].kind == "ident" and tokens[k + 2].text == "]"]
+    def text(self, first: int, last: int) -> str:
+        return self.source[self.tokens[first].start:self.tokens[last].end]
 
-    for index, token in enumerate(tokens):
-        if not in_body[index]:
-            continue
-        text = token.text
+    def call_at(self, index: int, names) -> int:
+        """The index of the ')' closing `name(` (-1 if none) when tokens[index] is one of `names` followed by
+        '(', else -2."""
+        t = self.tokens
+        if t[index].kind != "ident" or t[index].text not in names or index + 1 >= len(t) or t[index + 1].text != "(":
+            return -2
+        return _matching(t, index + 1)
+
+    def run(self) -> list[Mutant]:
+        for index, in_body in enumerate(body_tokens(self.tokens)):
+            if in_body:
+                for operator in (self.classic, self.dropped_factor, self.dropped_clamp, self.argument_neighbour,
+                                 self.float_for_double, self.swapped_arguments):
+                    operator(index, self.tokens[index])
+        # One mutant per resulting program: `a * pi * b` loses pi as ' * pi' or as 'pi * ', the same text.
+        unique: dict[tuple[int, str], Mutant] = {}
+        for m in sorted(self.mutants, key=lambda m: (m.start, m.operator)):
+            unique.setdefault((m.line, m.mutated_line), m)
+        return sorted(unique.values(), key=lambda m: (m.start, m.operator))
+
+    def classic(self, index: int, token: Token) -> None:
+        """The classic slips: a relation, an operator, a sign, a constant, min for max, an abs or clamp
+        removed, a condition negated, a loop bound off by one, an index swapped."""
+        t, text = self.tokens, token.text
         if token.kind == "op" and text in _RELATIONAL and not token.template:
-            add("relational", token.start, token.end, _RELATIONAL[text], token.line)
-        elif token.kind == "op" and text in _ARITHMETIC and (text.endswith("=") or _is_binary(tokens, index)):
-            add("arithmetic", token.start, token.end, _ARITHMETIC[text], token.line)
-        elif token.kind == "op" and text == "-" and index + 1 < len(tokens) and not _is_binary(tokens, index):
-            # A unary minus: drop it (a sign flipped).
-            after = tokens[index + 1]
-            if after.kind in ("ident", "number") or after.text == "(":
-                add("sign", token.start, after.start, "", token.line)
+            self.add("relational", token.start, token.end, _RELATIONAL[text], token.line)
+        elif token.kind == "op" and text in _ARITHMETIC and (text.endswith("=") or _is_binary(t, index)):
+            self.add("arithmetic", token.start, token.end, _ARITHMETIC[text], token.line)
+        elif token.kind == "op" and text == "-" and index + 1 < len(t) and not _is_binary(t, index):
+            if t[index + 1].kind in ("ident", "number") or t[index + 1].text == "(":  # a unary minus dropped
+                self.add("sign", token.start, t[index + 1].start, "", token.line)
         elif token.kind == "number":
             for replacement in _nudged_constants(text):
-                add("constant", token.start, token.end, replacement, token.line)
-        elif token.kind == "ident" and text in _MIN_MAX and index + 1 < len(tokens) and tokens[index + 1].text == "(":
-            add("min/max", token.start, token.end, _MIN_MAX[text], token.line)
-        elif token.kind == "ident" and text in _REMOVABLE_CALLS and index + 1 < len(tokens) \
-                and tokens[index + 1].text == "(":
-            close = _matching(tokens, index + 1)
+                self.add("constant", token.start, token.end, replacement, token.line)
+        elif self.call_at(index, _MIN_MAX) >= -1:
+            self.add("min/max", token.start, token.end, _MIN_MAX[text], token.line)
+        elif (close := self.call_at(index, _REMOVABLE_CALLS)) >= -1:
             if close < 0:
-                continue
-            commas = _top_level_commas(tokens, index + 1, close)
-            first_end = tokens[commas[0]].start if commas else tokens[close].start
-            start = tokens[index - 2].start if index >= 2 and tokens[index - 1].text == "::" else token.start
-            inner = source[tokens[index + 1].end:first_end].strip()
-            if inner:
-                add("abs/clamp removed", start, tokens[close].end, f"({inner})", token.line)
-        elif token.kind == "ident" and text in ("if", "while") and index + 1 < len(tokens) \
-                and tokens[index + 1].text == "(":
-            close = _matching(tokens, index + 1)
-            if close > 0:
-                condition = source[tokens[index + 1].end:tokens[close].start]
-                add("condition negated", tokens[index + 1].start, tokens[close].end, f"(!({condition}))", token.line)
-        elif token.kind == "ident" and text == "for" and index + 1 < len(tokens) and tokens[index + 1].text == "(":
-            close = _matching(tokens, index + 1)
-            semis = [j for j in range(index + 2, close) if tokens[j].text == ";"]
-            if close > 0 and len(semis) == 2 and semis[1] > semis[0] + 1:
-                # `i < n` -> `i < n - 1`: the loop stops one early.
-                condition = tokens[semis[0] + 1:semis[1]]
-                ops = [t for t in condition if t.text in ("<", "<=", "!=") and not t.template]
-                # Only a plain `i < bound`: in `i < n && more` the "bound" would swallow the rest.
-                compound = any(t.text in ("&&", "||", "?", ",") for t in condition)
-                if len(ops) == 1 and not compound:
-                    bound_end = tokens[semis[1] - 1].end
-                    bound = source[ops[0].end:bound_end]
-                    add("loop bound", ops[0].end, bound_end, f"{bound} - 1", token.line)
-                downward = [t for t in condition if t.text in (">", ">=") and not t.template]
-                if len(downward) == 1 and not ops and not compound:
-                    # `i >= 0` -> `i >= 0 + 1`: a loop that counts down stops one early.
-                    bound_end = tokens[semis[1] - 1].end
-                    bound = source[downward[0].end:bound_end]
-                    add("loop bound", downward[0].end, bound_end, f"{bound} + 1", token.line)
-                # The start shifted: `i = first` -> `i = first + 1` (a literal start is nudged as a constant).
-                init = tokens[index + 2:semis[0]]
-                assign = [k for k, t in enumerate(init) if t.text == "="]
-                if len(assign) == 1 and assign[0] + 1 < len(init) and not any(t.text == "," for t in init):
-                    start_tokens = init[assign[0] + 1:]
-                    if not (len(start_tokens) == 1 and start_tokens[0].kind == "number"):
-                        first = source[start_tokens[0].start:start_tokens[-1].end]
-                        add("loop bound", start_tokens[0].start, start_tokens[-1].end, f"{first} + 1", token.line)
-        elif token.kind == "ident" and text in subscript_names and index >= 1 and tokens[index - 1].text == "[" \
-                and index + 1 < len(tokens) and tokens[index + 1].text == "]":
-            partner = _index_partner(text, subscript_names)
+                return
+            commas = _top_level_commas(t, index + 1, close)
+            first_end = t[commas[0]].start if commas else t[close].start
+            start = t[index - 2].start if index >= 2 and t[index - 1].text == "::" else token.start
+            if inner := self.source[t[index + 1].end:first_end].strip():
+                self.add("abs/clamp removed", start, t[close].end, f"({inner})", token.line)
+        elif (close := self.call_at(index, ("if", "while"))) >= -1:
+            if close <= 0:
+                return
+            condition = self.source[t[index + 1].end:t[close].start]
+            self.add("condition negated", t[index + 1].start, t[close].end, f"(!({condition}))", token.line)
+        elif token.kind == "ident" and text == "for" and index + 1 < len(t) and t[index + 1].text == "(":
+            self.loop_bounds(index, token)
+        elif token.kind == "ident" and text in self.subscripts and index >= 1 and t[index - 1].text == "[" \
+                and index + 1 < len(t) and t[index + 1].text == "]":
+            partner = _index_partner(text, self.subscripts)
             # Only a name in scope nearby (declared or used in the last few lines) would compile.
-            nearby = {t.text for t in tokens[max(0, index - 80):index] if t.kind == "ident" and t.line >= token.line - 6}
+            nearby = {k.text for k in t[max(0, index - 80):index] if k.kind == "ident" and k.line >= token.line - 6}
             if partner and partner in nearby:
-                add("index swap", token.start, token.end, partner, token.line)
-        # The operators of the slips a mutation run of the classic kinds missed (issue 28):
-        if token.kind == "op" and text in ("*", "/") and _is_binary(tokens, index):
-            # A factor or a division dropped: `a * b` -> `a` and `b`, `a / b` -> `a`.
-            right = _operand_after(tokens, index + 1)
-            if right > index and (right + 1 >= len(tokens) or tokens[right + 1].text not in ("(", "[")):
-                name = "factor dropped" if text == "*" else "division dropped"
-                add(name, tokens[index - 1].end, tokens[right].end, "", token.line)
-            left = _operand_before(tokens, index - 1)
-            if text == "*" and 0 <= left < index and (left == 0 or tokens[left - 1].text not in (".", "->", "::")):
-                add("factor dropped", tokens[left].start, tokens[index + 1].start, "", token.line)
-        if token.kind == "ident" and text in _MIN_MAX and index + 1 < len(tokens) and tokens[index + 1].text == "(" \
-                and not (index >= 1 and tokens[index - 1].text in (".", "->")):
-            # A clamp dropped: max(0.0, x) -> x (either argument kept alone).
-            close = _matching(tokens, index + 1)
-            commas = _top_level_commas(tokens, index + 1, close) if close > 0 else []
-            if close > 0 and len(commas) == 1 and tokens[index + 2].text != "{":
-                start = tokens[index - 2].start if index >= 2 and tokens[index - 1].text == "::" else token.start
-                if index >= 4 and tokens[index - 1].text == "::" and tokens[index - 3].text == "::":
-                    start = tokens[index - 4].start
-                for first, last in ((index + 2, commas[0] - 1), (commas[0] + 1, close - 1)):
-                    kept = source[tokens[first].start:tokens[last].end].strip()
-                    if kept:
-                        add("clamp dropped", start, tokens[close].end, f"({kept})", token.line)
-        if token.kind == "op" and text == "(" and index >= 1 and tokens[index - 1].kind == "ident" \
-                and tokens[index - 1].text not in ("if", "while", "for", "switch", "return", "sizeof") \
-                and tokens[index - 1].text not in _TYPE_WORDS:
-            # An argument replaced by its neighbour: f(a, b) -> f(a, a) and f(b, b).
-            close = _matching(tokens, index)
-            commas = _top_level_commas(tokens, index, close) if close > 0 else []
-            if close > 0 and commas:
-                bounds = [index + 1, *(c + 1 for c in commas)]
-                ends = [*(c - 1 for c in commas), close - 1]
-                arguments = list(zip(bounds, ends))
-                for (a_first, a_last), (b_first, b_last) in zip(arguments, arguments[1:]):
-                    if not (_simple_argument(tokens, a_first, a_last) and _simple_argument(tokens, b_first, b_last)):
-                        continue
-                    a_text = source[tokens[a_first].start:tokens[a_last].end]
-                    b_text = source[tokens[b_first].start:tokens[b_last].end]
-                    if a_text == b_text:
-                        continue
-                    add("argument neighbour", tokens[a_first].start, tokens[a_last].end, b_text, token.line)
-                    add("argument neighbour", tokens[b_first].start, tokens[b_last].end, a_text, token.line)
-        if token.kind == "ident" and text == "double" and not (index >= 1 and tokens[index - 1].text == "long"):
-            # Float arithmetic where the reference computes in double: a local or a cast.
-            after = tokens[index + 1] if index + 1 < len(tokens) else None
-            declares = after is not None and after.kind == "ident" and index + 2 < len(tokens) \
-                and tokens[index + 2].text in ("=", "{", "(", ";", ",", "[")
-            casts = after is not None and after.text == ">" and index >= 2 and tokens[index - 1].text == "<" \
-                and tokens[index - 2].text == "static_cast"
-            if declares or casts:
-                add("float for double", token.start, token.end, "float", token.line)
-        if token.kind == "op" and text == "(" and index >= 1 and tokens[index - 1].kind == "ident":
-            # f(i, j) -> f(j, i): two plain index names swapped in a call.
-            close = _matching(tokens, index)
-            if close == index + 4 and tokens[index + 2].text == "," and tokens[index + 1].kind == "ident" \
-                    and tokens[index + 3].kind == "ident" and tokens[index + 1].text in subscript_names + ["i", "j"] \
-                    and tokens[index + 3].text in subscript_names + ["i", "j"] \
-                    and tokens[index + 1].text != tokens[index + 3].text:
-                a, b = tokens[index + 1], tokens[index + 3]
-                add("index swap", a.start, b.end, f"{b.text}, {a.text}", token.line)
-    # One mutant per resulting program: `a * pi * b` loses pi as ' * pi' or as 'pi * ', the same text.
-    unique: dict[tuple[int, str], Mutant] = {}
-    for m in sorted(mutants, key=lambda m: (m.start, m.operator)):
-        unique.setdefault((m.line, m.mutated_line), m)
-    return sorted(unique.values(), key=lambda m: (m.start, m.operator))
+                self.add("index swap", token.start, token.end, partner, token.line)
+
+    def loop_bounds(self, index: int, token: Token) -> None:
+        """`i < n` -> `i < n - 1`, `i >= 0` -> `i >= 0 + 1`, `i = first` -> `i = first + 1`: one early or late."""
+        t = self.tokens
+        close = _matching(t, index + 1)
+        semis = [j for j in range(index + 2, close) if t[j].text == ";"]
+        if close <= 0 or len(semis) != 2 or semis[1] <= semis[0] + 1:
+            return
+        condition = t[semis[0] + 1:semis[1]]
+        # Only a plain `i < bound`: in `i < n && more` the "bound" would swallow the rest.
+        compound = any(k.text in ("&&", "||", "?", ",") for k in condition)
+        upward = [k for k in condition if k.text in ("<", "<=", "!=") and not k.template]
+        downward = [k for k in condition if k.text in (">", ">=") and not k.template]
+        bound_end = t[semis[1] - 1].end
+        if len(upward) == 1 and not compound:
+            self.add("loop bound", upward[0].end, bound_end, f"{self.source[upward[0].end:bound_end]} - 1", token.line)
+        if len(downward) == 1 and not upward and not compound:
+            self.add("loop bound", downward[0].end, bound_end, f"{self.source[downward[0].end:bound_end]} + 1",
+                     token.line)
+        init = t[index + 2:semis[0]]  # a literal start is nudged as a constant
+        assign = [k for k, tok in enumerate(init) if tok.text == "="]
+        if len(assign) == 1 and assign[0] + 1 < len(init) and not any(tok.text == "," for tok in init):
+            start = init[assign[0] + 1:]
+            if not (len(start) == 1 and start[0].kind == "number"):
+                first = self.source[start[0].start:start[-1].end]
+                self.add("loop bound", start[0].start, start[-1].end, f"{first} + 1", token.line)
+
+    # The operators of the slips a mutation run of the classic kinds missed (issue 28):
+
+    def dropped_factor(self, index: int, token: Token) -> None:
+        """`a * b` -> `a` and `b`, `a / b` -> `a`."""
+        t = self.tokens
+        if token.kind != "op" or token.text not in ("*", "/") or not _is_binary(t, index):
+            return
+        right = _operand_after(t, index + 1)
+        if right > index and (right + 1 >= len(t) or t[right + 1].text not in ("(", "[")):
+            self.add("factor dropped" if token.text == "*" else "division dropped", t[index - 1].end, t[right].end,
+                     "", token.line)
+        left = _operand_before(t, index - 1)
+        if token.text == "*" and 0 <= left < index and (left == 0 or t[left - 1].text not in (".", "->", "::")):
+            self.add("factor dropped", t[left].start, t[index + 1].start, "", token.line)
+
+    def dropped_clamp(self, index: int, token: Token) -> None:
+        """`max(0.0, x)` -> `x` (either argument kept alone)."""
+        t = self.tokens
+        close = self.call_at(index, _MIN_MAX)
+        if close <= 0 or (index >= 1 and t[index - 1].text in (".", "->")):
+            return
+        commas = _top_level_commas(t, index + 1, close)
+        if len(commas) != 1 or t[index + 2].text == "{":
+            return
+        start = t[index - 2].start if index >= 2 and t[index - 1].text == "::" else token.start
+        if index >= 4 and t[index - 1].text == "::" and t[index - 3].text == "::":
+            start = t[index - 4].start
+        for first, last in ((index + 2, commas[0] - 1), (commas[0] + 1, close - 1)):
+            if kept := self.text(first, last).strip():
+                self.add("clamp dropped", start, t[close].end, f"({kept})", token.line)
+
+    def argument_neighbour(self, index: int, token: Token) -> None:
+        """An argument replaced by its neighbour: f(a, b) -> f(a, a) and f(b, b)."""
+        t = self.tokens
+        if token.text != "(" or token.kind != "op" or index < 1 or t[index - 1].kind != "ident" \
+                or t[index - 1].text in ("if", "while", "for", "switch", "return", "sizeof") \
+                or t[index - 1].text in _TYPE_WORDS:
+            return
+        close = _matching(t, index)
+        commas = _top_level_commas(t, index, close) if close > 0 else []
+        if not commas:
+            return
+        arguments = list(zip([index + 1, *(c + 1 for c in commas)], [*(c - 1 for c in commas), close - 1]))
+        for (a_first, a_last), (b_first, b_last) in zip(arguments, arguments[1:]):
+            if not (_simple_argument(t, a_first, a_last) and _simple_argument(t, b_first, b_last)):
+                continue
+            a_text, b_text = self.text(a_first, a_last), self.text(b_first, b_last)
+            if a_text != b_text:
+                self.add("argument neighbour", t[a_first].start, t[a_last].end, b_text, token.line)
+                self.add("argument neighbour", t[b_first].start, t[b_last].end, a_text, token.line)
+
+    def float_for_double(self, index: int, token: Token) -> None:
+        """Float arithmetic where the reference computes in double: a local or a cast."""
+        t = self.tokens
+        if token.kind != "ident" or token.text != "double" or (index >= 1 and t[index - 1].text == "long"):
+            return
+        after = t[index + 1] if index + 1 < len(t) else None
+        declares = after is not None and after.kind == "ident" and index + 2 < len(t) \
+            and t[index + 2].text in ("=", "{", "(", ";", ",", "[")
+        casts = after is not None and after.text == ">" and index >= 2 and t[index - 1].text == "<" \
+            and t[index - 2].text == "static_cast"
+        if declares or casts:
+            self.add("float for double", token.start, token.end, "float", token.line)
+
+    def swapped_arguments(self, index: int, token: Token) -> None:
+        """f(i, j) -> f(j, i): two plain index names swapped in a call."""
+        t = self.tokens
+        if token.kind != "op" or token.text != "(" or index < 1 or t[index - 1].kind != "ident" \
+                or _matching(t, index) != index + 4 or t[index + 2].text != ",":
+            return
+        a, b, names = t[index + 1], t[index + 3], self.subscripts + ["i", "j"]
+        if a.kind == b.kind == "ident" and a.text in names and b.text in names and a.text != b.text:
+            self.add("index swap", a.start, b.end, f"{b.text}, {a.text}", token.line)
 
 
 def _index_partner(name: str, names: list[str]) -> str:
@@ -1108,6 +1114,31 @@ def bugs_report(reports: list[LessonReport], command: str) -> str:
     return "\n".join(lines)
 
 
+def _list(reports: list[LessonReport], bugs: bool) -> None:
+    for r in reports:
+        for m in r.mutants:
+            where = f"{m.unit.as_posix()}:{m.line}"
+            if bugs:
+                print(f"{m.ident} lesson{r.lesson} {m.operator.removeprefix('student bug ')} {where}: {m.source_line}")
+            else:
+                print(f"{m.ident} lesson{r.lesson} {where} {m.operator}: {m.source_line}  =>  {m.mutated_line}")
+
+
+def _prepared_workspaces(root: Path, args: argparse.Namespace, reports: list[LessonReport]) -> list[Workspace] | None:
+    """One configured tree per worker (as many as the largest lesson has mutants, at most --jobs)."""
+    base = (args.work_dir or root / WORK_DIR).resolve()
+    jobs = max(1, min(args.jobs, max(len(r.mutants) for r in reports) if reports else 1))
+    workspaces = [Workspace(root, base, k) for k in range(jobs)]
+    for workspace in workspaces:
+        print(f"tools/grade --mutants: preparing {workspace.src}", file=sys.stderr, flush=True)
+        ok, output = workspace.prepare(echo=False)
+        if not ok:
+            print(output[-4000:], file=sys.stderr)
+            print(f"tools/grade --mutants: could not configure {workspace.build}", file=sys.stderr)
+            return None
+    return workspaces
+
+
 def main(argv: list[str]) -> int:
     args = parse_arguments(argv)
     root = project.ROOT
@@ -1121,31 +1152,15 @@ def main(argv: list[str]) -> int:
     if equivalents.problems:
         return 2
     reports = choose(root, args, equivalents)
-    if args.list and args.bugs:
-        for r in reports:
-            for m in r.mutants:
-                print(f"{m.ident} lesson{r.lesson} {m.operator.removeprefix('student bug ')} "
-                      f"{m.unit.as_posix()}:{m.line}: {m.source_line}")
-        return 0
     if args.list:
-        for r in reports:
-            for m in r.mutants:
-                print(f"{m.ident} lesson{r.lesson} {m.unit.as_posix()}:{m.line} {m.operator}: "
-                      f"{m.source_line}  =>  {m.mutated_line}")
+        _list(reports, bool(args.bugs))
         return 0
-    base = (args.work_dir or root / WORK_DIR).resolve()
-    jobs = max(1, min(args.jobs, max(len(r.mutants) for r in reports) if reports else 1))
-    workspaces = [Workspace(root, base, k) for k in range(jobs)]
-    for workspace in workspaces:
-        print(f"tools/grade --mutants: preparing {workspace.src}", file=sys.stderr, flush=True)
-        ok, output = workspace.prepare(echo=False)
-        if not ok:
-            print(output[-4000:], file=sys.stderr)
-            print(f"tools/grade --mutants: could not configure {workspace.build}", file=sys.stderr)
-            return 2
+    workspaces = _prepared_workspaces(root, args, reports)
+    if workspaces is None:
+        return 2
     for report in reports:
         print(f"tools/grade --mutants: lesson {report.lesson}: {len(report.mutants)} mutant(s) of "
-              f"{report.generated}, {jobs} worker(s)", file=sys.stderr, flush=True)
+              f"{report.generated}, {len(workspaces)} worker(s)", file=sys.stderr, flush=True)
         run_lesson(report, workspaces, args.timeout, args.compare_without)
         if report.problem:
             print(f"tools/grade --mutants: lesson {report.lesson}: {report.problem}", file=sys.stderr)
@@ -1166,6 +1181,5 @@ def main(argv: list[str]) -> int:
         print(f"wrote {args.report}", file=sys.stderr)
     if any(r.problem for r in reports):
         return 2
-    if args.fail_under is not None and any(r.score is not None and r.score < args.fail_under for r in reports):
-        return 1
-    return 0
+    return 1 if args.fail_under is not None and any(r.score is not None and r.score < args.fail_under
+                                                     for r in reports) else 0

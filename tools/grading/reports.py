@@ -261,75 +261,52 @@ def _build_entry(name: str, output: str, visibility: str = "visible") -> dict[st
             "output_format": "text", "visibility": visibility}
 
 
-def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any]:
-    """Gradescope's results.json: one entry per test, hidden tests marked hidden.
+def _fallback_summary(run: GradeRun) -> str:
+    """The results' paragraph on the student's files that did not compile or link (graded as stubs)."""
+    linked = run.link_failures & set(run.fallbacks)
+    kind = 0 if not linked else 1 if linked == set(run.fallbacks) else 2
+    what = ("did not compile", "did not link", "did not compile or link")[kind]
+    words = ("the compiler's", "the linker's", "the compiler's and the linker's")[kind]
+    return (f"**Some of your files {what}.** Each was replaced by its stub, so only its lesson lost points; {words} "
+            "messages are in the `build:` entries below:\n"
+            + "\n".join(f"- `{name}`" + (" (a link error: a name defined twice, or declared and never defined)"
+                                          if name in run.link_failures else "") for name in run.fallbacks))
 
-    Students read it, so it says what was graded, keeps the hidden tests' row
-    and the total out of the summary while hidden tests exist, and holds
-    each compiler output once (in its build entry, as plain text). On a failed
-    build the score is 0 and the single entry carries the compiler's output.
-    """
+
+def _test_entries(run: GradeRun, root: Path | None) -> list[dict[str, Any]]:
+    """A build entry per file graded as its stub, one for the hidden tests' failed build, one per test."""
+    tests = [_build_entry(f"build: {file} {'did not link' if file in run.link_failures else 'did not compile'} "
+                          "(graded as the stub)", output) for file, output in run.fallbacks.items()]
+    if run.hidden_build_failed:  # not the student's fault, and the hidden tests' source must not reach students
+        tests.append(_build_entry("hidden tests: build (instructors only)", "The instructor's hidden tests did not "
+                                  "build; they were not graded.\n\n" + run.hidden_build_output, HIDDEN_VISIBILITY))
+    return tests + [{"name": test_name(r), "number": str(number), "score": r.score, "max_score": r.points,
+                     "status": "passed" if r.passed else "failed", "output": _truncate(r.output(root)),
+                     "output_format": "text", "visibility": HIDDEN_VISIBILITY if r.hidden else "visible"}
+                    for number, r in enumerate(run.results, start=1)] + _review_entries(run)
+
+
+def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any]:
+    """Gradescope's results.json: one entry per test, hidden tests marked hidden. Students read it, so it
+    says what was graded, keeps the hidden tests' row and the total out of the summary while hidden tests
+    exist, and holds each compiler output once (in its build entry). A failed build scores 0, its single
+    entry carrying the compiler's output."""
     summary = submission_summary(run)
     common = {"output_format": "md", "test_output_format": "text", "visibility": "visible",
-              "stdout_visibility": "hidden", "execution_time": round(run.seconds, 1)}
+              "stdout_visibility": "hidden", "execution_time": round(run.seconds, 1), "extra_data": machine_summary(run)}
     if run.build_failed:
-        if run.blame_student:
-            headline = "Your code did not compile, so no test could run. The compiler's messages are in the build entry below."
-        else:
-            headline = ("The grader could not build (this is not your code's fault: tell your instructor). "
-                        "Nothing was graded.")
-        return {
-            "score": 0,
-            "output": "\n\n".join(part for part in (summary, headline) if part),
-            **common,
-            "tests": [_build_entry("build", run.build_output)] + _review_entries(run),
-            "extra_data": machine_summary(run),
-        }
-    tests = []
-    for failed_file, output in run.fallbacks.items():
-        what = "did not link" if failed_file in run.link_failures else "did not compile"
-        tests.append(_build_entry(f"build: {failed_file} {what} (graded as the stub)", output))
-    if run.hidden_build_failed:
-        # Not the student's fault, and the hidden tests' source must not reach students.
-        tests.append(_build_entry("hidden tests: build (instructors only)",
-                                  "The instructor's hidden tests did not build; they were not graded.\n\n"
-                                  + run.hidden_build_output, visibility=HIDDEN_VISIBILITY))
-    for number, result in enumerate(run.results, start=1):
-        tests.append({
-            "name": test_name(result),
-            "number": str(number),
-            "score": result.score,
-            "max_score": result.points,
-            "status": "passed" if result.passed else "failed",
-            "output": _truncate(result.output(root)),
-            "output_format": "text",
-            "visibility": HIDDEN_VISIBILITY if result.hidden else "visible",
-        })
-    tests.extend(_review_entries(run))
-    parts = [summary]
-    if run.fallbacks:
-        linked = run.link_failures & set(run.fallbacks)
-        what = ("did not compile" if not linked else "did not link" if linked == set(run.fallbacks)
-                else "did not compile or link")
-        words = ("the compiler's" if not linked else "the linker's" if linked == set(run.fallbacks)
-                 else "the compiler's and the linker's")
-        parts.append(f"**Some of your files {what}.** Each was replaced by its stub, so only its lesson lost "
-                     f"points; {words} messages are in the `build:` entries below:\n"
-                     + "\n".join(f"- `{name}`" + (" (a link error: a name defined twice, or declared and never "
-                                                   "defined)" if name in run.link_failures else "")
-                                   for name in run.fallbacks))
+        headline = ("Your code did not compile, so no test could run. The compiler's messages are in the build "
+                    "entry below." if run.blame_student else "The grader could not build (this is not your code's "
+                    "fault: tell your instructor). Nothing was graded.")
+        return {"score": 0, "output": "\n\n".join(part for part in (summary, headline) if part), **common,
+                "tests": [_build_entry("build", run.build_output)] + _review_entries(run)}
+    parts = [summary, _fallback_summary(run) if run.fallbacks else ""]
     if run.hidden_build_failed:
         parts.append("The grader is misconfigured: some of the instructor's tests could not be built. This is not "
                      "your code's fault; your visible tests were graded, and your instructor has been shown why.")
     parts.append(_fence(score_table(run, for_students=True)))
-    return {
-        "score": run.score,
-        "max_score": run.max_score,
-        "output": "\n\n".join(part for part in parts if part),
-        **common,
-        "tests": tests,
-        "extra_data": machine_summary(run),
-    }
+    return {"score": run.score, "max_score": run.max_score, "output": "\n\n".join(part for part in parts if part),
+            **common, "tests": _test_entries(run, root)}
 
 
 def _review_entries(run: GradeRun) -> list[dict[str, Any]]:
