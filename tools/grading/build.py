@@ -15,9 +15,8 @@ import signal
 import subprocess
 import sys
 import threading
-import time
 from dataclasses import dataclass
-from pathlib import Path, PurePosixPath
+from pathlib import Path
 from typing import Sequence
 
 # A build's output is kept up to HEAD_BYTES from its start (the first error
@@ -57,11 +56,34 @@ def build_timeout_from_environment() -> float | None:
     return float(value) if value else None
 
 
+def _head_and_tail(stream, echo: bool) -> tuple[bytearray, bytearray, int]:
+    """The first HEAD_BYTES and the last TAIL_BYTES of a stream, and its length; the head echoed to stderr."""
+    head, tail, total = bytearray(), bytearray(), 0
+    while chunk := stream.read1(1 << 16):
+        total += len(chunk)
+        if len(head) < HEAD_BYTES:
+            room = HEAD_BYTES - len(head)
+            head += chunk[:room]
+            if echo:
+                sys.stderr.write(chunk[:room].decode("utf-8", errors="replace"))
+                sys.stderr.flush()
+            chunk = chunk[room:]
+        tail += chunk
+        del tail[:max(0, len(tail) - TAIL_BYTES)]
+    return head, tail, total
+
+
+def _kill_group(process: subprocess.Popen) -> None:
+    try:
+        os.killpg(process.pid, signal.SIGKILL)
+    except OSError:
+        pass
+
+
 def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = None,
                   runner: Runner | None = None) -> StepResult:
-    """Runs a command, echoing its output to stderr as it comes (a build takes
-    minutes; silence would look like a hang) and keeping its head and tail
-    for the report."""
+    """Runs a command, echoing its output to stderr as it comes (a build takes minutes; silence would look
+    like a hang) and keeping its head and tail for the report."""
     runner = runner or _runner
     if echo:
         print("$ " + " ".join(command), file=sys.stderr, flush=True)
@@ -72,49 +94,20 @@ def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = 
     except OSError as error:
         return StepResult(False, f"could not run {command[0]}: {error}")
     timed_out = threading.Event()
+    timer = threading.Timer(runner.timeout or 0, lambda: (timed_out.set(), _kill_group(process)))
+    timer.daemon = True
     if runner.timeout:
-        def stop() -> None:
-            timed_out.set()
-            try:
-                os.killpg(process.pid, signal.SIGKILL)
-            except OSError:
-                pass
-        timer = threading.Timer(runner.timeout, stop)
-        timer.daemon = True
         timer.start()
-    head, tail, total = bytearray(), bytearray(), 0
-    assert process.stdout is not None
-    while True:
-        chunk = process.stdout.read1(1 << 16) if hasattr(process.stdout, "read1") else process.stdout.read(1 << 16)
-        if not chunk:
-            break
-        total += len(chunk)
-        if len(head) < HEAD_BYTES:
-            room = HEAD_BYTES - len(head)
-            head += chunk[:room]
-            if echo:
-                sys.stderr.write(chunk[:room].decode("utf-8", errors="replace"))
-                sys.stderr.flush()
-            chunk = chunk[room:]
-        if chunk:
-            tail += chunk
-            if len(tail) > TAIL_BYTES:
-                del tail[:len(tail) - TAIL_BYTES]
+    head, tail, total = _head_and_tail(process.stdout, echo)
     status = process.wait()
-    if runner.timeout:
-        timer.cancel()
-    try:
-        os.killpg(process.pid, signal.SIGKILL)  # whatever the build left behind
-    except OSError:
-        pass
+    timer.cancel()
+    _kill_group(process)  # whatever the build left behind
     text = head.decode("utf-8", errors="replace")
-    if tail:
-        cut = total - len(head) - len(tail)
-        if cut > 0:
-            text += f"\n[... {cut} bytes of build output cut ...]\n"
-            if echo:
-                print(f"\n[... build output cut; {total} bytes in all ...]", file=sys.stderr, flush=True)
-        text += tail.decode("utf-8", errors="replace")
+    if total - len(head) - len(tail) > 0:
+        text += f"\n[... {total - len(head) - len(tail)} bytes of build output cut ...]\n"
+        if echo:
+            print(f"\n[... build output cut; {total} bytes in all ...]", file=sys.stderr, flush=True)
+    text += tail.decode("utf-8", errors="replace")
     if timed_out.is_set():
         text += (f"\nthe build did not finish within {runner.timeout:g} s, the time limit of a build "
                  "(ILLUM_GRADE_BUILD_TIMEOUT), and was stopped\n")
