@@ -1,17 +1,9 @@
 #!/usr/bin/env python3
-"""End-to-end check of one lesson program (ctest e2e_lessonNN).
+"""End-to-end check of one lesson program (ctest e2e_lessonNN): `PROGRAM --quick --out DIR` (DIR cleared
+first) exits 0; every file of DIR/manifest.json exists, is not empty and is well formed for its kind;
+`PROGRAM --help` names --out and --quick; an unknown flag is an error. Exit 0, or 1 with the problems.
 
     tools/check_outputs.py --run build/release/bin/lesson01 --out build/release/test-out/lesson01
-
-1. `PROGRAM --quick --out DIR` (DIR is cleared first) must exit 0;
-2. DIR/manifest.json must parse, and every file it lists must exist, be
-   non-empty and be well formed for its kind (PNG signature and IHDR with a
-   non-zero size, '#?RADIANCE' HDR, CSV with a header and rows of equal width,
-   well-formed Markdown tables);
-3. `PROGRAM --help` must exit 0 and mention --out and --quick;
-4. `PROGRAM --<unknown flag>` must exit non-zero.
-
-Exit 0 when everything holds, 1 with one line per problem otherwise.
 """
 from __future__ import annotations
 

@@ -1,16 +1,10 @@
 #!/usr/bin/env python3
-"""Writes the student edition of illum: the tracked tree without the reference
-sources of the exercises handed out and without hidden tests; the lessons not
-handed out keep their reference units as working code (CMake target
-``student-edition``, lessons from ILLUM_HAND_OUT; the rules are in
-tools/grading/edition.py).
+"""Writes the student edition of illum (CMake target `student-edition`, lessons from ILLUM_HAND_OUT; the
+rules are in tools/grading/edition.py).
 
-    tools/student_edition.py                                            # every exercise, into build/student-edition
-    tools/student_edition.py --lessons 03 11                            # lessons 03 and 11 only
-    tools/student_edition.py --source . --out /tmp/edition              # another source tree or folder
-
-The edition has a README of its own (what the students got, the student
-commands, the `illum` command and its lab) and no link to a file it leaves out.
+    tools/student_edition.py                                  every exercise, into build/student-edition
+    tools/student_edition.py --lessons 03 11                  lessons 03 and 11 only
+    tools/student_edition.py --source . --out /tmp/edition    another source tree or folder
 """
 from __future__ import annotations
 

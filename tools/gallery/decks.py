@@ -1,9 +1,5 @@
-"""Slide decks: slides/NN_topic.md -> OUT/slides/NN_topic.html with Marp.
-
-Marp comes from the repository's node_modules (package-lock.json, `npm ci`,
-done by tools/install-deps). KaTeX renders the maths; its fonts are copied
-next to the decks (OUT/slides/katex-fonts/) so a deck needs no network.
-"""
+"""Slide decks: slides/NN_topic.md -> OUT/slides/NN_topic.html with Marp from the repository's node_modules,
+KaTeX's fonts copied beside them (OUT/slides/katex-fonts/): a deck needs no network."""
 from __future__ import annotations
 
 import os

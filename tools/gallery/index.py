@@ -1,17 +1,6 @@
-"""out/index.html: one self-contained page that shows every lesson's outputs.
-
-Lessons are discovered, never listed: a lesson number NN appears when any of
-lessons/NN_*/, exercises/NN_*/, slides/NN_*.md or OUT/lessonNN/manifest.json
-exists. Per lesson the page shows its title (from the manifest), images and
-plots as thumbnails linking to full size, tables rendered from their Markdown
-with a link to the CSV, every other file as a link, and links to the built
-deck, the lesson text and the exercise: their rendered pages in OUT/pages/
-when the main job's step "texts" wrote them (tools/gallery/texts.py), with
-the Markdown beside them (relative paths into the source tree).
-
-The page has inline CSS only and no external assets. `check_links` verifies
-that every local href/src in a written page resolves.
-"""
+"""out/index.html: one self-contained page (inline CSS, no external asset) showing every lesson found in
+the source tree or OUT: its outputs (images as thumbnails, tables rendered, other files as links), its deck,
+its text and its exercise (their rendered pages in OUT/pages/ when the main job's step "texts" wrote them)."""
 from __future__ import annotations
 
 import csv
@@ -25,11 +14,12 @@ from pathlib import Path
 from urllib.parse import quote, unquote, urlsplit
 
 from common.files import atomic_write_text
-from .outputs import Manifest, ManifestError, Output, load_manifest, parse_markdown_tables, png_size
+from grading.project import lesson_folders
 
-_NN_DIR = re.compile(r"^(\d\d)_[A-Za-z0-9_\-]+$")
-_NN_DECK = re.compile(r"^(\d\d)_[A-Za-z0-9_\-]+\.md$")
-_PROGRAM_DIR = re.compile(r"^lesson(\d\d)$")
+from .decks import find_decks
+from .outputs import Manifest, ManifestError, Output, load_manifest, parse_markdown_tables, png_size
+from .texts import page_of
+
 
 
 @dataclass
@@ -60,45 +50,25 @@ def _first_heading(readme: Path) -> str:
     return ""
 
 
-def _title_from_slug(slug: str) -> str:
-    words = slug[3:].replace("_", " ").replace("-", " ").strip()
-    return words[:1].upper() + words[1:] if words else ""
-
-
 def discover_lessons(source: Path, out: Path, slides_dir: Path | None = None) -> list[Lesson]:
-    """Every lesson found in the source tree or the output folder, by number."""
+    """Every lesson found in the source tree (lessons/, exercises/, slides/) or OUT, by number."""
     source, out = Path(source), Path(out)
     slides_dir = Path(slides_dir) if slides_dir else source / "slides"
     lessons: dict[str, Lesson] = {}
-
-    def get(nn: str) -> Lesson:
-        return lessons.setdefault(nn, Lesson(nn))
-
-    for folder_name, attr in (("lessons", "lesson_readme"), ("exercises", "exercise_readme")):
-        base = source / folder_name
-        if base.is_dir():
-            for d in sorted(base.iterdir()):
-                m = _NN_DIR.match(d.name)
-                if d.is_dir() and m:
-                    lesson = get(m.group(1))
-                    lesson.slug = lesson.slug or d.name  # lessons/ first, then exercises/
-                    if (d / "README.md").is_file():
-                        setattr(lesson, attr, d / "README.md")
-    if slides_dir.is_dir():
-        for f in sorted(slides_dir.iterdir()):
-            m = _NN_DECK.match(f.name)
-            if f.is_file() and m:
-                lesson = get(m.group(1))
-                lesson.deck_source = f
-                lesson.slug = lesson.slug or f.stem
-                built = out / "slides" / (f.stem + ".html")
-                if built.is_file():
-                    lesson.deck_html = built
-    if out.is_dir():
-        for d in sorted(out.iterdir()):
-            m = _PROGRAM_DIR.match(d.name)
-            if d.is_dir() and m and (d / "manifest.json").exists():
-                get(m.group(1))
+    for kind, attr in (("lessons", "lesson_readme"), ("exercises", "exercise_readme")):
+        for nn, folder in lesson_folders(source, kind).items():
+            lesson = lessons.setdefault(nn, Lesson(nn))
+            lesson.slug = lesson.slug or folder.name  # lessons/ first, then exercises/
+            if (folder / "README.md").is_file():
+                setattr(lesson, attr, folder / "README.md")
+    for deck in find_decks(slides_dir):
+        lesson = lessons.setdefault(deck.name[:2], Lesson(deck.name[:2]))
+        lesson.deck_source, lesson.slug = deck, lesson.slug or deck.stem
+        if (built := out / "slides" / (deck.stem + ".html")).is_file():
+            lesson.deck_html = built
+    for folder in sorted(out.glob("lesson[0-9][0-9]")):
+        if re.fullmatch(r"lesson\d\d", folder.name) and (folder / "manifest.json").exists():
+            lessons.setdefault(folder.name[-2:], Lesson(folder.name[-2:]))
     for nn, lesson in lessons.items():
         folder = out / f"lesson{nn}"
         if (folder / "manifest.json").exists():
@@ -107,26 +77,17 @@ def discover_lessons(source: Path, out: Path, slides_dir: Path | None = None) ->
                 lesson.manifest = load_manifest(folder)
             except ManifestError as e:
                 lesson.manifest_error = str(e)
+        words = lesson.slug[3:].replace("_", " ").replace("-", " ").strip()
         lesson.title = ((lesson.manifest.title if lesson.manifest else "")
                         or (_first_heading(lesson.lesson_readme) if lesson.lesson_readme else "")
-                        or _title_from_slug(lesson.slug) or f"Lesson {nn}")
+                        or words[:1].upper() + words[1:] or f"Lesson {nn}")
     return [lessons[nn] for nn in sorted(lessons)]
 
 
-# --- HTML --------------------------------------------------------------------------
-
 CSS = Path(__file__).with_name("index.css")
 
-_KIND_LABEL = {
-    "hdr": "Radiance HDR image (linear radiance)",
-    "script": "script",
-    "text": "text",
-    "table": "CSV table",
-    "markdown": "Markdown table",
-    "image": "image",
-    "plot": "plot",
-    "mesh": "mesh (PLY or OBJ, per-vertex colours)",
-}
+_KIND_LABEL = {"hdr": "Radiance HDR image (linear radiance)", "table": "CSV table", "markdown": "Markdown table",
+               "mesh": "mesh (PLY or OBJ, per-vertex colours)"}
 
 
 def href(target: Path, base: Path) -> str:
@@ -179,10 +140,9 @@ def _read(path: Path) -> str:
 def rendered_page(source: Path, out: Path, text: Path) -> Path | None:
     """OUT/pages/<text>.html when the main job rendered the text (tools/gallery/texts.py), else None."""
     try:
-        rel = Path(text).resolve().relative_to(Path(source).resolve())
+        page = page_of(source, out, text)
     except ValueError:
         return None
-    page = Path(out) / "pages" / rel.with_suffix(".html")
     return page if page.is_file() else None
 
 
@@ -380,9 +340,6 @@ def write_index(source: Path, out: Path, slides_dir: Path | None = None, note: s
     target = out / "index.html"
     atomic_write_text(target, render_index(lessons, out, Path(source), note))
     return target
-
-
-# --- link check --------------------------------------------------------------------
 
 
 class _Links(HTMLParser):

@@ -1,13 +1,6 @@
-"""A lesson program's output folder: its manifest.json and checks of each file.
-
-Every lesson program writes `manifest.json` into its --out folder:
-
-    {"id": "lesson01", "title": "Ray and sphere",
-     "outputs": [{"kind": "image", "file": "silhouette.png", "caption": "..."}, ...]}
-
-Each check below returns a list of problems (empty = fine) written for a
-person: what is wrong and, where it helps, what a good file looks like.
-"""
+"""A lesson program's output folder: its manifest.json (`{"id": "lesson01", "title": …, "outputs": [{"kind":
+"image", "file": "x.png", "caption": …}, …]}`) and a check of each file for its kind; each check returns
+the problems, written for a person (an empty list: fine)."""
 from __future__ import annotations
 
 import csv

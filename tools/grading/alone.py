@@ -1,17 +1,7 @@
-"""Each lesson stands alone: its grading and its program need only its own units.
-
-For every lesson NN with exercise units, ``tests/e2e/alone.cmake`` links
-``tests_lessonNN_alone`` and ``lessonNN_alone`` against a library in which
-lesson NN's units (and those of the lessons its ``exercises/NN_*/depends.txt``
-declares) are the reference and every other lesson's units are stubs: what a
-student handed out only lesson NN builds. This check runs them:
-
-* suite ``lessonNN`` passes entirely (a test that fails there depends on
-  another lesson's unit without saying so: declare the dependency in
-  ``depends.txt``, or move the shared helper out of the unit);
-* ``lessonNN_alone --quick`` finishes with exit status 0 (the lesson's
-  pictures are drawn with only that lesson's code).
-"""
+"""`tools/grade --check-alone`: each lesson stands alone. tests/e2e/alone.cmake links tests_lessonNN_alone
+and lessonNN_alone with lesson NN's units (and those its exercises/NN_*/depends.txt declares) as the
+reference and every other lesson's as stubs: what a student handed out only lesson NN builds. Suite
+lessonNN must pass there, and `lessonNN_alone --quick` must finish."""
 from __future__ import annotations
 
 import os

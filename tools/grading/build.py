@@ -1,12 +1,8 @@
-"""Configuring and building a grading tree with CMake.
+"""Configuring and building a grading tree with CMake, and blaming a failed build on the student's files.
 
-The driver grades the reference in its own tree (build/grade-reference), so
-that grading never disturbs a developer's build/release; a student's code in
-the student's own tree (build/student, configured as the `student` preset
-does, so that one cold build serves both); the autograder in
-build/grade-student. It builds only the test programs it runs: the lesson
-programs and the stub twins are not needed to grade.
-"""
+The reference is graded in its own tree (build/grade-reference), a student's code in the student's
+(build/student, as the preset configures it), the autograder's in build/grade-student; only the test
+programs graded are built."""
 from __future__ import annotations
 
 import os

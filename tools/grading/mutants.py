@@ -31,10 +31,6 @@ from . import project
 EQUIVALENT_FILE = Path("tests") / "mutants" / "equivalent.txt"
 WORK_DIR = Path("build") / "mutants"
 
-# ---------------------------------------------------------------------------
-# A small C++ tokenizer: enough to find operators, literals and names outside
-# comments, strings and preprocessor lines.
-
 _TOKEN = re.compile(
     r"""
     (?P<comment>//[^\n]*|/\*.*?\*/)
@@ -137,10 +133,6 @@ def body_tokens(tokens: list[Token]) -> list[bool]:
     return inside
 
 
-# ---------------------------------------------------------------------------
-# Mutation operators.
-
-
 @dataclass
 class Mutant:
     lesson: str
@@ -207,17 +199,14 @@ def _is_binary(tokens: list[Token], index: int) -> bool:
 
 
 def _matching(tokens: list[Token], index: int) -> int:
-    """Index of the bracket closing tokens[index] (a '(' or '['), or -1."""
-    opening = tokens[index].text
-    closing = {"(": ")", "[": "]"}[opening]
-    depth = 0
-    for j in range(index, len(tokens)):
-        if tokens[j].text == opening:
-            depth += 1
-        elif tokens[j].text == closing:
-            depth -= 1
-            if depth == 0:
-                return j
+    """Index of the bracket that closes (or opens) the one at tokens[index], or -1."""
+    pairs = {"(": ")", "[": "]", ")": "(", "]": "["}
+    here, other = tokens[index].text, pairs[tokens[index].text]
+    step, depth = (1 if here in "([" else -1), 0
+    for j in range(index, len(tokens) if step > 0 else -1, step):
+        depth += (tokens[j].text == here) - (tokens[j].text == other)
+        if depth == 0:
+            return j
     return -1
 
 
@@ -232,21 +221,6 @@ def _top_level_commas(tokens: list[Token], open_index: int, close_index: int) ->
         elif text == "," and depth == 0:
             commas.append(j)
     return commas
-
-
-def _matching_back(tokens: list[Token], index: int) -> int:
-    """Index of the bracket opening tokens[index] (a ')' or ']'), or -1."""
-    closing = tokens[index].text
-    opening = {")": "(", "]": "["}[closing]
-    depth = 0
-    for j in range(index, -1, -1):
-        if tokens[j].text == closing:
-            depth += 1
-        elif tokens[j].text == opening:
-            depth -= 1
-            if depth == 0:
-                return j
-    return -1
 
 
 def _operand_after(tokens: list[Token], index: int) -> int:
@@ -297,7 +271,7 @@ def _operand_before(tokens: list[Token], index: int) -> int:
     token = tokens[index]
     j = index
     if token.text in (")", "]"):
-        j = _matching_back(tokens, index)
+        j = _matching(tokens, index)
         if j < 0:
             return -1
         if token.text == "(" or j == 0 or tokens[j - 1].kind != "ident" or tokens[j - 1].text in _TYPE_WORDS \
@@ -318,7 +292,7 @@ def _operand_before(tokens: list[Token], index: int) -> int:
         if before.kind == "ident":
             j -= 2
         elif before.text in (")", "]"):
-            opening = _matching_back(tokens, j - 2)
+            opening = _matching(tokens, j - 2)
             if opening < 0:
                 return -1
             j = opening - 1 if opening >= 1 and tokens[opening - 1].kind == "ident" else opening
@@ -562,10 +536,6 @@ def _index_partner(name: str, names: list[str]) -> str:
     return max(sorted(set(others)), key=others.count)
 
 
-# ---------------------------------------------------------------------------
-# The lessons' units and the equivalent-mutant list.
-
-
 def lesson_units(root: Path, lesson: str) -> list[tuple[Path, Path]]:
     """(reference unit, stub) pairs of one lesson, relative to root."""
     units = []
@@ -615,11 +585,6 @@ def read_equivalents(path: Path) -> Equivalents:
     return result
 
 
-# ---------------------------------------------------------------------------
-# Student bugs written by hand (tests/mutants/student_bugs/*.bug): realistic
-# mistakes the generator does not make (a count in the wrong place, a loop
-# that reads what it writes, a fixed epsilon), run like mutants.
-
 BUGS_FOLDER = Path("tests") / "mutants" / "student_bugs"
 
 
@@ -634,45 +599,27 @@ class BugFile:
 
 
 def read_bug(path: Path) -> BugFile:
-    """A ``.bug`` file: ``key: value`` lines (lesson, unit, title, caught-by; # comments), then one or
-    more ``--- find`` / ``+++ replace`` pairs, each followed by its lines verbatim."""
+    """A `.bug` file: `key: value` lines (lesson, unit, title, caught-by; # comments), then one or more
+    `--- find` / `+++ replace` pairs, each followed by its lines verbatim."""
+    header, *pairs = re.split(r"^--- find\n", path.read_text(encoding="utf-8"), flags=re.M)
     bug = BugFile(path)
-    mode, find, replace = "header", [], []
-    for raw in path.read_text(encoding="utf-8").splitlines():
-        if raw == "--- find":
-            if mode == "replace":
-                bug.edits.append(("\n".join(find), "\n".join(replace)))
-            mode, find, replace = "find", [], []
+    for line in (raw.strip() for raw in header.splitlines()):
+        if "+++ replace" == line:
+            raise ValueError(f"{path}: '+++ replace' without a '--- find' before it")
+        if not line or line.startswith("#"):
             continue
-        if raw == "+++ replace":
-            if mode != "find":
-                raise ValueError(f"{path}: '+++ replace' without a '--- find' before it")
-            mode = "replace"
-            continue
-        if mode == "header":
-            line = raw.strip()
-            if not line or line.startswith("#"):
-                continue
-            key, sep, value = line.partition(":")
-            if not sep:
-                raise ValueError(f"{path}: expected 'key: value', got {line!r}")
-            key, value = key.strip(), value.strip()
-            if key == "lesson":
-                bug.lesson = value
-            elif key == "unit":
-                bug.unit = Path(value)
-            elif key == "title":
-                bug.title = value
-            elif key == "caught-by":
-                bug.caught_by = value
-            else:
-                raise ValueError(f"{path}: unknown key {key!r} (lesson, unit, title, caught-by)")
-        elif mode == "find":
-            find.append(raw)
-        else:
-            replace.append(raw)
-    if mode == "replace":
-        bug.edits.append(("\n".join(find), "\n".join(replace)))
+        key, sep, value = (part.strip() for part in line.partition(":"))
+        if not sep:
+            raise ValueError(f"{path}: expected 'key: value', got {line!r}")
+        if key not in ("lesson", "unit", "title", "caught-by"):
+            raise ValueError(f"{path}: unknown key {key!r} (lesson, unit, title, caught-by)")
+        setattr(bug, key.replace("-", "_"), Path(value) if key == "unit" else value)
+    for pair in pairs:
+        find, *replace = re.split(r"^\+\+\+ replace$\n?", pair, flags=re.M)
+        if len(replace) > 1:
+            raise ValueError(f"{path}: '+++ replace' without a '--- find' before it")
+        if replace:
+            bug.edits.append((find.removesuffix("\n"), replace[0].removesuffix("\n")))
     if not (bug.lesson and str(bug.unit) != "." and bug.title and bug.edits):
         raise ValueError(f"{path}: needs lesson, unit, title and at least one --- find / +++ replace pair")
     return bug
@@ -705,9 +652,6 @@ def read_bugs(root: Path, folder: Path) -> tuple[list[tuple[BugFile, Mutant]], l
             problems.append(str(error))
     return found, problems
 
-
-# ---------------------------------------------------------------------------
-# Workers: a private source copy and build tree each.
 
 _COPY_IGNORE = {"build", ".git", "node_modules", "out", "__pycache__"}
 
@@ -839,10 +783,6 @@ def run_grading(workspace: Workspace, lesson: str, timeout: float, extra: tuple[
     return "survived", ""
 
 
-# ---------------------------------------------------------------------------
-# The run.
-
-
 @dataclass
 class LessonReport:
     lesson: str
@@ -911,6 +851,20 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     return args
 
 
+def _bug_reports(root: Path, args: argparse.Namespace, lessons: list[str]) -> list[LessonReport]:
+    folder = Path(args.bugs) if Path(args.bugs).is_absolute() else root / args.bugs
+    bugs, problems = read_bugs(root, folder)
+    for problem in problems:
+        print(f"tools/grade --mutants --bugs: {problem}", file=sys.stderr)
+    if problems:
+        raise SystemExit(2)
+    reports = [LessonReport(lesson, mutants=[m for bug, m in bugs if bug.lesson == lesson]) for lesson in lessons]
+    for report in reports:
+        report.generated = len(report.mutants)
+        report.mutants = [m for m in report.mutants if not args.only or m.ident in args.only]
+    return [report for report in reports if report.generated]
+
+
 def choose(root: Path, args: argparse.Namespace, equivalents: Equivalents) -> list[LessonReport]:
     exercises = project.exercise_lessons(root)
     unknown = [nn for nn in args.lessons if nn not in exercises]
@@ -918,37 +872,20 @@ def choose(root: Path, args: argparse.Namespace, equivalents: Equivalents) -> li
         print(f"tools/grade --mutants: lesson(s) {', '.join(unknown)} have no exercise units; "
               f"lessons with exercises: {', '.join(exercises)}", file=sys.stderr)
         raise SystemExit(2)
-    reports = []
     if getattr(args, "bugs", None):
-        bugs, problems = read_bugs(root, root / args.bugs if not Path(args.bugs).is_absolute() else Path(args.bugs))
-        for problem in problems:
-            print(f"tools/grade --mutants --bugs: {problem}", file=sys.stderr)
-        if problems:
-            raise SystemExit(2)
-        for lesson in args.lessons or exercises:
-            report = LessonReport(lesson)
-            report.mutants = [m for bug, m in bugs if bug.lesson == lesson]
-            report.generated = len(report.mutants)
-            if args.only:
-                report.mutants = [m for m in report.mutants if m.ident in args.only]
-            if report.generated:
-                reports.append(report)
-        return reports
+        return _bug_reports(root, args, args.lessons or exercises)
+    reports = []
     for lesson in args.lessons or exercises:
-        report = LessonReport(lesson)
         every = all_mutants(root, lesson)
-        report.generated = len(every)
-        report.equivalent = sum(1 for m in every if equivalents.reason(m) is not None)
         chosen = every
         if args.sample is not None and args.sample < len(every):
-            # Drawn from every mutant, equivalent or not, so that listing an equivalent
-            # mutant later leaves the rest of a seed's sample as it was (fair before/after runs).
+            # Drawn from every mutant, equivalent or not, so that listing an equivalent mutant later leaves
+            # the rest of a seed's sample as it was (fair before/after runs).
             rng = random.Random(f"{args.seed}:{lesson}")
             chosen = sorted(rng.sample(every, args.sample), key=lambda m: (str(m.unit), m.start))
-        report.mutants = [m for m in chosen if equivalents.reason(m) is None]
-        if args.only:
-            report.mutants = [m for m in report.mutants if m.ident in args.only]
-        reports.append(report)
+        reports.append(LessonReport(lesson, len(every), sum(equivalents.reason(m) is not None for m in every),
+                                    [m for m in chosen if equivalents.reason(m) is None
+                                     and (not args.only or m.ident in args.only)]))
     return reports
 
 
