@@ -13,18 +13,10 @@ from pathlib import Path
 from common import png
 from common.markdown import Table, parse_tables
 
-KINDS = ("image", "hdr", "table", "markdown", "plot", "script", "text", "mesh")
-# The extension each kind must have (None: any).
-KIND_EXTENSIONS = {
-    "image": (".png",),
-    "plot": (".png",),
-    "hdr": (".hdr",),
-    "table": (".csv",),
-    "markdown": (".md",),
-    "script": None,
-    "text": None,
-    "mesh": (".ply", ".obj"),
-}
+# Each kind of output and the extensions its file must have (None: any).
+KIND_EXTENSIONS = {"image": (".png",), "hdr": (".hdr",), "table": (".csv",), "markdown": (".md",), "plot": (".png",),
+                   "script": None, "text": None, "mesh": (".ply", ".obj")}
+KINDS = tuple(KIND_EXTENSIONS)
 
 
 class ManifestError(Exception):
@@ -97,17 +89,16 @@ def load_manifest(folder: Path | str) -> Manifest:
     return Manifest(data["id"], data["title"], parsed)
 
 
-# --- checks of single files --------------------------------------------------------
-
-
 def check_png(path: Path) -> list[str]:
     return [f"{path.name}: {p}" for p in png.problems(Path(path).read_bytes())]
 
 
 def png_size(path: Path) -> tuple[int, int] | None:
     """(width, height), or None if the file is not a PNG."""
+    with open(path, "rb") as f:
+        head = f.read(33)
     try:
-        return png.size(Path(path).read_bytes()[:33])
+        return png.size(head)
     except png.PngError:
         return None
 
@@ -135,32 +126,32 @@ def check_hdr(path: Path) -> list[str]:
     return []
 
 
-def check_csv(path: Path) -> list[str]:
+def _utf8(path: Path) -> str | None:
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        return Path(path).read_text(encoding="utf-8")
     except UnicodeDecodeError:
+        return None
+
+
+def check_csv(path: Path) -> list[str]:
+    if (text := _utf8(path)) is None:
         return [f"{path.name}: not UTF-8 text"]
     try:
         rows = list(csv.reader(io.StringIO(text)))
     except csv.Error as e:
         return [f"{path.name}: not valid CSV: {e}"]
-    rows_with_line = [(i + 1, r) for i, r in enumerate(rows)]
-    problems = []
-    blank = [n for n, r in rows_with_line if not r]
-    if blank:
-        problems.append(f"{path.name}: blank line(s) at {', '.join(map(str, blank[:5]))}")
-    rows_with_line = [(n, r) for n, r in rows_with_line if r]
-    if not rows_with_line:
+    blank = [i + 1 for i, r in enumerate(rows) if not r]
+    numbered = [(i + 1, r) for i, r in enumerate(rows) if r]
+    problems = [f"{path.name}: blank line(s) at {', '.join(map(str, blank[:5]))}"] if blank else []
+    if not numbered:
         return [f"{path.name}: empty (a CSV needs a header line and at least one row)"]
-    _, header = rows_with_line[0]
+    header = numbered[0][1]
     if any(not h.strip() for h in header):
         problems.append(f"{path.name}: the header {header!r} has an empty column name")
-    if len(rows_with_line) < 2:
+    if len(numbered) < 2:
         problems.append(f"{path.name}: only a header, no data rows")
-    for n, row in rows_with_line[1:]:
-        if len(row) != len(header):
-            problems.append(f"{path.name}: line {n} has {len(row)} fields, the header has {len(header)}")
-            break
+    if ragged := next(((n, row) for n, row in numbered[1:] if len(row) != len(header)), None):
+        problems.append(f"{path.name}: line {ragged[0]} has {len(ragged[1])} fields, the header has {len(header)}")
     return problems
 
 
@@ -169,51 +160,34 @@ def parse_markdown_tables(text: str) -> tuple[list[Table], list[str]]:
 
 
 def check_markdown_table(path: Path) -> list[str]:
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except UnicodeDecodeError:
+    if (text := _utf8(path)) is None:
         return [f"{path.name}: not UTF-8 text"]
     tables, problems = parse_markdown_tables(text)
-    problems = [f"{path.name}: {p}" for p in problems]
     if not tables and not problems:
-        problems.append(f"{path.name}: no Markdown table found (expected '| a | b |', '|---|---|', rows)")
-    return problems
+        return [f"{path.name}: no Markdown table found (expected '| a | b |', '|---|---|', rows)"]
+    return [f"{path.name}: {p}" for p in problems]
 
 
 def check_text(path: Path) -> list[str]:
-    try:
-        Path(path).read_text(encoding="utf-8")
-    except UnicodeDecodeError:
-        return [f"{path.name}: not UTF-8 text"]
-    return []
+    return [] if _utf8(path) is not None else [f"{path.name}: not UTF-8 text"]
 
 
 def check_mesh(path: Path) -> list[str]:
     """A PLY opens with 'ply' and a format line and closes its header; an OBJ is text with vertices."""
     data = Path(path).read_bytes()
     if path.suffix == ".ply":
-        if not data.startswith(b"ply\n") or b"\nformat " not in data[:64] or b"end_header\n" not in data:
-            return [f"{path.name}: not a PLY file (no 'ply', format line or end_header)"]
-        return []
+        ok = data.startswith(b"ply\n") and b"\nformat " in data[:64] and b"end_header\n" in data
+        return [] if ok else [f"{path.name}: not a PLY file (no 'ply', format line or end_header)"]
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError:
         return [f"{path.name}: not UTF-8 text"]
-    if not any(line.startswith("v ") for line in text.splitlines()):
-        return [f"{path.name}: an OBJ file without vertices"]
-    return []
+    return [] if any(line.startswith("v ") for line in text.splitlines()) else [
+        f"{path.name}: an OBJ file without vertices"]
 
 
-CHECKS = {
-    "image": check_png,
-    "plot": check_png,
-    "hdr": check_hdr,
-    "table": check_csv,
-    "markdown": check_markdown_table,
-    "script": check_text,
-    "text": check_text,
-    "mesh": check_mesh,
-}
+CHECKS = {"image": check_png, "plot": check_png, "hdr": check_hdr, "table": check_csv, "markdown": check_markdown_table,
+          "script": check_text, "text": check_text, "mesh": check_mesh}
 
 
 def check_output_folder(folder: Path | str, expected_id: str | None = None) -> list[str]:

@@ -1,7 +1,5 @@
-"""What a grading run produces: the score table, Gradescope's results.json,
-JUnit XML and the exit code. Pure functions of a ``GradeRun``, so that they
-are tested without building anything (tests/tools/test_grade.py).
-"""
+"""What a grading run produces: the score table, Gradescope's results.json, JUnit XML and the exit code;
+pure functions of a GradeRun, tested without building anything."""
 from __future__ import annotations
 
 import errno
@@ -14,7 +12,7 @@ from typing import Any
 
 from common.files import atomic_write_text
 
-from .results import TestResult
+from .results import TestResult, _short_path
 
 EXIT_PASSED = 0
 EXIT_FAILED = 1
@@ -76,20 +74,13 @@ class GradeRun:
 
 
 def exit_code(run: GradeRun) -> int:
-    """0: every test passed; 1: a test failed (or none were found); 2: no build.
-
-    Finding no grading test at all is a failure, not a vacuous pass: a grader
-    that graded nothing must not report success.
-    """
+    """0: every test passed; 1: a test failed, or none was found (a grader that graded nothing must not
+    report success); 2: no build."""
     if run.build_failed or run.hidden_build_failed:
         return EXIT_NOT_BUILT
     if not run.results:
         return EXIT_FAILED
     return EXIT_PASSED if all(r.passed for r in run.results) else EXIT_FAILED
-
-
-def _fmt(x: float) -> str:
-    return f"{x:g}"
 
 
 def _rows(run: GradeRun, with_hidden: bool = True) -> list[tuple[str, int, int, float, float]]:
@@ -107,24 +98,20 @@ def _rows(run: GradeRun, with_hidden: bool = True) -> list[tuple[str, int, int, 
 
 
 def score_table(run: GradeRun, for_students: bool = False) -> str:
-    """The table printed at the end of a run, one row per lesson.
-
-    ``for_students`` (results.json, which students read): while hidden tests
-    exist, neither their row nor the total is shown, as Gradescope itself
-    hides the total from students then.
-    """
+    """The table printed at the end of a run, one row per lesson. `for_students` (results.json): while
+    hidden tests exist, neither their row nor the total is shown, as Gradescope hides the total then."""
     if run.build_failed:
         return "The build failed: nothing was graded (score 0). The compiler's messages are above."
     # Any entry hidden from students (a hidden test, or the hidden tests' failed build) hides the total.
     hide = for_students and (run.hidden_build_failed or any(r.hidden for r in run.results))
     header = ("lesson", "tests passed", "points")
-    body = [(label, f"{passed}/{total}", f"{_fmt(points)}/{_fmt(max_points)}")
+    body = [(label, f"{passed}/{total}", f"{points:g}/{max_points:g}")
             for label, passed, total, points, max_points in _rows(run, with_hidden=not hide)]
     shown = [r for r in run.results if not (hide and r.hidden)]
     score, max_score = sum(r.score for r in shown), sum(r.points for r in shown)
     percent = 100.0 * score / max_score if max_score else 0.0
     footer = ("total", f"{sum(r.passed for r in shown)}/{len(shown)}",
-              f"{_fmt(score)}/{_fmt(max_score)}  ({percent:.0f}%)")
+              f"{score:g}/{max_score:g}  ({percent:.0f}%)")
     rows = [header, *body] + ([] if hide else [footer])
     widths = [max(len(row[i]) for row in rows) for i in range(3)]
 
@@ -154,13 +141,8 @@ def _visible_problems(run: GradeRun) -> list[str]:
 
 def failure_report(run: GradeRun, root: Path | None = None) -> str:
     """The explanation of every failed visible test, for the terminal."""
-    parts = []
-    for result in run.results:
-        if result.passed or result.hidden:
-            continue
-        parts.append(f"[lesson{result.lesson}] {result.name}\n  " +
-                     result.output(root).replace("\n", "\n  "))
-    return "\n\n".join(parts)
+    return "\n\n".join(f"[lesson{r.lesson}] {r.name}\n  " + r.output(root).replace("\n", "\n  ")
+                       for r in run.results if not r.passed and not r.hidden)
 
 
 def failure_summary(run: GradeRun, root: Path | None = None) -> str:
@@ -172,7 +154,7 @@ def failure_summary(run: GradeRun, root: Path | None = None) -> str:
             continue
         first = next((f for f in result.failures), None)
         if first is not None:
-            where = f"{_short(first.file, root)}:{first.line}: " if first.file else ""
+            where = f"{_short_path(first.file, root)}:{first.line}: " if first.file else ""
             why = where + first.headline()
         else:
             why = result.note or "failed"
@@ -182,17 +164,9 @@ def failure_summary(run: GradeRun, root: Path | None = None) -> str:
     return f"{len(lines)} test(s) failed; the first failing check of each (details above):\n" + "\n".join(lines)
 
 
-def _short(file: str, root: Path | None) -> str:
-    from .results import _short_path
-
-    return _short_path(file, root)
-
-
 def _truncate(text: str, limit: int = MAX_OUTPUT_CHARS) -> str:
     """Keeps the start of a long text, where the first compiler error is."""
-    if len(text) <= limit:
-        return text
-    return text[:limit] + f"\n... ({len(text) - limit} more characters cut)"
+    return text if len(text) <= limit else text[:limit] + f"\n... ({len(text) - limit} more characters cut)"
 
 
 def test_name(result: TestResult) -> str:
