@@ -32,38 +32,23 @@ class Curve:
 
 
 def _plot_clauses(script: str) -> list[str]:
-    """The clauses of the script's `plot` command (joined across its line continuations)."""
-    lines = script.splitlines()
-    for i, line in enumerate(lines):
-        if line.startswith("plot "):
-            command = line[5:]
-            j = i
-            while command.rstrip().endswith("\\") and j + 1 < len(lines):
-                j += 1
-                command = command.rstrip()[:-1] + " " + lines[j].strip()
-            # Split at commas outside quotes and parentheses.
-            clauses, depth, quote, current = [], 0, "", ""
-            for c in command:
-                if quote:
-                    current += c
-                    if c == quote:
-                        quote = ""
-                    continue
-                if c in "'\"":
-                    quote = c
-                elif c == "(":
-                    depth += 1
-                elif c == ")":
-                    depth -= 1
-                elif c == "," and depth == 0:
-                    clauses.append(current.strip())
-                    current = ""
-                    continue
-                current += c
-            if current.strip():
-                clauses.append(current.strip())
-            return clauses
-    return []
+    """The clauses of the script's `plot` command (its line continuations joined), split at the commas
+    outside quotes and parentheses."""
+    match = re.search(r"^plot (.*?)(?<!\\)$", re.sub(r"\\\n\s*", " ", script), re.M)
+    if not match:
+        return []
+    clauses, depth, quote, current = [], 0, "", ""
+    for c in match.group(1):
+        if quote or c in "'\"":
+            quote = "" if c == quote else quote or c
+        elif c in "()":
+            depth += 1 if c == "(" else -1
+        elif c == "," and depth == 0:
+            clauses.append(current.strip())
+            current = ""
+            continue
+        current += c
+    return clauses + ([current.strip()] if current.strip() else [])
 
 
 def evaluate(gp: Path, gnuplot: str) -> tuple[list[Curve], dict[str, float], dict[str, bool]]:
