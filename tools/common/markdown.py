@@ -20,8 +20,6 @@ GENERATED = ("out", "build")  # written by the programs or the build: absent fro
 DECKS, DECKS_BUILT = PurePosixPath("slides"), PurePosixPath("out/slides")
 
 
-# --- tables --------------------------------------------------------------------------------------
-
 def split_table_row(line: str) -> list[str]:
     """The cells of a row '| a | b |' (a pipe escaped as \\| stays in its cell)."""
     body = line.strip()
@@ -90,8 +88,6 @@ def _block_table(block: list[str], start: int) -> tuple[Table | None, list[str]]
         problems.append(f"line {start + 1}: the header row must end with '|'")
     return Table(header, rows, start, [alignment(c) for c in separator]), problems
 
-
-# --- links and anchors ---------------------------------------------------------------------------
 
 @dataclass
 class Link:

@@ -21,7 +21,6 @@ from .outputs import Manifest, ManifestError, Output, load_manifest, parse_markd
 from .texts import page_of
 
 
-
 @dataclass
 class Lesson:
     number: str  # "01"

@@ -41,8 +41,6 @@ ROLES: dict[str, set[str]] = {
 KEY_ROLES = ("email", "username", "idnumber", "id")  # a submission's folder name is matched against these
 
 
-# --- CSV in and out ---------------------------------------------------------------------------
-
 def _delimiter(text: str) -> str:
     """Comma, semicolon or tab: the one that splits the header into the most fields (a header holds
     none of the others); on a tie, one no row has more fields than the header with."""
@@ -91,8 +89,6 @@ def csv_text(rows: list[list[str]]) -> str:
     csv.writer(buffer, lineterminator="\r\n").writerows(rows)
     return "\ufeff" + buffer.getvalue()
 
-
-# --- the roster ---------------------------------------------------------------------------------
 
 @dataclass
 class Roster:
@@ -212,8 +208,6 @@ def read_roster(path: Path) -> Roster:
     return roster
 
 
-# --- a student's row ----------------------------------------------------------------------------
-
 @dataclass
 class Outcome:
     ident: str
@@ -272,8 +266,6 @@ def feedback(o: Outcome) -> str:
         head = [f"{number(o.total)}/{number(o.max_score)} (" + ", ".join(lessons) + ")"]
     return "; ".join(head + o.student_notes)
 
-
-# --- the files written ----------------------------------------------------------------------------
 
 def _test_columns(outcomes: list[Outcome]) -> list[str]:
     seen: dict[str, None] = {}

@@ -151,8 +151,6 @@ def _scan_lines(text: str, file: str) -> list[Finding]:
     return findings
 
 
-# --- the object file ---------------------------------------------------------------------------
-
 # C functions an exercise may call (the compiler calls most of them by itself).
 _HARMLESS_C = set("""
 sqrt sqrtf sqrtl cbrt cbrtf pow powf exp expf exp2 exp2f expm1 log logf log2 log2f log10 log10f log1p log1pf
