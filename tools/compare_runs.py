@@ -12,7 +12,7 @@ differing cells of each table, 2 when a folder or a table is missing.
 
 How much faster the other run was, over the timing cells of the tables both hold alike: FIRST/OTHER for a
 time, OTHER/FIRST for a rate (a speed-up column is left out): the number of cells, their median and their
-10th and 90th percentiles (docs/first-command.md). Exit 0, or 2 when a folder or every timing cell is missing.
+10th and 90th percentiles (docs/measurements.md). Exit 0, or 2 when a folder or every timing cell is missing.
 """
 from __future__ import annotations
 

@@ -20,7 +20,8 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from gallery.figures import process, text_link_problems  # noqa: E402
+from common.path_options import path_argument  # noqa: E402
+from gallery.figures import process, remove_stale_temporaries, text_link_problems  # noqa: E402
 from gallery.kept_images import update_images  # noqa: E402
 
 SOURCE = Path(__file__).resolve().parent.parent
@@ -46,8 +47,9 @@ def main(argv: list[str] | None = None) -> int:
     group.add_argument("--update-images", action="store_true",
                        help="keep a copy of every image the lesson texts show in lessons/NN_topic/figures/ and link it")
     group.add_argument("--links", action="store_true", help="only check the texts' links and images (needs no OUT)")
-    parser.add_argument("--out", type=Path, default=None, help="the main job's output folder (default: SOURCE/out)")
-    parser.add_argument("--source", type=Path, default=SOURCE, help="the source tree (default: this checkout)")
+    parser.add_argument("--out", type=path_argument, default=None,
+                        help="the main job's output folder (default: SOURCE/out)")
+    parser.add_argument("--source", type=path_argument, default=SOURCE, help="the source tree (default: this checkout)")
     args = parser.parse_args(argv)
     source = args.source.resolve()
     out = (args.out or source / "out").resolve()
@@ -57,6 +59,8 @@ def main(argv: list[str] | None = None) -> int:
     if not args.links and not out.is_dir():
         parser.error(f"--out {args.out or out}: not a folder of the main job's outputs (run tools/bootstrap, "
                      "or tools/main_job.py --bin build/release/bin --out out)")
+    if not args.check and not args.links:  # the modes that write
+        remove_stale_temporaries(source)
     if args.update_images:
         return update_images(source, out)
     if args.links:

@@ -8,7 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "06_ray_tree/test_scenes.hpp"
-#include "illum/core/bitmap_font.hpp"
+#include "illum/trace/bitmap_font.hpp"
 #include "illum/trace/effects_plan.hpp"
 #include "illum/trace/ray_tree.hpp"
 #include "illum/trace/ray_tree_export.hpp"

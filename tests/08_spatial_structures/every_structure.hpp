@@ -33,7 +33,7 @@ inline std::vector<Structure> every_structure(const TriangleSet& set) {
   all.push_back({"grid (default resolution)", make_accel(set, {.kind = AccelKind::grid})});
   all.push_back({"grid (resolution 37)", std::make_unique<UniformGrid>(set, GridSettings{.resolution = 37})});
   all.push_back({"octree", make_accel(set, {.kind = AccelKind::octree})});
-  all.push_back({"bvh_teaching", std::make_unique<Bvh>(set, BvhSettings{})});
+  all.push_back({"bvh", std::make_unique<Bvh>(set, BvhSettings{})});
   for (const int leaf : {4, 16}) {
     auto sse = std::make_unique<CompactBvh>(set, BvhSettings{.leaf_size = leaf});
     sse->use_avx(false);

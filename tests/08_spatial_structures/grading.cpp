@@ -373,8 +373,8 @@ TEST_SUITE("lesson08") {
     const TriangleSet set = triangle_soup(600, 0x080a);
     const std::vector<Ray> rays = mixed_rays(set, 1500, 0x080b);
     const auto reference = brute_force_hits(set, rays);
-    CHECK(AccelSettings{}.kind == AccelKind::bvh);
-    for (const char* name : {"grid", "bvh", "bvh_teaching"}) {
+    CHECK(AccelSettings{}.kind == AccelKind::compact_bvh);
+    for (const char* name : {"grid", "compact_bvh", "bvh"}) {
       INFO(name);
       const auto accel = make_accel(set, AccelSettings{.kind = accel_kind_from_name(name)});
       CHECK(accel->name() == name);

@@ -60,7 +60,7 @@ TEST_SUITE("stability") {
                     std::invalid_argument);
     CHECK_THROWS_AS(Bvh(set, BvhSettings{.leaf_size = 0}), std::invalid_argument);
     CHECK_THROWS_AS(Bvh(TriangleSet{}, BvhSettings{}), std::invalid_argument);
-    ILLUM_CHECK_THROWS_CONTAINING(accel_kind_from_name("kd_tree"), "bvh", std::invalid_argument);
+    ILLUM_CHECK_THROWS_CONTAINING(accel_kind_from_name("kd_tree"), "compact_bvh", std::invalid_argument);
   }
 
   TEST_CASE("hard case: slab test with a subnormal direction component (1/ω overflows to ∞)") {

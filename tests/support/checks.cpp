@@ -46,6 +46,7 @@ std::string text_of(const Outcome& outcome) {
     text += ' ';
     outcome.rhs.put(text, Format::text);
   }
+  if (outcome.first_difference >= 0) text += " (first difference at [" + std::to_string(outcome.first_difference) + "])";
   return text;
 }
 

@@ -203,7 +203,21 @@ struct Outcome {
   const char* op = nullptr;  // "==", "!=", "<", "<=", ">", ">=", or nullptr: a unary check
   Operand lhs;
   Operand rhs;
+  long first_difference = -1;  // two sequences of one length compared with ==: the first index that differs
 };
+
+// Where two sequences of one length first differ (-1 where that means nothing).
+template <class L, class R>
+long first_difference(const L& lhs, const R& rhs) {
+  if constexpr (detail::is_range<L>::value && detail::is_range<R>::value &&
+                !std::is_convertible_v<const L&, std::string_view>) {
+    auto a = std::begin(lhs);
+    auto b = std::begin(rhs);
+    for (long index = 0; a != std::end(lhs) && b != std::end(rhs); ++a, ++b, ++index)
+      if (!(*a == *b)) return index;
+  }
+  return -1;
+}
 
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
@@ -219,7 +233,8 @@ struct Lhs {
 
   template <class R>
   Outcome operator==(const R& rhs) const {
-    return {static_cast<bool>(lhs == rhs), "==", operand_of(lhs), operand_of(rhs)};
+    const bool value = static_cast<bool>(lhs == rhs);
+    return {value, "==", operand_of(lhs), operand_of(rhs), value ? -1 : first_difference(lhs, rhs)};
   }
   template <class R>
   Outcome operator!=(const R& rhs) const {

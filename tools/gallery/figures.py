@@ -8,7 +8,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from common.files import atomic_write_text
+from common.files import atomic_write_bytes, atomic_write_text, remove_dead_temporaries
 from common.markdown import link_problems, outside_fences
 
 from . import kept_images, values
@@ -187,7 +187,7 @@ def _text(run: Run, path: Path) -> None:
     changed, found = values.process_values(run, rel, lines, inside_blocks(blocks))
     run.values += found
     if _figures_of(run, rel, lines, blocks) or changed:
-        atomic_write_text(path, "\n".join(lines) + "\n")
+        atomic_write_text(path, "\n".join(lines) + "\n", tag=kept_images.TAG)
         run.written += 1
         run.log(f"figures: refreshed {rel}")
 
@@ -229,6 +229,21 @@ def _check_the_rest(run: Run, plots: bool) -> int:
             f"what the programs drew, the texts' {link_count} links resolve, and the {plot_count} plots show all "
             "their points")
     return 0
+
+
+def write_atomically(path: Path, data: bytes) -> None:
+    """A text or a kept image written through NAME.tmp-figures-PID (remove_stale_temporaries knows it)."""
+    atomic_write_bytes(path, data, tag=kept_images.TAG)
+
+
+def remove_stale_temporaries(source: Path, log=print) -> None:
+    """Removes the temporaries that runs killed without warning (SIGKILL) left beside the texts and their
+    kept figures: those whose PID no longer runs (or that name none)."""
+    folders = {p.parent for p in texts(source)} | {p.parent / kept_images.FIGURES_FOLDER
+                                                    for p in kept_images.lesson_texts(source)}
+    for folder in sorted(f for f in folders if f.is_dir()):
+        for tmp in remove_dead_temporaries(folder, kept_images.TAG):
+            log(f"figures: removed {tmp.relative_to(source)}, left by a run that was killed before it finished")
 
 
 # The texts whose links must resolve in a fresh clone; decks link from out/slides/ (slides/README.md).

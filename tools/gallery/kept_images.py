@@ -9,12 +9,13 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from common import png
-from common.files import atomic_write_text
+from common.files import atomic_write_bytes, atomic_write_text
 from common.markdown import outside_fences
 
 from .tables import TIMING_WORDS, words
 
 FIGURES_FOLDER = "figures"
+TAG = "figures"  # the texts' and kept images' temporaries: NAME.tmp-figures-PID (common/files.py)
 LAB_SCREENSHOT = "lab_"
 IMAGE_LINK = re.compile(r"!\[[^\]]*\]\((?P<target>[^()\s]+\.png)\)")
 OUT_IMAGE = re.compile(r"\.\./\.\./out/lesson(?P<lesson>\d\d)/(?P<name>[\w.\-]+\.png)")
@@ -153,7 +154,7 @@ def _keep(out: Path, rel: Path, lines: list[str], links: list[ImageLink], folder
         data, kept = drawn.read_bytes(), folder / link.name
         if not kept.is_file() or kept.read_bytes() != data:
             folder.mkdir(exist_ok=True)
-            kept.write_bytes(data)
+            atomic_write_bytes(kept, data, tag=TAG)
             copied += 1
         target, line = f"{FIGURES_FOLDER}/{link.name}", lines[link.line]
         if line[link.start:link.end] != target:
@@ -180,7 +181,7 @@ def update_images(source: Path, out: Path, log=print) -> int:
             folder.rmdir()
         kept_total += len(keep)
         if changed:
-            atomic_write_text(path, "\n".join(lines) + "\n")
+            atomic_write_text(path, "\n".join(lines) + "\n", tag=TAG)
             relinked += 1
             log(f"figures: relinked the images of {rel}")
     for p in problems:

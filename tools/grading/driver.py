@@ -22,6 +22,7 @@ built, an output could not be written, or the command was wrong.
 from __future__ import annotations
 
 import argparse
+import errno
 import json
 import os
 import shutil
@@ -111,7 +112,7 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
         if not args.batch.is_dir():
             parser.error(f"--batch {args.batch}: " + ("not a folder (--batch takes the folder of the "
                                                      "submissions, each a folder or a zip)"
-                                                     if args.batch.exists() else "no such folder"))
+                                                     if args.batch.exists() else _no_folder(args.batch)))
         if args.jobs is not None and args.jobs < 1:
             parser.error(f"--jobs {args.jobs}: needs at least 1")
         if args.roster is not None and not args.roster.is_file():
@@ -143,6 +144,16 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
         if not any(args.hidden.glob("*.cpp")):
             parser.error(f"--hidden {args.hidden}: no .cpp test files there")
     return args
+
+
+def _no_folder(path: Path) -> str:
+    """Why nothing is at `path`: 'no such folder', or a link that leads back to itself (ELOOP)."""
+    try:
+        os.stat(path)
+    except OSError as error:
+        if error.errno == errno.ELOOP:
+            return "a symbolic link that leads back to itself (a link loop)"
+    return "no such folder"
 
 
 def output_path_problem(path: Path | None) -> str:

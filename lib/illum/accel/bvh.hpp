@@ -49,7 +49,7 @@ class Bvh final : public TriangleAccel {
   std::optional<AccelHit> intersect(const Ray& ray, TraversalCounters& counters) const override;
   bool occluded(const Ray& ray, TraversalCounters& counters) const override;
   std::size_t memory_bytes() const override;
-  std::string_view name() const override { return "bvh_teaching"; }
+  std::string_view name() const override { return "bvh"; }
 
   const std::vector<BvhNode>& nodes() const { return nodes_; }
   int depth() const { return depth_; }

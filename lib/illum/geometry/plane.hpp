@@ -24,12 +24,12 @@ struct Plane {
   // The plane N·P + D = 0; N and D are scaled together so that |N| = 1 (the
   // same plane). Throws std::invalid_argument for a zero or non-finite normal
   // or a non-finite D.
-  Plane(const Vec3& n, double d_) {
-    require(is_finite(n) && std::isfinite(d_), "Plane: the normal and D must be finite");
+  Plane(const Vec3& n, double d_unscaled) {
+    require(is_finite(n) && std::isfinite(d_unscaled), "Plane: the normal and D must be finite");
     const double len = length(n);
     require(len > 0.0 && std::isfinite(len), "Plane: the normal must not be the zero vector");
     normal = n / len;
-    d = d_ / len;
+    d = d_unscaled / len;
   }
 
   // The plane through `point` with normal `n` (D = −N·point).

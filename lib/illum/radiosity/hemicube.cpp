@@ -48,8 +48,9 @@ std::span<const std::int32_t> HemicubeBuffers::face_items(HemicubeFace f) const 
                                       static_cast<std::size_t>(face_height(resolution, f)));
 }
 
-bool hemicube_pixel(const Vec3& d, int resolution, HemicubeFace& face, int& col, int& row) {
-  if (!(d.z >= 0) || (d.x == 0 && d.y == 0 && d.z == 0)) return false;
+std::optional<HemicubePixel> hemicube_pixel(const Vec3& d, int resolution) {
+  if (!(d.z >= 0) || (d.x == 0 && d.y == 0 && d.z == 0)) return std::nullopt;
+  HemicubeFace face;
   // The face whose axis has the largest component (the top face wins ties with d.z).
   const double ax = std::abs(d.x), ay = std::abs(d.y);
   if (d.z >= ax && d.z >= ay)
@@ -60,10 +61,11 @@ bool hemicube_pixel(const Vec3& d, int resolution, HemicubeFace& face, int& col,
     face = d.y > 0 ? HemicubeFace::pos_y : HemicubeFace::neg_y;
   const Vec3 f = to_face(face, d);
   const int height = HemicubeBuffers::face_height(resolution, face);
-  col = std::clamp(static_cast<int>((f.x / f.z + 1.0) * 0.5 * resolution), 0, resolution - 1);
-  row = std::clamp(static_cast<int>((f.y / f.z + (face == HemicubeFace::top ? 1.0 : 0.0)) * 0.5 * resolution),
-                   0, height - 1);
-  return true;
+  const int col = std::clamp(static_cast<int>((f.x / f.z + 1.0) * 0.5 * resolution), 0, resolution - 1);
+  const int row =
+      std::clamp(static_cast<int>((f.y / f.z + (face == HemicubeFace::top ? 1.0 : 0.0)) * 0.5 * resolution),
+                 0, height - 1);
+  return HemicubePixel{face, col, row};
 }
 
 Hemicube::Hemicube(int resolution, DeltaRule rule) : deltas_(make_hemicube_deltas(resolution, rule)) {}

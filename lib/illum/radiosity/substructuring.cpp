@@ -31,7 +31,7 @@ std::unique_ptr<TriangleAccel> occluder_bvh(const std::vector<std::vector<Point3
   std::vector<Triangle> triangles;
   for (const std::vector<Point3>& p : polygons)
     for (std::size_t k = 1; k + 1 < p.size(); ++k) triangles.emplace_back(p[0], p[k], p[k + 1]);
-  return make_accel(TriangleSet::from_triangles(std::move(triangles)), {.kind = AccelKind::bvh});
+  return make_accel(TriangleSet::from_triangles(std::move(triangles)), {.kind = AccelKind::compact_bvh});
 }
 
 // row[e] = F_pe by the point-to-disc factor and one shadow ray per element.

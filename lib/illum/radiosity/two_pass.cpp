@@ -105,12 +105,12 @@ std::size_t located_patch(const RadiositySurface& surface, const PatchCell& cell
 
 std::string TwoPassPlan::summary() const {
   std::string s = "two-pass plan:\n";
-  s += "  caustic pass           " + on_off(caustic_pass) + "\n";
-  s += "  radiosity pass         " + on_off(radiosity_pass) + "\n";
-  s += "  reflected rays         " + on_off(reflection) + "\n";
-  s += "  refracted rays         " + on_off(refraction) + "\n";
-  s += "  shadow rays            " + on_off(shadow_rays) + "\n";
-  s += "  depth limit            " + std::to_string(max_depth) + "\n";
+  s += plan_line("caustic pass", caustic_pass);
+  s += plan_line("radiosity pass", radiosity_pass);
+  s += plan_line("reflected rays", reflection);
+  s += plan_line("refracted rays", refraction);
+  s += plan_line("shadow rays", shadow_rays);
+  s += plan_line("depth limit", max_depth);
   return s + reasons;
 }
 

@@ -7,16 +7,27 @@
 
 namespace illum {
 
-std::string on_off(bool on) { return on ? "on " : "off"; }
+namespace {
+
+std::string plan_row(std::string_view label, const std::string& value) {
+  std::string row = "  " + std::string(label);
+  row.resize(std::max<std::size_t>(row.size() + 1, 25), ' ');
+  return row + value + "\n";
+}
+
+}  // namespace
+
+std::string plan_line(std::string_view label, bool on) { return plan_row(label, on ? "on " : "off"); }
+std::string plan_line(std::string_view label, int value) { return plan_row(label, std::to_string(value)); }
 
 std::string EffectsPlan::summary() const {
   std::string s = analysed ? "effects plan (from the scene):\n" : "no effects plan (every effect on):\n";
-  s += "  reflection rays        " + on_off(reflection) + "\n";
-  s += "  refraction rays        " + on_off(refraction) + "\n";
-  s += "  shadow rays            " + on_off(shadows) + "\n";
-  s += "  shadow attenuation     " + on_off(shadow_attenuation) + "\n";
-  s += "  skip zero-weight rays  " + on_off(skip_zero_weights) + "\n";
-  s += "  depth limit            " + std::to_string(max_depth) + "\n";
+  s += plan_line("reflection rays", reflection);
+  s += plan_line("refraction rays", refraction);
+  s += plan_line("shadow rays", shadows);
+  s += plan_line("shadow attenuation", shadow_attenuation);
+  s += plan_line("skip zero-weight rays", skip_zero_weights);
+  s += plan_line("depth limit", max_depth);
   if (!reasons.empty()) s += reasons;
   return s;
 }

@@ -21,6 +21,7 @@
 //   materials instead of per ray. Only this last cut may
 //   change a pixel, by at most the threshold times the brightest radiance.
 #include <string>
+#include <string_view>
 
 #include "illum/trace/scene.hpp"
 
@@ -52,8 +53,10 @@ struct EffectsPlan {
   std::string reasons{};  // filled by plan_effects: why each switch is set as it is
 };
 
-// A switch as the plans' summaries print it: "on " or "off", three columns wide.
-std::string on_off(bool on);
+// One line of a plan's summary (this one's and lesson 13's TwoPassPlan): the
+// label in a column 23 wide, then the switch, "on " or "off", or the number.
+std::string plan_line(std::string_view label, bool on);
+std::string plan_line(std::string_view label, int value);
 
 // No analysis: every kind of ray, up to `max_depth` (the "without the plan" run).
 // Throws std::invalid_argument unless 0 ≤ max_depth ≤ deepest_depth_limit.

@@ -1,10 +1,11 @@
-#include "illum/core/atomic_file.hpp"
+#include "illum/system/atomic_file.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <optional>
@@ -27,8 +28,9 @@
 #endif
 #include <unistd.h>
 
-#include "illum/core/child_process.hpp"
-#include "illum/core/platform.hpp"
+#include "illum/system/child_process.hpp"
+#include "illum/system/input_file.hpp"
+#include "illum/system/platform.hpp"
 
 namespace illum {
 
@@ -63,26 +65,6 @@ std::string random_letters(std::size_t count) {
   return out;
 }
 
-// "a character device", … of what lstat finds at `path`.
-std::string kind_of(const struct stat& st) {
-  switch (st.st_mode & S_IFMT) {
-    case S_IFDIR:
-      return "a folder";
-    case S_IFIFO:
-      return "a named pipe (FIFO)";
-    case S_IFCHR:
-      return "a character device";
-    case S_IFBLK:
-      return "a block device";
-    case S_IFSOCK:
-      return "a socket";
-    case S_IFLNK:
-      return "a symbolic link";
-    default:
-      return "a special file";
-  }
-}
-
 // Throws unless `target` is a regular file or nothing (for a file), a folder
 // or nothing (for a folder). `shown` is the name the message gives it.
 void refuse_unless_replaceable(const fs::path& target, const fs::path& shown, bool folder,
@@ -95,12 +77,12 @@ void refuse_unless_replaceable(const fs::path& target, const fs::path& shown, bo
   const std::string who = option.empty() ? "cannot write " + shown.string() : option + " " + shown.string();
   if (folder) {
     if (S_ISDIR(st.st_mode)) return;
-    fail(who + ": it is " + (S_ISREG(st.st_mode) ? std::string("a file") : kind_of(st)) +
+    fail(who + ": it is " + (S_ISREG(st.st_mode) ? std::string("a file") : file_kind_name(st.st_mode)) +
          ", and a folder is needed there");
   }
   if (S_ISREG(st.st_mode)) return;
   if (S_ISDIR(st.st_mode)) fail(who + ": a folder of that name is in the way");
-  fail(who + ": it is " + kind_of(st) +
+  fail(who + ": it is " + file_kind_name(st.st_mode) +
        "; illum replaces only regular files (it never writes through or over a link, a FIFO or a device)");
 }
 
@@ -400,7 +382,7 @@ void make_folders(Journal& j, const fs::path& folder, const fs::path& shown, boo
         struct stat followed {};
         if (!(S_ISLNK(st.st_mode) && ::stat(p.c_str(), &followed) == 0 && S_ISDIR(followed.st_mode)))
           fail("cannot write into " + shown.string() + ": " + p.string() + " is " +
-               (S_ISREG(st.st_mode) ? std::string("a file") : kind_of(st)) + ", not a folder");
+               (S_ISREG(st.st_mode) ? std::string("a file") : file_kind_name(st.st_mode)) + ", not a folder");
       }
       break;
     }
@@ -547,7 +529,7 @@ void ensure_staging(Journal& j) {
     struct stat followed {};
     if (::stat(given.c_str(), &followed) != 0 || !S_ISDIR(followed.st_mode))
       fail(j.option + " " + shown.string() + ": it is " +
-           (S_ISREG(st.st_mode) ? std::string("a file") : kind_of(st)) + ", not a folder");
+           (S_ISREG(st.st_mode) ? std::string("a file") : file_kind_name(st.st_mode)) + ", not a folder");
     exists = true;
     j.out_real = fs::canonical(given);
   } else if (errno == ENOENT) {
@@ -666,7 +648,7 @@ void check_output_folder(const fs::path& folder, const std::string& option) {
       struct stat followed {};
       if (::stat(p.c_str(), &followed) != 0 || !S_ISDIR(followed.st_mode))
         fail(option + " " + folder.string() + ": " + (p == given ? std::string("it") : p.string()) + " is " +
-             (S_ISREG(st.st_mode) ? std::string("a file") : kind_of(st)) + ", not a folder");
+             (S_ISREG(st.st_mode) ? std::string("a file") : file_kind_name(st.st_mode)) + ", not a folder");
       break;
     }
     if (errno != ENOENT && errno != ENOTDIR) fail(option + " " + folder.string() + ": " + errno_text(errno));
@@ -688,6 +670,67 @@ void check_output_folder(const fs::path& folder, const std::string& option) {
     }
     ::close(fd);
   }
+}
+
+std::vector<std::string> remove_stale_run_files(const fs::path& folder, const std::string& option) {
+  std::vector<std::string> notes;
+  std::error_code ec;
+  fs::path real = fs::weakly_canonical(absolute_normal(folder), ec);
+  if (ec) real = absolute_normal(folder);
+  if (real.filename().empty()) return notes;  // the root: nothing is ever staged beside it
+  // Where ensure_staging puts them: beside the folder, or inside it when it could not write beside.
+  const std::pair<fs::path, std::string> homes[] = {
+      {real.parent_path(), "." + real.filename().string() + "."}, {real, "."}};
+  for (const auto& [home, prefix] : homes) {
+    const fs::path lock = home / (prefix + "illum-lock");
+    std::vector<fs::path> stale;
+    for (const auto& entry : fs::directory_iterator(home, ec)) {
+      struct stat st {};
+      if (entry.path().filename().string().rfind(prefix + "illum-staging-", 0) == 0 &&
+          ::lstat(entry.path().c_str(), &st) == 0 && S_ISDIR(st.st_mode) && st.st_uid == ::geteuid())
+        stale.push_back(entry.path());
+    }
+    struct stat held {
+    }, named{};
+    const bool has_lock = ::lstat(lock.c_str(), &named) == 0;
+    // A lock that is no regular file (a planted link) is left for the run's own lock to refuse.
+    if ((stale.empty() && !has_lock) || (has_lock && !S_ISREG(named.st_mode))) continue;
+    const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd < 0) continue;  // a folder this user cannot write: the run says so if it writes there
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int e = errno;
+      const std::string owner = lock_owner(fd);
+      ::close(fd);
+      if (e == EWOULDBLOCK) fail(in_use(option, folder, owner));
+      continue;
+    }
+    // Ours now, so whoever made these is gone (the kernel drops an flock with its process).
+    const std::string owner = has_lock ? lock_owner(fd) : "unknown";
+    bool finished = false;
+    std::string names;
+    for (const fs::path& s : stale) {
+      if (fs::exists(s / commit_marker, ec)) try {  // a complete run killed while moving in: finish it
+          move_into(s, real, folder);
+          finished = true;
+        } catch (const std::runtime_error&) {
+        }
+      fs::remove_all(s, ec);
+      names += (names.empty() ? "" : ", ") + s.string();
+    }
+    if (has_lock) names += (names.empty() ? "" : " and ") + lock.string();
+    if (::fstat(fd, &held) == 0 && ::lstat(lock.c_str(), &named) == 0 && held.st_ino == named.st_ino)
+      ::unlink(lock.c_str());
+    ::close(fd);
+    const bool digits = std::all_of(owner.begin(), owner.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const long long pid = digits && owner.size() < 10 ? std::atoll(owner.c_str()) : 0;
+    const bool gone = pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+    notes.push_back("removed " + names + ", left by a run (PID " + owner +
+                    (gone ? ", no longer running" : "") + ") that was killed before it finished; " +
+                    folder.string() +
+                    (finished ? " now holds that run's complete output, which it was moving in"
+                              : " is as that run found it"));
+  }
+  return notes;
 }
 
 void check_replaceable(const fs::path& path, const std::string& option) {
