@@ -3,8 +3,9 @@
 A lesson program is lessons/NN_topic/main.cpp and studies/sMM[x]_<name>.cpp, MM the README section that
 quotes the study. Each lesson text opens with a hand-written "**Read in this order:**" list (the library
 pairs, main.cpp, the studies), and every lesson text and exercise README holds a generated block,
-between BEGIN and END, linking the lesson's text, program, library pairs, exercise, tests and deck.
-tools/task_tables.py --update writes the blocks; --check fails on a stale one and on layout_problems.
+between BEGIN and END, linking the lesson's text, program, library pairs, exercise, tests and deck; each
+deck ends with the same block as a slide (deck_slide). tools/task_tables.py --update writes the blocks;
+--check fails on a stale or missing one and on layout_problems.
 """
 from __future__ import annotations
 
@@ -164,6 +165,54 @@ def code_map(root: Path, lesson_nn: str, readme: Path) -> str:
     return f"{BEGIN}\n| what | where |\n|---|---|\n{body}\n{END}"
 
 
+def deck_slide(root: Path, lesson_nn: str) -> str:
+    """The last slide of lesson NN's deck, "Where the code is": the sources of the texts' block in a few
+    lines that fit a slide, linked from out/slides/, where the deck is built (slides/README.md)."""
+    root = root.resolve()
+    link = lambda path, text: f"[{text}]({_rel(path, root / 'out' / 'slides')})"  # noqa: E731
+    lines = []
+    lesson = lesson_folders(root, "lessons").get(lesson_nn)
+    exercise = lesson_folders(root, "exercises").get(lesson_nn)
+    if lesson is not None and (lesson / "README.md").is_file():
+        lines.append(f"- **Text:** {link(lesson / 'README.md', f'`lessons/{lesson.name}/README.md`')}")
+    if exercise is not None:
+        stubs = sorted(exercise.glob("*.cpp"))
+        units = [next(iter(sorted((root / "lib" / "illum").rglob(s.stem + ".hpp"))), None) for s in stubs]
+        you_write = ", ".join(link(s, f"`{s.name}`") for s in stubs)
+        contracts = ", ".join(link(h, f"`{_rel(h, root / 'lib' / 'illum')}`") for h in units if h is not None)
+        lines.append(f"- **Exercise:** {link(exercise / 'README.md', f'`exercises/{exercise.name}/`')}: "
+                     f"you write {you_write}; the contracts are in {contracts}")
+    if lesson is not None and (lesson / "main.cpp").is_file():
+        studies_note = " and `studies/` (one file per study, numbered by its section)" if studies(lesson) else ""
+        lines.append(f"- **Program** `lesson{lesson_nn}`: {link(lesson / 'main.cpp', f'`lessons/{lesson.name}/main.cpp`')}"
+                     f"{studies_note}")
+    if (tests := lesson_folders(root, "tests").get(lesson_nn)) is not None:
+        lines.append(f"- **Tests:** {link(tests, f'`tests/{tests.name}/`')} (suite `lesson{lesson_nn}`): "
+                     f"`tools/grade --student {lesson_nn}`")
+    return f"{BEGIN}\n## Where the code is\n\n" + "\n".join(lines) + f"\n{END}"
+
+
+def _deck_problems(root: Path, write: bool) -> list[str]:
+    """Rewrites (write=True) or checks the "Where the code is" slide that ends every deck."""
+    problems = []
+    for deck in sorted((root / "slides").glob("[0-9][0-9]_*.md")) if (root / "slides").is_dir() else []:
+        text, block, relative = deck.read_text(encoding="utf-8"), deck_slide(root, deck.name[:2]), _rel(deck, root)
+        new = replace_between(text, BEGIN, END, block)
+        if new is None and write:  # the first time: the deck's last slide
+            new = text.rstrip("\n") + "\n\n---\n\n" + block + "\n"
+        if new is None:
+            problems.append(f"{relative}: no \"Where the code is\" slide at its end ({BEGIN} … {END}); "
+                            "run tools/task_tables.py --update")
+        elif new != text and write:
+            deck.write_text(new, encoding="utf-8")
+        elif new != text:
+            problems.append(f"{relative}: the \"Where the code is\" slide is not current; run tools/task_tables.py "
+                            "--update")
+        elif not text.rstrip().endswith(END):
+            problems.append(f"{relative}: the \"Where the code is\" slide must be the deck's last")
+    return problems
+
+
 def replace_between(text: str, begin: str, end: str, block: str) -> str | None:
     """`text` with what lies between `begin` and `end` (both included) replaced by `block`; None without them."""
     start, stop = text.find(begin), text.find(end)
@@ -171,8 +220,9 @@ def replace_between(text: str, begin: str, end: str, block: str) -> str | None:
 
 
 def update(root: Path, write: bool) -> list[str]:
-    """Rewrites (write=True) or checks the code map of every lesson text and exercise README."""
-    problems = []
+    """Rewrites (write=True) or checks the code map of every lesson text and exercise README, and the
+    slide that ends every deck; returns the problems (stale or missing blocks)."""
+    problems = _deck_problems(root, write)
     for kind in ("lessons", "exercises"):
         for nn, folder in lesson_folders(root, kind).items():
             readme = folder / "README.md"

@@ -47,6 +47,17 @@ inline std::vector<Structure> every_structure(const TriangleSet& set) {
   return all;
 }
 
+// The structures whose walk the student writes (lesson 08's exercise): the uniform grid (the
+// 3DDA, at its default resolution and a fine one) and the teaching BVH (bvh_traversal.cpp).
+// The graded twins of the hard cases run these alone.
+inline std::vector<Structure> student_structures(const TriangleSet& set) {
+  std::vector<Structure> all;
+  all.push_back({"grid (default resolution)", make_accel(set, {.kind = AccelKind::grid})});
+  all.push_back({"grid (resolution 37)", std::make_unique<UniformGrid>(set, GridSettings{.resolution = 37})});
+  all.push_back({"bvh", std::make_unique<Bvh>(set, BvhSettings{})});
+  return all;
+}
+
 // Brute force's answers to a list of rays: the closest hit and whether anything is in range.
 struct Reference {
   std::vector<std::optional<AccelHit>> closest;

@@ -10,6 +10,7 @@
 #include "illum/trace/scene.hpp"
 #include "illum/trace/scene_accel.hpp"
 #include "scenes.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "illum/radiosity/hemicube.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 

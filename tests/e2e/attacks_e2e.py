@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Hostile submissions against the Gradescope autograder (docs/grading.md, "Threat model").
+"""Hostile submissions against the Gradescope autograder (docs/grading-defences.md, "Threat model").
 
 Packs the autograder for lessons 01 and 02 from a grader tree (this one by
 default; ``--grader-tree /path/to/an/older/checkout`` shows what an older

@@ -490,7 +490,7 @@ def markdown_report(reports: list[LessonReport], root: Path, command: str, compa
     parts = [
         "# Grading power: the mutation report",
         "",
-        "Produced by `tools/grade --mutants` (docs/grading.md explains how to read it). Regenerate with:",
+        "Produced by `tools/grade --mutants` (docs/grading-reference.md explains how to read it). Regenerate with:",
         "",
         "```sh",
         command,

@@ -1,5 +1,5 @@
 #pragma once
-// The bounding volume hierarchy, lesson 08 (§4, "jerarquía de volúmenes
+// The bounding volume hierarchy, lesson 08 (§5, "jerarquía de volúmenes
 // envolventes"): a binary tree of boxes whose leaves hold a few triangles.
 //
 // Build: top-down, binned surface-area heuristic (SAH). A node's triangles

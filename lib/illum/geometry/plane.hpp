@@ -48,8 +48,8 @@ enum class PlaneContact {
   crosses,   // one crossing at parameter s (which may be negative)
   parallel,  // N·ω = 0 and the origin is off the plane: no crossing at all
   in_plane,  // N·ω = 0 and the origin is on the plane: every s is on it
-  // (both tests are exact, == 0, with no tolerance: an origin 1e-12 off the
-  // plane is off it)
+  // (both tests are exact, N·ω == 0 and D + N·P0 == 0, with no tolerance: an
+  // origin 1e-12 or 1e-200 off the plane is off it, and N·ω = −1e-15 crosses)
 };
 
 struct PlaneCrossing {

@@ -72,7 +72,11 @@ EffectsPlan plan_effects(const Scene& scene, int max_depth) {
     // Depth d weighs at most heaviest^d: stop where that is below the threshold.
     // Compared in double: a weight a hair below 1 (1 − 1e-12) needs about 7·10¹² levels, more than
     // an int holds (the conversion would be undefined, and in practice INT_MIN: depth 1).
-    const double useful = std::ceil(std::log(contribution_threshold) / std::log(heaviest));
+    double useful = std::ceil(std::log(contribution_threshold) / std::log(heaviest));
+    // The rounded quotient can put the ceiling one off where heaviest^d lies within rounding of the
+    // threshold (heaviest one ulp above 1/1024 gives 1.0 exactly, yet heaviest^1 > 1/1024): check it.
+    while (useful > 1 && std::pow(heaviest, useful - 1) <= contribution_threshold) --useful;
+    while (std::pow(heaviest, useful) > contribution_threshold) ++useful;
     if (useful < plan.max_depth) {
       plan.max_depth = std::max(static_cast<int>(useful), 1);
       why += "  max(k_r + k_t) = " + std::to_string(heaviest) + ": depth " + std::to_string(plan.max_depth) +
