@@ -112,7 +112,8 @@ def test_files(root: Path, lesson_nn: str, pairs: list[Path]) -> tuple[list[Path
 
 def _program_row(lesson: Path, lesson_nn: str, link) -> tuple[str, str]:
     program = [link(lesson / "main.cpp", "main.cpp") + " (the demonstration)"]
-    program += [link(s, "studies/" + s.name) + f" (§{int(_STUDY.fullmatch(s.name).group(1))})" for s in studies(lesson)]
+    program += [link(s, "studies/" + s.name) + f" (§{int(_STUDY.fullmatch(s.name).group(1))})"
+                for s in studies(lesson)]
     program += [link(h, _rel(h, lesson)) + " (helpers)" for h in helpers(lesson)]
     return f"program `lesson{lesson_nn}`", " · ".join(program)
 
@@ -184,8 +185,8 @@ def deck_slide(root: Path, lesson_nn: str) -> str:
                      f"you write {you_write}; the contracts are in {contracts}")
     if lesson is not None and (lesson / "main.cpp").is_file():
         studies_note = " and `studies/` (one file per study, numbered by its section)" if studies(lesson) else ""
-        lines.append(f"- **Program** `lesson{lesson_nn}`: {link(lesson / 'main.cpp', f'`lessons/{lesson.name}/main.cpp`')}"
-                     f"{studies_note}")
+        main = link(lesson / "main.cpp", f"`lessons/{lesson.name}/main.cpp`")
+        lines.append(f"- **Program** `lesson{lesson_nn}`: {main}{studies_note}")
     if (tests := lesson_folders(root, "tests").get(lesson_nn)) is not None:
         lines.append(f"- **Tests:** {link(tests, f'`tests/{tests.name}/`')} (suite `lesson{lesson_nn}`): "
                      f"`tools/grade --student {lesson_nn}`")

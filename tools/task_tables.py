@@ -154,7 +154,8 @@ def student_commands(lesson: str, has_program: bool = True) -> str:
             (f"cmake --build --preset student --target tests_lesson{lesson}" + (f" lesson{lesson}" if has_program
                                                                                 else ""),
              "build your code, its tests" + (" and the lesson program" if has_program else "")),
-            (f"build/student/bin/tests_lesson{lesson} -ts=lesson{lesson}", "the grading tests, with their explanations")]
+            (f"build/student/bin/tests_lesson{lesson} -ts=lesson{lesson}",
+             "the grading tests, with their explanations")]
     if has_program:
         rows.append((f"build/student/bin/lesson{lesson} --out out/lesson{lesson}",
                      "the lesson's pictures, drawn by your code"))
@@ -354,7 +355,8 @@ def _write_tags(root: Path, lesson: str, found: dict[str, list[str]]) -> None:
                 continue
             head, tag = text[test.start:test.end], "task=" + ",".join(tasks)
             if old := _DESCRIPTION.search(head):
-                head = head[:old.start(1)] + (_TAG.sub("", old.group(1)).strip() + " " + tag).strip() + head[old.end(1):]
+                kept = _TAG.sub("", old.group(1)).strip()
+                head = head[:old.start(1)] + (kept + " " + tag).strip() + head[old.end(1):]
             else:
                 head = head[:-1] + f' * doctest::description("{tag}"))'
             text = text[:test.start] + head + text[test.end:]

@@ -224,7 +224,8 @@ class _Outputs:
         extra = f' · <a href="{self.href(script)}">gnuplot script</a>' if script else ""
         self.used.update([o.file] + ([script.file] if script else []))
         return (f'<figure><a href="{url}"><img src="{url}" alt="{_e(o.caption or o.file)}"{dims}{pixel} '
-                f'loading="lazy"></a><figcaption>{_e(o.caption)} <code>{_e(o.file)}</code>{extra}</figcaption></figure>')
+                f'loading="lazy"></a><figcaption>{_e(o.caption)} <code>{_e(o.file)}</code>{extra}</figcaption>'
+                "</figure>")
 
     def table(self, o: Output) -> str:
         """A Markdown table (with a link to its CSV twin), or a CSV that has none; '' for neither."""

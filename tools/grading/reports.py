@@ -188,7 +188,8 @@ def submission_summary(run: GradeRun) -> str:
         return ""
     lines = ["**What was graded**", ""]
     for used in info.get("installed", []):
-        lines.append(f"- used `{used['file']}` as `{used['target']}`" + (f" ({used['note']})" if used.get("note") else ""))
+        lines.append(f"- used `{used['file']}` as `{used['target']}`"
+                     + (f" ({used['note']})" if used.get("note") else ""))
     for ignored in info.get("ignored", []):
         lines.append(f"- ignored `{ignored['file']}`: {ignored['reason']}")
     for note in info.get("notes", []):
@@ -267,7 +268,8 @@ def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any
     entry carrying the compiler's output."""
     summary = submission_summary(run)
     common = {"output_format": "md", "test_output_format": "text", "visibility": "visible",
-              "stdout_visibility": "hidden", "execution_time": round(run.seconds, 1), "extra_data": machine_summary(run)}
+              "stdout_visibility": "hidden", "execution_time": round(run.seconds, 1),
+              "extra_data": machine_summary(run)}
     if run.build_failed:
         headline = ("Your code did not compile, so no test could run. The compiler's messages are in the build "
                     "entry below." if run.blame_student else "The grader could not build (this is not your code's "
