@@ -15,7 +15,6 @@ Steps, in this order (`cmake --build --preset release --target gallery` runs the
 from __future__ import annotations
 
 import argparse
-import fcntl
 import importlib.util
 import os
 import re
@@ -26,6 +25,7 @@ import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+from common.files import lock_folder  # noqa: E402
 from common.path_options import folder_problem, path_argument  # noqa: E402
 from gallery.decks import DeckError, build_decks, find_decks  # noqa: E402
 from gallery.figures import process as refresh_figures, remove_stale_temporaries  # noqa: E402
@@ -141,13 +141,10 @@ def check_pages(out: Path, index_written: bool) -> None:
 def hold_and_clean(out: Path) -> tuple[int, list[str]]:
     """Locks OUT for this job (an flock on the folder, held until the process ends: a second job on it is
     refused) and removes what a job killed there left; one note per thing removed."""
-    fd = os.open(out, os.O_RDONLY | os.O_DIRECTORY | os.O_CLOEXEC)
-    try:
-        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except BlockingIOError:
-        os.close(fd)
+    fd = lock_folder(out)
+    if fd is None:
         raise JobError(f"--out {out} is in use by another main job; wait for it to end, or give this one "
-                       "another --out") from None
+                       "another --out")
     notes, left = [], "left by a main job that was killed before it finished"
     for root, dirs, files in os.walk(out):
         here = Path(root)

@@ -9,7 +9,6 @@ rules are in tools/grading/edition.py).
 from __future__ import annotations
 
 import argparse
-import fcntl
 import os
 import re
 import shutil
@@ -18,6 +17,7 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from common.files import lock_folder  # noqa: E402
 from common.path_options import folder_problem, path_argument  # noqa: E402
 from grading.edition import make_student_edition  # noqa: E402
 from grading.project import normalize_lesson  # noqa: E402
@@ -34,13 +34,10 @@ def hold_and_clean(out: Path) -> tuple[int | None, list[str]]:
     parent = out.resolve().parent  # as make_student_edition places its staging
     if not parent.is_dir():
         return None, []
-    fd = os.open(parent, os.O_RDONLY | os.O_DIRECTORY | os.O_CLOEXEC)
-    try:
-        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except BlockingIOError:
-        os.close(fd)
+    fd = lock_folder(parent)
+    if fd is None:
         raise ValueError(f"--out {out}: another student_edition.py run is writing in {parent}; wait for it "
-                         "to end") from None
+                         "to end")
     notes = []
     left = re.compile(rf"\.{re.escape(out.name)}\.(new|old)\.[a-z0-9_]{{8}}")
     for path in sorted(parent.iterdir(), key=lambda p: ".old." not in p.name):  # .old first

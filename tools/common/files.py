@@ -3,6 +3,7 @@ NAME.tmp-XXXXXXXX (mkstemp: the repository's `*.tmp-*` ignore), or NAME.tmp-TAG-
 so that a later run can tell the temporary of a run killed without warning by its PID (remove_dead_temporaries)."""
 from __future__ import annotations
 
+import fcntl
 import os
 import shutil
 import tempfile
@@ -46,6 +47,18 @@ def atomic_write_text(target: Path | str, text: str, mode: int = 0o644, tag: str
 
 def atomic_copy(source: Path | str, target: Path | str) -> None:
     _replace(target, lambda tmp: shutil.copyfile(source, tmp), 0o644)
+
+
+def lock_folder(folder: Path) -> int | None:
+    """An exclusive lock on `folder` (an flock, held until the process ends: its descriptor stays open), or
+    None when another process holds it."""
+    fd = os.open(folder, os.O_RDONLY | os.O_DIRECTORY | os.O_CLOEXEC)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        os.close(fd)
+        return None
+    return fd
 
 
 def remove_dead_temporaries(folder: Path, tag: str) -> list[Path]:
