@@ -26,9 +26,11 @@ from __future__ import annotations
 
 import argparse
 import re
-import subprocess
 import sys
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from grading.edition import tracked_files as edition_files  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 SCANNED = ("lib", "exercises", "tests", "lessons", "slides")
@@ -80,12 +82,9 @@ def lesson_texts(root: Path) -> dict[str, Text]:
 
 
 def tracked_files(root: Path) -> list[str]:
-    try:
-        out = subprocess.run(["git", "ls-files", *SCANNED], cwd=root, capture_output=True, text=True, check=True)
-        names = out.stdout.splitlines()
-    except (OSError, subprocess.CalledProcessError):  # not a checkout (the student edition): walk the folders
-        names = [p.relative_to(root).as_posix() for d in SCANNED for p in (root / d).rglob("*") if p.is_file()]
-    return sorted(n for n in names if Path(n).suffix in SUFFIXES and not n.startswith(SKIPPED))
+    """The files to scan: git's list in a checkout, else (the student edition) the tree less what it ignores."""
+    return [n for n in edition_files(root) if n.split("/", 1)[0] in SCANNED and Path(n).suffix in SUFFIXES
+            and not n.startswith(SKIPPED)]
 
 
 def references(path: str, text: str) -> list[tuple[int, str, str, str]]:

@@ -14,6 +14,9 @@ import json
 import sys
 from pathlib import Path
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from code_map import replace_between  # noqa: E402
+
 BEGIN = "<!-- measurements: begin (written by tools/measurements.py from out/run_log.json) -->"
 END = "<!-- measurements: end -->"
 
@@ -47,13 +50,11 @@ def main(argv: list[str]) -> int:
     except (OSError, ValueError) as e:
         print(f"measurements: cannot read {log_path} ({e}); run the main job first (tools/bootstrap)", file=sys.stderr)
         return 2
-    page = args.page.read_text(encoding="utf-8")
-    if BEGIN not in page or END not in page:
+    page = replace_between(args.page.read_text(encoding="utf-8"), BEGIN, END, f"{BEGIN}\n{table(log)}{END}")
+    if page is None:
         print(f"measurements: {args.page} has no markers {BEGIN} … {END}", file=sys.stderr)
         return 2
-    head, rest = page.split(BEGIN, 1)
-    tail = rest.split(END, 1)[1]
-    args.page.write_text(f"{head}{BEGIN}\n{table(log)}{END}{tail}", encoding="utf-8")
+    args.page.write_text(page, encoding="utf-8")
     print(f"updated {args.page}")
     return 0
 

@@ -1,21 +1,14 @@
 #!/usr/bin/env python3
-"""Writes the student edition of illum: the tracked tree without the reference
-sources of the exercises handed out and without hidden tests; the lessons not
-handed out keep their reference units as working code (CMake target
-``student-edition``, lessons from ILLUM_HAND_OUT; the rules are in
-tools/grading/edition.py).
+"""Writes the student edition of illum (CMake target `student-edition`, lessons from ILLUM_HAND_OUT; the
+rules are in tools/grading/edition.py).
 
-    tools/student_edition.py                                            # every exercise, into build/student-edition
-    tools/student_edition.py --lessons 03 11                            # lessons 03 and 11 only
-    tools/student_edition.py --source . --out /tmp/edition              # another source tree or folder
-
-The edition has a README of its own (what the students got, the student
-commands, the `illum` command and its lab) and no link to a file it leaves out.
+    tools/student_edition.py                                  every exercise, into build/student-edition
+    tools/student_edition.py --lessons 03 11                  lessons 03 and 11 only
+    tools/student_edition.py --source . --out /tmp/edition    another source tree or folder
 """
 from __future__ import annotations
 
 import argparse
-import fcntl
 import os
 import re
 import shutil
@@ -24,9 +17,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+from common.files import lock_folder  # noqa: E402
+from common.path_options import folder_problem, path_argument  # noqa: E402
 from grading.edition import make_student_edition  # noqa: E402
 from grading.project import normalize_lesson  # noqa: E402
-from path_options import folder_problem, path_argument  # noqa: E402
 
 
 def hold_and_clean(out: Path) -> tuple[int | None, list[str]]:
@@ -40,13 +34,10 @@ def hold_and_clean(out: Path) -> tuple[int | None, list[str]]:
     parent = out.resolve().parent  # as make_student_edition places its staging
     if not parent.is_dir():
         return None, []
-    fd = os.open(parent, os.O_RDONLY | os.O_DIRECTORY | os.O_CLOEXEC)
-    try:
-        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-    except BlockingIOError:
-        os.close(fd)
+    fd = lock_folder(parent)
+    if fd is None:
         raise ValueError(f"--out {out}: another student_edition.py run is writing in {parent}; wait for it "
-                         "to end") from None
+                         "to end")
     notes = []
     left = re.compile(rf"\.{re.escape(out.name)}\.(new|old)\.[a-z0-9_]{{8}}")
     for path in sorted(parent.iterdir(), key=lambda p: ".old." not in p.name):  # .old first

@@ -71,12 +71,14 @@ import signal
 import subprocess
 import sys
 import time
-import zipfile
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+from grading.batch import fresh_copy, unpack  # noqa: E402  (the batch grader's: a slot is prepared as it does)
+
 ATTACKS = ROOT / "tests" / "attacks"
 LESSONS = ["01", "02"]
 MARKER = "3-4-5"  # in the hidden test's name (tests/hidden/lesson01_hidden.cpp): must never reach a student
@@ -286,13 +288,8 @@ def judge(case: Case, data: dict, changed_after: bool, survivors: list, maxima: 
 def run_case(case: Case, mode: str, slot_dir: Path, user: str, memory_mb: int,
              test_timeout: str) -> tuple[dict | None, bool, list, float, str]:
     ag = slot_dir / "autograder"
-    if ag.exists():
-        shutil.rmtree(ag)
-    subprocess.run(["cp", "-a", "--reflink=auto", str(slot_dir / "snapshot"), str(ag)], check=True)
+    fresh_copy(slot_dir / "snapshot", ag)
     submission = ag / "submission"
-    if submission.exists():
-        shutil.rmtree(submission)
-    submission.mkdir()
     for name, text in submission_files(case).items():
         (submission / name).write_text(text, encoding="utf-8")
     results = ag / "results" / "results.json"
@@ -371,11 +368,7 @@ def main(argv: list[str]) -> int:
         """A slot: the autograder unpacked and set up at the path where its submissions are graded
         (a CMake build tree cannot move), and a snapshot to restore before each submission."""
         ag = slots[k] / "autograder"
-        with zipfile.ZipFile(zip_path) as archive:
-            archive.extractall(ag / "source")
-        for name in ("setup.sh", "run_autograder", "illum/tools/grade"):
-            (ag / "source" / name).chmod(0o755)
-        (ag / "results").mkdir()
+        unpack(zip_path, ag)
         for folder in (slots[k], ag):
             folder.chmod(0o755)
         start = time.monotonic()

@@ -1,35 +1,10 @@
-"""Class lists in, gradebook files out: the CSV side of ``tools/grade --batch``.
-
-Read: the roster (``--roster FILE.csv``), as a spreadsheet saves it or as
-Moodle or Canvas export their class lists. Written: ``grades.csv`` (for the
-instructor), ``grades-moodle.csv`` (Moodle's grade import) and
-``grades-canvas.csv`` (Canvas's gradebook import).
-
-Every file goes through Python's csv module, as RFC 4180 has it: a field
-holding the separator, a quote or a line break is quoted, and a quote inside
-it doubled (how spreadsheets write ``Chevy "The Man" Chase``). A roster may
-be separated by commas, semicolons (spreadsheets in locales with a decimal
-comma) or tabs, with or without a UTF-8 BOM, with CRLF or LF line ends. The
-files written are UTF-8 with a BOM (so that Excel shows accents right;
-Moodle's and Canvas's importers skip it) and CRLF line ends.
-
-What the two importers do with a row (read in their sources: Moodle's
-grade/import/csv/classes/load_data.php, Canvas's app/models/gradebook_importer.rb)
-decides what goes in these files:
-
-* Moodle maps one column, chosen at import ("Map from"), to the user's
-  e-mail, user name or ID number. A value it does not find stops the whole
-  import; an empty one leaves the user of the row before in place, so the
-  row's grade would go to another student. So every row of the Moodle file
-  has that column filled with a value from the roster, and a submission no
-  roster row matches is left out of it (it stays in grades.csv).
-* Canvas matches a row on ``ID`` (its own user number) first, then ``SIS
-  User ID``, then ``SIS Login ID``, then the name in ``Student``, and asks
-  about a row it cannot place. Only a Canvas roster knows Canvas's user
-  numbers: from any other roster ``ID`` stays empty (an ID number there could
-  be some other student's Canvas number), and the ID number goes to ``SIS
-  User ID``, the user name (else the e-mail) to ``SIS Login ID``.
-"""
+"""Class lists in, gradebook files out: the CSV side of `tools/grade --batch` (docs/grading.md, "Grading
+a class"). A roster is read as a spreadsheet or Moodle or Canvas saves it (commas, semicolons or tabs,
+with or without a BOM); grades.csv, grades-moodle.csv and grades-canvas.csv are written as RFC 4180 text
+with a BOM and CRLF. What goes in the gradebooks' files follows what their importers do with a row (read
+in Moodle's grade/import/csv/classes/load_data.php and Canvas's app/models/gradebook_importer.rb): every
+Moodle row has a user value from the roster (an empty one would give its grade to the row before), and
+Canvas's own ID is filled only from a Canvas roster (a student number there could be another student's)."""
 from __future__ import annotations
 
 import csv
@@ -65,8 +40,6 @@ ROLES: dict[str, set[str]] = {
 }
 KEY_ROLES = ("email", "username", "idnumber", "id")  # a submission's folder name is matched against these
 
-
-# --- CSV in and out ---------------------------------------------------------------------------
 
 def _delimiter(text: str) -> str:
     """Comma, semicolon or tab: the one that splits the header into the most fields (a header holds
@@ -116,8 +89,6 @@ def csv_text(rows: list[list[str]]) -> str:
     csv.writer(buffer, lineterminator="\r\n").writerows(rows)
     return "\ufeff" + buffer.getvalue()
 
-
-# --- the roster ---------------------------------------------------------------------------------
 
 @dataclass
 class Roster:
@@ -237,8 +208,6 @@ def read_roster(path: Path) -> Roster:
     return roster
 
 
-# --- a student's row ----------------------------------------------------------------------------
-
 @dataclass
 class Outcome:
     ident: str
@@ -297,8 +266,6 @@ def feedback(o: Outcome) -> str:
         head = [f"{number(o.total)}/{number(o.max_score)} (" + ", ".join(lessons) + ")"]
     return "; ".join(head + o.student_notes)
 
-
-# --- the files written ----------------------------------------------------------------------------
 
 def _test_columns(outcomes: list[Outcome]) -> list[str]:
     seen: dict[str, None] = {}
