@@ -95,6 +95,11 @@ TEST_SUITE("lesson14") {
     CHECK(brightness_oracle(source, receiver, 0.1, Color(10),
                             {.epsilon_f = 1, .epsilon_bf = 0.1, .min_area = 0.5}) ==
           LinkAction::split_receiver);
+    // ρ_r = 0.5, B_s = 1, F = 0.25: the link brings exactly 0.125 (every factor a power of 2).
+    CHECK_MESSAGE(
+        brightness_oracle(square(0, 0, 1, 1, 0), source, 0.25, Color(1),
+                          {.epsilon_f = 1, .epsilon_bf = 0.125, .min_area = 0.5}) == LinkAction::link,
+        "a link that brings exactly ε_BF is kept: only more than ε_BF splits");
   }
 
   TEST_CASE("both oracles refuse settings out of range; +infinity switches a test off" *
@@ -114,6 +119,10 @@ TEST_SUITE("lesson14") {
           LinkAction::link);
     CHECK(brightness_oracle(a, b, 0.5, Color(1e9), {.epsilon_f = off, .epsilon_bf = off, .min_area = 0.1}) ==
           LinkAction::link);
+    const RefineSettings eight{.epsilon_f = off, .epsilon_bf = off, .min_area = 0.1, .sample_points = 8};
+    CHECK_MESSAGE(form_factor_oracle(a, b, eight) == LinkAction::link, "sample_points = 8 is allowed");
+    CHECK_MESSAGE(brightness_oracle(a, b, 0.5, Color(1), eight) == LinkAction::link,
+                  "sample_points = 8 is allowed");
   }
 
   TEST_CASE("refine: far apart, one link at the roots carrying the link's form factor" *
