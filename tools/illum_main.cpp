@@ -79,7 +79,7 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
 struct LabCommand {
   RenderOptions image;
   int port = illum::lab::default_port;
-  std::filesystem::path source = illum::source_dir(), out;
+  std::filesystem::path source = illum::source_dir(), out, reference;
 };
 
 // The image, its sRGB copy for the PNG and the HDR file: checked against the
@@ -148,6 +148,9 @@ int lab(const LabCommand& c) {
   if (std::error_code e; !c.out.empty() && !std::filesystem::is_directory(c.out, e))
     throw illum::InputError("command line", "--out", c.out.string(),
                             "not a folder (the outputs of your lesson programs, OUT/lessonNN)");
+  if (std::error_code e; !c.reference.empty() && !std::filesystem::is_regular_file(c.reference, e))
+    throw illum::InputError("command line", "--reference", c.reference.string(),
+                            "no such program (an illum built from the reference units)");
   // A bad scene or size is refused here, before anything listens; one that needs an exercise
   // not written yet (NotImplemented) is not: the lab says so in the page, and its other views work.
   try {
@@ -156,11 +159,19 @@ int lab(const LabCommand& c) {
   } catch (const illum::NotImplemented& e) {
     std::cerr << "illum lab: " << e.message() << " (the ray-tree view will say so until it is written)\n";
   }
+  // The reference to compare with: --reference, else the one an instructor put in the student
+  // edition (docs/lab.md, "The reference beside yours"), if it is there.
+  std::filesystem::path reference = c.reference;
+  if (std::error_code e;
+      reference.empty() && std::filesystem::exists(c.source / "tools/lab/reference/illum", e))
+    reference = c.source / "tools/lab/reference/illum";
   return illum::lab::run_lab({.scene = c.image.scene,
                               .port = c.port,
                               .settings = c.image.settings(),
                               .source = c.source,
-                              .out = c.out.empty() ? c.source / "out" : c.out});
+                              .out = c.out.empty() ? c.source / "out" : c.out,
+                              .reference = reference,
+                              .reference_required = !c.reference.empty()});
 }
 
 }  // namespace
@@ -197,6 +208,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   lab_cmd->add_option("--out", lab_options.out,
                       "The folder of your lesson programs' outputs (OUT/lessonNN; default: SOURCE/out)");
+  lab_cmd->add_option("--reference", lab_options.reference,
+                      "An illum built from the reference units, to compare your ray trees and shots with "
+                      "(default: SOURCE/tools/lab/reference/illum when it is there)");
 
   // CLI11 says only "A subcommand is required" for `illum rendr`: name it, and the nearest.
   if (argc > 1 && argv[1][0] != '-') {

@@ -192,7 +192,7 @@ BAD = [
     ("/api/radiosity/mesh", "scene=spheres", 400, ""),
     ("/api/radiosity/mesh", "patches=0", 400, "'patches' = '0' is outside"),
     ("/api/radiosity/mesh", "patches=20001", 400, "'patches' = '20001' is outside"),
-    ("/api/radiosity/mesh", "edge=0.5", 400, "more than 20000 patches"),
+    ("/api/radiosity/mesh", "edge=0.5", 400, "more than 22000 patches"),
     ("/api/radiosity/mesh", "edge=-1", 400, "'edge' = '-1' is outside"),
     ("/api/radiosity/mesh", "patches=10&edge=100", 400, "not both"),
     ("/api/radiosity/start", "method=newton&patches=50", 400, "'method' = 'newton' is not one of"),
