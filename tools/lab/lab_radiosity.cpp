@@ -132,8 +132,11 @@ struct RadiosityLab::Session {
   Method method = Method::progressive;
   int resolution = 128;
   double omega = 1.0;
-  std::unique_ptr<Hemicube> hemicube;  // progressive: rows drawn per shot, on every core
-  std::vector<HemicubeBuffers> buffers;
+  // Progressive: rows drawn per shot, on one thread: a row of the 2,124-patch box takes half a
+  // millisecond, and form_factor_row_parallel's OpenMP threads, spinning at their barrier on a
+  // shared 2-core machine, made it 40 ms.
+  std::unique_ptr<Hemicube> hemicube;
+  HemicubeBuffers buffers;
   std::shared_ptr<const FormFactorMatrix> f;  // the sweeps and Southwell
   ProgressiveState state;
   std::vector<Color> b, next, residual;
@@ -392,7 +395,7 @@ std::string RadiosityLab::step_json(const Params& params) {
       }
       const std::size_t i = choose_shooter(patches, s->state.unshot);  // Task 6b
       Stopwatch row_watch;
-      s->hemicube->form_factor_row_parallel(patches, i, s->row, s->buffers);  // lesson 10's deltas
+      s->hemicube->form_factor_row(patches, i, s->row, s->buffers);  // lesson 10's deltas
       row_seconds += row_watch.seconds();
       if (want_update && k + 1 == steps) s->update = s->state.radiosity;
       shoot(patches, i, s->row, s->state);  // Task 6c

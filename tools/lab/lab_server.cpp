@@ -222,6 +222,12 @@ int run_lab(const LabOptions& options) {
       send_json(response, 403, error_json("the lab answers requests to " + host + " or " + local + " only"));
       return httplib::Server::HandlerResponse::Handled;
     }
+    try {
+      tab_of(request);
+    } catch (const BadRequest& e) {
+      send_json(response, 400, error_json(e.what()));
+      return httplib::Server::HandlerResponse::Handled;
+    }
     if (request.method != "GET" && request.method != "HEAD") {
       response.set_header("Allow", "GET, HEAD");
       send_json(response, 405, error_json("the lab answers GET requests only, not " + request.method));

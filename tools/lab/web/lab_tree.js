@@ -443,14 +443,22 @@ export class TreeView {
     const levelY = [0];
     for (let i = 1; i < levelHeight.length; ++i) levelY[i] = levelY[i - 1] + levelHeight[i - 1] + gapY;
     let cursor = 0;
-    const place = n => {  // sets box.x (left); leaves and stubs take the next free place on the right
-      const box = boxes.get(n.id), own = stubs.filter(s => s.parent === n);
-      if (!n.children.length && !own.length) { box.x = cursor; cursor += box.w + gapX; return; }
-      n.children.forEach(place);
-      for (const s of own) { s.x = cursor; cursor += s.w + gapX; }
-      const spans = n.children.map(c => [boxes.get(c.id).x, boxes.get(c.id).x + boxes.get(c.id).w]).concat(own.map(s => [s.x, s.x + s.w]));
-      const centre = (Math.min(...spans.map(s => s[0])) + Math.max(...spans.map(s => s[1]))) / 2;
-      box.x = centre - box.w / 2;
+    // Places n's subtree from `cursor` rightwards and returns its boxes: a leaf (or stub) takes the
+    // next place, a parent is centred over its children, and a parent wider than its children
+    // takes its own width, its children moved to its middle (else it would cover a neighbour).
+    const place = n => {
+      const box = boxes.get(n.id), own = stubs.filter(s => s.parent === n), start = cursor;
+      if (!n.children.length && !own.length) { box.x = cursor; cursor += box.w + gapX; return [box]; }
+      const placed = n.children.flatMap(place);
+      for (const s of own) { s.x = cursor; cursor += s.w + gapX; placed.push(s); }
+      const span = cursor - gapX - start;
+      if (box.w > span) {
+        for (const b of placed) b.x += (box.w - span) / 2;
+        cursor = start + box.w + gapX;
+      }
+      const spans = n.children.map(c => boxes.get(c.id)).concat(own).map(b => [b.x, b.x + b.w]);
+      box.x = (Math.min(...spans.map(s => s[0])) + Math.max(...spans.map(s => s[1]))) / 2 - box.w / 2;
+      return placed.concat([box]);
     };
     place(this.nodes[0]);
     const left = Math.min(0, ...[...boxes.values()].map(b => b.x)), right = Math.max(cursor - gapX, ...[...boxes.values()].map(b => b.x + b.w));

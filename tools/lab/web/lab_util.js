@@ -71,7 +71,8 @@ export function displayColour(c) {
 
 // A little-endian typed array sent as base64 (the radiosity steps' float32 arrays, the hemicube's buffers).
 export function decodeBase64(text, Type = Float32Array) {
-  const bytes = Uint8Array.from(atob(text), c => c.charCodeAt(0));
+  const raw = atob(text), bytes = new Uint8Array(raw.length);
+  for (let i = 0; i < raw.length; ++i) bytes[i] = raw.charCodeAt(i);  // (Uint8Array.from with a map: 5 times slower)
   return new Type(bytes.buffer);
 }
 
