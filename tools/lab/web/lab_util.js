@@ -138,7 +138,7 @@ export function logChart(holder, series, { xLabel = '', yLabel = '', logX = fals
   if (logX) for (let e = Math.ceil(x0); e <= x1; e += Math.max(1, Math.round((x1 - x0) / 6))) ticks.push(e);
   for (const t of ticks) {
     const v = logX ? 10 ** t : t;
-    root.append(svg('text', { x: X(v), y: height - bottom + 14, 'text-anchor': 'middle', text: displayNumber(Math.round(v * 100) / 100) }));
+    root.append(svg('text', { x: X(v), y: height - bottom + 14, 'text-anchor': 'middle', class: 'x-tick', text: displayNumber(Math.round(v * 100) / 100) }));
   }
   root.append(svg('text', { x: (left + width - right) / 2, y: height - 4, 'text-anchor': 'middle', text: xLabel }));
   for (const s of series) {
