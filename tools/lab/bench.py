@@ -55,7 +55,8 @@ def main() -> int:
         process, port = start_lab(args.bin.resolve() / "illum", Path(work))
         try:
             options, results = Path(work) / "options.json", Path(work) / "results.json"
-            options.write_text(json.dumps({"scenes": SCENES, "clicks": args.clicks, "shots": args.shots, "single": args.single}), encoding="utf-8")
+            options.write_text(json.dumps({"scenes": SCENES, "clicks": args.clicks, "shots": args.shots, "single": args.single,
+                                           "labPid": process.pid}), encoding="utf-8")
             run = subprocess.run([node, str(SOURCE / "tools" / "lab" / "browser.mjs"), "bench", f"http://127.0.0.1:{port}/",
                                   str(options), str(results)], cwd=SOURCE, stdin=subprocess.DEVNULL, timeout=1800)
             if run.returncode != 0:
@@ -78,11 +79,14 @@ def main() -> int:
         nodes = [c["nodes"] for c in clicks]
         print(f"| {scene} | {len(ms)} | {statistics.median(nodes):.0f}, {max(nodes)} | "
               f"{statistics.median(ms):.0f} | {p90:.0f} | {ms[-1]:.0f} |")
+    print(f"\nCPU time of Chromium's processes and the lab: {1000 * data['clickCpu'] / len(data['clicks']):.0f} ms a click "
+          f"(the wall times above share {os.cpu_count()} cores with the machine's load)")
     for key, what in (("single", "one shot per press of \"1 step\" (the request, the repaint and the chart each time)"),
                       ("run", "\"run\" (as many shots per request as keep about seven pictures a second)")):
         s = data[key]
+        cpu = f"; {1000 * s['cpu'] / s['shots']:.0f} ms of CPU a shot" if "cpu" in s else ""
         print(f"progressive refinement, {data['patches']} patches, hemicube 128, {what}: {s['shots']} shots in "
-              f"{s['seconds']:.2f} s = {s['shots'] / s['seconds']:.1f} shots a second")
+              f"{s['seconds']:.2f} s = {s['shots'] / s['seconds']:.1f} shots a second{cpu}")
     return 0
 
 

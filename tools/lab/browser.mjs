@@ -287,10 +287,27 @@ async function student() {
 const settled = page => page.waitForFunction(() => ['ready', 'error'].includes(document.querySelector('#tab-tree').dataset.state),
   { timeout: 120000, polling: 'mutation' });
 
+// CPU seconds (user + system) of Chromium's processes and of the lab (options.labPid) so far: the
+// benchmark's figure that the machine's load does not change (Linux, /proc).
+function cpuSeconds() {
+  const stat = pid => { try { return fs.readFileSync(`/proc/${pid}/stat`, 'utf8').split(') ')[1].split(' '); } catch { return null; } };
+  const children = {};
+  for (const pid of fs.readdirSync('/proc').filter(p => /^\d+$/.test(p))) {
+    const f = stat(pid);
+    if (f) (children[f[1]] = children[f[1]] || []).push(pid);
+  }
+  const pids = [String(browser.process().pid)];
+  for (let i = 0; i < pids.length; ++i) pids.push(...(children[pids[i]] || []));
+  if (options.labPid) pids.push(String(options.labPid));
+  const tick = 100;  // USER_HZ on Linux
+  return pids.reduce((sum, pid) => { const f = stat(pid); return f ? sum + (Number(f[11]) + Number(f[12])) / tick : sum; }, 0);
+}
+
 async function bench() {
   const results = { clicks: [], shots: [] };
   const page = await open('tree');
   await waitState(page, '#tab-tree', ['ready']);
+  results.clickCpu = 0;
   for (const scene of options.scenes) {
     await setValue(page, '#tree-scene', scene);
     await waitState(page, '#tab-tree', ['ready'], 120000);
@@ -301,7 +318,9 @@ async function bench() {
       const x = Math.floor((0.1 + 0.8 * ((i * 7) % options.clicks) / options.clicks) * size[0]);
       const y = Math.floor((0.15 + 0.7 * ((i * 3) % options.clicks) / options.clicks) * size[1]);
       await new Promise(resolve => setTimeout(resolve, 250));
+      const cpu = cpuSeconds();
       const r = await clickPixel(page, x, y);
+      results.clickCpu += cpuSeconds() - cpu;
       results.clicks.push({ scene, pixel: r.pixel, ms: r.ms, nodes: (await treeObservation(page)).nodes.length });
     }
   }
@@ -309,9 +328,9 @@ async function bench() {
   results.patches = Number(await page.$eval('#tab-radiosity', s => s.dataset.patches));
   // One shot per press of "1 step": the request, the repaint and the chart after every shot.
   await radiosityStep(page, '#rad-step-1', 1);
-  let started = Date.now();
+  let started = Date.now(), cpu = cpuSeconds();
   for (let k = 2; k <= options.single + 1; ++k) await radiosityStep(page, '#rad-step-1', k);
-  results.single = { shots: options.single, seconds: (Date.now() - started) / 1000 };
+  results.single = { shots: options.single, seconds: (Date.now() - started) / 1000, cpu: cpuSeconds() - cpu };
   // "run": as many shots per request as keep the picture moving (lab_radiosity.js, toggleRun).
   const before = Number(await page.$eval('#tab-radiosity', s => s.dataset.steps));
   started = Date.now();

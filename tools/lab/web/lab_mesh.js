@@ -23,7 +23,9 @@ export class PatchMesh {
     this.geometry.setIndex(index);
     this.colours = new Float32Array(mesh.vertices.length);
     this.geometry.setAttribute('color', new THREE.BufferAttribute(this.colours, 3));
-    this.object = new THREE.Mesh(this.geometry, new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide }));
+    // Front faces only: every patch faces into the room it lights, so from inside (the scene camera)
+    // nothing is lost, from outside the near walls are seen through, and a CPU's WebGL draws half as much.
+    this.object = new THREE.Mesh(this.geometry, new THREE.MeshBasicMaterial({ vertexColors: true }));
     this.object.frustumCulled = false;  // the whole mesh is in view: no bounding sphere to test every frame
     this.outline = null;
     // The scene's extent, for the cameras.

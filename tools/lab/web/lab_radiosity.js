@@ -158,8 +158,7 @@ export class RadiosityView {
             `${Math.round(performance.now() - t0)} ms in all`;
         }
         this.repaint();
-        // While running, the chart is redrawn a few times a second, not after every step.
-        if (!this.running || !(performance.now() - (this.chartDrawn || 0) < 250)) { this.chart(); this.chartDrawn = performance.now(); }
+        this.chartSoon();
         const ms = performance.now() - t0;
         this.section.dataset.steps = String(r.steps);
         this.section.dataset.fraction = String(r.fraction);
@@ -188,7 +187,7 @@ export class RadiosityView {
     const body = document.querySelector('#rad-history tbody');
     r.points.forEach(([s, f], i) => {
       this.history.push([s, f]);
-      if (body.children.length >= 200) body.lastElementChild.remove();
+      if (body.children.length >= 100) body.lastElementChild.remove();
       const shooter = r.shooters ? r.shooters[i] : -1;
       body.prepend(el('tr', { 'data-step': s, 'data-fraction': String(f) }, el('td', { text: s }),
         el('td', { text: displayNumber(f) }), el('td', { text: shooter >= 0 ? `${shooter} (${this.surface(shooter)})` : '' })));
@@ -286,7 +285,16 @@ export class RadiosityView {
     this.viewer.draw();
   }
 
+  // The chart at most about seven times a second, the last step's always (shots pressed or run
+  // faster than that add their points between two drawings).
+  chartSoon() {
+    const wait = 150 - (performance.now() - (this.chartDrawn || 0));
+    if (wait <= 0) { clearTimeout(this.chartTimer); this.chartTimer = null; this.chart(); return; }
+    if (!this.chartTimer) this.chartTimer = setTimeout(() => { this.chartTimer = null; this.chart(); }, wait);
+  }
+
   chart() {
+    this.chartDrawn = performance.now();
     const unit = UNIT[this.method.value];
     logChart(document.getElementById('rad-chart'), [{ points: this.history }],
       { xLabel: `${unit}s`, yLabel: 'unshot / emitted', integerX: true });
