@@ -505,11 +505,12 @@ namespace {
 
 // The row against the exact factors from the centroid, over the targets seen whole. The mean
 // relative error counts every target alike, so it is led by the targets seen edge-on: within
-// edge_on_degrees of the receiver's plane (the two triangles of the Cornell box's red wall meet at
-// 0.7°), they fall in the side faces' lowest pixel rows at every resolution, where a pixel's delta
-// form factor (taken at its centre) is far from their tiny factor (10⁻⁸…10⁻⁶): their relative errors
-// stay near 1. So the errors are also given without them (mean_rel_above) and weighted by the
-// exact factor (weighted_rel = Σ|ΔF| / ΣF, the share of the row's energy put on the wrong target).
+// edge_on_degrees of the receiver's plane (as the two triangles of the Cornell box's red wall, whose
+// corners lie 3.2 mm out of one plane, are from each other), they fall in the side faces' lowest
+// pixel rows at every resolution, where a pixel's delta form factor (taken at its centre) is far
+// from their tiny factors: their relative errors stay near 1. So the errors are also given without them
+// (mean_rel_above) and weighted by the exact factor (weighted_rel = Σ|ΔF| / ΣF, the share of the row's energy
+// put on the wrong target).
 struct RowErrors {
   double max_abs = 0, mean_abs = 0, mean_rel = 0, mean_rel_above = 0, weighted_rel = 0, edge_on_factor = 0;
   std::size_t targets = 0, edge_on = 0;
