@@ -80,6 +80,7 @@ struct LabCommand {
   RenderOptions image;
   int port = illum::lab::default_port;
   std::filesystem::path source = illum::source_dir(), out, reference;
+  bool no_reference = false;
 };
 
 // The image, its sRGB copy for the PNG and the HDR file: checked against the
@@ -162,8 +163,8 @@ int lab(const LabCommand& c) {
   // The reference to compare with: --reference, else the one an instructor put in the student
   // edition (docs/lab.md, "The reference beside yours"), if it is there.
   std::filesystem::path reference = c.reference;
-  if (std::error_code e;
-      reference.empty() && std::filesystem::exists(c.source / "tools/lab/reference/illum", e))
+  if (std::error_code e; reference.empty() && !c.no_reference &&
+                         std::filesystem::exists(c.source / "tools/lab/reference/illum", e))
     reference = c.source / "tools/lab/reference/illum";
   return illum::lab::run_lab({.scene = c.image.scene,
                               .port = c.port,
@@ -211,6 +212,11 @@ int main(int argc, char** argv) {
   lab_cmd->add_option("--reference", lab_options.reference,
                       "An illum built from the reference units, to compare your ray trees and shots with "
                       "(default: SOURCE/tools/lab/reference/illum when it is there)");
+  // The reference lab itself is started with it: it would find itself there and start another.
+  lab_cmd
+      ->add_flag("--no-reference", lab_options.no_reference,
+                 "Compare with no reference, even one that is there")
+      ->excludes(lab_cmd->get_option("--reference"));
 
   // CLI11 says only "A subcommand is required" for `illum rendr`: name it, and the nearest.
   if (argc > 1 && argv[1][0] != '-') {

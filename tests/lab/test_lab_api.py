@@ -45,11 +45,13 @@ import os
 import random
 import re
 import select
+import shutil
 import signal
 import socket
 import struct
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 import traceback
@@ -474,6 +476,18 @@ def check_reference(illum: Path) -> None:
     with Lab(illum, "whitted") as lab:
         status, _, body = lab.get("/api/reference/trace", {"x": 1, "y": 1})
         expect(status == 404 and b"no reference" in body, f"no reference: {status} {body[:100]!r}")
+    # Where an instructor puts it in a student edition: SOURCE/tools/lab/reference/illum, found unasked.
+    edition = Path(tempfile.mkdtemp(prefix="illum-lab-edition-"))
+    try:
+        (edition / "lessons").mkdir()
+        (edition / "tools" / "lab" / "reference").mkdir(parents=True)
+        shutil.copy(illum, edition / "tools" / "lab" / "reference" / "illum")
+        with Lab(illum, "whitted", "--source", str(edition)) as lab:
+            info = lab.json("/api/info")["reference"]
+            expect(info["available"] is True and info["program"] == str(edition / "tools/lab/reference/illum"),
+                   f"the edition's reference: {info}")
+    finally:
+        shutil.rmtree(edition)
     for program, words in [("/bin/true", "did not start"), ("no/such/illum", "no such program")]:
         run = subprocess.run([str(illum), "lab", "--port", "0", "--reference", program], capture_output=True, text=True,
                              stdin=subprocess.DEVNULL, timeout=60)

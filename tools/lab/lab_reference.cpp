@@ -17,11 +17,16 @@ namespace illum::lab {
 
 namespace {
 
-// Reads what the child prints until its address line, for at most `seconds`.
-std::string first_line(int fd, double seconds) {
+constexpr const char* address_prefix = "http://127.0.0.1:";
+
+// What the child prints (its standard output and error) until the line with its address, for at
+// most `seconds`: a child that fails first says why in it.
+std::string read_until_address(int fd, double seconds) {
   std::string text;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(seconds);
-  while (text.find('\n') == std::string::npos && text.size() < 4096) {
+  while (text.size() < 16384) {
+    const std::size_t at = text.find(address_prefix);
+    if (at != std::string::npos && text.find('\n', at) != std::string::npos) break;
     const auto left =
         std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) break;
@@ -55,7 +60,7 @@ ReferenceLab::ReferenceLab(const std::filesystem::path& program,
   }
   std::vector<std::string> args{program.string(), "lab"};
   args.insert(args.end(), lab_arguments.begin(), lab_arguments.end());
-  args.insert(args.end(), {"--port", "0"});
+  args.insert(args.end(), {"--port", "0", "--no-reference"});
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
   argv.push_back(nullptr);
@@ -68,9 +73,9 @@ ReferenceLab::ReferenceLab(const std::filesystem::path& program,
     sigemptyset(&none);
     sigprocmask(SIG_SETMASK, &none, nullptr);  // the lab blocks SIGINT and SIGTERM in its threads
     dup2(out[1], STDOUT_FILENO);
+    dup2(out[1], STDERR_FILENO);  // read until the address; an error before it says why
     const int null = open("/dev/null", O_RDWR);
     dup2(null, STDIN_FILENO);
-    dup2(null, STDERR_FILENO);
     execv(argv[0], argv.data());
     _exit(127);
   }
@@ -80,16 +85,19 @@ ReferenceLab::ReferenceLab(const std::filesystem::path& program,
     why_ = "could not start the reference program (fork failed)";
     return;
   }
-  const std::string line = first_line(out[0], 30);
+  const std::string line = read_until_address(out[0], 30);
   close(out[0]);
-  const std::string prefix = "http://127.0.0.1:";
+  const std::string prefix = address_prefix;
   const std::size_t at = line.find(prefix);
   int port = 0;
   for (std::size_t k = at == std::string::npos ? line.size() : at + prefix.size();
        k < line.size() && std::isdigit(static_cast<unsigned char>(line[k])) && port < 65536; ++k)
     port = 10 * port + (line[k] - '0');
   if (port <= 0 || port > 65535) {
-    why_ = program.string() + " lab did not start (it printed no address within 30 s)";
+    std::string said = line.substr(0, line.find('\n'));
+    if (said.size() > 300) said = said.substr(0, 300) + "…";
+    why_ = program.string() + " lab did not start" +
+           (said.empty() ? " (it printed no address within 30 s)" : ": " + said);
     stop();
     return;
   }
