@@ -23,9 +23,9 @@ export class PatchMesh {
     this.geometry.setIndex(index);
     this.colours = new Float32Array(mesh.vertices.length);
     this.geometry.setAttribute('color', new THREE.BufferAttribute(this.colours, 3));
-    // Front faces only: every patch faces into the room it lights, so from inside (the scene camera)
-    // nothing is lost, from outside the near walls are seen through, and a CPU's WebGL draws half as much.
-    this.object = new THREE.Mesh(this.geometry, new THREE.MeshBasicMaterial({ vertexColors: true }));
+    // Both sides: the meshers do not keep every patch's corners in one turning sense (the triangles
+    // along the red wall's diagonal), so culling back faces left holes.
+    this.object = new THREE.Mesh(this.geometry, new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide }));
     this.object.frustumCulled = false;  // the whole mesh is in view: no bounding sphere to test every frame
     this.outline = null;
     // The scene's extent, for the cameras.

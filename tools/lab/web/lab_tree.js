@@ -62,6 +62,7 @@ export class TreeView {
     document.getElementById('tree-depth-up').addEventListener('click', () => this.showDepth(this.shown === null ? null : this.shown + 1));
     document.getElementById('tree-depth-all').addEventListener('click', () => this.showDepth(null));
     document.getElementById('tree-versus-pane').hidden = !this.reference;
+    document.querySelector('#tab-tree .legend .k-reference').hidden = !this.reference;
     this.shown = null;
     this.tree = null;
     this.threeReady = info.three ? loadThree().catch(() => null) : Promise.resolve(null);
