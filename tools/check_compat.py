@@ -7,9 +7,10 @@ them, so a build here cannot show that something newer crept in. This script
 checks what can be checked without that image (see docs/grading.md,
 "Supported images"):
 
-1. the grading reporter (tests/support/grade_reporter.cpp) compiles, with
-   -fsyntax-only, against tools/compat/doctest-2.4.8/, a description of the
-   reporter interface as doctest 2.4.8 declares it;
+1. the grading reporter and the check macros (tests/support/grade_reporter.cpp,
+   checks.cpp with checks.hpp) compile, with -fsyntax-only, against
+   tools/compat/doctest-2.4.8/, a description of the interface they use as
+   doctest 2.4.8 declares it;
 2. no source uses a doctest API added in 2.4.9 or later (doctest::Contains,
    doctest::IsNaN, ...) or an nlohmann-json API added after 3.10.5;
 3. no C++ library facility that GCC 11's libstdc++ lacks (std::format, ...);
@@ -103,14 +104,16 @@ def check_newer_apis() -> list[str]:
 def check_reporter(compiler: str) -> list[str]:
     if shutil.which(compiler) is None:
         return [f"{compiler}: no C++ compiler to check the reporter with"]
-    command = [compiler, "-std=c++20", "-fsyntax-only", "-Wall", "-Wextra", "-Werror",
-               f"-I{DOCTEST_248}", f"-I{ROOT / 'tests'}",  # support/*.hpp, as the build finds them
-               str(ROOT / "tests" / "support" / "grade_reporter.cpp")]
-    completed = subprocess.run(command, capture_output=True, text=True, check=False)
-    if completed.returncode != 0:
-        return ["tests/support/grade_reporter.cpp does not compile against doctest 2.4.8's reporter "
-                "interface (tools/compat/doctest-2.4.8/):\n" + completed.stderr.strip()]
-    return []
+    offences = []
+    for name in ("grade_reporter.cpp", "checks.cpp"):
+        command = [compiler, "-std=c++20", "-fsyntax-only", "-Wall", "-Wextra", "-Werror",
+                   f"-I{DOCTEST_248}", f"-I{ROOT / 'tests'}",  # support/*.hpp, as the build finds them
+                   str(ROOT / "tests" / "support" / name)]
+        completed = subprocess.run(command, capture_output=True, text=True, check=False)
+        if completed.returncode != 0:
+            offences.append(f"tests/support/{name} does not compile against doctest 2.4.8's interface "
+                            "(tools/compat/doctest-2.4.8/):\n" + completed.stderr.strip())
+    return offences
 
 
 def python_files() -> list[Path]:

@@ -127,6 +127,7 @@ from pathlib import Path
 from gallery.markdown_table import is_separator_line, split_table_row
 from gallery.plots import PlotCheckError, check_plots
 from gallery.text_links import check_text_links
+from path_options import path_argument
 
 SOURCE = Path(__file__).resolve().parent.parent
 # The Markdown files that may hold figures, relative to the source tree.
@@ -887,11 +888,41 @@ def check_images(source: Path, out: Path) -> tuple[list[str], int]:
     return problems, compared
 
 
+def write_atomically(path: Path, data: bytes) -> None:
+    """Writes a file through a temporary one named with this process's PID, then a rename: never
+    half a file; a temporary a killed run left is known by its PID (remove_stale_temporaries)."""
+    tmp = path.with_name(f"{path.name}{TEMPORARY}{os.getpid()}")
+    try:
+        tmp.write_bytes(data)
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
+
+
 def write_lines_atomically(path: Path, lines: list[str]) -> None:
-    """Writes a text through a temporary file and a rename: never half a file."""
-    tmp = path.with_name(path.name + ".tmp-figures")
-    tmp.write_text("\n".join(lines) + "\n", encoding="utf-8")
-    os.replace(tmp, path)
+    write_atomically(path, ("\n".join(lines) + "\n").encode("utf-8"))
+
+
+TEMPORARY = ".tmp-figures-"
+
+
+def remove_stale_temporaries(source: Path, log=print) -> None:
+    """Removes the temporaries of runs killed without warning (SIGKILL) beside the texts and their
+    kept figures: those whose PID no longer runs (or that name none, as this tool's older ones)."""
+    folders = {p.parent for p in texts(source)} | {p.parent / FIGURES_FOLDER for p in lesson_texts(source)}
+    for folder in sorted(f for f in folders if f.is_dir()):
+        for tmp in sorted(folder.glob("*.tmp-figures*")):
+            pid = tmp.name.rpartition(TEMPORARY)[2]
+            try:
+                if pid.isdigit():
+                    os.kill(int(pid), 0)
+                    continue  # another run of this tool, still writing
+            except ProcessLookupError:
+                pass
+            except PermissionError:
+                continue
+            tmp.unlink()
+            log(f"figures: removed {tmp.relative_to(source)}, left by a run that was killed before it finished")
 
 
 def update_images(source: Path, out: Path, log=print) -> int:
@@ -919,7 +950,7 @@ def update_images(source: Path, out: Path, log=print) -> int:
             data = drawn.read_bytes()
             if not kept.is_file() or kept.read_bytes() != data:
                 folder.mkdir(exist_ok=True)
-                kept.write_bytes(data)
+                write_atomically(kept, data)
                 copied += 1
             line = lines[link.line]
             if line[link.start:link.end] != target:
@@ -1050,8 +1081,10 @@ def main(argv: list[str] | None = None) -> int:
     group.add_argument("--links", action="store_true",
                        help="only check that every link and image of the texts resolves in the source tree "
                             "(needs no OUT)")
-    parser.add_argument("--out", type=Path, default=None, help="the main job's output folder (default: SOURCE/out)")
-    parser.add_argument("--source", type=Path, default=SOURCE, help="the source tree (default: this checkout)")
+    parser.add_argument("--out", type=path_argument, default=None,
+                        help="the main job's output folder (default: SOURCE/out)")
+    parser.add_argument("--source", type=path_argument, default=SOURCE,
+                        help="the source tree (default: this checkout)")
     args = parser.parse_args(argv)
     source = args.source.resolve()
     out = (args.out or source / "out").resolve()
@@ -1061,6 +1094,8 @@ def main(argv: list[str] | None = None) -> int:
     if not args.links and not out.is_dir():
         parser.error(f"--out {args.out or out}: not a folder of the main job's outputs (run tools/bootstrap, "
                      "or tools/main_job.py --bin build/release/bin --out out)")
+    if not args.check and not args.links:  # the modes that write
+        remove_stale_temporaries(source)
     if args.update_images:
         return update_images(source, out)
     if args.links:

@@ -41,10 +41,12 @@ discovered, never listed. Every file is written atomically. `cmake --build --pre
 from __future__ import annotations
 
 import argparse
+import fcntl
 import importlib.util
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import threading
@@ -57,6 +59,7 @@ from gallery.decks import DeckError, build_decks, find_decks  # noqa: E402
 from gallery.fsutil import atomic_write_text  # noqa: E402
 from gallery.index import check_links, write_index  # noqa: E402
 from gallery.texts import TextsError, build_texts  # noqa: E402
+from path_options import folder_problem, path_argument  # noqa: E402
 
 SOURCE = Path(__file__).resolve().parent.parent
 STEPS = ("lessons", "lab", "figures", "slides", "texts", "index")
@@ -369,6 +372,7 @@ def run_figures(source: Path, out: Path, quick: bool) -> None:
     if quick:
         say("figures: skipped (a --quick run's tables are not the ones the texts quote)")
         return
+    figures.remove_stale_temporaries(source, log=lambda m: say(m))
     code = figures.process(source, out, "refresh", log=lambda m: say(m))
     if code != 0:
         say("warning: some figures could not be refreshed (above); `tools/figures.py --check` fails on them")
@@ -441,20 +445,56 @@ def check_pages(out: Path, index_written: bool) -> None:
     say("every local link and image of the rendered texts resolves")
 
 
+# What the job's own atomic writes leave when it is killed without warning (SIGKILL): a temporary
+# file beside its target (gallery/fsutil.py, mkstemp: NAME.tmp-XXXXXXXX, a deck's also .html) and
+# the folder of the one Marp run (OUT/slides/.decks-XXXXXXXX). A lesson's leftovers are its own
+# (the next run of it removes them; `illum clean --out OUT`).
+STALE_FILE = re.compile(r".+\.tmp-[a-z0-9_]{8}(\.html)?")
+STALE_FOLDER = re.compile(r"\.decks-[a-z0-9_]{8}")
+
+
+def hold_and_clean(out: Path) -> tuple[int, list[str]]:
+    """Locks OUT for this job (an flock on the folder, held until the process ends: a second job on
+    it is refused) and removes what a job killed there left; one note per thing removed."""
+    fd = os.open(out, os.O_RDONLY | os.O_DIRECTORY | os.O_CLOEXEC)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        os.close(fd)
+        raise JobError(f"--out {out} is in use by another main job; wait for it to end, or give this one "
+                       "another --out") from None
+    notes = []
+    for root, dirs, files in os.walk(out):
+        here = Path(root)
+        # Not into a lesson's folders: their files are their runs' (each cleans its own).
+        dirs[:] = [d for d in dirs if not PROGRAM.match(d) and ".illum-" not in d]
+        for name in [d for d in dirs if STALE_FOLDER.fullmatch(d) and not (here / d).is_symlink()]:
+            shutil.rmtree(here / name, ignore_errors=True)
+            dirs.remove(name)
+            notes.append(f"removed {here / name}, left by a main job that was killed before it finished")
+        for name in files:
+            if STALE_FILE.fullmatch(name) and os.lstat(here / name).st_uid == os.geteuid():
+                (here / name).unlink()
+                notes.append(f"removed {here / name}, left by a main job that was killed before it finished")
+    return fd, notes
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
                                      formatter_class=argparse.RawDescriptionHelpFormatter,
                                      epilog=__doc__.split("\n\n", 1)[1])
-    parser.add_argument("--bin", type=Path, help="the build's bin/ folder (needed by the lessons step)")
-    parser.add_argument("--out", type=Path, required=True, help="the output folder (e.g. out)")
+    parser.add_argument("--bin", type=path_argument, help="the build's bin/ folder (needed by the lessons step)")
+    parser.add_argument("--out", type=path_argument, required=True, help="the output folder (e.g. out)")
     parser.add_argument("--quick", action="store_true", help="run each lesson with --quick")
     parser.add_argument("--alone", action="store_true",
                         help="run every lesson alone, in order, even those whose timings use one core "
                              "(slower; timings free of a neighbour's load)")
     parser.add_argument("--only", default=",".join(STEPS),
                         help=f"comma-separated steps to run, of {','.join(STEPS)} (default: all)")
-    parser.add_argument("--source", type=Path, default=SOURCE, help="the source tree (default: this checkout)")
-    parser.add_argument("--slides", type=Path, help="the folder of NN_*.md decks (default: SOURCE/slides)")
+    parser.add_argument("--source", type=path_argument, default=SOURCE,
+                        help="the source tree (default: this checkout)")
+    parser.add_argument("--slides", type=path_argument,
+                        help="the folder of NN_*.md decks (default: SOURCE/slides)")
     parser.add_argument("--check-links", action="store_true",
                         help="after writing index.html, fail if any local link or image in it does not resolve")
     args = parser.parse_args(argv)
@@ -481,9 +521,14 @@ def main(argv: list[str] | None = None) -> int:
                      "cmake --build --preset release --target illum_cli)")
     if out.exists() and not out.is_dir():
         parser.error(f"--out {args.out}: exists and is not a folder")
+    if folder_problem(args.out):  # afile/out: a traceback from mkdir otherwise
+        parser.error(f"--out {args.out}: {folder_problem(args.out)}")
     out.mkdir(parents=True, exist_ok=True)
     start = time.monotonic()
     try:
+        _, notes = hold_and_clean(out)
+        for note in notes:
+            say(f"note: {note}")
         if "lessons" in steps:
             run_lessons(args.bin.resolve(), out, args.quick, args.alone)
         # The figures first (they rewrite the decks); then the lab's screenshots and the decks side by

@@ -106,6 +106,7 @@ void add_options(CommandLine& command_line, Settings& settings, std::vector<std:
   std::vector<std::string> solver_names;
   for (const Solver solver : all_solvers) solver_names.emplace_back(to_string(solver));
   command_line.add("--scene", settings.scene, "A radiosity scene: a JSON file, or a shipped scene's name")
+      .check(path_value())
       .show_default();
   command_line
       .add("--solvers", solvers,

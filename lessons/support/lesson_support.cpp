@@ -106,6 +106,7 @@ ValueCheck mebibytes_within_budget() {
 ValueCheck file_in_existing_folder(const std::string& option) {
   return ValueCheck(
       [option](std::string& path) {
+        if (const std::string problem = path_problem(path); !problem.empty()) return problem;
         const std::filesystem::path parent = std::filesystem::path(path).parent_path();
         if (std::filesystem::path(path).filename().empty()) return std::string("names a folder, not a file");
         if (!parent.empty() && !std::filesystem::is_directory(parent))

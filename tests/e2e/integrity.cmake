@@ -7,6 +7,7 @@ if(TARGET tests_hidden AND NOT TARGET tests_hidden_stubs)
   add_executable(tests_hidden_stubs ${illum_hidden_sources})
   target_link_libraries(tests_hidden_stubs PRIVATE illum_stubs doctest::doctest)
   target_include_directories(tests_hidden_stubs PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})  # support/*.hpp
+  illum_use_checks(tests_hidden_stubs)
 endif()
 
 # Only a reference build can be checked: with ILLUM_EXERCISES set, tests_lessonNN runs

@@ -1,6 +1,10 @@
 # Unit tests of the grading driver's pure parts (tools/grading/), standard library only.
 add_test(NAME tools_grade_py COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_grade.py)
 set_tests_properties(tools_grade_py PROPERTIES LABELS grading ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# The judge's comparisons and verdicts, and the observer's sources (tools/grading/judge.py,
+# observer_sources.py): each verdict worked by hand from doctest's definitions.
+add_test(NAME tools_judge_py COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_judge.py)
+set_tests_properties(tools_judge_py PROPERTIES LABELS grading ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # The mutant generator of tools/grade --mutants (its smoke run is a .ci/run stage).
 add_test(NAME tools_mutants_py COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_mutants.py)
 set_tests_properties(tools_mutants_py PROPERTIES LABELS grading ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)

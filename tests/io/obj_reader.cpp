@@ -98,6 +98,27 @@ TEST_SUITE("io") {
     CHECK(m.corner_normals.empty());  // no corner names a normal: flat shading
   }
 
+  TEST_CASE("OBJ: a UTF-8 byte-order mark at the start is read past; anywhere else it is no statement") {
+    const TriangleMesh m = read_obj("\xEF\xBB\xBFv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    REQUIRE(m.positions.size() == 3);
+    CHECK(m.positions[0] == illum::Point3(0, 0, 0));
+    CHECK(m.triangles.size() == 1);
+    CHECK(refusal("v 0 0 0\n\xEF\xBB\xBFv 1 0 0\nv 0 1 0\nf 1 2 3\n") ==
+          "line 2: unknown statement '\\xef\\xbb\\xbfv' (illum reads v, vn, vt and f, and skips o, g, s, l, "
+          "p, usemtl and mtllib)");
+  }
+
+  TEST_CASE("OBJ: a vertex lies within ±1e150, the bound of every coordinate of a scene") {
+    // 1e150 itself is read (its square, 1e300, is a double); the next representable numbers beyond are not.
+    CHECK(read_obj("v 0 0 -1e150\nv 1e150 0 0\nv 0 1 0\nf 1 2 3\n").positions[1].x == 1e150);
+    const std::string x = refusal("v 0 0 0\nv 1e308 0 0\nv 0 1 0\nf 1 2 3\n");
+    CHECK(x.find("line 2: vertex x '1e308' lies beyond ±1e150") == 0);
+    CHECK(refusal("v 0 0 0\nv 0 -1.0000001e150 0\nv 0 1 0\nf 1 2 3\n").find("vertex y '-1.0000001e150'") !=
+          std::string::npos);
+    // A vertex's 4th to 6th numbers (w, colours) are not coordinates: not bounded.
+    CHECK(read_obj("v 0 0 0 1e300\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").positions.size() == 3);
+  }
+
   TEST_CASE("OBJ: negative indices count back from the line; positive ones may point ahead") {
     // After three vertices, -1 is the third; after a fourth, -1 is the fourth.
     const TriangleMesh m = read_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 1 1 0\nf -1 -2 -4\n");

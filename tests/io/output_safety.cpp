@@ -17,6 +17,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -187,6 +188,51 @@ TEST_SUITE("io") {
     ::close(ready[1]);
     CHECK(entries(out) == 0);
     CHECK_NOTHROW(illum::check_output_folder(out, "--out"));  // the kernel dropped the dead holder's lock
+    fs::remove_all(parent);
+  }
+
+  TEST_CASE("output: remove_stale_run_files names what a killed run left, or refuses a live run's folder") {
+    const fs::path parent = fresh("clean");
+    const fs::path out = parent / "out";
+    illum::write_text_file(out / "old.txt", "old\n");
+    CHECK(illum::remove_stale_run_files(out, "--out").empty());  // nothing left: nothing done, nothing made
+    CHECK(entries(parent) == 1);
+    // A killed run: its half-written staging and its lock, which still holds its PID (a child now gone).
+    const pid_t child = ::fork();
+    REQUIRE(child >= 0);
+    if (child == 0) ::_exit(0);
+    ::waitpid(child, nullptr, 0);
+    illum::write_text_file(parent / ".out.illum-staging-KILLED" / "half.txt", "half\n");
+    illum::write_text_file(parent / ".out.illum-lock", std::to_string(child) + "\n");
+    const std::vector<std::string> notes = illum::remove_stale_run_files(out, "--out");
+    REQUIRE(notes.size() == 1);
+    CHECK(notes[0].find((parent / ".out.illum-staging-KILLED").string()) != std::string::npos);
+    CHECK(notes[0].find((parent / ".out.illum-lock").string()) != std::string::npos);
+    CHECK(notes[0].find("(PID " + std::to_string(child) + ", no longer running)") != std::string::npos);
+    CHECK(notes[0].find("is as that run found it") != std::string::npos);
+    CHECK(entries(parent) == 1);  // out alone
+    CHECK(entries(out) == 1);     // old.txt, untouched
+    // A live run's lock (this process holds it): refused with its PID, and its staging stays.
+    illum::write_text_file(parent / ".out.illum-staging-LIVE" / "a.txt", "a\n");
+    const int fd = ::open((parent / ".out.illum-lock").c_str(), O_RDWR | O_CREAT, 0644);
+    REQUIRE(::flock(fd, LOCK_EX) == 0);
+    REQUIRE(::write(fd, "4242\n", 5) == 5);
+    const pid_t other = ::fork();  // flock is per open file: another process must ask
+    REQUIRE(other >= 0);
+    if (other == 0) {
+      try {
+        (void)illum::remove_stale_run_files(out, "--out");
+      } catch (const std::runtime_error& e) {
+        ::_exit(std::string(e.what()).find("in use by another run (PID 4242)") != std::string::npos ? 7 : 1);
+      }
+      ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(other, &status, 0);
+    CHECK(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 7);
+    CHECK(fs::exists(parent / ".out.illum-staging-LIVE" / "a.txt"));
+    ::close(fd);
     fs::remove_all(parent);
   }
 

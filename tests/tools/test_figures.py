@@ -297,6 +297,54 @@ class OptionsTest(unittest.TestCase):
             self.assertIn(f"--source {folder}: not an illum source tree", text)
 
 
+    def test_an_empty_path_or_a_link_loop_is_refused_naming_the_option(self):
+        self.assertIn("argument --out: the path is empty", self.refused(["--check", "--out", ""]))
+        self.assertIn("argument --source: the path is empty", self.refused(["--links", "--source", ""]))
+        with tempfile.TemporaryDirectory() as folder:
+            loop = Path(folder) / "loop"
+            loop.symlink_to("loop")
+            self.assertIn(f"argument --out: '{loop}' is a symbolic link that leads back to itself",
+                          self.refused(["--check", "--out", str(loop)]))
+
+
+class KilledRunTest(unittest.TestCase):
+    """A run killed without warning (SIGKILL) leaves its temporary beside a text: the next writing
+    run removes it once its PID is gone, and names it; a live run's stays."""
+
+    def test_a_dead_runs_temporaries_are_removed_and_named_a_live_runs_kept(self):
+        import os
+        import subprocess
+        with tempfile.TemporaryDirectory() as folder:
+            root = Path(folder)
+            text = root / "lessons" / "01_x" / "README.md"
+            (root / "lessons" / "01_x" / "figures").mkdir(parents=True)
+            text.write_text(TEXT)
+            gone = subprocess.Popen(["true"])  # a PID that has ended
+            gone.wait()
+            stale = text.with_name(f"README.md.tmp-figures-{gone.pid}")
+            older = text.with_name("README.md.tmp-figures")  # this tool's name before it held a PID
+            image = root / "lessons" / "01_x" / "figures" / f"a.png.tmp-figures-{gone.pid}"
+            live = text.with_name(f"README.md.tmp-figures-{os.getpid()}")
+            for p in (stale, older, image, live):
+                p.write_text("half")
+            said: list[str] = []
+            figures.remove_stale_temporaries(root, log=said.append)
+            self.assertFalse(stale.exists() or older.exists() or image.exists())
+            self.assertTrue(live.exists())
+            self.assertEqual(len(said), 3, said)
+            self.assertIn(f"figures: removed lessons/01_x/README.md.tmp-figures-{gone.pid}, left by a run that was "
+                          "killed before it finished", said)
+
+    def test_a_file_is_written_whole_through_a_temporary_named_with_the_pid(self):
+        import os
+        with tempfile.TemporaryDirectory() as folder:
+            target = Path(folder) / "a.png"
+            figures.write_atomically(target, b"picture")
+            self.assertEqual(target.read_bytes(), b"picture")
+            self.assertEqual(sorted(p.name for p in Path(folder).iterdir()), ["a.png"])
+            self.assertEqual(figures.TEMPORARY + str(os.getpid()), f".tmp-figures-{os.getpid()}")
+
+
 class KeptImagesTest(unittest.TestCase):
     """Lesson texts show their images from figures/, kept copies of what the programs drew."""
 

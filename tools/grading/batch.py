@@ -19,7 +19,18 @@ Written to ``--out`` (default ``DIR-grades``):
   roster's rows in its order, joined on an id or e-mail column, students
   without a submission listed as ``missing``;
 * ``grades-moodle.csv`` / ``grades-canvas.csv`` with ``--format``: the
-  columns those gradebooks import.
+  columns those gradebooks import (tools/grading/gradebook.py).
+
+The roster is read, and every submission matched to its row, before
+anything is built: a roster that cannot be trusted (an id on two rows, a
+submission matching two rows) stops the command with exit status 2.
+
+Setup (the reference's build and proof) runs without the limits of a
+student's run, as on Gradescope: its builds have no time limit unless
+``ILLUM_GRADE_SETUP_BUILD_TIMEOUT`` sets one. A student's run keeps
+Gradescope's (``ILLUM_GRADE_BUILD_TIMEOUT``, 300 s, for their rebuild), and
+the whole of it ``ILLUM_GRADE_BATCH_TIMEOUT`` (1200 s). A limit that is hit
+is named, with its variable, in the log and on stderr.
 
 A student's status: ``graded``; ``partly gradable`` (a file of theirs did
 not compile or link: its lesson says "not gradable", the rest is scored);
@@ -29,12 +40,10 @@ student's doing; the log says what).
 """
 from __future__ import annotations
 
-import csv
-import io
 import json
 import os
-import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -42,25 +51,21 @@ import threading
 import time
 import zipfile
 from concurrent.futures import ThreadPoolExecutor
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 from .autograder import RUN_LIMITS, pack_autograder
+from .gradebook import (Outcome, Roster, RosterError, canvas_rows, csv_text, grades_rows, moodle_rows,
+                        read_roster)
 from .reports import write_text
 
 MARKER = ".illum-grades"  # in --out: a folder this command wrote (so it may write there again)
 STATUS_ORDER = ("graded", "partly gradable", "not gradable", "grader error", "missing")
-ID_HEADERS = {"id", "studentid", "student", "sisuserid", "sisloginid", "username", "user", "login", "userid",
-              "idnumber", "identifier", "matricula", "dni"}
-EMAIL_HEADERS = {"email", "emailaddress", "mail", "correo", "correoelectronico"}
+BATCH_TIMEOUT = 1200.0  # seconds for one submission's run_autograder (ILLUM_GRADE_BATCH_TIMEOUT)
 
 
 class BatchError(Exception):
     """The batch cannot be graded as asked (exit status 2)."""
-
-
-def _normal(header: str) -> str:
-    return re.sub(r"[\s_\-.]", "", header.strip().lower())
 
 
 @dataclass
@@ -93,83 +98,6 @@ def discover(folder: Path) -> tuple[list[Submission], list[str]]:
     return list(found.values()), skipped
 
 
-@dataclass
-class Roster:
-    headers: list[str]
-    rows: list[dict[str, str]]
-    keys: list[str]        # the columns a submission's id is matched against
-    email: str | None      # the e-mail column, if any
-
-    def match(self, submissions: list[Submission]) -> tuple[dict[int, Submission], list[Submission]]:
-        """Row index -> its submission, and the submissions no row matched."""
-        by_value: dict[str, set[int]] = {}
-        for index, row in enumerate(self.rows):
-            for key in self.keys:
-                value = row.get(key, "").strip().lower()
-                if value:
-                    by_value.setdefault(value, set()).add(index)
-                    if key == self.email and "@" in value:
-                        by_value.setdefault(value.split("@", 1)[0], set()).add(index)
-        matched: dict[int, Submission] = {}
-        unmatched = []
-        for submission in submissions:
-            rows = by_value.get(submission.ident.strip().lower(), set())
-            if len(rows) == 1 and next(iter(rows)) not in matched:
-                matched[next(iter(rows))] = submission
-            else:
-                unmatched.append(submission)
-        return matched, unmatched
-
-
-def read_roster(path: Path) -> Roster:
-    try:
-        text = path.read_text(encoding="utf-8-sig")
-    except (OSError, UnicodeDecodeError) as error:
-        raise BatchError(f"--roster {path}: cannot be read as UTF-8 text: {error}") from None
-    try:
-        dialect = csv.Sniffer().sniff(text[:4096], delimiters=",;\t")
-    except csv.Error:
-        dialect = csv.excel
-    reader = csv.reader(io.StringIO(text), dialect)
-    rows = [row for row in reader if any(cell.strip() for cell in row)]
-    if not rows:
-        raise BatchError(f"--roster {path}: the file is empty")
-    headers = [h.strip() for h in rows[0]]
-    keys = [h for h in headers if _normal(h) in ID_HEADERS | EMAIL_HEADERS]
-    email = next((h for h in headers if _normal(h) in EMAIL_HEADERS), None)
-    if not keys:
-        raise BatchError(f"--roster {path}: no id or e-mail column (looked for headers such as id, student id, "
-                         f"username, login, email, e-mail; found: {', '.join(headers)})")
-    records = []
-    for row in rows[1:]:
-        record = {h: (row[i].strip() if i < len(row) else "") for i, h in enumerate(headers)}
-        if any(v.lower() == "points possible" for v in record.values()):
-            continue  # Canvas's export carries the maximum in a second row
-        if any(record.get(k) for k in keys):
-            records.append(record)
-    return Roster(headers, records, keys, email)
-
-
-@dataclass
-class Outcome:
-    ident: str
-    status: str = "missing"
-    total: float | None = None
-    max_score: float = 0.0
-    lessons: dict[str, dict] = field(default_factory=dict)
-    tests: dict[str, float] = field(default_factory=dict)
-    notes: list[str] = field(default_factory=list)
-    seconds: float = 0.0
-    roster: dict[str, str] = field(default_factory=dict)
-
-    def describe(self) -> str:
-        if self.status in ("graded", "partly gradable") and self.total is not None:
-            percent = 100.0 * self.total / self.max_score if self.max_score else 0.0
-            text = f"{self.total:g}/{self.max_score:g} ({percent:.0f}%)"
-            return text + (f", {self.status}" if self.status != "graded" else "")
-        return self.status
-
-
 def outcome_of(ident: str, data: dict | None, log: str) -> Outcome:
     """A student's row, read from their results.json (its extra_data, written by tools/grade)."""
     outcome = Outcome(ident)
@@ -184,6 +112,13 @@ def outcome_of(ident: str, data: dict | None, log: str) -> Outcome:
         return outcome
     outcome.lessons = info.get("lessons", {})
     outcome.tests = {t["name"]: float(t["score"]) for t in info.get("tests", [])}
+    for test in info.get("tests", []):
+        if test.get("hidden"):
+            outcome.has_hidden = True
+        else:  # what the student may see: the visible tests' scores
+            score, top = outcome.visible.get(test.get("lesson", ""), (0.0, 0.0))
+            outcome.visible[test.get("lesson", "")] = (score + float(test["score"]),
+                                                       top + float(test.get("max_score", 0)))
     statuses = [v.get("status") for v in outcome.lessons.values()]
     gradable = [nn for nn, v in outcome.lessons.items() if v.get("status") != "not gradable"]
     outcome.max_score = sum(float(v.get("max_score", 0)) for v in outcome.lessons.values())
@@ -192,13 +127,13 @@ def outcome_of(ident: str, data: dict | None, log: str) -> Outcome:
     else:
         outcome.status = "graded" if all(s != "not gradable" for s in statuses) else "partly gradable"
         outcome.total = sum(float(outcome.lessons[nn].get("score", 0)) for nn in gradable)
-    outcome.notes.extend(info.get("not_gradable", []))
-    for file in info.get("flagged", {}):
-        outcome.notes.append(f"{file} flagged (its lesson not graded)")
+    shared = list(info.get("not_gradable", []))
+    if "none of your files is an exercise file" in (data or {}).get("output", ""):
+        shared.append("no exercise file in the submission")
+    outcome.notes.extend(shared)
+    outcome.student_notes.extend(shared)
     if info.get("review"):
         outcome.notes.append(f"{len(info['review'])} note(s) for review in results.json")
-    if "none of your files is an exercise file" in (data or {}).get("output", ""):
-        outcome.notes.append("no exercise file in the submission")
     return outcome
 
 
@@ -219,6 +154,39 @@ def _hand_back(path: Path) -> None:
             os.chown(item, int(uid), int(gid), follow_symlinks=False)
         except OSError:
             pass
+
+
+def run_environment(base: dict[str, str]) -> dict[str, str]:
+    """A student's run: Gradescope's limits (RUN_LIMITS) where the instructor set none."""
+    env = dict(base)
+    for key, value in RUN_LIMITS.items():
+        env.setdefault(key, value)
+    return env
+
+
+def setup_environment(base: dict[str, str]) -> dict[str, str]:
+    """setup.sh's environment. As on Gradescope, where setup.sh runs without a student run's limits,
+    RUN_LIMITS' defaults are not added (the limits you set yourself apply), and its builds (the whole
+    library, cold) get ILLUM_GRADE_SETUP_BUILD_TIMEOUT seconds if it is set, else no limit:
+    ILLUM_GRADE_BUILD_TIMEOUT (300 s) is the limit of a student's rebuild."""
+    env = {k: v for k, v in base.items() if k != "ILLUM_GRADE_BUILD_TIMEOUT"}
+    limit = base.get("ILLUM_GRADE_SETUP_BUILD_TIMEOUT", "").strip()
+    if limit:
+        env["ILLUM_GRADE_BUILD_TIMEOUT"] = limit
+    return env
+
+
+def explain_setup_failure(log: str, env: dict[str, str]) -> str:
+    """A sentence naming the time limit setup hit and the variable that changes it ("" if none was hit)."""
+    limit = env.get("ILLUM_GRADE_SETUP_BUILD_TIMEOUT", "").strip()
+    if limit and "the time limit of a build" in log:
+        return (f"setup's build was stopped by its time limit, {limit} s (ILLUM_GRADE_SETUP_BUILD_TIMEOUT); "
+                "raise it, or unset it for no limit")
+    if "did not finish within" in log or "ILLUM_GRADE_DEADLINE" in log:
+        return ("a test of the reference's proof ran out of time on this machine: the limits are "
+                "ILLUM_GRADE_TEST_TIMEOUT (seconds per test), ILLUM_GRADE_TIMEOUT (per test program) and "
+                "ILLUM_GRADE_DEADLINE (the whole run); raise the one the log names")
+    return ""
 
 
 class Slots:
@@ -242,7 +210,8 @@ class Slots:
         for name in ("setup.sh", "run_autograder", "illum/tools/grade"):
             (ag / "source" / name).chmod(0o755)
         (ag / "results").mkdir()
-        env = dict(self.env, ILLUM_AUTOGRADER_ROOT=str(ag), ILLUM_GRADE_USER=self.users[k], CCACHE_BASEDIR=str(ag))
+        env = dict(setup_environment(self.env), ILLUM_AUTOGRADER_ROOT=str(ag), ILLUM_GRADE_USER=self.users[k],
+                   CCACHE_BASEDIR=str(ag))
         done = subprocess.run(["bash", str(ag / "source" / "setup.sh")], env=env, stdout=subprocess.PIPE,
                               stderr=subprocess.STDOUT, text=True, errors="replace", check=False)
         if done.returncode == 0:
@@ -286,14 +255,11 @@ def grade_one(slots: Slots, k: int, submission: Submission, out: Path, timeout: 
     else:
         upload.mkdir()
         shutil.copyfile(submission.path, upload / submission.path.name)
-    env = dict(slots.env, ILLUM_AUTOGRADER_ROOT=str(ag), ILLUM_GRADE_USER=slots.users[k])
+    env = dict(run_environment(slots.env), ILLUM_AUTOGRADER_ROOT=str(ag), ILLUM_GRADE_USER=slots.users[k])
     start = time.monotonic()
-    try:
-        done = subprocess.run(["bash", str(ag / "source" / "run_autograder")], env=env, stdout=subprocess.PIPE,
-                              stderr=subprocess.STDOUT, timeout=timeout, check=False)
-        log = done.stdout.decode("utf-8", errors="replace")
-    except subprocess.TimeoutExpired as expired:
-        log = (expired.stdout or b"").decode("utf-8", errors="replace") + f"\nrun_autograder took over {timeout:g} s\n"
+    log, stopped = run_limited(["bash", str(ag / "source" / "run_autograder")], env, timeout)
+    if stopped:
+        log += f"\n{stopped}\n"
     seconds = time.monotonic() - start
     target = out / submission.ident
     target.mkdir(parents=True, exist_ok=True)
@@ -309,103 +275,30 @@ def grade_one(slots: Slots, k: int, submission: Submission, out: Path, timeout: 
             data = None
     write_text(target / "grader.log", log[-2_000_000:])
     outcome = outcome_of(submission.ident, data, log)
+    if stopped:
+        outcome.notes.append(stopped)
     outcome.seconds = seconds
     return outcome
 
 
-def _test_columns(outcomes: list[Outcome]) -> list[str]:
-    seen: dict[str, None] = {}
-    for outcome in outcomes:
-        for name in outcome.tests:
-            seen.setdefault(name, None)
-    return list(seen)
-
-
-def _number(x: float | None) -> str:
-    return "" if x is None else f"{x:g}"
-
-
-def grades_csv(outcomes: list[Outcome], lessons: list[str], roster: Roster | None) -> str:
-    tests = _test_columns(outcomes)
-    extra = [h for h in (roster.headers if roster else []) if h]
-    header = ["id", *[f"roster: {h}" for h in extra], "status", "total", "max", *[f"lesson{nn}" for nn in lessons],
-              *tests, "notes"]
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(header)
-    for o in outcomes:
-        lesson_cells = []
-        for nn in lessons:
-            info = o.lessons.get(nn)
-            if info is None:
-                lesson_cells.append("")
-            elif info.get("status") == "not gradable":
-                lesson_cells.append("not gradable")
-            else:
-                lesson_cells.append(_number(float(info.get("score", 0))))
-        test_cells = []
-        for name in tests:
-            lesson = re.match(r"lesson(\d\d)", name)
-            gone = lesson and o.lessons.get(lesson.group(1), {}).get("status") == "not gradable"
-            test_cells.append("" if gone or name not in o.tests else _number(o.tests[name]))
-        writer.writerow([o.ident, *[o.roster.get(h, "") for h in extra], o.status, _number(o.total),
-                         _number(o.max_score) if o.lessons else "", *lesson_cells, *test_cells, "; ".join(o.notes)])
-    return buffer.getvalue()
-
-
-def _feedback(o: Outcome) -> str:
-    if o.status == "missing":
-        return "no submission"
-    if o.status in ("not gradable", "grader error"):
-        return f"{o.status}: " + ("; ".join(o.notes) or "see the grader's log")
-    parts = [f"{o.total:g}/{o.max_score:g}"] + [
-        f"lesson {nn}: " + (v.get("status") if v.get("status") == "not gradable" else
-                            f"{float(v.get('score', 0)):g}/{float(v.get('max_score', 0)):g}")
-        for nn, v in sorted(o.lessons.items())]
-    return "; ".join(parts + o.notes)
-
-
-def _pick(row: dict[str, str], *names: str) -> str:
-    """The value of the first of ``names`` (in that order) that the row has and fills."""
-    by_name = {_normal(k): v for k, v in row.items() if v}
-    return next((by_name[_normal(n)] for n in names if _normal(n) in by_name), "")
-
-
-def moodle_csv(outcomes: list[Outcome], roster: Roster | None) -> str:
-    """Moodle's grade import (Grades > Import > CSV file): a user column to map (e-mail, id number or
-    user name), "Grade" mapped to the assignment's grade item, "Feedback comments" to its feedback."""
-    identity = "Email address" if roster and roster.email else "ID number" if roster else "Username"
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow([identity, "Full name", "Grade", "Feedback comments"])
-    for o in outcomes:
-        if roster and roster.email:
-            who = o.roster.get(roster.email, "") or o.ident
-        elif roster:
-            who = next((o.roster.get(k, "") for k in roster.keys if o.roster.get(k)), o.ident)
-        else:
-            who = o.ident
-        name = _pick(o.roster, "full name", "name", "student", "nombre") or _pick(o.roster, "first name")
-        grade = _number(o.total) if o.status in ("graded", "partly gradable") else ""
-        writer.writerow([who, name, grade, _feedback(o)])
-    return buffer.getvalue()
-
-
-def canvas_csv(outcomes: list[Outcome], roster: Roster | None, assignment: str) -> str:
-    """Canvas's gradebook import: Student, ID, SIS User ID, SIS Login ID, Section, then the assignment's
-    column (Canvas matches students on these; a "Points Possible" row gives the maximum)."""
-    buffer = io.StringIO()
-    writer = csv.writer(buffer, lineterminator="\n")
-    writer.writerow(["Student", "ID", "SIS User ID", "SIS Login ID", "Section", assignment])
-    maximum = max((o.max_score for o in outcomes), default=0.0)
-    writer.writerow(["Points Possible", "", "", "", "", _number(maximum)])
-    for o in outcomes:
-        row = o.roster
-        grade = _number(o.total) if o.status in ("graded", "partly gradable") else ""
-        writer.writerow([_pick(row, "student", "name") or o.ident, _pick(row, "id"), _pick(row, "sis user id"),
-                         _pick(row, "sis login id", "login", "username") or (o.ident if not row else ""),
-                         _pick(row, "section"), grade])
-    return buffer.getvalue()
+def run_limited(command: list[str], env: dict[str, str], timeout: float) -> tuple[str, str]:
+    """(output, "" or why it was stopped): ``command`` in a session of its own, so that at the limit
+    everything it started is stopped with it (killing bash alone would leave tools/grade running and
+    the output pipe open)."""
+    process = subprocess.Popen(command, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+                               stdin=subprocess.DEVNULL, start_new_session=True)
+    stopped = ""
+    try:
+        output, _ = process.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        stopped = (f"run_autograder did not finish within {timeout:g} s, the time limit of one submission "
+                   "(ILLUM_GRADE_BATCH_TIMEOUT), and was stopped")
+        try:
+            os.killpg(process.pid, signal.SIGKILL)
+        except OSError:
+            pass
+        output, _ = process.communicate()
+    return output.decode("utf-8", errors="replace"), stopped
 
 
 def grade_batch(root: Path, args, lessons: list[str]) -> int:
@@ -413,8 +306,42 @@ def grade_batch(root: Path, args, lessons: list[str]) -> int:
 
     try:
         return _grade_batch(root, args, lessons)
-    except BatchError as error:
+    except (BatchError, RosterError) as error:
         raise UsageError(str(error)) from error
+
+
+def _seconds(name: str, default: float | None) -> float | None:
+    """A time limit from the environment, checked before anything is built."""
+    text = os.environ.get(name, "").strip()
+    if not text:
+        return default
+    try:
+        value = float(text)
+    except ValueError:
+        value = 0.0
+    if not value > 0 or value == float("inf"):
+        raise BatchError(f"{name}={text}: not a number of seconds above 0 (unset it for the default)")
+    return value
+
+
+def _roster_rows(roster: Roster, outcomes: list[Outcome], matched: dict, unmatched: list[Submission]) -> list[Outcome]:
+    """The roster's rows in its order (a student without a submission is ``missing``), then the
+    submissions no row matches."""
+    by_ident = {o.ident: o for o in outcomes}
+    rows = []
+    for index, row in enumerate(roster.rows):
+        if index in matched:
+            outcome = by_ident[matched[index].ident]
+        else:
+            outcome = Outcome(next((v for r in ("username", "email", "idnumber", "id") if (v := roster.value(row, r))),
+                                   f"line {roster.lines[index]}"), status="missing")
+        outcome.roster, outcome.line = row, roster.lines[index]
+        rows.append(outcome)
+    for submission in unmatched:
+        outcome = by_ident[submission.ident]
+        outcome.notes.append("not in the roster")
+        rows.append(outcome)
+    return rows
 
 
 def _grade_batch(root: Path, args, lessons: list[str]) -> int:
@@ -424,15 +351,22 @@ def _grade_batch(root: Path, args, lessons: list[str]) -> int:
         raise BatchError(f"--out {out} is inside the submissions folder; put the grades elsewhere")
     if out.exists() and (not out.is_dir() or (any(out.iterdir()) and not (out / MARKER).exists())):
         raise BatchError(f"--out {out} exists and was not written by tools/grade --batch; choose another folder")
+    timeout = _seconds("ILLUM_GRADE_BATCH_TIMEOUT", BATCH_TIMEOUT)
+    _seconds("ILLUM_GRADE_SETUP_BUILD_TIMEOUT", None)
     roster = read_roster(args.roster) if args.roster else None
     submissions, skipped = discover(submissions_dir)
     if not submissions and roster is None:
         raise BatchError(f"--batch {submissions_dir}: no submission (a folder or a .zip per student)")
+    # Matched now, not after an hour of grading: a roster that would lose a grade stops the command here.
+    matched, unmatched = roster.match(submissions) if roster is not None else ({}, [])
     jobs = _jobs(args.jobs, len(submissions))
     privileged = os.geteuid() == 0
     say = lambda text: print(f"tools/grade --batch: {text}", file=sys.stderr, flush=True)  # noqa: E731
     for line in skipped:
         say(f"skipped {line}")
+    for submission in unmatched:
+        say(f"{submission.ident}: no row of the roster matches this submission; it is graded and listed last in "
+            "grades.csv" + (f", and left out of grades-{args.format}.csv" if args.format else ""))
     if not privileged:
         say("WARNING: not running as root, so each submission runs as you, not as a user of its own: a hostile "
             "submission could read or change your files. Grade untrusted work with sudo (docs/grading.md, "
@@ -448,17 +382,21 @@ def _grade_batch(root: Path, args, lessons: list[str]) -> int:
     start = time.monotonic()
     try:
         zip_path = work / "autograder.zip"
-        pack_autograder(root, zip_path, lessons, args.hidden)
+        try:
+            pack_autograder(root, zip_path, lessons, args.hidden)
+        except (ValueError, OSError) as error:
+            raise BatchError(f"the autograder could not be packed: {error}") from None
         cores = os.cpu_count() or 1
         env = dict(os.environ, PYTHONDONTWRITEBYTECODE="1",
                    CMAKE_BUILD_PARALLEL_LEVEL=os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL", str(max(1, cores // jobs))))
-        for key, value in RUN_LIMITS.items():
-            env.setdefault(key, value)
         if shutil.which("ccache"):  # each worker's tree at the same place under its base: they share objects
             env["CCACHE_NOHASHDIR"] = "1"
         slots = Slots(work, jobs, zip_path, env)
+        limit = env.get("ILLUM_GRADE_SETUP_BUILD_TIMEOUT", "").strip()
         say(f"preparing the grader for lessons {', '.join(lessons)} in {jobs} worker(s): setup.sh builds and "
-            "proves the reference, as on Gradescope")
+            "proves the reference, as on Gradescope (its builds: "
+            + (f"{limit} s each, ILLUM_GRADE_SETUP_BUILD_TIMEOUT)" if limit else
+               "no time limit; ILLUM_GRADE_SETUP_BUILD_TIMEOUT sets one)"))
         # The first worker alone: the others then find the library's objects in ccache, where it is installed.
         prepared = [slots.prepare(0)]
         if prepared[0][0] == 0 and jobs > 1:
@@ -468,11 +406,12 @@ def _grade_batch(root: Path, args, lessons: list[str]) -> int:
         (out / "setup.log").chmod(0o600)
         for k, (status, log) in enumerate(prepared):
             if status != 0:
-                say(f"setup.sh failed in worker {k + 1} (its log: {out / 'setup.log'}):\n{log[-3000:]}")
-                write_text(out / "setup.log", log)
+                why = explain_setup_failure(log, env)
+                say(f"setup.sh failed in worker {k + 1} (its log: {out / 'setup.log'}):\n{log[-3000:]}"
+                    + (f"\ntools/grade --batch: {why}" if why else ""))
+                write_text(out / "setup.log", log + (f"\n{why}\n" if why else ""))
                 return 2
         say(f"ready in {time.monotonic() - start:.0f} s; grading {len(submissions)} submission(s)")
-        timeout = float(os.environ.get("ILLUM_GRADE_BATCH_TIMEOUT", "1200"))
         done_count = 0
         count_lock = threading.Lock()
 
@@ -498,37 +437,21 @@ def _grade_batch(root: Path, args, lessons: list[str]) -> int:
         if not args.work_dir:
             shutil.rmtree(work, ignore_errors=True)
 
-    rows: list[Outcome] = []
-    if roster is not None:
-        matched, unmatched = roster.match(submissions)
-        by_ident = {o.ident: o for o in outcomes}
-        for index, row in enumerate(roster.rows):
-            if index in matched:
-                outcome = by_ident[matched[index].ident]
-            else:
-                outcome = Outcome(_pick(row, "sis login id", "login", "username", "user", "email", "e-mail", "id",
-                                        "student id", *roster.keys) or f"row {index + 2}", status="missing")
-            outcome.roster = row
-            rows.append(outcome)
-        for submission in unmatched:
-            outcome = by_ident[submission.ident]
-            outcome.notes.append("not in the roster")
-            rows.append(outcome)
-            say(f"{submission.ident}: no row of the roster matches this submission")
-    else:
-        rows = outcomes
-    write_text(out / "grades.csv", grades_csv(rows, lessons, roster))
-    written = [out / "grades.csv"]
+    rows = _roster_rows(roster, outcomes, matched, unmatched) if roster is not None else outcomes
+    files = {"grades.csv": grades_rows(rows, lessons, roster)}
+    left_out: list[str] = []
     if args.format == "moodle":
-        write_text(out / "grades-moodle.csv", moodle_csv(rows, roster))
-        written.append(out / "grades-moodle.csv")
+        files["grades-moodle.csv"], left_out = moodle_rows(rows, roster, args.assignment)
     elif args.format == "canvas":
-        write_text(out / "grades-canvas.csv", canvas_csv(rows, roster, args.assignment))
-        written.append(out / "grades-canvas.csv")
-    for path in written:
-        path.chmod(0o600)
+        files["grades-canvas.csv"], left_out = canvas_rows(rows, roster, args.assignment)
+    for name, table in files.items():
+        write_text(out / name, csv_text(table))
+        (out / name).chmod(0o600)
+    for line in left_out:
+        say(f"left out of grades-{args.format}.csv: {line}")
     _hand_back(out)
     counts = {status: sum(o.status == status for o in rows) for status in STATUS_ORDER}
     say(f"{len(submissions)} submission(s) in {time.monotonic() - start:.0f} s: "
-        + ", ".join(f"{n} {status}" for status, n in counts.items() if n) + f"; wrote {', '.join(map(str, written))}")
+        + ", ".join(f"{n} {status}" for status, n in counts.items() if n)
+        + f"; wrote {', '.join(str(out / name) for name in files)}")
     return 1 if counts["grader error"] else 0

@@ -116,7 +116,8 @@ def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = 
                 print(f"\n[... build output cut; {total} bytes in all ...]", file=sys.stderr, flush=True)
         text += tail.decode("utf-8", errors="replace")
     if timed_out.is_set():
-        text += f"\nthe build did not finish within {runner.timeout:g} s and was stopped\n"
+        text += (f"\nthe build did not finish within {runner.timeout:g} s, the time limit of a build "
+                 "(ILLUM_GRADE_BUILD_TIMEOUT), and was stopped\n")
     return StepResult(status == 0 and not timed_out.is_set(), text, timed_out.is_set())
 
 

@@ -36,36 +36,145 @@ from .project import STUDENT_EDITION_MARKER
 _GENERATED = ("build", "out")
 
 
-def _git_toplevel(source: Path) -> Path | None:
+def _git(source: Path, *arguments: str) -> subprocess.CompletedProcess | None:
+    """``git -C source ...``, or None where there is no git program (the tree still packs: see
+    ``tracked_files``)."""
     try:
-        completed = subprocess.run(["git", "-C", str(source), "rev-parse", "--show-toplevel"],
-                                   capture_output=True, text=True, check=False)
+        return subprocess.run(["git", "-C", str(source), *arguments], capture_output=True, check=False)
     except OSError:
         return None
-    if completed.returncode != 0:
+
+
+def _git_toplevel(source: Path) -> Path | None:
+    completed = _git(source, "rev-parse", "--show-toplevel")
+    if completed is None or completed.returncode != 0:
         return None
-    return Path(completed.stdout.strip()).resolve()
+    return Path(completed.stdout.decode("utf-8", errors="replace").strip()).resolve()
 
 
 def _git_describe(source: Path) -> str:
-    completed = subprocess.run(["git", "-C", str(source), "describe", "--always", "--dirty"],
-                               capture_output=True, text=True, check=False)
-    return completed.stdout.strip() if completed.returncode == 0 else ""
+    completed = _git(source, "describe", "--always", "--dirty")
+    return completed.stdout.decode("utf-8", errors="replace").strip() if completed and completed.returncode == 0 else ""
 
 
 def tracked_files(source: Path) -> list[str]:
     """POSIX paths relative to ``source``: ``git ls-files`` in a checkout (so
-    untracked experiments never leak to students), else every file."""
+    untracked experiments never leak to students); else (no checkout, no git
+    program, or git refusing a checkout of another user under sudo) the files
+    of the tree less what its ``.gitignore`` files ignore, as ``git add -A``
+    would take them."""
     source = source.resolve()
     if _git_toplevel(source) == source:
-        completed = subprocess.run(["git", "-C", str(source), "ls-files", "-z"],
-                                   capture_output=True, check=True)
-        return sorted(p for p in completed.stdout.decode("utf-8").split("\0") if p)
-    files = []
+        completed = _git(source, "ls-files", "-z")
+        if completed is not None and completed.returncode == 0:
+            return sorted(p for p in completed.stdout.decode("utf-8").split("\0") if p)
+    return _walk_files(source)
+
+
+@dataclass
+class _Ignore:
+    """One pattern of a ``.gitignore`` (gitignore(5)): ``base`` is the folder of its file."""
+
+    base: str
+    pattern: re.Pattern
+    negated: bool
+    folders_only: bool
+    anchored: bool  # a slash before its end: matched against the path from ``base``, else the name
+
+    def matches(self, relative: str, is_folder: bool) -> bool:
+        if self.folders_only and not is_folder:
+            return False
+        if self.base:
+            if not relative.startswith(self.base + "/"):
+                return False
+            relative = relative[len(self.base) + 1:]
+        return bool(self.pattern.fullmatch(relative if self.anchored else relative.rsplit("/", 1)[-1]))
+
+
+def _glob_regex(glob: str) -> re.Pattern:
+    """gitignore's glob: ``*`` and ``?`` stop at a slash, ``**`` crosses folders, ``[...]`` a class."""
+    out, i = [], 0
+    while i < len(glob):
+        if glob.startswith("**/", i):
+            out.append("(?:.*/)?")
+            i += 3
+        elif glob.startswith("/**", i) and i + 3 == len(glob):
+            out.append("/.*")
+            i += 3
+        elif glob[i] == "*":
+            out.append(".*" if glob.startswith("**", i) else "[^/]*")
+            i += 2 if glob.startswith("**", i) else 1
+        elif glob[i] == "?":
+            out.append("[^/]")
+            i += 1
+        elif glob[i] == "[" and "]" in glob[i + 2:]:
+            end = glob.index("]", i + 2)
+            body = glob[i + 1:end]
+            out.append("[" + ("^" + body[1:] if body[:1] == "!" else body) + "]")
+            i = end + 1
+        elif glob[i] == "\\" and i + 1 < len(glob):
+            out.append(re.escape(glob[i + 1]))
+            i += 2
+        else:
+            out.append(re.escape(glob[i]))
+            i += 1
+    return re.compile("".join(out))
+
+
+def _read_ignores(folder: Path, base: str) -> list[_Ignore]:
+    try:
+        lines = (folder / ".gitignore").read_text(encoding="utf-8").splitlines()
+    except (OSError, UnicodeDecodeError):
+        return []
+    ignores = []
+    for line in lines:
+        line = line.rstrip()
+        if not line or line.startswith("#"):
+            continue
+        negated = line.startswith("!")
+        line = line[1:] if negated or line.startswith("\\") else line
+        folders_only = line.endswith("/")
+        line = line.rstrip("/")
+        anchored = "/" in line
+        ignores.append(_Ignore(base, _glob_regex(line.lstrip("/")), negated, folders_only, anchored))
+    return ignores
+
+
+def _ignored(ignores: list[_Ignore], relative: str, is_folder: bool) -> bool:
+    verdict = False
+    for ignore in ignores:  # the last pattern that matches decides, as in git
+        if ignore.matches(relative, is_folder):
+            verdict = not ignore.negated
+    return verdict
+
+
+def _walk_files(source: Path) -> list[str]:
+    """The files under ``source`` that ``.gitignore`` files (at any depth) do not ignore; ``.git`` and
+    the generated folders at the top (build/, out/) are never taken, whatever .gitignore says."""
+    files: list[str] = []
+    ignores_of: dict[str, list[_Ignore]] = {}
     for folder, subfolders, names in os.walk(source):
-        relative = Path(folder).relative_to(source)
-        subfolders[:] = [d for d in subfolders if not (relative == Path(".") and d in (".git", *_GENERATED))]
-        files.extend((relative / name).as_posix() for name in names)
+        relative = Path(folder).relative_to(source).as_posix()
+        relative = "" if relative == "." else relative
+        parent = relative.rsplit("/", 1)[0] if "/" in relative else ""
+        ignores = (ignores_of.get(parent, []) if relative else []) + _read_ignores(Path(folder), relative)
+        ignores_of[relative] = ignores
+
+        def path(name: str) -> str:
+            return f"{relative}/{name}" if relative else name
+
+        kept = []
+        for name in sorted(subfolders):
+            if name == ".git" or (not relative and name in _GENERATED):
+                continue
+            if os.path.islink(os.path.join(folder, name)):  # git keeps a link as a file
+                if not _ignored(ignores, path(name), False):
+                    files.append(path(name))
+            elif not _ignored(ignores, path(name), True):
+                kept.append(name)
+        subfolders[:] = kept
+        # A worktree's .git is a file naming the repository.
+        files.extend(path(name) for name in names if name != ".git" and not _ignored(ignores, path(name), False))
     return sorted(files)
 
 

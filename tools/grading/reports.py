@@ -49,10 +49,8 @@ class GradeRun:
     submission: dict[str, Any] | None = None
     # False when the build failure is not the student's (a broken tree).
     blame_student: bool = True
-    # Exercise files the suspicious-code checks flagged (file -> what was found); every test of
-    # their lesson fails, saying why (suspicious.py).
-    flagged: dict[str, list[str]] = field(default_factory=dict)
-    # For instructors only: findings that fail nothing, tampering the runner saw, processes killed.
+    # For instructors only: what the suspicious-code checks noticed (they advise, they never
+    # decide), tampering the runner saw, processes killed, the grader's own problems.
     review: list[str] = field(default_factory=list)
 
     def lesson_of(self, file: str) -> str:
@@ -60,11 +58,9 @@ class GradeRun:
         return match.group(1) if match else ""
 
     def lesson_status(self, lesson: str) -> str:
-        """"graded", "not gradable" (a file of the lesson did not compile or link) or "flagged"."""
+        """"graded", "not gradable" (a file of the lesson did not compile or link) or "grader error"."""
         if self.build_failed:
             return "not gradable" if self.blame_student else "grader error"
-        if any(self.lesson_of(f) == lesson for f in self.flagged):
-            return "flagged"
         if any(self.lesson_of(f) == lesson for f in self.fallbacks):
             return "not gradable"
         return "graded"
@@ -234,18 +230,6 @@ def submission_summary(run: GradeRun) -> str:
     return "\n".join(lines)
 
 
-def flagged_summary(run: GradeRun) -> str:
-    """Markdown: the files flagged by the suspicious-code checks, and what that costs."""
-    if not run.flagged:
-        return ""
-    lines = ["**Some of your files do more than compute, so their lessons were not graded** (every test of the "
-             "lesson fails). Exercise code may only compute: no processes, no exit(), no files, no access to the "
-             "tests or the program around it. What was found:"]
-    for file, findings in run.flagged.items():
-        lines.append(f"- `{file}`: " + "; ".join(findings[:6]) + (" …" if len(findings) > 6 else ""))
-    return "\n".join(lines)
-
-
 def machine_summary(run: GradeRun) -> dict[str, Any]:
     """results.json's ``extra_data``: what tools/grade --batch reads back (per lesson, flags, build problems)."""
     lessons = {}
@@ -259,7 +243,6 @@ def machine_summary(run: GradeRun) -> dict[str, Any]:
                    "max_score": r.points} for r in run.results],
         "not_gradable": ([f"{f} did not {'link' if f in run.link_failures else 'compile'}" for f in run.fallbacks]
                          if not run.build_failed else ["the build failed"] if run.blame_student else []),
-        "flagged": {f: list(v) for f, v in run.flagged.items()},
         "review": list(run.review),
         "grader_error": bool(run.build_failed and not run.blame_student),
     }}
@@ -302,10 +285,6 @@ def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any
             "extra_data": machine_summary(run),
         }
     tests = []
-    for flagged_file, findings in run.flagged.items():
-        tests.append({"name": f"flagged: {flagged_file} (its lesson was not graded)", "score": 0, "max_score": 0,
-                      "status": "failed", "output": _truncate("\n".join(findings)), "output_format": "text",
-                      "visibility": "visible"})
     for failed_file, output in run.fallbacks.items():
         what = "did not link" if failed_file in run.link_failures else "did not compile"
         tests.append(_build_entry(f"build: {failed_file} {what} (graded as the stub)", output))
@@ -326,7 +305,7 @@ def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any
             "visibility": HIDDEN_VISIBILITY if result.hidden else "visible",
         })
     tests.extend(_review_entries(run))
-    parts = [summary, flagged_summary(run)]
+    parts = [summary]
     if run.fallbacks:
         linked = run.link_failures & set(run.fallbacks)
         what = ("did not compile" if not linked else "did not link" if linked == set(run.fallbacks)

@@ -5,6 +5,7 @@
 #include <cerrno>
 #include <csignal>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <mutex>
 #include <optional>
@@ -688,6 +689,67 @@ void check_output_folder(const fs::path& folder, const std::string& option) {
     }
     ::close(fd);
   }
+}
+
+std::vector<std::string> remove_stale_run_files(const fs::path& folder, const std::string& option) {
+  std::vector<std::string> notes;
+  std::error_code ec;
+  fs::path real = fs::weakly_canonical(absolute_normal(folder), ec);
+  if (ec) real = absolute_normal(folder);
+  if (real.filename().empty()) return notes;  // the root: nothing is ever staged beside it
+  // Where ensure_staging puts them: beside the folder, or inside it when it could not write beside.
+  const std::pair<fs::path, std::string> homes[] = {
+      {real.parent_path(), "." + real.filename().string() + "."}, {real, "."}};
+  for (const auto& [home, prefix] : homes) {
+    const fs::path lock = home / (prefix + "illum-lock");
+    std::vector<fs::path> stale;
+    for (const auto& entry : fs::directory_iterator(home, ec)) {
+      struct stat st {};
+      if (entry.path().filename().string().rfind(prefix + "illum-staging-", 0) == 0 &&
+          ::lstat(entry.path().c_str(), &st) == 0 && S_ISDIR(st.st_mode) && st.st_uid == ::geteuid())
+        stale.push_back(entry.path());
+    }
+    struct stat held {
+    }, named{};
+    const bool has_lock = ::lstat(lock.c_str(), &named) == 0;
+    // A lock that is no regular file (a planted link) is left for the run's own lock to refuse.
+    if ((stale.empty() && !has_lock) || (has_lock && !S_ISREG(named.st_mode))) continue;
+    const int fd = ::open(lock.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0666);
+    if (fd < 0) continue;  // a folder this user cannot write: the run says so if it writes there
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int e = errno;
+      const std::string owner = lock_owner(fd);
+      ::close(fd);
+      if (e == EWOULDBLOCK) fail(in_use(option, folder, owner));
+      continue;
+    }
+    // Ours now, so whoever made these is gone (the kernel drops an flock with its process).
+    const std::string owner = has_lock ? lock_owner(fd) : "unknown";
+    bool finished = false;
+    std::string names;
+    for (const fs::path& s : stale) {
+      if (fs::exists(s / commit_marker, ec)) try {  // a complete run killed while moving in: finish it
+          move_into(s, real, folder);
+          finished = true;
+        } catch (const std::runtime_error&) {
+        }
+      fs::remove_all(s, ec);
+      names += (names.empty() ? "" : ", ") + s.string();
+    }
+    if (has_lock) names += (names.empty() ? "" : " and ") + lock.string();
+    if (::fstat(fd, &held) == 0 && ::lstat(lock.c_str(), &named) == 0 && held.st_ino == named.st_ino)
+      ::unlink(lock.c_str());
+    ::close(fd);
+    const bool digits = std::all_of(owner.begin(), owner.end(), [](char c) { return c >= '0' && c <= '9'; });
+    const long long pid = digits && owner.size() < 10 ? std::atoll(owner.c_str()) : 0;
+    const bool gone = pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH;
+    notes.push_back("removed " + names + ", left by a run (PID " + owner +
+                    (gone ? ", no longer running" : "") + ") that was killed before it finished; " +
+                    folder.string() +
+                    (finished ? " now holds that run's complete output, which it was moving in"
+                              : " is as that run found it"));
+  }
+  return notes;
 }
 
 void check_replaceable(const fs::path& path, const std::string& option) {

@@ -28,6 +28,7 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace illum {
 
@@ -58,6 +59,15 @@ void check_replaceable(const std::filesystem::path& path, const std::string& opt
 // ancestor, and not locked by another run ("in use by PID 1234").
 // Creates nothing. Throws std::runtime_error naming `option`.
 void check_output_folder(const std::filesystem::path& folder, const std::string& option);
+
+// What runs on `folder` killed without warning (SIGKILL, a power cut) left beside it or in it:
+// their staging folders (".NAME.illum-staging-…"; one that was being moved in is finished) and
+// their lock (".NAME.illum-lock"), removed under the folder's lock, which no live run may hold
+// (std::runtime_error "in use by another run (PID 1234)"). Returns one sentence for each place
+// cleaned, naming what was removed and the PID its lock held; empty when nothing was left.
+// For the start of a run and `illum clean`.
+std::vector<std::string> remove_stale_run_files(const std::filesystem::path& folder,
+                                                const std::string& option);
 
 // One per process at a time (opening a second throws std::logic_error).
 class WriteTransaction {

@@ -59,6 +59,9 @@ std::string read_input_file(const std::filesystem::path& file, const std::string
     if (e == ENOENT && ::lstat(file.c_str(), &st) == 0 && S_ISLNK(st.st_mode))
       throw InputFileError("cannot open the " + what +
                            ": it is a symbolic link to a file that does not exist");
+    if (e == ELOOP)
+      throw InputFileError("cannot open the " + what +
+                           ": a symbolic link on its path leads back to itself (a link loop)");
     throw InputFileError("cannot open the " + what + ": " + std::strerror(e));
   }
   struct stat st {};

@@ -221,6 +221,10 @@ void census_statement(std::size_t line, const std::vector<std::string_view>& tok
                          std::to_string(n));
     for (std::size_t i = 0; i < n; ++i) {
       const double value = parse_number(tokens[i + 1], line, (std::string("vertex ") + axis_name(i)).c_str());
+      if (i < 3 && !(std::abs(value) <= max_obj_coordinate))
+        throw ObjError(line, std::string("vertex ") + axis_name(i) + " '" + shown(tokens[i + 1]) +
+                                 "' lies beyond ±1e150, the bound of every coordinate of a scene (the "
+                                 "squared distances and areas computed from it would overflow a double)");
       if (xyz && i < 3) (*xyz)[i] = value;
     }
     if (++census.count[0] > max_elements) throw ObjError(line, "more than 2^32 - 1 vertices");
@@ -266,6 +270,9 @@ void census_statement(std::size_t line, const std::vector<std::string_view>& tok
 }  // namespace
 
 TriangleMesh read_obj(std::string_view text) {
+  // A byte-order mark, which some Windows editors put first: it is no statement (a JSON scene with
+  // one is read too).
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
   // Pass 1: every line checked and counted; nothing allocated per element.
   Census census;
   std::vector<Corner> corners;

@@ -42,8 +42,13 @@ class ObjError : public std::runtime_error {
 // convex faces exporters write); a face with a repeated or collinear
 // corner that makes a fan triangle of zero area is refused. When every
 // corner names a normal, corner_normals holds them (unit), else it is empty.
-// An index must fit the vertices a file defines (at most 2^32 − 1).
+// An index must fit the vertices a file defines (at most 2^32 − 1); a vertex's x, y and z lie
+// within ±max_obj_coordinate. A UTF-8 byte-order mark at the start of the file is skipped.
 TriangleMesh read_obj(std::string_view text);
+
+// The largest |coordinate| of a vertex, as of every point of a scene (a camera's eye, a sphere's
+// centre): the squared distances and the areas computed from them then stay within a double.
+inline constexpr double max_obj_coordinate = 1e150;
 
 // Bytes a scene holds per triangle of a mesh: the indices, three corner
 // normals and the acceleration structure built over it. Measured: `illum
