@@ -2,7 +2,7 @@
 // buffers and delta form factors unfolded, the row they add up to, and its
 // error against the exact factor from the centroid (Lambert's contour
 // formula) as the resolution changes (GET /api/hemicube/study).
-import { api, decodeBase64, displayNumber, el, loadThree, logChart, setStatus, threeMissing, Viewer } from './lab_util.js';
+import { afterNextFrame, api, decodeBase64, displayNumber, el, loadThree, logChart, setStatus, threeMissing, Viewer } from './lab_util.js';
 import { heat, PatchMesh } from './lab_mesh.js';
 
 // lib/illum/radiosity/hemicube.cpp's hemicube_pixel and to_face, for the unfolded drawing.
@@ -74,10 +74,10 @@ export class HemicubeView {
     for (const r of [8, 16, 32, 64, 128, 256, 512]) this.resolution.append(el('option', { value: r, text: `${r} pixels` }));
     this.resolution.value = '64';
     this.patchInput = document.getElementById('hc-patch');
-    document.getElementById('hc-show').addEventListener('click', () => this.show());
-    this.resolution.addEventListener('change', () => this.show());
-    this.patchInput.addEventListener('change', () => { this.patchInput.dataset.chosen = 'true'; this.show(); });
-    for (const id of ['hc-scene', 'hc-patches']) document.getElementById(id).addEventListener('change', () => this.show());
+    document.getElementById('hc-show').addEventListener('click', e => this.show(e.timeStamp));
+    this.resolution.addEventListener('change', e => this.show(e.timeStamp));
+    this.patchInput.addEventListener('change', e => { this.patchInput.dataset.chosen = 'true'; this.show(e.timeStamp); });
+    for (const id of ['hc-scene', 'hc-patches']) document.getElementById(id).addEventListener('change', e => this.show(e.timeStamp));
     this.threeReady = info.three ? loadThree().catch(() => null) : Promise.resolve(null);
     this.busy = Promise.resolve();
   }
@@ -101,7 +101,7 @@ export class HemicubeView {
         if (hit) {
           this.patchInput.value = this.patchMesh.patchOfTriangle[hit.faceIndex];
           this.patchInput.dataset.chosen = 'true';
-          this.show();
+          this.show(e.timeStamp);
         }
       });
     }
@@ -117,12 +117,13 @@ export class HemicubeView {
     this.patchMesh.paintPatches(i => m.emission[3 * i] > 0 ? [1, 0.9, 0.6] : [0, 1, 2].map(k => 0.15 + 0.8 * m.reflectance[3 * i + k]));
   }
 
-  show() {
-    this.busy = this.busy.then(() => this.place(), () => this.place());
+  // `askedAt`: the event's time; the status gives the time from it to the frame that shows the row.
+  show(askedAt = performance.now()) {
+    this.busy = this.busy.then(() => this.place(askedAt), () => this.place(askedAt));
     return this.busy;
   }
 
-  async place() {
+  async place(askedAt) {
     this.section.dataset.state = 'placing';
     setStatus(this.status, 'placing the hemicube…');
     try {
@@ -131,15 +132,19 @@ export class HemicubeView {
       this.patchInput.value = patch;
       const res = Number(this.resolution.value);
       const [h, study] = await Promise.all([
-        api('/api/hemicube', { ...this.meshParams(), patch, resolution: res }),
-        api('/api/hemicube/study', { ...this.meshParams(), patch }).catch(e => ({ rows: [], error: e.message }))]);
+        api('/api/hemicube', { ...this.meshParams(), patch, resolution: res }, 'json', { view: 'hemicube' }),
+        api('/api/hemicube/study', { ...this.meshParams(), patch }, 'json', { view: 'hemicube' }).catch(e => ({ rows: [], error: e.message }))]);
       this.draw(h, study);
       this.section.dataset.patch = String(patch);
       this.section.dataset.resolution = String(res);
       this.section.dataset.sum = String(h.sum);
-      setStatus(this.status, `patch ${patch} (${h.surface}), resolution ${res}: the row sums to ${displayNumber(h.sum)} ` +
-        `(1 − Σ = ${displayNumber(1 - h.sum)} of the hemisphere sees no patch); drawn in ${displayNumber(h.seconds * 1000)} ms`);
+      const status = `patch ${patch} (${h.surface}), resolution ${res}: the row sums to ${displayNumber(h.sum)} ` +
+        `(1 − Σ = ${displayNumber(1 - h.sum)} of the hemisphere sees no patch); its hemicube took ${displayNumber(h.seconds * 1000)} ms`;
+      setStatus(this.status, status);
       this.section.dataset.state = 'drawn';
+      const shownAt = await afterNextFrame();
+      if (this.section.dataset.patch === String(patch) && this.section.dataset.resolution === String(res))
+        setStatus(this.status, `${status}, on the screen ${Math.round(shownAt - askedAt)} ms after it was asked for`);
     } catch (e) {
       this.section.dataset.state = 'error';
       setStatus(this.status, e.message, true);

@@ -6,7 +6,7 @@
 // colours, or the shooter's form-factor row; the chart the unshot power.
 // With a reference beside the build, progressive refinement runs there too,
 // shot for shot, and each shot's shooter, row and update are compared.
-import { api, decodeBase64, displayNumber, el, loadThree, logChart, plural, setStatus, threeMissing, Viewer } from './lab_util.js';
+import { afterNextFrame, api, decodeBase64, displayNumber, el, loadThree, logChart, plural, setStatus, threeMissing, Viewer } from './lab_util.js';
 import { compareShot } from './lab_difference.js';
 import { exposureFor, heat, PatchMesh } from './lab_mesh.js';
 
@@ -32,7 +32,7 @@ export class RadiosityView {
     for (const id of ['rad-scene', 'rad-patches', 'rad-resolution', 'rad-omega'])
       document.getElementById(id).addEventListener('change', () => this.start());
     document.getElementById('rad-start').addEventListener('click', () => this.start());
-    for (const n of [1, 10, 100]) document.getElementById(`rad-step-${n}`).addEventListener('click', () => this.step(n));
+    for (const n of [1, 10, 100]) document.getElementById(`rad-step-${n}`).addEventListener('click', e => this.step(n, e.timeStamp));
     this.runButton = document.getElementById('rad-run');
     this.runButton.addEventListener('click', () => this.toggleRun());
     this.paint = document.getElementById('rad-paint');
@@ -128,8 +128,10 @@ export class RadiosityView {
     return r;
   }
 
-  step(n) {
-    if (!this.session) return this.start().then(() => this.session && this.step(n));
+  // `pressedAt`: the press's event time (performance.now's clock); the status gives the time from it
+  // to the frame that shows the step, once that frame is out (the next step need not wait for it).
+  step(n, pressedAt = performance.now()) {
+    if (!this.session) return this.start().then(() => this.session && this.step(n, pressedAt));
     return this.queue(async () => {
       if (!this.session) return;
       this.section.dataset.state = 'stepping';
@@ -153,20 +155,19 @@ export class RadiosityView {
           if (n > 0) this.record(r);
         }
         this.last = r;
-        if (n > 0) {
-          this.timing = `${displayNumber(r.seconds * 1000)} ms in the solver (${displayNumber(r.row_seconds * 1000)} in hemicube rows), ` +
-            `${Math.round(performance.now() - t0)} ms in all`;
-        }
+        if (n > 0) this.timing = `${displayNumber(r.seconds * 1000)} ms in the solver (${displayNumber(r.row_seconds * 1000)} in hemicube rows)`;
         this.repaint();
         this.chartSoon();
         const ms = performance.now() - t0;
         this.section.dataset.steps = String(r.steps);
         this.section.dataset.fraction = String(r.fraction);
-        const unit = UNIT[this.method.value];
-        setStatus(this.status, `${plural(r.steps, unit)}; unshot / emitted ${displayNumber(r.fraction)}` +
-          (r.shooter >= 0 ? `; last ${this.method.value === 'progressive' ? 'shooter' : 'row relaxed'}: patch ${r.shooter} (${this.surface(r.shooter)})` : '') +
-          (r.done ? '; nothing left to shoot' : '') + (this.timing ? `; ${this.timing}` : '') +
-          (r.ambient_error ? `; ambient term: ${r.ambient_error}` : '') + (r.vertex_error ? `; vertex colours: ${r.vertex_error}` : ''));
+        this.showStatus(r);
+        if (n > 0 && !this.running)
+          afterNextFrame().then(shownAt => {
+            if (this.last !== r) return;
+            this.timing += `, on the screen ${Math.round(shownAt - pressedAt)} ms after the press`;
+            this.showStatus(r);
+          });
         this.section.dataset.state = r.done ? 'done' : 'ready';
         document.dispatchEvent(new CustomEvent('lab:radiosity-step', { detail: { steps: r.steps, ms } }));
       } catch (e) {
@@ -180,6 +181,13 @@ export class RadiosityView {
         }
       }
     });
+  }
+
+  showStatus(r) {
+    setStatus(this.status, `${plural(r.steps, UNIT[this.method.value])}; unshot / emitted ${displayNumber(r.fraction)}` +
+      (r.shooter >= 0 ? `; last ${this.method.value === 'progressive' ? 'shooter' : 'row relaxed'}: patch ${r.shooter} (${this.surface(r.shooter)})` : '') +
+      (r.done ? '; nothing left to shoot' : '') + (this.timing ? `; ${this.timing}` : '') +
+      (r.ambient_error ? `; ambient term: ${r.ambient_error}` : '') + (r.vertex_error ? `; vertex colours: ${r.vertex_error}` : ''));
   }
 
   // A step's points in the history, the chart's series and the table.

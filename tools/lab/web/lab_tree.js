@@ -55,7 +55,7 @@ export class TreeView {
     this.planInput.checked = info.settings.plan;
     this.pruneInput.value = info.settings.prune;
     for (const input of [this.sceneSelect, this.depthInput, this.planInput, this.pruneInput])
-      input.addEventListener('change', () => this.loadScene());
+      input.addEventListener('change', e => this.loadScene(e.timeStamp));
     this.image.addEventListener('click', e => this.clicked(e));
     document.getElementById('tree-camera-view').addEventListener('click', () => this.cameraView());
     document.getElementById('tree-depth-down').addEventListener('click', () => this.showDepth(this.shown === null ? this.maxDepth() - 1 : this.shown - 1));
@@ -76,7 +76,8 @@ export class TreeView {
   // The scene's picture and geometry: this build's, or, when its evaluate is not written yet and a
   // reference runs beside it, the reference's (said so over the picture), so that a click still
   // shows the tree to aim for.
-  async loadScene() {
+  // `askedAt`: the change's event time; the status gives the time from it to the frame with the picture.
+  async loadScene(askedAt = performance.now()) {
     if (this.loading) this.loading.abort();
     const loading = this.loading = new AbortController();
     const options = { view: 'tree', signal: loading.signal };
@@ -88,7 +89,6 @@ export class TreeView {
     this.versus.replaceChildren();
     this.details.replaceChildren(el('p', { class: 'muted', text: 'No node selected.' }));
     document.getElementById('tree-marker').hidden = true;
-    const started = performance.now();
     const get = prefix => Promise.all([api(`/api/${prefix}render`, this.settings(), 'blob', options), api(`/api/${prefix}scene`, this.settings(), 'json', options)]);
     let blob, geometry, yoursError = null;
     try {
@@ -126,11 +126,12 @@ export class TreeView {
       this.kinds = [];
       for (const o of geometry.objects) this.kinds[o.index] = o.kind;
       await this.buildScene(geometry);
+      const ms = await afterNextFrame() - askedAt;
       setStatus(this.status, 'preparing the 3D view…');
       await this.warmUp();
       if (loading.signal.aborted) return;
-      setStatus(this.status, `${geometry.scene}: ${this.drawnBy === 'reference' ? "the reference's picture, " : ''}rendered ` +
-        `${geometry.camera.width} × ${geometry.camera.height} in ${Math.round(performance.now() - started)} ms; click a pixel`);
+      setStatus(this.status, `${geometry.scene}: ${this.drawnBy === 'reference' ? "the reference's picture, " : ''}` +
+        `${geometry.camera.width} × ${geometry.camera.height}, on the screen ${Math.round(ms)} ms after it was asked for; click a pixel`);
       this.section.dataset.state = 'ready';
     } catch (e) {
       this.section.dataset.state = 'error';
