@@ -156,7 +156,7 @@ export class RadiosityView {
         }
         this.last = r;
         if (n > 0) this.timing = `${displayNumber(r.seconds * 1000)} ms in the solver (${displayNumber(r.row_seconds * 1000)} in hemicube rows)`;
-        this.repaint();
+        this.repaintSoon();
         this.chartSoon();
         const ms = performance.now() - t0;
         this.section.dataset.steps = String(r.steps);
@@ -291,6 +291,15 @@ export class RadiosityView {
     }
     this.patchMesh.outlinePatch(this.viewer.scene, r.shooter);
     this.viewer.draw();
+  }
+
+  // The picture at most ten times a second, the last step's always: on a CPU's WebGL a picture of
+  // the 2,124-patch box is half of what a shot costs, and steps pressed faster than that (or run)
+  // are seen as they add up.
+  repaintSoon() {
+    const wait = 100 - (performance.now() - (this.repainted || 0));
+    if (wait <= 0) { clearTimeout(this.repaintTimer); this.repaintTimer = null; this.repainted = performance.now(); this.repaint(); return; }
+    if (!this.repaintTimer) this.repaintTimer = setTimeout(() => { this.repaintTimer = null; this.repainted = performance.now(); this.repaint(); }, wait);
   }
 
   // The chart at most about seven times a second, the last step's always (shots pressed or run
