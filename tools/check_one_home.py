@@ -22,9 +22,9 @@ first, so prose may name what code must not do) and reports:
 * in lib/, lessons/ and tools/ (the code every student's machine compiles):
   a compiler extension (__builtin_…, __attribute__, GNU asm, __int128) or an
   operating system's header or call (<unistd.h>, <sys/…>, clock_gettime,
-  isatty, sysconf, std::aligned_alloc, …) outside core/platform, the POSIX
+  isatty, sysconf, std::aligned_alloc, …) outside system/platform, the POSIX
   files and the production code that guards its own (PLATFORM_HOMES below):
-  use core/platform.hpp, whose functions have a fallback everywhere.
+  use system/platform.hpp, whose functions have a fallback everywhere.
 
 Exit 0 when nothing is found, 1 otherwise.
 """
@@ -68,19 +68,20 @@ RULES: list[tuple[re.Pattern[str], str, tuple[str, ...]]] = [
 # What differs between compilers and systems, and the files allowed to hold it (each guards it
 # with a fallback, or is POSIX by design: docs/architecture.md, "Platforms").
 PLATFORM_FOLDERS = ("lib/", "lessons/", "tools/")
-COMPILER_HOMES = ("lib/illum/core/platform.hpp", "lib/illum/core/stopwatch.hpp",
+COMPILER_HOMES = ("lib/illum/system/platform.hpp", "lib/illum/core/stopwatch.hpp",
                   "lib/illum/accel/production/compact_bvh.cpp", "lib/illum/radiosity/form_factor_quadrature.cpp")
-SYSTEM_HOMES = ("lib/illum/core/platform.cpp", "lib/illum/core/atomic_file.cpp", "lib/illum/core/child_process.cpp",
-                "lib/illum/core/input_file.cpp", "lib/illum/core/memory_budget.cpp",
+SYSTEM_HOMES = ("lib/illum/system/platform.cpp", "lib/illum/system/atomic_file.cpp",
+                "lib/illum/system/child_process.cpp", "lib/illum/system/input_file.cpp",
+                "lib/illum/system/memory_budget.cpp",
                 "lib/illum/accel/production/compact_bvh.cpp")
 PLATFORM_RULES: list[tuple[re.Pattern[str], str, tuple[str, ...]]] = [
     (re.compile(r"\b__builtin_\w+|\b__attribute__\b|\basm\s+volatile\b|\b__asm__\b|\b__int128\b|\b__float128\b"
                 r"|\b__extension__\b|\b__declspec\b"),
      "a compiler extension: use standard C++ (<bit>: std::countr_zero, std::popcount) or a macro of "
-     "core/platform.hpp (ILLUM_FLATTEN)", COMPILER_HOMES),
+     "system/platform.hpp (ILLUM_FLATTEN)", COMPILER_HOMES),
     (re.compile(r"#\s*include\s*<(?:unistd|fcntl|dirent|spawn|poll|windows|io|signal)\.h>|#\s*include\s*<sys/"
                 r"|\b(?:clock_gettime|isatty|_isatty|sysconf|aligned_alloc|getrandom|getentropy|syscall)\s*\("),
-     "a call or header of one operating system: use core/platform.hpp (thread_cpu_seconds, "
+     "a call or header of one operating system: use system/platform.hpp (thread_cpu_seconds, "
      "stderr_is_terminal, physical_memory_bytes, random_bytes), aligned operator new or std::filesystem",
      SYSTEM_HOMES),
 ]

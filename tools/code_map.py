@@ -19,9 +19,12 @@ and every lesson text and exercise README holds a generated block between
 
 that links the lesson's text, program, studies and helpers, its library
 pairs (those of the reading list and the exercise's units), its exercise
-files, its test files and its slide deck. tools/task_tables.py --update
-writes the blocks; --check fails when one is stale and when the layout
-breaks a rule below (layout_problems).
+files, its test files and its slide deck. Each deck (slides/NN_topic.md)
+ends with the same block as a slide, "Where the code is", in a few lines
+(deck_slide): the text, the exercise's files and contracts, the program,
+the tests. tools/task_tables.py --update writes the blocks; --check fails
+when one is stale or missing and when the layout breaks a rule below
+(layout_problems).
 """
 from __future__ import annotations
 
@@ -212,6 +215,45 @@ def code_map(root: Path, lesson_nn: str, readme: Path) -> str:
     return f"{BEGIN}\n| what | where |\n|---|---|\n{body}\n{END}"
 
 
+def deck_slide(root: Path, lesson_nn: str) -> str:
+    """The Markdown of the last slide of lesson NN's deck, "Where the code is": the same sources as
+    the texts' block (code_map), in a few lines that fit a slide. Links are relative to
+    out/slides/, where the deck is built (slides/README.md)."""
+    root = root.resolve()
+    base = root / "out" / "slides"
+    link = lambda path, text: f"[{text}]({_rel(path, base)})"  # noqa: E731
+    lines = []
+    lesson = _folders(root, "lessons").get(lesson_nn)
+    exercise = _folders(root, "exercises").get(lesson_nn)
+    if lesson is not None and (lesson / "README.md").is_file():
+        lines.append(f"- **Text:** {link(lesson / 'README.md', f'`lessons/{lesson.name}/README.md`')}")
+    if exercise is not None:
+        stubs = sorted(exercise.glob("*.cpp"))
+        units = [next(iter(sorted((root / "lib" / "illum").rglob(s.stem + ".hpp"))), None) for s in stubs]
+        you_write = ", ".join(link(s, f"`{s.name}`") for s in stubs)
+        contracts = ", ".join(link(h, f"`{_rel(h, root / 'lib' / 'illum')}`") for h in units if h is not None)
+        lines.append(f"- **Exercise:** {link(exercise / 'README.md', f'`exercises/{exercise.name}/`')}: "
+                     f"you write {you_write}; the contracts are in {contracts}")
+    if lesson is not None and (lesson / "main.cpp").is_file():
+        program = link(lesson / "main.cpp", f"`lessons/{lesson.name}/main.cpp`")
+        studies_note = " and `studies/` (one file per study, numbered by its section)" if studies(lesson) else ""
+        lines.append(f"- **Program** `lesson{lesson_nn}`: {program}{studies_note}")
+    tests = _folders(root, "tests").get(lesson_nn)
+    if tests is not None:
+        lines.append(f"- **Tests:** {link(tests, f'`tests/{tests.name}/`')} (suite `lesson{lesson_nn}`): "
+                     f"`tools/grade --student {lesson_nn}`")
+    body = "\n".join(lines)
+    return f"{BEGIN}\n## Where the code is\n\n{body}\n{END}"
+
+
+def decks(root: Path) -> list[tuple[str, Path]]:
+    """(NN, deck) of every lesson's slide deck."""
+    slides = root / "slides"
+    if not slides.is_dir():
+        return []
+    return [(d.name[:2], d) for d in sorted(slides.glob("[0-9][0-9]_*.md"))]
+
+
 def replace_block(text: str, block: str) -> str | None:
     start, stop = text.find(BEGIN), text.find(END)
     if start == -1 or stop == -1:
@@ -230,8 +272,27 @@ def readmes(root: Path) -> list[tuple[str, Path]]:
 
 
 def update(root: Path, write: bool) -> list[str]:
-    """Rewrites (write=True) or checks every code map; returns the problems (stale or missing blocks)."""
+    """Rewrites (write=True) or checks every code map, in the texts and as each deck's last slide;
+    returns the problems (stale or missing blocks)."""
     problems = []
+    for nn, deck in decks(root):
+        text = deck.read_text(encoding="utf-8")
+        block = deck_slide(root, nn)
+        new = replace_block(text, block)
+        if new is None and write:  # the first time: the deck's last slide
+            new = text.rstrip("\n") + "\n\n---\n\n" + block + "\n"
+        relative = _rel(deck, root)
+        if new is None:
+            problems.append(f"{relative}: no \"Where the code is\" slide at its end ({BEGIN} … {END}); "
+                            "run tools/task_tables.py --update")
+        elif new != text:
+            if write:
+                deck.write_text(new, encoding="utf-8")
+            else:
+                problems.append(f"{relative}: the \"Where the code is\" slide is not current; "
+                                "run tools/task_tables.py --update")
+        elif not text.rstrip().endswith(END):
+            problems.append(f"{relative}: the \"Where the code is\" slide must be the deck's last")
     for nn, readme in readmes(root):
         text = readme.read_text(encoding="utf-8")
         new = replace_block(text, code_map(root, nn, readme))

@@ -20,7 +20,7 @@ ms, ns per ...), OTHER/FIRST for a rate (Mrays, throughput, per second); a
 speed-up column (a ratio of two times) and other timing-dependent counts are
 left out. It prints the number of cells, their median and their 10th and 90th
 percentiles: two runs alone give the noise that running beside another
-program must be compared with (docs/first-command.md). Exit 0, or 2 when a
+program must be compared with (docs/measurements.md). Exit 0, or 2 when a
 folder is missing or no timing cell is found.
 """
 from __future__ import annotations

@@ -14,15 +14,15 @@
 
 #include <CLI/CLI.hpp>
 
-#include "illum/core/atomic_file.hpp"
 #include "illum/core/error.hpp"
-#include "illum/core/memory_budget.hpp"
-#include "illum/core/nearest_name.hpp"
 #include "illum/io/embedded_scenes.hpp"
+#include "illum/io/nearest_name.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/io/ray_tree_files.hpp"
 #include "illum/io/scene_file.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/memory_budget.hpp"
 #include "illum/trace/ray_tree_render.hpp"
 #include "lab/lab_common.hpp"
 #include "lab/lab_server.hpp"

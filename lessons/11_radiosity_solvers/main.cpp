@@ -13,13 +13,13 @@
 #include <vector>
 
 #include "illum/core/error.hpp"
-#include "illum/core/memory_budget.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/io/scene_file.hpp"
 #include "illum/radiosity/radiosity_solvers.hpp"
 #include "illum/radiosity/radiosity_system.hpp"
+#include "illum/system/memory_budget.hpp"
 #include "patch_render.hpp"
 #include "studies/studies.hpp"
 #include "support/lesson_support.hpp"

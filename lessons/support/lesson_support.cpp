@@ -7,10 +7,10 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "illum/core/atomic_file.hpp"
-#include "illum/core/charconv.hpp"
 #include "illum/core/error.hpp"
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/charconv.hpp"
+#include "illum/system/memory_budget.hpp"
 
 namespace illum {
 

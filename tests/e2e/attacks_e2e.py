@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Hostile submissions against the Gradescope autograder (docs/grading.md, "Threat model").
+"""Hostile submissions against the Gradescope autograder (docs/grading-defences.md, "Threat model").
 
 Packs the autograder for lessons 01 and 02 from a grader tree (this one by
 default; ``--grader-tree /path/to/an/older/checkout`` shows what an older
@@ -32,8 +32,11 @@ per attack class of the threat model:
                           exit, or sleep until the grader's limit
   repoint_stdout          stdout's FILE pointed at the records channel             stub: 0
   probe_grader_files      __has_include / #include of the grader's own files       0, nothing of the grader quoted
-  shared_memory           7 x 100 MB of System V shared memory, 100 MB in          full marks, nothing left behind
-                          /dev/shm, a file in /run/lock (correct code otherwise)
+  shared_memory           7 x 100 MB of System V shared memory, 100 MB in          with namespaces: full marks (the
+                          /dev/shm, a file in /run/lock (correct code otherwise)   IPC namespace's cap makes shmget
+                                                                                   fail); without: the tests that
+                                                                                   hold it fail, saying so; nothing
+                                                                                   left behind either way
   rerun_forever           a forged record from a static constructor in every run   stub: 0, in bounded time
   unusual_but_honest      correct code that the scan notices                       full marks (the scan only advises)
 
@@ -126,7 +129,8 @@ CASES = [
          prefix="#define FORGE_SLEEP 1\n"),
     Case("repoint_stdout", "repoint_stdout.cpp", "stub", "constructor", "honest-zero", ("no-scan",)),
     Case("probe_grader_files", "probe_grader_files.cpp", "payload", None, "no-leak", ("no-scan", "no-scan-no-ns")),
-    Case("shared_memory", "shared_memory.cpp", "reference", "constructor", "full-01", ("no-scan", "no-scan-no-ns")),
+    Case("shared_memory", "shared_memory.cpp", "reference", "constructor", "full-01", ("no-scan",)),
+    Case("shared_memory", "shared_memory.cpp", "reference", "constructor", "shared-memory-killed", ("no-scan-no-ns",)),
     Case("rerun_forever", "rerun_forever.cpp", "stub", None, "honest-zero", ("no-scan",)),
     Case("unusual_but_honest", "unusual_but_honest.cpp", "reference", "constructor", "full-01-reviewed", ("scan",)),
 ]
@@ -244,6 +248,13 @@ def judge(case: Case, data: dict, changed_after: bool, survivors: list, maxima: 
         problems.append(f"scored {one:g} + {two:g}; the honest score is 0")
     elif expect == "full-01" and (one, two) != (maxima["01"], 0):
         problems.append(f"scored {one:g} + {two:g}; the honest score is {maxima['01']:g} + 0")
+    elif expect == "shared-memory-killed":
+        lesson = [t for t in data["tests"] if t["name"].startswith("lesson01")]
+        failed = [t for t in lesson if t["status"] != "passed"]
+        if two != 0 or not failed:
+            problems.append(f"scored {one:g} + {two:g}; the programs holding too much shared memory must be stopped")
+        if not all("shared memory" in t.get("output", "") or "did not run" in t.get("output", "") for t in failed):
+            problems.append("a failed test does not say that its program held too much shared memory")
     elif expect == "full-01-reviewed":
         if (one, two) != (maxima["01"], 0):
             problems.append(f"scored {one:g} + {two:g}; the honest score is {maxima['01']:g} + 0 (the scan advises)")

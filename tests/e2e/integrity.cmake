@@ -21,7 +21,7 @@ endif()
 
 # Which tests grade which task: every grading test carries a task tag, every exercise README's
 # table and build commands are current, and on the stubs each test first stops in a function of
-# a task it names (tools/task_tables.py; docs/grading.md, "Task tables").
+# a task it names (tools/task_tables.py; docs/grading-reference.md, "Task tables").
 if(ILLUM_EXERCISES STREQUAL "" AND NOT EXISTS ${PROJECT_SOURCE_DIR}/STUDENT_EDITION)
   add_test(NAME task_tables
            COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/task_tables.py --check

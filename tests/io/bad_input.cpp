@@ -10,14 +10,14 @@
 
 #include <unistd.h>
 
-#include "illum/core/atomic_file.hpp"
 #include "illum/core/error.hpp"
-#include "illum/core/json_text_check.hpp"
-#include "illum/core/memory_budget.hpp"
-#include "illum/core/nearest_name.hpp"
 #include "illum/geometry/implicit_trace.hpp"
+#include "illum/io/json_text_check.hpp"
+#include "illum/io/nearest_name.hpp"
 #include "illum/io/program.hpp"
 #include "illum/io/scene_file.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/memory_budget.hpp"
 #include "support/throws_containing.hpp"
 
 namespace fs = std::filesystem;

@@ -1,5 +1,5 @@
 // The strict OBJ reader (io/obj_reader) and the regular-file reader of inputs
-// (core/input_file). Suite "io" (not graded). Contracts checked:
+// (system/input_file). Suite "io" (not graded). Contracts checked:
 //  * v (3, 4 or 6 numbers), vn, vt and f with v, v/t, v//n, v/t/n corners are
 //    read; CRLF line ends and # comments anywhere; o/g/s/usemtl/mtllib/l/p skipped;
 //  * a face of n corners is the fan (1, k, k+1) of n − 2 triangles, whatever n
@@ -26,8 +26,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "illum/core/input_file.hpp"
 #include "illum/io/obj_reader.hpp"
+#include "illum/system/input_file.hpp"
+#include "support/sanitized.hpp"
 #include "support/throws_containing.hpp"
 
 namespace fs = std::filesystem;
@@ -40,23 +41,13 @@ namespace {
 std::string refusal(const std::string& text) {
   try {
     (void)read_obj(text);
-  } catch (const illum::ObjError& e) {
+  } catch (const illum::InputFileError& e) {
     return e.what();
   }
   return "(accepted)";
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool sanitized = true;  // a sanitizer's shadow memory leaves no room for an address-space limit
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool sanitized = true;
-#else
-constexpr bool sanitized = false;
-#endif
-#else
-constexpr bool sanitized = false;
-#endif
+using illum::test::sanitized;
 
 // Bytes of address space this process maps now (VmSize).
 double mapped_bytes() {
@@ -226,7 +217,7 @@ TEST_SUITE("io") {
                                   "this is a named pipe (FIFO), not a regular file", illum::InputFileError);
     ILLUM_CHECK_THROWS_CONTAINING(illum::read_input_file("/dev/zero", "OBJ file", 1 << 20),
                                   "a character device, not a regular file", illum::InputFileError);
-    ILLUM_CHECK_THROWS_CONTAINING(illum::read_input_file(dir, "scene file", 1 << 20), "this is a directory",
+    ILLUM_CHECK_THROWS_CONTAINING(illum::read_input_file(dir, "scene file", 1 << 20), "this is a folder",
                                   illum::InputFileError);
     ILLUM_CHECK_THROWS_CONTAINING(illum::read_input_file(dir / "none", "scene file", 1 << 20),
                                   "No such file or directory", illum::InputFileError);

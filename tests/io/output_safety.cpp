@@ -1,5 +1,5 @@
-// Output safety below the programs (core/atomic_file, core/child_process,
-// core/memory_budget). Suite "io" (not graded). Contracts checked:
+// Output safety below the programs (system/atomic_file, system/child_process,
+// system/memory_budget). Suite "io" (not graded). Contracts checked:
 //  * a name held by a link, a FIFO, a device or a folder is refused, and what
 //    it holds or points to is left as it was (no write through, no rename over);
 //  * a write the file size limit stops says "File too large … ulimit -f" and
@@ -26,9 +26,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "illum/core/atomic_file.hpp"
-#include "illum/core/child_process.hpp"
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/child_process.hpp"
+#include "illum/system/memory_budget.hpp"
+#include "support/sanitized.hpp"
 #include "support/throws_containing.hpp"
 
 namespace fs = std::filesystem;
@@ -55,17 +56,7 @@ int entries(const fs::path& folder) {
   return n;
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool sanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool sanitized = true;
-#else
-constexpr bool sanitized = false;
-#endif
-#else
-constexpr bool sanitized = false;
-#endif
+using illum::test::sanitized;
 
 double status_bytes(const std::string& key) {
   std::ifstream in("/proc/self/status");

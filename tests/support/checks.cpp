@@ -1,5 +1,5 @@
 // What the check macros of checks.hpp do at run time: the student's message, and the records
-// the grader's witness and observer send (docs/grading.md, "How a test is judged").
+// the grader's witness and observer send (docs/grading-defences.md, "How a test is judged").
 #include "support/checks.hpp"
 
 #include <charconv>

@@ -15,7 +15,7 @@
 //    student code, compares those values with the witness's: nothing the student's program
 //    writes can turn a failing check into a passing one without the right values.
 //
-// Writing a graded check (docs/grading.md, "How a test is judged"): the value under test on the
+// Writing a graded check (docs/grading-defences.md, "How a test is judged"): the value under test on the
 // left; a right side that does not depend on what the student's code computed; left sides that
 // are numbers, bools, enums, strings, glm vectors, or optionals, vectors, arrays, pairs of those.
 #pragma once

@@ -38,6 +38,11 @@ from .results import TestResult
 from .runner import deadline_from_environment, run_suite
 from .sandbox import Account, Limits, Sandbox, SandboxError
 
+try:  # tools/ is on the path (tools/grade, run_autograder's PYTHONPATH)
+    from path_options import path_argument
+except ImportError:  # pragma: no cover - the grading package used alone
+    path_argument = Path
+
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(
@@ -50,11 +55,11 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
                              "every lesson with tests otherwise)")
     parser.add_argument("--student", action="store_true",
                         help="build the named lessons' exercise units from exercises/ (your code)")
-    parser.add_argument("--results", type=Path, metavar="FILE", help="write Gradescope's results.json here")
-    parser.add_argument("--junit", type=Path, metavar="FILE", help="write JUnit XML here")
-    parser.add_argument("--hidden", type=Path, metavar="DIR",
+    parser.add_argument("--results", type=path_argument, metavar="FILE", help="write Gradescope's results.json here")
+    parser.add_argument("--junit", type=path_argument, metavar="FILE", help="write JUnit XML here")
+    parser.add_argument("--hidden", type=path_argument, metavar="DIR",
                         help="an instructor's folder of extra test files, reported as hidden")
-    parser.add_argument("--build-dir", type=Path, metavar="DIR",
+    parser.add_argument("--build-dir", type=path_argument, metavar="DIR",
                         help="build tree (default: with --student, build/student, the tree of the student "
                              "commands, configured as `cmake --preset student` does; else build/grade-reference)")
     parser.add_argument("--check-integrity", action="store_true",
@@ -63,28 +68,28 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--check-alone", action="store_true",
                         help="check an already-built reference tree (--build-dir): each lesson's grading tests "
                              "pass and its program runs with every other lesson's units as stubs")
-    parser.add_argument("--pack-autograder", type=Path, metavar="FILE.zip",
+    parser.add_argument("--pack-autograder", type=path_argument, metavar="FILE.zip",
                         help="write Gradescope's autograder zip for the named lessons")
     batch = parser.add_argument_group("grading a folder of submissions (docs/grading.md, \"Batch grading\")")
-    batch.add_argument("--batch", type=Path, metavar="DIR",
+    batch.add_argument("--batch", type=path_argument, metavar="DIR",
                        help="grade every student's folder or zip in DIR, each in isolation")
-    batch.add_argument("--out", type=Path, metavar="DIR",
+    batch.add_argument("--out", type=path_argument, metavar="DIR",
                        help="with --batch: where results go (default: DIR-grades beside DIR)")
     batch.add_argument("--jobs", type=int, metavar="J", default=None,
                        help="with --batch: students graded at once (default: 1 per 2 cores)")
-    batch.add_argument("--roster", type=Path, metavar="FILE.csv",
+    batch.add_argument("--roster", type=path_argument, metavar="FILE.csv",
                        help="with --batch: the class list (an id or e-mail column); students without a "
                             "submission are listed as missing")
     batch.add_argument("--format", choices=("moodle", "canvas"),
                        help="with --batch: also write the gradebook import file of Moodle or Canvas")
     batch.add_argument("--assignment", metavar="NAME", default="illum",
                        help="with --batch --format: the assignment's name in the gradebook (default: illum)")
-    batch.add_argument("--work-dir", type=Path, metavar="DIR", help=argparse.SUPPRESS)
-    parser.add_argument("--submission-info", type=Path, metavar="FILE", help=argparse.SUPPRESS)
-    parser.add_argument("--fallback-stubs", type=Path, metavar="DIR", help=argparse.SUPPRESS)
+    batch.add_argument("--work-dir", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
+    parser.add_argument("--submission-info", type=path_argument, metavar="FILE", help=argparse.SUPPRESS)
+    parser.add_argument("--fallback-stubs", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
     parser.add_argument("--as-user", metavar="NAME", help=argparse.SUPPRESS)
-    parser.add_argument("--grader-data", type=Path, metavar="DIR", help=argparse.SUPPRESS)
-    parser.add_argument("--save-tests", type=Path, metavar="FILE", help=argparse.SUPPRESS)
+    parser.add_argument("--grader-data", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
+    parser.add_argument("--save-tests", type=path_argument, metavar="FILE", help=argparse.SUPPRESS)
     parser.add_argument("--build-as-grader", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     for option, path in (("--results", args.results), ("--junit", args.junit),

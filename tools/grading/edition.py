@@ -448,7 +448,10 @@ in [docs/errata.md](docs/errata.md).
   sources). After that, a change to one of your files recompiles that file
   and relinks: a few seconds.
 * **The tests** say, for each failed check, what they computed and what
-  they expected, and the mathematics behind it. A test that runs longer
+  they expected, and the mathematics behind it. `tests_lessonNN` holds the
+  graded tests of lesson NN and nothing else: its last lines count them
+  (`test cases: 36 | 30 passed | 6 failed | 0 skipped`), the tests
+  `tools/grade` scores. A test that runs longer
   than the grader allows one (60 s; `ILLUM_GRADE_TEST_TIMEOUT` changes it)
   is stopped with a message naming it: a loop in your code that never ends.
 * **`tools/grade --student NN`** builds in the same `build/student` tree and
@@ -486,7 +489,7 @@ texts. A function you have not written yet is named in the page.
 | `exercises/NN_topic/` | your exercises: the tasks (README) and the files you write |
 | `lessons/NN_topic/` | the lesson texts and the programs that draw their figures |
 | `lib/illum/` | the shared library your files are part of; each header states the contract of every function you write |
-| `tests/NN_topic/` | the grading tests (suite `lessonNN`) |
+| `tests/NN_topic/` | the grading tests (suite `lessonNN`, built as `build/student/bin/tests_lessonNN`) and, in files of their own, hard cases of the library that are not graded (`tests_lessonNN_ungraded`, not part of your commands) |
 | `slides/` | one slide deck per lesson |
 | `scenes/` | the scenes the programs and `illum` load ([docs/scene-format.md](docs/scene-format.md)) |
 | `docs/` | how the toolkit is built, the scene format, grading, the lab |

@@ -817,8 +817,10 @@ def run_grading(workspace: Workspace, lesson: str, timeout: float, extra: tuple[
     for program in programs:
         command = [str(program), f"-ts=lesson{lesson}", "--abort-after=1", "--no-version", "--no-colors", *extra]
         try:
+            # One process: a mutant that crashes a test is killed there; the tests after it need not run.
             done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                                  text=True, errors="replace", timeout=timeout)
+                                  text=True, errors="replace", timeout=timeout,
+                                  env=dict(os.environ, ILLUM_TEST_ONE_PROCESS="1"))
         except subprocess.TimeoutExpired:
             return "timed out", ""
         if done.returncode == 124 and "(an endless loop?)" in done.stdout:
@@ -1051,7 +1053,7 @@ def markdown_report(reports: list[LessonReport], root: Path, command: str, compa
     parts = [
         "# Grading power: the mutation report",
         "",
-        "Produced by `tools/grade --mutants` (docs/grading.md explains how to read it). Regenerate with:",
+        "Produced by `tools/grade --mutants` (docs/grading-reference.md explains how to read it). Regenerate with:",
         "",
         "```sh",
         command,

@@ -235,6 +235,7 @@ class _Watch:
 
     shared: int = 0
     shared_limit: int = 0
+    end: float = float("inf")  # the deadline of the whole run (ILLUM_GRADE_DEADLINE), in wall time
 
     def problem(self, now: float, cpu_of, shared_of) -> tuple[str, bool]:
         if now - self.sampled >= 0.25:
@@ -249,6 +250,8 @@ class _Watch:
                     "machine was very busy)"), True
         if self.cpu > self.run_cpu or now - self.start > WALL_FACTOR * self.run_cpu:
             return f"the test program did not finish within {self.run_cpu:g} s of processor time", True
+        if now > self.end:
+            return "the time for the whole run (ILLUM_GRADE_DEADLINE) ran out during this test", True
         return "", False
 
     def moved(self, now: float) -> None:
@@ -271,7 +274,9 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
     for fd in streams:
         os.set_blocking(fd, False)
         selector.register(fd, selectors.EVENT_READ)
-    watch = _Watch(test_timeout, timeout, shared_limit=sandbox.limits.memory_mb << 20)
+    listing = "--list-test-cases" in arguments  # a listing runs no test: the deadline is for tests
+    watch = _Watch(test_timeout, timeout, shared_limit=sandbox.limits.memory_mb << 20,
+                   end=float("inf") if listing else time.monotonic() + _remaining())
     problem, timed_out, stopping = "", False, False
     while True:
         if _drain(selector, streams, launched.records_fd, 0.05):

@@ -10,8 +10,8 @@
 #include <stb_image_write.h>  // the implementation is compiled in lib/illum/core/image.cpp
 #include <nlohmann/json.hpp>
 
-#include "illum/core/charconv.hpp"
 #include "illum/io/embedded_scenes.hpp"
+#include "illum/system/charconv.hpp"
 
 namespace illum::lab {
 

@@ -12,12 +12,12 @@
 #include <sys/stat.h>
 #include <CLI/CLI.hpp>
 
-#include "illum/core/atomic_file.hpp"
-#include "illum/core/charconv.hpp"
 #include "illum/core/error.hpp"
-#include "illum/core/platform.hpp"
 #include "illum/core/threads.hpp"
 #include "illum/io/whole_machine.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/charconv.hpp"
+#include "illum/system/platform.hpp"
 
 namespace illum {
 
@@ -101,7 +101,7 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
   if (options.threads > 1 && !has_openmp)
     std::cerr << info.id
               << ": note: this build has no OpenMP (ILLUM_OPENMP): every loop runs on one thread\n";
-  // Every file the body writes is staged (core/atomic_file): if it throws or a
+  // Every file the body writes is staged (system/atomic_file): if it throws or a
   // signal stops it, the output folder is left as it was; commit() moves the
   // run's files in at the end (validate before write, by construction).
   WriteTransaction transaction(options.out, "--out", info.id);

@@ -132,7 +132,7 @@ std::string path_problem(const std::filesystem::path& path);
 ValueCheck path_value();
 
 // Prints, as "<id>: note: ...", and removes what runs on `folder` killed without warning left
-// beside it (core/atomic_file's remove_stale_run_files): each run calls it before its work.
+// beside it (system/atomic_file's remove_stale_run_files): each run calls it before its work.
 void remove_stale_run_files_noting(const std::string& id, const std::filesystem::path& folder,
                                    const std::string& option);
 

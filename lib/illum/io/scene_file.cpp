@@ -8,10 +8,10 @@
 #include <stdexcept>
 
 #include "illum/core/error.hpp"
-#include "illum/core/input_file.hpp"
-#include "illum/core/memory_budget.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/obj_reader.hpp"
+#include "illum/system/input_file.hpp"
+#include "illum/system/memory_budget.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -320,7 +320,7 @@ TriangleMesh read_mesh(const JsonReader& p, const FileSource& source) {
   TriangleMesh mesh;
   try {
     mesh = read_obj(text);
-  } catch (const ObjError& e) {
+  } catch (const InputFileError& e) {
     field.fail(name + ", " + e.what());
   }
   if (translate == Vec3(0.0) && scale == 1.0) return mesh;

@@ -19,7 +19,7 @@
 #include <immintrin.h>
 #endif
 
-#include "illum/core/platform.hpp"
+#include "illum/system/platform.hpp"
 
 namespace illum {
 namespace {

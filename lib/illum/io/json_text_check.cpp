@@ -1,4 +1,4 @@
-#include "illum/core/json_text_check.hpp"
+#include "illum/io/json_text_check.hpp"
 
 #include <cerrno>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "illum/core/input_file.hpp"
+#include "illum/system/input_file.hpp"
 
 #include <cerrno>
 #include <cstring>
@@ -11,7 +11,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/memory_budget.hpp"
 
 namespace illum {
 
@@ -20,7 +20,7 @@ std::string file_kind_name(unsigned mode) {
     case S_IFREG:
       return "a regular file";
     case S_IFDIR:
-      return "a directory";
+      return "a folder";
     case S_IFIFO:
       return "a named pipe (FIFO)";
     case S_IFCHR:
@@ -69,7 +69,7 @@ std::string read_input_file(const std::filesystem::path& file, const std::string
     throw InputFileError("cannot examine the " + what + ": " + std::strerror(errno));
   if (!S_ISREG(st.st_mode)) {
     if (S_ISDIR(st.st_mode))
-      throw InputFileError("this is a directory; the " + what + " must be a regular file");
+      throw InputFileError("this is a folder; the " + what + " must be a regular file");
     throw InputFileError("this is " + file_kind_name(st.st_mode) + ", not a regular file: the " + what +
                          " must be a regular file");
   }

@@ -1,4 +1,4 @@
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/memory_budget.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,11 +7,9 @@
 #include <sstream>
 #include <stdexcept>
 
-#if !defined(_WIN32)
 #include <sys/resource.h>  // getrlimit: POSIX
-#endif
 
-#include "illum/core/platform.hpp"
+#include "illum/system/platform.hpp"
 
 namespace illum {
 
@@ -93,7 +91,6 @@ MemoryLimit memory_limit() {
   MemoryLimit best = fixed_limit();
   // The process's own limits, against what it uses now (POSIX; /proc/self/status on Linux only, so
   // elsewhere the whole limit counts).
-#if !defined(_WIN32)
   struct rlimit limit {};
   if (::getrlimit(RLIMIT_AS, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
     consider(best, 0.5 * std::max(0.0, static_cast<double>(limit.rlim_cur) - status_bytes("VmSize")),
@@ -101,7 +98,6 @@ MemoryLimit memory_limit() {
   if (::getrlimit(RLIMIT_DATA, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY)
     consider(best, 0.5 * std::max(0.0, static_cast<double>(limit.rlim_cur) - status_bytes("VmData")),
              "half of what the data-segment limit (ulimit -d) leaves");
-#endif
   return best;
 }
 

@@ -21,7 +21,7 @@ class InputFileError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// "a directory", "a named pipe (FIFO)", "a character device", … for st_mode.
+// "a folder", "a named pipe (FIFO)", "a character device", … for st_mode.
 std::string file_kind_name(unsigned mode);
 
 // The whole file. Opens without blocking (O_NONBLOCK: a FIFO with no writer

@@ -1,7 +1,7 @@
 #pragma once
 // The one home of what differs between compilers and operating systems
 // (CTest `one_home` keeps such calls here): GCC and Clang on Linux and
-// macOS, MSVC on Windows. Everything else in illum is standard C++20, and
+// macOS. Everything else in illum is standard C++20, and
 // compiles with libstdc++ and libc++ alike.
 //
 //   ILLUM_FLATTEN         inline every call in this function (GCC, Clang; nothing elsewhere)
@@ -12,10 +12,10 @@
 //   escape(pointer)       what do_not_optimize (core/stopwatch.hpp) calls where GNU asm is missing
 //   write_line(fd, …), read_line(fd)  a line down or up a pipe a parent process handed down
 //
-// Files, folders and child processes (core/atomic_file, core/input_file,
-// core/child_process) are written against POSIX, which Linux and macOS
-// provide; on Windows illum builds and runs in WSL 2 or the development
-// container (README, "Windows").
+// Like the rest of lib/illum/system/, it is written against POSIX, which
+// Linux and macOS provide; on Windows illum builds and runs in WSL 2 or the
+// development container (README, "Windows"), and a native build stops here
+// with a message that says so.
 #include <cstddef>
 #include <optional>
 #include <span>
@@ -30,8 +30,8 @@
 
 namespace illum {
 
-// Processor seconds the calling thread has run (POSIX CLOCK_THREAD_CPUTIME_ID,
-// Windows GetThreadTimes); where neither exists, the process's (std::clock).
+// Processor seconds the calling thread has run (POSIX CLOCK_THREAD_CPUTIME_ID);
+// where it is missing, the process's (std::clock).
 double thread_cpu_seconds();
 
 // Whether standard error is a terminal.
@@ -40,7 +40,7 @@ bool stderr_is_terminal();
 // The machine's physical memory in bytes, 0 when it cannot be told.
 double physical_memory_bytes();
 
-// Fills `bytes` from the system's random source (getentropy, BCryptGenRandom).
+// Fills `bytes` from the system's random source (getentropy).
 // Throws std::runtime_error when the source fails.
 void random_bytes(std::span<unsigned char> bytes);
 

@@ -1,4 +1,4 @@
-#include "illum/core/charconv.hpp"
+#include "illum/system/charconv.hpp"
 
 #include <cerrno>
 #include <clocale>

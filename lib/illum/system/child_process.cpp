@@ -1,4 +1,4 @@
-#include "illum/core/child_process.hpp"
+#include "illum/system/child_process.hpp"
 
 #include <atomic>
 #include <cerrno>
@@ -47,7 +47,7 @@ struct Pipe {
   }
 };
 
-// The signals whose handlers a program may have changed (core/atomic_file):
+// The signals whose handlers a program may have changed (system/atomic_file):
 // the tool starts with each at its default, and with none blocked.
 void reset_signals(posix_spawnattr_t& attr) {
   sigset_t defaults, none;

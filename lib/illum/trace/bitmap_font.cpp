@@ -1,4 +1,4 @@
-#include "illum/core/bitmap_font.hpp"
+#include "illum/trace/bitmap_font.hpp"
 
 #include <array>
 #include <cctype>

@@ -1,4 +1,4 @@
-#include "illum/core/nearest_name.hpp"
+#include "illum/io/nearest_name.hpp"
 
 #include <algorithm>
 

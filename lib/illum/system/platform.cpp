@@ -1,4 +1,4 @@
-#include "illum/core/platform.hpp"
+#include "illum/system/platform.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -10,32 +10,19 @@
 #include <string>
 
 #if defined(_WIN32)
-#define NOMINMAX
-#define WIN32_LEAN_AND_MEAN
-#include <bcrypt.h>
-#include <io.h>
-#include <windows.h>
-#pragma comment(lib, "bcrypt")
-#else
+#error \
+    "illum's files, folders and child processes are written against POSIX (Linux, macOS): on Windows, build in WSL 2 or the development container (README, \"Windows\")"
+#endif
 #include <unistd.h>
 #if defined(__APPLE__)
 #include <sys/random.h>  // getentropy
 #include <sys/sysctl.h>
 #endif
-#endif
 
 namespace illum {
 
 double thread_cpu_seconds() {
-#if defined(_WIN32)
-  FILETIME created, exited, kernel, user;
-  if (GetThreadTimes(GetCurrentThread(), &created, &exited, &kernel, &user)) {
-    const auto ticks = [](const FILETIME& t) {
-      return static_cast<double>((static_cast<unsigned long long>(t.dwHighDateTime) << 32) | t.dwLowDateTime);
-    };
-    return 1e-7 * (ticks(kernel) + ticks(user));  // 100 ns ticks
-  }
-#elif defined(CLOCK_THREAD_CPUTIME_ID)
+#if defined(CLOCK_THREAD_CPUTIME_ID)
   timespec t{};
   if (clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t) == 0)
     return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
@@ -43,20 +30,10 @@ double thread_cpu_seconds() {
   return static_cast<double>(std::clock()) / CLOCKS_PER_SEC;
 }
 
-bool stderr_is_terminal() {
-#if defined(_WIN32)
-  return _isatty(_fileno(stderr)) != 0;
-#else
-  return ::isatty(STDERR_FILENO) != 0;
-#endif
-}
+bool stderr_is_terminal() { return ::isatty(STDERR_FILENO) != 0; }
 
 double physical_memory_bytes() {
-#if defined(_WIN32)
-  MEMORYSTATUSEX status{};
-  status.dwLength = sizeof status;
-  return GlobalMemoryStatusEx(&status) ? static_cast<double>(status.ullTotalPhys) : 0.0;
-#elif defined(__APPLE__)
+#if defined(__APPLE__)
   unsigned long long bytes = 0;
   std::size_t size = sizeof bytes;
   return ::sysctlbyname("hw.memsize", &bytes, &size, nullptr, 0) == 0 ? static_cast<double>(bytes) : 0.0;
@@ -67,11 +44,6 @@ double physical_memory_bytes() {
 }
 
 void random_bytes(std::span<unsigned char> bytes) {
-#if defined(_WIN32)
-  if (!BCRYPT_SUCCESS(BCryptGenRandom(nullptr, bytes.data(), static_cast<ULONG>(bytes.size()),
-                                      BCRYPT_USE_SYSTEM_PREFERRED_RNG)))
-    throw std::runtime_error("cannot draw random bytes: BCryptGenRandom failed");
-#else
   // getentropy (glibc 2.25, macOS 10.12, the BSDs) gives at most 256 bytes a call.
   for (std::size_t done = 0; done < bytes.size();) {
     const std::size_t n = std::min<std::size_t>(256, bytes.size() - done);
@@ -79,7 +51,6 @@ void random_bytes(std::span<unsigned char> bytes) {
       throw std::runtime_error(std::string("cannot draw random bytes: ") + std::strerror(errno));
     done += n;
   }
-#endif
 }
 
 void escape(const volatile void* pointer) {
@@ -92,11 +63,7 @@ void escape(const volatile void* pointer) {
 void write_line(int fd, std::string_view line) {
   const std::string text = std::string(line) + "\n";
   for (std::size_t done = 0; done < text.size();) {
-#if defined(_WIN32)
-    const auto n = ::_write(fd, text.data() + done, static_cast<unsigned>(text.size() - done));
-#else
     const auto n = ::write(fd, text.data() + done, text.size() - done);
-#endif
     if (n < 0 && errno == EINTR) continue;
     if (n <= 0)
       throw std::runtime_error("cannot write to descriptor " + std::to_string(fd) + ": " +
@@ -109,11 +76,7 @@ std::optional<std::string> read_line(int fd) {
   std::string line;
   for (;;) {
     char c = 0;
-#if defined(_WIN32)
-    const auto n = ::_read(fd, &c, 1);
-#else
     const auto n = ::read(fd, &c, 1);
-#endif
     if (n < 0 && errno == EINTR) continue;
     if (n < 0)
       throw std::runtime_error("cannot read from descriptor " + std::to_string(fd) + ": " +

@@ -36,7 +36,7 @@ ToolRun run_tool(const std::vector<std::string>& argv, const std::filesystem::pa
                  std::size_t max_output = std::size_t{1} << 30);
 
 // Sends SIGTERM to the tool running now, if any. Async-signal-safe: the
-// interrupt handler of core/atomic_file calls it, so that an interrupted
+// interrupt handler of system/atomic_file calls it, so that an interrupted
 // run leaves no gnuplot behind.
 void terminate_running_tool() noexcept;
 

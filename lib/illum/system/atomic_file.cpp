@@ -1,4 +1,4 @@
-#include "illum/core/atomic_file.hpp"
+#include "illum/system/atomic_file.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -28,8 +28,9 @@
 #endif
 #include <unistd.h>
 
-#include "illum/core/child_process.hpp"
-#include "illum/core/platform.hpp"
+#include "illum/system/child_process.hpp"
+#include "illum/system/input_file.hpp"
+#include "illum/system/platform.hpp"
 
 namespace illum {
 
@@ -64,26 +65,6 @@ std::string random_letters(std::size_t count) {
   return out;
 }
 
-// "a character device", … of what lstat finds at `path`.
-std::string kind_of(const struct stat& st) {
-  switch (st.st_mode & S_IFMT) {
-    case S_IFDIR:
-      return "a folder";
-    case S_IFIFO:
-      return "a named pipe (FIFO)";
-    case S_IFCHR:
-      return "a character device";
-    case S_IFBLK:
-      return "a block device";
-    case S_IFSOCK:
-      return "a socket";
-    case S_IFLNK:
-      return "a symbolic link";
-    default:
-      return "a special file";
-  }
-}
-
 // Throws unless `target` is a regular file or nothing (for a file), a folder
 // or nothing (for a folder). `shown` is the name the message gives it.
 void refuse_unless_replaceable(const fs::path& target, const fs::path& shown, bool folder,
@@ -96,12 +77,12 @@ void refuse_unless_replaceable(const fs::path& target, const fs::path& shown, bo
   const std::string who = option.empty() ? "cannot write " + shown.string() : option + " " + shown.string();
   if (folder) {
     if (S_ISDIR(st.st_mode)) return;
-    fail(who + ": it is " + (S_ISREG(st.st_mode) ? std::string("a file") : kind_of(st)) +
+    fail(who + ": it is " + (S_ISREG(st.st_mode) ? std::string("a file") : file_kind_name(st.st_mode)) +
          ", and a folder is needed there");
   }
   if (S_ISREG(st.st_mode)) return;
   if (S_ISDIR(st.st_mode)) fail(who + ": a folder of that name is in the way");
-  fail(who + ": it is " + kind_of(st) +
+  fail(who + ": it is " + file_kind_name(st.st_mode) +
        "; illum replaces only regular files (it never writes through or over a link, a FIFO or a device)");
 }
 
@@ -401,7 +382,7 @@ void make_folders(Journal& j, const fs::path& folder, const fs::path& shown, boo
         struct stat followed {};
         if (!(S_ISLNK(st.st_mode) && ::stat(p.c_str(), &followed) == 0 && S_ISDIR(followed.st_mode)))
           fail("cannot write into " + shown.string() + ": " + p.string() + " is " +
-               (S_ISREG(st.st_mode) ? std::string("a file") : kind_of(st)) + ", not a folder");
+               (S_ISREG(st.st_mode) ? std::string("a file") : file_kind_name(st.st_mode)) + ", not a folder");
       }
       break;
     }
@@ -548,7 +529,7 @@ void ensure_staging(Journal& j) {
     struct stat followed {};
     if (::stat(given.c_str(), &followed) != 0 || !S_ISDIR(followed.st_mode))
       fail(j.option + " " + shown.string() + ": it is " +
-           (S_ISREG(st.st_mode) ? std::string("a file") : kind_of(st)) + ", not a folder");
+           (S_ISREG(st.st_mode) ? std::string("a file") : file_kind_name(st.st_mode)) + ", not a folder");
     exists = true;
     j.out_real = fs::canonical(given);
   } else if (errno == ENOENT) {
@@ -667,7 +648,7 @@ void check_output_folder(const fs::path& folder, const std::string& option) {
       struct stat followed {};
       if (::stat(p.c_str(), &followed) != 0 || !S_ISDIR(followed.st_mode))
         fail(option + " " + folder.string() + ": " + (p == given ? std::string("it") : p.string()) + " is " +
-             (S_ISREG(st.st_mode) ? std::string("a file") : kind_of(st)) + ", not a folder");
+             (S_ISREG(st.st_mode) ? std::string("a file") : file_kind_name(st.st_mode)) + ", not a folder");
       break;
     }
     if (errno != ENOENT && errno != ENOTDIR) fail(option + " " + folder.string() + ": " + errno_text(errno));
