@@ -153,7 +153,6 @@ Params checked_params(const std::string& target, Params decoded) {
   }
 }
 
-
 namespace {
 
 std::atomic<bool> stopping{false};
