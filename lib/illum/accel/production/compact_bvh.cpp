@@ -20,6 +20,7 @@
 #endif
 
 #include "illum/core/platform.hpp"
+#include "illum/geometry/orientation.hpp"
 
 namespace illum {
 namespace {
@@ -276,22 +277,32 @@ __attribute__((target("avx"))) inline __m256 load_two(const TrianglePack* pack, 
   const auto* b = reinterpret_cast<const float*>(reinterpret_cast<const char*>(pack + 1) + offset);
   return _mm256_insertf128_ps(_mm256_castps128_ps256(_mm_load_ps(a)), _mm_load_ps(b), 1);
 }
-__attribute__((target("avx"))) inline __m256 broadcast_halves(__m128 x) { return _mm256_set_m128(x, x); }
+// PackRay in eight lanes, once per ray.
+struct WidePackRay {
+  __m256 origin[3], direction[3], origin_size, direction_size;
+};
+__attribute__((target("avx"))) inline void widen(const PackRay& r, WidePackRay& w) {
+  for (int a = 0; a < 3; ++a) {
+    w.origin[a] = _mm256_set_m128(r.origin[a], r.origin[a]);
+    w.direction[a] = _mm256_set_m128(r.direction[a], r.direction[a]);
+  }
+  w.origin_size = _mm256_set_m128(r.origin_size, r.origin_size);
+  w.direction_size = _mm256_set_m128(r.direction_size, r.direction_size);
+}
 
 // may_hit on two consecutive packs at once, eight lanes (bit 4 + k: the second pack's lane k): the
 // same operations lane by lane, so the same answers.
-__attribute__((target("avx"))) inline int may_hit_two(const PackRay& r, const TrianglePack* pack, float lo,
-                                                      float hi, float sure_lo, SureHits& sure) {
+__attribute__((target("avx"))) inline int may_hit_two(const WidePackRay& r, const TrianglePack* pack,
+                                                      float lo, float hi, float sure_lo, SureHits& sure) {
   constexpr std::size_t row = 4 * sizeof(float);
   const std::size_t v0 = offsetof(TrianglePack, v0), e1o = offsetof(TrianglePack, e1),
                     e2o = offsetof(TrianglePack, e2);
-  const __m256 s0 = _mm256_sub_ps(broadcast_halves(r.origin[0]), load_two(pack, v0)),
-               s1 = _mm256_sub_ps(broadcast_halves(r.origin[1]), load_two(pack, v0 + row)),
-               s2 = _mm256_sub_ps(broadcast_halves(r.origin[2]), load_two(pack, v0 + 2 * row));
+  const __m256 s0 = _mm256_sub_ps(r.origin[0], load_two(pack, v0)),
+               s1 = _mm256_sub_ps(r.origin[1], load_two(pack, v0 + row)),
+               s2 = _mm256_sub_ps(r.origin[2], load_two(pack, v0 + 2 * row));
   const __m256 a0 = load_two(pack, e1o), a1 = load_two(pack, e1o + row), a2 = load_two(pack, e1o + 2 * row);
   const __m256 b0 = load_two(pack, e2o), b1 = load_two(pack, e2o + row), b2 = load_two(pack, e2o + 2 * row);
-  const __m256 d0 = broadcast_halves(r.direction[0]), d1 = broadcast_halves(r.direction[1]),
-               d2 = broadcast_halves(r.direction[2]);
+  const __m256 d0 = r.direction[0], d1 = r.direction[1], d2 = r.direction[2];
   const __m256 p0 = _mm256_sub_ps(_mm256_mul_ps(d1, b2), _mm256_mul_ps(d2, b1)),
                p1 = _mm256_sub_ps(_mm256_mul_ps(d2, b0), _mm256_mul_ps(d0, b2)),
                p2 = _mm256_sub_ps(_mm256_mul_ps(d0, b1), _mm256_mul_ps(d1, b0));
@@ -307,10 +318,10 @@ __attribute__((target("avx"))) inline int may_hit_two(const PackRay& r, const Tr
   const __m256 t =
       _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(b0, q0), _mm256_mul_ps(b1, q1)), _mm256_mul_ps(b2, q2));
   const __m256 k = _mm256_set1_ps(filter_rounding);
-  const __m256 size = _mm256_mul_ps(
-      k, _mm256_add_ps(broadcast_halves(r.origin_size), load_two(pack, offsetof(TrianglePack, v0_size))));
+  const __m256 size =
+      _mm256_mul_ps(k, _mm256_add_ps(r.origin_size, load_two(pack, offsetof(TrianglePack, v0_size))));
   const __m256 e1 = load_two(pack, offsetof(TrianglePack, edge_size)), e2 = e1;
-  const __m256 direction_size = broadcast_halves(r.direction_size);
+  const __m256 direction_size = r.direction_size;
   const __m256 de1 = _mm256_mul_ps(direction_size, e1), de2 = _mm256_mul_ps(direction_size, e2);
   const __m256 bound_u = _mm256_mul_ps(size, de2), bound_v = _mm256_mul_ps(size, de1),
                bound_det = _mm256_mul_ps(k, _mm256_mul_ps(de2, e1)),
@@ -352,6 +363,90 @@ __attribute__((target("avx"))) inline int may_hit_two(const PackRay& r, const Tr
 // relative for the rounding of the products they enter; lo ≤ 0 (or hi < 0) is no limit.
 float filter_hi(double hi) { return hi >= 0.0 ? round_up(hi) * (1.0f + 0x1p-20f) : float_infinity; }
 float filter_lo(double lo) { return lo > 0.0 ? round_down(lo) * (1.0f - 0x1p-20f) : -float_infinity; }
+
+// What a traversal needs of the ray's range, in float: lo rounded down (the box test's lower limit),
+// the filter's limits, the lower limit a sure hit must clear, and the first reach (culling_slack).
+struct RayLimits {
+  float lo, t_lo, t_hi, sure_lo, reach;
+  explicit RayLimits(const Interval& range) {
+    if (range.lo == 0.0 && range.hi == infinity) {  // Interval::ahead(), the common range: no rounding
+      lo = 0.0f, t_lo = -float_infinity, t_hi = float_infinity, sure_lo = 0.0f, reach = float_infinity;
+      return;
+    }
+    lo = round_down(range.lo);
+    t_lo = filter_lo(range.lo);
+    t_hi = filter_hi(range.hi);
+    sure_lo = range.lo > 0.0 ? round_up(range.lo) * (1.0f + 0x1p-20f) : 0.0f;
+    reach = round_up(range.hi + culling_slack * std::abs(range.hi));
+  }
+};
+
+// Lesson 03's watertight test (geometry/triangle.cpp), which decides every hit: the same
+// operations in the same order, so the same bits (s, λ and the normal; the tests compare them with
+// brute force's), arranged for a traversal that runs it on several candidates of one ray:
+//   * the ray frame (kx, ky, kz and the shear) is computed once per ray, not once per candidate;
+//   * the sign of each edge function is read from its floating-point value when Shewchuk's bound
+//     settles it, as orient2d_robust first does; only the rest go to orient2d_sign_perturbed;
+//   * a candidate yields s and the unnormalised barycentrics; the hit record (the point, λ and the
+//     normal, a square root) is made once, for the closest.
+struct ShearedRay {
+  int kx, ky, kz;
+  double shear_x, shear_y, scale_z;
+  const Ray* ray;
+  explicit ShearedRay(const Ray& r) : ray(&r) {
+    const Vec3& d = r.direction;
+    const Vec3 ad = glm::abs(d);
+    kz = (ad.x >= ad.y && ad.x >= ad.z) ? 0 : (ad.y >= ad.z ? 1 : 2);
+    kx = (kz + 1) % 3, ky = (kx + 1) % 3;
+    if (d[kz] < 0.0) std::swap(kx, ky);
+    shear_x = d[kx] / d[kz], shear_y = d[ky] / d[kz], scale_z = 1.0 / d[kz];
+  }
+};
+
+// A candidate's s and edge functions (u, v, w: λ = (u, v, w)/det).
+struct ExactHit {
+  double s, u, v, w, det;
+};
+
+// The sign of orient2d(p, q, 0) as orient2d_sign_perturbed(p, q, origin) gives it.
+inline int edge_sign(const Vec2& p, const Vec2& q, double value, double left, double right) {
+  const double bound = orient2d_error_bound * (std::abs(left) + std::abs(right));
+  if (value > bound) return 1;
+  if (-value > bound) return -1;
+  return orient2d_sign_perturbed(p, q, Vec2(0.0));
+}
+
+// The hit of lesson 03's test with s in [lo, hi], if any.
+inline bool exact_hit(const ShearedRay& r, const Triangle& t, double lo, double hi, ExactHit& hit) {
+  const Vec3 pa = t.a - r.ray->origin, pb = t.b - r.ray->origin, pc = t.c - r.ray->origin;
+  const double az = pa[r.kz], bz = pb[r.kz], cz = pc[r.kz];
+  const Vec2 a2(pa[r.kx] - r.shear_x * az, pa[r.ky] - r.shear_y * az);
+  const Vec2 b2(pb[r.kx] - r.shear_x * bz, pb[r.ky] - r.shear_y * bz);
+  const Vec2 c2(pc[r.kx] - r.shear_x * cz, pc[r.ky] - r.shear_y * cz);
+  // orient2d(p, q, 0) = p.x·q.y − p.y·q.x: lesson 03's u, v, w, and orient2d_robust's value.
+  const double u_left = b2.x * c2.y, u_right = b2.y * c2.x, u = u_left - u_right;
+  const double v_left = c2.x * a2.y, v_right = c2.y * a2.x, v = v_left - v_right;
+  const double w_left = a2.x * b2.y, w_right = a2.y * b2.x, w = w_left - w_right;
+  const int su = edge_sign(b2, c2, u, u_left, u_right);
+  if (su == 0 || edge_sign(c2, a2, v, v_left, v_right) != su || edge_sign(a2, b2, w, w_left, w_right) != su)
+    return false;
+  const double det = u + v + w;
+  if (det == 0.0) return false;
+  const double s = (u * az + v * bz + w * cz) * r.scale_z / det;
+  if (!(lo <= s && s <= hi)) return false;
+  hit = ExactHit{s, u, v, w, det};
+  return true;
+}
+
+// The hit record of lesson 03's test for `hit` (exact_hit's) on `t`.
+TriangleHit hit_record(const Ray& ray, const Triangle& t, const ExactHit& hit) {
+  TriangleHit record;
+  record.s = hit.s;
+  record.point = ray.at(hit.s);
+  record.barycentric = Vec3(hit.u, hit.v, hit.w) / hit.det;
+  record.normal = t.normal();
+  return record;
+}
 
 // Packs the triangles [first, first + count) of `tree_triangles` (and their ids) from
 // packs.size() on; returns the first pack's index.
@@ -408,8 +503,7 @@ void lay_out(const std::vector<BvhNode>& tree, std::uint32_t i, std::uint32_t at
         node.planes[a][k] = float_infinity;
         node.planes[3 + a][k] = -float_infinity;
       }
-      node.child[k] = 0;
-      node.count[k] = 1;
+      node.child[k] = compact_bvh_ref(0, 1);
       continue;
     }
     const BvhNode& c = tree[kids[k]];
@@ -418,13 +512,13 @@ void lay_out(const std::vector<BvhNode>& tree, std::uint32_t i, std::uint32_t at
       node.planes[3 + a][k] = round_up(c.box.hi[a]);
     }
     if (c.leaf()) {
-      node.child[k] = c.first;
-      node.count[k] = static_cast<std::uint16_t>(c.count);
+      node.child[k] = compact_bvh_ref(0, c.count);
+      node.unused[k] = c.first;  // the leaf's first triangle in the tree, until it is packed
     } else {
       const auto index = static_cast<std::uint32_t>(nodes.size());
+      require(index < 1u << compact_bvh_index_bits, "CompactBvh: more than 2^24 nodes");
       nodes.emplace_back();
-      nodes[at].child[k] = index;
-      nodes[at].count[k] = 0;
+      nodes[at].child[k] = compact_bvh_ref(index, 0);
       lay_out(tree, kids[k], index, nodes);
     }
   }
@@ -448,11 +542,13 @@ std::vector<BvhNode> merge_small_subtrees(const std::vector<BvhNode>& tree, std:
   return merged;
 }
 
+// A child to visit: its reference (compact_bvh_ref) and a lower bound on where the ray enters its box.
 struct Entry {
-  std::uint32_t child;
-  std::uint32_t count;  // 0: an inner node
-  float enter;          // a lower bound on where the ray enters its box
+  std::uint32_t ref;
+  float enter;
 };
+inline std::uint32_t ref_index(std::uint32_t ref) { return ref & ((1u << compact_bvh_index_bits) - 1); }
+inline std::uint32_t ref_count(std::uint32_t ref) { return ref >> compact_bvh_index_bits; }
 
 constexpr std::size_t huge_page = std::size_t{1} << 21;
 
@@ -486,8 +582,8 @@ CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
       for (int a = 0; a < 3; ++a) {
         root.planes[a][k] = k == 0 ? round_down(tree[0].box.lo[a]) : float_infinity;
         root.planes[3 + a][k] = k == 0 ? round_up(tree[0].box.hi[a]) : -float_infinity;
-        root.child[k] = k == 0 ? tree[0].first : 0;
-        root.count[k] = k == 0 ? static_cast<std::uint16_t>(tree[0].count) : 1;
+        root.child[k] = compact_bvh_ref(0, k == 0 ? tree[0].count : 1);
+        root.unused[k] = k == 0 ? tree[0].first : 0;
       }
   } else {
     lay_out(tree, 0, 0, nodes_);
@@ -497,9 +593,15 @@ CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
   triangles_.reserve(bvh.triangles().size() * 4 / 3 + 4);
   for (CompactBvhNode& node : nodes_)
     for (int k = 0; k < compact_bvh_width; ++k)
-      if (node.count[k] > 0 && node.planes[0][k] != float_infinity)
-        node.child[k] =
-            pack_leaf(bvh.triangles(), bvh.ids(), node.child[k], node.count[k], packs_, triangles_);
+      if (const std::uint32_t count = ref_count(node.child[k]);
+          count > 0 && node.planes[0][k] != float_infinity) {
+        const std::uint32_t first =
+            pack_leaf(bvh.triangles(), bvh.ids(), node.unused[k], count, packs_, triangles_);
+        require(packs_.size() <= 1u << compact_bvh_index_bits, "CompactBvh: more than 2^24 triangle packs");
+        node.child[k] = compact_bvh_ref(first, count);
+        node.unused[k] = 0;
+      }
+  packs_.emplace_back();  // the AVX traversal reads a leaf's packs two at a time, and masks this one
 }
 
 bool CompactBvh::use_avx(bool wanted) {
@@ -509,23 +611,6 @@ bool CompactBvh::use_avx(bool wanted) {
   (void)wanted;
 #endif
   return avx_;
-}
-
-void CompactBvh::prefetch(const void* entry) const {
-#if defined(__SSE2__)
-  const auto& e = *static_cast<const Entry*>(entry);
-  const char* at = e.count == 0 ? reinterpret_cast<const char*>(&nodes_[e.child])
-                                : reinterpret_cast<const char*>(&packs_[e.child]);
-  _mm_prefetch(at, _MM_HINT_T0);
-  _mm_prefetch(at + 64, _MM_HINT_T0);
-  _mm_prefetch(at + 128, _MM_HINT_T0);
-  _mm_prefetch(at + 192, _MM_HINT_T0);  // a node's last line, or a leaf's second pack
-  if (e.count > 4)                      // the rest of a leaf's packs: three lines each
-    for (std::uint32_t line = 4; line < (e.count + 3) / 4 * 3; ++line)
-      _mm_prefetch(at + 64 * line, _MM_HINT_T0);
-#else
-  (void)entry;
-#endif
 }
 
 std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters& counters) const {
@@ -553,22 +638,21 @@ template <bool wide>
 std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& counters) const {
   const FastRay r(ray);
   const PackRay pr(ray);
-  const float t_lo = filter_lo(ray.range.lo);
-  float t_hi = filter_hi(ray.range.hi);
-  Ray probe = ray;  // probe.range.hi: the closest hit so far
-  // The closest hit so far: best_hit, valid when best_lane (4·pack + lane) is not `none`. Not a
-  // std::optional<AccelHit>, whose construction zero-fills its storage on every ray.
+  const RayLimits limits(ray.range);
+  float t_hi = limits.t_hi;
+  const ShearedRay sheared(ray);
+  // The closest hit so far: best_hit, valid when best_lane (4·pack + lane) is not `none`; s ≤ best_s.
   constexpr std::uint32_t none = ~0u;
   std::uint32_t best_lane = none;
-  TriangleHit best_hit;
+  ExactHit best_hit;
+  double best_s = ray.range.hi;
   Entry stack[(compact_bvh_width - 1) * bvh_max_depth + compact_bvh_width];
   int top = 0;
   std::uint64_t visits = 0, tests = 0;
-  const float lo = round_down(ray.range.lo);
   // How far a box may begin and still be entered: the closest hit so far plus the culling slack,
   // rounded up to float (the box test and the stacked entries); updated at each hit.
-  float reach_float = round_up(probe.range.hi + culling_slack * std::abs(probe.range.hi));
-  // Sure hits whose exact test is deferred (see SureHits), and the lower limit they must clear.
+  float reach = limits.reach;
+  // Sure hits whose exact test is deferred (see SureHits).
   struct Deferred {
     std::uint32_t lane;  // 4·pack + lane
     float t_over;        // an upper bound on its t
@@ -576,7 +660,6 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
   constexpr int deferred_capacity = 8;
   Deferred deferred[deferred_capacity];
   int deferred_count = 0;
-  const float sure_lo = ray.range.lo > 0.0 ? round_up(ray.range.lo) * (1.0f + 0x1p-20f) : 0.0f;
   // The deferred exact tests, nearest bound first (usually the first is the hit and the others miss
   // by the range): each is lesson 03's test, as for any other lane.
   const auto settle = [&] {
@@ -584,82 +667,72 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
       for (int j = i; j > 0 && deferred[j].t_over < deferred[j - 1].t_over; --j)
         std::swap(deferred[j], deferred[j - 1]);
     for (int i = 0; i < deferred_count; ++i)
-      if (const auto hit = illum::intersect(probe, triangles_[deferred[i].lane])) {
-        best_hit = *hit;
+      if (exact_hit(sheared, triangles_[deferred[i].lane], ray.range.lo, best_s, best_hit)) {
         best_lane = deferred[i].lane;
-        probe.range.hi = hit->s;
+        best_s = best_hit.s;
       }
     deferred_count = 0;
   };
 #if defined(ILLUM_COMPACT_BVH_AVX)
   WideRay w;
-  if constexpr (wide) widen(r, lo, w);
+  WidePackRay wp;
+  if constexpr (wide) widen(r, limits.lo, w), widen(pr, wp);
 #endif
-  Entry current{0, 0, lo};
+  Entry current{compact_bvh_ref(0, 0), limits.lo};
   for (;;) {
-    if (current.count == 0) {
-      const CompactBvhNode& node_ref = nodes_[current.child];
-      // The children's links read before the boxes are clipped: their line is loaded with the boxes'
-      // lines, not after the clip has picked which child to read (a dependent miss).
-      struct {
-        std::uint32_t child[compact_bvh_width];
-        std::uint16_t count[compact_bvh_width];
-      } node;
-      std::memcpy(&node, node_ref.child, sizeof node);
+    if (ref_count(current.ref) == 0) {
+      const CompactBvhNode& node = nodes_[current.ref];
       visits += compact_bvh_width;
       float entry[compact_bvh_width];
 #if defined(ILLUM_COMPACT_BVH_AVX)
-      int inside = wide ? clip_node_avx(r, w, node_ref, reach_float, entry)
-                        : clip_node(r, node_ref, lo, reach_float, entry);
+      unsigned inside = static_cast<unsigned>(wide ? clip_node_avx(r, w, node, reach, entry)
+                                                   : clip_node(r, node, limits.lo, reach, entry));
 #else
-      int inside = clip_node(r, node_ref, lo, reach_float, entry);
+      unsigned inside = static_cast<unsigned>(clip_node(r, node, limits.lo, reach, entry));
 #endif
-      if (inside != 0 && (inside & (inside - 1)) == 0) {  // one child entered: no sorting, no stack
-        const int k = lowest_lane(inside);
-        current = Entry{node.child[k], node.count[k], entry[k]};
-        prefetch(&current);
-        continue;
-      }
-      if (inside != 0 && std::popcount(static_cast<unsigned>(inside)) == 2) {  // the common pair
-        const int k0 = lowest_lane(inside), k1 = lowest_lane(inside & (inside - 1));
-        const int near = entry[k1] < entry[k0] ? k1 : k0, far = near == k0 ? k1 : k0;
-        stack[top] = Entry{node.child[far], node.count[far], entry[far]};
-        prefetch(&stack[top++]);
-        current = Entry{node.child[near], node.count[near], entry[near]};
-        prefetch(&current);
-        continue;
-      }
       if (inside != 0) {
-        Entry hits[compact_bvh_width];
-        int n = 0;
+        // The nearest child becomes the current one, the others go on the stack, nearest on top.
+        const int k0 = lowest_lane(static_cast<int>(inside));
+        inside &= inside - 1;
+        current = Entry{node.child[k0], entry[k0]};
+        if (inside == 0) continue;  // one child entered: no stack
+        const int k1 = lowest_lane(static_cast<int>(inside));
+        inside &= inside - 1;
+        Entry second{node.child[k1], entry[k1]};
+        if (second.enter < current.enter) std::swap(current, second);
+        if (inside == 0) {  // two: the common case
+          stack[top++] = second;
+          continue;
+        }
+        // Three or more: the farther of the first two and the rest go on the stack by insertion,
+        // farthest deepest; the nearest of all becomes the current one.
+        const int base = top;
+        stack[top++] = second;
         for (; inside != 0; inside &= inside - 1) {
-          const int k = lowest_lane(inside);
-          // Insertion by entry, nearest first.
-          int j = n++;
-          for (; j > 0 && hits[j - 1].enter > entry[k]; --j) hits[j] = hits[j - 1];
-          hits[j] = Entry{node.child[k], node.count[k], entry[k]};
+          const int k = lowest_lane(static_cast<int>(inside));
+          Entry e{node.child[k], entry[k]};
+          if (e.enter < current.enter) std::swap(e, current);
+          int j = top++;
+          for (; j > base && stack[j - 1].enter < e.enter; --j) stack[j] = stack[j - 1];
+          stack[j] = e;
         }
-        for (int k = n - 1; k > 0; --k) {
-          stack[top++] = hits[k];
-          prefetch(&hits[k]);  // popped later: its lines can load meanwhile
-        }
-        current = hits[0];
-        prefetch(&current);
         continue;
       }
     } else {
-      tests += current.count;
-      for (std::uint32_t p = current.child, left = current.count; left > 0;) {
-        // Two packs at once where the AVX traversal runs and two remain, else one.
-        const bool two = wide && left > 4;
-        const std::uint32_t width = two ? 8u : 4u, used = std::min(left, width);
+      const std::uint32_t count = ref_count(current.ref);
+      tests += count;
+      for (std::uint32_t p = ref_index(current.ref), left = count; left > 0;) {
+        // Two packs at once where the AVX traversal runs (the lanes of a pack past the leaf's end
+        // masked: a padding pack follows the last), else one.
+        constexpr std::uint32_t width = wide ? 8u : 4u;
+        const std::uint32_t used = std::min(left, width);
         SureHits sure;
 #if defined(ILLUM_COMPACT_BVH_AVX)
-        int lanes = (two ? may_hit_two(pr, &packs_[p], t_lo, t_hi, sure_lo, sure)
-                         : may_hit(pr, packs_[p], t_lo, t_hi, sure_lo, &sure)) &
+        int lanes = (wide ? may_hit_two(wp, &packs_[p], limits.t_lo, t_hi, limits.sure_lo, sure)
+                          : may_hit(pr, packs_[p], limits.t_lo, t_hi, limits.sure_lo, &sure)) &
                     ((1 << used) - 1);
 #else
-        int lanes = may_hit(pr, packs_[p], t_lo, t_hi, sure_lo, &sure) & ((1 << used) - 1);
+        int lanes = may_hit(pr, packs_[p], limits.t_lo, t_hi, limits.sure_lo, &sure) & ((1 << used) - 1);
 #endif
         for (; lanes != 0; lanes &= lanes - 1) {
           const int lane = lowest_lane(lanes);
@@ -675,14 +748,12 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
             _mm_prefetch(exact + sizeof(Triangle) - 1, _MM_HINT_T0);
 #endif
             t_hi = std::min(t_hi, t_over * (1.0f + 0x1p-20f));
-            reach_float = std::min(reach_float, round_up(t_over * (1.0 + culling_slack)));
-          } else if (const auto hit = illum::intersect(probe, triangles_[k])) {
-            best_hit = *hit;
+            reach = std::min(reach, round_up(t_over * (1.0 + culling_slack)));
+          } else if (exact_hit(sheared, triangles_[k], ray.range.lo, best_s, best_hit)) {
             best_lane = k;
-            probe.range.hi = hit->s;
-            t_hi = std::min(t_hi, filter_hi(hit->s));
-            reach_float =
-                std::min(reach_float, round_up(probe.range.hi + culling_slack * std::abs(probe.range.hi)));
+            best_s = best_hit.s;
+            t_hi = std::min(t_hi, filter_hi(best_s));
+            reach = std::min(reach, round_up(best_s + culling_slack * std::abs(best_s)));
           }
         }
         p += width / 4;
@@ -697,10 +768,11 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
         counters.nodes_visited += visits;
         counters.triangle_tests += tests;
         if (best_lane == none) return std::nullopt;
-        return AccelHit{best_hit, packs_[best_lane / 4].id[best_lane % 4]};
+        return AccelHit{hit_record(ray, triangles_[best_lane], best_hit),
+                        packs_[best_lane / 4].id[best_lane % 4]};
       }
       current = stack[--top];
-      if (current.enter <= reach_float) break;
+      if (current.enter <= reach) break;
     }
   }
 }
@@ -709,26 +781,31 @@ bool CompactBvh::occluded(const Ray& ray, TraversalCounters& counters) const {
   ++counters.rays;
   const FastRay r(ray);
   const PackRay pr(ray);
-  const float t_lo = filter_lo(ray.range.lo), t_hi = filter_hi(ray.range.hi);
+  const ShearedRay sheared(ray);
+  const RayLimits limits(ray.range);
+  ExactHit hit;
   Entry stack[(compact_bvh_width - 1) * bvh_max_depth + compact_bvh_width];
   int top = 0;
-  const float lo = round_down(ray.range.lo), hi = round_up(ray.range.hi);
-  Entry current{0, 0, lo};
+  const float hi = round_up(ray.range.hi);
+  Entry current{compact_bvh_ref(0, 0), limits.lo};
   for (;;) {
-    if (current.count == 0) {
-      const CompactBvhNode& node = nodes_[current.child];
+    if (ref_count(current.ref) == 0) {
+      const CompactBvhNode& node = nodes_[current.ref];
       counters.nodes_visited += compact_bvh_width;
       float entry[compact_bvh_width];
-      for (int inside = clip_node(r, node, lo, hi, entry); inside != 0; inside &= inside - 1) {
+      for (int inside = clip_node(r, node, limits.lo, hi, entry); inside != 0; inside &= inside - 1) {
         const int k = lowest_lane(inside);
-        stack[top++] = Entry{node.child[k], node.count[k], entry[k]};
+        stack[top++] = Entry{node.child[k], entry[k]};
       }
     } else {
-      counters.triangle_tests += current.count;
-      for (std::uint32_t p = current.child, left = current.count; left > 0; ++p, left -= std::min(left, 4u)) {
-        int lanes = may_hit(pr, packs_[p], t_lo, t_hi) & ((1 << std::min(left, 4u)) - 1);
+      const std::uint32_t count = ref_count(current.ref);
+      counters.triangle_tests += count;
+      for (std::uint32_t p = ref_index(current.ref), left = count; left > 0;
+           ++p, left -= std::min(left, 4u)) {
+        int lanes = may_hit(pr, packs_[p], limits.t_lo, limits.t_hi) & ((1 << std::min(left, 4u)) - 1);
         for (; lanes != 0; lanes &= lanes - 1)
-          if (illum::intersect(ray, triangles_[4 * p + static_cast<std::uint32_t>(lowest_lane(lanes))]))
+          if (exact_hit(sheared, triangles_[4 * p + static_cast<std::uint32_t>(lowest_lane(lanes))],
+                        ray.range.lo, ray.range.hi, hit))
             return true;
       }
     }

@@ -60,17 +60,26 @@
 
 namespace illum {
 
-// Eight children: box planes [plane][child], planes 0–2 the lo of x, y, z and
-// 3–5 the hi; for each child a leaf (count > 0 triangles, `child` its first
-// TrianglePack) or the index of its node (count = 0). An unused slot has an
-// empty box (lo = +∞, hi = −∞) that no ray enters.
+// Eight children: for each a reference (a leaf's first TrianglePack and its count of triangles,
+// or the index of an inner node: compact_bvh_ref) and its box planes [plane][child], planes 0–2 the
+// lo of x, y, z and 3–5 the hi. An unused slot has an empty box (lo = +∞, hi = −∞) that no ray
+// enters. The references come first, in the line that also holds the lo of x: the box test loads
+// all four lines at once, so the references are in cache when it picks a child.
 constexpr int compact_bvh_width = 8;
 struct alignas(64) CompactBvhNode {
-  float planes[6][compact_bvh_width];
   std::uint32_t child[compact_bvh_width];
-  std::uint16_t count[compact_bvh_width];
+  float planes[6][compact_bvh_width];
+  std::uint32_t unused[compact_bvh_width];  // 0 (the build keeps a leaf's first triangle here)
 };
 static_assert(sizeof(CompactBvhNode) == 256);
+
+// A child reference: the low 24 bits an index (of a node, or of a leaf's first pack), the high 8
+// the leaf's count of triangles (0: an inner node). Each leaf holds at most 255 triangles (as
+// BvhSettings allows) and the build refuses a tree of 2^24 nodes or packs (64 million triangles).
+constexpr int compact_bvh_index_bits = 24;
+constexpr std::uint32_t compact_bvh_ref(std::uint32_t index, std::uint32_t count) {
+  return index | count << compact_bvh_index_bits;
+}
 
 // The filter's view of four triangles, [axis][lane]: a vertex, the two edges
 // from it, their ∞-norms for the rounding bound, and the triangles' ids. A leaf of n triangles
@@ -119,7 +128,6 @@ class CompactBvh final : public TriangleAccel {
   bool use_avx(bool wanted);
 
  private:
-  void prefetch(const void* entry) const;  // a traversal stack entry's node or packs
   // intersect's traversal; wide: nodes clipped in one AVX register (compiled for AVX, called only
   // when the processor has it: avx_); the rest is the same SSE2 code.
   template <bool wide>
