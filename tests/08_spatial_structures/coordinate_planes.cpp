@@ -1,6 +1,6 @@
 // Hard cases of surfaces on coordinate planes, far away or flat (suite
 // "stability", not graded), each through every structure of lesson 08 (brute
-// force, grid, octree, teaching BVH, production BVH on its SSE2 and AVX paths):
+// force, grid, octree, teaching BVH, production BVH with each of its kernels):
 //   * rays leaving triangles and meshes that lie in x = 0, y = 0 or z = 0 (at the
 //     origin and 10⁴ from it) or in x = 10⁴…: reflected, refracted and shadow rays
 //     hit nothing. Expected by geometry alone: a ray leaving a plane never meets

@@ -9,6 +9,8 @@
 #include <cstring>
 #include <limits>
 #include <new>
+
+#include <glm/gtc/type_ptr.hpp>
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
@@ -33,6 +35,7 @@ inline int lowest_lane(int mask) { return std::countr_zero(static_cast<unsigned>
 constexpr float float_far_slack = 2.0f * (3.0f * 0x1p-24f) / (1.0f - 3.0f * 0x1p-24f);
 // A stacked child is skipped when its entry lies beyond the best hit by more than this (relative).
 constexpr double culling_slack = 1e-5;
+static_assert(0x1p-16 * (1 - 0x1p-24) - 0x1p-24 > culling_slack);
 // Subtrees of at most this many triangles (four packs) become one leaf, if leaf_size allows it (a
 // leaf never holds more than leaf_size): one pack pair tested instead of a box and part-empty packs.
 constexpr std::uint32_t merged_leaf_limit = 16;
@@ -56,33 +59,99 @@ inline float round_up(double x) {
   return static_cast<double>(f) >= x ? f : above;
 }
 
-// A ray prepared once for every box it meets.
+// round_up for x ≥ 0 (and +∞): no sign to test, and the next float up is the next bit pattern.
+inline float round_up_nonnegative(double x) {
+  const float f = static_cast<float>(x);
+  return std::bit_cast<float>(std::bit_cast<std::uint32_t>(f) + (static_cast<double>(f) < x ? 1u : 0u));
+}
+
+// What every kernel needs of a ray, in float, computed once per ray: lanes x, y, z (the fourth is
+// not used).
+struct RayFloats {
+  float inverse[4];                   // 1/ω per axis, ±∞ where ω[a] = 0
+  float near_origin[4];               // the origin moved against the near plane by more than its rounding
+  float far_origin[4];                // and towards the far plane
+  float origin[4], direction[4];      // o and ω rounded to float, for the triangle filter
+  float origin_size, direction_size;  // ‖o‖∞ and ‖ω‖∞ of the doubles, rounded up
+  int near_plane[3], far_plane[3];    // offsets in floats into CompactBvhNode::planes: 8a (lo), 8(3 + a) (hi)
+};
+inline void set_up(const Ray& ray, RayFloats& f) {
+  double o_size = 0, d_size = 0;
+  for (int a = 0; a < 3; ++a) {
+    const double inv = 1.0 / ray.direction[a];
+    f.inverse[a] = static_cast<float>(inv);
+    const bool negative = std::signbit(inv);
+    f.near_plane[a] = compact_bvh_width * (negative ? 3 + a : a);
+    f.far_plane[a] = compact_bvh_width * (negative ? a : 3 + a);
+    // Moving the origin by w towards +∞ is moving every plane by w towards −∞.
+    const double w = 0x1p-21 * std::abs(ray.origin[a]);
+    f.near_origin[a] = static_cast<float>(negative ? ray.origin[a] - w : ray.origin[a] + w);
+    f.far_origin[a] = static_cast<float>(negative ? ray.origin[a] + w : ray.origin[a] - w);
+    f.origin[a] = static_cast<float>(ray.origin[a]);
+    f.direction[a] = static_cast<float>(ray.direction[a]);
+    o_size = std::max(o_size, std::abs(ray.origin[a]));
+    d_size = std::max(d_size, std::abs(ray.direction[a]));
+  }
+  f.origin_size = round_up_nonnegative(o_size);
+  f.direction_size = round_up_nonnegative(d_size);
+}
+
+#if defined(__x86_64__) && defined(__GNUC__)
+#define ILLUM_COMPACT_BVH_AVX 1
+// The largest of lanes x, y, z.
+__attribute__((target("avx"))) inline double max3(__m256d v) {
+  const __m128d lo = _mm256_castpd256_pd128(v), hi = _mm256_extractf128_pd(v, 1);
+  return _mm_cvtsd_f64(_mm_max_sd(_mm_max_sd(lo, _mm_unpackhi_pd(lo, lo)), hi));
+}
+
+// set_up four lanes at a time (the same operations, so the same floats), for the AVX kernels.
+__attribute__((target("avx"))) inline void set_up_avx(const Ray& ray, RayFloats& f) {
+  const __m256d o = _mm256_set_pd(0.0, ray.origin.z, ray.origin.y, ray.origin.x);
+  const __m256d d = _mm256_set_pd(1.0, ray.direction.z, ray.direction.y, ray.direction.x);
+  const __m256d sign = _mm256_set1_pd(-0.0);
+  const __m256d inv = _mm256_div_pd(_mm256_set1_pd(1.0), d);
+  const __m256d abs_o = _mm256_andnot_pd(sign, o), abs_d = _mm256_andnot_pd(sign, d);
+  const __m256d w = _mm256_mul_pd(_mm256_set1_pd(0x1p-21), abs_o);
+  const __m256d plus = _mm256_add_pd(o, w), minus = _mm256_sub_pd(o, w);
+  // blendv picks by the sign bit: of inv, that is std::signbit(inv).
+  _mm_storeu_ps(f.inverse, _mm256_cvtpd_ps(inv));
+  _mm_storeu_ps(f.near_origin, _mm256_cvtpd_ps(_mm256_blendv_pd(plus, minus, inv)));
+  _mm_storeu_ps(f.far_origin, _mm256_cvtpd_ps(_mm256_blendv_pd(minus, plus, inv)));
+  _mm_storeu_ps(f.origin, _mm256_cvtpd_ps(o));
+  _mm_storeu_ps(f.direction, _mm256_cvtpd_ps(d));
+  const int negative = _mm256_movemask_pd(inv);
+  for (int a = 0; a < 3; ++a) {
+    const int n = negative >> a & 1;
+    f.near_plane[a] = compact_bvh_width * (a + 3 * n);
+    f.far_plane[a] = compact_bvh_width * (a + 3 * (1 - n));
+  }
+
+  f.origin_size = round_up_nonnegative(max3(abs_o));
+  f.direction_size = round_up_nonnegative(max3(abs_d));
+}
+#endif
+
+// The box test's view of the ray in four lanes (SSE2).
 struct FastRay {
-  float inverse[3];      // 1/ω per axis, ±∞ where ω[a] = 0
-  float near_origin[3];  // the origin moved against the near plane by more than its float rounding
-  float far_origin[3];   // and towards the far plane
-  int near_plane[3];     // offset in floats into CompactBvhNode::planes: 4a (lo) or 4(3 + a) (hi)
-  int far_plane[3];
+  const int* near_plane;
+  const int* far_plane;
 #if defined(__SSE2__)
-  __m128 inverse4[3], near_origin4[3], far_origin4[3];  // the same, in four lanes
+  __m128 inverse4[3], near_origin4[3], far_origin4[3];
 #endif
-  explicit FastRay(const Ray& ray) {
+  const float *inverse, *near_origin, *far_origin;
+  explicit FastRay(const RayFloats& f)
+      : near_plane(f.near_plane),
+        far_plane(f.far_plane),
+        inverse(f.inverse),
+        near_origin(f.near_origin),
+        far_origin(f.far_origin) {
+#if defined(__SSE2__)
     for (int a = 0; a < 3; ++a) {
-      const double inv = 1.0 / ray.direction[a];
-      inverse[a] = static_cast<float>(inv);
-      const bool negative = std::signbit(inv);
-      near_plane[a] = compact_bvh_width * (negative ? 3 + a : a);
-      far_plane[a] = compact_bvh_width * (negative ? a : 3 + a);
-      // Moving the origin by w towards +∞ is moving every plane by w towards −∞.
-      const double w = 0x1p-21 * std::abs(ray.origin[a]);
-      near_origin[a] = static_cast<float>(negative ? ray.origin[a] - w : ray.origin[a] + w);
-      far_origin[a] = static_cast<float>(negative ? ray.origin[a] + w : ray.origin[a] - w);
-#if defined(__SSE2__)
-      inverse4[a] = _mm_set1_ps(inverse[a]);
-      near_origin4[a] = _mm_set1_ps(near_origin[a]);
-      far_origin4[a] = _mm_set1_ps(far_origin[a]);
-#endif
+      inverse4[a] = _mm_set1_ps(f.inverse[a]);
+      near_origin4[a] = _mm_set1_ps(f.near_origin[a]);
+      far_origin4[a] = _mm_set1_ps(f.far_origin[a]);
     }
+#endif
   }
 };
 
@@ -132,25 +201,23 @@ inline int clip_node(const FastRay& r, const CompactBvhNode& n, float lo, float 
   return clip_four(r, planes, lo, hi, entry) | clip_four(r, planes + 4, lo, hi, entry + 4) << 4;
 }
 
-#if defined(__x86_64__) && defined(__GNUC__)
-#define ILLUM_COMPACT_BVH_AVX 1
-// FastRay's values broadcast to eight lanes once per ray (AVX alone has no register-to-register
-// broadcast: each node would otherwise pay two shuffles per value).
+#if defined(ILLUM_COMPACT_BVH_AVX)
+// The box test's view of the ray in eight lanes, once per ray.
 struct WideRay {
   __m256 inverse[3], near_origin[3], far_origin[3], lo;
 };
-__attribute__((target("avx"))) inline void widen(const FastRay& r, float lo, WideRay& w) {
+__attribute__((target("avx"))) inline void widen(const RayFloats& f, float lo, WideRay& w) {
   for (int a = 0; a < 3; ++a) {
-    w.inverse[a] = _mm256_set1_ps(r.inverse[a]);
-    w.near_origin[a] = _mm256_set1_ps(r.near_origin[a]);
-    w.far_origin[a] = _mm256_set1_ps(r.far_origin[a]);
+    w.inverse[a] = _mm256_broadcast_ss(&f.inverse[a]);
+    w.near_origin[a] = _mm256_broadcast_ss(&f.near_origin[a]);
+    w.far_origin[a] = _mm256_broadcast_ss(&f.far_origin[a]);
   }
   w.lo = _mm256_set1_ps(lo);
 }
 
 // clip_node with the eight children in one AVX register: the same operations lane by lane (no
 // fused multiply-add), so the same answers; used only where the processor has AVX (run-time check).
-__attribute__((target("avx"))) inline int clip_node_avx(const FastRay& r, const WideRay& w,
+__attribute__((target("avx"))) inline int clip_node_avx(const RayFloats& r, const WideRay& w,
                                                         const CompactBvhNode& n, float hi, float entry[8]) {
   const float* planes = &n.planes[0][0];
   __m256 t0 = w.lo, exit = _mm256_set1_ps(float_infinity);
@@ -171,6 +238,54 @@ __attribute__((target("avx"))) inline int clip_node_avx(const FastRay& r, const 
 }
 #endif
 
+#if defined(ILLUM_COMPACT_BVH_AVX)
+// The ray for the AVX2 kernel, whose box test takes one fused multiply-add per plane:
+// t = fl(P·ω⁻¹ − c) with c = fl(o'·ω⁻¹), o' the shifted origin of RayFloats. Against the plain form
+// fl(fl(P − o')·ω⁻¹) only where the origin enters does the error change: c's rounding, at most
+// 2⁻²⁴|o'·ω⁻¹|, is the same as moving o' by 2⁻²⁴|o'|, which the shift of 2⁻²¹|o| (after o's own
+// rounding to float, at least 7·2⁻²⁴|o|) already covers; what is left is relative to t (the
+// rounding of ω⁻¹ and of the fused operation, two roundings, within the 2γ₃ of the exit's
+// widening). ω⁻¹ and c must be finite: a ray with an axis of ω zero (or so small that ω⁻¹
+// overflows float) gives ∞ − ∞ here, and takes the AVX kernel instead (prepare_fma says which).
+struct FmaRay {
+  __m256 inverse[3], near_offset[3], far_offset[3], lo;
+};
+__attribute__((target("avx2,fma"))) inline bool prepare_fma(const RayFloats& r, float lo, FmaRay& f) {
+  bool finite = true;
+  for (int a = 0; a < 3; ++a) {
+    const float near = r.near_origin[a] * r.inverse[a], far = r.far_origin[a] * r.inverse[a];
+    finite = finite && std::abs(r.inverse[a]) < float_infinity && std::abs(near) < float_infinity &&
+             std::abs(far) < float_infinity;
+    f.inverse[a] = _mm256_set1_ps(r.inverse[a]);
+    f.near_offset[a] = _mm256_set1_ps(near);
+    f.far_offset[a] = _mm256_set1_ps(far);
+  }
+  f.lo = _mm256_set1_ps(lo);
+  return finite;
+}
+
+// clip_node by fused multiply-adds (FmaRay), eight children at once: no NaN can arise (every
+// operand finite but the planes, and ±∞·ω⁻¹ − c is ±∞), so the operands' order does not matter.
+__attribute__((target("avx2,fma"))) inline int clip_node_fma(const RayFloats& r, const FmaRay& f,
+                                                             const CompactBvhNode& n, float hi,
+                                                             float entry[8]) {
+  const float* planes = &n.planes[0][0];
+  __m256 t0 = f.lo, exit = _mm256_set1_ps(float_infinity);
+  for (int a = 0; a < 3; ++a) {
+    t0 = _mm256_max_ps(
+        t0, _mm256_fmsub_ps(_mm256_load_ps(planes + r.near_plane[a]), f.inverse[a], f.near_offset[a]));
+    exit = _mm256_min_ps(
+        exit, _mm256_fmsub_ps(_mm256_load_ps(planes + r.far_plane[a]), f.inverse[a], f.far_offset[a]));
+  }
+  const __m256 widened =
+      _mm256_fmadd_ps(_mm256_andnot_ps(_mm256_set1_ps(-0.0f), exit), _mm256_set1_ps(float_far_slack), exit);
+  const __m256 t1 = _mm256_min_ps(widened, _mm256_set1_ps(hi));
+  _mm256_storeu_ps(entry, t0);
+  return _mm256_movemask_ps(_mm256_and_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ),
+                                          _mm256_cmp_ps(t0, _mm256_set1_ps(float_infinity), _CMP_LT_OQ)));
+}
+#endif
+
 // The filter's rounding bound, relative: K = 2⁻¹⁷ = 128 float ulps; the worst case of each
 // quantity below (s = o − v0, p = ω × e2, q = s × e1 and their dot products) is under 64.
 constexpr float filter_rounding = 0x1p-17f;
@@ -181,19 +296,16 @@ struct PackRay {
   __m128 origin[3], direction[3];
   __m128 origin_size, direction_size;  // ‖o‖∞, ‖ω‖∞ (rounded up)
 #endif
-  explicit PackRay(const Ray& ray) {
+  explicit PackRay(const RayFloats& f) {
 #if defined(__SSE2__)
-    double o_size = 0, d_size = 0;
     for (int a = 0; a < 3; ++a) {
-      origin[a] = _mm_set1_ps(static_cast<float>(ray.origin[a]));
-      direction[a] = _mm_set1_ps(static_cast<float>(ray.direction[a]));
-      o_size = std::max(o_size, std::abs(ray.origin[a]));
-      d_size = std::max(d_size, std::abs(ray.direction[a]));
+      origin[a] = _mm_set1_ps(f.origin[a]);
+      direction[a] = _mm_set1_ps(f.direction[a]);
     }
-    origin_size = _mm_set1_ps(round_up(o_size));
-    direction_size = _mm_set1_ps(round_up(d_size));
+    origin_size = _mm_set1_ps(f.origin_size);
+    direction_size = _mm_set1_ps(f.direction_size);
 #else
-    (void)ray;
+    (void)f;
 #endif
   }
 };
@@ -281,13 +393,13 @@ __attribute__((target("avx"))) inline __m256 load_two(const TrianglePack* pack, 
 struct WidePackRay {
   __m256 origin[3], direction[3], origin_size, direction_size;
 };
-__attribute__((target("avx"))) inline void widen(const PackRay& r, WidePackRay& w) {
+__attribute__((target("avx"))) inline void widen(const RayFloats& f, WidePackRay& w) {
   for (int a = 0; a < 3; ++a) {
-    w.origin[a] = _mm256_set_m128(r.origin[a], r.origin[a]);
-    w.direction[a] = _mm256_set_m128(r.direction[a], r.direction[a]);
+    w.origin[a] = _mm256_broadcast_ss(&f.origin[a]);
+    w.direction[a] = _mm256_broadcast_ss(&f.direction[a]);
   }
-  w.origin_size = _mm256_set_m128(r.origin_size, r.origin_size);
-  w.direction_size = _mm256_set_m128(r.direction_size, r.direction_size);
+  w.origin_size = _mm256_broadcast_ss(&f.origin_size);
+  w.direction_size = _mm256_broadcast_ss(&f.direction_size);
 }
 
 // may_hit on two consecutive packs at once, eight lanes (bit 4 + k: the second pack's lane k): the
@@ -357,6 +469,76 @@ __attribute__((target("avx"))) inline int may_hit_two(const WidePackRay& r, cons
   _mm256_storeu_ps(sure.det_under, det_under);
   return ~_mm256_movemask_ps(miss) & 0xff;
 }
+
+// may_hit_two by fused multiply-adds (the AVX2 kernel): the same bounds, which hold for the fused
+// evaluation too (each fused operation rounds once where the plain one rounds twice, and the
+// bounds of sums of products (Higham, Accuracy and Stability of Numerical Algorithms, §3.1) do
+// not grow), and the sure hits worked out only when some lane passes.
+__attribute__((target("avx2,fma"))) inline int may_hit_fma(const WidePackRay& r, const TrianglePack* pack,
+                                                           float lo, float hi, float sure_lo,
+                                                           SureHits& sure) {
+  constexpr std::size_t row = 4 * sizeof(float);
+  const std::size_t v0 = offsetof(TrianglePack, v0), e1o = offsetof(TrianglePack, e1),
+                    e2o = offsetof(TrianglePack, e2);
+  const __m256 s0 = _mm256_sub_ps(r.origin[0], load_two(pack, v0)),
+               s1 = _mm256_sub_ps(r.origin[1], load_two(pack, v0 + row)),
+               s2 = _mm256_sub_ps(r.origin[2], load_two(pack, v0 + 2 * row));
+  const __m256 a0 = load_two(pack, e1o), a1 = load_two(pack, e1o + row), a2 = load_two(pack, e1o + 2 * row);
+  const __m256 b0 = load_two(pack, e2o), b1 = load_two(pack, e2o + row), b2 = load_two(pack, e2o + 2 * row);
+  const __m256 d0 = r.direction[0], d1 = r.direction[1], d2 = r.direction[2];
+  // p = ω × e2, det = e1 · p, u = s · p; q = s × e1, v = ω · q, t·det = e2 · q.
+  const __m256 p0 = _mm256_fmsub_ps(d1, b2, _mm256_mul_ps(d2, b1)),
+               p1 = _mm256_fmsub_ps(d2, b0, _mm256_mul_ps(d0, b2)),
+               p2 = _mm256_fmsub_ps(d0, b1, _mm256_mul_ps(d1, b0));
+  const __m256 det = _mm256_fmadd_ps(a2, p2, _mm256_fmadd_ps(a1, p1, _mm256_mul_ps(a0, p0)));
+  const __m256 u = _mm256_fmadd_ps(s2, p2, _mm256_fmadd_ps(s1, p1, _mm256_mul_ps(s0, p0)));
+  const __m256 q0 = _mm256_fmsub_ps(s1, a2, _mm256_mul_ps(s2, a1)),
+               q1 = _mm256_fmsub_ps(s2, a0, _mm256_mul_ps(s0, a2)),
+               q2 = _mm256_fmsub_ps(s0, a1, _mm256_mul_ps(s1, a0));
+  const __m256 v = _mm256_fmadd_ps(d2, q2, _mm256_fmadd_ps(d1, q1, _mm256_mul_ps(d0, q0)));
+  const __m256 t = _mm256_fmadd_ps(b2, q2, _mm256_fmadd_ps(b1, q1, _mm256_mul_ps(b0, q0)));
+  // The bounds of may_hit, with one bound for both edges: K·a·‖ω‖·‖e‖ (u and v), K·‖ω‖·‖e‖² (det),
+  // K·a·‖e‖² (t·det), a = ‖o‖ + ‖v0‖.
+  const __m256 k = _mm256_set1_ps(filter_rounding);
+  const __m256 size =
+      _mm256_mul_ps(k, _mm256_add_ps(r.origin_size, load_two(pack, offsetof(TrianglePack, v0_size))));
+  const __m256 e = load_two(pack, offsetof(TrianglePack, edge_size));
+  const __m256 de = _mm256_mul_ps(r.direction_size, e), ee = _mm256_mul_ps(e, e);
+  const __m256 bound_uv = _mm256_mul_ps(size, de), bound_det = _mm256_mul_ps(k, _mm256_mul_ps(de, e)),
+               bound_t = _mm256_mul_ps(size, ee);
+  const __m256 sign = _mm256_and_ps(det, _mm256_set1_ps(-0.0f));
+  const __m256 size_det = _mm256_andnot_ps(_mm256_set1_ps(-0.0f), det);
+  const __m256 su = _mm256_xor_ps(u, sign), sv = _mm256_xor_ps(v, sign), st = _mm256_xor_ps(t, sign);
+  const __m256 zero = _mm256_setzero_ps();
+  const __m256 det_over = _mm256_add_ps(size_det, bound_det);
+  __m256 miss = _mm256_cmp_ps(_mm256_add_ps(su, bound_uv), zero, _CMP_LT_OQ);
+  miss = _mm256_or_ps(miss, _mm256_cmp_ps(_mm256_add_ps(sv, bound_uv), zero, _CMP_LT_OQ));
+  miss = _mm256_or_ps(
+      miss, _mm256_cmp_ps(_mm256_sub_ps(_mm256_add_ps(su, sv), _mm256_add_ps(bound_uv, bound_uv)), det_over,
+                          _CMP_GT_OQ));
+  miss = _mm256_or_ps(miss, _mm256_cmp_ps(_mm256_sub_ps(st, bound_t),
+                                          _mm256_mul_ps(_mm256_set1_ps(hi), det_over), _CMP_GT_OQ));
+  const __m256 det_under = _mm256_sub_ps(size_det, bound_det);
+  miss = _mm256_or_ps(miss, _mm256_cmp_ps(_mm256_add_ps(st, bound_t),
+                                          _mm256_mul_ps(_mm256_set1_ps(lo), det_under), _CMP_LT_OQ));
+  miss = _mm256_andnot_ps(_mm256_cmp_ps(size_det, bound_det, _CMP_LE_OQ), miss);
+  const int lanes = ~_mm256_movemask_ps(miss) & 0xff;
+  if (lanes == 0) {
+    sure.lanes = 0;
+    return 0;
+  }
+  __m256 hit = _mm256_cmp_ps(_mm256_sub_ps(su, bound_uv), zero, _CMP_GT_OQ);
+  hit = _mm256_and_ps(hit, _mm256_cmp_ps(_mm256_sub_ps(sv, bound_uv), zero, _CMP_GT_OQ));
+  hit = _mm256_and_ps(
+      hit, _mm256_cmp_ps(_mm256_add_ps(_mm256_add_ps(su, sv), _mm256_add_ps(bound_uv, bound_uv)), det_under,
+                         _CMP_LT_OQ));
+  hit = _mm256_and_ps(hit, _mm256_cmp_ps(_mm256_sub_ps(st, bound_t),
+                                         _mm256_mul_ps(_mm256_set1_ps(sure_lo), det_over), _CMP_GT_OQ));
+  sure.lanes = _mm256_movemask_ps(hit);
+  _mm256_storeu_ps(sure.t_over, _mm256_add_ps(st, bound_t));
+  _mm256_storeu_ps(sure.det_under, det_under);
+  return lanes;
+}
 #endif
 
 // The filter's limits on t: hi rounded up, lo rounded down, each by a further 2⁻²⁰
@@ -390,16 +572,22 @@ struct RayLimits {
 //   * a candidate yields s and the unnormalised barycentrics; the hit record (the point, λ and the
 //     normal, a square root) is made once, for the closest.
 struct ShearedRay {
-  int kx, ky, kz;
-  double shear_x, shear_y, scale_z;
   const Ray* ray;
-  explicit ShearedRay(const Ray& r) : ray(&r) {
-    const Vec3& d = r.direction;
+  bool ready = false;  // the frame is worked out at the first candidate: many rays meet none
+  int kx = 0, ky = 0, kz = 0;
+  double shear_x = 0, shear_y = 0, scale_z = 0;
+  double origin[3] = {};  // the origin's coordinates kx, ky, kz
+  explicit ShearedRay(const Ray& r) : ray(&r) {}
+  void frame() {
+    const Vec3& d = ray->direction;
     const Vec3 ad = glm::abs(d);
     kz = (ad.x >= ad.y && ad.x >= ad.z) ? 0 : (ad.y >= ad.z ? 1 : 2);
     kx = (kz + 1) % 3, ky = (kx + 1) % 3;
     if (d[kz] < 0.0) std::swap(kx, ky);
     shear_x = d[kx] / d[kz], shear_y = d[ky] / d[kz], scale_z = 1.0 / d[kz];
+    const double* o = glm::value_ptr(ray->origin);
+    origin[0] = o[kx], origin[1] = o[ky], origin[2] = o[kz];
+    ready = true;
   }
 };
 
@@ -417,12 +605,14 @@ inline int edge_sign(const Vec2& p, const Vec2& q, double value, double left, do
 }
 
 // The hit of lesson 03's test with s in [lo, hi], if any.
-inline bool exact_hit(const ShearedRay& r, const Triangle& t, double lo, double hi, ExactHit& hit) {
-  const Vec3 pa = t.a - r.ray->origin, pb = t.b - r.ray->origin, pc = t.c - r.ray->origin;
-  const double az = pa[r.kz], bz = pb[r.kz], cz = pc[r.kz];
-  const Vec2 a2(pa[r.kx] - r.shear_x * az, pa[r.ky] - r.shear_y * az);
-  const Vec2 b2(pb[r.kx] - r.shear_x * bz, pb[r.ky] - r.shear_y * bz);
-  const Vec2 c2(pc[r.kx] - r.shear_x * cz, pc[r.ky] - r.shear_y * cz);
+inline bool exact_hit(ShearedRay& r, const Triangle& t, double lo, double hi, ExactHit& hit) {
+  if (!r.ready) r.frame();
+  // (p − o)[k] for the coordinates k of the frame: the components lesson 03's vector difference gives.
+  const double *a = glm::value_ptr(t.a), *b = glm::value_ptr(t.b), *c = glm::value_ptr(t.c);
+  const double az = a[r.kz] - r.origin[2], bz = b[r.kz] - r.origin[2], cz = c[r.kz] - r.origin[2];
+  const Vec2 a2((a[r.kx] - r.origin[0]) - r.shear_x * az, (a[r.ky] - r.origin[1]) - r.shear_y * az);
+  const Vec2 b2((b[r.kx] - r.origin[0]) - r.shear_x * bz, (b[r.ky] - r.origin[1]) - r.shear_y * bz);
+  const Vec2 c2((c[r.kx] - r.origin[0]) - r.shear_x * cz, (c[r.ky] - r.origin[1]) - r.shear_y * cz);
   // orient2d(p, q, 0) = p.x·q.y − p.y·q.x: lesson 03's u, v, w, and orient2d_robust's value.
   const double u_left = b2.x * c2.y, u_right = b2.y * c2.x, u = u_left - u_right;
   const double v_left = c2.x * a2.y, v_right = c2.y * a2.x, v = v_left - v_right;
@@ -569,7 +759,7 @@ void free_layout(void* block, std::size_t bytes, std::size_t alignment) {
 }
 
 CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
-  use_avx(true);
+  use_kernel(Kernel::avx2_fma);
   const Bvh bvh(set, settings);
   const std::vector<BvhNode> tree =
       merge_small_subtrees(bvh.nodes(), std::min<std::uint32_t>(merged_leaf_limit, settings.leaf_size));
@@ -604,43 +794,83 @@ CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
   packs_.emplace_back();  // the AVX traversal reads a leaf's packs two at a time, and masks this one
 }
 
-bool CompactBvh::use_avx(bool wanted) {
+CompactBvh::Kernel CompactBvh::use_kernel(Kernel wanted) {
+  kernel_ = Kernel::sse2;
 #if defined(ILLUM_COMPACT_BVH_AVX)
-  avx_ = wanted && __builtin_cpu_supports("avx");
+  if (wanted >= Kernel::avx && __builtin_cpu_supports("avx")) kernel_ = Kernel::avx;
+  if (wanted >= Kernel::avx2_fma && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma"))
+    kernel_ = Kernel::avx2_fma;
 #else
   (void)wanted;
 #endif
-  return avx_;
+  return kernel_;
+}
+
+const char* to_string(CompactBvh::Kernel kernel) {
+  switch (kernel) {
+    case CompactBvh::Kernel::sse2:
+      return "sse2";
+    case CompactBvh::Kernel::avx:
+      return "avx";
+    case CompactBvh::Kernel::avx2_fma:
+      return "avx2_fma";
+  }
+  return "?";
 }
 
 std::optional<AccelHit> CompactBvh::intersect(const Ray& ray, TraversalCounters& counters) const {
-  return avx_ ? intersect_avx(ray, counters) : intersect_sse2(ray, counters);
+  switch (kernel_) {
+    case Kernel::avx2_fma:
+      return intersect_avx2_fma(ray, counters);
+    case Kernel::avx:
+      return intersect_avx(ray, counters);
+    case Kernel::sse2:
+      break;
+  }
+  return intersect_sse2(ray, counters);
 }
 
 #if defined(ILLUM_COMPACT_BVH_AVX)
-// The traversal compiled for AVX: flatten inlines it (and its SSE2 code, VEX-encoded) here.
+// Each kernel's traversal compiled for its instruction set: flatten inlines it (and the SSE2 and
+// double-precision code it shares, VEX-encoded) here. -ffp-contract=off holds in these functions
+// too: only the intrinsics that say so fuse, and the exact test's arithmetic is lesson 03's.
+__attribute__((target("avx2,fma"), flatten)) std::optional<AccelHit> CompactBvh::intersect_avx2_fma(
+    const Ray& ray, TraversalCounters& counters) const {
+  return closest<Kernel::avx2_fma>(ray, counters);
+}
 __attribute__((target("avx"), flatten)) std::optional<AccelHit> CompactBvh::intersect_avx(
     const Ray& ray, TraversalCounters& counters) const {
-  return closest<true>(ray, counters);
+  return closest<Kernel::avx>(ray, counters);
 }
 #else
+std::optional<AccelHit> CompactBvh::intersect_avx2_fma(const Ray& ray, TraversalCounters& counters) const {
+  return closest<Kernel::sse2>(ray, counters);
+}
 std::optional<AccelHit> CompactBvh::intersect_avx(const Ray& ray, TraversalCounters& counters) const {
-  return closest<false>(ray, counters);
+  return closest<Kernel::sse2>(ray, counters);
 }
 #endif
 
 ILLUM_FLATTEN std::optional<AccelHit> CompactBvh::intersect_sse2(const Ray& ray,
                                                                  TraversalCounters& counters) const {
-  return closest<false>(ray, counters);
+  return closest<Kernel::sse2>(ray, counters);
 }
 
-template <bool wide>
+template <CompactBvh::Kernel kernel>
 std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& counters) const {
-  const FastRay r(ray);
-  const PackRay pr(ray);
+  constexpr bool wide = kernel != Kernel::sse2;
+  RayFloats rf;
+#if defined(ILLUM_COMPACT_BVH_AVX)
+  if constexpr (wide)
+    set_up_avx(ray, rf);
+  else
+#endif
+    set_up(ray, rf);
+  const FastRay r(rf);  // the SSE2 kernel's (the others leave them unused)
+  const PackRay pr(rf);
   const RayLimits limits(ray.range);
   float t_hi = limits.t_hi;
-  const ShearedRay sheared(ray);
+  ShearedRay sheared(ray);
   // The closest hit so far: best_hit, valid when best_lane (4·pack + lane) is not `none`; s ≤ best_s.
   constexpr std::uint32_t none = ~0u;
   std::uint32_t best_lane = none;
@@ -676,7 +906,13 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
 #if defined(ILLUM_COMPACT_BVH_AVX)
   WideRay w;
   WidePackRay wp;
-  if constexpr (wide) widen(r, limits.lo, w), widen(pr, wp);
+  FmaRay f;
+  if constexpr (kernel == Kernel::avx2_fma) {
+    if (!prepare_fma(rf, limits.lo, f)) return closest<Kernel::avx>(ray, counters);
+  } else if constexpr (kernel == Kernel::avx) {
+    widen(rf, limits.lo, w);
+  }
+  if constexpr (wide) widen(rf, wp);
 #endif
   Entry current{compact_bvh_ref(0, 0), limits.lo};
   for (;;) {
@@ -685,8 +921,13 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
       visits += compact_bvh_width;
       float entry[compact_bvh_width];
 #if defined(ILLUM_COMPACT_BVH_AVX)
-      unsigned inside = static_cast<unsigned>(wide ? clip_node_avx(r, w, node, reach, entry)
-                                                   : clip_node(r, node, limits.lo, reach, entry));
+      unsigned inside;
+      if constexpr (kernel == Kernel::avx2_fma)
+        inside = static_cast<unsigned>(clip_node_fma(rf, f, node, reach, entry));
+      else if constexpr (kernel == Kernel::avx)
+        inside = static_cast<unsigned>(clip_node_avx(rf, w, node, reach, entry));
+      else
+        inside = static_cast<unsigned>(clip_node(r, node, limits.lo, reach, entry));
 #else
       unsigned inside = static_cast<unsigned>(clip_node(r, node, limits.lo, reach, entry));
 #endif
@@ -728,9 +969,14 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
         const std::uint32_t used = std::min(left, width);
         SureHits sure;
 #if defined(ILLUM_COMPACT_BVH_AVX)
-        int lanes = (wide ? may_hit_two(wp, &packs_[p], limits.t_lo, t_hi, limits.sure_lo, sure)
-                          : may_hit(pr, packs_[p], limits.t_lo, t_hi, limits.sure_lo, &sure)) &
-                    ((1 << used) - 1);
+        int lanes;
+        if constexpr (kernel == Kernel::avx2_fma)
+          lanes = may_hit_fma(wp, &packs_[p], limits.t_lo, t_hi, limits.sure_lo, sure);
+        else if constexpr (kernel == Kernel::avx)
+          lanes = may_hit_two(wp, &packs_[p], limits.t_lo, t_hi, limits.sure_lo, sure);
+        else
+          lanes = may_hit(pr, packs_[p], limits.t_lo, t_hi, limits.sure_lo, &sure);
+        lanes &= (1 << used) - 1;
 #else
         int lanes = may_hit(pr, packs_[p], limits.t_lo, t_hi, limits.sure_lo, &sure) & ((1 << used) - 1);
 #endif
@@ -748,7 +994,9 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
             _mm_prefetch(exact + sizeof(Triangle) - 1, _MM_HINT_T0);
 #endif
             t_hi = std::min(t_hi, t_over * (1.0f + 0x1p-20f));
-            reach = std::min(reach, round_up(t_over * (1.0 + culling_slack)));
+            // t_over > 0 (the hit lies beyond sure_lo ≥ 0): the product in float, (1 + 2⁻¹⁶)(1 − 2⁻²⁴)
+            // above t_over, is above t_over·(1 + culling_slack).
+            reach = std::min(reach, t_over * (1.0f + 0x1p-16f));
           } else if (exact_hit(sheared, triangles_[k], ray.range.lo, best_s, best_hit)) {
             best_lane = k;
             best_s = best_hit.s;
@@ -779,9 +1027,11 @@ std::optional<AccelHit> CompactBvh::closest(const Ray& ray, TraversalCounters& c
 
 bool CompactBvh::occluded(const Ray& ray, TraversalCounters& counters) const {
   ++counters.rays;
-  const FastRay r(ray);
-  const PackRay pr(ray);
-  const ShearedRay sheared(ray);
+  RayFloats rf;
+  set_up(ray, rf);
+  const FastRay r(rf);
+  const PackRay pr(rf);
+  ShearedRay sheared(ray);
   const RayLimits limits(ray.range);
   ExactHit hit;
   Entry stack[(compact_bvh_width - 1) * bvh_max_depth + compact_bvh_width];

@@ -123,23 +123,34 @@ class CompactBvh final : public TriangleAccel {
   std::string_view name() const override { return "bvh"; }
 
   std::size_t node_count() const { return nodes_.size(); }
-  // The AVX traversal runs where the processor has AVX (the default); false forces the SSE2 baseline
-  // everywhere, so that tests check both on an AVX machine. Returns whether AVX is now used.
-  bool use_avx(bool wanted);
+
+  // The traversal's kernels: the x86-64 baseline (SSE2, four lanes), AVX (eight lanes) and AVX2 with
+  // fused multiply-adds. Each gives the same hits (the exact test decides every one). The default is
+  // the best the processor has (asked once, at run time); use_kernel picks a lower one, so that tests
+  // check every kernel on one machine, and returns the kernel now used: the best the processor has
+  // at or below `wanted`.
+  enum class Kernel { sse2, avx, avx2_fma };
+  static constexpr Kernel all_kernels[] = {Kernel::sse2, Kernel::avx, Kernel::avx2_fma};
+  Kernel use_kernel(Kernel wanted);
+  Kernel kernel() const { return kernel_; }
 
  private:
-  // intersect's traversal; wide: nodes clipped in one AVX register (compiled for AVX, called only
-  // when the processor has it: avx_); the rest is the same SSE2 code.
-  template <bool wide>
+  // intersect's traversal for one kernel; each is compiled for its instruction set, and called only
+  // where the processor has it.
+  template <Kernel k>
   std::optional<AccelHit> closest(const Ray& ray, TraversalCounters& counters) const;
+  std::optional<AccelHit> intersect_avx2_fma(const Ray& ray, TraversalCounters& counters) const;
   std::optional<AccelHit> intersect_avx(const Ray& ray, TraversalCounters& counters) const;
   std::optional<AccelHit> intersect_sse2(const Ray& ray, TraversalCounters& counters) const;
 
-  bool avx_ = false;
+  Kernel kernel_ = Kernel::sse2;
 
   LayoutVector<CompactBvhNode> nodes_;
-  LayoutVector<TrianglePack> packs_;  // in leaf order
+  LayoutVector<TrianglePack> packs_;  // in leaf order, and one for padding
   LayoutVector<Triangle> triangles_;  // triangles_[4·pack + lane], for the exact test (unused lanes: copies)
 };
+
+// "sse2", "avx", "avx2_fma".
+const char* to_string(CompactBvh::Kernel kernel);
 
 }  // namespace illum
