@@ -71,8 +71,7 @@ PLATFORM_FOLDERS = ("lib/", "lessons/", "tools/")
 COMPILER_HOMES = ("lib/illum/core/platform.hpp", "lib/illum/core/stopwatch.hpp",
                   "lib/illum/accel/production/compact_bvh.cpp", "lib/illum/radiosity/form_factor_quadrature.cpp")
 SYSTEM_HOMES = ("lib/illum/core/platform.cpp", "lib/illum/core/atomic_file.cpp", "lib/illum/core/child_process.cpp",
-                "lib/illum/core/input_file.cpp", "lib/illum/core/memory_budget.cpp",
-                "lib/illum/accel/production/compact_bvh.cpp")
+                "lib/illum/core/input_file.cpp", "lib/illum/core/memory_budget.cpp", "lib/illum/core/huge_pages.cpp")
 PLATFORM_RULES: list[tuple[re.Pattern[str], str, tuple[str, ...]]] = [
     (re.compile(r"\b__builtin_\w+|\b__attribute__\b|\basm\s+volatile\b|\b__asm__\b|\b__int128\b|\b__float128\b"
                 r"|\b__extension__\b|\b__declspec\b"),

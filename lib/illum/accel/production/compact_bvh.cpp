@@ -13,9 +13,6 @@
 #include <type_traits>
 
 #include <glm/gtc/type_ptr.hpp>
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
@@ -685,7 +682,7 @@ TriangleHit hit_record(const Ray& ray, const Triangle& t, const ExactHit& hit) {
 // packs.size() on; returns the first pack's index.
 std::uint32_t pack_leaf(const std::vector<Triangle>& tree_triangles,
                         const std::vector<std::uint32_t>& tree_ids, std::uint32_t first, std::uint32_t count,
-                        LayoutVector<TrianglePack>& packs, LayoutVector<Triangle>& triangles) {
+                        HugePageVector<TrianglePack>& packs, HugePageVector<Triangle>& triangles) {
   const auto start = static_cast<std::uint32_t>(packs.size());
   for (std::uint32_t base = 0; base < count; base += 4) {
     TrianglePack pack{};
@@ -714,7 +711,7 @@ std::uint32_t pack_leaf(const std::vector<Triangle>& tree_triangles,
 
 // Lays out Bvh inner node `i` as nodes[at], its inner descendants after it.
 void lay_out(const std::vector<BvhNode>& tree, std::uint32_t i, std::uint32_t at,
-             LayoutVector<CompactBvhNode>& nodes) {
+             HugePageVector<CompactBvhNode>& nodes) {
   // Open the largest inner child until there are eight children or only leaves.
   std::uint32_t kids[compact_bvh_width] = {i + 1, tree[i].first};
   int n = 2;
@@ -797,23 +794,7 @@ inline void prefetch_child(const CompactBvhNode* nodes, const TrianglePack* pack
 #endif
 }
 
-constexpr std::size_t huge_page = std::size_t{1} << 21;
-
 }  // namespace
-
-void* allocate_layout(std::size_t bytes, std::size_t alignment) {
-  if (bytes < huge_page) return ::operator new(bytes, std::align_val_t(alignment));
-  const std::size_t rounded = (bytes + huge_page - 1) / huge_page * huge_page;
-  void* block = ::operator new(rounded, std::align_val_t(huge_page));  // throws std::bad_alloc
-#if defined(__linux__) && defined(MADV_HUGEPAGE)
-  madvise(block, rounded, MADV_HUGEPAGE);  // advice only: without huge pages the block still works
-#endif
-  return block;
-}
-
-void free_layout(void* block, std::size_t bytes, std::size_t alignment) {
-  ::operator delete(block, std::align_val_t(bytes < huge_page ? alignment : huge_page));
-}
 
 CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
   use_kernel(Kernel::avx2_fma);

@@ -57,6 +57,7 @@
 
 #include "illum/accel/bvh.hpp"
 #include "illum/accel/triangle_accel.hpp"
+#include "illum/core/huge_pages.hpp"
 
 namespace illum {
 
@@ -94,24 +95,6 @@ struct alignas(16) TrianglePack {
 };
 static_assert(sizeof(TrianglePack) == 192);
 
-// Storage for the layout's arrays: blocks of 2 MiB and more are 2 MiB-aligned and offered to the
-// kernel as huge pages (Linux madvise; elsewhere plain aligned blocks), as Embree does: a ray's path
-// through a large tree touches pages at random, and one TLB entry then covers 512 times more.
-void* allocate_layout(std::size_t bytes, std::size_t alignment);
-void free_layout(void* block, std::size_t bytes, std::size_t alignment);
-template <class T>
-struct LayoutAllocator {
-  using value_type = T;
-  LayoutAllocator() = default;
-  template <class U>
-  explicit LayoutAllocator(const LayoutAllocator<U>&) {}
-  T* allocate(std::size_t n) { return static_cast<T*>(allocate_layout(n * sizeof(T), alignof(T))); }
-  void deallocate(T* p, std::size_t n) { free_layout(p, n * sizeof(T), alignof(T)); }
-  friend bool operator==(const LayoutAllocator&, const LayoutAllocator&) { return true; }
-};
-template <class T>
-using LayoutVector = std::vector<T, LayoutAllocator<T>>;
-
 class CompactBvh final : public TriangleAccel {
  public:
   // Builds a Bvh with `settings` and lays it out; throws as Bvh does.
@@ -145,9 +128,10 @@ class CompactBvh final : public TriangleAccel {
 
   Kernel kernel_ = Kernel::sse2;
 
-  LayoutVector<CompactBvhNode> nodes_;
-  LayoutVector<TrianglePack> packs_;  // in leaf order, and one for padding
-  LayoutVector<Triangle> triangles_;  // triangles_[4·pack + lane], for the exact test (unused lanes: copies)
+  HugePageVector<CompactBvhNode> nodes_;
+  HugePageVector<TrianglePack> packs_;  // in leaf order, and one for padding
+  HugePageVector<Triangle>
+      triangles_;  // triangles_[4·pack + lane], for the exact test (unused lanes: copies)
 };
 
 // "sse2", "avx", "avx2_fma".
