@@ -1,24 +1,14 @@
 #!/usr/bin/env python3
-"""Checks that the grading code still fits Ubuntu 22.04, Gradescope's default image.
+"""Checks that the grading code still fits Ubuntu 22.04, Gradescope's default image (GCC 11, CMake 3.22,
+Python 3.10, doctest 2.4.8, nlohmann-json 3.10.5; docs/grading.md, "Supported images"):
 
-Ubuntu 22.04 has GCC 11, CMake 3.22, Python 3.10, doctest 2.4.8 and
-nlohmann-json 3.10.5; this machine (Debian 12) has newer versions of all of
-them, so a build here cannot show that something newer crept in. This script
-checks what can be checked without that image (see docs/grading.md,
-"Supported images"):
+1. the grading reporter and the check macros compile against tools/compat/doctest-2.4.8/, the interface
+   they use as doctest 2.4.8 declares it;
+2. no source uses a doctest, nlohmann-json or libstdc++ facility newer than those;
+3. the grading driver parses as Python 3.10 and imports no newer module;
+4. no CMakeLists.txt asks for a CMake newer than 3.22.
 
-1. the grading reporter (tests/support/grade_reporter.cpp) compiles, with
-   -fsyntax-only, against tools/compat/doctest-2.4.8/, a description of the
-   reporter interface as doctest 2.4.8 declares it;
-2. no source uses a doctest API added in 2.4.9 or later (doctest::Contains,
-   doctest::IsNaN, ...) or an nlohmann-json API added after 3.10.5;
-3. no C++ library facility that GCC 11's libstdc++ lacks (std::format, ...);
-4. the grading driver parses as Python 3.10 and imports no newer module;
-5. no CMakeLists.txt asks for a CMake newer than 3.22.
-
-Exit status 0 when everything fits, 1 with one line per offence otherwise.
-
-    tools/check_compat.py [--compiler c++]
+    tools/check_compat.py [--compiler c++]       exit 0 when everything fits, 1 with one line per offence
 """
 from __future__ import annotations
 
@@ -29,6 +19,9 @@ import shutil
 import subprocess
 import sys
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from common.cpp_text import blank_comments  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 DOCTEST_248 = ROOT / "tools" / "compat" / "doctest-2.4.8"
@@ -61,7 +54,7 @@ NEWER_APIS = [
 ]
 CXX_SUFFIXES = {".cpp", ".hpp", ".h", ".cc"}
 
-PYTHON_FILES = ["tools/grade", "tools/grading", "tools/check_compat.py"]
+PYTHON_FILES = ["tools/grade", "tools/grading", "tools/common", "tools/check_compat.py"]
 NEWER_PYTHON_MODULES = {"tomllib": "3.11", "wsgiref.types": "3.11"}
 NEWER_PYTHON_NAMES = [
     (r"\bdatetime\.UTC\b", "datetime.UTC", "3.11"),
@@ -82,16 +75,10 @@ def source_files() -> list[Path]:
     return files
 
 
-def strip_comments(text: str) -> str:
-    """C++ source without // and /* */ comments (a comment may name an API it avoids)."""
-    text = re.sub(r"/\*.*?\*/", lambda m: "\n" * m.group(0).count("\n"), text, flags=re.S)
-    return re.sub(r"//[^\n]*", "", text)
-
-
 def check_newer_apis() -> list[str]:
     offences = []
     for path in source_files():
-        code = strip_comments(path.read_text(encoding="utf-8", errors="replace"))
+        code = blank_comments(path.read_text(encoding="utf-8", errors="replace"))
         for number, line in enumerate(code.splitlines(), start=1):
             for pattern, what, since in NEWER_APIS:
                 if re.search(pattern, line):
@@ -103,14 +90,16 @@ def check_newer_apis() -> list[str]:
 def check_reporter(compiler: str) -> list[str]:
     if shutil.which(compiler) is None:
         return [f"{compiler}: no C++ compiler to check the reporter with"]
-    command = [compiler, "-std=c++20", "-fsyntax-only", "-Wall", "-Wextra", "-Werror",
-               f"-I{DOCTEST_248}", f"-I{ROOT / 'tests'}",  # support/*.hpp, as the build finds them
-               str(ROOT / "tests" / "support" / "grade_reporter.cpp")]
-    completed = subprocess.run(command, capture_output=True, text=True, check=False)
-    if completed.returncode != 0:
-        return ["tests/support/grade_reporter.cpp does not compile against doctest 2.4.8's reporter "
-                "interface (tools/compat/doctest-2.4.8/):\n" + completed.stderr.strip()]
-    return []
+    offences = []
+    for name in ("grade_reporter.cpp", "checks.cpp"):
+        command = [compiler, "-std=c++20", "-fsyntax-only", "-Wall", "-Wextra", "-Werror",
+                   f"-I{DOCTEST_248}", f"-I{ROOT / 'tests'}",  # support/*.hpp, as the build finds them
+                   str(ROOT / "tests" / "support" / name)]
+        completed = subprocess.run(command, capture_output=True, text=True, check=False)
+        if completed.returncode != 0:
+            offences.append(f"tests/support/{name} does not compile against doctest 2.4.8's interface "
+                            "(tools/compat/doctest-2.4.8/):\n" + completed.stderr.strip())
+    return offences
 
 
 def python_files() -> list[Path]:

@@ -1,32 +1,13 @@
 #!/usr/bin/env python3
-"""One home per helper: fails, with file:line, where C++ code rebuilds one by hand.
+"""One home per helper: fails, with file:line, where C++ code rebuilds one by hand (CTest `one_home`).
 
-    tools/check_one_home.py [--root DIR]      (CTest `one_home`)
+    tools/check_one_home.py [--root DIR]
 
-CONTRIBUTING.md ("Library code") names the one home of each shared piece;
-this check keeps the code to its word. It reads the C++ sources of lib/,
-lessons/, tests/, bench/ and tools/ (comments and string literals blanked
-first, so prose may name what code must not do) and reports:
-
-* a hand-written best-of-N timing loop (a loop counter named repeat, run,
-  rep or attempt around a timing, or the minimum of a stopwatch
-  reading) outside core/stopwatch.hpp: use best_seconds or
-  best_nanoseconds_per_call;
-* π typed in (3.14159…, M_PI, acos(-1)) or a variable `pi` defined as a copy
-  of it: write `using std::numbers::pi;`;
-* any call of the OpenMP runtime (omp_…) or `#include <omp.h>` outside
-  core/threads.hpp: use available_threads(), thread_index(),
-  ScopedThreadCount, … (the one header through which OpenMP can be made
-  optional);
-* a second definition of a helper that has a home (HOMES below);
-* in lib/, lessons/ and tools/ (the code every student's machine compiles):
-  a compiler extension (__builtin_…, __attribute__, GNU asm, __int128) or an
-  operating system's header or call (<unistd.h>, <sys/…>, clock_gettime,
-  isatty, sysconf, std::aligned_alloc, …) outside core/platform, the POSIX
-  files and the production code that guards its own (PLATFORM_HOMES below):
-  use core/platform.hpp, whose functions have a fallback everywhere.
-
-Exit 0 when nothing is found, 1 otherwise.
+Reads the C++ sources of lib/, lessons/, tests/, bench/ and tools/ (comments and strings blanked, so
+prose may name what code must not do) and reports a hand-written best-of-N timing loop, π typed in,
+OpenMP called outside core/threads.hpp, a second definition of a helper of HOMES, and, in the code every
+student's machine compiles, a compiler extension or an operating system's call outside PLATFORM_HOMES
+(CONTRIBUTING.md, "Library code"). Exit 0 when nothing is found, 1 otherwise.
 """
 from __future__ import annotations
 
@@ -34,6 +15,9 @@ import argparse
 import re
 import sys
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from common.cpp_text import blank_comments  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]
 FOLDERS = ("lib", "lessons", "tests", "bench", "tools")
@@ -68,18 +52,19 @@ RULES: list[tuple[re.Pattern[str], str, tuple[str, ...]]] = [
 # What differs between compilers and systems, and the files allowed to hold it (each guards it
 # with a fallback, or is POSIX by design: docs/architecture.md, "Platforms").
 PLATFORM_FOLDERS = ("lib/", "lessons/", "tools/")
-COMPILER_HOMES = ("lib/illum/core/platform.hpp", "lib/illum/core/stopwatch.hpp",
+COMPILER_HOMES = ("lib/illum/system/platform.hpp", "lib/illum/core/stopwatch.hpp",
                   "lib/illum/accel/production/compact_bvh.cpp", "lib/illum/radiosity/form_factor_quadrature.cpp")
-SYSTEM_HOMES = ("lib/illum/core/platform.cpp", "lib/illum/core/atomic_file.cpp", "lib/illum/core/child_process.cpp",
-                "lib/illum/core/input_file.cpp", "lib/illum/core/memory_budget.cpp", "lib/illum/core/huge_pages.cpp")
+SYSTEM_HOMES = ("lib/illum/system/platform.cpp", "lib/illum/system/atomic_file.cpp",
+                "lib/illum/system/child_process.cpp", "lib/illum/system/input_file.cpp",
+                "lib/illum/system/memory_budget.cpp", "lib/illum/system/huge_pages.cpp")
 PLATFORM_RULES: list[tuple[re.Pattern[str], str, tuple[str, ...]]] = [
     (re.compile(r"\b__builtin_\w+|\b__attribute__\b|\basm\s+volatile\b|\b__asm__\b|\b__int128\b|\b__float128\b"
                 r"|\b__extension__\b|\b__declspec\b"),
      "a compiler extension: use standard C++ (<bit>: std::countr_zero, std::popcount) or a macro of "
-     "core/platform.hpp (ILLUM_FLATTEN)", COMPILER_HOMES),
+     "system/platform.hpp (ILLUM_FLATTEN)", COMPILER_HOMES),
     (re.compile(r"#\s*include\s*<(?:unistd|fcntl|dirent|spawn|poll|windows|io|signal)\.h>|#\s*include\s*<sys/"
                 r"|\b(?:clock_gettime|isatty|_isatty|sysconf|aligned_alloc|getrandom|getentropy|syscall)\s*\("),
-     "a call or header of one operating system: use core/platform.hpp (thread_cpu_seconds, "
+     "a call or header of one operating system: use system/platform.hpp (thread_cpu_seconds, "
      "stderr_is_terminal, physical_memory_bytes, random_bytes), aligned operator new or std::filesystem",
      SYSTEM_HOMES),
 ]
@@ -96,46 +81,6 @@ HOMES: list[tuple[re.Pattern[str], str]] = [
 ]
 
 
-def blank_comments_and_strings(text: str) -> str:
-    """The text with every comment and string or character literal replaced by spaces
-    (newlines kept, so line numbers hold); `#include <…>` is code and stays."""
-    out = []
-    i, n = 0, len(text)
-    while i < n:
-        c = text[i]
-        if text.startswith("//", i):
-            j = text.find("\n", i)
-            j = n if j == -1 else j
-            out.append(" " * (j - i))
-            i = j
-        elif text.startswith("/*", i):
-            j = text.find("*/", i + 2)
-            j = n if j == -1 else j + 2
-            out.append(re.sub(r"[^\n]", " ", text[i:j]))
-            i = j
-        elif c == '"' and i > 0 and text[i - 1] == "R" and re.match(r'"([^(\s]{0,16})\(', text[i:]):
-            delimiter = re.match(r'"([^(\s]{0,16})\(', text[i:]).group(1)
-            j = text.find(")" + delimiter + '"', i)
-            j = n if j == -1 else j + len(delimiter) + 2
-            out.append('"' + re.sub(r"[^\n]", " ", text[i + 1:j - 1]) + '"')
-            i = j
-        elif c in "\"'":
-            if c == "'" and i > 0 and text[i - 1].isalnum():  # digit separator: 1'000
-                out.append(c)
-                i += 1
-                continue
-            j = i + 1
-            while j < n and text[j] != c and text[j] != "\n":
-                j += 2 if text[j] == "\\" else 1
-            j = min(j + 1, n)
-            out.append(c + " " * max(0, j - i - 2) + (c if j - i >= 2 else ""))
-            i = j
-        else:
-            out.append(c)
-            i += 1
-    return "".join(out)
-
-
 def sources(root: Path) -> list[Path]:
     found = []
     for folder in FOLDERS:
@@ -148,30 +93,17 @@ def sources(root: Path) -> list[Path]:
 
 def problems_in(path: Path, root: Path) -> list[str]:
     relative = path.relative_to(root).as_posix()
-    text = path.read_text(encoding="utf-8", errors="replace")
-    code = blank_comments_and_strings(text)
+    lines = blank_comments(path.read_text(encoding="utf-8", errors="replace")).splitlines()
+    rules = RULES + (PLATFORM_RULES if relative.startswith(PLATFORM_FOLDERS) else [])
+    rules += [(pattern, f"a second definition of a helper whose home is {home}.hpp", ())
+              for pattern, home in HOMES if not relative.startswith(home + ".")]
     found = []
-    lines = code.splitlines()
     for number, line in enumerate(lines, start=1):
-        for pattern, problem, allowed in RULES:
-            if relative in allowed:
-                continue
-            # The include is checked on the raw line (the blanking keeps <omp.h>, but be sure).
-            if pattern.search(line):
-                # A loop counter named `attempt` or `run` is a best-of loop only when it times
-                # something: a retry loop (a temporary name, a lock) is not one.
-                if pattern is BEST_OF_LOOP and not TIMING.search("\n".join(lines[number - 1:number + 12])):
-                    continue
+        for pattern, problem, allowed in rules:
+            # A loop counter named `attempt` or `run` makes a best-of loop only when the loop times something.
+            if relative not in allowed and pattern.search(line) and not (
+                    pattern is BEST_OF_LOOP and not TIMING.search("\n".join(lines[number - 1:number + 12]))):
                 found.append(f"{relative}:{number}: {problem}")
-        if relative.startswith(PLATFORM_FOLDERS):
-            for pattern, problem, allowed in PLATFORM_RULES:
-                if relative not in allowed and pattern.search(line):
-                    found.append(f"{relative}:{number}: {problem}")
-        for pattern, home in HOMES:
-            if relative.startswith(home + ".") or not pattern.search(line):
-                continue
-            # A declaration or definition at the start of a statement, not a call.
-            found.append(f"{relative}:{number}: a second definition of a helper whose home is {home}.hpp")
     return found
 
 

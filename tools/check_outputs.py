@@ -1,17 +1,9 @@
 #!/usr/bin/env python3
-"""End-to-end check of one lesson program (ctest e2e_lessonNN).
+"""End-to-end check of one lesson program (ctest e2e_lessonNN): `PROGRAM --quick --out DIR` (DIR cleared
+first) exits 0; every file of DIR/manifest.json exists, is not empty and is well formed for its kind;
+`PROGRAM --help` names --out and --quick; an unknown flag is an error. Exit 0, or 1 with the problems.
 
     tools/check_outputs.py --run build/release/bin/lesson01 --out build/release/test-out/lesson01
-
-1. `PROGRAM --quick --out DIR` (DIR is cleared first) must exit 0;
-2. DIR/manifest.json must parse, and every file it lists must exist, be
-   non-empty and be well formed for its kind (PNG signature and IHDR with a
-   non-zero size, '#?RADIANCE' HDR, CSV with a header and rows of equal width,
-   well-formed Markdown tables);
-3. `PROGRAM --help` must exit 0 and mention --out and --quick;
-4. `PROGRAM --<unknown flag>` must exit non-zero.
-
-Exit 0 when everything holds, 1 with one line per problem otherwise.
 """
 from __future__ import annotations
 
@@ -53,77 +45,71 @@ def run(cmd: list[str], cwd: Path, timeout: int) -> subprocess.CompletedProcess:
     return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, errors="replace", timeout=timeout)
 
 
-def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--run", required=True, metavar="PROGRAM", help="the lesson program to run")
-    parser.add_argument("--out", required=True, metavar="DIR", help="its output folder (cleared first)")
-    parser.add_argument("--timeout", type=int, default=RUN_TIMEOUT, help="seconds allowed for the --quick run")
-    args = parser.parse_args(argv)
-
-    program = Path(args.run).absolute()  # not resolve(): keep a symlink's name
-    out = Path(args.out).resolve()
-    name = program.name
-    if not program.is_file() or not os.access(program, os.X_OK):
-        print(f"check_outputs: {program} is not an executable program (was it built?)")
-        return 1
-    problems: list[str] = []
-
-    # 1. The quick run, into a cleared folder (stale files must not hide a missing one).
+def quick_run(program: Path, out: Path, timeout: int) -> str:
+    """`PROGRAM --quick --out OUT` into a cleared folder (stale files must not hide a missing one): '' when
+    it exits 0, else why not."""
     if out.exists():
-        reason = safe_to_clear(out)
-        if reason:
-            print(f"check_outputs: refusing to clear {out}: {reason}")
-            return 1
+        if reason := safe_to_clear(out):
+            return f"refusing to clear {out}: {reason}"
         shutil.rmtree(out)
     out.parent.mkdir(parents=True, exist_ok=True)
     cmd = [str(program), "--quick", "--out", str(out)]
     print("check_outputs: running", " ".join(cmd), flush=True)
     start = time.monotonic()
     try:
-        result = run(cmd, cwd=out.parent, timeout=args.timeout)
+        result = run(cmd, cwd=out.parent, timeout=timeout)
     except subprocess.TimeoutExpired:
-        print(f"check_outputs: FAILED: {name} --quick did not finish within {args.timeout} s "
-              "(--quick must take a few seconds)")
-        return 1
+        return f"FAILED: {program.name} --quick did not finish within {timeout} s (--quick must take a few seconds)"
     seconds = time.monotonic() - start
     if result.returncode != 0:
-        print(f"check_outputs: FAILED: {name} --quick exited with code {result.returncode} after {seconds:.1f} s")
-        if result.stdout.strip():
-            print("  stdout:\n" + tail(result.stdout))
-        if result.stderr.strip():
-            print("  stderr:\n" + tail(result.stderr))
-        return 1
-    print(f"check_outputs: {name} --quick finished in {seconds:.1f} s")
+        return (f"FAILED: {program.name} --quick exited with code {result.returncode} after {seconds:.1f} s"
+                + (f"\n  stdout:\n{tail(result.stdout)}" if result.stdout.strip() else "")
+                + (f"\n  stderr:\n{tail(result.stderr)}" if result.stderr.strip() else ""))
+    print(f"check_outputs: {program.name} --quick finished in {seconds:.1f} s")
+    return ""
 
-    # 2. The manifest and every file in it.
-    expected_id = name if re.fullmatch(r"lesson\d\d", name) else None
-    problems += check_output_folder(out, expected_id=expected_id)
 
-    # 3 and 4: the shared command line. Run in a scratch folder so that a program
-    # ignoring the flag cannot write into the source or build tree.
+def command_line_problems(program: Path) -> list[str]:
+    """--help exits 0 and names --out and --quick; an unknown flag is an error. Run in a scratch folder, so
+    that a program ignoring the flag cannot write into the source or build tree."""
+    name, problems, bad_flag = program.name, [], "--no-such-flag-for-illum"
     with tempfile.TemporaryDirectory(prefix="illum-check-") as scratch:
         try:
             help_run = run([str(program), "--help"], cwd=Path(scratch), timeout=60)
-            help_text = help_run.stdout + help_run.stderr
             if help_run.returncode != 0:
                 problems.append(f"{name} --help exited with code {help_run.returncode}, expected 0")
-            for flag in ("--out", "--quick"):
-                if flag not in help_text:
-                    problems.append(f"{name} --help does not mention {flag}")
-            bad_flag = "--no-such-flag-for-illum"
-            bad_run = run([str(program), bad_flag], cwd=Path(scratch), timeout=60)
-            if bad_run.returncode == 0:
+            problems += [f"{name} --help does not mention {flag}" for flag in ("--out", "--quick")
+                         if flag not in help_run.stdout + help_run.stderr]
+            if run([str(program), bad_flag], cwd=Path(scratch), timeout=60).returncode == 0:
                 problems.append(f"{name} {bad_flag} exited with 0; an unknown flag must be an error (non-zero)")
         except subprocess.TimeoutExpired:
             problems.append(f"{name} --help (or an unknown flag) did not return within 60 s")
+    return problems
 
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--run", required=True, metavar="PROGRAM", help="the lesson program to run")
+    parser.add_argument("--out", required=True, metavar="DIR", help="its output folder (cleared first)")
+    parser.add_argument("--timeout", type=int, default=RUN_TIMEOUT, help="seconds allowed for the --quick run")
+    args = parser.parse_args(argv)
+    program = Path(args.run).absolute()  # not resolve(): keep a symlink's name
+    out = Path(args.out).resolve()
+    if not program.is_file() or not os.access(program, os.X_OK):
+        print(f"check_outputs: {program} is not an executable program (was it built?)")
+        return 1
+    if failed := quick_run(program, out, args.timeout):
+        print(f"check_outputs: {failed}")
+        return 1
+    problems = check_output_folder(out, expected_id=program.name if re.fullmatch(r"lesson\d\d", program.name) else None)
+    problems += command_line_problems(program)
     if problems:
-        print(f"check_outputs: FAILED: {len(problems)} problem(s) with {name}'s outputs in {out}:")
+        print(f"check_outputs: FAILED: {len(problems)} problem(s) with {program.name}'s outputs in {out}:")
         for p in problems:
             for i, line in enumerate(p.splitlines()):
                 print(("  - " if i == 0 else "    ") + line)
         return 1
-    print(f"check_outputs: OK: {name}: every file in {out / 'manifest.json'} is present and well formed; "
+    print(f"check_outputs: OK: {program.name}: every file in {out / 'manifest.json'} is present and well formed; "
           "--help and unknown flags behave")
     return 0
 

@@ -1,14 +1,8 @@
 #!/usr/bin/env python3
-"""Every plot the lesson programs drew shows all its data: lines join, no point is lost on the frame.
+"""Every plot the lesson programs drew shows all its data: lines join, no point is lost on the frame
+(tools/gallery/plots.py). Exit 0 when every plot is whole, 1 otherwise, 2 when gnuplot is missing.
 
     tools/check_plots.py [--out out] [SCRIPT.gp ...]
-
-gnuplot evaluates each OUT/*/NAME.gp (the script a program writes beside
-NAME.png) into a table of the points it plots and the ranges it draws; the
-check fails on a line broken by an undefined point, a curve with no point
-(or a line of one), and a point outside the frame or on its edge
-(tools/gallery/plots.py). Exit code 0 when every plot is whole, 1 when
-some is not (one line per problem), 2 when gnuplot is missing.
 """
 from __future__ import annotations
 

@@ -3,22 +3,11 @@
 
     tools/check_unity_units.py --build-dir DIR [--source DIR] [--require-units]   (CTest `unity_units`)
 
-CMakeLists.txt (`illum_unity_build`) compiles a target's sources sixteen to a unit:
-DIR/unity/<target>/unit_N.cpp includes them one after another, so a helper
-private to one file (in an unnamed namespace, or `static`) is visible to every
-file after it in the unit. Two private helpers of one name and signature stop
-the build; of one name and different signatures they compile, and overload
-resolution may then hand a later file's call to the earlier file's helper, a
-change of behaviour no compiler reports. This check reads the units the build
-wrote and reports each private function defined at file scope in one member
-that a later member of the same unit calls by its bare name (not as `x.f(`,
-`p->f(` or `ns::f(`). Rename one of the two, or give the helper one home in a
-header (docs/architecture.md, "Units of compilation").
-
-Exit 0 when nothing is found, 1 otherwise, 2 on a bad argument. A build that
-compiles every file alone (-DILLUM_UNITY_BUILD=OFF) has no unity/ folder and
-passes, unless --require-units (what CTest passes when the build makes units)
-says that units must be there: then finding none is a failure, not a pass.
+The build compiles a target's sources sixteen to a unit (DIR/unity/<target>/unit_N.cpp), so a helper
+private to one file (an unnamed namespace, `static`) is visible to the files after it, where overload
+resolution may quietly pick it (docs/architecture.md, "Units of compilation"). Reports each private
+function of a member that a later member of its unit calls by its bare name. Exit 0 when nothing is
+found, 1 otherwise (or when --require-units finds no unit), 2 on a bad argument.
 """
 from __future__ import annotations
 
@@ -28,7 +17,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from check_one_home import blank_comments_and_strings  # noqa: E402
+from common.cpp_text import blank_comments  # noqa: E402
 
 SOURCE = Path(__file__).resolve().parent.parent
 MEMBER = re.compile(r'^#include "([^"]+)"', re.M)
@@ -86,7 +75,7 @@ def problems_in_unit(unit: Path, source: Path) -> list[str]:
         path = source / member
         if not path.is_file():
             return [f"{unit}: includes {member}, which is not a file under {source}"]
-        code[member] = blank_comments_and_strings(path.read_text(encoding="utf-8"))
+        code[member] = blank_comments(path.read_text(encoding="utf-8"))
     problems = []
     for i, earlier in enumerate(members):
         for name in sorted(private_functions(code[earlier])):
@@ -99,9 +88,8 @@ def problems_in_unit(unit: Path, source: Path) -> list[str]:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0],
-                                     formatter_class=argparse.RawDescriptionHelpFormatter,
-                                     epilog=__doc__.split("\n\n", 1)[1])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], epilog=__doc__.split("\n\n", 1)[1],
+                                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--build-dir", type=Path, required=True, help="a configured build folder")
     parser.add_argument("--source", type=Path, default=SOURCE, help="the source tree (default: this checkout)")
     parser.add_argument("--require-units", action="store_true",

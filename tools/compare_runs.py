@@ -1,27 +1,18 @@
 #!/usr/bin/env python3
-"""Compares two runs of a lesson program: the tables (CSV files) of two --out
-folders must hold the same values, cell for cell and byte for byte, except
-timings (columns or rows named by tools/figures.py's timing words, and rates:
-Mrays, throughput, "per s").
+"""Compares two runs of a lesson program (two --out folders).
 
     tools/compare_runs.py EXPECTED_FOLDER OTHER_FOLDER
 
-tools/check_platforms arm64 runs lesson 01's program natively and under
-qemu-aarch64 and compares the two: with -ffp-contract=off and every random
-draw in a fixed order (core/random.hpp), a study prints the same tables on
-every machine. Exit 0 when they agree, 1 listing the first differing cells
-of each table, 2 when a folder or a table is missing.
+The tables (CSV files) must hold the same values cell for cell, but for timings (columns or rows named by a
+timing word of tools/gallery/tables.py, and rates: Mrays, throughput, "per s"): tools/check_platforms arm64
+compares lesson 01's run natively and under qemu-aarch64. Exit 0 when they agree, 1 listing the first
+differing cells of each table, 2 when a folder or a table is missing.
 
     tools/compare_runs.py --speed FIRST_FOLDER OTHER_FOLDER
 
-measures instead how much faster the other run was, cell by cell over the
-timing columns of the tables both hold alike: FIRST/OTHER for a time (seconds,
-ms, ns per ...), OTHER/FIRST for a rate (Mrays, throughput, per second); a
-speed-up column (a ratio of two times) and other timing-dependent counts are
-left out. It prints the number of cells, their median and their 10th and 90th
-percentiles: two runs alone give the noise that running beside another
-program must be compared with (docs/first-command.md). Exit 0, or 2 when a
-folder is missing or no timing cell is found.
+How much faster the other run was, over the timing cells of the tables both hold alike: FIRST/OTHER for a
+time, OTHER/FIRST for a rate (a speed-up column is left out): the number of cells, their median and their
+10th and 90th percentiles (docs/measurements.md). Exit 0, or 2 when a folder or every timing cell is missing.
 """
 from __future__ import annotations
 
@@ -32,9 +23,10 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from figures import is_timing_name, words  # noqa: E402
+from gallery.tables import TIMING_WORDS, is_timing_name, words  # noqa: E402
 
 RATE_WORDS = {"mrays", "throughput", "rays_per_s", "per_s"}
+PER_SECOND = re.compile(r"\bper\s+(s|sec|second)\b|/s\b", re.I)
 
 
 def is_timing(name: str) -> bool:
@@ -54,24 +46,19 @@ def compare_table(expected: Path, other: Path, limit: int = 5) -> list[str]:
         return [f"{expected.name}: the headers differ: {a[0]} against {b[0] if b else 'nothing'}"]
     if len(a) != len(b):
         return [f"{expected.name}: {len(a) - 1} rows against {len(b) - 1}"]
-    header = a[0]
-    problems = []
+    header, problems = a[0], []
     for r, (x, y) in enumerate(zip(a[1:], b[1:]), 1):
         if x and is_timing(x[0]):
             continue
         for c, (u, v) in enumerate(zip(x, y)):
             if u != v and not (c < len(header) and is_timing(header[c])):
-                problems.append(f"{expected.name}: row {r}, column {header[c] if c < len(header) else c}: {u} against {v}")
+                problems.append(f"{expected.name}: row {r}, column {header[c] if c < len(header) else c}: {u} "
+                                f"against {v}")
                 if len(problems) == limit:
                     return problems
         if len(x) != len(y):
             problems.append(f"{expected.name}: row {r} has {len(x)} cells against {len(y)}")
     return problems
-
-
-TIME_WORDS = {"ns", "us", "µs", "ms", "sec", "secs", "second", "seconds", "nanoseconds", "microseconds",
-              "milliseconds", "time", "elapsed"}
-PER_SECOND = re.compile(r"\bper\s+(s|sec|second)\b|/s\b", re.I)
 
 
 def speed_kind(name: str) -> str | None:
@@ -81,17 +68,15 @@ def speed_kind(name: str) -> str | None:
         return None
     if w & {"mrays", "throughput"} or PER_SECOND.search(name):
         return "rate"
-    return "time" if w & TIME_WORDS else None
+    return "time" if w & (TIMING_WORDS - {"timing", "speedup", "speed"}) else None
 
 
 def speed_factors(first: Path, other: Path) -> list[float]:
-    """Each timing cell's speed of OTHER against FIRST (> 1: OTHER was faster), over the tables both
-    folders hold with the same header and row count."""
+    """Each timing cell's speed of OTHER against FIRST (> 1: OTHER was faster), over the tables both folders
+    hold with the same header and row count."""
     factors = []
     for table in sorted(first.glob("*.csv")):
-        if not (other / table.name).is_file():
-            continue
-        a, b = read(table), read(other / table.name)
+        a, b = read(table), read(other / table.name) if (other / table.name).is_file() else []
         if not a or not b or a[0] != b[0] or len(a) != len(b):
             continue
         kinds = [speed_kind(h) for h in a[0]]
@@ -101,18 +86,22 @@ def speed_factors(first: Path, other: Path) -> list[float]:
                     u_value, v_value = float(u), float(v)
                 except ValueError:
                     continue
-                if kind is None or not (u_value > 0 and v_value > 0):
-                    continue
-                factors.append(u_value / v_value if kind == "time" else v_value / u_value)
+                if kind is not None and u_value > 0 and v_value > 0:
+                    factors.append(u_value / v_value if kind == "time" else v_value / u_value)
     return factors
 
 
-def speed_main(argv: list[str]) -> int:
-    first, other = (Path(a) for a in argv)
-    for folder in (first, other):
+def missing_folder(*folders: Path) -> bool:
+    for folder in folders:
         if not folder.is_dir():
             print(f"compare_runs: {folder} is not a folder", file=sys.stderr)
-            return 2
+            return True
+    return False
+
+
+def speed_main(first: Path, other: Path) -> int:
+    if missing_folder(first, other):
+        return 2
     factors = speed_factors(first, other)
     if len(factors) < 2:
         print(f"compare_runs: --speed: {len(factors)} timing cell(s) in the tables {first} and {other} share; "
@@ -125,33 +114,25 @@ def speed_main(argv: list[str]) -> int:
 
 
 def main(argv: list[str]) -> int:
-    if argv[:1] == ["--speed"]:
-        if len(argv) == 3:
-            return speed_main(argv[1:])
-        print(__doc__.strip(), file=sys.stderr)
-        return 2
-    if len(argv) != 2 or argv[0] in ("-h", "--help"):
-        print(__doc__.strip(), file=sys.stderr if len(argv) != 1 else sys.stdout)
+    if argv[:1] == ["--speed"] and len(argv) == 3:
+        return speed_main(Path(argv[1]), Path(argv[2]))
+    if argv[:1] == ["--speed"] or len(argv) != 2 or argv[0] in ("-h", "--help"):
+        print(__doc__.strip(), file=sys.stdout if len(argv) == 1 and argv[0] != "--speed" else sys.stderr)
         return 0 if argv[:1] in (["-h"], ["--help"]) else 2
     first, second = (Path(a) for a in argv)
-    for folder in (first, second):
-        if not folder.is_dir():
-            print(f"compare_runs: {folder} is not a folder", file=sys.stderr)
-            return 2
+    if missing_folder(first, second):
+        return 2
     tables = sorted(p.name for p in first.glob("*.csv"))
     if not tables:
         print(f"compare_runs: {first} holds no table (*.csv)", file=sys.stderr)
         return 2
-    problems = []
-    for name in tables:
-        if not (second / name).is_file():
-            problems.append(f"{name}: missing from {second}")
-            continue
-        problems += compare_table(first / name, second / name)
+    problems = [p for name in tables for p in (compare_table(first / name, second / name)
+                                               if (second / name).is_file() else [f"{name}: missing from {second}"])]
     problems += [f"{p.name}: only in {second}" for p in sorted(second.glob("*.csv")) if not (first / p.name).is_file()]
     for problem in problems:
         print(f"compare_runs: {problem}")
-    print(f"compare_runs: {len(tables)} tables, " + ("the same values" if not problems else f"{len(problems)} difference(s)"))
+    print(f"compare_runs: {len(tables)} tables, "
+          + ("the same values" if not problems else f"{len(problems)} difference(s)"))
     return 0 if not problems else 1
 
 

@@ -5,6 +5,7 @@
 //   illum render whitted --out out/           render a shipped scene (or a file path)
 //   illum trace whitted --pixel 300 200       the ray tree of one pixel: JSON, Graphviz, overlay
 //   illum lab whitted                         the lab in the browser: http://127.0.0.1:8642/ (docs/lab.md)
+//   illum clean --out out/lesson11            remove what a killed run left beside its output folder
 #include <algorithm>
 #include <iostream>
 #include <stdexcept>
@@ -13,15 +14,15 @@
 
 #include <CLI/CLI.hpp>
 
-#include "illum/core/atomic_file.hpp"
 #include "illum/core/error.hpp"
-#include "illum/core/memory_budget.hpp"
-#include "illum/core/nearest_name.hpp"
 #include "illum/io/embedded_scenes.hpp"
+#include "illum/io/nearest_name.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/io/ray_tree_files.hpp"
 #include "illum/io/scene_file.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/memory_budget.hpp"
 #include "illum/trace/ray_tree_render.hpp"
 #include "lab/lab_common.hpp"
 #include "lab/lab_server.hpp"
@@ -66,8 +67,12 @@ void add_image_options(CLI::App& cmd, RenderOptions& o) {
 }
 
 void add_render_options(CLI::App& cmd, RenderOptions& o) {
-  cmd.add_option("scene", o.scene, "A scene file (JSON) or the name of a shipped scene")->required();
-  cmd.add_option("--out", o.out, "Folder for the outputs")->capture_default_str();
+  cmd.add_option("scene", o.scene, "A scene file (JSON) or the name of a shipped scene")
+      ->required()
+      ->check(illum::path_value().validator());
+  cmd.add_option("--out", o.out, "Folder for the outputs")
+      ->capture_default_str()
+      ->check(illum::path_value().validator());
   add_image_options(cmd, o);
   // --quick sets the size: with --width or --height one of them would be ignored, so both are refused.
   cmd.add_flag("--quick", o.quick, "A small image (96 pixels wide), for tests")
@@ -163,6 +168,38 @@ int lab(const LabCommand& c) {
                               .out = c.out.empty() ? c.source / "out" : c.out});
 }
 
+// `illum clean --out DIR`: what runs killed without warning (SIGKILL, a power cut) left beside DIR
+// (its staging folders and lock), and beside each folder in DIR (out: every out/lessonNN's).
+int clean(const std::filesystem::path& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  const fs::path parent = dir.has_parent_path() ? dir.parent_path() : fs::path(".");
+  if (fs::exists(dir, ec) ? !fs::is_directory(dir, ec) : !fs::is_directory(parent, ec))
+    throw std::runtime_error("--out " + dir.string() + ": " +
+                             (fs::exists(dir, ec) ? "not a folder" : "no such folder, nor its parent"));
+  std::vector<std::string> notes = illum::remove_stale_run_files(dir, "--out");
+  std::vector<std::string> inner;  // "lesson11" of DIR/.lesson11.illum-lock or DIR/.lesson11.illum-staging-…
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    std::size_t end = name.find(".illum-staging-");
+    if (end == std::string::npos && name.size() > 11 &&
+        name.compare(name.size() - 11, 11, ".illum-lock") == 0)
+      end = name.size() - 11;
+    if (name.size() > 1 && name[0] == '.' && end != std::string::npos && end > 1)
+      inner.push_back(name.substr(1, end - 1));
+  }
+  std::sort(inner.begin(), inner.end());
+  inner.erase(std::unique(inner.begin(), inner.end()), inner.end());
+  for (const std::string& name : inner)
+    for (std::string& note : illum::remove_stale_run_files(dir / name, "--out"))
+      notes.push_back(std::move(note));
+  for (const std::string& note : notes) std::cout << "illum clean: " << note << "\n";
+  if (notes.empty())
+    std::cout << "illum clean: nothing to clean: no staging folder or lock of a killed run beside "
+              << dir.string() << " or in it\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -186,7 +223,8 @@ int main(int argc, char** argv) {
       "lab",
       "The lab in your browser: a pixel's ray tree, radiosity shot by shot, the hemicube, your pictures");
   lab_cmd->add_option("scene", lab_options.image.scene, "A scene file (JSON) or the name of a shipped scene")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(illum::path_value().validator());
   lab_cmd->add_option("--port", lab_options.port, "Port on 127.0.0.1 (0: any free port; it is printed)")
       ->check(CLI::Range(0, 65535))
       ->capture_default_str();
@@ -194,9 +232,20 @@ int main(int argc, char** argv) {
   lab_cmd
       ->add_option("--source", lab_options.source,
                    "The course's source tree, whose lessons/NN_topic/figures are the reference images")
-      ->capture_default_str();
-  lab_cmd->add_option("--out", lab_options.out,
-                      "The folder of your lesson programs' outputs (OUT/lessonNN; default: SOURCE/out)");
+      ->capture_default_str()
+      ->check(illum::path_value().validator());
+  lab_cmd
+      ->add_option("--out", lab_options.out,
+                   "The folder of your lesson programs' outputs (OUT/lessonNN; default: SOURCE/out)")
+      ->check(illum::path_value().validator());
+  std::filesystem::path clean_out;
+  auto* clean_cmd = app.add_subcommand(
+      "clean",
+      "Remove what runs killed without warning (SIGKILL, a power cut) left beside an output folder: their "
+      "staging folders and locks (each run also removes them when it starts)");
+  clean_cmd->add_option("--out", clean_out, "The output folder (out: also every out/lessonNN)")
+      ->required()
+      ->check(illum::path_value().validator());
 
   // CLI11 says only "A subcommand is required" for `illum rendr`: name it, and the nearest.
   if (argc > 1 && argv[1][0] != '-') {
@@ -238,9 +287,11 @@ int main(int argc, char** argv) {
   int status = 0;
   const int failed = illum::run_in_transaction("illum", transaction, [&] {
     if (!out.empty()) illum::check_output_folder(out, "--out");
+    if (!out.empty()) illum::remove_stale_run_files_noting("illum", out, "--out");  // what killed runs left
     if (version->parsed()) std::cout << "illum 0.1.0\n";
     if (list->parsed())
       for (const auto& s : illum::embedded_scenes()) std::cout << s.name << "\n";
+    if (clean_cmd->parsed()) status = clean(clean_out);
     if (render_cmd->parsed()) status = render(render_options);
     if (trace_cmd->parsed()) status = trace(trace_options);
   });

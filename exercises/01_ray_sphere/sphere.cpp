@@ -13,7 +13,7 @@ namespace illum {
 // Task 1. Store the centre and radius; refuse a radius that is zero,
 // negative, NaN or infinite, and a centre that is not finite, by throwing
 // std::invalid_argument (use illum::require).
-Sphere::Sphere(const Point3& center_, double radius_) : center(center_), radius(radius_) {
+Sphere::Sphere(const Point3& pc, double r) : center(pc), radius(r) {
   throw NotImplemented("Sphere::Sphere", "validate the radius (r > 0, finite) and the centre (finite)");
 }
 

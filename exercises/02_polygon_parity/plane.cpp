@@ -9,7 +9,8 @@
 namespace illum {
 
 // Task 1. Solve N·(P0 + sω) + D = 0 for s (mind erratum 2 of docs/errata.md: there is a minus
-// sign). Classify N·ω = 0 as parallel or in_plane, and report an s that
+// sign). Classify N·ω = 0 as parallel or in_plane (exactly 0, no tolerance, for N·ω and for
+// D + N·P0), and report an s that
 // overflows to infinity as parallel.
 PlaneCrossing cross_plane(const Ray& ray, const Plane& plane) {
   throw NotImplemented("cross_plane",

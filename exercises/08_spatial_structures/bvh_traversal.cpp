@@ -12,8 +12,9 @@
 
 namespace illum {
 
-// Task 3a. Closest hit. Keep a stack of (node, entry s); skip a popped node
-// whose entry lies beyond the closest hit so far; at a leaf test every
+// Task 3a. Closest hit. Keep a stack of (node, entry s), s in double; skip a
+// popped node whose entry lies beyond the closest hit so far by more than a
+// relative 1e-9 of it (coplanar triangles tie); at a leaf test every
 // triangle with the range shrunk to the closest hit; at an inner node clip
 // both children (slab_clip with slab_far_slack) and push the farther first.
 // Clip every box, the root too, against the range with both ends widened by
@@ -25,15 +26,19 @@ namespace illum {
 std::optional<AccelHit> bvh_closest_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters) {
   throw NotImplemented("bvh_closest_hit",
                        "visit the nearer child first and skip nodes that begin beyond the best hit "
-                       "(lesson 08, §4 \"comprobar (nodo, rayo)\")");
+                       "(lesson 08, §5 \"comprobar (nodo, rayo)\")");
 }
 
-// Task 3b. Any hit: the same walk, returning true at the first triangle hit;
-// the boxes clipped against ray.range with both ends widened the same way.
-// Counted as in 3a: the ray, each box test, each triangle test, added.
+// Task 3b. Any hit: a stack of nodes, no entry s and no order by distance.
+// Pop a node and clip its box against ray.range, both ends widened as in 3a
+// (one box test per popped node, the root's first); a missed box is skipped;
+// at a leaf return true at the first triangle hit; at an inner node push the
+// second child (node.first), then the first (node + 1), so the first child is
+// popped next. Counted as in 3a: the ray, each box test, each triangle test, added.
 bool bvh_any_hit(const BvhView& bvh, const Ray& ray, TraversalCounters& counters) {
   throw NotImplemented("bvh_any_hit",
-                       "return at the first hit in range; order does not matter (lesson 08, §4)");
+                       "pop a node, test its box, push the second child then the first; return at the "
+                       "first hit in range (lesson 08, §5)");
 }
 
 }  // namespace illum

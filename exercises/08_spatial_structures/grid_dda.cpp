@@ -15,7 +15,9 @@ namespace illum {
 // nothing of positive length, return a walk with done = true. Otherwise set
 // s_enter and s_end, and per axis the step (±1, or 0 where 1/ω is not
 // finite), the cell holding the entry point, and s_next (+∞ on a parallel
-// axis). An entry exactly on a boundary belongs to the cell the ray moves into.
+// axis) of the cell you start in: when you move the cell off the entry point's
+// floor, recompute its s_next. An entry exactly on a boundary belongs to the
+// cell the ray moves into.
 DdaWalk dda_start(const GridFrame& frame, const Ray& ray) {
   throw NotImplemented(
       "dda_start",

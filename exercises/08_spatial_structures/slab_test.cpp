@@ -20,7 +20,7 @@ namespace illum {
 Interval slab_clip(const SlabRay& ray, const Aabb& box, Interval range, double far_slack) {
   throw NotImplemented("slab_clip",
                        "intersect the ray's range with the three slab intervals; branch on a parallel axis "
-                       "instead of computing 0·∞ (lesson 08, §4 \"the slab test\")");
+                       "instead of computing 0·∞ (lesson 08, §2 \"the slab test\")");
 }
 
 }  // namespace illum

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "illum/core/error.hpp"
+#include "illum/geometry/polygon.hpp"  // drop_axis, largest_axis: lesson 02's projection
 
 namespace illum {
 
@@ -15,15 +16,18 @@ namespace illum {
 Vec2 surface_coordinates(std::span<const Point3> polygon, const Point3& x) {
   throw NotImplemented(
       "surface_coordinates",
-      "solve cross(g, f) v² + (cross(e, f) + cross(h, g)) v + cross(h, e) = 0 with the stable "
-      "roots, then u = (h − f v)/(e + g v) (lesson 13, §3)");
+      "drop the normal's largest component (lesson 02, §3), solve cross(g, f) v² + (cross(e, f) + "
+      "cross(h, g)) v + cross(h, e) = 0 with the stable roots (sign(0) = +1), then u = (h − f v)/(e + g v) "
+      "(lesson 13, §3)");
 }
 
 // Task 3. The patch holding (u, v) and its corners' weights.
 PatchCell locate_patch(const Vec2& uv, int n, int m, int vertex_count) {
-  throw NotImplemented("locate_patch",
-                       "quad: cell (⌊u n⌋, ⌊v m⌋) clamped to the last one, bilinear weights; triangle: row j "
-                       "starts at j (2n − j), up or down by s + t (lesson 13, §3)");
+  throw NotImplemented(
+      "locate_patch",
+      "quad: cell (⌊u n⌋, ⌊v m⌋) clamped to the last one, bilinear weights; triangle (m "
+      "ignored): row j starts at j (2n − j), down when s + t > 1, past the hypotenuse (s, t)/(s "
+      "+ t) (lesson 13, §3)");
 }
 
 // Task 4. I = D + k_r I_r + k_t I_t.

@@ -111,7 +111,7 @@ FlakePicture render_flake(const TriangleAccel& accel, const PinholeCamera& camer
   FlakePicture picture{.image = Image(width, height), .counters = {}, .busiest_cpu_seconds = 0};
   std::vector<TraversalCounters> counters(static_cast<std::size_t>(threads));
   std::vector<double> cpu(static_cast<std::size_t>(threads));
-  ExceptionCollector errors;  // a stub's NotImplemented (--accel bvh_teaching) reaches run_program
+  ExceptionCollector errors;  // a stub's NotImplemented (--accel bvh) reaches run_program
 #pragma omp parallel num_threads(threads)
   {
     // Counted per thread and stored once: neighbouring counters updated on every ray

@@ -2,7 +2,7 @@
 //
 // Builds a deterministic sphereflake of about 10⁵ triangles
 // (accel/sphereflake.hpp), puts its triangles into the structure --accel names
-// (accel/triangle_accel.hpp: the BVH by default; `--accel bvh_teaching` runs
+// (accel/triangle_accel.hpp: the BVH by default; `--accel bvh` runs
 // the exercise's traversal, bvh_traversal.cpp, as a student's code would),
 // renders it with a shadow ray per lit sample, writes the picture and prints
 // the nodes visited and the triangles tested. The studies the text quotes run
@@ -36,7 +36,7 @@ void render_demonstration(illum::OutputFolder& out, const illum::lesson08::Setti
   const TraversalCounters& c = picture.counters;
   out.image(picture.image, "sphereflake",
             "A sphereflake of " + std::to_string(set.size()) + " triangles through the " +
-                (settings.accel == AccelKind::bvh ? std::string("BVH") : to_string(settings.accel)) +
+                (settings.accel == AccelKind::compact_bvh ? std::string("BVH") : to_string(settings.accel)) +
                 ", with a shadow ray per lit pixel");
   const std::string counts = "rays " + std::to_string(c.rays) + "; nodes visited " +
                              std::to_string(c.nodes_visited) + "; triangle tests " +
@@ -68,8 +68,8 @@ int main(int argc, char** argv) {
       [&](CommandLine& command_line) {
         command_line
             .add("--accel", structure_name,
-                 "the structure the sphereflake is rendered through: bvh (production, the default), "
-                 "bvh_teaching (the exercise's traversal), grid, octree or brute_force")
+                 "the structure the sphereflake is rendered through: compact_bvh (production, the default), "
+                 "bvh (the exercise's traversal), grid, octree or brute_force")
             .check(one_of(structures))
             .show_default();
       },

@@ -65,11 +65,10 @@ void draw_delta_form_factors(OutputFolder& out) {
   const HemicubeDeltas deltas = make_hemicube_deltas(res);
   const double top_max = *std::max_element(deltas.top.begin(), deltas.top.end());
   const Image map = unfolded(512, [&](const Vec3& d) {
-    HemicubeFace f;
-    int col, r;
-    if (!hemicube_pixel(d, res, f, col, r)) return Color(1.0);
-    const std::size_t p = static_cast<std::size_t>(r) * res + col;
-    return colormap_viridis((f == HemicubeFace::top ? deltas.top[p] : deltas.side[p]) / top_max);
+    const auto pixel = hemicube_pixel(d, res);
+    if (!pixel) return Color(1.0);
+    const std::size_t p = static_cast<std::size_t>(pixel->row) * res + pixel->col;
+    return colormap_viridis((pixel->face == HemicubeFace::top ? deltas.top[p] : deltas.side[p]) / top_max);
   });
   out.image(map, "delta_form_factors",
             "Delta form factors of a 16-pixel hemicube, unfolded, divided by the largest (the top face's "
@@ -91,10 +90,10 @@ void draw_item_buffer(OutputFolder& out, bool quick) {
   // The room's floor normal is +z, so the hemicube's frame is the tangent basis of +z, unrotated.
   hemicube.form_factor_row(room, receiver, row, buffers);
   const Image faces = unfolded(512, [&](const Vec3& d) {
-    HemicubeFace f;
-    int col, r;
-    if (!hemicube_pixel(d, res, f, col, r)) return Color(1.0);
-    const std::int32_t item = buffers.face_items(f)[static_cast<std::size_t>(r) * res + col];
+    const auto pixel = hemicube_pixel(d, res);
+    if (!pixel) return Color(1.0);
+    const std::int32_t item =
+        buffers.face_items(pixel->face)[static_cast<std::size_t>(pixel->row) * res + pixel->col];
     if (item == empty_pixel) return Color(0.0);
     if (item == back_face_pixel) return Color(0.1);
     return patch_colour(room[static_cast<std::size_t>(item)], item);

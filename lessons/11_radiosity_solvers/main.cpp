@@ -13,13 +13,13 @@
 #include <vector>
 
 #include "illum/core/error.hpp"
-#include "illum/core/memory_budget.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/output_folder.hpp"
 #include "illum/io/program.hpp"
 #include "illum/io/scene_file.hpp"
 #include "illum/radiosity/radiosity_solvers.hpp"
 #include "illum/radiosity/radiosity_system.hpp"
+#include "illum/system/memory_budget.hpp"
 #include "patch_render.hpp"
 #include "studies/studies.hpp"
 #include "support/lesson_support.hpp"
@@ -106,6 +106,7 @@ void add_options(CommandLine& command_line, Settings& settings, std::vector<std:
   std::vector<std::string> solver_names;
   for (const Solver solver : all_solvers) solver_names.emplace_back(to_string(solver));
   command_line.add("--scene", settings.scene, "A radiosity scene: a JSON file, or a shipped scene's name")
+      .check(path_value())
       .show_default();
   command_line
       .add("--solvers", solvers,

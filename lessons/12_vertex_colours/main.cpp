@@ -102,6 +102,7 @@ void vertex_colours(OutputFolder& out, const Settings& settings) {
 // The options, each checked before anything is written.
 void add_options(CommandLine& command_line, Settings& settings) {
   command_line.add("--scene", settings.scene, "A radiosity scene: a JSON file, or a shipped scene's name")
+      .check(path_value())
       .show_default();
   command_line
       .add("--threshold", settings.threshold,

@@ -102,7 +102,8 @@ int main(int argc, char** argv) {
   return illum::run_program(
       argc, argv, info,
       [&](illum::CommandLine& command_line) {
-        command_line.add("--scene", s.scene, "Scene file or shipped name (default cornell_spheres)");
+        command_line.add("--scene", s.scene, "Scene file or shipped name (default cornell_spheres)")
+            .check(illum::path_value());
         edge = command_line.add("--edge", s.edge, "Largest patch edge of pass one, scene units (default 50)")
                    .check(illum::number_range(1e-6, 1e9));
         command_line.add("--depth", s.depth, "Depth limit of pass two's specular rays (default 5)")

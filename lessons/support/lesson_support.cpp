@@ -7,10 +7,10 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "illum/core/atomic_file.hpp"
-#include "illum/core/charconv.hpp"
 #include "illum/core/error.hpp"
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/charconv.hpp"
+#include "illum/system/memory_budget.hpp"
 
 namespace illum {
 
@@ -106,6 +106,7 @@ ValueCheck mebibytes_within_budget() {
 ValueCheck file_in_existing_folder(const std::string& option) {
   return ValueCheck(
       [option](std::string& path) {
+        if (const std::string problem = path_problem(path); !problem.empty()) return problem;
         const std::filesystem::path parent = std::filesystem::path(path).parent_path();
         if (std::filesystem::path(path).filename().empty()) return std::string("names a folder, not a file");
         if (!parent.empty() && !std::filesystem::is_directory(parent))

@@ -96,7 +96,7 @@ ValueCheck finite_number();
 // A whole even number (checked on the text: every check runs before the value is converted).
 ValueCheck even_whole_number();
 
-// A number of MiB within this machine's memory budget (core/memory_budget.hpp).
+// A number of MiB within this machine's memory budget (system/memory_budget.hpp).
 ValueCheck mebibytes_within_budget();
 
 // A path naming a file (not a folder) whose folder exists.

@@ -6,6 +6,7 @@
 
 #include "illum/core/random.hpp"
 #include "illum/geometry/sphere_exact.hpp"
+#include "support/string_makers.hpp"
 
 TEST_SUITE("lesson01_oracle") {
   TEST_CASE("oracle: roots known exactly, including one beyond double's reach") {

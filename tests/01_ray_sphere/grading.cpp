@@ -12,6 +12,7 @@
 #include "illum/core/ray.hpp"
 #include "illum/geometry/sphere.hpp"
 #include "support/grade_values.hpp"
+#include "support/string_makers.hpp"
 
 using illum::Point3;
 using illum::Ray;

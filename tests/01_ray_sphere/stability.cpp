@@ -11,6 +11,7 @@
 #include "illum/core/ray.hpp"
 #include "illum/geometry/sphere.hpp"
 #include "illum/geometry/sphere_exact.hpp"
+#include "support/string_makers.hpp"
 
 using illum::Point3;
 using illum::Vec3;

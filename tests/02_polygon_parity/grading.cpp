@@ -9,6 +9,7 @@
 #include "illum/geometry/parity.hpp"
 #include "illum/geometry/plane.hpp"
 #include "illum/geometry/polygon.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 
@@ -108,6 +109,12 @@ TEST_SUITE("lesson02") {
     const auto s = intersect(ray, plane);
     REQUIRE_MESSAGE(s.has_value(), "N·ω = −1e-12 is small but not zero: the ray does meet the plane");
     CHECK_MESSAGE(std::abs(*s / 1e12 - 1.0) < 1e-12, "s = 1/1e-12 = 1e12 up to rounding");
+    // Smaller still, N·ω = −1e-15 from (0, 0, 10⁻³): s = 10⁻³/10⁻¹⁵ = 1e12 again. "Parallel" is N·ω = 0
+    // exactly (plane.hpp): a test written |N·ω| < 1e-12 passes the ray above and loses this one.
+    const Ray flatter = Ray::toward(Point3(0, 0, 1e-3), Vec3(1, 0, -1e-15));
+    const auto far = intersect(flatter, plane);
+    REQUIRE_MESSAGE(far.has_value(), "N·ω = −1e-15 is not zero: the ray meets the plane");
+    CHECK(std::abs(*far / 1e12 - 1.0) < 1e-12);
   }
 
   TEST_CASE("hard case: a ray so nearly parallel that s overflows is reported parallel" *

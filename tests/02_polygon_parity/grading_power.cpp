@@ -11,6 +11,7 @@
 #include "illum/geometry/parity.hpp"
 #include "illum/geometry/plane.hpp"
 #include "illum/geometry/polygon.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 
@@ -114,6 +115,12 @@ TEST_SUITE("lesson02") {
     CHECK(cross_plane(Ray(Point3(5, 5, -1e-12), Vec3(0, 1, 0)), high).contact == PlaneContact::parallel);
     // And exactly on it: D + N·P0 = −1e-9 + 1e-9 = 0.
     CHECK(cross_plane(Ray(Point3(5, 5, 1e-9), Vec3(0, 1, 0)), high).contact == PlaneContact::in_plane);
+    // Far below 1e-12 too (plane.hpp: the test is == 0, no tolerance at all): a test written
+    // |D + N·P0| < 1e-12 passes the offset 1e-12 above and calls these "in the plane".
+    for (const double hair : {1e-15, 1e-200}) {
+      INFO("origin ", hair, " above the plane z = 0");
+      CHECK(cross_plane(Ray(Point3(0, 0, hair), Vec3(1, 0, 0)), plane).contact == PlaneContact::parallel);
+    }
   }
 
   TEST_CASE(

@@ -12,6 +12,7 @@
 
 #include "illum/geometry/parity.hpp"
 #include "illum/geometry/polygon.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "illum/geometry/polygon.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;

@@ -10,6 +10,7 @@
 #include "illum/geometry/convex.hpp"
 #include "illum/geometry/triangle.hpp"
 #include "illum/geometry/winding.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;

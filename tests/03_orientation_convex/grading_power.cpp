@@ -22,6 +22,7 @@
 #include "illum/geometry/orientation.hpp"
 #include "illum/geometry/triangle.hpp"
 #include "illum/geometry/winding.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;

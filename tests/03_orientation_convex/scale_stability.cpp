@@ -11,6 +11,7 @@
 
 #include "illum/geometry/convex.hpp"
 #include "illum/geometry/triangle.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 

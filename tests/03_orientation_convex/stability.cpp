@@ -7,6 +7,7 @@
 
 #include "illum/geometry/orientation.hpp"
 #include "illum/geometry/triangle.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;

@@ -7,6 +7,7 @@
 
 #include "04_csg_intervals/csg_test_helpers.hpp"
 #include "illum/core/random.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 using namespace csg_test;
@@ -48,14 +49,14 @@ TEST_SUITE("lesson04") {
     const SpanList u = combine(CsgOperation::unite, a, b);
     REQUIRE_MESSAGE(u.size() == 1, "[1,3] ∪ [2,5] is the single span [1,5]");
     check_span(u[0], 1, 5);
-    CHECK_MESSAGE((u[0].enter.surface == 1 && u[0].exit.surface == 2),
-                  "the union enters through A, leaves through B");
+    CHECK_MESSAGE(u[0].enter.surface == 1, "the union enters through A (surface 1)");
+    CHECK_MESSAGE(u[0].exit.surface == 2, "the union leaves through B (surface 2)");
 
     const SpanList i = combine(CsgOperation::intersect, a, b);
     REQUIRE_MESSAGE(i.size() == 1, "[1,3] ∩ [2,5] = [2,3]");
     check_span(i[0], 2, 3);
-    CHECK_MESSAGE((i[0].enter.surface == 2 && i[0].exit.surface == 1),
-                  "the intersection starts where the ray enters B and ends where it leaves A");
+    CHECK_MESSAGE(i[0].enter.surface == 2, "the intersection starts where the ray enters B (surface 2)");
+    CHECK_MESSAGE(i[0].exit.surface == 1, "the intersection ends where the ray leaves A (surface 1)");
 
     const SpanList d = combine(CsgOperation::subtract, a, b);
     REQUIRE_MESSAGE(d.size() == 1, "[1,3] − [2,5] = [1,2]");

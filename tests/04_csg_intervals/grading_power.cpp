@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include "04_csg_intervals/csg_test_helpers.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 using namespace csg_test;

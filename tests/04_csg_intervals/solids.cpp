@@ -7,6 +7,7 @@
 
 #include "04_csg_intervals/csg_test_helpers.hpp"
 #include "illum/core/random.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;

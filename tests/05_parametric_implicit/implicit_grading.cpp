@@ -10,6 +10,7 @@
 
 #include "illum/geometry/implicit_surface.hpp"
 #include "illum/geometry/implicit_trace.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 

@@ -11,6 +11,7 @@
 
 #include "illum/geometry/bezier_patch.hpp"
 #include "illum/geometry/patch_newton.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 

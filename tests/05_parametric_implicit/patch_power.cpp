@@ -13,6 +13,7 @@
 
 #include "illum/geometry/bezier_patch.hpp"
 #include "illum/geometry/patch_newton.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 
@@ -72,7 +73,8 @@ void check_oblique_edge_hits(int edge_axis) {
       const std::optional<PatchHit> hit = intersect_patch(ray, patch);
       REQUIRE(hit);
       const double on_edge = edge_axis == 0 ? hit->u : hit->v;
-      CHECK_MESSAGE((on_edge >= 0.0 && on_edge <= 1.0), "the edge's parameter is clamped to [0, 1]");
+      CHECK_MESSAGE(on_edge >= 0.0, "the edge's parameter is clamped to [0, 1]");
+      CHECK_MESSAGE(on_edge <= 1.0, "the edge's parameter is clamped to [0, 1]");
       CHECK(std::abs(hit->u - u) <= 1e-9);
       CHECK(std::abs(hit->v - v) <= 1e-9);
     }

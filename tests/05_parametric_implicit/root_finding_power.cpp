@@ -9,6 +9,7 @@
 
 #include "05_parametric_implicit/support.hpp"
 #include "illum/geometry/root_finding.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 using lesson05::Function;

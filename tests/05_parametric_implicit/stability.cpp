@@ -9,6 +9,7 @@
 
 #include "illum/geometry/bezier_patch.hpp"
 #include "illum/geometry/implicit_surface.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;

@@ -9,8 +9,8 @@ namespace lesson05 {
 
 struct Function final : illum::RealFunction {
   std::function<double(double)> f, df;
-  Function(std::function<double(double)> f_, std::function<double(double)> df_)
-      : f(std::move(f_)), df(std::move(df_)) {}
+  Function(std::function<double(double)> value_of, std::function<double(double)> derivative_of)
+      : f(std::move(value_of)), df(std::move(derivative_of)) {}
   double value(double s) const override { return f(s); }
   double derivative(double s) const override { return df(s); }
 };

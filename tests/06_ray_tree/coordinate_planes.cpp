@@ -23,6 +23,7 @@
 #include "illum/trace/ray_offset.hpp"
 #include "illum/trace/ray_tree.hpp"
 #include "illum/trace/ray_tree_render.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 using illum::test::add_floor;
@@ -67,8 +68,8 @@ TriangleMesh ground_mesh(int axis, double plane, double size, int n) {
 }
 
 // The scene's structures: none (brute force over the primitives) and each of lesson 08's.
-const AccelKind kinds[] = {AccelKind::brute_force, AccelKind::grid, AccelKind::octree,
-                           AccelKind::bvh_teaching, AccelKind::bvh};
+const AccelKind kinds[] = {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::bvh,
+                           AccelKind::compact_bvh};
 
 void use(Scene& scene, AccelKind kind) {
   if (kind == AccelKind::brute_force)
@@ -200,7 +201,7 @@ TEST_SUITE("stability") {
               Triangle(Point3(-3 * h, plane, -h), Point3(0, plane, 3 * h), Point3(3 * h, plane, -h));
         floor.checker_material = black, floor.checker_size = 1.0;
         scene.primitives.push_back(floor);
-        for (const AccelKind kind : {AccelKind::brute_force, AccelKind::bvh}) {
+        for (const AccelKind kind : {AccelKind::brute_force, AccelKind::compact_bvh}) {
           use(scene, kind);
           INFO("floor y = ", plane, ", ",
                shape == 0   ? "polygon"

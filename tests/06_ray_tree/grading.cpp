@@ -11,6 +11,7 @@
 #include "06_ray_tree/test_scenes.hpp"
 #include "illum/trace/optics.hpp"
 #include "illum/trace/ray_tree.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 using illum::test::add_floor;

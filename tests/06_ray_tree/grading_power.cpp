@@ -13,6 +13,7 @@
 #include "06_ray_tree/test_scenes.hpp"
 #include "illum/trace/optics.hpp"
 #include "illum/trace/ray_tree.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;

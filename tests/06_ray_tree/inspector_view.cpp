@@ -8,11 +8,12 @@
 #include <nlohmann/json.hpp>
 
 #include "06_ray_tree/test_scenes.hpp"
-#include "illum/core/bitmap_font.hpp"
+#include "illum/trace/bitmap_font.hpp"
 #include "illum/trace/effects_plan.hpp"
 #include "illum/trace/ray_tree.hpp"
 #include "illum/trace/ray_tree_export.hpp"
 #include "illum/trace/ray_tree_view.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 using illum::test::add_floor;
@@ -78,7 +79,7 @@ TEST_SUITE("inspector") {
     CHECK(shadow.kind == RayKind::shadow);
     CHECK(shadow.parent == 0);
     CHECK(view.nodes[0].children == std::vector<int>{1});
-    CHECK(shadow.rays == std::vector<int>{1, 2, 3});
+    CHECK(shadow.rays == std::vector<int>({1, 2, 3}));
     REQUIRE(shadow.segments.size() == 3);
     // The ball's surface is met at z = 1.5 and z = 2.5; k_t is applied once per surface.
     CHECK(shadow.segments[0].crossed);

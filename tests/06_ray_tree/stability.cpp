@@ -16,6 +16,7 @@
 #include "illum/trace/ray_tree.hpp"
 #include "illum/trace/ray_tree_export.hpp"
 #include "illum/trace/ray_tree_render.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 using illum::test::add_floor;

@@ -23,6 +23,7 @@
 #include "illum/trace/ray_tree.hpp"
 #include "illum/trace/sampled_render.hpp"
 #include "illum/trace/statistical_sampling.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;

@@ -21,6 +21,7 @@
 #include "illum/trace/adaptive_supersampling.hpp"
 #include "illum/trace/sample_lattice.hpp"
 #include "illum/trace/statistical_sampling.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 using illum::test::Recorder;

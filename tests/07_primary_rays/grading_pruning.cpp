@@ -9,6 +9,7 @@
 #include "illum/trace/contribution_cutoff.hpp"
 #include "illum/trace/ray_tree.hpp"
 #include "illum/trace/sampled_render.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 

@@ -10,6 +10,7 @@
 #include "illum/io/scene_file.hpp"
 #include "illum/trace/cone_coverage.hpp"
 #include "illum/trace/sampled_render.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 using std::numbers::pi;

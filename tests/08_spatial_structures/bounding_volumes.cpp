@@ -15,6 +15,7 @@
 #include "illum/accel/oriented_box.hpp"
 #include "illum/accel/sphereflake.hpp"
 #include "scenes.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;

@@ -13,6 +13,7 @@
 #include "illum/accel/production/compact_bvh.hpp"
 #include "illum/accel/sphereflake.hpp"
 #include "scenes.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 

@@ -5,8 +5,8 @@
 // production BVH with each of its kernels, SSE2, AVX and AVX2 with fused
 // multiply-adds (CompactBvh::use_kernel; a kernel the processor lacks runs the
 // best one it has, and its name says so), at the default leaf size and at 16,
-// where the wide kernels filter two packs at once. And the comparison with brute force, the slow exact method
-// they must agree with.
+// where the wide kernels filter two packs at once. And the comparison with
+// brute force, the slow exact method they must agree with.
 #include <doctest/doctest.h>
 
 #include <memory>
@@ -34,7 +34,7 @@ inline std::vector<Structure> every_structure(const TriangleSet& set) {
   all.push_back({"grid (default resolution)", make_accel(set, {.kind = AccelKind::grid})});
   all.push_back({"grid (resolution 37)", std::make_unique<UniformGrid>(set, GridSettings{.resolution = 37})});
   all.push_back({"octree", make_accel(set, {.kind = AccelKind::octree})});
-  all.push_back({"bvh_teaching", std::make_unique<Bvh>(set, BvhSettings{})});
+  all.push_back({"bvh", std::make_unique<Bvh>(set, BvhSettings{})});
   for (const int leaf : {4, 16})
     for (const CompactBvh::Kernel kernel : CompactBvh::all_kernels) {
       auto bvh = std::make_unique<CompactBvh>(set, BvhSettings{.leaf_size = leaf});
@@ -45,6 +45,17 @@ inline std::vector<Structure> every_structure(const TriangleSet& set) {
                ", leaf size " + std::to_string(leaf),
            std::move(bvh)});
     }
+  return all;
+}
+
+// The structures whose walk the student writes (lesson 08's exercise): the uniform grid (the
+// 3DDA, at its default resolution and a fine one) and the teaching BVH (bvh_traversal.cpp).
+// The graded twins of the hard cases run these alone.
+inline std::vector<Structure> student_structures(const TriangleSet& set) {
+  std::vector<Structure> all;
+  all.push_back({"grid (default resolution)", make_accel(set, {.kind = AccelKind::grid})});
+  all.push_back({"grid (resolution 37)", std::make_unique<UniformGrid>(set, GridSettings{.resolution = 37})});
+  all.push_back({"bvh", std::make_unique<Bvh>(set, BvhSettings{})});
   return all;
 }
 

@@ -16,6 +16,7 @@
 #include "illum/accel/triangle_accel.hpp"
 #include "illum/accel/uniform_grid.hpp"
 #include "scenes.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 using illum::test08::mixed_rays;
@@ -153,13 +154,13 @@ TEST_SUITE("lesson08") {
   TEST_CASE("3DDA: axis-parallel segments that start and end on cell boundaries" *
             doctest::description("task=1,2a,2b")) {
     // From x = 1 to x = 3 along +x: cells 1 and 2 only (cells 0 and 3 are only touched).
-    CHECK(walk(Point3(1.0, 0.5, 0.5), Vec3(1, 0, 0), Interval(0.0, 2.0)) == Cells{{1, 0, 0}, {2, 0, 0}});
+    CHECK(walk(Point3(1.0, 0.5, 0.5), Vec3(1, 0, 0), Interval(0.0, 2.0)) == Cells({{1, 0, 0}, {2, 0, 0}}));
     // The same segment backwards, from x = 3 to x = 1.
-    CHECK(walk(Point3(3.0, 1.5, 2.5), Vec3(-1, 0, 0), Interval(0.0, 2.0)) == Cells{{2, 1, 2}, {1, 1, 2}});
+    CHECK(walk(Point3(3.0, 1.5, 2.5), Vec3(-1, 0, 0), Interval(0.0, 2.0)) == Cells({{2, 1, 2}, {1, 1, 2}}));
     // Along −z from the top face to z = 1.
-    CHECK(walk(Point3(0.5, 1.5, 3.0), Vec3(0, 0, -1), Interval(0.0, 2.0)) == Cells{{0, 1, 2}, {0, 1, 1}});
+    CHECK(walk(Point3(0.5, 1.5, 3.0), Vec3(0, 0, -1), Interval(0.0, 2.0)) == Cells({{0, 1, 2}, {0, 1, 1}}));
     // A whole row from outside, along +y.
-    CHECK(walk(Point3(3.25, -7.0, 0.75), Vec3(0, 1, 0)) == Cells{{3, 0, 0}, {3, 1, 0}});
+    CHECK(walk(Point3(3.25, -7.0, 0.75), Vec3(0, 1, 0)) == Cells({{3, 0, 0}, {3, 1, 0}}));
   }
 
   TEST_CASE("3DDA: diagonal segments, through an edge and through a corner" *
@@ -167,32 +168,32 @@ TEST_SUITE("lesson08") {
     // (1, 0.5, 0)/|…| from (0.2, 0.2, 0.3): x = 1 at x-travel 0.8, y = 1 at x-travel 1.6 (x = 1.8),
     // x = 2, x = 3, and y = 2 at x = 3.8, where the ray leaves the grid.
     CHECK(walk(Point3(0.2, 0.2, 0.3), Vec3(1.0, 0.5, 0.0)) ==
-          Cells{{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {2, 1, 0}, {3, 1, 0}});
+          Cells({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {2, 1, 0}, {3, 1, 0}}));
     // Through the edge x = y = 1: both axes step at once; (1, 0) and (0, 1) are only touched.
-    CHECK(walk(Point3(0.5, 0.5, 2.5), Vec3(1.0, 1.0, 0.0)) == Cells{{0, 0, 2}, {1, 1, 2}});
+    CHECK(walk(Point3(0.5, 0.5, 2.5), Vec3(1.0, 1.0, 0.0)) == Cells({{0, 0, 2}, {1, 1, 2}}));
     // Through the corner (1, 1, 1): all three axes step at once.
-    CHECK(walk(Point3(0.5, 0.5, 0.5), Vec3(1.0, 1.0, 1.0)) == Cells{{0, 0, 0}, {1, 1, 1}});
+    CHECK(walk(Point3(0.5, 0.5, 0.5), Vec3(1.0, 1.0, 1.0)) == Cells({{0, 0, 0}, {1, 1, 1}}));
     // From outside through the corner (0, 0, 0) itself, ending on the corner (2, 2, 2).
     CHECK(walk(Point3(-1.0, -1.0, -1.0), Vec3(1.0, 1.0, 1.0), Interval(0.0, 3.0 * std::sqrt(3.0))) ==
-          Cells{{0, 0, 0}, {1, 1, 1}});
+          Cells({{0, 0, 0}, {1, 1, 1}}));
   }
 
   TEST_CASE("hard case: 3DDA starts in the cell of an origin inside the grid" *
             doctest::description("task=1,2a,2b")) {
-    CHECK(walk(Point3(2.25, 0.75, 1.5), Vec3(-1, 0, 0)) == Cells{{2, 0, 1}, {1, 0, 1}, {0, 0, 1}});
+    CHECK(walk(Point3(2.25, 0.75, 1.5), Vec3(-1, 0, 0)) == Cells({{2, 0, 1}, {1, 0, 1}, {0, 0, 1}}));
     // Origin on an inner boundary (x = 2), heading −x: the walk begins in cell 1, not 2.
-    CHECK(walk(Point3(2.0, 0.75, 0.5), Vec3(-1, 0, 0)) == Cells{{1, 0, 0}, {0, 0, 0}});
+    CHECK(walk(Point3(2.0, 0.75, 0.5), Vec3(-1, 0, 0)) == Cells({{1, 0, 0}, {0, 0, 0}}));
     // Inside, a range that ends mid-cell: (1.5, …) to (2.5, …).
-    CHECK(walk(Point3(1.5, 1.5, 2.5), Vec3(1, 0, 0), Interval(0.0, 1.0)) == Cells{{1, 1, 2}, {2, 1, 2}});
+    CHECK(walk(Point3(1.5, 1.5, 2.5), Vec3(1, 0, 0), Interval(0.0, 1.0)) == Cells({{1, 1, 2}, {2, 1, 2}}));
   }
 
   TEST_CASE("hard case: 3DDA terminates on axis-parallel rays and on rays that miss or graze" *
             doctest::description("task=1,2a,2b")) {
     // Parallel to two axes, from inside, in both senses.
-    CHECK(walk(Point3(3.5, 1.5, 0.5), Vec3(0, 0, 1)) == Cells{{3, 1, 0}, {3, 1, 1}, {3, 1, 2}});
-    CHECK(walk(Point3(3.5, 1.5, 2.5), Vec3(0, 0, -1)) == Cells{{3, 1, 2}, {3, 1, 1}, {3, 1, 0}});
+    CHECK(walk(Point3(3.5, 1.5, 0.5), Vec3(0, 0, 1)) == Cells({{3, 1, 0}, {3, 1, 1}, {3, 1, 2}}));
+    CHECK(walk(Point3(3.5, 1.5, 2.5), Vec3(0, 0, -1)) == Cells({{3, 1, 2}, {3, 1, 1}, {3, 1, 0}}));
     // Lying in the grid's face plane x = 4 (a closed box): the cells of column 3.
-    CHECK(walk(Point3(4.0, -1.0, 2.5), Vec3(0, 1, 0)) == Cells{{3, 0, 2}, {3, 1, 2}});
+    CHECK(walk(Point3(4.0, -1.0, 2.5), Vec3(0, 1, 0)) == Cells({{3, 0, 2}, {3, 1, 2}}));
     // Passing beside the grid, and touching only its edge (x = 4, y = 2).
     CHECK(walk(Point3(5.0, 0.5, 0.5), Vec3(0, 1, 0)).empty());
     CHECK(walk(Point3(3.0, 3.0, 1.5), Vec3(1, -1, 0)).empty());
@@ -373,8 +374,8 @@ TEST_SUITE("lesson08") {
     const TriangleSet set = triangle_soup(600, 0x080a);
     const std::vector<Ray> rays = mixed_rays(set, 1500, 0x080b);
     const auto reference = brute_force_hits(set, rays);
-    CHECK(AccelSettings{}.kind == AccelKind::bvh);
-    for (const char* name : {"grid", "bvh", "bvh_teaching"}) {
+    CHECK(AccelSettings{}.kind == AccelKind::compact_bvh);
+    for (const char* name : {"grid", "compact_bvh", "bvh"}) {
       INFO(name);
       const auto accel = make_accel(set, AccelSettings{.kind = accel_kind_from_name(name)});
       CHECK(accel->name() == name);

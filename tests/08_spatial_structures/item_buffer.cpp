@@ -6,6 +6,7 @@
 #include "illum/accel/brute_force.hpp"
 #include "illum/accel/item_buffer.hpp"
 #include "illum/accel/sphereflake.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;

@@ -10,6 +10,7 @@
 #include "illum/trace/scene.hpp"
 #include "illum/trace/scene_accel.hpp"
 #include "scenes.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 
@@ -57,7 +58,7 @@ void check_same_hit(const std::optional<SurfaceHit>& a, const std::optional<Surf
 TEST_SUITE("stability") {
   TEST_CASE("a scene with a structure finds the same hits as brute force, bit for bit, for every kind") {
     for (const AccelKind kind :
-         {AccelKind::bvh, AccelKind::grid, AccelKind::octree, AccelKind::brute_force}) {
+         {AccelKind::compact_bvh, AccelKind::grid, AccelKind::octree, AccelKind::brute_force}) {
       CAPTURE(to_string(kind));
       Scene brute = flake_scene();
       Scene fast = brute;
@@ -90,7 +91,7 @@ TEST_SUITE("stability") {
       "a shipped scene is loaded with the default BVH; changing its primitives falls back to brute force") {
     Scene scene = load_scene("primitives");
     REQUIRE(scene.accel);
-    CHECK(scene.accel->kind() == AccelKind::bvh);
+    CHECK(scene.accel->kind() == AccelKind::compact_bvh);
     CHECK(scene.accel->covers(scene));
     scene.primitives.push_back(Primitive{.name = "late", .shape = Sphere({100, 100, 100}, 1), .material = 0});
     CHECK_FALSE(scene.accel->covers(scene));

@@ -12,10 +12,15 @@
 #include <string>
 #include <vector>
 
+#include "illum/accel/brute_force.hpp"
+#include "illum/accel/bvh.hpp"
 #include "illum/accel/bvh_traversal.hpp"
 #include "illum/accel/grid_dda.hpp"
 #include "illum/accel/slab_test.hpp"
+#include "illum/accel/triangle_set.hpp"
+#include "illum/accel/uniform_grid.hpp"
 #include "illum/core/random.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 
@@ -121,8 +126,8 @@ TEST_SUITE("lesson08") {
                        std::span<const std::uint32_t>(id_storage.data(), 1)};
     const Ray ray(Point3(0, 0, -1), Vec3(0, 0, 1));
     // The exercise units are compiled with array bounds checks that trap (CMakeLists.txt): a
-    // fixed stack one entry short stops here, and doctest reports this test case as CRASHED
-    // (SIGILL), instead of passing by luck (bvh_traversal.hpp: bvh_max_depth + 1 entries).
+    // fixed stack one entry short stops the deep-tree test below as CRASHED (SIGILL for a plain
+    // array, SIGABRT for a std::array's or std::vector's assertion), instead of passing by luck.
     TraversalCounters c;
     const auto hit = bvh_closest_hit(view, ray, c);
     CHECK_MESSAGE(
@@ -164,24 +169,35 @@ TEST_SUITE("lesson08") {
     const BvhView view{nodes, tris, ids};
     const Ray ray(Point3(0, 0, -1), Vec3(0, 0, 1));
     // The exercise units are compiled with array bounds checks that trap (CMakeLists.txt): a
-    // fixed stack one entry short stops here instead of passing by luck.
-    INFO(
-        "if this test CRASHED (SIGILL, or 'stack smashing detected'), a fixed-size stack is too short: the "
-        "deepest tree needs bvh_max_depth + 1 = "
-        << bvh_max_depth + 1 << " entries (bvh_traversal.hpp)");
-    TraversalCounters c;
-    const auto hit = bvh_closest_hit(view, ray, c);
+    // fixed stack one entry short stops here instead of passing by luck. The note below is shown
+    // only if one of the two walks crashes: it is in scope around the calls alone.
+    TraversalCounters c, shadow;
+    std::optional<AccelHit> hit;
+    bool blocked = false;
+    {
+      INFO(
+          "a crash in this walk (SIGILL from a plain array's bounds check; SIGABRT from a std::array's "
+          "or a std::vector's assertion, or '*** stack smashing detected ***') means a fixed-size stack "
+          "too short: the deepest tree needs bvh_max_depth + 1 = "
+          << bvh_max_depth + 1 << " entries (bvh_traversal.hpp)");
+      hit = bvh_closest_hit(view, ray, c);
+      blocked = bvh_any_hit(view, ray, shadow);
+    }
     REQUIRE_MESSAGE(hit.has_value(), "the root's second child holds a triangle across the axis at z = 2");
     CHECK(hit->triangle == 1);
     CHECK(hit->hit.s == doctest::Approx(3.0));
     CHECK_MESSAGE(c.triangle_tests == static_cast<std::uint64_t>(depth + 1),
-                  "no hit closes the range before the last leaf: all " << depth + 1 << " leaves are tested");
-    TraversalCounters shadow;
-    CHECK_MESSAGE(bvh_any_hit(view, ray, shadow), "the root's second child blocks the ray at z = 2");
+                  "closest hit: no hit closes the range before the last leaf: all " << depth + 1
+                                                                                    << " leaves are tested");
+    CHECK_MESSAGE(blocked, "the root's second child blocks the ray at z = 2");
     CHECK_MESSAGE(shadow.triangle_tests == static_cast<std::uint64_t>(depth + 1),
-                  "any hit finds the blocker only at the last of the " << depth + 1 << " leaves");
+                  "any hit pops the first child first (bvh_traversal.hpp: push the second child, then "
+                  "the first): it goes down the chain, then back up through every pending leaf, and "
+                  "reaches the blocker, the root's second child, last: "
+                      << depth + 1 << " triangle tests");
     CHECK_MESSAGE(shadow.nodes_visited == static_cast<std::uint64_t>(2 * depth + 1),
-                  "any hit pops every node of the tree: " << 2 * depth + 1);
+                  "any hit tests each node's box once, when it pops the node: every node of the tree, "
+                      << 2 * depth + 1);
   }
 
   TEST_CASE("hard case: slab test of a ray grazing a box's edge behind its origin (negative s)" *
@@ -223,7 +239,7 @@ TEST_SUITE("lesson08") {
     CHECK_MESSAGE(start.step[0] == 1, "ω.x > 0: step +1");
     CHECK_MESSAGE(start.step[1] == 0, "the ray is parallel to y: step 0, not ±1 (grid_dda.hpp)");
     CHECK_MESSAGE(start.step[2] == 0, "the ray is parallel to z: step 0");
-    CHECK(dda_cells(f, ray) == Cells{{0, 1, 0}, {1, 1, 0}, {2, 1, 0}, {3, 1, 0}});
+    CHECK(dda_cells(f, ray) == Cells({{0, 1, 0}, {1, 1, 0}, {2, 1, 0}, {3, 1, 0}}));
   }
 
   TEST_CASE("hard case: 3DDA from the boundary x = 1 heading −x visits cell 0 only" *
@@ -233,8 +249,8 @@ TEST_SUITE("lesson08") {
     // does not visit the cell across it). The start cell is corrected from cell 1 to
     // cell 0, the first cell of the grid: a correction that stops above 0 keeps cell 1.
     const GridFrame f = unit_frame();
-    CHECK(dda_cells(f, Ray(Point3(1.0, 0.75, 0.5), Vec3(-1, 0, 0))) == Cells{{0, 0, 0}});
-    CHECK(dda_cells(f, Ray(Point3(1.5, 1.0, 1.5), Vec3(0, -1, 0))) == Cells{{1, 0, 1}});
+    CHECK(dda_cells(f, Ray(Point3(1.0, 0.75, 0.5), Vec3(-1, 0, 0))) == Cells({{0, 0, 0}}));
+    CHECK(dda_cells(f, Ray(Point3(1.5, 1.0, 1.5), Vec3(0, -1, 0))) == Cells({{1, 0, 1}}));
   }
 }
 
@@ -275,6 +291,12 @@ TEST_SUITE("lesson08") {
         CHECK_MESSAGE((!(param(near) > w.s_enter) || (sense > 0 ? c == 0 : c == 3)),
                       "the start cell's near boundary must not lie strictly ahead of s_enter (it would be "
                       "the cell before it)");
+        // The cell's first exit: s_next.x is the crossing of the start cell's own far boundary
+        // (grid_dda.hpp). A walk that moves the cell back but keeps the s_next of the cell it first
+        // computed leaves its first cell one boundary late.
+        CHECK_MESSAGE(w.s_next[0] == param(far),
+                      "s_next.x = (boundary(0, k) − P0.x)/ω.x for k the start cell's far boundary, "
+                      "recomputed after the cell is corrected");
         const double p = ray.at(w.s_enter).x;
         rounded_across += static_cast<int>(std::floor(p)) != c;
       }
@@ -634,7 +656,7 @@ TEST_SUITE("lesson08") {
     const Ray ray(Point3(-1, 0.5, 0.5), Vec3(1, 0, 0));
     DdaWalk w = dda_start(f, ray);
     REQUIRE(!w.done);
-    CHECK((w.cell == CellIndex{0, 0, 0}));
+    CHECK(w.cell == CellIndex({0, 0, 0}));
     CHECK_MESSAGE(w.s_enter == 1.0, "the ray enters the grid at x = 0, s = 1");
     CHECK_MESSAGE(w.s_end == 5.0,
                   "s_end: where the segment leaves the grid (x = 4, s = 5), not ray.range.hi");
@@ -643,7 +665,7 @@ TEST_SUITE("lesson08") {
     CHECK_MESSAGE(w.s_next[2] == infinity, "parallel to z: s_next = +∞");
     dda_step(f, ray, w);
     REQUIRE(!w.done);
-    CHECK((w.cell == CellIndex{1, 0, 0}));
+    CHECK(w.cell == CellIndex({1, 0, 0}));
     CHECK_MESSAGE(w.s_enter == 2.0, "the second cell is entered where the first is left, s = 2");
     CHECK(w.s_next[0] == 3.0);
     CHECK(w.s_end == 5.0);
@@ -775,8 +797,144 @@ TEST_SUITE("lesson08") {
           (!(near > w.s_enter) || c == 0),
           "the start cell's near boundary must not lie strictly ahead of s_enter: the entry point's "
           "floor can be one cell short, move it forward");
+      CHECK_MESSAGE(w.s_next[0] == far,
+                    "s_next.x = (boundary(0, c + 1) − P0.x)/ω.x, the crossing of the start cell's own far "
+                    "boundary, recomputed after the cell is moved");
     }
     CHECK_MESSAGE(rounded_short > 0,
                   "no ray had its rounded entry point short of x = 3: the test proves nothing");
+  }
+}
+
+// Real bugs of the student trials that passed every test above (issue 45): the entry s of stacked
+// nodes held in float, and an early exit with no allowance for ties.
+TEST_SUITE("lesson08") {
+  TEST_CASE("BVH: a stacked node's entry s is kept in double: a node entered 2·10⁻⁸ before the best hit" *
+            doctest::description("task=1,3a")) {
+    // Root (node 0) over two leaves, the ray up the z axis from the origin. Node 1 (first child): box
+    // z ∈ [1 + 0.2e-7, 1 + 1.0e-7], its triangle at z = 1 + 1.0e-7 (id 0). Node 2 (second child): box
+    // z ∈ [1 + 0.8e-7, 1 + 0.9e-7], its triangle at z = 1 + 0.9e-7 (id 1), 10⁻⁸ nearer than node 1's.
+    //   bvh_traversal.hpp: node 1 is entered first (1 + 0.2e-7 < 1 + 0.8e-7), its triangle is hit at
+    //   1 + 1.0e-7; node 2, entered at 1 + 0.8e-7, before that hit, is visited and its triangle, at
+    //   1 + 0.9e-7, is the closest: id 1. 1 + 0.8e-7 held in float rounds to the float above 1,
+    //   1 + 2⁻²³ ≈ 1 + 1.19e-7 (floats near 1 are 1.19e-7 apart): past the hit at 1 + 1.0e-7, so node 2
+    //   would be skipped and the farther triangle returned.
+    const auto slab = [](double z0, double z1) { return box(Point3(-1, -1, z0), Point3(1, 1, z1)); };
+    const double z_far = 1 + 1.0e-7, z_near = 1 + 0.9e-7;
+    const std::vector<BvhNode> nodes{inner(slab(1 + 0.2e-7, z_far), 2), leaf(slab(1 + 0.2e-7, z_far), 0, 1),
+                                     leaf(slab(1 + 0.8e-7, z_near), 1, 1)};
+    const std::vector<Triangle> tris{across_axis(z_far), across_axis(z_near)};
+    const std::vector<std::uint32_t> ids{0, 1};
+    TraversalCounters c;
+    const auto hit = bvh_closest_hit(BvhView{nodes, tris, ids}, Ray(Point3(0, 0, 0), Vec3(0, 0, 1)), c);
+    REQUIRE(hit.has_value());
+    CHECK_MESSAGE(hit->triangle == 1,
+                  "the triangle at z = 1 + 0.9e-7 is the closest; node 2, entered at 1 + 0.8e-7 (before the "
+                  "first hit at 1 + 1.0e-7), must be visited: keep its entry in double");
+    CHECK(hit->hit.s == doctest::Approx(z_near).epsilon(1e-12));
+    CHECK_MESSAGE(c.triangle_tests == 2, "both leaves are tested: node 1 first, then node 2");
+  }
+
+  TEST_CASE("BVH: coplanar overlapping triangles in two leaves, hit a few ulps apart: brute force's closest" *
+            doctest::description("task=1,3a")) {
+    // Triangles A (id 0) and B (id 1) overlap in the plane x = c = 0.37, each in its own leaf, whose box
+    // is flat in that plane; the root holds both. Rays along −x from x0 > c meet both at the same point
+    // of the plane, but lesson 03's test computes each triangle's s from its own vertices, and the
+    // leaves' slab entries are computed a third way: all three differ by a few ulps. Both leaves are
+    // entered at about the same s, A (the first child) first on a tie; its hit s_A is then the best.
+    // bvh_traversal.hpp: B's leaf is skipped only when its entry exceeds s_A by more than a relative
+    // 1e-9, so B is tested, and when s_B < s_A it is the closest hit, as brute force (the slow exact
+    // method) finds it. Without the allowance B's leaf is skipped whenever its entry rounds above s_A,
+    // even when s_B < s_A. The rays where that happens are counted, so the test is known to reach it.
+    constexpr double c = 0.37;
+    const std::vector<Triangle> tris{
+        Triangle(Point3(c, -1.1, -0.9), Point3(c, 1.3, -0.8), Point3(c, 0.1, 1.2)),
+        Triangle(Point3(c, -1.3, -1.2), Point3(c, 1.2, -1.0), Point3(c, 0.0, 1.4))};
+    const std::vector<std::uint32_t> ids{0, 1};
+    const Aabb box_a = bounds_of(tris[0]), box_b = bounds_of(tris[1]);
+    Aabb root = box_a;
+    root.grow(box_b);
+    const std::vector<BvhNode> nodes{inner(root, 2), leaf(box_a, 0, 1), leaf(box_b, 1, 1)};
+    const BvhView view{nodes, tris, ids};
+    const BruteForce brute(TriangleSet::from_triangles(tris));
+    Rng rng(0x45);
+    int reached = 0, differ = 0;
+    for (int k = 0; k < 400; ++k) {
+      const Point3 o(c + rng.uniform(0.01, 3.0), rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3));
+      const Ray ray(o, Vec3(-1, 0, 0));
+      const auto a = intersect(ray, tris[0]), b = intersect(ray, tris[1]);
+      REQUIRE(a.has_value());
+      REQUIRE(b.has_value());
+      const double entry_b = (box_b.hi.x - o.x) * (1.0 / ray.direction.x);  // the slab entry of B's leaf
+      reached += b->s < a->s && entry_b > a->s;
+      TraversalCounters counters;
+      const auto expected = brute.intersect(ray, counters);
+      const auto got = bvh_closest_hit(view, ray, counters);
+      REQUIRE(expected.has_value());
+      const bool same = got && got->hit.s == expected->hit.s;
+      if (!same && ++differ <= 3) {
+        INFO("ray from x0 = " << o.x << " along −x: s_A = " << a->s << ", s_B = " << b->s
+                              << ", B's leaf entered at " << entry_b);
+        CHECK_MESSAGE(same,
+                      "the closest hit is brute force's, the smaller of s_A and s_B: skip a leaf only "
+                      "when it begins beyond the best hit by more than a relative 1e-9");
+      }
+    }
+    CHECK(differ == 0);
+    CHECK_MESSAGE(reached > 0,
+                  "no ray had B nearer and its leaf entered after A's hit: the test proves nothing");
+  }
+}
+
+// Hard cases that were not graded although they catch real bugs in the student's code (issue 45):
+// a direction component whose inverse overflows, and a scene with no thickness.
+TEST_SUITE("lesson08") {
+  TEST_CASE("hard case: slab test with a subnormal direction component (1/ω overflows to ∞)" *
+            doctest::description("task=1")) {
+    // slab_test.hpp: an axis where 1/ω is not finite is parallel: the ray is in that slab for every s
+    // when lo ≤ P0 ≤ hi there (here P0.x = 0.5 = lo.x, on the face), so only y clips: s ∈ [2, 4].
+    Aabb box;
+    box.lo = Point3(0.5, -1.0, -1.0);
+    box.hi = Point3(1.5, 1.0, 1.0);
+    // ω = (1e−310, 1, 0): |ω|² = 1 exactly; 1/ω.x = +∞, and the origin is on the face x = 0.5.
+    const Ray ray(Point3(0.5, -3.0, 0.0), Vec3(1e-310, 1.0, 0.0));
+    REQUIRE(std::isinf(SlabRay(ray).inverse.x));
+    const Interval got = slab_clip(SlabRay(ray), box, ray.range);
+    REQUIRE_FALSE(got.empty());
+    CHECK(got.lo == doctest::Approx(2.0));
+    CHECK(got.hi == doctest::Approx(4.0));
+  }
+
+  TEST_CASE("hard case: a flat scene (zero extent on one axis) builds and answers like brute force" *
+            doctest::description("task=1,2a,2b,3a")) {
+    // Every triangle in the plane z = 0.7: the grid and every BVH box have zero thickness in z, and
+    // the rays must still find brute force's closest hit (the slow exact method) through both.
+    std::vector<Triangle> tris;
+    Rng rng(5);
+    for (int k = 0; k < 300; ++k) {
+      const Point3 c(rng.uniform(-1, 1), rng.uniform(-1, 1), 0.7);
+      tris.emplace_back(c, c + Vec3(0.1, 0.02, 0), c + Vec3(0.01, 0.12, 0));
+    }
+    const TriangleSet set = TriangleSet::from_triangles(tris);
+    const BruteForce brute(set);
+    const Bvh bvh(set, BvhSettings{});
+    const UniformGrid grid(set, GridSettings{.resolution = 12});
+    TraversalCounters c;
+    int hits = 0;
+    for (int k = 0; k < 2000; ++k) {
+      const Ray ray = Ray::toward(Point3(rng.uniform(-1, 1), rng.uniform(-1, 1), 2.0),
+                                  Vec3(rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2), -1.0));
+      const auto expected = brute.intersect(ray, c);
+      hits += expected.has_value();
+      const auto a = bvh.intersect(ray, c);
+      const auto b = grid.intersect(ray, c);
+      REQUIRE(a.has_value() == expected.has_value());
+      REQUIRE(b.has_value() == expected.has_value());
+      if (expected) {
+        CHECK(a->hit.s == expected->hit.s);
+        CHECK(b->hit.s == expected->hit.s);
+      }
+    }
+    CHECK(hits > 100);
   }
 }

@@ -20,6 +20,7 @@
 #include "illum/radiosity/form_factor_scene.hpp"
 #include "illum/radiosity/patch.hpp"
 #include "illum/radiosity/radiosity_equation.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 using namespace lesson09_test;

@@ -23,6 +23,7 @@
 #include "illum/radiosity/form_factor_sampling.hpp"
 #include "illum/radiosity/patch.hpp"
 #include "illum/radiosity/radiosity_equation.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;
@@ -45,9 +46,11 @@ TEST_SUITE("lesson09") {
       Rng rng(seed);
       const double f = form_factor_monte_carlo(floor, ceiling, {}, 1, rng);
       INFO("seed ", seed, ": F̂ = ", f, ", one sample's bounds [", lo, ", ", hi, "]");
-      CHECK_MESSAGE((f >= lo * (1 - 1e-12) && f <= hi * (1 + 1e-12)),
-                    "with samples = 1 the estimate A_j cos θ_x cos θ_y/(π r²) is one kernel value: exactly "
-                    "`samples` pairs are drawn and the sum is divided by `samples`");
+      const char* why =
+          "with samples = 1 the estimate A_j cos θ_x cos θ_y/(π r²) is one kernel value: exactly `samples` "
+          "pairs are drawn and the sum is divided by `samples`";
+      CHECK_MESSAGE(f >= lo * (1 - 1e-12), why);
+      CHECK_MESSAGE(f <= hi * (1 + 1e-12), why);
     }
   }
 
@@ -80,9 +83,11 @@ TEST_SUITE("lesson09") {
       Rng rng(seed);
       const double b = exitance_from_radiance_monte_carlo([&](double, double) { return radiance; }, 1, rng);
       INFO("seed ", seed, ": B̂ = ", b);
-      CHECK_MESSAGE((b >= 0 && b <= 2 * pi * radiance),
-                    "one sample of 2πI cos φ lies in [0, 2πI]: exactly `samples` directions, summed and "
-                    "divided by `samples`");
+      const char* why =
+          "one sample of 2πI cos φ lies in [0, 2πI]: exactly `samples` directions, summed and divided by "
+          "`samples`";
+      CHECK_MESSAGE(b >= 0, why);
+      CHECK_MESSAGE(b <= 2 * pi * radiance, why);
       positive += b > 0 ? 1 : 0;
     }
     CHECK_MESSAGE(positive == 32, "a sample with cos φ > 0 of a positive radiance is positive");

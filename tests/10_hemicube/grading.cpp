@@ -24,6 +24,7 @@
 
 #include "illum/radiosity/hemicube.hpp"
 #include "illum/radiosity/hemicube_deltas.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 
@@ -125,9 +126,9 @@ double side_share() { return 2 * howell_b4(1, 1, 1); }
 }  // namespace
 
 TEST_SUITE("lesson10") {
-  TEST_CASE("the closed forms used as references agree with quadrature and with each other" *
+  TEST_CASE("top_face_corner and side_face_corner are the integrals G and H (eq. 10.4–10.5), by quadrature" *
             doctest::description("task=3")) {
-    // Not an exercise check by itself: it guards the references the other tests use.
+    // First the references the other tests use, checked against quadrature and each other.
     const double b3 = integrate_2d(
         [](double x, double y) { return 1 / (kPi * std::pow(x * x + y * y + 1, 2)); }, 0, 0.7, 0, 1.3);
     CHECK(howell_b3(0.7, 1.3, 1) == doctest::Approx(b3).epsilon(1e-12));
@@ -206,6 +207,63 @@ TEST_SUITE("lesson10") {
     }
   }
 
+  TEST_CASE("midpoint deltas: every pixel of the top and side tables at its own centre (eq. 10.2–10.3)" *
+            doctest::description("task=1,2,4")) {
+    // hemicube_deltas.hpp: with DeltaRule::midpoint, top entry (row, col) is ΔF at x = −1 + (col + ½)h,
+    // y = −1 + (row + ½)h, and side entry (row, col) at horizontal −1 + (col + ½)h, height
+    // z = (row + ½)h, each times ΔA = h², h = 2/res. Resolution 2 by hand: the side table has one row of
+    // two pixels, at (∓½, z = ½) with ΔA = 1: ΔF = z/(π (y² + z² + 1)²) = 0.5/(π·1.5²) = 0.0707…;
+    // evaluated at the pixel's edge (y = −1) it would be 0.5/(π·2.25²) = 0.0314…
+    for (int res : {2, 4, 6}) {
+      const HemicubeDeltas d = make_hemicube_deltas(res, DeltaRule::midpoint);
+      const double h = 2.0 / res;
+      REQUIRE(d.top.size() == static_cast<std::size_t>(res * res));
+      REQUIRE(d.side.size() == static_cast<std::size_t>(res * res / 2));
+      for (int row = 0; row < res; ++row)
+        for (int col = 0; col < res; ++col) {
+          const double x = -1 + (col + 0.5) * h, y = -1 + (row + 0.5) * h, r2 = x * x + y * y + 1;
+          INFO("resolution " << res << ", top pixel (row " << row << ", column " << col << ") centred at ("
+                             << x << ", " << y << ", 1)");
+          CHECK(d.top[static_cast<std::size_t>(row * res + col)] ==
+                doctest::Approx(h * h / (kPi * r2 * r2)).epsilon(1e-13));
+        }
+      for (int row = 0; row < res / 2; ++row)
+        for (int col = 0; col < res; ++col) {
+          const double y = -1 + (col + 0.5) * h, z = (row + 0.5) * h, r2 = y * y + z * z + 1;
+          INFO("resolution " << res << ", side pixel (row " << row << ", column " << col
+                             << ") centred at (1, " << y << ", " << z << ")");
+          CHECK(d.side[static_cast<std::size_t>(row * res + col)] ==
+                doctest::Approx(z * h * h / (kPi * r2 * r2)).epsilon(1e-13));
+        }
+    }
+  }
+
+  TEST_CASE("an open scene: a placement keeps nothing of the one before (the item buffers are cleared)" *
+            doctest::description("task=3,4,5")) {
+    // The receiver at the origin (facing up) sees the ceiling square ±0.6 at height 1 (facing down): four
+    // B-3 corners, exact at resolution 10. A third patch at height 2 facing up sees nothing at all (nothing
+    // lies above it, the scene is open): its row is exactly 0. Drawn with the same buffers right after the
+    // receiver's row, a pixel the second placement does not draw must not keep the first one's item
+    // (Hemicube::form_factor_row clears the five faces before drawing). Every graded scene above is
+    // closed, where each pixel is drawn again.
+    const std::vector<Patch> patches{
+        receiver_at_origin(), ceiling_rect(-0.6, 0.6, -0.6, 0.6, 1),
+        make_patch({{-0.5, -0.5, 2}, {0.5, -0.5, 2}, {0.5, 0.5, 2}, {-0.5, 0.5, 2}})};
+    const Hemicube hemicube(10);
+    HemicubeBuffers buffers;
+    std::vector<double> first(3), second(3);
+    hemicube.form_factor_row(patches, 0, first, buffers);
+    hemicube.form_factor_row(patches, 2, second, buffers);
+    CHECK(first[1] == doctest::Approx(4 * howell_b3(0.6, 0.6, 1)).epsilon(1e-12));
+    CHECK_MESSAGE(second[0] == 0, "above everything, facing up: nothing is seen, F = 0");
+    CHECK_MESSAGE(second[1] == 0, "the ceiling square is below the third patch: F = 0");
+    // The parallel matrix reuses each thread's buffers row after row too.
+    const FormFactorMatrix f = hemicube_form_factors(patches, 10);
+    CHECK(f(2, 0) == 0);
+    CHECK(f(2, 1) == 0);
+    CHECK(f(0, 1) == doctest::Approx(4 * howell_b3(0.6, 0.6, 1)).epsilon(1e-12));
+  }
+
   TEST_CASE("the row accumulation adds each pixel's delta to the patch it shows" *
             doctest::description("task=5")) {
     const std::vector<std::int32_t> items{0, -1, 2, 0, -2, 2, 2};
@@ -227,6 +285,10 @@ TEST_SUITE("lesson10") {
     const std::vector<double> deltas{0.25, 0.5};  // one delta short
     std::vector<double> row{1.0, 2.0};
     CHECK_THROWS_AS(accumulate_face(items, deltas, row), std::invalid_argument);
+    // The other way round: one item short of the deltas (a face's items cut short).
+    const std::vector<std::int32_t> short_items{0, 1};
+    const std::vector<double> three{0.25, 0.5, 0.125};
+    CHECK_THROWS_AS(accumulate_face(short_items, three, row), std::invalid_argument);
     const std::vector<std::int32_t> past{0, 2};  // item 2 of a row of two patches
     const std::vector<double> two{0.25, 0.5};
     CHECK_THROWS_AS(accumulate_face(past, two, row), std::invalid_argument);

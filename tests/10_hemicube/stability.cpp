@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "illum/radiosity/hemicube.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 
@@ -58,5 +59,26 @@ TEST_SUITE("stability") {
     for (const Patch& p : tet) REQUIRE(dot(p.normal, inside - p.centroid) > 0);
     const FormFactorMatrix f = hemicube_form_factors(tet, 32);
     for (std::size_t i = 0; i < f.size(); ++i) CHECK(f.row_sum(i) == doctest::Approx(1.0).epsilon(1e-12));
+  }
+
+  TEST_CASE("hard case: hemicube_pixel finds the face and pixel of a direction, and none below the base") {
+    // An 8-pixel hemicube: the top face spans x, y in [-1, 1] at z = 1 (8 × 8 pixels); the side face
+    // +x spans y in [-1, 1] and z in [0, 1] at x = 1 (8 × 4 pixels). Pixel = floor((coordinate + 1) / 2 · 8)
+    // across, floor(z / 2 · 8) up a side face.
+    const auto top = hemicube_pixel(Vec3(0.5, -0.25, 1.0), 8);  // (1.5/2·8, 0.75/2·8) = (6, 3)
+    REQUIRE(top.has_value());
+    CHECK(top->face == HemicubeFace::top);
+    CHECK(top->col == 6);
+    CHECK(top->row == 3);
+    const auto side = hemicube_pixel(Vec3(2.0, 0.5, 1.0), 8);  // through (1, 0.25, 0.5): (5, 2)
+    REQUIRE(side.has_value());
+    CHECK(side->face == HemicubeFace::pos_x);
+    CHECK(side->col == 5);
+    CHECK(side->row == 2);
+    CHECK(hemicube_pixel(Vec3(-1.0, 0.2, 0.3), 8)->face == HemicubeFace::neg_x);
+    CHECK(hemicube_pixel(Vec3(0.1, -1.0, 0.3), 8)->face == HemicubeFace::neg_y);
+    CHECK(hemicube_pixel(Vec3(0.1, 1.0, 0.3), 8)->face == HemicubeFace::pos_y);
+    CHECK_FALSE(hemicube_pixel(Vec3(0.0, 0.0, -0.1), 8).has_value());
+    CHECK_FALSE(hemicube_pixel(Vec3(0.0), 8).has_value());
   }
 }

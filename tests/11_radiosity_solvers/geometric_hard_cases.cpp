@@ -11,6 +11,7 @@
 
 #include "illum/radiosity/radiosity_solvers.hpp"
 #include "illum/radiosity/radiosity_system.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 

@@ -11,6 +11,7 @@
 #include "illum/core/error.hpp"
 #include "illum/io/scene_file.hpp"
 #include "illum/radiosity/radiosity_scene.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;

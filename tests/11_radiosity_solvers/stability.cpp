@@ -13,6 +13,7 @@
 #include "illum/radiosity/radiosity_solvers.hpp"
 #include "illum/radiosity/radiosity_system.hpp"
 #include "illum/radiosity/three_patch_example.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 

@@ -9,6 +9,7 @@
 
 #include "illum/radiosity/element_subdivision.hpp"
 #include "illum/radiosity/shared_vertex_mesh.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;
@@ -63,7 +64,7 @@ TEST_SUITE("lesson12") {
             doctest::description("task=6,7")) {
     // Gap 10 between elements 0 (edge 0.5) and 1 (edge 2); min_edge 0.5: element 0 stops.
     const std::vector<bool> split = elements_to_split({{0, 1}}, {Color(0), Color(10)}, {0.5, 2.0}, 1.0, 0.5);
-    CHECK(split == std::vector<bool>{false, true});
+    CHECK(split == std::vector<bool>({false, true}));
   }
 
   TEST_CASE("hard case: across a T-vertex the large element and the one small neighbour that differs split" *
@@ -77,10 +78,10 @@ TEST_SUITE("lesson12") {
                     "the big face touches both small ones, which touch each other");
     const std::vector<bool> split =
         elements_to_split(mesh.neighbours, {Color(5), Color(5.2), Color(9)}, {2.0, 1.0, 1.0}, 1.0, 0.1);
-    CHECK(split == std::vector<bool>{true, true, true});
+    CHECK(split == std::vector<bool>({true, true, true}));
     const std::vector<bool> only_far =
         elements_to_split({{0, 1}, {0, 2}}, {Color(5), Color(5.2), Color(9)}, {2.0, 1.0, 1.0}, 1.0, 0.1);
-    CHECK(only_far == std::vector<bool>{true, false, true});
+    CHECK(only_far == std::vector<bool>({true, false, true}));
   }
 
   TEST_CASE("hard case: a crease between two walls is not a gradient: they are not neighbours" *
@@ -92,7 +93,7 @@ TEST_SUITE("lesson12") {
     const SharedVertexMesh mesh = share_vertices({floor, wall});
     CHECK(mesh.neighbours.empty());
     CHECK(elements_to_split(mesh.neighbours, {Color(0.1), Color(50)}, {1.0, 1.0}, 1.0, 0.1) ==
-          std::vector<bool>{false, false});
+          std::vector<bool>({false, false}));
   }
 
   TEST_CASE("elements_to_split refuses a threshold that is not positive, and pairs or sizes that do not fit" *

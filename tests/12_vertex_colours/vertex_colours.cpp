@@ -14,6 +14,7 @@
 
 #include "illum/radiosity/shared_vertex_mesh.hpp"
 #include "illum/radiosity/vertex_colours.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;

@@ -22,6 +22,7 @@
 #include "illum/radiosity/element_subdivision.hpp"
 #include "illum/radiosity/shared_vertex_mesh.hpp"
 #include "illum/radiosity/vertex_colours.hpp"
+#include "support/string_makers.hpp"
 
 using namespace illum;
 

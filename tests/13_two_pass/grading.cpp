@@ -19,6 +19,7 @@
 #include "13_two_pass/support.hpp"
 #include "illum/radiosity/two_pass_plan.hpp"
 #include "illum/radiosity/two_pass_shading.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;

@@ -8,10 +8,12 @@
 #include <cmath>
 #include <string>
 
+#include "illum/core/threads.hpp"
 #include "illum/io/json_reader.hpp"
 #include "illum/io/scene_file.hpp"
 #include "illum/radiosity/two_pass.hpp"
 #include "illum/trace/ray_tree_render.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;
@@ -113,9 +115,14 @@ TEST_SUITE("two_pass") {
     CHECK(c.deposited > 0);
     for (std::size_t i = mesh.receiver_patches; i < c.extra_emission.size(); ++i)
       CHECK(c.extra_emission[i] == Color(0.0));  // occluders never receive
-    // The same photons whatever the thread count: one random stream per block of photons.
-    const CausticPass again = caustic_pass(scene, mesh, 20000, 7);
-    CHECK(again.extra_emission == c.extra_emission);
+    // The same photons whatever the thread count: one random stream per block of photons, and the
+    // blocks' deposits added up in block order (two_pass.hpp), on one thread and on three alike.
+    for (const int threads : {1, 3}) {
+      const ScopedThreadCount count(threads);
+      const CausticPass again = caustic_pass(scene, mesh, 20000, 7);
+      INFO(threads << " thread(s)");
+      CHECK(again.extra_emission == c.extra_emission);
+    }
     const TwoPassPlan plan = plan_two_pass(scene_inventory(scene), {.max_depth = 3});
     const RadiosityPass pass = solve_radiosity_pass(mesh.radiosity.patches, 16, 0.05, c.extra_emission);
     const CornerRadiosity corners = flat_corners(pass.state.radiosity);

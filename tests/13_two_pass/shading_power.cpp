@@ -17,6 +17,7 @@
 #include "13_two_pass/support.hpp"
 #include "illum/radiosity/two_pass_plan.hpp"
 #include "illum/radiosity/two_pass_shading.hpp"
+#include "support/string_makers.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;
@@ -341,7 +342,9 @@ TEST_SUITE("lesson13") {
     //   an empty scene: nothing is lit: no shadow rays;
     //   a wall and a light: no pass one, the wall is lit directly: shadow rays;
     //   the Cornell box and a point light: pass one never holds a point light's light: shadow rays;
-    //   the Cornell box and a diffuse sphere (other_diffuse): the sphere is not in B: shadow rays.
+    //   the Cornell box and a diffuse sphere (other_diffuse): the sphere is not in B: shadow rays;
+    //   two facing walls and no light at all: pass one has nothing to distribute, and no light
+    //     reaches a wall, so no shadow ray either (shadow rays go to a light, and there is none).
     struct Case {
       const char* scene;
       SceneInventory inventory;
@@ -355,6 +358,7 @@ TEST_SUITE("lesson13") {
          SceneInventory{.diffuse_surfaces = 5, .facing_pairs = 10, .emitters = 1, .point_lights = 1}, true},
         {"the Cornell box and a diffuse sphere",
          SceneInventory{.diffuse_surfaces = 5, .facing_pairs = 10, .emitters = 1, .other_diffuse = 1}, true},
+        {"two facing walls and no light", SceneInventory{.diffuse_surfaces = 2, .facing_pairs = 1}, false},
     };
     for (const Case& c : cases) {
       const TwoPassPlan plan = plan_two_pass(c.inventory, {});
@@ -545,5 +549,60 @@ TEST_SUITE("lesson13") {
       CHECK_MESSAGE(std::abs(uv.x - u) <= 1e-13, "u: the weight of b, in double throughout");
       CHECK_MESSAGE(std::abs(uv.y - v) <= 1e-13, "v: the weight of c, in double throughout");
     }
+  }
+}
+
+// Real bugs of the student trials that passed every test above (issue 45): a depth cut by
+// ⌈ln(1/1024)/ln k⌉ alone, one level short where k^d lies within rounding of 1/1024; sign(k1) taken
+// as 0 when k1 is exactly 0; and a tolerance in the up/down test of a triangle's cell.
+TEST_SUITE("lesson13") {
+  TEST_CASE("hard case: a path weight one ulp above 2⁻¹⁰ or 2⁻⁵ needs one level more than ⌈ln/ln⌉ says" *
+            doctest::description("task=1")) {
+    // two_pass_plan.hpp: the first d ≥ 1 with k^d ≤ 1/1024 = 2⁻¹⁰. By hand, in exact arithmetic:
+    //   k = 2⁻¹⁰(1 + 2⁻⁵²), one ulp above 1/1024: k^1 > 2⁻¹⁰, k² ≈ 2⁻²⁰ < 2⁻¹⁰, so d = 2;
+    //   k = 2⁻⁵(1 + 2⁻⁵²): k² = 2⁻¹⁰(1 + 2⁻⁵²)² > 2⁻¹⁰ (std::pow rounds it to 2⁻¹⁰(1 + 2⁻⁵¹)),
+    //   k³ ≈ 2⁻¹⁵ < 2⁻¹⁰, so d = 3.
+    // ln k differs from ln 2⁻¹⁰ (or ln 2⁻⁵) by 2⁻⁵² ≈ 2·10⁻¹⁶, less than half an ulp of it: the
+    // quotient ln(1/1024)/ln k rounds to exactly 1 (or 2), and its ceiling is one level short.
+    SceneInventory s{
+        .diffuse_surfaces = 1, .emitters = 1, .mirrors = 1, .heaviest_specular = 0x1.0000000000001p-10};
+    CHECK_MESSAGE(plan_two_pass(s, TwoPassRequest{.max_depth = 20}).max_depth == 2,
+                  "k one ulp above 1/1024: k^1 > 1/1024, so depth 1 is not yet at the threshold: d = 2");
+    s.heaviest_specular = 0x1.0000000000001p-5;
+    CHECK_MESSAGE(plan_two_pass(s, TwoPassRequest{.max_depth = 20}).max_depth == 3,
+                  "k one ulp above 1/32: k² > 1/1024 (std::pow(k, 2) too), so d = 3");
+  }
+
+  TEST_CASE("hard case: a point of a quad's far edge where k1 is exactly 0 (sign(0) = +1)" *
+            doctest::description("task=2")) {
+    // p0 = (0,0), p1 = (1,0), p2 = (1.75, 0.5), p3 = (0,1) in the plane z = 0.3 (a convex quad; the
+    // normal is +z, so z is dropped). e = (1, 0), f = (0, 1), g = p0 − p1 + p2 − p3 = (0.75, −0.5).
+    // x = P(½, 1) = (0.875, 0.75), the middle of the far edge p3p2: h = (0.875, 0.75), and by hand
+    //   k2 = cross(g, f) = 0.75,  k1 = cross(e, f) + cross(h, g) = 1 + (−0.4375 − 0.5625) = 0 exactly,
+    //   k0 = cross(h, e) = −0.75:  0.75 v² − 0.75 = 0, v = ±1, and v = 1 is the root in [0, 1].
+    // q = −(k1 + sign(k1)√Δ)/2 with Δ = 2.25 is −0.75 for sign(0) = +1 (roots q/k2 = −1, k0/q = 1);
+    // a sign of 0 gives q = 0, and neither q/k2 = 0 nor k0/q (a division by 0) is the root.
+    // Then u = (h − f v)/(e + g v) = (0.875, −0.25)/(1.75, −0.5) = ½ (x, the larger denominator).
+    const std::array<Point3, 4> q{Point3(0, 0, 0.3), Point3(1, 0, 0.3), Point3(1.75, 0.5, 0.3),
+                                  Point3(0, 1, 0.3)};
+    const Vec2 uv = surface_coordinates(q, Point3(0.875, 0.75, 0.3));
+    CHECK_MESSAGE(uv.y == doctest::Approx(1.0).epsilon(1e-14),
+                  "v = 1: with k1 = 0 the stable pair still needs a sign, take sign(0) = +1");
+    CHECK_MESSAGE(uv.x == doctest::Approx(0.5).epsilon(1e-14), "u = ½, the middle of the far edge");
+    check_uv(q, 0.25, 1.0, 1e-12);
+  }
+
+  TEST_CASE("hard case: a point 10⁻⁸ past a triangle cell's diagonal is in the down triangle" *
+            doctest::description("task=3")) {
+    // two_pass_shading.hpp: the down triangle when s + t > 1, with no tolerance. n = 2,
+    // (u, v) = (0.25, 0.25 + 5·10⁻⁹): i = j = 0, s = 0.5, t = 0.5 + 10⁻⁸, s + t = 1 + 10⁻⁸, far above
+    // rounding (10⁻¹⁶): the down triangle (0, 0), patch 1 (row 0: up (0,0) = 0, down (0,0) = 1, up (1,0) =
+    // 2), weights (1 − t, s + t − 1, 1 − s) = (0.5 − 10⁻⁸, 10⁻⁸, 0.5). A test written s + t > 1 + 10⁻⁶
+    // keeps it in the up triangle, patch 0.
+    const PatchCell cell = locate_patch(Vec2(0.25, 0.25 + 5e-9), 2, 0, 3);
+    CHECK_MESSAGE(cell.patch == 1, "s + t = 1 + 10⁻⁸ > 1: the down triangle (0, 0), patch 1");
+    CHECK(cell.weight[0] == doctest::Approx(0.5 - 1e-8).epsilon(1e-12));
+    CHECK(cell.weight[1] == doctest::Approx(1e-8).epsilon(1e-6));
+    CHECK(cell.weight[2] == doctest::Approx(0.5).epsilon(1e-12));
   }
 }

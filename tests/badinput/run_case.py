@@ -9,12 +9,13 @@ unchanged, a link, FIFO or device still what it was.
 
 A case:
   [name]
-  run: PROGRAM ARG...      @OUT@ = the case's output folder (WORK/out), @WORK@ = the case folder,
+  run: PROGRAM ARG...      PROGRAM is a program of --bin, or tools/NAME of the source tree (run as it is);
+                           @OUT@ = the case's output folder (WORK/out), @WORK@ = the case folder,
                            @SCENES@ = tests/badinput/scenes, @DEEP_ARRAY@ / @DEEP_OBJECT@ = generated
                            files nested 100,000 deep, @TRUNCATED_OBJ@ = a generated scene whose OBJ
                            mesh has 1,000,000 faces and a last line cut off
   expect: WORD | WORD ...  each must appear in the program's stderr (or stdout); @PID@ = the PID of
-                           the run of `run:` (for `concurrent:`)
+                           the run of `run:` (for `concurrent:`, `after-expect:`)
   blocker: FILE            (optional) before the run, OUT holds old.txt and a folder named FILE,
                            so the program fails when it reaches FILE, after writing others
   prepare: ACTION          (optional, repeatable) before the run, in order:
@@ -38,6 +39,12 @@ A case:
                            must be refused with the words of `expect:`, and the run must succeed
                            with a complete manifest
   after: PROGRAM ARG...    (optional) a later run that must succeed and leave no staging or lock
+  after-expect: WORD | ...  (optional, with after:) each must appear in the later run's stderr or stdout
+  http: PATH?QUERY         (optional) `run:` is a server (`illum lab --port 0`): once it prints its URL,
+                           GET PATH?QUERY (sent as written: %00 stays %00); the answer must be 400 and
+                           hold the words of `expect:` ("HTTP 400" is put before its body, its JSON
+                           "error" decoded after it); then the server is stopped with SIGTERM and
+                           must exit 0 (skipped when the build has no lab)
   limit: fsize KIB | as BYTES   (optional) RLIMIT_FSIZE / RLIMIT_AS of the run (`as`: skipped when
                            --sanitized, as a sanitizer maps terabytes of shadow memory)
   tmpfs: SIZE              (optional) WORK is a tmpfs of SIZE (a full disk); needs `unshare -m`
@@ -45,12 +52,17 @@ A case:
                            permissions do not stop); needs setpriv
   keep: PATH               (optional, repeatable) a path outside WORK that must be left as it was
   timeout: SECONDS         (optional) default 120
+  succeeds: yes            (optional) the run must exit 0 with the words of `expect:` and leave no
+                           staging folder, lock or temporary (a run that cleans up after a killed one
+                           that `prepare:` imitates); the folder is not compared
 
 Exit status 77 (CTest's skip) when the machine cannot set a case up (no unshare, no setpriv).
 """
 import argparse
 import hashlib
+import json
 import os
+import re
 import resource
 import shlex
 import shutil
@@ -61,6 +73,7 @@ import sys
 import time
 
 SKIP = 77
+SOURCE = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 
 
 def read_cases(path):
@@ -118,8 +131,14 @@ def compare(before, after, failures):
             failures.append(f"changed what was there before: {p} ({before[p][0]} -> {after[p][0]})")
 
 
+# What a run killed without warning may leave: the programs' staging folders and locks, temporary files
+# (NAME.tmp-…), the student edition's .NAME.new.XXXXXXXX / .NAME.old.XXXXXXXX and the decks' .decks-XXXXXXXX.
+LEFTOVER = re.compile(r"\.illum-staging|\.illum-lock|\.tmp-|(^|/)\.[^/]+\.(new|old)\.[a-z0-9_]{8}(/|$)|"
+                      r"(^|/)\.decks-[a-z0-9_]{8}(/|$)")
+
+
 def leftovers(work):
-    return sorted(p for p in snapshot(work) if ".illum-staging" in p or ".illum-lock" in p or ".tmp-" in p)
+    return sorted(p for p in snapshot(work) if LEFTOVER.search(p))
 
 
 def clear(folder):
@@ -141,7 +160,36 @@ def substitute(text, subst):
 
 def command_of(words, args, subst):
     words = shlex.split(words)
-    return [os.path.join(args.bin, words[0])] + [substitute(w, subst) for w in words[1:]]
+    program = os.path.join(SOURCE, words[0]) if words[0].startswith("tools/") else os.path.join(args.bin, words[0])
+    return [program] + [substitute(w, subst) for w in words[1:]]
+
+
+def ask_server(process, path, timeout):
+    """The URL the server prints first, then `path` asked of it: 'HTTP <status>' and the body."""
+    import http.client
+    import re
+    import select
+    end, line = time.monotonic() + timeout, ""
+    while time.monotonic() < end and "http://" not in line:
+        ready, _, _ = select.select([process.stdout], [], [], 0.2)
+        if ready:
+            line = process.stdout.readline()
+        elif process.poll() is not None:
+            break
+    match = re.search(r"http://(127\.0\.0\.1):(\d+)/", line)
+    if not match:
+        return None
+    connection = http.client.HTTPConnection(match.group(1), int(match.group(2)), timeout=timeout)
+    connection.putrequest("GET", path, skip_accept_encoding=True)
+    connection.endheaders()
+    answer = connection.getresponse()
+    body = answer.read().decode("utf-8", "replace")
+    connection.close()
+    try:  # the message as the page shows it, JSON's escapes undone
+        body += "\n" + json.loads(body)["error"]
+    except (ValueError, KeyError, TypeError):
+        pass
+    return answer.status, f"HTTP {answer.status}\n{body}"
 
 
 def write_truncated_obj(work):
@@ -237,7 +285,7 @@ def wait_for(condition, seconds, process=None):
 
 def staged_something(work):
     for root, _, files in os.walk(work):
-        if ".illum-staging" in root and files:
+        if files and LEFTOVER.search(os.path.relpath(root, work)):
             return True
     return False
 
@@ -316,6 +364,46 @@ def main():
     process = subprocess.Popen(command, cwd=work, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                                text=True, errors="replace", preexec_fn=limiter(case, args))
     other = None
+    subst["@PID@"] = str(process.pid)
+    if "succeeds" in case:
+        stdout, stderr = process.communicate(timeout=timeout)
+        print(f"$ {' '.join(command)}\nexit {process.returncode}\n{stderr}{stdout}")
+        if process.returncode != 0:
+            failures.append(f"exit code {process.returncode}: the run failed")
+        for word in [substitute(w.strip(), subst) for w in case["expect"].split("|")]:
+            if word not in stderr + stdout:
+                failures.append(f"the message does not contain '{word}'")
+        failures += [f"left behind: {p}" for p in leftovers(work)]
+        if failures:
+            sys.exit(f"FAIL: {args.case}:\n  " + "\n  ".join(failures))
+        print(f"ok: {args.case}")
+        return
+    if "http" in case:
+        try:
+            asked = ask_server(process, substitute(case["http"], subst), timeout)
+        finally:
+            if process.poll() is None:
+                process.send_signal(signal.SIGTERM)
+        stdout, stderr = process.communicate(timeout=timeout)
+        print(f"$ {' '.join(command)}\nGET {case['http']}\n{asked[1] if asked else '(no answer)'}\n{stderr}")
+        if asked is None and "this build has no lab" in stderr:  # the libcxx preset's illum (README)
+            print(f"skipped: {args.case}: this build of illum has no lab")
+            sys.exit(SKIP)
+        if asked is None:
+            failures.append("the server printed no URL")
+        else:
+            if asked[0] != 400:
+                failures.append(f"status {asked[0]}, not 400")
+            for word in [w.strip() for w in case["expect"].split("|")]:
+                if word not in asked[1]:
+                    failures.append(f"the answer does not contain '{word}'")
+        if process.returncode != 0:
+            failures.append(f"the server exited {process.returncode} after SIGTERM, not 0")
+        compare(before, snapshot(work), failures)
+        if failures:
+            sys.exit(f"FAIL: {args.case}:\n  " + "\n  ".join(failures))
+        print(f"ok: {args.case}")
+        return
     if "signal" in case:
         sig = getattr(signal, "SIG" + case["signal"])
         if not wait_for(lambda: staged_something(work), 60, process):
@@ -324,7 +412,6 @@ def main():
     if "concurrent" in case:
         if not wait_for(lambda: holds_lock(work), 60, process):
             failures.append("the run never took its output folder's lock")
-        subst["@PID@"] = str(process.pid)
         other = subprocess.run(command_of(case["concurrent"], args, subst), cwd=work, env=env,
                                capture_output=True, text=True, errors="replace", timeout=timeout)
     try:
@@ -357,7 +444,6 @@ def main():
         if not os.path.isfile(manifest):
             failures.append("the first run wrote no manifest.json")
         else:
-            import json
             for entry in json.load(open(manifest, encoding="utf-8"))["outputs"]:
                 if not os.path.isfile(os.path.join(out, entry["file"])):
                     failures.append(f"manifest.json lists {entry['file']}, which is missing")
@@ -377,7 +463,7 @@ def main():
         after = snapshot(work)
         if expected_signal == signal.SIGKILL:
             # Nothing runs after SIGKILL: its staging and lock stay beside the folder until the next run.
-            after = {p: v for p, v in after.items() if ".illum-staging" not in p and ".illum-lock" not in p}
+            after = {p: v for p, v in after.items() if not LEFTOVER.search(p)}
         compare(before, after, failures)
     for p, was in kept.items():
         if describe(p) != was:
@@ -385,8 +471,12 @@ def main():
     if "after" in case:
         later = subprocess.run(command_of(case["after"], args, subst), cwd=work, env=env, capture_output=True,
                                text=True, errors="replace", timeout=300)
+        print(f"$ (after) {case['after']}\nexit {later.returncode}\n{later.stderr}{later.stdout}")
         if later.returncode != 0:
             failures.append(f"the later run exited {later.returncode}: {later.stderr[-400:]}")
+        for word in [substitute(w.strip(), subst) for w in case.get("after-expect", "").split("|") if w.strip()]:
+            if word not in later.stderr + later.stdout:
+                failures.append(f"the later run's message does not contain '{word}'")
         failures += [f"the later run left behind: {p}" for p in leftovers(work)]
     if failures:
         sys.exit(f"FAIL: {args.case}:\n  " + "\n  ".join(failures))

@@ -1,4 +1,4 @@
-# Each lesson stands alone (docs/grading.md, "Each lesson stands alone"): for every lesson NN
+# Each lesson stands alone (docs/grading-reference.md, "Each lesson stands alone"): for every lesson NN
 # with exercise units, its grading tests and its program are linked against a library in
 # which lesson NN's units are the reference, so are those of the lessons its
 # exercises/NN_*/depends.txt declares, and every other lesson's units are stubs.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Hostile submissions against the Gradescope autograder (docs/grading.md, "Threat model").
+"""Hostile submissions against the Gradescope autograder (docs/grading-defences.md, "Threat model").
 
 Packs the autograder for lessons 01 and 02 from a grader tree (this one by
 default; ``--grader-tree /path/to/an/older/checkout`` shows what an older
@@ -24,17 +24,31 @@ per attack class of the threat model:
   gigabyte_stdout         1 GiB on stdout, then correct code                       full marks, in time
   segfault                a crash in the notes' form                               all but the notes' form tests
   duplicate_helper        a helper defined in both of lesson 02's files            lesson 01 full, 02 costs 0, linker's words shown
-  exit_in_test            exit(0) in the notes' form                               flagged; without the scan: the
-                                                                                   notes' form tests fail, saying so
+  exit_in_test            exit(0) in the notes' form                               the notes' form tests fail, saying so
   leave_processes         a daemon left running                                    nothing alive afterwards
   out_of_memory           3 GiB asked for in the notes' form                       those tests fail: "out of memory"
+  forge_stream            before any test, a whole forged record stream on the     stub: 0
+                          records channel (raw system calls behind a macro), then
+                          exit, or sleep until the grader's limit
+  repoint_stdout          stdout's FILE pointed at the records channel             stub: 0
+  probe_grader_files      __has_include / #include of the grader's own files       0, nothing of the grader quoted
+  shared_memory           7 x 100 MB of System V shared memory, 100 MB in          with namespaces: full marks (the
+                          /dev/shm, a file in /run/lock (correct code otherwise)   IPC namespace's cap makes shmget
+                                                                                   fail); without: the tests that
+                                                                                   hold it fail, saying so; nothing
+                                                                                   left behind either way
+  rerun_forever           a forged record from a static constructor in every run   stub: 0, in bounded time
+  unusual_but_honest      correct code that the scan notices                       full marks (the scan only advises)
 
-Cases of attacks that the sandbox defends on its own (not only the
-suspicious-code scan) run again with the scan switched off
-(ILLUM_GRADE_NO_SCAN=1); the process attacks do so without a pid namespace
-as well (ILLUM_GRADE_NO_PID_NAMESPACE=1, as in a Docker container), the
-harder case: only the user separates them from the grader (the pid
-namespace's own kill is tested in tests/tools/test_grade.py).
+Every case also checks that no file, shared memory segment or process of the
+student's user is left when run_autograder ends.
+
+The scan only advises (its findings reach the instructor's review, never a
+score), so every case holds with it switched off (ILLUM_GRADE_NO_SCAN=1);
+the cases marked so run again without namespaces as well
+(ILLUM_GRADE_NO_PID_NAMESPACE=1, as in Docker's default profile), the harder
+case: only the user, file permissions and the grader's own clean-up separate
+them from the grader.
 
 run_autograder runs under an address-space limit (``--grader-memory-mb``,
 default 3072), standing in for the memory of Gradescope's container.
@@ -57,15 +71,18 @@ import signal
 import subprocess
 import sys
 import time
-import zipfile
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[2]
+sys.path.insert(0, str(ROOT / "tools"))
+from grading.batch import fresh_copy, unpack  # noqa: E402  (the batch grader's: a slot is prepared as it does)
+
 ATTACKS = ROOT / "tests" / "attacks"
 LESSONS = ["01", "02"]
 MARKER = "3-4-5"  # in the hidden test's name (tests/hidden/lesson01_hidden.cpp): must never reach a student
+HIDDEN_RANDOM = "new ones in every grading run"  # another hidden test's name
 NOTES = "notes' form"  # the lesson 01 tests that call sphere_roots_notes
 
 SPHERE = ("exercises/01_ray_sphere/sphere.cpp", "lib/illum/geometry/sphere.cpp")
@@ -87,6 +104,7 @@ class Case:
     modes: tuple[str, ...] = ("scan",)
     files: tuple[tuple[str, str], ...] = (SPHERE,)
     inject: tuple[str, ...] = ("sphere.cpp",)  # the files that get the payload
+    prefix: str = ""  # put before the payload (a #define that chooses a variant)
 
 
 BASELINE = Case("reference", "", "reference", None, "full", files=(SPHERE, PARITY, PLANE), inject=())
@@ -94,30 +112,36 @@ BASELINE = Case("reference", "", "reference", None, "full", files=(SPHERE, PARIT
 
 CASES = [
     Case("fork_rewrites_results", "fork_rewrites_results.cpp", "stub", "constructor", "honest-zero",
-         ("scan", "no-scan-no-pidns")),
+         ("no-scan", "no-scan-no-ns")),
     Case("fake_reporter", "fake_reporter.cpp", "stub", None, "honest-zero", ("scan", "no-scan")),
-    Case("rewrite_records", "rewrite_records.cpp", "stub", None, "honest-zero", ("scan", "no-scan")),
-    Case("define_write", "define_write.cpp", "stub", None, "honest-zero", ("scan", "no-scan")),
-    Case("include_reference", "include_reference.cpp", "payload", None, "honest-zero", ("scan", "no-scan")),
-    Case("leak_hidden_exception", "leak_hidden_exception.cpp", "stub", "constructor", "no-leak",
-         ("scan", "no-scan")),
-    Case("leak_hidden_compile", "leak_hidden_compile_error.cpp", "payload", None, "no-leak", ("scan", "no-scan")),
+    Case("rewrite_records", "rewrite_records.cpp", "stub", None, "honest-zero", ("no-scan",)),
+    Case("define_write", "define_write.cpp", "stub", None, "honest-zero", ("no-scan",)),
+    Case("include_reference", "include_reference.cpp", "payload", None, "honest-zero", ("no-scan",)),
+    Case("leak_hidden_exception", "leak_hidden_exception.cpp", "stub", "constructor", "no-leak", ("no-scan",)),
+    Case("leak_hidden_compile", "leak_hidden_compile_error.cpp", "payload", None, "no-leak", ("no-scan",)),
     Case("gigabyte_stdout", "gigabyte_stdout.cpp", "reference", "constructor", "full-01"),
     Case("segfault", "segfault.cpp", "reference", "notes", "notes-fail:SIGSEGV"),
     Case("duplicate_helper", "duplicate_helper.cpp", "reference", None, "link-02",
          files=(SPHERE, PARITY, PLANE), inject=("parity.cpp", "plane.cpp")),
-    Case("exit_in_test", "exit_in_test.cpp", "reference", "notes", "flagged-01", ("scan",)),
-    Case("exit_in_test", "exit_in_test.cpp", "reference", "notes", "notes-fail:exit(0)", ("no-scan",)),
-    Case("leave_processes", "leave_processes.cpp", "reference", "constructor", "flagged-01", ("scan",)),
-    Case("leave_processes", "leave_processes.cpp", "reference", "constructor", "full-01", ("no-scan-no-pidns",)),
+    Case("exit_in_test", "exit_in_test.cpp", "reference", "notes", "notes-fail:exit(0)", ("scan",)),
+    Case("leave_processes", "leave_processes.cpp", "reference", "constructor", "full-01", ("scan", "no-scan-no-ns")),
     Case("out_of_memory", "out_of_memory.cpp", "reference", "notes", "notes-fail:out of memory"),
+    Case("forge_stream", "forge_stream.cpp", "stub", None, "honest-zero", ("no-scan", "no-scan-no-ns")),
+    Case("forge_stream_sleep", "forge_stream.cpp", "stub", None, "honest-zero", ("no-scan",),
+         prefix="#define FORGE_SLEEP 1\n"),
+    Case("repoint_stdout", "repoint_stdout.cpp", "stub", "constructor", "honest-zero", ("no-scan",)),
+    Case("probe_grader_files", "probe_grader_files.cpp", "payload", None, "no-leak", ("no-scan", "no-scan-no-ns")),
+    Case("shared_memory", "shared_memory.cpp", "reference", "constructor", "full-01", ("no-scan",)),
+    Case("shared_memory", "shared_memory.cpp", "reference", "constructor", "shared-memory-killed", ("no-scan-no-ns",)),
+    Case("rerun_forever", "rerun_forever.cpp", "stub", None, "honest-zero", ("no-scan",)),
+    Case("unusual_but_honest", "unusual_but_honest.cpp", "reference", "constructor", "full-01-reviewed", ("scan",)),
 ]
 MODE_ENV = {"scan": {}, "no-scan": {"ILLUM_GRADE_NO_SCAN": "1"},
-            "no-scan-no-pidns": {"ILLUM_GRADE_NO_SCAN": "1", "ILLUM_GRADE_NO_PID_NAMESPACE": "1"}}
+            "no-scan-no-ns": {"ILLUM_GRADE_NO_SCAN": "1", "ILLUM_GRADE_NO_PID_NAMESPACE": "1"}}
 
 
 def submission_files(case: Case) -> dict[str, str]:
-    payload = (ATTACKS / case.payload).read_text(encoding="utf-8") if case.payload else ""
+    payload = case.prefix + ((ATTACKS / case.payload).read_text(encoding="utf-8") if case.payload else "")
     files = {}
     for exercise, reference in case.files:
         name = Path(exercise).name
@@ -159,6 +183,25 @@ def processes_under(folder: Path, uids: set[int]) -> list[tuple[int, str]]:
     return found
 
 
+def leftovers(uid: int) -> list[str]:
+    """Files of ``uid`` in the shared folders and System V shared memory segments it still owns."""
+    found = []
+    for folder in ("/tmp", "/var/tmp", "/dev/shm", "/run/lock"):
+        try:
+            entries = list(os.scandir(folder))
+        except OSError:
+            continue
+        found += [entry.path for entry in entries if entry.stat(follow_symlinks=False).st_uid == uid]
+    try:
+        with open("/proc/sysvipc/shm", encoding="ascii") as table:
+            next(table, None)
+            found += [f"shared memory segment {line.split()[1]}" for line in table
+                      if len(line.split()) > 7 and int(line.split()[7]) == uid]
+    except OSError:
+        pass
+    return found
+
+
 def student_visible(data: dict) -> str:
     return "\n".join([data.get("output", "")] + [t.get("output", "") + " " + t.get("name", "")
                                                   for t in data.get("tests", []) if t.get("visibility") != "hidden"])
@@ -192,9 +235,12 @@ def judge(case: Case, data: dict, changed_after: bool, survivors: list, maxima: 
     if changed_after:
         problems.append("results.json changed after run_autograder had finished")
     if survivors:
-        problems.append(f"{len(survivors)} process(es) of the submission still alive afterwards: {survivors[:3]}")
-    if MARKER in visible:
+        problems.append(f"{len(survivors)} process(es), file(s) or segment(s) of the submission left afterwards: "
+                        f"{survivors[:3]}")
+    if MARKER in visible or HIDDEN_RANDOM in visible:
         problems.append("the hidden tests reached what the student reads")
+    if "GRADER-FILE-VISIBLE" in visible or '"checks"' in visible:
+        problems.append("the grader's own files reached what the student reads")
     expect = case.expect
     if expect == "full" and (one, two) != (maxima["01"], maxima["02"]):
         problems.append(f"the reference scored {one:g} + {two:g}, not full marks")
@@ -204,14 +250,19 @@ def judge(case: Case, data: dict, changed_after: bool, survivors: list, maxima: 
         problems.append(f"scored {one:g} + {two:g}; the honest score is 0")
     elif expect == "full-01" and (one, two) != (maxima["01"], 0):
         problems.append(f"scored {one:g} + {two:g}; the honest score is {maxima['01']:g} + 0")
-    elif expect == "flagged-01":
-        if one != 0:
-            problems.append(f"lesson 01 scored {one:g}; a flagged file's lesson scores 0")
-        if not any(t["name"].startswith("flagged:") and t.get("visibility") == "visible" for t in data["tests"]):
-            problems.append("no visible 'flagged:' entry says why")
+    elif expect == "shared-memory-killed":
         lesson = [t for t in data["tests"] if t["name"].startswith("lesson01")]
-        if not lesson or not all("flagged" in t.get("output", "") for t in lesson):
-            problems.append("the lesson's tests do not say the file was flagged")
+        failed = [t for t in lesson if t["status"] != "passed"]
+        if two != 0 or not failed:
+            problems.append(f"scored {one:g} + {two:g}; the programs holding too much shared memory must be stopped")
+        if not all("shared memory" in t.get("output", "") or "did not run" in t.get("output", "") for t in failed):
+            problems.append("a failed test does not say that its program held too much shared memory")
+    elif expect == "full-01-reviewed":
+        if (one, two) != (maxima["01"], 0):
+            problems.append(f"scored {one:g} + {two:g}; the honest score is {maxima['01']:g} + 0 (the scan advises)")
+        review = [t for t in data["tests"] if t["name"].startswith("review")]
+        if not review or any(t.get("visibility") != "hidden" for t in review):
+            problems.append("the scan's findings are not in an instructors-only review entry")
     elif expect.startswith("notes-fail:"):
         words = expect.split(":", 1)[1]
         lesson = [t for t in data["tests"] if t["name"].startswith("lesson01")]
@@ -237,13 +288,8 @@ def judge(case: Case, data: dict, changed_after: bool, survivors: list, maxima: 
 def run_case(case: Case, mode: str, slot_dir: Path, user: str, memory_mb: int,
              test_timeout: str) -> tuple[dict | None, bool, list, float, str]:
     ag = slot_dir / "autograder"
-    if ag.exists():
-        shutil.rmtree(ag)
-    subprocess.run(["cp", "-a", "--reflink=auto", str(slot_dir / "snapshot"), str(ag)], check=True)
+    fresh_copy(slot_dir / "snapshot", ag)
     submission = ag / "submission"
-    if submission.exists():
-        shutil.rmtree(submission)
-    submission.mkdir()
     for name, text in submission_files(case).items():
         (submission / name).write_text(text, encoding="utf-8")
     results = ag / "results" / "results.json"
@@ -269,8 +315,10 @@ def run_case(case: Case, mode: str, slot_dir: Path, user: str, memory_mb: int,
         uids.add(pwd.getpwnam(user).pw_uid)
     except KeyError:
         pass
-    survivors = processes_under(ag, uids)
+    survivors = processes_under(ag, uids) + [(0, left) for uid in uids for left in leftovers(uid)]
     for pid, _ in survivors:  # clean up for the next case (an older grader leaves them)
+        if not pid:
+            continue  # a file or a segment, not a process
         try:
             os.kill(pid, signal.SIGKILL)
         except OSError:
@@ -303,7 +351,7 @@ def main(argv: list[str]) -> int:
     grader_tree = args.grader_tree.resolve()
     env = dict(os.environ, CMAKE_BUILD_PARALLEL_LEVEL="2", PYTHONDONTWRITEBYTECODE="1")
     if shutil.which("ccache"):  # the prepared trees reuse earlier objects (autograder_e2e's, batch_e2e's too)
-        env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_NOHASHDIR="1")
+        env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_NOHASHDIR="1", ILLUM_GRADE_REFERENCE_CCACHE="1")
     zip_path = work / "autograder.zip"
     done = subprocess.run([sys.executable, str(grader_tree / "tools" / "grade"), "--pack-autograder", str(zip_path),
                            *LESSONS], env=env, capture_output=True, text=True, check=False)
@@ -320,11 +368,7 @@ def main(argv: list[str]) -> int:
         """A slot: the autograder unpacked and set up at the path where its submissions are graded
         (a CMake build tree cannot move), and a snapshot to restore before each submission."""
         ag = slots[k] / "autograder"
-        with zipfile.ZipFile(zip_path) as archive:
-            archive.extractall(ag / "source")
-        for name in ("setup.sh", "run_autograder", "illum/tools/grade"):
-            (ag / "source" / name).chmod(0o755)
-        (ag / "results").mkdir()
+        unpack(zip_path, ag)
         for folder in (slots[k], ag):
             folder.chmod(0o755)
         start = time.monotonic()

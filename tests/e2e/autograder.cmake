@@ -4,7 +4,7 @@
 #   autograder_e2e     packs the autograder, unpacks it into a temporary /autograder, runs
 #                      setup.sh and run_autograder on seven submissions, checks each results.json;
 #   grading_attacks    hostile submissions (tests/attacks/, one per attack class of the threat
-#                      model in docs/grading.md) through setup.sh and run_autograder: each must
+#                      model in docs/grading-defences.md) through setup.sh and run_autograder: each must
 #                      get its honest score and achieve nothing else (needs root: skipped without);
 #   batch_e2e          tools/grade --batch on a class of seven submissions and a roster: grades.csv
 #                      and the Canvas file checked row by row.

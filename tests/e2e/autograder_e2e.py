@@ -107,6 +107,7 @@ def mutate(text: str, pattern: str, replacement: str, what: str) -> str:
 
 
 SECRET = "SECRET_EXPECTED_VALUE_42"
+HIDDEN_NAME = "the 3-4-5 " + "triangle says"  # a hidden test's name (split: this file is in the tree too)
 
 
 def submissions() -> dict[str, dict[str, str]]:
@@ -151,7 +152,8 @@ def main(argv: list[str]) -> int:
                ILLUM_GRADE_TEST_TIMEOUT=args.test_timeout, PYTHONDONTWRITEBYTECODE="1",
                ILLUM_GRADE_USER="illum-test-ag")
     if shutil.which("ccache"):
-        env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_BASEDIR=str(ag), CCACHE_NOHASHDIR="1")
+        env.update(CMAKE_CXX_COMPILER_LAUNCHER="ccache", CCACHE_BASEDIR=str(ag), CCACHE_NOHASHDIR="1",
+                   ILLUM_GRADE_REFERENCE_CCACHE="1")
 
     zip_path = work / "autograder.zip"
     status, seconds, output = run([sys.executable, str(ROOT / "tools" / "grade"), "--pack-autograder",
@@ -186,6 +188,12 @@ def main(argv: list[str]) -> int:
     check(grader.is_dir() and (grader.stat().st_mode & 0o077) == 0,
           "the grader's data (trusted test list, hidden objects) is readable by others than root")
     check(any((grader / "hidden-objects").glob("*.o")), "setup.sh kept no hidden test objects")
+    check((grader / "witness" / "tests_hidden").is_file(), "setup.sh kept no hidden witness program")
+    # Nothing the student's user can read holds a hidden test: no source, object, program or
+    # rewritten source of the observer (the hidden test's name is in each of them).
+    readable = [p for p in (source / "illum").rglob("*") if p.is_file() and not p.is_symlink()
+                and p.stat().st_mode & 0o004 and HIDDEN_NAME.encode() in p.read_bytes()]
+    check(not readable, f"files readable by the student's user hold a hidden test: {readable[:3]}")
 
     expected_max = visible_max = None
     for case, files in submissions().items():

@@ -13,13 +13,17 @@ worked out here, not read from the grader:
   dario    folder  a crash in the notes' form              all but the 4 notes' form tests
   elena    zip     an endless loop in the notes' form      all but the 4 notes' form tests
   fede     folder  an attacker: a stub that forks a daemon to rewrite results.json
-                                                          0, flagged, nothing alive afterwards
+                                                          0, a note for review, nothing alive afterwards
   gala     folder  a file that does not compile            "not gradable", no total (not 0)
   hugo     -       in the roster only                      "missing"
 
 It also checks the Canvas file (the Points Possible row, an empty grade for
 the not gradable and the missing), that each student's results.json exists
 and was written only by the grader, and the progress lines on stderr.
+
+The batch runs without the git program on PATH (an instructor's machine, or
+a tree, without git): the autograder is packed from the tree's files less
+what .gitignore ignores.
 
     python3 tests/e2e/batch_e2e.py --work-dir DIR
 """
@@ -102,6 +106,22 @@ Hugo H,108,s108,hugo,T2,hugo@uni.example
 """
 
 
+def path_without_git(work: Path) -> str:
+    """PATH with every folder that holds a git program replaced by a copy of its links less git."""
+    folders = []
+    for number, folder in enumerate(os.environ.get("PATH", "").split(os.pathsep)):
+        if not folder or not (Path(folder) / "git").exists():
+            folders.append(folder)
+            continue
+        mirror = work / "path-without-git" / str(number)
+        mirror.mkdir(parents=True)
+        for program in Path(folder).iterdir():
+            if program.name != "git":
+                (mirror / program.name).symlink_to(program)
+        folders.append(str(mirror))
+    return os.pathsep.join(folders)
+
+
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--work-dir", type=Path, required=True)
@@ -117,7 +137,10 @@ def main(argv: list[str]) -> int:
     (work / "roster.csv").write_text(ROSTER, encoding="utf-8")
     # Users of its own: CTest runs the end-to-end tests side by side, and every process of a grading
     # user is killed at the end of each run.
-    env = dict(os.environ, ILLUM_GRADE_TEST_TIMEOUT="3", PYTHONDONTWRITEBYTECODE="1", ILLUM_GRADE_USER="illum-test-b")
+    env = dict(os.environ, ILLUM_GRADE_TEST_TIMEOUT="3", PYTHONDONTWRITEBYTECODE="1", ILLUM_GRADE_USER="illum-test-b",
+               PATH=path_without_git(work), ILLUM_GRADE_REFERENCE_CCACHE="1")
+    if shutil.which("git", path=env["PATH"]):
+        sys.exit("batch e2e: git is still on the PATH meant to be without it")
     command = [sys.executable, str(ROOT / "tools" / "grade"), "--batch", str(submissions), "--out", str(out),
                "--jobs", "2", "--roster", str(work / "roster.csv"), "--format", "canvas", "--assignment",
                "Lesson 01", "--work-dir", str(work / "batch-work"), "01"]
@@ -129,9 +152,14 @@ def main(argv: list[str]) -> int:
     check(done.returncode == 0, f"tools/grade --batch exited {done.returncode}")
     check(bool(re.search(r"\[\d/7\] ana: ", done.stderr)), "no progress line for ana on stderr")
     check("skipped notes.txt" in done.stderr, "the stray notes.txt is not reported as skipped")
+    check("Traceback" not in done.stderr, "a traceback on stderr")
+    check("its builds: no time limit" in done.stderr, "setup's builds are not said to be without a time limit")
     if not check((out / "grades.csv").is_file(), "no grades.csv"):
         return 1
-    rows = list(csv.DictReader(io.StringIO((out / "grades.csv").read_text(encoding="utf-8"))))
+    raw = (out / "grades.csv").read_bytes()
+    check(raw.startswith("\ufeffid,".encode()) and b"\r\n" in raw and b"\n" not in raw.replace(b"\r\n", b""),
+          "grades.csv is not UTF-8 with a BOM and CRLF line ends")
+    rows = list(csv.DictReader(io.StringIO(raw.decode("utf-8-sig"), newline="")))
     by_id = {row["id"]: row for row in rows}
     check([row["id"] for row in rows] == ["ana", "ben", "carla", "dario", "elena", "fede", "gala", "hugo"],
           f"the rows are not the roster's, in its order: {[row['id'] for row in rows]}")
@@ -171,7 +199,7 @@ def main(argv: list[str]) -> int:
     expect("dario", "graded", without(set(notes_tests)), set(notes_tests))
     expect("elena", "graded", without(set(notes_tests)), set(notes_tests))
     expect("fede", "graded", 0.0, set(tests))
-    check("flagged" in by_id.get("fede", {}).get("notes", ""), "fede: the notes do not say the file was flagged")
+    check("review" in by_id.get("fede", {}).get("notes", ""), "fede: the notes do not point to the review notes")
     expect("gala", "not gradable", None)
     check(by_id.get("gala", {}).get("lesson01") == "not gradable", "gala: lesson01 is not 'not gradable'")
     check(all(by_id.get("gala", {}).get(h, "") == "" for h in tests), "gala: test cells are not empty")
@@ -186,13 +214,14 @@ def main(argv: list[str]) -> int:
     fede = json.loads((out / "fede" / "results.json").read_text(encoding="utf-8"))
     check(fede.get("score") == 0, "fede: results.json was rewritten by the attack")
 
-    canvas = list(csv.reader(io.StringIO((out / "grades-canvas.csv").read_text(encoding="utf-8"))))
+    canvas = list(csv.reader(io.StringIO((out / "grades-canvas.csv").read_bytes().decode("utf-8-sig"), newline="")))
     check(canvas[0] == ["Student", "ID", "SIS User ID", "SIS Login ID", "Section", "Lesson 01"],
           f"canvas header {canvas[0]}")
     check(canvas[1][0] == "Points Possible" and canvas[1][5] == f"{full:g}", f"canvas points row {canvas[1]}")
     grades = {row[3]: row[5] for row in canvas[2:]}
     check(grades.get("ana") == f"{full:g}" and grades.get("ben") == "0", f"canvas grades {grades}")
     check(grades.get("gala") == "" and grades.get("hugo") == "", "canvas: not gradable and missing must be empty")
+    check(canvas[2][:5] == ["Ana A", "101", "s101", "ana", "T1"], f"canvas: ana's row {canvas[2]}")
     if failures:
         print(f"batch e2e: {len(failures)} check(s) failed")
         return 1

@@ -7,6 +7,7 @@ if(TARGET tests_hidden AND NOT TARGET tests_hidden_stubs)
   add_executable(tests_hidden_stubs ${illum_hidden_sources})
   target_link_libraries(tests_hidden_stubs PRIVATE illum_stubs doctest::doctest)
   target_include_directories(tests_hidden_stubs PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})  # support/*.hpp
+  illum_use_checks(tests_hidden_stubs)
 endif()
 
 # Only a reference build can be checked: with ILLUM_EXERCISES set, tests_lessonNN runs
@@ -20,7 +21,7 @@ endif()
 
 # Which tests grade which task: every grading test carries a task tag, every exercise README's
 # table and build commands are current, and on the stubs each test first stops in a function of
-# a task it names (tools/task_tables.py; docs/grading.md, "Task tables").
+# a task it names (tools/task_tables.py; docs/grading-reference.md, "Task tables").
 if(ILLUM_EXERCISES STREQUAL "" AND NOT EXISTS ${PROJECT_SOURCE_DIR}/STUDENT_EDITION)
   add_test(NAME task_tables
            COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/task_tables.py --check

@@ -1,6 +1,10 @@
 # Unit tests of the grading driver's pure parts (tools/grading/), standard library only.
 add_test(NAME tools_grade_py COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_grade.py)
 set_tests_properties(tools_grade_py PROPERTIES LABELS grading ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# The judge's comparisons and verdicts, and the observer's sources (tools/grading/judge.py,
+# observer_sources.py): each verdict worked by hand from doctest's definitions.
+add_test(NAME tools_judge_py COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_judge.py)
+set_tests_properties(tools_judge_py PROPERTIES LABELS grading ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # The mutant generator of tools/grade --mutants (its smoke run is a .ci/run stage).
 add_test(NAME tools_mutants_py COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_mutants.py)
 set_tests_properties(tools_mutants_py PROPERTIES LABELS grading ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
@@ -32,6 +36,13 @@ set_tests_properties(one_home PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRIT
 add_test(NAME tools_check_one_home_py
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_check_one_home.py)
 set_tests_properties(tools_check_one_home_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+# Every "lesson NN, §M" in lib/, exercises/, tests/, lessons/ and slides/ names a section of
+# lesson NN's text, the one that teaches the file citing it (tools/check_section_refs.py).
+add_test(NAME section_refs COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/check_section_refs.py)
+set_tests_properties(section_refs PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
+add_test(NAME tools_check_section_refs_py
+         COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_check_section_refs.py)
+set_tests_properties(tools_check_section_refs_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # Unity builds (CMakeLists.txt, illum_unity_build): no private helper of one file is called bare by a
 # later file of the same unit, where overload resolution could pick it (tools/check_unity_units.py).
 set(unity_units_required "")

@@ -13,6 +13,10 @@ on a real test case that takes far longer than a tiny limit:
   (ILLUM_GRADE_RECORDS_FD set: the grader keeps its own limit, from outside the
   program) the same test runs to its end and passes.
 
+A crash does not end the run either (the supervisor of test_main.cpp): in
+tests_harness's suite "supervisor", a test that raises SIGSEGV is named with the
+signal and the test after it still runs, in a new process; the exit status is 1.
+
     python3 tests/e2e/watchdog_e2e.py --bin build/release/bin
 """
 from __future__ import annotations
@@ -66,6 +70,16 @@ def main() -> int:
     os.close(write_end)
     if status != 0 or "endless loop" in stderr:
         problems.append(f"under the grader the watchdog must stay off; exit {status}:\n{stderr[-2000:]}")
+
+    env = {k: v for k, v in os.environ.items() if not k.startswith("ILLUM_GRADE_")}
+    done = subprocess.run([str(program.with_name("tests_harness")), "-ts=supervisor", "--no-version"],
+                          env=dict(env, ILLUM_HARNESS_CRASH="1"), stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                          text=True, errors="replace", timeout=600)
+    named = '[illum] the test case "supervisor: a test that crashes when asked" did not end: killed by SIGSEGV'
+    if done.returncode != 1 or named not in done.stderr:
+        problems.append(f"a crash: exit {done.returncode} (expected 1), stderr must name it:\n{done.stderr[-2000:]}")
+    if "supervisor: the test after the crash ran" not in done.stdout:
+        problems.append(f"a crash: the test after it did not run:\n{done.stdout[-2000:]}")
 
     for problem in problems:
         print(f"PROBLEM {problem}")

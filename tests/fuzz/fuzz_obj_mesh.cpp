@@ -1,6 +1,6 @@
 // Fuzz target: the OBJ reader of scene meshes (io/obj_reader). Any bytes give
 // either a TriangleMesh that keeps the reader's promises or an
-// illum::ObjError; never a crash, a hang, another exception, undefined
+// illum::InputFileError; never a crash, a hang, another exception, undefined
 // behaviour (the build adds ASan, UBSan and float-cast-overflow) or a mesh
 // that breaks them: every index within the positions, every position finite,
 // every shading normal of unit length, every triangle of non-zero area.
@@ -17,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   illum::TriangleMesh mesh;
   try {
     mesh = illum::read_obj(text);
-  } catch (const illum::ObjError&) {
+  } catch (const illum::InputFileError&) {
     return 0;  // the expected refusal
   }
   if (mesh.triangles.empty()) std::abort();

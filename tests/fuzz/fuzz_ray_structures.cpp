@@ -209,7 +209,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                       set, OctreeSettings{.max_depth = static_cast<int>(in.below(12)),
                                                           .leaf_size = 1 + static_cast<int>(in.below(8))})});
   const int leaf = 1 + static_cast<int>(in.below(16));
-  structures.push_back({"bvh_teaching", std::make_unique<Bvh>(set, BvhSettings{.leaf_size = leaf})});
+  structures.push_back({"bvh", std::make_unique<Bvh>(set, BvhSettings{.leaf_size = leaf})});
   for (const CompactBvh::Kernel kernel : CompactBvh::all_kernels) {
     auto bvh = std::make_unique<CompactBvh>(set, BvhSettings{.leaf_size = leaf});
     structures.push_back({std::string("bvh (") + to_string(bvh->use_kernel(kernel)) + ")", std::move(bvh)});
@@ -312,7 +312,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   scene.point_lights.push_back(PointLight{
       .name = "light", .position = centre + extent * Vec3(0.3, -0.4, 1.1), .intensity = Color(1.0)});
   static constexpr AccelKind kinds[] = {AccelKind::brute_force, AccelKind::grid, AccelKind::octree,
-                                        AccelKind::bvh_teaching, AccelKind::bvh};
+                                        AccelKind::bvh, AccelKind::compact_bvh};
   const AccelKind kind = kinds[in.below(5)];
   if (kind != AccelKind::brute_force) scene.accelerate({.kind = kind});
   const int depth = static_cast<int>(in.below(9));

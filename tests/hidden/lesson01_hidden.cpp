@@ -3,7 +3,9 @@
 // and the autograder reports these tests as hidden.
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <optional>
+#include <random>
 
 #include "illum/core/ray.hpp"
 #include "illum/geometry/sphere.hpp"
@@ -40,5 +42,29 @@ TEST_SUITE("lesson01") {
     ILLUM_CHECK_APPROX_MESSAGE(hit->s, 2.0, 1e-12, "the near root −r is behind the ray; take the far one");
     ILLUM_CHECK_APPROX(hit->point.y, 4.0, 1e-12);
     CHECK_MESSAGE(hit->from_inside, "the origin is the centre, strictly inside");
+  }
+}
+
+TEST_SUITE("lesson01") {
+  TEST_CASE("hidden: random rays through random spheres, new ones in every grading run") {
+    // A sphere of radius r whose centre lies at parameter t along the ray and at distance h < r
+    // from its line: the near root is t − √(r² − h²) (Pythagoras in the plane of the ray and the
+    // centre), and the normal there is (P − Pc)/r. The grader draws new t, h, r and directions
+    // for each run (grading_seed()), so only a correct intersection passes.
+    std::mt19937_64 random(illum::test::grading_seed());
+    std::uniform_real_distribution<double> unit(-1.0, 1.0), positive(0.25, 4.0);
+    for (int trial = 0; trial < 8; ++trial) {
+      const illum::Vec3 direction = glm::normalize(illum::Vec3(unit(random), unit(random), unit(random)));
+      const illum::Vec3 across = glm::normalize(glm::cross(direction, illum::Vec3(0.6, 0.0, 0.8)));
+      const illum::Point3 origin(unit(random) * 10, unit(random) * 10, unit(random) * 10);
+      const double r = positive(random), t = r + positive(random) * 5, h = r * (0.9 * positive(random) / 4.0);
+      const illum::Sphere sphere(origin + t * direction + h * across, r);
+      const std::optional<illum::SphereHit> hit = illum::intersect(illum::Ray(origin, direction), sphere);
+      REQUIRE_MESSAGE(hit.has_value(), "the line passes h < r from the centre: it must hit");
+      CHECK(hit->s == doctest::Approx(t - std::sqrt(r * r - h * h)).epsilon(1e-9));
+      CHECK(hit->normal.x == doctest::Approx((origin.x + (t - std::sqrt(r * r - h * h)) * direction.x -
+                                              sphere.center.x) / r).epsilon(1e-7));
+      CHECK_FALSE(hit->from_inside);
+    }
   }
 }

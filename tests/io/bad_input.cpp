@@ -10,13 +10,14 @@
 
 #include <unistd.h>
 
-#include "illum/core/atomic_file.hpp"
 #include "illum/core/error.hpp"
-#include "illum/core/json_text_check.hpp"
-#include "illum/core/memory_budget.hpp"
-#include "illum/core/nearest_name.hpp"
 #include "illum/geometry/implicit_trace.hpp"
+#include "illum/io/json_text_check.hpp"
+#include "illum/io/nearest_name.hpp"
+#include "illum/io/program.hpp"
 #include "illum/io/scene_file.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/memory_budget.hpp"
 #include "support/throws_containing.hpp"
 
 namespace fs = std::filesystem;
@@ -186,6 +187,27 @@ TEST_SUITE("io") {
     CHECK(e.find("-1E+999") != std::string::npos);
     CHECK(refusal(R"({"a": 1.7e308, "b": 1e-999})").empty());  // the largest double; underflow is 0
     CHECK(refusal(R"({"x": 1, "y": [0, 1e999]})").find("y[1]") != std::string::npos);
+  }
+
+  TEST_CASE("bad input: path_problem names an empty path, a link loop and a dangling link, nothing else") {
+    const fs::path d = fs::temp_directory_path() / ("illum_path_problem_" + std::to_string(::getpid()));
+    fs::remove_all(d);
+    fs::create_directories(d / "real");
+    fs::create_symlink("loop", d / "loop");
+    fs::create_symlink("nowhere", d / "gone");
+    fs::create_symlink("real", d / "good");
+    CHECK(illum::path_problem("") == "the path is empty (name a file or folder; '.' is the current folder)");
+    const std::string loop =
+        "'" + (d / "loop").string() + "' is a symbolic link that leads back to itself (a link loop)";
+    CHECK(illum::path_problem(d / "loop") == loop);
+    CHECK(illum::path_problem(d / "loop" / "sub") == loop);  // named at the link, not at the path's end
+    CHECK(illum::path_problem(d / "gone") ==
+          "'" + (d / "gone").string() +
+              "' is a symbolic link to 'nowhere', which does not exist (a dangling link)");
+    CHECK(illum::path_problem(d / "good" / "new") == "");  // a link to a folder, then a name not made yet
+    CHECK(illum::path_problem(d / "missing" / "deeper") == "");
+    CHECK(illum::path_problem("cornell") == "");  // a shipped scene's name
+    fs::remove_all(d);
   }
 
   TEST_CASE("nearest name: a typo is matched, an unrelated word is not") {

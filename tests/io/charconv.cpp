@@ -13,7 +13,7 @@
 #include <string>
 #include <system_error>
 
-#include "illum/core/charconv.hpp"
+#include "illum/system/charconv.hpp"
 
 namespace {
 

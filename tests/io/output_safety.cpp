@@ -1,5 +1,5 @@
-// Output safety below the programs (core/atomic_file, core/child_process,
-// core/memory_budget). Suite "io" (not graded). Contracts checked:
+// Output safety below the programs (system/atomic_file, system/child_process,
+// system/memory_budget). Suite "io" (not graded). Contracts checked:
 //  * a name held by a link, a FIFO, a device or a folder is refused, and what
 //    it holds or points to is left as it was (no write through, no rename over);
 //  * a write the file size limit stops says "File too large … ulimit -f" and
@@ -17,6 +17,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -25,9 +26,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "illum/core/atomic_file.hpp"
-#include "illum/core/child_process.hpp"
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/child_process.hpp"
+#include "illum/system/memory_budget.hpp"
+#include "support/sanitized.hpp"
 #include "support/throws_containing.hpp"
 
 namespace fs = std::filesystem;
@@ -54,17 +56,7 @@ int entries(const fs::path& folder) {
   return n;
 }
 
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool sanitized = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool sanitized = true;
-#else
-constexpr bool sanitized = false;
-#endif
-#else
-constexpr bool sanitized = false;
-#endif
+using illum::test::sanitized;
 
 double status_bytes(const std::string& key) {
   std::ifstream in("/proc/self/status");
@@ -187,6 +179,51 @@ TEST_SUITE("io") {
     ::close(ready[1]);
     CHECK(entries(out) == 0);
     CHECK_NOTHROW(illum::check_output_folder(out, "--out"));  // the kernel dropped the dead holder's lock
+    fs::remove_all(parent);
+  }
+
+  TEST_CASE("output: remove_stale_run_files names what a killed run left, or refuses a live run's folder") {
+    const fs::path parent = fresh("clean");
+    const fs::path out = parent / "out";
+    illum::write_text_file(out / "old.txt", "old\n");
+    CHECK(illum::remove_stale_run_files(out, "--out").empty());  // nothing left: nothing done, nothing made
+    CHECK(entries(parent) == 1);
+    // A killed run: its half-written staging and its lock, which still holds its PID (a child now gone).
+    const pid_t child = ::fork();
+    REQUIRE(child >= 0);
+    if (child == 0) ::_exit(0);
+    ::waitpid(child, nullptr, 0);
+    illum::write_text_file(parent / ".out.illum-staging-KILLED" / "half.txt", "half\n");
+    illum::write_text_file(parent / ".out.illum-lock", std::to_string(child) + "\n");
+    const std::vector<std::string> notes = illum::remove_stale_run_files(out, "--out");
+    REQUIRE(notes.size() == 1);
+    CHECK(notes[0].find((parent / ".out.illum-staging-KILLED").string()) != std::string::npos);
+    CHECK(notes[0].find((parent / ".out.illum-lock").string()) != std::string::npos);
+    CHECK(notes[0].find("(PID " + std::to_string(child) + ", no longer running)") != std::string::npos);
+    CHECK(notes[0].find("is as that run found it") != std::string::npos);
+    CHECK(entries(parent) == 1);  // out alone
+    CHECK(entries(out) == 1);     // old.txt, untouched
+    // A live run's lock (this process holds it): refused with its PID, and its staging stays.
+    illum::write_text_file(parent / ".out.illum-staging-LIVE" / "a.txt", "a\n");
+    const int fd = ::open((parent / ".out.illum-lock").c_str(), O_RDWR | O_CREAT, 0644);
+    REQUIRE(::flock(fd, LOCK_EX) == 0);
+    REQUIRE(::write(fd, "4242\n", 5) == 5);
+    const pid_t other = ::fork();  // flock is per open file: another process must ask
+    REQUIRE(other >= 0);
+    if (other == 0) {
+      try {
+        (void)illum::remove_stale_run_files(out, "--out");
+      } catch (const std::runtime_error& e) {
+        ::_exit(std::string(e.what()).find("in use by another run (PID 4242)") != std::string::npos ? 7 : 1);
+      }
+      ::_exit(0);
+    }
+    int status = 0;
+    ::waitpid(other, &status, 0);
+    CHECK(WIFEXITED(status));
+    CHECK(WEXITSTATUS(status) == 7);
+    CHECK(fs::exists(parent / ".out.illum-staging-LIVE" / "a.txt"));
+    ::close(fd);
     fs::remove_all(parent);
   }
 

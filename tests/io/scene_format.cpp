@@ -333,6 +333,62 @@ TEST_SUITE("io") {
     CHECK(contains(refusal(quoted, "format"), "format 1 only"));
   }
 
+  TEST_CASE("bad input: a file of an older format is told that 'format' is missing, and what it is") {
+    // The sphere-only files of the first lessons and the radiosity files before format 1.
+    const std::string spheres = refusal(
+        R"({"camera": {}, "spheres": [{"center": [0, 0, 0], "radius": 1, "color": [1, 0, 0]}]})", "format");
+    CHECK(contains(spheres, "= (missing): this field is required: this build reads scene format 1"));
+    CHECK(contains(spheres, "older sphere-only format ('spheres' at the top)"));
+    const std::string surfaces = refusal(R"({"materials": {}, "surfaces": []})", "format");
+    CHECK(contains(surfaces, "older radiosity format ('surfaces' at the top)"));
+    CHECK_FALSE(contains(refusal(R"({"primitives": []})", "format"), "older"));
+  }
+
+  TEST_CASE("a scene file that starts with a UTF-8 byte-order mark is read as without it") {
+    const std::string text =
+        scene_text(R"({"type": "sphere", "material": "grey", "center": [0, 0, 0], "radius": 2})");
+    const Scene with_mark = read_text("\xEF\xBB\xBF" + text);
+    REQUIRE(with_mark.primitives.size() == 1);
+    CHECK(std::get<Sphere>(with_mark.primitives[0].shape).radius == 2.0);
+  }
+
+  TEST_CASE("hard case: every coordinate and size of a scene lies within the camera's ±1e150") {
+    // Contract: points and directions within ±1e150, sizes in [1e-150, 1e150], emission and
+    // intensity at most 1e150, an index of refraction in [1e-6, 1e6]; each bound itself is accepted.
+    auto sphere = [](const std::string& center, const std::string& radius) {
+      return scene_text(R"({"type": "sphere", "material": "grey", "center": )" + center + R"(, "radius": )" +
+                        radius + "}");
+    };
+    CHECK(read_text(sphere("[1e150, 0, -1e150]", "1e150")).primitives.size() == 1);
+    CHECK(read_text(sphere("[0, 0, 0]", "1e-150")).primitives.size() == 1);
+    CHECK(contains(refusal(sphere("[0, 1.0000001e150, 0]", "1"), "primitives[0].center[1]"),
+                   "must lie within ±1e150"));
+    CHECK(contains(refusal(sphere("[0, 0, 0]", "2e150"), "primitives[0].radius"), "[1e-150, 1e150]"));
+    CHECK(contains(refusal(sphere("[0, 0, 0]", "1e-160"), "primitives[0].radius"), "[1e-150, 1e150]"));
+    CHECK(contains(refusal(scene_text(R"({"type": "triangle", "material": "grey",
+                                          "vertices": [[0,0,0],[1,0,0],[0,-1e200,0]]})"),
+                           "primitives[0].vertices[2][1]"),
+                   "= -1e+200: must lie within ±1e150"));
+    const std::string ball = R"({"type": "sphere", "material": "grey", "center": [0,0,0], "radius": 1})";
+    CHECK(contains(
+        refusal(scene_text(ball, R"(, "hot": {"emission": [1, 1e151, 1]})"), "materials.hot.emission[1]"),
+        "must be at most 1e150"));
+    CHECK(read_text(scene_text(ball, R"(, "hot": {"emission": [1, 1e150, 1]})")).materials.size() == 3);
+    CHECK(contains(refusal(scene_text(ball, R"(, "bad": {"index_of_refraction": 1.5e6})"),
+                           "materials.bad.index_of_refraction"),
+                   "[1e-6, 1e6]"));
+    CHECK(contains(refusal(scene_text(ball, R"(, "bad": {"index_of_refraction": 1e-7})"),
+                           "materials.bad.index_of_refraction"),
+                   "[1e-6, 1e6]"));
+    // A mesh scaled so that its vertex at 10 goes to 1e151: named at 'scale'.
+    const TempFolder folder("illum_scene_magnitudes_test");
+    folder.write("tri.obj", "v 0 0 0\nv 10 0 0\nv 0 1 0\nf 1 2 3\n");
+    const std::string mesh =
+        scene_text(R"({"type": "mesh", "material": "grey", "obj": "tri.obj", "scale": 1e150})");
+    CHECK(contains(refusal(mesh, "primitives[0].scale", folder.path),
+                   "moves a vertex of tri.obj beyond ±1e150"));
+  }
+
   TEST_CASE("bad input: an unknown material name, with the nearest name suggested") {
     const std::string m =
         refusal(scene_text(R"({"type": "sphere", "material": "glas", "center": [0,0,0], "radius": 1})"),

@@ -1,4 +1,4 @@
-// The link between a "mixed" program and the main job (io/whole_machine, core/platform's
+// The link between a "mixed" program and the main job (io/whole_machine, system/platform's
 // write_line and read_line). Suite "io" (not graded). Contracts checked:
 //  * without ILLUM_MAIN_JOB_FDS a WholeMachine does nothing (a run by hand already has the machine);
 //  * a malformed value is refused with a message naming the variable and the value;
@@ -18,8 +18,8 @@
 
 #include <unistd.h>
 
-#include "illum/core/platform.hpp"
 #include "illum/io/whole_machine.hpp"
+#include "illum/system/platform.hpp"
 
 namespace {
 

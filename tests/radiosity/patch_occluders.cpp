@@ -14,7 +14,7 @@ using namespace illum;
 TEST_CASE("PatchOccluders agrees with brute-force visibility between random points of the Cornell box") {
   const RadiosityScene box = load_radiosity_scene("cornell", 150.0);
   REQUIRE(box.patches.size() > 50);
-  for (const AccelKind kind : {AccelKind::bvh, AccelKind::grid, AccelKind::octree}) {
+  for (const AccelKind kind : {AccelKind::compact_bvh, AccelKind::grid, AccelKind::octree}) {
     CAPTURE(to_string(kind));
     const PatchOccluders fast(box.patches, {.kind = kind});
     Rng rng(9);
@@ -38,7 +38,7 @@ TEST_CASE("PatchOccluders agrees with brute-force visibility between random poin
     CHECK(pairs > 1500);
     CHECK(blocked > 100);  // the blocks do cut segments
     // The BVH tests far fewer triangles than brute force's one test per patch per segment.
-    if (kind == AccelKind::bvh) CHECK(counters.triangle_tests < pairs * box.patches.size() / 10);
+    if (kind == AccelKind::compact_bvh) CHECK(counters.triangle_tests < pairs * box.patches.size() / 10);
   }
 }
 

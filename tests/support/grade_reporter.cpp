@@ -22,11 +22,10 @@
 //   {"event":"run_end"}
 //     when doctest has run every test, so that a program that ends without
 //     it (exit() in a test, a crash between tests) is told apart;
-//   {"event":"value", "at_file", "at_line", "actual"}
-//     for each ILLUM_CHECK_APPROX of the running test (grade_values.hpp):
-//     the grader judges these values itself; "expected" and "epsilon" are
-//     added only when ILLUM_GRADE_SEND_EXPECTED is set (the autograder's
-//     run of the reference, which keeps them).
+//   {"event":"check", "file", "line", "kind", "lhs", ...}
+//     for each check of the running test, when the grader runs the program
+//     as its witness or its observer (checks.hpp, checks.cpp): the values the
+//     judge compares, outside this program.
 //
 // Texts that come from the code under test (exception messages, the values
 // of a failed check, INFO contexts) are cut to max_text bytes, and a test
@@ -41,7 +40,6 @@
 #include <doctest/doctest.h>
 #include <unistd.h>
 
-#include "support/grade_values.hpp"
 
 #include <cerrno>
 #include <cstdlib>
@@ -190,27 +188,16 @@ GradeReporter* active_reporter = nullptr;  // the one send_value() writes throug
 class GradeReporter : public doctest::IReporter {
  public:
   explicit GradeReporter(const doctest::ContextOptions& options)
-      : options_(options),
-        records_fd_(records_descriptor()),
-        send_expected_(std::getenv("ILLUM_GRADE_SEND_EXPECTED") != nullptr) {
+      : options_(options), records_fd_(records_descriptor()) {
     active_reporter = this;
   }
   ~GradeReporter() override {
     if (active_reporter == this) active_reporter = nullptr;
   }
 
-  void value(const char* file, int line, double actual, double expected, double epsilon) {
-    if (test_ == nullptr) return;
-    json record;
-    record["event"] = "value";
-    record["at_file"] = str(file);
-    record["at_line"] = line;
-    record["actual"] = actual;
-    if (send_expected_) {  // only in the autograder's trusted run of the reference, which keeps them
-      record["expected"] = expected;
-      record["epsilon"] = epsilon;
-    }
-    write(record);
+  // A check's record (checks.cpp), while a test case runs.
+  void check_line(const std::string& line) {
+    if (test_ != nullptr) write_line(line + '\n');
   }
 
   void report_query(const doctest::QueryData& query) override {
@@ -397,9 +384,12 @@ class GradeReporter : public doctest::IReporter {
   // One line per record, flushed at once: if the program crashes or is
   // killed on a timeout, every finished test case is still on file.
   void write(const json& record) {
-    const std::lock_guard<std::mutex> lock(mutex_);
     // Invalid UTF-8 in a message (a student's bytes) must not abort the dump.
-    const std::string line = record.dump(-1, ' ', false, json::error_handler_t::replace) + '\n';
+    write_line(record.dump(-1, ' ', false, json::error_handler_t::replace) + '\n');
+  }
+
+  void write_line(const std::string& line) {
+    const std::lock_guard<std::mutex> lock(mutex_);
     if (records_fd_ >= 0) {
       write_all(records_fd_, line);  // one write per record: a pipe keeps it whole
       return;
@@ -410,7 +400,6 @@ class GradeReporter : public doctest::IReporter {
 
   const doctest::ContextOptions& options_;
   const int records_fd_;
-  const bool send_expected_;
   const doctest::TestCaseData* test_ = nullptr;
   json failures_ = json::array();
   std::size_t dropped_ = 0;
@@ -422,9 +411,11 @@ class GradeReporter : public doctest::IReporter {
 
 namespace illum::grading {
 
-void send_value(const char* file, int line, double actual, double expected, double epsilon) {
-  if (active_reporter != nullptr) active_reporter->value(file, line, actual, expected, epsilon);
+void send_line(const std::string& line) {
+  if (active_reporter != nullptr) active_reporter->check_line(line);
 }
+
+std::string active_context() { return active_contexts(); }
 
 }  // namespace illum::grading
 

@@ -71,7 +71,7 @@ class OneHomeTest(unittest.TestCase):
             "// isatty(2) and __builtin_ctz in a comment",            # 11
             "#include <csignal>",                                     # 12: standard C++
         ])
-        found = self.problems({"lessons/01_x/main.cpp": code, "lib/illum/core/platform.cpp": code,
+        found = self.problems({"lessons/01_x/main.cpp": code, "lib/illum/system/platform.cpp": code,
                                "tests/io/x.cpp": code})
         self.assertEqual(sorted({int(p.split(":")[1]) for p in found if p.startswith("lessons/")}),
                          [1, 2, 3, 4, 5, 6, 7, 8, 9])

@@ -70,7 +70,7 @@ class UnityUnitsTest(unittest.TestCase):
             return check_unity_units.problems_in_unit(unit, source)
 
     def test_private_definitions_are_read_from_the_code(self) -> None:
-        code = check_unity_units.blank_comments_and_strings(EARLIER)
+        code = check_unity_units.blank_comments(EARLIER)
         self.assertEqual(check_unity_units.private_functions(code), {"mean", "split", "twice"})
 
     def test_a_later_members_bare_calls_are_found_with_file_and_line(self) -> None:

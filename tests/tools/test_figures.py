@@ -19,6 +19,8 @@ SOURCE = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(SOURCE / "tools"))
 
 import figures  # noqa: E402
+from common import png  # noqa: E402
+from gallery import figures as gallery_figures, kept_images, tables  # noqa: E402
 
 TABLE = ("| n | error | ns_per_test |\n|---|---|---|\n"
          "| 1 | 0.5 | 12.1 |\n| 2 | 0.25 | 13.4 |\n| 4 | 0.125 | 15.9 |\n")
@@ -46,7 +48,7 @@ class FiguresTest(unittest.TestCase):
 
     def run_mode(self, mode: str) -> int:
         self.messages = []
-        return figures.process(self.root, self.out, mode, log=self.messages.append)
+        return gallery_figures.process(self.root, self.out, mode, log=self.messages.append)
 
     def text(self) -> str:
         return (self.root / "lessons/01_x/README.md").read_text(encoding="utf-8")
@@ -57,7 +59,8 @@ class FiguresTest(unittest.TestCase):
         self.assertEqual(self.run_mode("update"), 0, self.messages)
         text = self.text()
         self.assertIn("| 2 | 0.25 | 13.4 |", text)
-        self.assertIn("2026-12-01 20:00 UTC on 2 cores, load average 3.5 at the start", text)
+        self.assertIn("measured on 2 cores, load average 3.5 at the start", text)
+        self.assertNotIn("2026", text)  # a reader's page holds no dated measurement (the run log does)
         self.assertIn("4.25 at its end", text)
         self.assertTrue(text.endswith("The end.\n"))
         self.assertEqual(self.run_mode("check"), 0, self.messages)
@@ -115,10 +118,10 @@ class FiguresTest(unittest.TestCase):
         self.write("out/lesson01/t.md", "| d | a | b |\n|---|---|---|\n| 1 | 2e-7 | 3e-16 |\n"
                                         "| median ns per test | 22 | 19 |\n")
         self.assertEqual(self.run_mode("check"), 0, self.messages)
-        self.assertTrue(figures.is_timing_name("seconds to 1e-6"))
-        self.assertTrue(figures.is_timing_name("time_slope_res_ge_64"))
-        self.assertFalse(figures.is_timing_name("s"))           # the ray parameter
-        self.assertFalse(figures.is_timing_name("wall strip"))  # a configuration
+        self.assertTrue(tables.is_timing_name("seconds to 1e-6"))
+        self.assertTrue(tables.is_timing_name("time_slope_res_ge_64"))
+        self.assertFalse(tables.is_timing_name("s"))           # the ray parameter
+        self.assertFalse(tables.is_timing_name("wall strip"))  # a configuration
 
     def test_columns_where_and_row_select_from_a_csv(self):
         self.write("out/lesson01/c.csv", "n,error,kind\n1,0.5,a\n2,0.25,b\n4,0.125,a\n")
@@ -297,6 +300,56 @@ class OptionsTest(unittest.TestCase):
             self.assertIn(f"--source {folder}: not an illum source tree", text)
 
 
+    def test_an_empty_path_or_a_link_loop_is_refused_naming_the_option(self):
+        self.assertIn("argument --out: the path is empty", self.refused(["--check", "--out", ""]))
+        self.assertIn("argument --source: the path is empty", self.refused(["--links", "--source", ""]))
+        with tempfile.TemporaryDirectory() as folder:
+            loop = Path(folder) / "loop"
+            loop.symlink_to("loop")
+            self.assertIn(f"argument --out: '{loop}' is a symbolic link that leads back to itself",
+                          self.refused(["--check", "--out", str(loop)]))
+
+
+class KilledRunTest(unittest.TestCase):
+    """A run killed without warning (SIGKILL) leaves its temporary beside a text: the next writing
+    run removes it once its PID is gone, and names it; a live run's stays."""
+
+    def test_a_dead_runs_temporaries_are_removed_and_named_a_live_runs_kept(self):
+        import os
+        import subprocess
+        with tempfile.TemporaryDirectory() as folder:
+            root = Path(folder)
+            text = root / "lessons" / "01_x" / "README.md"
+            (root / "lessons" / "01_x" / "figures").mkdir(parents=True)
+            text.write_text(TEXT)
+            gone = subprocess.Popen(["true"])  # a PID that has ended
+            gone.wait()
+            stale = text.with_name(f"README.md.tmp-figures-{gone.pid}")
+            older = text.with_name("README.md.tmp-figures")  # this tool's name before it held a PID
+            image = root / "lessons" / "01_x" / "figures" / f"a.png.tmp-figures-{gone.pid}"
+            live = text.with_name(f"README.md.tmp-figures-{os.getpid()}")
+            for p in (stale, older, image, live):
+                p.write_text("half")
+            said: list[str] = []
+            gallery_figures.remove_stale_temporaries(root, log=said.append)
+            self.assertFalse(stale.exists() or older.exists() or image.exists())
+            self.assertTrue(live.exists())
+            self.assertEqual(len(said), 3, said)
+            self.assertIn(f"figures: removed lessons/01_x/README.md.tmp-figures-{gone.pid}, left by a run that was "
+                          "killed before it finished", said)
+
+    def test_a_file_is_written_whole_through_a_temporary_named_with_the_pid(self):
+        import os
+        from unittest import mock
+        with tempfile.TemporaryDirectory() as folder:
+            target, renamed, replace = Path(folder) / "a.png", [], os.replace
+            with mock.patch("os.replace", lambda src, dst: (renamed.append(Path(src).name), replace(src, dst))):
+                gallery_figures.write_atomically(target, b"picture")
+            self.assertEqual(target.read_bytes(), b"picture")
+            self.assertEqual(sorted(p.name for p in Path(folder).iterdir()), ["a.png"])
+            self.assertEqual(renamed, [f"a.png.tmp-figures-{os.getpid()}"])
+
+
 class KeptImagesTest(unittest.TestCase):
     """Lesson texts show their images from figures/, kept copies of what the programs drew."""
 
@@ -327,15 +380,15 @@ class KeptImagesTest(unittest.TestCase):
 
     def update(self) -> int:
         self.messages = []
-        return figures.update_images(self.root, self.out, log=self.messages.append)
+        return kept_images.update_images(self.root, self.out, log=self.messages.append)
 
     def check(self) -> int:
         self.messages = []
         # The fixture's gnuplot scripts hold labels only: the plots are tested in test_plots.py.
-        return figures.process(self.root, self.out, "check", log=self.messages.append, plots=False)
+        return gallery_figures.process(self.root, self.out, "check", log=self.messages.append, plots=False)
 
     def test_the_decoder_undoes_each_of_the_five_row_filters(self):
-        width, height, channels, pixels = figures.decode_png(self.render)
+        width, height, channels, pixels = png.decode(self.render)
         self.assertEqual((width, height, channels), (20, 10, 3))
         self.assertEqual(pixels, picture(20, 10))
 

@@ -25,7 +25,9 @@ sys.path.insert(0, str(SOURCE / "tools"))
 
 import check_outputs  # noqa: E402
 import main_job  # noqa: E402
-from gallery import fsutil, index, outputs  # noqa: E402
+from gallery import lesson_runs  # noqa: E402
+from common import files as fsutil  # noqa: E402
+from gallery import index, outputs  # noqa: E402
 
 FAKE_LESSON = SOURCE / "tests" / "slides" / "fixtures" / "fake_lesson.py"
 
@@ -684,11 +686,11 @@ class MainJob(TempDirTest):
             "lesson01": {"seconds": 11.2, "quick": False}, "lesson02": {"seconds": 4.8, "quick": False},
             "lesson12": {"seconds": 24.1, "quick": False}}))
         programs = [Path("lesson01"), Path("lesson02"), Path("lesson12")]
-        self.assertEqual([p.name for p in main_job.longest_first(programs, log)],
+        self.assertEqual([p.name for p in lesson_runs.longest_first(programs, log)],
                          ["lesson12", "lesson01", "lesson02"])
         # A quick run's seconds say nothing of a full run's: the later lessons first, then.
         log.write_text(json.dumps({"lesson01": {"seconds": 11.2, "quick": True}}))
-        self.assertEqual([p.name for p in main_job.longest_first(programs, log)],
+        self.assertEqual([p.name for p in lesson_runs.longest_first(programs, log)],
                          ["lesson12", "lesson02", "lesson01"])
 
     def test_an_empty_bin_folder_is_an_error(self):

@@ -21,7 +21,9 @@ import sys
 import tempfile
 import unittest
 import xml.etree.ElementTree as ET
+import zipfile
 from pathlib import Path
+from unittest import mock
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
 TOOLS = Path(__file__).resolve().parents[2] / "tools"
@@ -191,19 +193,19 @@ class ReportTest(unittest.TestCase):
         self.assertNotIn(secret, shown)
         self.assertIn(secret, json.dumps([t for t in data["tests"] if t["visibility"] == "hidden"]))
 
-    def test_a_flagged_file_is_said_to_the_student_and_the_review_to_the_instructor(self) -> None:
+    def test_the_scans_findings_reach_the_instructor_only_and_cost_nothing(self) -> None:
         run = sample_run()
-        run.flagged = {"exercises/01_ray_sphere/sphere.cpp": ["exercises/01_ray_sphere/sphere.cpp:3: starts a process"]}
-        run.review = ["exercises/01_ray_sphere/sphere.cpp: calls the C function malloc(), unusual"]
+        run.review = ["exercises/01_ray_sphere/sphere.cpp:3: starts a process",
+                      "exercises/01_ray_sphere/sphere.cpp: calls the C function malloc(), unusual"]
         data = reports.gradescope_results(run)
-        flagged = [t for t in data["tests"] if t["name"].startswith("flagged:")]
-        self.assertEqual([t["visibility"] for t in flagged], ["visible"])
-        self.assertIn("starts a process", flagged[0]["output"])
-        self.assertIn("do more than compute", data["output"])
         review = [t for t in data["tests"] if t["name"].startswith("review")]
         self.assertEqual([t["visibility"] for t in review], ["hidden"])
-        self.assertNotIn("malloc", data["output"])
-        self.assertEqual(data["extra_data"]["illum"]["lessons"]["01"]["status"], "flagged")
+        self.assertIn("starts a process", review[0]["output"])
+        shown = data["output"] + "".join(t["output"] for t in data["tests"] if t["visibility"] != "hidden")
+        self.assertNotIn("malloc", shown)
+        self.assertNotIn("starts a process", shown)
+        self.assertEqual(data["extra_data"]["illum"]["lessons"]["01"]["status"], "graded")
+        self.assertEqual(data["score"], sample_run().results[0].score + sum(r.score for r in sample_run().results[1:]))
         run.fallbacks = {"exercises/01_ray_sphere/sphere.cpp": "multiple definition of `illum::f()'"}
         run.link_failures = {"exercises/01_ray_sphere/sphere.cpp"}
         data = reports.gradescope_results(run)
@@ -277,6 +279,9 @@ if "--list-test-cases" in sys.argv:
         record("listed", number)
     sys.exit(0)
 first = int(next((a.split("=", 1)[1] for a in sys.argv if a.startswith("--first=")), "1"))
+if BEHAVIOUR.get(0) == "early-forgery":  # a forged record before any test starts, in every run
+    finished(1)
+    sys.exit(0)
 for number in range(first, 4):
     what = BEHAVIOUR.get(number, "pass")
     record("started", number)
@@ -311,11 +316,14 @@ for number in range(first, 4):
                 break
         sys.stdout.write(f"forked {made}\\n")
         sys.stdout.flush()
-    elif what.startswith("value="):  # the ILLUM_CHECK_APPROX records of a test (grade_values.hpp)
+    elif what.startswith("check="):  # an observer's check records (checks.cpp): the left sides it saw
         for actual in what.split("=", 1)[1].split(","):
-            out.write(json.dumps({"event": "value", "at_file": "/t.cpp", "at_line": 40, "actual": float(actual),
-                                  "expected": float(actual), "epsilon": 0}) + "\\n")
+            out.write(json.dumps({"event": "check", "file": "/t.cpp", "line": 40, "kind": "CHECK",
+                                  "lhs": float(actual)}) + "\\n")
         out.flush()
+    elif what == "spin":  # processor time, without end
+        while True:
+            pass
     elif what == "skip-report":
         continue  # started, and never a result: the next test starts while it runs
     finished(number, passed=what != "fail")
@@ -346,9 +354,9 @@ class RunnerTest(unittest.TestCase):
         return [(r.name, r.status) for r in run.results]
 
     def test_a_hanging_test_costs_only_itself(self) -> None:
-        run = self.run_fake({2: "hang"}, test_timeout=1.0)
+        run = self.run_fake({2: "hang"}, test_timeout=0.3)
         self.assertEqual(self.statuses(run), [("one", "passed"), ("two", "failed"), ("three", "passed")])
-        self.assertIn("did not finish within 1 s", run.results[1].output())
+        self.assertIn("did not finish within 3 s", run.results[1].output())
         self.assertIn('test "two"', run.problem)
 
     def test_a_crash_costs_only_the_test_that_crashed(self) -> None:
@@ -382,25 +390,47 @@ class RunnerTest(unittest.TestCase):
         self.assertIn("no result was received", run.results[-1].output())
         self.assertEqual([r.passed for r in run.results[:3]], [True, True, True])
 
-    def test_checked_values_are_judged_by_the_grader(self) -> None:
-        # The trusted run kept: test "two" checks 2.5 and then 7 at /t.cpp:40, relative 1e-9. The program's own
-        # verdict says passed every time; only the values it sends decide.
-        def listing(values):
-            return [{"suite": "lesson01", "name": n, "file": "/t.cpp", "line": k, "description": "",
-                     **({"values": values} if n == "two" else {})} for k, n in enumerate(["one", "two", "three"], 1)]
+    def test_observed_values_are_judged_by_the_judge(self) -> None:
+        # The witness's run of test "two" checked 2.5 and then 7 at /t.cpp:40, relative 1e-9. The observer's
+        # own verdict says passed every time; only the values it sends decide.
+        from grading.runner import judge_suite
+        from grading.results import TestResult
 
-        kept = [{"file": "../../t.cpp", "line": 40, "expected": 2.5, "epsilon": 1e-9},
-                {"file": "/t.cpp", "line": 40, "expected": 7.0, "epsilon": 1e-9}]
+        def check(value):
+            return {"event": "check", "file": "../../t.cpp", "line": 40, "kind": "CHECK", "expr": "v == w",
+                    "op": "==", "rhs": {"approx": value, "epsilon": 1e-9, "scale": 1.0}, "passed": True}
+
+        listed = [{"suite": "lesson01", "name": n, "file": "/t.cpp", "line": k, "description": ""}
+                  for k, n in enumerate(["one", "two", "three"], 1)]
+        witness = {TestResult.from_json(r).key: [check(1.0)] for r in listed}
+        witness[TestResult.from_json(listed[1]).key] = [check(2.5), check(7.0)]
         for sent, passed, words in (("2.5,7.000000001", True, ""),
-                                    ("2.5,7.1", False, "is 7.1, expected 7"),
-                                    ("2.5", False, "never computed"),
-                                    ("2.5,7,9", False, "more checked value"),
-                                    ("pass", False, "never computed")):
-            behaviour = {2: sent if sent == "pass" else f"value={sent}"}
-            run = self.run_fake(behaviour, expected=listing(kept))
+                                    ("2.5,7.1", False, "got:      7.0999999999999996"),
+                                    ("2.5", False, "stopped before this check"),
+                                    ("2.5,7,9", False, "more check(s) than the reference"),
+                                    ("pass", False, "stopped before this check")):
+            behaviour = {1: "check=1", 2: sent if sent == "pass" else f"check={sent}", 3: "check=1"}
+            run = self.run_fake(behaviour, expected=listed, role="observer")
+            self.assertEqual(judge_suite(run, witness, hidden=False), [])
             self.assertEqual(run.results[1].passed, passed, sent)
             self.assertIn(words, run.results[1].output(), sent)
             self.assertEqual([run.results[0].passed, run.results[2].passed], [True, True])
+
+    def test_a_program_that_forges_before_every_test_is_not_run_again_and_again(self) -> None:
+        import time
+
+        start = time.monotonic()
+        run = self.run_fake({0: "early-forgery"})
+        self.assertLess(time.monotonic() - start, 20)
+        self.assertEqual([r.passed for r in run.results], [False, False, False])
+
+    def test_processor_time_not_wall_time_stops_a_spinning_test(self) -> None:
+        run = self.run_fake({2: "spin"}, test_timeout=0.5)
+        self.assertEqual(self.statuses(run), [("one", "passed"), ("two", "failed"), ("three", "passed")])
+        self.assertIn("0.5 s of processor time", run.results[1].output())
+        # A test that only waits is stopped by the wall-time cap, ten times longer.
+        run = self.run_fake({2: "hang"}, test_timeout=0.5)
+        self.assertIn("did not finish within 5 s", run.results[1].output())
 
     def test_output_is_capped_to_its_last_64_kb(self) -> None:
         run = self.run_fake({1: "print"})
@@ -590,9 +620,71 @@ class EditionTest(unittest.TestCase):
                                          "tests/hidden/README.md", "build/release/x", "out/index.html"})
 
 
+    def tiny_tree(self, root: Path) -> list[str]:
+        """A tree, its .gitignore files, and the files git would take (worked out by hand)."""
+        files = {
+            ".gitignore": "/build/\n/out/\n/node_modules\n*.tmp-*\n/compile_commands.json\n__pycache__/\n*.tmp\n"
+                          "!keep.tmp\n# a comment\n\ndocs/*.log\n**/cache/\n",
+            "sub/.gitignore": "local.txt\n/only_here.txt\n",
+            "README.md": "", "a.tmp": "", "keep.tmp": "", "x.tmp-grade": "", "build/o.o": "", "out/i.html": "",
+            "node_modules/m.js": "", "lib/__pycache__/c.pyc": "", "lib/m.py": "", "compile_commands.json": "",
+            "lib/compile_commands.json": "", "sub/local.txt": "", "sub/deep/local.txt": "", "sub/only_here.txt": "",
+            "sub/deep/only_here.txt": "", "docs/a.log": "", "docs/deep/b.log": "", "x/cache/y": "", "cache": "",
+        }
+        for name, text in files.items():
+            (root / name).parent.mkdir(parents=True, exist_ok=True)
+            (root / name).write_text(text)
+        (root / "link").symlink_to("README.md")
+        return [".gitignore", "README.md", "cache", "docs/deep/b.log", "keep.tmp", "lib/compile_commands.json",
+                "lib/m.py", "link", "sub/.gitignore", "sub/deep/only_here.txt"]
+
+    def test_without_git_the_files_are_what_git_would_take(self) -> None:
+        from grading.edition import tracked_files
+
+        with tempfile.TemporaryDirectory() as folder:
+            root = Path(folder)
+            expected = self.tiny_tree(root)
+            with mock.patch.dict(os.environ, {"PATH": str(root / "no-programs")}):
+                self.assertEqual(tracked_files(root), expected)  # no git program
+            if shutil.which("git") is None:
+                self.skipTest("git is not installed: the walk was checked against the list worked out by hand only")
+            git = ["git", "-C", folder, "-c", "user.name=t", "-c", "user.email=t@x"]
+            subprocess.run([*git, "init", "-q"], check=True)
+            subprocess.run([*git, "add", "-A"], check=True)
+            listed = subprocess.run([*git, "ls-files"], check=True, capture_output=True, text=True).stdout.split()
+            self.assertEqual(sorted(listed), expected)  # git agrees with the hand-made list
+            self.assertEqual(tracked_files(root), expected)
+            (root / "untracked.txt").write_text("")  # a checkout with git: git's list, not the walk
+            self.assertEqual(tracked_files(root), expected)
+            with mock.patch.dict(os.environ, {"PATH": str(root / "no-programs")}):
+                self.assertEqual(tracked_files(root), sorted(expected + ["untracked.txt"]))
+
+    def test_the_autograder_packs_without_git(self) -> None:
+        from grading.autograder import pack_autograder
+
+        with tempfile.TemporaryDirectory() as folder:
+            source = Path(folder) / "src"
+            LinksTest.write_tiny_source(source)
+            (source / "tools").mkdir()
+            (source / "tools" / "debian-packages.txt").write_text("g++ cmake  # the build\n")
+            (source / "tests" / "hidden").mkdir(parents=True)
+            (source / "tests" / "hidden" / "lesson01_more.cpp").write_text("// hidden\n")
+            (source / "notes.tmp").write_text("")  # ignored, as git would
+            (source / ".gitignore").write_text("*.tmp\n")
+            with mock.patch.dict(os.environ, {"PATH": str(Path(folder) / "no-programs")}):
+                names = pack_autograder(source, Path(folder) / "a.zip", ["01"], None)
+            self.assertIn("illum/exercises/01_ray_sphere/sphere.cpp", names)
+            self.assertIn("reference/sphere.cpp", names)
+            self.assertIn("hidden-tests/lesson01_more.cpp", names)
+            self.assertNotIn("illum/lib/illum/geometry/sphere.cpp", names)
+            self.assertNotIn("illum/notes.tmp", names)
+            with zipfile.ZipFile(Path(folder) / "a.zip") as archive:
+                self.assertIn("This is the student edition of illum.\n", archive.read("illum/STUDENT_EDITION").decode())
+
+
 class LinksTest(unittest.TestCase):
     def test_links_outside_code_with_their_text_as_written(self) -> None:
-        from grading.links import markdown_links
+        from common.markdown import links as markdown_links
 
         text = ("See [`sphere.cpp`](../../lib/illum/geometry/sphere.cpp) and ![plot](../../out/x.png).\n"
                 "`[not a link](a.md)` stays code\n```\n[nor this](b.md)\n```\n[anchor](#tasks)")
@@ -602,7 +694,8 @@ class LinksTest(unittest.TestCase):
                           ("plot", "../../out/x.png", True), ("anchor", "#tasks", False)])
 
     def test_broken_links_files_anchors_and_generated_outputs(self) -> None:
-        from grading.links import broken_links, heading_anchors
+        from common.markdown import anchors as heading_anchors
+        from grading.edition import broken_links
 
         self.assertIn("choosing-the-lessons-to-hand-out", heading_anchors("### Choosing the lessons to hand out"))
         self.assertEqual(heading_anchors("## 6. The study: uniform against adaptive\n## Tasks\n## Tasks"),
@@ -618,9 +711,9 @@ class LinksTest(unittest.TestCase):
                 " [web](https://example.org/x) [out of the tree](../x.md)\n")
             problems = broken_links(root)
             self.assertEqual(len(problems), 3, problems)
-            self.assertTrue(any("docs/b.md does not exist" in p for p in problems))
+            self.assertTrue(any("docs/b.md, which does not exist" in p for p in problems))
             self.assertTrue(any("#nope" in p for p in problems))
-            self.assertTrue(any("outside the tree" in p for p in problems))
+            self.assertTrue(any("leaves the repository" in p for p in problems))
 
     @staticmethod
     def write_tiny_source(source: Path) -> None:
@@ -720,7 +813,7 @@ class LinksTest(unittest.TestCase):
             two = (out / "lessons/02_polygon_parity/README.md").read_text(encoding="utf-8")
             self.assertIn("exercise [`parity.cpp`](../../lib/illum/geometry/parity.cpp)", two,
                           "lesson 02 is not handed out: its exercise is text, its unit the reference")
-            from grading.links import broken_links
+            from grading.edition import broken_links
 
             self.assertEqual(broken_links(out), [])
 
@@ -1007,65 +1100,32 @@ class LinkAttributionTest(unittest.TestCase):
 
 
 class BatchTest(unittest.TestCase):
-    """tools/grade --batch's pure parts: the roster, the join, grades.csv and the gradebook files."""
+    """tools/grade --batch's pure parts: grades.csv, the results.json it reads, its time limits."""
 
     def outcome(self, ident: str, status: str, scores: dict[str, tuple[float, float, str]]):
-        from grading.batch import Outcome
+        from grading.gradebook import Outcome
 
         lessons = {nn: {"score": got, "max_score": top, "status": st} for nn, (got, top, st) in scores.items()}
         gradable = [v for v in lessons.values() if v["status"] != "not gradable"]
         total = sum(v["score"] for v in gradable) if gradable else None
         tests = {f"lesson{nn}: t": got for nn, (got, top, st) in scores.items()}
         return Outcome(ident, status=status, total=total, max_score=sum(v["max_score"] for v in lessons.values()),
-                       lessons=lessons, tests=tests)
-
-    def test_roster_join_by_id_or_email(self) -> None:
-        from grading.batch import Submission, read_roster
-
-        with tempfile.TemporaryDirectory() as folder:
-            path = Path(folder) / "roster.csv"
-            path.write_bytes("\ufeffNombre;Correo;Login\nAna;ANA@uni.example;a1\nBen;ben@uni.example;b2\n"
-                             "Cris;cris@uni.example;c3\n".encode("utf-8"))
-            roster = read_roster(path)
-            self.assertEqual(roster.keys, ["Correo", "Login"])
-            matched, unmatched = roster.match([Submission("ana", Path("ana")), Submission("b2", Path("b2")),
-                                               Submission("zoe", Path("zoe"))])
-            self.assertEqual({i: s.ident for i, s in matched.items()}, {0: "ana", 1: "b2"})
-            self.assertEqual([s.ident for s in unmatched], ["zoe"])
+                       lessons=lessons, tests=tests, visible={nn: (got, top) for nn, (got, top, _) in scores.items()})
 
     def test_grades_csv_columns_and_not_gradable(self) -> None:
-        from grading.batch import Outcome, grades_csv
+        from grading.gradebook import Outcome, csv_text, grades_rows
 
         rows = [self.outcome("ana", "graded", {"01": (3, 4, "graded"), "02": (1, 2, "graded")}),
                 self.outcome("ben", "partly gradable", {"01": (0, 4, "not gradable"), "02": (2, 2, "graded")}),
                 self.outcome("cris", "not gradable", {"01": (0, 4, "not gradable"), "02": (0, 2, "not gradable")}),
                 Outcome("dan", status="missing")]
-        table = list(csv.reader(io.StringIO(grades_csv(rows, ["01", "02"], None))))
+        table = list(csv.reader(io.StringIO(csv_text(grades_rows(rows, ["01", "02"], None))[1:], newline="")))
         self.assertEqual(table[0], ["id", "status", "total", "max", "lesson01", "lesson02", "lesson01: t",
                                     "lesson02: t", "notes"])
         self.assertEqual(table[1][:8], ["ana", "graded", "4", "6", "3", "1", "3", "1"])
         self.assertEqual(table[2][:8], ["ben", "partly gradable", "2", "6", "not gradable", "2", "", "2"])
         self.assertEqual(table[3][:6], ["cris", "not gradable", "", "6", "not gradable", "not gradable"])
         self.assertEqual(table[4][:4], ["dan", "missing", "", ""])
-
-    def test_gradebook_files(self) -> None:
-        from grading.batch import Outcome, canvas_csv, moodle_csv
-
-        ana = self.outcome("ana", "graded", {"01": (3, 4, "graded")})
-        ana.roster = {"Student": "Ana A", "ID": "7", "SIS Login ID": "ana", "Section": "T1", "Email": "a@x"}
-        cris = self.outcome("cris", "not gradable", {"01": (0, 4, "not gradable")})
-        dan = Outcome("dan", status="missing")
-        canvas = list(csv.reader(io.StringIO(canvas_csv([ana, cris, dan], None, "Lab 1"))))
-        self.assertEqual(canvas[0], ["Student", "ID", "SIS User ID", "SIS Login ID", "Section", "Lab 1"])
-        self.assertEqual(canvas[1], ["Points Possible", "", "", "", "", "4"])
-        self.assertEqual(canvas[2], ["Ana A", "7", "", "ana", "T1", "3"])
-        self.assertEqual([canvas[3][5], canvas[4][5]], ["", ""])  # not gradable and missing: no grade, not 0
-        moodle = list(csv.reader(io.StringIO(moodle_csv([ana, cris, dan], None))))
-        self.assertEqual(moodle[0], ["Username", "Full name", "Grade", "Feedback comments"])
-        self.assertEqual(moodle[1][2], "3")
-        self.assertEqual(moodle[2][2], "")
-        self.assertIn("not gradable", moodle[2][3])
-        self.assertEqual(moodle[3][3], "no submission")
 
     def test_what_results_json_says_becomes_the_row(self) -> None:
         from grading.batch import outcome_of
@@ -1078,6 +1138,258 @@ class BatchTest(unittest.TestCase):
         self.assertIsNone(outcome.total)
         self.assertIn("exercises/01_ray_sphere/sphere.cpp did not compile", outcome.notes)
         self.assertEqual(outcome_of("ben", None, "").status, "grader error")
+
+    def test_the_students_feedback_never_counts_hidden_tests(self) -> None:
+        from grading.batch import outcome_of
+        from grading.gradebook import canvas_rows, feedback, grades_rows, moodle_rows
+
+        # sample_run: visible tests of 1 + 2 + 1 points, 1 passed; the hidden test (1 point) passed.
+        run = sample_run(hidden_extra=True)
+        run.review = ["a note for the instructor"]
+        outcome = outcome_of("ana", reports.gradescope_results(run), "")
+        self.assertEqual((outcome.total, outcome.max_score), (2.0, 5.0))  # the grade counts the hidden test
+        words = feedback(outcome)
+        self.assertIn("lesson 01: 1/4", words)
+        self.assertIn("visible tests 1/4", words)
+        self.assertNotIn("2/5", words)
+        self.assertNotIn("/5", words)
+        self.assertNotIn("hidden one", words)
+        self.assertNotIn("review", words)  # the instructor's notes stay in grades.csv
+        moodle, _ = moodle_rows([outcome], None, "Lab 1")
+        self.assertEqual(moodle[1][2:], ["2", words])
+        canvas, _ = canvas_rows([outcome], None, "Lab 1")
+        self.assertEqual(canvas[1][5], "5")  # Points Possible: the grade's maximum
+        self.assertEqual(canvas[2][5], "2")
+        grades = grades_rows([outcome], ["01"], None)
+        self.assertIn("lesson01 (hidden): hidden one", grades[0])  # the instructor's file has everything
+        self.assertIn("1 note(s) for review in results.json", grades[1][-1])
+        # Without hidden tests the total is the student's to see.
+        plain = outcome_of("ben", reports.gradescope_results(sample_run()), "")
+        self.assertEqual(feedback(plain), "1/4 (lesson 01: 1/4)")
+
+    def test_setup_has_a_build_limit_of_its_own(self) -> None:
+        from grading.batch import Slots, run_environment, setup_environment
+
+        instructor = {"PATH": os.environ["PATH"], "ILLUM_GRADE_TEST_TIMEOUT": "3"}
+        run = run_environment(instructor)
+        self.assertEqual(run["ILLUM_GRADE_BUILD_TIMEOUT"], "300")  # a student's rebuild: Gradescope's limit
+        self.assertEqual(run["ILLUM_GRADE_TEST_TIMEOUT"], "3")
+        self.assertNotIn("ILLUM_GRADE_BUILD_TIMEOUT", setup_environment(run))  # setup: none
+        self.assertNotIn("ILLUM_GRADE_DEADLINE", setup_environment(instructor))
+        self.assertEqual(setup_environment(instructor)["ILLUM_GRADE_TEST_TIMEOUT"], "3")  # set by the instructor
+        self.assertEqual(setup_environment(dict(run, ILLUM_GRADE_SETUP_BUILD_TIMEOUT="900"))
+                         ["ILLUM_GRADE_BUILD_TIMEOUT"], "900")
+        # Through a worker's preparation, as --batch runs it: setup.sh sees setup's limit.
+        with tempfile.TemporaryDirectory() as folder:
+            zip_path = Path(folder) / "autograder.zip"
+            with zipfile.ZipFile(zip_path, "w") as archive:
+                archive.writestr("setup.sh", 'echo "limit=${ILLUM_GRADE_BUILD_TIMEOUT-none}"; exit 3\n')
+                archive.writestr("run_autograder", "exit 0\n")
+                archive.writestr("illum/tools/grade", "")
+            slots = Slots(Path(folder) / "work", 1, zip_path, run)
+            self.assertEqual(slots.prepare(0), (3, "limit=none\n"))
+            slots = Slots(Path(folder) / "work", 1, zip_path, dict(run, ILLUM_GRADE_SETUP_BUILD_TIMEOUT="900"))
+            self.assertEqual(slots.prepare(0), (3, "limit=900\n"))
+
+    def test_a_limit_that_is_hit_is_named_with_its_variable(self) -> None:
+        import time
+        from grading.batch import explain_setup_failure, run_limited
+        from grading.build import Runner, run_streaming
+
+        step = run_streaming(["sleep", "20"], echo=False, runner=Runner(timeout=0.3))
+        self.assertTrue(step.timed_out)
+        self.assertIn("did not finish within 0.3 s, the time limit of a build (ILLUM_GRADE_BUILD_TIMEOUT)",
+                      step.output)
+        self.assertIn("its time limit, 600 s (ILLUM_GRADE_SETUP_BUILD_TIMEOUT)",
+                      explain_setup_failure("setup:\n" + step.output, {"ILLUM_GRADE_SETUP_BUILD_TIMEOUT": "600"}))
+        self.assertEqual(explain_setup_failure("setup: FAILED: apt-get update failed", {}), "")
+        # One submission's limit: everything it started is stopped (a background child would keep the
+        # output open, and the batch waiting, for 30 s).
+        start = time.monotonic()
+        output, stopped = run_limited(["bash", "-c", "echo started; sleep 30 & sleep 30"], dict(os.environ), 0.5)
+        self.assertLess(time.monotonic() - start, 10)
+        self.assertEqual(output, "started\n")
+        self.assertIn("did not finish within 0.5 s, the time limit of one submission (ILLUM_GRADE_BATCH_TIMEOUT)",
+                      stopped)
+        self.assertEqual(run_limited(["true"], dict(os.environ), 5), ("", ""))
+
+
+class RosterTest(unittest.TestCase):
+    """The roster as spreadsheets and LMSs write it: read with the csv module, checked before grading."""
+
+    def roster(self, text: str, encoding: str = "utf-8"):
+        from grading.gradebook import read_roster
+
+        folder = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, folder)
+        path = Path(folder) / "roster.csv"
+        path.write_bytes(text.encode(encoding))
+        return read_roster(path)
+
+    def submissions(self, *names: str) -> list:
+        from grading.batch import Submission
+
+        return [Submission(n, Path(n)) for n in names]
+
+    def test_join_by_id_or_email(self) -> None:
+        roster = self.roster("\ufeffNombre;Correo;Login\r\nAna;ANA@uni.example;a1\r\nBen;ben@uni.example;b2\r\n"
+                             "Cris;cris@uni.example;c3\r\n")
+        self.assertEqual(roster.keys, ["Correo", "Login"])
+        matched, unmatched = roster.match(self.submissions("ana", "b2", "zoe"))
+        self.assertEqual({i: s.ident for i, s in matched.items()}, {0: "ana", 1: "b2"})
+        self.assertEqual([s.ident for s in unmatched], ["zoe"])
+
+    def test_quotes_separators_bom_and_line_ends(self) -> None:
+        # RFC 4180: a quote inside a quoted field is doubled; a quoted field may hold the separator and a line
+        # break. The same roster with commas, semicolons and tabs, LF and CRLF, with and without a BOM.
+        # (csv.Sniffer guesses doublequote=False for the first name, and read it as 'García, Ana "Pepa"""'.)
+        rows = [["Student", "ID", "SIS User ID", "SIS Login ID", "Section"],
+                ['García, Ana "Pepa"', "11", "s1", "ana", "T1; T2"],
+                ["O'Neil, Ben", "12", "s2", "ben", "T1\nlate"]]
+        for delimiter in (",", ";", "\t"):
+            for end in ("\n", "\r\n"):
+                for bom in ("", "\ufeff"):
+                    lines = [delimiter.join('"' + c.replace('"', '""') + '"' if any(x in c for x in ',;\t"\n') else c
+                                            for c in row) for row in rows]
+                    roster = self.roster(bom + end.join(lines) + end)
+                    label = (delimiter, end, bom)
+                    self.assertEqual(roster.headers, rows[0], label)
+                    self.assertEqual(roster.rows[0]["Student"], 'García, Ana "Pepa"', label)
+                    self.assertEqual(roster.rows[1]["Section"], "T1\nlate", label)
+                    self.assertEqual(roster.lines, [2, 3], label)
+                    self.assertEqual(roster.names(roster.rows[1]), ("Ben O'Neil", "O'Neil, Ben"), label)
+
+    def test_a_malformed_roster_is_refused_naming_the_line(self) -> None:
+        from grading.gradebook import RosterError
+
+        with self.assertRaisesRegex(RosterError, "line 3: unexpected end of data"):
+            self.roster('id,name\n1,Ana\n2,"Ben\n3,Cris\n')  # an opened quote would swallow the rest
+        with self.assertRaisesRegex(RosterError, "line 3 has 3 fields, the header .line 1. 2"):
+            self.roster("id,name\n1,Ana\n2,García, Ana\n")  # an unquoted comma shifts the columns
+        with self.assertRaisesRegex(RosterError, "line 2 is not UTF-8 text: save the file as \"CSV UTF-8\""):
+            self.roster("id,name\n1,García\n", encoding="latin-1")
+        with self.assertRaisesRegex(RosterError, "the file is empty"):
+            self.roster("\ufeff\r\n")
+
+    def test_duplicates_are_refused_naming_both_lines(self) -> None:
+        from grading.gradebook import RosterError
+
+        # The second student's record spans lines 3-4, so the duplicate is on line 5, not 4.
+        with self.assertRaisesRegex(RosterError, "lines 2 and 5 have the same ID '7'"):
+            self.roster('ID,Name\n7,Ana\n8,"Ben\nBenito"\n7,Cris\n')
+        with self.assertRaisesRegex(RosterError, "lines 3 and 4 have the same Email address 'BEN@x.example'"):
+            self.roster("ID number,Email address\n1,ana@x.example\n2,ben@x.example\n3,BEN@x.example\n")
+        roster = self.roster("Username,Email\nana,ana@a.example\nann,ana@b.example\n")  # same name before the @
+        with self.assertRaisesRegex(RosterError, "the submission ana matches the rows on lines 2 and 3"):
+            roster.match(self.submissions("ana"))
+        with self.assertRaisesRegex(RosterError, "the row on line 3 matches two submissions: ann and ana@b.example"):
+            roster.match(self.submissions("ann", "ana@b.example"))
+        # Two students with one name are two students.
+        self.assertEqual(len(self.roster("Student,ID\n\"Ruiz, Ana\",1\n\"Ruiz, Ana\",2\n").rows), 2)
+
+
+class GradebookTest(unittest.TestCase):
+    """The Moodle and Canvas files from either roster style, as those importers read them (gradebook.py's
+    docstring says what each importer does with a row)."""
+
+    MOODLE_ROSTER = ("First name,Last name,ID number,Institution,Department,Email address\n"
+                     "Ana,García López,1001,U,CS,ana@uni.example\n"
+                     "Ben,O'Neil,1002,U,CS,ben@uni.example\n"
+                     "Cris,Ruiz,,U,CS,cris@uni.example\n")
+    CANVAS_ROSTER = ("Student,ID,SIS User ID,SIS Login ID,Section\n"
+                     "    Points Possible,,,,\n"
+                     '"García López, Ana",88801,1001,ana,T1\n'
+                     '"O\'Neil, Ben",88802,1002,ben,T2\n'
+                     '"Ruiz, Cris",88803,1003,cris,T2\n')
+
+    def rows(self, roster_text: str, submissions: dict[str, float | None]):
+        """Outcomes as --batch makes them: roster order, a missing student, then the unmatched."""
+        from grading.batch import Submission, _roster_rows
+        from grading.gradebook import Outcome, read_roster
+
+        folder = tempfile.mkdtemp()
+        self.addCleanup(shutil.rmtree, folder)
+        (Path(folder) / "roster.csv").write_text(roster_text, encoding="utf-8")
+        roster = read_roster(Path(folder) / "roster.csv")
+        subs = [Submission(n, Path(n)) for n in submissions]
+        outcomes = [Outcome(n, status="graded", total=t, max_score=10.0, lessons={"01": {"score": t, "max_score": 10}},
+                            visible={"01": (t, 10.0)}) for n, t in submissions.items()]
+        matched, unmatched = roster.match(subs)
+        return roster, _roster_rows(roster, outcomes, matched, unmatched)
+
+    def test_moodle_from_a_moodle_roster(self) -> None:
+        from grading.gradebook import moodle_rows
+
+        roster, rows = self.rows(self.MOODLE_ROSTER, {"ana": 7.5, "ben@uni.example": 10.0, "zoe": 3.0})
+        table, left_out = moodle_rows(rows, roster, "Lab 1")
+        self.assertEqual(table, [["Email address", "Full name", "Lab 1", "Lab 1 (feedback)"],
+                                 ["ana@uni.example", "Ana García López", "7.5", "7.5/10 (lesson 01: 7.5/10)"],
+                                 ["ben@uni.example", "Ben O'Neil", "10", "10/10 (lesson 01: 10/10)"],
+                                 ["cris@uni.example", "Cris Ruiz", "", "no submission"]])
+        self.assertEqual(left_out, ["zoe: no row of the roster matches this submission"])  # not in any column
+
+    def test_moodle_from_a_canvas_roster(self) -> None:
+        from grading.gradebook import moodle_rows
+
+        roster, rows = self.rows(self.CANVAS_ROSTER, {"ana": 7.5, "1002": 10.0})
+        table, left_out = moodle_rows(rows, roster, "Lab 1")
+        # SIS User ID is the institution's ID number; Canvas's own ID (888..) is nothing to Moodle.
+        self.assertEqual([r[:3] for r in table], [["ID number", "Full name", "Lab 1"], ["1001", "Ana García López", "7.5"],
+                                                  ["1002", "Ben O'Neil", "10"], ["1003", "Cris Ruiz", ""]])
+        self.assertEqual(left_out, [])
+
+    def test_moodle_leaves_out_a_row_without_the_user_column(self) -> None:
+        from grading.gradebook import moodle_rows
+
+        # E-mails on two rows, ID numbers on two: the tie goes to e-mail, and Ana's row, without one, is left
+        # out (Moodle would give the grade of a row with an empty user column to the student of the row before).
+        roster, rows = self.rows(self.MOODLE_ROSTER.replace("ana@uni.example", ""), {"1001": 7.5, "cris": 5.0})
+        table, left_out = moodle_rows(rows, roster, "Lab 1")
+        self.assertEqual(table[0][0], "Email address")
+        self.assertEqual([r[0] for r in table[1:]], ["ben@uni.example", "cris@uni.example"])
+        self.assertEqual(left_out, ["1001: the roster's line 2 has no email address"])
+        # A student row without any id is kept (missing in grades.csv, said when left out), never dropped.
+        roster, rows = self.rows(self.MOODLE_ROSTER + "Dan,Soto,,U,CS,\n", {"ana": 7.5})
+        self.assertEqual([(o.ident, o.status) for o in rows][-1], ("line 5", "missing"))
+        self.assertEqual(moodle_rows(rows, roster, "Lab 1")[1], ["line 5: the roster's line 5 has no email address"])
+        roster, rows = self.rows(self.MOODLE_ROSTER.replace("cris@uni.example", ""), {"ana": 7.5})
+        self.assertEqual(moodle_rows(rows, roster, "Lab 1")[0][0][0], "Email address")  # 2 against 2 again
+
+    def test_canvas_from_either_roster(self) -> None:
+        from grading.gradebook import canvas_rows
+
+        roster, rows = self.rows(self.MOODLE_ROSTER.replace("Department", "Group"), {"ana": 7.5, "zoe": 1.0})
+        table, left_out = canvas_rows(rows, roster, "Lab 1")
+        self.assertEqual(table[:3], [["Student", "ID", "SIS User ID", "SIS Login ID", "Section", "Lab 1"],
+                                     ["Points Possible", "", "", "", "", "10"],
+                                     ["García López, Ana", "", "1001", "ana@uni.example", "CS", "7.5"]])
+        self.assertEqual(table[3], ["O'Neil, Ben", "", "1002", "ben@uni.example", "CS", ""])
+        self.assertEqual(left_out, ["zoe: no row of the roster matches this submission"])
+        self.assertFalse(any("zoe" in cell for row in table for cell in row))
+        roster, rows = self.rows(self.CANVAS_ROSTER, {"ana": 7.5, "88802": 10.0})
+        table, _ = canvas_rows(rows, roster, "Lab 1")
+        self.assertEqual(table[2:], [["García López, Ana", "88801", "1001", "ana", "T1", "7.5"],
+                                     ["O'Neil, Ben", "88802", "1002", "ben", "T2", "10"],
+                                     ["Ruiz, Cris", "88803", "1003", "cris", "T2", ""]])
+        # A plain roster's "id" is a student number, not Canvas's: it goes to SIS User ID.
+        roster, rows = self.rows("id,name,email\n42,Ana Ruiz,ana@x.example\n", {"42": 3.0})
+        table, _ = canvas_rows(rows, roster, "Lab 1")
+        self.assertEqual(table[2], ["Ana Ruiz", "", "42", "ana@x.example", "", "3"])
+
+    def test_names_from_the_columns_a_roster_has(self) -> None:
+        for header, row, full in (("Nombre;Apellidos;Correo", "Ana;García López;a@x", "Ana García López"),
+                                  ("Full name,Email", "Ana García López,a@x", "Ana García López"),
+                                  ("First name,Surname,Email", "Ana,García López,a@x", "Ana García López"),
+                                  ("Name,Email", '"García López, Ana",a@x', "Ana García López"),
+                                  ("Nombre,Correo", "Ana García López,a@x", "Ana García López")):
+            roster, rows = GradebookTest.rows(self, f"{header}\n{row}\n", {"a": 1.0})
+            self.assertEqual(roster.names(rows[0].roster)[0], full, header)
+
+    def test_written_files_are_rfc4180_with_a_bom_and_crlf(self) -> None:
+        from grading.gradebook import csv_text
+
+        text = csv_text([["Student", "Lab, 1"], ['Chevy "The Man" Chase', "3"], ["two\nlines", ""]])
+        self.assertEqual(text, '\ufeffStudent,"Lab, 1"\r\n"Chevy ""The Man"" Chase",3\r\n"two\nlines",\r\n')
 
 
 class CommandLineTest(unittest.TestCase):
@@ -1175,7 +1487,7 @@ class CommandLineTest(unittest.TestCase):
                 real_open = open
 
                 def failing_open(path, *args, **kwargs):
-                    if str(path).endswith(".tmp-grade"):
+                    if ".tmp-" in str(path):
                         real_open(path, "w").close()  # the temporary exists when the write fails
                         raise OSError(number, os.strerror(number), str(path))
                     return real_open(path, *args, **kwargs)
@@ -1237,7 +1549,36 @@ class CommandLineTest(unittest.TestCase):
             roster.write_text("name,grade\nAna,1\n")
             (subs / "ana").mkdir()
             self.assert_refused(["--batch", str(subs), "--roster", str(roster)], "no id or e-mail column")
+            # A roster that would lose a grade is refused before anything is packed or built.
+            roster.write_text("Email,Name\nana@x.example,Ana\nben@x.example,Ben\nANA@x.example,Ana Bis\n")
+            self.assert_refused(["--batch", str(subs), "--roster", str(roster)],
+                                "lines 2 and 4 have the same Email 'ANA@x.example'")
+            roster.write_text("Email,Login\nana@x.example,a1\nana@y.example,a2\n")
+            self.assert_refused(["--batch", str(subs), "--roster", str(roster)],
+                                "the submission ana matches the rows on lines 2 and 3")
+            for value in ("abc", "0", "-5", "inf"):
+                with mock.patch.dict(os.environ, {"ILLUM_GRADE_BATCH_TIMEOUT": value}):
+                    self.assert_refused(["--batch", str(subs)], f"ILLUM_GRADE_BATCH_TIMEOUT={value}: not a number")
+            with mock.patch.dict(os.environ, {"ILLUM_GRADE_SETUP_BUILD_TIMEOUT": "soon"}):
+                self.assert_refused(["--batch", str(subs)], "ILLUM_GRADE_SETUP_BUILD_TIMEOUT=soon: not a number")
             self.assertEqual(sorted(p.name for p in Path(folder).iterdir()), ["roster.csv", "subs"])
+
+    def test_batch_without_git_ends_in_words(self) -> None:
+        # No git program (only bash on PATH): the autograder is packed from the tree's files, and setup.sh,
+        # finding no package tools either, fails saying so: exit 2, no traceback.
+        with tempfile.TemporaryDirectory() as folder:
+            bin_dir, subs, out = Path(folder) / "bin", Path(folder) / "subs", Path(folder) / "grades"
+            bin_dir.mkdir()
+            (bin_dir / "bash").symlink_to(shutil.which("bash"))
+            (subs / "ana").mkdir(parents=True)
+            with mock.patch.dict(os.environ, {"PATH": str(bin_dir)}):
+                status, err = self.run_main(["--batch", str(subs), "--out", str(out), "--jobs", "1", "01"])
+            self.assertEqual(status, 2, err)
+            self.assertNotIn("Traceback", err)
+            self.assertIn("preparing the grader for lessons 01", err)  # packed
+            self.assertIn("its builds: no time limit; ILLUM_GRADE_SETUP_BUILD_TIMEOUT sets one", err)
+            self.assertIn("setup.sh failed in worker 1", err)
+            self.assertIn("setup.sh: FAILED", (out / "setup.log").read_text(encoding="utf-8"))
 
 
 

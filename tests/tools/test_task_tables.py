@@ -150,10 +150,21 @@ class CodeMapTest(unittest.TestCase):
     def test_update_then_check(self) -> None:
         with tempfile.TemporaryDirectory() as folder:
             root = self.tree(folder)
-            self.assertEqual(len(code_map.update(root, write=False)), 2)  # both blocks stale
+            # Both blocks stale, and the deck has no "Where the code is" slide yet.
+            found = code_map.update(root, write=False)
+            self.assertEqual(len(found), 3)
+            self.assertTrue(any("slides/01_x.md" in p and "no \"Where the code is\" slide" in p for p in found))
             self.assertEqual(code_map.update(root, write=True), [])
             self.assertEqual(code_map.update(root, write=False), [])
             self.assertEqual(code_map.layout_problems(root), [])
+            deck = (root / "slides/01_x.md").read_text(encoding="utf-8")
+            self.assertTrue(deck.rstrip().endswith(code_map.END))
+            self.assertIn("## Where the code is", deck)
+            self.assertIn("[`thing.cpp`](../../exercises/01_x/thing.cpp)", deck)  # relative to out/slides/
+            self.assertIn("[`geometry/thing.hpp`](../../lib/illum/geometry/thing.hpp)", deck)
+            # A slide after it is refused: it must stay the deck's last.
+            (root / "slides/01_x.md").write_text(deck + "\n---\n\n## More\n", encoding="utf-8")
+            self.assertTrue(any("must be the deck's last" in p for p in code_map.update(root, write=False)))
 
     def test_layout_rules(self) -> None:
         cases = {

@@ -1,5 +1,2 @@
-"""The main job's building blocks: discovery, output checks, decks and out/index.html.
-
-Used by tools/main_job.py and tools/check_outputs.py; unit-tested by
-tests/tools/test_gallery.py. Standard library only.
-"""
+"""The main job's building blocks: the lessons' runs, their outputs' checks, the texts' figures, the decks,
+the rendered texts and out/index.html (tools/main_job.py, tools/figures.py, tools/check_outputs.py)."""

@@ -1,9 +1,5 @@
-"""Slide decks: slides/NN_topic.md -> OUT/slides/NN_topic.html with Marp.
-
-Marp comes from the repository's node_modules (package-lock.json, `npm ci`,
-done by tools/install-deps). KaTeX renders the maths; its fonts are copied
-next to the decks (OUT/slides/katex-fonts/) so a deck needs no network.
-"""
+"""Slide decks: slides/NN_topic.md -> OUT/slides/NN_topic.html with Marp from the repository's node_modules,
+KaTeX's fonts copied beside them (OUT/slides/katex-fonts/): a deck needs no network."""
 from __future__ import annotations
 
 import os
@@ -14,7 +10,7 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from .fsutil import atomic_copy, temp_path_beside
+from common.files import atomic_copy, temp_path_beside
 
 DECK_NAME = re.compile(r"^\d\d_[A-Za-z0-9_\-]+\.md$")
 FONT_FOLDER = "katex-fonts"

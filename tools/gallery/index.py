@@ -1,17 +1,6 @@
-"""out/index.html: one self-contained page that shows every lesson's outputs.
-
-Lessons are discovered, never listed: a lesson number NN appears when any of
-lessons/NN_*/, exercises/NN_*/, slides/NN_*.md or OUT/lessonNN/manifest.json
-exists. Per lesson the page shows its title (from the manifest), images and
-plots as thumbnails linking to full size, tables rendered from their Markdown
-with a link to the CSV, every other file as a link, and links to the built
-deck, the lesson text and the exercise: their rendered pages in OUT/pages/
-when the main job's step "texts" wrote them (tools/gallery/texts.py), with
-the Markdown beside them (relative paths into the source tree).
-
-The page has inline CSS only and no external assets. `check_links` verifies
-that every local href/src in a written page resolves.
-"""
+"""out/index.html: one self-contained page (inline CSS, no external asset) showing every lesson found in
+the source tree or OUT: its outputs (images as thumbnails, tables rendered, other files as links), its deck,
+its text and its exercise (their rendered pages in OUT/pages/ when the main job's step "texts" wrote them)."""
 from __future__ import annotations
 
 import csv
@@ -19,17 +8,17 @@ import html
 import io
 import os
 import re
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from html.parser import HTMLParser
 from pathlib import Path
 from urllib.parse import quote, unquote, urlsplit
 
-from .fsutil import atomic_write_text
-from .outputs import Manifest, ManifestError, Output, load_manifest, parse_markdown_tables, png_size
+from common.files import atomic_write_text
+from grading.project import lesson_folders
 
-_NN_DIR = re.compile(r"^(\d\d)_[A-Za-z0-9_\-]+$")
-_NN_DECK = re.compile(r"^(\d\d)_[A-Za-z0-9_\-]+\.md$")
-_PROGRAM_DIR = re.compile(r"^lesson(\d\d)$")
+from .decks import find_decks
+from .outputs import Manifest, ManifestError, Output, load_manifest, parse_markdown_tables, png_size
+from .texts import page_of
 
 
 @dataclass
@@ -60,45 +49,25 @@ def _first_heading(readme: Path) -> str:
     return ""
 
 
-def _title_from_slug(slug: str) -> str:
-    words = slug[3:].replace("_", " ").replace("-", " ").strip()
-    return words[:1].upper() + words[1:] if words else ""
-
-
 def discover_lessons(source: Path, out: Path, slides_dir: Path | None = None) -> list[Lesson]:
-    """Every lesson found in the source tree or the output folder, by number."""
+    """Every lesson found in the source tree (lessons/, exercises/, slides/) or OUT, by number."""
     source, out = Path(source), Path(out)
     slides_dir = Path(slides_dir) if slides_dir else source / "slides"
     lessons: dict[str, Lesson] = {}
-
-    def get(nn: str) -> Lesson:
-        return lessons.setdefault(nn, Lesson(nn))
-
-    for folder_name, attr in (("lessons", "lesson_readme"), ("exercises", "exercise_readme")):
-        base = source / folder_name
-        if base.is_dir():
-            for d in sorted(base.iterdir()):
-                m = _NN_DIR.match(d.name)
-                if d.is_dir() and m:
-                    lesson = get(m.group(1))
-                    lesson.slug = lesson.slug or d.name  # lessons/ first, then exercises/
-                    if (d / "README.md").is_file():
-                        setattr(lesson, attr, d / "README.md")
-    if slides_dir.is_dir():
-        for f in sorted(slides_dir.iterdir()):
-            m = _NN_DECK.match(f.name)
-            if f.is_file() and m:
-                lesson = get(m.group(1))
-                lesson.deck_source = f
-                lesson.slug = lesson.slug or f.stem
-                built = out / "slides" / (f.stem + ".html")
-                if built.is_file():
-                    lesson.deck_html = built
-    if out.is_dir():
-        for d in sorted(out.iterdir()):
-            m = _PROGRAM_DIR.match(d.name)
-            if d.is_dir() and m and (d / "manifest.json").exists():
-                get(m.group(1))
+    for kind, attr in (("lessons", "lesson_readme"), ("exercises", "exercise_readme")):
+        for nn, folder in lesson_folders(source, kind).items():
+            lesson = lessons.setdefault(nn, Lesson(nn))
+            lesson.slug = lesson.slug or folder.name  # lessons/ first, then exercises/
+            if (folder / "README.md").is_file():
+                setattr(lesson, attr, folder / "README.md")
+    for deck in find_decks(slides_dir):
+        lesson = lessons.setdefault(deck.name[:2], Lesson(deck.name[:2]))
+        lesson.deck_source, lesson.slug = deck, lesson.slug or deck.stem
+        if (built := out / "slides" / (deck.stem + ".html")).is_file():
+            lesson.deck_html = built
+    for folder in sorted(out.glob("lesson[0-9][0-9]")):
+        if re.fullmatch(r"lesson\d\d", folder.name) and (folder / "manifest.json").exists():
+            lessons.setdefault(folder.name[-2:], Lesson(folder.name[-2:]))
     for nn, lesson in lessons.items():
         folder = out / f"lesson{nn}"
         if (folder / "manifest.json").exists():
@@ -107,60 +76,17 @@ def discover_lessons(source: Path, out: Path, slides_dir: Path | None = None) ->
                 lesson.manifest = load_manifest(folder)
             except ManifestError as e:
                 lesson.manifest_error = str(e)
+        words = lesson.slug[3:].replace("_", " ").replace("-", " ").strip()
         lesson.title = ((lesson.manifest.title if lesson.manifest else "")
                         or (_first_heading(lesson.lesson_readme) if lesson.lesson_readme else "")
-                        or _title_from_slug(lesson.slug) or f"Lesson {nn}")
+                        or words[:1].upper() + words[1:] or f"Lesson {nn}")
     return [lessons[nn] for nn in sorted(lessons)]
 
 
-# --- HTML --------------------------------------------------------------------------
+CSS = Path(__file__).with_name("index.css")
 
-CSS = """
-:root { --fg:#1d2330; --muted:#5b6475; --line:#dde2ea; --bg:#f6f7f9; --card:#fff; --accent:#1f5fbf; }
-* { box-sizing: border-box; }
-body { margin:0; font:15px/1.5 system-ui,-apple-system,"Segoe UI",Roboto,sans-serif; color:var(--fg); background:var(--bg); }
-header, main, footer { max-width: 1180px; margin: 0 auto; padding: 0 20px; }
-header { padding-top: 28px; }
-header h1 { margin: 0 0 4px; font-size: 28px; }
-header p { margin: 0; color: var(--muted); }
-nav.toc { margin: 16px 0 8px; display:flex; flex-wrap:wrap; gap:6px 14px; }
-nav.toc a { text-decoration:none; color:var(--accent); }
-a { color: var(--accent); }
-section.lesson { background:var(--card); border:1px solid var(--line); border-radius:10px; padding:18px 22px; margin:22px 0; }
-section.lesson h2 { margin:0 0 6px; font-size:21px; }
-section.lesson h2 .num { color:var(--muted); font-weight:500; margin-right:8px; }
-ul.links { list-style:none; padding:0; margin:0 0 14px; display:flex; flex-wrap:wrap; gap:4px 18px; }
-ul.links .missing { color:var(--muted); }
-ul.links a.raw { font-size:12px; color:var(--muted); }
-h3 { font-size:15px; text-transform:uppercase; letter-spacing:.04em; color:var(--muted); margin:18px 0 8px; }
-.figures { display:grid; grid-template-columns:repeat(auto-fill,minmax(220px,1fr)); gap:14px; }
-figure { margin:0; }
-.figures figure { border:1px solid var(--line); border-radius:8px; padding:8px; background:#fbfcfd; }
-.figures img { display:block; width:100%; height:180px; object-fit:contain; background:#eef0f3; border-radius:4px; }
-.figures img.pixel { image-rendering: pixelated; }
-figcaption { font-size:13px; color:var(--muted); margin-top:6px; }
-figcaption code, li code { font-size:12px; }
-.table-wrap { overflow-x:auto; margin-bottom:14px; }
-table { border-collapse:collapse; font-size:13px; font-variant-numeric: tabular-nums; }
-th, td { border:1px solid var(--line); padding:3px 9px; text-align:left; }
-th { background:#eef1f5; }
-td.right, th.right { text-align:right; } td.center, th.center { text-align:center; }
-ul.files { margin:0; padding-left:18px; }
-.note { color:var(--muted); font-style:italic; }
-.error { border-left:4px solid #c0392b; background:#fdf0ee; padding:8px 12px; white-space:pre-wrap; font-family:ui-monospace,monospace; font-size:13px; }
-footer { color:var(--muted); font-size:13px; padding-bottom:30px; }
-"""
-
-_KIND_LABEL = {
-    "hdr": "Radiance HDR image (linear radiance)",
-    "script": "script",
-    "text": "text",
-    "table": "CSV table",
-    "markdown": "Markdown table",
-    "image": "image",
-    "plot": "plot",
-    "mesh": "mesh (PLY or OBJ, per-vertex colours)",
-}
+_KIND_LABEL = {"hdr": "Radiance HDR image (linear radiance)", "table": "CSV table", "markdown": "Markdown table",
+               "mesh": "mesh (PLY or OBJ, per-vertex colours)"}
 
 
 def href(target: Path, base: Path) -> str:
@@ -213,10 +139,9 @@ def _read(path: Path) -> str:
 def rendered_page(source: Path, out: Path, text: Path) -> Path | None:
     """OUT/pages/<text>.html when the main job rendered the text (tools/gallery/texts.py), else None."""
     try:
-        rel = Path(text).resolve().relative_to(Path(source).resolve())
+        page = page_of(source, out, text)
     except ValueError:
         return None
-    page = Path(out) / "pages" / rel.with_suffix(".html")
     return page if page.is_file() else None
 
 
@@ -275,75 +200,70 @@ def _table_figure(caption_html: str, table_html: str, rows: int) -> str:
     return f"<figure><figcaption>{caption_html}</figcaption>{body}</figure>"
 
 
-def _outputs_html(lesson: Lesson, out: Path) -> str:
-    manifest, folder = lesson.manifest, lesson.output_dir
-    assert manifest is not None and folder is not None
-    by_file = {o.file: o for o in manifest.outputs}
-    present = [o for o in manifest.outputs if (folder / o.file).is_file()]
-    absent = [o for o in manifest.outputs if not (folder / o.file).is_file()]
-    used: set[str] = set()
-    figures, tables, files = [], [], []
+class _Outputs:
+    """A lesson's outputs as HTML: images and plots as thumbnails, tables rendered, other files as links."""
 
-    def sibling(o: Output, suffix: str, kinds: tuple[str, ...]) -> Output | None:
-        name = str(Path(o.file).with_suffix(suffix))
-        s = by_file.get(name)
-        return s if s is not None and s.kind in kinds and (folder / s.file).is_file() else None
+    def __init__(self, lesson: Lesson, out: Path):
+        self.folder, self.out = lesson.output_dir, out
+        self.outputs = lesson.manifest.outputs
+        self.by_file = {o.file: o for o in self.outputs}
+        self.used: set[str] = set()
 
-    for o in present:
-        if o.kind in ("image", "plot"):
-            url = href(folder / o.file, out)
-            size = png_size(folder / o.file)
-            dims = f' width="{size[0]}" height="{size[1]}"' if size else ""
-            pixel = ' class="pixel"' if size and max(size) <= 400 and o.kind == "image" else ""
-            extra = ""
-            script = sibling(o, ".gp", ("script",)) if o.kind == "plot" else None
-            if script:
-                used.add(script.file)
-                extra = f' · <a href="{href(folder / script.file, out)}">gnuplot script</a>'
-            figures.append(
-                f'<figure><a href="{url}"><img src="{url}" alt="{_e(o.caption or o.file)}"{dims}{pixel} '
+    def href(self, o: Output) -> str:
+        return href(self.folder / o.file, self.out)
+
+    def sibling(self, o: Output, suffix: str, kinds: tuple[str, ...]) -> Output | None:
+        s = self.by_file.get(str(Path(o.file).with_suffix(suffix)))
+        return s if s is not None and s.kind in kinds and (self.folder / s.file).is_file() else None
+
+    def figure(self, o: Output) -> str:
+        url, size = self.href(o), png_size(self.folder / o.file)
+        dims = f' width="{size[0]}" height="{size[1]}"' if size else ""
+        pixel = ' class="pixel"' if size and max(size) <= 400 and o.kind == "image" else ""
+        script = self.sibling(o, ".gp", ("script",)) if o.kind == "plot" else None
+        extra = f' · <a href="{self.href(script)}">gnuplot script</a>' if script else ""
+        self.used.update([o.file] + ([script.file] if script else []))
+        return (f'<figure><a href="{url}"><img src="{url}" alt="{_e(o.caption or o.file)}"{dims}{pixel} '
                 f'loading="lazy"></a><figcaption>{_e(o.caption)} <code>{_e(o.file)}</code>{extra}</figcaption>'
-                f"</figure>")
-            used.add(o.file)
-    for o in present:
-        if o.file in used:
-            continue
-        if o.kind == "markdown":
-            csv_out = sibling(o, ".csv", ("table",))
-            links = [f'<a href="{href(folder / o.file, out)}">Markdown</a>']
-            if csv_out:
-                used.add(csv_out.file)
-                links.insert(0, f'<a href="{href(folder / csv_out.file, out)}">CSV</a>')
-            cap = f"{_e(o.caption)} <code>{_e(o.stem)}</code> · " + " · ".join(links)
-            text = _read(folder / o.file)
-            table = markdown_table_html(text)
-            if table:
-                tables.append(_table_figure(cap, table, text.count("\n") - 2))
-                used.add(o.file)
-        elif o.kind == "table" and sibling(o, ".md", ("markdown",)) is None:
-            table = csv_table_html(_read(folder / o.file))
-            cap = f'{_e(o.caption)} · <a href="{href(folder / o.file, out)}">CSV</a>'
-            if table:
-                tables.append(f'<figure><figcaption>{cap}</figcaption><div class="table-wrap">{table}</div></figure>')
-                used.add(o.file)
-    for o in present:
-        if o.file in used:
-            continue
-        label = _KIND_LABEL.get(o.kind, o.kind)
-        caption = f" — {_e(o.caption)}" if o.caption else ""
-        files.append(f'<li><a href="{href(folder / o.file, out)}"><code>{_e(o.file)}</code></a>{caption} '
-                     f'<span class="note">({_e(label)})</span></li>')
-    for o in absent:
-        files.append(f'<li><code>{_e(o.file)}</code> <span class="note">(listed in manifest.json but missing)</span></li>')
+                "</figure>")
 
-    parts = []
-    if figures:
-        parts.append('<h3>Figures</h3><div class="figures">' + "\n".join(figures) + "</div>")
-    if tables:
-        parts.append("<h3>Tables</h3>" + "\n".join(tables))
-    if files:
-        parts.append('<h3>Other files</h3><ul class="files">' + "\n".join(files) + "</ul>")
-    return "\n".join(parts) or '<p class="note">The manifest lists no outputs.</p>'
+    def table(self, o: Output) -> str:
+        """A Markdown table (with a link to its CSV twin), or a CSV that has none; '' for neither."""
+        if o.kind == "markdown":
+            csv_out = self.sibling(o, ".csv", ("table",))
+            links = ([f'<a href="{self.href(csv_out)}">CSV</a>'] if csv_out else []) + [
+                f'<a href="{self.href(o)}">Markdown</a>']
+            self.used.update([csv_out.file] if csv_out else [])
+            text = _read(self.folder / o.file)
+            if table := markdown_table_html(text):
+                self.used.add(o.file)
+                return _table_figure(f"{_e(o.caption)} <code>{_e(o.stem)}</code> · " + " · ".join(links), table,
+                                     text.count("\n") - 2)
+        elif o.kind == "table" and self.sibling(o, ".md", ("markdown",)) is None:
+            if table := csv_table_html(_read(self.folder / o.file)):
+                self.used.add(o.file)
+                return (f'<figure><figcaption>{_e(o.caption)} · <a href="{self.href(o)}">CSV</a></figcaption>'
+                        f'<div class="table-wrap">{table}</div></figure>')
+        return ""
+
+    def html(self) -> str:
+        present = [o for o in self.outputs if (self.folder / o.file).is_file()]
+        figures = [self.figure(o) for o in present if o.kind in ("image", "plot")]
+        tables = [t for o in present if o.file not in self.used and (t := self.table(o))]
+        files = [f'<li><a href="{self.href(o)}"><code>{_e(o.file)}</code></a>'
+                 + (f" — {_e(o.caption)}" if o.caption else "")
+                 + f' <span class="note">({_e(_KIND_LABEL.get(o.kind, o.kind))})</span></li>'
+                 for o in present if o.file not in self.used]
+        files += [f'<li><code>{_e(o.file)}</code> <span class="note">(listed in manifest.json but missing)</span></li>'
+                  for o in self.outputs if o not in present]
+        parts = (['<h3>Figures</h3><div class="figures">' + "\n".join(figures) + "</div>"] if figures else []) + (
+            ["<h3>Tables</h3>" + "\n".join(tables)] if tables else []) + (
+            ['<h3>Other files</h3><ul class="files">' + "\n".join(files) + "</ul>"] if files else [])
+        return "\n".join(parts) or '<p class="note">The manifest lists no outputs.</p>'
+
+
+def _outputs_html(lesson: Lesson, out: Path) -> str:
+    return _Outputs(lesson, out).html()
 
 
 def _lab_section(out: Path) -> str:
@@ -396,7 +316,7 @@ def render_index(lessons: list[Lesson], out: Path, source: Path, note: str = "")
 <meta charset="utf-8">
 <meta name="viewport" content="width=device-width, initial-scale=1">
 <title>illum — lessons and outputs</title>
-<style>{CSS}</style>
+<style>{CSS.read_text(encoding="utf-8")}</style>
 </head>
 <body>
 <header>
@@ -420,9 +340,6 @@ def write_index(source: Path, out: Path, slides_dir: Path | None = None, note: s
     target = out / "index.html"
     atomic_write_text(target, render_index(lessons, out, Path(source), note))
     return target
-
-
-# --- link check --------------------------------------------------------------------
 
 
 class _Links(HTMLParser):

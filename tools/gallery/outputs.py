@@ -1,41 +1,22 @@
-"""A lesson program's output folder: its manifest.json and checks of each file.
-
-Every lesson program writes `manifest.json` into its --out folder:
-
-    {"id": "lesson01", "title": "Ray and sphere",
-     "outputs": [{"kind": "image", "file": "silhouette.png", "caption": "..."}, ...]}
-
-Each check below returns a list of problems (empty = fine) written for a
-person: what is wrong and, where it helps, what a good file looks like.
-"""
+"""A lesson program's output folder: its manifest.json (`{"id": "lesson01", "title": …, "outputs": [{"kind":
+"image", "file": "x.png", "caption": …}, …]}`) and a check of each file for its kind; each check returns
+the problems, written for a person (an empty list: fine)."""
 from __future__ import annotations
 
 import csv
 import io
 import json
 import re
-import struct
-import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .markdown_table import alignment, is_separator_cells, split_table_row
+from common import png
+from common.markdown import Table, parse_tables
 
-KINDS = ("image", "hdr", "table", "markdown", "plot", "script", "text", "mesh")
-# The extension each kind must have (None: any).
-KIND_EXTENSIONS = {
-    "image": (".png",),
-    "plot": (".png",),
-    "hdr": (".hdr",),
-    "table": (".csv",),
-    "markdown": (".md",),
-    "script": None,
-    "text": None,
-    "mesh": (".ply", ".obj"),
-}
-
-PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
-PNG_IEND = b"\x00\x00\x00\x00IEND\xaeB`\x82"
+# Each kind of output and the extensions its file must have (None: any).
+KIND_EXTENSIONS = {"image": (".png",), "hdr": (".hdr",), "table": (".csv",), "markdown": (".md",), "plot": (".png",),
+                   "script": None, "text": None, "mesh": (".ply", ".obj")}
+KINDS = tuple(KIND_EXTENSIONS)
 
 
 class ManifestError(Exception):
@@ -108,37 +89,18 @@ def load_manifest(folder: Path | str) -> Manifest:
     return Manifest(data["id"], data["title"], parsed)
 
 
-# --- checks of single files --------------------------------------------------------
-
-
 def check_png(path: Path) -> list[str]:
-    data = Path(path).read_bytes()
-    if not data.startswith(PNG_SIGNATURE):
-        return [f"{path.name}: not a PNG (the first 8 bytes are {data[:8]!r}, not the PNG signature)"]
-    if len(data) < 8 + 25:
-        return [f"{path.name}: truncated PNG ({len(data)} bytes, too short for an IHDR chunk)"]
-    length, chunk = struct.unpack(">I4s", data[8:16])
-    if chunk != b"IHDR" or length != 13:
-        return [f"{path.name}: the first PNG chunk is {chunk!r} of length {length}, expected IHDR of length 13"]
-    width, height = struct.unpack(">II", data[16:24])
-    problems = []
-    if width == 0 or height == 0:
-        problems.append(f"{path.name}: PNG has size {width}x{height}; both must be non-zero")
-    (crc,) = struct.unpack(">I", data[29:33])
-    if zlib.crc32(data[12:29]) & 0xFFFFFFFF != crc:
-        problems.append(f"{path.name}: the IHDR chunk's CRC does not match (corrupt file)")
-    if not data.endswith(PNG_IEND):
-        problems.append(f"{path.name}: PNG does not end with an IEND chunk (truncated: was it written atomically?)")
-    return problems
+    return [f"{path.name}: {p}" for p in png.problems(Path(path).read_bytes())]
 
 
 def png_size(path: Path) -> tuple[int, int] | None:
-    """(width, height) from the IHDR chunk, or None if the file is not a PNG."""
+    """(width, height), or None if the file is not a PNG."""
     with open(path, "rb") as f:
-        head = f.read(24)
-    if len(head) < 24 or not head.startswith(PNG_SIGNATURE) or head[12:16] != b"IHDR":
+        head = f.read(33)
+    try:
+        return png.size(head)
+    except png.PngError:
         return None
-    return struct.unpack(">II", head[16:24])
 
 
 _HDR_RESOLUTION = re.compile(rb"^[-+][YX] (\d+) [-+][XY] (\d+)$")
@@ -164,131 +126,68 @@ def check_hdr(path: Path) -> list[str]:
     return []
 
 
-def check_csv(path: Path) -> list[str]:
+def _utf8(path: Path) -> str | None:
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        return Path(path).read_text(encoding="utf-8")
     except UnicodeDecodeError:
+        return None
+
+
+def check_csv(path: Path) -> list[str]:
+    if (text := _utf8(path)) is None:
         return [f"{path.name}: not UTF-8 text"]
     try:
         rows = list(csv.reader(io.StringIO(text)))
     except csv.Error as e:
         return [f"{path.name}: not valid CSV: {e}"]
-    rows_with_line = [(i + 1, r) for i, r in enumerate(rows)]
-    problems = []
-    blank = [n for n, r in rows_with_line if not r]
-    if blank:
-        problems.append(f"{path.name}: blank line(s) at {', '.join(map(str, blank[:5]))}")
-    rows_with_line = [(n, r) for n, r in rows_with_line if r]
-    if not rows_with_line:
+    blank = [i + 1 for i, r in enumerate(rows) if not r]
+    numbered = [(i + 1, r) for i, r in enumerate(rows) if r]
+    problems = [f"{path.name}: blank line(s) at {', '.join(map(str, blank[:5]))}"] if blank else []
+    if not numbered:
         return [f"{path.name}: empty (a CSV needs a header line and at least one row)"]
-    _, header = rows_with_line[0]
+    header = numbered[0][1]
     if any(not h.strip() for h in header):
         problems.append(f"{path.name}: the header {header!r} has an empty column name")
-    if len(rows_with_line) < 2:
+    if len(numbered) < 2:
         problems.append(f"{path.name}: only a header, no data rows")
-    for n, row in rows_with_line[1:]:
-        if len(row) != len(header):
-            problems.append(f"{path.name}: line {n} has {len(row)} fields, the header has {len(header)}")
-            break
+    if ragged := next(((n, row) for n, row in numbered[1:] if len(row) != len(header)), None):
+        problems.append(f"{path.name}: line {ragged[0]} has {len(ragged[1])} fields, the header has {len(header)}")
     return problems
 
 
-@dataclass
-class MarkdownTable:
-    header: list[str]
-    align: list[str]  # "left", "right", "center" or "" per column
-    rows: list[list[str]]
-
-
-def parse_markdown_tables(text: str) -> tuple[list[MarkdownTable], list[str]]:
-    """Every pipe table in `text` and the problems found (line numbers are 1-based)."""
-    tables, problems = [], []
-    lines = text.splitlines()
-    i = 0
-    while i < len(lines):
-        if not lines[i].lstrip().startswith("|"):
-            i += 1
-            continue
-        start = i
-        block = []
-        while i < len(lines) and lines[i].lstrip().startswith("|"):
-            block.append(lines[i])
-            i += 1
-        if len(block) < 2:
-            problems.append(f"line {start + 1}: a table row with no separator line ('|---|---|') after it")
-            continue
-        header = split_table_row(block[0])
-        separator = split_table_row(block[1])
-        if not is_separator_cells(separator):
-            problems.append(f"line {start + 2}: expected the separator line ('|---|---|'), found {block[1].strip()!r}")
-            continue
-        if len(separator) != len(header):
-            problems.append(
-                f"line {start + 2}: the separator has {len(separator)} columns, the header has {len(header)}")
-            continue
-        align = [alignment(c) for c in separator]
-        rows = []
-        for k, line in enumerate(block[2:]):
-            cells = split_table_row(line)
-            if not line.rstrip().endswith("|"):
-                problems.append(f"line {start + 3 + k}: a table row must end with '|'")
-            if len(cells) != len(header):
-                problems.append(f"line {start + 3 + k}: {len(cells)} cells, the header has {len(header)}")
-            rows.append(cells)
-        if not rows:
-            problems.append(f"line {start + 1}: a table with a header but no rows")
-        if not block[0].rstrip().endswith("|"):
-            problems.append(f"line {start + 1}: the header row must end with '|'")
-        tables.append(MarkdownTable(header, align, rows))
-    return tables, problems
+def parse_markdown_tables(text: str) -> tuple[list[Table], list[str]]:
+    return parse_tables(text.splitlines())
 
 
 def check_markdown_table(path: Path) -> list[str]:
-    try:
-        text = Path(path).read_text(encoding="utf-8")
-    except UnicodeDecodeError:
+    if (text := _utf8(path)) is None:
         return [f"{path.name}: not UTF-8 text"]
     tables, problems = parse_markdown_tables(text)
-    problems = [f"{path.name}: {p}" for p in problems]
     if not tables and not problems:
-        problems.append(f"{path.name}: no Markdown table found (expected '| a | b |', '|---|---|', rows)")
-    return problems
+        return [f"{path.name}: no Markdown table found (expected '| a | b |', '|---|---|', rows)"]
+    return [f"{path.name}: {p}" for p in problems]
 
 
 def check_text(path: Path) -> list[str]:
-    try:
-        Path(path).read_text(encoding="utf-8")
-    except UnicodeDecodeError:
-        return [f"{path.name}: not UTF-8 text"]
-    return []
+    return [] if _utf8(path) is not None else [f"{path.name}: not UTF-8 text"]
 
 
 def check_mesh(path: Path) -> list[str]:
     """A PLY opens with 'ply' and a format line and closes its header; an OBJ is text with vertices."""
     data = Path(path).read_bytes()
     if path.suffix == ".ply":
-        if not data.startswith(b"ply\n") or b"\nformat " not in data[:64] or b"end_header\n" not in data:
-            return [f"{path.name}: not a PLY file (no 'ply', format line or end_header)"]
-        return []
+        ok = data.startswith(b"ply\n") and b"\nformat " in data[:64] and b"end_header\n" in data
+        return [] if ok else [f"{path.name}: not a PLY file (no 'ply', format line or end_header)"]
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError:
         return [f"{path.name}: not UTF-8 text"]
-    if not any(line.startswith("v ") for line in text.splitlines()):
-        return [f"{path.name}: an OBJ file without vertices"]
-    return []
+    return [] if any(line.startswith("v ") for line in text.splitlines()) else [
+        f"{path.name}: an OBJ file without vertices"]
 
 
-CHECKS = {
-    "image": check_png,
-    "plot": check_png,
-    "hdr": check_hdr,
-    "table": check_csv,
-    "markdown": check_markdown_table,
-    "script": check_text,
-    "text": check_text,
-    "mesh": check_mesh,
-}
+CHECKS = {"image": check_png, "plot": check_png, "hdr": check_hdr, "table": check_csv, "markdown": check_markdown_table,
+          "script": check_text, "text": check_text, "mesh": check_mesh}
 
 
 def check_output_folder(folder: Path | str, expected_id: str | None = None) -> list[str]:

@@ -1,21 +1,7 @@
-"""Checks that every plot a lesson program drew shows all its data.
-
-For each gnuplot script OUT/<folder>/<name>.gp the programs write beside
-their plots, gnuplot itself evaluates the plot into a table (`set table`):
-the points of every curve, as gnuplot reads them from the CSV files through
-the script's own row filters, each marked inside the ranges, outside or
-undefined, and the ranges it drew. A plot fails when
-
-* a curve drawn with lines has an undefined point (an infinity, a 1/0, a
-  non-positive value on a log axis): gnuplot breaks the line there, and a
-  series whose rows interleave with another's is drawn as loose points;
-* a curve drawn with lines alone has fewer than two points (it draws nothing);
-* a curve has no point at all (its rows were all filtered out);
-* a point lies outside the frame, or on it: within EDGE of the frame's
-  width or height (in decades on a log axis), where the border hides it.
-
-    python3 tools/check_plots.py OUT [OUT/lessonNN/x.gp ...]
-"""
+"""Every plot a lesson program drew shows all its data. gnuplot itself evaluates each OUT/*/NAME.gp (the
+script beside NAME.png) into a table of its curves' points and its ranges; a plot fails on a line broken by
+an undefined point, a curve with no point (or a line of one), or a point outside the frame or within EDGE
+of it (where the border hides it)."""
 from __future__ import annotations
 
 import math
@@ -46,38 +32,23 @@ class Curve:
 
 
 def _plot_clauses(script: str) -> list[str]:
-    """The clauses of the script's `plot` command (joined across its line continuations)."""
-    lines = script.splitlines()
-    for i, line in enumerate(lines):
-        if line.startswith("plot "):
-            command = line[5:]
-            j = i
-            while command.rstrip().endswith("\\") and j + 1 < len(lines):
-                j += 1
-                command = command.rstrip()[:-1] + " " + lines[j].strip()
-            # Split at commas outside quotes and parentheses.
-            clauses, depth, quote, current = [], 0, "", ""
-            for c in command:
-                if quote:
-                    current += c
-                    if c == quote:
-                        quote = ""
-                    continue
-                if c in "'\"":
-                    quote = c
-                elif c == "(":
-                    depth += 1
-                elif c == ")":
-                    depth -= 1
-                elif c == "," and depth == 0:
-                    clauses.append(current.strip())
-                    current = ""
-                    continue
-                current += c
-            if current.strip():
-                clauses.append(current.strip())
-            return clauses
-    return []
+    """The clauses of the script's `plot` command (its line continuations joined), split at the commas
+    outside quotes and parentheses."""
+    match = re.search(r"^plot (.*?)(?<!\\)$", re.sub(r"\\\n\s*", " ", script), re.M)
+    if not match:
+        return []
+    clauses, depth, quote, current = [], 0, "", ""
+    for c in match.group(1):
+        if quote or c in "'\"":
+            quote = "" if c == quote else quote or c
+        elif c in "()":
+            depth += 1 if c == "(" else -1
+        elif c == "," and depth == 0:
+            clauses.append(current.strip())
+            current = ""
+            continue
+        current += c
+    return clauses + ([current.strip()] if current.strip() else [])
 
 
 def evaluate(gp: Path, gnuplot: str) -> tuple[list[Curve], dict[str, float], dict[str, bool]]:

@@ -1,10 +1,5 @@
-"""The texts as pages: OUT/pages/X.html for each Markdown text X.md (render_texts.mjs).
-
-Node.js renders them with the repository's node_modules (markdown-it, KaTeX
-and highlight.js from package-lock.json; `npm ci`, done by tools/install-deps):
-nothing is fetched at run time, and the pages need no script to show their
-maths. `page_of` names the page of a text, for the gallery's index.
-"""
+"""The texts as pages: OUT/pages/X.html for each Markdown text X.md, rendered by render_texts.mjs with the
+repository's node_modules (markdown-it, KaTeX, highlight.js; `npm ci`): nothing fetched, no script needed."""
 from __future__ import annotations
 
 import shutil

@@ -438,16 +438,44 @@ def _read_results(path: Path) -> dict:
         return {}
 
 
-def _save_hidden_objects(build_dir: Path, into: Path) -> list[Path]:
-    """Copies the objects of tests_hidden (its own sources, not the shared support objects)."""
-    objects = sorted(p for p in (build_dir / "tests" / "CMakeFiles" / "tests_hidden.dir").rglob("*.o"))
-    into.mkdir(parents=True, exist_ok=True)
-    saved = []
-    for number, obj in enumerate(objects):
-        target = into / f"{number:02d}_{obj.name}"
-        shutil.copyfile(obj, target)
-        saved.append(target)
-    return saved
+def reference_environment() -> dict[str, str]:
+    """ccache off for the builds of the reference: no cache may keep an object of it after setup.
+    ILLUM_GRADE_REFERENCE_CCACHE=1 keeps it on, for the grader's own tests (a scratch machine)."""
+    if os.environ.get("ILLUM_GRADE_REFERENCE_CCACHE") == "1":
+        return dict(os.environ)
+    return dict(os.environ, CCACHE_DISABLE="1")
+
+
+def _build_witness(tree: Path, grader: Path, lessons: list[str], hidden: Path | None) -> None:
+    """The witness: the tests built with the reference units (in place of the stubs) in a tree only
+    root reads; its programs are kept in ``grader/witness``, and the hidden tests' observer objects
+    (their expected sides cut away) in ``grader/hidden-objects``, for every run to link with the
+    student's code. Nothing of it stays in the tree the student's user builds in."""
+    from . import build
+
+    work = grader / "witness-build"
+    programs = [f"tests_lesson{nn}" for nn in lessons if any((tree / "tests").glob(f"{nn}_*"))]
+    targets = programs + (["tests_hidden", "tests_hidden_observer"] if hidden else [])
+    build.set_runner(build.Runner(env=reference_environment(), timeout=None))
+    step = build.configure(tree, work, lessons, hidden)
+    if step.ok:
+        step = build.build(work, targets)
+    build.set_runner(build.Runner())
+    if not step.ok:
+        raise SetupError("the reference solutions and the tests did not build (see above)")
+    kept = grader / "witness"
+    kept.mkdir()
+    for name in programs + (["tests_hidden"] if hidden else []):
+        if (work / "bin" / name).is_file():
+            shutil.copy2(work / "bin" / name, kept / name)
+    if hidden:
+        objects = sorted((work / "tests" / "CMakeFiles" / "tests_hidden_observer_objects.dir").rglob("*.o"))
+        if not objects:
+            raise SetupError(f"the hidden tests' observer objects were not found in {work}")
+        (grader / "hidden-objects").mkdir()
+        for number, obj in enumerate(objects):
+            shutil.copyfile(obj, grader / "hidden-objects" / f"{number:02d}_{obj.name}")
+    shutil.rmtree(work)  # the reference's objects: no run may read them
 
 
 def _stub_symbols(tree: Path, build_dir: Path, lessons: list[str]) -> dict[str, str]:
@@ -516,36 +544,21 @@ def setup(root: Path, lessons: list[str]) -> None:
     # through the same sandbox as every submission's.
     common = ["--build-as-grader"] + (["--as-user", user] if user else [])
     with tempfile.TemporaryDirectory(prefix="illum-setup-") as folder:
-        print("\nsetup: building the stubs and the hidden tests (the warm build every submission starts from)",
+        print("\nsetup: building the witness (the tests with the reference solutions) where only root reads",
               flush=True)
-        stub_results = Path(folder) / "stubs.json"
-        _grade(tree, lessons, hidden, stub_results, common)
-        data = _read_results(stub_results)
-        if not data.get("tests"):
-            raise SetupError("the stubs could not be built or graded (see above): the tree or the hidden tests "
-                             "do not build on this image")
-        if data.get("score") != 0:
-            raise SetupError(f"the stubs scored {data.get('score')} (expected 0): the grading tests do not "
-                             "detect unwritten code")
-        hidden_objects = _save_hidden_objects(build_dir, grader / "hidden-objects") if hidden else []
-        if hidden is not None and not hidden_objects:
-            raise SetupError("the hidden tests were built but their objects were not found in "
-                             f"{build_dir}/tests/CMakeFiles/tests_hidden.dir")
-        if hidden is not None:
-            shutil.rmtree(hidden)  # compiled; no run may read them
-            print(f"setup: kept {len(hidden_objects)} hidden test object(s) where only root reads them; "
-                  "their sources are deleted", flush=True)
-
-        print("\nsetup: building and grading the reference solutions (they must score full marks)", flush=True)
         for unit in references:
             shutil.copyfile(unit, stubs[unit.name])
             stubs[unit.name].touch()
+        _build_witness(tree, grader, lessons, hidden)
+        if hidden is not None:
+            shutil.rmtree(hidden)  # compiled; no run may read them
+            print("setup: the hidden tests' sources are deleted", flush=True)
+
+        print("\nsetup: grading the reference solutions as a submission (they must score full marks)", flush=True)
         results = Path(folder) / "reference.json"
-        # ccache off: no cache may keep an object of the reference after setup.
-        reference_env = dict(os.environ, CCACHE_DISABLE="1")
         status = _grade(tree, lessons, None, results,
                         common + ["--grader-data", str(grader), "--save-tests", str(grader / "tests.json")],
-                        env=reference_env)
+                        env=reference_environment())
         data = _read_results(results)
         _restore_stubs(tree, pristine)
         shutil.rmtree(source / "reference")  # proved; no run may read them
@@ -559,13 +572,13 @@ def setup(root: Path, lessons: list[str]) -> None:
         print(f"setup: the reference scored {data['score']}/{data['max_score']} over {len(data['tests'])} tests; "
               "its units are deleted", flush=True)
 
-        print("\nsetup: the stubs again, as every submission will find them", flush=True)
-        stub_results = Path(folder) / "stubs-again.json"
+        print("\nsetup: the stubs, as every submission will find them (they must score 0)", flush=True)
+        stub_results = Path(folder) / "stubs.json"
         _grade(tree, lessons, None, stub_results, common + ["--grader-data", str(grader)])
         again = _read_results(stub_results)
         if again.get("score") != 0 or len(again.get("tests", [])) != len(data.get("tests", [])):
-            raise SetupError(f"the stubs graded with the kept test list scored {again.get('score')} over "
-                             f"{len(again.get('tests', []))} entries (expected 0 over {len(data['tests'])})")
+            raise SetupError(f"the stubs scored {again.get('score')} over {len(again.get('tests', []))} entries "
+                             f"(expected 0 over {len(data['tests'])}): the grading tests do not detect unwritten code")
     symbols = _stub_symbols(tree, build_dir, lessons)
     (grader / "stub-symbols.json").write_text(json.dumps(symbols, indent=1) + "\n", encoding="utf-8")
     (grader / "config.json").write_text(json.dumps({"user": user, "lessons": lessons}) + "\n", encoding="utf-8")

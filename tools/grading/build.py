@@ -1,12 +1,8 @@
-"""Configuring and building a grading tree with CMake.
+"""Configuring and building a grading tree with CMake, and blaming a failed build on the student's files.
 
-The driver grades the reference in its own tree (build/grade-reference), so
-that grading never disturbs a developer's build/release; a student's code in
-the student's own tree (build/student, configured as the `student` preset
-does, so that one cold build serves both); the autograder in
-build/grade-student. It builds only the test programs it runs: the lesson
-programs and the stub twins are not needed to grade.
-"""
+The reference is graded in its own tree (build/grade-reference), a student's code in the student's
+(build/student, as the preset configures it), the autograder's in build/grade-student; only the test
+programs graded are built."""
 from __future__ import annotations
 
 import os
@@ -15,9 +11,8 @@ import signal
 import subprocess
 import sys
 import threading
-import time
 from dataclasses import dataclass
-from pathlib import Path, PurePosixPath
+from pathlib import Path
 from typing import Sequence
 
 # A build's output is kept up to HEAD_BYTES from its start (the first error
@@ -57,11 +52,34 @@ def build_timeout_from_environment() -> float | None:
     return float(value) if value else None
 
 
+def _head_and_tail(stream, echo: bool) -> tuple[bytearray, bytearray, int]:
+    """The first HEAD_BYTES and the last TAIL_BYTES of a stream, and its length; the head echoed to stderr."""
+    head, tail, total = bytearray(), bytearray(), 0
+    while chunk := stream.read1(1 << 16):
+        total += len(chunk)
+        if len(head) < HEAD_BYTES:
+            room = HEAD_BYTES - len(head)
+            head += chunk[:room]
+            if echo:
+                sys.stderr.write(chunk[:room].decode("utf-8", errors="replace"))
+                sys.stderr.flush()
+            chunk = chunk[room:]
+        tail += chunk
+        del tail[:max(0, len(tail) - TAIL_BYTES)]
+    return head, tail, total
+
+
+def _kill_group(process: subprocess.Popen) -> None:
+    try:
+        os.killpg(process.pid, signal.SIGKILL)
+    except OSError:
+        pass
+
+
 def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = None,
                   runner: Runner | None = None) -> StepResult:
-    """Runs a command, echoing its output to stderr as it comes (a build takes
-    minutes; silence would look like a hang) and keeping its head and tail
-    for the report."""
+    """Runs a command, echoing its output to stderr as it comes (a build takes minutes; silence would look
+    like a hang) and keeping its head and tail for the report."""
     runner = runner or _runner
     if echo:
         print("$ " + " ".join(command), file=sys.stderr, flush=True)
@@ -72,51 +90,23 @@ def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = 
     except OSError as error:
         return StepResult(False, f"could not run {command[0]}: {error}")
     timed_out = threading.Event()
+    timer = threading.Timer(runner.timeout or 0, lambda: (timed_out.set(), _kill_group(process)))
+    timer.daemon = True
     if runner.timeout:
-        def stop() -> None:
-            timed_out.set()
-            try:
-                os.killpg(process.pid, signal.SIGKILL)
-            except OSError:
-                pass
-        timer = threading.Timer(runner.timeout, stop)
-        timer.daemon = True
         timer.start()
-    head, tail, total = bytearray(), bytearray(), 0
-    assert process.stdout is not None
-    while True:
-        chunk = process.stdout.read1(1 << 16) if hasattr(process.stdout, "read1") else process.stdout.read(1 << 16)
-        if not chunk:
-            break
-        total += len(chunk)
-        if len(head) < HEAD_BYTES:
-            room = HEAD_BYTES - len(head)
-            head += chunk[:room]
-            if echo:
-                sys.stderr.write(chunk[:room].decode("utf-8", errors="replace"))
-                sys.stderr.flush()
-            chunk = chunk[room:]
-        if chunk:
-            tail += chunk
-            if len(tail) > TAIL_BYTES:
-                del tail[:len(tail) - TAIL_BYTES]
+    head, tail, total = _head_and_tail(process.stdout, echo)
     status = process.wait()
-    if runner.timeout:
-        timer.cancel()
-    try:
-        os.killpg(process.pid, signal.SIGKILL)  # whatever the build left behind
-    except OSError:
-        pass
+    timer.cancel()
+    _kill_group(process)  # whatever the build left behind
     text = head.decode("utf-8", errors="replace")
-    if tail:
-        cut = total - len(head) - len(tail)
-        if cut > 0:
-            text += f"\n[... {cut} bytes of build output cut ...]\n"
-            if echo:
-                print(f"\n[... build output cut; {total} bytes in all ...]", file=sys.stderr, flush=True)
-        text += tail.decode("utf-8", errors="replace")
+    if total - len(head) - len(tail) > 0:
+        text += f"\n[... {total - len(head) - len(tail)} bytes of build output cut ...]\n"
+        if echo:
+            print(f"\n[... build output cut; {total} bytes in all ...]", file=sys.stderr, flush=True)
+    text += tail.decode("utf-8", errors="replace")
     if timed_out.is_set():
-        text += f"\nthe build did not finish within {runner.timeout:g} s and was stopped\n"
+        text += (f"\nthe build did not finish within {runner.timeout:g} s, the time limit of a build "
+                 "(ILLUM_GRADE_BUILD_TIMEOUT), and was stopped\n")
     return StepResult(status == 0 and not timed_out.is_set(), text, timed_out.is_set())
 
 

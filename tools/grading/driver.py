@@ -22,6 +22,7 @@ built, an output could not be written, or the command was wrong.
 from __future__ import annotations
 
 import argparse
+import errno
 import json
 import os
 import shutil
@@ -37,6 +38,11 @@ from .results import TestResult
 from .runner import deadline_from_environment, run_suite
 from .sandbox import Account, Limits, Sandbox, SandboxError
 
+try:  # tools/ is on the path (tools/grade, run_autograder's PYTHONPATH)
+    from path_options import path_argument
+except ImportError:  # pragma: no cover - the grading package used alone
+    path_argument = Path
+
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(
@@ -49,11 +55,11 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
                              "every lesson with tests otherwise)")
     parser.add_argument("--student", action="store_true",
                         help="build the named lessons' exercise units from exercises/ (your code)")
-    parser.add_argument("--results", type=Path, metavar="FILE", help="write Gradescope's results.json here")
-    parser.add_argument("--junit", type=Path, metavar="FILE", help="write JUnit XML here")
-    parser.add_argument("--hidden", type=Path, metavar="DIR",
+    parser.add_argument("--results", type=path_argument, metavar="FILE", help="write Gradescope's results.json here")
+    parser.add_argument("--junit", type=path_argument, metavar="FILE", help="write JUnit XML here")
+    parser.add_argument("--hidden", type=path_argument, metavar="DIR",
                         help="an instructor's folder of extra test files, reported as hidden")
-    parser.add_argument("--build-dir", type=Path, metavar="DIR",
+    parser.add_argument("--build-dir", type=path_argument, metavar="DIR",
                         help="build tree (default: with --student, build/student, the tree of the student "
                              "commands, configured as `cmake --preset student` does; else build/grade-reference)")
     parser.add_argument("--check-integrity", action="store_true",
@@ -62,28 +68,28 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--check-alone", action="store_true",
                         help="check an already-built reference tree (--build-dir): each lesson's grading tests "
                              "pass and its program runs with every other lesson's units as stubs")
-    parser.add_argument("--pack-autograder", type=Path, metavar="FILE.zip",
+    parser.add_argument("--pack-autograder", type=path_argument, metavar="FILE.zip",
                         help="write Gradescope's autograder zip for the named lessons")
     batch = parser.add_argument_group("grading a folder of submissions (docs/grading.md, \"Batch grading\")")
-    batch.add_argument("--batch", type=Path, metavar="DIR",
+    batch.add_argument("--batch", type=path_argument, metavar="DIR",
                        help="grade every student's folder or zip in DIR, each in isolation")
-    batch.add_argument("--out", type=Path, metavar="DIR",
+    batch.add_argument("--out", type=path_argument, metavar="DIR",
                        help="with --batch: where results go (default: DIR-grades beside DIR)")
     batch.add_argument("--jobs", type=int, metavar="J", default=None,
                        help="with --batch: students graded at once (default: 1 per 2 cores)")
-    batch.add_argument("--roster", type=Path, metavar="FILE.csv",
+    batch.add_argument("--roster", type=path_argument, metavar="FILE.csv",
                        help="with --batch: the class list (an id or e-mail column); students without a "
                             "submission are listed as missing")
     batch.add_argument("--format", choices=("moodle", "canvas"),
                        help="with --batch: also write the gradebook import file of Moodle or Canvas")
     batch.add_argument("--assignment", metavar="NAME", default="illum",
                        help="with --batch --format: the assignment's name in the gradebook (default: illum)")
-    batch.add_argument("--work-dir", type=Path, metavar="DIR", help=argparse.SUPPRESS)
-    parser.add_argument("--submission-info", type=Path, metavar="FILE", help=argparse.SUPPRESS)
-    parser.add_argument("--fallback-stubs", type=Path, metavar="DIR", help=argparse.SUPPRESS)
+    batch.add_argument("--work-dir", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
+    parser.add_argument("--submission-info", type=path_argument, metavar="FILE", help=argparse.SUPPRESS)
+    parser.add_argument("--fallback-stubs", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
     parser.add_argument("--as-user", metavar="NAME", help=argparse.SUPPRESS)
-    parser.add_argument("--grader-data", type=Path, metavar="DIR", help=argparse.SUPPRESS)
-    parser.add_argument("--save-tests", type=Path, metavar="FILE", help=argparse.SUPPRESS)
+    parser.add_argument("--grader-data", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
+    parser.add_argument("--save-tests", type=path_argument, metavar="FILE", help=argparse.SUPPRESS)
     parser.add_argument("--build-as-grader", action="store_true", help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     for option, path in (("--results", args.results), ("--junit", args.junit),
@@ -111,7 +117,7 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
         if not args.batch.is_dir():
             parser.error(f"--batch {args.batch}: " + ("not a folder (--batch takes the folder of the "
                                                      "submissions, each a folder or a zip)"
-                                                     if args.batch.exists() else "no such folder"))
+                                                     if args.batch.exists() else _no_folder(args.batch)))
         if args.jobs is not None and args.jobs < 1:
             parser.error(f"--jobs {args.jobs}: needs at least 1")
         if args.roster is not None and not args.roster.is_file():
@@ -143,6 +149,16 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
         if not any(args.hidden.glob("*.cpp")):
             parser.error(f"--hidden {args.hidden}: no .cpp test files there")
     return args
+
+
+def _no_folder(path: Path) -> str:
+    """Why nothing is at `path`: 'no such folder', or a link that leads back to itself (ELOOP)."""
+    try:
+        os.stat(path)
+    except OSError as error:
+        if error.errno == errno.ELOOP:
+            return "a symbolic link that leads back to itself (a link loop)"
+    return "no such folder"
 
 
 def output_path_problem(path: Path | None) -> str:
@@ -202,6 +218,7 @@ class GraderData:
         self.tests: dict[str, dict[str, list[dict]]] = {}
         self.stub_symbols: dict[str, str] = {}
         self.hidden_objects: list[Path] = []
+        self.witness_dir: Path | None = None
         if folder is None:
             return
         if not folder.is_dir():
@@ -213,11 +230,19 @@ class GraderData:
         if symbols.is_file():
             self.stub_symbols = json.loads(symbols.read_text(encoding="utf-8"))
         self.hidden_objects = sorted((folder / "hidden-objects").glob("*.o"))
+        self.witness_dir = folder / "witness" if (folder / "witness").is_dir() else None
 
     def expected(self, program: str, suite: str) -> list[dict] | None:
         if not self.tests:
             return None
         return self.tests.get(program, {}).get(suite, [])
+
+    def witness(self, program: str, suite: str) -> dict[runner.Key, list[dict]] | None:
+        """The checks the reference's trusted run made in each test (kept by setup), or None."""
+        listed = self.expected(program, suite)
+        if not listed or not all("checks" in t for t in listed):
+            return None
+        return {TestResult.from_json(t).key: t["checks"] for t in listed}
 
 
 # --- the build -----------------------------------------------------------------------------------
@@ -274,47 +299,37 @@ def _build_with_fallback(args: argparse.Namespace, run: GradeRun, build_dir: Pat
     return step
 
 
-def _scan_sources(args: argparse.Namespace, run: GradeRun, root: Path) -> None:
-    """The suspicious-code check of the student's files' text (suspicious.py), before anything compiles."""
-    for name, relative in _student_units(root, run.lessons).items():
+def _scan_sources(root: Path, run: GradeRun) -> list[str]:
+    """The suspicious-code check of the student's files' text (suspicious.py)."""
+    findings = []
+    for _name, relative in _student_units(root, run.lessons).items():
         path = root / relative
-        if not path.is_file():
-            continue
-        findings = suspicious.scan_source(path.read_text(encoding="utf-8", errors="replace"), relative)
-        if findings:
-            run.flagged[relative] = [f.describe() for f in findings]
-            if _fall_back(args, root, relative, compiled=False):
-                print(f"tools/grade: {relative} was flagged; grading its lesson with the stub", file=sys.stderr)
+        if path.is_file():
+            findings += [f.describe() for f in suspicious.scan_source(path.read_text(encoding="utf-8", errors="replace"),
+                                                                       relative)]
+    return findings
 
 
-def _scan_objects(args: argparse.Namespace, run: GradeRun, root: Path, build_dir: Path) -> list[str]:
-    """The suspicious-code check of the student's compiled files; returns the files flagged now."""
+def _scan_objects(root: Path, run: GradeRun, build_dir: Path) -> list[str]:
+    """The suspicious-code check of the student's compiled files."""
     units = _student_units(root, run.lessons)
     archive = next(iter(sorted(build_dir.glob("libillum.a"))), None)
     library = suspicious.library_definitions(archive, {f"{n}.o" for n in units}) if archive else {}
-    newly = []
-    for name, relative in units.items():
-        if relative in run.flagged or relative in run.fallbacks:
-            continue
-        obj = suspicious.object_of(build_dir, relative)
+    findings = []
+    for _name, relative in units.items():
+        obj = None if relative in run.fallbacks else suspicious.object_of(build_dir, relative)
         if obj is None:
             continue
         try:
-            findings = suspicious.scan_object(obj, relative, library)
+            findings += [f.describe() for f in suspicious.scan_object(obj, relative, library)]
         except OSError as error:
-            run.review.append(f"{relative}: the object file could not be checked: {error}")
-            continue
-        run.review.extend(f"{f.describe()}" for f in findings if not f.serious)
-        serious = [f.describe() for f in findings if f.serious]
-        if serious:
-            run.flagged[relative] = serious
-            newly.append(relative)
-            if _fall_back(args, root, relative):
-                print(f"tools/grade: {relative} was flagged; grading its lesson with the stub", file=sys.stderr)
-    return newly
+            findings.append(f"{relative}: the object file could not be checked: {error}")
+    return findings
 
 
-def _make_sandbox(args: argparse.Namespace) -> Sandbox:
+def _make_sandbox(args: argparse.Namespace, root: Path) -> Sandbox:
+    """The student's code runs apart from the grader's folder and the test sources (a program that
+    could read the visible tests while it runs could copy their expected values)."""
     limits = Limits.from_environment()
     if not args.as_user:
         return Sandbox(None, limits)
@@ -323,24 +338,25 @@ def _make_sandbox(args: argparse.Namespace) -> Sandbox:
         raise UsageError(f"--as-user {args.as_user}: no such user (setup.sh creates it)")
     if os.geteuid() != 0:
         raise UsageError(f"--as-user {args.as_user}: running code as another user needs root")
-    return Sandbox(account, limits)
+    hide = [str(root / "tests")] + ([str(args.grader_data.resolve())] if args.grader_data else [])
+    return Sandbox(account, limits, hide=hide)
 
 
-def _save_tests(path: Path, suites: list[tuple[str, runner.SuiteRun]]) -> None:
+def _save_tests(path: Path, suites: list[tuple[str, runner.SuiteRun, dict | None]]) -> None:
     """The trusted list of tests (from the reference, in setup): program -> suite -> the tests in
-    doctest's order, each with the values its ILLUM_CHECK_APPROX checks expect (grade_values.hpp)."""
+    doctest's order, each with the checks the witness made in it (visible tests only: the hidden
+    ones are witnessed again in every run, with that run's seed)."""
     saved: dict[str, dict[str, list[dict]]] = {}
-    for _lesson, suite in suites:
+    for _lesson, suite, witness in suites:
         tests = []
         for record in suite.listed:
             entry = {k: record.get(k) for k in ("suite", "name", "file", "line", "description")}
-            values = [v for v in suite.values.get(TestResult.from_json(record).key, [])
-                      if isinstance(v.get("expected"), (int, float)) and isinstance(v.get("epsilon"), (int, float))]
-            if values:
-                entry["values"] = [{"file": v.get("at_file"), "line": v.get("at_line"), "expected": v.get("expected"),
-                                    "epsilon": v.get("epsilon")} for v in values]
+            key = TestResult.from_json(record).key
+            if witness is not None and key in witness and "tests_hidden" not in suite.program.name:
+                entry["checks"] = witness[key]
             tests.append(entry)
-        saved.setdefault(suite.program.name, {})[suite.suite] = tests
+        name = suite.program.name.removesuffix("_observer")
+        saved.setdefault(name, {})[suite.suite] = tests
     reports.write_text(path, json.dumps(saved, indent=1) + "\n")
 
 
@@ -361,6 +377,135 @@ def build_tree(args: argparse.Namespace, root: Path, lessons: list[str]) -> tupl
     return build_dir, list(lessons)
 
 
+def _judged(args: argparse.Namespace, data: GraderData) -> bool:
+    """Whether verdicts come from the judge (a witness exists: the reference is in this tree, or setup
+    kept its records) rather than from the student's own program (their own machine only)."""
+    return not args.student or bool(data.tests) or data.witness_dir is not None
+
+
+def _targets(run: GradeRun, lessons: list[str], tested: set[str], judged: bool, witness_here: bool) -> list[str]:
+    programs = [f"tests_lesson{nn}" for nn in lessons if nn in tested]
+    if not judged:
+        return ["illum"] + programs
+    return ["illum"] + [f"{p}_observer" for p in programs] + (programs if witness_here else [])
+
+
+def _build_student_code(args: argparse.Namespace, run: GradeRun, root: Path, build_dir: Path, exercises: list[str],
+                        targets: list[str], sandbox: Sandbox, data: GraderData) -> build.StepResult:
+    """Configures and builds; a student's build runs as the student's user (the tree is theirs while it
+    compiles, and root's after)."""
+    build_home = None
+    if sandbox.account is not None and not args.build_as_grader:
+        build_dir.mkdir(parents=True, exist_ok=True)
+        sandbox.give_tree(build_dir)
+        build_home = sandbox.make_scratch()
+        build.set_runner(build.Runner(preexec=sandbox.build_preexec(),
+                                      env=sandbox.build_environment(build_home / "home"),
+                                      timeout=build.build_timeout_from_environment()))
+    else:
+        build.set_runner(build.Runner(timeout=build.build_timeout_from_environment()))
+    try:
+        hidden_objects = data.hidden_objects
+        step = build.configure(root, build_dir, exercises, None if hidden_objects else args.hidden,
+                               extra=build.hidden_objects_arguments(hidden_objects))
+        if step.ok:
+            # The visible tests first: an instructor's hidden tests that do not
+            # build must not cost the student the visible ones (nor blame them).
+            step = _build_with_fallback(args, run, build_dir, root, targets, data)
+    finally:
+        build.set_runner(build.Runner())
+        if build_home is not None:
+            sandbox.reap()
+            sandbox.take_tree(build_dir)
+            sandbox.remove_scratch(build_home)
+    return step
+
+
+def _build_hidden(run: GradeRun, build_dir: Path, judged: bool, witness_here: bool, sandbox: Sandbox) -> bool:
+    """Links the hidden tests' program(s), as the grader: their objects are readable by root only."""
+    targets = ["tests_hidden_observer"] + (["tests_hidden"] if witness_here else []) if judged else ["tests_hidden"]
+    step = build.build(build_dir, targets)
+    if not step.ok:
+        run.hidden_build_failed, run.hidden_build_output = True, step.output
+        return False
+    if sandbox.account is not None:
+        for name in targets:
+            (build_dir / "bin" / name).chmod(0o711)  # run by the student's user, never read
+    return True
+
+
+def _witness_run(data: GraderData, bin_dir: Path, program: str, suite: str, seed_env: dict[str, str],
+                 hidden: bool) -> tuple[runner.SuiteRun | None, dict | None, str]:
+    """The witness's checks for one suite: kept by setup (visible tests), or from running the trusted
+    build of the reference now, outside the student's sandbox, with this run's seed (hidden tests)."""
+    kept = data.witness(program, suite)
+    if kept is not None and not hidden:
+        return None, kept, ""
+    folder = data.witness_dir or bin_dir
+    trusted = Sandbox(None, Limits.from_environment(), private=False)
+    run = run_suite(folder / program, suite, hidden=hidden, role="witness", env=seed_env, sandbox=trusted,
+                    expected=data.expected(program, suite) if data.tests else None)
+    failed = [r.name for r in run.results if not r.passed]
+    if run.problem or failed:
+        return run, None, (f"the reference's run of {program} -ts={suite} failed (the grader's fault): "
+                           f"{run.problem or ', '.join(failed[:5])}")
+    return run, runner.witness_checks(run), ""
+
+
+def _run_planned(args: argparse.Namespace, run: GradeRun, data: GraderData, bin_dir: Path,
+                 planned: list[tuple[str, str, bool]], judged: bool) -> list:
+    """Runs every planned suite; with the judge, the witness first and then the student's observer."""
+    seed_env = {"ILLUM_GRADE_SEED": os.environ.get("ILLUM_GRADE_SEED") or str(int.from_bytes(os.urandom(4), "big"))}
+    ran = []
+    for lesson, program, hidden in planned:
+        suite_name = f"lesson{lesson}"
+        expected = data.expected(program, suite_name)
+        if expected == [] and hidden:
+            continue  # setup found no hidden test of this lesson
+        witness = None
+        if judged:
+            witness_suite, witness, problem = _witness_run(data, bin_dir, program, suite_name, seed_env, hidden)
+            if problem:
+                run.problems.append(problem)
+                run.review.append(problem)
+                continue
+            expected = witness_suite.listed if witness_suite is not None else expected
+            suite = run_suite(bin_dir / f"{program}_observer", suite_name, hidden=hidden, expected=expected,
+                              role="observer", env=seed_env if hidden else None)
+            run.review.extend(runner.judge_suite(suite, witness, hidden))
+        else:
+            suite = run_suite(bin_dir / program, suite_name, hidden=hidden, expected=expected)
+        ran.append((lesson, suite, witness))
+        _collect(run, lesson, suite)
+    return ran
+
+
+def _collect(run: GradeRun, lesson: str, suite: runner.SuiteRun) -> None:
+    # A doctest::skip() test is switched off by its author: it neither scores nor costs.
+    for skipped in (r for r in suite.results if r.skipped):
+        print(f"skipped, not graded: lesson{lesson}: {skipped.name}", file=sys.stderr)
+    run.results.extend(r for r in suite.results if not r.skipped)
+    run.review.extend(f"tampering: {t}" for t in suite.tampering)
+    if suite.problem:
+        run.problems.append(suite.problem)
+        if suite.output.strip():
+            print(suite.output[-4000:], file=sys.stderr)
+
+
+def _announce(sandbox: Sandbox, judged: bool) -> None:
+    """For the instructor's log: how far the separation goes here, and who forms the verdicts."""
+    if sandbox.account is not None:
+        print(f"tools/grade: the student's code runs as {sandbox.account.name}, "
+              + ("each test program in pid, mount and IPC namespaces of its own" if sandbox.private else
+                 "each test program in a pid namespace of its own" if sandbox.namespace else
+                 "each test program in a process group of its own (no namespaces here: unshare is not "
+                 "allowed, or ILLUM_GRADE_NO_PID_NAMESPACE=1); every process of the user is killed after it"),
+              file=sys.stderr)
+    print("tools/grade: " + ("verdicts by the judge, outside the programs that run the code graded (docs/grading.md)"
+                             if judged else "verdicts from the test programs themselves (your own machine)"),
+          file=sys.stderr)
+
+
 def grade(args: argparse.Namespace, root: Path) -> int:
     start = time.monotonic()
     check_lessons_exist(args, root)
@@ -374,94 +519,32 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     run = GradeRun(lessons=lessons, student=args.student)
     run.submission = args.submission
     try:
-        sandbox = _make_sandbox(args)
+        sandbox = _make_sandbox(args, root)
     except SandboxError as error:
         raise UsageError(str(error)) from error
     runner.set_sandbox(sandbox)
-    runner.set_trusted_run(bool(args.save_tests))
-    if sandbox.account is not None:  # for the instructor's log: how far the separation goes here
-        print(f"tools/grade: the student's code runs as {sandbox.account.name}, "
-              + ("each test program in a pid namespace of its own" if sandbox.namespace else
-                 "each test program in a process group of its own (no pid namespace here: unshare is not "
-                 "allowed, or ILLUM_GRADE_NO_PID_NAMESPACE=1); every process of the user is killed after it"),
-              file=sys.stderr)
+    judged = _judged(args, data)
+    witness_here = judged and data.witness_dir is None  # the reference is this tree's own library
+    _announce(sandbox, judged)
     tested = set(project.test_lessons(root))
-    hidden_objects = data.hidden_objects
-    has_hidden = bool(hidden_objects) or bool(project.hidden_sources(root, args.hidden))
+    has_hidden = bool(data.hidden_objects) or bool(project.hidden_sources(root, args.hidden))
     run.has_hidden = has_hidden
-
-    # The student's files: their text checked before anything compiles. ILLUM_GRADE_NO_SCAN=1 switches the
-    # checks off, for the grader's own tests of what the sandbox alone defends (never on a real autograder).
-    scanning = args.student and os.environ.get("ILLUM_GRADE_NO_SCAN") != "1"
-    if args.student and not scanning:
-        run.review.append("the suspicious-code checks were switched off (ILLUM_GRADE_NO_SCAN=1)")
-    if scanning:
-        _scan_sources(args, run, root)
-
-    build_home = None
-    if sandbox.account is not None and not args.build_as_grader:
-        # The build runs as the student's user: the tree is theirs while it compiles, and root's after.
-        build_dir.mkdir(parents=True, exist_ok=True)
-        sandbox.give_tree(build_dir)
-        build_home = sandbox.make_scratch()
-        build.set_runner(build.Runner(preexec=sandbox.build_preexec(),
-                                      env=sandbox.build_environment(build_home / "home"),
-                                      timeout=build.build_timeout_from_environment()))
-    else:
-        build.set_runner(build.Runner(timeout=build.build_timeout_from_environment()))
-    try:
-        step = build.configure(root, build_dir, exercises, None if hidden_objects else args.hidden,
-                               extra=build.hidden_objects_arguments(hidden_objects))
-        if step.ok:
-            # The visible tests first: an instructor's hidden tests that do not
-            # build must not cost the student the visible ones (nor blame them).
-            targets = ["illum"] + [f"tests_lesson{nn}" for nn in lessons if nn in tested]
-            step = _build_with_fallback(args, run, build_dir, root, targets, data)
-            if step.ok and scanning and _scan_objects(args, run, root, build_dir) and args.fallback_stubs:
-                step = _build_with_fallback(args, run, build_dir, root, targets, data)
-    finally:
-        build.set_runner(build.Runner())
-        if build_home is not None:
-            sandbox.reap()
-            sandbox.take_tree(build_dir)
-            sandbox.remove_scratch(build_home)
+    _advise(args, run, root, before_build=True)
+    targets = _targets(run, lessons, tested, judged, witness_here)
+    step = _build_student_code(args, run, root, build_dir, exercises, targets, sandbox, data)
+    if step.ok:
+        _advise(args, run, root, build_dir=build_dir)
     if step.ok and has_hidden:
-        # Linked by the grader itself: the hidden tests' objects are readable by root only.
-        hidden_step = build.build(build_dir, ["tests_hidden"])
-        if not hidden_step.ok:
-            run.hidden_build_failed, run.hidden_build_output = True, hidden_step.output
-            has_hidden = False
-        elif sandbox.account is not None:
-            (build_dir / "bin" / "tests_hidden").chmod(0o711)  # run by the student's user, never read
+        has_hidden = _build_hidden(run, build_dir, judged, witness_here, sandbox)
     if not step.ok:
-        run.build_failed, run.build_output = True, step.output
-        # Blame the student only for errors in their own files.
-        units = _student_units(root, lessons) if args.student else {}
-        run.blame_student = bool(args.student and (build.failed_exercise_files(step.output)
-                                                   or build.linker_blames(step.output, units, data.stub_symbols)
-                                                   or step.timed_out))
+        _build_failed(args, run, root, lessons, step, data)
     else:
         deadline_from_environment(start)
-        bin_dir = build_dir / "bin"
         planned = [(lesson, f"tests_lesson{lesson}", False) for lesson in lessons if lesson in tested]
         # The hidden tests last: nothing a student's code learns while they run can reach a visible result.
         planned += [(lesson, "tests_hidden", True) for lesson in lessons] if has_hidden else []
-        ran_suites = []
-        for lesson, program, hidden in planned:
-            expected = data.expected(program, f"lesson{lesson}")
-            if expected == [] and hidden:
-                continue  # setup found no hidden test of this lesson
-            suite = run_suite(bin_dir / program, f"lesson{lesson}", hidden=hidden, expected=expected)
-            ran_suites.append((lesson, suite))
-            # A doctest::skip() test is switched off by its author: it neither scores nor costs.
-            for skipped in (r for r in suite.results if r.skipped):
-                print(f"skipped, not graded: lesson{lesson}: {skipped.name}", file=sys.stderr)
-            run.results.extend(r for r in suite.results if not r.skipped)
-            run.review.extend(f"tampering: {t}" for t in suite.tampering)
-            if suite.problem:
-                run.problems.append(suite.problem)
-                if suite.output.strip():
-                    print(suite.output[-4000:], file=sys.stderr)
+        with sandbox.hidden_folders():
+            ran_suites = _run_planned(args, run, data, build_dir / "bin", planned, judged)
         if args.save_tests:
             _save_tests(args.save_tests, ran_suites)
     # Nothing of the student's may be alive, or left in the shared folders, when results are written.
@@ -470,18 +553,40 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     if survivors:
         run.review.append("processes of the student's user still alive at the end were killed: "
                           + ", ".join(survivors[:10]))
-    _fail_flagged_lessons(run)
     run.seconds = time.monotonic() - start
+    return _report(args, run, root)
 
+
+def _build_failed(args: argparse.Namespace, run: GradeRun, root: Path, lessons: list[str], step: build.StepResult,
+                  data: GraderData) -> None:
+    run.build_failed, run.build_output = True, step.output
+    # Blame the student only for errors in their own files.
+    units = _student_units(root, lessons) if args.student else {}
+    run.blame_student = bool(args.student and (build.failed_exercise_files(step.output)
+                                               or build.linker_blames(step.output, units, data.stub_symbols)
+                                               or step.timed_out))
+
+
+def _advise(args: argparse.Namespace, run: GradeRun, root: Path, before_build: bool = False,
+            build_dir: Path | None = None) -> None:
+    """The suspicious-code checks (suspicious.py): advice for the instructor's review, never a verdict.
+    ILLUM_GRADE_NO_SCAN=1 switches them off."""
+    if not args.student or os.environ.get("ILLUM_GRADE_NO_SCAN") == "1":
+        return
+    findings = _scan_sources(root, run) if before_build else _scan_objects(root, run, build_dir)
+    run.review.extend(findings)
+    if findings and not args.grader_data:  # the student's own machine: worth knowing before submitting
+        print("tools/grade: worth a second look (the autograder shows these to your instructor; they change no "
+              "score):\n  " + "\n  ".join(findings), file=sys.stderr)
+
+
+def _report(args: argparse.Namespace, run: GradeRun, root: Path) -> int:
     details = reports.failure_report(run, root)
     if details:
         print(details + "\n")
     if run.hidden_build_failed:
         print("tools/grade: the hidden tests did not build (the grader is misconfigured); the visible tests "
               "were graded. The linker's or compiler's messages are above.", file=sys.stderr)
-    for file, findings in run.flagged.items():
-        print(f"tools/grade: {file} was flagged, so its lesson was not graded:\n  " + "\n  ".join(findings),
-              file=sys.stderr)
     print(reports.score_table(run))
     summary = reports.failure_summary(run, root)
     if summary:
@@ -491,18 +596,6 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     if args.junit:
         reports.write_junit(args.junit, run, root)
     return reports.exit_code(run)
-
-
-def _fail_flagged_lessons(run: GradeRun) -> None:
-    """Every test of a flagged file's lesson fails, with the reason (suspicious.py)."""
-    for file, findings in run.flagged.items():
-        lesson = run.lesson_of(file)
-        reason = (f"not graded: {file} was flagged by the grader's checks ({findings[0]}"
-                  + (f"; and {len(findings) - 1} more" if len(findings) > 1 else "") + ")")
-        for result in run.results:
-            if result.lesson == lesson:
-                result.passed = False
-                result.note = reason
 
 
 def check_integrity(args: argparse.Namespace, root: Path) -> int:

@@ -1,25 +1,8 @@
-"""The student edition: the tracked tree without what students must not see.
-
-The instructor chooses the lessons to hand out (default: every lesson with
-exercises). Left out:
-* the reference source of every exercise unit of a lesson handed out --
-  ``lib/illum/**/<name>.cpp`` that has a twin ``exercises/NN_*/<name>.cpp``;
-  CMake builds the stub when the reference is absent;
-* ``exercises/NN_*/`` of every lesson *not* handed out: its units ship as
-  working reference code, so that the lessons handed out can use its results
-  (docs/grading.md, "Choosing the lessons to hand out");
-* ``tests/hidden/`` (an instructor's hidden tests) and ``tests/attacks/``
-  (hostile submissions the grader is tested with);
-* ``build/`` and ``out/`` (generated).
-A ``STUDENT_EDITION`` marker file tells CMake and the driver which tree
-they are in (no integrity check, no autograder packing there).
-
-The edition has a README of its own (``student_readme``: the lessons handed
-out, the student commands, the ``illum`` command and its lab; nothing for
-instructors), and every Markdown link to a file it leaves out is rewritten:
-to the stub, for a reference unit handed out, else to plain text
-(tools/check_student_edition.py checks that every link resolves).
-"""
+"""The student edition: the tracked tree without what students must not see (docs/grading.md, "The
+student edition"): the reference units of the lessons handed out, the exercises of the others (their
+units ship as working code), tests/hidden/, tests/attacks/, build/ and out/. It has a README of its own
+(student_readme.md.in) and every link to a file it leaves out is rewritten: to the stub for a reference
+unit handed out, else to plain text."""
 from __future__ import annotations
 
 import os
@@ -30,51 +13,113 @@ import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
 
-from .links import GENERATED, Link, resolve, rewrite_links
+from common.markdown import GENERATED, Link, link_problems, resolve, rewrite_links
+
+from .alone import declared_dependencies
 from .project import STUDENT_EDITION_MARKER
 
-_GENERATED = ("build", "out")
+README_TEMPLATE = Path(__file__).with_name("student_readme.md.in")
 
 
-def _git_toplevel(source: Path) -> Path | None:
+def _git(source: Path, *arguments: str) -> str | None:
+    """The output of `git -C source …`, or None where it fails or there is no git."""
     try:
-        completed = subprocess.run(["git", "-C", str(source), "rev-parse", "--show-toplevel"],
-                                   capture_output=True, text=True, check=False)
+        done = subprocess.run(["git", "-C", str(source), *arguments], capture_output=True, check=False)
     except OSError:
         return None
-    if completed.returncode != 0:
-        return None
-    return Path(completed.stdout.strip()).resolve()
-
-
-def _git_describe(source: Path) -> str:
-    completed = subprocess.run(["git", "-C", str(source), "describe", "--always", "--dirty"],
-                               capture_output=True, text=True, check=False)
-    return completed.stdout.strip() if completed.returncode == 0 else ""
+    return done.stdout.decode("utf-8", errors="replace") if done.returncode == 0 else None
 
 
 def tracked_files(source: Path) -> list[str]:
-    """POSIX paths relative to ``source``: ``git ls-files`` in a checkout (so
-    untracked experiments never leak to students), else every file."""
+    """POSIX paths relative to `source`: `git ls-files` in a checkout (untracked experiments never reach
+    students); else (no checkout, no git, or git refusing another user's checkout under sudo) the files
+    of the tree less what its .gitignore files ignore, as `git add -A` would take them."""
     source = source.resolve()
-    if _git_toplevel(source) == source:
-        completed = subprocess.run(["git", "-C", str(source), "ls-files", "-z"],
-                                   capture_output=True, check=True)
-        return sorted(p for p in completed.stdout.decode("utf-8").split("\0") if p)
-    files = []
+    top = _git(source, "rev-parse", "--show-toplevel")
+    listed = _git(source, "ls-files", "-z") if top and Path(top.strip()).resolve() == source else None
+    return sorted(p for p in listed.split("\0") if p) if listed is not None else _walk_files(source)
+
+
+def _glob_regex(glob: str) -> re.Pattern:
+    """gitignore(5)'s glob: `*` and `?` stop at a slash, `**` crosses folders, `[...]` a class."""
+    out, i = [], 0
+    rules = (("**/", "(?:.*/)?"), ("**", ".*"), ("*", "[^/]*"), ("?", "[^/]"))
+    while i < len(glob):
+        if glob.startswith("/**", i) and i + 3 == len(glob):
+            out.append("/.*")
+            i += 3
+        elif rule := next((r for r in rules if glob.startswith(r[0], i)), None):
+            out.append(rule[1])
+            i += len(rule[0])
+        elif glob[i] == "[" and "]" in glob[i + 2:]:
+            end = glob.index("]", i + 2)
+            body = glob[i + 1:end]
+            out.append("[" + ("^" + body[1:] if body[:1] == "!" else body) + "]")
+            i = end + 1
+        else:
+            escaped = glob[i] == "\\" and i + 1 < len(glob)
+            out.append(re.escape(glob[i + escaped]))
+            i += 1 + escaped
+    return re.compile("".join(out))
+
+
+def _read_ignores(folder: Path, base: str) -> list[tuple]:
+    """(base, pattern, negated, folders only, anchored) of each line of the folder's .gitignore."""
+    try:
+        lines = (folder / ".gitignore").read_text(encoding="utf-8").splitlines()
+    except (OSError, UnicodeDecodeError):
+        return []
+    ignores = []
+    for line in (raw.rstrip() for raw in lines):
+        if line and not line.startswith("#"):
+            negated = line.startswith("!")
+            line = line[1:] if negated or line.startswith("\\") else line
+            body = line.rstrip("/")
+            ignores.append((base, _glob_regex(body.lstrip("/")), negated, line.endswith("/"), "/" in body))
+    return ignores
+
+
+def _ignored(ignores: list[tuple], relative: str, is_folder: bool) -> bool:
+    verdict = False
+    for base, pattern, negated, folders_only, anchored in ignores:  # the last match decides, as in git
+        if (folders_only and not is_folder) or (base and not relative.startswith(base + "/")):
+            continue
+        path = relative[len(base) + 1:] if base else relative
+        if pattern.fullmatch(path if anchored else path.rsplit("/", 1)[-1]):
+            verdict = not negated
+    return verdict
+
+
+def _walk_files(source: Path) -> list[str]:
+    """The files under `source` its .gitignore files (at any depth) do not ignore; .git and the generated
+    folders at the top are never taken."""
+    files: list[str] = []
+    ignores_of: dict[str, list[tuple]] = {}
     for folder, subfolders, names in os.walk(source):
-        relative = Path(folder).relative_to(source)
-        subfolders[:] = [d for d in subfolders if not (relative == Path(".") and d in (".git", *_GENERATED))]
-        files.extend((relative / name).as_posix() for name in names)
+        relative = Path(folder).relative_to(source).as_posix().removeprefix(".")
+        parent = relative.rsplit("/", 1)[0] if "/" in relative else ""
+        ignores = ignores_of[relative] = (ignores_of.get(parent, []) if relative else []) + _read_ignores(
+            Path(folder), relative)
+        path = (lambda name: f"{relative}/{name}") if relative else (lambda name: name)
+        kept = []
+        for name in sorted(subfolders):
+            if name == ".git" or (not relative and name in GENERATED):
+                continue
+            if os.path.islink(os.path.join(folder, name)):  # git keeps a link as a file
+                files += [] if _ignored(ignores, path(name), False) else [path(name)]
+            elif not _ignored(ignores, path(name), True):
+                kept.append(name)
+        subfolders[:] = kept
+        # A worktree's .git is a file naming the repository.
+        files.extend(path(name) for name in names if name != ".git" and not _ignored(ignores, path(name), False))
     return sorted(files)
 
 
 def _stub_lesson(path: str) -> str | None:
-    """NN for ``exercises/NN_topic/<unit>.cpp``, else None."""
+    """NN for `exercises/NN_topic/<unit>.cpp`, else None."""
     parts = PurePosixPath(path).parts
-    if len(parts) == 3 and parts[0] == "exercises" and parts[1][:2].isdigit() and path.endswith(".cpp"):
-        return parts[1][:2]
-    return None
+    return parts[1][:2] if len(parts) == 3 and parts[0] == "exercises" and parts[1][:2].isdigit() \
+        and path.endswith(".cpp") else None
 
 
 def exercise_lessons_of(files: list[str]) -> list[str]:
@@ -82,16 +127,13 @@ def exercise_lessons_of(files: list[str]) -> list[str]:
 
 
 def excluded_files(files: list[str], handed_out: list[str] | None = None) -> dict[str, str]:
-    """Path -> reason, for every path of ``files`` the student edition leaves out.
-
-    ``handed_out``: the lessons whose exercises students get (None: all)."""
-    lessons = exercise_lessons_of(files)
-    handed = set(lessons if handed_out is None else handed_out)
+    """Path -> reason for every path of `files` the edition leaves out (`handed_out`: None for all lessons)."""
+    handed = set(exercise_lessons_of(files) if handed_out is None else handed_out)
     twins = {PurePosixPath(f).name for f in files if _stub_lesson(f) in handed}
     reasons = {}
     for f in files:
         parts = PurePosixPath(f).parts
-        if parts[0] in _GENERATED:
+        if parts[0] in GENERATED:
             reasons[f] = "generated"
         elif parts[:2] == ("tests", "hidden"):
             reasons[f] = "hidden test"
@@ -115,26 +157,29 @@ class Edition:
     notes: list[str] = field(default_factory=list)  # dependencies among the lessons handed out
 
 
+def _refusal(source: Path, out: Path) -> str:
+    """Why the edition may not be written to `out` ('' when it may): checked before anything is removed."""
+    if not (source / "lessons").is_dir():  # it would walk all of it (/tmp, or /)
+        return f"{source} is not an illum source tree (it has no lessons/ folder)"
+    # Inside the source tree only the generated folders are safe: elsewhere the edition would copy itself.
+    in_generated = any(out == source / g or source / g in out.parents for g in GENERATED)
+    if out == source or (source in out.parents and not in_generated):
+        return f"{out} lies inside the source tree; write the edition under build/ or elsewhere"
+    if out.exists() and not out.is_dir():
+        return f"{out} exists and is not a folder; refusing to replace it"
+    if out.exists() and any(out.iterdir()) and not (out / STUDENT_EDITION_MARKER).exists():
+        return f"{out} exists and is not a student edition; refusing to replace it"
+    return ""
+
+
 def make_student_edition(source: Path, out: Path, handed_out: list[str] | None = None) -> Edition:
-    """Writes the student edition of ``source`` to ``out`` (replacing an earlier one),
-    handing out the exercises of ``handed_out`` (None: every lesson with exercises)."""
+    """Writes the edition of `source` to `out` (replacing an earlier one), handing out the exercises of
+    `handed_out` (None: every lesson with exercises)."""
     if out.is_symlink():  # its target would be replaced, or written, through the link
         raise ValueError(f"{out} is a symbolic link; refusing to write through it (give the folder itself)")
     source, out = source.resolve(), out.resolve()
-    # Everything is checked before an earlier edition is removed or a file written. A folder
-    # without lessons/ is no source tree: reading it would walk all of it (/tmp, or /).
-    if not (source / "lessons").is_dir():
-        raise ValueError(f"{source} is not an illum source tree (it has no lessons/ folder)")
-    # Inside the source tree, only the generated folders are safe: anywhere
-    # else the edition would be copied into itself next time.
-    in_generated = any(out == source / g or source / g in out.parents for g in _GENERATED)
-    if out == source or (source in out.parents and not in_generated):
-        raise ValueError(f"{out} lies inside the source tree; write the edition under build/ or elsewhere")
-    if out.exists():
-        if not out.is_dir():
-            raise ValueError(f"{out} exists and is not a folder; refusing to replace it")
-        if any(out.iterdir()) and not (out / STUDENT_EDITION_MARKER).exists():
-            raise ValueError(f"{out} exists and is not a student edition; refusing to replace it")
+    if refusal := _refusal(source, out):
+        raise ValueError(refusal)
     files = tracked_files(source)
     lessons = exercise_lessons_of(files)
     unknown = sorted(set(handed_out or []) - set(lessons))
@@ -144,8 +189,8 @@ def make_student_edition(source: Path, out: Path, handed_out: list[str] | None =
     chosen = lessons if handed_out is None else sorted(set(handed_out))
     if not chosen:
         raise ValueError("no lesson to hand out")
-    # Written into a new folder beside `out` and renamed into place at the end: an interrupted or
-    # failed run leaves the earlier edition (or nothing) as it was, never half of a new one.
+    # Written beside `out` and renamed into place at the end: an interrupted or failed run leaves the
+    # earlier edition (or nothing) as it was, never half of a new one.
     out.parent.mkdir(parents=True, exist_ok=True)
     staging = Path(tempfile.mkdtemp(prefix=f".{out.name}.new.", dir=out.parent))
     umask = os.umask(0)
@@ -153,14 +198,12 @@ def make_student_edition(source: Path, out: Path, handed_out: list[str] | None =
     staging.chmod(0o777 & ~umask)  # mkdtemp's 0700 would become the edition's own mode
     try:
         edition = _write_edition(source, staging, files, lessons, chosen)
-        if out.exists():  # an earlier edition (its marker says so), now that nothing is left to refuse
-            old = Path(tempfile.mkdtemp(prefix=f".{out.name}.old.", dir=out.parent))
-            old.rmdir()
+        old = Path(tempfile.mkdtemp(prefix=f".{out.name}.old.", dir=out.parent))
+        old.rmdir()
+        if out.exists():  # an earlier edition (its marker says so)
             out.rename(old)
-            staging.rename(out)
-            shutil.rmtree(old)
-        else:
-            staging.rename(out)
+        staging.rename(out)
+        shutil.rmtree(old, ignore_errors=True)
     finally:
         if staging.exists():
             shutil.rmtree(staging)
@@ -169,28 +212,18 @@ def make_student_edition(source: Path, out: Path, handed_out: list[str] | None =
 
 
 def _write_edition(source: Path, out: Path, files: list[str], lessons: list[str], chosen: list[str]) -> Edition:
-    """The edition's files in the empty folder ``out``, its marker last."""
-    from .alone import declared_dependencies
-
-    left_out = excluded_files(files, chosen)
-    edition = Edition(out, left_out=left_out, handed_out=chosen)
+    """The edition's files in the empty folder `out`, its marker last."""
+    edition = Edition(out, left_out=excluded_files(files, chosen), handed_out=chosen)
     for lesson in chosen:
-        needed = [d for d in declared_dependencies(lesson, source) if d in chosen]
-        if needed:
+        if needed := [d for d in declared_dependencies(lesson, source) if d in chosen]:
             edition.notes.append(f"lesson {lesson} builds on lesson {', '.join(needed)}, also handed out: its "
                                  f"program and tests need the students' lesson {', '.join(needed)} code first")
-    kept = {f for f in files if f not in left_out and (source / f).is_file()}
-    # Where a link to an exercise unit goes in the edition: the stub of a lesson handed out, the
-    # reference (kept as working code) of a lesson that is not.
+    kept = {f for f in files if f not in edition.left_out and (source / f).is_file()}
+    # Where a link to an exercise unit goes: the stub of a lesson handed out, else the reference (working code).
     twins = {PurePosixPath(f).name: f for f in kept if f.startswith("lib/") and f.endswith(".cpp")}
     twins.update({PurePosixPath(f).name: f for f in kept if _stub_lesson(f) in chosen})
-    for relative in files:
-        if relative in left_out:
-            continue
-        origin = source / relative
-        if not origin.is_file():  # deleted in the working tree but still tracked
-            continue
-        target = out / relative
+    for relative in sorted(kept):
+        origin, target = source / relative, out / relative
         target.parent.mkdir(parents=True, exist_ok=True)
         if relative == "README.md":
             target.write_text(student_readme(source, files, chosen), encoding="utf-8")
@@ -201,57 +234,49 @@ def _write_edition(source: Path, out: Path, files: list[str], lessons: list[str]
         else:
             shutil.copy2(origin, target)
         edition.copied += 1
-    version = _git_describe(source)
+    version = (_git(source, "describe", "--always", "--dirty") or "").strip()
     given = [nn for nn in lessons if nn not in chosen]
     (out / STUDENT_EDITION_MARKER).write_text(
-        "This is the student edition of illum"
-        + (f", made from {version}" if version else "")
+        "This is the student edition of illum" + (f", made from {version}" if version else "")
         + f".\nExercises handed out: lessons {', '.join(chosen)}.\n"
         + (f"Lessons {', '.join(given)} are not exercises here: their units are working reference code.\n"
            if given else "")
         + "The reference solutions of the exercises handed out and the instructors' hidden tests are not part\n"
         "of it; the exercise stubs in exercises/ are built in their place. Grade your work with\n"
-        "    tools/grade --student NN\n"
-        "(see docs/grading.md).\n", encoding="utf-8")
+        "    tools/grade --student NN\n(see docs/grading.md).\n", encoding="utf-8")
     return edition
 
 
-# --- the edition's own texts ---------------------------------------------------------------------
-
-def _edition_links(text: str, out: Path, file: Path, kept: set[str], stubs: dict[str, str]) -> str:
-    """``text`` with every link to a file or folder the edition leaves out rewritten: a reference
-    unit handed out points to its stub (what the student edits); anything else keeps its words,
-    unlinked. ``kept``: the files (and so the folders) the edition holds."""
+def _edition_links(text: str, out: Path, file: Path, kept: set[str], twins: dict[str, str]) -> str:
+    """`text` with every link to what the edition leaves out rewritten: a unit's link to its twin (the stub
+    where handed out, else the reference), anything else to its words."""
 
     def replace(link: Link) -> str | None:
-        if link.external:
+        path = link.split()[0]
+        target = resolve(out, file, path) if path and not link.external else None
+        key = target.as_posix() if target is not None else ""
+        if target is None or target.parts[:1] and target.parts[0] in GENERATED or key == "." or key in kept \
+                or any(f.startswith(key + "/") for f in kept):
             return None
-        path, _anchor = link.split()
-        target = resolve(out, file, path) if path else None
-        if target is None:
-            return None
-        key = target.as_posix()
-        if target.parts and target.parts[0] in GENERATED:
-            return None  # written by the programs or the build
-        if key == "." or key in kept or any(f.startswith(key + "/") for f in kept):
-            return None
-        # A unit's file: the stub where the lesson is handed out, the reference where it is not.
-        twin = stubs.get(target.name) if target.suffix == ".cpp" else None
-        if twin is not None:
-            here = PurePosixPath(file.relative_to(out).as_posix()).parent
-            return f"{'!' if link.image else ''}[{link.text}]({_relative(twin, here)})"
-        return link.text
+        twin = twins.get(target.name) if target.suffix == ".cpp" else None
+        if twin is None:
+            return link.text
+        here = PurePosixPath(file.relative_to(out).as_posix()).parent.as_posix() or "."
+        return f"{'!' if link.image else ''}[{link.text}]({os.path.relpath(twin, here).replace(os.sep, '/')})"
 
     return rewrite_links(text, replace)
 
 
-def _relative(path: str, start: PurePosixPath) -> str:
-    """``path`` (from the tree's root) relative to the folder ``start``."""
-    return os.path.relpath(path, start.as_posix() or ".").replace(os.sep, "/")
+def broken_links(tree: Path) -> list[str]:
+    """Every link of the tree's Markdown files that does not resolve (out/ and build/ may be missing)."""
+    tree = tree.resolve()
+    files = [f for f in sorted(tree.rglob("*.md")) if f.relative_to(tree).parts[0] not in GENERATED + ("node_modules",)
+             and "fixtures" not in f.relative_to(tree).parts]  # test data, broken on purpose
+    return link_problems(tree, files, generated_ok=True)[0]
 
 
 def _lesson_titles(source: Path, files: list[str], folder: str) -> dict[str, tuple[str, str]]:
-    """NN -> (path of the folder's README, its title without "Lesson NN —") for lessons/ or exercises/."""
+    """NN -> (the folder's README, its title without "Lesson NN —") for lessons/ or exercises/."""
     titles = {}
     for f in files:
         parts = PurePosixPath(f).parts
@@ -262,123 +287,25 @@ def _lesson_titles(source: Path, files: list[str], folder: str) -> dict[str, tup
     return titles
 
 
-def _student_commands(source: Path) -> str:
-    """The student build commands, as the top-level README holds them (tools/task_tables.py writes
-    the block), so that the edition's README shows the same set."""
-    text = (source / "README.md").read_text(encoding="utf-8")
-    match = re.search(r"<!-- student-commands: begin[^>]*-->\n(.*?)<!-- student-commands: end -->", text, re.S)
+def student_readme(source: Path, files: list[str], handed_out: list[str]) -> str:
+    """The edition's README (student_readme.md.in): what the students got, and how to build, test, see
+    and grade their code, with the student commands of the top README (tools/task_tables.py writes them)."""
+    match = re.search(r"<!-- student-commands: begin[^>]*-->\n(.*?)<!-- student-commands: end -->",
+                      (source / "README.md").read_text(encoding="utf-8"), re.S)
     if not match:
         raise ValueError("README.md has no student-commands block (tools/task_tables.py --update writes it)")
-    return match.group(1).strip()
-
-
-def student_readme(source: Path, files: list[str], handed_out: list[str]) -> str:
-    """The README of the student edition: what the students got, and how to build, test, see and
-    grade their code. Every link points into the edition (tools/check_student_edition.py checks)."""
-    lessons = _lesson_titles(source, files, "lessons")
-    exercises = _lesson_titles(source, files, "exercises")
-    slides = {PurePosixPath(f).name[:2]: f for f in files
-              if PurePosixPath(f).parent.as_posix() == "slides" and f.endswith(".md") and PurePosixPath(f).name[:2].isdigit()}
-    rows = []
-    for nn in sorted(lessons):
-        text, title = lessons[nn]
-        exercise = (f"[exercise {nn}]({exercises[nn][0]}) (yours to write)" if nn in handed_out and nn in exercises
-                    else "not handed out: its code is in `lib/` as working reference code")
-        deck = f"[slides]({slides[nn]})" if nn in slides else ""
-        rows.append(f"| {nn} | [{title}]({text}) | {exercise} | {deck} |")
+    lessons, exercises = _lesson_titles(source, files, "lessons"), _lesson_titles(source, files, "exercises")
+    slides = {PurePosixPath(f).name[:2]: f for f in files if PurePosixPath(f).parent.as_posix() == "slides"
+              and f.endswith(".md") and PurePosixPath(f).name[:2].isdigit()}
+    rows = [f"| {nn} | [{lessons[nn][1]}]({lessons[nn][0]}) | "
+            + (f"[exercise {nn}]({exercises[nn][0]}) (yours to write)" if nn in handed_out and nn in exercises
+               else "not handed out: its code is in `lib/` as working reference code")
+            + f" | {f'[slides]({slides[nn]})' if nn in slides else ''} |" for nn in sorted(lessons)]
     given = [nn for nn in sorted(lessons) if nn not in handed_out]
-    commands = _student_commands(source)
-    first = handed_out[0] if handed_out else "NN"
-    # Prose only: the first ```sh block of the section is the student block check_student_edition reads.
-    other_systems = "" if ".devcontainer/Dockerfile" not in files else """On Windows or macOS, work inside the development container
-(`.devcontainer/`: Debian 12 with every package the build needs already
-installed): with Docker Desktop and VS Code's Dev Containers
-extension, open this folder and choose *Reopen in Container*; without VS
-Code, run `docker build -f .devcontainer/Dockerfile -t illum-dev .` and then
-`docker run --rm -it --shm-size=1g -v "$PWD":/workspaces/illum -w
-/workspaces/illum illum-dev` in this folder (podman takes the same
-arguments), and type the commands below in the shell it opens. On Windows,
-WSL 2 with Debian works as well (`wsl --install -d Debian`): keep this folder
-in Linux's file system (e.g. `~/illum`, not under `/mnt/c`).
-
-"""
-    return f"""# illum — student edition
-
-illum is a course toolkit that teaches global illumination the way the
-course notes *Tema 4. Modelos de Iluminación Global* do: backward ray
-tracing, the ray tree and the structures that make it cheap, then
-radiosity, form factors, the hemicube, the solvers and vertex colours.
-Each lesson has a text, a program that draws its figures, an exercise and
-the tests that grade it. This copy is yours: the exercises of lessons
-{", ".join(handed_out)} are handed out{"" if not given else " (lessons " + ", ".join(given) + " are working code you can read and use)"};
-their reference solutions are not here.
-
-## Your lessons
-
-| # | lesson text | exercise | slides |
-|---|---|---|---|
-{chr(10).join(rows)}
-
-Read a lesson's text first, then its exercise's README (Build and test ·
-Tasks · Hints · Grading), and write the functions of
-`exercises/NN_topic/*.cpp`. Each stub throws `NotImplemented` with a hint
-until you write it. The errata of the course notes that the texts cite are
-in [docs/errata.md](docs/errata.md).
-
-## Build, test and grade your code
-
-{other_systems}On Debian 12 (or Ubuntu 22.04), install what the build needs once with
-`tools/install-deps` (it asks for `sudo`). Then, with NN the lesson's number
-(e.g. {first}):
-
-{commands}
-
-* **The first build** compiles the whole library with your files: about a
-  minute for one lesson's tests and program on two cores, twice that on a
-  slow machine (less when `ccache` is installed and has seen these
-  sources). After that, a change to one of your files recompiles that file
-  and relinks: a few seconds.
-* **The tests** say, for each failed check, what they computed and what
-  they expected, and the mathematics behind it. A test that runs longer
-  than the grader allows one (60 s; `ILLUM_GRADE_TEST_TIMEOUT` changes it)
-  is stopped with a message naming it: a loop in your code that never ends.
-* **`tools/grade --student NN`** builds in the same `build/student` tree and
-  prints your score as the autograder computes it, then each failed test's
-  first failing check. It also checks your files as the autograder does
-  (an exercise only computes: no files, no processes, no `exit()`) and says
-  what it finds ([docs/grading.md](docs/grading.md#students)).
-* Each exercise's README ends with what to upload to the autograder.
-
-## See your code at work: the `illum` command and the lab
-
-Your build has a command line, `illum`, that runs your code on the shipped
-scenes (`build/student/bin/illum --help` lists its commands):
-
-```sh
-cmake --build --preset student --target illum_cli                        # once, and after each change
-build/student/bin/illum scenes                                           # the scenes you can name
-build/student/bin/illum render whitted --out out/whitted                 # a picture, drawn by your evaluate
-build/student/bin/illum trace whitted --pixel 300 160 --out out/tree     # one pixel's ray tree: JSON, drawing
-build/student/bin/illum lab whitted                                      # the lab: open http://127.0.0.1:8642/
-```
-
-The lab ([docs/lab.md](docs/lab.md)) is a local web page (on 127.0.0.1
-only; Ctrl-C stops it): click a pixel and see the ray tree your `evaluate`
-casts (lesson 06), each leaf saying why it stops; step radiosity one shot
-at a time with your solvers (lesson 11); place the hemicube on any patch
-with your delta form factors (lesson 10); and hold the pictures your lesson
-programs drew in `out/lessonNN/` against the reference images of the
-texts. A function you have not written yet is named in the page.
-
-## Where things are
-
-| path | what lives there |
-|---|---|
-| `exercises/NN_topic/` | your exercises: the tasks (README) and the files you write |
-| `lessons/NN_topic/` | the lesson texts and the programs that draw their figures |
-| `lib/illum/` | the shared library your files are part of; each header states the contract of every function you write |
-| `tests/NN_topic/` | the grading tests (suite `lessonNN`) |
-| `slides/` | one slide deck per lesson |
-| `scenes/` | the scenes the programs and `illum` load ([docs/scene-format.md](docs/scene-format.md)) |
-| `docs/` | how the toolkit is built, the scene format, grading, the lab |
-"""
+    text = README_TEMPLATE.read_text(encoding="utf-8")
+    # The paragraph on Windows and macOS only where the development container is part of the tree.
+    keep = ".devcontainer/Dockerfile" in files
+    text = re.sub(r"<!-- if devcontainer -->\n(.*?)<!-- end if -->\n", r"\1" if keep else "", text, flags=re.S)
+    return text.format(handed_out=", ".join(handed_out), rows="\n".join(rows), commands=match.group(1).strip(),
+                       first=handed_out[0] if handed_out else "NN",
+                       given=f" (lessons {', '.join(given)} are working code you can read and use)" if given else "")

@@ -13,6 +13,12 @@ For every ``tests_lessonNN`` of an already-built tree, suite ``lessonNN``:
 
 The instructor's hidden tests (``tests_hidden`` / ``tests_hidden_stubs``)
 are held to the same rules, suite by suite.
+
+Where the tree has the observer builds (``tests_lessonNN_observer`` and
+``_observer_stubs``: a reference tree), the same rules hold again for the
+verdicts of the judge (docs/grading-defences.md): every test passes when the
+reference's observations are judged against its witness, and fails with
+``NotImplemented`` when the stubs' are.
 """
 from __future__ import annotations
 
@@ -21,7 +27,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .results import TestResult
-from .runner import list_suites, run_suite
+from .runner import judge_suite, list_suites, run_suite, witness_checks
 
 _PROGRAM = re.compile(r"tests_lesson(\d\d)")
 
@@ -73,6 +79,24 @@ def check_pair(label: str, reference: list[TestResult], stubs: list[TestResult],
     return problems
 
 
+def judged_pair(witness_program: Path, suite: str, hidden: bool = False) -> tuple[str, list[str]]:
+    """The same rules for the judge's verdicts: the reference's observer and the stubs' observer,
+    each judged against the witness. ('' and no problem when the tree has no observer builds.)"""
+    observer = witness_program.with_name(witness_program.name + "_observer")
+    observer_stubs = witness_program.with_name(witness_program.name + "_observer_stubs")
+    if not (observer.is_file() and observer_stubs.is_file()):
+        return "", []
+    witness = run_suite(witness_program, suite, hidden=hidden, role="witness")
+    checks = witness_checks(witness)
+    runs = [run_suite(program, suite, hidden=hidden, expected=witness.listed, role="observer")
+            for program in (observer, observer_stubs)]
+    problems = [f"{suite}: {r.problem}" for r in [witness, *runs] if r.problem]
+    for run in runs:
+        problems += [f"{suite}: {p}" for p in judge_suite(run, checks, hidden)]
+    problems += check_pair(f"{observer.name} [{suite}], judged", runs[0].results, runs[1].results)
+    return f"{suite}: {len(runs[0].results)} test(s) judged the same way outside the programs", problems
+
+
 def check_build(build_dir: Path) -> IntegrityReport:
     """Runs the integrity check on every grading program of a built tree."""
     report = IntegrityReport()
@@ -94,10 +118,13 @@ def check_build(build_dir: Path) -> IntegrityReport:
             if test.lesson and test.lesson != lesson:
                 problems.append(f"{program.name}: \"{test.name}\" ({test.file}:{test.line}) is in suite "
                                 f"{test.suite}, which this program never grades; move it to tests/{test.lesson}_*/")
-        report.offenders.extend(problems)
+        judged, judged_problems = judged_pair(program, suite)
+        report.offenders.extend(problems + judged_problems)
         if not problems and not reference.problem and not stubs.problem:
             report.checked.append(f"{suite}: {len(reference.results)} grading test(s) pass on the reference "
                                   "and fail on the stubs with NotImplemented")
+        if judged and not judged_problems:
+            report.checked.append(judged)
     hidden, hidden_stubs = bin_dir / "tests_hidden", bin_dir / "tests_hidden_stubs"
     if hidden.is_file():
         if not hidden_stubs.is_file():
@@ -109,6 +136,7 @@ def check_build(build_dir: Path) -> IntegrityReport:
                 reference, stubs = run_suite(hidden, suite), run_suite(hidden_stubs, suite)
                 problems = [f"{suite}: {r.problem}" for r in (reference, stubs) if r.problem]
                 problems += check_pair(f"tests_hidden [{suite}]", reference.results, stubs.results)
+                problems += judged_pair(hidden, suite, hidden=True)[1]
                 report.offenders.extend(problems)
                 if not problems:
                     report.checked.append(f"{suite} (hidden): {len(reference.results)} test(s) pass on the reference "

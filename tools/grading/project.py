@@ -1,59 +1,45 @@
-"""Where lessons live in a source tree.
-
-Everything is discovered from folder names (``tests/NN_topic/``,
-``exercises/NN_topic/``), never listed by hand, so that a lesson added by
-someone else is graded without touching the driver.
-"""
+"""Where lessons live in a source tree, found from folder names (tests/NN_topic/, exercises/NN_topic/),
+never listed by hand, so that a lesson added by someone else is graded without touching the driver."""
 from __future__ import annotations
 
 import re
 from pathlib import Path
 
-# tools/grading/project.py -> the source tree's root
-ROOT = Path(__file__).resolve().parents[2]
-
+ROOT = Path(__file__).resolve().parents[2]  # tools/grading/project.py -> the source tree
 STUDENT_EDITION_MARKER = "STUDENT_EDITION"
-
 _LESSON_DIR = re.compile(r"(\d\d)_.+")
 
 
+def lesson_folders(root: Path, kind: str) -> dict[str, Path]:
+    """NN -> root/kind/NN_topic for every lesson folder of `kind` (lessons, exercises, tests)."""
+    base = root / kind
+    return {m.group(1): child for child in (sorted(base.iterdir()) if base.is_dir() else [])
+            if (m := _LESSON_DIR.fullmatch(child.name)) and child.is_dir()}
+
+
 def lessons_with_sources(folder: Path, pattern: str = "*.cpp") -> list[str]:
-    """The NN of every ``folder/NN_topic/`` that holds at least one matching file."""
-    found = set()
-    if folder.is_dir():
-        for child in folder.iterdir():
-            match = _LESSON_DIR.fullmatch(child.name)
-            if match and child.is_dir() and any(child.glob(pattern)):
-                found.add(match.group(1))
-    return sorted(found)
+    """The NN of every folder/NN_topic/ that holds at least one matching file."""
+    return sorted(nn for nn, child in lesson_folders(folder.parent, folder.name).items() if any(child.glob(pattern)))
 
 
 def test_lessons(root: Path = ROOT) -> list[str]:
-    """Lessons with a folder of tests (built as ``tests_lessonNN``)."""
+    """Lessons with a folder of tests (built as tests_lessonNN)."""
     return lessons_with_sources(root / "tests")
 
 
 def exercise_lessons(root: Path = ROOT) -> list[str]:
-    """Lessons with exercise stubs, i.e. the ones a student can be graded on."""
+    """Lessons with exercise stubs: the ones a student can be graded on."""
     return lessons_with_sources(root / "exercises")
 
 
 def exercise_stubs(root: Path = ROOT) -> dict[str, Path]:
     """File name -> stub path for every exercise unit (names are unique in lib/)."""
-    stubs: dict[str, Path] = {}
-    folder = root / "exercises"
-    if folder.is_dir():
-        for stub in sorted(folder.glob("[0-9][0-9]_*/*.cpp")):
-            stubs[stub.name] = stub
-    return stubs
+    return {stub.name: stub for stub in sorted((root / "exercises").glob("[0-9][0-9]_*/*.cpp"))}
 
 
 def hidden_sources(root: Path = ROOT, extra: Path | None = None) -> list[Path]:
-    """The .cpp files that make up ``tests_hidden`` (tests/hidden/ and --hidden DIR)."""
-    sources = sorted((root / "tests" / "hidden").glob("*.cpp"))
-    if extra is not None:
-        sources += sorted(extra.glob("*.cpp"))
-    return sources
+    """The .cpp files that make up tests_hidden (tests/hidden/ and --hidden DIR)."""
+    return sorted((root / "tests" / "hidden").glob("*.cpp")) + (sorted(extra.glob("*.cpp")) if extra else [])
 
 
 def is_student_edition(root: Path = ROOT) -> bool:

@@ -1,19 +1,18 @@
-"""What a grading run produces: the score table, Gradescope's results.json,
-JUnit XML and the exit code. Pure functions of a ``GradeRun``, so that they
-are tested without building anything (tests/tools/test_grade.py).
-"""
+"""What a grading run produces: the score table, Gradescope's results.json, JUnit XML and the exit code;
+pure functions of a GradeRun, tested without building anything."""
 from __future__ import annotations
 
 import errno
 import json
-import os
 import re
 import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from .results import TestResult
+from common.files import atomic_write_text
+
+from .results import TestResult, _short_path
 
 EXIT_PASSED = 0
 EXIT_FAILED = 1
@@ -49,10 +48,8 @@ class GradeRun:
     submission: dict[str, Any] | None = None
     # False when the build failure is not the student's (a broken tree).
     blame_student: bool = True
-    # Exercise files the suspicious-code checks flagged (file -> what was found); every test of
-    # their lesson fails, saying why (suspicious.py).
-    flagged: dict[str, list[str]] = field(default_factory=dict)
-    # For instructors only: findings that fail nothing, tampering the runner saw, processes killed.
+    # For instructors only: what the suspicious-code checks noticed (they advise, they never
+    # decide), tampering the runner saw, processes killed, the grader's own problems.
     review: list[str] = field(default_factory=list)
 
     def lesson_of(self, file: str) -> str:
@@ -60,11 +57,9 @@ class GradeRun:
         return match.group(1) if match else ""
 
     def lesson_status(self, lesson: str) -> str:
-        """"graded", "not gradable" (a file of the lesson did not compile or link) or "flagged"."""
+        """"graded", "not gradable" (a file of the lesson did not compile or link) or "grader error"."""
         if self.build_failed:
             return "not gradable" if self.blame_student else "grader error"
-        if any(self.lesson_of(f) == lesson for f in self.flagged):
-            return "flagged"
         if any(self.lesson_of(f) == lesson for f in self.fallbacks):
             return "not gradable"
         return "graded"
@@ -79,20 +74,13 @@ class GradeRun:
 
 
 def exit_code(run: GradeRun) -> int:
-    """0: every test passed; 1: a test failed (or none were found); 2: no build.
-
-    Finding no grading test at all is a failure, not a vacuous pass: a grader
-    that graded nothing must not report success.
-    """
+    """0: every test passed; 1: a test failed, or none was found (a grader that graded nothing must not
+    report success); 2: no build."""
     if run.build_failed or run.hidden_build_failed:
         return EXIT_NOT_BUILT
     if not run.results:
         return EXIT_FAILED
     return EXIT_PASSED if all(r.passed for r in run.results) else EXIT_FAILED
-
-
-def _fmt(x: float) -> str:
-    return f"{x:g}"
 
 
 def _rows(run: GradeRun, with_hidden: bool = True) -> list[tuple[str, int, int, float, float]]:
@@ -110,24 +98,20 @@ def _rows(run: GradeRun, with_hidden: bool = True) -> list[tuple[str, int, int, 
 
 
 def score_table(run: GradeRun, for_students: bool = False) -> str:
-    """The table printed at the end of a run, one row per lesson.
-
-    ``for_students`` (results.json, which students read): while hidden tests
-    exist, neither their row nor the total is shown, as Gradescope itself
-    hides the total from students then.
-    """
+    """The table printed at the end of a run, one row per lesson. `for_students` (results.json): while
+    hidden tests exist, neither their row nor the total is shown, as Gradescope hides the total then."""
     if run.build_failed:
         return "The build failed: nothing was graded (score 0). The compiler's messages are above."
     # Any entry hidden from students (a hidden test, or the hidden tests' failed build) hides the total.
     hide = for_students and (run.hidden_build_failed or any(r.hidden for r in run.results))
     header = ("lesson", "tests passed", "points")
-    body = [(label, f"{passed}/{total}", f"{_fmt(points)}/{_fmt(max_points)}")
+    body = [(label, f"{passed}/{total}", f"{points:g}/{max_points:g}")
             for label, passed, total, points, max_points in _rows(run, with_hidden=not hide)]
     shown = [r for r in run.results if not (hide and r.hidden)]
     score, max_score = sum(r.score for r in shown), sum(r.points for r in shown)
     percent = 100.0 * score / max_score if max_score else 0.0
     footer = ("total", f"{sum(r.passed for r in shown)}/{len(shown)}",
-              f"{_fmt(score)}/{_fmt(max_score)}  ({percent:.0f}%)")
+              f"{score:g}/{max_score:g}  ({percent:.0f}%)")
     rows = [header, *body] + ([] if hide else [footer])
     widths = [max(len(row[i]) for row in rows) for i in range(3)]
 
@@ -157,13 +141,8 @@ def _visible_problems(run: GradeRun) -> list[str]:
 
 def failure_report(run: GradeRun, root: Path | None = None) -> str:
     """The explanation of every failed visible test, for the terminal."""
-    parts = []
-    for result in run.results:
-        if result.passed or result.hidden:
-            continue
-        parts.append(f"[lesson{result.lesson}] {result.name}\n  " +
-                     result.output(root).replace("\n", "\n  "))
-    return "\n\n".join(parts)
+    return "\n\n".join(f"[lesson{r.lesson}] {r.name}\n  " + r.output(root).replace("\n", "\n  ")
+                       for r in run.results if not r.passed and not r.hidden)
 
 
 def failure_summary(run: GradeRun, root: Path | None = None) -> str:
@@ -175,7 +154,7 @@ def failure_summary(run: GradeRun, root: Path | None = None) -> str:
             continue
         first = next((f for f in result.failures), None)
         if first is not None:
-            where = f"{_short(first.file, root)}:{first.line}: " if first.file else ""
+            where = f"{_short_path(first.file, root)}:{first.line}: " if first.file else ""
             why = where + first.headline()
         else:
             why = result.note or "failed"
@@ -185,17 +164,9 @@ def failure_summary(run: GradeRun, root: Path | None = None) -> str:
     return f"{len(lines)} test(s) failed; the first failing check of each (details above):\n" + "\n".join(lines)
 
 
-def _short(file: str, root: Path | None) -> str:
-    from .results import _short_path
-
-    return _short_path(file, root)
-
-
 def _truncate(text: str, limit: int = MAX_OUTPUT_CHARS) -> str:
     """Keeps the start of a long text, where the first compiler error is."""
-    if len(text) <= limit:
-        return text
-    return text[:limit] + f"\n... ({len(text) - limit} more characters cut)"
+    return text if len(text) <= limit else text[:limit] + f"\n... ({len(text) - limit} more characters cut)"
 
 
 def test_name(result: TestResult) -> str:
@@ -217,7 +188,8 @@ def submission_summary(run: GradeRun) -> str:
         return ""
     lines = ["**What was graded**", ""]
     for used in info.get("installed", []):
-        lines.append(f"- used `{used['file']}` as `{used['target']}`" + (f" ({used['note']})" if used.get("note") else ""))
+        lines.append(f"- used `{used['file']}` as `{used['target']}`"
+                     + (f" ({used['note']})" if used.get("note") else ""))
     for ignored in info.get("ignored", []):
         lines.append(f"- ignored `{ignored['file']}`: {ignored['reason']}")
     for note in info.get("notes", []):
@@ -234,18 +206,6 @@ def submission_summary(run: GradeRun) -> str:
     return "\n".join(lines)
 
 
-def flagged_summary(run: GradeRun) -> str:
-    """Markdown: the files flagged by the suspicious-code checks, and what that costs."""
-    if not run.flagged:
-        return ""
-    lines = ["**Some of your files do more than compute, so their lessons were not graded** (every test of the "
-             "lesson fails). Exercise code may only compute: no processes, no exit(), no files, no access to the "
-             "tests or the program around it. What was found:"]
-    for file, findings in run.flagged.items():
-        lines.append(f"- `{file}`: " + "; ".join(findings[:6]) + (" …" if len(findings) > 6 else ""))
-    return "\n".join(lines)
-
-
 def machine_summary(run: GradeRun) -> dict[str, Any]:
     """results.json's ``extra_data``: what tools/grade --batch reads back (per lesson, flags, build problems)."""
     lessons = {}
@@ -259,7 +219,6 @@ def machine_summary(run: GradeRun) -> dict[str, Any]:
                    "max_score": r.points} for r in run.results],
         "not_gradable": ([f"{f} did not {'link' if f in run.link_failures else 'compile'}" for f in run.fallbacks]
                          if not run.build_failed else ["the build failed"] if run.blame_student else []),
-        "flagged": {f: list(v) for f, v in run.flagged.items()},
         "review": list(run.review),
         "grader_error": bool(run.build_failed and not run.blame_student),
     }}
@@ -277,79 +236,53 @@ def _build_entry(name: str, output: str, visibility: str = "visible") -> dict[st
             "output_format": "text", "visibility": visibility}
 
 
-def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any]:
-    """Gradescope's results.json: one entry per test, hidden tests marked hidden.
+def _fallback_summary(run: GradeRun) -> str:
+    """The results' paragraph on the student's files that did not compile or link (graded as stubs)."""
+    linked = run.link_failures & set(run.fallbacks)
+    kind = 0 if not linked else 1 if linked == set(run.fallbacks) else 2
+    what = ("did not compile", "did not link", "did not compile or link")[kind]
+    words = ("the compiler's", "the linker's", "the compiler's and the linker's")[kind]
+    return (f"**Some of your files {what}.** Each was replaced by its stub, so only its lesson lost points; {words} "
+            "messages are in the `build:` entries below:\n"
+            + "\n".join(f"- `{name}`" + (" (a link error: a name defined twice, or declared and never defined)"
+                                          if name in run.link_failures else "") for name in run.fallbacks))
 
-    Students read it, so it says what was graded, keeps the hidden tests' row
-    and the total out of the summary while hidden tests exist, and holds
-    each compiler output once (in its build entry, as plain text). On a failed
-    build the score is 0 and the single entry carries the compiler's output.
-    """
+
+def _test_entries(run: GradeRun, root: Path | None) -> list[dict[str, Any]]:
+    """A build entry per file graded as its stub, one for the hidden tests' failed build, one per test."""
+    tests = [_build_entry(f"build: {file} {'did not link' if file in run.link_failures else 'did not compile'} "
+                          "(graded as the stub)", output) for file, output in run.fallbacks.items()]
+    if run.hidden_build_failed:  # not the student's fault, and the hidden tests' source must not reach students
+        tests.append(_build_entry("hidden tests: build (instructors only)", "The instructor's hidden tests did not "
+                                  "build; they were not graded.\n\n" + run.hidden_build_output, HIDDEN_VISIBILITY))
+    return tests + [{"name": test_name(r), "number": str(number), "score": r.score, "max_score": r.points,
+                     "status": "passed" if r.passed else "failed", "output": _truncate(r.output(root)),
+                     "output_format": "text", "visibility": HIDDEN_VISIBILITY if r.hidden else "visible"}
+                    for number, r in enumerate(run.results, start=1)] + _review_entries(run)
+
+
+def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any]:
+    """Gradescope's results.json: one entry per test, hidden tests marked hidden. Students read it, so it
+    says what was graded, keeps the hidden tests' row and the total out of the summary while hidden tests
+    exist, and holds each compiler output once (in its build entry). A failed build scores 0, its single
+    entry carrying the compiler's output."""
     summary = submission_summary(run)
     common = {"output_format": "md", "test_output_format": "text", "visibility": "visible",
-              "stdout_visibility": "hidden", "execution_time": round(run.seconds, 1)}
+              "stdout_visibility": "hidden", "execution_time": round(run.seconds, 1),
+              "extra_data": machine_summary(run)}
     if run.build_failed:
-        if run.blame_student:
-            headline = "Your code did not compile, so no test could run. The compiler's messages are in the build entry below."
-        else:
-            headline = ("The grader could not build (this is not your code's fault: tell your instructor). "
-                        "Nothing was graded.")
-        return {
-            "score": 0,
-            "output": "\n\n".join(part for part in (summary, headline) if part),
-            **common,
-            "tests": [_build_entry("build", run.build_output)] + _review_entries(run),
-            "extra_data": machine_summary(run),
-        }
-    tests = []
-    for flagged_file, findings in run.flagged.items():
-        tests.append({"name": f"flagged: {flagged_file} (its lesson was not graded)", "score": 0, "max_score": 0,
-                      "status": "failed", "output": _truncate("\n".join(findings)), "output_format": "text",
-                      "visibility": "visible"})
-    for failed_file, output in run.fallbacks.items():
-        what = "did not link" if failed_file in run.link_failures else "did not compile"
-        tests.append(_build_entry(f"build: {failed_file} {what} (graded as the stub)", output))
-    if run.hidden_build_failed:
-        # Not the student's fault, and the hidden tests' source must not reach students.
-        tests.append(_build_entry("hidden tests: build (instructors only)",
-                                  "The instructor's hidden tests did not build; they were not graded.\n\n"
-                                  + run.hidden_build_output, visibility=HIDDEN_VISIBILITY))
-    for number, result in enumerate(run.results, start=1):
-        tests.append({
-            "name": test_name(result),
-            "number": str(number),
-            "score": result.score,
-            "max_score": result.points,
-            "status": "passed" if result.passed else "failed",
-            "output": _truncate(result.output(root)),
-            "output_format": "text",
-            "visibility": HIDDEN_VISIBILITY if result.hidden else "visible",
-        })
-    tests.extend(_review_entries(run))
-    parts = [summary, flagged_summary(run)]
-    if run.fallbacks:
-        linked = run.link_failures & set(run.fallbacks)
-        what = ("did not compile" if not linked else "did not link" if linked == set(run.fallbacks)
-                else "did not compile or link")
-        words = ("the compiler's" if not linked else "the linker's" if linked == set(run.fallbacks)
-                 else "the compiler's and the linker's")
-        parts.append(f"**Some of your files {what}.** Each was replaced by its stub, so only its lesson lost "
-                     f"points; {words} messages are in the `build:` entries below:\n"
-                     + "\n".join(f"- `{name}`" + (" (a link error: a name defined twice, or declared and never "
-                                                   "defined)" if name in run.link_failures else "")
-                                   for name in run.fallbacks))
+        headline = ("Your code did not compile, so no test could run. The compiler's messages are in the build "
+                    "entry below." if run.blame_student else "The grader could not build (this is not your code's "
+                    "fault: tell your instructor). Nothing was graded.")
+        return {"score": 0, "output": "\n\n".join(part for part in (summary, headline) if part), **common,
+                "tests": [_build_entry("build", run.build_output)] + _review_entries(run)}
+    parts = [summary, _fallback_summary(run) if run.fallbacks else ""]
     if run.hidden_build_failed:
         parts.append("The grader is misconfigured: some of the instructor's tests could not be built. This is not "
                      "your code's fault; your visible tests were graded, and your instructor has been shown why.")
     parts.append(_fence(score_table(run, for_students=True)))
-    return {
-        "score": run.score,
-        "max_score": run.max_score,
-        "output": "\n\n".join(part for part in parts if part),
-        **common,
-        "tests": tests,
-        "extra_data": machine_summary(run),
-    }
+    return {"score": run.score, "max_score": run.max_score, "output": "\n\n".join(part for part in parts if part),
+            **common, "tests": _test_entries(run, root)}
 
 
 def _review_entries(run: GradeRun) -> list[dict[str, Any]]:
@@ -412,25 +345,12 @@ class OutputError(Exception):
 
 
 def write_text(path: Path, text: str) -> None:
-    """Writes through a temporary name and a rename: a reader never sees half a
-    file, and a failed write (a read-only or full file system) leaves neither
-    the temporary nor a half file, only an OutputError that says why."""
-    temporary = path.with_name(path.name + ".tmp-grade")
+    """Writes atomically (never half a file, nor a temporary left behind); OutputError says why not."""
     try:
-        path.parent.mkdir(parents=True, exist_ok=True)
-        with open(temporary, "w", encoding="utf-8") as out:
-            out.write(text)
-            out.flush()
-            os.fsync(out.fileno())
-        temporary.replace(path)
+        atomic_write_text(path, text)
     except OSError as error:
-        try:
-            temporary.unlink()
-        except OSError:
-            pass
-        reason = error.strerror or str(error)
-        if error.errno == errno.ENOSPC:
-            reason = "No space left on device (the disk is full)"
+        reason = "No space left on device (the disk is full)" if error.errno == errno.ENOSPC else \
+            error.strerror or str(error)
         raise OutputError(f"cannot write {path}: {reason}") from None
 
 

@@ -1,13 +1,7 @@
-"""Test results as the ``illum-grade`` doctest reporter writes them.
-
-The reporter (tests/support/grade_reporter.cpp) writes one JSON object per
-line: ``"event": "test_case"`` for a test that ran (or was skipped by a
-decorator) and ``"event": "listed"`` for each test of ``--list-test-cases``
-(runner.py checks the order of the others: ``started``, ``value``,
-``run_end``). The listing, or the trusted list the autograder's setup kept,
-tells us which tests *should* have run, so a program that crashes or hangs
-half-way still yields a result for every test.
-"""
+"""Test results as the `illum-grade` doctest reporter (tests/support/grade_reporter.cpp) writes them: one
+JSON object a line, `"event": "test_case"` for a test that ran and `"listed"` for each test of
+--list-test-cases. The listing (or the trusted list the autograder's setup kept) says which tests should
+have run, so a program that crashes or hangs half-way still yields a result for every test."""
 from __future__ import annotations
 
 import json

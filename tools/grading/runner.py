@@ -2,25 +2,37 @@
 
 The test program runs in the sandbox (sandbox.py: its own process group or
 pid namespace, the student's user when there is one, resource limits). Its
-reporter sends one JSON record per event over an inherited pipe (the
-trusted channel: nothing can rewrite a pipe afterwards), and its output
-goes through another pipe of which only the last 64 KB are kept, so that a
-program printing a gigabyte costs the grader nothing.
+reporter sends one JSON record per event over an inherited pipe, and its
+output goes through another pipe of which only the last 64 KB are kept, so
+that a program printing a gigabyte costs the grader nothing.
+
+A program runs in one of three roles (``role``):
+
+* ``None``: its own verdicts are read (a student's own machine, the
+  integrity checks, the mutants);
+* ``"witness"``: a trusted build of the reference, which also sends every
+  check's comparison and expected side (checks.cpp);
+* ``"observer"``: the student's program built without any expected side,
+  which sends the left side of every check; judge.py forms each test's
+  verdict from those values and the witness's, and the program's own
+  verdicts are never read.
 
 Which tests should run comes from ``expected`` when the caller has it (the
-autograder stores the list its setup got from the reference build), else
-from the program's own ``--list-test-cases``. A listed test that sends no
-result fails. The records of one run must follow the reporter's order
-(``started`` then ``test_case`` of the same test, tests in the listed
-order, each once, ``run_end`` last); a record out of that order, or a
-second record for a test, is tampering: the test that was running fails
-with that word, and the records after it are not believed.
+witness's run, or what setup kept), else from the program's own
+``--list-test-cases``. The records of one run must follow the reporter's
+order (``started``, its checks, ``test_case`` of the same test, tests in the
+listed order, each once, ``run_end`` last); a record out of that order, or a
+second record for a test, fails the test that was running as tampering,
+and the records after it are not believed.
 
 Limits (Gradescope gives a whole run 10 minutes):
 
-* each test case may run ``ILLUM_GRADE_TEST_TIMEOUT`` seconds (default 60)
-  without finishing; then the program is killed;
-* each run of a program may last ``ILLUM_GRADE_TIMEOUT`` seconds (default 600);
+* each test case may use ``ILLUM_GRADE_TEST_TIMEOUT`` seconds of processor
+  time (default 60), and WALL_FACTOR times that of wall time, without
+  finishing; then the program is killed. Processor time does not grow when
+  the machine is loaded, so load does not change a grade;
+* each run of a program may use ``ILLUM_GRADE_TIMEOUT`` seconds of processor
+  time (default 600), WALL_FACTOR times that of wall time;
 * all the tests of one ``tools/grade`` run may take ``ILLUM_GRADE_DEADLINE``
   seconds from its start (default: no limit; run_autograder sets one inside
   Gradescope's 10 minutes); the tests left when it runs out fail with
@@ -29,7 +41,10 @@ Limits (Gradescope gives a whole run 10 minutes):
 After a crash, a time-out or an exit() inside a test, the test that was
 running fails with the reason, and the program is run again from the next
 test on (doctest's ``--first=N`` counts the listed tests), so that one bad
-function costs the tests that call it, not every test of the lesson.
+function costs the tests that call it, not every test of the lesson. Each
+run must get further than the last: a program that dies again before the
+test it was restarted at (a crash at start-up, a forged record) fails the
+tests that are left, once, with that reason.
 """
 from __future__ import annotations
 
@@ -41,19 +56,20 @@ import time
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from .results import TestResult, merge, normal_file
+from .judge import JudgeError, judge_test
+from .results import Failure, TestResult, merge
 from .sandbox import Sandbox
 
-DEFAULT_TIMEOUT = 600.0       # seconds per run of a test program
-DEFAULT_TEST_TIMEOUT = 60.0   # seconds per test case
+DEFAULT_TIMEOUT = 600.0       # seconds of processor time per run of a test program
+DEFAULT_TEST_TIMEOUT = 60.0   # seconds of processor time per test case
+WALL_FACTOR = 10.0            # wall time allowed per second of processor time (a machine at load 16 on two cores)
 MAX_RECORD_BYTES = 1024 * 1024        # one record; the reporter cuts texts long before that
-MAX_RECORDS_BYTES = 32 * 1024 * 1024  # all the records of one run
+MAX_RECORDS_BYTES = 64 * 1024 * 1024  # all the records of one run
 
 Key = tuple[str, str, str, int]
 
 _deadline: float | None = None  # time.monotonic() after which no test starts
 _sandbox: Sandbox | None = None
-_trusted_run = False  # the reference's run in setup: the programs send the expected values too
 
 
 def set_deadline(seconds_from_now: float | None) -> None:
@@ -65,13 +81,6 @@ def deadline_from_environment(start: float) -> None:
     """ILLUM_GRADE_DEADLINE seconds after ``start`` (a time.monotonic())."""
     value = os.environ.get("ILLUM_GRADE_DEADLINE")
     set_deadline(float(value) - (time.monotonic() - start) if value else None)
-
-
-def set_trusted_run(trusted: bool) -> None:
-    """In the autograder's run of the reference only: ILLUM_CHECK_APPROX sends its expected value and
-    tolerance, which setup keeps (a submission's run never sends them, so nothing in it can copy them)."""
-    global _trusted_run
-    _trusted_run = trusted
 
 
 def set_sandbox(sandbox: Sandbox | None) -> None:
@@ -111,7 +120,7 @@ class SuiteRun:
     tampering: list[str] = field(default_factory=list)  # for instructors: what did not add up
     survivors: list[str] = field(default_factory=list)  # processes left behind, killed
     listed: list[dict] = field(default_factory=list)    # the tests that should report, in order
-    values: dict = field(default_factory=dict)          # test key -> its ILLUM_CHECK_APPROX records
+    checks: dict = field(default_factory=dict)          # test key -> its check records (witness, observer)
 
 
 @dataclass
@@ -138,11 +147,12 @@ class _Tail:
     def __init__(self, limit: int) -> None:
         self.limit, self.data, self.total = limit, bytearray(), 0
 
-    def feed(self, chunk: bytes) -> None:
+    def feed(self, chunk: bytes) -> bool:
         self.total += len(chunk)
         self.data += chunk
         if len(self.data) > self.limit:
             del self.data[:len(self.data) - self.limit]
+        return False
 
     def text(self) -> str:
         text = self.data.decode("utf-8", errors="replace")
@@ -157,20 +167,20 @@ class _Records:
         self.buffer, self.records, self.garbage, self.total, self.flooded = bytearray(), [], 0, 0, False
 
     def feed(self, chunk: bytes) -> bool:
-        """True when at least one complete record arrived."""
+        """True when a test started or finished (progress)."""
         self.total += len(chunk)
         if self.total > MAX_RECORDS_BYTES:
             self.flooded = True
             return False
         self.buffer += chunk
-        got = False
+        progress = False
         while True:
             end = self.buffer.find(b"\n")
             if end < 0:
                 if len(self.buffer) > MAX_RECORD_BYTES:
                     self.garbage += 1
                     self.buffer.clear()
-                return got
+                return progress
             line = bytes(self.buffer[:end])
             del self.buffer[:end + 1]
             if not line.strip():
@@ -181,7 +191,7 @@ class _Records:
                 record = None
             if isinstance(record, dict):
                 self.records.append(record)
-                got = True
+                progress = progress or record.get("event") in ("started", "test_case")
             else:
                 self.garbage += 1
 
@@ -201,6 +211,7 @@ def _describe_signal(number: int) -> str:
     why = {
         "SIGSEGV": " (a crash: an invalid memory access, e.g. a null pointer or an index out of range)",
         "SIGABRT": " (an abort: a failed assert(), std::terminate, or a corrupted heap)",
+        "SIGILL": " (an illegal instruction: an array index the bounds check caught, or a corrupted program)",
         "SIGFPE": " (an arithmetic fault, e.g. an integer division by zero)",
         "SIGKILL": " (killed from outside: out of memory, or too many processes)",
         "SIGXCPU": " (it used up its CPU time)",
@@ -209,15 +220,52 @@ def _describe_signal(number: int) -> str:
     return f"the test program was killed by {name}{why}"
 
 
-def _run_reporter(program: Path, arguments: list[str], timeout: float, test_timeout: float) -> _Invocation:
-    """One invocation with --reporters=illum-grade, killed when a test case
-    makes no progress for ``test_timeout`` seconds or the whole run exceeds
-    ``timeout``."""
-    sandbox = current_sandbox()
+@dataclass
+class _Watch:
+    """The limits of one invocation, checked while it runs: processor time per test and per run,
+    wall time WALL_FACTOR times larger."""
+
+    test_cpu: float
+    run_cpu: float
+    start: float = field(default_factory=time.monotonic)
+    progress_wall: float = field(default_factory=time.monotonic)
+    progress_cpu: float = 0.0
+    cpu: float = 0.0
+    sampled: float = 0.0
+
+    shared: int = 0
+    shared_limit: int = 0
+    end: float = float("inf")  # the deadline of the whole run (ILLUM_GRADE_DEADLINE), in wall time
+
+    def problem(self, now: float, cpu_of, shared_of) -> tuple[str, bool]:
+        if now - self.sampled >= 0.25:
+            self.cpu, self.shared, self.sampled = max(self.cpu, cpu_of()), shared_of(), now
+        if self.shared_limit and self.shared > self.shared_limit:
+            return (f"your code holds {self.shared >> 20} MB of shared memory, more than the "
+                    f"{self.shared_limit >> 20} MB a test program may use"), False
+        if self.cpu - self.progress_cpu > self.test_cpu:
+            return f"the test did not finish within {self.test_cpu:g} s of processor time (an endless loop?)", True
+        if now - self.progress_wall > WALL_FACTOR * self.test_cpu:
+            return (f"the test did not finish within {WALL_FACTOR * self.test_cpu:g} s (it waited, or the "
+                    "machine was very busy)"), True
+        if self.cpu > self.run_cpu or now - self.start > WALL_FACTOR * self.run_cpu:
+            return f"the test program did not finish within {self.run_cpu:g} s of processor time", True
+        if now > self.end:
+            return "the time for the whole run (ILLUM_GRADE_DEADLINE) ran out during this test", True
+        return "", False
+
+    def moved(self, now: float) -> None:
+        self.progress_wall, self.progress_cpu = now, self.cpu
+
+
+def _run_reporter(program: Path, arguments: list[str], timeout: float, test_timeout: float,
+                  env: dict[str, str] | None = None, sandbox: Sandbox | None = None) -> _Invocation:
+    """One invocation with --reporters=illum-grade, killed when a test case uses too much time
+    (``_Watch``)."""
+    sandbox = sandbox or current_sandbox()
     command = [str(program), *arguments, "--reporters=illum-grade", "--no-version"]
     try:
-        launched = sandbox.launch(command, cpu_seconds=timeout,
-                                  extra_env={"ILLUM_GRADE_SEND_EXPECTED": "1"} if _trusted_run else None)
+        launched = sandbox.launch(command, cpu_seconds=timeout, extra_env=env)
     except OSError as error:
         return _Invocation([], f"could not run {program}: {error}", "")
     tail, records, status = _Tail(sandbox.limits.output_bytes), _Records(), _Records()
@@ -226,26 +274,13 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
     for fd in streams:
         os.set_blocking(fd, False)
         selector.register(fd, selectors.EVENT_READ)
-    start = last_progress = time.monotonic()
+    listing = "--list-test-cases" in arguments  # a listing runs no test: the deadline is for tests
+    watch = _Watch(test_timeout, timeout, shared_limit=sandbox.limits.memory_mb << 20,
+                   end=float("inf") if listing else time.monotonic() + _remaining())
     problem, timed_out, stopping = "", False, False
-
-    def drain(wait: float) -> None:
-        for key, _ in selector.select(timeout=wait):
-            try:
-                chunk = os.read(key.fd, 1 << 16)
-            except BlockingIOError:
-                continue
-            except OSError:
-                chunk = b""
-            if not chunk:
-                selector.unregister(key.fd)
-                continue
-            if streams[key.fd](chunk) and key.fd == launched.records_fd:
-                nonlocal last_progress
-                last_progress = time.monotonic()  # a test started or finished
-
     while True:
-        drain(0.05)
+        if _drain(selector, streams, launched.records_fd, 0.05):
+            watch.moved(time.monotonic())
         for record in status.records:
             if "pid" in record and not sandbox.namespace and launched.program_pid is None:
                 launched.program_pid = int(record["pid"])
@@ -253,13 +288,11 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
             break
         if stopping:
             continue
-        now = time.monotonic()
         if records.flooded:
             problem = f"the test program sent more than {MAX_RECORDS_BYTES // (1024 * 1024)} MB of results"
-        elif now - last_progress > test_timeout:
-            problem, timed_out = f"the test did not finish within {test_timeout:g} s (an endless loop?)", True
-        elif now - start > timeout:
-            problem, timed_out = f"the test program did not finish within {timeout:g} s", True
+        else:
+            problem, timed_out = watch.problem(time.monotonic(), lambda: sandbox.cpu_seconds(launched),
+                                               sandbox.shared_memory_bytes)
         if problem:
             sandbox.stop(launched)
             stopping = True
@@ -267,25 +300,49 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
     # them open: a short, bounded drain, then the sandbox kills it).
     until = time.monotonic() + 0.5
     while selector.get_map() and time.monotonic() < until:
-        drain(0.05)
+        _drain(selector, streams, launched.records_fd, 0.05)
     selector.close()
     survivors = sandbox.finish(launched)
     invocation = _Invocation(records.records, problem, tail.text(), garbage=records.garbage,
                              flooded=records.flooded, timed_out=timed_out, survivors=survivors)
-    ended = [r for r in status.records if "exited" in r or "signal" in r]
-    if ended and not problem:
-        if "signal" in ended[-1]:
-            invocation.signal = int(ended[-1]["signal"])
-            invocation.problem = _describe_signal(invocation.signal)
-        else:
-            invocation.exit_code = int(ended[-1]["exited"])
-            if invocation.exit_code not in (0, 1):
-                invocation.problem = (f"the test program could not start: {tail.text().strip()[-300:]}"
-                                      if invocation.exit_code == 127 and not records.records
-                                      else _describe_exit(invocation.exit_code))
-    elif not problem:
-        invocation.problem = "the test program's launcher ended without saying how the program ended"
+    _how_it_ended(invocation, status.records, bool(records.records), tail)
     return invocation
+
+
+def _drain(selector: selectors.BaseSelector, streams: dict, records_fd: int | None, wait: float) -> bool:
+    """Reads what the pipes hold; True when a test started or finished."""
+    progress = False
+    for key, _ in selector.select(timeout=wait):
+        try:
+            chunk = os.read(key.fd, 1 << 16)
+        except BlockingIOError:
+            continue
+        except OSError:
+            chunk = b""
+        if not chunk:
+            selector.unregister(key.fd)
+            continue
+        if streams[key.fd](chunk) and key.fd == records_fd:
+            progress = True
+    return progress
+
+
+def _how_it_ended(invocation: _Invocation, status: list[dict], any_records: bool, tail: _Tail) -> None:
+    """The exit status or signal the sandbox's first process reported (the program cannot forge it)."""
+    ended = [r for r in status if "exited" in r or "signal" in r]
+    if invocation.problem:
+        return
+    if not ended:
+        invocation.problem = "the test program's launcher ended without saying how the program ended"
+    elif "signal" in ended[-1]:
+        invocation.signal = int(ended[-1]["signal"])
+        invocation.problem = _describe_signal(invocation.signal)
+    else:
+        invocation.exit_code = int(ended[-1]["exited"])
+        if invocation.exit_code not in (0, 1):
+            invocation.problem = (f"the test program could not start: {tail.text().strip()[-300:]}"
+                                  if invocation.exit_code == 127 and not any_records
+                                  else _describe_exit(invocation.exit_code))
 
 
 def _key(record: dict) -> Key:
@@ -346,9 +403,9 @@ def check_records(records: list[dict], order: dict[Key, int], first: int, garbag
                               f"a second result for \"{key[1]}\"", key)
             running = None
             accepted.append(record)
-        elif event == "value":  # a value the grader judges itself, of the running test
+        elif event == "check":  # a check of the running test (witness and observer)
             if running is None:
-                return broken("a checked value outside any test")
+                return broken("a check outside any test")
             accepted.append(record)
         elif event == "run_end":
             if running is not None:
@@ -363,172 +420,202 @@ def check_records(records: list[dict], order: dict[Key, int], first: int, garbag
     return _Checked(accepted, running, last)
 
 
+@dataclass
+class _Progress:
+    """What the invocations of one suite have established so far."""
+
+    position: dict[Key, int]
+    ran: dict[Key, dict] = field(default_factory=dict)
+    notes: dict[Key, str] = field(default_factory=dict)
+    problems: list[str] = field(default_factory=list)
+    why_missing: str = ""
+
+
+def _take(run: SuiteRun, progress: _Progress, checked: _Checked) -> None:
+    """The accepted records of one invocation: each test's checks and result."""
+    current: Key | None = None
+    for record in checked.accepted:
+        event = record.get("event")
+        if event == "started":
+            current = _key(record)
+            run.checks[current] = []
+        elif event == "check" and current is not None:
+            run.checks[current].append(record)
+        if event != "test_case":
+            continue
+        key = _key(record)
+        if key in progress.ran:  # already reported by an earlier run of the program
+            if record.get("skipped") and progress.ran[key].get("skipped"):
+                continue  # doctest reports a skipped test again in every run
+            checked.violation, checked.culprit = f"a second result for \"{key[1]}\"", key
+            return
+        progress.ran[key] = record
+
+
+def _next_first(run: SuiteRun, progress: _Progress, checked: _Checked, invocation: _Invocation,
+                first: int) -> int | None:
+    """Where the next invocation starts after one that ended early, or None to stop."""
+    program = run.program.name
+    if checked.violation:
+        run.tampering.append(f"{program} -ts={run.suite}: {checked.violation}")
+        if checked.culprit is None:
+            progress.why_missing = (f"the results of this run could not be trusted ({checked.violation}); "
+                                    "nothing after that point was believed")
+            progress.problems.append(f"{program} -ts={run.suite}: {progress.why_missing}")
+            return None
+        progress.ran.pop(checked.culprit, None)
+        progress.notes[checked.culprit] = (f"failed as tampering: {checked.violation} (the grader accepts one result "
+                                           "per test, in order, from the test program's reporter only)")
+        progress.problems.append(f"{program}: test \"{checked.culprit[1]}\": tampering: {checked.violation}")
+        return progress.position[checked.culprit] + 1
+    if invocation.exit_code in (0, 1) and not invocation.problem:
+        how = f"exit({invocation.exit_code})"
+        reason = (f"your code ended the program with {how} (or a similar call) during this test: "
+                  "the tests after it were run again in a new program")
+    else:
+        how = invocation.problem
+        reason = f"did not finish: {invocation.problem}"
+    culprit = checked.running
+    last = progress.ran.get(checked.last_recorded) if checked.last_recorded else None
+    if culprit is None and last is not None and any(f.get("kind") == "crash" for f in last.get("failures", [])):
+        # doctest reported the crash inside the test (its signal handler), then the program died.
+        progress.problems.append(f"{program}: test \"{checked.last_recorded[1]}\": {how}")
+        return progress.position[checked.last_recorded] + 1
+    if culprit is not None:
+        progress.notes[culprit] = reason
+        progress.problems.append(f"{program}: test \"{culprit[1]}\": {how}")
+        return progress.position[culprit] + 1
+    if checked.last_recorded is not None and progress.position[checked.last_recorded] >= first:
+        progress.problems.append(f"{program} -ts={run.suite}: after test \"{checked.last_recorded[1]}\": {how}")
+        return progress.position[checked.last_recorded] + 1
+    progress.why_missing = f"{program} -ts={run.suite}: {how}" + (
+        " before running a test" if invocation.exit_code in (0, 1) and not invocation.problem else "")
+    progress.problems.append(progress.why_missing)
+    return None
+
+
+def _listing(run: SuiteRun, expected: list[dict] | None, timeout: float, env: dict | None,
+             sandbox: Sandbox | None) -> list[dict] | None:
+    if expected is not None:
+        return [dict(r, event="listed") for r in expected]
+    listing = _run_reporter(run.program, [f"-ts={run.suite}", "--list-test-cases"], timeout, timeout, env, sandbox)
+    if listing.problem:
+        run.problem, run.output = f"listing {run.program.name}: {listing.problem}", listing.output
+        return None
+    return [r for r in listing.records if r.get("event") == "listed" and r.get("suite") == run.suite]
+
+
 def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | None = None,
-              test_timeout: float | None = None, expected: list[dict] | None = None) -> SuiteRun:
+              test_timeout: float | None = None, expected: list[dict] | None = None, role: str | None = None,
+              env: dict[str, str] | None = None, sandbox: Sandbox | None = None) -> SuiteRun:
     """Runs ``program -ts=suite`` and returns one result per test of the suite.
 
-    ``expected``: the tests that must report (records of kind "listed", in
-    doctest's order), from a trusted listing; None lists them from the program.
-    """
+    ``expected``: the tests that must report (records of kind "listed", in doctest's order), from a
+    trusted listing; None lists them from the program. ``role``: None, "witness" or "observer"
+    (module doc); an observer's results are judged by ``judge_suite`` afterwards."""
     timeout = timeout_seconds() if timeout is None else timeout
     test_timeout = test_timeout_seconds() if test_timeout is None else test_timeout
+    env = dict(env or {}, **({"ILLUM_GRADE_ROLE": role} if role else {}))
     run = SuiteRun(program, suite)
     if not program.exists():
         run.problem = f"{program} does not exist"
         return run
-    if expected is None:
-        listing = _run_reporter(program, [f"-ts={suite}", "--list-test-cases"], timeout, test_timeout)
-        if listing.problem:
-            run.problem, run.output = f"listing {program.name}: {listing.problem}", listing.output
-            return run
-        listed = [r for r in listing.records if r.get("event") == "listed" and r.get("suite") == suite]
-    else:
-        listed = [dict(r, event="listed") for r in expected]
-    position = {}
-    for number, record in enumerate(listed, start=1):
-        position.setdefault(_key(record), number)
-    stored_values = {_key(r): r["values"] for r in listed if r.get("values")}
+    listed = _listing(run, expected, timeout, env, sandbox)
+    if listed is None:
+        return run
     run.listed = listed
-
-    ran: dict[Key, dict] = {}
-    problems: list[str] = []
+    progress = _Progress({})
+    for number, record in enumerate(listed, start=1):
+        progress.position.setdefault(_key(record), number)
     outputs: list[str] = []
-    notes: dict[Key, str] = {}
-    first = 1
-    why_missing = ""
-    while first <= max(len(listed), 1):
+    first: int | None = 1
+    while first is not None and first <= max(len(listed), 1):
         if _remaining() <= 0:
-            why_missing = (f"{program.name} -ts={suite}: the time for the whole run (ILLUM_GRADE_DEADLINE) "
-                           "ran out before these tests")
-            problems.append(why_missing)
+            progress.why_missing = (f"{program.name} -ts={suite}: the time for the whole run (ILLUM_GRADE_DEADLINE) "
+                                    "ran out before these tests")
+            progress.problems.append(progress.why_missing)
             break
         arguments = [f"-ts={suite}"] + ([f"--first={first}"] if first > 1 else [])
-        invocation = _run_reporter(program, arguments, min(timeout, max(_remaining(), 1.0)), test_timeout)
+        invocation = _run_reporter(program, arguments, min(timeout, max(_remaining(), 1.0)), test_timeout, env,
+                                   sandbox)
         outputs.append(invocation.output)
         run.survivors.extend(invocation.survivors)
-        checked = check_records(invocation.records, position, first, invocation.garbage)
-        current: Key | None = None
-        for record in checked.accepted:
-            event = record.get("event")
-            if event == "started":
-                current = _key(record)
-                run.values[current] = []
-            elif event == "value" and current is not None:
-                run.values[current].append(record)
-            if event != "test_case":
-                continue
-            key = _key(record)
-            if key in ran:  # already reported by an earlier run of the program
-                if record.get("skipped") and ran[key].get("skipped"):
-                    continue  # doctest reports a skipped test again in every run
-                checked.violation, checked.culprit = f"a second result for \"{key[1]}\"", key
-                break
-            ran[key] = record
-        if checked.violation:
-            run.tampering.append(f"{program.name} -ts={suite}: {checked.violation}")
-            if checked.culprit is None:
-                why_missing = (f"the results of this run could not be trusted ({checked.violation}); "
-                               "nothing after that point was believed")
-                problems.append(f"{program.name} -ts={suite}: {why_missing}")
-                break
-            ran.pop(checked.culprit, None)
-            notes[checked.culprit] = (f"failed as tampering: {checked.violation} (the grader accepts one result "
-                                      "per test, in order, from the test program's reporter only)")
-            problems.append(f"{program.name}: test \"{checked.culprit[1]}\": tampering: {checked.violation}")
-            first = position[checked.culprit] + 1
-            continue
-        if invocation.ended_normally:
+        checked = check_records(invocation.records, progress.position, first, invocation.garbage)
+        _take(run, progress, checked)
+        if not checked.violation and invocation.ended_normally:
             break
-        if invocation.exit_code in (0, 1) and not invocation.problem:
-            how = f"exit({invocation.exit_code})"
-            reason = (f"your code ended the program with {how} (or a similar call) during this test: "
-                      "the tests after it were run again in a new program")
-        else:
-            how = invocation.problem
-            reason = f"did not finish: {invocation.problem}"
-        culprit = checked.running
-        last = ran.get(checked.last_recorded) if checked.last_recorded else None
-        if culprit is None and last is not None and any(f.get("kind") == "crash" for f in last.get("failures", [])):
-            # doctest reported the crash inside the test (its signal handler), then the program died.
-            problems.append(f"{program.name}: test \"{checked.last_recorded[1]}\": {how}")
-            first = position[checked.last_recorded] + 1
-            continue
-        if culprit is not None:
-            notes[culprit] = reason
-            problems.append(f"{program.name}: test \"{culprit[1]}\": {how}")
-            first = position[culprit] + 1
-        elif checked.last_recorded is not None and position[checked.last_recorded] >= first:
-            # Between tests (doctest reports a crash inside a test itself, then the program dies).
-            problems.append(f"{program.name} -ts={suite}: after test \"{checked.last_recorded[1]}\": {how}")
-            first = position[checked.last_recorded] + 1
-        else:
-            why_missing = f"{program.name} -ts={suite}: {how}"
-            if invocation.exit_code in (0, 1) and not invocation.problem:
-                why_missing += " before running a test"
-            problems.append(why_missing)
+        after = _next_first(run, progress, checked, invocation, first)
+        if after is not None and after <= first:  # no progress: the program dies before the test it starts at
+            progress.why_missing = (f"{program.name} -ts={suite}: run again from test {first}, the program ended "
+                                    f"before reaching it ({invocation.problem or checked.violation or 'no result'})")
+            progress.problems.append(progress.why_missing)
             break
-    if not why_missing and problems:
-        why_missing = problems[-1]
+        first = after
+    _finish(run, progress, hidden, outputs)
+    return run
+
+
+def _finish(run: SuiteRun, progress: _Progress, hidden: bool, outputs: list[str]) -> None:
+    why_missing = progress.why_missing or (progress.problems[-1] if progress.problems else "")
     # The reporter reports every skip-decorated test, whatever its suite.
-    results = [r for r in merge(listed, list(ran.values()), hidden, why_missing=why_missing) if r.suite == suite]
+    results = [r for r in merge(run.listed, list(progress.ran.values()), hidden, why_missing=why_missing)
+               if r.suite == run.suite]
     for result in results:
-        if result.key in notes:  # it ran, and crashed, hung, exited or lied
-            result.note, result.ran, result.passed = notes[result.key], True, False
-        elif not result.ran and not why_missing:
+        if result.key in progress.notes:  # it ran, and crashed, hung, exited or lied
+            result.note, result.ran, result.passed = progress.notes[result.key], True, False
+        elif not result.ran and not progress.why_missing:
             result.note = "no result was received for this test (the program never reported it)"
-        stored = stored_values.get(result.key)
-        if stored and result.passed:
-            problem = judge_values(stored, run.values.get(result.key, []))
-            if problem:
-                result.passed = False
-                result.note = f"checked by the grader outside your program: {problem}"
         if any("bad_alloc" in f.exception or "bad_alloc" in f.message for f in result.failures):
             result.note = (f"out of memory: your code asked for more than the {current_sandbox().limits.memory_mb} MB "
                            "a test program may use" + (f"; {result.note}" if result.note else ""))
     run.results = results
     if run.survivors:
-        problems.append(f"{program.name} -ts={suite}: processes your code started were still running after the "
-                        f"test program ended; they were killed ({len(run.survivors)})")
-    run.problem = "; ".join(problems)
+        progress.problems.append(f"{run.program.name} -ts={run.suite}: processes your code started were still "
+                                 f"running after the test program ended; they were killed ({len(run.survivors)})")
+    run.problem = "; ".join(progress.problems)
     run.output = "".join(outputs)
-    return run
 
 
-def approx_equal(actual: float, expected: float, epsilon: float, scale: float = 1.0) -> bool:
-    """doctest's Approx: |a − e| < ε·(scale + max(|a|, |e|))."""
-    return abs(actual - expected) < epsilon * (scale + max(abs(actual), abs(expected)))
-
-
-def judge_values(stored: list[dict], sent: list[dict]) -> str:
-    """Why the values a test sent do not match what the trusted run kept, or ''.
-
-    ``stored``: [{"file", "line", "expected", "epsilon"}] in the order the
-    reference sent them; ``sent``: the "value" records of this run."""
-    counts: dict[tuple[str, int], int] = {}
-    mine: dict[tuple[str, int, int], object] = {}
-    for record in sent:
-        at = (normal_file(str(record.get("at_file", ""))), int(record.get("at_line", 0) or 0))
-        counts[at] = counts.get(at, 0) + 1
-        mine[(*at, counts[at])] = record.get("actual")
-    seen: dict[tuple[str, int], int] = {}
-    for check in stored:
-        at = (normal_file(str(check["file"])), int(check["line"]))
-        seen[at] = seen.get(at, 0) + 1
-        where = f"{at[0]}:{at[1]}"
-        actual = mine.get((*at, seen[at]))
-        if actual is None:
-            return f"the value checked at {where} was never computed (expected {float(check['expected'])!r})"
-        try:
-            ok = approx_equal(float(actual), float(check["expected"]), float(check["epsilon"]))
-        except (TypeError, ValueError):
-            ok = False
-        if not ok:
-            return (f"the value checked at {where} is {actual!r}, expected {float(check['expected'])!r} "
-                    f"(within a relative {check['epsilon']:g})")
-    extra = sum(counts.values()) - len(stored)
-    if extra > 0:
-        return f"{extra} more checked value(s) than the test makes"
+def _stopped(result: TestResult) -> str:
+    """Why the observer's run of a test ended early, for the judge ('' when it ended normally)."""
+    if result.note:
+        return result.note
+    for failure in result.failures:
+        if failure.kind in ("exception", "crash", "timeout", "aborted"):
+            return failure.exception or failure.message
     return ""
+
+
+def judge_suite(run: SuiteRun, witness: dict[Key, list[dict]], hidden: bool) -> list[str]:
+    """Replaces each observed test's verdict by the judge's (judge.py); returns the grader's own
+    problems (a test the witness cannot judge), which are not the student's fault."""
+    problems = []
+    for result in run.results:
+        checks = witness.get(result.key)
+        if checks is None:
+            problems.append(f"{run.program.name}: no trusted record of \"{result.name}\"")
+            result.passed, result.note = False, "the grader has no trusted record of this test (not your fault)"
+            continue
+        if not result.ran:
+            continue
+        try:
+            verdict = judge_test(checks, run.checks.get(result.key, []), _stopped(result), hidden)
+        except JudgeError as error:
+            problems.append(f"{run.program.name}: \"{result.name}\": {error}")
+            result.passed, result.note = False, f"the grader cannot judge this test: {error} (not your fault)"
+            continue
+        crashes = [f for f in result.failures if f.kind == "crash"]
+        result.passed = verdict.passed
+        result.failures = verdict.failures + ([] if verdict.passed else crashes)
+        result.not_implemented_only = verdict.not_implemented_only
+        if verdict.passed:
+            result.note = ""
+    return problems
+
+
+def witness_checks(run: SuiteRun) -> dict[Key, list[dict]]:
+    """The witness's check records of every test that passed there (the trusted expected sides)."""
+    return {r.key: run.checks.get(r.key, []) for r in run.results if r.passed}
 
 
 def list_suites(program: Path, timeout: float | None = None) -> list[TestResult]:

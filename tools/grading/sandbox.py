@@ -26,6 +26,7 @@ is nothing to defend; ``tools/grade --batch`` says so on stderr.
 """
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import pwd
@@ -123,23 +124,33 @@ class Limits:
                       build_memory_mb=_megabytes("ILLUM_GRADE_BUILD_MEMORY_MB", 4096))
 
 
-_pid_namespace_works: bool | None = None
+_NAMESPACES: dict[str, bool] = {}
+
+
+def _unshare_works(*flags: str) -> bool:
+    unshare = shutil.which("unshare")
+    if not unshare or os.geteuid() != 0 or os.environ.get("ILLUM_GRADE_NO_PID_NAMESPACE") == "1":
+        return False
+    try:
+        done = subprocess.run([unshare, *flags, "--fork", "--kill-child", "--", "true"],
+                              capture_output=True, timeout=10, check=False)
+    except (OSError, subprocess.TimeoutExpired):
+        return False
+    return done.returncode == 0
 
 
 def pid_namespace_available() -> bool:
     """Whether ``unshare --pid --fork`` works here (root, and not forbidden by a container)."""
-    global _pid_namespace_works
-    if _pid_namespace_works is None:
-        unshare = shutil.which("unshare")
-        _pid_namespace_works = False
-        if unshare and os.geteuid() == 0 and os.environ.get("ILLUM_GRADE_NO_PID_NAMESPACE") != "1":
-            try:
-                done = subprocess.run([unshare, "--pid", "--fork", "--kill-child", "--", "true"],
-                                      capture_output=True, timeout=10, check=False)
-                _pid_namespace_works = done.returncode == 0
-            except (OSError, subprocess.TimeoutExpired):
-                _pid_namespace_works = False
-    return _pid_namespace_works
+    if "pid" not in _NAMESPACES:
+        _NAMESPACES["pid"] = _unshare_works("--pid")
+    return _NAMESPACES["pid"]
+
+
+def private_namespaces_available() -> bool:
+    """Whether mount and IPC namespaces can be made too (not under Docker's default profile)."""
+    if "private" not in _NAMESPACES:
+        _NAMESPACES["private"] = pid_namespace_available() and _unshare_works("--pid", "--mount", "--ipc")
+    return _NAMESPACES["private"]
 
 
 @dataclass
@@ -159,12 +170,16 @@ class Sandbox:
     account: Account | None = None
     limits: Limits = field(default_factory=Limits)
     namespace: bool | None = None  # None: use one when available
+    hide: list[str] = field(default_factory=list)  # folders a run must not see (the grader's own)
+    private: bool | None = None  # mount and IPC namespaces; None: when available
 
     def __post_init__(self) -> None:
         if self.account is not None and os.geteuid() != 0:
             raise SandboxError(f"running code as the user {self.account.name} needs root")
         if self.namespace is None:
             self.namespace = pid_namespace_available()
+        if self.private is None:
+            self.private = bool(self.namespace) and private_namespaces_available()
 
     # --- what the student's code sees -------------------------------------------------------
 
@@ -183,7 +198,7 @@ class Sandbox:
 
     def make_scratch(self) -> Path:
         """A fresh private HOME (with TMPDIR inside) for one run, owned by the account."""
-        folder = Path(tempfile.mkdtemp(prefix="illum-run-"))
+        folder = Path(tempfile.mkdtemp(prefix="illum-run-", dir=self._scratch_base()))
         home = folder / "home"
         (home / "tmp").mkdir(parents=True)
         if self.account is not None:
@@ -192,6 +207,33 @@ class Sandbox:
                 os.chown(path, self.account.uid, self.account.gid)
                 path.chmod(0o700)
         return folder
+
+    @contextlib.contextmanager
+    def hidden_folders(self):
+        """While the student's programs run: ``hide`` out of their reach. A private mount does it
+        where there are namespaces; elsewhere the folders are closed to others (0700) meanwhile."""
+        closed: list[tuple[str, int]] = []
+        if self.account is not None and not self.private:
+            for folder in self.hide:
+                try:
+                    closed.append((folder, stat.S_IMODE(os.stat(folder).st_mode)))
+                    os.chmod(folder, 0o700)
+                except OSError:
+                    pass
+        try:
+            yield
+        finally:
+            for folder, mode in closed:
+                os.chmod(folder, mode)
+
+    def _scratch_base(self) -> str | None:
+        """Where runs' HOMEs go: not /tmp when a run gets a private /tmp of its own (it would hide them)."""
+        if not self.private:
+            return None
+        base = Path("/var/lib/illum-grade/runs")
+        base.mkdir(parents=True, exist_ok=True)
+        base.chmod(0o711)
+        return str(base)
 
     @staticmethod
     def remove_scratch(folder: Path) -> None:
@@ -225,10 +267,13 @@ class Sandbox:
             "argv": [str(a) for a in argv], "status_fd": status_w, "keep_fds": keep, "limits": limits,
             "cwd": str(scratch / "home"), "env": self.environment(scratch / "home", extra),
             "uid": self.account.uid if self.account else None, "gid": self.account.gid if self.account else None,
+            "private": bool(self.private), "hide": self.hide, "shm_bytes": self.limits.memory_mb << 20,
+            "scratch_mb": self.limits.file_mb,
         }
         command = [sys.executable, "-I", "-S", str(INIT), json.dumps(config)]
         if self.namespace:
-            command = [shutil.which("unshare") or "unshare", "--pid", "--fork", "--kill-child", "--", *command]
+            flags = ["--pid"] + (["--mount", "--ipc"] if self.private else [])
+            command = [shutil.which("unshare") or "unshare", *flags, "--fork", "--kill-child", "--", *command]
         try:
             process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=output_w, stderr=output_w,
                                        pass_fds=[status_w, *keep], start_new_session=True, close_fds=True)
@@ -242,6 +287,12 @@ class Sandbox:
             if fd is not None:
                 os.close(fd)
         return Launched(process, status_r, output_r, records_r, scratch)
+
+    @staticmethod
+    def cpu_seconds(launched: Launched) -> float:
+        """Processor time (user + system, every thread) used so far by the processes the launcher
+        started: what the per-test limits count, so that a loaded machine does not fail a test."""
+        return descendants_cpu_seconds(launched.process.pid)
 
     def stop(self, launched: Launched) -> None:
         """Kills a launched program and everything it started."""
@@ -271,6 +322,7 @@ class Sandbox:
             self.stop(launched)
             launched.process.wait()
         survivors = self.reap()
+        self.clean_shared_folders()  # nothing of one program's reaches the next
         for fd in (launched.status_fd, launched.output_fd, launched.records_fd):
             if fd is not None:
                 try:
@@ -299,12 +351,52 @@ class Sandbox:
                 raise SandboxError(f"processes of {self.account.name} survive SIGKILL: {', '.join(found[:10])}")
             time.sleep(0.02)
 
-    def clean_shared_folders(self) -> None:
-        """Removes what the account left in the world-writable folders (a
-        channel from one run, or one student, to the next)."""
+    def shared_memory_bytes(self) -> int:
+        """System V and POSIX shared memory the account holds outside a private IPC namespace
+        (the memory limit of a process does not count it)."""
+        if self.account is None or self.private:
+            return 0
+        total = 0
+        try:
+            with open("/proc/sysvipc/shm", encoding="ascii") as table:
+                next(table, None)
+                for line in table:
+                    fields = line.split()
+                    if len(fields) > 7 and int(fields[7]) == self.account.uid:
+                        total += int(fields[3])
+        except OSError:
+            pass
+        try:
+            for entry in os.scandir("/dev/shm"):
+                info = entry.stat(follow_symlinks=False)
+                if info.st_uid == self.account.uid:
+                    total += info.st_blocks * 512
+        except OSError:
+            pass
+        return total
+
+    def remove_shared_memory(self) -> None:
+        """Removes the account's System V segments (POSIX ones are files: clean_shared_folders)."""
         if self.account is None:
             return
-        for folder in ("/tmp", "/var/tmp", "/dev/shm"):
+        try:
+            with open("/proc/sysvipc/shm", encoding="ascii") as table:
+                next(table, None)
+                ids = [line.split()[1] for line in table if len(line.split()) > 7
+                       and int(line.split()[7]) == self.account.uid]
+        except OSError:
+            return
+        ipcrm = shutil.which("ipcrm") or "/usr/bin/ipcrm"
+        for shmid in ids:
+            subprocess.run([ipcrm, "-m", shmid], capture_output=True, check=False)
+
+    def clean_shared_folders(self) -> None:
+        """Removes what the account left in the world-writable folders and its shared memory
+        (a channel from one run, or one student, to the next)."""
+        if self.account is None:
+            return
+        self.remove_shared_memory()
+        for folder in ("/tmp", "/var/tmp", "/dev/shm", "/run/lock"):
             try:
                 entries = list(os.scandir(folder))
             except OSError:
@@ -393,6 +485,36 @@ def chown_tree(folder: Path, uid: int, gid: int, strip_write: bool = False) -> N
                 path.chmod(stat.S_IMODE(info.st_mode) & ~0o7022)
         except OSError:
             pass
+
+
+_TICKS = os.sysconf("SC_CLK_TCK") if hasattr(os, "sysconf") else 100
+
+
+def descendants_cpu_seconds(root_pid: int) -> float:
+    """utime + stime of ``root_pid`` and every process below it, from /proc (children that ended
+    and were waited for count in their parent's cutime + cstime)."""
+    parents: dict[int, int] = {}
+    times: dict[int, float] = {}
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open(f"/proc/{entry}/stat", "rb") as stat_file:
+                fields = stat_file.read().rsplit(b")", 1)[1].split()
+        except (OSError, IndexError):
+            continue
+        pid = int(entry)
+        parents[pid] = int(fields[1])
+        times[pid] = sum(int(f) for f in fields[11:15]) / _TICKS  # utime stime cutime cstime
+    below = {root_pid}
+    changed = True
+    while changed:
+        changed = False
+        for pid, parent in parents.items():
+            if parent in below and pid not in below:
+                below.add(pid)
+                changed = True
+    return sum(times.get(pid, 0.0) for pid in below)
 
 
 def user_processes(uid: int) -> list[tuple[int, str]]:

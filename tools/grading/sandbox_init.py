@@ -13,6 +13,14 @@ program, which in the child, before exec:
 * becomes the unprivileged user of the config, when there is one;
 * moves to its private HOME with a clean environment.
 
+Where the grader made mount and IPC namespaces for it (``"private": true``
+in the config), it first gives the run private, size-limited ``/tmp``,
+``/var/tmp``, ``/dev/shm`` and ``/run/lock`` (gone with the namespace, so
+nothing a program leaves there reaches the next), hides the grader's own
+folders under empty read-only mounts, and caps System V shared memory in
+its IPC namespace (``shmall``; ``shm_rmid_forced``: a segment goes with its
+last user), which the memory limit of the process does not count.
+
 The parent waits for the program, reaping whatever else dies in the
 namespace, then kills the program's group and writes one JSON line to the
 status descriptor: ``{"pid": N}`` at the start, ``{"exited": CODE}`` or
@@ -47,6 +55,42 @@ def _say(fd, record):
         pass
 
 
+_MS_RDONLY, _MS_NOSUID, _MS_NODEV, _MS_REC, _MS_PRIVATE = 1, 2, 4, 16384, 1 << 18
+
+
+def _mount(source, target, kind, flags, data):
+    import ctypes
+
+    libc = ctypes.CDLL(None, use_errno=True)
+    libc.mount.argtypes = [ctypes.c_char_p] * 3 + [ctypes.c_ulong, ctypes.c_char_p]
+    if libc.mount(source and source.encode(), target.encode(), kind and kind.encode(), flags,
+                  data and data.encode()) != 0:
+        raise OSError(ctypes.get_errno(), f"mount {target}")
+
+
+def _write(path, text):
+    with open(path, "w", encoding="ascii") as file:
+        file.write(text)
+
+
+def _private(config):
+    """Private scratch folders, the grader's folders hidden, shared memory capped (module doc)."""
+    _mount(None, "/", None, _MS_REC | _MS_PRIVATE, None)
+    megabytes = int(config.get("scratch_mb", 64))
+    program = os.path.realpath(config["argv"][0])
+    for folder in ("/tmp", "/var/tmp", "/dev/shm", "/run/lock"):
+        # Not over the program itself (a tree under /tmp): the grader's clean-up covers that folder then.
+        if os.path.isdir(folder) and not program.startswith(os.path.realpath(folder) + "/"):
+            _mount("tmpfs", folder, "tmpfs", _MS_NOSUID | _MS_NODEV, f"size={megabytes}m,mode=1777")
+    for folder in config.get("hide", []):
+        if os.path.isdir(folder):
+            _mount("tmpfs", folder, "tmpfs", _MS_RDONLY | _MS_NOSUID | _MS_NODEV, "size=4k,mode=000")
+    pages = max(1, int(config.get("shm_bytes", 64 << 20)) // os.sysconf("SC_PAGE_SIZE"))
+    _write("/proc/sys/kernel/shmall", str(pages))
+    _write("/proc/sys/kernel/shmmax", str(pages * os.sysconf("SC_PAGE_SIZE")))
+    _write("/proc/sys/kernel/shm_rmid_forced", "1")
+
+
 def _child(config):
     keep = sorted(int(fd) for fd in config.get("keep_fds", []))
     os.setpgid(0, 0)
@@ -75,6 +119,13 @@ def _child(config):
 def main():
     config = json.loads(sys.argv[1])
     status_fd = int(config["status_fd"])
+    if config.get("private"):
+        try:
+            _private(config)
+        except OSError as error:
+            os.write(2, f"illum sandbox: cannot make the run's private folders: {error}\n".encode())
+            _say(status_fd, {"exited": 125})
+            os._exit(0)
     for fd in config.get("keep_fds", []):
         os.set_inheritable(int(fd), True)
     pid = os.fork()

@@ -1,28 +1,12 @@
-"""Exercise files that try to do more than compute: found before anything runs.
+"""Exercise files that try to do more than compute, found outside the student's process (code in the
+test's process can always lie to it); a flagged file is graded as its stub (docs/grading-defences.md).
 
-Code in the same process as the grading tests can always lie to them (it
-can register its own reporter, write fake records, end the program), so
-the grader does not rely on catching it at run time. Two checks run
-outside the student's process instead, and a file either flags is graded
-as its stub: every test of its lesson fails, with a message that says why
-(docs/grading.md, "Threat model").
-
-* **The source** (``scan_source``): an exercise unit computes. It may
-  include headers of ``illum/``, of the C++ standard library and of GLM,
-  nothing else (and no ``..`` in a path, no computed ``#include``); it may
-  not mention doctest, start processes (fork, exec, system, popen), end
-  the program (exit, _exit, quick_exit, atexit), use inline assembly or
-  system calls, open ``/proc``, declare ``extern "C"`` functions (its own
-  ``write()``), run code at load time (constructor attributes) or build
-  names by token pasting (which hides them from this scan).
-* **The object file** (``scan_object``, after it compiled): the symbols it
-  defines must belong to namespace ``illum`` (or be template instances the
-  compiler shares), and must not redefine one the library already has; the
-  symbols it uses must not include doctest's, process control, raw file
-  access (open, write, dup, file streams, std::filesystem), the
-  environment, signals, or dynamic loading. C functions outside a short
-  list of harmless ones (maths, memory, printing to stdout) are reported to
-  instructors without failing anything.
+* `scan_source`: an exercise unit includes only headers of illum/, the C++ standard library and GLM,
+  and does not mention doctest, start processes, end the program, use assembly or system calls, open
+  /proc, declare extern "C" functions, run code at load time or paste tokens;
+* `scan_object`: the compiled unit defines only names of namespace illum (or shared template instances)
+  that the library does not already have, and uses no doctest, process control, raw file access,
+  environment, signals or dynamic loading; an unusual C function is only shown to instructors.
 """
 from __future__ import annotations
 
@@ -31,6 +15,8 @@ import shutil
 import subprocess
 from dataclasses import dataclass, field
 from pathlib import Path, PurePosixPath
+
+from common.cpp_text import blank_comments
 
 
 @dataclass
@@ -102,47 +88,6 @@ _INCLUDE = re.compile(r"^\s*#\s*include\s*(.*)$")
 _INCLUDE_NAME = re.compile(r"^([<\"])([^>\"]*)[>\"]")
 
 
-def _strip_comments(text: str) -> tuple[str, str]:
-    """(code without comments and string contents, code without comments), line breaks kept."""
-    code, plain = [], []
-    i, n = 0, len(text)
-    while i < n:
-        c = text[i]
-        if text.startswith("//", i):
-            end = text.find("\n", i)
-            end = n if end < 0 else end
-            code.append(" " * (end - i))
-            plain.append(" " * (end - i))
-            i = end
-        elif text.startswith("/*", i):
-            end = text.find("*/", i + 2)
-            end = n if end < 0 else end + 2
-            blank = re.sub(r"[^\n]", " ", text[i:end])
-            code.append(blank)
-            plain.append(blank)
-            i = end
-        elif c in "\"'":
-            raw = c == '"' and i > 0 and text[i - 1] == "R"
-            if raw:
-                match = re.match(r'"([^(\s]{0,16})\(', text[i:])
-                end = text.find(")" + (match.group(1) if match else "") + '"', i) if match else -1
-                end = n if end < 0 else end + len(match.group(1)) + 2
-            else:
-                j = i + 1
-                while j < n and text[j] != c and text[j] != "\n":
-                    j += 2 if text[j] == "\\" else 1
-                end = min(j + 1, n)
-            literal = text[i:end]
-            code.append(c + re.sub(r"[^\n]", " ", literal[1:-1]) + (c if len(literal) > 1 else ""))
-            plain.append(literal)
-            i = end
-        else:
-            code.append(c)
-            plain.append(c)
-            i += 1
-    return "".join(code), "".join(plain)
-
-
 def _include_problem(argument: str) -> str:
     """Why an #include may not be in an exercise file, or ''."""
     match = _INCLUDE_NAME.match(argument.strip())
@@ -182,7 +127,7 @@ def scan_source(text: str, file: str) -> list[Finding]:
 
 
 def _scan_lines(text: str, file: str) -> list[Finding]:
-    code, plain = _strip_comments(text)
+    code, plain = blank_comments(text), blank_comments(text, strings=False)
     findings = []
     code_lines, plain_lines = code.splitlines(), plain.splitlines()
     for number, line in enumerate(code_lines, start=1):
@@ -205,8 +150,6 @@ def _scan_lines(text: str, file: str) -> list[Finding]:
         findings.append(Finding(file, 0, _SOURCE_RULES[0][1]))
     return findings
 
-
-# --- the object file ---------------------------------------------------------------------------
 
 # C functions an exercise may call (the compiler calls most of them by itself).
 _HARMLESS_C = set("""

@@ -1,20 +1,10 @@
 #!/usr/bin/env python3
-"""Compiles the lab's page into the `illum` binary (run by the build, tools/lab/lab.cmake).
+"""Compiles the lab's page into the `illum` binary (run by the build, tools/lab/lab.cmake): a C++ file
+defining illum::lab::lab_assets() with every file of tools/lab/web/ and the parts of three.js the page
+uses (node_modules/three, its add-ons' bare 'three' imports rewritten to the module's path; without it,
+lab_has_three() is false and the page says how to get it). Rewritten only when its text changes.
 
     embed_assets.py --source SOURCE_TREE --out BUILD/generated/lab_assets.cpp
-
-Writes a C++ file defining illum::lab::lab_assets() (tools/lab/lab_assets.hpp)
-with every file of tools/lab/web/ (index.html is served at "/", the others
-under "/assets/") and three.js from SOURCE_TREE/node_modules/three, the
-version package-lock.json pins (npm ci), under "/assets/three/": the module
-build, its core, OrbitControls, the wide-line add-ons and the licence. The
-add-ons import the bare name 'three'; it is rewritten to the module's own
-path, so that the page needs no import map (and no inline script). When node_modules/three is
-missing the page is still embedded, lab_has_three() returns false, and the
-page says how to get it.
-
-The file is rewritten only when its text changes, so a build that runs this
-every time recompiles nothing when nothing changed.
 """
 from __future__ import annotations
 

@@ -80,7 +80,7 @@ if(NOT ILLUM_LAB_MISSING)
                   ${ILLUM_LAB_DIR}/lab_radiosity.cpp ${ILLUM_LAB_DIR}/lab_compare.cpp ${ILLUM_LAB_DIR}/lab_server.cpp)
   # After the definitions above, which keep lab_server.cpp apart. Two files to a unit: Make
   # compiles the lab's objects last, and one unit of all four (each instantiating nlohmann-json)
-  # was the build's last 14 s on one core (README, Quick start).
+  # was the build's last 14 s on one core (docs/measurements.md).
   illum_unity_build(illum_lab_objects 2)
 else()
   message(STATUS "illum: no lab in this build (`illum lab` will say so): ${ILLUM_LAB_MISSING}")

@@ -10,19 +10,29 @@
 #include <stb_image_write.h>  // the implementation is compiled in lib/illum/core/image.cpp
 #include <nlohmann/json.hpp>
 
-#include "illum/core/charconv.hpp"
 #include "illum/io/embedded_scenes.hpp"
+#include "illum/system/charconv.hpp"
 
 namespace illum::lab {
 
 namespace {
 
 std::string shown(const std::string& value) {
-  // Quoted and cut short, so that a hostile value cannot flood the message.
-  std::string s = value.size() > 40 ? value.substr(0, 40) + "…" : value;
-  for (char& c : s)
-    if (static_cast<unsigned char>(c) < 0x20) c = '?';
-  return "'" + s + "'";
+  // Quoted and cut short, so that a hostile value cannot flood the message; a control byte (a NUL,
+  // which would end the message where it stands) is written \xNN, so that the message shows it.
+  std::string s;
+  for (std::size_t i = 0; i < value.size() && i < 40; ++i) {
+    const auto c = static_cast<unsigned char>(value[i]);
+    if (c >= 0x20 && c != 0x7f) {
+      s += value[i];
+    } else {
+      static const char* hex = "0123456789abcdef";
+      s += "\\x";
+      s += hex[c >> 4];
+      s += hex[c & 15];
+    }
+  }
+  return "'" + s + (value.size() > 40 ? "…'" : "'");
 }
 
 std::string known_list(const std::vector<std::string>& known) {
@@ -110,16 +120,37 @@ std::string Query::name(const std::string& name, std::size_t max_length) const {
   const std::string& v = value(name);
   if (v.size() > max_length)
     throw BadRequest("parameter '" + name + "' is longer than " + std::to_string(max_length) + " bytes");
-  for (const char c : v)
+  for (const char c : v) {
+    if (c == '\0')  // strchr below would find the string's own terminator
+      throw BadRequest("parameter '" + name + "' = " + shown(v) + " holds a NUL byte (%00)");
     if (!(std::isalnum(static_cast<unsigned char>(c)) || std::strchr(" _-.,()", c)))
       throw BadRequest("parameter '" + name + "' = " + shown(v) +
                        " holds a character other than letters, digits and \" _-.,()\"");
+  }
   return v;
 }
 
 std::string Query::name_or(const std::string& name, const std::string& fallback,
                            std::size_t max_length) const {
   return has(name) ? Query::name(name, max_length) : fallback;
+}
+
+std::string Query::asked(const std::string& name) const { return name + "=" + value(name); }
+
+Params checked_params(const std::string& target, Params decoded) {
+  const std::size_t question = target.find('?');
+  if (question == std::string::npos) return decoded;
+  const std::string query = target.substr(question + 1, target.find('#', question) - question - 1);
+  std::size_t start = 0, index = 1;
+  for (;; ++index) {
+    const std::size_t end = std::min(query.find('&', start), query.size());
+    const std::string part = query.substr(start, end - start);
+    if (!part.empty() && part.front() == '=')
+      throw BadRequest("parameter " + std::to_string(index) + " of the query, " + shown(part) +
+                       ", has an empty name (write NAME=VALUE)");
+    if (end == query.size()) return decoded;
+    start = end + 1;
+  }
 }
 
 std::vector<SceneEntry> scene_catalogue(const std::string& command_line_scene) {
@@ -144,7 +175,7 @@ const SceneEntry& find_scene(const std::vector<SceneEntry>& catalogue, const std
     if (e.id == id) return e;
     known += (known.empty() ? "" : ", ") + e.id;
   }
-  throw BadRequest("scene '" + id + "' is not one the lab can open (" + known + ")");
+  throw BadRequest("scene " + shown(id) + " is not one the lab can open (" + known + ")");
 }
 
 std::string error_json(const std::string& message) {

@@ -52,11 +52,20 @@ class Query {
   std::string name(const std::string& name, std::size_t max_length = 80) const;
   std::string name_or(const std::string& name, const std::string& fallback,
                       std::size_t max_length = 80) const;
+  // "patches=5000": a parameter as the request wrote it, for a message that names what was asked.
+  // For a value already read by integer(), number() or name() (and so known to be plain text).
+  std::string asked(const std::string& name) const;
 
  private:
   const std::string& value(const std::string& name) const;
   std::map<std::string, std::string> values_;
 };
+
+// The parameters of the request for `target` ("/api/render?scene=x&width=64") as the server decoded
+// them (`decoded`), once the raw query is checked for what decoding hides: a parameter without a
+// name ("?=1", "?a=1&=2"), which the decoder would read as a parameter named by its value, is a
+// BadRequest naming its place.
+Params checked_params(const std::string& target, Params decoded);
 
 // The scenes a request may name: the command line's (a shipped name, or a
 // file named by its stem), then every shipped scene. `source` is what

@@ -191,8 +191,8 @@ std::shared_ptr<const RadiosityLab::Mesh> RadiosityLab::mesh(const Query& q) {
   if (by_edge) {
     auto s = load(edge_asked);
     if (!s)
-      throw BadRequest("an edge of " + std::to_string(edge_asked) + " would mesh scene '" + entry.id +
-                       "' into more than " + std::to_string(max_patches) + " patches");
+      throw BadRequest(q.asked("edge") + " would mesh scene '" + entry.id + "' into more than " +
+                       std::to_string(max_patches) + " patches");
     m->scene = std::move(*s), m->edge = edge_asked;
   } else {
     // Lesson 11's figure: edge 240·0.97^k for the least k giving at least `wanted` patches
@@ -351,6 +351,16 @@ std::string RadiosityLab::start_json(const Params& params) {
       throw BadRequest("parameter 'resolution' = " + std::to_string(s->resolution) +
                        ": the sweeps and Southwell draw the whole matrix, every row at most " +
                        std::to_string(max_matrix_resolution) + " pixels across");
+    // Named as the request asked (patches=5000), not as the mesh it made: the mesh has at least
+    // that many patches, often a few more.
+    if (n > max_matrix_patches)
+      throw BadRequest(
+          (q.has("edge")      ? q.asked("edge")
+           : q.has("patches") ? q.asked("patches")
+                              : std::string("the default mesh")) +
+          " meshes scene '" + m->scene_id + "' into " + std::to_string(n) + " patches; method '" + method +
+          "' needs the whole form-factor matrix, which the lab draws for at most " +
+          std::to_string(max_matrix_patches) + " patches: ask for fewer, or use method 'progressive'");
     s->f = matrix(m, s->resolution);
     check_radiosity_system(patches, *s->f);
     s->b.assign(n, Color(0.0));

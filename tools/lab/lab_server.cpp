@@ -29,7 +29,7 @@ namespace {
 using nlohmann::json;
 
 Params params_of(const httplib::Request& request) {
-  return Params(request.params.begin(), request.params.end());
+  return checked_params(request.target, Params(request.params.begin(), request.params.end()));
 }
 
 void send_json(httplib::Response& response, int status, const std::string& body) {

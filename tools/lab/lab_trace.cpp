@@ -275,9 +275,16 @@ TraceLab::Request TraceLab::read(const Query& q) {
   r.settings.use_plan = q.flag_or("plan", defaults_.use_plan);
   r.settings.min_contribution = q.number_or("prune", 0.0, 1.0, defaults_.min_contribution);
   r.camera = render_camera(*r.scene, r.settings);
-  if (static_cast<double>(r.camera.width()) * r.camera.height() > 2048.0 * 2048.0)
-    throw BadRequest("the image would be " + std::to_string(r.camera.width()) + " × " +
-                     std::to_string(r.camera.height()) + " pixels; the lab draws at most 2048 × 2048");
+  if (static_cast<double>(r.camera.width()) * r.camera.height() > 2048.0 * 2048.0) {
+    // Named as asked: a width given alone takes its height from the scene camera's proportions.
+    std::string asked = q.has("width") ? q.asked("width") : "";
+    if (q.has("height")) asked += (asked.empty() ? "" : " and ") + q.asked("height");
+    throw BadRequest((asked.empty() ? std::string("the size illum lab was started with") : asked) +
+                     " makes an image of " + std::to_string(r.camera.width()) + " × " +
+                     std::to_string(r.camera.height()) +
+                     " pixels in the proportions of the camera of scene '" + r.name +
+                     "'; the lab draws at most 2048 × 2048");
+  }
   return r;
 }
 

@@ -1,21 +1,9 @@
 #!/usr/bin/env python3
-"""Screenshots of the lab's four views, for the gallery and the lesson texts (docs/lab.md).
+"""Screenshots of the lab's four views for the gallery and the lesson texts (docs/lab.md; the main job's
+step "lab"): `BIN/illum lab whitted` on a free port of 127.0.0.1, driven in headless Chromium by
+tools/lab/browser.mjs, writes OUT/lab/lab_*.png and a manifest.json. Exit 0 when every one was written.
 
     tools/lab/screenshots.py --bin build/release/bin --out out
-
-Starts `BIN/illum lab whitted` on a free port of 127.0.0.1 (its comparison
-view reading OUT/lessonNN, the main job's outputs), drives it in headless
-Chromium with tools/lab/browser.mjs and writes OUT/lab/: lab_ray_tree.png
-(a click on Whitted's glass ball), lab_radiosity.png (ten shots on the
-2,124-patch Cornell box), lab_radiosity_row.png (the last shooter's
-form-factor row), lab_hemicube.png and lab_compare.png, with a
-manifest.json the gallery (OUT/index.html) shows. The main job runs it
-(step "lab" of tools/main_job.py). Lessons 06, 10 and 11 show three of them,
-kept as lessons/NN_topic/figures/lab_*.png by `tools/figures.py
---update-images` (a screenshot is compared by its size only: its status
-lines carry timings).
-
-Exit status 0 when every screenshot was written; 1 otherwise, with the reason.
 """
 from __future__ import annotations
 
@@ -34,7 +22,7 @@ from pathlib import Path
 
 SOURCE = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(SOURCE / "tools"))
-from gallery.fsutil import atomic_write_text  # noqa: E402
+from common.files import atomic_write_text  # noqa: E402
 
 SHOTS = {
     "lab_ray_tree.png": "The lab's ray-tree view (illum lab whitted): a click on the glass ball, its rays in 3D over "

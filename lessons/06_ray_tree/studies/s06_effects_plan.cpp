@@ -22,11 +22,11 @@ void s06_effects_plan(OutputFolder& out, const Settings& settings) {
   std::string printed;
   for (const EmbeddedScene& shipped : embedded_scenes()) {
     const Scene scene = load_scene(std::string(shipped.name));
-    const RenderSettings settings{.width = quick ? 32 : 120, .max_depth = default_depth};
-    RenderSettings without = settings;
+    const RenderSettings with_plan{.width = quick ? 32 : 120, .max_depth = default_depth};
+    RenderSettings without = with_plan;
     without.use_plan = false;
     Stopwatch watch;
-    const RenderResult planned = render_ray_tree(scene, settings);
+    const RenderResult planned = render_ray_tree(scene, with_plan);
     const double planned_seconds = watch.seconds();
     watch.restart();
     const RenderResult full = render_ray_tree(scene, without);

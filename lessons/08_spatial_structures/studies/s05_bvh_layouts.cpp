@@ -24,7 +24,7 @@ void s05_bvh_layouts(OutputFolder& out, const Settings& settings) {
   const std::vector<Ray> rays = camera_rays(quick ? 24 : 64);
   Table bvhs({"BVH", "triangles", "build seconds", "bytes per triangle", "nodes per ray",
               "triangle tests per ray", "Mrays per second (1 thread)"});
-  for (const AccelKind kind : {AccelKind::bvh_teaching, AccelKind::bvh}) {
+  for (const AccelKind kind : {AccelKind::bvh, AccelKind::compact_bvh}) {
     const Measure m = measure(set, AccelSettings{.kind = kind}, rays, quick ? 0.005 : timed_loop_seconds);
     bvhs.add_row({std::string(to_string(kind)), static_cast<std::int64_t>(set.size()), m.build_seconds,
                   m.bytes_per_triangle, m.nodes_per_ray, m.tests_per_ray, m.mrays_per_second});

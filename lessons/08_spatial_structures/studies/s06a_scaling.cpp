@@ -23,15 +23,17 @@ PlotSpec per_ray_plot(const std::string& title, const std::string& y_label, cons
                       bool brute_force = true) {
   PlotSpec spec{.title = title, .x_label = "triangles N", .y_label = y_label, .log_x = true, .log_y = true};
   // Each structure keeps its colour in every plot, with or without brute force.
-  const char* structures[] = {"brute_force", "grid", "octree", "bvh"};
+  const char* structures[] = {"brute_force", "grid", "octree", "compact_bvh"};
   for (int k = 0; k < 4; ++k) {
     const std::string s = structures[k];
     if (!brute_force && s == "brute_force") continue;
+    std::string legend = s;  // "compact bvh": gnuplot would set the letter after '_' as a subscript
+    std::replace(legend.begin(), legend.end(), '_', ' ');
     spec.curves.push_back({.table = "scaling.csv",
                            .x = "triangles",
                            .y = y_column,
                            .where = {{"structure", s}},
-                           .title = s == "brute_force" ? "brute force" : s,
+                           .title = legend,
                            .colour = k + 1});
   }
   return spec;
@@ -50,13 +52,13 @@ void s06a_scaling(OutputFolder& out, const Settings& settings) {
   struct Series {
     std::vector<double> n, nodes, tests;
   };
-  Series series[4];
+  Series series[all_accel_kinds.size()];  // indexed by the AccelKind
   int done = 0;
   for (const std::size_t target : sizes) {
     report_progress(program_id, "scaling", done++, static_cast<int>(sizes.size()));
     const TriangleSet set = flake_with_about(target);
     for (const AccelKind kind :
-         {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::bvh}) {
+         {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::compact_bvh}) {
       if (kind == AccelKind::brute_force && set.size() > (quick ? 1000u : 10000u)) continue;
       const Measure m = measure(set, AccelSettings{.kind = kind}, rays, quick ? 0.005 : 0.03);
       table.add_row({std::string(to_string(kind)), static_cast<std::int64_t>(set.size()), m.build_seconds,
@@ -74,7 +76,8 @@ void s06a_scaling(OutputFolder& out, const Settings& settings) {
             "BVH leaves of 4");
   Table slopes(
       {"structure", "fit range", "slope of nodes or cells per ray", "slope of triangle tests per ray"});
-  for (const AccelKind kind : {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::bvh}) {
+  for (const AccelKind kind :
+       {AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::compact_bvh}) {
     const Series& s = series[static_cast<int>(kind)];
     if (s.n.size() < 2) continue;
     slopes.add_row({std::string(to_string(kind)),

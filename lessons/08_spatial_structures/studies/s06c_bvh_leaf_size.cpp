@@ -15,7 +15,8 @@ void s06c_bvh_leaf_size(OutputFolder& out, const Settings& settings) {
       .nodes = "nodes per ray",
       .quick_values = {1, 4, 16},
       .values = {1, 2, 4, 8, 16, 32, 64},
-      .settings = [](int leaf) { return AccelSettings{.kind = AccelKind::bvh, .bvh_leaf_size = leaf}; },
+      .settings =
+          [](int leaf) { return AccelSettings{.kind = AccelKind::compact_bvh, .bvh_leaf_size = leaf}; },
       .caption = "BVH: most triangles per leaf against cost per ray"};
   knob_study(out, quick, study);
   plot_knob_study(out, study, "BVH leaf size: nodes visited against triangles tested",

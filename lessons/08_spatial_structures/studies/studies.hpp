@@ -10,8 +10,8 @@ namespace illum::lesson08 {
 
 // What the command line sets.
 struct Settings {
-  bool quick = false;                // --quick: small sizes
-  AccelKind accel = AccelKind::bvh;  // --accel: the structure the demonstration renders through
+  bool quick = false;                        // --quick: small sizes
+  AccelKind accel = AccelKind::compact_bvh;  // --accel: the structure the demonstration renders through
 };
 
 // §1: primary visibility by the item buffer against rays (studies/s01_item_buffer.cpp).

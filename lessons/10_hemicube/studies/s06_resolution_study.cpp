@@ -120,7 +120,8 @@ std::vector<StudyCase> resolution_study_cases(bool quick) {
     for (Point3& p : polygon) p = rotate_z(p, turn);
     cases.push_back(point_case("perpendicular rectangle", polygon, exact));
   }
-  // 0.06 wide at distance 2.6: a seventh of a pixel at resolution 32. The contour formula.
+  // 0.06 wide at height 2.5 (2.63 from the receiver's centre): a seventh of a pixel at resolution 32.
+  // The contour formula.
   const auto square = facing_square(Point3(0.7, 0.4, 2.5), 0.06);
   cases.push_back(point_case("small far square", square, exact_from_origin(facing_origin(square))));
   cases.push_back(room_row_case(quick ? 4 : 8));

@@ -21,6 +21,7 @@ void s05_study(OutputFolder& out, const Scene& scene, const Settings& s, const P
   report_progress(id, "path-traced reference", 0, 1);
   const Image reference = path_traced_reference(scene, w, 0, s.reference_samples, s.seed);
   const Image half = path_traced_reference(scene, w, 0, s.reference_samples / 2, s.seed + 1);
+  report_progress(id, "path-traced reference", 1, 1);
   Table methods({"method", "seconds", "relative error"});
   methods.add_row({"half the reference's paths, another seed (its noise)", 0.0,
                    image_difference(half, reference).relative});
@@ -46,9 +47,12 @@ void s05_study(OutputFolder& out, const Scene& scene, const Settings& s, const P
             "Error of each method against a path-traced reference (" + std::to_string(s.reference_samples) +
                 " paths per pixel, " + std::to_string(w) + " pixels wide)");
   Table mesh({"max patch edge", "patches", "shots", "pass one seconds", "relative error"});
-  for (const double edge :
-       s.quick ? std::vector<double>{200, 140} : std::vector<double>{200, 140, 100, 70, 50}) {
-    report_progress(id, "mesh study, edge " + format_number(edge, 3), 0, 1);
+  const std::vector<double> edges =
+      s.quick ? std::vector<double>{200, 140} : std::vector<double>{200, 140, 100, 70, 50};
+  const int meshes = static_cast<int>(edges.size());
+  for (int k = 0; k < meshes; ++k) {
+    const double edge = edges[static_cast<std::size_t>(k)];
+    report_progress(id, "mesh study (edges 200 to " + format_number(edges.back(), 3) + ")", k, meshes);
     Settings e = s;
     e.edge = edge;
     const PipelineRun r = edge == s.edge ? both : run_pipeline(scene, s.scene, e, false, w);
@@ -56,6 +60,7 @@ void s05_study(OutputFolder& out, const Scene& scene, const Settings& s, const P
     mesh.add_row({edge, count(r.mesh.radiosity.patches.size()), count(r.radiosity.hemicube_rows),
                   r.radiosity.seconds, image_difference(eye.image, reference).relative});
   }
+  report_progress(id, "mesh study (edges 200 to " + format_number(edges.back(), 3) + ")", meshes, meshes);
   out.table(mesh, "study_mesh", "Pass one's cost and the two-pass error against the mesh size");
   Table depth({"depth limit", "rays", "pass two seconds", "relative error"});
   for (int d = 0; d <= (s.quick ? 2 : 8); ++d) {

@@ -1,5 +1,5 @@
 #pragma once
-// The axis-aligned bounding box, lesson 08 (§4, "volúmenes envolventes").
+// The axis-aligned bounding box, lesson 08 (§2, "volúmenes envolventes").
 //
 // A box is the intersection of three slabs lo[a] ≤ x[a] ≤ hi[a]. The default
 // box is empty (lo = +∞, hi = −∞) so that growing it by a first point gives

@@ -1,5 +1,5 @@
 #pragma once
-// The bounding sphere, lesson 08 (§4): the cheapest bounding volume to test,
+// The bounding sphere, lesson 08 (§2): the cheapest bounding volume to test,
 // and usually a looser one than the box (the study compares them).
 #include <span>
 

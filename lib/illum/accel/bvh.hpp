@@ -1,5 +1,5 @@
 #pragma once
-// The bounding volume hierarchy, lesson 08 (§4, "jerarquía de volúmenes
+// The bounding volume hierarchy, lesson 08 (§5, "jerarquía de volúmenes
 // envolventes"): a binary tree of boxes whose leaves hold a few triangles.
 //
 // Build: top-down, binned surface-area heuristic (SAH). A node's triangles
@@ -49,7 +49,7 @@ class Bvh final : public TriangleAccel {
   std::optional<AccelHit> intersect(const Ray& ray, TraversalCounters& counters) const override;
   bool occluded(const Ray& ray, TraversalCounters& counters) const override;
   std::size_t memory_bytes() const override;
-  std::string_view name() const override { return "bvh_teaching"; }
+  std::string_view name() const override { return "bvh"; }
 
   const std::vector<BvhNode>& nodes() const { return nodes_; }
   int depth() const { return depth_; }

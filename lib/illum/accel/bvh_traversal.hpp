@@ -1,18 +1,28 @@
 #pragma once
 // Exercise unit of lesson 08: students write bvh_traversal.cpp.
-// BVH traversal: closest hit and any hit over flattened nodes, lesson 08 (§4).
+// BVH traversal: closest hit and any hit over flattened nodes, lesson 08 (§5).
 //
-// Closest hit, with a stack of nodes still to visit:
-//   * a node is popped with the parameter at which the ray enters its box;
-//     when that lies beyond the closest hit so far (by more than a relative
-//     1e-9 of its s, an allowance for ties), the node is skipped without a
-//     triangle test (early exit: nothing in it can be closer);
+// Closest hit, with a stack of (node, entry s) still to visit:
+//   * a node is popped with the parameter at which the ray enters its box, kept
+//     in double as slab_clip computed it; when that lies beyond the closest hit
+//     so far s_best, by more than a relative 1e-9 (entry > s_best + 1e-9·|s_best|,
+//     an allowance for ties: coplanar overlapping triangles in two leaves are hit
+//     at s a few ulps apart, and brute force returns the smaller), the node is
+//     skipped without a triangle test (early exit: nothing in it can be closer);
 //   * at an inner node both children's boxes are clipped (slab_clip) against
 //     [range.lo, closest so far] (widened, below); the child entered first is visited first
 //     (pushed last), so that a close hit is found early and prunes the rest;
 //     when both are entered at the same s, the first child (node + 1) first;
 //   * at a leaf every triangle is tested against the shrunken range.
-// Any hit (shadow rays): the same walk, returning at the first hit.
+// Any hit (shadow rays) needs no order by distance: it is the notes' recursion
+// with a stack. Pop a node and test its box against ray.range (widened, below):
+// one box test per popped node, the root's first; skip the node when the box
+// is missed. At a leaf test its triangles, in order, and return true at the
+// first hit. At an inner node push the second child (node.first), then the
+// first (node + 1), so that the first child is popped next. No child is clipped
+// at its parent: a box is tested once, when its node is popped. (Closest hit
+// tests both children's boxes at the parent, so the same tree costs it one box
+// test more per inner node visited; the tests count both.)
 // The stack: a tree is at most bvh_max_depth levels deep below its root (bvh.hpp),
 // and a depth-first walk holds at most one pending sibling per level plus the two
 // children just pushed, so a fixed-size stack needs bvh_max_depth + 1 entries (the

@@ -21,9 +21,11 @@
 //     Parallel means what it means to the slab test: ω[a] = 0, or so small
 //     that 1/ω[a] is not finite (the clip took that axis as parallel, so the
 //     walk must not step across it either).
-// The boundary parameters are computed from the boundary's coordinate
-// (lo + k·h − P0)/ω each time, not accumulated, so that rays through corners
-// tie exactly.
+// The boundary parameters are computed from the boundary's coordinate each
+// time, s_next[a] = (frame.boundary(a, k) − P0[a]) / ω[a] with k the boundary
+// ahead of the current cell (cell[a] + 1 moving up, cell[a] moving down), not
+// accumulated, so that rays through corners tie exactly; after dda_start moves
+// its first cell (below), s_next is that cell's, recomputed.
 #include <array>
 #include <vector>
 
@@ -66,6 +68,12 @@ struct DdaWalk {
 
 // The walk's first cell: the cell where the segment ray.range ∩ bounds begins
 // (done when that is empty or of zero length). An origin inside the grid starts in its own cell.
+// s_enter and s_end are the segment's ends (slab_clip of the bounds with no
+// far slack). The entry point P0 + s_enter·ω is rounded, and its cell by
+// floor may be one off near a boundary: the first cell is the one whose far
+// boundary lies strictly ahead of s_enter and whose near boundary does not
+// (both by the parameters above), so an entry exactly on a boundary belongs
+// to the cell the ray moves into.
 DdaWalk dda_start(const GridFrame& frame, const Ray& ray);
 
 // Moves to the next cell along the ray, or sets done.

@@ -1,6 +1,6 @@
 #pragma once
 // Exercise unit of lesson 08: students write slab_test.cpp.
-// The slab test: the part of a ray's parameter range inside a box, lesson 08 (§4).
+// The slab test: the part of a ray's parameter range inside a box, lesson 08 (§2).
 //
 // Along axis a the ray P0 + sω is inside the slab lo[a] ≤ x ≤ hi[a] for s
 // between (lo[a] − P0[a])/ω[a] and (hi[a] − P0[a])/ω[a]; the ray is in the box
@@ -18,8 +18,10 @@
 // at a mesh vertex that bounds a leaf. Mathematically the x slab's exit equals
 // the y slab's entry; computed, it may fall an ulp short and the box is
 // missed, and with it the triangle (a crack that lesson 03's watertight test
-// had closed). Each computed s is within 1.5ε (relative) of the true one, so a
-// hierarchy widens the exit by `far_slack` = 2γ₃ (γₙ = nε/(1 − nε)), after
+// had closed). Each computed s = (lo − P0)·(1/ω) goes through three roundings
+// (the subtraction, the inverse, the product), so it is within a relative
+// γ₃ ≈ 3ε of the true one (lesson 08, §2; γₙ = nε/(1 − nε), ε = 2⁻⁵³), and a
+// hierarchy widens the exit by `far_slack` = 2γ₃, after
 // pbrt-v4's conservative ray–bounds test; the 3DDA, which must not visit a
 // cell the ray only grazes, passes 0. The exit moves by far_slack·|s_exit|,
 // outwards whatever the sign of s: the slack only ever widens the interval.

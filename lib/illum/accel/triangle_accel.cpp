@@ -22,8 +22,8 @@ const char* to_string(AccelKind kind) {
       return "octree";
     case AccelKind::bvh:
       return "bvh";
-    case AccelKind::bvh_teaching:
-      return "bvh_teaching";
+    case AccelKind::compact_bvh:
+      return "compact_bvh";
   }
   return "?";
 }
@@ -46,9 +46,9 @@ std::unique_ptr<TriangleAccel> make_accel(const TriangleSet& set, const AccelSet
     case AccelKind::octree:
       return std::make_unique<Octree>(set,
                                       OctreeSettings{.max_depth = settings.octree_depth, .leaf_size = 8});
-    case AccelKind::bvh:
+    case AccelKind::compact_bvh:
       return std::make_unique<CompactBvh>(set, BvhSettings{.leaf_size = settings.bvh_leaf_size});
-    case AccelKind::bvh_teaching:
+    case AccelKind::bvh:
       return std::make_unique<Bvh>(set, BvhSettings{.leaf_size = settings.bvh_leaf_size});
   }
   throw std::invalid_argument("make_accel: unknown AccelKind");

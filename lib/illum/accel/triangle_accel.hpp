@@ -52,22 +52,22 @@ class TriangleAccel {
   virtual std::string_view name() const = 0;
 };
 
-// bvh: the production layout (production/compact_bvh.hpp, not course material),
-// the default; bvh_teaching: the same tree traversed by the exercise unit
-// (bvh_traversal.cpp): what a lesson's program runs with `--accel bvh_teaching`.
-enum class AccelKind { brute_force, grid, octree, bvh, bvh_teaching };
+// bvh: lesson 08's BVH, traversed by the exercise unit (bvh_traversal.cpp): what a
+// lesson's program runs with `--accel bvh`; compact_bvh: the same tree in the
+// production layout (production/compact_bvh.hpp, not course material), the default.
+enum class AccelKind { brute_force, grid, octree, bvh, compact_bvh };
 inline constexpr std::array<AccelKind, 5> all_accel_kinds = {
-    AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::bvh, AccelKind::bvh_teaching};
+    AccelKind::brute_force, AccelKind::grid, AccelKind::octree, AccelKind::bvh, AccelKind::compact_bvh};
 
 struct AccelSettings {
-  AccelKind kind = AccelKind::bvh;
+  AccelKind kind = AccelKind::compact_bvh;
   // Cells along the grid's longest axis (≥ 1; 0 is refused); none = ⌈∛(2N)⌉, about 2 cells per triangle.
   std::optional<int> grid_resolution{};
   int bvh_leaf_size = 4;  // most triangles in a BVH leaf
   int octree_depth = 8;   // deepest octree level below the root (0 … 16)
 };
 
-// "brute_force", "grid", "octree", "bvh", "bvh_teaching" (core/enum_names.hpp's pattern).
+// "brute_force", "grid", "octree", "bvh", "compact_bvh" (core/enum_names.hpp's pattern).
 const char* to_string(AccelKind kind);
 // The kind of that name; throws std::invalid_argument naming the choices otherwise.
 AccelKind accel_kind_from_name(std::string_view name);

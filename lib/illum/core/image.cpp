@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "illum/core/atomic_file.hpp"
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/memory_budget.hpp"
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #if defined(__GNUC__)

@@ -13,7 +13,7 @@ struct Interval {
   double hi = -infinity;
 
   constexpr Interval() = default;
-  constexpr Interval(double lo, double hi) : lo(lo), hi(hi) {}
+  constexpr Interval(double low, double high) : lo(low), hi(high) {}
 
   constexpr bool empty() const { return !(lo <= hi); }
   constexpr double size() const { return hi - lo; }

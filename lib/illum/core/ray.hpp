@@ -21,10 +21,10 @@ struct Ray {
 
   // Throws std::invalid_argument when the direction is not unit length or
   // any coordinate is NaN or infinite.
-  Ray(const Point3& origin, const Vec3& direction, Interval range = Interval::ahead());
+  Ray(const Point3& p0, const Vec3& omega, Interval s_range = Interval::ahead());  // P0, ω
 
-  // A ray towards `direction`, normalised first; the direction must not be zero.
-  static Ray toward(const Point3& origin, const Vec3& direction, Interval range = Interval::ahead());
+  // A ray towards `towards`, normalised first; it must not be zero.
+  static Ray toward(const Point3& p0, const Vec3& towards, Interval s_range = Interval::ahead());
 
   Point3 at(double s) const { return origin + s * direction; }
 };

@@ -7,7 +7,7 @@
 #include <limits>
 #include <vector>
 
-#include "illum/core/platform.hpp"
+#include "illum/system/platform.hpp"
 
 namespace illum {
 
@@ -29,7 +29,7 @@ inline void do_not_optimize(const T& value) {
 #if defined(__GNUC__) || defined(__clang__)
   asm volatile("" : : "r,m"(value) : "memory");
 #else
-  escape(&value);  // an opaque call (core/platform.hpp)
+  escape(&value);  // an opaque call (system/platform.hpp)
 #endif
 }
 

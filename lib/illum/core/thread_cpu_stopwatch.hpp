@@ -2,7 +2,7 @@
 // The calling thread's CPU time, for timings on a shared machine: wall time
 // (Stopwatch) also counts the slices other processes took from this thread;
 // this counts only the time the thread ran. Studies and benchmarks only.
-#include "illum/core/platform.hpp"
+#include "illum/system/platform.hpp"
 
 namespace illum {
 

@@ -24,12 +24,12 @@ struct Plane {
   // The plane N·P + D = 0; N and D are scaled together so that |N| = 1 (the
   // same plane). Throws std::invalid_argument for a zero or non-finite normal
   // or a non-finite D.
-  Plane(const Vec3& n, double d_) {
-    require(is_finite(n) && std::isfinite(d_), "Plane: the normal and D must be finite");
+  Plane(const Vec3& n, double d_unscaled) {
+    require(is_finite(n) && std::isfinite(d_unscaled), "Plane: the normal and D must be finite");
     const double len = length(n);
     require(len > 0.0 && std::isfinite(len), "Plane: the normal must not be the zero vector");
     normal = n / len;
-    d = d_ / len;
+    d = d_unscaled / len;
   }
 
   // The plane through `point` with normal `n` (D = −N·point).
@@ -48,8 +48,8 @@ enum class PlaneContact {
   crosses,   // one crossing at parameter s (which may be negative)
   parallel,  // N·ω = 0 and the origin is off the plane: no crossing at all
   in_plane,  // N·ω = 0 and the origin is on the plane: every s is on it
-  // (both tests are exact, == 0, with no tolerance: an origin 1e-12 off the
-  // plane is off it)
+  // (both tests are exact, N·ω == 0 and D + N·P0 == 0, with no tolerance: an
+  // origin 1e-12 or 1e-200 off the plane is off it, and N·ω = −1e-15 crosses)
 };
 
 struct PlaneCrossing {

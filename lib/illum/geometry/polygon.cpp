@@ -78,8 +78,7 @@ Polygon::Polygon(std::vector<Point3> outer, std::vector<std::vector<Point3>> hol
 
   // Drop the normal's largest component (lesson 02, §3): the projection onto
   // the other two axes has the largest projected area, so no loop collapses.
-  const Vec3 a = glm::abs(plane_.normal);
-  dropped_axis_ = (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
+  dropped_axis_ = largest_axis(plane_.normal);
 
   loop_start_.push_back(0);
   for (const auto& loop : loops) {

@@ -27,6 +27,14 @@ namespace illum {
 // non-planar. Rounding of coordinates stays far below it.
 constexpr double planarity_tolerance = 1e-9;
 
+// The axis to drop for a plane of normal n (lesson 02, §3): the one along which
+// |n| is largest, x before y before z on a tie (0 = x, 1 = y, 2 = z). Lesson 13
+// projects its quads the same way.
+inline int largest_axis(const Vec3& n) {
+  const Vec3 a = glm::abs(n);
+  return (a.x >= a.y && a.x >= a.z) ? 0 : (a.y >= a.z ? 1 : 2);
+}
+
 // (u, v) of a point when the coordinate `dropped_axis` (0 = x, 1 = y, 2 = z) is dropped.
 inline Vec2 drop_axis(const Point3& p, int dropped_axis) {
   switch (dropped_axis) {

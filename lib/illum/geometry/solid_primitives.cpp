@@ -169,12 +169,12 @@ bool cylinder_span(const Ray& ray, const SolidCylinder& cylinder, int surface, S
 
 }  // namespace
 
-SolidSphere::SolidSphere(const Point3& center, double radius) : center(center), radius(radius) {
+SolidSphere::SolidSphere(const Point3& pc, double r) : center(pc), radius(r) {
   require(is_finite(center), "SolidSphere: the centre must be finite (no NaN or infinity)");
   require(finite(radius) && radius > 0.0, "SolidSphere: the radius must be positive and finite");
 }
 
-SolidBox::SolidBox(const Point3& lo, const Point3& hi) : lo(lo), hi(hi) {
+SolidBox::SolidBox(const Point3& low, const Point3& high) : lo(low), hi(high) {
   require(is_finite(lo) && is_finite(hi), "SolidBox: the corners must be finite (no NaN or infinity)");
   require(lo.x < hi.x && lo.y < hi.y && lo.z < hi.z,
           "SolidBox: every side must have positive length (lo < hi on each axis)");
@@ -187,32 +187,32 @@ SolidBox SolidBox::centered(const Point3& center, const Vec3& half_size) {
   return SolidBox(center - half_size, center + half_size);
 }
 
-SolidHalfSpace::SolidHalfSpace(const Vec3& normal, double offset)
-    : normal(unit_normal(normal, "SolidHalfSpace: the normal must be finite and non-zero")) {
-  require(finite(offset), "SolidHalfSpace: the offset must be finite");
-  this->offset = offset / length(normal);  // N·P <= D keeps its meaning when N is scaled to unit length
+SolidHalfSpace::SolidHalfSpace(const Vec3& n, double d)
+    : normal(unit_normal(n, "SolidHalfSpace: the normal must be finite and non-zero")) {
+  require(finite(d), "SolidHalfSpace: the offset must be finite");
+  offset = d / length(n);  // N·P <= D keeps its meaning when N is scaled to unit length
 }
 
-SolidHalfSpace SolidHalfSpace::through(const Point3& point, const Vec3& normal) {
+SolidHalfSpace SolidHalfSpace::through(const Point3& point, const Vec3& n) {
   require(is_finite(point), "SolidHalfSpace::through: the point must be finite");
-  const Vec3 n = unit_normal(normal, "SolidHalfSpace::through: the normal must be finite and non-zero");
-  return SolidHalfSpace(n, dot(n, point));
+  const Vec3 unit = unit_normal(n, "SolidHalfSpace::through: the normal must be finite and non-zero");
+  return SolidHalfSpace(unit, dot(unit, point));
 }
 
-SolidSlab::SolidSlab(const Vec3& normal, double lo, double hi)
-    : normal(unit_normal(normal, "SolidSlab: the normal must be finite and non-zero")) {
-  require(finite(lo) && finite(hi), "SolidSlab: the bounds must be finite");
-  require(lo < hi, "SolidSlab: the thickness must be positive (lo < hi)");
-  // The parameters, not the members: the bounds are scaled with the normal.
-  this->lo = lo / length(normal);
-  this->hi = hi / length(normal);
+SolidSlab::SolidSlab(const Vec3& n, double d_low, double d_high)
+    : normal(unit_normal(n, "SolidSlab: the normal must be finite and non-zero")) {
+  require(finite(d_low) && finite(d_high), "SolidSlab: the bounds must be finite");
+  require(d_low < d_high, "SolidSlab: the thickness must be positive (lo < hi)");
+  // The bounds are scaled with the normal.
+  lo = d_low / length(n);
+  hi = d_high / length(n);
 }
 
-SolidCylinder::SolidCylinder(const Point3& base, const Vec3& axis, double radius, double height)
-    : base(base),
-      axis(unit_normal(axis, "SolidCylinder: the axis must be finite and non-zero")),
-      radius(radius),
-      height(height) {
+SolidCylinder::SolidCylinder(const Point3& base_centre, const Vec3& a, double r, double h)
+    : base(base_centre),
+      axis(unit_normal(a, "SolidCylinder: the axis must be finite and non-zero")),
+      radius(r),
+      height(h) {
   require(is_finite(base), "SolidCylinder: the base centre must be finite");
   require(finite(radius) && radius > 0.0, "SolidCylinder: the radius must be positive and finite");
   require(finite(height) && height > 0.0, "SolidCylinder: the height must be positive and finite");

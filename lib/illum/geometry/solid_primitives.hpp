@@ -23,13 +23,13 @@ namespace illum {
 struct SolidSphere {
   Point3 center;
   double radius;
-  SolidSphere(const Point3& center, double radius);
+  SolidSphere(const Point3& pc, double r);
 };
 
 // The axis-aligned box lo <= P <= hi (componentwise), with lo < hi on every axis.
 struct SolidBox {
   Point3 lo, hi;
-  SolidBox(const Point3& lo, const Point3& hi);
+  SolidBox(const Point3& low, const Point3& high);
   static SolidBox centered(const Point3& center, const Vec3& half_size);
 };
 
@@ -38,16 +38,16 @@ struct SolidBox {
 struct SolidHalfSpace {
   Vec3 normal;
   double offset;
-  SolidHalfSpace(const Vec3& normal, double offset);
+  SolidHalfSpace(const Vec3& n, double d);
   // The half-space whose boundary plane passes through `point`.
-  static SolidHalfSpace through(const Point3& point, const Vec3& normal);
+  static SolidHalfSpace through(const Point3& point, const Vec3& n);
 };
 
 // The slab lo <= N·P <= hi between two parallel planes, lo < hi.
 struct SolidSlab {
   Vec3 normal;
   double lo, hi;
-  SolidSlab(const Vec3& normal, double lo, double hi);
+  SolidSlab(const Vec3& n, double d_low, double d_high);
 };
 
 // The finite capped cylinder: the points whose height h = (P − base)·a lies
@@ -57,7 +57,7 @@ struct SolidCylinder {
   Point3 base;
   Vec3 axis;
   double radius, height;
-  SolidCylinder(const Point3& base, const Vec3& axis, double radius, double height);
+  SolidCylinder(const Point3& base_centre, const Vec3& a, double r, double h);
 };
 
 using SolidPrimitive = std::variant<SolidSphere, SolidBox, SolidHalfSpace, SolidSlab, SolidCylinder>;

@@ -7,7 +7,7 @@
 
 namespace illum {
 
-Sphere::Sphere(const Point3& center_, double radius_) : center(center_), radius(radius_) {
+Sphere::Sphere(const Point3& pc, double r) : center(pc), radius(r) {
   require(is_finite(center), "Sphere: the centre must be finite");
   require(std::isfinite(radius) && radius > 0.0, "Sphere: the radius must be positive and finite");
 }

@@ -27,7 +27,7 @@ struct Sphere {
 
   // Throws std::invalid_argument when the radius is zero, negative, NaN or
   // infinite, or the centre is not finite.
-  Sphere(const Point3& center, double radius);
+  Sphere(const Point3& pc, double r);  // the notes' Pc and r
 };
 
 // The real roots of the sphere's quadratic along a ray, in increasing order.

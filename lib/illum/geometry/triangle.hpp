@@ -39,7 +39,7 @@ struct Triangle {
 
   // Throws std::invalid_argument when a vertex is not finite or the three
   // vertices are collinear (no plane, zero area).
-  Triangle(const Point3& a_, const Point3& b_, const Point3& c_) : a(a_), b(b_), c(c_) {
+  Triangle(const Point3& v0, const Point3& v1, const Point3& v2) : a(v0), b(v1), c(v2) {
     require(is_finite(a) && is_finite(b) && is_finite(c), "Triangle: the vertices must be finite (no NaN)");
     require(cross(b - a, c - a) != Vec3(0.0), "Triangle: the vertices are collinear (zero area)");
   }

@@ -6,9 +6,9 @@
 #include <vector>
 
 #include "illum/core/error.hpp"
-#include "illum/core/input_file.hpp"
-#include "illum/core/json_text_check.hpp"
-#include "illum/core/nearest_name.hpp"
+#include "illum/io/json_text_check.hpp"
+#include "illum/io/nearest_name.hpp"
+#include "illum/system/input_file.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -22,8 +22,8 @@
 // scene (it was 29,000 of the 171,000 lines lesson 11's first unit parsed).
 #include <nlohmann/json_fwd.hpp>
 
-#include "illum/core/nearest_name.hpp"  // nearest_name, for "did you mean"
 #include "illum/core/vec.hpp"
+#include "illum/io/nearest_name.hpp"  // nearest_name, for "did you mean"
 
 namespace illum {
 
@@ -32,7 +32,7 @@ class JsonReader {
   // Reads and parses the file; throws InputError naming the file (and the
   // parser's line and column) when it cannot be read or is not JSON. Only a
   // regular file of at most max_file_bytes is read (a FIFO, a device or a
-  // folder is refused at once, core/input_file.hpp).
+  // folder is refused at once, system/input_file.hpp).
   static JsonReader parse_file(const std::filesystem::path& file);
   // 64 MiB: a hundred times the largest scene of the course; a parsed JSON
   // document takes about ten times its text in memory.

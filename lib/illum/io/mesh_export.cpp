@@ -4,8 +4,8 @@
 #include <cstring>
 #include <iomanip>
 
-#include "illum/core/atomic_file.hpp"
 #include "illum/core/error.hpp"
+#include "illum/system/atomic_file.hpp"
 
 namespace illum {
 namespace {

@@ -34,7 +34,7 @@ void write_ply(std::ostream& out, const ColouredMesh& mesh, PlyEncoding encoding
 // OBJ: "v x y z r g b" (colours in [0, 1]) and "f i j k …" (1-based).
 void write_obj(std::ostream& out, const ColouredMesh& mesh, const std::string& comment = "");
 
-// The same, written atomically to a file (core/atomic_file.hpp).
+// The same, written atomically to a file (system/atomic_file.hpp).
 void write_ply_file(const std::filesystem::path& path, const ColouredMesh& mesh, PlyEncoding encoding,
                     const std::string& comment = "");
 void write_obj_file(const std::filesystem::path& path, const ColouredMesh& mesh,

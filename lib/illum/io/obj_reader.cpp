@@ -10,15 +10,17 @@
 #include <limits>
 #include <vector>
 
-#include "illum/core/charconv.hpp"
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/charconv.hpp"
+#include "illum/system/memory_budget.hpp"
 
 namespace illum {
 
-ObjError::ObjError(std::size_t line, const std::string& problem)
-    : std::runtime_error(line > 0 ? "line " + std::to_string(line) + ": " + problem : problem), line_(line) {}
-
 namespace {
+
+// What the reader refuses: "line N: <problem>" (line 0: the whole file).
+InputFileError obj_error(std::size_t line, const std::string& problem) {
+  return InputFileError(line > 0 ? "line " + std::to_string(line) + ": " + problem : problem);
+}
 
 // Indices are stored as 32 bits (TriangleMesh); a file may define no more elements than that.
 constexpr std::uint64_t max_elements = std::numeric_limits<std::uint32_t>::max();
@@ -64,7 +66,7 @@ double parse_number(std::string_view token, std::size_t line, const char* what) 
   const auto [end, error] = from_chars_double(digits.data(), digits.data() + digits.size(), value);
   if (digits.empty() || digits.front() == '+' || error == std::errc::invalid_argument ||
       end != digits.data() + digits.size())
-    throw ObjError(line, std::string(what) + " '" + shown(token) + "' is not a number");
+    throw obj_error(line, std::string(what) + " '" + shown(token) + "' is not a number");
   if (error == std::errc::result_out_of_range) {
     // from_chars leaves the value unset: strtod tells an overflow (±HUGE_VAL) from an underflow (0 or
     // subnormal).
@@ -72,7 +74,7 @@ double parse_number(std::string_view token, std::size_t line, const char* what) 
     if (std::isfinite(value)) return value;
   }
   if (!std::isfinite(value))
-    throw ObjError(line, std::string(what) + " '" + shown(token) + "' is not a finite number");
+    throw obj_error(line, std::string(what) + " '" + shown(token) + "' is not a finite number");
   return value;
 }
 
@@ -115,19 +117,20 @@ std::uint64_t resolve_index(std::string_view token, Kind kind, std::size_t corne
   const std::string_view digits = negative ? token.substr(1) : token;
   if (digits.empty() ||
       !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
-    throw ObjError(line, where + " is not a whole number");
+    throw obj_error(line, where + " is not a whole number");
   std::uint64_t value = 0;
   const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
   const std::size_t k = static_cast<std::size_t>(kind);
   const std::uint64_t defined = census.count[k];
   if (error != std::errc() || end != digits.data() + digits.size() || value > max_elements)
-    throw ObjError(line, where + " is out of range: an OBJ index is at most " + std::to_string(max_elements) +
-                             ", and " + count_of(defined, kind) + " are defined before this line");
-  if (value == 0) throw ObjError(line, where + " is 0: OBJ indices start at 1 (or count back from -1)");
+    throw obj_error(line, where + " is out of range: an OBJ index is at most " +
+                              std::to_string(max_elements) + ", and " + count_of(defined, kind) +
+                              " are defined before this line");
+  if (value == 0) throw obj_error(line, where + " is 0: OBJ indices start at 1 (or count back from -1)");
   if (negative) {
     if (value > defined)
-      throw ObjError(line, where + " counts back " + count_of(value, kind) + ", but " +
-                               count_of(defined, kind) + " are defined before this line");
+      throw obj_error(line, where + " counts back " + count_of(value, kind) + ", but " +
+                                count_of(defined, kind) + " are defined before this line");
     return defined - value;
   }
   if (value > census.largest[k]) {
@@ -151,8 +154,8 @@ Corner parse_corner(std::string_view token, std::size_t corner, std::size_t line
   for (std::size_t i = 0; i <= token.size(); ++i)
     if (i == token.size() || token[i] == '/') {
       if (parts == 3)
-        throw ObjError(line, "corner " + std::to_string(corner + 1) + " '" + shown(token) +
-                                 "' has more than three parts (v, v/t, v//n or v/t/n)");
+        throw obj_error(line, "corner " + std::to_string(corner + 1) + " '" + shown(token) +
+                                  "' has more than three parts (v, v/t, v//n or v/t/n)");
       part[parts++] = token.substr(start, i - start);
       start = i + 1;
     }
@@ -160,10 +163,10 @@ Corner parse_corner(std::string_view token, std::size_t corner, std::size_t line
   c.vertex = resolve_index(part[0], Kind::vertex, corner, line, census);
   if (parts >= 2 && !part[1].empty()) resolve_index(part[1], Kind::texture, corner, line, census);
   if (parts == 2 && part[1].empty())
-    throw ObjError(line, "corner " + std::to_string(corner + 1) + " '" + shown(token) + "' ends with '/'");
+    throw obj_error(line, "corner " + std::to_string(corner + 1) + " '" + shown(token) + "' ends with '/'");
   if (parts == 3) {
     if (part[2].empty())
-      throw ObjError(line, "corner " + std::to_string(corner + 1) + " '" + shown(token) + "' ends with '/'");
+      throw obj_error(line, "corner " + std::to_string(corner + 1) + " '" + shown(token) + "' ends with '/'");
     c.has_normal = true;
     c.normal = resolve_index(part[2], Kind::normal, corner, line, census);
   }
@@ -216,35 +219,39 @@ void census_statement(std::size_t line, const std::vector<std::string_view>& tok
   const std::size_t n = tokens.size() - 1;
   if (key == "v") {
     if (n != 3 && n != 4 && n != 6)
-      throw ObjError(line,
-                     "a vertex has 3 numbers (x y z), or 4 (x y z w) or 6 (x y z r g b); this one has " +
-                         std::to_string(n));
+      throw obj_error(line,
+                      "a vertex has 3 numbers (x y z), or 4 (x y z w) or 6 (x y z r g b); this one has " +
+                          std::to_string(n));
     for (std::size_t i = 0; i < n; ++i) {
       const double value = parse_number(tokens[i + 1], line, (std::string("vertex ") + axis_name(i)).c_str());
+      if (i < 3 && !(std::abs(value) <= max_obj_coordinate))
+        throw obj_error(line, std::string("vertex ") + axis_name(i) + " '" + shown(tokens[i + 1]) +
+                                 "' lies beyond ±1e150, the bound of every coordinate of a scene (the "
+                                 "squared distances and areas computed from it would overflow a double)");
       if (xyz && i < 3) (*xyz)[i] = value;
     }
-    if (++census.count[0] > max_elements) throw ObjError(line, "more than 2^32 - 1 vertices");
+    if (++census.count[0] > max_elements) throw obj_error(line, "more than 2^32 - 1 vertices");
     return;
   }
   if (key == "vn") {
-    if (n != 3) throw ObjError(line, "a normal has 3 numbers (x y z); this one has " + std::to_string(n));
+    if (n != 3) throw obj_error(line, "a normal has 3 numbers (x y z); this one has " + std::to_string(n));
     for (std::size_t i = 0; i < 3; ++i) {
       const double value = parse_number(tokens[i + 1], line, (std::string("normal ") + axis_name(i)).c_str());
       if (xyz) (*xyz)[i] = value;
     }
-    if (++census.count[2] > max_elements) throw ObjError(line, "more than 2^32 - 1 normals");
+    if (++census.count[2] > max_elements) throw obj_error(line, "more than 2^32 - 1 normals");
     return;
   }
   if (key == "vt") {
     if (n < 1 || n > 3)
-      throw ObjError(
+      throw obj_error(
           line, "a texture coordinate has 1 to 3 numbers (u [v [w]]); this one has " + std::to_string(n));
     for (std::size_t i = 0; i < n; ++i) parse_number(tokens[i + 1], line, "texture coordinate");
-    if (++census.count[1] > max_elements) throw ObjError(line, "more than 2^32 - 1 texture coordinates");
+    if (++census.count[1] > max_elements) throw obj_error(line, "more than 2^32 - 1 texture coordinates");
     return;
   }
   if (key == "f") {
-    if (n < 3) throw ObjError(line, "a face needs at least 3 corners; this one has " + std::to_string(n));
+    if (n < 3) throw obj_error(line, "a face needs at least 3 corners; this one has " + std::to_string(n));
     corners.clear();
     for (std::size_t i = 0; i < n; ++i) {
       corners.push_back(parse_corner(tokens[i + 1], i, line, census));
@@ -256,16 +263,19 @@ void census_statement(std::size_t line, const std::vector<std::string_view>& tok
   }
   if (skipped_statement(key)) return;
   if (free_form_statement(key))
-    throw ObjError(line, "'" + shown(key) +
-                             "' is free-form geometry (curves and surfaces), which illum does not read: "
-                             "export the model as polygons");
-  throw ObjError(line, "unknown statement '" + shown(key) +
-                           "' (illum reads v, vn, vt and f, and skips o, g, s, l, p, usemtl and mtllib)");
+    throw obj_error(line, "'" + shown(key) +
+                              "' is free-form geometry (curves and surfaces), which illum does not read: "
+                              "export the model as polygons");
+  throw obj_error(line, "unknown statement '" + shown(key) +
+                            "' (illum reads v, vn, vt and f, and skips o, g, s, l, p, usemtl and mtllib)");
 }
 
 }  // namespace
 
 TriangleMesh read_obj(std::string_view text) {
+  // A byte-order mark, which some Windows editors put first: it is no statement (a JSON scene with
+  // one is read too).
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
   // Pass 1: every line checked and counted; nothing allocated per element.
   Census census;
   std::vector<Corner> corners;
@@ -275,12 +285,12 @@ TriangleMesh read_obj(std::string_view text) {
   for (const Kind kind : {Kind::vertex, Kind::texture, Kind::normal}) {
     const auto k = static_cast<std::size_t>(kind);
     if (census.largest[k] > census.count[k])
-      throw ObjError(census.largest_line[k], census.largest_text[k] + " is out of range: the file defines " +
-                                                 count_of(census.count[k], kind));
+      throw obj_error(census.largest_line[k], census.largest_text[k] + " is out of range: the file defines " +
+                                                  count_of(census.count[k], kind));
   }
   if (census.faces == 0)
-    throw ObjError(0,
-                   "the file has no faces (" + std::to_string(census.count[0]) + " vertices, no 'f' line)");
+    throw obj_error(0,
+                    "the file has no faces (" + std::to_string(census.count[0]) + " vertices, no 'f' line)");
   const bool smooth = census.every_corner_has_a_normal;
   try {
     check_memory("a mesh of " + std::to_string(census.triangles) + " triangles and " +
@@ -289,7 +299,7 @@ TriangleMesh read_obj(std::string_view text) {
                      static_cast<double>(census.count[0] + census.count[2]) * sizeof(Vec3),
                  1.0);
   } catch (const std::length_error& e) {
-    throw ObjError(0, e.what());
+    throw obj_error(0, e.what());
   }
 
   // Pass 2: the same lines, now known to be valid, into arrays of their exact size.
@@ -328,10 +338,10 @@ TriangleMesh read_obj(std::string_view text) {
       const Vec3 a = mesh.positions[tri[0]], b = mesh.positions[tri[1]], c = mesh.positions[tri[2]];
       const Vec3 area = cross(b - a, c - a);
       if (area == Vec3(0.0) || !is_finite(area))
-        throw ObjError(line, "the face is degenerate: its corners " + std::to_string(tri[0] + 1) + ", " +
-                                 std::to_string(tri[1] + 1) + " and " + std::to_string(tri[2] + 1) +
-                                 (area == Vec3(0.0) ? " are collinear or repeated"
-                                                    : " span an area beyond the range of a double"));
+        throw obj_error(line, "the face is degenerate: its corners " + std::to_string(tri[0] + 1) + ", " +
+                                  std::to_string(tri[1] + 1) + " and " + std::to_string(tri[2] + 1) +
+                                  (area == Vec3(0.0) ? " are collinear or repeated"
+                                                     : " span an area beyond the range of a double"));
       if (smooth)
         for (int c3 = 0; c3 < 3; ++c3) {
           Vec3& n = mesh.corner_normals[3 * t + static_cast<std::size_t>(c3)];
@@ -339,8 +349,8 @@ TriangleMesh read_obj(std::string_view text) {
           const Vec3 v = normals[index];
           const double scale = std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
           if (!(scale > 0))
-            throw ObjError(line, "normal " + std::to_string(index + 1) +
-                                     " of the face is (0, 0, 0): it has no direction");
+            throw obj_error(line, "normal " + std::to_string(index + 1) +
+                                      " of the face is (0, 0, 0): it has no direction");
           n = normalize(v / scale);  // scaled first: (1e300, 0, 0) has a length
         }
     }

@@ -2,11 +2,11 @@
 // A strict reader of the OBJ files a scene's meshes name (docs/scene-format.md,
 // "OBJ meshes"): vertices, normals and polygonal faces, every line checked.
 //
-//   const TriangleMesh mesh = read_obj(text);   // ObjError: "line 12: vertex index 4294967299 ..."
+//   const TriangleMesh mesh = read_obj(text);   // InputFileError: "line 12: vertex index 4294967299 ..."
 //
 // A first pass checks every line and counts what the mesh will hold without
 // allocating anything; the memory it will take is checked against the
-// budget (core/memory_budget) before the second pass fills it. So a file
+// budget (system/memory_budget) before the second pass fills it. So a file
 // of ten million faces whose last line is cut off is refused after a scan,
 // not after gigabytes of allocations, and no number is ever read by halves:
 // `v 0 one 1`, `v nan 1 0`, an index of 4294967299 or 99999999999999999999,
@@ -18,18 +18,9 @@
 #include <string_view>
 
 #include "illum/geometry/triangle_mesh.hpp"
+#include "illum/system/input_file.hpp"
 
 namespace illum {
-
-// An OBJ file the reader refuses: what() is "line N: <problem>" (line 0: the whole file).
-class ObjError : public std::runtime_error {
- public:
-  ObjError(std::size_t line, const std::string& problem);
-  std::size_t line() const { return line_; }
-
- private:
-  std::size_t line_;
-};
 
 // What the reader reads: `v x y z` (also `v x y z w` and `v x y z r g b`, whose
 // extra numbers are ignored), `vn x y z`, `vt u [v [w]]`, and `f` with three
@@ -42,8 +33,15 @@ class ObjError : public std::runtime_error {
 // convex faces exporters write); a face with a repeated or collinear
 // corner that makes a fan triangle of zero area is refused. When every
 // corner names a normal, corner_normals holds them (unit), else it is empty.
-// An index must fit the vertices a file defines (at most 2^32 − 1).
+// An index must fit the vertices a file defines (at most 2^32 − 1); a vertex's x, y and z lie
+// within ±max_obj_coordinate. A UTF-8 byte-order mark at the start of the file is skipped.
+// A refused file throws InputFileError, "line N: <problem>" (no line for the
+// whole file), which the scene reader turns into an InputError naming the field.
 TriangleMesh read_obj(std::string_view text);
+
+// The largest |coordinate| of a vertex, as of every point of a scene (a camera's eye, a sphere's
+// centre): the squared distances and the areas computed from them then stay within a double.
+inline constexpr double max_obj_coordinate = 1e150;
 
 // Bytes a scene holds per triangle of a mesh: the indices, three corner
 // normals and the acceleration structure built over it. Measured: `illum

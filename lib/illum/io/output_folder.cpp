@@ -2,7 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "illum/core/atomic_file.hpp"
+#include "illum/system/atomic_file.hpp"
 
 namespace illum {
 

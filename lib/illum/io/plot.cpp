@@ -11,8 +11,8 @@
 #include <optional>
 #include <stdexcept>
 
-#include "illum/core/atomic_file.hpp"
-#include "illum/core/child_process.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/child_process.hpp"
 
 namespace illum {
 
@@ -314,7 +314,7 @@ std::string gnuplot_script(const PlotSpec& spec, const std::string& png_name,
   s += "set terminal pngcairo size " + std::to_string(spec.width) + "," + std::to_string(spec.height) +
        " enhanced font 'DejaVu Sans,13'\n";
   // `gnuplot NAME.gp` draws NAME.png; illum runs `gnuplot -c NAME.gp -`, which writes the
-  // picture on standard output, and writes the file itself (core/child_process.hpp).
+  // picture on standard output, and writes the file itself (system/child_process.hpp).
   s += "if (ARGC > 0) { set output } else { set output " + quoted(png_name) + " }\n";
   s += "set datafile separator ','\n";
   // A row a curve does not use is NaN, a missing point: lines join across it.

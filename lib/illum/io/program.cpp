@@ -1,20 +1,23 @@
 #include "illum/io/program.hpp"
 
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <new>
 #include <string_view>
 
+#include <sys/stat.h>
 #include <CLI/CLI.hpp>
 
-#include "illum/core/atomic_file.hpp"
-#include "illum/core/charconv.hpp"
 #include "illum/core/error.hpp"
-#include "illum/core/platform.hpp"
 #include "illum/core/threads.hpp"
 #include "illum/io/whole_machine.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/charconv.hpp"
+#include "illum/system/platform.hpp"
 
 namespace illum {
 
@@ -37,7 +40,8 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
   ProgramOptions options;
   options.out = std::filesystem::path("out") / info.id;
   app.add_option("--out", options.out, "Folder for the outputs (images, tables, plots)")
-      ->capture_default_str();
+      ->capture_default_str()
+      ->check(path_value().validator());
   // --quick is a plain switch: "--quick=3" is refused, not read as "true".
   app.add_flag("--quick", options.quick, "Small sizes and short studies (used by the tests)")
       ->disable_flag_override();
@@ -97,14 +101,46 @@ int run_program(int argc, char** argv, const ProgramInfo& info,
   if (options.threads > 1 && !has_openmp)
     std::cerr << info.id
               << ": note: this build has no OpenMP (ILLUM_OPENMP): every loop runs on one thread\n";
-  // Every file the body writes is staged (core/atomic_file): if it throws or a
+  // Every file the body writes is staged (system/atomic_file): if it throws or a
   // signal stops it, the output folder is left as it was; commit() moves the
   // run's files in at the end (validate before write, by construction).
   WriteTransaction transaction(options.out, "--out", info.id);
   return run_in_transaction(info.id, transaction, [&] {
     check_output_folder(options.out, "--out");  // before any work: a file or a busy folder is refused now
+    remove_stale_run_files_noting(info.id, options.out, "--out");
     body(options);
   });
+}
+
+std::string path_problem(const std::filesystem::path& path) {
+  if (path.empty()) return "the path is empty (name a file or folder; '.' is the current folder)";
+  // Each step of the path in turn, so that the message names the link that is wrong.
+  std::filesystem::path step;
+  for (const std::filesystem::path& part : path) {
+    step /= part;
+    struct stat link {
+    }, followed{};
+    if (::lstat(step.c_str(), &link) != 0) return "";  // missing from here on: its user says what it needs
+    if (!S_ISLNK(link.st_mode) || ::stat(step.c_str(), &followed) == 0) continue;
+    const int e = errno;
+    const std::string what = "'" + step.string() + "' is a symbolic link";
+    if (e == ELOOP) return what + " that leads back to itself (a link loop)";
+    std::error_code ec;
+    const std::filesystem::path target = std::filesystem::read_symlink(step, ec);
+    if (e == ENOENT) return what + " to '" + target.string() + "', which does not exist (a dangling link)";
+    return what + " that cannot be followed: " + std::strerror(e);
+  }
+  return "";
+}
+
+ValueCheck path_value() {
+  return ValueCheck([](std::string& text) { return path_problem(text); }, "PATH");
+}
+
+void remove_stale_run_files_noting(const std::string& id, const std::filesystem::path& folder,
+                                   const std::string& option) {
+  for (const std::string& note : remove_stale_run_files(folder, option))
+    std::cerr << id << ": note: " << note << "\n";
 }
 
 std::string refuse_switch_values(int argc, char** argv, const CLI::App& app) {

@@ -122,6 +122,20 @@ ValueCheck one_of(const std::vector<std::string>& names);
 // "1e-09", "0.5", "100000": a bound as a message shows it.
 std::string bound_text(double value);
 
+// What is wrong with a path given to an option, or "": an empty path (which would quietly mean the
+// current folder), a symbolic link on the way that loops ("'a' is a symbolic link that leads back
+// to itself"), or one to something that does not exist. Creates and opens nothing; whether the
+// path must be a file or a folder is checked where it is used (before any work).
+std::string path_problem(const std::filesystem::path& path);
+
+// path_problem as a check of an option's value ("--out: the path is empty ...").
+ValueCheck path_value();
+
+// Prints, as "<id>: note: ...", and removes what runs on `folder` killed without warning left
+// beside it (system/atomic_file's remove_stale_run_files): each run calls it before its work.
+void remove_stale_run_files_noting(const std::string& id, const std::filesystem::path& folder,
+                                   const std::string& option);
+
 // One option a program added (CommandLine::add). A handle: copies name the same option.
 class Option {
  public:

@@ -3,8 +3,8 @@
 #include <iostream>
 #include <stdexcept>
 
-#include "illum/core/atomic_file.hpp"
-#include "illum/core/child_process.hpp"
+#include "illum/system/atomic_file.hpp"
+#include "illum/system/child_process.hpp"
 #include "illum/trace/ray_tree_export.hpp"
 
 namespace illum {

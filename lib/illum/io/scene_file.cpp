@@ -8,10 +8,10 @@
 #include <stdexcept>
 
 #include "illum/core/error.hpp"
-#include "illum/core/input_file.hpp"
-#include "illum/core/memory_budget.hpp"
 #include "illum/io/embedded_scenes.hpp"
 #include "illum/io/obj_reader.hpp"
+#include "illum/system/input_file.hpp"
+#include "illum/system/memory_budget.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -41,6 +41,41 @@ auto build_at(const JsonReader& field, F&& make) {
 // The largest |coordinate| of a camera's eye and target: every intersection
 // test squares distances from the eye, and (1e150)² stays within a double.
 constexpr double max_camera_coordinate = 1e150;
+
+// Every other coordinate and size of a scene has the same bound, for the same reason (squared
+// distances, areas, products of two sizes): a sphere at 1e300 is refused here, not left to
+// overflow in an intersection test. A size is also at least 1e-150, whose square is a normal double.
+constexpr double max_scene_magnitude = max_camera_coordinate;
+constexpr double min_scene_size = 1.0 / max_scene_magnitude;
+
+const char* const magnitude_reason =
+    "(a scene's coordinates and sizes are bounded so that the squares and products the tracers form of "
+    "them stay within a double)";
+
+// A point or direction [x, y, z] whose coordinates lie within ±1e150.
+Point3 point(const JsonReader& field) {
+  const Point3 p = field.vec3();
+  for (int k = 0; k < 3; ++k)
+    if (!(std::abs(p[k]) <= max_scene_magnitude))
+      field.at(static_cast<std::size_t>(k)).fail(std::string("must lie within ±1e150 ") + magnitude_reason);
+  return p;
+}
+
+// A number within ±1e150 (an offset along a direction).
+double bounded(const JsonReader& field) {
+  const double x = field.number();
+  if (!(std::abs(x) <= max_scene_magnitude))
+    field.fail(std::string("must lie within ±1e150 ") + magnitude_reason);
+  return x;
+}
+
+// A positive size (a radius, a height, a scale) in [1e-150, 1e150].
+double positive_size(const JsonReader& field) {
+  const double x = field.positive_number();
+  if (!(x >= min_scene_size && x <= max_scene_magnitude))
+    field.fail(std::string("must lie in [1e-150, 1e150] ") + magnitude_reason);
+  return x;
+}
 
 // The largest |component|: a vector divided by it has a length that neither
 // overflows nor underflows, so (1e300, 0, 0) is a direction like (1, 0, 0).
@@ -86,8 +121,11 @@ CameraSpec read_camera(const JsonReader& c) {
 
 Color non_negative(const JsonReader& r) {
   const Vec3 v = r.vec3();
-  for (int k = 0; k < 3; ++k)
+  for (int k = 0; k < 3; ++k) {
     if (v[k] < 0.0) r.at(static_cast<std::size_t>(k)).fail("must not be negative");
+    if (!(v[k] <= max_scene_magnitude))
+      r.at(static_cast<std::size_t>(k)).fail(std::string("must be at most 1e150 ") + magnitude_reason);
+  }
   return v;
 }
 
@@ -106,6 +144,9 @@ Material read_material(const JsonReader& m, const std::string& name) {
     const JsonReader eta = m.at("index_of_refraction");
     if (!(eta.number() > 0.0))
       eta.fail("the index of refraction must be positive (η = c/v; 1 is vacuum, 1.5 glass)");
+    // Snell's law squares the ratio of two indices: within [1e-6, 1e6] that stays far inside a double.
+    if (!(eta.number() >= 1e-6 && eta.number() <= 1e6))
+      eta.fail("the index of refraction must lie in [1e-6, 1e6] (η = c/v; 1 is vacuum, 1.5 glass)");
     out.index_of_refraction = eta.number();
   }
   if (m.has("diffuse_transmission")) out.diffuse_transmission = m.at("diffuse_transmission").color();
@@ -148,7 +189,7 @@ std::vector<Point3> read_points(const JsonReader& list, std::size_t min_count, s
                                            std::to_string(max_count) + " points [x, y, z]");
   }
   std::vector<Point3> points;
-  for (std::size_t i = 0; i < n; ++i) points.push_back(list.at(i).vec3());
+  for (std::size_t i = 0; i < n; ++i) points.push_back(point(list.at(i)));
   return points;
 }
 
@@ -169,32 +210,32 @@ CsgNodePtr read_csg_node(const JsonReader& n, int depth) {
   const std::string solid = n.at("solid").string();
   if (solid == "sphere") {
     n.only_fields({"solid", "center", "radius"});
-    const Point3 c = n.at("center").vec3();
-    const double r = n.at("radius").positive_number();
+    const Point3 c = point(n.at("center"));
+    const double r = positive_size(n.at("radius"));
     return build_at(n, [&] { return csg_solid(SolidSphere(c, r)); });
   }
   if (solid == "box") {
     n.only_fields({"solid", "min", "max"});
-    const Point3 lo = n.at("min").vec3(), hi = n.at("max").vec3();
+    const Point3 lo = point(n.at("min")), hi = point(n.at("max"));
     return build_at(n, [&] { return csg_solid(SolidBox(lo, hi)); });
   }
   if (solid == "half_space") {
     n.only_fields({"solid", "normal", "offset"});
-    const Vec3 normal = n.at("normal").vec3();
-    const double offset = n.at("offset").number();
+    const Vec3 normal = point(n.at("normal"));
+    const double offset = bounded(n.at("offset"));
     return build_at(n, [&] { return csg_solid(SolidHalfSpace(normal, offset)); });
   }
   if (solid == "slab") {
     n.only_fields({"solid", "normal", "lo", "hi"});
-    const Vec3 normal = n.at("normal").vec3();
-    const double lo = n.at("lo").number(), hi = n.at("hi").number();
+    const Vec3 normal = point(n.at("normal"));
+    const double lo = bounded(n.at("lo")), hi = bounded(n.at("hi"));
     return build_at(n, [&] { return csg_solid(SolidSlab(normal, lo, hi)); });
   }
   if (solid == "cylinder") {
     n.only_fields({"solid", "base", "axis", "radius", "height"});
-    const Point3 base = n.at("base").vec3();
-    const Vec3 axis = n.at("axis").vec3();
-    const double r = n.at("radius").positive_number(), h = n.at("height").positive_number();
+    const Point3 base = point(n.at("base"));
+    const Vec3 axis = point(n.at("axis"));
+    const double r = positive_size(n.at("radius")), h = positive_size(n.at("height"));
     return build_at(n, [&] { return csg_solid(SolidCylinder(base, axis, r, h)); });
   }
   n.at("solid").fail("expected \"sphere\", \"box\", \"half_space\", \"slab\" or \"cylinder\"");
@@ -219,14 +260,14 @@ ImplicitPrimitive read_implicit(const JsonReader& p) {
   if (p.has("tolerance")) out.options.tolerance = p.at("tolerance").positive_number();
   if (kind == "sphere") {
     p.only_fields({"type", "name", "material", "surface", "method", "tolerance", "center", "radius"});
-    const Point3 c = p.at("center").vec3();
-    const double r = p.at("radius").positive_number();
+    const Point3 c = point(p.at("center"));
+    const double r = positive_size(p.at("radius"));
     out.surface = std::make_shared<ImplicitSphere>(c, r);
   } else if (kind == "torus") {
     p.only_fields({"type", "name", "material", "surface", "method", "tolerance", "center", "major_radius",
                    "minor_radius"});
-    const Point3 c = p.at("center").vec3();
-    const double big = p.at("major_radius").positive_number(), small = p.at("minor_radius").positive_number();
+    const Point3 c = point(p.at("center"));
+    const double big = positive_size(p.at("major_radius")), small = positive_size(p.at("minor_radius"));
     if (!(small < big)) p.at("minor_radius").fail("the tube radius must be smaller than the major radius");
     out.surface = std::make_shared<Torus>(c, big, small);
   } else if (kind == "blob") {
@@ -238,9 +279,9 @@ ImplicitPrimitive read_implicit(const JsonReader& p) {
       const JsonReader b = balls.at(i);
       b.only_fields({"center", "weight", "sharpness"});
       list.push_back(
-          {b.at("center").vec3(), b.at("weight").positive_number(), b.at("sharpness").positive_number()});
+          {point(b.at("center")), positive_size(b.at("weight")), positive_size(b.at("sharpness"))});
     }
-    const double threshold = p.at("threshold").positive_number();
+    const double threshold = positive_size(p.at("threshold"));
     out.surface = build_at(p, [&] { return std::make_shared<Blob>(list, threshold); });
   } else {
     p.at("surface").fail("expected \"sphere\", \"torus\" or \"blob\"");
@@ -274,12 +315,12 @@ TriangleMesh read_mesh(const JsonReader& p, const FileSource& source) {
   const std::string text = obj_text(field, source);
   Vec3 translate(0.0);
   double scale = 1.0;
-  if (p.has("translate")) translate = p.at("translate").vec3();
-  if (p.has("scale")) scale = p.at("scale").positive_number();
+  if (p.has("translate")) translate = point(p.at("translate"));
+  if (p.has("scale")) scale = positive_size(p.at("scale"));
   TriangleMesh mesh;
   try {
     mesh = read_obj(text);
-  } catch (const ObjError& e) {
+  } catch (const InputFileError& e) {
     field.fail(name + ", " + e.what());
   }
   if (translate == Vec3(0.0) && scale == 1.0) return mesh;
@@ -287,6 +328,8 @@ TriangleMesh read_mesh(const JsonReader& p, const FileSource& source) {
   for (Point3& v : mesh.positions) {
     v = translate + scale * v;
     if (!is_finite(v)) moved.fail("moves a vertex of " + name + " beyond the range of a double");
+    if (!(largest_component(v) <= max_scene_magnitude))
+      moved.fail("moves a vertex of " + name + " beyond ±1e150 " + magnitude_reason);
   }
   for (const auto& tri : mesh.triangles) {
     const Vec3 area = cross(mesh.positions[tri[1]] - mesh.positions[tri[0]],
@@ -307,8 +350,8 @@ Primitive read_primitive(const JsonReader& p, std::size_t i, const Scene& scene,
   auto with = [&](Shape shape) { return Primitive{name, std::move(shape), material}; };
   if (type == "sphere") {
     p.only_fields({"type", "name", "material", "center", "radius"});
-    const Point3 c = p.at("center").vec3();
-    const double r = p.at("radius").positive_number();
+    const Point3 c = point(p.at("center"));
+    const double r = positive_size(p.at("radius"));
     return with(Sphere(c, r));
   }
   if (type == "polygon") {
@@ -325,7 +368,7 @@ Primitive read_primitive(const JsonReader& p, std::size_t i, const Scene& scene,
       polygon.checker_material = material_of(c.at("material"), scene);
       if (emits(scene.materials[polygon.checker_material]) || emits(scene.materials[polygon.material]))
         c.at("material").fail("a checkered polygon must not emit (an area light has one material)");
-      polygon.checker_size = c.at("size").positive_number();
+      polygon.checker_size = positive_size(c.at("size"));
     }
     return polygon;
   }
@@ -359,6 +402,24 @@ Primitive read_primitive(const JsonReader& p, std::size_t i, const Scene& scene,
 
 // The top level's fields, checked first by every reader of the format.
 void only_top_fields(const JsonReader& root) {
+  // The format first: a file of an older format is told that, and what the current one is, rather
+  // than that its first field ('spheres', 'surfaces') is unknown.
+  if (root.json().is_object() && !root.has("format")) {
+    std::string problem = "this field is required: this build reads scene format " +
+                          std::to_string(scene_format_version) + " (docs/scene-format.md)";
+    if (root.has("spheres"))
+      problem +=
+          "; this file is in the older sphere-only format ('spheres' at the top): add \"format\": " +
+          std::to_string(scene_format_version) +
+          ", make each sphere a primitive {\"type\": \"sphere\", \"center\", \"radius\", \"material\"} of "
+          "'primitives', and its colour a material's 'diffuse'";
+    else if (root.has("surfaces"))
+      problem += "; this file is in the older radiosity format ('surfaces' at the top): add \"format\": " +
+                 std::to_string(scene_format_version) +
+                 ", make each surface a primitive {\"type\": \"polygon\", \"material\"} of 'primitives' "
+                 "with its 'polygon' as 'vertices', and each 'reflectance' a material's 'diffuse'";
+    throw InputError(root.file(), "format", "(missing)", problem);
+  }
   root.only_fields({"format", "name", "description", "notes", "units", "camera", "ambient_light", "materials",
                     "lights", "primitives"});
 }
@@ -395,7 +456,7 @@ Scene read_scene_from(const JsonReader& root, const FileSource& source) {
       const std::string name = l.has("name") ? l.at("name").string() : "light " + std::to_string(i);
       if (type == "point") {
         l.only_fields({"type", "name", "position", "intensity"});
-        scene.point_lights.push_back({name, l.at("position").vec3(), non_negative(l.at("intensity"))});
+        scene.point_lights.push_back({name, point(l.at("position")), non_negative(l.at("intensity"))});
       } else {
         l.at("type").fail(
             "expected \"point\" (an area light is a polygon primitive whose material has an emission)");
@@ -447,6 +508,9 @@ OpenedScene open_scene(const std::string& file_or_shipped_name) {
   // that file (an edited scenes/cornell.json is read as edited); otherwise a
   // path naming a shipped scene ("scenes/cornell.json" run from elsewhere)
   // is the compiled-in copy.
+  if (file_or_shipped_name.empty())
+    throw InputError("(command line)", "scene", "''",
+                     "the scene is empty: name a scene file or a shipped scene (illum scenes lists them)");
   const fs::path path(file_or_shipped_name);
   const bool bare = path.parent_path().empty() && path.extension().empty();
   const std::optional<std::string> name = shipped_name(file_or_shipped_name);

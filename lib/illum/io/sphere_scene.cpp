@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "illum/core/error.hpp"
-#include "illum/core/memory_budget.hpp"
 #include "illum/core/parallel.hpp"
 #include "illum/io/scene_file.hpp"
+#include "illum/system/memory_budget.hpp"
 
 namespace illum {
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string_view>
 
-#include "illum/core/platform.hpp"
+#include "illum/system/platform.hpp"
 
 namespace illum {
 namespace {

@@ -4,7 +4,9 @@
 // (lesson 09, "Dif. Área frente a polígono"): the contour formula
 //   F_{dA→A_j} = (1/2π) Σ_k γ_k n·(R_{k+1} × R_k)/|R_{k+1} × R_k|,
 // R_k = v_k − x, γ_k the angle between R_k and R_{k+1}: each edge adds the
-// projection onto the receiver's normal of the spherical lune it subtends.
+// flat circular sector of angle γ_k (area γ_k/2) in the plane through x and
+// the edge, projected on the receiver's tangent plane (times n·m_k, m_k that
+// plane's unit normal), over the unit disc's area π (lesson 09, §5.1).
 //
 // The formula integrates the signed cos φ_i, so a polygon that crosses the
 // receiver's tangent plane gets a wrong (too small, even negative) value:

@@ -210,14 +210,14 @@ double polygon_polygon_form_factor(const Patch& from, const Patch& to, const Con
   FrontPart part_i, part_j;
   front_part(from.vertices, to.centroid, to.normal, part_i);
   front_part(to.vertices, from.centroid, from.normal, part_j);
-  const std::span<const Point3> pi = part_i.vertices, pj = part_j.vertices;
-  if (pi.empty() || pj.empty()) return 0.0;
+  const std::span<const Point3> poly_i = part_i.vertices, poly_j = part_j.vertices;
+  if (poly_i.empty() || poly_j.empty()) return 0.0;
   // Coplanar (F_ii included) or touching the other's plane only: every cos is zero.
   const double size = std::sqrt(std::max(from.area, to.area));  // a length scale for the tolerance
   if (part_i.height <= 1e-12 * size || part_j.height <= 1e-12 * size) return 0.0;
   const QuadratureRule& rule = gauss_legendre(options.order);
-  const int ni = static_cast<int>(pi.size()), nj = static_cast<int>(pj.size());
-  const PolygonEdges ei(pi), ej(pj);
+  const int ni = static_cast<int>(poly_i.size()), nj = static_cast<int>(poly_j.size());
+  const PolygonEdges ei(poly_i), ej(poly_j);
   // options.tolerance on F, shared among the edge pairs, as a tolerance on each ∫∫ ln r:
   // F = Σ cos · ∫∫ / (2π A_i).
   const double pair_tolerance =
@@ -233,10 +233,11 @@ double polygon_polygon_form_factor(const Patch& from, const Patch& to, const Con
       if (std::abs(cosine) <= 1e-14) continue;  // perpendicular edges: dx_i · dx_j = 0
       const bool parallel = std::abs(cosine) >= 1 - 1e-14 || length_squared(cross(ep.unit, eq.unit)) <= 1e-24;
       const auto kp = static_cast<std::size_t>(p), kq = static_cast<std::size_t>(q);
-      const double integral = parallel && options.exact_parallel_edges
-                                  ? parallel_edges_log_integral(pi[kp], ep.unit, ep.length, pj[kq], eq.vector)
-                                  : edge_pair_log_integral(pi[kp], ep.vector, pj[kq], eq.vector, parallel,
-                                                           options, rule, pair_tolerance / std::abs(cosine));
+      const double integral =
+          parallel && options.exact_parallel_edges
+              ? parallel_edges_log_integral(poly_i[kp], ep.unit, ep.length, poly_j[kq], eq.vector)
+              : edge_pair_log_integral(poly_i[kp], ep.vector, poly_j[kq], eq.vector, parallel, options, rule,
+                                       pair_tolerance / std::abs(cosine));
       sum += cosine * integral;
     }
   }

@@ -5,8 +5,8 @@
 #include <span>
 #include <vector>
 
-#include "illum/core/huge_pages.hpp"
 #include "illum/radiosity/patch.hpp"
+#include "illum/system/huge_pages.hpp"
 
 namespace illum {
 

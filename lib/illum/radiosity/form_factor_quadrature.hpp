@@ -17,8 +17,8 @@
 #include <numbers>
 #include <vector>
 
-#include "illum/core/huge_pages.hpp"
 #include "illum/radiosity/patch.hpp"
+#include "illum/system/huge_pages.hpp"
 
 namespace illum {
 

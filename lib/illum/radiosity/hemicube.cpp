@@ -6,6 +6,7 @@
 
 #include "illum/core/error.hpp"
 #include "illum/core/frame.hpp"
+#include "illum/core/parallel.hpp"
 #include "illum/core/random.hpp"
 #include "illum/core/threads.hpp"
 
@@ -48,8 +49,9 @@ std::span<const std::int32_t> HemicubeBuffers::face_items(HemicubeFace f) const 
                                       static_cast<std::size_t>(face_height(resolution, f)));
 }
 
-bool hemicube_pixel(const Vec3& d, int resolution, HemicubeFace& face, int& col, int& row) {
-  if (!(d.z >= 0) || (d.x == 0 && d.y == 0 && d.z == 0)) return false;
+std::optional<HemicubePixel> hemicube_pixel(const Vec3& d, int resolution) {
+  if (!(d.z >= 0) || (d.x == 0 && d.y == 0 && d.z == 0)) return std::nullopt;
+  HemicubeFace face;
   // The face whose axis has the largest component (the top face wins ties with d.z).
   const double ax = std::abs(d.x), ay = std::abs(d.y);
   if (d.z >= ax && d.z >= ay)
@@ -60,10 +62,11 @@ bool hemicube_pixel(const Vec3& d, int resolution, HemicubeFace& face, int& col,
     face = d.y > 0 ? HemicubeFace::pos_y : HemicubeFace::neg_y;
   const Vec3 f = to_face(face, d);
   const int height = HemicubeBuffers::face_height(resolution, face);
-  col = std::clamp(static_cast<int>((f.x / f.z + 1.0) * 0.5 * resolution), 0, resolution - 1);
-  row = std::clamp(static_cast<int>((f.y / f.z + (face == HemicubeFace::top ? 1.0 : 0.0)) * 0.5 * resolution),
-                   0, height - 1);
-  return true;
+  const int col = std::clamp(static_cast<int>((f.x / f.z + 1.0) * 0.5 * resolution), 0, resolution - 1);
+  const int row =
+      std::clamp(static_cast<int>((f.y / f.z + (face == HemicubeFace::top ? 1.0 : 0.0)) * 0.5 * resolution),
+                 0, height - 1);
+  return HemicubePixel{face, col, row};
 }
 
 Hemicube::Hemicube(int resolution, DeltaRule rule) : deltas_(make_hemicube_deltas(resolution, rule)) {}
@@ -304,28 +307,34 @@ void Hemicube::form_factor_row_parallel(const std::vector<Patch>& patches, std::
   // tie the lower range, the lower patch index, keeps it, exactly as one
   // serial pass over all patches would), and the half's pixels are added into
   // its partial row. The row does not depend on the number of threads.
+  // accumulate_face is the student's: an exception it throws on a worker
+  // thread reaches the caller through `errors` (core/parallel.hpp).
   const long tasks = static_cast<long>(ranges);
+  ExceptionCollector errors;
 #pragma omp parallel if (ranges > 1)
   {
 #pragma omp for schedule(static, 1)
-    for (long t = 0; t < tasks; ++t) {
-      const auto r = static_cast<std::size_t>(t);
-      HemicubeBuffers& b = buffers[r];
-      clear_faces(b, res, 0x1f);
-      draw_patches(patches, i, frame, cuts[r], cuts[r + 1], 0x1f, b, b);
-    }
+    for (long t = 0; t < tasks; ++t)
+      errors.run([&] {
+        const auto r = static_cast<std::size_t>(t);
+        HemicubeBuffers& b = buffers[r];
+        clear_faces(b, res, 0x1f);
+        draw_patches(patches, i, frame, cuts[r], cuts[r + 1], 0x1f, b, b);
+      });
 #pragma omp for schedule(static, 1)
-    for (int half = 0; half < 2; ++half) {
-      const std::size_t begin = half == 0 ? 0 : middle, end = half == 0 ? middle : first.items.size();
-      for (std::size_t k = begin; k < end; ++k)
-        for (std::size_t r = 1; r < ranges; ++r)
-          if (buffers[r].inv_depth[k] > first.inv_depth[k]) {
-            first.inv_depth[k] = buffers[r].inv_depth[k];
-            first.items[k] = buffers[r].items[k];
-          }
-      accumulate_half(deltas_, first, half, halves.subspan(static_cast<std::size_t>(half) * n, n));
-    }
+    for (int half = 0; half < 2; ++half)
+      errors.run([&] {
+        const std::size_t begin = half == 0 ? 0 : middle, end = half == 0 ? middle : first.items.size();
+        for (std::size_t k = begin; k < end; ++k)
+          for (std::size_t r = 1; r < ranges; ++r)
+            if (buffers[r].inv_depth[k] > first.inv_depth[k]) {
+              first.inv_depth[k] = buffers[r].inv_depth[k];
+              first.items[k] = buffers[r].items[k];
+            }
+        accumulate_half(deltas_, first, half, halves.subspan(static_cast<std::size_t>(half) * n, n));
+      });
   }
+  errors.rethrow_if_any();
   combine_halves(halves, i, row);
 }
 
@@ -334,21 +343,24 @@ FormFactorMatrix hemicube_form_factors(const std::vector<Patch>& patches, int re
   const Hemicube hemicube(resolution);
   FormFactorMatrix f(patches.size());
   const long n = static_cast<long>(patches.size());
+  ExceptionCollector errors;  // a throw in a row (the student's accumulate_face) reaches the caller
 #pragma omp parallel
   {
     HemicubeBuffers buffers;
 #pragma omp for schedule(dynamic, 4)
-    for (long i = 0; i < n; ++i) {
-      // One stream per patch: the angles do not depend on the thread count.
-      double angle = 0.0;
-      if (random_rotation) {
-        Rng rng(seed, static_cast<std::uint64_t>(i));
-        angle = 2.0 * pi * rng.uniform();
-      }
-      hemicube.form_factor_row(patches, static_cast<std::size_t>(i), f.row(static_cast<std::size_t>(i)),
-                               buffers, angle);
-    }
+    for (long i = 0; i < n; ++i)
+      errors.run([&] {
+        // One stream per patch: the angles do not depend on the thread count.
+        double angle = 0.0;
+        if (random_rotation) {
+          Rng rng(seed, static_cast<std::uint64_t>(i));
+          angle = 2.0 * pi * rng.uniform();
+        }
+        hemicube.form_factor_row(patches, static_cast<std::size_t>(i), f.row(static_cast<std::size_t>(i)),
+                                 buffers, angle);
+      });
   }
+  errors.rethrow_if_any();
   return f;
 }
 

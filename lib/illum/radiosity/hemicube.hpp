@@ -15,6 +15,7 @@
 // compared to the size of i, and it aliases when j covers few pixels.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -55,10 +56,16 @@ struct HemicubeBuffers {
   }
 };
 
-// The face and pixel (column, row) that the direction `d`, given in the
-// hemicube's frame (z along the receiver's normal), passes through; false
-// when d points below the base plane. Used to draw the faces unfolded.
-bool hemicube_pixel(const Vec3& d, int resolution, HemicubeFace& face, int& col, int& row);
+// A pixel of one hemicube face: its column and row in that face.
+struct HemicubePixel {
+  HemicubeFace face = HemicubeFace::top;
+  int col = 0, row = 0;
+};
+
+// The face and pixel that the direction `d`, given in the hemicube's frame
+// (z along the receiver's normal), passes through; none when d points below
+// the base plane or is zero. Used to draw the faces unfolded.
+std::optional<HemicubePixel> hemicube_pixel(const Vec3& d, int resolution);
 
 class Hemicube {
  public:

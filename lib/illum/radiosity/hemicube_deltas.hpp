@@ -48,7 +48,7 @@ double top_face_corner(double x, double y);
 double side_face_corner(double y, double z);
 
 enum class DeltaRule {
-  midpoint,  // the notes: ΔF evaluated at the pixel's centre times ΔA
+  midpoint,  // the notes: ΔF evaluated at the pixel's centre times ΔA, in both tables
   exact,     // ΔF integrated exactly over the pixel (corner formulas)
 };
 
@@ -71,8 +71,9 @@ HemicubeDeltas make_hemicube_deltas(int resolution, DeltaRule rule = DeltaRule::
 // The row accumulation ("sumar las contribuciones a cada trozo"): for
 // every pixel p of a face, row[items[p]] += deltas[p] when items[p] ≥ 0
 // (negative items are empty pixels or occluders that receive nothing).
-// Throws std::invalid_argument when items and deltas differ in length (one
-// item and one delta per pixel) or an item ≥ 0 is not an index of row.
+// Throws std::invalid_argument when items and deltas differ in length, either
+// way (one item and one delta per pixel; checked before anything is added),
+// or when an item ≥ 0 is not an index of row.
 void accumulate_face(std::span<const std::int32_t> items, std::span<const double> deltas,
                      std::span<double> row);
 

@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "illum/core/error.hpp"
-#include "illum/core/memory_budget.hpp"
+#include "illum/system/memory_budget.hpp"
 
 namespace illum {
 namespace {

@@ -60,7 +60,7 @@ std::optional<PolygonProblem> radiosity_polygon_problem(const std::vector<Point3
 // Precondition: every polygon passed radiosity_polygon_problem. Throws
 // std::invalid_argument when max_patch_edge is not positive and finite.
 // std::invalid_argument, too, when the scene would have more than
-// max_scene_patches patches (core/memory_budget.hpp): check with
+// max_scene_patches patches (system/memory_budget.hpp): check with
 // radiosity_patch_grid first, to name the surface.
 void mesh_radiosity_surfaces(RadiosityScene& scene, double max_patch_edge);
 

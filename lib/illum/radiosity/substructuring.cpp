@@ -6,6 +6,7 @@
 
 #include "illum/accel/triangle_accel.hpp"
 #include "illum/core/error.hpp"
+#include "illum/core/parallel.hpp"
 #include "illum/core/stopwatch.hpp"
 #include "illum/radiosity/hemicube.hpp"
 #include "illum/radiosity/radiosity_solvers.hpp"
@@ -31,32 +32,35 @@ std::unique_ptr<TriangleAccel> occluder_bvh(const std::vector<std::vector<Point3
   std::vector<Triangle> triangles;
   for (const std::vector<Point3>& p : polygons)
     for (std::size_t k = 1; k + 1 < p.size(); ++k) triangles.emplace_back(p[0], p[k], p[k + 1]);
-  return make_accel(TriangleSet::from_triangles(std::move(triangles)), {.kind = AccelKind::bvh});
+  return make_accel(TriangleSet::from_triangles(std::move(triangles)), {.kind = AccelKind::compact_bvh});
 }
 
 // row[e] = F_pe by the point-to-disc factor and one shadow ray per element.
 void ray_cast_row(const Patch& shooter, const std::vector<Patch>& elements, const TriangleAccel& occluders,
                   std::span<double> row) {
   const auto n = static_cast<std::ptrdiff_t>(elements.size());
+  ExceptionCollector errors;  // occluded() may be a student's (lesson 08): its throw reaches the caller
 #pragma omp parallel for schedule(static) if (n >= static_cast <std::ptrdiff_t>(parallel_row_elements))
-  for (std::ptrdiff_t e = 0; e < n; ++e) {
-    const Patch& element = elements[static_cast<std::size_t>(e)];
-    const Vec3 d = element.centroid - shooter.centroid;
-    const double r2 = dot(d, d);
-    const double cos_p = dot(shooter.normal, d), cos_e = -dot(element.normal, d);  // both × r
-    row[e] = 0;
-    if (!(cos_p > 0 && cos_e > 0)) continue;
-    const double r = std::sqrt(r2);
-    // The segment's ends lie on the shooter and on the element: leave a
-    // relative margin so that their own patches never block it.
-    TraversalCounters counters;
-    if (occluders.occluded(Ray(shooter.centroid, d / r, Interval(1e-7 * r, (1 - 1e-7) * r)), counters))
-      continue;
-    // The shooter as a disc of its own area seen from the element (bounded
-    // by 1 however close the element), turned into F_pe by reciprocity.
-    const double f_ep = (cos_p / r) * (cos_e / r) * shooter.area / (std::numbers::pi * r2 + shooter.area);
-    row[e] = f_ep * element.area / shooter.area;
-  }
+  for (std::ptrdiff_t e = 0; e < n; ++e)
+    errors.run([&] {
+      const Patch& element = elements[static_cast<std::size_t>(e)];
+      const Vec3 d = element.centroid - shooter.centroid;
+      const double r2 = dot(d, d);
+      const double cos_p = dot(shooter.normal, d), cos_e = -dot(element.normal, d);  // both × r
+      row[e] = 0;
+      if (!(cos_p > 0 && cos_e > 0)) return;
+      const double r = std::sqrt(r2);
+      // The segment's ends lie on the shooter and on the element: leave a
+      // relative margin so that their own patches never block it.
+      TraversalCounters counters;
+      if (occluders.occluded(Ray(shooter.centroid, d / r, Interval(1e-7 * r, (1 - 1e-7) * r)), counters))
+        return;
+      // The shooter as a disc of its own area seen from the element (bounded
+      // by 1 however close the element), turned into F_pe by reciprocity.
+      const double f_ep = (cos_p / r) * (cos_e / r) * shooter.area / (std::numbers::pi * r2 + shooter.area);
+      row[e] = f_ep * element.area / shooter.area;
+    });
+  errors.rethrow_if_any();
 }
 
 }  // namespace

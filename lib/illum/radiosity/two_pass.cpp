@@ -10,6 +10,7 @@
 
 #include "illum/core/error.hpp"
 #include "illum/core/frame.hpp"
+#include "illum/core/parallel.hpp"
 #include "illum/core/random.hpp"
 #include "illum/core/stopwatch.hpp"
 #include "illum/core/threads.hpp"
@@ -105,12 +106,12 @@ std::size_t located_patch(const RadiositySurface& surface, const PatchCell& cell
 
 std::string TwoPassPlan::summary() const {
   std::string s = "two-pass plan:\n";
-  s += "  caustic pass           " + on_off(caustic_pass) + "\n";
-  s += "  radiosity pass         " + on_off(radiosity_pass) + "\n";
-  s += "  reflected rays         " + on_off(reflection) + "\n";
-  s += "  refracted rays         " + on_off(refraction) + "\n";
-  s += "  shadow rays            " + on_off(shadow_rays) + "\n";
-  s += "  depth limit            " + std::to_string(max_depth) + "\n";
+  s += plan_line("caustic pass", caustic_pass);
+  s += plan_line("radiosity pass", radiosity_pass);
+  s += plan_line("reflected rays", reflection);
+  s += plan_line("refracted rays", refraction);
+  s += plan_line("shadow rays", shadow_rays);
+  s += plan_line("depth limit", max_depth);
   return s + reasons;
 }
 
@@ -301,62 +302,65 @@ CausticPass caustic_pass(const Scene& scene, const TwoPassMesh& mesh, std::uint6
   // the sums (and the image) are the same bit for bit whatever the number of threads.
   std::vector<std::vector<std::pair<std::size_t, Color>>> deposits(static_cast<std::size_t>(blocks));
   std::vector<std::uint64_t> first(static_cast<std::size_t>(blocks), 0);
+  ExceptionCollector errors;  // the scene's intersections may be students' code: a throw reaches the caller
 #pragma omp parallel for schedule(dynamic)
-  for (std::int64_t b = 0; b < blocks; ++b) {
-    const auto t = static_cast<std::size_t>(b);
-    Rng rng(seed, static_cast<std::uint64_t>(b));
-    const std::uint64_t end = std::min<std::uint64_t>(photons, static_cast<std::uint64_t>(b + 1) * block);
-    for (std::uint64_t k = static_cast<std::uint64_t>(b) * block; k < end; ++k) {
-      const Patch& light = emitters.patches[emitters.choose(rng.uniform())];
-      const Point3 origin = uniform_point_on(light, rng);
-      Ray ray(origin + 1e-9 * (1.0 + length(origin)) * light.normal, cosine_direction(light.normal, rng));
-      // Emitter e is chosen with probability p_e = ΣE_e A_e / total, so the photon carries
-      // Φ_e / (N p_e) = E_e · total / (N ΣE_e) per channel.
-      const Color& e = light.emission;
-      Color power = e * (emitters.total / ((e.r + e.g + e.b) * static_cast<double>(photons)));
-      bool specular_path = false;
-      for (int bounce = 0; bounce <= max_bounces; ++bounce) {
-        const std::optional<SurfaceHit> hit = scene.intersect(ray);
-        if (!hit) break;
-        const Material& m = scene.materials[hit->material];
-        if (!is_specular(m)) {
-          const int s = mesh.surface_of_primitive[hit->primitive];
-          if (specular_path && s >= 0) {
-            const RadiositySurface& surface = mesh.radiosity.surfaces[static_cast<std::size_t>(s)];
-            const auto [gn, gm] = mesh.grid[static_cast<std::size_t>(s)];
-            const PatchCell cell = locate_patch(surface_coordinates(surface.polygon, hit->point), gn, gm,
-                                                static_cast<int>(surface.polygon.size()));
-            const std::size_t j = located_patch(surface, cell, gn, gm);
-            const Patch& patch = mesh.radiosity.patches[j];
-            deposits[t].emplace_back(j, patch.reflectance * power / patch.area);
+  for (std::int64_t b = 0; b < blocks; ++b)
+    errors.run([&] {
+      const auto t = static_cast<std::size_t>(b);
+      Rng rng(seed, static_cast<std::uint64_t>(b));
+      const std::uint64_t end = std::min<std::uint64_t>(photons, static_cast<std::uint64_t>(b + 1) * block);
+      for (std::uint64_t k = static_cast<std::uint64_t>(b) * block; k < end; ++k) {
+        const Patch& light = emitters.patches[emitters.choose(rng.uniform())];
+        const Point3 origin = uniform_point_on(light, rng);
+        Ray ray(origin + 1e-9 * (1.0 + length(origin)) * light.normal, cosine_direction(light.normal, rng));
+        // Emitter e is chosen with probability p_e = ΣE_e A_e / total, so the photon carries
+        // Φ_e / (N p_e) = E_e · total / (N ΣE_e) per channel.
+        const Color& e = light.emission;
+        Color power = e * (emitters.total / ((e.r + e.g + e.b) * static_cast<double>(photons)));
+        bool specular_path = false;
+        for (int bounce = 0; bounce <= max_bounces; ++bounce) {
+          const std::optional<SurfaceHit> hit = scene.intersect(ray);
+          if (!hit) break;
+          const Material& m = scene.materials[hit->material];
+          if (!is_specular(m)) {
+            const int s = mesh.surface_of_primitive[hit->primitive];
+            if (specular_path && s >= 0) {
+              const RadiositySurface& surface = mesh.radiosity.surfaces[static_cast<std::size_t>(s)];
+              const auto [gn, gm] = mesh.grid[static_cast<std::size_t>(s)];
+              const PatchCell cell = locate_patch(surface_coordinates(surface.polygon, hit->point), gn, gm,
+                                                  static_cast<int>(surface.polygon.size()));
+              const std::size_t j = located_patch(surface, cell, gn, gm);
+              const Patch& patch = mesh.radiosity.patches[j];
+              deposits[t].emplace_back(j, patch.reflectance * power / patch.area);
+            }
+            break;
           }
-          break;
-        }
-        if (bounce == 0) ++first[t];
-        specular_path = true;
-        Color k_r = m.reflectance;
-        const Color k_t = m.transmittance;
-        Vec3 transmitted(0.0);
-        const double eta = hit->front_face ? 1.0 / m.index_of_refraction : m.index_of_refraction;
-        const Refraction refraction = refract(ray.direction, hit->shading_normal, eta);
-        if (refraction.total_internal_reflection)
-          k_r += k_t;
-        else
-          transmitted = refraction.direction;
-        const double p_r = mean(k_r), p_t = refraction.total_internal_reflection ? 0.0 : mean(k_t);
-        const double u = rng.uniform();
-        if (u < p_r) {
-          power *= k_r / p_r;
-          ray = spawn_ray(*hit, reflect(ray.direction, hit->shading_normal));
-        } else if (u < p_r + p_t) {
-          power *= k_t / p_t;
-          ray = spawn_ray(*hit, transmitted);
-        } else {
-          break;  // absorbed
+          if (bounce == 0) ++first[t];
+          specular_path = true;
+          Color k_r = m.reflectance;
+          const Color k_t = m.transmittance;
+          Vec3 transmitted(0.0);
+          const double eta = hit->front_face ? 1.0 / m.index_of_refraction : m.index_of_refraction;
+          const Refraction refraction = refract(ray.direction, hit->shading_normal, eta);
+          if (refraction.total_internal_reflection)
+            k_r += k_t;
+          else
+            transmitted = refraction.direction;
+          const double p_r = mean(k_r), p_t = refraction.total_internal_reflection ? 0.0 : mean(k_t);
+          const double u = rng.uniform();
+          if (u < p_r) {
+            power *= k_r / p_r;
+            ray = spawn_ray(*hit, reflect(ray.direction, hit->shading_normal));
+          } else if (u < p_r + p_t) {
+            power *= k_t / p_t;
+            ray = spawn_ray(*hit, transmitted);
+          } else {
+            break;  // absorbed
+          }
         }
       }
-    }
-  }
+    });
+  errors.rethrow_if_any();
   for (std::size_t t = 0; t < deposits.size(); ++t) {
     for (const auto& [j, e] : deposits[t]) pass.extra_emission[j] += e;
     pass.specular_first += first[t];
@@ -439,13 +443,12 @@ EyePass eye_pass(const Scene& scene, const TwoPassMesh& mesh, const CornerRadios
   EyePass pass;
   pass.image = Image(camera.width(), camera.height());
   std::vector<TraceStats> rows(static_cast<std::size_t>(camera.height()));
-#pragma omp parallel for schedule(dynamic)
-  for (int y = 0; y < camera.height(); ++y) {
+  parallel_rows(camera.height(), [&](int y) {  // a throw of the students' shading reaches the caller
     TraceStats& stats = rows[static_cast<std::size_t>(y)];
     const EyeTracer e{scene, mesh, corners, plan, Tracer{scene, local, Color(0.0), &stats, nullptr}};
     for (int x = 0; x < camera.width(); ++x)
       pass.image.at(x, y) = eye_radiance(e, camera.pixel_ray(x, y), 0, RayKind::primary);
-  }
+  });
   for (const TraceStats& s : rows) pass.stats += s;
   pass.seconds = watch.seconds();
   return pass;

@@ -45,7 +45,11 @@ TwoPassPlan plan_two_pass(const SceneInventory& scene, const TwoPassRequest& req
     plan.max_depth = request.max_depth;
     if (scene.heaviest_specular < 1.0 && scene.heaviest_specular > 0.0) {
       // Compared in double: a weight a hair below 1 needs more levels than an int holds.
-      const double useful = std::ceil(std::log(contribution_threshold) / std::log(scene.heaviest_specular));
+      const double w = scene.heaviest_specular;
+      double useful = std::ceil(std::log(contribution_threshold) / std::log(w));
+      // The ceiling of a rounded quotient can be one off where w^d lies within rounding of the threshold.
+      while (useful > 1 && std::pow(w, useful - 1) <= contribution_threshold) --useful;
+      while (std::pow(w, useful) > contribution_threshold) ++useful;
       if (useful < plan.max_depth) plan.max_depth = std::max(static_cast<int>(useful), 1);
     }
     why += std::string(plan.refraction ? "  glass: reflected and refracted rays"

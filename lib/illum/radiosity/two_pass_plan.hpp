@@ -66,9 +66,12 @@ struct TwoPassPlan {
 // * reflected rays when there is a mirror or glass (glass reflects totally
 //   inside); refracted rays when there is glass; none of either → depth 0.
 // * the depth limit is the request (kept when it is smaller), cut as lesson
-//   06's plan cuts it: to the first depth d with heaviest_specular^d ≤
-//   contribution_threshold, at or below it (0.3 → 6, as 0.3^5 > 1/1024 ≥
-//   0.3^6; 0.5 → 10, as 0.5^10 = 1/1024 exactly). No cut when
+//   06's plan cuts it (trace/effects_plan.hpp): to the first depth d ≥ 1
+//   with std::pow(heaviest_specular, d) ≤ contribution_threshold, at or
+//   below it (0.3 → 6, as 0.3^5 > 1/1024 ≥ 0.3^6; 0.5 → 10, as 0.5^10 =
+//   1/1024 exactly). ⌈ln(1/1024)/ln k⌉ alone can be one off where k^d lies
+//   within rounding of 1/1024 (k one ulp above 2⁻¹⁰ gives 1, yet k^1 >
+//   2⁻¹⁰: d = 2): check the depth it gives against k^d. No cut when
 //   heaviest_specular is 1: lossless glass never falls to the threshold;
 //   nor, in practice, when it is a hair below 1 (1 − 1e-12 needs about
 //   7·10¹² levels, far more than an int holds: count in double).

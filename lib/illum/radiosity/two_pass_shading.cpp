@@ -6,17 +6,13 @@
 #include <cmath>
 
 #include "illum/core/error.hpp"
+#include "illum/geometry/polygon.hpp"
 
 namespace illum {
 
 namespace {
 
 double cross2(const Vec2& a, const Vec2& b) { return a.x * b.y - a.y * b.x; }
-
-// The two coordinates kept when the normal's largest component is dropped.
-Vec2 drop_largest(const Vec3& v, int axis) {
-  return axis == 0 ? Vec2(v.y, v.z) : (axis == 1 ? Vec2(v.z, v.x) : Vec2(v.x, v.y));
-}
 
 double clamp01(double t) { return std::clamp(t, 0.0, 1.0); }
 
@@ -37,11 +33,11 @@ Vec2 surface_coordinates(std::span<const Point3> polygon, const Point3& x) {
   }
   const Vec3 normal =
       cross(polygon[1] - p0, polygon[3] - p0) + cross(polygon[3] - polygon[2], polygon[1] - polygon[2]);
-  const Vec3 a = abs(normal);
-  const int axis = a.x >= a.y && a.x >= a.z ? 0 : (a.y >= a.z ? 1 : 2);
-  const Vec2 e = drop_largest(polygon[1] - p0, axis), f = drop_largest(polygon[3] - p0, axis);
-  const Vec2 g = drop_largest(p0 - polygon[1] + polygon[2] - polygon[3], axis);
-  const Vec2 h = drop_largest(x - p0, axis);
+  // Drop the normal's largest component, as lesson 02, §3 does (geometry/polygon.hpp).
+  const int axis = largest_axis(normal);
+  const Vec2 e = drop_axis(polygon[1] - p0, axis), f = drop_axis(polygon[3] - p0, axis);
+  const Vec2 g = drop_axis(p0 - polygon[1] + polygon[2] - polygon[3], axis);
+  const Vec2 h = drop_axis(x - p0, axis);
   const double k2 = cross2(g, f), k1 = cross2(e, f) + cross2(h, g), k0 = cross2(h, e);
   double v = 0;
   // |k2| against the size of the other terms: a parallelogram (g = 0 up to rounding) is linear.

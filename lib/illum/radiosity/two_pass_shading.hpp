@@ -23,17 +23,22 @@ namespace illum {
 
 // Task 2. (u, v) of the point x of a planar convex quad (4 vertices) or triangle (3) in the
 // parametrisation above. For a quad this inverts the bilinear map: with
-// e = p1 − p0, f = p3 − p0, g = p0 − p1 + p2 − p3, h = x − p0, projected on
-// the plane of the two largest components of the normal, and
+// e = p1 − p0, f = p3 − p0, g = p0 − p1 + p2 − p3, h = x − p0, all four made
+// 2-D by dropping the largest component of the quad's normal, as lesson 02,
+// §3 projects a polygon (drop_axis(v, largest_axis(n)), geometry/polygon.hpp;
+// n from the quad's edge vectors, e.g. (p1 − p0) × (p3 − p0)), and
 // cross(a, b) = a.x b.y − a.y b.x, v solves
-//   cross(g, f) v² + (cross(e, f) + cross(h, g)) v + cross(h, e) = 0,
-// a linear equation when g = 0 (a parallelogram), and then
-// u = (h − f v) / (e + g v) (the component with the larger denominator).
-// Of the quadratic's two roots, the one in [0, 1] (with a small tolerance);
-// the result is clamped to [0, 1]², and never NaN: the discriminant, ≥ 0 for a
-// point of the quad, can round a hair below 0 where the two roots nearly meet
-// (at the short side of a nearly triangular quad), and is then taken as 0.
-// For a triangle, (u, v) are the barycentric weights of b and c. Throws
+//   k2 v² + k1 v + k0 = 0,  k2 = cross(g, f), k1 = cross(e, f) + cross(h, g), k0 = cross(h, e),
+// a linear equation when g = 0 (a parallelogram: |k2| ≤ 1e-12·|k1|), and then
+// u = (h − f v) / (e + g v) (the component with the larger |denominator|).
+// The two roots by the stable pair q = −(k1 + sign(k1)·√Δ)/2, q/k2 and k0/q,
+// with sign(0) = +1 (k1 is exactly 0 on a line across some quads, and a
+// sign of 0 makes q = 0 and loses both roots); of the two, the one in
+// [0, 1] (with a small tolerance). The result is clamped to [0, 1]², and never
+// NaN: the discriminant Δ = k1² − 4 k2 k0, ≥ 0 for a point of the quad, can
+// round a hair below 0 where the two roots nearly meet (at the short side of a
+// nearly triangular quad), and is then taken as 0.
+// For a triangle, (u, v) are the barycentric weights of b and c, in double. Throws
 // std::invalid_argument unless the polygon has 3 or 4 vertices.
 Vec2 surface_coordinates(std::span<const Point3> polygon, const Point3& x);
 
@@ -47,16 +52,28 @@ struct PatchCell {
   int corners = 4;                 // 4 for a quad's cell, 3 for a triangle
 };
 
-// Task 3. `vertex_count` is 4 (a quad meshed n × m) or 3 (a triangle meshed n², m
-// ignored). A point on the far edge (u = 1) belongs to the last cell, not to
-// a cell past the end; on a triangle, a point on or a rounding error past the
-// hypotenuse u + v = 1 belongs to its row's last "up" triangle; a point on
-// the diagonal an up and a down triangle share may go to either (both give
-// the same weights to the two corners of that side, and 0 to the third). The patch
-// index is always below the surface's patch count (n·m, or n²). A (u, v) a
-// rounding error outside [0, 1]² is taken at the nearest point of the square
-// (weights stay ≥ 0). Throws
-// std::invalid_argument when n or m < 1 or vertex_count is not 3 or 4.
+// Task 3. `vertex_count` is 4 (a quad meshed n × m) or 3 (a triangle meshed n²:
+// m is ignored, any value, 0 included). With i, j the cell's column and row
+// and s = u·n − i, t = v·m − j (v·n − j on a triangle) the point's place in it:
+// * quad: i = ⌊u·n⌋, j = ⌊v·m⌋, each clamped to the last cell (a point on the
+//   far edge u = 1 belongs to the last cell, not to one past the end); weights
+//   (1−s)(1−t), s(1−t), st, (1−s)t of the cell's corners in mesh order;
+// * triangle: j = ⌊v·n⌋ clamped to n − 1, i = ⌊u·n⌋ clamped to the row's last
+//   column n − 1 − j; the "down" triangle (i, j) when s + t > 1 (no
+//   tolerance), with weights (1 − t, s + t − 1, 1 − s); else the "up" triangle,
+//   weights (1 − s − t, s, t). A point on the diagonal s + t = 1 an up and a
+//   down triangle share may go to either (both give the same weights to the
+//   two corners of that side, and 0 to the third). In the row's last cell there
+//   is no down triangle: a point on or a rounding error past the hypotenuse
+//   u + v = 1 (s + t ≥ 1) belongs to the up triangle, pulled back onto the
+//   hypotenuse along the line from the cell's corner (i, j): s and t each
+//   capped at 1, then both divided by s + t (weights (0, s, t)/(s + t)), not
+//   moved to the nearest point of the hypotenuse.
+// The patch index is always below the surface's patch count (n·m, or n²). A
+// (u, v) a rounding error outside [0, 1]² is taken at the nearest point of the
+// square: s and t kept in [0, 1] (weights stay ≥ 0 and add up to 1). Throws
+// std::invalid_argument when n < 1, when vertex_count is 4 and m < 1, or when
+// vertex_count is not 3 or 4.
 PatchCell locate_patch(const Vec2& uv, int n, int m, int vertex_count);
 
 // Task 4. What the eye sees at a hit of pass two (lesson 13, eq. 13.2):

@@ -7,16 +7,27 @@
 
 namespace illum {
 
-std::string on_off(bool on) { return on ? "on " : "off"; }
+namespace {
+
+std::string plan_row(std::string_view label, const std::string& value) {
+  std::string row = "  " + std::string(label);
+  row.resize(std::max<std::size_t>(row.size() + 1, 25), ' ');
+  return row + value + "\n";
+}
+
+}  // namespace
+
+std::string plan_line(std::string_view label, bool on) { return plan_row(label, on ? "on " : "off"); }
+std::string plan_line(std::string_view label, int value) { return plan_row(label, std::to_string(value)); }
 
 std::string EffectsPlan::summary() const {
   std::string s = analysed ? "effects plan (from the scene):\n" : "no effects plan (every effect on):\n";
-  s += "  reflection rays        " + on_off(reflection) + "\n";
-  s += "  refraction rays        " + on_off(refraction) + "\n";
-  s += "  shadow rays            " + on_off(shadows) + "\n";
-  s += "  shadow attenuation     " + on_off(shadow_attenuation) + "\n";
-  s += "  skip zero-weight rays  " + on_off(skip_zero_weights) + "\n";
-  s += "  depth limit            " + std::to_string(max_depth) + "\n";
+  s += plan_line("reflection rays", reflection);
+  s += plan_line("refraction rays", refraction);
+  s += plan_line("shadow rays", shadows);
+  s += plan_line("shadow attenuation", shadow_attenuation);
+  s += plan_line("skip zero-weight rays", skip_zero_weights);
+  s += plan_line("depth limit", max_depth);
   if (!reasons.empty()) s += reasons;
   return s;
 }
@@ -61,7 +72,11 @@ EffectsPlan plan_effects(const Scene& scene, int max_depth) {
     // Depth d weighs at most heaviest^d: stop where that is below the threshold.
     // Compared in double: a weight a hair below 1 (1 − 1e-12) needs about 7·10¹² levels, more than
     // an int holds (the conversion would be undefined, and in practice INT_MIN: depth 1).
-    const double useful = std::ceil(std::log(contribution_threshold) / std::log(heaviest));
+    double useful = std::ceil(std::log(contribution_threshold) / std::log(heaviest));
+    // The rounded quotient can put the ceiling one off where heaviest^d lies within rounding of the
+    // threshold (heaviest one ulp above 1/1024 gives 1.0 exactly, yet heaviest^1 > 1/1024): check it.
+    while (useful > 1 && std::pow(heaviest, useful - 1) <= contribution_threshold) --useful;
+    while (std::pow(heaviest, useful) > contribution_threshold) ++useful;
     if (useful < plan.max_depth) {
       plan.max_depth = std::max(static_cast<int>(useful), 1);
       why += "  max(k_r + k_t) = " + std::to_string(heaviest) + ": depth " + std::to_string(plan.max_depth) +

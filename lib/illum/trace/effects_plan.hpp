@@ -15,12 +15,16 @@
 //   the first surface (there is no glass to see a light through);
 // * no light → no shadow rays (I_own is the ambient and emitted terms alone);
 // * the depth limit is cut to 0 without secondary rays, and otherwise to the
-//   first depth d where the heaviest path weight max(k_r + k_t)^d falls to
-//   `contribution_threshold` or below (0.5 gives 10: 0.5^10 = 1/1024
-//   exactly), Whitted's adaptive tree depth with the bound taken over the
+//   first depth d ≥ 1 where the heaviest path weight w = max(k_r + k_t) has
+//   w^d (std::pow(w, d)) at `contribution_threshold` or below (0.5 gives 10:
+//   0.5^10 = 1/1024 exactly; ⌈ln(1/1024)/ln w⌉ alone is one too small where
+//   w^d lies within rounding of the threshold, as for w one ulp above 1/1024,
+//   whose w^1 is above it: check the depth it gives and the one before),
+//   Whitted's adaptive tree depth with the bound taken over the
 //   materials instead of per ray. Only this last cut may
 //   change a pixel, by at most the threshold times the brightest radiance.
 #include <string>
+#include <string_view>
 
 #include "illum/trace/scene.hpp"
 
@@ -52,8 +56,10 @@ struct EffectsPlan {
   std::string reasons{};  // filled by plan_effects: why each switch is set as it is
 };
 
-// A switch as the plans' summaries print it: "on " or "off", three columns wide.
-std::string on_off(bool on);
+// One line of a plan's summary (this one's and lesson 13's TwoPassPlan): the
+// label in a column 23 wide, then the switch, "on " or "off", or the number.
+std::string plan_line(std::string_view label, bool on);
+std::string plan_line(std::string_view label, int value);
 
 // No analysis: every kind of ray, up to `max_depth` (the "without the plan" run).
 // Throws std::invalid_argument unless 0 ≤ max_depth ≤ deepest_depth_limit.

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "illum/core/bitmap_font.hpp"
+#include "illum/trace/bitmap_font.hpp"
 #include "illum/trace/ray_tree_view.hpp"
 
 namespace illum {

@@ -109,9 +109,9 @@ bool Scene::occluded(const Ray& ray, WorkCounters* counters) const {
   return false;
 }
 
-std::uint32_t Scene::material_index(const std::string& name) const {
+std::uint32_t Scene::material_index(const std::string& material_name) const {
   for (std::size_t i = 0; i < materials.size(); ++i)
-    if (materials[i].name == name) return static_cast<std::uint32_t>(i);
+    if (materials[i].name == material_name) return static_cast<std::uint32_t>(i);
   return no_material;
 }
 

@@ -128,8 +128,8 @@ struct Scene {
   // Any hit in ray.range (shadow rays may stop at the first opaque hit); any-hit query of `accel`.
   bool occluded(const Ray& ray, WorkCounters* counters = nullptr) const;
 
-  // The index of the material called `name`, or no_material.
-  std::uint32_t material_index(const std::string& name) const;
+  // The index of the material called `material_name`, or no_material.
+  std::uint32_t material_index(const std::string& material_name) const;
 };
 
 }  // namespace illum

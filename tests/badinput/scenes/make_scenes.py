@@ -170,3 +170,41 @@ write("m_fifo.json", mesh_scene("pipe.obj"))          # copied beside a FIFO nam
 write("m_scale_overflow.json", mesh_scene("m_big_vertex.obj", scale=1e300))
 with open("m_big_vertex.obj", "w") as f:
     f.write("v 0 0 0\nv 1e10 0 0\nv 0 1 0\nf 1 2 3\n")
+
+# Issue 50: files of an older format, magnitudes that overflow later, a byte-order mark.
+write("s_old_sphere_format.json", {
+    "description": "the sphere-only format of the first lessons, before format 1",
+    "camera": {"eye": [0, 0, 3], "target": [0, 0, 0], "up": [0, 1, 0], "vertical_fov_degrees": 45,
+               "width": 32, "height": 24},
+    "spheres": [{"name": "ball", "center": [0, 0, 0], "radius": 1, "color": [0.8, 0.3, 0.2]}]})
+write("r_old_radiosity_format.json", {
+    "name": "two quads, before format 1", "camera": {"eye": [50, 50, -200], "target": [50, 50, 50],
+                                                     "up": [0, 1, 0], "vertical_fov_degrees": 40},
+    "materials": {"white": {"reflectance": [0.7, 0.7, 0.7]},
+                  "light": {"reflectance": [0.5, 0.5, 0.5], "emission": [10, 10, 10]}},
+    "surfaces": [{"name": "floor", "material": "white",
+                  "polygon": [[0, 0, 0], [0, 0, 100], [100, 0, 100], [100, 0, 0]]},
+                 {"name": "light", "material": "light",
+                  "polygon": [[0, 100, 0], [100, 100, 0], [100, 100, 100], [0, 100, 100]]}]})
+# Every coordinate and size of a scene lies within ±1e150, as a camera's (squares stay within a double).
+write("s_sphere_far.json", variant(S, lambda s: s["primitives"][0].update(center=[1e300, 0, 0])))
+write("s_radius_huge.json", variant(S, lambda s: s["primitives"][0].update(radius=1e200)))
+write("s_light_far.json", variant(S, lambda s: s.update(
+    lights=[{"type": "point", "position": [0, 1e200, 0], "intensity": [1, 1, 1]}])))
+write("s_ior_huge.json", variant(S, lambda s: s["materials"]["red"].update(
+    index_of_refraction=1e300, transmittance=[0.5, 0.5, 0.5])))
+write("r_polygon_far.json", variant(R, lambda s: floor(s, [[0, 0, 0], [0, 0, 100], [1e200, 0, 100], [1e200, 0, 0]])))
+write("r_emission_huge.json", variant(R, lambda s: s["materials"]["light"].update(emission=[1e200, 10, 10])))
+write("m_scale_beyond.json", mesh_scene("m_big_vertex.obj", scale=1e145))  # its vertex at 1e10 goes to 1e155
+with open("m_vertex_huge.obj", "w") as f:
+    f.write("v 0 0 0\nv 1e308 0 0\nv 0 1 0\nf 1 2 3\n")
+write("m_vertex_huge.json", mesh_scene("m_vertex_huge.obj"))
+# A valid mesh whose file starts with a UTF-8 byte-order mark, in a scene whose second primitive is
+# wrong: the refusal names that primitive, so the mesh was read.
+with open("m_bom.obj", "w", encoding="utf-8") as f:
+    f.write("\ufeff" + TRIANGLE + "f 1 2 3\n")
+write("m_bom.json", variant(mesh_scene("m_bom.obj"), lambda s: s["primitives"].append(
+    {"type": "sphere", "name": "ball", "material": "blak", "center": [0, 0, 0], "radius": 1})))
+# A camera twice as tall as wide: the lab's width=2048 makes a 2048 × 4096 image.
+write("s_tall_camera.json", variant(S, lambda s: s["camera"].update(width=32, height=64)))
+write("m_loop.json", mesh_scene("loop.obj"))  # copied beside a link loop named loop.obj by the case

@@ -20,8 +20,8 @@
 #include <immintrin.h>
 #endif
 
-#include "illum/core/platform.hpp"
 #include "illum/geometry/orientation.hpp"
+#include "illum/system/platform.hpp"
 
 namespace illum {
 namespace {

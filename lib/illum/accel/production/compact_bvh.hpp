@@ -3,7 +3,7 @@
 // Production code, apart from the course (lib/illum/accel/production/): the
 // same tree as the teaching Bvh, laid out and traversed for speed. A student
 // need not read it; lesson 08 (§5) says what it changes and measures what it
-// buys (out/lesson08/bvh_layouts.md), and `--accel bvh_teaching` runs a
+// buys (out/lesson08/bvh_layouts.md), and `--accel bvh` runs a
 // lesson's program on the exercise's traversal instead.
 //
 // The production BVH, lesson 08 (§5): the same binned-SAH tree as Bvh, its
@@ -11,7 +11,7 @@
 // out for speed.
 // Bvh's traversal (bvh_traversal.cpp) is the teaching version, the
 // exercise; this is the one the scene, the radiosity visibility and the
-// Embree comparison use ("bvh"; the teaching one is "bvh_teaching").
+// Embree comparison use ("compact_bvh"; the teaching one is "bvh").
 //
 // What changes, and why each is safe:
 //   * a node holds its (up to) eight children's boxes, in float, rounded
@@ -57,7 +57,7 @@
 
 #include "illum/accel/bvh.hpp"
 #include "illum/accel/triangle_accel.hpp"
-#include "illum/core/huge_pages.hpp"
+#include "illum/system/huge_pages.hpp"
 
 namespace illum {
 
@@ -103,7 +103,7 @@ class CompactBvh final : public TriangleAccel {
   std::optional<AccelHit> intersect(const Ray& ray, TraversalCounters& counters) const override;
   bool occluded(const Ray& ray, TraversalCounters& counters) const override;
   std::size_t memory_bytes() const override;
-  std::string_view name() const override { return "bvh"; }
+  std::string_view name() const override { return "compact_bvh"; }
 
   std::size_t node_count() const { return nodes_.size(); }
 

@@ -15,10 +15,10 @@
 #include <string>
 
 #include "illum/core/error.hpp"
-#include "illum/core/memory_budget.hpp"
 #include "illum/core/stopwatch.hpp"
 #include "illum/core/threads.hpp"
 #include "illum/radiosity/radiosity_system.hpp"
+#include "illum/system/memory_budget.hpp"
 
 namespace illum {
 

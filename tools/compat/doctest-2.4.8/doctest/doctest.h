@@ -51,6 +51,18 @@ enum Enum {
   is_gt = 2 * is_lt,
   is_ge = 2 * is_gt,
   is_le = 2 * is_ge,
+  DT_WARN = is_normal | is_warn,
+  DT_CHECK = is_normal | is_check,
+  DT_REQUIRE = is_normal | is_require,
+  DT_WARN_FALSE = is_normal | is_false | is_warn,
+  DT_CHECK_FALSE = is_normal | is_false | is_check,
+  DT_REQUIRE_FALSE = is_normal | is_false | is_require,
+  DT_CHECK_THROWS = is_throws | is_check,
+  DT_REQUIRE_THROWS = is_throws | is_require,
+  DT_CHECK_THROWS_AS = is_throws_as | is_check,
+  DT_REQUIRE_THROWS_AS = is_throws_as | is_require,
+  DT_CHECK_NOTHROW = is_nothrow | is_check,
+  DT_REQUIRE_NOTHROW = is_nothrow | is_require,
 };
 }  // namespace assertType
 
@@ -210,7 +222,35 @@ struct IReporter {
   static const String* get_stringified_contexts();
 };
 
+const ContextOptions* getContextOptions();
+
+// The check macros (tests/support/checks.hpp) build their assertions from these, as doctest's own
+// macros do in 2.4.8.
+template <class T>
+String toString(const T& value);
+
+struct Approx {
+  Approx(double value);
+  Approx& epsilon(double new_epsilon);
+  Approx& scale(double new_scale);
+  double m_epsilon;
+  double m_scale;
+  double m_value;
+};
+bool operator==(double lhs, const Approx& rhs);
+bool operator==(const Approx& lhs, double rhs);
+
 namespace detail {
+void throwException();
+
+struct ResultBuilder : public AssertData {
+  ResultBuilder(assertType::Enum at, const char* file, int line, const char* expr, const char* exception_type = "",
+                const char* exception_string = "");
+  void translateException();
+  bool log();
+  void react() const;
+};
+
 using reporterCreatorFunc = IReporter* (*)(const ContextOptions&);
 void registerReporterImpl(const char* name, int priority, reporterCreatorFunc creator, bool is_reporter);
 template <class Reporter>

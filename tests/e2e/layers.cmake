@@ -1,0 +1,28 @@
+# The library's areas in their order (docs/architecture.md, "Areas of the library"): a file of
+# lib/illum/<area>/ may include headers of its own area and of the areas before it, never after.
+# Run as a test: cmake -DSOURCE=<root> -P tests/e2e/layers.cmake; it fails naming file, line
+# and include. system is the plumbing (no other area); io may use every area.
+set(areas system core geometry accel trace radiosity io)
+file(GLOB_RECURSE files RELATIVE ${SOURCE} ${SOURCE}/lib/illum/*.hpp ${SOURCE}/lib/illum/*.cpp)
+set(problems "")
+foreach(file IN LISTS files)
+  string(REGEX MATCH "^lib/illum/([a-z_]+)/" _ ${file})
+  list(FIND areas "${CMAKE_MATCH_1}" own)
+  if(own EQUAL -1)
+    string(APPEND problems "${file}: lib/illum/${CMAKE_MATCH_1}/ is no area of docs/architecture.md's list\n")
+    continue()
+  endif()
+  file(STRINGS ${SOURCE}/${file} lines REGEX "^#[ \t]*include[ \t]*\"illum/")
+  foreach(line IN LISTS lines)
+    string(REGEX MATCH "\"illum/([a-z_]+)/" _ "${line}")
+    list(FIND areas "${CMAKE_MATCH_1}" used)
+    if(used GREATER own)
+      string(APPEND problems "${file}: ${line}: ${CMAKE_MATCH_1} comes after this file's area\n")
+    endif()
+  endforeach()
+endforeach()
+if(problems)
+  message(FATAL_ERROR "includes against the order of the areas (${areas}):\n${problems}")
+endif()
+list(LENGTH files count)
+message(STATUS "layers: ${count} files of lib/illum/ include only their own or earlier areas")

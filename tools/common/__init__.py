@@ -1,0 +1,1 @@
+"""What the grading, gallery and check tools share: Markdown, C++ source text, PNG, atomic files."""

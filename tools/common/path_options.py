@@ -1,0 +1,60 @@
+"""The checks a tool makes of a path one of its options names, before it writes anything
+(docs/bad-input.md, "Options"): the same classes as the programs' path_problem
+(lib/illum/io/program.hpp) - an empty path, which would quietly mean the current folder, a
+symbolic link on the way that loops or leads nowhere - and a folder that is a file.
+
+    parser.add_argument("--out", type=path_argument)    # "argument --out: the path is empty ..."
+    problem = folder_problem(args.out)                  # "afile is a file, not a folder"
+"""
+from __future__ import annotations
+
+import argparse
+import errno
+import os
+import stat
+from pathlib import Path
+
+
+def path_problem(text: str) -> str:
+    """What is wrong with the path `text` as written, or ''; opens and creates nothing."""
+    if text == "":
+        return "the path is empty (name a file or folder; '.' is the current folder)"
+    step = ""
+    for part in Path(text).parts:  # each step in turn, so that the message names the link that is wrong
+        step = os.path.join(step, part) if step else part
+        try:
+            if not stat.S_ISLNK(os.lstat(step).st_mode):
+                continue
+        except OSError:
+            return ""  # missing from here on: the tool says what it needs
+        try:
+            os.stat(step)
+            continue
+        except OSError as error:
+            what = f"'{step}' is a symbolic link"
+            if error.errno == errno.ELOOP:
+                return what + " that leads back to itself (a link loop)"
+            if error.errno == errno.ENOENT:
+                return what + f" to '{os.readlink(step)}', which does not exist (a dangling link)"
+            return what + f" that cannot be followed: {error.strerror}"
+    return ""
+
+
+def path_argument(text: str) -> Path:
+    """An argparse type: the path, or the option's error ("argument --out: the path is empty ...")."""
+    problem = path_problem(text)
+    if problem:
+        raise argparse.ArgumentTypeError(problem)
+    return Path(text)
+
+
+def folder_problem(path: Path) -> str:
+    """Why `path` cannot be a folder or be made one, or '': it, or the nearest of its parents that
+    exists, is something else ("afile is a file, not a folder")."""
+    for p in [path, *path.parents]:
+        if os.path.lexists(p):
+            if p.is_dir():
+                return ""
+            kind = "a file" if p.is_file() else "a symbolic link" if p.is_symlink() else "not a regular file"
+            return f"{'it' if p == path else p} is {kind}, not a folder"
+    return ""

@@ -1,0 +1,272 @@
+"""The observer's sources: each test file with the expected side of every check cut away.
+
+The grader's observer build (docs/grading.md, "How a test is judged") runs the student's code
+and reports, for every check, only the value it observed. So that the expected values and their
+tolerances are not in that program at all, its sources are the test files rewritten by this tool:
+
+    CHECK(got == doctest::Approx(want).epsilon(1e-12))   ->  ILLUM_OBSERVE_VALUE(CHECK, (got))
+    CHECK(hit)                                           ->  ILLUM_OBSERVE_CHECK(CHECK, (hit))
+    REQUIRE(hits.size() == 2)                            ->  ILLUM_OBSERVE_CHECK(REQUIRE, hits.size() == 2)
+    CHECK_THROWS_AS(Sphere(c, -1), std::invalid_argument) -> ILLUM_OBSERVE_THROWS(CHECK_THROWS_AS, ...)
+    INFO(...), CAPTURE(...), MESSAGE(...), a CHECK_MESSAGE's message  ->  cut
+
+A REQUIRE keeps its right side: the observer must stop a test where the reference's run would
+(the judge still decides on the left side it reports). Every line keeps its number, and a
+``#line`` directive names the original file, so records and compiler messages point at the
+test as written. A check this tool cannot split unambiguously is an error naming its file and
+line: the build stops instead of keeping an expected value.
+
+    python3 tools/grading/observer_sources.py --out DIR FILE...   (each FILE into DIR/<its folder>/<its name>,
+    so that both "support.hpp" and "13_two_pass/support.hpp" find the rewritten header first)
+"""
+from __future__ import annotations
+
+import argparse
+import re
+import sys
+from pathlib import Path
+
+
+class SourceError(Exception):
+    """A check this tool cannot rewrite."""
+
+
+# Macro name -> (kind the records carry, how it is rewritten).
+_VALUE = {"CHECK": "CHECK", "CHECK_FALSE": "CHECK_FALSE", "CHECK_MESSAGE": "CHECK",
+          "CHECK_FALSE_MESSAGE": "CHECK_FALSE", "WARN": None, "WARN_FALSE": None}
+_WHOLE = {"REQUIRE": "REQUIRE", "REQUIRE_FALSE": "REQUIRE_FALSE", "REQUIRE_MESSAGE": "REQUIRE",
+          "REQUIRE_FALSE_MESSAGE": "REQUIRE_FALSE", "CHECK_UNARY": "CHECK", "CHECK_UNARY_FALSE": "CHECK_FALSE",
+          "REQUIRE_UNARY": "REQUIRE", "REQUIRE_UNARY_FALSE": "REQUIRE_FALSE"}
+_BINARY = {"EQ": "==", "NE": "!=", "LT": "<", "LE": "<=", "GT": ">", "GE": ">="}
+_THROWS = {"CHECK_THROWS": "CHECK_THROWS", "REQUIRE_THROWS": "REQUIRE_THROWS", "CHECK_NOTHROW": "CHECK_NOTHROW",
+           "REQUIRE_NOTHROW": "REQUIRE_NOTHROW", "CHECK_THROWS_AS": "CHECK_THROWS_AS",
+           "REQUIRE_THROWS_AS": "REQUIRE_THROWS_AS"}
+_CUT = {"INFO", "CAPTURE", "MESSAGE", "WARN_MESSAGE", "WARN_THROWS", "WARN_THROWS_AS", "WARN_NOTHROW"}
+_APPROX = {"ILLUM_CHECK_APPROX", "ILLUM_CHECK_APPROX_MESSAGE"}
+_ANY_TYPE = "::illum::test::NothingThrowsThis"
+
+_NAMES = (set(_VALUE) | set(_WHOLE) | set(_THROWS) | _CUT | _APPROX
+          | {f"{level}_{name}" for level in ("CHECK", "REQUIRE", "WARN") for name in _BINARY}
+          | {"FAIL", "FAIL_CHECK", "ILLUM_CHECK_THROWS_CONTAINING"})
+_IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z_0-9]*")
+
+
+def _skip_literal(text: str, i: int) -> int:
+    """The index after the string or character literal, or comment, starting at ``i`` (else ``i``)."""
+    if text.startswith("//", i):
+        end = text.find("\n", i)
+        return len(text) if end < 0 else end
+    if text.startswith("/*", i):
+        end = text.find("*/", i + 2)
+        return len(text) if end < 0 else end + 2
+    raw = re.match(r'(?:u8|u|U|L)?R"([^()\\ ]{0,16})\(', text[i:i + 24])
+    if raw and (i == 0 or not (text[i - 1].isalnum() or text[i - 1] == "_")):
+        end = text.find(")" + raw.group(1) + '"', i + raw.end())
+        return len(text) if end < 0 else end + len(raw.group(1)) + 2
+    if text[i] in "\"'":
+        if text[i] == "'" and i > 0 and text[i - 1].isalnum():
+            return i  # a digit separator, 1'000
+        quote, j = text[i], i + 1
+        while j < len(text) and text[j] != quote:
+            j += 2 if text[j] == "\\" else 1
+        return j + 1
+    return i
+
+
+def _arguments(text: str, open_paren: int) -> tuple[list[str], int]:
+    """The macro arguments after ``(`` at ``open_paren`` split as the preprocessor splits them
+    (at commas outside parentheses), and the index after the closing ``)``."""
+    depth, start, i, parts = 0, open_paren + 1, open_paren, []
+    while i < len(text):
+        skipped = _skip_literal(text, i)
+        if skipped != i:
+            i = skipped
+            continue
+        c = text[i]
+        if c == "(":
+            depth += 1
+        elif c == ")":
+            depth -= 1
+            if depth == 0:
+                parts.append(text[start:i])
+                return parts, i + 1
+        elif c == "," and depth == 1:
+            parts.append(text[start:i])
+            start = i + 1
+        i += 1
+    raise SourceError("no closing parenthesis")
+
+
+def _template_end(text: str, i: int) -> int:
+    """``text[i]`` is the ``<`` of a template argument list: the index after its ``>``."""
+    depth, j = 0, i
+    while j < len(text):
+        skipped = _skip_literal(text, j)
+        if skipped != j:
+            j = skipped
+            continue
+        c = text[j]
+        if c in "([{":
+            depth += 100
+        elif c in ")]}":
+            depth -= 100
+        elif c == "<":
+            depth += 1
+        elif c == ">":
+            depth -= 1
+            if depth == 0:
+                return j + 1
+        j += 1
+    raise SourceError("a '<' written against a name, which this tool reads as template arguments, does not close: "
+                      "write a comparison with spaces around it (a < b), as clang-format does")
+
+
+def split_comparison(condition: str) -> tuple[str, str, str] | None:
+    """(lhs, operator, rhs) of a check's condition, or None for a unary check.
+
+    A comparison is an ``==``, ``!=``, ``<=``, ``>=``, ``<`` or ``>`` outside brackets; a ``<``
+    written against a name (``static_cast<int>``, ``std::vector<double>``) opens template
+    arguments, which is how clang-format writes them and how the tests are formatted."""
+    found: list[tuple[int, str]] = []
+    depth, i = 0, 0
+    while i < len(condition):
+        skipped = _skip_literal(condition, i)
+        if skipped != i:
+            i = skipped
+            continue
+        c, two = condition[i], condition[i:i + 2]
+        if c in "([{":
+            depth += 1
+        elif c in ")]}":
+            depth -= 1
+        elif depth == 0 and two in ("&&", "||"):
+            raise SourceError(f"'{two}' at the top of a check: put the condition in parentheses")
+        elif depth == 0 and c == "?":
+            raise SourceError("'?' at the top of a check: put the condition in parentheses")
+        elif two in ("<<", ">>", "->") or condition[i:i + 3] == "<=>":
+            i += 3 if condition[i:i + 3] == "<=>" else 2
+            continue
+        elif c == "<" and i > 0 and (condition[i - 1].isalnum() or condition[i - 1] in "_:"):
+            i = _template_end(condition, i)
+            continue
+        elif depth == 0 and two in ("==", "!=", "<=", ">="):
+            found.append((i, two))
+            i += 2
+            continue
+        elif depth == 0 and c in "<>":
+            found.append((i, c))
+        i += 1
+    if not found:
+        return None
+    if len(found) > 1:
+        raise SourceError(f"{len(found)} comparisons at the top of one check ({', '.join(o for _, o in found)})")
+    at, op = found[0]
+    lhs, rhs = condition[:at].strip(), condition[at + len(op):].strip()
+    if not lhs or not rhs:
+        raise SourceError(f"a comparison '{op}' with an empty side")
+    return lhs, op, rhs
+
+
+def _rewrite(name: str, args: list[str]) -> str:
+    """The observer's text for one invocation of ``name``."""
+    base = name.removeprefix("DOCTEST_")
+    if base in _CUT or base in ("WARN", "WARN_FALSE") or base.startswith("WARN_"):
+        return "static_cast<void>(0)"
+    if base in ("FAIL", "FAIL_CHECK"):
+        return f"ILLUM_OBSERVE_FAIL({base})"
+    if base in _APPROX:
+        return f"ILLUM_OBSERVE_VALUE(CHECK, ({args[0].strip()}))"
+    if base == "ILLUM_CHECK_THROWS_CONTAINING":
+        if len(args) < 3:
+            raise SourceError("ILLUM_CHECK_THROWS_CONTAINING needs an expression, a text and a type")
+        return f"ILLUM_OBSERVE_THROWS(CHECK_THROWS_CONTAINING, {args[0].strip()}, {','.join(args[2:]).strip()})"
+    if base in _THROWS:
+        kind = _THROWS[base]
+        kind_type = ",".join(args[1:]).strip() if kind.endswith("_AS") else _ANY_TYPE
+        return f"ILLUM_OBSERVE_THROWS({kind}, {args[0].strip()}, {kind_type})"
+    level, _, suffix = base.partition("_")
+    if suffix in _BINARY:
+        lhs, rhs = args[0].strip(), ",".join(args[1:]).strip()
+        if level == "REQUIRE":
+            return f"ILLUM_OBSERVE_CHECK(REQUIRE, ({lhs}) {_BINARY[suffix]} ({rhs}))"
+        return f"ILLUM_OBSERVE_VALUE(CHECK, ({lhs}))"
+    condition = args[0].strip() if base.endswith("_MESSAGE") else ",".join(args).strip()
+    if base in _WHOLE:
+        kind = _WHOLE[base]
+        if base.startswith(("CHECK_UNARY", "REQUIRE_UNARY")):
+            return f"ILLUM_OBSERVE_CHECK({kind}, ({condition}))"
+        parts = split_comparison(condition)  # only to refuse what doctest would refuse too
+        return f"ILLUM_OBSERVE_CHECK({kind}, {condition if parts else f'({condition})'})"
+    kind = _VALUE[base]
+    parts = split_comparison(condition)
+    if parts is None:
+        return f"ILLUM_OBSERVE_CHECK({kind}, ({condition}))"
+    return f"ILLUM_OBSERVE_VALUE({kind}, ({parts[0]}))"
+
+
+def rewrite(text: str, origin: str) -> str:
+    """The observer's version of one source file (``origin``: the path its records name)."""
+    out: list[str] = [f'#line 1 "{origin}"\n']
+    i, copied = 0, 0
+    while i < len(text):
+        skipped = _skip_literal(text, i)
+        if skipped != i:
+            i = skipped
+            continue
+        match = _IDENTIFIER.match(text, i)
+        if not match:
+            i += 1
+            continue
+        name, after = match.group(0), match.end()
+        preceded = text[text.rfind("\n", 0, i) + 1:i].rstrip()[-2:]  # on its line: a member, not a macro
+        if (name.removeprefix("DOCTEST_") not in _NAMES or preceded.endswith((".", "->", "::"))
+                or (i > 0 and (text[i - 1].isalnum() or text[i - 1] == "_"))):
+            i = after
+            continue
+        j = after
+        while j < len(text) and text[j] in " \t":
+            j += 1
+        if j >= len(text) or text[j] != "(" or _in_directive(text, i):
+            i = after
+            continue
+        line = text.count("\n", 0, i) + 1
+        try:
+            args, end = _arguments(text, j)
+            replacement = _rewrite(name, args)
+        except SourceError as error:
+            raise SourceError(f"{origin}:{line}: {name}: {error}") from None
+        out.append(text[copied:i])
+        out.append(replacement + "\n" * (text.count("\n", i, end) - replacement.count("\n")))
+        copied = i = end
+    out.append(text[copied:])
+    return "".join(out)
+
+
+def _in_directive(text: str, i: int) -> bool:
+    """Whether position ``i`` is inside a preprocessor line (#define CHECK ..., #undef CHECK)."""
+    start = text.rfind("\n", 0, i) + 1
+    return text[start:i].lstrip().startswith("#")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--out", required=True, type=Path, help="folder for the rewritten files")
+    parser.add_argument("files", nargs="+", type=Path)
+    args = parser.parse_args(argv)
+    args.out.mkdir(parents=True, exist_ok=True)
+    for source in args.files:
+        try:
+            text = source.read_text(encoding="utf-8")
+            rewritten = rewrite(text, str(source.resolve()))
+        except (OSError, UnicodeDecodeError, SourceError) as error:
+            print(f"observer_sources: {error}", file=sys.stderr)
+            return 1
+        target = args.out / source.parent.name / source.name
+        target.parent.mkdir(parents=True, exist_ok=True)
+        if not target.exists() or target.read_text(encoding="utf-8") != rewritten:
+            target.write_text(rewritten, encoding="utf-8")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
