@@ -13,6 +13,10 @@
 //     (View3D prints its time to 0.01 s, and the mean of such readings, unlike their median, is not
 //     held to that step: 0.04 s is a third of the 864-patch cube's), their ratio, and the slowest
 //     run of each;
+//   * View3D's seconds to the matrix in memory, as illum's count it: its "seconds for all
+//     calculations" less its "seconds to write view factors" (reading the input and allocating and
+//     zeroing its half matrix included; a fresh page's first touch costs more in a virtual machine
+//     than on bare metal, and illum's timer holds it), and illum's ratio to that;
 //   * the largest error of each matrix against the closed forms for rectangles (View3D's from the
 //     matrix it writes, to six decimals: its rounding, up to 5·10⁻⁷, is part of its error).
 #include <algorithm>
@@ -76,15 +80,25 @@ std::string read_file(const std::filesystem::path& path) {
   return s.str();
 }
 
-// View3D's "  0.25 seconds to compute view factors" in its log.
-double view3d_seconds(const std::filesystem::path& log) {
-  const std::string text = read_file(log);
-  const std::size_t at = text.rfind(" seconds to compute view factors");
-  if (at == std::string::npos)
-    throw std::runtime_error(log.string() + " has no 'seconds to compute view factors'");
+// The seconds of View3D's log line "  0.25 seconds <what>".
+double logged_seconds(const std::string& text, const std::filesystem::path& log, const std::string& what) {
+  const std::size_t at = text.rfind(" seconds " + what);
+  if (at == std::string::npos) throw std::runtime_error(log.string() + " has no 'seconds " + what + "'");
   std::size_t begin = text.rfind('\n', at);
   begin = begin == std::string::npos ? 0 : begin + 1;
   return std::stod(text.substr(begin, at - begin));
+}
+
+struct View3dSeconds {
+  double compute = 0;  // its view factors alone
+  double matrix = 0;   // the matrix in memory: everything but writing it (input, allocation included)
+};
+
+View3dSeconds view3d_seconds(const std::filesystem::path& log) {
+  const std::string text = read_file(log);
+  return {
+      logged_seconds(text, log, "to compute view factors"),
+      logged_seconds(text, log, "for all calculations") - logged_seconds(text, log, "to write view factors")};
 }
 
 // The largest |F − exact| of View3D's output matrix: a header line, the areas' line, then n rows of
@@ -182,13 +196,16 @@ int main(int argc, char** argv) {
 
   std::printf(
       "one thread; seconds: mean of %d runs, the two in turn (illum: thread CPU time of "
-      "contour_form_factor_matrix; View3D: its own 'seconds to compute view factors', to 0.01 s), "
-      "and the slowest run\n",
+      "contour_form_factor_matrix, allocation included; View3D: its own 'seconds to compute view factors', "
+      "to 0.01 s, allocation excluded), and the slowest run; 'to matrix': View3D's 'seconds for all "
+      "calculations' less its 'seconds to write view factors' (input and allocation included)\n",
       runs);
-  std::printf("%8s %10s | %10s %10s %6s | %10s %10s | %12s %12s\n", "patches", "tolerance", "illum s",
-              "View3D s", "ratio", "illum max", "View3D max", "illum error", "View3D error");
+  std::printf("%8s %10s | %10s %10s %6s | %10s %10s | %10s %6s | %12s %12s\n", "patches", "tolerance",
+              "illum s", "View3D s", "ratio", "illum max", "View3D max", "to matrix", "ratio", "illum error",
+              "View3D error");
   Table table({"patches", "tolerance", "illum seconds", "View3D seconds", "ratio", "illum slowest",
-               "View3D slowest", "illum max abs(F - F_exact)", "View3D max abs(F - F_exact)"});
+               "View3D slowest", "View3D seconds to the matrix", "ratio to it", "illum max abs(F - F_exact)",
+               "View3D max abs(F - F_exact)"});
   for (const int n : sizes) {
     const std::vector<Patch> patches = mesh_cube_interior(n);
     const FormFactorMatrix exact = closed_form_rectangle_matrix(patches);
@@ -198,12 +215,14 @@ int main(int argc, char** argv) {
       input << vs3_text(patches, n, tolerance);
       if (!input) throw std::runtime_error("cannot write " + (work / (name + ".vs3")).string());
     }
-    std::vector<double> illum_seconds, view3d_times;
+    std::vector<double> illum_seconds, view3d_times, view3d_matrix_times;
     double illum_error = 0;
     for (int k = 0; k < runs; ++k) {
       const ToolRun run = run_tool({program.string(), name + ".vs3", name + ".out"}, work);
       if (!run.succeeded()) throw std::runtime_error("View3D failed on " + name + ".vs3: " + run.failure());
-      view3d_times.push_back(view3d_seconds(work / "View3D.log"));
+      const View3dSeconds logged = view3d_seconds(work / "View3D.log");
+      view3d_times.push_back(logged.compute);
+      view3d_matrix_times.push_back(logged.matrix);
       const ScopedThreadCount one(1);
       ThreadCpuStopwatch watch;
       const FormFactorMatrix f = contour_form_factor_matrix(patches, FormFactorTolerance{tolerance});
@@ -212,12 +231,13 @@ int main(int argc, char** argv) {
     }
     const double view3d_error_value = view3d_error(work / (name + ".out"), exact);
     std::filesystem::remove(work / (name + ".out"));  // 263 MB for the 5,400-patch cube
-    const double a = mean(illum_seconds), b = mean(view3d_times);
+    const double a = mean(illum_seconds), b = mean(view3d_times), c = mean(view3d_matrix_times);
     const double a_max = *std::max_element(illum_seconds.begin(), illum_seconds.end()),
                  b_max = *std::max_element(view3d_times.begin(), view3d_times.end());
-    std::printf("%8zu %10.0e | %10.4f %10.4f %6.3f | %10.4f %10.2f | %12.3g %12.3g\n", patches.size(),
-                tolerance, a, b, a / b, a_max, b_max, illum_error, view3d_error_value);
-    table.add_row({static_cast<std::int64_t>(patches.size()), tolerance, a, b, a / b, a_max, b_max,
+    std::printf("%8zu %10.0e | %10.4f %10.4f %6.3f | %10.4f %10.2f | %10.4f %6.3f | %12.3g %12.3g\n",
+                patches.size(), tolerance, a, b, a / b, a_max, b_max, c, a / c, illum_error,
+                view3d_error_value);
+    table.add_row({static_cast<std::int64_t>(patches.size()), tolerance, a, b, a / b, a_max, b_max, c, a / c,
                    illum_error, view3d_error_value});
   }
   if (!out_dir.empty()) {
