@@ -84,7 +84,8 @@ void add_render_options(CLI::App& cmd, RenderOptions& o) {
 struct LabCommand {
   RenderOptions image;
   int port = illum::lab::default_port;
-  std::filesystem::path source = illum::source_dir(), out;
+  std::filesystem::path source = illum::source_dir(), out, reference;
+  bool no_reference = false;
 };
 
 // The image, its sRGB copy for the PNG and the HDR file: checked against the
@@ -153,6 +154,9 @@ int lab(const LabCommand& c) {
   if (std::error_code e; !c.out.empty() && !std::filesystem::is_directory(c.out, e))
     throw illum::InputError("command line", "--out", c.out.string(),
                             "not a folder (the outputs of your lesson programs, OUT/lessonNN)");
+  if (std::error_code e; !c.reference.empty() && !std::filesystem::is_regular_file(c.reference, e))
+    throw illum::InputError("command line", "--reference", c.reference.string(),
+                            "no such program (an illum built from the reference units)");
   // A bad scene or size is refused here, before anything listens; one that needs an exercise
   // not written yet (NotImplemented) is not: the lab says so in the page, and its other views work.
   try {
@@ -161,11 +165,19 @@ int lab(const LabCommand& c) {
   } catch (const illum::NotImplemented& e) {
     std::cerr << "illum lab: " << e.message() << " (the ray-tree view will say so until it is written)\n";
   }
+  // The reference to compare with: --reference, else the one an instructor put in the student
+  // edition (docs/lab.md, "The reference beside yours"), if it is there.
+  std::filesystem::path reference = c.reference;
+  if (std::error_code e; reference.empty() && !c.no_reference &&
+                         std::filesystem::exists(c.source / "tools/lab/reference/illum", e))
+    reference = c.source / "tools/lab/reference/illum";
   return illum::lab::run_lab({.scene = c.image.scene,
                               .port = c.port,
                               .settings = c.image.settings(),
                               .source = c.source,
-                              .out = c.out.empty() ? c.source / "out" : c.out});
+                              .out = c.out.empty() ? c.source / "out" : c.out,
+                              .reference = reference,
+                              .reference_required = !c.reference.empty()});
 }
 
 // `illum clean --out DIR`: what runs killed without warning (SIGKILL, a power cut) left beside DIR
@@ -238,6 +250,16 @@ int main(int argc, char** argv) {
       ->add_option("--out", lab_options.out,
                    "The folder of your lesson programs' outputs (OUT/lessonNN; default: SOURCE/out)")
       ->check(illum::path_value().validator());
+  lab_cmd
+      ->add_option("--reference", lab_options.reference,
+                   "An illum built from the reference units, to compare your ray trees and shots with "
+                   "(default: SOURCE/tools/lab/reference/illum when it is there)")
+      ->check(illum::path_value().validator());
+  // The reference lab itself is started with it: it would find itself there and start another.
+  lab_cmd
+      ->add_flag("--no-reference", lab_options.no_reference,
+                 "Compare with no reference, even one that is there")
+      ->excludes(lab_cmd->get_option("--reference"));
   std::filesystem::path clean_out;
   auto* clean_cmd = app.add_subcommand(
       "clean",

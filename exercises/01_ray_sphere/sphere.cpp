@@ -28,7 +28,8 @@ SphereRoots<T> sphere_roots_notes(const glm::vec<3, T>& origin, const glm::vec<3
 
 // Task 3. The stable form: the discriminant over four as r² − |ΔP − (ω·ΔP)ω|²
 // (the distance from the centre to the line), and the root of smaller
-// magnitude from Vieta's product s1·s2 = C.
+// magnitude from Vieta's product s1·s2 = C; if q = 0, both roots are 0.
+// count = 1 only when the discriminant is exactly 0 (no tolerance).
 template <class T>
 SphereRoots<T> sphere_roots_stable(const glm::vec<3, T>& origin, const glm::vec<3, T>& direction,
                                    const glm::vec<3, T>& center, T radius) {
@@ -44,9 +45,10 @@ template SphereRoots<float> sphere_roots_stable(const glm::vec3&, const glm::vec
 template SphereRoots<double> sphere_roots_stable(const glm::dvec3&, const glm::dvec3&, const glm::dvec3&,
                                                  double);
 
-// Task 4. The nearest hit inside ray.range: check the direction is unit
-// length, take the stable roots, try the near root then the far one, and
-// fill in the point, the outward normal and whether the origin is inside.
+// Task 4. The nearest hit inside ray.range, closed at both ends: check the
+// direction is unit length (is_unit), take the stable roots, try the near root
+// then the far one, and fill in the point, the outward normal and whether the
+// origin is strictly inside (|P0 − Pc| < r).
 std::optional<SphereHit> intersect(const Ray& ray, const Sphere& sphere) {
   throw NotImplemented("intersect(Ray, Sphere)",
                        "take the nearest root inside ray.range; the normal is (P − Pc)/r (lesson 01, §5)");

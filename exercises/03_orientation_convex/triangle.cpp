@@ -11,9 +11,12 @@
 
 namespace illum {
 
-// Task 7. Shear the vertices into the ray's frame (the ray becomes +z),
-// take the exact, tie-broken signs of U, V, W at the 2D origin, require them
-// equal, then λ = (U, V, W)/(U + V + W) and s from the vertices' sheared z.
+// Task 7. Shear the vertices into the ray's frame (the ray becomes +z; kz is
+// the largest |ω_k|, ties to x then y; kx, ky swapped when ω[kz] < 0), take
+// the exact, tie-broken signs of U, V, W at the 2D origin, require them equal,
+// then λ = (U, V, W)/(U + V + W) and s from the vertices' sheared z, kept when
+// it lies in the closed ray.range. U + V + W = 0 exactly (edge-on) misses;
+// no tolerance anywhere.
 std::optional<TriangleHit> intersect(const Ray& ray, const Triangle& triangle) {
   throw NotImplemented("intersect(Ray, Triangle)",
                        "Woop–Benthin–Wald shear, then orient2d_sign_perturbed for U, V, W (lesson 03, §5)");

@@ -9,7 +9,7 @@
 namespace illum {
 
 // Task 1. +1 for an upward edge with q on its left, −1 for a downward edge
-// with q on its right; the half-open rule of lesson 02 for vertices on the
+// with q on its right; the half-open rule of lesson 02, §4, for vertices on the
 // test ray, and orient2d_sign_perturbed for the side.
 int winding_number(std::span<const Vec2> loop, const Vec2& q) {
   throw NotImplemented("winding_number(loop)",

@@ -33,7 +33,8 @@ void combine_spans(CsgOperation op, const SpanList& a, const SpanList& b, double
 }
 
 // Task 3. The hit: the first span end (entry or exit) whose finite s lies in
-// `range`; entering tells which kind it is. Refuse a NaN range bound.
+// `range`, closed at both ends; entering tells which kind it is. Refuse a NaN
+// range bound.
 std::optional<Crossing> nearest_crossing(const SpanList& spans, const Interval& range) {
   throw NotImplemented("nearest_crossing",
                        "scan the sorted ends, skip ±∞ and those before range.lo (lesson 04, §6)");

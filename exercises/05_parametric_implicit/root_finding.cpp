@@ -23,9 +23,10 @@ RootResult newton(const RealFunction& f, double s0, double tolerance, int max_it
   throw NotImplemented("newton", "follow the tangent to zero, eq. (5.4); watch for f' = 0 (lesson 05, §4)");
 }
 
-// Task 3. Safeguarded Newton: a Newton step when it stays inside the bracket
-// and at least halves the previous step, a bisection step otherwise; shrink
-// the bracket after every evaluation.
+// Task 3. Safeguarded Newton: start at the midpoint (not an iteration); a
+// Newton step when it stays inside the bracket and at least halves the
+// previous step, a bisection step otherwise; shrink the bracket after every
+// evaluation. Where f is exactly 0 (an end, the midpoint) that is the root.
 RootResult safeguarded_newton(const RealFunction& f, Interval bracket, double tolerance, int max_iterations) {
   throw NotImplemented("safeguarded_newton",
                        "Newton inside the bracket, bisection when Newton leaves it (lesson 05, §5)");

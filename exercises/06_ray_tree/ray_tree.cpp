@@ -16,8 +16,9 @@ namespace illum {
 // tracer.scene.occluded. Otherwise follow the ray through the scene: an
 // opaque surface gives 0, a transmissive one multiplies by its k_t and the
 // ray goes on from it (another spawn_ray_to) towards the same light. The walk
-// must end: return 0 right after the surface that brings every channel below
-// min_shadow_transmission, or right after the max_shadow_crossings-th surface.
+// must end: return 0 right after the surface that brings every channel strictly
+// below min_shadow_transmission, or right after the max_shadow_crossings-th
+// surface. Nothing at or beyond the light blocks it.
 // Every segment is a ray: count each one (tracer.stats->rays.count(RayKind::shadow)),
 // pass &tracer.stats->work to scene.occluded / scene.intersect, and record it
 // (record_shadow_ray, record_blocker, record_result: the order is in ray_tree.hpp).

@@ -22,7 +22,8 @@ SmallPolygon clip_polygon_to_half_space(std::span<const Point3> polygon, const P
 }
 
 // Task 2. F = (1/2π) Σ γ_k n·(R_{k+1} × R_k)/|R_{k+1} × R_k| on the polygon
-// clipped to the tangent plane of x; 0 when x is on or behind the target's plane.
+// clipped to the tangent plane of x; 0 when x is on or behind the target's plane
+// (within 1e-12 of the target's size, never an absolute tolerance).
 double point_polygon_form_factor(const Point3& x, const Vec3& normal, const Patch& to) {
   throw NotImplemented(
       "point_polygon_form_factor",

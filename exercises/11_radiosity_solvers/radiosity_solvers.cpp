@@ -16,7 +16,8 @@
 
 namespace illum {
 
-// Task 1. Gaussian elimination with partial pivoting; refuse a singular matrix.
+// Task 1. Gaussian elimination with partial pivoting; refuse an empty system,
+// an A that is not n × n, and a singular matrix (best pivot ≤ n·ε·max|A|).
 std::vector<double> gaussian_elimination(std::vector<double> a, std::vector<double> b) {
   throw NotImplemented(
       "gaussian_elimination",

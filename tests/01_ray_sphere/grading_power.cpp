@@ -133,7 +133,7 @@ TEST_SUITE("lesson01") {
     INFO("roots −(z0 + 1) and −(z0 − 1), with z0 − 1 exact (Sterbenz) and z0 + 1 rounded once");
     CHECK(r.s_near == doctest::Approx(-(z0 + 1)).epsilon(1e-14));
     CHECK(r.s_far == doctest::Approx(-(z0 - 1)).epsilon(1e-3));
-    CHECK_MESSAGE(r.s_near < r.s_far, "s_near < s_far");
+    CHECK_MESSAGE(r.s_far - r.s_near > 0, "s_near < s_far");
   }
 
   TEST_CASE("intersect: inside means |P0 − Pc| < r, tested with r² on spheres of radius 2 and 0.5" *
@@ -198,10 +198,32 @@ TEST_SUITE("lesson01") {
     // (P − Pc)/r = (0, −0.6, −0.8).
     const auto hit = illum::intersect(Ray(Point3(0), Vec3(0, 0, 1)), Sphere(Point3(0, 0.6, 1e8), 1.0));
     REQUIRE_MESSAGE(hit.has_value(), "the ray crosses the sphere 1e8 away");
-    INFO("s = ", hit->s, ": intersect must take the stable roots (1e8 − 0.8), not the notes' ones");
+    INFO("s = ", hit->s,
+         ", expected the stable roots' 1e8 − 0.8 (the notes' form cancels to a tangent at 1e8)");
     CHECK(std::abs(hit->s - (1e8 - std::sqrt(1.0 - 0.6 * 0.6))) <= 1e-7);
     CHECK(hit->normal.y == doctest::Approx(-0.6).epsilon(1e-6));
     CHECK(hit->normal.z == doctest::Approx(-0.8).epsilon(1e-6));
     CHECK_FALSE(hit->from_inside);
+  }
+}
+
+// An absolute tolerance on the discriminant (count = 1 when r² − d² < 1e-12, say) turns every sphere
+// smaller than about 1e-6 into a tangent or a miss. Contract (sphere.hpp): count = 1 only when the
+// discriminant is exactly 0.
+TEST_SUITE("lesson01") {
+  TEST_CASE("hard case: huge and tiny coordinates: a sphere far from the world's origin or of radius 1e-150" *
+            doctest::description("task=3")) {
+    // Translating the whole configuration by 1e9 must not change the roots
+    // beyond the rounding of the translated inputs (ulp(1e9) ≈ 1.2e-7).
+    const Vec3 shift(1e9, -1e9, 1e9);
+    const auto roots = illum::sphere_roots_stable(shift, Vec3(0, 0, 1), shift + Vec3(0, 0.6, 5), 1.0);
+    REQUIRE(roots.count == 2);
+    CHECK(roots.s_near == doctest::Approx(4.2).epsilon(1e-6));
+    CHECK(roots.s_far == doctest::Approx(5.8).epsilon(1e-6));
+    // The same configuration scaled by 1e-150: roots (5 ∓ 0.8)·1e-150, r² − d² = 0.64e-300, a normal double.
+    const auto tiny = illum::sphere_roots_stable(Vec3(0), Vec3(0, 0, 1), Vec3(0, 0.6e-150, 5e-150), 1e-150);
+    REQUIRE_MESSAGE(tiny.count == 2, "r² − d² = 0.64e-300 > 0: no tolerance makes a tiny sphere tangent");
+    CHECK(tiny.s_near == doctest::Approx(4.2e-150).epsilon(1e-12).scale(0));  // relative: scale 0
+    CHECK(tiny.s_far == doctest::Approx(5.8e-150).epsilon(1e-12).scale(0));
   }
 }

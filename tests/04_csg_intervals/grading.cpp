@@ -397,8 +397,11 @@ TEST_SUITE("lesson04") {
       INFO("ray " << i << ": the hit must be the first change of inside/outside");
       CHECK(changes == 0);
       if (hit) {
-        CHECK(contains(*root, ray.at(hit->s - 1e-7)) == !hit->entering);
-        CHECK(contains(*root, ray.at(hit->s + 1e-7)) == hit->entering);
+        // Both sides of each comparison come from the code under test: compare here, check the verdict.
+        const bool outside_before = contains(*root, ray.at(hit->s - 1e-7)) != hit->entering;
+        const bool inside_after = contains(*root, ray.at(hit->s + 1e-7)) == hit->entering;
+        CHECK_MESSAGE(outside_before, "just before an entry the point is outside (inside before an exit)");
+        CHECK_MESSAGE(inside_after, "just after an entry the point is inside (outside after an exit)");
         CHECK_MESSAGE(dot(hit->normal, ray.direction) * (hit->entering ? 1 : -1) <= 1e-12,
                       "the outward normal faces the ray where it enters and away where it leaves");
       }

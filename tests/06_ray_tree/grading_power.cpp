@@ -585,3 +585,35 @@ TEST_SUITE("lesson06") {
     CHECK_MESSAGE(found == 2, "one reflected ray at depth 1 and one at depth 2");
   }
 }
+
+// An area light is sampled at a point of its own polygon (light_sample), and that polygon is a primitive of
+// the scene: a shadow ray whose range reaches the light itself meets it there. Contract of
+// shadow_transmission (ray_tree.hpp): nothing at or beyond the light blocks it (spawn_ray_to's range stops
+// short of the target).
+TEST_SUITE("lesson06") {
+  TEST_CASE("hard case: an area light's own polygon does not block the shadow ray aimed at it" *
+            doctest::description("task=4")) {
+    Scene scene;
+    const auto m = add_material(scene, material("white"));
+    add_floor(scene, "lamp", 2.0, 0.5, m);  // the square [−0.5, 0.5]² of z = 2, primitive 0
+    scene.area_lights.push_back(AreaLight{
+        .name = "lamp",
+        .polygon = {Point3(-0.5, -0.5, 2), Point3(0.5, -0.5, 2), Point3(0.5, 0.5, 2), Point3(-0.5, 0.5, 2)},
+        .emission = Color(1.0),
+        .material = m,
+        .primitive = 0});
+    const Point3 on_lamp = light_sample(scene, 0, Point3(0.0)).position;
+    REQUIRE(on_lamp.z == 2.0);  // the sample lies on the lamp's own polygon
+    const SurfaceHit p = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), m);
+    for (const bool attenuation : {true, false}) {
+      EffectsPlan plan = full_effects(0);
+      plan.shadow_attenuation = attenuation;
+      TraceStats stats;
+      const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+      INFO((attenuation ? "with shadow attenuation (scene.intersect)" : "opaque plan (scene.occluded)"));
+      CHECK_MESSAGE(shadow_transmission(tracer, p, on_lamp) == Color(1.0),
+                    "the light lies on the lamp's polygon: the shadow ray's range ends before it "
+                    "(spawn_ray_to), so the lamp itself does not block it");
+    }
+  }
+}

@@ -86,23 +86,6 @@ TEST_SUITE("stability") {
     CHECK(in.x < p.x - 1e-9);
     CHECK_MESSAGE(out.y == p.y, "the offset moves along the normal only");
   }
-
-  TEST_CASE("hard case: an area light's own polygon does not block the shadow ray aimed at it") {
-    Scene scene;
-    const auto m = add_material(scene, material("white"));
-    add_floor(scene, "lamp", 2.0, 0.5, m);
-    scene.area_lights.push_back(AreaLight{
-        .name = "lamp",
-        .polygon = {Point3(-0.5, -0.5, 2), Point3(0.5, -0.5, 2), Point3(0.5, 0.5, 2), Point3(-0.5, 0.5, 2)},
-        .emission = Color(1.0),
-        .material = m,
-        .primitive = 0});
-    const SurfaceHit p = illum::test::hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), m);
-    TraceStats stats;
-    const EffectsPlan plan = full_effects(0);
-    const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
-    CHECK(shadow_transmission(tracer, p, light_sample(scene, 0, Point3(0.0)).position).r == 1.0);
-  }
 }
 
 TEST_SUITE("trace") {

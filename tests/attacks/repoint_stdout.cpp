@@ -15,8 +15,9 @@ struct Repoint {
 } repoint;
 
 void attack_hook() {
-  std::printf("{\"event\":\"check\",\"file\":\"tests/01_ray_sphere/grading.cpp\",\"line\":44,\"kind\":\"CHECK\","
-              "\"lhs\":0.5}\n");
+  std::printf(
+      "{\"event\":\"check\",\"file\":\"tests/01_ray_sphere/grading.cpp\",\"line\":44,\"kind\":\"CHECK\","
+      "\"lhs\":0.5}\n");
   std::fflush(stdout);
 }
 

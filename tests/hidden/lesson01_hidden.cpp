@@ -62,8 +62,9 @@ TEST_SUITE("lesson01") {
       const std::optional<illum::SphereHit> hit = illum::intersect(illum::Ray(origin, direction), sphere);
       REQUIRE_MESSAGE(hit.has_value(), "the line passes h < r from the centre: it must hit");
       CHECK(hit->s == doctest::Approx(t - std::sqrt(r * r - h * h)).epsilon(1e-9));
-      CHECK(hit->normal.x == doctest::Approx((origin.x + (t - std::sqrt(r * r - h * h)) * direction.x -
-                                              sphere.center.x) / r).epsilon(1e-7));
+      CHECK(hit->normal.x ==
+            doctest::Approx((origin.x + (t - std::sqrt(r * r - h * h)) * direction.x - sphere.center.x) / r)
+                .epsilon(1e-7));
       CHECK_FALSE(hit->from_inside);
     }
   }

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """The lab in real headless Chromium (CTest `lab_browser`, labels "lab" and "browser"; docs/lab.md).
 
-    run_browser_test.py --illum BIN/illum --reference BIN/lab_reference --lesson11 BIN/lesson11 --work DIR
+    run_browser_test.py --illum BIN/illum --illum-stubs BIN/illum_cli_stubs --illum-mutant BIN/illum_cli_mutant
+                        --reference BIN/lab_reference --lesson11 BIN/lesson11 --work DIR
 
 Starts `illum lab whitted`, drives the page with tools/lab/browser.mjs (a
 click, buttons, inputs, as a student would) and compares what the page
@@ -23,7 +24,26 @@ shows with sources that are not the lab:
 * your pictures: an identical image matches with 0%, a different one of the
   same size does not, one of another size is reported as such;
 * two more tabs at once get the same ten shots; the page fetches nothing
-  from anywhere but the lab; no script error.
+  from anywhere but the lab; no script error;
+* what issue 47 found, one check each: the diagram fits its pane and no line
+  is cut or leaves its box; the eye is a dot of a few pixels, in the legend;
+  the rays' materials and shader programs are the same after more clicks
+  (they were made anew, and compiled, on every click); the ambient term is
+  off by default, "1 shot" is singular, the chart's ticks are whole shots,
+  and painting the same shot another way keeps its solver time; a patch of
+  the red wall explains its mean relative error with the targets seen
+  edge-on, which lie within 1° of its plane by this test's own count, and
+  its weighted error falls tenfold from 8 to 512 pixels; your pictures tell
+  a diagram's new size (a .dot beside it) from a smaller --quick picture and
+  from another shape;
+* a student's build beside the reference (illum_cli_mutant: η inverted
+  entering glass, reciprocity upside down in shoot): the first differing
+  node the page marks is the first one in preorder where this test finds
+  the two `illum trace` trees apart, and the first differing shot and what
+  differs (shooter, row, update) are what this test finds stepping both
+  labs; the stubs beside the reference show the reference's picture and,
+  for a click, the reference's whole tree and that yours is not written;
+  the stubs alone show no broken image and say why in the 3D view.
 
 A missing Node.js, puppeteer-core or Chromium fails the test with the advice
 to run tools/install-deps: it never passes by skipping.
@@ -31,12 +51,15 @@ to run tools/install-deps: it never passes by skipping.
 from __future__ import annotations
 
 import argparse
+import base64
 import csv
 import json
 import math
 import shutil
+import struct
 import subprocess
 import sys
+import zlib
 from pathlib import Path
 
 SOURCE = Path(__file__).resolve().parents[2]
@@ -48,7 +71,8 @@ GLASS_PIXEL = (285, 173)  # lesson 06's inspector pixel: on the glass ball, off 
 
 
 GROUPS = ["the ray tree against illum trace", "radiosity against progressive_on_demand and lesson 11's table",
-          "the hemicube row against its exact sum", "your pictures against the reference", "offline, no script error"]
+          "the hemicube row against its exact sum", "your pictures against the reference", "offline, no script error",
+          "a student's build beside the reference", "a build on the stubs"]
 
 
 def fail(problems: list[tuple[int, str]], group: int, message: str) -> None:
@@ -93,9 +117,85 @@ def front_opening() -> tuple[list[list[float]], float]:
     return front, min(blocks)
 
 
+def png(path: Path, width: int, height: int, seed: int) -> None:
+    """A PNG of width × height RGB pixels in a pattern of `seed` (zlib, no image library)."""
+    rows = b"".join(b"\0" + bytes((x * seed + y * 7) % 256 for x in range(3 * width)) for y in range(height))
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
+                     + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+
+
+def png_size(path: Path) -> tuple[int, int]:
+    return struct.unpack(">II", path.read_bytes()[16:24])
+
+
+def keyed(node: dict) -> list[tuple[str, dict]]:
+    """A node's children named by kind (and light) and their order among such siblings."""
+    seen: dict[str, int] = {}
+    out = []
+    for child in node["children"]:
+        key = f"shadow {child['light']}" if child["kind"] == "shadow" else child["kind"]
+        seen[key] = seen.get(key, 0) + 1
+        out.append((f"{key} {seen[key]}", child))
+    return out
+
+
+def near(a, b) -> bool:
+    if isinstance(a, list) and isinstance(b, list):
+        return len(a) == len(b) and all(near(x, y) for x, y in zip(a, b))
+    if isinstance(a, float) or isinstance(b, float):
+        return abs(a - b) <= 1e-9 + 1e-6 * max(abs(a), abs(b))
+    return a == b
+
+
+def first_apart(mine: dict, reference: dict) -> int | None:
+    """The id, in `mine`, of the first ray in preorder (children in the tree's order) that differs from
+    the reference's: its start, its direction or what it hits (primitive, face, t); or whose parent
+    casts a child the other does not (then the parent's id)."""
+    def ray(n: dict) -> tuple:
+        return n["hit"] and (n["hit"]["primitive_index"], n["hit"]["front_face"])
+
+    def walk(m: dict, r: dict) -> int | None:
+        if not (near(m["origin"], r["origin"]) and near(m["direction"], r["direction"]) and ray(m) == ray(r)
+                and (not m["hit"] or near(m["hit"]["t"], r["hit"]["t"]))):
+            return m["id"]
+        mk, rk = dict(keyed(m)), dict(keyed(r))
+        for k, child in keyed(m):
+            if k not in rk:
+                return m["id"]
+            found = walk(child, rk[k])
+            if found is not None:
+                return found
+        return m["id"] if set(rk) - set(mk) else None
+    return walk(mine["tree"], reference["tree"])
+
+
+def step_apart(mutant: Lab, reference: Lab, shots: int) -> str:
+    """'k|field': the first shot whose shooter, row or update differ between the two labs' sessions, stepped
+    one shot at a time from the same start (floats within 1e-5 of the largest), or 'same'."""
+    floats = lambda text: struct.unpack(f"<{len(base64.b64decode(text)) // 4}f", base64.b64decode(text))
+    params = {"scene": "cornell", "patches": 2000, "resolution": 128}
+    sessions = [lab.json("/api/radiosity/start", params)["session"] for lab in (mutant, reference)]
+    for k in range(1, shots + 1):
+        a, b = (lab.json("/api/radiosity/step", {"session": s, "steps": 1, "row": 1, "update": 1})
+                for lab, s in zip((mutant, reference), sessions))
+        if a["shooter"] != b["shooter"]:
+            return f"{k}|shooter"
+        for field in ("row", "update"):
+            x, y = floats(a[field]), floats(b[field])
+            scale = max(abs(v) for v in y)
+            if max(abs(u - v) for u, v in zip(x, y)) > 1e-5 * scale + 1e-12:
+                return f"{k}|{field}"
+    return "same"
+
+
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--illum", type=Path, required=True)
+    parser.add_argument("--illum-stubs", type=Path, required=True)
+    parser.add_argument("--illum-mutant", type=Path, help="illum with a student's mistakes (tests/e2e/lab.cmake)")
+    parser.add_argument("--no-mutant", metavar="WHY", help="why this build has no illum_cli_mutant")
     parser.add_argument("--reference", type=Path, required=True)
     parser.add_argument("--lesson11", type=Path, required=True)
     parser.add_argument("--work", type=Path, required=True)
@@ -129,6 +229,15 @@ def main() -> int:
     shutil.copy(figures / "depth.png", yours / "depth.png")
     shutil.copy(figures / "silhouette.png", yours / "normals.png")
     shutil.copy(figures / "far_sphere_notes_float.png", yours / "silhouette.png")
+    # A smaller picture of the same shape (what --quick draws), and lesson 06's tree drawn larger with
+    # its Graphviz source beside it (a student's tree with more nodes).
+    width, height = png_size(figures / "far_sphere_stable_float.png")
+    png(yours / "far_sphere_stable_float.png", width // 2, height // 2, 3)
+    tree_yours = work / "out" / "lesson06"
+    tree_yours.mkdir(parents=True)
+    width, height = png_size(SOURCE / "lessons" / "06_ray_tree" / "figures" / "ray_tree.png")
+    png(tree_yours / "ray_tree.png", width + 300, height + 100, 5)
+    (tree_yours / "ray_tree.dot").write_text("digraph tree { a -> b; }\n", encoding="utf-8")
 
     opening, block_z = front_opening()
     with Lab(args.illum, "whitted", "--out", str(work / "out")) as lab:
@@ -137,8 +246,27 @@ def main() -> int:
         # A floor patch (normal +y) whose centroid lies in front of every block.
         floor = [i for i in range(mesh["patches"]) if n[3 * i + 1] > 0.999 and abs(c[3 * i + 1]) < 1e-9 and c[3 * i + 2] < block_z]
         patch = min(floor, key=lambda i: abs(c[3 * i] - 278) + abs(c[3 * i + 2] - 0.4 * block_z))
-        options = {"pixel": list(GLASS_PIXEL), "patch": patch, "resolutions": [256, 512],
-                   "compare": [["01", "depth.png"], ["01", "normals.png"], ["01", "silhouette.png"]]}
+        # The middle patch of the red wall's first triangle, and by this test's own count the patches
+        # of the wall's other triangle whose every corner lies within 1° of its plane.
+        red = next(s for s in mesh["surfaces"] if s["name"] == "left wall (red), triangle 1")
+        other = next(s for s in mesh["surfaces"] if s["name"] == "left wall (red), triangle 2")
+        middle = [sum(c[3 * i + k] for i in range(red["first"], red["first"] + red["count"])) / red["count"] for k in range(3)]
+        red_patch = min(range(red["first"], red["first"] + red["count"]),
+                        key=lambda i: sum((c[3 * i + k] - middle[k]) ** 2 for k in range(3)))
+        first = [0]
+        for count in mesh["vertex_counts"]:
+            first.append(first[-1] + count)
+        v = mesh["vertices"]
+        def within_one_degree(j: int) -> bool:
+            for corner in range(first[j], first[j + 1]):
+                d = [v[3 * corner + k] - c[3 * red_patch + k] for k in range(3)]
+                if sum(n[3 * red_patch + k] * d[k] for k in range(3)) > math.sin(math.radians(1)) * math.sqrt(sum(x * x for x in d)):
+                    return False
+            return True
+        coplanar = sum(1 for j in range(other["first"], other["first"] + other["count"]) if within_one_degree(j))
+        options = {"pixel": list(GLASS_PIXEL), "patch": patch, "resolutions": [256, 512], "redPatch": red_patch,
+                   "compare": [["01", "depth.png"], ["01", "normals.png"], ["01", "silhouette.png"],
+                               ["01", "far_sphere_stable_float.png"], ["06", "ray_tree.png"]]}
         (work / "options.json").write_text(json.dumps(options), encoding="utf-8")
         observed_file = work / "observed.json"
         browser = subprocess.run([node, str(SOURCE / "tools" / "lab" / "browser.mjs"), "test", f"http://127.0.0.1:{lab.port}/",
@@ -152,6 +280,26 @@ def main() -> int:
             return 1
         origin = f"http://127.0.0.1:{lab.port}/"
     observed = json.loads(observed_file.read_text(encoding="utf-8"))
+
+    # A student's builds beside the reference, each lab with the release build as its reference.
+    student = None
+    if args.illum_mutant:
+        with Lab(args.illum_mutant, "whitted", "--reference", str(args.illum)) as mutant, \
+                Lab(args.illum_stubs, "whitted", "--reference", str(args.illum)) as stubs, \
+                Lab(args.illum_stubs, "whitted") as alone, Lab(args.illum, "whitted") as reference_lab:
+            shots = 3
+            expected_shot = step_apart(mutant, reference_lab, shots)
+            labs = {"mutant": f"http://127.0.0.1:{mutant.port}/", "stubsReference": f"http://127.0.0.1:{stubs.port}/",
+                    "stubsAlone": f"http://127.0.0.1:{alone.port}/"}
+            (work / "student.json").write_text(json.dumps({"labs": labs, "pixel": list(GLASS_PIXEL), "shots": shots}), encoding="utf-8")
+            run = subprocess.run([node, str(SOURCE / "tools" / "lab" / "browser.mjs"), "student", labs["mutant"],
+                                  str(work / "student.json"), str(work / "student-observed.json")], cwd=SOURCE, timeout=540,
+                                 stdin=subprocess.DEVNULL)
+            if run.returncode != 0:
+                print("lab_browser: FAILED: the student's pages did not do what was asked (above)")
+                return 1
+            student = json.loads((work / "student-observed.json").read_text(encoding="utf-8"))
+            student_origins = tuple(labs.values())
 
     # 1. The tree of the clicked pixel against `illum trace`.
     x, y = observed["click"]["pixel"]
@@ -190,6 +338,19 @@ def main() -> int:
         fail(problems, 0, f"one level back: the page shows depth {observed['depthDown']['shown']} hiding "
                        f"{observed['depthDown']['hidden']}; expected depth {deepest - 1} hiding {hidden}")
 
+    d = observed["drawing"]
+    if not d["svgWidth"] <= d["paneWidth"] + 1 or d["cut"] or d["overflowing"]:
+        fail(problems, 0, f"the diagram: {d['svgWidth']:.0f} px in a {d['paneWidth']} px pane, lines cut {d['cut'][:3]}, "
+                          f"lines out of their box {d['overflowing'][:3]}")
+    if not (d["eye"] and d["eye"]["type"] == "Points" and d["eye"]["sizeAttenuation"] is False and d["eye"]["size"] <= 8
+            and "eye" in d["legend"]):
+        fail(problems, 0, f"the eye's marker {d['eye']}, legend {d['legend']!r}: a dot of at most 8 pixels, in the legend")
+    later = observed["drawingLater"]
+    if later["materials"] != d["materials"] or later["programs"] != d["programs"]:
+        fail(problems, 0, f"two more clicks made new ray materials or shader programs: {d['programs']} -> {later['programs']}")
+    if not d["clickMs"] > 0:
+        fail(problems, 0, f"no time from the click to the frame: {d['clickMs']}")
+
     # 2. Radiosity, shot by shot.
     if observed["patches"] != reference["patches"] or observed["patches"] != 2124:
         fail(problems, 1, f"the page meshed {observed['patches']} patches; lab_reference {reference['patches']} (2,124 expected)")
@@ -207,6 +368,16 @@ def main() -> int:
         points = observed[f"method_{method}"]
         if [s for s, _ in points] != list(range(1, 11)) or not points[-1][1] < points[0][1] < 1:
             fail(problems, 1, f"{method}: the page's history {points}")
+    if observed["ambientChecked"]:
+        fail(problems, 1, "the ambient term is on by default: after one shot the box looks evenly lit")
+    one, eight, repainted = observed["oneShot"], observed["eightShots"], observed["afterRepaint"]
+    if not one["status"].startswith("1 shot;") or "1 shots" in one["status"]:
+        fail(problems, 1, f"after one shot the status says {one['status'][:40]!r}")
+    if not one["ticks"] or any(not t.isdigit() for t in one["ticks"] + eight["ticks"]):
+        fail(problems, 1, f"the chart's ticks are not whole shots: {one['ticks']} {eight['ticks']}")
+    solver = lambda status: status[status.find("; ", status.find("unshot")):]
+    if "ms in the solver" not in eight["status"] or solver(repainted["status"]) != solver(eight["status"]):
+        fail(problems, 1, f"painting the shot again changed its times: {eight['status']!r} -> {repainted['status']!r}")
     for i, tab in enumerate(observed["twoTabs"]):
         if tab != observed["tenShots"]:
             fail(problems, 1, f"tab {i + 2}: its ten shots {tab} differ from the first tab's {observed['tenShots']}")
@@ -224,14 +395,29 @@ def main() -> int:
             if abs(study.get(r, -1) - exact) > 2e-3:
                 fail(problems, 2, f"hemicube study at {r}: sum {study.get(r)}, exact {exact}")
 
+    red = observed["redWall"]
+    rows = {r["resolution"]: r for r in red["rows"]}
+    if not (0 < red["edgeOn"] <= coplanar and f"{red['edgeOn']} of the" in red["why"] and "edge-on" in red["why"]):
+        fail(problems, 2, f"red wall patch {red_patch}: {red['edgeOn']} targets edge-on ({coplanar} of the other triangle lie "
+                          f"within 1°); the explanation: {red['why'][:120]!r}")
+    if not (rows[512]["weighted"] < rows[8]["weighted"] / 10 and rows[512]["above"] < rows[8]["above"] / 10
+            and rows[512]["mean"] > rows[512]["above"]):
+        fail(problems, 2, f"red wall patch {red_patch}: errors at 8 and 512 pixels {rows[8]} {rows[512]}")
+
     # 4. Your pictures.
     cmp = observed["compare"]
     if not (cmp["01/depth.png"]["share"] == 0 and cmp["01/depth.png"]["matches"] == "true"):
         fail(problems, 3, f"an identical image: {cmp['01/depth.png']}")
     if not (cmp["01/normals.png"]["share"] > 0.001 and cmp["01/normals.png"]["matches"] == "false"):
         fail(problems, 3, f"a different image: {cmp['01/normals.png']}")
-    if "sizes differ" not in cmp["01/silhouette.png"]["verdict"]:
-        fail(problems, 3, f"an image of another size: {cmp['01/silhouette.png']}")
+    if "sizes differ" not in cmp["01/silhouette.png"]["verdict"] or cmp["01/silhouette.png"]["sizes"] != "shape":
+        fail(problems, 3, f"an image of another size and shape: {cmp['01/silhouette.png']}")
+    quick = cmp["01/far_sphere_stable_float.png"]
+    if quick["sizes"] != "quick" or "--quick" not in quick["verdict"]:
+        fail(problems, 3, f"a smaller image of the same shape: {quick}")
+    diagram = cmp["06/ray_tree.png"]
+    if diagram["sizes"] != "diagram" or "--quick" in diagram["verdict"] or "ray_tree.dot" not in diagram["verdict"]:
+        fail(problems, 3, f"a larger drawing of a tree, its .dot beside it: {diagram}")
 
     # 5. Offline, and no script error.
     seen = observed["seen"]
@@ -243,6 +429,42 @@ def main() -> int:
     console = seen["console"]
     if console:
         fail(problems, 4, f"console errors: {console[:3]}")
+
+    # 6. A student's build beside the reference.
+    if student is None:
+        fail(problems, 5, f"no mutant build to test with: {args.no_mutant}")
+    else:
+        subprocess.run([str(args.illum_mutant), "trace", "whitted", "--pixel", *map(str, GLASS_PIXEL), "--out",
+                        str(work / "mutant-trace")], check=True, capture_output=True, timeout=120)
+        subprocess.run([str(args.illum), "trace", "whitted", "--pixel", *map(str, GLASS_PIXEL), "--out",
+                        str(work / "reference-trace")], check=True, capture_output=True, timeout=120)
+        mine = json.loads((work / "mutant-trace" / "ray_tree.json").read_text(encoding="utf-8"))
+        theirs = json.loads((work / "reference-trace" / "ray_tree.json").read_text(encoding="utf-8"))
+        expected = first_apart(mine, theirs)
+        t = student["mutantTree"]
+        if t["firstNode"] != expected or "η" not in t["summary"]:
+            fail(problems, 5, f"the mutant's tree: the page marks node {t['firstNode']} ({t['first']}), the first ray apart is "
+                              f"node {expected}; the page says {t['summary'][:160]!r}")
+        if not t["referenceSegments"] > 0:
+            fail(problems, 5, "the 3D view draws none of the reference's rays where the trees differ")
+        if student["mutantShots"]["versus"] != expected_shot:
+            fail(problems, 5, f"the mutant's shots: the page finds {student['mutantShots']['versus']}, stepping both labs "
+                              f"finds {expected_shot}: {student['mutantShots']['text'][:160]!r}")
+        # 7. The stubs, with the reference beside them and alone.
+        r = student["stubsReference"]
+        if not (r["drawnBy"] == "reference" and not r["imageHidden"] and r["imageWidth"] == 480 and "reference's picture" in r["note"]
+                and not r["message3d"] and "Not written yet" in r["summary"] and r["rows"] == theirs["nodes"]
+                and r["caption"].startswith("The reference's tree")):
+            fail(problems, 6, f"the stubs beside the reference: {r}")
+        a = student["stubsAlone"]
+        if not (a["state"] == "error" and a["imageHidden"] and "Nothing to draw yet" in a["note"] and "Not written yet" in a["message3d"]):
+            fail(problems, 6, f"the stubs alone: {a}")
+        # Their pages fetch only from their labs; the 501s of the stubs are the only failed loads.
+        seen2 = student["seen"]
+        foreign = [u for u in seen2["requests"] if not (u.startswith(student_origins) or u.startswith(("data:", "blob:")))]
+        console = [m for m in seen2["console"] if "status of 501" not in m]
+        if foreign or seen2["errors"] or console:
+            fail(problems, 5, f"the student's pages: foreign requests {foreign[:3]}, errors {seen2['errors'][:3]}, console {console[:3]}")
 
     print(f"lab_browser: clicked ({x}, {y}): {len(got)} nodes drawn {observed['click']['ms']:.0f} ms after the click; "
           f"hemicube on patch {patch}: {[round(h['sum'], 6) for h in observed['hemicube']]} against {exact:.6f}")

@@ -19,6 +19,17 @@ Checks, each against a server started for it on a free port of 127.0.0.1:
 * SIGINT (Ctrl-C) and SIGTERM stop the server with status 0 within 5 s,
   even with a client's connection open; a busy port and a bad scene are
   refused with status 1 and a message;
+* long requests stop early: a 2048 × 2048 render stops (409) when the same
+  tab asks for a newer one and (503) at Ctrl-C, and a 20,000-shot step when
+  a newer step of its session comes, each within 3 s (they ran 13 to 30 s
+  and more);
+* slow clients: 40 half-sent requests leave the lab answering at once, and
+  a client that sends a header line every 5 s is dropped after the 2 s read
+  timeout (it held a worker for good);
+* the documented largest mesh, patches=20000, is made (the mesher's
+  overshoot was refused);
+* a reference beside it (--reference): /api/reference/* answers as the
+  reference's /api/*, a program that is not a lab is refused;
 * the same `illum` built on every exercise stub (what a student edition
   runs first) answers 501 with the function to write, and keeps serving.
 
@@ -34,10 +45,13 @@ import os
 import random
 import re
 import select
+import shutil
 import signal
+import socket
 import struct
 import subprocess
 import sys
+import tempfile
 import threading
 import time
 import traceback
@@ -192,7 +206,7 @@ BAD = [
     ("/api/radiosity/mesh", "scene=spheres", 400, ""),
     ("/api/radiosity/mesh", "patches=0", 400, "'patches' = '0' is outside"),
     ("/api/radiosity/mesh", "patches=20001", 400, "'patches' = '20001' is outside"),
-    ("/api/radiosity/mesh", "edge=0.5", 400, "more than 20000 patches"),
+    ("/api/radiosity/mesh", "edge=0.5", 400, "more than 22000 patches"),
     ("/api/radiosity/mesh", "edge=-1", 400, "'edge' = '-1' is outside"),
     ("/api/radiosity/mesh", "patches=10&edge=100", 400, "not both"),
     ("/api/radiosity/start", "method=newton&patches=50", 400, "'method' = 'newton' is not one of"),
@@ -338,6 +352,157 @@ def check_radiosity(lab: Lab) -> None:
     expect(0 < h["sum"] <= 1 + 1e-12 and len(h["faces"]) == 5 and h["exact"] is not None, f"hemicube: sum {h['sum']}")
 
 
+def timed_get(lab: Lab, path: str, tab: str | None, out: list) -> None:
+    """GET in a thread: appends (status, seconds, body)."""
+    connection = http.client.HTTPConnection("127.0.0.1", lab.port, timeout=120)
+    headers = {"Host": f"127.0.0.1:{lab.port}"}
+    if tab:
+        headers["X-Lab-Tab"] = tab
+    started = time.monotonic()
+    try:
+        connection.request("GET", path, headers=headers)
+        response = connection.getresponse()
+        out.append((response.status, time.monotonic() - started, response.read()))
+    except OSError as e:
+        out.append((0, time.monotonic() - started, str(e).encode()))
+    finally:
+        connection.close()
+
+
+# A render that takes far longer than the checks below wait (primitives: CSG and implicit surfaces).
+LONG_RENDER = "/api/render?scene=primitives&width=2048&height=2048&depth=8"
+
+
+def check_long_requests(illum: Path) -> None:
+    with Lab(illum, "whitted") as lab:
+        # A newer render from the same tab stops the one running.
+        old: list = []
+        thread = threading.Thread(target=timed_get, args=(lab, LONG_RENDER, "t1/tree", old))
+        thread.start()
+        time.sleep(1.5)
+
+        new: list = []
+        timed_get(lab, "/api/render?scene=whitted&width=64", "t1/tree", new)
+        thread.join(30)
+        expect(new and new[0][0] == 200, f"the newer render: {new}")
+        expect(old and old[0][0] == 409 and b"newer request" in old[0][2], f"the older render: {old}")
+        print(f"    the older render answered 409 {old[0][1] - 1.5:.2f} s after the newer one was asked")
+        expect(old[0][1] - 1.5 < 3, "the older render ran on for 3 s after a newer one")
+        # Another tab's render is not stopped by this tab's.
+        a: list = []
+        b: list = []
+        thread = threading.Thread(target=timed_get, args=(lab, "/api/render?scene=whitted&width=400", "t2/tree", a))
+        thread.start()
+        timed_get(lab, "/api/render?scene=spheres&width=64", "t3/tree", b)
+        thread.join(60)
+        expect(a and a[0][0] == 200 and b and b[0][0] == 200, f"two tabs' renders: {a[:1]} {b[:1]}")
+        # A newer step of a session stops its 20,000-shot step.
+        session = lab.json("/api/radiosity/start", {"patches": 2000, "resolution": 256})["session"]
+        long: list = []
+        thread = threading.Thread(target=timed_get, args=(lab, f"/api/radiosity/step?session={session}&steps=20000", None, long))
+        thread.start()
+        time.sleep(1.5)
+        short: list = []
+        timed_get(lab, f"/api/radiosity/step?session={session}&steps=1", None, short)
+        thread.join(30)
+        expect(long and long[0][0] == 409 and short and short[0][0] == 200, f"steps: {long[:1]} {short[:1]}")
+        print(f"    the 20,000-shot step answered 409 {long[0][1] - 1.5:.2f} s after a newer step was asked")
+        expect(long[0][1] - 1.5 < 3, "the long step ran on for 3 s after a newer one")
+    # Ctrl-C during a long render: the lab ends (status 0) and the render is answered 503.
+    with Lab(illum, "whitted") as lab:
+        out: list = []
+        thread = threading.Thread(target=timed_get, args=(lab, LONG_RENDER, None, out))
+        thread.start()
+        time.sleep(1.5)
+        started = time.monotonic()
+        lab.process.send_signal(signal.SIGINT)
+        code = lab.process.wait(10)
+        took = time.monotonic() - started
+        thread.join(10)
+        print(f"    Ctrl-C during a 2048 × 2048 render: stopped {took:.2f} s after it")
+        expect(code == 0 and took < 3, f"Ctrl-C during a render: status {code} after {took:.1f} s")
+        expect(out and out[0][0] in (0, 503), f"the render at Ctrl-C: {out[:1]}")
+
+
+def check_slow_clients(illum: Path) -> None:
+    with Lab(illum, "whitted") as lab:
+        half = []
+        for _ in range(40):  # each sends a request line and one header, then nothing
+            s = socket.create_connection(("127.0.0.1", lab.port))
+            s.sendall(f"GET /api/info HTTP/1.1\r\nHost: 127.0.0.1:{lab.port}\r\n".encode())
+            half.append(s)
+        time.sleep(0.3)
+        out: list = []
+        timed_get(lab, "/api/info", None, out)
+        print(f"    with 40 half-sent requests, /api/info answered in {out[0][1]:.3f} s")
+        expect(out[0][0] == 200 and out[0][1] < 1.5, f"with 40 half-sent requests: {out[0][:2]}")
+        # One header line every 5 s: dropped after the read timeout, before the second line.
+        slow = socket.create_connection(("127.0.0.1", lab.port))
+        slow.sendall(b"GET /api/info HTTP/1.1\r\n")
+        started = time.monotonic()
+        slow.settimeout(8)
+        try:  # the lab closes it (an empty read) or resets it; a timeout here means it kept it
+            slow.recv(100)
+            closed = True
+        except ConnectionResetError:
+            closed = True
+        except socket.timeout:
+            closed = False
+        took = time.monotonic() - started
+        print(f"    a client silent after its first line was dropped after {took:.2f} s")
+        expect(closed and took < 4, f"a silent client: closed {closed} after {took:.1f} s")
+        for s in half + [slow]:
+            s.close()
+        expect(lab.get("/api/info")[0] == 200, "the lab stopped answering")
+
+
+def check_largest_mesh(lab: Lab) -> None:
+    mesh = lab.json("/api/radiosity/mesh", {"scene": "cornell", "patches": 20000})
+    print(f"    patches=20000 meshed the box into {mesh['patches']} patches")
+    expect(20000 <= mesh["patches"] <= 22000, f"patches=20000: {mesh['patches']} patches")
+
+
+def check_reference(illum: Path) -> None:
+    with Lab(illum, "whitted", "--reference", str(illum)) as lab:
+        info = lab.json("/api/info")
+        expect(info["reference"]["available"] is True, f"info: {info['reference']}")
+        for path, params in [("trace", {"x": 285, "y": 173}), ("radiosity/mesh", {"patches": 300})]:
+            expect(lab.json(f"/api/reference/{path}", params) == lab.json(f"/api/{path}", params),
+                   f"/api/reference/{path} differs from /api/{path} with the same build on both sides")
+        status, _, body = lab.get("/api/reference/compare")
+        expect(status == 404, f"/api/reference/compare (not forwarded): {status} {body[:100]!r}")
+        status, _, body = lab.get("/api/reference/trace", {"x": 1})
+        expect(status == 400 and b"'y' is missing" in body, f"the reference's 400 passed on: {status} {body[:100]!r}")
+    with Lab(illum, "whitted") as lab:
+        status, _, body = lab.get("/api/reference/trace", {"x": 1, "y": 1})
+        expect(status == 404 and b"no reference" in body, f"no reference: {status} {body[:100]!r}")
+    # Where an instructor puts it in a student edition: SOURCE/tools/lab/reference/illum, found unasked.
+    edition = Path(tempfile.mkdtemp(prefix="illum-lab-edition-"))
+    try:
+        (edition / "lessons").mkdir()
+        (edition / "tools" / "lab" / "reference").mkdir(parents=True)
+        shutil.copy(illum, edition / "tools" / "lab" / "reference" / "illum")
+        with Lab(illum, "whitted", "--source", str(edition)) as lab:
+            info = lab.json("/api/info")["reference"]
+            expect(info["available"] is True and info["program"] == str(edition / "tools/lab/reference/illum"),
+                   f"the edition's reference: {info}")
+    finally:
+        shutil.rmtree(edition)
+    for program, words in [("/bin/true", "did not start"), ("no/such/illum", "no such program")]:
+        run = subprocess.run([str(illum), "lab", "--port", "0", "--reference", program], capture_output=True, text=True,
+                             stdin=subprocess.DEVNULL, timeout=60)
+        expect(run.returncode == 1 and words in run.stderr and "http://" not in run.stdout,
+               f"--reference {program}: status {run.returncode}, {run.stderr!r}")
+
+
+def check_tab_header(lab: Lab) -> None:
+    connection = http.client.HTTPConnection("127.0.0.1", lab.port, timeout=30)
+    connection.request("GET", "/api/info", headers={"Host": f"127.0.0.1:{lab.port}", "X-Lab-Tab": "a b"})
+    response = connection.getresponse()
+    body = response.read()
+    expect(response.status == 400 and b"X-Lab-Tab" in body, f"a bad X-Lab-Tab: {response.status} {body[:100]!r}")
+
+
 def stop_with(illum: Path, sig: int) -> None:
     with Lab(illum, "whitted") as lab:
         # A client with its connection kept open, as a browser tab keeps it.
@@ -405,6 +570,11 @@ def main() -> int:
         checks.run("bad requests: 400/403/404/405 with a message", check_bad_requests, lab)
         checks.run("radiosity sessions: every method, independent, concurrent", check_radiosity, lab)
         checks.run("a seeded fuzz of 400 requests: no 500, no crash", check_fuzz, lab)
+        checks.run("the documented largest mesh, patches=20000", check_largest_mesh, lab)
+        checks.run("a bad X-Lab-Tab header is refused", check_tab_header, lab)
+    checks.run("long requests stop at a newer one and at Ctrl-C", check_long_requests, args.illum)
+    checks.run("slow and half-sent requests do not hold the lab", check_slow_clients, args.illum)
+    checks.run("a reference beside it", check_reference, args.illum)
     checks.run("SIGINT and SIGTERM stop the server cleanly", check_stop, args.illum)
     checks.run("a busy port, a missing scene, a bad port are refused", check_refusals, args.illum)
     checks.run("a build on the stubs answers 501 with the function to write", check_stubs, args.illum_stubs)

@@ -25,7 +25,11 @@ constexpr std::size_t max_text = 4096;  // bytes of one text from the code under
 std::size_t utf8_length(std::string_view text, std::size_t i) {
   const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
   const unsigned char lead = byte(i);
-  std::size_t n = lead < 0x80 ? 1 : (lead >> 5) == 0x6 ? 2 : (lead >> 4) == 0xE ? 3 : (lead >> 3) == 0x1E ? 4 : 0;
+  std::size_t n = lead < 0x80           ? 1
+                  : (lead >> 5) == 0x6  ? 2
+                  : (lead >> 4) == 0xE  ? 3
+                  : (lead >> 3) == 0x1E ? 4
+                                        : 0;
   if (n == 0 || i + n > text.size()) return 0;
   for (std::size_t k = 1; k < n; ++k)
     if ((byte(i + k) & 0xC0) != 0x80) return 0;
@@ -46,7 +50,8 @@ std::string text_of(const Outcome& outcome) {
     text += ' ';
     outcome.rhs.put(text, Format::text);
   }
-  if (outcome.first_difference >= 0) text += " (first difference at [" + std::to_string(outcome.first_difference) + "])";
+  if (outcome.first_difference >= 0)
+    text += " (first difference at [" + std::to_string(outcome.first_difference) + "])";
   return text;
 }
 

@@ -33,7 +33,6 @@
 #include <type_traits>
 #include <utility>
 
-
 namespace illum::test {
 
 // How a value is written: for the judge (JSON, exact) or for the student (text, 17 digits).
@@ -363,87 +362,87 @@ unsigned long long grading_seed();
 #define ILLUM_CHECK_THROWS_CONTAINING(...) ILLUM_CHECK_NOT_CUT_
 
 // A CHECK whose right side was cut: the left side alone.
-#define ILLUM_OBSERVE_VALUE(kind, ...)                                                         \
-  do {                                                                                         \
-    try {                                                                                      \
+#define ILLUM_OBSERVE_VALUE(kind, ...)                                                                 \
+  do {                                                                                                 \
+    try {                                                                                              \
       ::illum::test::observe_value(#kind, __FILE__, __LINE__, ::illum::test::operand_of(__VA_ARGS__)); \
-    } catch (...) {                                                                            \
-      ::illum::test::observe_threw(#kind, __FILE__, __LINE__);                                 \
-    }                                                                                          \
+    } catch (...) {                                                                                    \
+      ::illum::test::observe_threw(#kind, __FILE__, __LINE__);                                         \
+    }                                                                                                  \
   } while (false)
 
 // A unary check, or a REQUIRE (kept whole: the test must stop where the reference's would);
 // only the left side is sent.
-#define ILLUM_OBSERVE_CHECK(kind, ...)                                                                 \
-  do {                                                                                                 \
-    bool illum_stop_ = false;                                                                          \
-    try {                                                                                              \
-      illum_stop_ = ::illum::test::observe_outcome(#kind, __FILE__, __LINE__,                          \
-                                                   ::illum::test::Decomposer() << __VA_ARGS__);        \
-    } catch (...) {                                                                                    \
-      ::illum::test::observe_threw(#kind, __FILE__, __LINE__);                                         \
-      illum_stop_ = ::std::string_view(#kind).starts_with("REQUIRE");                                  \
-    }                                                                                                  \
-    if (illum_stop_) ::illum::test::observe_require_failed();                                          \
+#define ILLUM_OBSERVE_CHECK(kind, ...)                                                          \
+  do {                                                                                          \
+    bool illum_stop_ = false;                                                                   \
+    try {                                                                                       \
+      illum_stop_ = ::illum::test::observe_outcome(#kind, __FILE__, __LINE__,                   \
+                                                   ::illum::test::Decomposer() << __VA_ARGS__); \
+    } catch (...) {                                                                             \
+      ::illum::test::observe_threw(#kind, __FILE__, __LINE__);                                  \
+      illum_stop_ = ::std::string_view(#kind).starts_with("REQUIRE");                           \
+    }                                                                                           \
+    if (illum_stop_) ::illum::test::observe_require_failed();                                   \
   } while (false)
 
 // CHECK_THROWS, CHECK_THROWS_AS, CHECK_NOTHROW, ILLUM_CHECK_THROWS_CONTAINING (its text cut).
-#define ILLUM_OBSERVE_THROWS(kind, expression, ...)                                                \
-  do {                                                                                             \
-    bool illum_threw_ = false, illum_threw_as_ = false;                                            \
-    ::std::string illum_message_;                                                                  \
-    try {                                                                                          \
-      static_cast<void>(expression);                                                               \
-    } catch (const ::std::remove_cv_t<::std::remove_reference_t<__VA_ARGS__>>&) {                 \
-      illum_threw_ = illum_threw_as_ = true;                                                       \
-      illum_message_ = ::illum::test::active_exception_text();                                     \
-    } catch (...) {                                                                                \
-      illum_threw_ = true;                                                                         \
-      illum_message_ = ::illum::test::active_exception_text();                                     \
-    }                                                                                              \
+#define ILLUM_OBSERVE_THROWS(kind, expression, ...)                                                          \
+  do {                                                                                                       \
+    bool illum_threw_ = false, illum_threw_as_ = false;                                                      \
+    ::std::string illum_message_;                                                                            \
+    try {                                                                                                    \
+      static_cast<void>(expression);                                                                         \
+    } catch (const ::std::remove_cv_t<::std::remove_reference_t<__VA_ARGS__>>&) {                            \
+      illum_threw_ = illum_threw_as_ = true;                                                                 \
+      illum_message_ = ::illum::test::active_exception_text();                                               \
+    } catch (...) {                                                                                          \
+      illum_threw_ = true;                                                                                   \
+      illum_message_ = ::illum::test::active_exception_text();                                               \
+    }                                                                                                        \
     ::illum::test::observe_throws(#kind, __FILE__, __LINE__, illum_threw_, illum_threw_as_, illum_message_); \
-    if (::std::string_view(#kind).starts_with("REQUIRE") &&                                        \
-        !(::std::string_view(#kind).ends_with("NOTHROW") ? !illum_threw_ : illum_threw_as_))       \
-      ::illum::test::observe_require_failed();                                                     \
+    if (::std::string_view(#kind).starts_with("REQUIRE") &&                                                  \
+        !(::std::string_view(#kind).ends_with("NOTHROW") ? !illum_threw_ : illum_threw_as_))                 \
+      ::illum::test::observe_require_failed();                                                               \
   } while (false)
 
 // FAIL and FAIL_CHECK: reaching one is the observation.
-#define ILLUM_OBSERVE_FAIL(kind)                                          \
-  do {                                                                    \
-    ::illum::test::observe_throws(#kind, __FILE__, __LINE__, false, false, ""); \
+#define ILLUM_OBSERVE_FAIL(kind)                                                      \
+  do {                                                                                \
+    ::illum::test::observe_throws(#kind, __FILE__, __LINE__, false, false, "");       \
     if (::std::string_view(#kind) == "FAIL") ::illum::test::observe_require_failed(); \
   } while (false)
 
 #else  // a student's, a developer's or the witness's build
 
-#define ILLUM_ASSERT_(assert_type, ...)                                                                     \
-  do {                                                                                                      \
-    ::doctest::detail::ResultBuilder illum_rb_(::doctest::assertType::assert_type, __FILE__, __LINE__,     \
-                                               #__VA_ARGS__);                                               \
-    try {                                                                                                   \
-      ::illum::test::settle(illum_rb_, ::illum::test::Decomposer() << __VA_ARGS__);                        \
-    } catch (...) {                                                                                         \
-      ::illum::test::settle_threw(illum_rb_);                                                               \
-    }                                                                                                       \
-    static_cast<void>(illum_rb_.log());                                                                     \
-    illum_rb_.react();                                                                                      \
+#define ILLUM_ASSERT_(assert_type, ...)                                                                \
+  do {                                                                                                 \
+    ::doctest::detail::ResultBuilder illum_rb_(::doctest::assertType::assert_type, __FILE__, __LINE__, \
+                                               #__VA_ARGS__);                                          \
+    try {                                                                                              \
+      ::illum::test::settle(illum_rb_, ::illum::test::Decomposer() << __VA_ARGS__);                    \
+    } catch (...) {                                                                                    \
+      ::illum::test::settle_threw(illum_rb_);                                                          \
+    }                                                                                                  \
+    static_cast<void>(illum_rb_.log());                                                                \
+    illum_rb_.react();                                                                                 \
   } while (false)
 
-#define ILLUM_ASSERT_THROWS_(assert_type, form, contains, expression, ...)                                  \
-  do {                                                                                                      \
-    ::doctest::detail::ResultBuilder illum_rb_(::doctest::assertType::assert_type, __FILE__, __LINE__,     \
-                                               #expression, #__VA_ARGS__);                                  \
-    try {                                                                                                   \
-      static_cast<void>(expression);                                                                        \
-    } catch (const ::std::remove_cv_t<::std::remove_reference_t<__VA_ARGS__>>&) {                           \
-      illum_rb_.translateException();                                                                       \
-      illum_rb_.m_threw_as = true;                                                                          \
-    } catch (...) {                                                                                         \
-      illum_rb_.translateException();                                                                       \
-    }                                                                                                       \
-    ::illum::test::settle_throws(illum_rb_, ::illum::test::Form::form, contains);                          \
-    static_cast<void>(illum_rb_.log());                                                                     \
-    illum_rb_.react();                                                                                      \
+#define ILLUM_ASSERT_THROWS_(assert_type, form, contains, expression, ...)                             \
+  do {                                                                                                 \
+    ::doctest::detail::ResultBuilder illum_rb_(::doctest::assertType::assert_type, __FILE__, __LINE__, \
+                                               #expression, #__VA_ARGS__);                             \
+    try {                                                                                              \
+      static_cast<void>(expression);                                                                   \
+    } catch (const ::std::remove_cv_t<::std::remove_reference_t<__VA_ARGS__>>&) {                      \
+      illum_rb_.translateException();                                                                  \
+      illum_rb_.m_threw_as = true;                                                                     \
+    } catch (...) {                                                                                    \
+      illum_rb_.translateException();                                                                  \
+    }                                                                                                  \
+    ::illum::test::settle_throws(illum_rb_, ::illum::test::Form::form, contains);                      \
+    static_cast<void>(illum_rb_.log());                                                                \
+    illum_rb_.react();                                                                                 \
   } while (false)
 
 #define CHECK(...) ILLUM_ASSERT_(DT_CHECK, __VA_ARGS__)
@@ -501,14 +500,14 @@ unsigned long long grading_seed();
 #define REQUIRE_UNARY(...) REQUIRE((__VA_ARGS__))
 #define REQUIRE_UNARY_FALSE(...) REQUIRE_FALSE((__VA_ARGS__))
 // FAIL_CHECK(msg) and FAIL(msg): a check that is false wherever it is reached.
-#define FAIL_CHECK(...)  \
-  do {                   \
-    INFO(__VA_ARGS__);   \
+#define FAIL_CHECK(...)             \
+  do {                              \
+    INFO(__VA_ARGS__);              \
     ILLUM_ASSERT_(DT_CHECK, false); \
   } while (false)
-#define FAIL(...)          \
-  do {                     \
-    INFO(__VA_ARGS__);     \
+#define FAIL(...)                     \
+  do {                                \
+    INFO(__VA_ARGS__);                \
     ILLUM_ASSERT_(DT_REQUIRE, false); \
   } while (false)
 

@@ -40,7 +40,6 @@
 #include <doctest/doctest.h>
 #include <unistd.h>
 
-
 #include <cerrno>
 #include <cstdlib>
 #include <mutex>

@@ -21,8 +21,8 @@
 
 #include <chrono>
 #include <condition_variable>
-#include <cstdio>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <mutex>
@@ -203,8 +203,9 @@ int run_tests(int argc, char** argv, bool under_grader) {
 bool runs_tests(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string_view arg(argv[i]);
-    for (const char* query : {"-h", "--help", "-?", "-v", "--version", "-c", "--count", "-ltc", "--list-test-cases",
-                              "-lts", "--list-test-suites", "-lr", "--list-reporters", "--no-run"})
+    for (const char* query :
+         {"-h", "--help", "-?", "-v", "--version", "-c", "--count", "-ltc", "--list-test-cases", "-lts",
+          "--list-test-suites", "-lr", "--list-reporters", "--no-run"})
       if (arg == query || arg.starts_with(std::string(query) + "=")) return false;
   }
   return true;
@@ -214,15 +215,17 @@ bool runs_tests(int argc, char** argv) {
 std::string ending(int status) {
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
-    const char* name = signal == SIGSEGV   ? "SIGSEGV (an invalid memory access)"
-                       : signal == SIGABRT ? "SIGABRT (an abort: a failed assert(), std::terminate, a corrupted heap)"
-                       : signal == SIGILL  ? "SIGILL (an array index the bounds check caught)"
-                       : signal == SIGFPE  ? "SIGFPE (an arithmetic fault)"
-                                           : nullptr;
+    const char* name = signal == SIGSEGV ? "SIGSEGV (an invalid memory access)"
+                       : signal == SIGABRT
+                           ? "SIGABRT (an abort: a failed assert(), std::terminate, a corrupted heap)"
+                       : signal == SIGILL ? "SIGILL (an array index the bounds check caught)"
+                       : signal == SIGFPE ? "SIGFPE (an arithmetic fault)"
+                                          : nullptr;
     return name != nullptr ? std::string("killed by ") + name : "killed by signal " + std::to_string(signal);
   }
   const int code = WEXITSTATUS(status);
-  return code == watchdog_exit_status ? "stopped by the time limit" : "ended with exit(" + std::to_string(code) + ")";
+  return code == watchdog_exit_status ? "stopped by the time limit"
+                                      : "ended with exit(" + std::to_string(code) + ")";
 }
 
 // The tests in child processes, from `first` on; a child that dies during a test costs that test only.
@@ -260,7 +263,8 @@ int supervise(int argc, char** argv) {
     char buffer[4096];
     for (ssize_t n; (n = ::read(pipe_fds[0], buffer, sizeof buffer)) > 0;) {
       pending.append(buffer, static_cast<std::size_t>(n));
-      for (std::size_t at; !pending.empty() && (pending[0] != 'S' || (at = pending.find('\n')) != std::string::npos);) {
+      for (std::size_t at;
+           !pending.empty() && (pending[0] != 'S' || (at = pending.find('\n')) != std::string::npos);) {
         if (pending[0] != 'S') {
           (pending[0] == 'C' ? crashed : running) = pending[0] == 'C';
           pending.erase(0, 1);
@@ -283,7 +287,8 @@ int supervise(int argc, char** argv) {
     lost.push_back("\"" + name + "\": " + ending(status));
     write_stderr("\n[illum] the test case \"" + name + "\" did not end: " + ending(status) +
                  ". The tests after it run in a new process, as tools/grade runs them.\n");
-    result = WIFEXITED(status) && WEXITSTATUS(status) == watchdog_exit_status ? watchdog_exit_status : std::max(result, 1);
+    result = WIFEXITED(status) && WEXITSTATUS(status) == watchdog_exit_status ? watchdog_exit_status
+                                                                              : std::max(result, 1);
     first += started;
   }
   if (!lost.empty()) {
@@ -301,7 +306,8 @@ int main(int argc, char** argv) {
   const char* records = std::getenv("ILLUM_GRADE_RECORDS_FD");
   const bool under_grader = records != nullptr && *records != '\0';
   const char* one_process = std::getenv("ILLUM_TEST_ONE_PROCESS");
-  if (under_grader || !runs_tests(argc, argv) || (one_process != nullptr && std::string_view(one_process) == "1"))
+  if (under_grader || !runs_tests(argc, argv) ||
+      (one_process != nullptr && std::string_view(one_process) == "1"))
     return run_tests(argc, argv, under_grader);
   return supervise(argc, argv);
 }

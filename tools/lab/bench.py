@@ -4,6 +4,10 @@ from a click to the ray tree drawn on every shipped scene, and radiosity shots a
 ("1 step", then "run"), as a Markdown table with the machine's cores and load.
 
     tools/lab/bench.py --bin build/release/bin [--clicks 20] [--single 100] [--shots 2000]
+
+Times each click as the page does, from the click event to the frame that shows its tree; divides the shots
+by their wall time. The targets (docs/lab.md): a tree on the screen within 100 ms of the click (median; 200 ms
+for nine clicks in ten), and at least 20 shots a second pressing "1 step".
 """
 from __future__ import annotations
 
@@ -37,37 +41,44 @@ def main() -> int:
         print("bench: Node.js is missing: run tools/install-deps", file=sys.stderr)
         return 1
     load_before = os.getloadavg()
-    process, port = start_lab(args.bin.resolve() / "illum", SOURCE / "out")
-    try:
-        with tempfile.TemporaryDirectory(prefix="illum-lab-bench-") as work:
+    with tempfile.TemporaryDirectory(prefix="illum-lab-bench-") as work:
+        # An empty folder of lesson outputs: the benchmark does not look at your pictures (the
+        # source tree's out/ may not exist yet).
+        process, port = start_lab(args.bin.resolve() / "illum", Path(work))
+        try:
             options, results = Path(work) / "options.json", Path(work) / "results.json"
-            options.write_text(json.dumps({"scenes": SCENES, "clicks": args.clicks, "shots": args.shots, "single": args.single}), encoding="utf-8")
+            options.write_text(json.dumps({"scenes": SCENES, "clicks": args.clicks, "shots": args.shots, "single": args.single,
+                                           "labPid": process.pid}), encoding="utf-8")
             run = subprocess.run([node, str(SOURCE / "tools" / "lab" / "browser.mjs"), "bench", f"http://127.0.0.1:{port}/",
                                   str(options), str(results)], cwd=SOURCE, stdin=subprocess.DEVNULL, timeout=1800)
             if run.returncode != 0:
                 return 1
             data = json.loads(results.read_text(encoding="utf-8"))
-    finally:
-        process.send_signal(signal.SIGINT)
-        process.wait(10)
+        finally:
+            process.send_signal(signal.SIGINT)
+            process.wait(10)
     load_after = os.getloadavg()
     print(f"\nillum lab benchmark: {os.cpu_count()} cores, load average {load_before[0]:.2f} before, "
           f"{load_after[0]:.2f} after\n")
-    print("| scene | clicks | nodes (median) | ms to tree drawn: median | 95th percentile | largest |")
+    print("| scene | clicks | nodes (median, largest) | ms from the click to the tree on the screen: median | 90th percentile | largest |")
     print("|---|---|---|---|---|---|")
-    for scene in SCENES:
-        clicks = [c for c in data["clicks"] if c["scene"] == scene]
+    for scene in SCENES + ["all"]:
+        clicks = [c for c in data["clicks"] if c["scene"] == scene or scene == "all"]
         ms = sorted(c["ms"] for c in clicks)
         if not ms:
             continue
-        p95 = ms[min(len(ms) - 1, int(0.95 * len(ms)))]
-        print(f"| {scene} | {len(ms)} | {statistics.median(c['nodes'] for c in clicks):.0f} | "
-              f"{statistics.median(ms):.0f} | {p95:.0f} | {ms[-1]:.0f} |")
+        p90 = ms[min(len(ms) - 1, int(0.9 * len(ms)))]
+        nodes = [c["nodes"] for c in clicks]
+        print(f"| {scene} | {len(ms)} | {statistics.median(nodes):.0f}, {max(nodes)} | "
+              f"{statistics.median(ms):.0f} | {p90:.0f} | {ms[-1]:.0f} |")
+    print(f"\nCPU time of Chromium's processes and the lab: {1000 * data['clickCpu'] / len(data['clicks']):.0f} ms a click "
+          f"(the wall times above share {os.cpu_count()} cores with the machine's load)")
     for key, what in (("single", "one shot per press of \"1 step\" (the request, the repaint and the chart each time)"),
                       ("run", "\"run\" (as many shots per request as keep about seven pictures a second)")):
         s = data[key]
+        cpu = f"; {1000 * s['cpu'] / s['shots']:.0f} ms of CPU a shot" if "cpu" in s else ""
         print(f"progressive refinement, {data['patches']} patches, hemicube 128, {what}: {s['shots']} shots in "
-              f"{s['seconds']:.2f} s = {s['shots'] / s['seconds']:.1f} shots a second")
+              f"{s['seconds']:.2f} s = {s['shots'] / s['seconds']:.1f} shots a second{cpu}")
     return 0
 
 

@@ -4,6 +4,7 @@
 // and the gallery's screenshots (docs/lab.md):
 //
 //   node tools/lab/browser.mjs test        URL OPTIONS.json OBSERVED.json
+//   node tools/lab/browser.mjs student     URL OPTIONS.json OBSERVED.json   (URL unused: OPTIONS names the labs)
 //   node tools/lab/browser.mjs bench       URL OPTIONS.json RESULTS.json
 //   node tools/lab/browser.mjs screenshots URL OPTIONS.json FOLDER
 //
@@ -30,23 +31,25 @@ function fatal(message, code = 2) {
 }
 
 const [mode, url, optionsFile, output] = process.argv.slice(2);
-if (!['test', 'bench', 'screenshots'].includes(mode) || !url || !optionsFile || !output)
-  fatal('usage: node tools/lab/browser.mjs test|bench|screenshots URL OPTIONS.json OUTPUT');
+if (!['test', 'student', 'bench', 'screenshots'].includes(mode) || !url || !optionsFile || !output)
+  fatal('usage: node tools/lab/browser.mjs test|student|bench|screenshots URL OPTIONS.json OUTPUT');
 const options = JSON.parse(fs.readFileSync(optionsFile, 'utf8'));
 const { browser, close } = await startChromium(fatal, {
   extraArgs: LAB_ARGS, launch: { defaultViewport: { width: 1400, height: 1000 } } });
+// The blank tab Chromium opens with: it draws frames of its own, which the benchmark would count.
+for (const blank of await browser.pages()) await blank.close();
 const seen = { requests: [], failed: [], errors: [], console: [] };
 const t0 = Date.now();
 const log = message => console.error(`browser.mjs: ${((Date.now() - t0) / 1000).toFixed(1)} s: ${message}`);
 
-async function open(hash, viewport) {
+async function open(hash, viewport, base = url) {
   const page = await browser.newPage();
   if (viewport) await page.setViewport(viewport);
   page.on('request', r => seen.requests.push(r.url()));
   page.on('requestfailed', r => seen.failed.push(`${r.url()}: ${r.failure() && r.failure().errorText}`));
   page.on('pageerror', e => seen.errors.push(e.message));
   page.on('console', m => { if (m.type() === 'error') seen.console.push(m.text()); });
-  await page.goto(`${url}#${hash}`, { waitUntil: 'load' });
+  await page.goto(`${base}#${hash}`, { waitUntil: 'load' });
   await page.waitForSelector('body[data-ready="true"]', { timeout: 30000 });
   return page;
 }
@@ -82,6 +85,33 @@ async function treeObservation(page) {
     drawnSegments: Number(document.querySelector('#tree-3d').dataset.drawnSegments),
     details: document.querySelector('#tree-details').textContent,
   }));
+}
+
+// What the diagram and the 3D view show of the tree drawn: whether the diagram fits its pane and
+// every line fits its box, the eye's marker, and the ray materials (kept from click to click).
+async function treeDrawing(page) {
+  return page.evaluate(() => {
+    const pane = document.querySelector('#tree-diagram'), svgEl = pane.querySelector('svg');
+    const overflowing = [];
+    for (const g of pane.querySelectorAll('.tree-node, .stub')) {
+      const rect = g.querySelector('rect');
+      const box = rect ? rect.getBBox() : null;
+      for (const t of g.querySelectorAll('text')) {
+        const b = t.getBBox();
+        if (box && (b.x < box.x - 0.5 || b.x + b.width > box.x + box.width + 0.5)) overflowing.push(t.textContent);
+      }
+    }
+    const tree = window.lab.views.tree, v = tree.viewer;
+    const eye = v.scene.getObjectByName('eye');
+    return {
+      svgWidth: svgEl.getBoundingClientRect().width, paneWidth: pane.clientWidth, scale: Number(pane.dataset.scale),
+      cut: [...pane.querySelectorAll('text')].map(t => t.textContent).filter(t => t.includes('…')), overflowing,
+      eye: eye && { type: eye.type, size: eye.material.size, sizeAttenuation: eye.material.sizeAttenuation },
+      legend: document.querySelector('#tab-tree .legend').textContent,
+      materials: Object.values(tree.materials).map(m => m.uuid), programs: v.overlayRenderer.info.programs.length,
+      clickMs: Number(document.querySelector('#tab-tree').dataset.clickMs),
+    };
+  });
 }
 
 async function openTab(page, name, id, states = ['ready', 'drawn', 'compared', 'missing']) {
@@ -129,6 +159,7 @@ async function compare(page, lesson, image) {
   return page.evaluate(() => ({
     state: document.querySelector('#tab-compare').dataset.state,
     matches: document.querySelector('#tab-compare').dataset.matches,
+    sizes: document.querySelector('#tab-compare').dataset.sizes || null,
     share: document.querySelector('#cmp-number') ? Number(document.querySelector('#cmp-number').dataset.share) : null,
     verdict: document.querySelector('#cmp-verdict').textContent,
   }));
@@ -143,6 +174,11 @@ async function test() {
   // 1. The glass ball: the click, its tree, a step back in depth.
   observed.click = await clickPixel(page, ...options.pixel);
   observed.tree = await treeObservation(page);
+  observed.drawing = await treeDrawing(page);
+  // Two more clicks: the same materials and shader programs draw them.
+  await clickPixel(page, 100, 300);
+  await clickPixel(page, ...options.pixel);
+  observed.drawingLater = await treeDrawing(page);
   await press(page, '#tree-depth-down');
   observed.depthDown = await page.evaluate(() => ({ shown: document.querySelector('#tab-tree').dataset.shownDepth,
     hidden: [...document.querySelectorAll('#tree-diagram .tree-node.hidden-depth')].map(g => Number(g.dataset.id)) }));
@@ -150,6 +186,7 @@ async function test() {
   // 2. Ten shots on the 2,124-patch box, then lesson 11's quick figure shot by shot.
   await openTab(page, 'radiosity', '#tab-radiosity');
   observed.patches = Number(await page.$eval('#tab-radiosity', s => s.dataset.patches));
+  observed.ambientChecked = await page.$eval('#rad-ambient', c => c.checked);
   await radiosityStep(page, '#rad-step-10', 10);
   observed.tenShots = await history(page);
   await page.$eval('#rad-patches', e => { e.value = '300'; });
@@ -157,8 +194,20 @@ async function test() {
   await press(page, '#rad-start');
   await waitState(page, '#tab-radiosity', ['ready']);
   observed.quickPatches = Number(await page.$eval('#tab-radiosity', s => s.dataset.patches));
-  for (let k = 1; k <= 8; ++k) await radiosityStep(page, '#rad-step-1', k);
+  const radiosityText = () => page.evaluate(() => ({ status: document.querySelector('#rad-status').textContent,
+    ticks: [...document.querySelectorAll('#rad-chart .x-tick')].map(t => t.textContent) }));
+  for (let k = 1; k <= 8; ++k) {
+    await radiosityStep(page, '#rad-step-1', k);
+    if (k === 1) observed.oneShot = await radiosityText();
+  }
   observed.quickShots = await history(page);
+  observed.eightShots = await radiosityText();
+  // Another way to paint the same shot asks for it again (steps=0): the status keeps the shot's times.
+  await setValue(page, '#rad-paint', 'row');
+  await page.waitForFunction(() => document.querySelector('#rad-caption').textContent.includes('row F_ij'), { polling: 20 });
+  await waitState(page, '#tab-radiosity', ['ready']);
+  observed.afterRepaint = await radiosityText();
+  await setValue(page, '#rad-paint', 'flat');
   for (const method of ['jacobi', 'gauss_seidel', 'southwell']) {
     await setValue(page, '#rad-method', method);
     await waitState(page, '#tab-radiosity', ['ready']);
@@ -170,6 +219,12 @@ async function test() {
   await openTab(page, 'hemicube', '#tab-hemicube', ['drawn']);
   observed.hemicube = [];
   for (const r of options.resolutions) observed.hemicube.push(await hemicube(page, options.patch, r));
+  // A patch of the red wall, whose other triangle lies nearly in its plane: the explanation.
+  await hemicube(page, options.redPatch, 64);
+  observed.redWall = await page.evaluate(() => ({
+    why: document.querySelector('#hc-why').textContent, edgeOn: Number(document.querySelector('#hc-why').dataset.edgeOn),
+    rows: [...document.querySelectorAll('#hc-targets .study-row')].map(r => ({ resolution: Number(r.dataset.resolution),
+      weighted: Number(r.dataset.weightedRel), mean: Number(r.dataset.meanRel), above: Number(r.dataset.meanRelAbove) })) }));
   log('your pictures');
   // 4. Your pictures.
   await openTab(page, 'compare', '#tab-compare', ['compared', 'missing']);
@@ -186,20 +241,86 @@ async function test() {
   fs.writeFileSync(output, JSON.stringify(observed, null, 1));
 }
 
+// A student's builds beside the reference (options.labs: the URLs of the mutant's lab, the stubs'
+// lab with the reference, the stubs' lab alone): the first difference of a tree and of a shot, the
+// reference's picture and tree where the student's evaluate is not written, and a page with
+// nothing to draw that says so.
+async function student() {
+  const observed = {};
+  const look = async (page, x, y) => {
+    const s = await page.evaluate(() => ({ state: document.querySelector('#tab-tree').dataset.state,
+      drawnBy: document.querySelector('#tab-tree').dataset.drawnBy, imageHidden: document.querySelector('#tree-image').hidden,
+      imageWidth: document.querySelector('#tree-image').naturalWidth, note: document.querySelector('#tree-image-note').textContent,
+      noteHidden: document.querySelector('#tree-image-note').hidden,
+      message3d: [...document.querySelectorAll('#tree-3d .message')].map(m => m.textContent).join(' ') }));
+    if (x !== undefined) {
+      await clickPixel(page, x, y);
+      Object.assign(s, await page.evaluate(() => { const v = document.querySelector('#tree-versus');
+        const first = document.querySelector('#tree-diagram .tree-node.first-difference');
+        return { first: v.dataset.first, rows: Number(v.dataset.rows), summary: (v.querySelector('#versus-summary') || {}).textContent,
+          firstNode: first ? Number(first.dataset.id) : null, caption: document.querySelector('#tree-diagram-caption').textContent,
+          referenceSegments: Number(document.querySelector('#tree-3d').dataset.referenceSegments) }; }));
+    }
+    return s;
+  };
+  log('the mutant beside the reference');
+  const mutant = await open('tree', { width: 1640, height: 1000 }, options.labs.mutant);
+  await waitState(mutant, '#tab-tree', ['ready']);
+  observed.mutantTree = await look(mutant, ...options.pixel);
+  await openTab(mutant, 'radiosity', '#tab-radiosity');
+  for (let k = 1; k <= options.shots; ++k) await radiosityStep(mutant, '#rad-step-1', k);
+  observed.mutantShots = await mutant.evaluate(() => ({ versus: document.querySelector('#tab-radiosity').dataset.versus,
+    text: document.querySelector('#rad-versus-text').textContent }));
+  log('the stubs beside the reference');
+  const stubs = await open('tree', { width: 1640, height: 1000 }, options.labs.stubsReference);
+  await waitState(stubs, '#tab-tree', ['ready']);
+  observed.stubsReference = await look(stubs, ...options.pixel);
+  log('the stubs alone');
+  const alone = await open('tree', { width: 1640, height: 1000 }, options.labs.stubsAlone);
+  await settled(alone);
+  observed.stubsAlone = await look(alone);
+  observed.seen = seen;
+  fs.writeFileSync(output, JSON.stringify(observed, null, 1));
+}
+
+// The tree view settled, whatever it shows (the stubs alone: an error that says what to write).
+const settled = page => page.waitForFunction(() => ['ready', 'error'].includes(document.querySelector('#tab-tree').dataset.state),
+  { timeout: 120000, polling: 'mutation' });
+
+// CPU seconds (user + system) of Chromium's processes and of the lab (options.labPid) so far: the
+// benchmark's figure that the machine's load does not change (Linux, /proc).
+function cpuSeconds() {
+  const stat = pid => { try { return fs.readFileSync(`/proc/${pid}/stat`, 'utf8').split(') ')[1].split(' '); } catch { return null; } };
+  const children = {};
+  for (const pid of fs.readdirSync('/proc').filter(p => /^\d+$/.test(p))) {
+    const f = stat(pid);
+    if (f) (children[f[1]] = children[f[1]] || []).push(pid);
+  }
+  const pids = [String(browser.process().pid)];
+  for (let i = 0; i < pids.length; ++i) pids.push(...(children[pids[i]] || []));
+  if (options.labPid) pids.push(String(options.labPid));
+  const tick = 100;  // USER_HZ on Linux
+  return pids.reduce((sum, pid) => { const f = stat(pid); return f ? sum + (Number(f[11]) + Number(f[12])) / tick : sum; }, 0);
+}
+
 async function bench() {
   const results = { clicks: [], shots: [] };
   const page = await open('tree');
   await waitState(page, '#tab-tree', ['ready']);
+  results.clickCpu = 0;
   for (const scene of options.scenes) {
     await setValue(page, '#tree-scene', scene);
     await waitState(page, '#tab-tree', ['ready'], 120000);
     const size = await page.$eval('#tree-image', img => [img.naturalWidth, img.naturalHeight]);
-    // A grid of pixels over the image, each clicked once after a first warm-up click.
-    await clickPixel(page, Math.floor(size[0] / 2), Math.floor(size[1] / 2));
+    // A grid of pixels over the image, each clicked once, a quarter of a second apart (as a person
+    // clicks); the first click counts too.
     for (let i = 0; i < options.clicks; ++i) {
       const x = Math.floor((0.1 + 0.8 * ((i * 7) % options.clicks) / options.clicks) * size[0]);
       const y = Math.floor((0.15 + 0.7 * ((i * 3) % options.clicks) / options.clicks) * size[1]);
+      await new Promise(resolve => setTimeout(resolve, 250));
+      const cpu = cpuSeconds();
       const r = await clickPixel(page, x, y);
+      results.clickCpu += cpuSeconds() - cpu;
       results.clicks.push({ scene, pixel: r.pixel, ms: r.ms, nodes: (await treeObservation(page)).nodes.length });
     }
   }
@@ -207,9 +328,9 @@ async function bench() {
   results.patches = Number(await page.$eval('#tab-radiosity', s => s.dataset.patches));
   // One shot per press of "1 step": the request, the repaint and the chart after every shot.
   await radiosityStep(page, '#rad-step-1', 1);
-  let started = Date.now();
+  let started = Date.now(), cpu = cpuSeconds();
   for (let k = 2; k <= options.single + 1; ++k) await radiosityStep(page, '#rad-step-1', k);
-  results.single = { shots: options.single, seconds: (Date.now() - started) / 1000 };
+  results.single = { shots: options.single, seconds: (Date.now() - started) / 1000, cpu: cpuSeconds() - cpu };
   // "run": as many shots per request as keep the picture moving (lab_radiosity.js, toggleRun).
   const before = Number(await page.$eval('#tab-radiosity', s => s.dataset.steps));
   started = Date.now();
@@ -260,7 +381,7 @@ async function screenshots() {
 }
 
 try {
-  await { test, bench, screenshots }[mode]();
+  await { test, student, bench, screenshots }[mode]();
 } catch (e) {
   console.error(`browser.mjs: ${e.stack || e}`);
   process.exitCode = 1;

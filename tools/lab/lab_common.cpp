@@ -153,6 +153,39 @@ Params checked_params(const std::string& target, Params decoded) {
   }
 }
 
+namespace {
+
+std::atomic<bool> stopping{false};
+std::mutex newest_mutex;
+// The newest Work of each key: a counter that every new Work with the key moves on.
+std::map<std::string, std::shared_ptr<std::atomic<std::uint64_t>>> newest;
+
+}  // namespace
+
+Work::Work(std::string key) : key_(std::move(key)) {
+  if (key_.empty()) return;
+  const std::lock_guard lock(newest_mutex);
+  auto& counter = newest[key_];
+  if (!counter) counter = std::make_shared<std::atomic<std::uint64_t>>(0);
+  newest_ = counter;
+  mine_ = ++*newest_;
+}
+
+Work::~Work() {
+  if (key_.empty()) return;
+  const std::lock_guard lock(newest_mutex);
+  // The last Work of a key forgets it: the map holds the keys of requests running now.
+  if (*newest_ == mine_) newest.erase(key_);
+}
+
+void Work::check() const {
+  if (stopping) throw Cancelled("the lab is stopping (Ctrl-C)");
+  if (newest_ && *newest_ != mine_) throw Cancelled("a newer request of the same kind replaced this one");
+}
+
+void stop_all_work() { stopping = true; }
+bool lab_stopping() { return stopping; }
+
 std::vector<SceneEntry> scene_catalogue(const std::string& command_line_scene) {
   std::string id = command_line_scene;
   if (!embedded_scene(

@@ -2,14 +2,21 @@
 // What every part of `illum lab` shares (docs/lab.md): the errors a request
 // can end with, the strict reading of query parameters, and the render
 // settings `illum render`, `illum trace` and the lab have in common.
+#include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <exception>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "illum/core/error.hpp"
 #include "illum/core/image.hpp"
 #include "illum/core/vec.hpp"
 #include "illum/trace/ray_tree_render.hpp"
@@ -25,7 +32,33 @@ struct NotFound : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A request stopped before its end (answered 409, or 503 when the lab is stopping).
+struct Cancelled : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 using Params = std::multimap<std::string, std::string>;
+
+// One request's long work. Its loops call check() between rows, shots and
+// patches (each a few hundredths of a second), so that it stops within half a
+// second of Ctrl-C (stop_all_work) or of a newer Work with the same key: the
+// page's next render replaces its last one, a session's next step the one
+// still running. An empty key is stopped by Ctrl-C only.
+class Work {
+ public:
+  explicit Work(std::string key = "");
+  ~Work();
+  Work(const Work&) = delete;
+  Work& operator=(const Work&) = delete;
+  void check() const;  // throws Cancelled
+
+ private:
+  std::string key_;
+  std::shared_ptr<std::atomic<std::uint64_t>> newest_;
+  std::uint64_t mine_ = 0;
+};
+void stop_all_work();
+bool lab_stopping();
 
 // The query parameters of one request, read strictly: a parameter the
 // endpoint does not know, one given twice, an empty value, a number that
@@ -92,5 +125,31 @@ Color cli_background();
 
 // A PNG of a linear image (sRGB, 8 bits), in memory.
 std::string png_bytes(const Image& image);
+
+// Runs body(state, i) for i in [0, n) on every core, each thread with its own
+// state from make(); the first exception (a NotImplemented, a Cancelled)
+// stops the others and is rethrown here once every thread has stopped.
+template <class Make, class Body>
+void parallel_for(std::size_t n, Make make, Body body) {
+  const std::size_t threads = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
+  std::atomic<std::size_t> next{0};
+  std::mutex error_mutex;
+  std::exception_ptr error;
+  const auto work = [&] {
+    try {
+      auto state = make();
+      for (std::size_t i; (i = next.fetch_add(1)) < n;) body(state, i);
+    } catch (...) {
+      const std::lock_guard lock(error_mutex);
+      if (!error) error = std::current_exception();
+      next = n;
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < std::min(threads, n); ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
+}
 
 }  // namespace illum::lab

@@ -119,6 +119,13 @@ bool is_plot(const fs::path& out_folder, const fs::path& reference) {
   return fs::exists(out_folder / (reference.stem().string() + ".gp"), ec);
 }
 
+// A drawing of a diagram (Graphviz's dot beside it, as lesson 06's ray_tree.png has): its size
+// follows what it shows, so a different tree is a different size.
+bool is_diagram(const fs::path& out_folder, const fs::path& name) {
+  std::error_code ec;
+  return fs::exists(out_folder / (name.stem().string() + ".dot"), ec);
+}
+
 }  // namespace
 
 CompareLab::CompareLab(fs::path source, fs::path out) : source_(std::move(source)), out_(std::move(out)) {}
@@ -216,6 +223,7 @@ std::string CompareLab::stats_json(const Params& params) const {
   const Rgb a = decode(p.reference), b = decode(p.yours);
   const Difference d = difference(a, b);
   out["have_yours"] = true;
+  out["diagram"] = is_diagram(p.yours.parent_path(), p.yours.filename());
   out["reference_size"] = {a.width, a.height};
   out["yours_size"] = {b.width, b.height};
   out["same_size"] = d.same_size;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <numbers>
+#include <optional>
 #include <random>
 #include <thread>
 
@@ -13,10 +15,10 @@
 #include "illum/io/scene_file.hpp"
 #include "illum/radiosity/form_factor_analytic.hpp"
 #include "illum/radiosity/hemicube.hpp"
+#include "illum/radiosity/patch_occluders.hpp"
 #include "illum/radiosity/radiosity_solvers.hpp"
 #include "illum/radiosity/radiosity_system.hpp"
 #include "illum/radiosity/vertex_colours.hpp"
-#include "illum/radiosity/visibility.hpp"
 
 namespace illum::lab {
 
@@ -84,39 +86,6 @@ void keep(std::vector<std::pair<std::string, std::shared_ptr<T>>>& cache, const 
   if (cache.size() > most) cache.pop_back();
 }
 
-// Runs body(i) for i in [0, n) on every core, each thread with its own
-// state from make(); the first exception (a NotImplemented included) is
-// rethrown here, after every thread has stopped.
-template <class Make, class Body>
-void parallel_for(std::size_t n, Make make, Body body) {
-  const std::size_t threads = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
-  std::atomic<std::size_t> next{0};
-  std::mutex error_mutex;
-  std::exception_ptr error;
-  NotImplemented* not_implemented = nullptr;
-  std::unique_ptr<NotImplemented> kept;
-  const auto work = [&] {
-    try {
-      auto state = make();
-      for (std::size_t i; (i = next.fetch_add(1)) < n;) body(state, i);
-    } catch (const NotImplemented& e) {
-      const std::lock_guard lock(error_mutex);
-      if (!kept) kept = std::make_unique<NotImplemented>(e), not_implemented = kept.get();
-      next = n;
-    } catch (...) {
-      const std::lock_guard lock(error_mutex);
-      if (!error) error = std::current_exception();
-      next = n;
-    }
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
-  if (not_implemented) throw *not_implemented;
-  if (error) std::rethrow_exception(error);
-}
-
 const std::vector<std::string> method_names = {"progressive", "jacobi", "gauss_seidel", "southwell"};
 
 std::string random_id() {
@@ -128,13 +97,18 @@ std::string random_id() {
   return buf;
 }
 
-constexpr std::size_t max_patches = 20000;        // a mesh the lab meshes at most
+constexpr std::size_t max_patches = 20000;  // the most a request may ask for
+// The most a mesh may have: the edge shrinks by 3% a step, so a mesh of at least 20,000 patches
+// can overshoot by a step's 6% (the Cornell box: 20,000 asked, 21,248 meshed).
+constexpr std::size_t max_mesh_patches = 22000;
 constexpr std::size_t max_matrix_patches = 3000;  // 72 MB of form factors
 constexpr int max_matrix_resolution = 256;        // a whole matrix of rows at most this fine
 constexpr std::size_t max_matrix_sessions = 4;    // sessions holding a whole matrix (the oldest go first)
 // A step stops after this much work, with what it has done: a request for 20,000 shots of a
-// 20,000-patch mesh must not hold the session (and Ctrl-C) for an hour.
+// 20,000-patch mesh must not hold the session for an hour (Ctrl-C and a newer step stop it at once).
 constexpr double step_seconds = 15;
+// A target within this angle of the receiver's plane is seen edge-on (hemicube_json).
+constexpr double edge_on_degrees = 1.0;
 constexpr std::size_t max_sessions = 16, max_meshes = 4, max_matrices = 2, max_visibility = 8;
 
 }  // namespace
@@ -146,6 +120,9 @@ struct RadiosityLab::Mesh {
   SharedVertexMesh shared;
   double emitted = 0;  // total_power of the emissions
   std::string json;
+  // Lesson 08's BVH over the patches, for the hemicube view's visibility (built on first use).
+  mutable std::once_flag occluders_built;
+  mutable std::unique_ptr<PatchOccluders> occluders;
 };
 
 struct RadiosityLab::Session {
@@ -155,17 +132,21 @@ struct RadiosityLab::Session {
   Method method = Method::progressive;
   int resolution = 128;
   double omega = 1.0;
-  std::unique_ptr<Hemicube> hemicube;  // progressive: rows drawn per shot
+  // Progressive: rows drawn per shot, on one thread: a row of the 2,124-patch box takes half a
+  // millisecond, and form_factor_row_parallel's OpenMP threads, spinning at their barrier on a
+  // shared 2-core machine, made it 40 ms.
+  std::unique_ptr<Hemicube> hemicube;
   HemicubeBuffers buffers;
   std::shared_ptr<const FormFactorMatrix> f;  // the sweeps and Southwell
   ProgressiveState state;
   std::vector<Color> b, next, residual;
   std::vector<double> row;
+  std::vector<Color> update;  // progressive: what the last shot added to each radiosity
   std::size_t steps = 0;
   int shooter = -1;
 };
 
-std::shared_ptr<const RadiosityLab::Mesh> RadiosityLab::mesh(const Query& q) {
+std::shared_ptr<const RadiosityLab::Mesh> RadiosityLab::mesh(const Query& q, const Work& work) {
   const SceneEntry& entry = find_scene(scenes_, q.name_or("scene", "cornell"));
   if (q.has("patches") && q.has("edge")) throw BadRequest("give 'patches' or 'edge', not both");
   const bool by_edge = q.has("edge");
@@ -180,19 +161,20 @@ std::shared_ptr<const RadiosityLab::Mesh> RadiosityLab::mesh(const Query& q) {
   auto m = std::make_shared<Mesh>();
   m->key = key, m->scene_id = entry.id;
   const auto load = [&](double edge) {
-    // Counted before meshing: the loader refuses beyond max_scene_patches, the lab beyond max_patches.
+    // Counted before meshing: the loader refuses beyond max_scene_patches, the lab beyond max_mesh_patches.
+    work.check();
     RadiosityScene s = load_radiosity_scene(entry.source, 1e300);
     double count = 0;
     for (const RadiositySurface& surface : s.surfaces)
       count += radiosity_patch_grid(surface.polygon, edge).patches;
-    if (count > static_cast<double>(max_patches)) return std::optional<RadiosityScene>();
+    if (count > static_cast<double>(max_mesh_patches)) return std::optional<RadiosityScene>();
     return std::optional<RadiosityScene>(load_radiosity_scene(entry.source, edge));
   };
   if (by_edge) {
     auto s = load(edge_asked);
     if (!s)
       throw BadRequest(q.asked("edge") + " would mesh scene '" + entry.id + "' into more than " +
-                       std::to_string(max_patches) + " patches");
+                       std::to_string(max_mesh_patches) + " patches");
     m->scene = std::move(*s), m->edge = edge_asked;
   } else {
     // Lesson 11's figure: edge 240·0.97^k for the least k giving at least `wanted` patches
@@ -205,7 +187,7 @@ std::shared_ptr<const RadiosityLab::Mesh> RadiosityLab::mesh(const Query& q) {
     };
     const auto count_at = [&](int k) {
       const auto s = load(edge_at(k));
-      return s ? s->patches.size() : max_patches + 1;
+      return s ? s->patches.size() : max_mesh_patches + 1;
     };
     int lo = 0, hi = 1000;
     if (count_at(hi) < wanted)
@@ -220,9 +202,9 @@ std::shared_ptr<const RadiosityLab::Mesh> RadiosityLab::mesh(const Query& q) {
     }
     const double edge = edge_at(lo);
     auto s = load(edge);
-    if (!s || s->patches.size() > max_patches)
+    if (!s || s->patches.size() > max_mesh_patches)
       throw BadRequest("scene '" + entry.id + "' meshed into at least " + std::to_string(wanted) +
-                       " patches has more than " + std::to_string(max_patches));
+                       " patches has more than " + std::to_string(max_mesh_patches));
     m->scene = std::move(*s), m->edge = edge;
   }
   const std::vector<Patch>& patches = m->scene.patches;
@@ -275,7 +257,7 @@ std::shared_ptr<const RadiosityLab::Mesh> RadiosityLab::mesh(const Query& q) {
 }
 
 std::shared_ptr<const FormFactorMatrix> RadiosityLab::matrix(const std::shared_ptr<const Mesh>& m,
-                                                             int resolution) {
+                                                             int resolution, const Work& work) {
   const std::string key = m->key + "|" + std::to_string(resolution);
   const std::lock_guard one_at_a_time(matrix_mutex_);
   {
@@ -292,6 +274,7 @@ std::shared_ptr<const FormFactorMatrix> RadiosityLab::matrix(const std::shared_p
   parallel_for(
       patches.size(), [] { return HemicubeBuffers(); },
       [&](HemicubeBuffers& buffers, std::size_t i) {
+        work.check();
         hemicube.form_factor_row(patches, i, f->row(i), buffers);
       });
   const std::lock_guard lock(mutex_);
@@ -299,9 +282,9 @@ std::shared_ptr<const FormFactorMatrix> RadiosityLab::matrix(const std::shared_p
   return f;
 }
 
-std::string RadiosityLab::mesh_json(const Params& params) {
+std::string RadiosityLab::mesh_json(const Params& params, const Work& work) {
   const Query q(params, {"scene", "patches", "edge"});
-  return mesh(q)->json;
+  return mesh(q, work)->json;
 }
 
 std::shared_ptr<RadiosityLab::Session> RadiosityLab::session(const std::string& id) {
@@ -323,9 +306,9 @@ double unshot_fraction(const std::vector<Patch>& patches, const std::vector<Colo
 
 }  // namespace
 
-std::string RadiosityLab::start_json(const Params& params) {
+std::string RadiosityLab::start_json(const Params& params, const Work& work) {
   const Query q(params, {"scene", "patches", "edge", "method", "resolution", "omega"});
-  const auto m = mesh(q);
+  const auto m = mesh(q, work);
   auto s = std::make_shared<Session>();
   s->id = random_id();
   s->mesh = m;
@@ -361,7 +344,7 @@ std::string RadiosityLab::start_json(const Params& params) {
           " meshes scene '" + m->scene_id + "' into " + std::to_string(n) + " patches; method '" + method +
           "' needs the whole form-factor matrix, which the lab draws for at most " +
           std::to_string(max_matrix_patches) + " patches: ask for fewer, or use method 'progressive'");
-    s->f = matrix(m, s->resolution);
+    s->f = matrix(m, s->resolution, work);
     check_radiosity_system(patches, *s->f);
     s->b.assign(n, Color(0.0));
     s->residual = emissions(patches);
@@ -386,9 +369,11 @@ std::string RadiosityLab::start_json(const Params& params) {
 }
 
 std::string RadiosityLab::step_json(const Params& params) {
-  const Query q(params, {"session", "steps", "row", "vertex", "rule"});
+  const Query q(params, {"session", "steps", "row", "vertex", "rule", "update"});
   const std::string id = q.name("session", 32);
   const auto s = session(id);
+  // Registered before waiting for the session: a newer step stops the one running now.
+  const Work work("step|" + id);
   const std::lock_guard lock(s->mutex);
   const Mesh& m = *s->mesh;
   const std::vector<Patch>& patches = m.scene.patches;
@@ -396,17 +381,21 @@ std::string RadiosityLab::step_json(const Params& params) {
   const bool sweeps = s->method == Method::jacobi || s->method == Method::gauss_seidel;
   const long long steps = q.integer_or("steps", 0, sweeps ? 500 : 20000, 1);
   const bool want_row = q.flag_or("row", false), vertex = q.flag_or("vertex", false);
+  const bool want_update = q.flag_or("update", false);
   const std::string rule = q.choice_or("rule", {"average", "extrapolate"}, "extrapolate");
-  json points = json::array();
+  json points = json::array(), shooters = json::array();
   Stopwatch watch;
   double row_seconds = 0;
   bool done = false;
-  if (steps > 0) s->shooter = -1;  // steps=0 asks again about the last step (its row, its vertex colours)
+  if (steps > 0) s->shooter = -1, s->update.clear();  // steps=0 asks again about the last step
   bool truncated = false;
   for (long long k = 0; k < steps; ++k) {
-    if (k > 0 && watch.seconds() > step_seconds) {
-      truncated = true;
-      break;
+    if (k > 0) {
+      work.check();  // the first step always runs: a step of 1 is never lost
+      if (watch.seconds() > step_seconds) {
+        truncated = true;
+        break;
+      }
     }
     double fraction = 0;
     if (s->method == Method::progressive) {
@@ -418,7 +407,10 @@ std::string RadiosityLab::step_json(const Params& params) {
       Stopwatch row_watch;
       s->hemicube->form_factor_row(patches, i, s->row, s->buffers);  // lesson 10's deltas
       row_seconds += row_watch.seconds();
+      if (want_update && k + 1 == steps) s->update = s->state.radiosity;
       shoot(patches, i, s->row, s->state);  // Task 6c
+      if (want_update && k + 1 == steps)
+        for (std::size_t j = 0; j < n; ++j) s->update[j] = s->state.radiosity[j] - s->update[j];
       s->shooter = static_cast<int>(i);
       fraction = total_power(patches, s->state.unshot) / m.emitted;
     } else if (s->method == Method::southwell) {
@@ -437,11 +429,13 @@ std::string RadiosityLab::step_json(const Params& params) {
     }
     ++s->steps;
     points.push_back(json::array({s->steps, fraction}));
+    shooters.push_back(s->shooter);
   }
   const double seconds = watch.seconds();
   const std::vector<Color>& b = s->method == Method::progressive ? s->state.radiosity : s->b;
-  json out{{"session", s->id}, {"steps", s->steps},     {"done", done},       {"truncated", truncated},
-           {"points", points}, {"shooter", s->shooter}, {"seconds", seconds}, {"row_seconds", row_seconds}};
+  json out{{"session", s->id},       {"steps", s->steps},  {"done", done},
+           {"truncated", truncated}, {"points", points},   {"shooters", shooters},
+           {"shooter", s->shooter},  {"seconds", seconds}, {"row_seconds", row_seconds}};
   out["fraction"] = s->method == Method::progressive ? total_power(patches, s->state.unshot) / m.emitted
                                                      : unshot_fraction(patches, s->residual, m.emitted);
   out["radiosity"] = float32_base64(b);
@@ -457,6 +451,10 @@ std::string RadiosityLab::step_json(const Params& params) {
     out["row"] = float32_base64(column);
     out["row_kind"] = "column";
   }
+  // What the last shot added to every radiosity (progressive): the page holds it against the reference's.
+  out["update"] = nullptr;
+  if (want_update && s->method == Method::progressive && s->shooter >= 0 && s->update.size() == n)
+    out["update"] = float32_base64(s->update);
   out["ambient"] = nullptr;
   if (s->method == Method::progressive) {
     try {
@@ -480,7 +478,8 @@ std::string RadiosityLab::step_json(const Params& params) {
   return out.dump() + "\n";
 }
 
-std::shared_ptr<const std::vector<char>> RadiosityLab::seen_whole(const Mesh& m, std::size_t patch) {
+std::shared_ptr<const std::vector<char>> RadiosityLab::seen_whole(const Mesh& m, std::size_t patch,
+                                                                  const Work& work) {
   const std::string key = m.key + "|" + std::to_string(patch);
   {
     const std::lock_guard lock(mutex_);
@@ -488,18 +487,23 @@ std::shared_ptr<const std::vector<char>> RadiosityLab::seen_whole(const Mesh& m,
   }
   // Seen whole: the segments from the centroid to the target's centroid and to
   // its corners pulled 2% towards its centroid (off the edges it shares) cross
-  // no patch. Brute force (lesson 09's mutually_visible), on every core.
+  // no patch; asked of lesson 08's BVH over the patches (PatchOccluders: brute
+  // force, lesson 09's mutually_visible, took minutes at 20,000 patches).
   const std::vector<Patch>& patches = m.scene.patches;
+  std::call_once(m.occluders_built, [&] { m.occluders = std::make_unique<PatchOccluders>(patches); });
+  const PatchOccluders& occluders = *m.occluders;
   const Patch& from = patches[patch];
   auto seen = std::make_shared<std::vector<char>>(patches.size(), 0);
   parallel_for(
       patches.size(), [] { return 0; },
       [&](int&, std::size_t j) {
+        if (j % 256 == 0) work.check();
         const Patch& to = patches[j];
         if (j == patch || point_polygon_form_factor(from.centroid, from.normal, to) <= 0) return;
-        bool all = mutually_visible(from.centroid, to.centroid, patches);
+        bool all = occluders.mutually_visible(from.centroid, to.centroid);
         for (std::size_t k = 0; all && k < to.vertices.size(); ++k)
-          all = mutually_visible(from.centroid, to.centroid + 0.98 * (to.vertices[k] - to.centroid), patches);
+          all =
+              occluders.mutually_visible(from.centroid, to.centroid + 0.98 * (to.vertices[k] - to.centroid));
         (*seen)[j] = all ? 1 : 0;
       });
   const std::lock_guard lock(mutex_);
@@ -509,33 +513,76 @@ std::shared_ptr<const std::vector<char>> RadiosityLab::seen_whole(const Mesh& m,
 
 namespace {
 
+// The row against the exact factors from the centroid, over the targets seen whole. The mean
+// relative error counts every target alike, so it is led by the targets seen edge-on: within
+// edge_on_degrees of the receiver's plane (as the two triangles of the Cornell box's red wall, whose
+// corners lie 3.2 mm out of one plane, are from each other), they fall in the side faces' lowest
+// pixel rows at every resolution, where a pixel's delta form factor (taken at its centre) is far
+// from their tiny factors: their relative errors stay near 1. So the errors are also given without them
+// (mean_rel_above) and weighted by the exact factor (weighted_rel = Σ|ΔF| / ΣF, the share of the row's energy
+// put on the wrong target).
 struct RowErrors {
-  double max_abs = 0, mean_abs = 0, mean_rel = 0;
-  std::size_t targets = 0;
+  double max_abs = 0, mean_abs = 0, mean_rel = 0, mean_rel_above = 0, weighted_rel = 0, edge_on_factor = 0;
+  std::size_t targets = 0, edge_on = 0;
 };
 
-RowErrors row_errors(const std::vector<double>& row, const std::vector<double>& exact,
-                     const std::vector<char>& seen) {
+// Whether every corner of `to` lies within edge_on_degrees of the plane of `from`.
+bool edge_on(const Patch& from, const Patch& to) {
+  const double most = std::sin(edge_on_degrees * std::numbers::pi / 180.0);
+  for (const Point3& v : to.vertices) {
+    const Vec3 d = v - from.centroid;
+    if (dot(from.normal, d) > most * length(d)) return false;
+  }
+  return true;
+}
+
+RowErrors row_errors(const std::vector<Patch>& patches, std::size_t i, const std::vector<double>& row,
+                     const std::vector<double>& exact, const std::vector<char>& seen) {
   RowErrors e;
+  double exact_sum = 0;
+  std::size_t above = 0;
   for (std::size_t j = 0; j < row.size(); ++j) {
     if (!seen[j] || !(exact[j] > 0)) continue;
     const double d = std::abs(row[j] - exact[j]);
     e.max_abs = std::max(e.max_abs, d), e.mean_abs += d, e.mean_rel += d / exact[j];
+    e.weighted_rel += d, exact_sum += exact[j];
+    if (edge_on(patches[i], patches[j]))
+      ++e.edge_on, e.edge_on_factor += exact[j];
+    else
+      ++above, e.mean_rel_above += d / exact[j];
     ++e.targets;
   }
   if (e.targets) e.mean_abs /= static_cast<double>(e.targets), e.mean_rel /= static_cast<double>(e.targets);
+  if (above) e.mean_rel_above /= static_cast<double>(above);
+  if (exact_sum > 0) e.weighted_rel /= exact_sum;
   return e;
 }
 
 json errors_json(const RowErrors& e) {
-  return {{"targets", e.targets}, {"max_abs", e.max_abs}, {"mean_abs", e.mean_abs}, {"mean_rel", e.mean_rel}};
+  return {{"targets", e.targets},
+          {"max_abs", e.max_abs},
+          {"mean_abs", e.mean_abs},
+          {"mean_rel", e.mean_rel},
+          {"mean_rel_above", e.mean_rel_above},
+          {"weighted_rel", e.weighted_rel},
+          {"edge_on", e.edge_on},
+          {"edge_on_factor", e.edge_on_factor},
+          {"edge_on_degrees", edge_on_degrees}};
+}
+
+// Lambert's contour formula from the centroid of patch i to every other patch (lesson 09, Task 2).
+std::vector<double> exact_row(const std::vector<Patch>& patches, std::size_t i) {
+  std::vector<double> exact(patches.size(), 0.0);
+  for (std::size_t j = 0; j < patches.size(); ++j)
+    if (j != i) exact[j] = point_polygon_form_factor(patches[i].centroid, patches[i].normal, patches[j]);
+  return exact;
 }
 
 }  // namespace
 
-std::string RadiosityLab::hemicube_json(const Params& params) {
+std::string RadiosityLab::hemicube_json(const Params& params, const Work& work) {
   const Query q(params, {"scene", "patches", "edge", "patch", "resolution"});
-  const auto m = mesh(q);
+  const auto m = mesh(q, work);
   const std::vector<Patch>& patches = m->scene.patches;
   const auto i = static_cast<std::size_t>(q.integer("patch", 0, static_cast<long long>(patches.size()) - 1));
   const long long res = q.integer_or("resolution", 2, 512, 64);
@@ -581,36 +628,31 @@ std::string RadiosityLab::hemicube_json(const Params& params) {
       {"seconds", seconds}};
   out["exact"] = nullptr;
   try {
-    std::vector<double> exact(patches.size(), 0.0);
-    for (std::size_t j = 0; j < patches.size(); ++j)
-      if (j != i)
-        exact[j] = point_polygon_form_factor(p.centroid, p.normal, patches[j]);  // lesson 09, Task 2
-    const auto seen_list_kept = seen_whole(*m, i);
+    const std::vector<double> exact = exact_row(patches, i);
+    const auto seen_list_kept = seen_whole(*m, i, work);
     const std::vector<char>& seen = *seen_list_kept;
     out["exact"] = floats(exact.data(), exact.size());
     json seen_list = json::array();
     for (const char c : seen) seen_list.push_back(c != 0);
     out["seen_whole"] = seen_list;
-    out["errors"] = errors_json(row_errors(row, exact, seen));
+    out["errors"] = errors_json(row_errors(patches, i, row, exact, seen));
   } catch (const NotImplemented& e) {
     out["exact_error"] = e.message();
   }
   return out.dump() + "\n";
 }
 
-std::string RadiosityLab::hemicube_study_json(const Params& params) {
+std::string RadiosityLab::hemicube_study_json(const Params& params, const Work& work) {
   const Query q(params, {"scene", "patches", "edge", "patch"});
-  const auto m = mesh(q);
+  const auto m = mesh(q, work);
   const std::vector<Patch>& patches = m->scene.patches;
   const auto i = static_cast<std::size_t>(q.integer("patch", 0, static_cast<long long>(patches.size()) - 1));
-  const Patch& p = patches[i];
-  std::vector<double> exact(patches.size(), 0.0);
-  for (std::size_t j = 0; j < patches.size(); ++j)
-    if (j != i) exact[j] = point_polygon_form_factor(p.centroid, p.normal, patches[j]);
-  const auto seen_kept = seen_whole(*m, i);
+  const std::vector<double> exact = exact_row(patches, i);
+  const auto seen_kept = seen_whole(*m, i, work);
   const std::vector<char>& seen = *seen_kept;
   json rows = json::array();
   for (const int res : {8, 16, 32, 64, 128, 256, 512}) {
+    work.check();
     const Hemicube hemicube(res);
     HemicubeBuffers buffers;
     std::vector<double> row(patches.size(), 0.0);
@@ -619,7 +661,7 @@ std::string RadiosityLab::hemicube_study_json(const Params& params) {
     const double seconds = watch.seconds();
     double sum = 0;
     for (const double v : row) sum += v;
-    json r = errors_json(row_errors(row, exact, seen));
+    json r = errors_json(row_errors(patches, i, row, exact, seen));
     r["resolution"] = res, r["sum"] = sum, r["seconds"] = seconds;
     rows.push_back(r);
   }

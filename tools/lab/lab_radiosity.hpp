@@ -32,20 +32,23 @@ class RadiosityLab {
  public:
   explicit RadiosityLab(std::vector<SceneEntry> scenes) : scenes_(std::move(scenes)) {}
 
-  std::string mesh_json(const Params& params);            // GET /api/radiosity/mesh
-  std::string start_json(const Params& params);           // GET /api/radiosity/start
-  std::string step_json(const Params& params);            // GET /api/radiosity/step
-  std::string hemicube_json(const Params& params);        // GET /api/hemicube
-  std::string hemicube_study_json(const Params& params);  // GET /api/hemicube/study
+  // Each stops early (Cancelled) when `work` says so; a step is stopped by a
+  // newer step of the same session.
+  std::string mesh_json(const Params& params, const Work& work);            // GET /api/radiosity/mesh
+  std::string start_json(const Params& params, const Work& work);           // GET /api/radiosity/start
+  std::string step_json(const Params& params);                              // GET /api/radiosity/step
+  std::string hemicube_json(const Params& params, const Work& work);        // GET /api/hemicube
+  std::string hemicube_study_json(const Params& params, const Work& work);  // GET /api/hemicube/study
 
   struct Mesh;
   struct Session;
 
  private:
-  std::shared_ptr<const Mesh> mesh(const Query& query);
-  std::shared_ptr<const FormFactorMatrix> matrix(const std::shared_ptr<const Mesh>& mesh, int resolution);
+  std::shared_ptr<const Mesh> mesh(const Query& query, const Work& work);
+  std::shared_ptr<const FormFactorMatrix> matrix(const std::shared_ptr<const Mesh>& mesh, int resolution,
+                                                 const Work& work);
   std::shared_ptr<Session> session(const std::string& id);
-  std::shared_ptr<const std::vector<char>> seen_whole(const Mesh& mesh, std::size_t patch);
+  std::shared_ptr<const std::vector<char>> seen_whole(const Mesh& mesh, std::size_t patch, const Work& work);
 
   std::vector<SceneEntry> scenes_;
   std::mutex mutex_;  // guards the caches and the session list

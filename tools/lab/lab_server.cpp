@@ -1,8 +1,12 @@
 #include "lab/lab_server.hpp"
 
 #include <atomic>
+#include <cctype>
+#include <charconv>
+#include <chrono>
 #include <csignal>
 #include <cstring>
+#include <functional>
 #include <iostream>
 #include <thread>
 
@@ -14,6 +18,7 @@
 #include "lab/lab_assets.hpp"
 #include "lab/lab_compare.hpp"
 #include "lab/lab_radiosity.hpp"
+#include "lab/lab_reference.hpp"
 #include "lab/lab_trace.hpp"
 
 #ifndef ILLUM_LAB_EXERCISES
@@ -51,6 +56,9 @@ void guarded(httplib::Response& response, Body body) {
     send_json(response, 400, error_json(e.what()));
   } catch (const std::invalid_argument& e) {  // the library refuses what the request asked for
     send_json(response, 400, error_json(e.what()));
+  } catch (const Cancelled& e) {  // Ctrl-C, or a newer request of the same kind: nobody waits for it
+    send_json(response, lab_stopping() ? 503 : 409,
+              json{{"error", e.what()}, {"cancelled", true}}.dump() + "\n");
   } catch (const NotImplemented& e) {  // a stub of the student edition
     send_json(
         response, 501,
@@ -82,20 +90,34 @@ class SignalWaiter {
     if (thread_.joinable()) thread_.join();
     pthread_sigmask(SIG_UNBLOCK, &set_, nullptr);
   }
-  void start(httplib::Server& server) {
-    thread_ = std::thread([this, &server] { wait(server); });
+  // On the first signal: every long request stops (stop_all_work), then `stopping` (the reference
+  // lab) and the server.
+  void start(httplib::Server& server, std::function<void()> stopping) {
+    thread_ = std::thread([this, &server, stopping] { wait(server, stopping); });
   }
   int signal() const { return signal_; }
 
  private:
-  void wait(httplib::Server& server) {
-    const timespec step{0, 100'000'000};
+  void wait(httplib::Server& server, const std::function<void()>& stopping) {
+    const timespec step{0, 50'000'000};
+    std::chrono::steady_clock::time_point asked;
     while (!done_) {
       const int s = sigtimedwait(&set_, nullptr, &step);
-      if (s <= 0) continue;
+      if (s <= 0) {
+        // A worker waiting out an idle connection's keep-alive (up to a second) would hold the
+        // end: the lab keeps nothing to save, so 0.4 s after the signal it just ends.
+        if (signal_ != 0 && std::chrono::steady_clock::now() - asked > std::chrono::milliseconds(400)) {
+          std::cerr << "illum lab: stopped" << std::endl;
+          std::_Exit(0);
+        }
+        continue;
+      }
       if (signal_ != 0) std::_Exit(128 + s);  // a second Ctrl-C: do not wait for the workers
       signal_ = s;
+      asked = std::chrono::steady_clock::now();
       std::cerr << "illum lab: " << (s == SIGINT ? "SIGINT" : "SIGTERM") << ": stopping\n";
+      stop_all_work();
+      stopping();
       server.stop();
     }
   }
@@ -106,6 +128,44 @@ class SignalWaiter {
   std::thread thread_;
 };
 
+// The page names its tab (and view) in this header, so that a newer request of the same kind from
+// the same place stops the one still running (Work); other clients send none.
+constexpr const char* tab_header = "X-Lab-Tab";
+
+std::string tab_of(const httplib::Request& request) {
+  const std::string tab = request.get_header_value(tab_header);
+  if (tab.size() > 64) throw BadRequest(std::string("header ") + tab_header + " is longer than 64 bytes");
+  for (const char c : tab)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || std::strchr("/_-", c)))
+      throw BadRequest(std::string("header ") + tab_header +
+                       " holds a character other than letters, digits and /_-");
+  return tab;
+}
+
+std::string number_text(double v) {
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+  return std::string(buffer, end);
+}
+
+// The command line of the reference lab: this one's scene and settings (its own free port).
+std::vector<std::string> reference_arguments(const LabOptions& o) {
+  std::vector<std::string> a{o.scene,
+                             "--source",
+                             o.source.string(),
+                             "--depth",
+                             std::to_string(o.settings.max_depth),
+                             "--prune",
+                             number_text(o.settings.min_contribution)};
+  // The default OUT (SOURCE/out) may not be there yet: the reference lab would refuse it.
+  if (std::error_code e; std::filesystem::is_directory(o.out, e))
+    a.insert(a.end(), {"--out", o.out.string()});
+  if (o.settings.width > 0) a.insert(a.end(), {"--width", std::to_string(o.settings.width)});
+  if (o.settings.height > 0) a.insert(a.end(), {"--height", std::to_string(o.settings.height)});
+  if (!o.settings.use_plan) a.push_back("--no-plan");
+  return a;
+}
+
 }  // namespace
 
 int run_lab(const LabOptions& options) {
@@ -115,12 +175,22 @@ int run_lab(const LabOptions& options) {
   TraceLab trace(catalogue, options.settings);  // loads the scene: a bad one stops here
   RadiosityLab radiosity(catalogue);
   const CompareLab compare(options.source, options.out);
+  ReferenceLab reference(options.reference, reference_arguments(options));
+  if (!options.reference.empty() && !reference.available()) {
+    if (options.reference_required) throw std::runtime_error("--reference: " + reference.why());
+    std::cerr << "illum lab: no reference to compare with: " << reference.why() << "\n";
+  }
 
   httplib::Server server;
-  server.new_task_queue = [] { return new httplib::ThreadPool(8); };
-  server.set_keep_alive_timeout(1);  // an idle tab's connection does not hold up Ctrl-C
-  server.set_read_timeout(10);
-  server.set_write_timeout(30);
+  // One worker per connection, up to 64 (a browser keeps 6 connections to the lab): a client that
+  // sends half a request holds one of them for the read timeout below, not the lab.
+  server.new_task_queue = [] { return new httplib::ThreadPool(64); };
+  server.set_keep_alive_timeout(1);  // an idle tab's connection does not hold a worker
+  server.set_keep_alive_max_count(100);
+  // Every read and write of a connection must progress within these: a client that stops sending
+  // (half-open) or sends a header line every few seconds is dropped after 2 s of silence.
+  server.set_read_timeout(2);
+  server.set_write_timeout(10);
   server.set_payload_max_length(64 * 1024);
   // Headers and body go out in separate writes: without TCP_NODELAY, Nagle's algorithm holds the
   // body back until the browser's delayed ACK, some 40 ms per request.
@@ -151,6 +221,12 @@ int run_lab(const LabOptions& options) {
     const std::string h = request.get_header_value("Host");
     if (h != host && h != local) {
       send_json(response, 403, error_json("the lab answers requests to " + host + " or " + local + " only"));
+      return httplib::Server::HandlerResponse::Handled;
+    }
+    try {
+      tab_of(request);
+    } catch (const BadRequest& e) {
+      send_json(response, 400, error_json(e.what()));
       return httplib::Server::HandlerResponse::Handled;
     }
     if (request.method != "GET" && request.method != "HEAD") {
@@ -186,57 +262,84 @@ int run_lab(const LabOptions& options) {
       json scenes = json::array();
       for (const SceneEntry& e : catalogue) scenes.push_back(e.id);
       std::error_code ec;
-      send_json(response, 200,
-                json{{"version", "illum 0.1.0"},
-                     {"scene", trace.default_scene()},
-                     {"scenes", scenes},
-                     {"settings", json::parse(trace.settings_json())},
-                     {"exercises", ILLUM_LAB_EXERCISES},
-                     {"student_edition", std::filesystem::exists(options.source / "STUDENT_EDITION", ec)},
-                     {"three", lab_has_three()},
-                     {"port", port}}
-                        .dump() +
-                    "\n");
+      send_json(
+          response, 200,
+          json{{"version", "illum 0.1.0"},
+               {"scene", trace.default_scene()},
+               {"scenes", scenes},
+               {"settings", json::parse(trace.settings_json())},
+               {"exercises", ILLUM_LAB_EXERCISES},
+               {"student_edition", std::filesystem::exists(options.source / "STUDENT_EDITION", ec)},
+               {"three", lab_has_three()},
+               {"port", port},
+               {"reference",
+                {{"available", reference.available()},
+                 {"program", options.reference.empty() ? json(nullptr) : json(options.reference.string())},
+                 {"why", reference.available() ? "" : reference.why()}}}}
+                  .dump() +
+              "\n");
     });
   });
+  // Each endpoint's work is keyed by its path and the page's tab: the tab's next request of the
+  // same kind stops it (a session's steps are keyed by the session instead, in step_json).
   const auto text_endpoint = [&](const char* path, auto method, const char* type) {
-    server.Get(path, [&, method, type](const httplib::Request& request, httplib::Response& response) {
+    server.Get(path, [&, path, method, type](const httplib::Request& request, httplib::Response& response) {
       guarded(response, [&] {
+        const std::string tab = tab_of(request);
+        const Work work(tab.empty() ? "" : std::string(path) + "|" + tab);
         response.status = 200;
-        response.set_content(method(params_of(request)), type);
+        response.set_content(method(params_of(request), work), type);
       });
     });
   };
   const char* json_type = "application/json; charset=utf-8";
+  using P = const Params&;
+  using W = const Work&;
   text_endpoint(
-      "/api/scene", [&](const Params& p) { return trace.geometry_json(p); }, json_type);
+      "/api/scene", [&](P p, W) { return trace.geometry_json(p); }, json_type);
   text_endpoint(
-      "/api/render", [&](const Params& p) { return trace.render_png(p); }, "image/png");
+      "/api/render", [&](P p, W w) { return trace.render_png(p, w); }, "image/png");
   text_endpoint(
-      "/api/trace", [&](const Params& p) { return trace.trace_json(p); }, json_type);
+      "/api/trace", [&](P p, W) { return trace.trace_json(p); }, json_type);
   text_endpoint(
-      "/api/radiosity/mesh", [&](const Params& p) { return radiosity.mesh_json(p); }, json_type);
+      "/api/radiosity/mesh", [&](P p, W w) { return radiosity.mesh_json(p, w); }, json_type);
   text_endpoint(
-      "/api/radiosity/start", [&](const Params& p) { return radiosity.start_json(p); }, json_type);
+      "/api/radiosity/start", [&](P p, W w) { return radiosity.start_json(p, w); }, json_type);
   text_endpoint(
-      "/api/radiosity/step", [&](const Params& p) { return radiosity.step_json(p); }, json_type);
+      "/api/radiosity/step", [&](P p, W) { return radiosity.step_json(p); }, json_type);
   text_endpoint(
-      "/api/hemicube", [&](const Params& p) { return radiosity.hemicube_json(p); }, json_type);
+      "/api/hemicube", [&](P p, W w) { return radiosity.hemicube_json(p, w); }, json_type);
   text_endpoint(
-      "/api/hemicube/study", [&](const Params& p) { return radiosity.hemicube_study_json(p); }, json_type);
+      "/api/hemicube/study", [&](P p, W w) { return radiosity.hemicube_study_json(p, w); }, json_type);
   text_endpoint(
       "/api/compare",
-      [&](const Params& p) {
+      [&](P p, W) {
         const Query q(p, {});
         return compare.list_json();
       },
       json_type);
   text_endpoint(
-      "/api/compare/image", [&](const Params& p) { return compare.image_png(p); }, "image/png");
+      "/api/compare/image", [&](P p, W) { return compare.image_png(p); }, "image/png");
   text_endpoint(
-      "/api/compare/stats", [&](const Params& p) { return compare.stats_json(p); }, json_type);
+      "/api/compare/stats", [&](P p, W) { return compare.stats_json(p); }, json_type);
+  // The reference lab's answers to the same requests (lab_reference.hpp): only these endpoints.
+  server.Get(R"(/api/reference/(info|scene|render|trace|radiosity/mesh|radiosity/start|radiosity/step))",
+             [&](const httplib::Request& request, httplib::Response& response) {
+               guarded(response, [&] {
+                 const std::string tab = tab_of(request);
+                 if (!reference.available())
+                   throw NotFound("no reference to compare with: " + reference.why());
+                 const std::size_t query = request.target.find('?');
+                 const ReferenceLab::Answer a =
+                     reference.get("/api/" + request.matches[1].str() +
+                                       (query == std::string::npos ? "" : request.target.substr(query)),
+                                   tab);
+                 response.status = a.status;
+                 response.set_content(a.body, a.type.empty() ? json_type : a.type);
+               });
+             });
 
-  signals.start(server);
+  signals.start(server, [&] { reference.terminate(); });
   std::cout << "illum lab: http://" << host << "/ (scene " << trace.default_scene()
             << "; the ray tree, radiosity shot by shot, the hemicube and your pictures; Ctrl-C stops it)"
             << std::endl;

@@ -22,6 +22,10 @@ struct LabOptions {
   RenderSettings settings;       // what /api/render and /api/trace use unless a request says otherwise
   std::filesystem::path source;  // the source tree (reference images): lessons/NN_topic/figures
   std::filesystem::path out;     // the lesson programs' outputs: OUT/lessonNN
+  // An `illum` built from the reference units, run beside this one for the page
+  // to compare with (lab_reference.hpp); empty: none.
+  std::filesystem::path reference;
+  bool reference_required = false;  // --reference given: one that does not start stops the lab
 };
 
 // Serves until SIGINT or SIGTERM; returns the exit status (0 after a clean

@@ -25,8 +25,9 @@ class TraceLab {
 
   // GET /api/scene: the geometry, camera, lights and materials (JSON).
   std::string geometry_json(const Params& params);
-  // GET /api/render: the image (PNG) at the settings of the request.
-  std::string render_png(const Params& params);
+  // GET /api/render: the image (PNG) at the settings of the request, row by
+  // row so that `work` can stop it.
+  std::string render_png(const Params& params, const Work& work);
   // GET /api/trace: ray_tree_json of one pixel, as `illum trace` writes it.
   std::string trace_json(const Params& params);
   // The settings a request asks for, as JSON (for /api/info).

@@ -11,7 +11,9 @@
 //
 // Convexity (lesson 03, §4): one loop, every turn at a vertex the same way
 // (or straight on, for a vertex in the middle of an edge, but never a
-// U-turn), and the edge directions go round exactly once. The last point
+// U-turn), and the edge directions go round exactly once. Turns are exact
+// signs (orient2d_sign), with no tolerance: a polygon 1e-8 across is judged
+// as one of size 1. The last point
 // matters: a pentagram turns the same way at every vertex but goes round
 // twice; counting the sign changes of the edges' u and v components (at most
 // two each for a single turn) catches it.
@@ -40,7 +42,8 @@ class ConvexPolygon {
 
 // True when q is on the inner side of every edge. Ties (q exactly on an edge's
 // line) are broken by orient2d_sign_perturbed, so the boundary is owned by the
-// same half-open rule as parity in lesson 02.
+// same half-open rule as parity (lesson 02, §4): the left and bottom edges and
+// the bottom-left corner are inside, the right and top ones outside.
 bool inside_convex(const ConvexPolygon& convex, const Vec2& q);
 
 }  // namespace illum

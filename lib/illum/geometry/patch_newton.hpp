@@ -43,9 +43,9 @@ struct PatchOptions {
 
 // What the search did, for the studies.
 struct PatchStats {
-  long boxes_tested = 0;
-  long newton_starts = 0;
-  long newton_iterations = 0;
+  long boxes_tested = 0;       // boxes tested against the ray, the whole patch's included
+  long newton_starts = 0;      // calls of patch_newton, one per surviving leaf
+  long newton_iterations = 0;  // PatchHit::iterations, summed over the starts that hit
 };
 
 // The planes π₁, π₂ through the ray (lesson 05, §7): N₁ ⟂ ω built from the

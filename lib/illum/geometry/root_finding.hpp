@@ -48,9 +48,11 @@ struct RootResult {
 // Bisection on `bracket` = [a, b] (lesson 05, §3). Converged when the half
 // width (b − a)/2 ≤ tolerance, or when the midpoint cannot move any more in
 // double precision; s is then the midpoint, within the tolerance of a root.
-// An endpoint where f is exactly 0 is returned at once. f(a)·f(b) > 0 gives
-// no_sign_change. Throws std::invalid_argument when the bracket is empty,
-// infinite or NaN, the tolerance is not positive, or max_iterations < 1.
+// An endpoint where f is exactly 0 is returned at once. f(a) and f(b) of one
+// sign give no_sign_change; compare the signs, never the product f(a)·f(b),
+// which underflows to 0 for |f| ≈ 1e-300 (a value the tests use). Throws
+// std::invalid_argument when the bracket is empty, infinite or NaN, the
+// tolerance is not positive, or max_iterations < 1.
 RootResult bisection(const RealFunction& f, Interval bracket, double tolerance, int max_iterations);
 
 // Newton's method from s0 (lesson 05, §4). Converged when a step |Δs| ≤
@@ -66,8 +68,9 @@ RootResult newton(const RealFunction& f, double s0, double tolerance, int max_it
 // "the previous step" is the width b − a of the bracket that the midpoint's
 // value left). The bracket shrinks after every evaluation. Converged when
 // |Δs| ≤ tolerance or the bracket's whole width b − a is ≤ tolerance (then
-// s, inside it, is within the tolerance of the root it brackets). Same
-// preconditions and no_sign_change as bisection.
+// s, inside it, is within the tolerance of the root it brackets), or where f
+// is exactly 0 (the midpoint start included: 0 iterations). Same
+// preconditions, no_sign_change and ends where f is exactly 0 as bisection.
 RootResult safeguarded_newton(const RealFunction& f, Interval bracket, double tolerance, int max_iterations);
 
 // Sphere tracing (lesson 05, §6). `distance` is a function that is positive

@@ -52,7 +52,8 @@ struct Crossing {
 };
 
 // The first span end, entries and exits alike, whose finite parameter s lies
-// in `range` (the ray's range); nothing when there is none. Throws
+// in `range` (the ray's range, closed: an end at range.lo or range.hi counts);
+// nothing when there is none. Throws
 // std::invalid_argument when a bound of `range` is NaN.
 std::optional<Crossing> nearest_crossing(const SpanList& spans, const Interval& range);
 

@@ -32,7 +32,8 @@ struct Sphere {
 
 // The real roots of the sphere's quadratic along a ray, in increasing order.
 // count = 0: the line misses the sphere (discriminant < 0);
-// count = 1: tangent, s_near == s_far (discriminant == 0);
+// count = 1: tangent, s_near == s_far (discriminant exactly 0: no tolerance,
+//            a sphere of radius 1e-150 is as valid as one of radius 1);
 // count = 2: the line crosses the sphere at s_near < s_far.
 template <class T>
 struct SphereRoots {
@@ -47,7 +48,10 @@ template <class T>
 SphereRoots<T> sphere_roots_notes(const glm::vec<3, T>& origin, const glm::vec<3, T>& direction,
                                   const glm::vec<3, T>& center, T radius);
 
-// The numerically stable form; same contract as sphere_roots_notes.
+// The numerically stable form; same contract as sphere_roots_notes. The
+// discriminant over four is r² − |ΔP − bω|² with b = ω·ΔP; q = b + sign(b)√(…)
+// and C/q are the roots; q = 0 (b = 0 and a tangent line: the ray touches the
+// sphere at its origin) gives both roots 0, not 0/0.
 template <class T>
 SphereRoots<T> sphere_roots_stable(const glm::vec<3, T>& origin, const glm::vec<3, T>& direction,
                                    const glm::vec<3, T>& center, T radius);
@@ -56,12 +60,13 @@ struct SphereHit {
   double s = 0;              // ray parameter of the hit, inside ray.range
   Point3 point{0.0};         // P0 + sω
   Vec3 normal{0.0};          // outward unit normal (P − Pc)/r at the hit, never flipped towards the ray
-  bool from_inside = false;  // the ray's origin lies strictly inside the sphere (which root lesson 01 takes)
+  bool from_inside = false;  // |P0 − Pc| < r, strictly: an origin on the surface is not inside
 };
 
 // The nearest hit of the ray with the sphere whose parameter lies in
-// ray.range, or nothing. Uses the stable roots. Precondition: ray.direction
-// is unit length (throws std::invalid_argument otherwise).
+// ray.range, closed (a root equal to range.lo or range.hi counts), or nothing.
+// Uses the stable roots. Precondition: ray.direction is unit length by
+// is_unit (core/ray.hpp); throws std::invalid_argument otherwise.
 std::optional<SphereHit> intersect(const Ray& ray, const Sphere& sphere);
 
 }  // namespace illum

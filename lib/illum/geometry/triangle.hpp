@@ -56,7 +56,9 @@ struct TriangleHit {
 };
 
 // The hit of the ray with the triangle (either side) if its parameter lies
-// in ray.range. A ray in the triangle's plane misses it.
+// in ray.range, closed (s = range.lo or range.hi counts). A ray in the
+// triangle's plane misses it (U + V + W = 0 exactly: no tolerance anywhere,
+// a triangle 1e-8 across is hit as one of size 1).
 std::optional<TriangleHit> intersect(const Ray& ray, const Triangle& triangle);
 
 }  // namespace illum

@@ -11,7 +11,7 @@
 // winding number is 2 (even, so parity says "outside") while the nonzero
 // rule says "inside".
 //
-// Boundary cases use the half-open rule of lesson 02 and the exact,
+// Boundary cases use the half-open rule of lesson 02, §4, and the exact,
 // tie-broken orientation predicate orient2d_sign_perturbed, so the decisions
 // agree with parity and are exact for any double coordinates: a vertex with
 // v == q.v counts as below the test ray (for both of its edges), so a point on

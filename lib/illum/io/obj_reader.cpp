@@ -226,8 +226,8 @@ void census_statement(std::size_t line, const std::vector<std::string_view>& tok
       const double value = parse_number(tokens[i + 1], line, (std::string("vertex ") + axis_name(i)).c_str());
       if (i < 3 && !(std::abs(value) <= max_obj_coordinate))
         throw obj_error(line, std::string("vertex ") + axis_name(i) + " '" + shown(tokens[i + 1]) +
-                                 "' lies beyond ±1e150, the bound of every coordinate of a scene (the "
-                                 "squared distances and areas computed from it would overflow a double)");
+                                  "' lies beyond ±1e150, the bound of every coordinate of a scene (the "
+                                  "squared distances and areas computed from it would overflow a double)");
       if (xyz && i < 3) (*xyz)[i] = value;
     }
     if (++census.count[0] > max_elements) throw obj_error(line, "more than 2^32 - 1 vertices");

@@ -9,7 +9,6 @@
 #include <new>
 #include <string_view>
 
-#include <sys/stat.h>
 #include <CLI/CLI.hpp>
 
 #include "illum/core/error.hpp"
@@ -118,14 +117,15 @@ std::string path_problem(const std::filesystem::path& path) {
   std::filesystem::path step;
   for (const std::filesystem::path& part : path) {
     step /= part;
-    struct stat link {
-    }, followed{};
-    if (::lstat(step.c_str(), &link) != 0) return "";  // missing from here on: its user says what it needs
-    if (!S_ISLNK(link.st_mode) || ::stat(step.c_str(), &followed) == 0) continue;
-    const int e = errno;
+    std::error_code ec;
+    const std::filesystem::file_status link = std::filesystem::symlink_status(step, ec);
+    if (ec || !std::filesystem::exists(link)) return "";  // missing from here on: its user says what it needs
+    if (!std::filesystem::is_symlink(link)) continue;
+    (void)std::filesystem::status(step, ec);  // only whether the link can be followed
+    if (!ec) continue;
+    const int e = ec.value();  // the system category's value is the errno of stat(2)
     const std::string what = "'" + step.string() + "' is a symbolic link";
     if (e == ELOOP) return what + " that leads back to itself (a link loop)";
-    std::error_code ec;
     const std::filesystem::path target = std::filesystem::read_symlink(step, ec);
     if (e == ENOENT) return what + " to '" + target.string() + "', which does not exist (a dangling link)";
     return what + " that cannot be followed: " + std::strerror(e);

@@ -79,7 +79,10 @@ SmallPolygon clip_polygon_to_half_space(std::span<const Point3> polygon, const P
 // applied to `to` clipped against the tangent plane of x. Zero when x lies on
 // or behind the plane of `to` (patches are one-sided: energy reaching the
 // back of a patch is not counted) and when nothing of `to` is above the
-// horizon. Throws std::invalid_argument when `normal` is not unit length or
+// horizon. "On" is relative to the size of `to`: x is in front when
+// n_to·(x − centroid) > 1e-12 times the largest centroid-to-vertex distance
+// (never an absolute tolerance: 1e-14 in front of a patch 1e-6 wide is in
+// front). Throws std::invalid_argument when `normal` is not unit length or
 // x is not finite.
 double point_polygon_form_factor(const Point3& x, const Vec3& normal, const Patch& to);
 

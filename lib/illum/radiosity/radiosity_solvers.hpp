@@ -17,8 +17,8 @@ namespace illum {
 // Task 1. Solves A·x = b (A is n × n, row-major, n = b.size()) by Gaussian
 // elimination with partial pivoting: at column k, swap up the row with the
 // largest |A_ik| (i ≥ k, the last row included), eliminate below it, then
-// back-substitute. Throws std::invalid_argument when A is not n × n or is
-// singular to working precision: the best pivot is ≤ n·ε·max|A| (ε =
+// back-substitute. Throws std::invalid_argument when b is empty, A is not
+// n × n, or A is singular to working precision: the best pivot is ≤ n·ε·max|A| (ε =
 // std::numeric_limits<double>::epsilon(), max|A| over the matrix given; the
 // bound is relative, so a regular matrix of tiny entries is solved and one of
 // huge entries can be singular); the message then contains "singular".

@@ -50,7 +50,8 @@ inline constexpr int max_shadow_crossings = 256;
 // plan.shadow_attenuation, each transmissive surface crossed multiplies it by
 // its k_t instead of blocking, and the walk goes on from it (spawn_ray_to
 // again) unless a cut-off ends it with 0: right after the surface that brings
-// every channel below min_shadow_transmission, or right after the
+// every channel strictly below min_shadow_transmission (a channel exactly at
+// it keeps the walk going), or right after the
 // max_shadow_crossings-th surface crossed. So a call casts at most
 // max_shadow_crossings shadow rays. Nothing at or beyond the light blocks it.
 // Without plan.shadow_attenuation any surface blocks: ask

@@ -51,6 +51,7 @@ export class CompareView {
     const params = { lesson: lesson.lesson, name };
     const url = which => `/api/compare/image?${new URLSearchParams({ ...params, which })}`;
     this.section.dataset.state = 'loading';
+    delete this.section.dataset.sizes;
     document.getElementById('cmp-reference').src = url('reference');
     const yours = document.getElementById('cmp-yours'), difference = document.getElementById('cmp-difference');
     try {
@@ -65,10 +66,19 @@ export class CompareView {
       yours.src = url('yours');
       if (!s.same_size) {
         difference.removeAttribute('src');
-        this.verdict.textContent = `The sizes differ: the reference is ${s.reference_size.join(' × ')}, yours ${s.yours_size.join(' × ')} ` +
-          '(a --quick run draws smaller images: run the program without --quick).';
+        const [rw, rh] = s.reference_size, [yw, yh] = s.yours_size;
+        const sizes = `The sizes differ: the reference is ${rw} × ${rh}, yours ${yw} × ${yh}`;
+        // Why, from what the program wrote: a diagram's size follows its content; a smaller picture of
+        // the same shape is what --quick draws; anything else has another shape.
+        this.verdict.textContent = s.diagram
+          ? `${sizes}. This is a drawing of a diagram (the program wrote ${name.replace(/\.png$/, '.dot')} beside it), and its size follows what it ` +
+            'shows: yours holds other nodes or other labels than the reference\'s. Compare the two pictures below, or click the same pixel in the ray-tree view.'
+          : yw < rw && Math.abs(yw / yh - rw / rh) < 0.02 * (rw / rh)
+            ? `${sizes}, the same shape, smaller: a --quick run draws smaller images; run the program without --quick to compare.`
+            : `${sizes}, another shape: compare the two pictures below.`;
         this.section.dataset.state = 'compared';
         this.section.dataset.matches = 'false';
+        this.section.dataset.sizes = s.diagram ? 'diagram' : yw < rw && Math.abs(yw / yh - rw / rh) < 0.02 * (rw / rh) ? 'quick' : 'shape';
         return;
       }
       difference.src = url('difference');

@@ -2,7 +2,7 @@
 // buffers and delta form factors unfolded, the row they add up to, and its
 // error against the exact factor from the centroid (Lambert's contour
 // formula) as the resolution changes (GET /api/hemicube/study).
-import { api, decodeBase64, displayNumber, el, loadThree, logChart, setStatus, threeMissing, Viewer } from './lab_util.js';
+import { afterNextFrame, api, decodeBase64, displayNumber, el, loadThree, logChart, setStatus, threeMissing, Viewer } from './lab_util.js';
 import { heat, PatchMesh } from './lab_mesh.js';
 
 // lib/illum/radiosity/hemicube.cpp's hemicube_pixel and to_face, for the unfolded drawing.
@@ -74,10 +74,10 @@ export class HemicubeView {
     for (const r of [8, 16, 32, 64, 128, 256, 512]) this.resolution.append(el('option', { value: r, text: `${r} pixels` }));
     this.resolution.value = '64';
     this.patchInput = document.getElementById('hc-patch');
-    document.getElementById('hc-show').addEventListener('click', () => this.show());
-    this.resolution.addEventListener('change', () => this.show());
-    this.patchInput.addEventListener('change', () => { this.patchInput.dataset.chosen = 'true'; this.show(); });
-    for (const id of ['hc-scene', 'hc-patches']) document.getElementById(id).addEventListener('change', () => this.show());
+    document.getElementById('hc-show').addEventListener('click', e => this.show(e.timeStamp));
+    this.resolution.addEventListener('change', e => this.show(e.timeStamp));
+    this.patchInput.addEventListener('change', e => { this.patchInput.dataset.chosen = 'true'; this.show(e.timeStamp); });
+    for (const id of ['hc-scene', 'hc-patches']) document.getElementById(id).addEventListener('change', e => this.show(e.timeStamp));
     this.threeReady = info.three ? loadThree().catch(() => null) : Promise.resolve(null);
     this.busy = Promise.resolve();
   }
@@ -101,7 +101,7 @@ export class HemicubeView {
         if (hit) {
           this.patchInput.value = this.patchMesh.patchOfTriangle[hit.faceIndex];
           this.patchInput.dataset.chosen = 'true';
-          this.show();
+          this.show(e.timeStamp);
         }
       });
     }
@@ -117,12 +117,13 @@ export class HemicubeView {
     this.patchMesh.paintPatches(i => m.emission[3 * i] > 0 ? [1, 0.9, 0.6] : [0, 1, 2].map(k => 0.15 + 0.8 * m.reflectance[3 * i + k]));
   }
 
-  show() {
-    this.busy = this.busy.then(() => this.place(), () => this.place());
+  // `askedAt`: the event's time; the status gives the time from it to the frame that shows the row.
+  show(askedAt = performance.now()) {
+    this.busy = this.busy.then(() => this.place(askedAt), () => this.place(askedAt));
     return this.busy;
   }
 
-  async place() {
+  async place(askedAt) {
     this.section.dataset.state = 'placing';
     setStatus(this.status, 'placing the hemicube…');
     try {
@@ -131,15 +132,19 @@ export class HemicubeView {
       this.patchInput.value = patch;
       const res = Number(this.resolution.value);
       const [h, study] = await Promise.all([
-        api('/api/hemicube', { ...this.meshParams(), patch, resolution: res }),
-        api('/api/hemicube/study', { ...this.meshParams(), patch }).catch(e => ({ rows: [], error: e.message }))]);
+        api('/api/hemicube', { ...this.meshParams(), patch, resolution: res }, 'json', { view: 'hemicube' }),
+        api('/api/hemicube/study', { ...this.meshParams(), patch }, 'json', { view: 'hemicube' }).catch(e => ({ rows: [], error: e.message }))]);
       this.draw(h, study);
       this.section.dataset.patch = String(patch);
       this.section.dataset.resolution = String(res);
       this.section.dataset.sum = String(h.sum);
-      setStatus(this.status, `patch ${patch} (${h.surface}), resolution ${res}: the row sums to ${displayNumber(h.sum)} ` +
-        `(1 − Σ = ${displayNumber(1 - h.sum)} of the hemisphere sees no patch); drawn in ${displayNumber(h.seconds * 1000)} ms`);
+      const status = `patch ${patch} (${h.surface}), resolution ${res}: the row sums to ${displayNumber(h.sum)} ` +
+        `(1 − Σ = ${displayNumber(1 - h.sum)} of the hemisphere sees no patch); its hemicube took ${displayNumber(h.seconds * 1000)} ms`;
+      setStatus(this.status, status);
       this.section.dataset.state = 'drawn';
+      const shownAt = await afterNextFrame();
+      if (this.section.dataset.patch === String(patch) && this.section.dataset.resolution === String(res))
+        setStatus(this.status, `${status}, on the screen ${Math.round(shownAt - askedAt)} ms after it was asked for`);
     } catch (e) {
       this.section.dataset.state = 'error';
       setStatus(this.status, e.message, true);
@@ -172,8 +177,10 @@ export class HemicubeView {
     if (h.exact) {
       const e = h.errors;
       items.push(el('p', { id: 'hc-errors', 'data-targets': e.targets, 'data-mean-rel': e.mean_rel, 'data-max-abs': e.max_abs,
+        'data-weighted-rel': e.weighted_rel, 'data-edge-on': e.edge_on,
         text: `Against the exact factor from the centroid, over the ${e.targets} patches it sees whole: largest error ${displayNumber(e.max_abs)}, ` +
-          `mean ${displayNumber(e.mean_abs)}, mean relative ${displayNumber(e.mean_rel)}.` }));
+          `mean ${displayNumber(e.mean_abs)}; the share of the row's total on the wrong patch ${displayNumber(e.weighted_rel)}; ` +
+          `mean relative error ${displayNumber(e.mean_rel)} (${displayNumber(e.mean_rel_above)} without the ${e.edge_on} seen edge-on).` }));
     } else {
       items.push(el('p', { class: 'error', text: `No exact reference: ${h.exact_error}` }));
     }
@@ -181,9 +188,11 @@ export class HemicubeView {
     if (study.error) items.push(el('p', { class: 'error', text: `No resolution study: ${study.error}` }));
     summary.replaceChildren(...items);
     logChart(document.getElementById('hc-chart'), [
-      { points: rows.map(r => [r.resolution, r.mean_rel]), className: 'series', label: 'mean relative error' },
+      { points: rows.map(r => [r.resolution, r.weighted_rel]), className: 'series', label: 'Σ|ΔF| / ΣF' },
+      { points: rows.map(r => [r.resolution, r.mean_rel_above]), className: 'series3', label: 'mean relative error (above 1°)' },
       { points: rows.map(r => [r.resolution, r.max_abs]), className: 'series2', label: 'largest error' }],
       { xLabel: 'resolution (pixels across the top face)', logX: true });
+    this.explain(rows);
     // The largest factors of the row, beside their exact values.
     const table = document.getElementById('hc-targets');
     const order = h.row.map((f, j) => j).sort((a, b) => h.row[b] - h.row[a]).slice(0, 12);
@@ -192,9 +201,29 @@ export class HemicubeView {
       ...order.map(j => el('tr', {}, el('td', { text: j }), el('td', { text: this.patchMesh ? this.patchMesh.surfaceOf(j) : '' }),
         el('td', { text: displayNumber(h.row[j]) }), el('td', { text: h.exact ? displayNumber(h.exact[j]) : '—' }),
         el('td', { text: h.exact ? displayNumber(h.row[j] - h.exact[j]) : '—' }), el('td', { text: h.exact ? (h.seen_whole[j] ? 'yes' : 'no') : '—' }))),
-      el('tr', {}, ...['resolution', 'Σ F_ij', 'largest error', 'mean relative error', 'patches seen whole', 'ms'].map(t => el('th', { text: t }))),
-      ...rows.map(r => el('tr', { class: 'study-row', 'data-resolution': r.resolution, 'data-sum': String(r.sum) },
+      el('tr', {}, ...['resolution', 'Σ F_ij', 'largest error', 'Σ|ΔF| / ΣF', 'mean relative error, all', 'above 1°', 'patches seen whole', 'edge-on', 'ms'].map(t => el('th', { text: t }))),
+      ...rows.map(r => el('tr', { class: 'study-row', 'data-resolution': r.resolution, 'data-sum': String(r.sum),
+        'data-weighted-rel': String(r.weighted_rel), 'data-mean-rel': String(r.mean_rel), 'data-mean-rel-above': String(r.mean_rel_above) },
         el('td', { text: r.resolution }), el('td', { text: displayNumber(r.sum) }), el('td', { text: displayNumber(r.max_abs) }),
-        el('td', { text: displayNumber(r.mean_rel) }), el('td', { text: r.targets }), el('td', { text: displayNumber(r.seconds * 1000) }))));
+        el('td', { text: displayNumber(r.weighted_rel) }), el('td', { text: displayNumber(r.mean_rel) }), el('td', { text: displayNumber(r.mean_rel_above) }),
+        el('td', { text: r.targets }), el('td', { text: r.edge_on }), el('td', { text: displayNumber(r.seconds * 1000) }))));
+  }
+
+  // Why the mean relative error over every target may not fall as the resolution grows, in this
+  // row's own numbers (lab_radiosity.cpp, row_errors).
+  explain(rows) {
+    const why = document.getElementById('hc-why');
+    if (rows.length < 2) { why.textContent = ''; return; }
+    const a = rows[0], b = rows[rows.length - 1], range = (f, x = v => v) => `${displayNumber(x(a[f]))} at ${a.resolution} pixels to ${displayNumber(x(b[f]))} at ${b.resolution}`;
+    const common = `The mean relative error counts every target alike, the smallest factors as much as the largest; a target whose outline ` +
+      `covers a few pixels is drawn too large or too small by a pixel's worth, so its relative error falls only as fast as a pixel shrinks. ` +
+      `Weighted by the factors, the share of the row's total put on the wrong patch goes from ${range('weighted_rel')}, and the largest error from ${range('max_abs')}.`;
+    why.textContent = b.edge_on > 0
+      ? `${b.edge_on} of the ${b.targets} targets lie within ${b.edge_on_degrees}° of this patch's plane, seen edge-on (their factors add up to ` +
+        `${displayNumber(b.edge_on_factor)}): at every resolution they fall in the side faces' lowest row of pixels, whose delta form factor, ` +
+        `taken at the pixel's centre, is far from their tiny factors, so their relative errors stay near 1 and the mean over every target goes from ` +
+        `${range('mean_rel')}. Without them it goes from ${range('mean_rel_above')}. ${common}`
+      : `Every target lies more than ${b.edge_on_degrees}° above this patch's plane; the mean relative error goes from ${range('mean_rel')}. ${common}`;
+    why.dataset.edgeOn = String(b.edge_on);
   }
 }

@@ -1,6 +1,6 @@
 // A radiosity mesh (GET /api/radiosity/mesh) as a three.js mesh: each patch a
-// fan of triangles, one colour per corner, and the patch of each triangle
-// for picking. Shared by the radiosity and hemicube views.
+// fan of triangles over its own corners (one colour per corner), and the
+// patch of each triangle for picking. Shared by the radiosity and hemicube views.
 
 export class PatchMesh {
   constructor(THREE, mesh) {
@@ -9,22 +9,24 @@ export class PatchMesh {
     const n = mesh.patches;
     this.first = new Int32Array(n + 1);  // first corner of each patch in mesh.vertices
     for (let i = 0; i < n; ++i) this.first[i + 1] = this.first[i] + mesh.vertex_counts[i];
-    // Fan triangles: (0, k, k + 1); each triangle vertex remembers its patch and corner.
-    const corners = [], patchOfTriangle = [];
+    // Fan triangles (0, k, k + 1) indexing the corners: a corner is drawn once however many
+    // triangles share it (a CPU's WebGL pays for every vertex it shades).
+    const index = [], patchOfTriangle = [];
     for (let i = 0; i < n; ++i)
       for (let k = 1; k + 1 < mesh.vertex_counts[i]; ++k) {
-        corners.push(this.first[i], this.first[i] + k, this.first[i] + k + 1);
+        index.push(this.first[i], this.first[i] + k, this.first[i] + k + 1);
         patchOfTriangle.push(i);
       }
-    this.corners = Int32Array.from(corners);
     this.patchOfTriangle = Int32Array.from(patchOfTriangle);
-    const positions = new Float32Array(this.corners.length * 3);
-    this.corners.forEach((c, j) => { for (let k = 0; k < 3; ++k) positions[3 * j + k] = mesh.vertices[3 * c + k]; });
     this.geometry = new THREE.BufferGeometry();
-    this.geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-    this.colours = new Float32Array(this.corners.length * 3);
+    this.geometry.setAttribute('position', new THREE.BufferAttribute(Float32Array.from(mesh.vertices), 3));
+    this.geometry.setIndex(index);
+    this.colours = new Float32Array(mesh.vertices.length);
     this.geometry.setAttribute('color', new THREE.BufferAttribute(this.colours, 3));
+    // Both sides: the meshers do not keep every patch's corners in one turning sense (the triangles
+    // along the red wall's diagonal), so culling back faces left holes.
     this.object = new THREE.Mesh(this.geometry, new THREE.MeshBasicMaterial({ vertexColors: true, side: THREE.DoubleSide }));
+    this.object.frustumCulled = false;  // the whole mesh is in view: no bounding sphere to test every frame
     this.outline = null;
     // The scene's extent, for the cameras.
     let lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
@@ -37,36 +39,42 @@ export class PatchMesh {
 
   // One linear RGB colour per patch.
   paintPatches(colourOf) {
-    for (let j = 0; j < this.corners.length; ++j) {
-      const c = colourOf(this.patchOfTriangle[Math.floor(j / 3)]);
-      this.colours[3 * j] = c[0], this.colours[3 * j + 1] = c[1], this.colours[3 * j + 2] = c[2];
+    for (let i = 0; i + 1 < this.first.length; ++i) {
+      const c = colourOf(i);
+      for (let j = this.first[i]; j < this.first[i + 1]; ++j)
+        this.colours[3 * j] = c[0], this.colours[3 * j + 1] = c[1], this.colours[3 * j + 2] = c[2];
     }
     this.geometry.attributes.color.needsUpdate = true;
   }
 
-  // One linear RGB colour per corner: corner c of the mesh's vertex list.
+  // One linear RGB colour per corner: corner c of the mesh's vertex list, on patch i.
   paintCorners(colourOfCorner) {
-    for (let j = 0; j < this.corners.length; ++j) {
-      const c = colourOfCorner(this.corners[j], this.patchOfTriangle[Math.floor(j / 3)]);
-      this.colours[3 * j] = c[0], this.colours[3 * j + 1] = c[1], this.colours[3 * j + 2] = c[2];
-    }
+    for (let i = 0; i + 1 < this.first.length; ++i)
+      for (let j = this.first[i]; j < this.first[i + 1]; ++j) {
+        const c = colourOfCorner(j, i);
+        this.colours[3 * j] = c[0], this.colours[3 * j + 1] = c[1], this.colours[3 * j + 2] = c[2];
+      }
     this.geometry.attributes.color.needsUpdate = true;
   }
 
   // A magenta outline of patch i (none for i < 0), lifted off its plane.
   outlinePatch(scene, i) {
     const THREE = this.THREE;
-    if (this.outline) { scene.remove(this.outline); this.outline.geometry.dispose(); this.outline = null; }
+    if (!this.outline) {  // one loop, refilled: a material made per shot was a new one per shot
+      this.outline = new THREE.LineLoop(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0xff33cc, depthTest: false }));
+      this.outline.renderOrder = 10;
+      this.outline.frustumCulled = false;
+    }
+    if (this.outline.parent !== scene) scene.add(this.outline);
+    this.outline.visible = i >= 0;
     if (i < 0) return;
     const m = this.data, points = [];
     const lift = this.size * 0.002;
     for (let c = this.first[i]; c < this.first[i + 1]; ++c)
       points.push(new THREE.Vector3(m.vertices[3 * c] + lift * m.normal[3 * i], m.vertices[3 * c + 1] + lift * m.normal[3 * i + 1],
         m.vertices[3 * c + 2] + lift * m.normal[3 * i + 2]));
-    this.outline = new THREE.LineLoop(new THREE.BufferGeometry().setFromPoints(points),
-      new THREE.LineBasicMaterial({ color: 0xff33cc, depthTest: false }));
-    this.outline.renderOrder = 10;
-    scene.add(this.outline);
+    this.outline.geometry.dispose();
+    this.outline.geometry = new THREE.BufferGeometry().setFromPoints(points);
   }
 
   // The scene's camera when it has one, else a view of the whole mesh.

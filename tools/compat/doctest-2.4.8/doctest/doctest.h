@@ -244,8 +244,8 @@ namespace detail {
 void throwException();
 
 struct ResultBuilder : public AssertData {
-  ResultBuilder(assertType::Enum at, const char* file, int line, const char* expr, const char* exception_type = "",
-                const char* exception_string = "");
+  ResultBuilder(assertType::Enum at, const char* file, int line, const char* expr,
+                const char* exception_type = "", const char* exception_string = "");
   void translateException();
   bool log();
   void react() const;
