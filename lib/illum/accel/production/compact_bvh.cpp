@@ -485,7 +485,7 @@ __attribute__((target("avx"))) inline int may_hit_two(const WidePackRay& r, cons
 
 // may_hit_two by fused multiply-adds (the AVX2 kernel): the same bounds, which hold for the fused
 // evaluation too (each fused operation rounds once where the plain one rounds twice, and the
-// bounds of sums of products (Higham, Accuracy and Stability of Numerical Algorithms, §3.1) do
+// bounds of sums of products (Higham, Accuracy and Stability of Numerical Algorithms, section 3.1) do
 // not grow), and the sure hits worked out only when some lane passes.
 __attribute__((target("avx2,fma"))) inline int may_hit_fma(const WidePackRay& r, const TrianglePack* pack,
                                                            float lo, float hi, float sure_lo,
