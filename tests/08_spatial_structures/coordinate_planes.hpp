@@ -2,7 +2,7 @@
 // through a list of lesson 08's structures: graded through the structures the
 // student's code walks (coordinate_planes_grading.cpp: the grid and the
 // teaching BVH), and not graded through every structure (coordinate_planes.cpp:
-// also the octree and the production BVH on its SSE2 and AVX paths):
+// also the octree and the production BVH with each of its kernels):
 //   * rays leaving triangles and meshes that lie in x = 0, y = 0 or z = 0 (at the
 //     origin and 10⁴ from it) or in x = 10⁴…: reflected, refracted and shadow rays
 //     hit nothing. Expected by geometry alone: a ray leaving a plane never meets

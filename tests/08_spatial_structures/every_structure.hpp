@@ -2,10 +2,11 @@
 // Every spatial structure of lesson 08 over one set, by name, for the hard
 // cases that must hold through all of them: brute force, the uniform grid (its
 // default resolution and a fine one), the octree, the teaching BVH, and the
-// production BVH on its SSE2 path and on its AVX path (CompactBvh::use_avx; on
-// a processor without AVX the second is the SSE2 path again, and says so), at
-// the default leaf size and at 16, where the AVX traversal filters two packs at
-// once. And the comparison with brute force, the slow exact method they must agree with.
+// production BVH with each of its kernels, SSE2, AVX and AVX2 with fused
+// multiply-adds (CompactBvh::use_kernel; a kernel the processor lacks runs the
+// best one it has, and its name says so), at the default leaf size and at 16,
+// where the wide kernels filter two packs at once. And the comparison with
+// brute force, the slow exact method they must agree with.
 #include <doctest/doctest.h>
 
 #include <memory>
@@ -34,16 +35,16 @@ inline std::vector<Structure> every_structure(const TriangleSet& set) {
   all.push_back({"grid (resolution 37)", std::make_unique<UniformGrid>(set, GridSettings{.resolution = 37})});
   all.push_back({"octree", make_accel(set, {.kind = AccelKind::octree})});
   all.push_back({"bvh", std::make_unique<Bvh>(set, BvhSettings{})});
-  for (const int leaf : {4, 16}) {
-    auto sse = std::make_unique<CompactBvh>(set, BvhSettings{.leaf_size = leaf});
-    sse->use_avx(false);
-    all.push_back({"bvh, SSE2 path, leaf size " + std::to_string(leaf), std::move(sse)});
-    auto avx = std::make_unique<CompactBvh>(set, BvhSettings{.leaf_size = leaf});
-    const bool has_avx = avx->use_avx(true);
-    all.push_back({std::string(has_avx ? "bvh, AVX path" : "bvh, AVX path (no AVX here: SSE2 again)") +
-                       ", leaf size " + std::to_string(leaf),
-                   std::move(avx)});
-  }
+  for (const int leaf : {4, 16})
+    for (const CompactBvh::Kernel kernel : CompactBvh::all_kernels) {
+      auto bvh = std::make_unique<CompactBvh>(set, BvhSettings{.leaf_size = leaf});
+      const CompactBvh::Kernel used = bvh->use_kernel(kernel);
+      all.push_back(
+          {std::string("bvh, ") + to_string(kernel) + " kernel" +
+               (used == kernel ? "" : std::string(" (not on this processor: ") + to_string(used) + ")") +
+               ", leaf size " + std::to_string(leaf),
+           std::move(bvh)});
+    }
   return all;
 }
 

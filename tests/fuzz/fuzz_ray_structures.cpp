@@ -7,7 +7,7 @@
 // Checked on every input, within a budget of rays (and a time budget, so that a
 // slow input still ends its run):
 //   * every structure (grid at the input's resolution, octree, teaching BVH,
-//     production BVH on its SSE2 and AVX paths at the input's leaf size) gives
+//     production BVH with each of its kernels at the input's leaf size) gives
 //     brute force's closest hit (the same s; the same triangle or one tied with
 //     it there) and the same any-hit answer, on random rays, axis-parallel rays
 //     and zero-length ranges [s, s] exactly at hits;
@@ -210,11 +210,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                                                           .leaf_size = 1 + static_cast<int>(in.below(8))})});
   const int leaf = 1 + static_cast<int>(in.below(16));
   structures.push_back({"bvh", std::make_unique<Bvh>(set, BvhSettings{.leaf_size = leaf})});
-  auto sse = std::make_unique<CompactBvh>(set, BvhSettings{.leaf_size = leaf});
-  sse->use_avx(false);
-  structures.push_back({"bvh (SSE2)", std::move(sse)});
-  auto avx = std::make_unique<CompactBvh>(set, BvhSettings{.leaf_size = leaf});
-  structures.push_back({avx->use_avx(true) ? "bvh (AVX)" : "bvh (SSE2, no AVX here)", std::move(avx)});
+  for (const CompactBvh::Kernel kernel : CompactBvh::all_kernels) {
+    auto bvh = std::make_unique<CompactBvh>(set, BvhSettings{.leaf_size = leaf});
+    structures.push_back({std::string("bvh (") + to_string(bvh->use_kernel(kernel)) + ")", std::move(bvh)});
+  }
   const BruteForce brute(set);
 
   // Rays: from around the scene (inside its box and out to three times its size), a third of them

@@ -1,7 +1,6 @@
 #include "illum/geometry/orientation.hpp"
 
 #include <cmath>
-#include <limits>
 
 namespace illum {
 
@@ -47,11 +46,6 @@ struct Expansion {
   }
 };
 
-// Shewchuk's bound on the error of the floating-point orient2d, relative to
-// |detleft| + |detright|: (3 + 16ε)ε with ε = 2⁻⁵³.
-constexpr double epsilon = std::numeric_limits<double>::epsilon() / 2;
-constexpr double error_bound = (3.0 + 16.0 * epsilon) * epsilon;
-
 int exact_sign(const Vec2& a, const Vec2& b, const Vec2& c) {
   // Expanded so that every term is a product of two input coordinates
   // (no rounded differences): the c.x·c.y terms cancel.
@@ -74,7 +68,7 @@ double orient2d_robust(const Vec2& a, const Vec2& b, const Vec2& c) {
   const double right = (a.y - c.y) * (b.x - c.x);
   const double det = left - right;
   // If the value exceeds the bound on its own error, its sign is right.
-  const double bound = error_bound * (std::abs(left) + std::abs(right));
+  const double bound = orient2d_error_bound * (std::abs(left) + std::abs(right));
   if (det > bound || -det > bound) return det;
   return static_cast<double>(exact_sign(a, b, c));
 }

@@ -28,6 +28,11 @@ inline double orient2d_naive(const Vec2& a, const Vec2& b, const Vec2& c) {
   return (a.x - c.x) * (b.y - c.y) - (a.y - c.y) * (b.x - c.x);
 }
 
+// Shewchuk's bound on the rounding error of orient2d_naive, relative to
+// |(a.x − c.x)(b.y − c.y)| + |(a.y − c.y)(b.x − c.x)|: (3 + 16ε)ε with ε = 2⁻⁵³. A value
+// larger than the bound has the exact sign (orient2d_robust's first test).
+constexpr double orient2d_error_bound = (3.0 + 16.0 * 0x1p-53) * 0x1p-53;
+
 // The exact sign of orient2d(a, b, c): +1, 0 or −1.
 int orient2d_sign(const Vec2& a, const Vec2& b, const Vec2& c);
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "illum/radiosity/patch.hpp"
+#include "illum/system/huge_pages.hpp"
 
 namespace illum {
 
@@ -30,7 +31,7 @@ class FormFactorMatrix {
 
  private:
   std::size_t n_ = 0;
-  std::vector<double> f_;
+  HugePageVector<double> f_;  // n² doubles: in huge pages, whose first touch faults 512 times less
 };
 
 // Largest violation of reciprocity A_i F_ij = A_j F_ji, relative to

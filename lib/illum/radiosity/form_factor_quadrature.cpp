@@ -105,25 +105,21 @@ double area_rule_form_factor(const Patch& from, const Patch& to, int m_from, int
 }
 
 AreaRulePointTable::AreaRulePointTable(const std::vector<Patch>& patches)
-    : x_(patches.size() * per_patch),
-      y_(x_.size()),
-      z_(x_.size()),
-      weight_(x_.size()),
-      mapped_(patches.size(), 0) {
-  static_assert(area_rule_order_offset(max_area_rule_order + 1) == per_patch);
-  // Patches in parallel (OpenMP): each writes only its own block.
-  const long n = static_cast<long>(patches.size());
-#pragma omp parallel for schedule(static)
-  for (long k = 0; k < n; ++k) {
-    const auto i = static_cast<std::size_t>(k);
-    const std::size_t nv = patches[i].vertices.size();
-    if (nv < 3 || nv > 4) continue;
-    mapped_[i] = 1;
-    for (int m = 1; m <= max_area_rule_order; ++m) {
-      const std::size_t at = i * per_patch + area_rule_order_offset(m);
-      map_area_points(patches[i], m, &x_[at], &y_[at], &z_[at], &weight_[at]);
-    }
-  }
+    : patches_(patches), mappable_(patches.size(), 0) {
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    mappable_[i] = patches[i].vertices.size() >= 3 && patches[i].vertices.size() <= 4;
+}
+
+void AreaRulePointTable::map_order(int m) const {
+  const Order& order = orders_[static_cast<std::size_t>(m - 1)];
+  const std::size_t per_patch = static_cast<std::size_t>(padded_points(m)), n = patches_.size();
+  order.x.resize(n * per_patch), order.y.resize(n * per_patch), order.z.resize(n * per_patch);
+  order.weight.resize(n * per_patch);
+  for (std::size_t i = 0; i < n; ++i)
+    if (mappable_[i] != 0)
+      map_area_points(patches_[i], m, &order.x[i * per_patch], &order.y[i * per_patch],
+                      &order.z[i * per_patch], &order.weight[i * per_patch]);
+  order.ready.store(true, std::memory_order_release);
 }
 
 ILLUM_AVX2_CLONE double area_rule_exchange(const AreaRulePoints& from, const Vec3& normal_from,

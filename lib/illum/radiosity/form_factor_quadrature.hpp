@@ -10,12 +10,15 @@
 // Triangles are mapped from the square by the collapsed (Duffy) map,
 // quadrilaterals bilinearly; other polygons are not handled here.
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cstddef>
+#include <mutex>
 #include <numbers>
 #include <vector>
 
 #include "illum/radiosity/patch.hpp"
+#include "illum/system/huge_pages.hpp"
 
 namespace illum {
 
@@ -66,6 +69,16 @@ double area_rule_error_bound(int m, int vertices, double half_edge, double dista
 // K of area_rule_error_bound (see there).
 inline constexpr double area_rule_error_constant = 3.0;
 
+// bounds[0] of area_rule_error_bounds (order 1) alone, the same value: the matrix builder's first
+// try, which at loose targets settles most pairs.
+inline double area_rule_first_error_bound(int vertices, double half_edge, double inverse_distance,
+                                          double area_to) {
+  constexpr double constant_over_pi = area_rule_error_constant / std::numbers::pi;
+  const double ratio = half_edge * inverse_distance;
+  return constant_over_pi * area_to * inverse_distance * inverse_distance * (vertices == 3 ? 1 : ratio) *
+         ratio;
+}
+
 // The bounds of area_rule_error_bound for m = 1 … max_area_rule_order at
 // once (bounds[m − 1]), without re-checking the arguments, from the inverse
 // of the distance: what the matrix builder needs for every pair when it picks
@@ -77,13 +90,11 @@ inline void area_rule_error_bounds(int vertices, double half_edge, double invers
   // its argument checks. bounds[m] = bounds[m − 2^k] · (h/d)^(2·2^k), 2^k the highest power of two in
   // m: a tree of products three deep rather than a chain of seven (the chain's latency was a third of
   // the builder's time per pair at loose targets).
-  constexpr double constant_over_pi = area_rule_error_constant / std::numbers::pi;
   const double ratio = half_edge * inverse_distance;
   double power[std::bit_width(static_cast<unsigned>(max_area_rule_order))];  // power[k] = (h/d)^(2·2^k)
   power[0] = ratio * ratio;
   for (std::size_t k = 1; k < std::size(power); ++k) power[k] = power[k - 1] * power[k - 1];
-  bounds[0] =
-      constant_over_pi * area_to * inverse_distance * inverse_distance * (vertices == 3 ? 1 : ratio) * ratio;
+  bounds[0] = area_rule_first_error_bound(vertices, half_edge, inverse_distance, area_to);
   for (unsigned m = 1; m < max_area_rule_order; ++m) {
     const unsigned high = std::bit_floor(m);
     bounds[m] = bounds[m - high] * power[std::countr_zero(high)];
@@ -94,20 +105,6 @@ inline void area_rule_error_bounds(int vertices, double half_edge, double invers
 // multiple of 4, the extra points with weight 0, so that the kernel's loop
 // runs over whole groups of four (vector instructions, no remainder loop).
 constexpr int padded_points(int m) { return (m * m + 3) / 4 * 4; }
-
-// Where order m starts within one patch's block of an AreaRulePointTable:
-// Σ padded_points(k) for k < m.
-constexpr std::size_t area_rule_order_offset(int m) {
-  std::size_t at = 0;
-  for (int k = 1; k < m; ++k) at += static_cast<std::size_t>(padded_points(k));
-  return at;
-}
-inline constexpr std::array<std::size_t, max_area_rule_order + 2> area_rule_order_offsets = [] {
-  std::array<std::size_t, max_area_rule_order + 2> at{};
-  for (int m = 1; m <= max_area_rule_order + 1; ++m)
-    at[static_cast<std::size_t>(m)] = area_rule_order_offset(m);
-  return at;
-}();
 
 // The m × m points of the area rule on one patch, as separate coordinate
 // arrays, each with its weight dA; the weights sum to the patch's area. The
@@ -120,23 +117,34 @@ struct AreaRulePoints {
 
 // The points of every patch of a scene at every order 1 … max_area_rule_order,
 // computed once so that a matrix builder does not map the same points again
-// for each of the n − 1 pairs a patch belongs to. Patches other than
-// triangles and quadrilaterals get no points (points() then has size 0).
+// for each of the n − 1 pairs a patch belongs to. An order is mapped, for
+// every patch at once, the first time a pair asks for it (safely from many
+// threads): at loose targets most orders are never asked for. Patches other
+// than triangles and quadrilaterals get no points (points() then has size 0).
 class AreaRulePointTable {
  public:
-  explicit AreaRulePointTable(const std::vector<Patch>& patches);
+  explicit AreaRulePointTable(const std::vector<Patch>& patches);  // keeps a reference to `patches`
   // The points of patch `patch` at order m; requires patch < the scene's size
   // and 1 ≤ m ≤ max_area_rule_order (not checked: it is called for every pair).
   AreaRulePoints points(std::size_t patch, int m) const {
-    if (!mapped_[patch]) return {};
-    const std::size_t at = patch * per_patch + area_rule_order_offsets[static_cast<std::size_t>(m)];
-    return {&x_[at], &y_[at], &z_[at], &weight_[at], m * m};
+    const Order& order = orders_[static_cast<std::size_t>(m - 1)];
+    if (!order.ready.load(std::memory_order_acquire)) std::call_once(order.mapped, [&] { map_order(m); });
+    if (!mappable_[patch]) return {};
+    const std::size_t at = patch * static_cast<std::size_t>(padded_points(m));
+    return {&order.x[at], &order.y[at], &order.z[at], &order.weight[at], m * m};
   }
 
  private:
-  static constexpr std::size_t per_patch = area_rule_order_offset(max_area_rule_order + 1);
-  std::vector<double> x_, y_, z_, weight_;
-  std::vector<int> mapped_;  // 1 if the patch has points
+  struct Order {
+    mutable std::once_flag mapped;
+    mutable std::atomic<bool> ready{false};          // set once mapped: the common case without call_once
+    mutable HugePageVector<double> x, y, z, weight;  // padded_points(m) per patch
+  };
+  void map_order(int m) const;
+
+  const std::vector<Patch>& patches_;
+  std::vector<char> mappable_;  // 1 for a triangle or a quadrilateral
+  std::array<Order, max_area_rule_order> orders_;
 };
 
 // Σ_a Σ_b w_a w_b cos φ_a cos φ_b / r_ab²: the area rule's estimate of π A_from F,

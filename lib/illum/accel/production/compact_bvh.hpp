@@ -57,20 +57,30 @@
 
 #include "illum/accel/bvh.hpp"
 #include "illum/accel/triangle_accel.hpp"
+#include "illum/system/huge_pages.hpp"
 
 namespace illum {
 
-// Eight children: box planes [plane][child], planes 0–2 the lo of x, y, z and
-// 3–5 the hi; for each child a leaf (count > 0 triangles, `child` its first
-// TrianglePack) or the index of its node (count = 0). An unused slot has an
-// empty box (lo = +∞, hi = −∞) that no ray enters.
+// Eight children: for each a reference (a leaf's first TrianglePack and its count of triangles,
+// or the index of an inner node: compact_bvh_ref) and its box planes [plane][child], planes 0–2 the
+// lo of x, y, z and 3–5 the hi. An unused slot has an empty box (lo = +∞, hi = −∞) that no ray
+// enters. The references come first, in the line that also holds the lo of x: the box test loads
+// all four lines at once, so the references are in cache when it picks a child.
 constexpr int compact_bvh_width = 8;
 struct alignas(64) CompactBvhNode {
-  float planes[6][compact_bvh_width];
   std::uint32_t child[compact_bvh_width];
-  std::uint16_t count[compact_bvh_width];
+  float planes[6][compact_bvh_width];
+  std::uint32_t unused[compact_bvh_width];  // 0 (the build keeps a leaf's first triangle here)
 };
 static_assert(sizeof(CompactBvhNode) == 256);
+
+// A child reference: the low 24 bits an index (of a node, or of a leaf's first pack), the high 8
+// the leaf's count of triangles (0: an inner node). Each leaf holds at most 255 triangles (as
+// BvhSettings allows) and the build refuses a tree of 2^24 nodes or packs (64 million triangles).
+constexpr int compact_bvh_index_bits = 24;
+constexpr std::uint32_t compact_bvh_ref(std::uint32_t index, std::uint32_t count) {
+  return index | count << compact_bvh_index_bits;
+}
 
 // The filter's view of four triangles, [axis][lane]: a vertex, the two edges
 // from it, their ∞-norms for the rounding bound, and the triangles' ids. A leaf of n triangles
@@ -85,24 +95,6 @@ struct alignas(16) TrianglePack {
 };
 static_assert(sizeof(TrianglePack) == 192);
 
-// Storage for the layout's arrays: blocks of 2 MiB and more are 2 MiB-aligned and offered to the
-// kernel as huge pages (Linux madvise; elsewhere plain aligned blocks), as Embree does: a ray's path
-// through a large tree touches pages at random, and one TLB entry then covers 512 times more.
-void* allocate_layout(std::size_t bytes, std::size_t alignment);
-void free_layout(void* block, std::size_t bytes, std::size_t alignment);
-template <class T>
-struct LayoutAllocator {
-  using value_type = T;
-  LayoutAllocator() = default;
-  template <class U>
-  explicit LayoutAllocator(const LayoutAllocator<U>&) {}
-  T* allocate(std::size_t n) { return static_cast<T*>(allocate_layout(n * sizeof(T), alignof(T))); }
-  void deallocate(T* p, std::size_t n) { free_layout(p, n * sizeof(T), alignof(T)); }
-  friend bool operator==(const LayoutAllocator&, const LayoutAllocator&) { return true; }
-};
-template <class T>
-using LayoutVector = std::vector<T, LayoutAllocator<T>>;
-
 class CompactBvh final : public TriangleAccel {
  public:
   // Builds a Bvh with `settings` and lays it out; throws as Bvh does.
@@ -114,24 +106,35 @@ class CompactBvh final : public TriangleAccel {
   std::string_view name() const override { return "compact_bvh"; }
 
   std::size_t node_count() const { return nodes_.size(); }
-  // The AVX traversal runs where the processor has AVX (the default); false forces the SSE2 baseline
-  // everywhere, so that tests check both on an AVX machine. Returns whether AVX is now used.
-  bool use_avx(bool wanted);
+
+  // The traversal's kernels: the x86-64 baseline (SSE2, four lanes), AVX (eight lanes) and AVX2 with
+  // fused multiply-adds. Each gives the same hits (the exact test decides every one). The default is
+  // the best the processor has (asked once, at run time); use_kernel picks a lower one, so that tests
+  // check every kernel on one machine, and returns the kernel now used: the best the processor has
+  // at or below `wanted`.
+  enum class Kernel { sse2, avx, avx2_fma };
+  static constexpr Kernel all_kernels[] = {Kernel::sse2, Kernel::avx, Kernel::avx2_fma};
+  Kernel use_kernel(Kernel wanted);
+  Kernel kernel() const { return kernel_; }
 
  private:
-  void prefetch(const void* entry) const;  // a traversal stack entry's node or packs
-  // intersect's traversal; wide: nodes clipped in one AVX register (compiled for AVX, called only
-  // when the processor has it: avx_); the rest is the same SSE2 code.
-  template <bool wide>
+  // intersect's traversal for one kernel; each is compiled for its instruction set, and called only
+  // where the processor has it.
+  template <Kernel k>
   std::optional<AccelHit> closest(const Ray& ray, TraversalCounters& counters) const;
+  std::optional<AccelHit> intersect_avx2_fma(const Ray& ray, TraversalCounters& counters) const;
   std::optional<AccelHit> intersect_avx(const Ray& ray, TraversalCounters& counters) const;
   std::optional<AccelHit> intersect_sse2(const Ray& ray, TraversalCounters& counters) const;
 
-  bool avx_ = false;
+  Kernel kernel_ = Kernel::sse2;
 
-  LayoutVector<CompactBvhNode> nodes_;
-  LayoutVector<TrianglePack> packs_;  // in leaf order
-  LayoutVector<Triangle> triangles_;  // triangles_[4·pack + lane], for the exact test (unused lanes: copies)
+  HugePageVector<CompactBvhNode> nodes_;
+  HugePageVector<TrianglePack> packs_;  // in leaf order, and one for padding
+  HugePageVector<Triangle>
+      triangles_;  // triangles_[4·pack + lane], for the exact test (unused lanes: copies)
 };
+
+// "sse2", "avx", "avx2_fma".
+const char* to_string(CompactBvh::Kernel kernel);
 
 }  // namespace illum
