@@ -56,7 +56,10 @@ COMPILER_HOMES = ("lib/illum/system/platform.hpp", "lib/illum/core/stopwatch.hpp
                   "lib/illum/accel/production/compact_bvh.cpp", "lib/illum/radiosity/form_factor_quadrature.cpp")
 SYSTEM_HOMES = ("lib/illum/system/platform.cpp", "lib/illum/system/atomic_file.cpp",
                 "lib/illum/system/child_process.cpp", "lib/illum/system/input_file.cpp",
-                "lib/illum/system/memory_budget.cpp", "lib/illum/system/huge_pages.cpp")
+                "lib/illum/system/memory_budget.cpp", "lib/illum/system/huge_pages.cpp",
+                # the lab's reference child: a second lab kept running beside the first (fork, a pipe for
+                # its port, PR_SET_PDEATHSIG), which child_process's run-to-the-end call does not do
+                "tools/lab/lab_reference.cpp", "tools/lab/lab_reference.hpp")
 PLATFORM_RULES: list[tuple[re.Pattern[str], str, tuple[str, ...]]] = [
     (re.compile(r"\b__builtin_\w+|\b__attribute__\b|\basm\s+volatile\b|\b__asm__\b|\b__int128\b|\b__float128\b"
                 r"|\b__extension__\b|\b__declspec\b"),
