@@ -17,7 +17,7 @@ std::vector<Color> average_vertex_radiosity(const SharedVertexMesh& mesh,
                                             const std::vector<Color>& face_radiosity) {
   throw NotImplemented("average_vertex_radiosity",
                        "sum B_f over the faces listing v and the T-vertex hosts of v, divide by their "
-                       "number (lesson 12, §2)");
+                       "number; 0 where none does (lesson 12, §2)");
 }
 
 // Task 2. Extrapolate at the boundary: B_b = B₁ + B₂ − B_e, B_a = 2B₁ − B_e, clamped at zero.
@@ -25,13 +25,15 @@ std::vector<Color> extrapolated_vertex_radiosity(const SharedVertexMesh& mesh,
                                                  const std::vector<Color>& face_radiosity) {
   throw NotImplemented("extrapolated_vertex_radiosity",
                        "start from Task 1; on a boundary vertex of two faces use B1 + B2 - B_e, of one quad "
-                       "2 B1 - B_e (e opposite), then clamp at zero (lesson 12, §3)");
+                       "2 B1 - B_e (e opposite), B_e read from Task 1's averages, then clamp at zero; "
+                       "T-vertices keep their average (lesson 12, §3)");
 }
 
 // Task 3. T-vertices take the value along the edge they lie on.
 void resolve_t_vertices(const SharedVertexMesh& mesh, std::vector<Color>& vertex_value) {
   throw NotImplemented("resolve_t_vertices",
-                       "in order, value[vertex] = (1 - t) value[from] + t value[to] (lesson 12, §4)");
+                       "check the length, then in order, value[vertex] = (1 - t) value[from] + t value[to] "
+                       "(lesson 12, §4)");
 }
 
 // Task 4. Per face, per corner, by the chosen rule (check the list's length first, for every rule).
