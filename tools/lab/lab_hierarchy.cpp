@@ -25,7 +25,7 @@ constexpr double max_split_elements = 200000;  // the scene's area over min_edge
 // A solve stops after this much work: the knobs at their finest on the room ask for tens of millions of
 // visibility segments, and a request must not hold a core for minutes.
 constexpr double solve_seconds = 20;
-constexpr int max_sweeps = 1000;              // solve_links' bound, each solve
+constexpr int max_sweeps = 1000;               // solve_links' bound, each solve
 constexpr std::size_t max_links_shown = 4000;  // of one clicked element and its ancestors
 constexpr std::size_t max_solutions = 4;
 
@@ -77,11 +77,13 @@ std::string HierarchyLab::hierarchy_json(const Params& params, const Work& work)
     const std::vector<Patch>& roots = made->scene.patches;
     double area = 0, emitted = 0;
     for (const Patch& p : roots) area += p.area, emitted += max_channel(p.emission);
-    if (!(emitted > 0)) throw BadRequest("no surface of scene '" + entry.id + "' emits light: nothing to solve");
+    if (!(emitted > 0))
+      throw BadRequest("no surface of scene '" + entry.id + "' emits light: nothing to solve");
     if (area / (min_edge * min_edge) > max_split_elements)
       throw BadRequest(q.asked("min_edge") + " lets scene '" + entry.id + "' split into " +
                        std::to_string(static_cast<long long>(area / (min_edge * min_edge))) +
-                       " elements; the lab allows " + std::to_string(static_cast<long long>(max_split_elements)));
+                       " elements; the lab allows " +
+                       std::to_string(static_cast<long long>(max_split_elements)));
     const PatchOccluders occluders(roots);  // lesson 08's BVH, for the links' visibility
     Stopwatch watch;
     std::uint64_t asked = 0;
@@ -175,16 +177,17 @@ std::string HierarchyLab::hierarchy_json(const Params& params, const Work& work)
       if (std::find(up.begin(), up.end(), l.receiver) == up.end()) continue;
       if (++total > max_links_shown) continue;
       const Patch& other = h[l.source].patch;
-      links.push_back({{"receiver", l.receiver},
-                       {"level", h[l.receiver].level},
-                       {"source", l.source},
-                       {"source_level", h[l.source].level},
-                       {"source_surface", s->scene.surfaces[static_cast<std::size_t>(other.surface)].name},
-                       {"form_factor", l.form_factor},
-                       {"estimate", form_factor_estimate(h[l.receiver].patch, other)},  // the oracle's disc
-                       {"brings", colour_json(h[l.receiver].patch.reflectance * h[l.source].radiosity * l.form_factor)},
-                       {"centroid", triple(other.centroid)},
-                       {"vertices", corner_list(other)}});
+      links.push_back(
+          {{"receiver", l.receiver},
+           {"level", h[l.receiver].level},
+           {"source", l.source},
+           {"source_level", h[l.source].level},
+           {"source_surface", s->scene.surfaces[static_cast<std::size_t>(other.surface)].name},
+           {"form_factor", l.form_factor},
+           {"estimate", form_factor_estimate(h[l.receiver].patch, other)},  // the oracle's disc
+           {"brings", colour_json(h[l.receiver].patch.reflectance * h[l.source].radiosity * l.form_factor)},
+           {"centroid", triple(other.centroid)},
+           {"vertices", corner_list(other)}});
     }
     const Patch& p = h[e].patch;
     selected = {{"element", e},

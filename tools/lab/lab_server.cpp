@@ -345,7 +345,8 @@ int run_lab(const LabOptions& options) {
 
   signals.start(server, [&] { reference.terminate(); });
   std::cout << "illum lab: http://" << host << "/ (scene " << trace.default_scene()
-            << "; the ray tree, radiosity shot by shot, the hemicube, the hierarchy and your pictures; Ctrl-C stops it)"
+            << "; the ray tree, radiosity shot by shot, the hemicube, the hierarchy and your pictures; "
+               "Ctrl-C stops it)"
             << std::endl;
   const bool listened = server.listen_after_bind();
   if (signals.signal() != 0) {
