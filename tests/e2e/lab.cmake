@@ -8,7 +8,7 @@
 #                 through puppeteer-core): a click on Whitted's glass ball draws the nodes `illum trace
 #                 --pixel` writes; 10 shots give the unshot power of the library's progressive solver
 #                 (lab_reference, below) and lesson 11's own table; a hemicube row sums to its exact
-#                 value; the comparison's number; two tabs at once; nothing fetched from elsewhere; and
+#                 value; lesson 14's hierarchy: a click draws links, a bad ε refused; the comparison's number; two tabs at once; nothing fetched from elsewhere; and
 #                 a mutant student build (illum_cli_mutant, below) beside the reference: the first
 #                 differing node and shot; the stubs beside the reference and alone
 # Without a cpp-httplib this build can link (tools/lab/lab.cmake, ILLUM_LAB_MISSING) the lab tests fail

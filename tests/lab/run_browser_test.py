@@ -72,7 +72,8 @@ GLASS_PIXEL = (285, 173)  # lesson 06's inspector pixel: on the glass ball, off 
 
 GROUPS = ["the ray tree against illum trace", "radiosity against progressive_on_demand and lesson 11's table",
           "the hemicube row against its exact sum", "your pictures against the reference", "offline, no script error",
-          "a student's build beside the reference", "a build on the stubs"]
+          "a student's build beside the reference", "a build on the stubs",
+          "lesson 14's hierarchy: a click draws links, a bad ε refused"]
 
 
 def fail(problems: list[tuple[int, str]], group: int, message: str) -> None:
@@ -266,7 +267,8 @@ def main() -> int:
         coplanar = sum(1 for j in range(other["first"], other["first"] + other["count"]) if within_one_degree(j))
         options = {"pixel": list(GLASS_PIXEL), "patch": patch, "resolutions": [256, 512], "redPatch": red_patch,
                    "compare": [["01", "depth.png"], ["01", "normals.png"], ["01", "silhouette.png"],
-                               ["01", "far_sphere_stable_float.png"], ["06", "ray_tree.png"]]}
+                               ["01", "far_sphere_stable_float.png"], ["06", "ray_tree.png"]],
+                   "hierarchyScene": "room"}
         (work / "options.json").write_text(json.dumps(options), encoding="utf-8")
         observed_file = work / "observed.json"
         browser = subprocess.run([node, str(SOURCE / "tools" / "lab" / "browser.mjs"), "test", f"http://127.0.0.1:{lab.port}/",
@@ -418,6 +420,27 @@ def main() -> int:
     diagram = cmp["06/ray_tree.png"]
     if diagram["sizes"] != "diagram" or "--quick" in diagram["verdict"] or "ray_tree.dot" not in diagram["verdict"]:
         fail(problems, 3, f"a larger drawing of a tree, its .dot beside it: {diagram}")
+
+    # 8. Lesson 14's hierarchy: the room at the page's defaults (the lesson's demonstration knobs) has the
+    # elements and links of lesson 14's own table (README, written by `lesson14`); the click gathers on
+    # links, each drawn as a line and its source's outline; ε_F = 0 is refused, naming it and the value.
+    hr, refused = observed["hierarchy"], observed["hierarchyRefused"]
+    table = (SOURCE / "lessons" / "14_hierarchical_radiosity" / "README.md").read_text(encoding="utf-8")
+    row = next((line.split("|")[1:-1] for line in table.splitlines() if line.replace(" ", "").startswith("|0.4|0.0100|")), None)
+    if row is None or (hr["elements"], hr["links"]) != (int(row[2]), int(row[4])):
+        fail(problems, 7, f"the room at ε_F 0.4, ε_BF 0.01: {hr['elements']} elements, {hr['links']} links; lesson 14's table: {row}")
+    # A link is a line and its source's outline (3 or 4 edges): 4 segments at least.
+    if not (hr["selectedLinks"] > 0 and hr["drawnLines"] >= 4 * min(hr["selectedLinks"], 4000) and "of its ancestors" in hr["count"]):
+        fail(problems, 7, f"the click on element {hr['element']}: {hr['selectedLinks']} links, {hr['drawnLines']} lines drawn: {hr['count']!r}")
+    with Lab(args.illum, "whitted") as again:
+        picked = again.json("/api/hierarchy", {"scene": "room", "element": hr["element"]})["selected"]
+    chain = {c["element"] for c in picked["chain"]}
+    if not (picked["links_total"] == hr["selectedLinks"] and all(l["receiver"] in chain and 0 < l["form_factor"] < 1
+                                                                  for l in picked["links"])):
+        fail(problems, 7, f"element {hr['element']}'s links: not all gathered by its chain {sorted(chain)}, or F outside (0, 1)")
+    if not (refused["state"] == "error" and "'epsilon_f'" in refused["status"] and "'0'" in refused["status"]
+            and len(refused["console"]) == 1 and "status of 400" in refused["console"][0]):
+        fail(problems, 7, f"ε_F = 0: {refused}")
 
     # 5. Offline, and no script error.
     seen = observed["seen"]

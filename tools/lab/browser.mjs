@@ -59,7 +59,7 @@ async function waitState(page, id, states, timeout = 60000) {
   await page.waitForFunction((sel, want) => want.includes(document.querySelector(sel).dataset.state),
     { timeout, polling: 'mutation' }, id, states);
   const s = await state(page, id);
-  const status = { '#tab-tree': '#tree-status', '#tab-radiosity': '#rad-status', '#tab-hemicube': '#hc-status', '#tab-compare': '#cmp-verdict' }[id];
+  const status = { '#tab-tree': '#tree-status', '#tab-radiosity': '#rad-status', '#tab-hemicube': '#hc-status', '#tab-hierarchy': '#hr-status', '#tab-compare': '#cmp-verdict' }[id];
   if (s === 'error') throw new Error(`${id}: ${await page.$eval(status, p => p.textContent)}`);
 }
 
@@ -225,13 +225,40 @@ async function test() {
     why: document.querySelector('#hc-why').textContent, edgeOn: Number(document.querySelector('#hc-why').dataset.edgeOn),
     rows: [...document.querySelectorAll('#hc-targets .study-row')].map(r => ({ resolution: Number(r.dataset.resolution),
       weighted: Number(r.dataset.weightedRel), mean: Number(r.dataset.meanRel), above: Number(r.dataset.meanRelAbove) })) }));
+  log('the hierarchy');
+  // 4. Lesson 14's hierarchy on the scene the caller chose: a click on the middle of the view (a mouse
+  // click, as a student's), the links drawn for it; then a bad ε_F, refused.
+  await openTab(page, 'hierarchy', '#tab-hierarchy', ['drawn']);
+  await setValue(page, '#hr-scene', options.hierarchyScene);
+  await page.waitForFunction(s => { const d = document.querySelector('#tab-hierarchy').dataset;
+    return window.lab.views.hierarchy.h?.scene === s && d.state === 'drawn' || d.state === 'error'; },
+  { timeout: 120000, polling: 20 }, options.hierarchyScene);
+  await waitState(page, '#tab-hierarchy', ['drawn']);
+  const canvas = await page.$eval('#hr-3d canvas', c => { const r = c.getBoundingClientRect(); return { x: r.left + r.width / 2, y: r.top + r.height / 2 }; });
+  await page.mouse.click(canvas.x, canvas.y);
+  await page.waitForFunction(() => document.querySelector('#tab-hierarchy').dataset.element !== undefined ||
+    document.querySelector('#tab-hierarchy').dataset.state === 'error', { timeout: 60000, polling: 20 });
+  await waitState(page, '#tab-hierarchy', ['drawn']);
+  observed.hierarchy = await page.evaluate(() => { const v = window.lab.views.hierarchy, d = document.querySelector('#tab-hierarchy').dataset;
+    return { params: v.params(), elements: Number(d.elements), links: Number(d.links), element: Number(d.element),
+      selectedLinks: Number(d.selectedLinks), drawnLines: v.links.children.reduce((n, c) => n + c.geometry.attributes.position.count / 2, 0),
+      count: document.querySelector('#hr-link-count').textContent, status: document.querySelector('#hr-status').textContent }; });
+  const consoleBefore = seen.console.length;
+  await setValue(page, '#hr-epsilon-f', '0');
+  await page.waitForFunction(() => ['error', 'drawn'].includes(document.querySelector('#tab-hierarchy').dataset.state),
+    { timeout: 60000, polling: 20 });
+  observed.hierarchyRefused = await page.evaluate(() => ({ state: document.querySelector('#tab-hierarchy').dataset.state,
+    status: document.querySelector('#hr-status').textContent }));
+  observed.hierarchyRefused.console = seen.console.splice(consoleBefore);  // the refusal's own 400, checked apart
+  await setValue(page, '#hr-epsilon-f', '0.4');
+  await waitState(page, '#tab-hierarchy', ['drawn']);
   log('your pictures');
-  // 4. Your pictures.
+  // 5. Your pictures.
   await openTab(page, 'compare', '#tab-compare', ['compared', 'missing']);
   observed.compare = {};
   for (const [lesson, image] of options.compare) observed.compare[`${lesson}/${image}`] = await compare(page, lesson, image);
   log('two more tabs');
-  // 5. Two more tabs at once, each with its own session: the same ten shots.
+  // 6. Two more tabs at once, each with its own session: the same ten shots.
   const [a, b] = await Promise.all([open('radiosity'), open('radiosity')]);
   await Promise.all([waitState(a, '#tab-radiosity', ['ready'], 120000), waitState(b, '#tab-radiosity', ['ready'], 120000)]);
   await Promise.all([radiosityStep(a, '#rad-step-10', 10), radiosityStep(b, '#rad-step-10', 10)]);

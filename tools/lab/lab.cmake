@@ -57,8 +57,8 @@ if(NOT ILLUM_LAB_MISSING)
     VERBATIM)
   # The lab's sources once, for illum_cli and for the test build against the stubs (tests/e2e/lab.cmake).
   add_library(illum_lab_objects OBJECT ${ILLUM_LAB_DIR}/lab_common.cpp ${ILLUM_LAB_DIR}/lab_trace.cpp
-                                       ${ILLUM_LAB_DIR}/lab_radiosity.cpp ${ILLUM_LAB_DIR}/lab_compare.cpp
-                                       ${ILLUM_LAB_DIR}/lab_reference.cpp ${ILLUM_LAB_DIR}/lab_server.cpp
+                                       ${ILLUM_LAB_DIR}/lab_radiosity.cpp ${ILLUM_LAB_DIR}/lab_hierarchy.cpp
+                                       ${ILLUM_LAB_DIR}/lab_compare.cpp ${ILLUM_LAB_DIR}/lab_reference.cpp ${ILLUM_LAB_DIR}/lab_server.cpp
                                        ${lab_generated})
   add_dependencies(illum_lab_objects illum_lab_assets)
   target_include_directories(illum_lab_objects PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
@@ -78,8 +78,8 @@ if(NOT ILLUM_LAB_MISSING)
   # The lab's own code answers requests; the work it asks for (tracing, hemicubes, solvers) is the
   # library's, compiled at -O3.
   illum_cold_code(illum_lab_objects ${ILLUM_LAB_DIR}/lab_common.cpp ${ILLUM_LAB_DIR}/lab_trace.cpp
-                  ${ILLUM_LAB_DIR}/lab_radiosity.cpp ${ILLUM_LAB_DIR}/lab_compare.cpp ${ILLUM_LAB_DIR}/lab_reference.cpp
-                  ${ILLUM_LAB_DIR}/lab_server.cpp)
+                  ${ILLUM_LAB_DIR}/lab_radiosity.cpp ${ILLUM_LAB_DIR}/lab_hierarchy.cpp ${ILLUM_LAB_DIR}/lab_compare.cpp
+                  ${ILLUM_LAB_DIR}/lab_reference.cpp ${ILLUM_LAB_DIR}/lab_server.cpp)
   # After the definitions above, which keep lab_server.cpp apart. Two files to a unit: Make
   # compiles the lab's objects last, and one unit of all four (each instantiating nlohmann-json)
   # was the build's last 14 s on one core (docs/measurements.md).

@@ -17,6 +17,7 @@
 #include "illum/core/error.hpp"
 #include "lab/lab_assets.hpp"
 #include "lab/lab_compare.hpp"
+#include "lab/lab_hierarchy.hpp"
 #include "lab/lab_radiosity.hpp"
 #include "lab/lab_reference.hpp"
 #include "lab/lab_trace.hpp"
@@ -174,6 +175,7 @@ int run_lab(const LabOptions& options) {
   const std::vector<SceneEntry> catalogue = scene_catalogue(options.scene);
   TraceLab trace(catalogue, options.settings);  // loads the scene: a bad one stops here
   RadiosityLab radiosity(catalogue);
+  HierarchyLab hierarchy(catalogue);
   const CompareLab compare(options.source, options.out);
   ReferenceLab reference(options.reference, reference_arguments(options));
   if (!options.reference.empty() && !reference.available()) {
@@ -312,6 +314,8 @@ int run_lab(const LabOptions& options) {
   text_endpoint(
       "/api/hemicube/study", [&](P p, W w) { return radiosity.hemicube_study_json(p, w); }, json_type);
   text_endpoint(
+      "/api/hierarchy", [&](P p, W w) { return hierarchy.hierarchy_json(p, w); }, json_type);
+  text_endpoint(
       "/api/compare",
       [&](P p, W) {
         const Query q(p, {});
@@ -341,7 +345,8 @@ int run_lab(const LabOptions& options) {
 
   signals.start(server, [&] { reference.terminate(); });
   std::cout << "illum lab: http://" << host << "/ (scene " << trace.default_scene()
-            << "; the ray tree, radiosity shot by shot, the hemicube and your pictures; Ctrl-C stops it)"
+            << "; the ray tree, radiosity shot by shot, the hemicube, the hierarchy and your pictures; "
+               "Ctrl-C stops it)"
             << std::endl;
   const bool listened = server.listen_after_bind();
   if (signals.signal() != 0) {

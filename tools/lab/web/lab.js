@@ -1,10 +1,11 @@
-// The lab's page (docs/lab.md): four views of the build that serves it.
+// The lab's page (docs/lab.md): five views of the build that serves it.
 // Everything it loads comes from that build (GET /assets/..., /api/...).
 import { api, el } from './lab_util.js';
 import { TreeView } from './lab_tree.js';
 import { RadiosityView } from './lab_radiosity.js';
 import { HemicubeView } from './lab_hemicube.js';
 import { CompareView } from './lab_compare.js';
+import { HierarchyView } from './lab_hierarchy.js';
 
 async function main() {
   let info;
@@ -25,7 +26,7 @@ async function main() {
     notice.textContent = 'This build was made without three.js (node_modules/three was missing): the 3D views are off. ' +
       'Run tools/install-deps (it runs npm ci), then build again; the images, diagrams and charts work meanwhile.';
   }
-  const views = { tree: new TreeView(info), radiosity: new RadiosityView(info), hemicube: new HemicubeView(info), compare: new CompareView(info) };
+  const views = { tree: new TreeView(info), radiosity: new RadiosityView(info), hemicube: new HemicubeView(info), hierarchy: new HierarchyView(info), compare: new CompareView(info) };
   const started = new Set();
   const open = name => {
     for (const b of document.querySelectorAll('#tabs button')) b.setAttribute('aria-selected', String(b.dataset.tab === name));
@@ -35,6 +36,7 @@ async function main() {
       if (name === 'tree') views.tree.loadScene();
       if (name === 'radiosity') views.radiosity.start();
       if (name === 'hemicube') views.hemicube.show();
+      if (name === 'hierarchy') views.hierarchy.solve();
       if (name === 'compare') views.compare.load();
     }
     if (location.hash !== `#${name}`) history.replaceState(null, '', `#${name}`);
