@@ -38,10 +38,7 @@ from .results import TestResult
 from .runner import deadline_from_environment, run_suite
 from .sandbox import Account, Limits, Sandbox, SandboxError
 
-try:  # tools/ is on the path (tools/grade, run_autograder's PYTHONPATH)
-    from path_options import path_argument
-except ImportError:  # pragma: no cover - the grading package used alone
-    path_argument = Path
+from common.path_options import path_argument  # tools/ is on the path (tools/grade, run_autograder's PYTHONPATH)
 
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:
