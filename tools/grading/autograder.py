@@ -503,7 +503,7 @@ def setup(root: Path, lessons: list[str]) -> None:
     """setup.sh's checks: versions; the stubs built and graded (0); the hidden tests' objects kept and
     their sources removed; the reference graded (full marks) and then removed; the stubs built again
     as every run will find them; the trusted data kept where only root reads it."""
-    from .sandbox import Account, Sandbox, chown_tree
+    from .sandbox import chown_tree
 
     source, tree, hidden, pristine = _paths(root)
     check_toolchain()
@@ -518,14 +518,49 @@ def setup(root: Path, lessons: list[str]) -> None:
     grader.mkdir(parents=True)
     grader.chmod(0o700)
     build_dir = tree / "build" / "grade-student"
-    if user is not None:
-        sandbox = Sandbox(Account.lookup(user))
-        for path in (tree, build_dir.parent):
-            path.mkdir(parents=True, exist_ok=True)
-            if not sandbox.can_reach(path):
-                raise SetupError(f"the user {user} cannot reach {path}: every folder above it must be "
-                                 "searchable by others (chmod o+x), as /autograder is on Gradescope")
-    # Keep the stubs as they came, for run_autograder and for the fallback of a broken file.
+    _check_reach(user, (tree, build_dir.parent))
+    references, stubs = _keep_stubs(source, tree, pristine)
+    # Builds run as root here (the sources are the instructor's); the tests run as the student's user,
+    # through the same sandbox as every submission's.
+    common = ["--build-as-grader"] + (["--as-user", user] if user else [])
+    with tempfile.TemporaryDirectory(prefix="illum-setup-") as folder:
+        print("\nsetup: building the witness (the tests with the reference solutions) where only root reads",
+              flush=True)
+        for unit in references:
+            shutil.copyfile(unit, stubs[unit.name])
+            stubs[unit.name].touch()
+        _build_witness(tree, grader, lessons, hidden)
+        if hidden is not None:
+            shutil.rmtree(hidden)  # compiled; no run may read them
+            print("setup: the hidden tests' sources are deleted", flush=True)
+        tests = _prove_reference(root, lessons, common, Path(folder) / "reference.json")
+        _prove_stubs(tree, lessons, common + ["--grader-data", str(grader)], Path(folder) / "stubs.json", tests)
+    symbols = _stub_symbols(tree, build_dir, lessons)
+    (grader / "stub-symbols.json").write_text(json.dumps(symbols, indent=1) + "\n", encoding="utf-8")
+    (grader / "config.json").write_text(json.dumps({"user": user, "lessons": lessons}) + "\n", encoding="utf-8")
+    # Nothing in source/ is writable but by root (runs make the build tree the student's while it compiles).
+    chown_tree(source, 0, 0, strip_write=True)
+    grader.chmod(0o700)
+    print(f"setup: the prepared tree is ready: {source}", flush=True)
+
+
+def _check_reach(user: str | None, paths: tuple[Path, ...]) -> None:
+    """The student's user must be able to reach the build tree (every folder above it searchable)."""
+    from .sandbox import Account, Sandbox
+
+    if user is None:
+        return
+    sandbox = Sandbox(Account.lookup(user))
+    for path in paths:
+        path.mkdir(parents=True, exist_ok=True)
+        if not sandbox.can_reach(path):
+            raise SetupError(f"the user {user} cannot reach {path}: every folder above it must be "
+                             "searchable by others (chmod o+x), as /autograder is on Gradescope")
+
+
+def _keep_stubs(source: Path, tree: Path, pristine: Path) -> tuple[list[Path], dict[str, Path]]:
+    """Keeps the stubs as they came (for run_autograder and the fallback of a broken file); returns the
+    reference units and the stubs they replace, each reference checked to have its stub."""
     if pristine.exists():
         shutil.rmtree(pristine)
     for stub in sorted((tree / "exercises").glob("[0-9][0-9]_*/*.cpp")):
@@ -540,52 +575,41 @@ def setup(root: Path, lessons: list[str]) -> None:
     for unit in references:
         if unit.name not in stubs:
             raise SetupError(f"reference/{unit.name} has no stub in exercises/: repack the autograder")
-    # Builds run as root here (the sources are the instructor's); the tests run as the student's user,
-    # through the same sandbox as every submission's.
-    common = ["--build-as-grader"] + (["--as-user", user] if user else [])
-    with tempfile.TemporaryDirectory(prefix="illum-setup-") as folder:
-        print("\nsetup: building the witness (the tests with the reference solutions) where only root reads",
-              flush=True)
-        for unit in references:
-            shutil.copyfile(unit, stubs[unit.name])
-            stubs[unit.name].touch()
-        _build_witness(tree, grader, lessons, hidden)
-        if hidden is not None:
-            shutil.rmtree(hidden)  # compiled; no run may read them
-            print("setup: the hidden tests' sources are deleted", flush=True)
+    return references, stubs
 
-        print("\nsetup: grading the reference solutions as a submission (they must score full marks)", flush=True)
-        results = Path(folder) / "reference.json"
-        status = _grade(tree, lessons, None, results,
-                        common + ["--grader-data", str(grader), "--save-tests", str(grader / "tests.json")],
-                        env=reference_environment())
-        data = _read_results(results)
-        _restore_stubs(tree, pristine)
-        shutil.rmtree(source / "reference")  # proved; no run may read them
-        if status != 0 or not data.get("tests") or data.get("score") != data.get("max_score"):
-            failed = [t["name"] for t in data.get("tests", []) if t.get("status") != "passed"]
-            raise SetupError(
-                f"the reference solutions did not pass (tools/grade exited {status}; score "
-                f"{data.get('score')}/{data.get('max_score')}; failing: {', '.join(failed[:10]) or 'the build'}). "
-                "The grader would blame students for its own fault: fix the tree, the hidden tests or the "
-                "image, and repack.")
-        print(f"setup: the reference scored {data['score']}/{data['max_score']} over {len(data['tests'])} tests; "
-              "its units are deleted", flush=True)
 
-        print("\nsetup: the stubs, as every submission will find them (they must score 0)", flush=True)
-        stub_results = Path(folder) / "stubs.json"
-        _grade(tree, lessons, None, stub_results, common + ["--grader-data", str(grader)])
-        again = _read_results(stub_results)
-        if again.get("score") != 0 or len(again.get("tests", [])) != len(data.get("tests", [])):
-            raise SetupError(f"the stubs scored {again.get('score')} over {len(again.get('tests', []))} entries "
-                             f"(expected 0 over {len(data['tests'])}): the grading tests do not detect unwritten code")
-    symbols = _stub_symbols(tree, build_dir, lessons)
-    (grader / "stub-symbols.json").write_text(json.dumps(symbols, indent=1) + "\n", encoding="utf-8")
-    (grader / "config.json").write_text(json.dumps({"user": user, "lessons": lessons}) + "\n", encoding="utf-8")
-    # Nothing in source/ is writable but by root (runs make the build tree the student's while it compiles).
-    chown_tree(source, 0, 0, strip_write=True)
-    grader.chmod(0o700)
-    print(f"setup: the prepared tree is ready: {source}", flush=True)
+def _prove_reference(root: Path, lessons: list[str], common: list[str], results: Path) -> int:
+    """Grades the reference solutions as a submission (they must score full marks), keeps their checks as
+    the witness's tests.json, restores the stubs and deletes the references; returns the test count."""
+    source, tree, _, pristine = _paths(root)
+    grader = grader_folder(root)
+    print("\nsetup: grading the reference solutions as a submission (they must score full marks)", flush=True)
+    status = _grade(tree, lessons, None, results,
+                    common + ["--grader-data", str(grader), "--save-tests", str(grader / "tests.json")],
+                    env=reference_environment())
+    data = _read_results(results)
+    _restore_stubs(tree, pristine)
+    shutil.rmtree(source / "reference")  # proved; no run may read them
+    if status != 0 or not data.get("tests") or data.get("score") != data.get("max_score"):
+        failed = [t["name"] for t in data.get("tests", []) if t.get("status") != "passed"]
+        raise SetupError(
+            f"the reference solutions did not pass (tools/grade exited {status}; score "
+            f"{data.get('score')}/{data.get('max_score')}; failing: {', '.join(failed[:10]) or 'the build'}). "
+            "The grader would blame students for its own fault: fix the tree, the hidden tests or the "
+            "image, and repack.")
+    print(f"setup: the reference scored {data['score']}/{data['max_score']} over {len(data['tests'])} tests; "
+          "its units are deleted", flush=True)
+    return len(data["tests"])
+
+
+def _prove_stubs(tree: Path, lessons: list[str], options: list[str], results: Path, tests: int) -> None:
+    """The stubs, as every submission will find them: they must score 0 over the reference's tests."""
+    print("\nsetup: the stubs, as every submission will find them (they must score 0)", flush=True)
+    _grade(tree, lessons, None, results, options)
+    again = _read_results(results)
+    if again.get("score") != 0 or len(again.get("tests", [])) != tests:
+        raise SetupError(f"the stubs scored {again.get('score')} over {len(again.get('tests', []))} entries "
+                         f"(expected 0 over {tests}): the grading tests do not detect unwritten code")
 
 
 def _fallback_results(results: Path, message: str) -> None:

@@ -42,6 +42,15 @@ from common.path_options import path_argument  # tools/ is on the path (tools/gr
 
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:
+    parser = _parser()
+    args = parser.parse_args(argv)
+    _check_commands(parser, args)
+    _check_batch(parser, args)
+    _check_inputs(parser, args)
+    return args
+
+
+def _parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="tools/grade",
         description="Build illum with your exercise code, run the lessons' grading tests and score them.",
@@ -88,7 +97,11 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser.add_argument("--grader-data", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
     parser.add_argument("--save-tests", type=path_argument, metavar="FILE", help=argparse.SUPPRESS)
     parser.add_argument("--build-as-grader", action="store_true", help=argparse.SUPPRESS)
-    args = parser.parse_args(argv)
+    return parser
+
+
+def _check_commands(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """The output paths, and the options that make a command (integrity, alone, packing) together."""
     for option, path in (("--results", args.results), ("--junit", args.junit),
                          ("--pack-autograder", args.pack_autograder)):
         problem = output_path_problem(path)
@@ -106,6 +119,10 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
         if (args.check_integrity or args.check_alone) and not args.build_dir.is_dir():
             parser.error(f"--build-dir {args.build_dir}: no such folder; build the tree first "
                          "(cmake --workflow --preset test)")
+
+
+def _check_batch(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """--batch and the options that belong with it only."""
     if args.batch is not None:
         for other in ("student", "check_integrity", "check_alone", "pack_autograder", "results", "junit",
                       "build_dir", "submission_info", "fallback_stubs", "as_user", "grader_data"):
@@ -124,6 +141,10 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
         for option in ("out", "jobs", "roster", "format", "work_dir"):
             if getattr(args, option) is not None:
                 parser.error(f"--{option.replace('_', '-')} belongs with --batch DIR")
+
+
+def _check_inputs(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
+    """The submission description, the lessons' names and the hidden tests' folder, read and checked."""
     if args.submission_info is not None:
         try:
             info = json.loads(args.submission_info.read_text(encoding="utf-8"))
@@ -145,7 +166,6 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
                                                        "files)" if args.hidden.exists() else "no such folder"))
         if not any(args.hidden.glob("*.cpp")):
             parser.error(f"--hidden {args.hidden}: no .cpp test files there")
-    return args
 
 
 def _no_folder(path: Path) -> str:
