@@ -263,7 +263,7 @@ int supervise(int argc, char** argv) {
     char buffer[4096];
     for (ssize_t n; (n = ::read(pipe_fds[0], buffer, sizeof buffer)) > 0;) {
       pending.append(buffer, static_cast<std::size_t>(n));
-      for (std::size_t at;
+      for (std::size_t at = 0;
            !pending.empty() && (pending[0] != 'S' || (at = pending.find('\n')) != std::string::npos);) {
         if (pending[0] != 'S') {
           (pending[0] == 'C' ? crashed : running) = pending[0] == 'C';
