@@ -33,6 +33,7 @@
 
 #include <cstddef>
 #include <iterator>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -198,7 +199,8 @@ struct Operand {
 
 template <class T>
 Operand operand_of(const T& value) {
-  return {&value, [](std::string& out, const void* address, Format format) {
+  // std::addressof: a proxy such as libc++'s vector<bool> reference overloads operator&.
+  return {std::addressof(value), [](std::string& out, const void* address, Format format) {
             describe(out, *static_cast<const T*>(address), format);
           }};
 }
