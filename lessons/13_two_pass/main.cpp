@@ -87,6 +87,23 @@ Scene checked_scene(const Settings& s) {
   return scene;
 }
 
+// --quick's sizes are upper bounds (a lower bound for the edge): a value given beyond one is refused.
+void apply_quick(Settings& s, const Option& edge, const Option& photons, const Option& samples) {
+  const auto beyond = [](const char* option, double value, const char* bound) {
+    throw InputError("command line", option, bound_text(value),
+                     std::string("--quick allows at most ") + bound + "; leave out --quick or give less");
+  };
+  if (photons.given() && s.photons > 1e5) beyond("--photons", s.photons, "1e+05 light rays");
+  if (samples.given() && s.reference_samples > 32)
+    beyond("--reference-samples", s.reference_samples, "32 paths per pixel");
+  if (edge.given() && s.edge < 100.0)
+    throw InputError("command line", "--edge", bound_text(s.edge),
+                     "--quick meshes with patches of at least 100; leave out --quick or give 100 or more");
+  s.width = 96, s.study_width = 24, s.hemicube = 32, s.unshot = 1e-2, s.photons = std::min(s.photons, 1e5);
+  s.reference_samples = std::min(s.reference_samples, 32);
+  s.edge = std::max(s.edge, 100.0);
+}
+
 }  // namespace
 }  // namespace illum::lesson13
 
@@ -119,25 +136,7 @@ int main(int argc, char** argv) {
         using namespace illum;
         using namespace illum::lesson13;
         s.quick = options.quick, s.seed = options.seed;
-        // --quick's sizes are upper bounds (a lower bound for the edge): a value given beyond one is refused.
-        if (s.quick) {
-          const auto beyond = [](const char* option, double value, const char* bound) {
-            throw InputError(
-                "command line", option, bound_text(value),
-                std::string("--quick allows at most ") + bound + "; leave out --quick or give less");
-          };
-          if (photons.given() && s.photons > 1e5) beyond("--photons", s.photons, "1e+05 light rays");
-          if (samples.given() && s.reference_samples > 32)
-            beyond("--reference-samples", s.reference_samples, "32 paths per pixel");
-          if (edge.given() && s.edge < 100.0)
-            throw InputError(
-                "command line", "--edge", bound_text(s.edge),
-                "--quick meshes with patches of at least 100; leave out --quick or give 100 or more");
-          s.width = 96, s.study_width = 24, s.hemicube = 32, s.unshot = 1e-2,
-          s.photons = std::min(s.photons, 1e5);
-          s.reference_samples = std::min(s.reference_samples, 32);
-          s.edge = std::max(s.edge, 100.0);
-        }
+        if (s.quick) apply_quick(s, edge, photons, samples);
         const Scene scene = checked_scene(s);
         OutputFolder out(options.out, info.id, info.title);
         run_section(info.id, "§2 The plan grows to the whole pipeline", [&] { s02_plans(out, s); });
