@@ -10,36 +10,13 @@
 #include <stdexcept>
 #include <vector>
 
+#include "14_hierarchical_radiosity/support.hpp"
 #include "illum/radiosity/hierarchical_radiosity.hpp"
 #include "illum/radiosity/visibility.hpp"
 
 using namespace illum;
 using std::numbers::pi;
-
-namespace {
-
-// The square [x0, x1] × [y0, y1] at height z, facing +z (up) or −z (down).
-Patch square(double x0, double y0, double x1, double y1, double z, bool up = true) {
-  return up ? make_patch({{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}}, Color(0.5))
-            : make_patch({{x0, y0, z}, {x0, y1, z}, {x1, y1, z}, {x1, y0, z}}, Color(0.5));
-}
-
-// Lambert's contour formula: the form factor from the point x (unit normal n)
-// to a polygon wholly in front of x's tangent plane,
-//   F = (1/2π) |Σ_k γ_k n·(R_k × R_k+1)/|R_k × R_k+1||,  R_k = v_k − x, γ_k the angle between R_k and R_k+1.
-double lambert(const Point3& x, const Vec3& n, const std::vector<Point3>& polygon) {
-  double sum = 0;
-  for (std::size_t k = 0; k < polygon.size(); ++k) {
-    const Vec3 a = polygon[k] - x, b = polygon[(k + 1) % polygon.size()] - x;
-    const Vec3 c = cross(a, b);
-    sum += std::atan2(length(c), dot(a, b)) * dot(n, c) / length(c);
-  }
-  return std::abs(sum) / (2 * pi);
-}
-
-bool always(const Point3&, const Point3&) { return true; }
-
-}  // namespace
+using namespace lesson14;
 
 TEST_SUITE("lesson14") {
   TEST_CASE("form_factor_estimate: the source as a head-on disc, A_s/(π r² + A_s)" *

@@ -12,30 +12,15 @@
 #include <stdexcept>
 #include <vector>
 
+#include "14_hierarchical_radiosity/support.hpp"
 #include "illum/radiosity/hierarchical_radiosity.hpp"
 #include "support/throws_containing.hpp"
 
 using namespace illum;
 using std::numbers::pi;
+using namespace lesson14;
 
 namespace {
-
-Patch square(double x0, double y0, double x1, double y1, double z, bool up = true) {
-  return up ? make_patch({{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}}, Color(0.5))
-            : make_patch({{x0, y0, z}, {x0, y1, z}, {x1, y1, z}, {x1, y0, z}}, Color(0.5));
-}
-
-double lambert(const Point3& x, const Vec3& n, const std::vector<Point3>& polygon) {
-  double sum = 0;
-  for (std::size_t k = 0; k < polygon.size(); ++k) {
-    const Vec3 a = polygon[k] - x, b = polygon[(k + 1) % polygon.size()] - x;
-    const Vec3 c = cross(a, b);
-    sum += std::atan2(length(c), dot(a, b)) * dot(n, c) / length(c);
-  }
-  return std::abs(sum) / (2 * pi);
-}
-
-bool always(const Point3&, const Point3&) { return true; }
 
 constexpr double off = std::numeric_limits<double>::infinity();
 
