@@ -276,9 +276,10 @@ def check_fuzz(lab: Lab) -> None:
     rng = random.Random(27)
     endpoints = ["/api/info", "/api/scene", "/api/render", "/api/trace", "/api/radiosity/mesh",
                  "/api/radiosity/start", "/api/radiosity/step", "/api/hemicube", "/api/hemicube/study",
-                 "/api/compare", "/api/compare/stats", "/api/compare/image", "/", "/api/", "/assets/"]
+                 "/api/compare", "/api/compare/stats", "/api/compare/image", "/api/hierarchy", "/", "/api/", "/assets/"]
     names = ["x", "y", "scene", "width", "height", "depth", "plan", "prune", "patches", "edge", "method",
-             "resolution", "omega", "session", "steps", "vertex", "rule", "patch", "lesson", "name", "which", "z", ""]
+             "resolution", "omega", "session", "steps", "vertex", "rule", "patch", "lesson", "name", "which", "z",
+             "epsilon_f", "epsilon_bf", "min_edge", "element", ""]
     values = ["0", "1", "-1", "2", "7", "64", "479", "1e308", "-0", "nan", "inf", "1e-320", "0.5", "99999999999",
               "cornell", "whitted", "checkerboard", "spheres", "progressive", "jacobi", "southwell", "06", "11",
               "whitted.png", "..", "%00", "%FF%FE", "\u00e9", "a" * 300, "", " ", "%20", "true", "extrapolate"]
@@ -290,6 +291,8 @@ def check_fuzz(lab: Lab) -> None:
             pairs.append((rng.choice(names), rng.choice(values)))
         if path in ("/api/radiosity/mesh", "/api/radiosity/start", "/api/hemicube", "/api/hemicube/study") and rng.random() < 0.7:
             pairs.append(("patches", str(rng.choice([20, 60, 200]))))  # small meshes keep the fuzz quick
+        if path == "/api/hierarchy" and rng.random() < 0.7:
+            pairs.append(("min_edge", str(rng.choice([100, 150, 300]))))  # coarse elements, for the same reason
         query = "&".join(f"{k}={v}" if rng.random() < 0.9 else k for k, v in pairs)
         query = query.replace(" ", "%20").replace("\u00e9", "%C3%A9")
         try:
