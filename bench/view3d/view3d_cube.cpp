@@ -5,23 +5,21 @@
 // View3D is not part of illum: bench/README.md says how to build it from its public source. For
 // each cube (12, 20 and 30 patches per edge: 864, 2,400 and 5,400 patches, mesh_cube_interior) the
 // program writes the mesh as View3D's input (.vs3, every surface a quadrilateral, no enclosure
-// adjustment: encl=0), then, in turn, runs View3D on it and computes illum's matrix
-// (contour_form_factor_matrix to the same tolerance, one thread), several times. It reports:
-//   * the seconds each spent computing the matrix: illum's thread CPU time around the call, View3D's
-//     own CPU timer ("seconds to compute view factors" in its log: its allocation, the zeroing of its
-//     matrix and its output file are outside it); the mean of the runs for each (View3D prints its
-//     time to 0.01 s, and the mean of such readings, unlike their median, is not held to that step:
-//     0.04 s is a third of the 864-patch cube's), their ratio, and the slowest run of each. Like for
-//     like, illum's runs reuse memory its process already touched (the heap keeps what it frees:
-//     keep_freed_memory), so its timer, like View3D's, holds no fresh page's first touch; it still
-//     holds the zeroing of the matrix, which View3D's leaves out;
-//   * to the matrix in memory, everything counted: illum's first call in the process, on fresh
-//     pages (a first touch costs more in a virtual machine than on bare metal), against View3D's
-//     "seconds for all calculations" less its "seconds to write view factors" (reading the input,
-//     allocating and zeroing its half matrix included), and their ratio;
+// adjustment: encl=0), then, in turn, runs View3D on it (its output flushed to the disk before going
+// on: sync) and computes illum's matrix (contour_form_factor_matrix to the same tolerance, one
+// thread), several times. It reports:
+//   * the seconds each spent computing the matrix: illum's thread CPU time around the call
+//     (allocating the matrix included), View3D's own CPU timer ("seconds to compute view factors"
+//     in its log: its allocation and its output file are outside it); the mean of the runs for each
+//     (View3D prints its time to 0.01 s, and the mean of such readings, unlike their median, is not
+//     held to that step: 0.04 s is a third of the 864-patch cube's), their ratio, and the slowest
+//     run of each;
+//   * View3D's seconds to the matrix in memory, as illum's count it: its "seconds for all
+//     calculations" less its "seconds to write view factors" (reading the input and allocating and
+//     zeroing its half matrix included; a fresh page's first touch costs more in a virtual machine
+//     than on bare metal, and illum's timer holds it), and illum's ratio to that;
 //   * the largest error of each matrix against the closed forms for rectangles (View3D's from the
 //     matrix it writes, to six decimals: its rounding, up to 5·10⁻⁷, is part of its error).
-#include <malloc.h>
 #include <algorithm>
 #include <array>
 #include <charconv>
@@ -30,12 +28,13 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <limits>
 #include <map>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 #include "illum/core/thread_cpu_stopwatch.hpp"
 #include "illum/core/threads.hpp"
@@ -128,14 +127,6 @@ double view3d_error(const std::filesystem::path& output, const FormFactorMatrix&
   return worst;
 }
 
-// glibc returns a freed block of the matrix's size to the system at once (it was mapped apart, or the
-// heap's top is trimmed): with these two settings it keeps it, so the next matrix reuses pages this
-// process has already touched.
-void keep_freed_memory() {
-  mallopt(M_MMAP_MAX, 0);
-  mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
-}
-
 double mean(const std::vector<double>& v) {
   double sum = 0;
   for (const double x : v) sum += x;
@@ -205,21 +196,19 @@ int main(int argc, char** argv) {
                                          ? std::filesystem::temp_directory_path() / "illum_view3d_cube"
                                          : std::filesystem::path(work_dir);
   std::filesystem::create_directories(work);
-  keep_freed_memory();
 
   std::printf(
       "one thread; seconds: mean of %d runs, the two in turn (illum: thread CPU time of "
-      "contour_form_factor_matrix on pages its process has touched, zeroing the matrix included; View3D: "
-      "its own 'seconds to compute view factors', to 0.01 s, allocation and zeroing excluded), and the "
-      "slowest run; 'to matrix': illum's first call, on fresh pages, and View3D's 'seconds for all "
+      "contour_form_factor_matrix, allocation included; View3D: its own 'seconds to compute view factors', "
+      "to 0.01 s, allocation excluded), and the slowest run; 'to matrix': View3D's 'seconds for all "
       "calculations' less its 'seconds to write view factors' (input and allocation included)\n",
       runs);
-  std::printf("%8s %10s | %10s %10s %6s | %10s %10s | %10s %10s %6s | %12s %12s\n", "patches", "tolerance",
-              "illum s", "View3D s", "ratio", "illum max", "View3D max", "illum 1st", "to matrix", "ratio",
-              "illum error", "View3D error");
+  std::printf("%8s %10s | %10s %10s %6s | %10s %10s | %10s %6s | %12s %12s\n", "patches", "tolerance",
+              "illum s", "View3D s", "ratio", "illum max", "View3D max", "to matrix", "ratio", "illum error",
+              "View3D error");
   Table table({"patches", "tolerance", "illum seconds", "View3D seconds", "ratio", "illum slowest",
-               "View3D slowest", "illum seconds, first call", "View3D seconds to the matrix", "ratio to it",
-               "illum max abs(F - F_exact)", "View3D max abs(F - F_exact)"});
+               "View3D slowest", "View3D seconds to the matrix", "ratio to it", "illum max abs(F - F_exact)",
+               "View3D max abs(F - F_exact)"});
   for (const int n : sizes) {
     const std::vector<Patch> patches = mesh_cube_interior(n);
     const FormFactorMatrix exact = closed_form_rectangle_matrix(patches);
@@ -230,34 +219,32 @@ int main(int argc, char** argv) {
       if (!input) throw std::runtime_error("cannot write " + (work / (name + ".vs3")).string());
     }
     std::vector<double> illum_seconds, view3d_times, view3d_matrix_times;
-    const ScopedThreadCount one(1);
-    const auto timed_matrix = [&](double& seconds) {
-      ThreadCpuStopwatch watch;
-      FormFactorMatrix f = contour_form_factor_matrix(patches, FormFactorTolerance{tolerance});
-      seconds = watch.seconds();
-      return f;
-    };
-    malloc_trim(0);  // what earlier sizes freed goes back to the system: the first call's pages are fresh
-    double illum_first = 0;  // its error is the one reported
-    const double illum_error = largest_error(timed_matrix(illum_first), exact);
+    double illum_error = 0;
     for (int k = 0; k < runs; ++k) {
       const ToolRun run = run_tool({program.string(), name + ".vs3", name + ".out"}, work);
       if (!run.succeeded()) throw std::runtime_error("View3D failed on " + name + ".vs3: " + run.failure());
+      // View3D's output (263 MB for the 5,400-patch cube) is still being written back to the disk when
+      // it exits; left to run during illum's call, that write-back made it up to half again slower.
+      sync();
       const View3dSeconds logged = view3d_seconds(work / "View3D.log");
       view3d_times.push_back(logged.compute);
       view3d_matrix_times.push_back(logged.matrix);
-      timed_matrix(illum_seconds.emplace_back());
+      const ScopedThreadCount one(1);
+      ThreadCpuStopwatch watch;
+      const FormFactorMatrix f = contour_form_factor_matrix(patches, FormFactorTolerance{tolerance});
+      illum_seconds.push_back(watch.seconds());
+      if (k == 0) illum_error = largest_error(f, exact);
     }
     const double view3d_error_value = view3d_error(work / (name + ".out"), exact);
     std::filesystem::remove(work / (name + ".out"));  // 263 MB for the 5,400-patch cube
     const double a = mean(illum_seconds), b = mean(view3d_times), c = mean(view3d_matrix_times);
     const double a_max = *std::max_element(illum_seconds.begin(), illum_seconds.end()),
                  b_max = *std::max_element(view3d_times.begin(), view3d_times.end());
-    std::printf("%8zu %10.0e | %10.4f %10.4f %6.3f | %10.4f %10.2f | %10.4f %10.4f %6.3f | %12.3g %12.3g\n",
-                patches.size(), tolerance, a, b, a / b, a_max, b_max, illum_first, c, illum_first / c,
-                illum_error, view3d_error_value);
-    table.add_row({static_cast<std::int64_t>(patches.size()), tolerance, a, b, a / b, a_max, b_max,
-                   illum_first, c, illum_first / c, illum_error, view3d_error_value});
+    std::printf("%8zu %10.0e | %10.4f %10.4f %6.3f | %10.4f %10.2f | %10.4f %6.3f | %12.3g %12.3g\n",
+                patches.size(), tolerance, a, b, a / b, a_max, b_max, c, a / c, illum_error,
+                view3d_error_value);
+    table.add_row({static_cast<std::int64_t>(patches.size()), tolerance, a, b, a / b, a_max, b_max, c, a / c,
+                   illum_error, view3d_error_value});
   }
   if (!out_dir.empty()) {
     OutputFolder out(out_dir, "bench_view3d", "illum's form-factor matrix beside NIST View3D");
