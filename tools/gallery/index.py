@@ -13,11 +13,13 @@ from html.parser import HTMLParser
 from pathlib import Path
 from urllib.parse import quote, unquote, urlsplit
 
+from common import png
 from common.files import atomic_write_text
+from common.markdown import parse_tables
 from grading.project import lesson_folders
 
 from .decks import find_decks
-from .outputs import Manifest, ManifestError, Output, load_manifest, parse_markdown_tables, png_size
+from .outputs import Manifest, ManifestError, Output, load_manifest
 from .texts import page_of
 
 
@@ -101,7 +103,7 @@ def _e(text: str) -> str:
 
 def markdown_table_html(text: str, caption_html: str = "") -> str:
     """The first Markdown pipe table in `text` as an HTML table ('' if there is none)."""
-    tables, _ = parse_markdown_tables(text)
+    tables, _ = parse_tables(text.splitlines())
     if not tables:
         return ""
     t = tables[0]
@@ -217,7 +219,7 @@ class _Outputs:
         return s if s is not None and s.kind in kinds and (self.folder / s.file).is_file() else None
 
     def figure(self, o: Output) -> str:
-        url, size = self.href(o), png_size(self.folder / o.file)
+        url, size = self.href(o), png.size_of(self.folder / o.file)
         dims = f' width="{size[0]}" height="{size[1]}"' if size else ""
         pixel = ' class="pixel"' if size and max(size) <= 400 and o.kind == "image" else ""
         script = self.sibling(o, ".gp", ("script",)) if o.kind == "plot" else None
