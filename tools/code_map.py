@@ -197,20 +197,13 @@ def _deck_problems(root: Path, write: bool) -> list[str]:
     """Rewrites (write=True) or checks the "Where the code is" slide that ends every deck."""
     problems = []
     for deck in sorted((root / "slides").glob("[0-9][0-9]_*.md")) if (root / "slides").is_dir() else []:
-        text, block, relative = deck.read_text(encoding="utf-8"), deck_slide(root, deck.name[:2]), _rel(deck, root)
+        text, block = deck.read_text(encoding="utf-8"), deck_slide(root, deck.name[:2])
         new = replace_between(text, BEGIN, END, block)
         if new is None and write:  # the first time: the deck's last slide
             new = text.rstrip("\n") + "\n\n---\n\n" + block + "\n"
-        if new is None:
-            problems.append(f"{relative}: no \"Where the code is\" slide at its end ({BEGIN} … {END}); "
-                            "run tools/task_tables.py --update")
-        elif new != text and write:
-            deck.write_text(new, encoding="utf-8")
-        elif new != text:
-            problems.append(f"{relative}: the \"Where the code is\" slide is not current; run tools/task_tables.py "
-                            "--update")
-        elif not text.rstrip().endswith(END):
-            problems.append(f"{relative}: the \"Where the code is\" slide must be the deck's last")
+        problems += refresh(deck, root, text, new, write, "\"Where the code is\" slide", f"at its end ({BEGIN} … {END})")
+        if new == text and not text.rstrip().endswith(END):
+            problems.append(f"{_rel(deck, root)}: the \"Where the code is\" slide must be the deck's last")
     return problems
 
 
@@ -218,6 +211,20 @@ def replace_between(text: str, begin: str, end: str, block: str) -> str | None:
     """`text` with what lies between `begin` and `end` (both included) replaced by `block`; None without them."""
     start, stop = text.find(begin), text.find(end)
     return None if start == -1 or stop == -1 else text[:start] + block + text[stop + len(end):]
+
+
+def refresh(path: Path, root: Path, text: str, new: str | None, write: bool, block: str, markers: str) -> list[str]:
+    """Writes `new`, the file's `text` with its generated `block` rewritten, when `write` is True and it differs;
+    otherwise the problem: the block's `markers` missing (`new` is None) or the block not current."""
+    where = _rel(path, root)
+    if new is None:
+        return [f"{where}: no {block} {markers}; run tools/task_tables.py --update"]
+    if new != text and write:
+        path.write_text(new, encoding="utf-8")
+        print(f"updated {where}")
+    elif new != text:
+        return [f"{where}: the {block} is not current; run tools/task_tables.py --update"]
+    return []
 
 
 def update(root: Path, write: bool) -> list[str]:
@@ -231,13 +238,7 @@ def update(root: Path, write: bool) -> list[str]:
                 continue
             text = readme.read_text(encoding="utf-8")
             new = replace_between(text, BEGIN, END, code_map(root, nn, readme))
-            if new is None:
-                problems.append(f"{_rel(readme, root)}: no \"Where the code is\" block ({BEGIN} … {END})")
-            elif new != text and write:
-                readme.write_text(new, encoding="utf-8")
-            elif new != text:
-                problems.append(f"{_rel(readme, root)}: the \"Where the code is\" block is not current; "
-                                "run tools/task_tables.py --update")
+            problems += refresh(readme, root, text, new, write, "\"Where the code is\" block", f"({BEGIN} … {END})")
     return problems
 
 
