@@ -32,10 +32,6 @@ def is_separator_cells(cells: list[str]) -> bool:
     return bool(cells) and all(_SEPARATOR_CELL.match(c.replace(" ", "")) for c in cells)
 
 
-def is_separator_line(line: str) -> bool:
-    return line.lstrip().startswith("|") and is_separator_cells(split_table_row(line))
-
-
 def alignment(cell: str) -> str:
     """'left', 'right', 'center' or '' for one separator cell."""
     c = cell.replace(" ", "")

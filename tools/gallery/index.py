@@ -101,34 +101,32 @@ def _e(text: str) -> str:
     return html.escape(text, quote=True)
 
 
-def markdown_table_html(text: str, caption_html: str = "") -> str:
+def _html_table(header: list[str], rows: list[list[str]], align: list[str], more: str = "") -> str:
+    """A table's cells escaped, right- and centre-aligned columns classed; `more` (HTML) ends its body."""
+    def cell(tag: str, i: int, text: str) -> str:
+        kind = f' class="{align[i]}"' if i < len(align) and align[i] in ("right", "center") else ""
+        return f"<{tag}{kind}>{_e(text)}</{tag}>"
+
+    body = "".join("<tr>" + "".join(cell("td", i, c) for i, c in enumerate(row)) + "</tr>\n" for row in rows)
+    head = "".join(cell("th", i, c) for i, c in enumerate(header))
+    return f"<table><thead><tr>{head}</tr></thead>\n<tbody>\n{body}{more}</tbody></table>"
+
+
+def markdown_table_html(text: str) -> str:
     """The first Markdown pipe table in `text` as an HTML table ('' if there is none)."""
     tables, _ = parse_tables(text.splitlines())
-    if not tables:
-        return ""
-    t = tables[0]
-
-    def cls(i: int) -> str:
-        a = t.align[i] if i < len(t.align) else ""
-        return f' class="{a}"' if a in ("right", "center") else ""
-
-    head = "".join(f"<th{cls(i)}>{_e(c)}</th>" for i, c in enumerate(t.header))
-    body = "".join("<tr>" + "".join(f"<td{cls(i)}>{_e(c)}</td>" for i, c in enumerate(row)) + "</tr>\n"
-                   for row in t.rows)
-    cap = f"<caption>{caption_html}</caption>" if caption_html else ""
-    return f'<table>{cap}<thead><tr>{head}</tr></thead>\n<tbody>\n{body}</tbody></table>'
+    return _html_table(tables[0].header, tables[0].rows, tables[0].align) if tables else ""
 
 
 def csv_table_html(text: str, max_rows: int = 40) -> str:
+    """A CSV as an HTML table, its first `max_rows` rows and a note of the rest ('' if it is empty)."""
     rows = [r for r in csv.reader(io.StringIO(text)) if r]
     if not rows:
         return ""
-    head = "".join(f"<th>{_e(c)}</th>" for c in rows[0])
-    body = "".join("<tr>" + "".join(f"<td>{_e(c)}</td>" for c in r) + "</tr>\n" for r in rows[1:max_rows + 1])
-    more = ""
-    if len(rows) - 1 > max_rows:
-        more = f'<tr><td colspan="{len(rows[0])}" class="note">… {len(rows) - 1 - max_rows} more rows in the CSV</td></tr>'
-    return f"<table><thead><tr>{head}</tr></thead>\n<tbody>\n{body}{more}</tbody></table>"
+    hidden = len(rows) - 1 - max_rows
+    more = (f'<tr><td colspan="{len(rows[0])}" class="note">… {hidden} more rows in the CSV</td></tr>'
+            if hidden > 0 else "")
+    return _html_table(rows[0], rows[1:max_rows + 1], [], more)
 
 
 def _read(path: Path) -> str:
@@ -264,10 +262,6 @@ class _Outputs:
         return "\n".join(parts) or '<p class="note">The manifest lists no outputs.</p>'
 
 
-def _outputs_html(lesson: Lesson, out: Path) -> str:
-    return _Outputs(lesson, out).html()
-
-
 def _lab_section(out: Path) -> str:
     """OUT/lab, the screenshots of `illum lab` (tools/lab/screenshots.py), or '' when there are none."""
     folder = out / "lab"
@@ -282,7 +276,7 @@ def _lab_section(out: Path) -> str:
             '<p>Run <code>build/release/bin/illum lab whitted</code> (or your build\'s) and open the address it '
             'prints: a pixel\'s ray tree, radiosity shot by shot, the hemicube, and your pictures against the '
             'reference, computed by the build it is part of (docs/lab.md).</p>'
-            + _outputs_html(lab, out) + "</section>")
+            + _Outputs(lab, out).html() + "</section>")
 
 
 def render_index(lessons: list[Lesson], out: Path, source: Path, note: str = "") -> str:
@@ -300,7 +294,7 @@ def render_index(lessons: list[Lesson], out: Path, source: Path, note: str = "")
         if lesson.manifest_error:
             body.append(f'<div class="error">{_e(lesson.manifest_error)}</div>')
         elif lesson.manifest:
-            body.append(_outputs_html(lesson, out))
+            body.append(_Outputs(lesson, out).html())
         else:
             body.append(f'<p class="note">No outputs yet: build and run <code>bin/lesson{lesson.number}</code> '
                         "(the main job, <code>cmake --build --preset release --target gallery</code>, runs them all).</p>")
