@@ -36,9 +36,9 @@ from gallery.texts import TextsError, build_texts  # noqa: E402
 SOURCE = Path(__file__).resolve().parent.parent
 STEPS = ("lessons", "lab", "figures", "slides", "texts", "index")
 # What the job's own atomic writes leave when it is killed without warning (SIGKILL): a temporary beside its
-# target (common/files.py, mkstemp: NAME.tmp-XXXXXXXX, a deck's also .html) and the folder of the one Marp
-# run (OUT/slides/.decks-XXXXXXXX). A lesson's leftovers are its own (its next run removes them).
-STALE_FILE = re.compile(r".+\.tmp-[a-z0-9_]{8}(\.html)?")
+# target (common/files.py, mkstemp: NAME.tmp-XXXXXXXX) and the folder of a Marp run
+# (OUT/slides/.decks-XXXXXXXX). A lesson's leftovers are its own (its next run removes them).
+STALE_FILE = re.compile(r".+\.tmp-[a-z0-9_]{8}")
 STALE_FOLDER = re.compile(r"\.decks-[a-z0-9_]{8}")
 
 
