@@ -8,7 +8,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from common.files import atomic_write_bytes, atomic_write_text, remove_dead_temporaries
+from common.files import atomic_write_text, remove_dead_temporaries
 from common.markdown import link_problems, outside_fences
 
 from . import kept_images, values
@@ -229,11 +229,6 @@ def _check_the_rest(run: Run, plots: bool) -> int:
             f"what the programs drew, the texts' {link_count} links resolve, and the {plot_count} plots show all "
             "their points")
     return 0
-
-
-def write_atomically(path: Path, data: bytes) -> None:
-    """A text or a kept image written through NAME.tmp-figures-PID (remove_stale_temporaries knows it)."""
-    atomic_write_bytes(path, data, tag=kept_images.TAG)
 
 
 def remove_stale_temporaries(source: Path, log=print) -> None:

@@ -8,6 +8,7 @@ import math
 import re
 import shlex
 from dataclasses import dataclass
+from graphlib import CycleError, TopologicalSorter
 from pathlib import Path
 
 from common.markdown import outside_fences
@@ -136,31 +137,30 @@ def _cell(out: Path, source: Path, d: ValueDef) -> tuple[str, float | None, bool
 
 
 def resolve_values(out: Path, defs: dict[str, ValueDef], source: Path) -> dict[str, tuple[str, bool]]:
-    """Each value's text as the programs' tables give it, and whether it depends on a timing."""
+    """Each value's text as the programs' tables give it, and whether it depends on a timing; an arithmetic
+    value is worked out after the values it names."""
+    needs = {d.name: set(NAME.findall(d.expression)) if d.expression else set() for d in defs.values()}
+    for name, names in needs.items():
+        if names - set(defs):
+            raise FigureError(f"value {name}: {', '.join(sorted(names - set(defs)))} is not defined in this file")
+    try:
+        order = list(TopologicalSorter(needs).static_order())
+    except CycleError as e:
+        raise FigureError("values defined in terms of each other: " + ", ".join(e.args[1][:-1])) from None
     resolved: dict[str, tuple[str, bool]] = {}
     numbers: dict[str, float] = {}
-    pending = sorted(defs.values(), key=lambda d: d.expression is not None)  # cells first
-    while pending:
-        waiting = []
-        for d in pending:
-            if d.path is not None:
-                text, number, timing = _cell(out, source, d)
-                if number is not None:
-                    numbers[d.name] = number
-                resolved[d.name] = (text, timing)
-                continue
-            names = set(NAME.findall(d.expression))
-            if names - set(defs):
-                raise FigureError(f"value {d.name}: {', '.join(sorted(names - set(defs)))} is not defined in this file")
-            if not names <= set(numbers):
-                waiting.append(d)
-                continue
+    for d in (defs[name] for name in order):
+        if d.path is not None:
+            text, number, timing = _cell(out, source, d)
+            if number is not None:
+                numbers[d.name] = number
+            resolved[d.name] = (text, timing)
+        elif needs[d.name] - set(numbers):
+            raise FigureError(f"value {d.name}: {', '.join(sorted(needs[d.name] - set(numbers)))} is not a number")
+        else:
             numbers[d.name] = _evaluate(d.expression, numbers, d.name)
             resolved[d.name] = (format_value(repr(numbers[d.name]), d.format, d.name),
-                                any(resolved[n][1] for n in names))
-        if len(waiting) == len(pending):
-            raise FigureError("values defined in terms of each other: " + ", ".join(d.name for d in pending))
-        pending = waiting
+                                any(resolved[n][1] for n in needs[d.name]))
     return resolved
 
 
