@@ -150,6 +150,14 @@ class Run:
     figures: int = 0
     values: int = 0
 
+    def may_rewrite(self, differences: list[str]) -> bool:
+        """Whether a text may take what the tables say: always on --update; on a refresh only when nothing
+        but timings differs (the `differences` are left for --update); never on --check (they are problems)."""
+        if self.mode != "update" and differences:
+            (self.problems if self.mode == "check" else self.left).extend(differences)
+            return False
+        return self.mode != "check"
+
 
 def _figures_of(run: Run, rel: Path, lines: list[str], blocks: list[Block]) -> bool:
     """Checks or rewrites the figures of one text, bottom up (earlier line numbers stay valid)."""
@@ -161,10 +169,7 @@ def _figures_of(run: Run, rel: Path, lines: list[str], blocks: list[Block]) -> b
         except FigureError as e:
             run.problems.append(f"{rel}:{block.open_line + 1}: {e}")
             continue
-        differences = compare(block, lines, table)
-        if run.mode != "update" and differences:
-            (run.problems if run.mode == "check" else run.left).extend(differences)
-        elif run.mode != "check" and lines[block.open_line + 1:block.close_line] != new_lines:
+        if run.may_rewrite(compare(block, lines, table)) and lines[block.open_line + 1:block.close_line] != new_lines:
             lines[block.open_line + 1:block.close_line] = new_lines
             changed = True
     return changed

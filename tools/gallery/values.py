@@ -205,7 +205,8 @@ def find_values(path: Path, lines: list[str], inside: set[int]) -> tuple[dict[st
 
 
 def process_values(run, path: Path, lines: list[str], inside: set[int]) -> tuple[bool, int]:
-    """Checks (run.mode 'check') or rewrites the values of one text: (whether `lines` changed, values seen)."""
+    """Checks (run.mode 'check') or rewrites the values of one text, as run.may_rewrite says (run: a
+    gallery.figures.Run): (whether `lines` changed, values seen)."""
     try:
         defs, uses = find_values(path, lines, inside)
         if not defs:
@@ -223,9 +224,7 @@ def process_values(run, path: Path, lines: list[str], inside: set[int]) -> tuple
         if shown == value:
             continue
         difference = f"{path}:{u.line + 1}: value {u.name}: the text says {shown}, the program wrote {value}"
-        if run.mode != "update" and not timing:
-            (run.problems if run.mode == "check" else run.left).append(difference)
-        elif run.mode != "check":
+        if run.may_rewrite([] if timing else [difference]):
             lines[u.line] = line[:u.start] + (f"`{value}`" if written.startswith("`") else value) + line[u.end:]
             changed = True
     return changed, len(uses)
