@@ -51,7 +51,8 @@ NEWER_APIS = [
     (r"\bstd::(flat_map|flat_set|mdspan)\b", "a C++23 container", "GCC 15"),
 ]
 
-PYTHON_FILES = ["tools/grade", "tools/grading", "tools/common", "tests/checks/check_compat.py", "tests/checks/repo.py"]
+PYTHON_FILES = ["tools/grade", "tools/grading", "tools/common", "tests/checks/check_compat.py",
+                "tests/checks/repo.py"]
 NEWER_PYTHON_MODULES = {"tomllib": "3.11", "wsgiref.types": "3.11"}
 NEWER_PYTHON_NAMES = [
     (r"\bdatetime\.UTC\b", "datetime.UTC", "3.11"),
