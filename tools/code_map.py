@@ -38,6 +38,11 @@ def exercise_units(root: Path) -> set[str]:
     return {stub.name for folder in lesson_folders(root, "exercises").values() for stub in folder.glob("*.cpp")}
 
 
+def unit_header(root: Path, stem: str) -> Path | None:
+    """lib/illum/<area>/STEM.hpp: the header of the unit STEM.cpp (the first by path if several), or None."""
+    return next(iter(sorted((root / "lib" / "illum").rglob(stem + ".hpp"))), None)
+
+
 def studies(lesson: Path) -> list[Path]:
     return sorted(s for s in (lesson / "studies").glob("s[0-9][0-9]*.cpp") if _STUDY.fullmatch(s.name))
 
@@ -94,7 +99,7 @@ def library_pairs(root: Path, lesson_nn: str) -> list[Path]:
             pairs.append(header)
     exercise = lesson_folders(root, "exercises").get(lesson_nn)
     for stub in sorted(exercise.glob("*.cpp")) if exercise else []:
-        header = next(iter(sorted((root / "lib" / "illum").rglob(stub.stem + ".hpp"))), None)
+        header = unit_header(root, stub.stem)
         if header is not None and header.resolve() not in pairs:
             pairs.append(header.resolve())
     return pairs
@@ -178,7 +183,7 @@ def deck_slide(root: Path, lesson_nn: str) -> str:
         lines.append(f"- **Text:** {link(lesson / 'README.md', f'`lessons/{lesson.name}/README.md`')}")
     if exercise is not None:
         stubs = sorted(exercise.glob("*.cpp"))
-        units = [next(iter(sorted((root / "lib" / "illum").rglob(s.stem + ".hpp"))), None) for s in stubs]
+        units = [unit_header(root, s.stem) for s in stubs]
         you_write = ", ".join(link(s, f"`{s.name}`") for s in stubs)
         contracts = ", ".join(link(h, f"`{_rel(h, root / 'lib' / 'illum')}`") for h in units if h is not None)
         lines.append(f"- **Exercise:** {link(exercise / 'README.md', f'`exercises/{exercise.name}/`')}: "
@@ -289,9 +294,9 @@ def _reading_list_problems(root: Path, lesson: Path, text: str, units: list[str]
         problems.append(f"{where}: the reading list must link the studies in file-name order: "
                         + ", ".join(_rel(s, lesson) for s in wanted))
     for unit in units:
-        headers = sorted((root / "lib" / "illum").rglob(unit + ".hpp"))
-        if headers and headers[0].resolve() not in resolved:
-            problems.append(f"{where}: the reading list does not link {_rel(headers[0], root)}, the header of an "
+        header = unit_header(root, unit)
+        if header is not None and header.resolve() not in resolved:
+            problems.append(f"{where}: the reading list does not link {_rel(header, root)}, the header of an "
                             "exercise unit of this lesson")
     every_unit = exercise_units(root)
     return problems + [f"{where}: the reading list links {t}, a reference unit that the student edition leaves "

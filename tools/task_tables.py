@@ -206,10 +206,10 @@ def _stub_file_problems(root: Path, lesson: str, exercise: Path) -> list[str]:
                 or not lines[2].startswith(banner[2]):
             problems.append(f"{stub.relative_to(root)}: the banner must be \"{banner[0]}<what>.\" then "
                             f"\"{banner[1]}\" then \"{banner[2]}…\"")
-        headers = sorted((root / "lib" / "illum").glob(f"*/{stub.stem}.hpp"))
+        header = code_map.unit_header(root, stub.stem)
         mark = f"// Exercise unit of lesson {lesson}: students write {stub.name}."
-        if headers and mark not in headers[0].read_text(encoding="utf-8").splitlines()[:3]:
-            problems.append(f"{headers[0].relative_to(root)}: the second line must be \"{mark}\"")
+        if header is not None and mark not in header.read_text(encoding="utf-8").splitlines()[:3]:
+            problems.append(f"{header.relative_to(root)}: the second line must be \"{mark}\"")
     return problems
 
 
