@@ -194,6 +194,7 @@ FOLD_ROWS = 20
 
 
 def _table_figure(caption_html: str, table_html: str, rows: int) -> str:
+    """A table in a figure with its caption, folded when it has more than FOLD_ROWS rows."""
     body = f'<div class="table-wrap">{table_html}</div>'
     if rows > FOLD_ROWS:
         body = f"<details><summary>{rows} rows: show the table</summary>{body}</details>"
@@ -242,8 +243,7 @@ class _Outputs:
         elif o.kind == "table" and self.sibling(o, ".md", ("markdown",)) is None:
             if table := csv_table_html(_read(self.folder / o.file)):
                 self.used.add(o.file)
-                return (f'<figure><figcaption>{_e(o.caption)} · <a href="{self.href(o)}">CSV</a></figcaption>'
-                        f'<div class="table-wrap">{table}</div></figure>')
+                return _table_figure(f'{_e(o.caption)} · <a href="{self.href(o)}">CSV</a>', table, 0)
         return ""
 
     def html(self) -> str:
