@@ -38,6 +38,11 @@ def exercise_units(root: Path) -> set[str]:
     return {stub.name for folder in lesson_folders(root, "exercises").values() for stub in folder.glob("*.cpp")}
 
 
+def unit_header(root: Path, stem: str) -> Path | None:
+    """lib/illum/<area>/STEM.hpp: the header of the unit STEM.cpp (the first by path if several), or None."""
+    return next(iter(sorted((root / "lib" / "illum").rglob(stem + ".hpp"))), None)
+
+
 def studies(lesson: Path) -> list[Path]:
     return sorted(s for s in (lesson / "studies").glob("s[0-9][0-9]*.cpp") if _STUDY.fullmatch(s.name))
 
@@ -94,7 +99,7 @@ def library_pairs(root: Path, lesson_nn: str) -> list[Path]:
             pairs.append(header)
     exercise = lesson_folders(root, "exercises").get(lesson_nn)
     for stub in sorted(exercise.glob("*.cpp")) if exercise else []:
-        header = next(iter(sorted((root / "lib" / "illum").rglob(stub.stem + ".hpp"))), None)
+        header = unit_header(root, stub.stem)
         if header is not None and header.resolve() not in pairs:
             pairs.append(header.resolve())
     return pairs
@@ -178,7 +183,7 @@ def deck_slide(root: Path, lesson_nn: str) -> str:
         lines.append(f"- **Text:** {link(lesson / 'README.md', f'`lessons/{lesson.name}/README.md`')}")
     if exercise is not None:
         stubs = sorted(exercise.glob("*.cpp"))
-        units = [next(iter(sorted((root / "lib" / "illum").rglob(s.stem + ".hpp"))), None) for s in stubs]
+        units = [unit_header(root, s.stem) for s in stubs]
         you_write = ", ".join(link(s, f"`{s.name}`") for s in stubs)
         contracts = ", ".join(link(h, f"`{_rel(h, root / 'lib' / 'illum')}`") for h in units if h is not None)
         lines.append(f"- **Exercise:** {link(exercise / 'README.md', f'`exercises/{exercise.name}/`')}: "
@@ -197,20 +202,13 @@ def _deck_problems(root: Path, write: bool) -> list[str]:
     """Rewrites (write=True) or checks the "Where the code is" slide that ends every deck."""
     problems = []
     for deck in sorted((root / "slides").glob("[0-9][0-9]_*.md")) if (root / "slides").is_dir() else []:
-        text, block, relative = deck.read_text(encoding="utf-8"), deck_slide(root, deck.name[:2]), _rel(deck, root)
+        text, block = deck.read_text(encoding="utf-8"), deck_slide(root, deck.name[:2])
         new = replace_between(text, BEGIN, END, block)
         if new is None and write:  # the first time: the deck's last slide
             new = text.rstrip("\n") + "\n\n---\n\n" + block + "\n"
-        if new is None:
-            problems.append(f"{relative}: no \"Where the code is\" slide at its end ({BEGIN} … {END}); "
-                            "run tools/task_tables.py --update")
-        elif new != text and write:
-            deck.write_text(new, encoding="utf-8")
-        elif new != text:
-            problems.append(f"{relative}: the \"Where the code is\" slide is not current; run tools/task_tables.py "
-                            "--update")
-        elif not text.rstrip().endswith(END):
-            problems.append(f"{relative}: the \"Where the code is\" slide must be the deck's last")
+        problems += refresh(deck, root, text, new, write, "\"Where the code is\" slide", f"at its end ({BEGIN} … {END})")
+        if new == text and not text.rstrip().endswith(END):
+            problems.append(f"{_rel(deck, root)}: the \"Where the code is\" slide must be the deck's last")
     return problems
 
 
@@ -218,6 +216,20 @@ def replace_between(text: str, begin: str, end: str, block: str) -> str | None:
     """`text` with what lies between `begin` and `end` (both included) replaced by `block`; None without them."""
     start, stop = text.find(begin), text.find(end)
     return None if start == -1 or stop == -1 else text[:start] + block + text[stop + len(end):]
+
+
+def refresh(path: Path, root: Path, text: str, new: str | None, write: bool, block: str, markers: str) -> list[str]:
+    """Writes `new`, the file's `text` with its generated `block` rewritten, when `write` is True and it differs;
+    otherwise the problem: the block's `markers` missing (`new` is None) or the block not current."""
+    where = _rel(path, root)
+    if new is None:
+        return [f"{where}: no {block} {markers}; run tools/task_tables.py --update"]
+    if new != text and write:
+        path.write_text(new, encoding="utf-8")
+        print(f"updated {where}")
+    elif new != text:
+        return [f"{where}: the {block} is not current; run tools/task_tables.py --update"]
+    return []
 
 
 def update(root: Path, write: bool) -> list[str]:
@@ -231,13 +243,7 @@ def update(root: Path, write: bool) -> list[str]:
                 continue
             text = readme.read_text(encoding="utf-8")
             new = replace_between(text, BEGIN, END, code_map(root, nn, readme))
-            if new is None:
-                problems.append(f"{_rel(readme, root)}: no \"Where the code is\" block ({BEGIN} … {END})")
-            elif new != text and write:
-                readme.write_text(new, encoding="utf-8")
-            elif new != text:
-                problems.append(f"{_rel(readme, root)}: the \"Where the code is\" block is not current; "
-                                "run tools/task_tables.py --update")
+            problems += refresh(readme, root, text, new, write, "\"Where the code is\" block", f"({BEGIN} … {END})")
     return problems
 
 
@@ -288,9 +294,9 @@ def _reading_list_problems(root: Path, lesson: Path, text: str, units: list[str]
         problems.append(f"{where}: the reading list must link the studies in file-name order: "
                         + ", ".join(_rel(s, lesson) for s in wanted))
     for unit in units:
-        headers = sorted((root / "lib" / "illum").rglob(unit + ".hpp"))
-        if headers and headers[0].resolve() not in resolved:
-            problems.append(f"{where}: the reading list does not link {_rel(headers[0], root)}, the header of an "
+        header = unit_header(root, unit)
+        if header is not None and header.resolve() not in resolved:
+            problems.append(f"{where}: the reading list does not link {_rel(header, root)}, the header of an "
                             "exercise unit of this lesson")
     every_unit = exercise_units(root)
     return problems + [f"{where}: the reading list links {t}, a reference unit that the student edition leaves "

@@ -20,8 +20,8 @@ import os
 import re
 import shutil
 import sys
-import threading
 import time
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
@@ -36,9 +36,9 @@ from gallery.texts import TextsError, build_texts  # noqa: E402
 SOURCE = Path(__file__).resolve().parent.parent
 STEPS = ("lessons", "lab", "figures", "slides", "texts", "index")
 # What the job's own atomic writes leave when it is killed without warning (SIGKILL): a temporary beside its
-# target (common/files.py, mkstemp: NAME.tmp-XXXXXXXX, a deck's also .html) and the folder of the one Marp
-# run (OUT/slides/.decks-XXXXXXXX). A lesson's leftovers are its own (its next run removes them).
-STALE_FILE = re.compile(r".+\.tmp-[a-z0-9_]{8}(\.html)?")
+# target (common/files.py, mkstemp: NAME.tmp-XXXXXXXX) and the folder of a Marp run
+# (OUT/slides/.decks-XXXXXXXX). A lesson's leftovers are its own (its next run removes them).
+STALE_FILE = re.compile(r".+\.tmp-[a-z0-9_]{8}")
 STALE_FOLDER = re.compile(r"\.decks-[a-z0-9_]{8}")
 
 
@@ -80,26 +80,11 @@ def run_slides(source: Path, slides_dir: Path, out: Path) -> None:
 
 
 def side_by_side(*steps: list) -> None:
-    """Runs each list of steps at once (the first in this thread) and raises the first error any raised."""
-    steps = [s for s in steps if s]
-    errors: list[BaseException] = []
-
-    def run(todo: list) -> None:
-        try:
-            for step in todo:
-                step()
-        except BaseException as e:  # re-raised below, in this thread
-            errors.append(e)
-
-    threads = [threading.Thread(target=run, args=(todo,)) for todo in steps[1:]]
-    for thread in threads:
-        thread.start()
-    if steps:
-        run(steps[0])
-    for thread in threads:
-        thread.join()
-    if errors:
-        raise errors[0]
+    """Runs each list of steps at once, each in its order; once all have ended, raises the first list's error."""
+    with ThreadPoolExecutor() as pool:
+        runs = [pool.submit(lambda todo=todo: [step() for step in todo]) for todo in steps if todo]
+    for run in runs:
+        run.result()
 
 
 def run_texts(source: Path, out: Path) -> None:

@@ -33,7 +33,7 @@ ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "tools"))
 
 import code_map  # noqa: E402
-from code_map import replace_between  # noqa: E402
+from code_map import refresh, replace_between  # noqa: E402
 from common.cpp_text import blank_comments  # noqa: E402
 from grading.alone import declared_dependencies  # noqa: E402
 from grading.project import lesson_folders  # noqa: E402
@@ -206,24 +206,19 @@ def _stub_file_problems(root: Path, lesson: str, exercise: Path) -> list[str]:
                 or not lines[2].startswith(banner[2]):
             problems.append(f"{stub.relative_to(root)}: the banner must be \"{banner[0]}<what>.\" then "
                             f"\"{banner[1]}\" then \"{banner[2]}…\"")
-        headers = sorted((root / "lib" / "illum").glob(f"*/{stub.stem}.hpp"))
+        header = code_map.unit_header(root, stub.stem)
         mark = f"// Exercise unit of lesson {lesson}: students write {stub.name}."
-        if headers and mark not in headers[0].read_text(encoding="utf-8").splitlines()[:3]:
-            problems.append(f"{headers[0].relative_to(root)}: the second line must be \"{mark}\"")
+        if header is not None and mark not in header.read_text(encoding="utf-8").splitlines()[:3]:
+            problems.append(f"{header.relative_to(root)}: the second line must be \"{mark}\"")
     return problems
 
 
 def _readme_problems(root: Path, lesson: str) -> list[str]:
-    """The README's blocks are current, its sections in order, its "Builds on" names what depends.txt declares."""
-    readme, text, updated = updated_readme(root, lesson)
+    """The README's sections in order, its "Builds on" naming what depends.txt declares."""
+    readme = lesson_folders(root, "exercises")[lesson] / "README.md"
+    text = readme.read_text(encoding="utf-8") if readme.is_file() else ""
     where = readme.relative_to(root)
     problems = []
-    if updated is None:
-        problems.append(f"{where}: no task table or student command markers ({BEGIN} … {END}, "
-                        f"{COMMANDS_BEGIN} … {COMMANDS_END})")
-    elif updated != text:
-        problems.append(f"{where}: the task table or the build commands are not current; run tools/task_tables.py "
-                        "--update")
     headings = re.findall(r"^## (.+)$", text, re.M)
     if headings[:4] != ["Build and test", "Tasks", "Hints", "Grading"]:
         problems.append(f"{where}: the sections must be Build and test · Tasks · Hints · Grading (found: "
@@ -369,15 +364,8 @@ def _top_readme(root: Path, update: bool) -> list[str]:
     if not top.is_file():
         return []
     text = top.read_text(encoding="utf-8")
-    updated = replace_between(text, COMMANDS_BEGIN, COMMANDS_END, student_commands("NN"))
-    if updated is None:
-        return [f"README.md: no student command markers ({COMMANDS_BEGIN} … {COMMANDS_END})"]
-    if updated != text and update:
-        top.write_text(updated, encoding="utf-8")
-        print("updated README.md")
-    elif updated != text:
-        return ["README.md: the student commands are not current; run tools/task_tables.py --update"]
-    return []
+    return refresh(top, root, text, replace_between(text, COMMANDS_BEGIN, COMMANDS_END, student_commands("NN")),
+                   update, "student commands", f"({COMMANDS_BEGIN} … {COMMANDS_END})")
 
 
 def main() -> int:
@@ -400,9 +388,8 @@ def main() -> int:
     problems = []
     for lesson in lessons_to_check(root):
         readme, text, updated = updated_readme(root, lesson)
-        if args.update and updated is not None and updated != text:
-            readme.write_text(updated, encoding="utf-8")
-            print(f"updated {readme.relative_to(root)}")
+        problems += refresh(readme, root, text, updated, args.update, "task table and student commands",
+                            f"({BEGIN} … {END}, {COMMANDS_BEGIN} … {COMMANDS_END})")
         if args.check:
             problems += source_problems(root, lesson)
             problems += stub_problems(root, lesson, args.build_dir) if args.build_dir else []

@@ -10,7 +10,7 @@
 #                      and the Canvas file checked row by row.
 # Both need the reference solutions (not the student edition); the end-to-end test builds its
 # own Release tree, so it runs once, in the plain build, not again under the sanitizers.
-add_test(NAME compat_ubuntu2204 COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/check_compat.py
+add_test(NAME compat_ubuntu2204 COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/checks/check_compat.py
                                         --compiler ${CMAKE_CXX_COMPILER})
 set_tests_properties(compat_ubuntu2204 PROPERTIES LABELS "grading;autograder")
 

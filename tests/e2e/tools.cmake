@@ -30,26 +30,26 @@ add_test(NAME tools_check_container_py
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_check_container.py)
 set_tests_properties(tools_check_container_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # One home per helper: no hand-written best-of-N timing, no π typed in, OpenMP only through
-# core/threads.hpp, no second copy of a helper that has a home (tools/check_one_home.py).
-add_test(NAME one_home COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/check_one_home.py)
+# core/threads.hpp, no second copy of a helper that has a home (tests/checks/check_one_home.py).
+add_test(NAME one_home COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/checks/check_one_home.py)
 set_tests_properties(one_home PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 add_test(NAME tools_check_one_home_py
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_check_one_home.py)
 set_tests_properties(tools_check_one_home_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # Every "lesson NN, §M" in lib/, exercises/, tests/, lessons/ and slides/ names a section of
-# lesson NN's text, the one that teaches the file citing it (tools/check_section_refs.py).
-add_test(NAME section_refs COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/check_section_refs.py)
+# lesson NN's text, the one that teaches the file citing it (tests/checks/check_section_refs.py).
+add_test(NAME section_refs COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/checks/check_section_refs.py)
 set_tests_properties(section_refs PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 add_test(NAME tools_check_section_refs_py
          COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/tools/test_check_section_refs.py)
 set_tests_properties(tools_check_section_refs_py PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # Unity builds (CMakeLists.txt, illum_unity_build): no private helper of one file is called bare by a
-# later file of the same unit, where overload resolution could pick it (tools/check_unity_units.py).
+# later file of the same unit, where overload resolution could pick it (tests/checks/check_unity_units.py).
 set(unity_units_required "")
 if(ILLUM_UNITY_BUILD)
   set(unity_units_required --require-units)  # a build that makes units must have some to check
 endif()
-add_test(NAME unity_units COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/check_unity_units.py
+add_test(NAME unity_units COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/checks/check_unity_units.py
                                   --build-dir ${CMAKE_BINARY_DIR} ${unity_units_required})
 set_tests_properties(unity_units PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 add_test(NAME tools_check_unity_units_py
@@ -65,7 +65,7 @@ add_test(NAME plots_tool COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DI
 set_tests_properties(plots_tool PROPERTIES LABELS tools ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)
 # Every plot the e2e runs drew (test-out/lessonNN/*.gp) joins its lines and shows every point
 # inside its frame; CI's tools/figures.py --check does the same for the main job's plots.
-add_test(NAME plots COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tools/check_plots.py
+add_test(NAME plots COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/checks/check_plots.py
                             --out ${CMAKE_BINARY_DIR}/test-out)
 set_tests_properties(plots PROPERTIES FIXTURES_REQUIRED lesson_outputs LABELS tools
                                       ENVIRONMENT PYTHONDONTWRITEBYTECODE=1)

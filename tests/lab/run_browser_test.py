@@ -64,6 +64,8 @@ from pathlib import Path
 
 SOURCE = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+sys.path.insert(0, str(SOURCE / "tools"))
+from common.png import size_of as png_size  # noqa: E402  (the one PNG reader)
 from test_lab_api import Lab  # noqa: E402
 
 HINT = "run tools/install-deps (Debian packages chromium, nodejs, npm; then npm ci for puppeteer-core)"
@@ -125,10 +127,6 @@ def png(path: Path, width: int, height: int, seed: int) -> None:
         return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
     path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0))
                      + chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
-
-
-def png_size(path: Path) -> tuple[int, int]:
-    return struct.unpack(">II", path.read_bytes()[16:24])
 
 
 def keyed(node: dict) -> list[tuple[str, dict]]:

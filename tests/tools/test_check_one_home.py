@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Unit tests of tools/check_one_home.py: each pattern is found in code, with its file and
+"""Unit tests of tests/checks/check_one_home.py: each pattern is found in code, with its file and
 line, and not in comments, strings or the helper's own home. Run: python3
 tests/tools/test_check_one_home.py (ctest: tools_check_one_home_py)."""
 from __future__ import annotations
@@ -9,7 +9,7 @@ import tempfile
 import unittest
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tests" / "checks"))
 
 import check_one_home  # noqa: E402
 

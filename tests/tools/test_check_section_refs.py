@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Unit tests of tools/check_section_refs.py: a "lesson NN, §M" that names no section, a label that
+"""Unit tests of tests/checks/check_section_refs.py: a "lesson NN, §M" that names no section, a label that
 is not the section's title, and a file cited in a section other than the one that teaches it are
 each found with file and line; a book's section and a correct reference are not. Run: python3
 tests/tools/test_check_section_refs.py (ctest: tools_check_section_refs_py)."""
@@ -10,7 +10,7 @@ import tempfile
 import unittest
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tests" / "checks"))
 
 import check_section_refs  # noqa: E402
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Unit tests of tools/check_unity_units.py on units written by hand: a private helper of an
+"""Unit tests of tests/checks/check_unity_units.py on units written by hand: a private helper of an
 earlier member called bare by a later member is found, with the caller's file and line; a call
 in an earlier member, a member call, a qualified call, a declaration of a variable of that name,
 a prototype and a helper of a named namespace are not; a build that must have units and has
@@ -12,7 +12,7 @@ import tempfile
 import unittest
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tools"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "tests" / "checks"))
 
 import check_unity_units  # noqa: E402
 

@@ -20,6 +20,7 @@ sys.path.insert(0, str(SOURCE / "tools"))
 
 import figures  # noqa: E402
 from common import png  # noqa: E402
+from common.files import atomic_write_bytes  # noqa: E402
 from gallery import figures as gallery_figures, kept_images, tables  # noqa: E402
 
 TABLE = ("| n | error | ns_per_test |\n|---|---|---|\n"
@@ -344,7 +345,7 @@ class KilledRunTest(unittest.TestCase):
         with tempfile.TemporaryDirectory() as folder:
             target, renamed, replace = Path(folder) / "a.png", [], os.replace
             with mock.patch("os.replace", lambda src, dst: (renamed.append(Path(src).name), replace(src, dst))):
-                gallery_figures.write_atomically(target, b"picture")
+                atomic_write_bytes(target, b"picture", tag=kept_images.TAG)  # how the texts and images are written
             self.assertEqual(target.read_bytes(), b"picture")
             self.assertEqual(sorted(p.name for p in Path(folder).iterdir()), ["a.png"])
             self.assertEqual(renamed, [f"a.png.tmp-figures-{os.getpid()}"])

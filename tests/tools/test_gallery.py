@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Unit tests of the main job's Python side: tools/gallery (output checks, the
-index page, link checks, atomic writes), tools/check_outputs.py and
+index page, link checks, atomic writes), tests/checks/check_outputs.py and
 tools/main_job.py, against the fake lesson program in tests/slides/fixtures/.
 
     python3 tests/tools/test_gallery.py        (ctest: gallery_tools)
@@ -22,11 +22,13 @@ from pathlib import Path
 
 SOURCE = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(SOURCE / "tools"))
+sys.path.insert(0, str(SOURCE / "tests" / "checks"))
 
 import check_outputs  # noqa: E402
 import main_job  # noqa: E402
 from gallery import lesson_runs  # noqa: E402
-from common import files as fsutil  # noqa: E402
+from common import files as fsutil, png  # noqa: E402
+from common.markdown import parse_tables  # noqa: E402
 from gallery import index, outputs  # noqa: E402
 
 FAKE_LESSON = SOURCE / "tests" / "slides" / "fixtures" / "fake_lesson.py"
@@ -72,104 +74,104 @@ class TempDirTest(unittest.TestCase):
 class PngCheck(TempDirTest):
     def test_good_png_passes_and_reports_its_size(self):
         p = self.write("a.png", make_png(7, 5))
-        self.assertEqual(outputs.check_png(p), [])
-        self.assertEqual(outputs.png_size(p), (7, 5))
+        self.assertEqual(check_outputs.check_png(p), [])
+        self.assertEqual(png.size_of(p), (7, 5))
 
     def test_wrong_signature_is_named(self):
         p = self.write("a.png", b"GIF89a" + make_png()[6:])
-        [problem] = outputs.check_png(p)
+        [problem] = check_outputs.check_png(p)
         self.assertIn("not a PNG", problem)
 
     def test_zero_size_is_rejected(self):
-        problems = outputs.check_png(self.write("a.png", make_png(0, 4)))
+        problems = check_outputs.check_png(self.write("a.png", make_png(0, 4)))
         self.assertTrue(any("0x4" in p for p in problems), problems)
 
     def test_truncated_png_is_caught_by_the_missing_iend(self):
-        problems = outputs.check_png(self.write("a.png", make_png()[:-12]))
+        problems = check_outputs.check_png(self.write("a.png", make_png()[:-12]))
         self.assertTrue(any("IEND" in p for p in problems), problems)
 
     def test_corrupt_ihdr_crc_is_caught(self):
         data = bytearray(make_png())
         data[30] ^= 0xFF
-        problems = outputs.check_png(self.write("a.png", bytes(data)))
+        problems = check_outputs.check_png(self.write("a.png", bytes(data)))
         self.assertTrue(any("CRC" in p for p in problems), problems)
 
 
 class HdrCheck(TempDirTest):
     def test_radiance_header_passes(self):
         p = self.write("a.hdr", b"#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 2\n" + bytes(8))
-        self.assertEqual(outputs.check_hdr(p), [])
+        self.assertEqual(check_outputs.check_hdr(p), [])
 
     def test_other_format_fails(self):
-        [problem] = outputs.check_hdr(self.write("a.hdr", b"P6\n1 1\n255\n\0\0\0"))
+        [problem] = check_outputs.check_hdr(self.write("a.hdr", b"P6\n1 1\n255\n\0\0\0"))
         self.assertIn("#?RADIANCE", problem)
 
     def test_bad_resolution_line_fails(self):
-        [problem] = outputs.check_hdr(self.write("a.hdr", b"#?RADIANCE\n\n1x2\n" + bytes(8)))
+        [problem] = check_outputs.check_hdr(self.write("a.hdr", b"#?RADIANCE\n\n1x2\n" + bytes(8)))
         self.assertIn("resolution", problem)
 
 
 class MeshCheck(TempDirTest):
     def test_binary_ply_header_passes(self):
         body = b"ply\nformat binary_little_endian 1.0\nelement vertex 0\nend_header\n" + bytes([0xFF, 0x00])
-        self.assertEqual(outputs.check_mesh(self.write("a.ply", body)), [])
+        self.assertEqual(check_outputs.check_mesh(self.write("a.ply", body)), [])
 
     def test_ply_without_end_header_fails(self):
-        [problem] = outputs.check_mesh(self.write("a.ply", b"ply\nformat ascii 1.0\nelement vertex 0\n"))
+        [problem] = check_outputs.check_mesh(self.write("a.ply", b"ply\nformat ascii 1.0\nelement vertex 0\n"))
         self.assertIn("end_header", problem)
 
     def test_obj_needs_a_vertex(self):
-        self.assertEqual(outputs.check_mesh(self.write("a.obj", b"v 0 0 0 1 1 1\nf 1 1 1\n")), [])
-        [problem] = outputs.check_mesh(self.write("b.obj", b"# nothing\n"))
+        self.assertEqual(check_outputs.check_mesh(self.write("a.obj", b"v 0 0 0 1 1 1\nf 1 1 1\n")), [])
+        [problem] = check_outputs.check_mesh(self.write("b.obj", b"# nothing\n"))
         self.assertIn("without vertices", problem)
 
 
 class CsvCheck(TempDirTest):
     def test_good_csv_passes(self):
-        self.assertEqual(outputs.check_csv(self.write("t.csv", GOOD_CSV)), [])
+        self.assertEqual(check_outputs.check_csv(self.write("t.csv", GOOD_CSV)), [])
 
     def test_quoted_commas_are_one_field(self):
-        self.assertEqual(outputs.check_csv(self.write("t.csv", 'name,value\n"a, b",1\n')), [])
+        self.assertEqual(check_outputs.check_csv(self.write("t.csv", 'name,value\n"a, b",1\n')), [])
 
     def test_ragged_row_names_its_line(self):
-        [problem] = outputs.check_csv(self.write("t.csv", "a,b\n1,2\n3\n"))
+        [problem] = check_outputs.check_csv(self.write("t.csv", "a,b\n1,2\n3\n"))
         self.assertIn("line 3 has 1 fields, the header has 2", problem)
 
     def test_header_only_fails(self):
-        [problem] = outputs.check_csv(self.write("t.csv", "a,b\n"))
+        [problem] = check_outputs.check_csv(self.write("t.csv", "a,b\n"))
         self.assertIn("no data rows", problem)
 
     def test_blank_file_fails(self):
-        self.assertTrue(outputs.check_csv(self.write("t.csv", "\n")))
+        self.assertTrue(check_outputs.check_csv(self.write("t.csv", "\n")))
 
 
 class MarkdownTables(TempDirTest):
     def test_good_table_parses_with_alignment(self):
-        tables, problems = outputs.parse_markdown_tables(GOOD_MD)
+        tables, problems = parse_tables(GOOD_MD.splitlines())
         self.assertEqual(problems, [])
         self.assertEqual(tables[0].header, ["n", "error"])
         self.assertEqual(tables[0].align, ["", "right"])
         self.assertEqual(tables[0].rows, [["1", "0.5"], ["2", "0.25"]])
 
     def test_escaped_pipe_stays_in_its_cell(self):
-        tables, problems = outputs.parse_markdown_tables("| a | b |\n|---|---|\n| x \\| y | z |\n")
+        tables, problems = parse_tables("| a | b |\n|---|---|\n| x \\| y | z |\n".splitlines())
         self.assertEqual(problems, [])
         self.assertEqual(tables[0].rows, [["x | y", "z"]])
 
     def test_missing_separator_is_reported(self):
-        problems = outputs.check_markdown_table(self.write("t.md", "| a | b |\n| 1 | 2 |\n"))
+        problems = check_outputs.check_markdown_table(self.write("t.md", "| a | b |\n| 1 | 2 |\n"))
         self.assertTrue(any("separator" in p for p in problems), problems)
 
     def test_row_with_wrong_cell_count_is_reported(self):
-        problems = outputs.check_markdown_table(self.write("t.md", "| a | b |\n|---|---|\n| 1 |\n"))
+        problems = check_outputs.check_markdown_table(self.write("t.md", "| a | b |\n|---|---|\n| 1 |\n"))
         self.assertTrue(any("1 cells, the header has 2" in p for p in problems), problems)
 
     def test_file_without_table_fails(self):
-        [problem] = outputs.check_markdown_table(self.write("t.md", "just words\n"))
+        [problem] = check_outputs.check_markdown_table(self.write("t.md", "just words\n"))
         self.assertIn("no Markdown table", problem)
 
     def test_prose_around_a_table_is_fine(self):
-        self.assertEqual(outputs.check_markdown_table(self.write("t.md", "Intro\n\n" + GOOD_MD + "\nDone.\n")), [])
+        self.assertEqual(check_outputs.check_markdown_table(self.write("t.md", "Intro\n\n" + GOOD_MD + "\nDone.\n")), [])
 
 
 # --- manifests and whole folders ----------------------------------------------------
@@ -205,7 +207,7 @@ class Manifests(TempDirTest):
             {"kind": "table", "file": "t.csv", "caption": "T"},
             {"kind": "markdown", "file": "t.md", "caption": "T"},
         ]), {"a.png": make_png(), "t.csv": GOOD_CSV, "t.md": GOOD_MD})
-        self.assertEqual(outputs.check_output_folder(folder, "lesson07"), [])
+        self.assertEqual(check_outputs.check_output_folder(folder, "lesson07"), [])
 
     def test_folder_problems_are_all_reported(self):
         folder = self.write_lesson_output("o", self.manifest(id="lesson08", outputs=[
@@ -215,7 +217,7 @@ class Manifests(TempDirTest):
             {"kind": "image", "file": "pic.jpg", "caption": ""},
             {"kind": "text", "file": "empty.txt", "caption": ""},
         ]), {"a.png": make_png(), "pic.jpg": b"x", "empty.txt": b"", "b.png.tmp-123": b"x"})
-        problems = "\n".join(outputs.check_output_folder(folder, "lesson07"))
+        problems = "\n".join(check_outputs.check_output_folder(folder, "lesson07"))
         for expected in ("expected 'lesson07'", "listed twice", "gone.png: listed in manifest.json",
                          "needs a .png file", "empty.txt: empty file", "temporary files left behind"):
             self.assertIn(expected, problems)
@@ -451,7 +453,7 @@ class MainJob(TempDirTest):
         self.assertEqual(code, 0, text)
         self.assertIn("[2/2]", text)
         for nn in ("01", "04"):
-            self.assertEqual(outputs.check_output_folder(out / f"lesson{nn}", f"lesson{nn}"), [])
+            self.assertEqual(check_outputs.check_output_folder(out / f"lesson{nn}", f"lesson{nn}"), [])
         html = (out / "index.html").read_text()
         self.assertIn('id="lesson04"', html)
         self.assertIn("Quick run", html)

@@ -1583,11 +1583,11 @@ class CommandLineTest(unittest.TestCase):
 
 
 class CheckStudentEditionOptionsTest(unittest.TestCase):
-    """tools/check_student_edition.py --lesson refuses what names no lesson with exercises, with exit 2 and
+    """tests/checks/check_student_edition.py --lesson refuses what names no lesson with exercises, with exit 2 and
     one line naming the option and the value, before it makes a folder or builds anything."""
 
     def run_check(self, *args: str):
-        script = Path(__file__).resolve().parents[2] / "tools" / "check_student_edition.py"
+        script = Path(__file__).resolve().parents[2] / "tests" / "checks" / "check_student_edition.py"
         return subprocess.run([sys.executable, str(script), *args], capture_output=True, text=True, timeout=60)
 
     def test_bad_lessons(self) -> None:
@@ -1608,9 +1608,9 @@ class CheckStudentEditionCommandsTest(unittest.TestCase):
     lacks one is a problem named, not a command guessed."""
 
     def load(self):
-        tools = Path(__file__).resolve().parents[2] / "tools"
-        sys.path.insert(0, str(tools))
-        spec = importlib.util.spec_from_file_location("check_student_edition", tools / "check_student_edition.py")
+        checks = Path(__file__).resolve().parents[2] / "tests" / "checks"
+        sys.path.insert(0, str(checks))
+        spec = importlib.util.spec_from_file_location("check_student_edition", checks / "check_student_edition.py")
         module = importlib.util.module_from_spec(spec)
         spec.loader.exec_module(module)
         from grading.edition import student_readme

@@ -10,18 +10,16 @@ import tempfile
 from pathlib import Path
 
 
-def temp_path_beside(target: Path | str) -> Path:
-    """A fresh temporary file next to `target`."""
-    target = Path(target)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, name = tempfile.mkstemp(prefix=target.name + ".tmp-", dir=target.parent)
-    os.close(fd)
-    return Path(name)
-
-
 def _replace(target: Path | str, fill, mode: int, tag: str = "") -> None:
+    """Writes `target` through a temporary beside it: fill(temporary), its mode set, then a rename."""
     target = Path(target)
-    tmp = target.with_name(f"{target.name}.tmp-{tag}-{os.getpid()}") if tag else temp_path_beside(target)
+    if tag:
+        tmp = target.with_name(f"{target.name}.tmp-{tag}-{os.getpid()}")
+    else:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        fd, name = tempfile.mkstemp(prefix=target.name + ".tmp-", dir=target.parent)
+        os.close(fd)
+        tmp = Path(name)
     try:
         fill(tmp)
         os.chmod(tmp, mode)

@@ -1,6 +1,7 @@
 """Reading Markdown: pipe tables, links and GitHub's heading anchors (the one home of each rule)."""
 from __future__ import annotations
 
+import posixpath
 import re
 import unicodedata
 from dataclasses import dataclass, field
@@ -30,10 +31,6 @@ def split_table_row(line: str) -> list[str]:
 
 def is_separator_cells(cells: list[str]) -> bool:
     return bool(cells) and all(_SEPARATOR_CELL.match(c.replace(" ", "")) for c in cells)
-
-
-def is_separator_line(line: str) -> bool:
-    return line.lstrip().startswith("|") and is_separator_cells(split_table_row(line))
 
 
 def alignment(cell: str) -> str:
@@ -161,15 +158,8 @@ def resolve(tree: Path, file: Path, path: str) -> PurePosixPath | None:
     """A link's path relative to the tree's root (None when it leaves the tree)."""
     base = PurePosixPath(file.relative_to(tree).as_posix()).parent
     base = DECKS_BUILT if base == DECKS and file.name[:2].isdigit() else base
-    parts: list[str] = []
-    for part in (base / path).parts:
-        if part == "..":
-            if not parts:
-                return None
-            parts.pop()
-        elif part not in ("", "."):
-            parts.append(part)
-    return PurePosixPath(*parts)
+    joined = posixpath.normpath((base / path).as_posix())
+    return None if joined == ".." or joined.startswith("../") else PurePosixPath(joined)
 
 
 def link_problems(tree: Path, files: list[Path], generated_ok: bool) -> tuple[list[str], int]:

@@ -25,6 +25,16 @@ def size(data: bytes) -> tuple[int, int]:
     return struct.unpack(">II", data[16:24])
 
 
+def size_of(path) -> tuple[int, int] | None:
+    """(width, height) of a PNG file, or None if the file is not a PNG."""
+    with open(path, "rb") as f:
+        head = f.read(33)
+    try:
+        return size(head)
+    except PngError:
+        return None
+
+
 def problems(data: bytes) -> list[str]:
     """What makes `data` a broken PNG: no signature or IHDR, a zero size, a bad CRC, no IEND."""
     try:

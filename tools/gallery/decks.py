@@ -10,7 +10,7 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-from common.files import atomic_copy, temp_path_beside
+from common.files import atomic_copy
 
 DECK_NAME = re.compile(r"^\d\d_[A-Za-z0-9_\-]+\.md$")
 FONT_FOLDER = "katex-fonts"
@@ -51,52 +51,45 @@ def copy_katex_fonts(source: Path, out_slides: Path) -> int:
     return copied
 
 
-def marp_command(source: Path, deck: Path | None, output: Path, input_dir: Path | None = None) -> list[str]:
-    """Marp on one deck (output: its .html), or on every .md of `input_dir` (output: a folder)."""
+def marp_command(source: Path, input_dir: Path, output: Path) -> list[str]:
+    """Marp on every .md of `input_dir`, its pages written into the folder `output`."""
     source = Path(source)
     return [str(marp_executable(source)), "--no-stdin", "--html",
             "--config-file", str(source / "slides" / "marp.config.cjs"),
             "--theme-set", str(source / "slides" / "theme"),
-            "--output", str(output)] + (["--input-dir", str(input_dir)] if input_dir else [str(deck)])
+            "--input-dir", str(input_dir), "--output", str(output)]
 
 
 def build_deck(source: Path, deck: Path, out_slides: Path) -> Path:
-    """Builds one deck atomically (Marp writes a temporary .html, then it is renamed)."""
-    target = Path(out_slides) / (Path(deck).stem + ".html")
-    # Marp picks the format from the extension, so the temporary name ends in .html.
-    placeholder = temp_path_beside(target)
-    tmp = placeholder.with_name(placeholder.name + ".html")
-    try:
-        result = subprocess.run(marp_command(source, deck, tmp), cwd=source, stdin=subprocess.DEVNULL,
-                                capture_output=True, text=True, errors="replace", timeout=300)
-        if result.returncode != 0 or not tmp.is_file():
-            raise DeckError(f"marp failed on {deck} (exit {result.returncode}):\n"
-                            f"{result.stdout.strip()}\n{result.stderr.strip()}".rstrip())
-        os.replace(tmp, target)
-    finally:
-        placeholder.unlink(missing_ok=True)
-        tmp.unlink(missing_ok=True)
-    return target
+    """Builds one deck, its page replaced atomically; DeckError with Marp's messages when it fails."""
+    if problem := _marp(source, [deck], Path(out_slides)):
+        raise DeckError(problem)
+    return Path(out_slides) / (Path(deck).stem + ".html")
 
 
-def _build_in_one_run(source: Path, decks: list[Path], out_slides: Path) -> bool:
-    """Every deck by one Marp run; False (and nothing replaced) if any deck did not build."""
+def _marp(source: Path, decks: list[Path], out_slides: Path) -> str:
+    """One Marp run on copies of `decks` in a temporary folder beside OUT/slides (Marp builds every .md of an
+    --input-dir; the slides folder also holds its README), each page then replacing the old one atomically:
+    '' when every deck was built (and only then is a page replaced), else what went wrong. Marp leaves a
+    deck's image paths as written, so a copy builds the same bytes as the original."""
     work = Path(tempfile.mkdtemp(prefix=".decks-", dir=out_slides))
+    names = ", ".join(str(deck) for deck in decks)
     try:
         (work / "in").mkdir()
         for deck in decks:
             shutil.copyfile(deck, work / "in" / Path(deck).name)
-        result = subprocess.run(marp_command(source, None, work / "out", input_dir=work / "in"), cwd=source,
+        result = subprocess.run(marp_command(source, work / "in", work / "out"), cwd=source,
                                 stdin=subprocess.DEVNULL, capture_output=True, text=True, errors="replace",
                                 timeout=600)
         pages = [work / "out" / (Path(deck).stem + ".html") for deck in decks]
         if result.returncode != 0 or not all(page.is_file() for page in pages):
-            return False
+            return (f"marp failed on {names} (exit {result.returncode}):\n"
+                    f"{result.stdout.strip()}\n{result.stderr.strip()}".rstrip())
         for page in pages:
             os.replace(page, out_slides / page.name)
-        return True
-    except (OSError, subprocess.SubprocessError):
-        return False
+        return ""
+    except (OSError, subprocess.SubprocessError) as e:
+        return f"marp failed on {names}: {e}"
     finally:
         shutil.rmtree(work, ignore_errors=True)
 
@@ -105,16 +98,13 @@ def build_decks(source: Path, decks: list[Path], out_slides: Path, jobs: int = 2
     """Builds every deck; raises DeckError naming each deck that failed.
 
     One Marp run builds them all (Node and Marp start once: 13 decks took 2.8 s so, against 1.3 s
-    for each deck alone), from copies of the decks in a temporary folder beside OUT/slides (Marp
-    builds every .md of an --input-dir; the slides folder also holds its README); each deck's page
-    then replaces the old one atomically. Marp leaves a deck's image paths as written, so a copy
-    builds the same bytes as the original. If that run fails, each deck is built alone, in `jobs`
-    at once, so that the error names every deck that failed."""
+    for each deck alone). If that run fails, each deck is built alone, in `jobs` at once, so that
+    the error names every deck that failed."""
     marp_executable(source)  # fail early, with the install hint
     out_slides = Path(out_slides)
     out_slides.mkdir(parents=True, exist_ok=True)
     copy_katex_fonts(source, out_slides)
-    if _build_in_one_run(source, decks, out_slides):
+    if not _marp(source, decks, out_slides):
         return [out_slides / (Path(deck).stem + ".html") for deck in decks]
     built, errors = [], []
     with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:

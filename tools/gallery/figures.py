@@ -8,7 +8,7 @@ import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from common.files import atomic_write_bytes, atomic_write_text, remove_dead_temporaries
+from common.files import atomic_write_text, remove_dead_temporaries
 from common.markdown import link_problems, outside_fences
 
 from . import kept_images, values
@@ -150,6 +150,14 @@ class Run:
     figures: int = 0
     values: int = 0
 
+    def may_rewrite(self, differences: list[str]) -> bool:
+        """Whether a text may take what the tables say: always on --update; on a refresh only when nothing
+        but timings differs (the `differences` are left for --update); never on --check (they are problems)."""
+        if self.mode != "update" and differences:
+            (self.problems if self.mode == "check" else self.left).extend(differences)
+            return False
+        return self.mode != "check"
+
 
 def _figures_of(run: Run, rel: Path, lines: list[str], blocks: list[Block]) -> bool:
     """Checks or rewrites the figures of one text, bottom up (earlier line numbers stay valid)."""
@@ -161,10 +169,7 @@ def _figures_of(run: Run, rel: Path, lines: list[str], blocks: list[Block]) -> b
         except FigureError as e:
             run.problems.append(f"{rel}:{block.open_line + 1}: {e}")
             continue
-        differences = compare(block, lines, table)
-        if run.mode != "update" and differences:
-            (run.problems if run.mode == "check" else run.left).extend(differences)
-        elif run.mode != "check" and lines[block.open_line + 1:block.close_line] != new_lines:
+        if run.may_rewrite(compare(block, lines, table)) and lines[block.open_line + 1:block.close_line] != new_lines:
             lines[block.open_line + 1:block.close_line] = new_lines
             changed = True
     return changed
@@ -229,11 +234,6 @@ def _check_the_rest(run: Run, plots: bool) -> int:
             f"what the programs drew, the texts' {link_count} links resolve, and the {plot_count} plots show all "
             "their points")
     return 0
-
-
-def write_atomically(path: Path, data: bytes) -> None:
-    """A text or a kept image written through NAME.tmp-figures-PID (remove_stale_temporaries knows it)."""
-    atomic_write_bytes(path, data, tag=kept_images.TAG)
 
 
 def remove_stale_temporaries(source: Path, log=print) -> None:

@@ -13,11 +13,13 @@ from html.parser import HTMLParser
 from pathlib import Path
 from urllib.parse import quote, unquote, urlsplit
 
+from common import png
 from common.files import atomic_write_text
+from common.markdown import parse_tables
 from grading.project import lesson_folders
 
 from .decks import find_decks
-from .outputs import Manifest, ManifestError, Output, load_manifest, parse_markdown_tables, png_size
+from .outputs import Manifest, ManifestError, Output, load_manifest
 from .texts import page_of
 
 
@@ -99,34 +101,32 @@ def _e(text: str) -> str:
     return html.escape(text, quote=True)
 
 
-def markdown_table_html(text: str, caption_html: str = "") -> str:
+def _html_table(header: list[str], rows: list[list[str]], align: list[str], more: str = "") -> str:
+    """A table's cells escaped, right- and centre-aligned columns classed; `more` (HTML) ends its body."""
+    def cell(tag: str, i: int, text: str) -> str:
+        kind = f' class="{align[i]}"' if i < len(align) and align[i] in ("right", "center") else ""
+        return f"<{tag}{kind}>{_e(text)}</{tag}>"
+
+    body = "".join("<tr>" + "".join(cell("td", i, c) for i, c in enumerate(row)) + "</tr>\n" for row in rows)
+    head = "".join(cell("th", i, c) for i, c in enumerate(header))
+    return f"<table><thead><tr>{head}</tr></thead>\n<tbody>\n{body}{more}</tbody></table>"
+
+
+def markdown_table_html(text: str) -> str:
     """The first Markdown pipe table in `text` as an HTML table ('' if there is none)."""
-    tables, _ = parse_markdown_tables(text)
-    if not tables:
-        return ""
-    t = tables[0]
-
-    def cls(i: int) -> str:
-        a = t.align[i] if i < len(t.align) else ""
-        return f' class="{a}"' if a in ("right", "center") else ""
-
-    head = "".join(f"<th{cls(i)}>{_e(c)}</th>" for i, c in enumerate(t.header))
-    body = "".join("<tr>" + "".join(f"<td{cls(i)}>{_e(c)}</td>" for i, c in enumerate(row)) + "</tr>\n"
-                   for row in t.rows)
-    cap = f"<caption>{caption_html}</caption>" if caption_html else ""
-    return f'<table>{cap}<thead><tr>{head}</tr></thead>\n<tbody>\n{body}</tbody></table>'
+    tables, _ = parse_tables(text.splitlines())
+    return _html_table(tables[0].header, tables[0].rows, tables[0].align) if tables else ""
 
 
 def csv_table_html(text: str, max_rows: int = 40) -> str:
+    """A CSV as an HTML table, its first `max_rows` rows and a note of the rest ('' if it is empty)."""
     rows = [r for r in csv.reader(io.StringIO(text)) if r]
     if not rows:
         return ""
-    head = "".join(f"<th>{_e(c)}</th>" for c in rows[0])
-    body = "".join("<tr>" + "".join(f"<td>{_e(c)}</td>" for c in r) + "</tr>\n" for r in rows[1:max_rows + 1])
-    more = ""
-    if len(rows) - 1 > max_rows:
-        more = f'<tr><td colspan="{len(rows[0])}" class="note">… {len(rows) - 1 - max_rows} more rows in the CSV</td></tr>'
-    return f"<table><thead><tr>{head}</tr></thead>\n<tbody>\n{body}{more}</tbody></table>"
+    hidden = len(rows) - 1 - max_rows
+    more = (f'<tr><td colspan="{len(rows[0])}" class="note">… {hidden} more rows in the CSV</td></tr>'
+            if hidden > 0 else "")
+    return _html_table(rows[0], rows[1:max_rows + 1], [], more)
 
 
 def _read(path: Path) -> str:
@@ -194,6 +194,7 @@ FOLD_ROWS = 20
 
 
 def _table_figure(caption_html: str, table_html: str, rows: int) -> str:
+    """A table in a figure with its caption, folded when it has more than FOLD_ROWS rows."""
     body = f'<div class="table-wrap">{table_html}</div>'
     if rows > FOLD_ROWS:
         body = f"<details><summary>{rows} rows: show the table</summary>{body}</details>"
@@ -217,7 +218,7 @@ class _Outputs:
         return s if s is not None and s.kind in kinds and (self.folder / s.file).is_file() else None
 
     def figure(self, o: Output) -> str:
-        url, size = self.href(o), png_size(self.folder / o.file)
+        url, size = self.href(o), png.size_of(self.folder / o.file)
         dims = f' width="{size[0]}" height="{size[1]}"' if size else ""
         pixel = ' class="pixel"' if size and max(size) <= 400 and o.kind == "image" else ""
         script = self.sibling(o, ".gp", ("script",)) if o.kind == "plot" else None
@@ -242,8 +243,7 @@ class _Outputs:
         elif o.kind == "table" and self.sibling(o, ".md", ("markdown",)) is None:
             if table := csv_table_html(_read(self.folder / o.file)):
                 self.used.add(o.file)
-                return (f'<figure><figcaption>{_e(o.caption)} · <a href="{self.href(o)}">CSV</a></figcaption>'
-                        f'<div class="table-wrap">{table}</div></figure>')
+                return _table_figure(f'{_e(o.caption)} · <a href="{self.href(o)}">CSV</a>', table, 0)
         return ""
 
     def html(self) -> str:
@@ -262,10 +262,6 @@ class _Outputs:
         return "\n".join(parts) or '<p class="note">The manifest lists no outputs.</p>'
 
 
-def _outputs_html(lesson: Lesson, out: Path) -> str:
-    return _Outputs(lesson, out).html()
-
-
 def _lab_section(out: Path) -> str:
     """OUT/lab, the screenshots of `illum lab` (tools/lab/screenshots.py), or '' when there are none."""
     folder = out / "lab"
@@ -280,7 +276,7 @@ def _lab_section(out: Path) -> str:
             '<p>Run <code>build/release/bin/illum lab whitted</code> (or your build\'s) and open the address it '
             'prints: a pixel\'s ray tree, radiosity shot by shot, the hemicube, and your pictures against the '
             'reference, computed by the build it is part of (docs/lab.md).</p>'
-            + _outputs_html(lab, out) + "</section>")
+            + _Outputs(lab, out).html() + "</section>")
 
 
 def render_index(lessons: list[Lesson], out: Path, source: Path, note: str = "") -> str:
@@ -298,7 +294,7 @@ def render_index(lessons: list[Lesson], out: Path, source: Path, note: str = "")
         if lesson.manifest_error:
             body.append(f'<div class="error">{_e(lesson.manifest_error)}</div>')
         elif lesson.manifest:
-            body.append(_outputs_html(lesson, out))
+            body.append(_Outputs(lesson, out).html())
         else:
             body.append(f'<p class="note">No outputs yet: build and run <code>bin/lesson{lesson.number}</code> '
                         "(the main job, <code>cmake --build --preset release --target gallery</code>, runs them all).</p>")

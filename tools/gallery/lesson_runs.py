@@ -10,6 +10,7 @@ from __future__ import annotations
 import json
 import os
 import re
+import resource
 import subprocess
 import sys
 import tempfile
@@ -47,10 +48,6 @@ def failure(program: Path, code: int, cmd: list[str]) -> str:
 def children_cpu_seconds() -> float:
     """Processor seconds of every finished child so far (all their threads, gnuplot included): what a
     program cost, whatever else the machine ran."""
-    try:
-        import resource  # POSIX only
-    except ImportError:
-        return 0.0
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
     return usage.ru_utime + usage.ru_stime
 
@@ -122,7 +119,7 @@ def run_lessons(bin_dir: Path, out: Path, quick: bool, alone: bool = False) -> N
     answers = {} if alone else {p: timed_cores(p) for p in programs}
     one_core = [p for p in programs if answers.get(p) in ("one", "mixed")]
     cores = os.cpu_count() or 1
-    if len(one_core) < 2 or cores < 2 or not hasattr(os, "wait4"):
+    if len(one_core) < 2 or cores < 2:
         one_core = []  # nothing to gain: every program runs alone, in order
     if one_core:
         width = min(cores, len(one_core))

@@ -111,12 +111,15 @@ def _position(value: float, lo: float, hi: float, log: bool) -> float:
     return (value - lo) / (hi - lo) if hi != lo else math.nan
 
 
+def _gnuplot() -> str:
+    if gnuplot := shutil.which("gnuplot"):
+        return gnuplot
+    raise PlotCheckError("gnuplot is not installed (tools/install-deps installs gnuplot-nox)")
+
+
 def check_plot(gp: Path, gnuplot: str | None = None) -> list[str]:
     """Problems with one plot (an empty list when it shows all its data)."""
-    gnuplot = gnuplot or shutil.which("gnuplot")
-    if not gnuplot:
-        raise PlotCheckError("gnuplot is not installed (tools/install-deps installs gnuplot-nox)")
-    curves, frame, logs = evaluate(gp, gnuplot)
+    curves, frame, logs = evaluate(gp, gnuplot or _gnuplot())
     problems = []
     name = gp.with_suffix(".png").name
     for k, curve in enumerate(curves, 1):
@@ -151,9 +154,7 @@ def plot_scripts(out: Path) -> list[Path]:
 
 def check_plots(out: Path, scripts: list[Path] | None = None) -> tuple[list[str], int]:
     """Problems with every plot in OUT (or the given scripts) and how many were checked."""
-    gnuplot = shutil.which("gnuplot")
-    if not gnuplot:
-        raise PlotCheckError("gnuplot is not installed (tools/install-deps installs gnuplot-nox)")
+    gnuplot = _gnuplot()
     scripts = plot_scripts(out) if scripts is None else scripts
     problems = []
     for gp in scripts:

@@ -8,6 +8,7 @@ import math
 import re
 import shlex
 from dataclasses import dataclass
+from graphlib import CycleError, TopologicalSorter
 from pathlib import Path
 
 from common.markdown import outside_fences
@@ -136,31 +137,30 @@ def _cell(out: Path, source: Path, d: ValueDef) -> tuple[str, float | None, bool
 
 
 def resolve_values(out: Path, defs: dict[str, ValueDef], source: Path) -> dict[str, tuple[str, bool]]:
-    """Each value's text as the programs' tables give it, and whether it depends on a timing."""
+    """Each value's text as the programs' tables give it, and whether it depends on a timing; an arithmetic
+    value is worked out after the values it names."""
+    needs = {d.name: set(NAME.findall(d.expression)) if d.expression else set() for d in defs.values()}
+    for name, names in needs.items():
+        if names - set(defs):
+            raise FigureError(f"value {name}: {', '.join(sorted(names - set(defs)))} is not defined in this file")
+    try:
+        order = list(TopologicalSorter(needs).static_order())
+    except CycleError as e:
+        raise FigureError("values defined in terms of each other: " + ", ".join(e.args[1][:-1])) from None
     resolved: dict[str, tuple[str, bool]] = {}
     numbers: dict[str, float] = {}
-    pending = sorted(defs.values(), key=lambda d: d.expression is not None)  # cells first
-    while pending:
-        waiting = []
-        for d in pending:
-            if d.path is not None:
-                text, number, timing = _cell(out, source, d)
-                if number is not None:
-                    numbers[d.name] = number
-                resolved[d.name] = (text, timing)
-                continue
-            names = set(NAME.findall(d.expression))
-            if names - set(defs):
-                raise FigureError(f"value {d.name}: {', '.join(sorted(names - set(defs)))} is not defined in this file")
-            if not names <= set(numbers):
-                waiting.append(d)
-                continue
+    for d in (defs[name] for name in order):
+        if d.path is not None:
+            text, number, timing = _cell(out, source, d)
+            if number is not None:
+                numbers[d.name] = number
+            resolved[d.name] = (text, timing)
+        elif needs[d.name] - set(numbers):
+            raise FigureError(f"value {d.name}: {', '.join(sorted(needs[d.name] - set(numbers)))} is not a number")
+        else:
             numbers[d.name] = _evaluate(d.expression, numbers, d.name)
             resolved[d.name] = (format_value(repr(numbers[d.name]), d.format, d.name),
-                                any(resolved[n][1] for n in names))
-        if len(waiting) == len(pending):
-            raise FigureError("values defined in terms of each other: " + ", ".join(d.name for d in pending))
-        pending = waiting
+                                any(resolved[n][1] for n in needs[d.name]))
     return resolved
 
 
@@ -205,7 +205,8 @@ def find_values(path: Path, lines: list[str], inside: set[int]) -> tuple[dict[st
 
 
 def process_values(run, path: Path, lines: list[str], inside: set[int]) -> tuple[bool, int]:
-    """Checks (run.mode 'check') or rewrites the values of one text: (whether `lines` changed, values seen)."""
+    """Checks (run.mode 'check') or rewrites the values of one text, as run.may_rewrite says (run: a
+    gallery.figures.Run): (whether `lines` changed, values seen)."""
     try:
         defs, uses = find_values(path, lines, inside)
         if not defs:
@@ -223,9 +224,7 @@ def process_values(run, path: Path, lines: list[str], inside: set[int]) -> tuple
         if shown == value:
             continue
         difference = f"{path}:{u.line + 1}: value {u.name}: the text says {shown}, the program wrote {value}"
-        if run.mode != "update" and not timing:
-            (run.problems if run.mode == "check" else run.left).append(difference)
-        elif run.mode != "check":
+        if run.may_rewrite([] if timing else [difference]):
             lines[u.line] = line[:u.start] + (f"`{value}`" if written.startswith("`") else value) + line[u.end:]
             changed = True
     return changed, len(uses)

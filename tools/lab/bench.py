@@ -15,16 +15,13 @@ import argparse
 import json
 import os
 import shutil
-import signal
 import statistics
-import subprocess
 import sys
 import tempfile
 from pathlib import Path
 
-SOURCE = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(SOURCE / "tools" / "lab"))
-from screenshots import start_lab  # noqa: E402
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from screenshots import browser, running_lab  # noqa: E402
 
 SCENES = ["whitted", "spheres", "primitives", "cornell", "cornell_spheres", "checkerboard", "fine_detail"]
 
@@ -36,27 +33,20 @@ def main() -> int:
     parser.add_argument("--single", type=int, default=100, help="shots stepped one by one (the \"1 step\" button)")
     parser.add_argument("--shots", type=int, default=2000, help="shots of the \"run\" button")
     args = parser.parse_args()
-    node = shutil.which("node")
-    if node is None:
+    if shutil.which("node") is None:
         print("bench: Node.js is missing: run tools/install-deps", file=sys.stderr)
         return 1
     load_before = os.getloadavg()
     with tempfile.TemporaryDirectory(prefix="illum-lab-bench-") as work:
         # An empty folder of lesson outputs: the benchmark does not look at your pictures (the
         # source tree's out/ may not exist yet).
-        process, port = start_lab(args.bin.resolve() / "illum", Path(work))
-        try:
+        with running_lab(args.bin.resolve() / "illum", Path(work)) as (process, port):
             options, results = Path(work) / "options.json", Path(work) / "results.json"
             options.write_text(json.dumps({"scenes": SCENES, "clicks": args.clicks, "shots": args.shots, "single": args.single,
                                            "labPid": process.pid}), encoding="utf-8")
-            run = subprocess.run([node, str(SOURCE / "tools" / "lab" / "browser.mjs"), "bench", f"http://127.0.0.1:{port}/",
-                                  str(options), str(results)], cwd=SOURCE, stdin=subprocess.DEVNULL, timeout=1800)
-            if run.returncode != 0:
+            if browser("bench", port, options, results, timeout=1800) != 0:
                 return 1
             data = json.loads(results.read_text(encoding="utf-8"))
-        finally:
-            process.send_signal(signal.SIGINT)
-            process.wait(10)
     load_after = os.getloadavg()
     print(f"\nillum lab benchmark: {os.cpu_count()} cores, load average {load_before[0]:.2f} before, "
           f"{load_after[0]:.2f} after\n")

@@ -9,9 +9,11 @@ lab_has_three() is false and the page says how to get it). Rewritten only when i
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from common.files import atomic_write_bytes  # noqa: E402
 
 THREE_FILES = [  # (path under node_modules/three, name under /assets/three/)
     ("build/three.module.js", "three.module.js"),
@@ -111,10 +113,7 @@ def main() -> int:
             return 0
     except OSError:
         pass
-    args.out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = args.out.with_name(args.out.name + ".tmp")
-    tmp.write_text(text, encoding="utf-8", errors="surrogateescape")
-    os.replace(tmp, args.out)
+    atomic_write_bytes(args.out, text.encode("utf-8", errors="surrogateescape"))
     if not have_three:
         print("embed_assets.py: node_modules/three is missing (run tools/install-deps): the lab's 3D views "
               "will say so", file=sys.stderr)

@@ -8,6 +8,7 @@ tools/lab/browser.mjs, writes OUT/lab/lab_*.png and a manifest.json. Exit 0 when
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import re
@@ -37,7 +38,29 @@ SHOTS = {
 }
 
 
-def start_lab(illum: Path, out: Path) -> tuple[subprocess.Popen, int]:
+@contextlib.contextmanager
+def running_lab(illum: Path, out: Path):
+    """`ILLUM lab whitted --out OUT` on a free port of 127.0.0.1: (its process, its port), stopped on leaving
+    (SIGINT, then killed after 10 s); RuntimeError when it does not start within a minute."""
+    process, port = _start_lab(illum, out)
+    try:
+        yield process, port
+    finally:
+        process.send_signal(signal.SIGINT)
+        try:
+            process.wait(10)
+        except subprocess.TimeoutExpired:
+            process.kill()
+
+
+def browser(mode: str, port: int, options: Path, target: Path, timeout: int) -> int:
+    """tools/lab/browser.mjs MODE on the lab at PORT, with its options and its output: its exit status."""
+    return subprocess.run([shutil.which("node") or "node", str(SOURCE / "tools" / "lab" / "browser.mjs"), mode,
+                           f"http://127.0.0.1:{port}/", str(options), str(target)], cwd=SOURCE,
+                          stdin=subprocess.DEVNULL, timeout=timeout).returncode
+
+
+def _start_lab(illum: Path, out: Path) -> tuple[subprocess.Popen, int]:
     process = subprocess.Popen([str(illum), "lab", "whitted", "--port", "0", "--out", str(out)], stdout=subprocess.PIPE,
                                stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True)
     deadline = time.monotonic() + 60
@@ -58,8 +81,7 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--bin", type=Path, required=True, help="the build's bin/ folder (holds illum)")
     parser.add_argument("--out", type=Path, required=True, help="the main job's output folder (writes OUT/lab)")
     args = parser.parse_args(argv)
-    node = shutil.which("node")
-    if node is None:
+    if shutil.which("node") is None:
         print("screenshots: Node.js is missing: run tools/install-deps", file=sys.stderr)
         return 1
     illum = args.bin.resolve() / "illum"
@@ -72,35 +94,14 @@ def main(argv: list[str] | None = None) -> int:
     folder = out / "lab"
     folder.mkdir(parents=True, exist_ok=True)
     try:
-        process, port = start_lab(illum, out)
+        with running_lab(illum, out) as (_, port):
+            status = _shoot(port, folder)
     except RuntimeError as e:
         print(f"screenshots: {e}", file=sys.stderr)
         return 1
-    try:
-        # The hemicube on the floor patch nearest the middle of the box's open front: it sees the
-        # whole box, and the opening shows as the directions that meet nothing.
-        with urllib.request.urlopen(f"http://127.0.0.1:{port}/api/radiosity/mesh?scene=cornell&patches=2000") as r:
-            mesh = json.load(r)
-        c, n = mesh["centroid"], mesh["normal"]
-        floor = [i for i in range(mesh["patches"]) if n[3 * i + 1] > 0.999]
-        patch = min(floor, key=lambda i: abs(c[3 * i] - 278) + abs(c[3 * i + 2] - 25)) if floor else None
-        options = folder / "options.json"
-        options.write_text(json.dumps({"pixel": [285, 173], "patch": patch, "compare": ["06", "whitted.png"]}),
-                           encoding="utf-8")
-        run = subprocess.run([node, str(SOURCE / "tools" / "lab" / "browser.mjs"), "screenshots",
-                              f"http://127.0.0.1:{port}/", str(options), str(folder)], cwd=SOURCE,
-                             stdin=subprocess.DEVNULL, timeout=600)
-        options.unlink()
-        (folder / "browser.json").unlink(missing_ok=True)
-    finally:
-        process.send_signal(signal.SIGINT)
-        try:
-            process.wait(10)
-        except subprocess.TimeoutExpired:
-            process.kill()
     missing = [name for name in SHOTS if not (folder / name).is_file()]
-    if run.returncode != 0 or missing:
-        print(f"screenshots: the browser failed (status {run.returncode}); missing: {', '.join(missing) or 'none'}",
+    if status != 0 or missing:
+        print(f"screenshots: the browser failed (status {status}); missing: {', '.join(missing) or 'none'}",
               file=sys.stderr)
         return 1
     manifest = {"id": "lab", "title": "The lab (illum lab): its four views",
@@ -108,6 +109,24 @@ def main(argv: list[str] | None = None) -> int:
     atomic_write_text(folder / "manifest.json", json.dumps(manifest, indent=2) + "\n")
     print(f"screenshots: wrote {len(SHOTS)} screenshots of the lab in {folder}")
     return 0
+
+
+def _shoot(port: int, folder: Path) -> int:
+    """The browser's screenshots of the lab at PORT into FOLDER: its exit status."""
+    # The hemicube on the floor patch nearest the middle of the box's open front: it sees the
+    # whole box, and the opening shows as the directions that meet nothing.
+    with urllib.request.urlopen(f"http://127.0.0.1:{port}/api/radiosity/mesh?scene=cornell&patches=2000") as r:
+        mesh = json.load(r)
+    c, n = mesh["centroid"], mesh["normal"]
+    floor = [i for i in range(mesh["patches"]) if n[3 * i + 1] > 0.999]
+    patch = min(floor, key=lambda i: abs(c[3 * i] - 278) + abs(c[3 * i + 2] - 25)) if floor else None
+    options = folder / "options.json"
+    options.write_text(json.dumps({"pixel": [285, 173], "patch": patch, "compare": ["06", "whitted.png"]}),
+                       encoding="utf-8")
+    status = browser("screenshots", port, options, folder, timeout=600)
+    options.unlink()
+    (folder / "browser.json").unlink(missing_ok=True)
+    return status
 
 
 if __name__ == "__main__":

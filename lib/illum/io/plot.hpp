@@ -6,7 +6,7 @@
 // NaN`), so a curve's line runs across the rows of other series interleaved
 // with its own, where an undefined 1/0 would break it into loose points; and
 // each axis spans the data with a margin, so that no point sits on the frame,
-// where gnuplot's border hides it (tools/check_plots.py checks both on every
+// where gnuplot's border hides it (tests/checks/check_plots.py checks both on every
 // plot the programs draw).
 //
 // A curve names its table's columns by their header ("resolution",

@@ -1,5 +1,5 @@
 // A DESCRIPTION of doctest 2.4.8's reporter interface, for a compile check
-// only: tools/check_compat.py compiles tests/support/grade_reporter.cpp
+// only: tests/checks/check_compat.py compiles tests/support/grade_reporter.cpp
 // against it (-fsyntax-only) so that the grading reporter keeps building on
 // Ubuntu 22.04 (doctest 2.4.8), while the real build uses Debian's 2.4.9.
 //

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Private helpers that meet in a unity unit: fails, naming both files, where they could.
 
-    tools/check_unity_units.py --build-dir DIR [--source DIR] [--require-units]   (CTest `unity_units`)
+    tests/checks/check_unity_units.py --build-dir DIR [--source DIR] [--require-units]   (CTest `unity_units`)
 
 The build compiles a target's sources sixteen to a unit (DIR/unity/<target>/unit_N.cpp), so a helper
 private to one file (an unnamed namespace, `static`) is visible to the files after it, where overload
@@ -16,10 +16,8 @@ import re
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from common.cpp_text import blank_comments  # noqa: E402
+from repo import ROOT as SOURCE, blank_comments, report
 
-SOURCE = Path(__file__).resolve().parent.parent
 MEMBER = re.compile(r'^#include "([^"]+)"', re.M)
 # A function's head at column 0: a return type, then the name and its opening parenthesis.
 HEAD = re.compile(r"^(?!(?:return|if|for|while|switch|using|namespace|struct|class|enum|union|template|typedef)\b)"
@@ -105,11 +103,7 @@ def main(argv: list[str] | None = None) -> int:
               file=sys.stderr)
         return 1
     problems = [p for unit in units for p in problems_in_unit(unit, args.source.resolve())]
-    for problem in problems:
-        print(problem)
-    print(f"check_unity_units: {len(units)} unit(s), {len(problems)} problem(s)",
-          file=sys.stderr if problems else sys.stdout)
-    return 1 if problems else 0
+    return report(problems, f"check_unity_units: {len(units)} unit(s)", "no private helper meets a bare call")
 
 
 if __name__ == "__main__":

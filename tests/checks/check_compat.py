@@ -8,7 +8,7 @@ Python 3.10, doctest 2.4.8, nlohmann-json 3.10.5; docs/grading.md, "Supported im
 3. the grading driver parses as Python 3.10 and imports no newer module;
 4. no CMakeLists.txt asks for a CMake newer than 3.22.
 
-    tools/check_compat.py [--compiler c++]       exit 0 when everything fits, 1 with one line per offence
+    tests/checks/check_compat.py [--compiler c++]       exit 0 when everything fits, 1 with one line per offence
 """
 from __future__ import annotations
 
@@ -20,12 +20,10 @@ import subprocess
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from common.cpp_text import blank_comments  # noqa: E402
+from repo import ROOT, code_lines, cxx_sources
 
-ROOT = Path(__file__).resolve().parents[1]
 DOCTEST_248 = ROOT / "tools" / "compat" / "doctest-2.4.8"
-SOURCE_DIRS = ["lib", "lessons", "tests", "tools", "bench", "exercises"]
+SOURCE_DIRS = ("lib", "lessons", "tests", "tools", "bench", "exercises")
 
 # (pattern, what it is, the version that added it)
 NEWER_APIS = [
@@ -52,9 +50,9 @@ NEWER_APIS = [
     (r"\bstd::move_only_function\b", "std::move_only_function", "GCC 12"),
     (r"\bstd::(flat_map|flat_set|mdspan)\b", "a C++23 container", "GCC 15"),
 ]
-CXX_SUFFIXES = {".cpp", ".hpp", ".h", ".cc"}
 
-PYTHON_FILES = ["tools/grade", "tools/grading", "tools/common", "tools/check_compat.py"]
+PYTHON_FILES = ["tools/grade", "tools/grading", "tools/common", "tests/checks/check_compat.py",
+                "tests/checks/repo.py"]
 NEWER_PYTHON_MODULES = {"tomllib": "3.11", "wsgiref.types": "3.11"}
 NEWER_PYTHON_NAMES = [
     (r"\bdatetime\.UTC\b", "datetime.UTC", "3.11"),
@@ -66,20 +64,10 @@ NEWER_PYTHON_NAMES = [
 ]
 
 
-def source_files() -> list[Path]:
-    files = []
-    for folder in SOURCE_DIRS:
-        for path in sorted((ROOT / folder).rglob("*")):
-            if path.suffix in CXX_SUFFIXES and path.is_file() and DOCTEST_248 not in path.parents:
-                files.append(path)
-    return files
-
-
 def check_newer_apis() -> list[str]:
     offences = []
-    for path in source_files():
-        code = blank_comments(path.read_text(encoding="utf-8", errors="replace"))
-        for number, line in enumerate(code.splitlines(), start=1):
+    for path in cxx_sources(ROOT, SOURCE_DIRS, skip=DOCTEST_248):
+        for number, line in enumerate(code_lines(path), start=1):
             for pattern, what, since in NEWER_APIS:
                 if re.search(pattern, line):
                     offences.append(f"{path.relative_to(ROOT)}:{number}: {what} needs {since}; "

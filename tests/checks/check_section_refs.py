@@ -17,8 +17,8 @@ to the course's sections, aside). A §
 after a book's name in the same paragraph ("pbrt-v4 §6.8.6", "*Numerical Recipes*, §9.4"), or
 under a text's "Further reading", is the book's and is not checked.
 
-    tools/check_section_refs.py            # exit 1 and one line per stale reference
-    tools/check_section_refs.py --list     # every reference and where it points
+    tests/checks/check_section_refs.py            # exit 1 and one line per stale reference
+    tests/checks/check_section_refs.py --list     # every reference and where it points
 
 CTest `section_refs` (tests/e2e/tools.cmake) runs it.
 """
@@ -29,14 +29,13 @@ import re
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from grading.edition import tracked_files as edition_files  # noqa: E402
+from repo import ROOT, report
+from grading.edition import tracked_files as edition_files  # tools/ is on the path (repo)
 
-ROOT = Path(__file__).resolve().parent.parent
 SCANNED = ("lib", "exercises", "tests", "lessons", "slides")
 SUFFIXES = {".cpp", ".hpp", ".h", ".md", ".py", ".txt", ".cmake", ".mjs", ".cjs", ".json"}
-# Fixtures of the tools' own tests: texts of made-up lessons.
-SKIPPED = ("tests/tools/", "tests/slides/fixtures/", "tests/texts/fixtures/")
+# Fixtures of the tools' own tests (texts of made-up lessons), and the checks, which quote made-up references.
+SKIPPED = ("tests/tools/", "tests/slides/fixtures/", "tests/texts/fixtures/", "tests/checks/")
 
 _OWN = re.compile(r"^(?:lessons|exercises|tests|slides)/(\d\d)_")
 _HEADING = re.compile(r"^#{2,4} (\d+(?:\.\d+)*)\.?\s", re.M)
@@ -177,12 +176,7 @@ def main() -> int:
     parser.add_argument("--root", type=Path, default=ROOT)
     parser.add_argument("--list", action="store_true", help="print every reference and where it points")
     args = parser.parse_args()
-    found = problems(args.root.resolve(), args.list)
-    for p in found:
-        print(p)
-    if found:
-        print(f"{len(found)} section reference(s) point to no section", file=sys.stderr)
-    return 1 if found else 0
+    return report(problems(args.root.resolve(), args.list), "section references", "every one names a section")
 
 
 if __name__ == "__main__":

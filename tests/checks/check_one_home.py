@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """One home per helper: fails, with file:line, where C++ code rebuilds one by hand (CTest `one_home`).
 
-    tools/check_one_home.py [--root DIR]
+    tests/checks/check_one_home.py [--root DIR]
 
 Reads the C++ sources of lib/, lessons/, tests/, bench/ and tools/ (comments and strings blanked, so
 prose may name what code must not do) and reports a hand-written best-of-N timing loop, π typed in,
@@ -16,12 +16,9 @@ import re
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from common.cpp_text import blank_comments  # noqa: E402
+from repo import ROOT, code_lines, cxx_sources, report
 
-ROOT = Path(__file__).resolve().parents[1]
 FOLDERS = ("lib", "lessons", "tests", "bench", "tools")
-SUFFIXES = {".cpp", ".hpp", ".h", ".cc"}
 
 THREADS_HOME = "lib/illum/core/threads.hpp"
 STOPWATCH_HOME = "lib/illum/core/stopwatch.hpp"
@@ -84,19 +81,9 @@ HOMES: list[tuple[re.Pattern[str], str]] = [
 ]
 
 
-def sources(root: Path) -> list[Path]:
-    found = []
-    for folder in FOLDERS:
-        base = root / folder
-        if base.is_dir():
-            found += [p for p in base.rglob("*") if p.suffix in SUFFIXES and p.is_file()
-                      and "node_modules" not in p.parts]
-    return sorted(found)
-
-
 def problems_in(path: Path, root: Path) -> list[str]:
     relative = path.relative_to(root).as_posix()
-    lines = blank_comments(path.read_text(encoding="utf-8", errors="replace")).splitlines()
+    lines = code_lines(path)
     rules = RULES + (PLATFORM_RULES if relative.startswith(PLATFORM_FOLDERS) else [])
     rules += [(pattern, f"a second definition of a helper whose home is {home}.hpp", ())
               for pattern, home in HOMES if not relative.startswith(home + ".")]
@@ -112,18 +99,14 @@ def problems_in(path: Path, root: Path) -> list[str]:
 
 def problems_found(root: Path) -> list[str]:
     root = root.resolve()
-    return [p for path in sources(root) for p in problems_in(path, root)]
+    return [p for path in cxx_sources(root, FOLDERS) for p in problems_in(path, root)]
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--root", type=Path, default=ROOT, help="the source tree (default: this checkout)")
     args = parser.parse_args(argv)
-    problems = problems_found(args.root)
-    for problem in problems:
-        print(problem)
-    print("one home: " + ("every helper in its home" if not problems else f"FAILED ({len(problems)} problem(s))"))
-    return 1 if problems else 0
+    return report(problems_found(args.root), "one home", "every helper in its home")
 
 
 if __name__ == "__main__":

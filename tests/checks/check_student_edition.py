@@ -3,8 +3,8 @@
 test of a lesson handed out with NotImplemented (a student starts at 0; each failure names the function
 to write), while the lessons shipped as reference code pass.
 
-    tools/check_student_edition.py [--build-dir build/release] [--work-dir DIR]
-    tools/check_student_edition.py --lesson 07 [--quick] [--work-dir /tmp/ed07]
+    tests/checks/check_student_edition.py [--build-dir build/release] [--work-dir DIR]
+    tests/checks/check_student_edition.py --lesson 07 [--quick] [--work-dir /tmp/ed07]
 
 With --lesson NN (an instructor's re-verification, too slow for CI) it follows instead the student's
 path for lesson NN handed out alone, by the commands of the edition's own README: on the stubs the tests
@@ -23,8 +23,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-
+from repo import report
 from gallery.kept_images import FIGURES_FOLDER, image_links, lesson_texts  # noqa: E402
 from grading import build, project  # noqa: E402
 from grading.edition import broken_links, make_student_edition  # noqa: E402
@@ -195,14 +194,7 @@ def check_lessons(texts: list[str], work_dir: Path | None, quick: bool) -> int:
         work.mkdir(parents=True, exist_ok=True)
         for lesson in lessons:
             problems += OneLesson(lesson, work, quick).check()
-    return report(problems, f"student edition of lesson(s) {', '.join(lessons)} alone")
-
-
-def report(problems: list[str], what: str) -> int:
-    for problem in problems:
-        print(f"PROBLEM {problem}")
-    print(f"{what}: " + ("ok" if not problems else f"FAILED ({len(problems)} problem(s))"))
-    return 0 if not problems else 1
+    return report(problems, f"student edition of lesson(s) {', '.join(lessons)} alone", "ok", prefix="PROBLEM ")
 
 
 def suite_problems(lesson: str, program: Path, handed_out: bool) -> list[str]:
@@ -250,7 +242,7 @@ def check_edition(build_dir: Path, work_dir: Path | None) -> int:
         if "grading_integrity" in subprocess.run(["ctest", "-N", "-R", "^grading_integrity$"], cwd=work,
                                                  capture_output=True, text=True, check=False).stdout:
             problems.append("the grading_integrity test is registered in the student edition")
-    return report(problems, "student edition")
+    return report(problems, "student edition", "ok", prefix="PROBLEM ")
 
 
 def main() -> int:

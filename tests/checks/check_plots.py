@@ -2,7 +2,7 @@
 """Every plot the lesson programs drew shows all its data: lines join, no point is lost on the frame
 (tools/gallery/plots.py). Exit 0 when every plot is whole, 1 otherwise, 2 when gnuplot is missing.
 
-    tools/check_plots.py [--out out] [SCRIPT.gp ...]
+    tests/checks/check_plots.py [--out out] [SCRIPT.gp ...]
 """
 from __future__ import annotations
 
@@ -10,13 +10,13 @@ import argparse
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from gallery.plots import PlotCheckError, check_plots  # noqa: E402
+from repo import ROOT
+from gallery.plots import PlotCheckError, check_plots  # tools/ is on the path (repo)
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--out", type=Path, default=Path(__file__).resolve().parent.parent / "out",
+    parser.add_argument("--out", type=Path, default=ROOT / "out",
                         help="the folder of the programs' outputs (default: out/)")
     parser.add_argument("scripts", nargs="*", type=Path, help="check only these .gp scripts")
     args = parser.parse_args(argv)
