@@ -8,7 +8,6 @@ import json
 import os
 import pwd
 import shutil
-import signal
 import subprocess
 import sys
 import tempfile
@@ -22,6 +21,7 @@ from pathlib import Path
 from .autograder import RUN_LIMITS, pack_autograder
 from .gradebook import Outcome, Roster, RosterError, canvas_rows, csv_text, grades_rows, moodle_rows, read_roster
 from .reports import EXIT_NOT_BUILT, write_text
+from .sandbox import kill_group
 
 MARKER = ".illum-grades"  # in --out: a folder this command wrote (so it may write there again)
 STATUS_ORDER = ("graded", "partly gradable", "not gradable", "grader error", "missing")
@@ -244,10 +244,7 @@ def run_limited(command: list[str], env: dict[str, str], timeout: float) -> tupl
     try:
         return process.communicate(timeout=timeout)[0].decode("utf-8", errors="replace"), ""
     except subprocess.TimeoutExpired:
-        try:
-            os.killpg(process.pid, signal.SIGKILL)
-        except OSError:
-            pass
+        kill_group(process.pid)
         return (process.communicate()[0].decode("utf-8", errors="replace"),
                 f"run_autograder did not finish within {timeout:g} s, the time limit of one submission "
                 "(ILLUM_GRADE_BATCH_TIMEOUT), and was stopped")

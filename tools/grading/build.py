@@ -7,13 +7,14 @@ from __future__ import annotations
 
 import os
 import re
-import signal
 import subprocess
 import sys
 import threading
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
+
+from .sandbox import kill_group
 
 # A build's output is kept up to HEAD_BYTES from its start (the first error
 # is what matters) and TAIL_BYTES from its end; a student's file can make a
@@ -69,13 +70,6 @@ def _head_and_tail(stream, echo: bool) -> tuple[bytearray, bytearray, int]:
     return head, tail, total
 
 
-def _kill_group(process: subprocess.Popen) -> None:
-    try:
-        os.killpg(process.pid, signal.SIGKILL)
-    except OSError:
-        pass
-
-
 def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = None,
                   runner: Runner | None = None) -> StepResult:
     """Runs a command, echoing its output to stderr as it comes (a build takes minutes; silence would look
@@ -90,14 +84,14 @@ def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = 
     except OSError as error:
         return StepResult(False, f"could not run {command[0]}: {error}")
     timed_out = threading.Event()
-    timer = threading.Timer(runner.timeout or 0, lambda: (timed_out.set(), _kill_group(process)))
+    timer = threading.Timer(runner.timeout or 0, lambda: (timed_out.set(), kill_group(process.pid)))
     timer.daemon = True
     if runner.timeout:
         timer.start()
     head, tail, total = _head_and_tail(process.stdout, echo)
     status = process.wait()
     timer.cancel()
-    _kill_group(process)  # whatever the build left behind
+    kill_group(process.pid)  # whatever the build left behind
     text = head.decode("utf-8", errors="replace")
     if total - len(head) - len(tail) > 0:
         text += f"\n[... {total - len(head) - len(tail)} bytes of build output cut ...]\n"
@@ -234,10 +228,6 @@ def linker_blames(output: str, units: dict[str, str], symbol_units: dict[str, st
                 if owner:
                     blamed.add(owner)
     return sorted(blamed)
-
-
-def is_link_error(output: str) -> bool:
-    return bool(re.search(r"\bld returned \d+ exit status|multiple definition of|undefined reference to", output))
 
 
 def error_lines_outside(output: str, files: list[str]) -> bool:

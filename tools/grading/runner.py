@@ -57,7 +57,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .judge import JudgeError, judge_test
-from .results import Failure, TestResult, merge
+from .results import TestResult, merge
 from .sandbox import Sandbox
 
 DEFAULT_TIMEOUT = 600.0       # seconds of processor time per run of a test program

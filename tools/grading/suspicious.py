@@ -13,7 +13,7 @@ from __future__ import annotations
 import re
 import shutil
 import subprocess
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 
 from common.cpp_text import blank_comments
@@ -28,24 +28,6 @@ class Finding:
 
     def describe(self) -> str:
         return f"{self.file}:{self.line}: {self.what}" if self.line else f"{self.file}: {self.what}"
-
-
-@dataclass
-class Scan:
-    findings: list[Finding] = field(default_factory=list)
-
-    @property
-    def flagged(self) -> dict[str, list[Finding]]:
-        """File -> its serious findings."""
-        out: dict[str, list[Finding]] = {}
-        for finding in self.findings:
-            if finding.serious:
-                out.setdefault(finding.file, []).append(finding)
-        return out
-
-    @property
-    def notes(self) -> list[Finding]:
-        return [f for f in self.findings if not f.serious]
 
 
 # C++20's standard library headers and the C headers it keeps (<cmath> and <math.h> alike).
