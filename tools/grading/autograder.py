@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import json
 import os
+import pwd
 import re
 import shlex
 import shutil
@@ -65,55 +66,23 @@ def debian_packages(root: Path) -> list[str]:
     return names
 
 
+def _script(template: str, lessons: list[str], **values: str) -> str:
+    """setup.sh or run_autograder from its template beside this file (@NAME@ replaced)."""
+    text = Path(__file__).with_name(template).read_text(encoding="utf-8")
+    for name, value in dict(values, DEFAULT_ROOT=DEFAULT_ROOT, LESSONS=" ".join(lessons)).items():
+        text = text.replace(f"@{name}@", value)
+    return text
+
+
 def setup_script(packages: list[str], lessons: list[str]) -> str:
-    quoted = " ".join(shlex.quote(p) for p in packages)
-    return f"""#!/usr/bin/env bash
-# Gradescope runs this once, as root, when it builds the autograder image.
-# It fails loudly: every step is shown, and a step that fails stops the
-# image with a message saying what to fix.
-set -euo pipefail
-ROOT="${{ILLUM_AUTOGRADER_ROOT:-{DEFAULT_ROOT}}}"
-fail() {{ printf '\\nsetup.sh: FAILED: %s\\n' "$1" >&2; exit 1; }}
-trap 'fail "the command on line $LINENO failed (its output is above)"' ERR
-
-packages=({quoted})
-missing=()
-for package in "${{packages[@]}}"; do
-  dpkg-query -W -f='${{Status}}' "$package" 2>/dev/null | grep -q 'ok installed' || missing+=("$package")
-done
-if [ "${{#missing[@]}}" -gt 0 ]; then
-  echo "setup.sh: installing ${{missing[*]}}"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update || fail "apt-get update failed: the image needs network access to its package mirror"
-  apt-get install -y --no-install-recommends "${{missing[@]}}" \\
-    || fail "apt-get could not install ${{missing[*]}}: choose an Ubuntu 22.04 (or newer) or Debian 12 base image"
-else
-  echo "setup.sh: every build package is installed already"
-fi
-
-chmod +x "$ROOT/source/run_autograder" "$ROOT/source/illum/tools/grade"
-cd "$ROOT/source/illum"
-# Versions, the reference build and its grading, then the warm stubs build.
-PYTHONPATH=tools python3 -m grading.autograder setup "$ROOT" {" ".join(lessons)} \\
-  || fail "the grader does not work on this image (see above); students' code was not involved"
-echo "setup.sh: ready"
-"""
+    """setup.sh: installs the build packages missing, then runs ``setup`` below (it fails loudly)."""
+    return _script("setup.sh.in", lessons, PACKAGES=" ".join(shlex.quote(p) for p in packages))
 
 
 def run_script(lessons: list[str]) -> str:
-    limits = "\n".join(f'export {k}="${{{k}:-{v}}}"' for k, v in RUN_LIMITS.items())
-    return f"""#!/usr/bin/env bash
-# Gradescope runs this for every submission. results.json is written whatever
-# happens: a student file that does not compile costs only its lesson, a
-# test that hangs or crashes costs only itself.
-set -uo pipefail
-ROOT="${{ILLUM_AUTOGRADER_ROOT:-{DEFAULT_ROOT}}}"
-# Gradescope's default limits: 0.5 vCPU, 768 MB, 10 minutes for the whole run.
-{limits}
-cd "$ROOT/source/illum"
-PYTHONPATH=tools python3 -m grading.autograder run "$ROOT" {" ".join(lessons)}
-exit 0
-"""
+    """run_autograder: ``run`` below with Gradescope's limits (RUN_LIMITS) where none is set."""
+    return _script("run_autograder.in", lessons,
+                   LIMITS="\n".join(f'export {k}="${{{k}:-{v}}}"' for k, v in RUN_LIMITS.items()))
 
 
 def _add(archive: zipfile.ZipFile, path: Path, name: str) -> None:
@@ -149,12 +118,11 @@ def hidden_test_files(root: Path, extra: Path | None) -> list[Path]:
 def reference_units(root: Path, lessons: list[str]) -> list[Path]:
     """lib/illum/**/<name>.cpp for every exercise stub of the graded lessons."""
     units = []
-    for name, stub in sorted(exercise_stubs(root).items()):
-        if stub.parent.name[:2] in lessons:
-            found = sorted((root / "lib" / "illum").rglob(name))
-            if len(found) != 1:
-                raise ValueError(f"exercise {stub.relative_to(root)} has {len(found)} reference units in lib/illum")
-            units.append(found[0])
+    for name, stub in sorted(exercise_stubs(root, lessons).items()):
+        found = sorted((root / "lib" / "illum").rglob(name))
+        if len(found) != 1:
+            raise ValueError(f"exercise {stub.relative_to(root)} has {len(found)} reference units in lib/illum")
+        units.append(found[0])
     return units
 
 
@@ -250,8 +218,7 @@ def install_submission(submission: Path, tree: Path, lessons: list[str]) -> Subm
     the upload over a deeper copy. The copy gets a fresh modification time so
     that make recompiles it even if it is older than the warm build.
     """
-    stubs = {name: path for name, path in exercise_stubs(tree).items()
-             if not lessons or path.parent.name[:2] in lessons}
+    stubs = exercise_stubs(tree, lessons or None)
     report = Submission(expected=sorted(stubs))
     lowered = {name.lower(): name for name in stubs}
     with tempfile.TemporaryDirectory(prefix="illum-upload-") as folder:
@@ -412,8 +379,8 @@ def _student_user(name: str) -> str | None:
 
     if os.geteuid() != 0:
         print(f"setup: WARNING: not running as root, so there is no separate user for students' code: it will "
-              f"run as {getpass_user()}, without privilege separation (docs/grading.md, \"Threat model\")",
-              flush=True)
+              f"run as {pwd.getpwuid(os.geteuid()).pw_name}, without privilege separation (docs/grading.md, "
+              "\"Threat model\")", flush=True)
         return None
     try:
         account = create_account(name)
@@ -423,12 +390,6 @@ def _student_user(name: str) -> str | None:
         return None
     print(f"setup: students' code is compiled and run as the user {account.name} (uid {account.uid})", flush=True)
     return account.name
-
-
-def getpass_user() -> str:
-    import pwd
-
-    return pwd.getpwuid(os.geteuid()).pw_name
 
 
 def _read_results(path: Path) -> dict:
@@ -484,9 +445,7 @@ def _stub_symbols(tree: Path, build_dir: Path, lessons: list[str]) -> dict[str, 
     from .suspicious import object_of, object_symbols
 
     owners: dict[str, str] = {}
-    for name, stub in sorted(exercise_stubs(tree).items()):
-        if stub.parent.name[:2] not in lessons:
-            continue
+    for _name, stub in sorted(exercise_stubs(tree, lessons).items()):
         relative = stub.relative_to(tree).as_posix()
         obj = object_of(build_dir, relative)
         if obj is None:

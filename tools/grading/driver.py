@@ -266,8 +266,7 @@ class GraderData:
 
 def _student_units(root: Path, lessons: list[str]) -> dict[str, str]:
     """File name -> ``exercises/NN_topic/name.cpp`` of every exercise unit of the graded lessons."""
-    return {name: path.relative_to(root).as_posix() for name, path in project.exercise_stubs(root).items()
-            if path.parent.name[:2] in lessons}
+    return {name: path.relative_to(root).as_posix() for name, path in project.exercise_stubs(root, lessons).items()}
 
 
 def _fall_back(args: argparse.Namespace, root: Path, relative: str, compiled: bool = True) -> bool:
@@ -615,38 +614,27 @@ def _report(args: argparse.Namespace, run: GradeRun, root: Path) -> int:
     return reports.exit_code(run)
 
 
-def check_integrity(args: argparse.Namespace, root: Path) -> int:
+def _needs_reference(root: Path, why: str) -> None:
+    """Refuses a command that needs the reference solutions in the student edition, which has none."""
     if project.is_student_edition(root):
-        print("tools/grade: --check-integrity needs the reference solutions, which the student edition "
-              "does not have", file=sys.stderr)
-        return reports.EXIT_NOT_BUILT
-    report = check_build(args.build_dir)
+        raise UsageError(why)
+
+
+def check_tree(args: argparse.Namespace, root: Path) -> int:
+    """--check-integrity (integrity.py) or --check-alone (alone.py) on an already-built tree."""
+    from .alone import check_alone
+
+    option, title = ("--check-integrity", "grading integrity") if args.check_integrity else \
+        ("--check-alone", "each lesson alone")
+    _needs_reference(root, f"{option} needs the reference solutions, which the student edition does not have")
+    report = check_build(args.build_dir) if args.check_integrity else check_alone(args.build_dir, root)
     for line in report.checked:
         print(f"ok       {line}")
     for line in report.offenders:
         print(f"OFFENDER {line}")
-    print("grading integrity: " + ("passed" if report.ok else f"FAILED ({len(report.offenders)} problem(s))"))
+    print(f"{title}: " + ("passed" if report.ok else f"FAILED ({len(report.offenders)} problem(s))"))
     if not report.ok:
-        print(f"tools/grade: grading integrity FAILED: {len(report.offenders)} problem(s), the OFFENDER lines above",
-              file=sys.stderr)
-    return reports.EXIT_PASSED if report.ok else reports.EXIT_FAILED
-
-
-def check_alone(args: argparse.Namespace, root: Path) -> int:
-    from .alone import check_alone as run_check
-
-    if project.is_student_edition(root):
-        print("tools/grade: --check-alone needs the reference solutions, which the student edition "
-              "does not have", file=sys.stderr)
-        return reports.EXIT_NOT_BUILT
-    report = run_check(args.build_dir, root)
-    for line in report.checked:
-        print(f"ok       {line}")
-    for line in report.offenders:
-        print(f"OFFENDER {line}")
-    print("each lesson alone: " + ("passed" if report.ok else f"FAILED ({len(report.offenders)} problem(s))"))
-    if not report.ok:
-        print(f"tools/grade: each lesson alone FAILED: {len(report.offenders)} problem(s), the OFFENDER lines above",
+        print(f"tools/grade: {title} FAILED: {len(report.offenders)} problem(s), the OFFENDER lines above",
               file=sys.stderr)
     return reports.EXIT_PASSED if report.ok else reports.EXIT_FAILED
 
@@ -654,10 +642,7 @@ def check_alone(args: argparse.Namespace, root: Path) -> int:
 def pack(args: argparse.Namespace, root: Path) -> int:
     from .autograder import pack_autograder
 
-    if project.is_student_edition(root):
-        print("tools/grade: pack the autograder from the instructors' tree, not the student edition",
-              file=sys.stderr)
-        return reports.EXIT_NOT_BUILT
+    _needs_reference(root, "pack the autograder from the instructors' tree, not the student edition")
     check_lessons_exist(args, root)
     lessons = choose_lessons(args, root)
     try:
@@ -673,8 +658,7 @@ def pack(args: argparse.Namespace, root: Path) -> int:
 def batch(args: argparse.Namespace, root: Path) -> int:
     from .batch import grade_batch
 
-    if project.is_student_edition(root):
-        raise UsageError("--batch packs the autograder from the instructors' tree, not the student edition")
+    _needs_reference(root, "--batch packs the autograder from the instructors' tree, not the student edition")
     check_lessons_exist(args, root)
     lessons = choose_lessons(args, root)
     return grade_batch(root, args, lessons)
@@ -689,19 +673,14 @@ def main(argv: list[str] | None = None) -> int:
     args = parse_arguments(argv)
     root = project.ROOT
     try:
-        if args.check_integrity:
-            return check_integrity(args, root)
-        if args.check_alone:
-            return check_alone(args, root)
+        if args.check_integrity or args.check_alone:
+            return check_tree(args, root)
         if args.pack_autograder:
             return pack(args, root)
         if args.batch:
             return batch(args, root)
         return grade(args, root)
-    except UsageError as error:  # a wrong command: say so, write nothing
-        print(f"tools/grade: {error}", file=sys.stderr)
-        return reports.EXIT_NOT_BUILT
-    except OutputError as error:  # the grading ran, its results could not be kept
+    except (UsageError, OutputError) as error:  # a wrong command (nothing written), or results not kept
         print(f"tools/grade: {error}", file=sys.stderr)
         return reports.EXIT_NOT_BUILT
     except Exception as error:  # noqa: BLE001 -- the autograder must still get a results.json
