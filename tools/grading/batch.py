@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import os
 import pwd
+import queue
 import shutil
 import subprocess
 import sys
@@ -146,8 +147,9 @@ class Slots:
         self.folders = [work / f"slot-{k}" for k in range(1, count + 1)]
         base = os.environ.get("ILLUM_GRADE_USER") or "illum-student"
         self.users = [base] + [f"{base}-{k}" for k in range(2, count + 1)]
-        self.free = list(range(count))
-        self.lock = threading.Lock()
+        self.free: queue.SimpleQueue[int] = queue.SimpleQueue()  # the slots no worker grades in now
+        for k in range(count):
+            self.free.put(k)
 
     def prepare(self, k: int) -> tuple[int, str]:
         folder, ag = self.folders[k], self.folders[k] / "autograder"
@@ -174,14 +176,6 @@ class Slots:
             return
         os.chown(self.folders[k], 0, gid)
         self.folders[k].chmod(0o750)
-
-    def take(self) -> int:
-        with self.lock:
-            return self.free.pop(0)
-
-    def give(self, k: int) -> None:
-        with self.lock:
-            self.free.append(k)
 
 
 def unpack(zip_path: Path, ag: Path) -> None:
@@ -386,13 +380,13 @@ class Batch:
         done, lock = [0], threading.Lock()
 
         def work_on(submission: Submission) -> Outcome:
-            k = slots.take()
+            k = slots.free.get()
             try:
                 outcome = grade_one(slots, k, submission, self.out, self.timeout)
             except Exception as error:  # noqa: BLE001 -- one student's trouble must not stop the others
                 outcome = Outcome(submission.ident, status="grader error", notes=[f"the batch failed: {error}"])
             finally:
-                slots.give(k)
+                slots.free.put(k)
             with lock:
                 done[0] += 1
                 say(f"[{done[0]}/{len(self.submissions)}] {submission.ident}: {outcome.describe()}"

@@ -101,11 +101,8 @@ def _remaining() -> float:
 
 
 def timeout_seconds() -> float:
+    """Processor seconds for one run of a test program (ILLUM_GRADE_TIMEOUT)."""
     return float(os.environ.get("ILLUM_GRADE_TIMEOUT", DEFAULT_TIMEOUT))
-
-
-def test_timeout_seconds() -> float:
-    return float(os.environ.get("ILLUM_GRADE_TEST_TIMEOUT", DEFAULT_TEST_TIMEOUT))
 
 
 @dataclass
@@ -194,12 +191,6 @@ class _Records:
                 progress = progress or record.get("event") in ("started", "test_case")
             else:
                 self.garbage += 1
-
-
-def _describe_exit(returncode: int) -> str:
-    if returncode < 0:
-        return _describe_signal(-returncode)
-    return f"the test program exited with status {returncode}"
 
 
 def _describe_signal(number: int) -> str:
@@ -342,7 +333,7 @@ def _how_it_ended(invocation: _Invocation, status: list[dict], any_records: bool
         if invocation.exit_code not in (0, 1):
             invocation.problem = (f"the test program could not start: {tail.text().strip()[-300:]}"
                                   if invocation.exit_code == 127 and not any_records
-                                  else _describe_exit(invocation.exit_code))
+                                  else f"the test program exited with status {invocation.exit_code}")
 
 
 def _key(record: dict) -> Key:
@@ -514,7 +505,8 @@ def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | 
     trusted listing; None lists them from the program. ``role``: None, "witness" or "observer"
     (module doc); an observer's results are judged by ``judge_suite`` afterwards."""
     timeout = timeout_seconds() if timeout is None else timeout
-    test_timeout = test_timeout_seconds() if test_timeout is None else test_timeout
+    if test_timeout is None:
+        test_timeout = float(os.environ.get("ILLUM_GRADE_TEST_TIMEOUT", DEFAULT_TEST_TIMEOUT))
     env = dict(env or {}, **({"ILLUM_GRADE_ROLE": role} if role else {}))
     run = SuiteRun(program, suite)
     if not program.exists():
