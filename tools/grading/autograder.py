@@ -85,19 +85,11 @@ def run_script(lessons: list[str]) -> str:
                    LIMITS="\n".join(f'export {k}="${{{k}:-{v}}}"' for k, v in RUN_LIMITS.items()))
 
 
-def _add(archive: zipfile.ZipFile, path: Path, name: str) -> None:
-    """Adds a file keeping its executable bit."""
-    info = zipfile.ZipInfo.from_file(path, name)
-    info.compress_type = zipfile.ZIP_DEFLATED
-    with path.open("rb") as data:
-        archive.writestr(info, data.read())
-
-
-def _add_text(archive: zipfile.ZipFile, name: str, text: str, executable: bool) -> None:
+def _add_script(archive: zipfile.ZipFile, name: str, text: str) -> None:
+    """An executable script, dated as every pack dates it."""
     info = zipfile.ZipInfo(name, date_time=(2024, 1, 1, 0, 0, 0))
     info.compress_type = zipfile.ZIP_DEFLATED
-    mode = 0o755 if executable else 0o644
-    info.external_attr = (stat.S_IFREG | mode) << 16
+    info.external_attr = (stat.S_IFREG | 0o755) << 16
     archive.writestr(info, text)
 
 
@@ -137,15 +129,15 @@ def pack_autograder(root: Path, zip_path: Path, lessons: list[str], extra_hidden
             # lesson that builds on an earlier one (docs/grading.md) is graded on its own units.
             edition = make_student_edition(root, Path(folder) / "illum", lessons)
             with zipfile.ZipFile(temporary, "w") as archive:
-                _add_text(archive, "setup.sh", setup_script(debian_packages(root), lessons), True)
-                _add_text(archive, "run_autograder", run_script(lessons), True)
+                _add_script(archive, "setup.sh", setup_script(debian_packages(root), lessons))
+                _add_script(archive, "run_autograder", run_script(lessons))
                 for path in sorted(edition.out.rglob("*")):
                     if path.is_file():
-                        _add(archive, path, "illum/" + path.relative_to(edition.out).as_posix())
+                        archive.write(path, "illum/" + path.relative_to(edition.out).as_posix(), zipfile.ZIP_DEFLATED)
                 for path in references:
-                    _add(archive, path, "reference/" + path.name)
+                    archive.write(path, "reference/" + path.name, zipfile.ZIP_DEFLATED)
                 for path in hidden_files:
-                    _add(archive, path, "hidden-tests/" + path.name)
+                    archive.write(path, "hidden-tests/" + path.name, zipfile.ZIP_DEFLATED)
                 names = archive.namelist()
         temporary.replace(zip_path)
     finally:

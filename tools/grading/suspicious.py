@@ -10,6 +10,7 @@ test's process can always lie to it); a flagged file is graded as its stub (docs
 """
 from __future__ import annotations
 
+import functools
 import re
 import shutil
 import subprocess
@@ -229,31 +230,25 @@ def object_symbols(path: Path) -> tuple[list[tuple[str, str, str]], list[tuple[s
     return defined_out, used_out
 
 
-_runtime_symbols: set[str] | None = None
-
-
+@functools.cache
 def runtime_symbols() -> set[str]:
     """The names the C, maths, C++, GCC and OpenMP runtime libraries export: a
     program that defines one of them replaces it for every caller (interposition)."""
-    global _runtime_symbols
-    if _runtime_symbols is None:
-        _runtime_symbols = set()
-        nm, compiler = shutil.which("nm"), shutil.which("c++") or shutil.which("g++")
-        for library in ("libc.so.6", "libm.so.6", "libstdc++.so.6", "libgcc_s.so.1", "libgomp.so.1"):
-            path = ""
-            if compiler:
-                done = subprocess.run([compiler, f"-print-file-name={library}"], capture_output=True, text=True,
-                                      check=False)
-                path = done.stdout.strip()
-            if nm and path and Path(path).is_file():
-                done = subprocess.run([nm, "-D", "-P", "--defined-only", path], capture_output=True, text=True,
-                                      check=False)
-                _runtime_symbols.update(line.split()[0].split("@", 1)[0] for line in done.stdout.splitlines()
-                                        if line.strip())
-        # Whatever the libraries found, these are never an exercise's to define.
-        _runtime_symbols.update(_FORBIDDEN_BY_NAME)
-        _runtime_symbols.update({"main", "malloc", "free", "calloc", "realloc", "stdout", "stderr", "stdin"})
-    return _runtime_symbols
+    found: set[str] = set()
+    nm, compiler = shutil.which("nm"), shutil.which("c++") or shutil.which("g++")
+    for library in ("libc.so.6", "libm.so.6", "libstdc++.so.6", "libgcc_s.so.1", "libgomp.so.1"):
+        path = ""
+        if compiler:
+            done = subprocess.run([compiler, f"-print-file-name={library}"], capture_output=True, text=True,
+                                  check=False)
+            path = done.stdout.strip()
+        if nm and path and Path(path).is_file():
+            done = subprocess.run([nm, "-D", "-P", "--defined-only", path], capture_output=True, text=True,
+                                  check=False)
+            found.update(line.split()[0].split("@", 1)[0] for line in done.stdout.splitlines() if line.strip())
+    # Whatever the libraries found, these are never an exercise's to define.
+    return found | set(_FORBIDDEN_BY_NAME) | {"main", "malloc", "free", "calloc", "realloc", "stdout", "stderr",
+                                              "stdin"}
 
 
 def library_definitions(archive: Path, skip_members: set[str]) -> dict[str, str]:
