@@ -409,11 +409,10 @@ def _build_witness(tree: Path, grader: Path, lessons: list[str], hidden: Path | 
     work = grader / "witness-build"
     programs = [f"tests_lesson{nn}" for nn in lessons if any((tree / "tests").glob(f"{nn}_*"))]
     targets = programs + (["tests_hidden", "tests_hidden_observer"] if hidden else [])
-    build.set_runner(build.Runner(env=reference_environment(), timeout=None))
-    step = build.configure(tree, work, lessons, hidden)
+    runner = build.Runner(env=reference_environment())
+    step = build.configure(tree, work, lessons, hidden, runner=runner)
     if step.ok:
-        step = build.build(work, targets)
-    build.set_runner(build.Runner())
+        step = build.build(work, targets, runner=runner)
     if not step.ok:
         raise SetupError("the reference solutions and the tests did not build (see above)")
     kept = grader / "witness"

@@ -40,14 +40,6 @@ class Runner:
     timeout: float | None = None
 
 
-_runner = Runner()
-
-
-def set_runner(runner: Runner) -> None:
-    global _runner
-    _runner = runner
-
-
 def build_timeout_from_environment() -> float | None:
     value = os.environ.get("ILLUM_GRADE_BUILD_TIMEOUT", "").strip()
     return float(value) if value else None
@@ -74,7 +66,7 @@ def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = 
                   runner: Runner | None = None) -> StepResult:
     """Runs a command, echoing its output to stderr as it comes (a build takes minutes; silence would look
     like a hang) and keeping its head and tail for the report."""
-    runner = runner or _runner
+    runner = runner or Runner()
     if echo:
         print("$ " + " ".join(command), file=sys.stderr, flush=True)
     try:
@@ -105,7 +97,7 @@ def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = 
 
 
 def configure(source: Path, build_dir: Path, exercises: Sequence[str], hidden: Path | None,
-              echo: bool = True, extra: Sequence[str] = ()) -> StepResult:
+              echo: bool = True, extra: Sequence[str] = (), runner: Runner | None = None) -> StepResult:
     """Configures a Release tree; warnings never fail a student's build.
 
     The reference build leaves ILLUM_WERROR as the tree has it, so that
@@ -126,7 +118,7 @@ def configure(source: Path, build_dir: Path, exercises: Sequence[str], hidden: P
         # The same options as last time: make re-runs CMake itself if a CMakeLists.txt changed, so
         # configuring again would only cost time (each submission of an autograder run starts here).
         return StepResult(True, "")
-    return run_streaming(command, echo)
+    return run_streaming(command, echo, runner=runner)
 
 
 def already_configured(build_dir: Path, source: Path, command: Sequence[str]) -> bool:

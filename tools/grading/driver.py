@@ -289,14 +289,15 @@ def _fall_back(args: argparse.Namespace, root: Path, relative: str, compiled: bo
 
 
 def _build_with_fallback(args: argparse.Namespace, run: GradeRun, build_dir: Path, root: Path,
-                         targets: list[str], data: GraderData | None = None) -> build.StepResult:
+                         targets: list[str], data: GraderData | None = None,
+                         runner: build.Runner | None = None) -> build.StepResult:
     """Builds ``targets``; with --fallback-stubs, a student file that does not
     compile, or that breaks the link (a helper defined in two files), is
     replaced by its stub and the build tried again, so that one broken file
     costs only its lesson (GradeRun.fallbacks says which, with the compiler's
     or the linker's words)."""
     units = _student_units(root, run.lessons) if args.student else {}
-    step = build.build(build_dir, targets)
+    step = build.build(build_dir, targets, runner=runner)
     while not step.ok and args.student and args.fallback_stubs and not step.timed_out:
         compiled = [f for f in build.failed_exercise_files(step.output) if f in units.values()]
         linked = build.linker_blames(step.output, units, data.stub_symbols if data else None)
@@ -311,7 +312,7 @@ def _build_with_fallback(args: argparse.Namespace, run: GradeRun, build_dir: Pat
             if what == "did not link":
                 run.link_failures.add(relative)
             print(f"tools/grade: {relative} {what}; grading its lesson with the stub", file=sys.stderr)
-        step = build.build(build_dir, targets)
+        step = build.build(build_dir, targets, runner=runner)
     return step
 
 
@@ -410,30 +411,26 @@ def _build_student_code(args: argparse.Namespace, run: GradeRun, root: Path, bui
                         targets: list[str], sandbox: Sandbox, data: GraderData) -> build.StepResult:
     """Configures and builds; a student's build runs as the student's user (the tree is theirs while it
     compiles, and root's after)."""
-    build_home = None
+    build_home, runner = None, build.Runner(timeout=build.build_timeout_from_environment())
     if sandbox.account is not None and not args.build_as_grader:
         build_dir.mkdir(parents=True, exist_ok=True)
         sandbox.give_tree(build_dir)
         build_home = sandbox.make_scratch()
-        build.set_runner(build.Runner(preexec=sandbox.build_preexec(),
-                                      env=sandbox.build_environment(build_home / "home"),
-                                      timeout=build.build_timeout_from_environment()))
-    else:
-        build.set_runner(build.Runner(timeout=build.build_timeout_from_environment()))
+        runner = build.Runner(preexec=sandbox.build_preexec(), env=sandbox.build_environment(build_home / "home"),
+                              timeout=runner.timeout)
     try:
         hidden_objects = data.hidden_objects
         step = build.configure(root, build_dir, exercises, None if hidden_objects else args.hidden,
-                               extra=build.hidden_objects_arguments(hidden_objects))
+                               extra=build.hidden_objects_arguments(hidden_objects), runner=runner)
         if step.ok:
             # The visible tests first: an instructor's hidden tests that do not
             # build must not cost the student the visible ones (nor blame them).
-            step = _build_with_fallback(args, run, build_dir, root, targets, data)
+            step = _build_with_fallback(args, run, build_dir, root, targets, data, runner)
     finally:
-        build.set_runner(build.Runner())
         if build_home is not None:
             sandbox.reap()
             sandbox.take_tree(build_dir)
-            sandbox.remove_scratch(build_home)
+            shutil.rmtree(build_home, ignore_errors=True)
     return step
 
 

@@ -58,7 +58,7 @@ from pathlib import Path
 
 from .judge import JudgeError, judge_test
 from .results import TestResult, merge
-from .sandbox import Sandbox
+from .sandbox import Sandbox, descendants_cpu_seconds
 
 DEFAULT_TIMEOUT = 600.0       # seconds of processor time per run of a test program
 DEFAULT_TEST_TIMEOUT = 60.0   # seconds of processor time per test case
@@ -282,7 +282,7 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
         if records.flooded:
             problem = f"the test program sent more than {MAX_RECORDS_BYTES // (1024 * 1024)} MB of results"
         else:
-            problem, timed_out = watch.problem(time.monotonic(), lambda: sandbox.cpu_seconds(launched),
+            problem, timed_out = watch.problem(time.monotonic(), lambda: descendants_cpu_seconds(launched.process.pid),
                                                sandbox.shared_memory_bytes)
         if problem:
             sandbox.stop(launched)

@@ -231,10 +231,6 @@ class Sandbox:
         base.chmod(0o711)
         return str(base)
 
-    @staticmethod
-    def remove_scratch(folder: Path) -> None:
-        shutil.rmtree(folder, ignore_errors=True)
-
     # --- running a test program ------------------------------------------------------------
 
     def launch(self, argv: list[str], records: bool = True, cpu_seconds: float | None = None,
@@ -277,18 +273,12 @@ class Sandbox:
             for fd in (status_r, status_w, output_r, output_w, records_r, records_w):
                 if fd is not None:
                     os.close(fd)
-            self.remove_scratch(scratch)
+            shutil.rmtree(scratch, ignore_errors=True)
             raise
         for fd in (status_w, output_w, records_w):  # only the sandbox holds the write ends now
             if fd is not None:
                 os.close(fd)
         return Launched(process, status_r, output_r, records_r, scratch)
-
-    @staticmethod
-    def cpu_seconds(launched: Launched) -> float:
-        """Processor time (user + system, every thread) used so far by the processes the launcher
-        started: what the per-test limits count, so that a loaded machine does not fail a test."""
-        return descendants_cpu_seconds(launched.process.pid)
 
     def stop(self, launched: Launched) -> None:
         """Kills a launched program and everything it started."""
@@ -314,7 +304,7 @@ class Sandbox:
             if fd is not None:
                 with contextlib.suppress(OSError):
                     os.close(fd)
-        self.remove_scratch(launched.scratch)
+        shutil.rmtree(launched.scratch, ignore_errors=True)
         return survivors
 
     # --- every process and file of the user -------------------------------------------------
@@ -447,7 +437,8 @@ _TICKS = os.sysconf("SC_CLK_TCK") if hasattr(os, "sysconf") else 100
 
 def descendants_cpu_seconds(root_pid: int) -> float:
     """utime + stime of ``root_pid`` and every process below it, from /proc (children that ended
-    and were waited for count in their parent's cutime + cstime)."""
+    and were waited for count in their parent's cutime + cstime): what the per-test limits count,
+    every thread's processor time, so that a loaded machine does not fail a test."""
     parents: dict[int, int] = {}
     times: dict[int, float] = {}
     for entry in os.listdir("/proc"):
