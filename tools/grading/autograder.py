@@ -34,7 +34,7 @@ import subprocess
 import sys
 import tempfile
 import zipfile
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path, PurePosixPath
 
 from .edition import make_student_edition
@@ -163,10 +163,6 @@ class Submission:
     notes: list[str] = field(default_factory=list)
     expected: list[str] = field(default_factory=list)
 
-    def to_json(self) -> dict:
-        return {"installed": self.installed, "ignored": self.ignored, "notes": self.notes,
-                "expected": self.expected}
-
 
 def _skipped_part(part: str) -> bool:
     return part.startswith(".") or part == "__MACOSX"
@@ -262,21 +258,16 @@ class SetupError(Exception):
     """Something an instructor must fix before the autograder can grade."""
 
 
-def _version(text: str) -> tuple[int, ...]:
-    match = re.search(r"(\d+)\.(\d+)(?:\.(\d+))?", text)
-    if not match:
-        return ()
-    return tuple(int(g) for g in match.groups() if g is not None)
-
-
 def _command_version(command: list[str]) -> tuple[tuple[int, ...], str]:
+    """The version ``command`` prints on its first line (empty when none), and that line."""
     try:
         completed = subprocess.run(command, capture_output=True, text=True, check=False)
     except OSError as error:
         return (), str(error)
     text = (completed.stdout or completed.stderr).strip().splitlines()
     first = text[0] if text else ""
-    return _version(first), first
+    match = re.search(r"(\d+)\.(\d+)(?:\.(\d+))?", first)
+    return tuple(int(g) for g in match.groups() if g is not None) if match else (), first
 
 
 def library_versions(compiler: str = "c++") -> dict[str, tuple[int, ...]]:
@@ -592,7 +583,7 @@ def run(root: Path, lessons: list[str]) -> int:
     _restore_stubs(tree, pristine)
     report = install_submission(root / "submission", tree, lessons)
     info = tree / "build" / "submission.json"
-    info.write_text(json.dumps(report.to_json(), indent=2) + "\n", encoding="utf-8")
+    info.write_text(json.dumps(asdict(report), indent=2) + "\n", encoding="utf-8")
     for item in report.installed:
         print(f"installed {item['file']} -> {item['target']} {item['note']}".rstrip())
     for item in report.ignored:

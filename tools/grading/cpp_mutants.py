@@ -287,10 +287,6 @@ def _simple_argument(tokens: list[Token], first: int, last: int) -> bool:
     return all(t.kind in ("ident", "number") or t.text in (".", "->", "::", "[", "]") for t in tokens[first:last + 1])
 
 
-def _is_float_literal(text: str) -> bool:
-    return any(c in text for c in ".eE") and not text.lower().startswith("0x")
-
-
 def _nudged_constants(text: str) -> list[str]:
     """0 <-> 1 and 2 -> 1 on integer and floating literals."""
     core = text.rstrip("fFlLuU")
@@ -299,7 +295,7 @@ def _nudged_constants(text: str) -> list[str]:
         value = float(core.replace("'", ""))
     except ValueError:
         return []
-    is_float = _is_float_literal(core)
+    is_float = any(c in core for c in ".eE") and not core.lower().startswith("0x")
     targets = {0.0: [1.0], 1.0: [0.0], 2.0: [1.0]}.get(value, [])
     return [("1.0" if t == 1.0 else "0.0") + suffix if is_float else str(int(t)) + suffix for t in targets]
 

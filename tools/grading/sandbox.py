@@ -341,20 +341,14 @@ class Sandbox:
             pass
         return total
 
-    def remove_shared_memory(self) -> None:
-        """Removes the account's System V segments (POSIX ones are files: clean_shared_folders)."""
-        if self.account is None:
-            return
-        ipcrm = shutil.which("ipcrm") or "/usr/bin/ipcrm"
-        for shmid, _ in _shm_segments(self.account.uid):
-            subprocess.run([ipcrm, "-m", shmid], capture_output=True, check=False)
-
     def clean_shared_folders(self) -> None:
         """Removes what the account left in the world-writable folders and its shared memory
         (a channel from one run, or one student, to the next)."""
         if self.account is None:
             return
-        self.remove_shared_memory()
+        ipcrm = shutil.which("ipcrm") or "/usr/bin/ipcrm"
+        for shmid, _ in _shm_segments(self.account.uid):  # System V segments; POSIX ones are files
+            subprocess.run([ipcrm, "-m", shmid], capture_output=True, check=False)
         for folder in ("/tmp", "/var/tmp", "/dev/shm", "/run/lock"):
             try:
                 entries = list(os.scandir(folder))
