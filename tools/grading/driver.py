@@ -22,7 +22,6 @@ built, an output could not be written, or the command was wrong.
 from __future__ import annotations
 
 import argparse
-import errno
 import json
 import os
 import shutil
@@ -91,11 +90,9 @@ def _parser() -> argparse.ArgumentParser:
     batch.add_argument("--assignment", metavar="NAME", default="illum",
                        help="with --batch --format: the assignment's name in the gradebook (default: illum)")
     batch.add_argument("--work-dir", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
-    parser.add_argument("--submission-info", type=path_argument, metavar="FILE", help=argparse.SUPPRESS)
-    parser.add_argument("--fallback-stubs", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
-    parser.add_argument("--as-user", metavar="NAME", help=argparse.SUPPRESS)
-    parser.add_argument("--grader-data", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
-    parser.add_argument("--save-tests", type=path_argument, metavar="FILE", help=argparse.SUPPRESS)
+    for option in ("--submission-info", "--fallback-stubs", "--grader-data", "--save-tests"):  # the autograder's
+        parser.add_argument(option, type=path_argument, help=argparse.SUPPRESS)
+    parser.add_argument("--as-user", help=argparse.SUPPRESS)
     parser.add_argument("--build-as-grader", action="store_true", help=argparse.SUPPRESS)
     return parser
 
@@ -131,7 +128,7 @@ def _check_batch(parser: argparse.ArgumentParser, args: argparse.Namespace) -> N
         if not args.batch.is_dir():
             parser.error(f"--batch {args.batch}: " + ("not a folder (--batch takes the folder of the "
                                                      "submissions, each a folder or a zip)"
-                                                     if args.batch.exists() else _no_folder(args.batch)))
+                                                     if args.batch.exists() else "no such folder"))
         if args.jobs is not None and args.jobs < 1:
             parser.error(f"--jobs {args.jobs}: needs at least 1")
         if args.roster is not None and not args.roster.is_file():
@@ -166,16 +163,6 @@ def _check_inputs(parser: argparse.ArgumentParser, args: argparse.Namespace) -> 
                                                        "files)" if args.hidden.exists() else "no such folder"))
         if not any(args.hidden.glob("*.cpp")):
             parser.error(f"--hidden {args.hidden}: no .cpp test files there")
-
-
-def _no_folder(path: Path) -> str:
-    """Why nothing is at `path`: 'no such folder', or a link that leads back to itself (ELOOP)."""
-    try:
-        os.stat(path)
-    except OSError as error:
-        if error.errno == errno.ELOOP:
-            return "a symbolic link that leads back to itself (a link loop)"
-    return "no such folder"
 
 
 def output_path_problem(path: Path | None) -> str:
@@ -527,8 +514,8 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     build_dir, exercises = build_tree(args, root, lessons)
     if not (build_dir / "libillum.a").exists():
         print(f"tools/grade: the first build of {build_dir} compiles the whole library: 1 to 3 minutes on two "
-              "cores, about twice that on a slower machine (less when ccache has the objects); later runs rebuild only what changed",
-              file=sys.stderr, flush=True)
+              "cores, about twice that on a slower machine (less when ccache has the objects); later runs rebuild "
+              "only what changed", file=sys.stderr, flush=True)
     run = GradeRun(lessons=lessons, student=args.student)
     run.submission = args.submission
     try:
