@@ -305,22 +305,17 @@ def _build_with_fallback(args: argparse.Namespace, run: GradeRun, build_dir: Pat
 
 def _scan_sources(root: Path, run: GradeRun) -> list[str]:
     """The suspicious-code check of the student's files' text (suspicious.py)."""
-    findings = []
-    for _name, relative in _student_units(root, run.lessons).items():
-        path = root / relative
-        if path.is_file():
-            findings += [f.describe() for f in suspicious.scan_source(path.read_text(encoding="utf-8", errors="replace"),
-                                                                       relative)]
-    return findings
+    files = [(root / relative, relative) for relative in _student_units(root, run.lessons).values()]
+    return [finding.describe() for path, relative in files if path.is_file()
+            for finding in suspicious.scan_source(path.read_text(encoding="utf-8", errors="replace"), relative)]
 
 
 def _scan_objects(root: Path, run: GradeRun, build_dir: Path) -> list[str]:
     """The suspicious-code check of the student's compiled files."""
     units = _student_units(root, run.lessons)
-    archive = next(iter(sorted(build_dir.glob("libillum.a"))), None)
-    library = suspicious.library_definitions(archive, {f"{n}.o" for n in units}) if archive else {}
+    library = suspicious.library_definitions(build_dir / "libillum.a", {f"{n}.o" for n in units})
     findings = []
-    for _name, relative in units.items():
+    for relative in units.values():
         obj = None if relative in run.fallbacks else suspicious.object_of(build_dir, relative)
         if obj is None:
             continue
