@@ -323,17 +323,14 @@ def _grade(tree: Path, lessons: list[str], hidden: Path | None, results: Path,
                           stderr=subprocess.STDOUT if quiet else None, env=env).returncode
 
 
-def _paths(root: Path) -> tuple[Path, Path, Path | None, Path]:
+def _paths(root: Path) -> tuple[Path, Path, Path | None, Path, Path]:
+    """The unpacked autograder's source/, its tree, the hidden tests (None when there are none), the pristine
+    stubs, and the grader's folder: what setup keeps for the runs, readable by root only (the trusted list
+    of tests, the hidden tests' objects, which stub defines which function, the student's user)."""
     source = root / "source"
-    tree = source / "illum"
-    hidden = source / "hidden-tests"
-    return source, tree, (hidden if any(hidden.glob("*.cpp")) else None), tree / "build" / "pristine-stubs"
-
-
-def grader_folder(root: Path) -> Path:
-    """What setup keeps for the runs, readable by root only: the trusted list of tests, the hidden
-    tests' objects, which stub defines which function, the student's user."""
-    return root / "source" / "grader"
+    tree, hidden = source / "illum", source / "hidden-tests"
+    return (source, tree, hidden if any(hidden.glob("*.cpp")) else None, tree / "build" / "pristine-stubs",
+            source / "grader")
 
 
 def _restore_stubs(tree: Path, pristine: Path) -> None:
@@ -446,14 +443,13 @@ def setup(root: Path, lessons: list[str]) -> None:
     as every run will find them; the trusted data kept where only root reads it."""
     from .sandbox import chown_tree
 
-    source, tree, hidden, pristine = _paths(root)
+    source, tree, hidden, pristine, grader = _paths(root)
     check_toolchain()
     jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(build_jobs())
     os.environ["CMAKE_BUILD_PARALLEL_LEVEL"] = jobs
     print(f"setup: {jobs} build job(s) (CMAKE_BUILD_PARALLEL_LEVEL; from the cores and the memory available)",
           flush=True)
     user = _student_user(os.environ.get("ILLUM_GRADE_USER", DEFAULT_USER))
-    grader = grader_folder(root)
     if grader.exists():
         shutil.rmtree(grader)
     grader.mkdir(parents=True)
@@ -522,8 +518,7 @@ def _keep_stubs(source: Path, tree: Path, pristine: Path) -> tuple[list[Path], d
 def _prove_reference(root: Path, lessons: list[str], common: list[str], results: Path) -> int:
     """Grades the reference solutions as a submission (they must score full marks), keeps their checks as
     the witness's tests.json, restores the stubs and deletes the references; returns the test count."""
-    source, tree, _, pristine = _paths(root)
-    grader = grader_folder(root)
+    source, tree, _, pristine, grader = _paths(root)
     print("\nsetup: grading the reference solutions as a submission (they must score full marks)", flush=True)
     status = _grade(tree, lessons, None, results,
                     common + ["--grader-data", str(grader), "--save-tests", str(grader / "tests.json")],
@@ -566,8 +561,7 @@ def run(root: Path, lessons: list[str]) -> int:
     student's user; results.json only once nothing of theirs is alive."""
     from .sandbox import Account, Sandbox
 
-    source, tree, hidden, pristine = _paths(root)
-    grader = grader_folder(root)
+    source, tree, hidden, pristine, grader = _paths(root)
     results_dir = root / "results"
     results_dir.mkdir(parents=True, exist_ok=True)
     results = results_dir / "results.json"

@@ -149,16 +149,11 @@ def hidden_objects_arguments(objects: Sequence[Path]) -> list[str]:
     return [f"-DILLUM_HIDDEN_OBJECTS={';'.join(str(p) for p in objects)}"]
 
 
-def jobs() -> str:
-    """Parallel jobs: CMAKE_BUILD_PARALLEL_LEVEL if set, else every core."""
-    return os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(os.cpu_count() or 1)
-
-
 def build(build_dir: Path, targets: Sequence[str], echo: bool = True, runner: Runner | None = None) -> StepResult:
-    command = ["cmake", "--build", str(build_dir), "-j", jobs()]
-    if targets:
-        command += ["--target", *targets]
-    return run_streaming(command, echo, runner=runner)
+    """Builds ``targets`` (all when empty) with CMAKE_BUILD_PARALLEL_LEVEL jobs if set, else one per core."""
+    jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(os.cpu_count() or 1)
+    return run_streaming(["cmake", "--build", str(build_dir), "-j", jobs, *(["--target", *targets] if targets else [])],
+                         echo, runner=runner)
 
 
 # A compiler or make error line that names an exercise unit, e.g.
