@@ -218,11 +218,8 @@ def install_submission(submission: Path, tree: Path, lessons: list[str]) -> Subm
             if path.is_symlink():  # it could point at the grader's own files
                 report.ignored.append({"file": relative.as_posix(), "reason": "a symbolic link, not a file"})
                 continue
-            if not path.is_file():
-                continue
-            if path.suffix.lower() == ".zip":
-                continue
-            candidates.append((path, relative.as_posix()))
+            if path.is_file() and path.suffix.lower() != ".zip":  # a zip's files are taken from inside it
+                candidates.append((path, relative.as_posix()))
         candidates += _unpack_zips(submission, Path(folder), report)
 
         def rank(item: tuple[Path, str]) -> tuple[int, int, str]:
