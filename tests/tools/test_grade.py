@@ -82,7 +82,7 @@ def sample_run(hidden_extra: bool = False) -> GradeRun:
     if hidden_extra:
         results += merge(parse_lines([listed("hidden one", 3)]), parse_lines([ran("hidden one", 3, True)]),
                          hidden=True)
-    return GradeRun(lessons=["01"], results=results, student=True)
+    return GradeRun(lessons=["01"], results=results)
 
 
 class ParsingTest(unittest.TestCase):
@@ -967,7 +967,7 @@ class FallbackTest(unittest.TestCase):
                 build.StepResult(False, "/x/exercises/01_ray_sphere/sphere.cpp:3:1: error: expected ';'\n"),
                 build.StepResult(True, "")])
             args = argparse.Namespace(student=True, fallback_stubs=pristine)
-            run = GradeRun(lessons=["01", "10"], student=True)
+            run = GradeRun(lessons=["01", "10"])
             with mock.patch.object(build, "build", side_effect=lambda *a, **k: next(outputs)):
                 step = driver._build_with_fallback(args, run, Path(folder) / "b", tree, ["illum"])
             self.assertTrue(step.ok)
@@ -989,7 +989,7 @@ class FallbackTest(unittest.TestCase):
             broken = build.StepResult(False, "/x/exercises/01_ray_sphere/sphere.cpp:3:1: error: a\n"
                                              "/x/lib/illum/core/ray.cpp:9:1: error: b\n")
             args = argparse.Namespace(student=True, fallback_stubs=pristine.parent)
-            run = GradeRun(lessons=["01"], student=True)
+            run = GradeRun(lessons=["01"])
             with mock.patch.object(build, "build", return_value=broken):
                 step = driver._build_with_fallback(args, run, Path(folder), Path(folder), ["illum"])
             self.assertFalse(step.ok)

@@ -511,8 +511,7 @@ def grade(args: argparse.Namespace, root: Path) -> int:
         print(f"tools/grade: the first build of {build_dir} compiles the whole library: 1 to 3 minutes on two "
               "cores, about twice that on a slower machine (less when ccache has the objects); later runs rebuild "
               "only what changed", file=sys.stderr, flush=True)
-    run = GradeRun(lessons=lessons, student=args.student)
-    run.submission = args.submission
+    run = GradeRun(lessons=lessons, submission=args.submission)
     try:
         sandbox = _make_sandbox(args, root)
     except SandboxError as error:
@@ -523,7 +522,6 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     _announce(sandbox, judged)
     tested = set(project.test_lessons(root))
     has_hidden = bool(data.hidden_objects) or bool(project.hidden_sources(root, args.hidden))
-    run.has_hidden = has_hidden
     _advise(args, run, root, before_build=True)
     targets = _targets(run, lessons, tested, judged, witness_here)
     step = _build_student_code(args, run, root, build_dir, exercises, targets, sandbox, data)

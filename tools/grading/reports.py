@@ -34,7 +34,6 @@ class GradeRun:
     build_failed: bool = False
     build_output: str = ""
     problems: list[str] = field(default_factory=list)  # crashes, timeouts, missing programs
-    student: bool = False
     seconds: float = 0.0
     # Attributed build failure: only the student's files named here failed;
     # each was replaced by its stub and the rest was graded (file -> compiler output).
@@ -43,7 +42,6 @@ class GradeRun:
     # The instructor's hidden tests did not build: the grader is misconfigured.
     hidden_build_failed: bool = False
     hidden_build_output: str = ""
-    has_hidden: bool = False
     # What the autograder did with the upload (autograder.install_submission).
     submission: dict[str, Any] | None = None
     # False when the build failure is not the student's (a broken tree).
