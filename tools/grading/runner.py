@@ -126,10 +126,7 @@ class _Invocation:
     problem: str          # why the run ended abnormally ('' when it ended normally)
     output: str
     exit_code: int | None = None
-    signal: int | None = None
-    timed_out: bool = False
     garbage: int = 0      # complete lines that were not records
-    flooded: bool = False
     survivors: list[str] = field(default_factory=list)
 
     @property
@@ -228,22 +225,23 @@ class _Watch:
     shared_limit: int = 0
     end: float = float("inf")  # the deadline of the whole run (ILLUM_GRADE_DEADLINE), in wall time
 
-    def problem(self, now: float, cpu_of, shared_of) -> tuple[str, bool]:
+    def problem(self, now: float, cpu_of, shared_of) -> str:
+        """Why the program must be stopped now, or ''."""
         if now - self.sampled >= 0.25:
             self.cpu, self.shared, self.sampled = max(self.cpu, cpu_of()), shared_of(), now
         if self.shared_limit and self.shared > self.shared_limit:
             return (f"your code holds {self.shared >> 20} MB of shared memory, more than the "
-                    f"{self.shared_limit >> 20} MB a test program may use"), False
+                    f"{self.shared_limit >> 20} MB a test program may use")
         if self.cpu - self.progress_cpu > self.test_cpu:
-            return f"the test did not finish within {self.test_cpu:g} s of processor time (an endless loop?)", True
+            return f"the test did not finish within {self.test_cpu:g} s of processor time (an endless loop?)"
         if now - self.progress_wall > WALL_FACTOR * self.test_cpu:
             return (f"the test did not finish within {WALL_FACTOR * self.test_cpu:g} s (it waited, or the "
-                    "machine was very busy)"), True
+                    "machine was very busy)")
         if self.cpu > self.run_cpu or now - self.start > WALL_FACTOR * self.run_cpu:
-            return f"the test program did not finish within {self.run_cpu:g} s of processor time", True
+            return f"the test program did not finish within {self.run_cpu:g} s of processor time"
         if now > self.end:
-            return "the time for the whole run (ILLUM_GRADE_DEADLINE) ran out during this test", True
-        return "", False
+            return "the time for the whole run (ILLUM_GRADE_DEADLINE) ran out during this test"
+        return ""
 
     def moved(self, now: float) -> None:
         self.progress_wall, self.progress_cpu = now, self.cpu
@@ -268,7 +266,7 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
     listing = "--list-test-cases" in arguments  # a listing runs no test: the deadline is for tests
     watch = _Watch(test_timeout, timeout, shared_limit=sandbox.limits.memory_mb << 20,
                    end=float("inf") if listing else time.monotonic() + _remaining())
-    problem, timed_out, stopping = "", False, False
+    problem, stopping = "", False
     while True:
         if _drain(selector, streams, launched.records_fd, 0.05):
             watch.moved(time.monotonic())
@@ -282,8 +280,8 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
         if records.flooded:
             problem = f"the test program sent more than {MAX_RECORDS_BYTES // (1024 * 1024)} MB of results"
         else:
-            problem, timed_out = watch.problem(time.monotonic(), lambda: descendants_cpu_seconds(launched.process.pid),
-                                               sandbox.shared_memory_bytes)
+            problem = watch.problem(time.monotonic(), lambda: descendants_cpu_seconds(launched.process.pid),
+                                    sandbox.shared_memory_bytes)
         if problem:
             sandbox.stop(launched)
             stopping = True
@@ -294,8 +292,7 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
         _drain(selector, streams, launched.records_fd, 0.05)
     selector.close()
     survivors = sandbox.finish(launched)
-    invocation = _Invocation(records.records, problem, tail.text(), garbage=records.garbage,
-                             flooded=records.flooded, timed_out=timed_out, survivors=survivors)
+    invocation = _Invocation(records.records, problem, tail.text(), garbage=records.garbage, survivors=survivors)
     _how_it_ended(invocation, status.records, bool(records.records), tail)
     return invocation
 
@@ -326,8 +323,7 @@ def _how_it_ended(invocation: _Invocation, status: list[dict], any_records: bool
     if not ended:
         invocation.problem = "the test program's launcher ended without saying how the program ended"
     elif "signal" in ended[-1]:
-        invocation.signal = int(ended[-1]["signal"])
-        invocation.problem = _describe_signal(invocation.signal)
+        invocation.problem = _describe_signal(int(ended[-1]["signal"]))
     else:
         invocation.exit_code = int(ended[-1]["exited"])
         if invocation.exit_code not in (0, 1):
