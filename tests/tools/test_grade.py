@@ -1133,11 +1133,11 @@ class BatchTest(unittest.TestCase):
         run = sample_run()
         run.fallbacks = {"exercises/01_ray_sphere/sphere.cpp": "error"}
         data = reports.gradescope_results(run)
-        outcome = outcome_of("ana", data, "")
+        outcome = outcome_of("ana", data)
         self.assertEqual(outcome.status, "not gradable")
         self.assertIsNone(outcome.total)
         self.assertIn("exercises/01_ray_sphere/sphere.cpp did not compile", outcome.notes)
-        self.assertEqual(outcome_of("ben", None, "").status, "grader error")
+        self.assertEqual(outcome_of("ben", None).status, "grader error")
 
     def test_the_students_feedback_never_counts_hidden_tests(self) -> None:
         from grading.batch import outcome_of
@@ -1146,7 +1146,7 @@ class BatchTest(unittest.TestCase):
         # sample_run: visible tests of 1 + 2 + 1 points, 1 passed; the hidden test (1 point) passed.
         run = sample_run(hidden_extra=True)
         run.review = ["a note for the instructor"]
-        outcome = outcome_of("ana", reports.gradescope_results(run), "")
+        outcome = outcome_of("ana", reports.gradescope_results(run))
         self.assertEqual((outcome.total, outcome.max_score), (2.0, 5.0))  # the grade counts the hidden test
         words = feedback(outcome)
         self.assertIn("lesson 01: 1/4", words)
@@ -1164,7 +1164,7 @@ class BatchTest(unittest.TestCase):
         self.assertIn("lesson01 (hidden): hidden one", grades[0])  # the instructor's file has everything
         self.assertIn("1 note(s) for review in results.json", grades[1][-1])
         # Without hidden tests the total is the student's to see.
-        plain = outcome_of("ben", reports.gradescope_results(sample_run()), "")
+        plain = outcome_of("ben", reports.gradescope_results(sample_run()))
         self.assertEqual(feedback(plain), "1/4 (lesson 01: 1/4)")
 
     def test_setup_has_a_build_limit_of_its_own(self) -> None:

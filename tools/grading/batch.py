@@ -64,7 +64,7 @@ def discover(folder: Path) -> tuple[list[Submission], list[str]]:
     return list(found.values()), skipped
 
 
-def outcome_of(ident: str, data: dict | None, log: str) -> Outcome:
+def outcome_of(ident: str, data: dict | None) -> Outcome:
     """A student's row, read from their results.json (its extra_data, written by tools/grade)."""
     outcome = Outcome(ident)
     info = (data or {}).get("extra_data", {}).get("illum") if isinstance(data, dict) else None
@@ -224,7 +224,7 @@ def grade_one(slots: Slots, k: int, submission: Submission, out: Path, timeout: 
         except ValueError:
             pass
     write_text(target / "grader.log", log[-2_000_000:])
-    outcome = outcome_of(submission.ident, data, log)
+    outcome = outcome_of(submission.ident, data)
     outcome.notes += [stopped] if stopped else []
     outcome.seconds = seconds
     return outcome

@@ -382,7 +382,7 @@ def _judged(args: argparse.Namespace, data: GraderData) -> bool:
     return not args.student or bool(data.tests) or data.witness_dir is not None
 
 
-def _targets(run: GradeRun, lessons: list[str], tested: set[str], judged: bool, witness_here: bool) -> list[str]:
+def _targets(lessons: list[str], tested: set[str], judged: bool, witness_here: bool) -> list[str]:
     programs = [f"tests_lesson{nn}" for nn in lessons if nn in tested]
     if not judged:
         return ["illum"] + programs
@@ -447,7 +447,7 @@ def _witness_run(data: GraderData, bin_dir: Path, program: str, suite: str, seed
     return run, runner.witness_checks(run), ""
 
 
-def _run_planned(args: argparse.Namespace, run: GradeRun, data: GraderData, bin_dir: Path,
+def _run_planned(run: GradeRun, data: GraderData, bin_dir: Path,
                  planned: list[tuple[str, str, bool]], judged: bool) -> list:
     """Runs every planned suite; with the judge, the witness first and then the student's observer."""
     seed_env = {"ILLUM_GRADE_SEED": os.environ.get("ILLUM_GRADE_SEED") or str(int.from_bytes(os.urandom(4), "big"))}
@@ -523,7 +523,7 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     tested = set(project.test_lessons(root))
     has_hidden = bool(data.hidden_objects) or bool(project.hidden_sources(root, args.hidden))
     _advise(args, run, root, before_build=True)
-    targets = _targets(run, lessons, tested, judged, witness_here)
+    targets = _targets(lessons, tested, judged, witness_here)
     step = _build_student_code(args, run, root, build_dir, exercises, targets, sandbox, data)
     if step.ok:
         _advise(args, run, root, build_dir=build_dir)
@@ -537,7 +537,7 @@ def grade(args: argparse.Namespace, root: Path) -> int:
         # The hidden tests last: nothing a student's code learns while they run can reach a visible result.
         planned += [(lesson, "tests_hidden", True) for lesson in lessons] if has_hidden else []
         with sandbox.hidden_folders():
-            ran_suites = _run_planned(args, run, data, build_dir / "bin", planned, judged)
+            ran_suites = _run_planned(run, data, build_dir / "bin", planned, judged)
         if args.save_tests:
             _save_tests(args.save_tests, ran_suites)
     # Nothing of the student's may be alive, or left in the shared folders, when results are written.

@@ -487,7 +487,7 @@ def summary_table(reports: list[LessonReport], compare_without: str | None = Non
     return "\n".join(lines)
 
 
-def markdown_report(reports: list[LessonReport], root: Path, command: str, compare_without: str | None = None) -> str:
+def markdown_report(reports: list[LessonReport], command: str, compare_without: str | None = None) -> str:
     parts = [
         "# Grading power: the mutation report",
         "",
@@ -608,7 +608,7 @@ def main(argv: list[str]) -> int:
             for m in (m for m in r.mutants if m.status == "survived"):
                 print(f"survived: {m.ident} {m.unit.as_posix()}:{m.line} {m.operator}: {m.source_line}  =>  "
                       f"{m.mutated_line}")
-        text = markdown_report(reports, root, command, args.compare_without)
+        text = markdown_report(reports, command, args.compare_without)
     if args.report:
         args.report.parent.mkdir(parents=True, exist_ok=True)
         args.report.write_text(text, encoding="utf-8")
