@@ -45,10 +45,9 @@ cstdio cstdlib cstring ctime cuchar cwchar cwctype
 assert.h ctype.h errno.h fenv.h float.h inttypes.h limits.h locale.h math.h setjmp.h signal.h stdarg.h
 stddef.h stdint.h stdio.h stdlib.h string.h time.h uchar.h wchar.h wctype.h
 """.split())
-# Standard headers that reach outside the computation (files, processes, signals, jumps).
-OUTSIDE_HEADERS = {"filesystem", "fstream", "csignal", "signal.h", "csetjmp", "setjmp.h", "cstdlib", "stdlib.h"}
-# <cstdlib> is fine for std::abs and friends; its exit() and system() are caught by name below.
-OUTSIDE_HEADERS -= {"cstdlib", "stdlib.h"}
+# Standard headers that reach outside the computation (files, signals, jumps). Not <cstdlib>: it is fine for
+# std::abs and friends, and its exit() and system() are caught by name below.
+OUTSIDE_HEADERS = {"filesystem", "fstream", "csignal", "signal.h", "csetjmp", "setjmp.h"}
 
 _SOURCE_RULES: list[tuple[re.Pattern, str]] = [
     (re.compile(r"doctest", re.I), "mentions doctest, the test framework: exercise code may not touch the tests"),
