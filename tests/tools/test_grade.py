@@ -38,7 +38,8 @@ from grading.edition import excluded_files  # noqa: E402
 from grading.integrity import check_pair  # noqa: E402
 from grading.project import normalize_lesson  # noqa: E402
 from grading.reports import GradeRun  # noqa: E402
-from grading.results import Failure, TestResult, merge, parse_lines, points_of  # noqa: E402
+from grading.results import Failure, TestResult, merge, points_of  # noqa: E402
+from grading.runner import _Records  # noqa: E402
 
 NI = "NotImplemented: intersect(Ray, Sphere) — take the nearest root"
 
@@ -71,6 +72,13 @@ RUN = [
 ]
 
 
+def parse_lines(lines: list[str]) -> list[dict]:
+    """The records among the reporter's lines, as the runner reads them from the records pipe."""
+    records = _Records()
+    records.feed("".join(line + "\n" for line in lines).encode())
+    return records.records
+
+
 def reports_failure(message: str):
     from grading.results import Failure
 
@@ -82,7 +90,7 @@ def sample_run(hidden_extra: bool = False) -> GradeRun:
     if hidden_extra:
         results += merge(parse_lines([listed("hidden one", 3)]), parse_lines([ran("hidden one", 3, True)]),
                          hidden=True)
-    return GradeRun(lessons=["01"], results=results, student=True)
+    return GradeRun(lessons=["01"], results=results)
 
 
 class ParsingTest(unittest.TestCase):
@@ -967,7 +975,7 @@ class FallbackTest(unittest.TestCase):
                 build.StepResult(False, "/x/exercises/01_ray_sphere/sphere.cpp:3:1: error: expected ';'\n"),
                 build.StepResult(True, "")])
             args = argparse.Namespace(student=True, fallback_stubs=pristine)
-            run = GradeRun(lessons=["01", "10"], student=True)
+            run = GradeRun(lessons=["01", "10"])
             with mock.patch.object(build, "build", side_effect=lambda *a, **k: next(outputs)):
                 step = driver._build_with_fallback(args, run, Path(folder) / "b", tree, ["illum"])
             self.assertTrue(step.ok)
@@ -989,7 +997,7 @@ class FallbackTest(unittest.TestCase):
             broken = build.StepResult(False, "/x/exercises/01_ray_sphere/sphere.cpp:3:1: error: a\n"
                                              "/x/lib/illum/core/ray.cpp:9:1: error: b\n")
             args = argparse.Namespace(student=True, fallback_stubs=pristine.parent)
-            run = GradeRun(lessons=["01"], student=True)
+            run = GradeRun(lessons=["01"])
             with mock.patch.object(build, "build", return_value=broken):
                 step = driver._build_with_fallback(args, run, Path(folder), Path(folder), ["illum"])
             self.assertFalse(step.ok)
@@ -1133,11 +1141,11 @@ class BatchTest(unittest.TestCase):
         run = sample_run()
         run.fallbacks = {"exercises/01_ray_sphere/sphere.cpp": "error"}
         data = reports.gradescope_results(run)
-        outcome = outcome_of("ana", data, "")
+        outcome = outcome_of("ana", data)
         self.assertEqual(outcome.status, "not gradable")
         self.assertIsNone(outcome.total)
         self.assertIn("exercises/01_ray_sphere/sphere.cpp did not compile", outcome.notes)
-        self.assertEqual(outcome_of("ben", None, "").status, "grader error")
+        self.assertEqual(outcome_of("ben", None).status, "grader error")
 
     def test_the_students_feedback_never_counts_hidden_tests(self) -> None:
         from grading.batch import outcome_of
@@ -1146,7 +1154,7 @@ class BatchTest(unittest.TestCase):
         # sample_run: visible tests of 1 + 2 + 1 points, 1 passed; the hidden test (1 point) passed.
         run = sample_run(hidden_extra=True)
         run.review = ["a note for the instructor"]
-        outcome = outcome_of("ana", reports.gradescope_results(run), "")
+        outcome = outcome_of("ana", reports.gradescope_results(run))
         self.assertEqual((outcome.total, outcome.max_score), (2.0, 5.0))  # the grade counts the hidden test
         words = feedback(outcome)
         self.assertIn("lesson 01: 1/4", words)
@@ -1164,7 +1172,7 @@ class BatchTest(unittest.TestCase):
         self.assertIn("lesson01 (hidden): hidden one", grades[0])  # the instructor's file has everything
         self.assertIn("1 note(s) for review in results.json", grades[1][-1])
         # Without hidden tests the total is the student's to see.
-        plain = outcome_of("ben", reports.gradescope_results(sample_run()), "")
+        plain = outcome_of("ben", reports.gradescope_results(sample_run()))
         self.assertEqual(feedback(plain), "1/4 (lesson 01: 1/4)")
 
     def test_setup_has_a_build_limit_of_its_own(self) -> None:

@@ -25,6 +25,7 @@ from __future__ import annotations
 
 import json
 import os
+import pwd
 import re
 import shlex
 import shutil
@@ -33,7 +34,7 @@ import subprocess
 import sys
 import tempfile
 import zipfile
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from pathlib import Path, PurePosixPath
 
 from .edition import make_student_edition
@@ -65,70 +66,30 @@ def debian_packages(root: Path) -> list[str]:
     return names
 
 
+def _script(template: str, lessons: list[str], **values: str) -> str:
+    """setup.sh or run_autograder from its template beside this file (@NAME@ replaced)."""
+    text = Path(__file__).with_name(template).read_text(encoding="utf-8")
+    for name, value in dict(values, DEFAULT_ROOT=DEFAULT_ROOT, LESSONS=" ".join(lessons)).items():
+        text = text.replace(f"@{name}@", value)
+    return text
+
+
 def setup_script(packages: list[str], lessons: list[str]) -> str:
-    quoted = " ".join(shlex.quote(p) for p in packages)
-    return f"""#!/usr/bin/env bash
-# Gradescope runs this once, as root, when it builds the autograder image.
-# It fails loudly: every step is shown, and a step that fails stops the
-# image with a message saying what to fix.
-set -euo pipefail
-ROOT="${{ILLUM_AUTOGRADER_ROOT:-{DEFAULT_ROOT}}}"
-fail() {{ printf '\\nsetup.sh: FAILED: %s\\n' "$1" >&2; exit 1; }}
-trap 'fail "the command on line $LINENO failed (its output is above)"' ERR
-
-packages=({quoted})
-missing=()
-for package in "${{packages[@]}}"; do
-  dpkg-query -W -f='${{Status}}' "$package" 2>/dev/null | grep -q 'ok installed' || missing+=("$package")
-done
-if [ "${{#missing[@]}}" -gt 0 ]; then
-  echo "setup.sh: installing ${{missing[*]}}"
-  export DEBIAN_FRONTEND=noninteractive
-  apt-get update || fail "apt-get update failed: the image needs network access to its package mirror"
-  apt-get install -y --no-install-recommends "${{missing[@]}}" \\
-    || fail "apt-get could not install ${{missing[*]}}: choose an Ubuntu 22.04 (or newer) or Debian 12 base image"
-else
-  echo "setup.sh: every build package is installed already"
-fi
-
-chmod +x "$ROOT/source/run_autograder" "$ROOT/source/illum/tools/grade"
-cd "$ROOT/source/illum"
-# Versions, the reference build and its grading, then the warm stubs build.
-PYTHONPATH=tools python3 -m grading.autograder setup "$ROOT" {" ".join(lessons)} \\
-  || fail "the grader does not work on this image (see above); students' code was not involved"
-echo "setup.sh: ready"
-"""
+    """setup.sh: installs the build packages missing, then runs ``setup`` below (it fails loudly)."""
+    return _script("setup.sh.in", lessons, PACKAGES=" ".join(shlex.quote(p) for p in packages))
 
 
 def run_script(lessons: list[str]) -> str:
-    limits = "\n".join(f'export {k}="${{{k}:-{v}}}"' for k, v in RUN_LIMITS.items())
-    return f"""#!/usr/bin/env bash
-# Gradescope runs this for every submission. results.json is written whatever
-# happens: a student file that does not compile costs only its lesson, a
-# test that hangs or crashes costs only itself.
-set -uo pipefail
-ROOT="${{ILLUM_AUTOGRADER_ROOT:-{DEFAULT_ROOT}}}"
-# Gradescope's default limits: 0.5 vCPU, 768 MB, 10 minutes for the whole run.
-{limits}
-cd "$ROOT/source/illum"
-PYTHONPATH=tools python3 -m grading.autograder run "$ROOT" {" ".join(lessons)}
-exit 0
-"""
+    """run_autograder: ``run`` below with Gradescope's limits (RUN_LIMITS) where none is set."""
+    return _script("run_autograder.in", lessons,
+                   LIMITS="\n".join(f'export {k}="${{{k}:-{v}}}"' for k, v in RUN_LIMITS.items()))
 
 
-def _add(archive: zipfile.ZipFile, path: Path, name: str) -> None:
-    """Adds a file keeping its executable bit."""
-    info = zipfile.ZipInfo.from_file(path, name)
-    info.compress_type = zipfile.ZIP_DEFLATED
-    with path.open("rb") as data:
-        archive.writestr(info, data.read())
-
-
-def _add_text(archive: zipfile.ZipFile, name: str, text: str, executable: bool) -> None:
+def _add_script(archive: zipfile.ZipFile, name: str, text: str) -> None:
+    """An executable script, dated as every pack dates it."""
     info = zipfile.ZipInfo(name, date_time=(2024, 1, 1, 0, 0, 0))
     info.compress_type = zipfile.ZIP_DEFLATED
-    mode = 0o755 if executable else 0o644
-    info.external_attr = (stat.S_IFREG | mode) << 16
+    info.external_attr = (stat.S_IFREG | 0o755) << 16
     archive.writestr(info, text)
 
 
@@ -149,12 +110,11 @@ def hidden_test_files(root: Path, extra: Path | None) -> list[Path]:
 def reference_units(root: Path, lessons: list[str]) -> list[Path]:
     """lib/illum/**/<name>.cpp for every exercise stub of the graded lessons."""
     units = []
-    for name, stub in sorted(exercise_stubs(root).items()):
-        if stub.parent.name[:2] in lessons:
-            found = sorted((root / "lib" / "illum").rglob(name))
-            if len(found) != 1:
-                raise ValueError(f"exercise {stub.relative_to(root)} has {len(found)} reference units in lib/illum")
-            units.append(found[0])
+    for name, stub in sorted(exercise_stubs(root, lessons).items()):
+        found = sorted((root / "lib" / "illum").rglob(name))
+        if len(found) != 1:
+            raise ValueError(f"exercise {stub.relative_to(root)} has {len(found)} reference units in lib/illum")
+        units.append(found[0])
     return units
 
 
@@ -169,15 +129,15 @@ def pack_autograder(root: Path, zip_path: Path, lessons: list[str], extra_hidden
             # lesson that builds on an earlier one (docs/grading.md) is graded on its own units.
             edition = make_student_edition(root, Path(folder) / "illum", lessons)
             with zipfile.ZipFile(temporary, "w") as archive:
-                _add_text(archive, "setup.sh", setup_script(debian_packages(root), lessons), True)
-                _add_text(archive, "run_autograder", run_script(lessons), True)
+                _add_script(archive, "setup.sh", setup_script(debian_packages(root), lessons))
+                _add_script(archive, "run_autograder", run_script(lessons))
                 for path in sorted(edition.out.rglob("*")):
                     if path.is_file():
-                        _add(archive, path, "illum/" + path.relative_to(edition.out).as_posix())
+                        archive.write(path, "illum/" + path.relative_to(edition.out).as_posix(), zipfile.ZIP_DEFLATED)
                 for path in references:
-                    _add(archive, path, "reference/" + path.name)
+                    archive.write(path, "reference/" + path.name, zipfile.ZIP_DEFLATED)
                 for path in hidden_files:
-                    _add(archive, path, "hidden-tests/" + path.name)
+                    archive.write(path, "hidden-tests/" + path.name, zipfile.ZIP_DEFLATED)
                 names = archive.namelist()
         temporary.replace(zip_path)
     finally:
@@ -202,10 +162,6 @@ class Submission:
     ignored: list[dict[str, str]] = field(default_factory=list)    # file, reason
     notes: list[str] = field(default_factory=list)
     expected: list[str] = field(default_factory=list)
-
-    def to_json(self) -> dict:
-        return {"installed": self.installed, "ignored": self.ignored, "notes": self.notes,
-                "expected": self.expected}
 
 
 def _skipped_part(part: str) -> bool:
@@ -250,8 +206,7 @@ def install_submission(submission: Path, tree: Path, lessons: list[str]) -> Subm
     the upload over a deeper copy. The copy gets a fresh modification time so
     that make recompiles it even if it is older than the warm build.
     """
-    stubs = {name: path for name, path in exercise_stubs(tree).items()
-             if not lessons or path.parent.name[:2] in lessons}
+    stubs = exercise_stubs(tree, lessons or None)
     report = Submission(expected=sorted(stubs))
     lowered = {name.lower(): name for name in stubs}
     with tempfile.TemporaryDirectory(prefix="illum-upload-") as folder:
@@ -263,11 +218,8 @@ def install_submission(submission: Path, tree: Path, lessons: list[str]) -> Subm
             if path.is_symlink():  # it could point at the grader's own files
                 report.ignored.append({"file": relative.as_posix(), "reason": "a symbolic link, not a file"})
                 continue
-            if not path.is_file():
-                continue
-            if path.suffix.lower() == ".zip":
-                continue
-            candidates.append((path, relative.as_posix()))
+            if path.is_file() and path.suffix.lower() != ".zip":  # a zip's files are taken from inside it
+                candidates.append((path, relative.as_posix()))
         candidates += _unpack_zips(submission, Path(folder), report)
 
         def rank(item: tuple[Path, str]) -> tuple[int, int, str]:
@@ -303,21 +255,16 @@ class SetupError(Exception):
     """Something an instructor must fix before the autograder can grade."""
 
 
-def _version(text: str) -> tuple[int, ...]:
-    match = re.search(r"(\d+)\.(\d+)(?:\.(\d+))?", text)
-    if not match:
-        return ()
-    return tuple(int(g) for g in match.groups() if g is not None)
-
-
 def _command_version(command: list[str]) -> tuple[tuple[int, ...], str]:
+    """The version ``command`` prints on its first line (empty when none), and that line."""
     try:
         completed = subprocess.run(command, capture_output=True, text=True, check=False)
     except OSError as error:
         return (), str(error)
     text = (completed.stdout or completed.stderr).strip().splitlines()
     first = text[0] if text else ""
-    return _version(first), first
+    match = re.search(r"(\d+)\.(\d+)(?:\.(\d+))?", first)
+    return tuple(int(g) for g in match.groups() if g is not None) if match else (), first
 
 
 def library_versions(compiler: str = "c++") -> dict[str, tuple[int, ...]]:
@@ -373,17 +320,14 @@ def _grade(tree: Path, lessons: list[str], hidden: Path | None, results: Path,
                           stderr=subprocess.STDOUT if quiet else None, env=env).returncode
 
 
-def _paths(root: Path) -> tuple[Path, Path, Path | None, Path]:
+def _paths(root: Path) -> tuple[Path, Path, Path | None, Path, Path]:
+    """The unpacked autograder's source/, its tree, the hidden tests (None when there are none), the pristine
+    stubs, and the grader's folder: what setup keeps for the runs, readable by root only (the trusted list
+    of tests, the hidden tests' objects, which stub defines which function, the student's user)."""
     source = root / "source"
-    tree = source / "illum"
-    hidden = source / "hidden-tests"
-    return source, tree, (hidden if any(hidden.glob("*.cpp")) else None), tree / "build" / "pristine-stubs"
-
-
-def grader_folder(root: Path) -> Path:
-    """What setup keeps for the runs, readable by root only: the trusted list of tests, the hidden
-    tests' objects, which stub defines which function, the student's user."""
-    return root / "source" / "grader"
+    tree, hidden = source / "illum", source / "hidden-tests"
+    return (source, tree, hidden if any(hidden.glob("*.cpp")) else None, tree / "build" / "pristine-stubs",
+            source / "grader")
 
 
 def _restore_stubs(tree: Path, pristine: Path) -> None:
@@ -412,8 +356,8 @@ def _student_user(name: str) -> str | None:
 
     if os.geteuid() != 0:
         print(f"setup: WARNING: not running as root, so there is no separate user for students' code: it will "
-              f"run as {getpass_user()}, without privilege separation (docs/grading.md, \"Threat model\")",
-              flush=True)
+              f"run as {pwd.getpwuid(os.geteuid()).pw_name}, without privilege separation (docs/grading.md, "
+              "\"Threat model\")", flush=True)
         return None
     try:
         account = create_account(name)
@@ -423,12 +367,6 @@ def _student_user(name: str) -> str | None:
         return None
     print(f"setup: students' code is compiled and run as the user {account.name} (uid {account.uid})", flush=True)
     return account.name
-
-
-def getpass_user() -> str:
-    import pwd
-
-    return pwd.getpwuid(os.geteuid()).pw_name
 
 
 def _read_results(path: Path) -> dict:
@@ -456,11 +394,10 @@ def _build_witness(tree: Path, grader: Path, lessons: list[str], hidden: Path | 
     work = grader / "witness-build"
     programs = [f"tests_lesson{nn}" for nn in lessons if any((tree / "tests").glob(f"{nn}_*"))]
     targets = programs + (["tests_hidden", "tests_hidden_observer"] if hidden else [])
-    build.set_runner(build.Runner(env=reference_environment(), timeout=None))
-    step = build.configure(tree, work, lessons, hidden)
+    runner = build.Runner(env=reference_environment())
+    step = build.configure(tree, work, lessons, hidden, runner=runner)
     if step.ok:
-        step = build.build(work, targets)
-    build.set_runner(build.Runner())
+        step = build.build(work, targets, runner=runner)
     if not step.ok:
         raise SetupError("the reference solutions and the tests did not build (see above)")
     kept = grader / "witness"
@@ -484,9 +421,7 @@ def _stub_symbols(tree: Path, build_dir: Path, lessons: list[str]) -> dict[str, 
     from .suspicious import object_of, object_symbols
 
     owners: dict[str, str] = {}
-    for name, stub in sorted(exercise_stubs(tree).items()):
-        if stub.parent.name[:2] not in lessons:
-            continue
+    for _name, stub in sorted(exercise_stubs(tree, lessons).items()):
         relative = stub.relative_to(tree).as_posix()
         obj = object_of(build_dir, relative)
         if obj is None:
@@ -505,14 +440,13 @@ def setup(root: Path, lessons: list[str]) -> None:
     as every run will find them; the trusted data kept where only root reads it."""
     from .sandbox import chown_tree
 
-    source, tree, hidden, pristine = _paths(root)
+    source, tree, hidden, pristine, grader = _paths(root)
     check_toolchain()
     jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(build_jobs())
     os.environ["CMAKE_BUILD_PARALLEL_LEVEL"] = jobs
     print(f"setup: {jobs} build job(s) (CMAKE_BUILD_PARALLEL_LEVEL; from the cores and the memory available)",
           flush=True)
     user = _student_user(os.environ.get("ILLUM_GRADE_USER", DEFAULT_USER))
-    grader = grader_folder(root)
     if grader.exists():
         shutil.rmtree(grader)
     grader.mkdir(parents=True)
@@ -581,8 +515,7 @@ def _keep_stubs(source: Path, tree: Path, pristine: Path) -> tuple[list[Path], d
 def _prove_reference(root: Path, lessons: list[str], common: list[str], results: Path) -> int:
     """Grades the reference solutions as a submission (they must score full marks), keeps their checks as
     the witness's tests.json, restores the stubs and deletes the references; returns the test count."""
-    source, tree, _, pristine = _paths(root)
-    grader = grader_folder(root)
+    source, tree, _, pristine, grader = _paths(root)
     print("\nsetup: grading the reference solutions as a submission (they must score full marks)", flush=True)
     status = _grade(tree, lessons, None, results,
                     common + ["--grader-data", str(grader), "--save-tests", str(grader / "tests.json")],
@@ -625,8 +558,7 @@ def run(root: Path, lessons: list[str]) -> int:
     student's user; results.json only once nothing of theirs is alive."""
     from .sandbox import Account, Sandbox
 
-    source, tree, hidden, pristine = _paths(root)
-    grader = grader_folder(root)
+    source, tree, hidden, pristine, grader = _paths(root)
     results_dir = root / "results"
     results_dir.mkdir(parents=True, exist_ok=True)
     results = results_dir / "results.json"
@@ -642,7 +574,7 @@ def run(root: Path, lessons: list[str]) -> int:
     _restore_stubs(tree, pristine)
     report = install_submission(root / "submission", tree, lessons)
     info = tree / "build" / "submission.json"
-    info.write_text(json.dumps(report.to_json(), indent=2) + "\n", encoding="utf-8")
+    info.write_text(json.dumps(asdict(report), indent=2) + "\n", encoding="utf-8")
     for item in report.installed:
         print(f"installed {item['file']} -> {item['target']} {item['note']}".rstrip())
     for item in report.ignored:

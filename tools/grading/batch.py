@@ -7,8 +7,8 @@ from __future__ import annotations
 import json
 import os
 import pwd
+import queue
 import shutil
-import signal
 import subprocess
 import sys
 import tempfile
@@ -22,6 +22,7 @@ from pathlib import Path
 from .autograder import RUN_LIMITS, pack_autograder
 from .gradebook import Outcome, Roster, RosterError, canvas_rows, csv_text, grades_rows, moodle_rows, read_roster
 from .reports import EXIT_NOT_BUILT, write_text
+from .sandbox import kill_group
 
 MARKER = ".illum-grades"  # in --out: a folder this command wrote (so it may write there again)
 STATUS_ORDER = ("graded", "partly gradable", "not gradable", "grader error", "missing")
@@ -63,7 +64,7 @@ def discover(folder: Path) -> tuple[list[Submission], list[str]]:
     return list(found.values()), skipped
 
 
-def outcome_of(ident: str, data: dict | None, log: str) -> Outcome:
+def outcome_of(ident: str, data: dict | None) -> Outcome:
     """A student's row, read from their results.json (its extra_data, written by tools/grade)."""
     outcome = Outcome(ident)
     info = (data or {}).get("extra_data", {}).get("illum") if isinstance(data, dict) else None
@@ -146,8 +147,9 @@ class Slots:
         self.folders = [work / f"slot-{k}" for k in range(1, count + 1)]
         base = os.environ.get("ILLUM_GRADE_USER") or "illum-student"
         self.users = [base] + [f"{base}-{k}" for k in range(2, count + 1)]
-        self.free = list(range(count))
-        self.lock = threading.Lock()
+        self.free: queue.SimpleQueue[int] = queue.SimpleQueue()  # the slots no worker grades in now
+        for k in range(count):
+            self.free.put(k)
 
     def prepare(self, k: int) -> tuple[int, str]:
         folder, ag = self.folders[k], self.folders[k] / "autograder"
@@ -174,14 +176,6 @@ class Slots:
             return
         os.chown(self.folders[k], 0, gid)
         self.folders[k].chmod(0o750)
-
-    def take(self) -> int:
-        with self.lock:
-            return self.free.pop(0)
-
-    def give(self, k: int) -> None:
-        with self.lock:
-            self.free.append(k)
 
 
 def unpack(zip_path: Path, ag: Path) -> None:
@@ -230,7 +224,7 @@ def grade_one(slots: Slots, k: int, submission: Submission, out: Path, timeout: 
         except ValueError:
             pass
     write_text(target / "grader.log", log[-2_000_000:])
-    outcome = outcome_of(submission.ident, data, log)
+    outcome = outcome_of(submission.ident, data)
     outcome.notes += [stopped] if stopped else []
     outcome.seconds = seconds
     return outcome
@@ -244,10 +238,7 @@ def run_limited(command: list[str], env: dict[str, str], timeout: float) -> tupl
     try:
         return process.communicate(timeout=timeout)[0].decode("utf-8", errors="replace"), ""
     except subprocess.TimeoutExpired:
-        try:
-            os.killpg(process.pid, signal.SIGKILL)
-        except OSError:
-            pass
+        kill_group(process.pid)
         return (process.communicate()[0].decode("utf-8", errors="replace"),
                 f"run_autograder did not finish within {timeout:g} s, the time limit of one submission "
                 "(ILLUM_GRADE_BATCH_TIMEOUT), and was stopped")
@@ -389,13 +380,13 @@ class Batch:
         done, lock = [0], threading.Lock()
 
         def work_on(submission: Submission) -> Outcome:
-            k = slots.take()
+            k = slots.free.get()
             try:
                 outcome = grade_one(slots, k, submission, self.out, self.timeout)
             except Exception as error:  # noqa: BLE001 -- one student's trouble must not stop the others
                 outcome = Outcome(submission.ident, status="grader error", notes=[f"the batch failed: {error}"])
             finally:
-                slots.give(k)
+                slots.free.put(k)
             with lock:
                 done[0] += 1
                 say(f"[{done[0]}/{len(self.submissions)}] {submission.ident}: {outcome.describe()}"

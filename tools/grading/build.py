@@ -7,13 +7,14 @@ from __future__ import annotations
 
 import os
 import re
-import signal
 import subprocess
 import sys
 import threading
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Sequence
+
+from .sandbox import kill_group
 
 # A build's output is kept up to HEAD_BYTES from its start (the first error
 # is what matters) and TAIL_BYTES from its end; a student's file can make a
@@ -39,14 +40,6 @@ class Runner:
     timeout: float | None = None
 
 
-_runner = Runner()
-
-
-def set_runner(runner: Runner) -> None:
-    global _runner
-    _runner = runner
-
-
 def build_timeout_from_environment() -> float | None:
     value = os.environ.get("ILLUM_GRADE_BUILD_TIMEOUT", "").strip()
     return float(value) if value else None
@@ -69,18 +62,11 @@ def _head_and_tail(stream, echo: bool) -> tuple[bytearray, bytearray, int]:
     return head, tail, total
 
 
-def _kill_group(process: subprocess.Popen) -> None:
-    try:
-        os.killpg(process.pid, signal.SIGKILL)
-    except OSError:
-        pass
-
-
 def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = None,
                   runner: Runner | None = None) -> StepResult:
     """Runs a command, echoing its output to stderr as it comes (a build takes minutes; silence would look
     like a hang) and keeping its head and tail for the report."""
-    runner = runner or _runner
+    runner = runner or Runner()
     if echo:
         print("$ " + " ".join(command), file=sys.stderr, flush=True)
     try:
@@ -90,14 +76,14 @@ def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = 
     except OSError as error:
         return StepResult(False, f"could not run {command[0]}: {error}")
     timed_out = threading.Event()
-    timer = threading.Timer(runner.timeout or 0, lambda: (timed_out.set(), _kill_group(process)))
+    timer = threading.Timer(runner.timeout or 0, lambda: (timed_out.set(), kill_group(process.pid)))
     timer.daemon = True
     if runner.timeout:
         timer.start()
     head, tail, total = _head_and_tail(process.stdout, echo)
     status = process.wait()
     timer.cancel()
-    _kill_group(process)  # whatever the build left behind
+    kill_group(process.pid)  # whatever the build left behind
     text = head.decode("utf-8", errors="replace")
     if total - len(head) - len(tail) > 0:
         text += f"\n[... {total - len(head) - len(tail)} bytes of build output cut ...]\n"
@@ -111,7 +97,7 @@ def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = 
 
 
 def configure(source: Path, build_dir: Path, exercises: Sequence[str], hidden: Path | None,
-              echo: bool = True, extra: Sequence[str] = ()) -> StepResult:
+              echo: bool = True, extra: Sequence[str] = (), runner: Runner | None = None) -> StepResult:
     """Configures a Release tree; warnings never fail a student's build.
 
     The reference build leaves ILLUM_WERROR as the tree has it, so that
@@ -132,7 +118,7 @@ def configure(source: Path, build_dir: Path, exercises: Sequence[str], hidden: P
         # The same options as last time: make re-runs CMake itself if a CMakeLists.txt changed, so
         # configuring again would only cost time (each submission of an autograder run starts here).
         return StepResult(True, "")
-    return run_streaming(command, echo)
+    return run_streaming(command, echo, runner=runner)
 
 
 def already_configured(build_dir: Path, source: Path, command: Sequence[str]) -> bool:
@@ -163,16 +149,11 @@ def hidden_objects_arguments(objects: Sequence[Path]) -> list[str]:
     return [f"-DILLUM_HIDDEN_OBJECTS={';'.join(str(p) for p in objects)}"]
 
 
-def jobs() -> str:
-    """Parallel jobs: CMAKE_BUILD_PARALLEL_LEVEL if set, else every core."""
-    return os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(os.cpu_count() or 1)
-
-
 def build(build_dir: Path, targets: Sequence[str], echo: bool = True, runner: Runner | None = None) -> StepResult:
-    command = ["cmake", "--build", str(build_dir), "-j", jobs()]
-    if targets:
-        command += ["--target", *targets]
-    return run_streaming(command, echo, runner=runner)
+    """Builds ``targets`` (all when empty) with CMAKE_BUILD_PARALLEL_LEVEL jobs if set, else one per core."""
+    jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(os.cpu_count() or 1)
+    return run_streaming(["cmake", "--build", str(build_dir), "-j", jobs, *(["--target", *targets] if targets else [])],
+                         echo, runner=runner)
 
 
 # A compiler or make error line that names an exercise unit, e.g.
@@ -234,10 +215,6 @@ def linker_blames(output: str, units: dict[str, str], symbol_units: dict[str, st
                 if owner:
                     blamed.add(owner)
     return sorted(blamed)
-
-
-def is_link_error(output: str) -> bool:
-    return bool(re.search(r"\bld returned \d+ exit status|multiple definition of|undefined reference to", output))
 
 
 def error_lines_outside(output: str, files: list[str]) -> bool:

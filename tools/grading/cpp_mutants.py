@@ -96,19 +96,11 @@ def body_tokens(tokens: list[Token]) -> list[bool]:
     inside: list[bool] = []
     stack: list[bool] = []  # True for a brace that is a body
     for index, token in enumerate(tokens):
-        if token.text == "{":
-            back = [t.text for t in tokens[max(0, index - 3):index]]
-            is_namespace = "namespace" in back[-2:] or (back[-1:] == ["namespace"])
-            is_namespace = is_namespace or (len(back) >= 2 and back[-2] == "namespace")
-            stack.append(not is_namespace)
-            inside.append(any(stack))
-            continue
-        if token.text == "}":
-            inside.append(any(stack))
-            if stack:
-                stack.pop()
-            continue
+        if token.text == "{":  # a namespace's brace follows `namespace` or `namespace name`
+            stack.append("namespace" not in [t.text for t in tokens[max(0, index - 2):index]])
         inside.append(any(stack))
+        if token.text == "}" and stack:
+            stack.pop()
     return inside
 
 
@@ -161,6 +153,7 @@ _REMOVABLE_CALLS = {"abs", "fabs", "clamp"}
 _TYPE_WORDS = {"double", "float", "int", "auto", "const", "char", "void", "bool", "long", "unsigned", "size_t",
                "constexpr", "operator", "return"}
 _OPERAND_END = {")", "]"}
+_CONTROL = {"if", "while", "for", "return", "switch"}
 
 
 def _is_binary(tokens: list[Token], index: int) -> bool:
@@ -250,17 +243,15 @@ def _operand_before(tokens: list[Token], index: int) -> int:
     token = tokens[index]
     j = index
     if token.text in (")", "]"):
-        j = _matching(tokens, index)
-        if j < 0:
+        opening = _matching(tokens, index)
+        if opening < 0:
             return -1
-        if token.text == "(" or j == 0 or tokens[j - 1].kind != "ident" or tokens[j - 1].text in _TYPE_WORDS \
-                or tokens[j - 1].text in ("if", "while", "for", "return", "switch"):
-            if tokens[index].text == ")" and (j == 0 or tokens[j - 1].kind != "ident"
-                                              or tokens[j - 1].text in ("if", "while", "for", "return", "switch")):
-                return j
-        j -= 1  # the called name
-        if tokens[j].text in _TYPE_WORDS or tokens[j].text in ("if", "while", "for", "return", "switch"):
-            return j + 1
+        name = tokens[opening - 1]  # the called or subscripted name, if there is one
+        if token.text == ")" and (opening == 0 or name.kind != "ident" or name.text in _CONTROL):
+            return opening  # a parenthesised expression
+        if name.text in _TYPE_WORDS or name.text in _CONTROL:
+            return opening
+        j = opening - 1
     elif token.kind == "number":
         return index
     elif token.kind != "ident" or token.text in _TYPE_WORDS:
@@ -287,10 +278,6 @@ def _simple_argument(tokens: list[Token], first: int, last: int) -> bool:
     return all(t.kind in ("ident", "number") or t.text in (".", "->", "::", "[", "]") for t in tokens[first:last + 1])
 
 
-def _is_float_literal(text: str) -> bool:
-    return any(c in text for c in ".eE") and not text.lower().startswith("0x")
-
-
 def _nudged_constants(text: str) -> list[str]:
     """0 <-> 1 and 2 -> 1 on integer and floating literals."""
     core = text.rstrip("fFlLuU")
@@ -299,7 +286,7 @@ def _nudged_constants(text: str) -> list[str]:
         value = float(core.replace("'", ""))
     except ValueError:
         return []
-    is_float = _is_float_literal(core)
+    is_float = any(c in core for c in ".eE") and not core.lower().startswith("0x")
     targets = {0.0: [1.0], 1.0: [0.0], 2.0: [1.0]}.get(value, [])
     return [("1.0" if t == 1.0 else "0.0") + suffix if is_float else str(int(t)) + suffix for t in targets]
 
@@ -316,17 +303,13 @@ class _Generator:
         self.lesson, self.unit, self.source = lesson, unit, source
         self.tokens = tokenize(source)
         self.line_starts = [0] + [m.end() for m in re.finditer(r"\n", source)]
-        self.mutable = {n for n in range(1, len(self.line_starts) + 1) if self.line_text(n).strip() not in stub_lines}
+        self.lines = source.split("\n")
+        self.mutable = {n for n, text in enumerate(self.lines, start=1) if text.strip() not in stub_lines}
         self.mutants: list[Mutant] = []
         # Index names used alone in a subscript, for the i <-> j swap.
         t = self.tokens
         self.subscripts = [t[k + 1].text for k in range(len(t) - 2)
                            if t[k].text == "[" and t[k + 1].kind == "ident" and t[k + 2].text == "]"]
-
-    def line_text(self, number: int) -> str:
-        start = self.line_starts[number - 1]
-        end = self.source.find("\n", start)
-        return self.source[start:end if end >= 0 else len(self.source)]
 
     def add(self, operator: str, start: int, end: int, replacement: str, line: int) -> None:
         """A mutant, unless its line is one of the stub's (a student does not write it)."""
@@ -336,7 +319,7 @@ class _Generator:
                    source=self.source)
         mutated, first = m.apply(), self.line_starts[line - 1]
         end_of_line = mutated.find("\n", first)
-        m.source_line = self.line_text(line).strip()
+        m.source_line = self.lines[line - 1].strip()
         m.mutated_line = mutated[first:end_of_line if end_of_line >= 0 else len(mutated)].strip()
         self.mutants.append(m)
 
@@ -463,8 +446,7 @@ class _Generator:
         """An argument replaced by its neighbour: f(a, b) -> f(a, a) and f(b, b)."""
         t = self.tokens
         if token.text != "(" or token.kind != "op" or index < 1 or t[index - 1].kind != "ident" \
-                or t[index - 1].text in ("if", "while", "for", "switch", "return", "sizeof") \
-                or t[index - 1].text in _TYPE_WORDS:
+                or t[index - 1].text in _CONTROL | _TYPE_WORDS | {"sizeof"}:
             return
         close = _matching(t, index)
         commas = _top_level_commas(t, index, close) if close > 0 else []

@@ -22,7 +22,6 @@ built, an output could not be written, or the command was wrong.
 from __future__ import annotations
 
 import argparse
-import errno
 import json
 import os
 import shutil
@@ -91,11 +90,9 @@ def _parser() -> argparse.ArgumentParser:
     batch.add_argument("--assignment", metavar="NAME", default="illum",
                        help="with --batch --format: the assignment's name in the gradebook (default: illum)")
     batch.add_argument("--work-dir", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
-    parser.add_argument("--submission-info", type=path_argument, metavar="FILE", help=argparse.SUPPRESS)
-    parser.add_argument("--fallback-stubs", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
-    parser.add_argument("--as-user", metavar="NAME", help=argparse.SUPPRESS)
-    parser.add_argument("--grader-data", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
-    parser.add_argument("--save-tests", type=path_argument, metavar="FILE", help=argparse.SUPPRESS)
+    for option in ("--submission-info", "--fallback-stubs", "--grader-data", "--save-tests"):  # the autograder's
+        parser.add_argument(option, type=path_argument, help=argparse.SUPPRESS)
+    parser.add_argument("--as-user", help=argparse.SUPPRESS)
     parser.add_argument("--build-as-grader", action="store_true", help=argparse.SUPPRESS)
     return parser
 
@@ -131,7 +128,7 @@ def _check_batch(parser: argparse.ArgumentParser, args: argparse.Namespace) -> N
         if not args.batch.is_dir():
             parser.error(f"--batch {args.batch}: " + ("not a folder (--batch takes the folder of the "
                                                      "submissions, each a folder or a zip)"
-                                                     if args.batch.exists() else _no_folder(args.batch)))
+                                                     if args.batch.exists() else "no such folder"))
         if args.jobs is not None and args.jobs < 1:
             parser.error(f"--jobs {args.jobs}: needs at least 1")
         if args.roster is not None and not args.roster.is_file():
@@ -166,16 +163,6 @@ def _check_inputs(parser: argparse.ArgumentParser, args: argparse.Namespace) -> 
                                                        "files)" if args.hidden.exists() else "no such folder"))
         if not any(args.hidden.glob("*.cpp")):
             parser.error(f"--hidden {args.hidden}: no .cpp test files there")
-
-
-def _no_folder(path: Path) -> str:
-    """Why nothing is at `path`: 'no such folder', or a link that leads back to itself (ELOOP)."""
-    try:
-        os.stat(path)
-    except OSError as error:
-        if error.errno == errno.ELOOP:
-            return "a symbolic link that leads back to itself (a link loop)"
-    return "no such folder"
 
 
 def output_path_problem(path: Path | None) -> str:
@@ -266,8 +253,7 @@ class GraderData:
 
 def _student_units(root: Path, lessons: list[str]) -> dict[str, str]:
     """File name -> ``exercises/NN_topic/name.cpp`` of every exercise unit of the graded lessons."""
-    return {name: path.relative_to(root).as_posix() for name, path in project.exercise_stubs(root).items()
-            if path.parent.name[:2] in lessons}
+    return {name: path.relative_to(root).as_posix() for name, path in project.exercise_stubs(root, lessons).items()}
 
 
 def _fall_back(args: argparse.Namespace, root: Path, relative: str, compiled: bool = True) -> bool:
@@ -290,14 +276,15 @@ def _fall_back(args: argparse.Namespace, root: Path, relative: str, compiled: bo
 
 
 def _build_with_fallback(args: argparse.Namespace, run: GradeRun, build_dir: Path, root: Path,
-                         targets: list[str], data: GraderData | None = None) -> build.StepResult:
+                         targets: list[str], data: GraderData | None = None,
+                         runner: build.Runner | None = None) -> build.StepResult:
     """Builds ``targets``; with --fallback-stubs, a student file that does not
     compile, or that breaks the link (a helper defined in two files), is
     replaced by its stub and the build tried again, so that one broken file
     costs only its lesson (GradeRun.fallbacks says which, with the compiler's
     or the linker's words)."""
     units = _student_units(root, run.lessons) if args.student else {}
-    step = build.build(build_dir, targets)
+    step = build.build(build_dir, targets, runner=runner)
     while not step.ok and args.student and args.fallback_stubs and not step.timed_out:
         compiled = [f for f in build.failed_exercise_files(step.output) if f in units.values()]
         linked = build.linker_blames(step.output, units, data.stub_symbols if data else None)
@@ -312,28 +299,23 @@ def _build_with_fallback(args: argparse.Namespace, run: GradeRun, build_dir: Pat
             if what == "did not link":
                 run.link_failures.add(relative)
             print(f"tools/grade: {relative} {what}; grading its lesson with the stub", file=sys.stderr)
-        step = build.build(build_dir, targets)
+        step = build.build(build_dir, targets, runner=runner)
     return step
 
 
 def _scan_sources(root: Path, run: GradeRun) -> list[str]:
     """The suspicious-code check of the student's files' text (suspicious.py)."""
-    findings = []
-    for _name, relative in _student_units(root, run.lessons).items():
-        path = root / relative
-        if path.is_file():
-            findings += [f.describe() for f in suspicious.scan_source(path.read_text(encoding="utf-8", errors="replace"),
-                                                                       relative)]
-    return findings
+    files = [(root / relative, relative) for relative in _student_units(root, run.lessons).values()]
+    return [finding.describe() for path, relative in files if path.is_file()
+            for finding in suspicious.scan_source(path.read_text(encoding="utf-8", errors="replace"), relative)]
 
 
 def _scan_objects(root: Path, run: GradeRun, build_dir: Path) -> list[str]:
     """The suspicious-code check of the student's compiled files."""
     units = _student_units(root, run.lessons)
-    archive = next(iter(sorted(build_dir.glob("libillum.a"))), None)
-    library = suspicious.library_definitions(archive, {f"{n}.o" for n in units}) if archive else {}
+    library = suspicious.library_definitions(build_dir / "libillum.a", {f"{n}.o" for n in units})
     findings = []
-    for _name, relative in units.items():
+    for relative in units.values():
         obj = None if relative in run.fallbacks else suspicious.object_of(build_dir, relative)
         if obj is None:
             continue
@@ -400,7 +382,7 @@ def _judged(args: argparse.Namespace, data: GraderData) -> bool:
     return not args.student or bool(data.tests) or data.witness_dir is not None
 
 
-def _targets(run: GradeRun, lessons: list[str], tested: set[str], judged: bool, witness_here: bool) -> list[str]:
+def _targets(lessons: list[str], tested: set[str], judged: bool, witness_here: bool) -> list[str]:
     programs = [f"tests_lesson{nn}" for nn in lessons if nn in tested]
     if not judged:
         return ["illum"] + programs
@@ -411,30 +393,26 @@ def _build_student_code(args: argparse.Namespace, run: GradeRun, root: Path, bui
                         targets: list[str], sandbox: Sandbox, data: GraderData) -> build.StepResult:
     """Configures and builds; a student's build runs as the student's user (the tree is theirs while it
     compiles, and root's after)."""
-    build_home = None
+    build_home, runner = None, build.Runner(timeout=build.build_timeout_from_environment())
     if sandbox.account is not None and not args.build_as_grader:
         build_dir.mkdir(parents=True, exist_ok=True)
         sandbox.give_tree(build_dir)
         build_home = sandbox.make_scratch()
-        build.set_runner(build.Runner(preexec=sandbox.build_preexec(),
-                                      env=sandbox.build_environment(build_home / "home"),
-                                      timeout=build.build_timeout_from_environment()))
-    else:
-        build.set_runner(build.Runner(timeout=build.build_timeout_from_environment()))
+        runner = build.Runner(preexec=sandbox.build_preexec(), env=sandbox.build_environment(build_home / "home"),
+                              timeout=runner.timeout)
     try:
         hidden_objects = data.hidden_objects
         step = build.configure(root, build_dir, exercises, None if hidden_objects else args.hidden,
-                               extra=build.hidden_objects_arguments(hidden_objects))
+                               extra=build.hidden_objects_arguments(hidden_objects), runner=runner)
         if step.ok:
             # The visible tests first: an instructor's hidden tests that do not
             # build must not cost the student the visible ones (nor blame them).
-            step = _build_with_fallback(args, run, build_dir, root, targets, data)
+            step = _build_with_fallback(args, run, build_dir, root, targets, data, runner)
     finally:
-        build.set_runner(build.Runner())
         if build_home is not None:
             sandbox.reap()
             sandbox.take_tree(build_dir)
-            sandbox.remove_scratch(build_home)
+            shutil.rmtree(build_home, ignore_errors=True)
     return step
 
 
@@ -469,7 +447,7 @@ def _witness_run(data: GraderData, bin_dir: Path, program: str, suite: str, seed
     return run, runner.witness_checks(run), ""
 
 
-def _run_planned(args: argparse.Namespace, run: GradeRun, data: GraderData, bin_dir: Path,
+def _run_planned(run: GradeRun, data: GraderData, bin_dir: Path,
                  planned: list[tuple[str, str, bool]], judged: bool) -> list:
     """Runs every planned suite; with the judge, the witness first and then the student's observer."""
     seed_env = {"ILLUM_GRADE_SEED": os.environ.get("ILLUM_GRADE_SEED") or str(int.from_bytes(os.urandom(4), "big"))}
@@ -531,10 +509,9 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     build_dir, exercises = build_tree(args, root, lessons)
     if not (build_dir / "libillum.a").exists():
         print(f"tools/grade: the first build of {build_dir} compiles the whole library: 1 to 3 minutes on two "
-              "cores, about twice that on a slower machine (less when ccache has the objects); later runs rebuild only what changed",
-              file=sys.stderr, flush=True)
-    run = GradeRun(lessons=lessons, student=args.student)
-    run.submission = args.submission
+              "cores, about twice that on a slower machine (less when ccache has the objects); later runs rebuild "
+              "only what changed", file=sys.stderr, flush=True)
+    run = GradeRun(lessons=lessons, submission=args.submission)
     try:
         sandbox = _make_sandbox(args, root)
     except SandboxError as error:
@@ -545,9 +522,8 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     _announce(sandbox, judged)
     tested = set(project.test_lessons(root))
     has_hidden = bool(data.hidden_objects) or bool(project.hidden_sources(root, args.hidden))
-    run.has_hidden = has_hidden
     _advise(args, run, root, before_build=True)
-    targets = _targets(run, lessons, tested, judged, witness_here)
+    targets = _targets(lessons, tested, judged, witness_here)
     step = _build_student_code(args, run, root, build_dir, exercises, targets, sandbox, data)
     if step.ok:
         _advise(args, run, root, build_dir=build_dir)
@@ -561,7 +537,7 @@ def grade(args: argparse.Namespace, root: Path) -> int:
         # The hidden tests last: nothing a student's code learns while they run can reach a visible result.
         planned += [(lesson, "tests_hidden", True) for lesson in lessons] if has_hidden else []
         with sandbox.hidden_folders():
-            ran_suites = _run_planned(args, run, data, build_dir / "bin", planned, judged)
+            ran_suites = _run_planned(run, data, build_dir / "bin", planned, judged)
         if args.save_tests:
             _save_tests(args.save_tests, ran_suites)
     # Nothing of the student's may be alive, or left in the shared folders, when results are written.
@@ -615,38 +591,27 @@ def _report(args: argparse.Namespace, run: GradeRun, root: Path) -> int:
     return reports.exit_code(run)
 
 
-def check_integrity(args: argparse.Namespace, root: Path) -> int:
+def _needs_reference(root: Path, why: str) -> None:
+    """Refuses a command that needs the reference solutions in the student edition, which has none."""
     if project.is_student_edition(root):
-        print("tools/grade: --check-integrity needs the reference solutions, which the student edition "
-              "does not have", file=sys.stderr)
-        return reports.EXIT_NOT_BUILT
-    report = check_build(args.build_dir)
+        raise UsageError(why)
+
+
+def check_tree(args: argparse.Namespace, root: Path) -> int:
+    """--check-integrity (integrity.py) or --check-alone (alone.py) on an already-built tree."""
+    from .alone import check_alone
+
+    option, title = ("--check-integrity", "grading integrity") if args.check_integrity else \
+        ("--check-alone", "each lesson alone")
+    _needs_reference(root, f"{option} needs the reference solutions, which the student edition does not have")
+    report = check_build(args.build_dir) if args.check_integrity else check_alone(args.build_dir, root)
     for line in report.checked:
         print(f"ok       {line}")
     for line in report.offenders:
         print(f"OFFENDER {line}")
-    print("grading integrity: " + ("passed" if report.ok else f"FAILED ({len(report.offenders)} problem(s))"))
+    print(f"{title}: " + ("passed" if report.ok else f"FAILED ({len(report.offenders)} problem(s))"))
     if not report.ok:
-        print(f"tools/grade: grading integrity FAILED: {len(report.offenders)} problem(s), the OFFENDER lines above",
-              file=sys.stderr)
-    return reports.EXIT_PASSED if report.ok else reports.EXIT_FAILED
-
-
-def check_alone(args: argparse.Namespace, root: Path) -> int:
-    from .alone import check_alone as run_check
-
-    if project.is_student_edition(root):
-        print("tools/grade: --check-alone needs the reference solutions, which the student edition "
-              "does not have", file=sys.stderr)
-        return reports.EXIT_NOT_BUILT
-    report = run_check(args.build_dir, root)
-    for line in report.checked:
-        print(f"ok       {line}")
-    for line in report.offenders:
-        print(f"OFFENDER {line}")
-    print("each lesson alone: " + ("passed" if report.ok else f"FAILED ({len(report.offenders)} problem(s))"))
-    if not report.ok:
-        print(f"tools/grade: each lesson alone FAILED: {len(report.offenders)} problem(s), the OFFENDER lines above",
+        print(f"tools/grade: {title} FAILED: {len(report.offenders)} problem(s), the OFFENDER lines above",
               file=sys.stderr)
     return reports.EXIT_PASSED if report.ok else reports.EXIT_FAILED
 
@@ -654,10 +619,7 @@ def check_alone(args: argparse.Namespace, root: Path) -> int:
 def pack(args: argparse.Namespace, root: Path) -> int:
     from .autograder import pack_autograder
 
-    if project.is_student_edition(root):
-        print("tools/grade: pack the autograder from the instructors' tree, not the student edition",
-              file=sys.stderr)
-        return reports.EXIT_NOT_BUILT
+    _needs_reference(root, "pack the autograder from the instructors' tree, not the student edition")
     check_lessons_exist(args, root)
     lessons = choose_lessons(args, root)
     try:
@@ -673,8 +635,7 @@ def pack(args: argparse.Namespace, root: Path) -> int:
 def batch(args: argparse.Namespace, root: Path) -> int:
     from .batch import grade_batch
 
-    if project.is_student_edition(root):
-        raise UsageError("--batch packs the autograder from the instructors' tree, not the student edition")
+    _needs_reference(root, "--batch packs the autograder from the instructors' tree, not the student edition")
     check_lessons_exist(args, root)
     lessons = choose_lessons(args, root)
     return grade_batch(root, args, lessons)
@@ -689,19 +650,14 @@ def main(argv: list[str] | None = None) -> int:
     args = parse_arguments(argv)
     root = project.ROOT
     try:
-        if args.check_integrity:
-            return check_integrity(args, root)
-        if args.check_alone:
-            return check_alone(args, root)
+        if args.check_integrity or args.check_alone:
+            return check_tree(args, root)
         if args.pack_autograder:
             return pack(args, root)
         if args.batch:
             return batch(args, root)
         return grade(args, root)
-    except UsageError as error:  # a wrong command: say so, write nothing
-        print(f"tools/grade: {error}", file=sys.stderr)
-        return reports.EXIT_NOT_BUILT
-    except OutputError as error:  # the grading ran, its results could not be kept
+    except (UsageError, OutputError) as error:  # a wrong command (nothing written), or results not kept
         print(f"tools/grade: {error}", file=sys.stderr)
         return reports.EXIT_NOT_BUILT
     except Exception as error:  # noqa: BLE001 -- the autograder must still get a results.json

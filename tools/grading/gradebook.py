@@ -267,17 +267,9 @@ def feedback(o: Outcome) -> str:
     return "; ".join(head + o.student_notes)
 
 
-def _test_columns(outcomes: list[Outcome]) -> list[str]:
-    seen: dict[str, None] = {}
-    for outcome in outcomes:
-        for name in outcome.tests:
-            seen.setdefault(name, None)
-    return list(seen)
-
-
 def grades_rows(outcomes: list[Outcome], lessons: list[str], roster: Roster | None) -> list[list[str]]:
     """grades.csv, for the instructor: everything, hidden tests included."""
-    tests = _test_columns(outcomes)
+    tests = list(dict.fromkeys(name for o in outcomes for name in o.tests))  # in order of first appearance
     extra = [h for h in (roster.headers if roster else []) if h]
     rows = [["id", *[f"roster: {h}" for h in extra], "status", "total", "max", *[f"lesson{nn}" for nn in lessons],
              *tests, "notes"]]

@@ -97,6 +97,22 @@ def judged_pair(witness_program: Path, suite: str, hidden: bool = False) -> tupl
     return f"{suite}: {len(runs[0].results)} test(s) judged the same way outside the programs", problems
 
 
+def _check_suite(report: IntegrityReport, program: Path, suite: str, hidden: bool = False,
+                 misplaced: list[str] | None = None) -> None:
+    """One suite of ``program`` on the reference and on its ``_stubs`` build, and judged (judged_pair)."""
+    reference, stubs = run_suite(program, suite), run_suite(program.with_name(program.name + "_stubs"), suite)
+    problems = [f"{suite}: {run.problem}" for run in (reference, stubs) if run.problem]
+    problems += check_pair(f"{program.name} [{suite}]", reference.results, stubs.results) + (misplaced or [])
+    judged, judged_problems = judged_pair(program, suite, hidden)
+    report.offenders.extend(problems + judged_problems)
+    if not problems and not (hidden and judged_problems):
+        report.checked.append(f"{suite}{' (hidden)' if hidden else ''}: {len(reference.results)} "
+                              f"{'test(s)' if hidden else 'grading test(s)'} pass on the reference and fail on the "
+                              "stubs with NotImplemented")
+    if judged and not judged_problems and not hidden:
+        report.checked.append(judged)
+
+
 def check_build(build_dir: Path) -> IntegrityReport:
     """Runs the integrity check on every grading program of a built tree."""
     report = IntegrityReport()
@@ -106,39 +122,14 @@ def check_build(build_dir: Path) -> IntegrityReport:
         report.offenders.append(f"no tests_lessonNN program in {bin_dir}; build the tree first")
         return report
     for lesson, program in programs.items():
-        suite = f"lesson{lesson}"
-        stubs_program = program.with_name(program.name + "_stubs")
-        reference = run_suite(program, suite)
-        stubs = run_suite(stubs_program, suite)
-        for run in (reference, stubs):
-            if run.problem:
-                report.offenders.append(f"{suite}: {run.problem}")
-        problems = check_pair(f"{program.name} [{suite}]", reference.results, stubs.results)
-        for test in list_suites(program):
-            if test.lesson and test.lesson != lesson:
-                problems.append(f"{program.name}: \"{test.name}\" ({test.file}:{test.line}) is in suite "
-                                f"{test.suite}, which this program never grades; move it to tests/{test.lesson}_*/")
-        judged, judged_problems = judged_pair(program, suite)
-        report.offenders.extend(problems + judged_problems)
-        if not problems and not reference.problem and not stubs.problem:
-            report.checked.append(f"{suite}: {len(reference.results)} grading test(s) pass on the reference "
-                                  "and fail on the stubs with NotImplemented")
-        if judged and not judged_problems:
-            report.checked.append(judged)
-    hidden, hidden_stubs = bin_dir / "tests_hidden", bin_dir / "tests_hidden_stubs"
-    if hidden.is_file():
-        if not hidden_stubs.is_file():
-            report.offenders.append("tests_hidden exists but tests_hidden_stubs does not; build it")
-        else:
-            lessons = sorted({t.lesson for t in list_suites(hidden) if t.lesson})
-            for lesson in lessons:
-                suite = f"lesson{lesson}"
-                reference, stubs = run_suite(hidden, suite), run_suite(hidden_stubs, suite)
-                problems = [f"{suite}: {r.problem}" for r in (reference, stubs) if r.problem]
-                problems += check_pair(f"tests_hidden [{suite}]", reference.results, stubs.results)
-                problems += judged_pair(hidden, suite, hidden=True)[1]
-                report.offenders.extend(problems)
-                if not problems:
-                    report.checked.append(f"{suite} (hidden): {len(reference.results)} test(s) pass on the reference "
-                                          "and fail on the stubs with NotImplemented")
+        misplaced = [f"{program.name}: \"{test.name}\" ({test.file}:{test.line}) is in suite {test.suite}, which "
+                     f"this program never grades; move it to tests/{test.lesson}_*/"
+                     for test in list_suites(program) if test.lesson and test.lesson != lesson]
+        _check_suite(report, program, f"lesson{lesson}", misplaced=misplaced)
+    hidden = bin_dir / "tests_hidden"
+    if hidden.is_file() and not (bin_dir / "tests_hidden_stubs").is_file():
+        report.offenders.append("tests_hidden exists but tests_hidden_stubs does not; build it")
+    elif hidden.is_file():
+        for lesson in sorted({t.lesson for t in list_suites(hidden) if t.lesson}):
+            _check_suite(report, hidden, f"lesson{lesson}", hidden=True)
     return report

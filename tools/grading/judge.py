@@ -92,6 +92,8 @@ def _less(a: Any, b: Any) -> bool:
 
 def holds(op: str, lhs: Any, rhs: Any) -> bool:
     """Whether ``lhs op rhs`` holds, as the C++ check computes it."""
+    if op not in ("==", "!=", "<", "<=", ">", ">="):
+        raise JudgeError(f"an unknown comparison {op!r}")
     if isinstance(rhs, dict) and "approx" in rhs:
         x = _number(lhs)
         if x is None:
@@ -101,19 +103,11 @@ def holds(op: str, lhs: Any, rhs: Any) -> bool:
         equal = _approx_equal(x, rhs)
         return {"==": equal, "!=": not equal, "<": x < value and not equal, "<=": x < value or equal,
                 ">": x > value and not equal, ">=": x > value or equal}[op]
-    if op == "==":
-        return _equal(lhs, rhs)
-    if op == "!=":
-        return not _equal(lhs, rhs)
-    if op == "<":
-        return _less(lhs, rhs)
-    if op == ">":
-        return _less(rhs, lhs)
-    if op == "<=":
-        return not _less(rhs, lhs)
-    if op == ">=":
-        return not _less(lhs, rhs)
-    raise JudgeError(f"an unknown comparison {op!r}")
+    if op in ("==", "!="):
+        return _equal(lhs, rhs) == (op == "==")
+    # a < b and a >= b are decided by a < b; a > b and a <= b by b < a.
+    less = _less(lhs, rhs) if op in ("<", ">=") else _less(rhs, lhs)
+    return less == (op in ("<", ">"))
 
 
 def describe(value: Any) -> str:

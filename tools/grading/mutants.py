@@ -189,6 +189,16 @@ def sync_tree(source: Path, destination: Path) -> None:
             shutil.rmtree(here, ignore_errors=True)
 
 
+def _run(command: list[str], timeout: float | None = None) -> tuple[bool, str]:
+    """(whether ``command`` succeeded, its output and errors together); a time-out fails, saying so."""
+    try:
+        done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                              errors="replace", timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return False, f"the build did not finish within {timeout:g} s"
+    return done.returncode == 0, done.stdout
+
+
 class Workspace:
     """One worker's copy of the tree (``build/mutants/wK``) and its build tree."""
 
@@ -200,23 +210,14 @@ class Workspace:
         self.number = number
         self.current: Path | None = None  # the unit rewritten now, if any
 
-    def prepare(self, echo) -> tuple[bool, str]:
+    def prepare(self) -> tuple[bool, str]:
         sync_tree(self.root, self.src)
         command = ["cmake", "-S", str(self.src), "-B", str(self.build), "-DCMAKE_BUILD_TYPE=Release",
                    "-DILLUM_BUILD_TESTS=ON", "-DILLUM_WERROR=ON", "-DILLUM_EXERCISES=", "-DILLUM_HIDDEN_TESTS="]
-        if shutil.which("ccache"):
-            command.append("-DCMAKE_CXX_COMPILER_LAUNCHER=ccache")
-        done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, errors="replace")
-        return done.returncode == 0, done.stdout
+        return _run(command + (["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"] if shutil.which("ccache") else []))
 
     def build_targets(self, targets: list[str], timeout: float, jobs: int = 1) -> tuple[bool, str]:
-        command = ["cmake", "--build", str(self.build), "-j", str(jobs), "--target", *targets]
-        try:
-            done = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                                  errors="replace", timeout=timeout)
-        except subprocess.TimeoutExpired:
-            return False, f"the build did not finish within {timeout:g} s"
-        return done.returncode == 0, done.stdout
+        return _run(["cmake", "--build", str(self.build), "-j", str(jobs), "--target", *targets], timeout)
 
     def write_unit(self, unit: Path, text: str) -> None:
         # One mutant at a time: a worker that moves on to another unit puts the
@@ -486,7 +487,7 @@ def summary_table(reports: list[LessonReport], compare_without: str | None = Non
     return "\n".join(lines)
 
 
-def markdown_report(reports: list[LessonReport], root: Path, command: str, compare_without: str | None = None) -> str:
+def markdown_report(reports: list[LessonReport], command: str, compare_without: str | None = None) -> str:
     parts = [
         "# Grading power: the mutation report",
         "",
@@ -564,7 +565,7 @@ def _prepared_workspaces(root: Path, args: argparse.Namespace, reports: list[Les
     workspaces = [Workspace(root, base, k) for k in range(jobs)]
     for workspace in workspaces:
         print(f"tools/grade --mutants: preparing {workspace.src}", file=sys.stderr, flush=True)
-        ok, output = workspace.prepare(echo=False)
+        ok, output = workspace.prepare()
         if not ok:
             print(output[-4000:], file=sys.stderr)
             print(f"tools/grade --mutants: could not configure {workspace.build}", file=sys.stderr)
@@ -607,7 +608,7 @@ def main(argv: list[str]) -> int:
             for m in (m for m in r.mutants if m.status == "survived"):
                 print(f"survived: {m.ident} {m.unit.as_posix()}:{m.line} {m.operator}: {m.source_line}  =>  "
                       f"{m.mutated_line}")
-        text = markdown_report(reports, root, command, args.compare_without)
+        text = markdown_report(reports, command, args.compare_without)
     if args.report:
         args.report.parent.mkdir(parents=True, exist_ok=True)
         args.report.write_text(text, encoding="utf-8")

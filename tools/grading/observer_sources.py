@@ -31,21 +31,17 @@ class SourceError(Exception):
     """A check this tool cannot rewrite."""
 
 
-# Macro name -> (kind the records carry, how it is rewritten).
-_VALUE = {"CHECK": "CHECK", "CHECK_FALSE": "CHECK_FALSE", "CHECK_MESSAGE": "CHECK",
-          "CHECK_FALSE_MESSAGE": "CHECK_FALSE", "WARN": None, "WARN_FALSE": None}
-_WHOLE = {"REQUIRE": "REQUIRE", "REQUIRE_FALSE": "REQUIRE_FALSE", "REQUIRE_MESSAGE": "REQUIRE",
-          "REQUIRE_FALSE_MESSAGE": "REQUIRE_FALSE", "CHECK_UNARY": "CHECK", "CHECK_UNARY_FALSE": "CHECK_FALSE",
-          "REQUIRE_UNARY": "REQUIRE", "REQUIRE_UNARY_FALSE": "REQUIRE_FALSE"}
+# The macros rewritten, by how; the kind a record carries is the macro's name without _UNARY and _MESSAGE.
+_VALUE = {"CHECK", "CHECK_FALSE", "CHECK_MESSAGE", "CHECK_FALSE_MESSAGE", "WARN", "WARN_FALSE"}
+_WHOLE = {"REQUIRE", "REQUIRE_FALSE", "REQUIRE_MESSAGE", "REQUIRE_FALSE_MESSAGE", "CHECK_UNARY", "CHECK_UNARY_FALSE",
+          "REQUIRE_UNARY", "REQUIRE_UNARY_FALSE"}
 _BINARY = {"EQ": "==", "NE": "!=", "LT": "<", "LE": "<=", "GT": ">", "GE": ">="}
-_THROWS = {"CHECK_THROWS": "CHECK_THROWS", "REQUIRE_THROWS": "REQUIRE_THROWS", "CHECK_NOTHROW": "CHECK_NOTHROW",
-           "REQUIRE_NOTHROW": "REQUIRE_NOTHROW", "CHECK_THROWS_AS": "CHECK_THROWS_AS",
-           "REQUIRE_THROWS_AS": "REQUIRE_THROWS_AS"}
+_THROWS = {"CHECK_THROWS", "REQUIRE_THROWS", "CHECK_NOTHROW", "REQUIRE_NOTHROW", "CHECK_THROWS_AS", "REQUIRE_THROWS_AS"}
 _CUT = {"INFO", "CAPTURE", "MESSAGE", "WARN_MESSAGE", "WARN_THROWS", "WARN_THROWS_AS", "WARN_NOTHROW"}
 _APPROX = {"ILLUM_CHECK_APPROX", "ILLUM_CHECK_APPROX_MESSAGE"}
 _ANY_TYPE = "::illum::test::NothingThrowsThis"
 
-_NAMES = (set(_VALUE) | set(_WHOLE) | set(_THROWS) | _CUT | _APPROX
+_NAMES = (_VALUE | _WHOLE | _THROWS | _CUT | _APPROX
           | {f"{level}_{name}" for level in ("CHECK", "REQUIRE", "WARN") for name in _BINARY}
           | {"FAIL", "FAIL_CHECK", "ILLUM_CHECK_THROWS_CONTAINING"})
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z_0-9]*")
@@ -170,6 +166,7 @@ def split_comparison(condition: str) -> tuple[str, str, str] | None:
 def _rewrite(name: str, args: list[str]) -> str:
     """The observer's text for one invocation of ``name``."""
     base = name.removeprefix("DOCTEST_")
+    kind = base.replace("_UNARY", "").removesuffix("_MESSAGE")
     if base in _CUT or base in ("WARN", "WARN_FALSE") or base.startswith("WARN_"):
         return "static_cast<void>(0)"
     if base in ("FAIL", "FAIL_CHECK"):
@@ -181,7 +178,6 @@ def _rewrite(name: str, args: list[str]) -> str:
             raise SourceError("ILLUM_CHECK_THROWS_CONTAINING needs an expression, a text and a type")
         return f"ILLUM_OBSERVE_THROWS(CHECK_THROWS_CONTAINING, {args[0].strip()}, {','.join(args[2:]).strip()})"
     if base in _THROWS:
-        kind = _THROWS[base]
         kind_type = ",".join(args[1:]).strip() if kind.endswith("_AS") else _ANY_TYPE
         return f"ILLUM_OBSERVE_THROWS({kind}, {args[0].strip()}, {kind_type})"
     level, _, suffix = base.partition("_")
@@ -192,12 +188,10 @@ def _rewrite(name: str, args: list[str]) -> str:
         return f"ILLUM_OBSERVE_VALUE(CHECK, ({lhs}))"
     condition = args[0].strip() if base.endswith("_MESSAGE") else ",".join(args).strip()
     if base in _WHOLE:
-        kind = _WHOLE[base]
         if base.startswith(("CHECK_UNARY", "REQUIRE_UNARY")):
             return f"ILLUM_OBSERVE_CHECK({kind}, ({condition}))"
         parts = split_comparison(condition)  # only to refuse what doctest would refuse too
         return f"ILLUM_OBSERVE_CHECK({kind}, {condition if parts else f'({condition})'})"
-    kind = _VALUE[base]
     parts = split_comparison(condition)
     if parts is None:
         return f"ILLUM_OBSERVE_CHECK({kind}, ({condition}))"

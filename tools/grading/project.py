@@ -32,9 +32,10 @@ def exercise_lessons(root: Path = ROOT) -> list[str]:
     return lessons_with_sources(root / "exercises")
 
 
-def exercise_stubs(root: Path = ROOT) -> dict[str, Path]:
-    """File name -> stub path for every exercise unit (names are unique in lib/)."""
-    return {stub.name: stub for stub in sorted((root / "exercises").glob("[0-9][0-9]_*/*.cpp"))}
+def exercise_stubs(root: Path = ROOT, lessons: list[str] | None = None) -> dict[str, Path]:
+    """File name -> stub path for every exercise unit (names are unique in lib/), of `lessons` only if given."""
+    return {stub.name: stub for stub in sorted((root / "exercises").glob("[0-9][0-9]_*/*.cpp"))
+            if lessons is None or stub.parent.name[:2] in lessons}
 
 
 def hidden_sources(root: Path = ROOT, extra: Path | None = None) -> list[Path]:

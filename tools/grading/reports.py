@@ -34,7 +34,6 @@ class GradeRun:
     build_failed: bool = False
     build_output: str = ""
     problems: list[str] = field(default_factory=list)  # crashes, timeouts, missing programs
-    student: bool = False
     seconds: float = 0.0
     # Attributed build failure: only the student's files named here failed;
     # each was replaced by its stub and the rest was graded (file -> compiler output).
@@ -43,7 +42,6 @@ class GradeRun:
     # The instructor's hidden tests did not build: the grader is misconfigured.
     hidden_build_failed: bool = False
     hidden_build_output: str = ""
-    has_hidden: bool = False
     # What the autograder did with the upload (autograder.install_submission).
     submission: dict[str, Any] | None = None
     # False when the build failure is not the student's (a broken tree).
@@ -83,17 +81,20 @@ def exit_code(run: GradeRun) -> int:
     return EXIT_PASSED if all(r.passed for r in run.results) else EXIT_FAILED
 
 
-def _rows(run: GradeRun, with_hidden: bool = True) -> list[tuple[str, int, int, float, float]]:
-    """(label, tests passed, tests, points, max points) per lesson, visible then hidden."""
+def _cells(group: list[TestResult]) -> tuple[str, str]:
+    """A row's "tests passed" and "points": 3/4 and 3/5."""
+    points = f"{sum(r.score for r in group):g}/{sum(r.points for r in group):g}"
+    return f"{sum(r.passed for r in group)}/{len(group)}", points
+
+
+def _rows(run: GradeRun, with_hidden: bool = True) -> list[tuple[str, str, str]]:
+    """(label, tests passed, points) per lesson, visible then hidden."""
     rows = []
     for lesson in run.lessons:
         for hidden in (False, True) if with_hidden else (False,):
             group = [r for r in run.results if r.lesson == lesson and r.hidden == hidden]
-            if hidden and not group:
-                continue
-            label = f"{lesson} (hidden)" if hidden else lesson
-            rows.append((label, sum(r.passed for r in group), len(group),
-                         sum(r.score for r in group), sum(r.points for r in group)))
+            if group or not hidden:
+                rows.append((f"{lesson} (hidden)" if hidden else lesson, *_cells(group)))
     return rows
 
 
@@ -105,13 +106,11 @@ def score_table(run: GradeRun, for_students: bool = False) -> str:
     # Any entry hidden from students (a hidden test, or the hidden tests' failed build) hides the total.
     hide = for_students and (run.hidden_build_failed or any(r.hidden for r in run.results))
     header = ("lesson", "tests passed", "points")
-    body = [(label, f"{passed}/{total}", f"{points:g}/{max_points:g}")
-            for label, passed, total, points, max_points in _rows(run, with_hidden=not hide)]
+    body = _rows(run, with_hidden=not hide)
     shown = [r for r in run.results if not (hide and r.hidden)]
     score, max_score = sum(r.score for r in shown), sum(r.points for r in shown)
-    percent = 100.0 * score / max_score if max_score else 0.0
-    footer = ("total", f"{sum(r.passed for r in shown)}/{len(shown)}",
-              f"{score:g}/{max_score:g}  ({percent:.0f}%)")
+    passed, points = _cells(shown)
+    footer = ("total", passed, f"{points}  ({100.0 * score / max_score if max_score else 0.0:.0f}%)")
     rows = [header, *body] + ([] if hide else [footer])
     widths = [max(len(row[i]) for row in rows) for i in range(3)]
 

@@ -4,11 +4,10 @@ JSON object a line, `"event": "test_case"` for a test that ran and `"listed"` fo
 have run, so a program that crashes or hangs half-way still yields a result for every test."""
 from __future__ import annotations
 
-import json
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Iterable
+from typing import Any
 
 # "points=3" in a doctest description decorator gives a test more weight:
 #   TEST_CASE("..." * doctest::description("points=3"))
@@ -159,26 +158,6 @@ class TestResult:
             failures=[Failure.from_json(f) for f in data.get("failures", []) or []],
             not_implemented_only=bool(data.get("not_implemented_only", False)),
         )
-
-
-def parse_lines(lines: Iterable[str]) -> list[dict[str, Any]]:
-    """The reporter's records; lines that are not JSON objects are skipped.
-
-    A test that crashes can leave a half-written last line, and nothing
-    else may be in the file, but a stray line must not cost the other results.
-    """
-    records: list[dict[str, Any]] = []
-    for line in lines:
-        line = line.strip()
-        if not line.startswith("{"):
-            continue
-        try:
-            record = json.loads(line)
-        except json.JSONDecodeError:
-            continue
-        if isinstance(record, dict):
-            records.append(record)
-    return records
 
 
 def merge(listed: list[dict[str, Any]], ran: list[dict[str, Any]], hidden: bool = False,

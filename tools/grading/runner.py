@@ -57,8 +57,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 from .judge import JudgeError, judge_test
-from .results import Failure, TestResult, merge
-from .sandbox import Sandbox
+from .results import TestResult, merge
+from .sandbox import Sandbox, descendants_cpu_seconds
 
 DEFAULT_TIMEOUT = 600.0       # seconds of processor time per run of a test program
 DEFAULT_TEST_TIMEOUT = 60.0   # seconds of processor time per test case
@@ -101,11 +101,8 @@ def _remaining() -> float:
 
 
 def timeout_seconds() -> float:
+    """Processor seconds for one run of a test program (ILLUM_GRADE_TIMEOUT)."""
     return float(os.environ.get("ILLUM_GRADE_TIMEOUT", DEFAULT_TIMEOUT))
-
-
-def test_timeout_seconds() -> float:
-    return float(os.environ.get("ILLUM_GRADE_TEST_TIMEOUT", DEFAULT_TEST_TIMEOUT))
 
 
 @dataclass
@@ -129,10 +126,7 @@ class _Invocation:
     problem: str          # why the run ended abnormally ('' when it ended normally)
     output: str
     exit_code: int | None = None
-    signal: int | None = None
-    timed_out: bool = False
     garbage: int = 0      # complete lines that were not records
-    flooded: bool = False
     survivors: list[str] = field(default_factory=list)
 
     @property
@@ -196,12 +190,6 @@ class _Records:
                 self.garbage += 1
 
 
-def _describe_exit(returncode: int) -> str:
-    if returncode < 0:
-        return _describe_signal(-returncode)
-    return f"the test program exited with status {returncode}"
-
-
 def _describe_signal(number: int) -> str:
     try:
         name = signal.Signals(number).name
@@ -237,22 +225,23 @@ class _Watch:
     shared_limit: int = 0
     end: float = float("inf")  # the deadline of the whole run (ILLUM_GRADE_DEADLINE), in wall time
 
-    def problem(self, now: float, cpu_of, shared_of) -> tuple[str, bool]:
+    def problem(self, now: float, cpu_of, shared_of) -> str:
+        """Why the program must be stopped now, or ''."""
         if now - self.sampled >= 0.25:
             self.cpu, self.shared, self.sampled = max(self.cpu, cpu_of()), shared_of(), now
         if self.shared_limit and self.shared > self.shared_limit:
             return (f"your code holds {self.shared >> 20} MB of shared memory, more than the "
-                    f"{self.shared_limit >> 20} MB a test program may use"), False
+                    f"{self.shared_limit >> 20} MB a test program may use")
         if self.cpu - self.progress_cpu > self.test_cpu:
-            return f"the test did not finish within {self.test_cpu:g} s of processor time (an endless loop?)", True
+            return f"the test did not finish within {self.test_cpu:g} s of processor time (an endless loop?)"
         if now - self.progress_wall > WALL_FACTOR * self.test_cpu:
             return (f"the test did not finish within {WALL_FACTOR * self.test_cpu:g} s (it waited, or the "
-                    "machine was very busy)"), True
+                    "machine was very busy)")
         if self.cpu > self.run_cpu or now - self.start > WALL_FACTOR * self.run_cpu:
-            return f"the test program did not finish within {self.run_cpu:g} s of processor time", True
+            return f"the test program did not finish within {self.run_cpu:g} s of processor time"
         if now > self.end:
-            return "the time for the whole run (ILLUM_GRADE_DEADLINE) ran out during this test", True
-        return "", False
+            return "the time for the whole run (ILLUM_GRADE_DEADLINE) ran out during this test"
+        return ""
 
     def moved(self, now: float) -> None:
         self.progress_wall, self.progress_cpu = now, self.cpu
@@ -277,7 +266,7 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
     listing = "--list-test-cases" in arguments  # a listing runs no test: the deadline is for tests
     watch = _Watch(test_timeout, timeout, shared_limit=sandbox.limits.memory_mb << 20,
                    end=float("inf") if listing else time.monotonic() + _remaining())
-    problem, timed_out, stopping = "", False, False
+    problem, stopping = "", False
     while True:
         if _drain(selector, streams, launched.records_fd, 0.05):
             watch.moved(time.monotonic())
@@ -291,8 +280,8 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
         if records.flooded:
             problem = f"the test program sent more than {MAX_RECORDS_BYTES // (1024 * 1024)} MB of results"
         else:
-            problem, timed_out = watch.problem(time.monotonic(), lambda: sandbox.cpu_seconds(launched),
-                                               sandbox.shared_memory_bytes)
+            problem = watch.problem(time.monotonic(), lambda: descendants_cpu_seconds(launched.process.pid),
+                                    sandbox.shared_memory_bytes)
         if problem:
             sandbox.stop(launched)
             stopping = True
@@ -303,8 +292,7 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
         _drain(selector, streams, launched.records_fd, 0.05)
     selector.close()
     survivors = sandbox.finish(launched)
-    invocation = _Invocation(records.records, problem, tail.text(), garbage=records.garbage,
-                             flooded=records.flooded, timed_out=timed_out, survivors=survivors)
+    invocation = _Invocation(records.records, problem, tail.text(), garbage=records.garbage, survivors=survivors)
     _how_it_ended(invocation, status.records, bool(records.records), tail)
     return invocation
 
@@ -335,14 +323,13 @@ def _how_it_ended(invocation: _Invocation, status: list[dict], any_records: bool
     if not ended:
         invocation.problem = "the test program's launcher ended without saying how the program ended"
     elif "signal" in ended[-1]:
-        invocation.signal = int(ended[-1]["signal"])
-        invocation.problem = _describe_signal(invocation.signal)
+        invocation.problem = _describe_signal(int(ended[-1]["signal"]))
     else:
         invocation.exit_code = int(ended[-1]["exited"])
         if invocation.exit_code not in (0, 1):
             invocation.problem = (f"the test program could not start: {tail.text().strip()[-300:]}"
                                   if invocation.exit_code == 127 and not any_records
-                                  else _describe_exit(invocation.exit_code))
+                                  else f"the test program exited with status {invocation.exit_code}")
 
 
 def _key(record: dict) -> Key:
@@ -514,7 +501,8 @@ def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | 
     trusted listing; None lists them from the program. ``role``: None, "witness" or "observer"
     (module doc); an observer's results are judged by ``judge_suite`` afterwards."""
     timeout = timeout_seconds() if timeout is None else timeout
-    test_timeout = test_timeout_seconds() if test_timeout is None else test_timeout
+    if test_timeout is None:
+        test_timeout = float(os.environ.get("ILLUM_GRADE_TEST_TIMEOUT", DEFAULT_TEST_TIMEOUT))
     env = dict(env or {}, **({"ILLUM_GRADE_ROLE": role} if role else {}))
     run = SuiteRun(program, suite)
     if not program.exists():

@@ -27,6 +27,7 @@ is nothing to defend; ``tools/grade --batch`` says so on stderr.
 from __future__ import annotations
 
 import contextlib
+import functools
 import json
 import os
 import pwd
@@ -124,9 +125,6 @@ class Limits:
                       build_memory_mb=_megabytes("ILLUM_GRADE_BUILD_MEMORY_MB", 4096))
 
 
-_NAMESPACES: dict[str, bool] = {}
-
-
 def _unshare_works(*flags: str) -> bool:
     unshare = shutil.which("unshare")
     if not unshare or os.geteuid() != 0 or os.environ.get("ILLUM_GRADE_NO_PID_NAMESPACE") == "1":
@@ -139,18 +137,16 @@ def _unshare_works(*flags: str) -> bool:
     return done.returncode == 0
 
 
+@functools.cache
 def pid_namespace_available() -> bool:
     """Whether ``unshare --pid --fork`` works here (root, and not forbidden by a container)."""
-    if "pid" not in _NAMESPACES:
-        _NAMESPACES["pid"] = _unshare_works("--pid")
-    return _NAMESPACES["pid"]
+    return _unshare_works("--pid")
 
 
+@functools.cache
 def private_namespaces_available() -> bool:
     """Whether mount and IPC namespaces can be made too (not under Docker's default profile)."""
-    if "private" not in _NAMESPACES:
-        _NAMESPACES["private"] = pid_namespace_available() and _unshare_works("--pid", "--mount", "--ipc")
-    return _NAMESPACES["private"]
+    return pid_namespace_available() and _unshare_works("--pid", "--mount", "--ipc")
 
 
 @dataclass
@@ -235,10 +231,6 @@ class Sandbox:
         base.chmod(0o711)
         return str(base)
 
-    @staticmethod
-    def remove_scratch(folder: Path) -> None:
-        shutil.rmtree(folder, ignore_errors=True)
-
     # --- running a test program ------------------------------------------------------------
 
     def launch(self, argv: list[str], records: bool = True, cpu_seconds: float | None = None,
@@ -281,41 +273,26 @@ class Sandbox:
             for fd in (status_r, status_w, output_r, output_w, records_r, records_w):
                 if fd is not None:
                     os.close(fd)
-            self.remove_scratch(scratch)
+            shutil.rmtree(scratch, ignore_errors=True)
             raise
         for fd in (status_w, output_w, records_w):  # only the sandbox holds the write ends now
             if fd is not None:
                 os.close(fd)
         return Launched(process, status_r, output_r, records_r, scratch)
 
-    @staticmethod
-    def cpu_seconds(launched: Launched) -> float:
-        """Processor time (user + system, every thread) used so far by the processes the launcher
-        started: what the per-test limits count, so that a loaded machine does not fail a test."""
-        return descendants_cpu_seconds(launched.process.pid)
-
     def stop(self, launched: Launched) -> None:
         """Kills a launched program and everything it started."""
         for target in (launched.process.pid, launched.program_pid):
-            if target:
-                try:
-                    os.killpg(target, signal.SIGKILL)
-                except (ProcessLookupError, PermissionError):
-                    pass
-        try:
+            kill_group(target)
+        with contextlib.suppress(ProcessLookupError):
             launched.process.kill()
-        except ProcessLookupError:
-            pass
 
     def finish(self, launched: Launched) -> list[str]:
         """After a run: the launcher waited for, the program's group and (with a
         user) every process of the user killed, the scratch folder removed.
         Returns a description of each process that was still alive."""
-        if launched.program_pid and not self.namespace:
-            try:
-                os.killpg(launched.program_pid, signal.SIGKILL)
-            except (ProcessLookupError, PermissionError):
-                pass
+        if not self.namespace:
+            kill_group(launched.program_pid)
         try:
             launched.process.wait(timeout=10)
         except subprocess.TimeoutExpired:
@@ -325,11 +302,9 @@ class Sandbox:
         self.clean_shared_folders()  # nothing of one program's reaches the next
         for fd in (launched.status_fd, launched.output_fd, launched.records_fd):
             if fd is not None:
-                try:
+                with contextlib.suppress(OSError):
                     os.close(fd)
-                except OSError:
-                    pass
-        self.remove_scratch(launched.scratch)
+        shutil.rmtree(launched.scratch, ignore_errors=True)
         return survivors
 
     # --- every process and file of the user -------------------------------------------------
@@ -356,16 +331,7 @@ class Sandbox:
         (the memory limit of a process does not count it)."""
         if self.account is None or self.private:
             return 0
-        total = 0
-        try:
-            with open("/proc/sysvipc/shm", encoding="ascii") as table:
-                next(table, None)
-                for line in table:
-                    fields = line.split()
-                    if len(fields) > 7 and int(fields[7]) == self.account.uid:
-                        total += int(fields[3])
-        except OSError:
-            pass
+        total = sum(size for _, size in _shm_segments(self.account.uid))
         try:
             for entry in os.scandir("/dev/shm"):
                 info = entry.stat(follow_symlinks=False)
@@ -375,27 +341,14 @@ class Sandbox:
             pass
         return total
 
-    def remove_shared_memory(self) -> None:
-        """Removes the account's System V segments (POSIX ones are files: clean_shared_folders)."""
-        if self.account is None:
-            return
-        try:
-            with open("/proc/sysvipc/shm", encoding="ascii") as table:
-                next(table, None)
-                ids = [line.split()[1] for line in table if len(line.split()) > 7
-                       and int(line.split()[7]) == self.account.uid]
-        except OSError:
-            return
-        ipcrm = shutil.which("ipcrm") or "/usr/bin/ipcrm"
-        for shmid in ids:
-            subprocess.run([ipcrm, "-m", shmid], capture_output=True, check=False)
-
     def clean_shared_folders(self) -> None:
         """Removes what the account left in the world-writable folders and its shared memory
         (a channel from one run, or one student, to the next)."""
         if self.account is None:
             return
-        self.remove_shared_memory()
+        ipcrm = shutil.which("ipcrm") or "/usr/bin/ipcrm"
+        for shmid, _ in _shm_segments(self.account.uid):  # System V segments; POSIX ones are files
+            subprocess.run([ipcrm, "-m", shmid], capture_output=True, check=False)
         for folder in ("/tmp", "/var/tmp", "/dev/shm", "/run/lock"):
             try:
                 entries = list(os.scandir(folder))
@@ -414,19 +367,7 @@ class Sandbox:
 
     def can_reach(self, path: Path) -> bool:
         """Whether the account can list and enter ``path`` (every folder above it searchable)."""
-        if self.account is None:
-            return True
-        pid = os.fork()
-        if pid == 0:
-            try:
-                os.setgroups([])
-                os.setgid(self.account.gid)
-                os.setuid(self.account.uid)
-                os._exit(0 if os.access(path, os.R_OK | os.X_OK) else 1)
-            except BaseException:  # noqa: BLE001
-                os._exit(2)
-        _, status = os.waitpid(pid, 0)
-        return os.waitstatus_to_exitcode(status) == 0
+        return self.account is None or _as_account(self.account, lambda: os.access(path, os.R_OK | os.X_OK))
 
     # --- builds ----------------------------------------------------------------------------
 
@@ -444,9 +385,7 @@ class Sandbox:
             resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
             if account is not None:
                 resource.setrlimit(resource.RLIMIT_NPROC, (self.limits.processes, self.limits.processes))
-                os.setgroups([])
-                os.setgid(account.gid)
-                os.setuid(account.uid)
+                _become(account)
 
         return preexec
 
@@ -492,7 +431,8 @@ _TICKS = os.sysconf("SC_CLK_TCK") if hasattr(os, "sysconf") else 100
 
 def descendants_cpu_seconds(root_pid: int) -> float:
     """utime + stime of ``root_pid`` and every process below it, from /proc (children that ended
-    and were waited for count in their parent's cutime + cstime)."""
+    and were waited for count in their parent's cutime + cstime): what the per-test limits count,
+    every thread's processor time, so that a loaded machine does not fail a test."""
     parents: dict[int, int] = {}
     times: dict[int, float] = {}
     for entry in os.listdir("/proc"):
@@ -540,14 +480,43 @@ def kill_all_of(account: Account) -> None:
     """kill(-1, SIGKILL) as the account: the kernel sends it to every process
     of that user at once, so a process that forks or changes its group
     cannot slip through between a listing and a kill."""
+    _as_account(account, lambda: os.kill(-1, signal.SIGKILL))
+
+
+def kill_group(pid: int | None) -> None:
+    """SIGKILL to the process group ``pid`` leads, if there is one still."""
+    if pid:
+        with contextlib.suppress(OSError):
+            os.killpg(pid, signal.SIGKILL)
+
+
+def _become(account: Account) -> None:
+    """This process (a child about to act for the student) becomes the account, with no other group."""
+    os.setgroups([])
+    os.setgid(account.gid)
+    os.setuid(account.uid)
+
+
+def _as_account(account: Account, action) -> bool:
+    """Runs ``action`` in a child process that has become the account; whether it returned a true value
+    (False when it raised, or the child could not become the account)."""
     pid = os.fork()
     if pid == 0:
         try:
-            os.setgroups([])
-            os.setgid(account.gid)
-            os.setuid(account.uid)
-            os.kill(-1, signal.SIGKILL)
-        except BaseException:  # noqa: BLE001
-            pass
-        os._exit(0)
-    os.waitpid(pid, 0)
+            _become(account)
+            os._exit(0 if action() else 1)
+        except BaseException:  # noqa: BLE001 -- the child must end here, whatever happened
+            os._exit(2)
+    _, status = os.waitpid(pid, 0)
+    return os.waitstatus_to_exitcode(status) == 0
+
+
+def _shm_segments(uid: int) -> list[tuple[str, int]]:
+    """(id, bytes) of every System V shared memory segment ``uid`` owns (/proc/sysvipc/shm)."""
+    try:
+        with open("/proc/sysvipc/shm", encoding="ascii") as table:
+            next(table, None)
+            rows = [line.split() for line in table]
+    except OSError:
+        return []
+    return [(fields[1], int(fields[3])) for fields in rows if len(fields) > 7 and int(fields[7]) == uid]

@@ -10,10 +10,11 @@ test's process can always lie to it); a flagged file is graded as its stub (docs
 """
 from __future__ import annotations
 
+import functools
 import re
 import shutil
 import subprocess
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path, PurePosixPath
 
 from common.cpp_text import blank_comments
@@ -30,24 +31,6 @@ class Finding:
         return f"{self.file}:{self.line}: {self.what}" if self.line else f"{self.file}: {self.what}"
 
 
-@dataclass
-class Scan:
-    findings: list[Finding] = field(default_factory=list)
-
-    @property
-    def flagged(self) -> dict[str, list[Finding]]:
-        """File -> its serious findings."""
-        out: dict[str, list[Finding]] = {}
-        for finding in self.findings:
-            if finding.serious:
-                out.setdefault(finding.file, []).append(finding)
-        return out
-
-    @property
-    def notes(self) -> list[Finding]:
-        return [f for f in self.findings if not f.serious]
-
-
 # C++20's standard library headers and the C headers it keeps (<cmath> and <math.h> alike).
 STANDARD_HEADERS = set("""
 algorithm any array atomic barrier bit bitset charconv chrono codecvt compare complex concepts
@@ -62,10 +45,9 @@ cstdio cstdlib cstring ctime cuchar cwchar cwctype
 assert.h ctype.h errno.h fenv.h float.h inttypes.h limits.h locale.h math.h setjmp.h signal.h stdarg.h
 stddef.h stdint.h stdio.h stdlib.h string.h time.h uchar.h wchar.h wctype.h
 """.split())
-# Standard headers that reach outside the computation (files, processes, signals, jumps).
-OUTSIDE_HEADERS = {"filesystem", "fstream", "csignal", "signal.h", "csetjmp", "setjmp.h", "cstdlib", "stdlib.h"}
-# <cstdlib> is fine for std::abs and friends; its exit() and system() are caught by name below.
-OUTSIDE_HEADERS -= {"cstdlib", "stdlib.h"}
+# Standard headers that reach outside the computation (files, signals, jumps). Not <cstdlib>: it is fine for
+# std::abs and friends, and its exit() and system() are caught by name below.
+OUTSIDE_HEADERS = {"filesystem", "fstream", "csignal", "signal.h", "csetjmp", "setjmp.h"}
 
 _SOURCE_RULES: list[tuple[re.Pattern, str]] = [
     (re.compile(r"doctest", re.I), "mentions doctest, the test framework: exercise code may not touch the tests"),
@@ -247,31 +229,25 @@ def object_symbols(path: Path) -> tuple[list[tuple[str, str, str]], list[tuple[s
     return defined_out, used_out
 
 
-_runtime_symbols: set[str] | None = None
-
-
+@functools.cache
 def runtime_symbols() -> set[str]:
     """The names the C, maths, C++, GCC and OpenMP runtime libraries export: a
     program that defines one of them replaces it for every caller (interposition)."""
-    global _runtime_symbols
-    if _runtime_symbols is None:
-        _runtime_symbols = set()
-        nm, compiler = shutil.which("nm"), shutil.which("c++") or shutil.which("g++")
-        for library in ("libc.so.6", "libm.so.6", "libstdc++.so.6", "libgcc_s.so.1", "libgomp.so.1"):
-            path = ""
-            if compiler:
-                done = subprocess.run([compiler, f"-print-file-name={library}"], capture_output=True, text=True,
-                                      check=False)
-                path = done.stdout.strip()
-            if nm and path and Path(path).is_file():
-                done = subprocess.run([nm, "-D", "-P", "--defined-only", path], capture_output=True, text=True,
-                                      check=False)
-                _runtime_symbols.update(line.split()[0].split("@", 1)[0] for line in done.stdout.splitlines()
-                                        if line.strip())
-        # Whatever the libraries found, these are never an exercise's to define.
-        _runtime_symbols.update(_FORBIDDEN_BY_NAME)
-        _runtime_symbols.update({"main", "malloc", "free", "calloc", "realloc", "stdout", "stderr", "stdin"})
-    return _runtime_symbols
+    found: set[str] = set()
+    nm, compiler = shutil.which("nm"), shutil.which("c++") or shutil.which("g++")
+    for library in ("libc.so.6", "libm.so.6", "libstdc++.so.6", "libgcc_s.so.1", "libgomp.so.1"):
+        path = ""
+        if compiler:
+            done = subprocess.run([compiler, f"-print-file-name={library}"], capture_output=True, text=True,
+                                  check=False)
+            path = done.stdout.strip()
+        if nm and path and Path(path).is_file():
+            done = subprocess.run([nm, "-D", "-P", "--defined-only", path], capture_output=True, text=True,
+                                  check=False)
+            found.update(line.split()[0].split("@", 1)[0] for line in done.stdout.splitlines() if line.strip())
+    # Whatever the libraries found, these are never an exercise's to define.
+    return found | set(_FORBIDDEN_BY_NAME) | {"main", "malloc", "free", "calloc", "realloc", "stdout", "stderr",
+                                              "stdin"}
 
 
 def library_definitions(archive: Path, skip_members: set[str]) -> dict[str, str]:
