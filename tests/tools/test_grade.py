@@ -529,6 +529,63 @@ class SandboxTest(unittest.TestCase):
         self.assertEqual(mode, 0o700)
 
 
+@unittest.skipUnless(os.geteuid() == 0, "the grading lock is root's (without root there is no second user)")
+class UserLockTest(unittest.TestCase):
+    """sandbox.user_lock: a second run with the same user waits for the first, saying so; a lock folder
+    that another user could enter or replace is refused by name."""
+
+    def setUp(self) -> None:
+        from grading import sandbox
+
+        self.sandbox = sandbox
+        self.tmp = Path(tempfile.mkdtemp())
+        self.folder = self.tmp / "locks"
+        patcher = mock.patch.object(sandbox, "LOCK_FOLDER", self.folder)
+        patcher.start()
+        self.addCleanup(patcher.stop)
+        self.addCleanup(shutil.rmtree, self.tmp)
+
+    def test_second_holder_waits_until_the_first_ends(self) -> None:
+        import fcntl
+        import threading
+
+        with self.sandbox.user_lock("illum-a"):
+            self.assertEqual(0o700, self.folder.stat().st_mode & 0o777)
+            entered = threading.Event()
+
+            def second() -> None:
+                with self.sandbox.user_lock("illum-a"):
+                    entered.set()
+
+            with mock.patch("sys.stderr", new=io.StringIO()) as err:
+                thread = threading.Thread(target=second)
+                thread.start()
+                self.assertFalse(entered.wait(0.5), "the second run went on while the first held the user")
+                with self.sandbox.user_lock("illum-b"):  # another user's lock is free meanwhile
+                    pass
+                self.assertIn("another grading run uses the user illum-a; waiting", err.getvalue())
+                # flock is per open file: the holder here is this block, released when it ends
+                fd = os.open(self.folder / "illum-a.lock", os.O_RDWR)
+                with self.assertRaises(BlockingIOError):
+                    fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+                os.close(fd)
+        thread.join(5)
+        self.assertTrue(entered.is_set(), "the second run never got the user after the first ended")
+
+    def test_a_folder_others_may_enter_or_a_link_is_refused(self) -> None:
+        self.folder.mkdir(mode=0o755)
+        self.folder.chmod(0o755)
+        with self.assertRaisesRegex(self.sandbox.SandboxError, re.escape(str(self.folder)) + " must be a folder"):
+            with self.sandbox.user_lock("illum-a"):
+                pass
+        self.folder.rmdir()
+        (self.tmp / "elsewhere").mkdir(mode=0o700)
+        self.folder.symlink_to(self.tmp / "elsewhere")
+        with self.assertRaisesRegex(self.sandbox.SandboxError, "must be a folder that only root may enter"):
+            with self.sandbox.user_lock("illum-a"):
+                pass
+
+
 class StudentTreeTest(unittest.TestCase):
     """tools/grade --student builds in the student's own tree, configured as the preset does."""
 

@@ -23,6 +23,7 @@ with Gradescope's limits, and makes sure results.json exists.
 """
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import pwd
@@ -438,7 +439,7 @@ def setup(root: Path, lessons: list[str]) -> None:
     """setup.sh's checks: versions; the stubs built and graded (0); the hidden tests' objects kept and
     their sources removed; the reference graded (full marks) and then removed; the stubs built again
     as every run will find them; the trusted data kept where only root reads it."""
-    from .sandbox import chown_tree
+    from .sandbox import SandboxError, chown_tree, user_lock
 
     source, tree, hidden, pristine, grader = _paths(root)
     check_toolchain()
@@ -467,8 +468,13 @@ def setup(root: Path, lessons: list[str]) -> None:
         if hidden is not None:
             shutil.rmtree(hidden)  # compiled; no run may read them
             print("setup: the hidden tests' sources are deleted", flush=True)
-        tests = _prove_reference(root, lessons, common, Path(folder) / "reference.json")
-        _prove_stubs(tree, lessons, common + ["--grader-data", str(grader)], Path(folder) / "stubs.json", tests)
+        try:
+            with user_lock(user) if user else contextlib.nullcontext():
+                tests = _prove_reference(root, lessons, common, Path(folder) / "reference.json")
+                _prove_stubs(tree, lessons, common + ["--grader-data", str(grader)],
+                             Path(folder) / "stubs.json", tests)
+        except SandboxError as error:
+            raise SetupError(str(error)) from error
     symbols = _stub_symbols(tree, build_dir, lessons)
     (grader / "stub-symbols.json").write_text(json.dumps(symbols, indent=1) + "\n", encoding="utf-8")
     (grader / "config.json").write_text(json.dumps({"user": user, "lessons": lessons}) + "\n", encoding="utf-8")
@@ -556,7 +562,7 @@ def _fallback_results(results: Path, message: str) -> None:
 def run(root: Path, lessons: list[str]) -> int:
     """run_autograder: stubs back, the upload installed, tools/grade with Gradescope's limits, as the
     student's user; results.json only once nothing of theirs is alive."""
-    from .sandbox import Account, Sandbox
+    from .sandbox import Account, Sandbox, SandboxError, user_lock
 
     source, tree, hidden, pristine, grader = _paths(root)
     results_dir = root / "results"
@@ -588,11 +594,15 @@ def run(root: Path, lessons: list[str]) -> int:
 
             create_account(user)
         extra += ["--as-user", user]
-    status = _grade(tree, lessons, hidden, results, extra)
-    if user:
-        account = Account.lookup(user)
-        if account is not None:  # tools/grade did this before writing; again, whatever happened to it
-            Sandbox(account).reap()
+    try:
+        with user_lock(user) if user else contextlib.nullcontext():
+            status = _grade(tree, lessons, hidden, results, extra)
+            account = Account.lookup(user) if user else None
+            if account is not None:  # tools/grade did this before writing; again, whatever happened to it
+                Sandbox(account).reap()
+    except SandboxError as error:
+        print(f"run_autograder: {error}", file=sys.stderr)
+        status = 2
     if not results.exists():
         _fallback_results(results, f"The grader failed (tools/grade exited {status}) before writing results. "
                                    "This is not your code's fault: tell your instructor.")

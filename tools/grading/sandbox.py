@@ -27,6 +27,7 @@ is nothing to defend; ``tools/grade --batch`` says so on stderr.
 from __future__ import annotations
 
 import contextlib
+import fcntl
 import functools
 import json
 import os
@@ -411,6 +412,38 @@ class Sandbox:
         """Takes ``folder`` back: root's, and writable by nobody else (tests run next)."""
         if self.account is not None and folder.exists():
             chown_tree(folder, 0, 0, strip_write=True)
+
+
+LOCK_FOLDER = Path("/run/illum-grade")  # root's, 0700: a student's process can neither open nor hold a lock
+
+
+@contextlib.contextmanager
+def user_lock(name: str):
+    """Holds the grading lock of the user ``name`` for the block (as root; without root, where there is no
+    second user, it does nothing). A run kills every process of its user after each program, so two runs
+    that share a user on one machine (two batches, two CI jobs) would kill each other's builds and tests:
+    the second waits, saying so, until the first ends. The lock is an flock, released when its holder
+    exits however it ends; its descriptor is not inherited by the programs the block starts."""
+    if os.geteuid() != 0:
+        yield
+        return
+    with contextlib.suppress(FileExistsError):
+        LOCK_FOLDER.mkdir(mode=0o700)
+    info = os.lstat(LOCK_FOLDER)
+    if not stat.S_ISDIR(info.st_mode) or info.st_uid != 0 or info.st_mode & 0o077:
+        raise SandboxError(f"{LOCK_FOLDER} must be a folder that only root may enter (found mode "
+                           f"{stat.filemode(info.st_mode)}, owner {info.st_uid}): remove it and run again")
+    fd = os.open(LOCK_FOLDER / f"{name}.lock", os.O_RDWR | os.O_CREAT | os.O_NOFOLLOW, 0o600)
+    try:
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            print(f"grade: another grading run uses the user {name}; waiting until it ends "
+                  f"(ILLUM_GRADE_USER gives a run a user of its own)", file=sys.stderr, flush=True)
+            fcntl.flock(fd, fcntl.LOCK_EX)
+        yield
+    finally:
+        os.close(fd)
 
 
 def chown_tree(folder: Path, uid: int, gid: int, strip_write: bool = False) -> None:
