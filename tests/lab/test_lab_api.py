@@ -377,8 +377,9 @@ def timed_get(lab: Lab, path: str, tab: str | None, out: list) -> None:
         connection.close()
 
 
-# A render that takes far longer than the checks below wait (primitives: CSG and implicit surfaces).
-LONG_RENDER = "/api/render?scene=primitives&width=2048&height=2048&depth=8"
+# A render that takes far longer than the checks below wait: the glass ball's ray trees at depth 64
+# (over a minute on two cores; the primitives scene at depth 8, used before, can end within the 1.5 s wait).
+LONG_RENDER = "/api/render?scene=whitted&width=2048&height=2048&depth=64"
 
 
 def check_long_requests(illum: Path) -> None:
