@@ -46,7 +46,12 @@ async function open(hash, viewport, base = url) {
   const page = await browser.newPage();
   if (viewport) await page.setViewport(viewport);
   page.on('request', r => seen.requests.push(r.url()));
-  page.on('requestfailed', r => seen.failed.push(`${r.url()}: ${r.failure() && r.failure().errorText}`));
+  // net::ERR_ABORTED is the page's own doing (an image's src replaced while it loads: a quick second choice
+  // of lesson or image), not a failure of the lab, which answers with a status or is unreachable.
+  page.on('requestfailed', r => {
+    const why = r.failure() && r.failure().errorText;
+    if (why !== 'net::ERR_ABORTED') seen.failed.push(`${r.url()}: ${why}`);
+  });
   page.on('pageerror', e => seen.errors.push(e.message));
   page.on('console', m => { if (m.type() === 'error') seen.console.push(m.text()); });
   await page.goto(`${base}#${hash}`, { waitUntil: 'load' });
