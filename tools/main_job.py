@@ -46,7 +46,7 @@ def run_lab(bin_dir: Path, out: Path) -> None:
     spec = importlib.util.spec_from_file_location("lab_screenshots", SOURCE / "tools" / "lab" / "screenshots.py")
     screenshots = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(screenshots)
-    say("lab: screenshots of illum lab's four views")
+    say("lab: screenshots of illum lab's five views")
     start = time.monotonic()
     if screenshots.main(["--bin", str(bin_dir), "--out", str(out)]) != 0:
         raise JobError("the lab's screenshots failed (above); re-run them alone with: "

@@ -406,6 +406,14 @@ async function screenshots() {
   await openTab(page, 'hemicube', '#tab-hemicube', ['drawn']);
   if (options.patch !== null) await hemicube(page, options.patch, 64);
   await shot(page, 'lab_hemicube.png', 1180);
+  // Lesson 14's hierarchy on its default scene, the element in the middle of the view clicked: its links.
+  await openTab(page, 'hierarchy', '#tab-hierarchy', ['drawn']);
+  const middle = await page.$eval('#hr-3d canvas', c => { const r = c.getBoundingClientRect(); return { x: r.left + r.width / 2, y: r.top + r.height / 2 }; });
+  await page.mouse.click(middle.x, middle.y);
+  await page.waitForFunction(() => document.querySelector('#tab-hierarchy').dataset.element !== undefined,
+    { timeout: 60000, polling: 20 });
+  await waitState(page, '#tab-hierarchy', ['drawn']);
+  await shot(page, 'lab_hierarchy.png', 900);
   await openTab(page, 'compare', '#tab-compare', ['compared', 'missing']);
   if (options.compare) await compare(page, ...options.compare);
   await shot(page, 'lab_compare.png', 640);

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Screenshots of the lab's four views for the gallery and the lesson texts (docs/lab.md; the main job's
+"""Screenshots of the lab's five views for the gallery and the lesson texts (docs/lab.md; the main job's
 step "lab"): `BIN/illum lab whitted` on a free port of 127.0.0.1, driven in headless Chromium by
 tools/lab/browser.mjs, writes OUT/lab/lab_*.png and a manifest.json. Exit 0 when every one was written.
 
@@ -33,6 +33,9 @@ SHOTS = {
     "lab_radiosity_row.png": "The same, painted with the last shooter's form-factor row (log scale).",
     "lab_hemicube.png": "The hemicube on a floor patch: its five item buffers and delta form factors unfolded, the row "
                         "they add up to, and its error against the exact factor as the resolution grows.",
+    "lab_hierarchy.png": "Lesson 14's hierarchy on the room: the leaf elements coloured by their radiosity, and the "
+                         "element clicked in the middle of the view with its own links and its ancestors', each a line "
+                         "to the element it gathers from.",
     "lab_compare.png": "Your picture against the reference: the kept figure, the one your build drew, a difference map "
                        "and one number.",
 }
@@ -104,7 +107,7 @@ def main(argv: list[str] | None = None) -> int:
         print(f"screenshots: the browser failed (status {status}); missing: {', '.join(missing) or 'none'}",
               file=sys.stderr)
         return 1
-    manifest = {"id": "lab", "title": "The lab (illum lab): its four views",
+    manifest = {"id": "lab", "title": "The lab (illum lab): its five views",
                 "outputs": [{"kind": "image", "file": name, "caption": caption} for name, caption in SHOTS.items()]}
     atomic_write_text(folder / "manifest.json", json.dumps(manifest, indent=2) + "\n")
     print(f"screenshots: wrote {len(SHOTS)} screenshots of the lab in {folder}")
