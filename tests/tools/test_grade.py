@@ -975,6 +975,24 @@ class AutograderTest(unittest.TestCase):
             self.assertEqual((tree / "exercises" / "01_ray_sphere" / "sphere.cpp").read_text(), "stub")
             self.assertIn("symbolic link", report.ignored[0]["reason"])
 
+    def test_a_zip_behind_a_symbolic_link_is_not_opened(self) -> None:
+        """A link named like a zip, to a zip outside the upload that holds an exercise file (the grader's own
+        files, say): not unpacked, nothing installed, the link reported."""
+        import zipfile
+        with tempfile.TemporaryDirectory() as folder:
+            tree, submission = self.make_tree(folder)
+            outside = Path(folder) / "grader.zip"
+            with zipfile.ZipFile(outside, "w") as archive:
+                archive.writestr("exercises/01_ray_sphere/sphere.cpp", "the reference")
+            (submission / "homework.zip").symlink_to(outside)
+            (submission / "folder").symlink_to(Path(folder), target_is_directory=True)
+            report = install_submission(submission, tree, ["01"])
+            self.assertEqual(report.installed, [])
+            self.assertEqual((tree / "exercises" / "01_ray_sphere" / "sphere.cpp").read_text(), "stub")
+            self.assertFalse(any("unpacked" in n for n in report.notes), report.notes)
+            reasons = {i["file"]: i["reason"] for i in report.ignored}
+            self.assertIn("symbolic link", reasons["homework.zip"])
+
     def test_setup_caps_its_build_jobs(self) -> None:
         from unittest import mock
 

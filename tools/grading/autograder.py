@@ -169,12 +169,21 @@ def _skipped_part(part: str) -> bool:
     return part.startswith(".") or part == "__MACOSX"
 
 
+def _through_link(submission: Path, path: Path) -> bool:
+    """Whether `path` or a folder on its way down from `submission` is a symbolic link: it could point at
+    the grader's own files (a zip of the reference units, say), which no upload may reach."""
+    relative = path.relative_to(submission).parts
+    return any((submission.joinpath(*relative[:k])).is_symlink() for k in range(1, len(relative) + 1))
+
+
 def _unpack_zips(submission: Path, into: Path, report: Submission) -> list[tuple[Path, str]]:
     """(file, name shown to the student) of every file inside the zips of the upload."""
     found: list[tuple[Path, str]] = []
     for number, archive_path in enumerate(sorted(submission.rglob("*.zip"))):
         shown = archive_path.relative_to(submission).as_posix()
         if any(_skipped_part(p) for p in archive_path.relative_to(submission).parts):
+            continue
+        if _through_link(submission, archive_path):  # install_submission reports the link itself
             continue
         try:
             with zipfile.ZipFile(archive_path) as archive:
@@ -216,7 +225,7 @@ def install_submission(submission: Path, tree: Path, lessons: list[str]) -> Subm
             relative = path.relative_to(submission)
             if any(_skipped_part(p) for p in relative.parts):
                 continue
-            if path.is_symlink():  # it could point at the grader's own files
+            if _through_link(submission, path):  # it could point at the grader's own files
                 report.ignored.append({"file": relative.as_posix(), "reason": "a symbolic link, not a file"})
                 continue
             if path.is_file() and path.suffix.lower() != ".zip":  # a zip's files are taken from inside it
