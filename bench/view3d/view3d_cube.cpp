@@ -148,47 +148,61 @@ int usage(const char* program, const std::string& problem) {
   return 2;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Options {
   std::string view3d, out_dir, work_dir;
   double tolerance = 1e-4;
   std::vector<int> sizes = {12, 20, 30};
   int runs = 9;
+};
+
+// The command line into `o`; an empty string, or what is wrong with it.
+std::string parse_options(int argc, char** argv, Options& o) {
   for (int i = 1; i < argc; ++i) {
     const std::string option = argv[i];
-    if (i + 1 >= argc || argv[i + 1][0] == '\0') return usage(argv[0], "missing value for '" + option + "'");
+    if (i + 1 >= argc || argv[i + 1][0] == '\0') return "missing value for '" + option + "'";
     const std::string value = argv[++i];
     try {
       std::size_t used = 0;
       if (option == "--view3d") {
-        view3d = value;
+        o.view3d = value;
       } else if (option == "--out") {
-        out_dir = value;
+        o.out_dir = value;
       } else if (option == "--work") {
-        work_dir = value;
+        o.work_dir = value;
       } else if (option == "--tolerance") {
-        tolerance = std::stod(value, &used);
-        if (used != value.size() || !(tolerance >= 1e-15 && tolerance <= 1)) throw std::invalid_argument("");
+        o.tolerance = std::stod(value, &used);
+        if (used != value.size() || !(o.tolerance >= 1e-15 && o.tolerance <= 1))
+          throw std::invalid_argument("");
       } else if (option == "--runs") {
-        runs = std::stoi(value, &used);
-        if (used != value.size() || runs < 1 || runs > 100) throw std::invalid_argument("");
+        o.runs = std::stoi(value, &used);
+        if (used != value.size() || o.runs < 1 || o.runs > 100) throw std::invalid_argument("");
       } else if (option == "--sizes") {
-        sizes.clear();
+        o.sizes.clear();
         std::stringstream list(value);
         for (std::string item; std::getline(list, item, ',');) {
-          sizes.push_back(std::stoi(item, &used));
-          if (used != item.size() || sizes.back() < 1 || sizes.back() > 60) throw std::invalid_argument("");
+          o.sizes.push_back(std::stoi(item, &used));
+          if (used != item.size() || o.sizes.back() < 1 || o.sizes.back() > 60)
+            throw std::invalid_argument("");
         }
-        if (sizes.empty()) throw std::invalid_argument("");
+        if (o.sizes.empty()) throw std::invalid_argument("");
       } else {
-        return usage(argv[0], "unknown option '" + option + "'");
+        return "unknown option '" + option + "'";
       }
     } catch (const std::exception&) {
-      return usage(argv[0], "bad value for " + option + ": '" + value +
-                                "' (--tolerance in [1e-15, 1], --runs 1...100, --sizes n,n,... each 1...60)");
+      return "bad value for " + option + ": '" + value +
+             "' (--tolerance in [1e-15, 1], --runs 1...100, --sizes n,n,... each 1...60)";
     }
   }
+  return "";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options options;
+  if (const std::string problem = parse_options(argc, argv, options); !problem.empty())
+    return usage(argv[0], problem);
+  const auto& [view3d, out_dir, work_dir, tolerance, sizes, runs] = options;
   if (view3d.empty()) return usage(argv[0], "--view3d is required (the View3D program to compare with)");
   const std::filesystem::path program = std::filesystem::absolute(view3d);
   if (!std::filesystem::is_regular_file(program)) return usage(argv[0], "no such program: '" + view3d + "'");
