@@ -72,7 +72,12 @@ int main(int argc, char** argv) {
     // The mesher's largest patch edge shrinks by 3% until the scene has enough patches (lesson 11's way).
     double edge = 240;
     RadiosityScene s = load_radiosity_scene(scene, edge);
-    while (static_cast<double>(s.patches.size()) < patches) s = load_radiosity_scene(scene, edge *= 0.97);
+    for (int shrink = 0; static_cast<double>(s.patches.size()) < patches; ++shrink) {
+      if (shrink == 1000)  // 0.97^1000 of the first edge: a scene that will not split further
+        throw std::runtime_error("cannot mesh " + scene + " into " +
+                                 std::to_string(static_cast<long>(patches)) + " patches");
+      s = load_radiosity_scene(scene, edge *= 0.97);
+    }
     const ScopedThreadCount scoped(static_cast<int>(threads));
     const Hemicube hemicube(static_cast<int>(resolution));
     const std::clock_t cpu_start = std::clock();
