@@ -11,9 +11,10 @@
 // and the process's peak resident memory (getrusage).
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <ctime>
-#include <map>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 
@@ -33,57 +34,81 @@ int usage(const std::string& problem) {
   return 2;
 }
 
+struct Options {
+  std::string scene = "cornell";
+  int patches = 32000, threads = 2, resolution = 128;
+  double unshot = 1e-3, row_memory = 8192;
+};
+
+// An integer option's value in [lo, hi]; throws std::invalid_argument for anything else.
+int whole_number(const std::string& value, int lo, int hi) {
+  std::size_t used = 0;
+  const int n = std::stoi(value, &used);
+  if (used != value.size() || n < lo || n > hi) throw std::invalid_argument("");
+  return n;
+}
+
+// The command line into `o`; an empty string, or what is wrong with it (naming the option and value).
+std::string parse_options(int argc, char** argv, Options& o) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string option = argv[i];
+    static const char* const known[] = {"--scene",      "--patches", "--threads",
+                                        "--resolution", "--unshot",  "--row-memory"};
+    if (std::find(std::begin(known), std::end(known), option) == std::end(known))
+      return "unknown option '" + option + "'";
+    if (i + 1 >= argc || argv[i + 1][0] == '\0') return "missing value for " + option;
+    const std::string value = argv[++i];
+    try {
+      std::size_t used = 0;
+      if (option == "--scene") {
+        o.scene = value;
+      } else if (option == "--patches") {
+        o.patches = whole_number(value, 4, 200000);
+      } else if (option == "--threads") {
+        o.threads = whole_number(value, 1, 256);
+      } else if (option == "--resolution") {
+        o.resolution = whole_number(value, 8, 2048);
+        if (o.resolution % 2 != 0) throw std::invalid_argument("");
+      } else if (option == "--unshot") {
+        o.unshot = std::stod(value, &used);
+        if (used != value.size() || !(o.unshot > 0 && o.unshot < 1)) throw std::invalid_argument("");
+      } else {
+        o.row_memory = std::stod(value, &used);
+        if (used != value.size() || !(o.row_memory >= 0 && o.row_memory <= 1048576))
+          throw std::invalid_argument("");
+      }
+    } catch (const std::exception&) {
+      return "bad value for " + option + ": '" + value +
+             "' (--patches 4...200000, --threads 1...256, --resolution even 8...2048, --unshot in (0, 1), "
+             "--row-memory 0...1048576 MiB)";
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace illum;
-  std::string scene = "cornell";
-  std::map<std::string, double> value = {{"--patches", 32000},
-                                         {"--threads", 2},
-                                         {"--resolution", 128},
-                                         {"--unshot", 1e-3},
-                                         {"--row-memory", 8192}};
-  for (int i = 1; i < argc; i += 2) {
-    const std::string option = argv[i];
-    if (i + 1 >= argc) return usage("missing value for '" + option + "'");
-    if (option == "--scene") {
-      scene = argv[i + 1];
-      continue;
-    }
-    if (!value.contains(option)) return usage("unknown option '" + option + "'");
-    std::size_t used = 0;
-    try {
-      value[option] = std::stod(argv[i + 1], &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || argv[i + 1][used] != '\0')
-      return usage("bad value for " + option + ": '" + argv[i + 1] + "'");
-  }
-  const double patches = value["--patches"], threads = value["--threads"], resolution = value["--resolution"],
-               unshot = value["--unshot"], row_memory = value["--row-memory"];
-  if (!(patches >= 4 && patches <= 200000) || !(threads >= 1 && threads <= 256) ||
-      !(resolution >= 8 && resolution <= 2048 && static_cast<int>(resolution) % 2 == 0) ||
-      !(unshot > 0 && unshot < 1) || !(row_memory >= 0 && row_memory <= 1048576))
-    return usage(
-        "a value out of range (--patches 4...200000, --threads 1...256, --resolution even 8...2048, "
-        "--unshot in (0, 1), --row-memory 0...1048576)");
+  Options o;
+  if (const std::string problem = parse_options(argc, argv, o); !problem.empty()) return usage(problem);
+  const std::string& scene = o.scene;
   try {
     // The mesher's largest patch edge shrinks by 3% until the scene has enough patches (lesson 11's way).
     double edge = 240;
     RadiosityScene s = load_radiosity_scene(scene, edge);
-    for (int shrink = 0; static_cast<double>(s.patches.size()) < patches; ++shrink) {
+    for (int shrink = 0; s.patches.size() < static_cast<std::size_t>(o.patches); ++shrink) {
       if (shrink == 1000)  // 0.97^1000 of the first edge: a scene that will not split further
-        throw std::runtime_error("cannot mesh " + scene + " into " +
-                                 std::to_string(static_cast<long>(patches)) + " patches");
+        throw std::runtime_error("cannot mesh " + scene + " into " + std::to_string(o.patches) + " patches");
       s = load_radiosity_scene(scene, edge *= 0.97);
     }
-    const ScopedThreadCount scoped(static_cast<int>(threads));
-    const Hemicube hemicube(static_cast<int>(resolution));
+    const ScopedThreadCount scoped(o.threads);
+    const Hemicube hemicube(o.resolution);
     const std::clock_t cpu_start = std::clock();
     const Stopwatch watch;
     const OnDemandRun run = progressive_on_demand(
-        s.patches, hemicube, {.unshot_fraction = unshot, .row_memory = row_memory * 1024 * 1024}, nullptr);
+        s.patches, hemicube, {.unshot_fraction = o.unshot, .row_memory = o.row_memory * 1024 * 1024},
+        nullptr);
     const double seconds = watch.seconds();
     const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     rusage usage_now{};
@@ -93,7 +118,7 @@ int main(int argc, char** argv) {
         "%zu "
         "rows drawn, unshot %.5f of the emitted power, %.2f s (%.2f s of processor time), peak resident "
         "memory %.0f MiB\n",
-        scene.c_str(), s.patches.size(), edge, static_cast<int>(resolution), available_threads(), row_memory,
+        scene.c_str(), s.patches.size(), edge, o.resolution, available_threads(), o.row_memory,
         run.state.shots, run.rows, run.unshot_fraction, seconds, cpu,
         static_cast<double>(usage_now.ru_maxrss) / 1024.0);
   } catch (const std::exception& e) {
