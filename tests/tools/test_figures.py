@@ -186,6 +186,21 @@ class FiguresTest(unittest.TestCase):
         self.assertEqual(self.run_mode("refresh"), 0, self.messages)
         self.assertIn("tests take `10.0`<!--=t--> and the run slows by 1.3<!--=slow-->×.", self.text())
 
+    def test_a_formatted_value_takes_the_full_digits_of_the_csv_beside_the_md(self):
+        # The .md shows 0.255 (four digits); the .csv beside it holds 0.25492, which is 25%, not 26%
+        # (rounding the shown digits again gave 26). A value shown as its cell keeps the .md's text.
+        self.run_mode("update")
+        self.write("out/lesson01/p.md", "| n | rate |\n|---|---|\n| 1 | 0.255 |\n| 2 | 0.5 |\n")
+        self.write("out/lesson01/p.csv", "n,rate\n1,0.25492\n2,0.5\n")
+        self.value_text("It fails 25<!--=p-->% (0.255<!--=c--> of the rays).",
+                        '<!-- value p: out/lesson01/p.md row="n=1" column=rate format=percent:0 -->\n'
+                        '<!-- value c: out/lesson01/p.md row="n=1" column=rate -->')
+        self.assertEqual(self.run_mode("check"), 0, self.messages)
+        # Without the .csv the shown digits are all there is: 0.255 is 26%.
+        (self.root / "out/lesson01/p.csv").unlink()
+        self.assertEqual(self.run_mode("check"), 1)
+        self.assertIn("value p: the text says 25, the program wrote 26", "\n".join(self.messages))
+
     def test_a_value_can_count_the_rows_of_a_source_tree_table(self):
         self.run_mode("update")
         self.write("exercises/01_x/README.md", "# Exercise\n\n| test | task |\n|---|---|\n| a | 1 |\n| b | 1 |\n"

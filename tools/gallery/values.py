@@ -129,11 +129,25 @@ def _cell(out: Path, source: Path, d: ValueDef) -> tuple[str, float | None, bool
         raise FigureError(f"value {d.name}: row=/where= pick {len(table.rows)} rows of {d.path}; a value is one cell")
     c = table.header.index(d.column)
     cell = table.rows[0][c] if c < len(table.rows[0]) else ""
+    # Formatted, or combined with other values, a cell counts with its full digits; as printed, it is the .md's text.
+    full = _full_digits(where, d.spec.table, table.rows[0], c) or cell
     try:
-        number = float(cell)
+        number = float(full)
     except ValueError:
         number = None
-    return format_value(cell, d.format, d.name), number, table.timing_mask()[0][c]
+    return format_value(cell if d.format == "cell" else full, d.format, d.name), number, table.timing_mask()[0][c]
+
+
+def _full_digits(where: Path, number: int, row: list[str], column: int) -> str | None:
+    """The cell's full digits from the `.csv` beside a program's `.md` table (the same header and rows), so that
+    a value formatted here is not rounded twice (0.25492, shown 0.255, is 25%, not 26%); None without one."""
+    csv_path = where.with_suffix(".csv")
+    if where.suffix != ".md" or not csv_path.is_file():
+        return None
+    shown, full = read_table(where, number), read_table(csv_path, 1)
+    if shown.header != full.header or len(shown.rows) != len(full.rows) or row not in shown.rows:
+        return None
+    return full.rows[shown.rows.index(row)][column]
 
 
 def resolve_values(out: Path, defs: dict[str, ValueDef], source: Path) -> dict[str, tuple[str, bool]]:
