@@ -46,7 +46,8 @@ struct SlabRay {
 // Never NaN. An origin inside the box gives an interval starting at range.lo.
 // An empty box (lo[a] > hi[a] on some axis, as the default Aabb{} with lo = +∞
 // and hi = −∞) contains no point: the interval is empty, whatever the ray
-// (the products would give s_near = −∞ and s_far = +∞, "everything").
+// (a test that orders each pair by comparing it, swapping when s_near >
+// s_far, would turn the products' +∞ and −∞ into [−∞, +∞], "everything").
 Interval slab_clip(const SlabRay& ray, const Aabb& box, Interval range, double far_slack = 0.0);
 
 // 2γ₃ for doubles: the widening of the exit that makes the slab test conservative.
