@@ -95,7 +95,9 @@ LinkAction brightness_oracle(const Patch& receiver, const Patch& source, double 
                              const Color& source_radiosity, const RefineSettings& settings);
 
 // Task 4. Links `receiver` to `source` (two different elements of h) as the
-// oracles decide, recursively. Nothing when faces_away(receiver, source).
+// oracles decide, recursively. First throws std::invalid_argument when
+// receiver == source or either is out of range (before reading either element);
+// then nothing when faces_away(h[receiver].patch, h[source].patch).
 // Otherwise form_factor_oracle; only when it says link, the link's form
 // factor F (Task 2, with settings.sample_points) and brightness_oracle with
 // the source's current radiosity; then, for the answer,
@@ -103,7 +105,6 @@ LinkAction brightness_oracle(const Patch& receiver, const Patch& source, double 
 //   link:           appends Link{receiver, source, F} to h.links;
 //   split_receiver: subdivide(h, receiver), then refines each child against the source, in order;
 //   split_source:   subdivide(h, source), then refines the receiver against each child, in order.
-// Throws std::invalid_argument when receiver == source or either is out of range.
 void refine(ElementHierarchy& h, int receiver, int source, const RefineSettings& settings,
             const SegmentVisible& visible);
 

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "illum/core/error.hpp"
 #include "illum/trace/effects_plan.hpp"
@@ -19,9 +21,14 @@ TwoPassPlan plan_two_pass(const SceneInventory& scene, const TwoPassRequest& req
   const bool receivers = scene.diffuse_surfaces > 0;
 
   plan.caustic_pass = request.caustics && scene.emitters > 0 && specular && receivers;
-  if (request.caustics && !plan.caustic_pass)
-    why +=
-        "  caustics asked for, but no emitter, no mirror or glass, or no diffuse surface: no caustic pass\n";
+  if (request.caustics && !plan.caustic_pass) {  // names only what is missing ("no emitter" is pass one's)
+    std::string missing;
+    for (const auto& [absent, what] :
+         {std::pair{scene.emitters == 0, "an emitter"}, std::pair{!specular, "a mirror or glass"},
+          std::pair{!receivers, "a diffuse surface"}})
+      if (absent) missing += (missing.empty() ? " " : ", ") + std::string(what);
+    why += "  caustics asked for, but the scene lacks" + missing + ": no caustic pass\n";
+  }
   if (plan.caustic_pass)
     why += "  caustic pass: light rays from the emitters through the specular surfaces\n";
 

@@ -46,8 +46,8 @@ struct TwoPassPlan {
   bool shadow_rays = false;     // pass two lights some diffuse surface directly (light not in B)
   int max_depth = 0;            // the depth limit of pass two's specular rays (0: primary rays only)
   // One line per decision, saying why; the word "caustic" appears only when caustics were asked
-  // for, "no emitter" only when pass one does not run for want of an emitter, and "no shadow rays"
-  // exactly when shadow_rays is false (its line then says why none are needed).
+  // for, the words "no emitter" exactly when pass one does not run for want of an emitter, and
+  // "no shadow rays" exactly when shadow_rays is false (its line then says why none are needed).
   std::string reasons;
 
   // The decisions and their reasons, one per line (defined in two_pass.cpp).

@@ -34,7 +34,8 @@ namespace illum {
 // The two roots by the stable pair q = −(k1 + sign(k1)·√Δ)/2, q/k2 and k0/q,
 // with sign(0) = +1 (k1 is exactly 0 on a line across some quads, and a
 // sign of 0 makes q = 0 and loses both roots); of the two, the one in
-// [0, 1] (with a small tolerance). The result is clamped to [0, 1]², and never
+// [0, 1] (with a tolerance of 1e-9); when both or neither are, the one nearer
+// ½ (the point may lie a rounding outside). The result is clamped to [0, 1]², and never
 // NaN: the discriminant Δ = k1² − 4 k2 k0, ≥ 0 for a point of the quad, can
 // round a hair below 0 where the two roots nearly meet (at the short side of a
 // nearly triangular quad), and is then taken as 0.
