@@ -42,8 +42,8 @@ std::vector<Patch> with_max_reflectance(std::vector<Patch> patches, double rho_m
 
 // The hemicube treats the receiving patch as a point, so its matrix breaks
 // reciprocity A_i F_ij = A_j F_ji by a few per cent. Progressive refinement
-// and Southwell use a column (F_ji = F_ij A_i/A_j), the other solvers use
-// rows: to compare them on one system, average the two estimates,
+// takes a column from a row (F_ji = F_ij A_i/A_j), the other solvers use the
+// matrix as it is: to compare them on one system, average the two estimates,
 //   F_ij ← (A_i F_ij + A_j F_ji) / (2 A_i),
 // which is reciprocal by construction; rows that then sum above 1 are
 // scaled back with their transposed entries, keeping both properties.

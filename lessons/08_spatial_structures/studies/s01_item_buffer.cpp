@@ -41,7 +41,8 @@ void s01_item_buffer(OutputFolder& out, const Settings& settings) {
   table.add_row({std::string("rays through the BVH"), static_cast<std::int64_t>(set.size()), pixels,
                  static_cast<std::int64_t>(counters.triangle_tests), ray_seconds, std::int64_t{0}});
   table.add_row({std::string("brute-force rays (N per pixel)"), static_cast<std::int64_t>(set.size()), pixels,
-                 static_cast<std::int64_t>(set.size()) * pixels, std::string("not run"), std::int64_t{0}});
+                 static_cast<std::int64_t>(set.size()) * pixels, std::string("not run"),
+                 std::string("not run")});
   table.add_row({std::string("item buffer"), static_cast<std::int64_t>(set.size()), pixels, std::int64_t{0},
                  raster_seconds, differ});
   out.table(table, "item_buffer",

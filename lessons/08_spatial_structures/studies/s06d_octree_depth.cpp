@@ -17,7 +17,7 @@ void s06d_octree_depth(OutputFolder& out, const Settings& settings) {
        .quick_values = {2, 5, 8},
        .values = {2, 4, 6, 8, 10, 12},
        .settings = [](int depth) { return AccelSettings{.kind = AccelKind::octree, .octree_depth = depth}; },
-       .caption = "Octree: deepest level (leaves of at most 8 triangles) against cost per ray"});
+       .caption = "Octree: deepest level (cells of over 8 triangles split to it) against cost per ray"});
 }
 
 }  // namespace illum::lesson08

@@ -8,8 +8,9 @@
 // Same answers as brute force except for segments that graze a patch's
 // boundary within rounding: mutually_visible() tests the convex polygon with
 // closed edges, this tests its fan's triangles with lesson 03's watertight
-// test (also closed, but computed differently). Lesson 08's program counts
-// the disagreements on the Monte Carlo samples of the Cornell box (none).
+// test (also closed, but computed differently). Lesson 08's program compares
+// the two on the Monte Carlo samples of the Cornell box (form_factor_visibility.md,
+// the largest difference in F: a few segments that graze an edge may disagree).
 #include <memory>
 #include <vector>
 
