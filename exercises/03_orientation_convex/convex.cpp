@@ -12,7 +12,8 @@ namespace illum {
 
 // Task 4. One loop; every turn orient2d_sign(prev, this, next) the same way
 // (zero allowed for a straight vertex, but not a U-turn); the edges' u and v
-// components change sign at most twice each going round.
+// components change sign at most twice each going round (cyclically, zero
+// components skipped).
 bool is_convex(const Polygon& polygon) {
   throw NotImplemented("is_convex",
                        "same turn sign at every vertex, and one revolution only (lesson 03, §4)");

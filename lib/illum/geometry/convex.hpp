@@ -16,7 +16,9 @@
 // as one of size 1. The last point
 // matters: a pentagram turns the same way at every vertex but goes round
 // twice; counting the sign changes of the edges' u and v components (at most
-// two each for a single turn) catches it.
+// two each for a single turn) catches it. The changes are counted cyclically,
+// the closing edge included, over the non-zero components only: an edge
+// parallel to an axis has a zero component there and is skipped.
 #include "illum/geometry/polygon.hpp"
 
 namespace illum {

@@ -51,7 +51,7 @@ struct RootResult {
 // An endpoint where f is exactly 0 is returned at once. f(a) and f(b) of one
 // sign give no_sign_change; compare the signs, never the product f(a)·f(b),
 // which underflows to 0 for |f| ≈ 1e-300 (a value the tests use). Throws
-// std::invalid_argument when the bracket is empty, infinite or NaN, the
+// std::invalid_argument when the bracket has a ≥ b, is infinite or NaN, the
 // tolerance is not positive, or max_iterations < 1.
 RootResult bisection(const RealFunction& f, Interval bracket, double tolerance, int max_iterations);
 

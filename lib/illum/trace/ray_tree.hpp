@@ -81,7 +81,8 @@ Color shadow_transmission(const Tracer& tracer, const SurfaceHit& hit, const Poi
 // S_l = shadow_transmission(tracer, hit, light position, node, l).
 // A light behind the surface or on its tangent plane (N·L ≤ 0) contributes
 // nothing and casts no shadow ray; with plan.skip_zero_weights, neither does
-// a light on a surface with k_d = k_s = 0 (its Phong term is black). Without
+// a light whose phong_term is black (k_d = k_s = 0, or k_d = 0 and no
+// highlight towards the viewer). Without
 // plan.skip_zero_weights every light above the tangent plane gets its shadow
 // ray, whatever the material. With plan.shadows off, no light is used.
 Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_viewer, int node = no_node);
