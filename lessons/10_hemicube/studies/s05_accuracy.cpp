@@ -71,7 +71,7 @@ std::vector<double> s05_accuracy(OutputFolder& out, const std::vector<int>& reso
                          .title = "near quad (midpoint deltas, the notes)"});
   out.plot(plot, "accuracy",
            "Relative error vs resolution: the small far square's error jumps about "
-           "(aliasing); the big patches' error falls roughly as 1/resolution.");
+           "(aliasing); the near quad's error falls roughly as 1/resolution².");
   return mean_error;
 }
 
