@@ -11,7 +11,7 @@
 //                 that touches it (as a corner or, for a T-vertex, through an edge);
 //   extrapolate – average inside a wall; on a wall's edge and corner the
 //                 average would pull the vertex towards the inside, so
-//                 extrapolate past it (lesson 12, §2):
+//                 extrapolate past it (lesson 12, §3):
 //                   edge vertex b of faces 1, 2 sharing the edge b–e:  B_b = B₁ + B₂ − B_e
 //                   corner vertex a of quad 1, opposite vertex e:        B_a = 2B₁ − B_e
 //                 with B_e the *average* value of e, then clamp each channel
