@@ -1,5 +1,5 @@
 """`tools/grade --batch DIR`: a folder of submissions (a folder or a zip per student) graded as the
-autograder grades one, written to --out (docs/grading.md, "Grading a class"): each worker prepares the
+autograder grades one, written to --out (docs/grading.md, "Batch grading"): each worker prepares the
 autograder as on Gradescope, then grades each submission in a fresh copy of it as its own user, with
 Gradescope's limits; grades.csv (and the gradebooks' files, tools/grading/gradebook.py) at the end."""
 from __future__ import annotations
@@ -339,8 +339,8 @@ class Batch:
                 "grades.csv" + (f", and left out of grades-{self.args.format}.csv" if self.args.format else ""))
         if os.geteuid() != 0:
             say("WARNING: not running as root, so each submission runs as you, not as a user of its own: a hostile "
-                "submission could read or change your files. Grade untrusted work with sudo (docs/grading.md, "
-                "\"Threat model\").")
+                "submission could read or change your files. Grade untrusted work with sudo "
+                "(docs/grading-defences.md, \"Threat model\").")
 
     def _prepare(self, work: Path) -> Slots | None:
         """Packs the autograder and runs its setup in every worker's slot; None (setup.log says why) on a failure."""

@@ -10,8 +10,8 @@
 
 The autograder (run_autograder) adds --submission-info FILE (what was
 installed from the upload), --fallback-stubs DIR (pristine stubs: a
-student file that does not compile, link or pass the suspicious-code
-checks is replaced by its stub, so that it costs only its own lesson),
+student file that does not compile or link is replaced by its stub, so
+that it costs only its own lesson; the suspicious-code checks only advise),
 --as-user NAME (the unprivileged user that builds and runs the student's
 code) and --grader-data DIR (what setup.sh kept: the trusted list of
 tests, the hidden tests' objects, which stub defines which function).

@@ -1,4 +1,4 @@
-"""Running a student's code apart from the grader (docs/grading.md, "Threat model").
+"""Running a student's code apart from the grader (docs/grading-defences.md, "Threat model").
 
 A student's exercise files are hostile input. Whatever they compile into is
 run here:

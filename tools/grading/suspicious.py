@@ -1,5 +1,6 @@
 """Exercise files that try to do more than compute, found outside the student's process (code in the
-test's process can always lie to it); a flagged file is graded as its stub (docs/grading-defences.md).
+test's process can always lie to it); a finding is advice for the instructor's review, never a verdict
+(docs/grading-defences.md).
 
 * `scan_source`: an exercise unit includes only headers of illum/, the C++ standard library and GLM,
   and does not mention doctest, start processes, end the program, use assembly or system calls, open
