@@ -16,7 +16,9 @@ namespace illum {
 // popped node whose entry lies beyond the closest hit so far by more than a
 // relative 1e-9 of it (coplanar triangles tie); at a leaf test every
 // triangle with the range shrunk to the closest hit; at an inner node clip
-// both children (slab_clip with slab_far_slack) and push the farther first.
+// both children (slab_clip with slab_far_slack) and push the one entered
+// later first, so that the one entered first (on a tie, the first child,
+// node + 1) is popped next.
 // Clip every box, the root too, against the range with both ends widened by
 // a relative 1e-9 (a range [t, t] at a hit on a box's face must reach it).
 // Count each box test in counters.nodes_visited (the root's too, even on a

@@ -41,7 +41,8 @@ struct StudySystem {
 std::vector<Patch> with_max_reflectance(std::vector<Patch> patches, double rho_max);
 
 // The hemicube treats the receiving patch as a point, so its matrix breaks
-// reciprocity A_i F_ij = A_j F_ji by a few per cent. Progressive refinement
+// reciprocity A_i F_ij = A_j F_ji, for some pairs wholly (one of the two is 0:
+// study_form_factors.md's relative error before averaging is 1). Progressive refinement
 // takes a column from a row (F_ji = F_ij A_i/A_j), the other solvers use the
 // matrix as it is: to compare them on one system, average the two estimates,
 //   F_ij ← (A_i F_ij + A_j F_ji) / (2 A_i),

@@ -60,6 +60,8 @@ TEST_SUITE("stability") {
     CHECK_THROWS_AS(make_accel(set, AccelSettings{.kind = AccelKind::grid, .grid_resolution = 0}),
                     std::invalid_argument);
     CHECK_THROWS_AS(Bvh(set, BvhSettings{.leaf_size = 0}), std::invalid_argument);
+    CHECK_THROWS_AS(Bvh(set, BvhSettings{.leaf_size = 256}), std::invalid_argument);  // 1…255
+    CHECK_NOTHROW(Bvh(set, BvhSettings{.leaf_size = 255}));
     CHECK_THROWS_AS(Bvh(TriangleSet{}, BvhSettings{}), std::invalid_argument);
     ILLUM_CHECK_THROWS_CONTAINING(accel_kind_from_name("kd_tree"), "compact_bvh", std::invalid_argument);
   }

@@ -147,6 +147,43 @@ TEST_SUITE("lesson11") {
     CHECK_THROWS_AS(solve_direct(s.patches, s.f), std::invalid_argument);
   }
 
+  TEST_CASE("the matrix solvers refuse a bad system before any work" * doctest::description("task=2,3,4,5")) {
+    // Contracts (radiosity_solvers.hpp): solve_direct refuses a negative emission and an F_ij that is
+    // negative or not finite (rows that still sum to at most 1, so only that check can catch them);
+    // jacobi_sweep and gauss_seidel_sweep refuse a b without one value per patch, and gauss_seidel_sweep
+    // a reflectance of 1 in one channel; southwell_step refuses a b or a residual of the wrong size.
+    // Every refusal is std::invalid_argument and changes nothing.
+    const TwoPatchEnclosure s(0.5);
+    {
+      std::vector<Patch> p = s.patches;
+      p[1].emission = Color(0.0, -0.125, 0.0);
+      CHECK_THROWS_AS(solve_direct(p, s.f), std::invalid_argument);
+    }
+    {
+      FormFactorMatrix f = s.f;
+      f(1, 0) = -0.25;
+      CHECK_THROWS_AS(solve_direct(s.patches, f), std::invalid_argument);
+      f(1, 0) = std::nan("");
+      CHECK_THROWS_AS(solve_direct(s.patches, f), std::invalid_argument);
+    }
+    std::vector<Color> next;
+    CHECK_THROWS_AS(jacobi_sweep(s.patches, s.f, {Color(0.0)}, next), std::invalid_argument);
+    {
+      std::vector<Patch> p = s.patches;
+      p[0].reflectance = Color(0.5, 1.0, 0.5);
+      std::vector<Color> b{Color(0.25), Color(0.75)};
+      CHECK_THROWS_AS(gauss_seidel_sweep(p, s.f, b), std::invalid_argument);
+      CHECK((b[0] == Color(0.25) && b[1] == Color(0.75)));
+      std::vector<Color> short_b{Color(0.0)};
+      CHECK_THROWS_AS(gauss_seidel_sweep(s.patches, s.f, short_b), std::invalid_argument);
+    }
+    std::vector<Color> b(2, Color(0.0)), short_residual{Color(1.0)}, residual{Color(1.0), Color(0.0)},
+        short_b{Color(0.0)};
+    CHECK_THROWS_AS(southwell_step(s.patches, s.f, b, short_residual), std::invalid_argument);
+    CHECK_THROWS_AS(southwell_step(s.patches, s.f, short_b, residual), std::invalid_argument);
+    CHECK((b[0] == Color(0.0) && residual[0] == Color(1.0)));
+  }
+
   TEST_CASE("Jacobi's first two sweeps from B = 0 by hand, then the limit" * doctest::description("task=3")) {
     const ThreePatchExample ex = three_patch_example();
     std::vector<Color> b(3, Color(0.0)), next;
@@ -292,6 +329,22 @@ TEST_SUITE("lesson11") {
     CHECK_THROWS_AS(shoot(ex.patches, 0, short_row, state), std::invalid_argument);
     CHECK_THROWS_AS(shoot(ex.patches, 3, ex.form_factors.row(0), state), std::invalid_argument);
     CHECK(state.shots == 0);
+  }
+
+  TEST_CASE("choose_shooter and shoot refuse states of the wrong size" * doctest::description("task=6b,6c")) {
+    // Contracts (radiosity_solvers.hpp): choose_shooter refuses no patches and an unshot vector without one
+    // value per patch; shoot refuses a state whose B or Δ has not one value per patch, before changing it.
+    const ThreePatchExample ex = three_patch_example();
+    CHECK_THROWS_AS(choose_shooter({}, {}), std::invalid_argument);
+    CHECK_THROWS_AS(choose_shooter(ex.patches, {Color(1.0), Color(0.0)}), std::invalid_argument);
+    ProgressiveState short_unshot{.radiosity = {Color(1.0), Color(0.0), Color(0.0)},
+                                  .unshot = {Color(1.0), Color(0.0)}};
+    CHECK_THROWS_AS(shoot(ex.patches, 0, ex.form_factors.row(0), short_unshot), std::invalid_argument);
+    CHECK((short_unshot.unshot[0] == Color(1.0) && short_unshot.shots == 0));
+    ProgressiveState short_radiosity{.radiosity = {Color(1.0)},
+                                     .unshot = {Color(1.0), Color(0.0), Color(0.0)}};
+    CHECK_THROWS_AS(shoot(ex.patches, 0, ex.form_factors.row(0), short_radiosity), std::invalid_argument);
+    CHECK((short_radiosity.unshot[0] == Color(1.0) && short_radiosity.shots == 0));
   }
 
   TEST_CASE("erratum 8: with unequal areas the shooter has the most power and receivers use their own ρ" *

@@ -113,7 +113,8 @@ TEST_SUITE("stability") {
     const double n = static_cast<double>(scene.patches.size()), row_bytes = n * sizeof(double);
     // All rows: each patch's row is drawn once (plus rows predicted for
     // patches that never shoot), so at most n rows for more than 2n shots.
-    // A fifth of them: rows are evicted least recently used first and drawn again.
+    // A fifth of them: the row of the patch with the least unshot power goes first (the least recently
+    // used on ties) and is drawn again when its patch shoots again.
     for (const double kept : {n, n / 5}) {
       for (const int threads : {1, 2, 3}) {
         const OnDemandRun run = on_threads(threads, scene.patches, hemicube,

@@ -10,7 +10,7 @@
 // reaches the node is proportional to it (a ray hits a convex box with
 // probability proportional to its surface area). Nodes are stored flattened
 // in depth-first order: a node's first child is the next node, its second
-// child is at `second`; a leaf's triangles are a contiguous run.
+// child is at index `first`; a leaf's triangles are a contiguous run.
 //
 // Traversal (bvh_traversal.hpp) visits the nearer child first and skips any
 // node whose box begins beyond the closest hit so far: "comprobar (nodo, rayo)"
