@@ -1,20 +1,9 @@
-"""The judge: a test's verdict from the values the student's program observed.
-
-It runs in the grader's own process, which never runs student code (docs/grading.md, "How a
-test is judged"). For each graded test it has two lists of check records (checks.cpp):
-
-* the **witness's**, from a trusted build of the reference: where each check stands, its kind,
-  the comparison, the expected side (a value, or an Approx with its tolerance), the test's
-  explanation;
-* the **observer's**, from the student's program built from sources with every expected side
-  cut away: where each check stands, its kind and the left side it saw (or the exception that
-  the left side threw).
-
-The test passes when the observer reached the witness's checks in the same order and each left
-side satisfies the witness's comparison; a missing, extra, reordered or wrongly kinded record
-fails the test it belongs to, and nothing else. What the student's program says of its own
-verdict is never read.
-"""
+"""The judge: a test's verdict from the witness's check records (a trusted build of the reference) and
+the observer's (the student's program, every expected side cut away), in the grader's own process, which
+never runs student code (docs/grading-defences.md, "How a test is judged"). A test passes when the
+observer reached the witness's checks in the same order and each left side satisfies the witness's
+comparison; a missing, extra, reordered or wrongly kinded record fails its test and nothing else. What
+the student's program says of its own verdict is never read."""
 from __future__ import annotations
 
 import math
@@ -45,9 +34,7 @@ class Verdict:
 
 def _number(value: Any) -> float | int | None:
     """A JSON value as the number it stands for (non-finite doubles are {"double": "nan"})."""
-    if isinstance(value, bool):
-        return None
-    if isinstance(value, (int, float)):
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
         return value
     if isinstance(value, dict) and set(value) == {"double"}:
         return {"nan": math.nan, "inf": math.inf, "-inf": -math.inf}.get(value["double"])
@@ -95,11 +82,9 @@ def holds(op: str, lhs: Any, rhs: Any) -> bool:
     if op not in ("==", "!=", "<", "<=", ">", ">="):
         raise JudgeError(f"an unknown comparison {op!r}")
     if isinstance(rhs, dict) and "approx" in rhs:
-        x = _number(lhs)
-        if x is None:
+        if (number := _number(lhs)) is None:
             return False
-        x = float(x)
-        value = float(rhs["approx"])
+        x, value = float(number), float(rhs["approx"])
         equal = _approx_equal(x, rhs)
         return {"==": equal, "!=": not equal, "<": x < value and not equal, "<=": x < value or equal,
                 ">": x > value and not equal, ">=": x > value or equal}[op]
@@ -158,11 +143,13 @@ def _site(record: dict) -> tuple[str, int]:
     return normal_file(str(record.get("file", ""))), int(record.get("line", 0) or 0)
 
 
+def _where(record: dict) -> str:
+    return "{}:{}".format(*_site(record))
+
+
 def _threw(lhs: Any) -> str | None:
     """The exception text of an observation whose left side threw, else None."""
-    if isinstance(lhs, dict) and set(lhs) == {"threw"}:
-        return str(lhs["threw"])
-    return None
+    return str(lhs["threw"]) if isinstance(lhs, dict) and set(lhs) == {"threw"} else None
 
 
 def check_passes(witness: dict, lhs: Any) -> bool:
@@ -182,11 +169,8 @@ def check_passes(witness: dict, lhs: Any) -> bool:
             return bool(lhs.get("as"))
         return bool(lhs["threw"])
     op = witness.get("op")
-    value = bool(lhs) if op is None and isinstance(lhs, bool) else None
     if op is None:
-        if value is None:
-            return False
-        return value != kind.endswith("FALSE")
+        return isinstance(lhs, bool) and lhs != kind.endswith("FALSE")
     return holds(str(op), lhs, witness.get("rhs")) != kind.endswith("FALSE")
 
 
@@ -233,7 +217,7 @@ def judge_test(witness: list[dict], observed: list[dict], stopped: str = "", hid
     failures: list[Failure] = []
     for index, expected in enumerate(witness):
         if expected.get("passed") is not True:
-            raise JudgeError(f"the reference fails its own check at {_site(expected)[0]}:{_site(expected)[1]}")
+            raise JudgeError(f"the reference fails its own check at {_where(expected)}")
         if index >= len(observed):
             failures.append(_stopped_before(expected, stopped, hidden))
             break
@@ -245,30 +229,27 @@ def judge_test(witness: list[dict], observed: list[dict], stopped: str = "", hid
             failures.append(_stopped_before(expected, threw, hidden))
             break
         if _site(got) != _site(expected) or got.get("kind") != expected.get("kind"):
-            where = "{}:{}".format(*_site(got))
             failures.append(_failure(expected, f"the test took another path than the reference's run: its next check "
-                                     f"is this one, your run's was {got.get('kind')} at {where} (a REQUIRE, a "
+                                     f"is this one, your run's was {got.get('kind')} at {_where(got)} (a REQUIRE, a "
                                      "loop or a branch that depends on your results)", hidden))
             break
         lhs = got.get("lhs")
         if check_passes(expected, lhs):
             continue
         if threw is not None:
-            failures.append(_failure(expected, f"{expected.get('kind')}( {expected.get('expr', '')} ) threw: {threw}",
-                                     hidden, threw.startswith(NOT_IMPLEMENTED), threw))
+            message, text = threw, f"{expected.get('kind')}( {expected.get('expr', '')} ) threw: {threw}"
         else:
             message = str(lhs.get("message", "")) if isinstance(lhs, dict) and lhs.get("threw") is True else ""
-            failures.append(_failure(expected, _explain(expected, lhs), hidden, message.startswith(NOT_IMPLEMENTED),
-                                     message))
+            text = _explain(expected, lhs)
+        failures.append(_failure(expected, text, hidden, message.startswith(NOT_IMPLEMENTED), message))
         if str(expected.get("kind", "")).startswith("REQUIRE") or len(failures) >= MAX_FAILURES:
             break  # the test stops at a failed REQUIRE, in the reference's terms too
     else:
         if len(observed) > len(witness):
             extra = observed[len(witness)]
-            where = "{}:{}".format(*_site(extra))
             failures.append(Failure(kind="judged", file=_site(extra)[0], line=_site(extra)[1],
                                     message=f"your run made {len(observed) - len(witness)} more check(s) than the "
-                                            f"reference's, the first at {where}"))
+                                            f"reference's, the first at {_where(extra)}"))
         elif stopped:
             failures.append(Failure(kind="judged", message=f"after its last check the test did not end normally: "
                                                            f"{stopped}",

@@ -4,6 +4,7 @@ JSON object a line, `"event": "test_case"` for a test that ran and `"listed"` fo
 have run, so a program that crashes or hangs half-way still yields a result for every test."""
 from __future__ import annotations
 
+import itertools
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -37,25 +38,16 @@ class Failure:
 
     @staticmethod
     def from_json(data: dict[str, Any]) -> "Failure":
-        return Failure(
-            kind=str(data.get("kind", "")),
-            message=str(data.get("message", "")),
-            file=str(data.get("file", "")),
-            line=int(data.get("line", 0) or 0),
-            context=str(data.get("context", "")),
-            exception=str(data.get("exception", "")),
-            subcases=[str(s) for s in data.get("subcases", []) or []],
-            not_implemented=bool(data.get("not_implemented", False)),
-            expression=str(data.get("expression", "") or ""),
-            expansion=str(data.get("expansion", "") or ""),
-        )
+        return Failure(**{k: str(data.get(k, "")) for k in ("kind", "message", "file", "context", "exception")},
+                       **{k: str(data.get(k, "") or "") for k in ("expression", "expansion")},
+                       line=int(data.get("line", 0) or 0), subcases=[str(s) for s in data.get("subcases", []) or []],
+                       not_implemented=bool(data.get("not_implemented", False)))
 
     def got_expected(self) -> tuple[str, str] | None:
         """(got, expected) of a failed ``CHECK(actual == expected)``: the tests write the value computed
         on the left and the expected one on the right. None for any other kind of check."""
-        if self.kind != "assert" or self.exception or " == " not in self.expression:
-            return None
-        if self.expansion.count(" == ") != 1:
+        if self.kind != "assert" or self.exception or " == " not in self.expression or \
+                self.expansion.count(" == ") != 1:
             return None
         got, expected = self.expansion.split(" == ")
         return got.strip(), expected.strip()
@@ -64,8 +56,7 @@ class Failure:
         """One line: which check, and the values it saw."""
         if self.not_implemented:
             return f"not implemented yet: {self.exception}"
-        pair = self.got_expected()
-        if pair:
+        if pair := self.got_expected():
             return f"{self.message.split(' is NOT correct')[0]} failed: got {pair[0]}, expected {pair[1]}"
         return self.message
 
@@ -74,10 +65,9 @@ class Failure:
         where = f"{_short_path(self.file, root)}:{self.line}: " if self.file else ""
         if self.not_implemented:
             text = f"{where}not implemented yet: {self.exception}"
-        elif self.got_expected():
-            got, expected = self.got_expected() or ("", "")
-            text = (f"{where}{self.message.split(' is NOT correct')[0]} failed\n  got:      {got}\n"
-                    f"  expected: {expected}")
+        elif pair := self.got_expected():
+            text = (f"{where}{self.message.split(' is NOT correct')[0]} failed\n  got:      {pair[0]}\n"
+                    f"  expected: {pair[1]}")
         else:
             text = f"{where}{self.message}"
         if self.subcases:
@@ -122,13 +112,7 @@ class TestResult:
 
     @property
     def status(self) -> str:
-        if self.passed:
-            return "passed"
-        if self.skipped:
-            return "skipped"
-        if not self.ran:
-            return "not run"
-        return "failed"
+        return "passed" if self.passed else "skipped" if self.skipped else "not run" if not self.ran else "failed"
 
     def output(self, root: Path | None = None) -> str:
         """What the student reads about this test: empty when it passed."""
@@ -144,61 +128,39 @@ class TestResult:
 
     @staticmethod
     def from_json(data: dict[str, Any], hidden: bool = False) -> "TestResult":
-        return TestResult(
-            suite=str(data.get("suite", "")),
-            name=str(data.get("name", "")),
-            file=str(data.get("file", "")),
-            line=int(data.get("line", 0) or 0),
-            passed=bool(data.get("passed", False)),
-            skipped=bool(data.get("skipped", False)),
-            ran=data.get("event") == "test_case",
-            hidden=hidden,
-            points=points_of(str(data.get("description", ""))),
-            seconds=float(data.get("seconds", 0.0) or 0.0),
-            failures=[Failure.from_json(f) for f in data.get("failures", []) or []],
-            not_implemented_only=bool(data.get("not_implemented_only", False)),
-        )
+        return TestResult(**{k: str(data.get(k, "")) for k in ("suite", "name", "file")},
+                          **{k: bool(data.get(k, False)) for k in ("passed", "skipped", "not_implemented_only")},
+                          line=int(data.get("line", 0) or 0), ran=data.get("event") == "test_case", hidden=hidden,
+                          points=points_of(str(data.get("description", ""))),
+                          seconds=float(data.get("seconds", 0.0) or 0.0),
+                          failures=[Failure.from_json(f) for f in data.get("failures", []) or []])
 
 
 def merge(listed: list[dict[str, Any]], ran: list[dict[str, Any]], hidden: bool = False,
           why_missing: str = "") -> list[TestResult]:
-    """One result per listed test, in listing order.
-
-    A listed test without a run record did not run: the program crashed, hung
-    or was killed first. It fails with ``why_missing`` as its explanation.
-    Run records that were not listed (should not happen) are kept too.
-    """
-    by_key = {}
-    for record in ran:
-        if record.get("event") == "test_case":
-            result = TestResult.from_json(record, hidden)
-            by_key.setdefault(result.key, result)
-    results: list[TestResult] = []
-    seen: set[tuple[str, str, str, int]] = set()
-    for record in listed:
-        if record.get("event") != "listed":
+    """One result per listed test, in listing order. A listed test without a run record did not run (the
+    program crashed, hung or was killed first): it fails with ``why_missing`` as its explanation. Run
+    records that were not listed (should not happen) are kept too."""
+    by_key: dict[tuple[str, str, str, int], TestResult] = {}
+    for result in (TestResult.from_json(r, hidden) for r in ran if r.get("event") == "test_case"):
+        by_key.setdefault(result.key, result)
+    results: dict[tuple[str, str, str, int], TestResult] = {}
+    for expected in (TestResult.from_json(r, hidden) for r in listed if r.get("event") == "listed"):
+        if expected.key in results:
             continue
-        expected = TestResult.from_json(record, hidden)
-        if expected.key in seen:
-            continue
-        seen.add(expected.key)
         if expected.key in by_key:
-            actual = by_key[expected.key]
-            actual.points = expected.points
-            results.append(actual)
+            results[expected.key] = by_key[expected.key]
+            results[expected.key].points = expected.points
         else:
-            expected.passed = False
-            expected.ran = False
+            expected.passed = expected.ran = False
             expected.note = f"did not run: {why_missing}" if why_missing else "did not run"
-            results.append(expected)
-    results.extend(r for k, r in by_key.items() if k not in seen)
-    return results
+            results[expected.key] = expected
+    return list(results.values()) + [r for k, r in by_key.items() if k not in results]
 
 
 def normal_file(file: str) -> str:
-    """A test's source path as the same key whether the compiler saw it
-    absolute or relative to the build folder (ccache's base_dir makes it
-    ``../../../tests/x.cpp``): from its ``tests/`` folder on."""
+    """A test's source path as the same key whether the compiler saw it absolute or relative to the build
+    folder (ccache's base_dir makes it ``../../../tests/x.cpp``): from its ``tests/`` folder on."""
     text = file.replace("\\", "/")
     if "/tests/" in text:
         return "tests/" + text.rsplit("/tests/", 1)[1]
@@ -214,9 +176,7 @@ def _short_path(file: str, root: Path | None) -> str:
     if root is None or not file:
         return file
     if not Path(file).is_absolute():  # relative to the build folder: ../../../tests/x.cpp
-        parts = Path(file).parts
-        while parts and parts[0] == "..":
-            parts = parts[1:]
+        parts = list(itertools.dropwhile(lambda part: part == "..", Path(file).parts))
         return str(Path(*parts)) if parts else file
     try:
         return str(Path(file).resolve().relative_to(root.resolve()))
