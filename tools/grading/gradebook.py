@@ -1,10 +1,6 @@
-"""Class lists in, gradebook files out: the CSV side of `tools/grade --batch` (docs/grading.md, "Grading
-a class"). A roster is read as a spreadsheet or Moodle or Canvas saves it (commas, semicolons or tabs,
-with or without a BOM); grades.csv, grades-moodle.csv and grades-canvas.csv are written as RFC 4180 text
-with a BOM and CRLF. What goes in the gradebooks' files follows what their importers do with a row (read
-in Moodle's grade/import/csv/classes/load_data.php and Canvas's app/models/gradebook_importer.rb): every
-Moodle row has a user value from the roster (an empty one would give its grade to the row before), and
-Canvas's own ID is filled only from a Canvas roster (a student number there could be another student's)."""
+"""Class lists in, gradebook files out: the CSV side of `tools/grade --batch` (docs/grading.md, "Batch
+grading"). What goes in the gradebooks' files follows what their importers do with a row (Moodle's
+grade/import/csv/classes/load_data.php, Canvas's app/models/gradebook_importer.rb), as that section says."""
 from __future__ import annotations
 
 import csv
@@ -176,11 +172,8 @@ def read_roster(path: Path) -> Roster:
         raise RosterError(f"--roster {path}: the file is empty")
     header_line, header_fields = records[0]
     headers = [h.strip() for h in header_fields]
-    columns: dict[str, list[str]] = {}
-    for h in headers:
-        for role, names in ROLES.items():
-            if normal(h) in names and h not in columns.get(role, []):
-                columns.setdefault(role, []).append(h)
+    columns = {role: found for role, names in ROLES.items()
+               if (found := list(dict.fromkeys(h for h in headers if normal(h) in names)))}
     roster = Roster(path, headers, [], [], columns)
     if not roster.keys:
         raise RosterError(f"--roster {path}: no id or e-mail column (looked for headers such as id, student id, "
@@ -250,21 +243,20 @@ def feedback(o: Outcome) -> str:
         return "not graded yet: the grader failed (not your work's fault); your instructor will grade it again"
     if o.status == "not gradable":
         return "not gradable: " + ("; ".join(o.student_notes) or "none of your files compiled")
-    lessons = []
-    for nn in sorted(o.lessons):
-        if o.lessons[nn].get("status") == "not gradable":
-            lessons.append(f"lesson {nn}: not gradable")
-        else:
-            score, top = o.visible.get(nn, (0.0, 0.0))
-            lessons.append(f"lesson {nn}: {number(score)}/{number(top)}")
+    lessons = ", ".join(f"lesson {nn}: not gradable" if _not_gradable(o.lessons[nn]) else
+                        "lesson {}: {}/{}".format(nn, *map(number, o.visible.get(nn, (0.0, 0.0))))
+                        for nn in sorted(o.lessons))
     if o.has_hidden:
-        score = sum(s for s, _ in o.visible.values())
-        top = sum(t for _, t in o.visible.values())
-        head = [f"visible tests {number(score)}/{number(top)} (" + ", ".join(lessons) + "); hidden tests are "
-                "graded too and count in the grade"]
+        score, top = (sum(pair[i] for pair in o.visible.values()) for i in (0, 1))
+        head = f"visible tests {number(score)}/{number(top)} ({lessons}); hidden tests are graded too and count in " \
+               "the grade"
     else:
-        head = [f"{number(o.total)}/{number(o.max_score)} (" + ", ".join(lessons) + ")"]
-    return "; ".join(head + o.student_notes)
+        head = f"{number(o.total)}/{number(o.max_score)} ({lessons})"
+    return "; ".join([head, *o.student_notes])
+
+
+def _not_gradable(lesson: dict) -> bool:
+    return lesson.get("status") == "not gradable"
 
 
 def grades_rows(outcomes: list[Outcome], lessons: list[str], roster: Roster | None) -> list[list[str]]:
@@ -274,20 +266,11 @@ def grades_rows(outcomes: list[Outcome], lessons: list[str], roster: Roster | No
     rows = [["id", *[f"roster: {h}" for h in extra], "status", "total", "max", *[f"lesson{nn}" for nn in lessons],
              *tests, "notes"]]
     for o in outcomes:
-        lesson_cells = []
-        for nn in lessons:
-            info = o.lessons.get(nn)
-            if info is None:
-                lesson_cells.append("")
-            elif info.get("status") == "not gradable":
-                lesson_cells.append("not gradable")
-            else:
-                lesson_cells.append(number(float(info.get("score", 0))))
-        test_cells = []
-        for name in tests:
-            lesson = re.match(r"lesson(\d\d)", name)
-            gone = lesson and o.lessons.get(lesson.group(1), {}).get("status") == "not gradable"
-            test_cells.append("" if gone or name not in o.tests else number(o.tests[name]))
+        lesson_cells = ["" if (info := o.lessons.get(nn)) is None else "not gradable" if _not_gradable(info)
+                        else number(float(info.get("score", 0))) for nn in lessons]
+        test_cells = ["" if name not in o.tests or ((lesson := re.match(r"lesson(\d\d)", name))
+                                                    and _not_gradable(o.lessons.get(lesson.group(1), {})))
+                      else number(o.tests[name]) for name in tests]
         rows.append([o.ident, *[o.roster.get(h, "") for h in extra], o.status, number(o.total),
                      number(o.max_score) if o.lessons else "", *lesson_cells, *test_cells, "; ".join(o.notes)])
     return rows
@@ -295,11 +278,9 @@ def grades_rows(outcomes: list[Outcome], lessons: list[str], roster: Roster | No
 
 def _looks(idents: list[str]) -> str:
     """What folder names are, without a roster: e-mails, numbers (ID numbers), else user names."""
-    if idents and all("@" in i for i in idents):
-        return "email"
-    if idents and all(i.isdigit() for i in idents):
-        return "idnumber"
-    return "username"
+    if not idents:
+        return "username"
+    return "email" if all("@" in i for i in idents) else "idnumber" if all(i.isdigit() for i in idents) else "username"
 
 
 MOODLE_HEADERS = {"email": "Email address", "username": "Username", "idnumber": "ID number"}

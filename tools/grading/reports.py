@@ -50,17 +50,12 @@ class GradeRun:
     # decide), tampering the runner saw, processes killed, the grader's own problems.
     review: list[str] = field(default_factory=list)
 
-    def lesson_of(self, file: str) -> str:
-        match = re.search(r"exercises/(\d\d)_", file)
-        return match.group(1) if match else ""
-
     def lesson_status(self, lesson: str) -> str:
         """"graded", "not gradable" (a file of the lesson did not compile or link) or "grader error"."""
         if self.build_failed:
             return "not gradable" if self.blame_student else "grader error"
-        if any(self.lesson_of(f) == lesson for f in self.fallbacks):
-            return "not gradable"
-        return "graded"
+        lessons = {match.group(1) for f in self.fallbacks if (match := re.search(r"exercises/(\d\d)_", f))}
+        return "not gradable" if lesson in lessons else "graded"
 
     @property
     def score(self) -> float:
@@ -223,15 +218,15 @@ def machine_summary(run: GradeRun) -> dict[str, Any]:
     }}
 
 
-def _compiler_messages(output: str) -> str:
-    """A build log without make's progress lines, which say nothing about the error."""
-    return "\n".join(line for line in output.splitlines()
-                     if not re.match(r"\[\s*\d+%\]|gmake\[\d+\]: (Entering|Leaving)", line))
-
-
 def _build_entry(name: str, output: str, visibility: str = "visible") -> dict[str, Any]:
-    output = _compiler_messages(output)
-    return {"name": name, "score": 0, "max_score": 0, "status": "failed", "output": _truncate(output),
+    """A failed build's entry: its log without make's progress lines, which say nothing about the error."""
+    output = "\n".join(line for line in output.splitlines()
+                       if not re.match(r"\[\s*\d+%\]|gmake\[\d+\]: (Entering|Leaving)", line))
+    return _entry(name, output, "failed", visibility)
+
+
+def _entry(name: str, output: str, status: str, visibility: str, score: float = 0, max_score: float = 0) -> dict:
+    return {"name": name, "score": score, "max_score": max_score, "status": status, "output": _truncate(output),
             "output_format": "text", "visibility": visibility}
 
 
@@ -254,9 +249,9 @@ def _test_entries(run: GradeRun, root: Path | None) -> list[dict[str, Any]]:
     if run.hidden_build_failed:  # not the student's fault, and the hidden tests' source must not reach students
         tests.append(_build_entry("hidden tests: build (instructors only)", "The instructor's hidden tests did not "
                                   "build; they were not graded.\n\n" + run.hidden_build_output, HIDDEN_VISIBILITY))
-    return tests + [{"name": test_name(r), "number": str(number), "score": r.score, "max_score": r.points,
-                     "status": "passed" if r.passed else "failed", "output": _truncate(r.output(root)),
-                     "output_format": "text", "visibility": HIDDEN_VISIBILITY if r.hidden else "visible"}
+    return tests + [{"name": test_name(r), "number": str(number)}
+                    | _entry(test_name(r), r.output(root), "passed" if r.passed else "failed",
+                             HIDDEN_VISIBILITY if r.hidden else "visible", r.score, r.points)
                     for number, r in enumerate(run.results, start=1)] + _review_entries(run)
 
 
@@ -286,10 +281,8 @@ def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any
 
 def _review_entries(run: GradeRun) -> list[dict[str, Any]]:
     """One entry hidden from students: what an instructor may want to look at (nothing fails for it)."""
-    if not run.review:
-        return []
-    return [{"name": "review (instructors only)", "score": 0, "max_score": 0, "status": "passed",
-             "output": _truncate("\n".join(run.review)), "output_format": "text", "visibility": HIDDEN_VISIBILITY}]
+    review = "\n".join(run.review)
+    return [_entry("review (instructors only)", review, "passed", HIDDEN_VISIBILITY)] if run.review else []
 
 
 # Characters XML 1.0 cannot hold; a student's output may contain them.
@@ -298,6 +291,10 @@ _XML_INVALID = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]
 
 def _xml_text(text: str) -> str:
     return _XML_INVALID.sub("?", text)
+
+
+def _failed(group: list[TestResult]) -> int:
+    return sum(not r.passed and not r.skipped for r in group)
 
 
 def junit_xml(run: GradeRun, root: Path | None = None) -> str:
@@ -311,13 +308,10 @@ def junit_xml(run: GradeRun, root: Path | None = None) -> str:
     groups: dict[str, list[TestResult]] = {}
     for result in run.results:
         groups.setdefault(f"lesson{result.lesson}{'.hidden' if result.hidden else ''}", []).append(result)
-    total = failures = skipped = 0
     for name, group in groups.items():
-        n_failed = sum(not r.passed and not r.skipped for r in group)
-        n_skipped = sum(r.skipped for r in group)
-        total, failures, skipped = total + len(group), failures + n_failed, skipped + n_skipped
-        suite = ET.SubElement(suites, "testsuite", name=name, tests=str(len(group)), failures=str(n_failed),
-                              errors="0", skipped=str(n_skipped), time=f"{sum(r.seconds for r in group):.6f}")
+        suite = ET.SubElement(suites, "testsuite", name=name, tests=str(len(group)), failures=str(_failed(group)),
+                              errors="0", skipped=str(sum(r.skipped for r in group)),
+                              time=f"{sum(r.seconds for r in group):.6f}")
         for result in group:
             attributes = {"classname": name, "name": _xml_text(result.name), "time": f"{result.seconds:.6f}"}
             if result.file:
@@ -330,11 +324,9 @@ def junit_xml(run: GradeRun, root: Path | None = None) -> str:
                 first = result.failures[0].describe(root).splitlines()[0] if result.failures else result.note
                 failure = ET.SubElement(case, "failure", message=_xml_text(first), type=kind)
                 failure.text = _xml_text(result.output(root))
-    suites.set("tests", str(total + (1 if run.build_failed else 0)))
-    suites.set("failures", str(failures))
-    suites.set("errors", "1" if run.build_failed else "0")
-    suites.set("skipped", str(skipped))
-    suites.set("time", f"{run.seconds:.3f}")
+    suites.attrib.update(tests=str(len(run.results) + run.build_failed), failures=str(_failed(run.results)),
+                         errors=str(int(run.build_failed)), skipped=str(sum(r.skipped for r in run.results)),
+                         time=f"{run.seconds:.3f}")
     ET.indent(suites)
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(suites, encoding="unicode") + "\n"
 
