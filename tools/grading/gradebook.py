@@ -40,18 +40,14 @@ KEY_ROLES = ("email", "username", "idnumber", "id")  # a submission's folder nam
 def _delimiter(text: str) -> str:
     """Comma, semicolon or tab: the one that splits the header into the most fields (a header holds
     none of the others); on a tie, one no row has more fields than the header with."""
-    best, best_key = ",", (0, False)
-    for delimiter in (",", ";", "\t"):
+    def key(delimiter: str) -> tuple[int, bool]:
         try:
             rows = [r for r in csv.reader(io.StringIO(text, newline=""), delimiter=delimiter) if r]
         except csv.Error:
-            continue
-        if not rows:
-            continue
-        key = (len(rows[0]), all(len(r) <= len(rows[0]) for r in rows))
-        if key > best_key:
-            best, best_key = delimiter, key
-    return best
+            return 0, False
+        return (len(rows[0]), all(len(r) <= len(rows[0]) for r in rows)) if rows else (0, False)
+
+    return max((",", ";", "\t"), key=key)
 
 
 def read_csv(path: Path, option: str) -> list[tuple[int, list[str]]]:

@@ -35,19 +35,15 @@ class GradeRun:
     build_output: str = ""
     problems: list[str] = field(default_factory=list)  # crashes, timeouts, missing programs
     seconds: float = 0.0
-    # Attributed build failure: only the student's files named here failed;
-    # each was replaced by its stub and the rest was graded (file -> compiler output).
+    # The student's files that alone failed to build, each graded as its stub (file -> compiler output).
     fallbacks: dict[str, str] = field(default_factory=dict)
     link_failures: set[str] = field(default_factory=set)  # the fallbacks that compiled but did not link
-    # The instructor's hidden tests did not build: the grader is misconfigured.
-    hidden_build_failed: bool = False
+    hidden_build_failed: bool = False  # the instructor's hidden tests did not build: a misconfigured grader
     hidden_build_output: str = ""
-    # What the autograder did with the upload (autograder.install_submission).
-    submission: dict[str, Any] | None = None
-    # False when the build failure is not the student's (a broken tree).
-    blame_student: bool = True
-    # For instructors only: what the suspicious-code checks noticed (they advise, they never
-    # decide), tampering the runner saw, processes killed, the grader's own problems.
+    submission: dict[str, Any] | None = None  # what the autograder did with the upload (install_submission)
+    blame_student: bool = True  # False when the build failure is not the student's (a broken tree)
+    # For instructors only: what the suspicious-code checks noticed (they advise, never decide),
+    # tampering the runner saw, processes killed, the grader's own problems.
     review: list[str] = field(default_factory=list)
 
     def lesson_status(self, lesson: str) -> str:
@@ -102,10 +98,8 @@ def score_table(run: GradeRun, for_students: bool = False) -> str:
     hide = for_students and (run.hidden_build_failed or any(r.hidden for r in run.results))
     header = ("lesson", "tests passed", "points")
     body = _rows(run, with_hidden=not hide)
-    shown = [r for r in run.results if not (hide and r.hidden)]
-    score, max_score = sum(r.score for r in shown), sum(r.points for r in shown)
-    passed, points = _cells(shown)
-    footer = ("total", passed, f"{points}  ({100.0 * score / max_score if max_score else 0.0:.0f}%)")
+    passed, points = _cells(run.results)  # (only shown when nothing is hidden)
+    footer = ("total", passed, f"{points}  ({100.0 * run.score / run.max_score if run.max_score else 0.0:.0f}%)")
     rows = [header, *body] + ([] if hide else [footer])
     widths = [max(len(row[i]) for row in rows) for i in range(3)]
 
@@ -123,8 +117,8 @@ def score_table(run: GradeRun, for_students: bool = False) -> str:
 
 
 def _visible_problems(run: GradeRun) -> list[str]:
-    """Problems a student may read: none about the hidden tests' program, and
-    the ones of a single test only counted (each test's entry says why)."""
+    """Problems a student may read: none about the hidden tests' program, and the ones of a single test
+    only counted (each test's entry says why)."""
     hidden_names = [r.name for r in run.results if r.hidden and r.name]
     problems = [p for p in run.problems if "tests_hidden" not in p and not any(n in p for n in hidden_names)]
     per_test = sum(part.count(': test "') for part in problems)
@@ -146,12 +140,10 @@ def failure_summary(run: GradeRun, root: Path | None = None) -> str:
     for result in run.results:
         if result.passed or result.hidden or result.skipped:
             continue
-        first = next((f for f in result.failures), None)
-        if first is not None:
-            where = f"{_short_path(first.file, root)}:{first.line}: " if first.file else ""
-            why = where + first.headline()
-        else:
-            why = result.note or "failed"
+        why = result.note or "failed"
+        if result.failures:
+            first = result.failures[0]
+            why = (f"{_short_path(first.file, root)}:{first.line}: " if first.file else "") + first.headline()
         lines.append(f"  lesson{result.lesson}: {result.name}\n      {why.splitlines()[0] if why else ''}")
     if not lines:
         return ""
@@ -180,14 +172,11 @@ def submission_summary(run: GradeRun) -> str:
     info = run.submission
     if not info:
         return ""
-    lines = ["**What was graded**", ""]
-    for used in info.get("installed", []):
-        lines.append(f"- used `{used['file']}` as `{used['target']}`"
-                     + (f" ({used['note']})" if used.get("note") else ""))
-    for ignored in info.get("ignored", []):
-        lines.append(f"- ignored `{ignored['file']}`: {ignored['reason']}")
-    for note in info.get("notes", []):
-        lines.append(f"- {note}")
+    lines = ["**What was graded**", "",
+             *(f"- used `{u['file']}` as `{u['target']}`" + (f" ({u['note']})" if u.get("note") else "")
+               for u in info.get("installed", [])),
+             *(f"- ignored `{i['file']}`: {i['reason']}" for i in info.get("ignored", [])),
+             *(f"- {note}" for note in info.get("notes", []))]
     used = {Path(item["target"]).name for item in info.get("installed", [])}
     missing = [name for name in info.get("expected", []) if name not in used]
     if info.get("installed") and missing:
@@ -202,13 +191,10 @@ def submission_summary(run: GradeRun) -> str:
 
 def machine_summary(run: GradeRun) -> dict[str, Any]:
     """results.json's ``extra_data``: what tools/grade --batch reads back (per lesson, flags, build problems)."""
-    lessons = {}
-    for lesson in run.lessons:
-        group = [r for r in run.results if r.lesson == lesson]
-        lessons[lesson] = {"status": run.lesson_status(lesson), "score": sum(r.score for r in group),
-                           "max_score": sum(r.points for r in group)}
+    groups = {lesson: [r for r in run.results if r.lesson == lesson] for lesson in run.lessons}
     return {"illum": {
-        "lessons": lessons,
+        "lessons": {lesson: {"status": run.lesson_status(lesson), "score": sum(r.score for r in group),
+                             "max_score": sum(r.points for r in group)} for lesson, group in groups.items()},
         "tests": [{"name": test_name(r), "lesson": r.lesson, "hidden": r.hidden, "score": r.score,
                    "max_score": r.points} for r in run.results],
         "not_gradable": ([f"{f} did not {'link' if f in run.link_failures else 'compile'}" for f in run.fallbacks]
