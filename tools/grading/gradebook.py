@@ -101,11 +101,8 @@ class Roster:
 
     def value(self, row: dict[str, str], role: str) -> str:
         """The first filled column of ``role`` in ``row`` ("" if none)."""
-        if role == "idnumber" and not self.from_canvas:
-            headers = self.columns.get("idnumber", []) + self.columns.get("id", [])
-        else:
-            headers = self.columns.get(role, [])
-        return next((row[h] for h in headers if row.get(h)), "")
+        extra = self.columns.get("id", []) if role == "idnumber" and not self.from_canvas else []
+        return next((row[h] for h in self.columns.get(role, []) + extra if row.get(h)), "")
 
     def names(self, row: dict[str, str]) -> tuple[str, str]:
         """(full name as "First Last", sortable name as "Last, First"), from whichever name columns exist."""
@@ -185,13 +182,9 @@ def read_roster(path: Path) -> Roster:
         for h, value in zip(headers, fields):
             row.setdefault(h, value.strip())
         for key in roster.keys:  # (a row without any stays: a student listed as missing, never dropped)
-            value = row.get(key, "").casefold()
-            if not value:
-                continue
-            if (key, value) in seen:
-                raise RosterError(f"--roster {path}: lines {seen[key, value]} and {line} have the same {key} "
+            if (value := row.get(key, "").casefold()) and (first := seen.setdefault((key, value), line)) != line:
+                raise RosterError(f"--roster {path}: lines {first} and {line} have the same {key} "
                                   f"'{row[key]}'; each student must be one row (one of the two would get no grade)")
-            seen[key, value] = line
         roster.rows.append(row)
         roster.lines.append(line)
     return roster

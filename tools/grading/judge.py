@@ -30,8 +30,6 @@ class Verdict:
         return not self.passed and bool(self.failures) and all(f.not_implemented for f in self.failures)
 
 
-# --- values ------------------------------------------------------------------------------------
-
 def _number(value: Any) -> float | int | None:
     """A JSON value as the number it stands for (non-finite doubles are {"double": "nan"})."""
     if isinstance(value, (int, float)) and not isinstance(value, bool):
@@ -39,12 +37,6 @@ def _number(value: Any) -> float | int | None:
     if isinstance(value, dict) and set(value) == {"double"}:
         return {"nan": math.nan, "inf": math.inf, "-inf": -math.inf}.get(value["double"])
     return None
-
-
-def _approx_equal(actual: float, approx: dict) -> bool:
-    """doctest's Approx: |a − v| < ε·(scale + max(|a|, |v|)), in the same double arithmetic."""
-    value, epsilon, scale = float(approx["approx"]), float(approx["epsilon"]), float(approx["scale"])
-    return abs(actual - value) < epsilon * (scale + max(abs(actual), abs(value)))
 
 
 def _equal(a: Any, b: Any) -> bool:
@@ -84,8 +76,9 @@ def holds(op: str, lhs: Any, rhs: Any) -> bool:
     if isinstance(rhs, dict) and "approx" in rhs:
         if (number := _number(lhs)) is None:
             return False
-        x, value = float(number), float(rhs["approx"])
-        equal = _approx_equal(x, rhs)
+        # doctest's Approx: |x − v| < ε·(scale + max(|x|, |v|)), in the same double arithmetic
+        x, value, epsilon, scale = float(number), float(rhs["approx"]), float(rhs["epsilon"]), float(rhs["scale"])
+        equal = abs(x - value) < epsilon * (scale + max(abs(x), abs(value)))
         return {"==": equal, "!=": not equal, "<": x < value and not equal, "<=": x < value or equal,
                 ">": x > value and not equal, ">=": x > value or equal}[op]
     if op in ("==", "!="):
@@ -101,8 +94,6 @@ def describe(value: Any) -> str:
         return "true" if value else "false"
     if isinstance(value, float):
         return f"{value:.17g}"
-    if isinstance(value, int):
-        return str(value)
     if isinstance(value, str):
         return '"' + value + '"'
     if value is None:
@@ -136,8 +127,6 @@ def first_difference(lhs: Any, rhs: Any) -> str:
             return f"first difference at [{index}]: " + (inner or f"{describe(p)} where {describe(q)} was expected")
     return ""
 
-
-# --- one check -----------------------------------------------------------------------------------
 
 def _site(record: dict) -> tuple[str, int]:
     return normal_file(str(record.get("file", ""))), int(record.get("line", 0) or 0)
@@ -202,8 +191,6 @@ def _explain(witness: dict, lhs: Any) -> str:
     difference = first_difference(lhs, witness.get("rhs"))
     return text + (f"\n  {difference}" if difference else "")
 
-
-# --- one test ------------------------------------------------------------------------------------
 
 def judge_test(witness: list[dict], observed: list[dict], stopped: str = "", hidden: bool = False) -> Verdict:
     """The verdict of one test.

@@ -78,17 +78,6 @@ def _cells(group: list[TestResult]) -> tuple[str, str]:
     return f"{sum(r.passed for r in group)}/{len(group)}", points
 
 
-def _rows(run: GradeRun, with_hidden: bool = True) -> list[tuple[str, str, str]]:
-    """(label, tests passed, points) per lesson, visible then hidden."""
-    rows = []
-    for lesson in run.lessons:
-        for hidden in (False, True) if with_hidden else (False,):
-            group = [r for r in run.results if r.lesson == lesson and r.hidden == hidden]
-            if group or not hidden:
-                rows.append((f"{lesson} (hidden)" if hidden else lesson, *_cells(group)))
-    return rows
-
-
 def score_table(run: GradeRun, for_students: bool = False) -> str:
     """The table printed at the end of a run, one row per lesson. `for_students` (results.json): while
     hidden tests exist, neither their row nor the total is shown, as Gradescope hides the total then."""
@@ -97,17 +86,16 @@ def score_table(run: GradeRun, for_students: bool = False) -> str:
     # Any entry hidden from students (a hidden test, or the hidden tests' failed build) hides the total.
     hide = for_students and (run.hidden_build_failed or any(r.hidden for r in run.results))
     header = ("lesson", "tests passed", "points")
-    body = _rows(run, with_hidden=not hide)
+    # (label, tests passed, points) per lesson, visible then hidden
+    body = [(f"{lesson} (hidden)" if hidden else lesson, *_cells(group)) for lesson in run.lessons
+            for hidden in ((False,) if hide else (False, True))
+            if (group := [r for r in run.results if r.lesson == lesson and r.hidden == hidden]) or not hidden]
     passed, points = _cells(run.results)  # (only shown when nothing is hidden)
     footer = ("total", passed, f"{points}  ({100.0 * run.score / run.max_score if run.max_score else 0.0:.0f}%)")
-    rows = [header, *body] + ([] if hide else [footer])
-    widths = [max(len(row[i]) for row in rows) for i in range(3)]
-
-    def line(row: tuple[str, str, str]) -> str:
-        return "  ".join(cell.ljust(width) for cell, width in zip(row, widths)).rstrip()
-
-    rule = "  ".join("-" * w for w in widths)
-    lines = [line(header), rule, *map(line, body)] + ([] if hide else [rule, line(footer)])
+    widths = [max(len(row[i]) for row in [header, *body] + ([] if hide else [footer])) for i in range(3)]
+    rule = tuple("-" * w for w in widths)
+    lines = ["  ".join(cell.ljust(width) for cell, width in zip(row, widths)).rstrip()
+             for row in [header, rule, *body] + ([] if hide else [rule, footer])]
     if hide:
         lines.append("Hidden tests are graded too; your total appears when your instructor publishes the scores.")
     if not run.results:

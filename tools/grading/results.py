@@ -52,24 +52,19 @@ class Failure:
         got, expected = self.expansion.split(" == ")
         return got.strip(), expected.strip()
 
-    def headline(self) -> str:
-        """One line: which check, and the values it saw."""
+    def headline(self, lines: bool = False) -> str:
+        """One line (with ``lines``, the values on lines of their own): which check, and the values it saw."""
         if self.not_implemented:
             return f"not implemented yet: {self.exception}"
         if pair := self.got_expected():
-            return f"{self.message.split(' is NOT correct')[0]} failed: got {pair[0]}, expected {pair[1]}"
+            check = self.message.split(" is NOT correct")[0]
+            return (f"{check} failed\n  got:      {pair[0]}\n  expected: {pair[1]}" if lines else
+                    f"{check} failed: got {pair[0]}, expected {pair[1]}")
         return self.message
 
     def describe(self, root: Path | None = None) -> str:
         """A few lines a student can act on: where, what, and the test's explanation."""
-        where = f"{_short_path(self.file, root)}:{self.line}: " if self.file else ""
-        if self.not_implemented:
-            text = f"{where}not implemented yet: {self.exception}"
-        elif pair := self.got_expected():
-            text = (f"{where}{self.message.split(' is NOT correct')[0]} failed\n  got:      {pair[0]}\n"
-                    f"  expected: {pair[1]}")
-        else:
-            text = f"{where}{self.message}"
+        text = (f"{_short_path(self.file, root)}:{self.line}: " if self.file else "") + self.headline(lines=True)
         if self.subcases:
             text += "\n  in subcase: " + " / ".join(self.subcases)
         if self.context:
