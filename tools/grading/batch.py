@@ -1,7 +1,6 @@
-"""`tools/grade --batch DIR`: a folder of submissions (a folder or a zip per student) graded as the
-autograder grades one, written to --out (docs/grading.md, "Batch grading"): each worker prepares the
-autograder as on Gradescope, then grades each submission in a fresh copy of it as its own user, with
-Gradescope's limits; grades.csv (and the gradebooks' files, tools/grading/gradebook.py) at the end."""
+"""`tools/grade --batch DIR` (docs/grading.md, "Batch grading"): each worker prepares the autograder as on
+Gradescope, then grades each submission (a folder or a zip per student) in a fresh copy of it as its own
+user, with Gradescope's limits; grades.csv and the gradebooks' files (gradebook.py) go to --out."""
 from __future__ import annotations
 
 import json
@@ -67,21 +66,18 @@ def discover(folder: Path) -> tuple[list[Submission], list[str]]:
 def outcome_of(ident: str, data: dict | None) -> Outcome:
     """A student's row, read from their results.json (its extra_data, written by tools/grade)."""
     outcome = Outcome(ident)
-    info = (data or {}).get("extra_data", {}).get("illum") if isinstance(data, dict) else None
+    info = data.get("extra_data", {}).get("illum") if isinstance(data, dict) else None
     if not info or info.get("grader_error"):
         outcome.status = "grader error"
         outcome.notes.append("the grader could not build the tree (see grader.log)" if info else
                              "no results from the grader" if data is None else "the grader itself failed")
         return outcome
-    outcome.lessons = info.get("lessons", {})
-    outcome.tests = {t["name"]: float(t["score"]) for t in info.get("tests", [])}
-    for test in info.get("tests", []):
-        if test.get("hidden"):
-            outcome.has_hidden = True
-        else:  # what the student may see: the visible tests' scores
-            score, top = outcome.visible.get(test.get("lesson", ""), (0.0, 0.0))
-            outcome.visible[test.get("lesson", "")] = (score + float(test["score"]),
-                                                       top + float(test.get("max_score", 0)))
+    tests = info.get("tests", [])
+    outcome.lessons, outcome.tests = info.get("lessons", {}), {t["name"]: float(t["score"]) for t in tests}
+    outcome.has_hidden = any(t.get("hidden") for t in tests)
+    for test in (t for t in tests if not t.get("hidden")):  # what the student may see: the visible tests' scores
+        score, top = outcome.visible.get(lesson := test.get("lesson", ""), (0.0, 0.0))
+        outcome.visible[lesson] = (score + float(test["score"]), top + float(test.get("max_score", 0)))
     gradable = [nn for nn, v in outcome.lessons.items() if v.get("status") != "not gradable"]
     outcome.max_score = sum(float(v.get("max_score", 0)) for v in outcome.lessons.values())
     outcome.status = ("not gradable" if not gradable else "graded" if len(gradable) == len(outcome.lessons)
@@ -89,7 +85,7 @@ def outcome_of(ident: str, data: dict | None) -> Outcome:
     if gradable:
         outcome.total = sum(float(outcome.lessons[nn].get("score", 0)) for nn in gradable)
     shared = list(info.get("not_gradable", []))
-    if "none of your files is an exercise file" in (data or {}).get("output", ""):
+    if "none of your files is an exercise file" in data.get("output", ""):
         shared.append("no exercise file in the submission")
     outcome.notes.extend(shared)
     outcome.student_notes.extend(shared)
@@ -117,9 +113,8 @@ def run_environment(base: dict[str, str]) -> dict[str, str]:
 
 
 def setup_environment(base: dict[str, str]) -> dict[str, str]:
-    """setup.sh's, as on Gradescope: without a student run's limits; its builds (the whole library, cold)
-    get ILLUM_GRADE_SETUP_BUILD_TIMEOUT seconds if set, else none (ILLUM_GRADE_BUILD_TIMEOUT, 300 s, is
-    the limit of a student's rebuild)."""
+    """setup.sh's, as on Gradescope: without a student run's limits; its builds (the library, cold) get
+    ILLUM_GRADE_SETUP_BUILD_TIMEOUT seconds if set, else none (not a student rebuild's limit)."""
     env = {k: v for k, v in base.items() if k != "ILLUM_GRADE_BUILD_TIMEOUT"}
     if limit := base.get("ILLUM_GRADE_SETUP_BUILD_TIMEOUT", "").strip():
         env["ILLUM_GRADE_BUILD_TIMEOUT"] = limit
