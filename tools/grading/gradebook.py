@@ -267,9 +267,9 @@ def grades_rows(outcomes: list[Outcome], lessons: list[str], roster: Roster | No
 
 def _looks(idents: list[str]) -> str:
     """What folder names are, without a roster: e-mails, numbers (ID numbers), else user names."""
-    if not idents:
-        return "username"
-    return "email" if all("@" in i for i in idents) else "idnumber" if all(i.isdigit() for i in idents) else "username"
+    if idents and all("@" in i for i in idents):
+        return "email"
+    return "idnumber" if idents and all(i.isdigit() for i in idents) else "username"
 
 
 MOODLE_HEADERS = {"email": "Email address", "username": "Username", "idnumber": "ID number"}
@@ -279,24 +279,20 @@ def moodle_rows(outcomes: list[Outcome], roster: Roster | None, assignment: str)
     """Moodle's grade import (Grades > Import > CSV file): the user column (map it to the field its header
     names), the full name (ignored by the import), the grade and the feedback (map them to the grade item
     and its feedback). Returns the rows and what was left out, and why."""
-    left_out: list[str] = []
     if roster is None:
         role = _looks([o.ident for o in outcomes])
-        who = {id(o): o.ident for o in outcomes}
-    else:
-        # The identity the roster fills on the most rows; on a tie e-mail, then ID number, then user name.
-        counts = {r: sum(bool(roster.value(o.roster, r)) for o in outcomes if o.line is not None)
-                  for r in ("email", "idnumber", "username")}
-        role = max(counts, key=lambda r: counts[r])
-        who = {id(o): roster.value(o.roster, role) for o in outcomes if o.line is not None}
-    rows = [[MOODLE_HEADERS[role], "Full name", assignment, f"{assignment} (feedback)"]]
+    else:  # the identity the roster fills on the most rows; on a tie e-mail, then ID number, then user name
+        rows = [o.roster for o in outcomes if o.line is not None]
+        role = max(("email", "idnumber", "username"), key=lambda r: sum(bool(roster.value(row, r)) for row in rows))
+    rows, left_out = [[MOODLE_HEADERS[role], "Full name", assignment, f"{assignment} (feedback)"]], []
     for o in outcomes:
-        if not who.get(id(o)):
+        user = o.ident if roster is None else roster.value(o.roster, role) if o.line is not None else ""
+        if user:
+            rows.append([user, roster.names(o.roster)[0] if roster else "", number(o.total) if o.graded else "",
+                         feedback(o)])
+        else:
             left_out.append(f"{o.ident}: " + ("no row of the roster matches this submission" if o.line is None else
                                               f"the roster's line {o.line} has no {MOODLE_HEADERS[role].lower()}"))
-            continue
-        name = roster.names(o.roster)[0] if roster else ""
-        rows.append([who[id(o)], name, number(o.total) if o.graded else "", feedback(o)])
     return rows, left_out
 
 

@@ -43,9 +43,7 @@ def _equal(a: Any, b: Any) -> bool:
     """C++'s == on the two values as written (numbers compared as the program compares them)."""
     x, y = _number(a), _number(b)
     if x is not None and y is not None:
-        if isinstance(x, float) or isinstance(y, float):
-            return float(x) == float(y)
-        return x == y
+        return float(x) == float(y) if isinstance(x, float) or isinstance(y, float) else x == y
     if isinstance(a, list) and isinstance(b, list):
         return len(a) == len(b) and all(_equal(p, q) for p, q in zip(a, b))
     if isinstance(a, dict) and isinstance(b, dict) and "pointer" in a and "pointer" in b:

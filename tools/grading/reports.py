@@ -67,15 +67,13 @@ def exit_code(run: GradeRun) -> int:
     report success); 2: no build."""
     if run.build_failed or run.hidden_build_failed:
         return EXIT_NOT_BUILT
-    if not run.results:
-        return EXIT_FAILED
-    return EXIT_PASSED if all(r.passed for r in run.results) else EXIT_FAILED
+    return EXIT_PASSED if run.results and all(r.passed for r in run.results) else EXIT_FAILED
 
 
 def _cells(group: list[TestResult]) -> tuple[str, str]:
     """A row's "tests passed" and "points": 3/4 and 3/5."""
-    points = f"{sum(r.score for r in group):g}/{sum(r.points for r in group):g}"
-    return f"{sum(r.passed for r in group)}/{len(group)}", points
+    return (f"{sum(r.passed for r in group)}/{len(group)}",
+            f"{sum(r.score for r in group):g}/{sum(r.points for r in group):g}")
 
 
 def score_table(run: GradeRun, for_students: bool = False) -> str:
@@ -287,16 +285,15 @@ def junit_xml(run: GradeRun, root: Path | None = None) -> str:
                               errors="0", skipped=str(sum(r.skipped for r in group)),
                               time=f"{sum(r.seconds for r in group):.6f}")
         for result in group:
-            attributes = {"classname": name, "name": _xml_text(result.name), "time": f"{result.seconds:.6f}"}
-            if result.file:
-                attributes.update(file=_xml_text(result.file), line=str(result.line))
-            case = ET.SubElement(suite, "testcase", attributes)
+            case = ET.SubElement(suite, "testcase", classname=name, name=_xml_text(result.name),
+                                 time=f"{result.seconds:.6f}",
+                                 **({"file": _xml_text(result.file), "line": str(result.line)} if result.file else {}))
             if result.skipped:
                 ET.SubElement(case, "skipped")
             elif not result.passed:
-                kind = "NotImplemented" if result.not_implemented_only else "AssertionFailure"
                 first = result.failures[0].describe(root).splitlines()[0] if result.failures else result.note
-                failure = ET.SubElement(case, "failure", message=_xml_text(first), type=kind)
+                failure = ET.SubElement(case, "failure", message=_xml_text(first),
+                                        type="NotImplemented" if result.not_implemented_only else "AssertionFailure")
                 failure.text = _xml_text(result.output(root))
     suites.attrib.update(tests=str(len(run.results) + run.build_failed), failures=str(_failed(run.results)),
                          errors=str(int(run.build_failed)), skipped=str(sum(r.skipped for r in run.results)),
