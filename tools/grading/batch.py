@@ -15,6 +15,7 @@ import threading
 import time
 import zipfile
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import suppress
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -101,10 +102,8 @@ def _hand_back(path: Path) -> None:
         return
     for item in [path, *path.rglob("*")]:
         if ".work" not in item.relative_to(path).parts[:1]:
-            try:
+            with suppress(OSError):
                 os.chown(item, int(uid), int(gid), follow_symlinks=False)
-            except OSError:
-                pass
 
 
 def run_environment(base: dict[str, str]) -> dict[str, str]:
@@ -138,7 +137,7 @@ class Slots:
     """Prepared trees, one per worker, each at the path where it grades (a CMake build tree cannot move)."""
 
     def __init__(self, work: Path, count: int, zip_path: Path, env: dict[str, str]) -> None:
-        self.work, self.zip_path, self.env = work, zip_path, env
+        self.zip_path, self.env = zip_path, env
         self.folders = [work / f"slot-{k}" for k in range(1, count + 1)]
         base = os.environ.get("ILLUM_GRADE_USER") or "illum-student"
         self.users = [base] + [f"{base}-{k}" for k in range(2, count + 1)]
@@ -214,10 +213,8 @@ def grade_one(slots: Slots, k: int, submission: Submission, out: Path, timeout: 
     if results.is_file():
         text = results.read_text(encoding="utf-8", errors="replace")
         write_text(target / "results.json", text)
-        try:
+        with suppress(ValueError):
             data = json.loads(text)
-        except ValueError:
-            pass
     write_text(target / "grader.log", log[-2_000_000:])
     outcome = outcome_of(submission.ident, data)
     outcome.notes += [stopped] if stopped else []
@@ -252,10 +249,9 @@ def _seconds(name: str, default: float | None) -> float | None:
     text = os.environ.get(name, "").strip()
     if not text:
         return default
-    try:
+    value = 0.0
+    with suppress(ValueError):
         value = float(text)
-    except ValueError:
-        value = 0.0
     if not value > 0 or value == float("inf"):
         raise BatchError(f"{name}={text}: not a number of seconds above 0 (unset it for the default)")
     return value
@@ -360,14 +356,13 @@ class Batch:
             with ThreadPoolExecutor(max_workers=self.jobs - 1) as pool:
                 prepared += list(pool.map(slots.prepare, range(1, self.jobs)))
         setup_log = self.out / "setup.log"
-        write_text(setup_log, prepared[0][1])
-        setup_log.chmod(0o600)
+        write_text(setup_log, prepared[0][1], mode=0o600)
         for k, (status, log) in enumerate(prepared):
             if status != 0:
                 why = explain_setup_failure(log, env)
                 say(f"setup.sh failed in worker {k + 1} (its log: {setup_log}):\n{log[-3000:]}"
                     + (f"\ntools/grade --batch: {why}" if why else ""))
-                write_text(setup_log, log + (f"\n{why}\n" if why else ""))
+                write_text(setup_log, log + (f"\n{why}\n" if why else ""), mode=0o600)
                 return None
         return slots
 
@@ -400,8 +395,7 @@ class Batch:
             make = moodle_rows if self.args.format == "moodle" else canvas_rows
             files[f"grades-{self.args.format}.csv"], left_out = make(rows, self.roster, self.args.assignment)
         for name, table in files.items():
-            write_text(self.out / name, csv_text(table))
-            (self.out / name).chmod(0o600)
+            write_text(self.out / name, csv_text(table), mode=0o600)
         for line in left_out:
             say(f"left out of grades-{self.args.format}.csv: {line}")
         _hand_back(self.out)

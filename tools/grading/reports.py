@@ -306,10 +306,10 @@ class OutputError(Exception):
     """An output file could not be written (its message names the file and why)."""
 
 
-def write_text(path: Path, text: str) -> None:
+def write_text(path: Path, text: str, mode: int = 0o644) -> None:
     """Writes atomically (never half a file, nor a temporary left behind); OutputError says why not."""
     try:
-        atomic_write_text(path, text)
+        atomic_write_text(path, text, mode)
     except OSError as error:
         reason = "No space left on device (the disk is full)" if error.errno == errno.ENOSPC else \
             error.strerror or str(error)
