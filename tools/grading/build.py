@@ -1,8 +1,6 @@
 """Configuring and building a grading tree with CMake, and blaming a failed build on the student's files.
-
-The reference is graded in its own tree (build/grade-reference), a student's code in the student's
-(build/student, as the preset configures it), the autograder's in build/grade-student; only the test
-programs graded are built."""
+The reference is graded in build/grade-reference, a student's code in build/student (the preset's), the
+autograder's in build/grade-student; only the test programs graded are built."""
 from __future__ import annotations
 
 import os
@@ -53,8 +51,7 @@ def _head_and_tail(stream, echo: bool) -> tuple[bytearray, bytearray, int]:
             room = HEAD_BYTES - len(head)
             head += chunk[:room]
             if echo:
-                sys.stderr.write(chunk[:room].decode("utf-8", errors="replace"))
-                sys.stderr.flush()
+                print(chunk[:room].decode("utf-8", errors="replace"), end="", file=sys.stderr, flush=True)
             chunk = chunk[room:]
         tail += chunk
         del tail[:max(0, len(tail) - TAIL_BYTES)]

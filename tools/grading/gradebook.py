@@ -7,6 +7,7 @@ import csv
 import io
 import re
 import unicodedata
+from collections import defaultdict
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -60,8 +61,7 @@ def read_csv(path: Path, option: str) -> list[tuple[int, list[str]]]:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as error:
         line = raw[:error.start].count(b"\n") + 1
-        raise RosterError(f"{option} {path}: line {line} is not UTF-8 text: save the "
-                          "file as \"CSV UTF-8\"") from None
+        raise RosterError(f"{option} {path}: line {line} is not UTF-8 text: save the file as \"CSV UTF-8\"") from None
     reader = csv.reader(io.StringIO(text, newline=""), delimiter=_delimiter(text), strict=True)
     records, start = [], 1
     try:
@@ -121,14 +121,13 @@ class Roster:
         A folder name is compared, ignoring case, with each id, user name and e-mail of the roster,
         and with an e-mail's part before the @. Refused (RosterError): a name that matches two rows,
         two submissions that match one row; either would lose a grade without a word."""
-        by_value: dict[str, set[int]] = {}
+        by_value: dict[str, set[int]] = defaultdict(set)
         for index, row in enumerate(self.rows):
             for key in self.keys:
-                value = row.get(key, "").strip().casefold()
-                if value:
-                    by_value.setdefault(value, set()).add(index)
+                if value := row.get(key, "").strip().casefold():
+                    by_value[value].add(index)
                     if key in self.columns.get("email", []) and "@" in value:
-                        by_value.setdefault(value.split("@", 1)[0], set()).add(index)
+                        by_value[value.split("@", 1)[0]].add(index)
         matched: dict[int, object] = {}
         unmatched, problems = [], []
         for submission in submissions:

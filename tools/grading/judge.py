@@ -145,7 +145,7 @@ def check_passes(witness: dict, lhs: Any) -> bool:
     if _threw(lhs) is not None:
         return False
     if "THROWS" in kind or "NOTHROW" in kind:
-        if not isinstance(lhs, dict) or "threw" not in lhs:
+        if not (isinstance(lhs, dict) and "threw" in lhs):
             return False
         if kind.endswith("NOTHROW"):
             return not lhs["threw"]
@@ -191,12 +191,9 @@ def _explain(witness: dict, lhs: Any) -> str:
 
 
 def judge_test(witness: list[dict], observed: list[dict], stopped: str = "", hidden: bool = False) -> Verdict:
-    """The verdict of one test.
-
-    ``witness``: the trusted run's check records of the test, in order (every one passed there);
-    ``observed``: the observer's check records of the test, in order; ``stopped``: why the
-    observer's run of the test ended early ('' when it ended normally): an exception that left
-    the test (its text), a crash, a time-out."""
+    """The verdict of one test. ``witness``: the trusted run's check records of the test, in order (every one
+    passed there); ``observed``: the observer's, in order; ``stopped``: why the observer's run of the test
+    ended early ('' when it ended normally): an exception that left the test (its text), a crash, a time-out."""
     if not witness:
         raise JudgeError("the reference's run of this test made no check")
     failures: list[Failure] = []

@@ -147,9 +147,7 @@ def test_name(result: TestResult) -> str:
 
 def _fence(text: str) -> str:
     """A Markdown code block that keeps a table's columns and a compiler's <T>."""
-    fence = "```"
-    while fence in text:
-        fence += "`"
+    fence = "`" * max(3, 1 + max(map(len, re.findall("`+", text)), default=0))
     return f"{fence}text\n{text.rstrip()}\n{fence}"
 
 

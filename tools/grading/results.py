@@ -1,7 +1,6 @@
-"""Test results as the `illum-grade` doctest reporter (tests/support/grade_reporter.cpp) writes them: one
-JSON object a line, `"event": "test_case"` for a test that ran and `"listed"` for each test of
---list-test-cases. The listing (or the trusted list the autograder's setup kept) says which tests should
-have run, so a program that crashes or hangs half-way still yields a result for every test."""
+"""Test results as tests/support/grade_reporter.cpp writes them: one JSON object a line, `"event": "test_case"`
+for a test that ran and `"listed"` for each test of --list-test-cases. The listing (or the trusted list the
+autograder's setup kept) says which tests should have run, so a crash or a hang still yields every result."""
 from __future__ import annotations
 
 import itertools
@@ -10,8 +9,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-# "points=3" in a doctest description decorator gives a test more weight:
-#   TEST_CASE("..." * doctest::description("points=3"))
+# TEST_CASE("..." * doctest::description("points=3")) gives a test more weight.
 _POINTS = re.compile(r"\bpoints\s*=\s*([0-9]+(?:\.[0-9]+)?)")
 
 
