@@ -263,17 +263,14 @@ def _roster_rows(roster: Roster, outcomes: list[Outcome], matched: dict, unmatch
     by_ident = {o.ident: o for o in outcomes}
     rows = []
     for index, row in enumerate(roster.rows):
-        if index in matched:
-            outcome = by_ident[matched[index].ident]
-        else:
-            outcome = Outcome(next((v for r in ("username", "email", "idnumber", "id") if (v := roster.value(row, r))),
-                                   f"line {roster.lines[index]}"), status="missing")
+        outcome = by_ident[matched[index].ident] if index in matched else Outcome(next(
+            (v for r in ("username", "email", "idnumber", "id") if (v := roster.value(row, r))),
+            f"line {roster.lines[index]}"), status="missing")
         outcome.roster, outcome.line = row, roster.lines[index]
         rows.append(outcome)
     for submission in unmatched:
         by_ident[submission.ident].notes.append("not in the roster")
-        rows.append(by_ident[submission.ident])
-    return rows
+    return rows + [by_ident[s.ident] for s in unmatched]
 
 
 class Batch:
@@ -297,8 +294,7 @@ class Batch:
             raise BatchError(f"--batch {self.submissions_dir}: no submission (a folder or a .zip per student)")
         # Matched now, not after an hour of grading: a roster that would lose a grade stops the command here.
         self.matched, self.unmatched = self.roster.match(self.submissions) if self.roster else ({}, [])
-        cores = os.cpu_count() or 1
-        self.jobs = max(1, min(args.jobs or max(1, cores // 2), max(len(self.submissions), 1)))
+        self.jobs = max(1, min(args.jobs or max(1, (os.cpu_count() or 1) // 2), len(self.submissions)))
 
     def run(self) -> int:
         self._announce()
