@@ -18,6 +18,14 @@ from .sandbox import kill_group
 # TAIL_BYTES from its end; a student's file can make a compiler print without end.
 HEAD_BYTES = 256 * 1024
 TAIL_BYTES = 64 * 1024
+# A compiler or make error line that names an exercise unit, e.g.
+#   /…/exercises/01_ray_sphere/sphere.cpp:12:5: error: expected ';'
+#   make[2]: *** [… CMakeFiles/illum.dir/exercises/01_ray_sphere/sphere.cpp.o] Error 1
+_EXERCISE_FILE = re.compile(r"(exercises/\d\d_[^/\s:]+/[^/\s:\]]+\.cpp)")
+_ERROR_LINE = re.compile(r"\berror\b|\bError \d+|undefined reference", re.I)
+# The linker names an archive member as libillum.a(sphere.cpp.o), an object by its path.
+_MEMBER = re.compile(r"\(([^()\s]+\.cpp)\.o\)|/([^/\s:()]+\.cpp)\.o\b")
+_UNDEFINED = re.compile(r"undefined reference to [`'‘]([^'’]+)['’]")
 
 
 @dataclass
@@ -137,13 +145,6 @@ def build(build_dir: Path, targets: Sequence[str], echo: bool = True, runner: Ru
                          echo, runner=runner)
 
 
-# A compiler or make error line that names an exercise unit, e.g.
-#   /…/exercises/01_ray_sphere/sphere.cpp:12:5: error: expected ';'
-#   make[2]: *** [… CMakeFiles/illum.dir/exercises/01_ray_sphere/sphere.cpp.o] Error 1
-_EXERCISE_FILE = re.compile(r"(exercises/\d\d_[^/\s:]+/[^/\s:\]]+\.cpp)")
-_ERROR_LINE = re.compile(r"\berror\b|\bError \d+|undefined reference", re.I)
-
-
 def failed_exercise_files(output: str) -> list[str]:
     """The exercise units (``exercises/NN_topic/name.cpp``) a failed build blames, read from the lines that
     report an error; a unit named only in an "In file included from" line counts too (its include broke).
@@ -151,11 +152,6 @@ def failed_exercise_files(output: str) -> list[str]:
     return sorted({unit for line in output.splitlines()
                    if _ERROR_LINE.search(line) or line.lstrip().startswith("In file included from")
                    for unit in _EXERCISE_FILE.findall(line)})
-
-
-# The linker names an archive member as libillum.a(sphere.cpp.o), an object by its path.
-_MEMBER = re.compile(r"\(([^()\s]+\.cpp)\.o\)|/([^/\s:()]+\.cpp)\.o\b")
-_UNDEFINED = re.compile(r"undefined reference to [`'‘]([^'’]+)['’]")
 
 
 def linker_blames(output: str, units: dict[str, str], symbol_units: dict[str, str] | None = None) -> list[str]:

@@ -17,12 +17,9 @@ from .results import TestResult, _short_path
 EXIT_PASSED = 0
 EXIT_FAILED = 1
 EXIT_NOT_BUILT = 2
-
-# Gradescope visibility of an instructor's hidden tests: never shown to students.
-HIDDEN_VISIBILITY = "hidden"
-
-# Gradescope shows outputs in a browser; a full compiler log can be huge.
-MAX_OUTPUT_CHARS = 30_000
+HIDDEN_VISIBILITY = "hidden"  # Gradescope's visibility of an instructor's hidden tests: never shown to students
+MAX_OUTPUT_CHARS = 30_000  # Gradescope shows outputs in a browser; a full compiler log can be huge
+_XML_INVALID = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")  # XML 1.0 cannot hold these
 
 
 @dataclass
@@ -253,10 +250,6 @@ def _review_entries(run: GradeRun) -> list[dict[str, Any]]:
     """One entry hidden from students: what an instructor may want to look at (nothing fails for it)."""
     review = "\n".join(run.review)
     return [_entry("review (instructors only)", review, "passed", HIDDEN_VISIBILITY)] if run.review else []
-
-
-# Characters XML 1.0 cannot hold; a student's output may contain them.
-_XML_INVALID = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
 
 
 def _xml_text(text: str) -> str:

@@ -111,13 +111,9 @@ class TestResult:
         """What the student reads about this test: empty when it passed."""
         if self.passed:
             return ""
-        lines = [f"{_short_path(self.file, root)}:{self.line}: test case \"{self.name}\""] if self.file else []
-        if self.skipped:
-            lines.append("skipped by a doctest::skip() decorator")
-        if self.note:
-            lines.append(self.note)
-        lines.extend(f.describe(root) for f in self.failures)
-        return "\n".join(lines)
+        head = [f"{_short_path(self.file, root)}:{self.line}: test case \"{self.name}\"" if self.file else "",
+                "skipped by a doctest::skip() decorator" if self.skipped else "", self.note]
+        return "\n".join([*filter(None, head), *(f.describe(root) for f in self.failures)])
 
     @staticmethod
     def from_json(data: dict[str, Any], hidden: bool = False) -> "TestResult":
