@@ -45,8 +45,7 @@ def say(text: str) -> None:
 
 def discover(folder: Path) -> tuple[list[Submission], list[str]]:
     """The submissions of `folder` and the entries that are not one (with why)."""
-    found: dict[str, Submission] = {}
-    skipped: list[str] = []
+    found, skipped = {}, []
     for entry in sorted(folder.iterdir()):
         if entry.name.startswith(".") or entry.name == "__MACOSX":
             continue

@@ -36,6 +36,7 @@ ROLES: dict[str, set[str]] = {
     "section": {"section", "group", "grupo", "seccion"},
 }
 KEY_ROLES = ("email", "username", "idnumber", "id")  # a submission's folder name is matched against these
+MOODLE_HEADERS = {"email": "Email address", "username": "Username", "idnumber": "ID number"}
 
 
 def _delimiter(text: str) -> str:
@@ -162,8 +163,7 @@ def read_roster(path: Path) -> Roster:
     records = read_csv(path, "--roster")
     if not records:
         raise RosterError(f"--roster {path}: the file is empty")
-    header_line, header_fields = records[0]
-    headers = [h.strip() for h in header_fields]
+    header_line, headers = records[0][0], [h.strip() for h in records[0][1]]
     columns = {role: found for role, names in ROLES.items()
                if (found := list(dict.fromkeys(h for h in headers if normal(h) in names)))}
     roster = Roster(path, headers, [], [], columns)
@@ -269,9 +269,6 @@ def _looks(idents: list[str]) -> str:
     if idents and all("@" in i for i in idents):
         return "email"
     return "idnumber" if idents and all(i.isdigit() for i in idents) else "username"
-
-
-MOODLE_HEADERS = {"email": "Email address", "username": "Username", "idnumber": "ID number"}
 
 
 def moodle_rows(outcomes: list[Outcome], roster: Roster | None, assignment: str) -> tuple[list[list[str]], list[str]]:

@@ -237,11 +237,10 @@ def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any
                     "fault: tell your instructor). Nothing was graded.")
         return {"score": 0, "output": "\n\n".join(part for part in (summary, headline) if part), **common,
                 "tests": [_build_entry("build", run.build_output)] + _review_entries(run)}
-    parts = [summary, _fallback_summary(run) if run.fallbacks else ""]
-    if run.hidden_build_failed:
-        parts.append("The grader is misconfigured: some of the instructor's tests could not be built. This is not "
-                     "your code's fault; your visible tests were graded, and your instructor has been shown why.")
-    parts.append(_fence(score_table(run, for_students=True)))
+    parts = [summary, _fallback_summary(run) if run.fallbacks else "",
+             "The grader is misconfigured: some of the instructor's tests could not be built. This is not your code's "
+             "fault; your visible tests were graded, and your instructor has been shown why." if run.hidden_build_failed
+             else "", _fence(score_table(run, for_students=True))]
     return {"score": run.score, "max_score": run.max_score, "output": "\n\n".join(part for part in parts if part),
             **common, "tests": _test_entries(run, root)}
 
