@@ -210,11 +210,11 @@ class Outcome:
         return self.status in ("graded", "partly gradable") and self.total is not None
 
     def describe(self) -> str:
-        if self.graded:
-            percent = 100.0 * self.total / self.max_score if self.max_score else 0.0
-            text = f"{number(self.total)}/{number(self.max_score)} ({percent:.0f}%)"
-            return text + (f", {self.status}" if self.status != "graded" else "")
-        return self.status
+        if not self.graded:
+            return self.status
+        percent = 100.0 * self.total / self.max_score if self.max_score else 0.0
+        return f"{number(self.total)}/{number(self.max_score)} ({percent:.0f}%)" + (
+            f", {self.status}" if self.status != "graded" else "")
 
 
 def number(x: float | None) -> str:
@@ -298,12 +298,11 @@ def canvas_rows(outcomes: list[Outcome], roster: Roster | None, assignment: str)
     rows = [["Student", "ID", "SIS User ID", "SIS Login ID", "Section", assignment],
             ["Points Possible", "", "", "", "", number(max((o.max_score for o in outcomes), default=0.0))]]
     left_out: list[str] = []
-    looks = _looks([o.ident for o in outcomes])
+    numbers = _looks([o.ident for o in outcomes]) == "idnumber"  # without a roster: SIS User IDs, else logins
     for o in outcomes:
         grade = number(o.total) if o.graded else ""
         if roster is None:  # the folder names are all there is
-            rows.append([o.ident, "", o.ident if looks == "idnumber" else "", "" if looks == "idnumber" else o.ident,
-                         "", grade])
+            rows.append([o.ident, "", o.ident if numbers else "", "" if numbers else o.ident, "", grade])
             continue
         if o.line is None:
             left_out.append(f"{o.ident}: no row of the roster matches this submission")

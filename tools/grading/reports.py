@@ -128,9 +128,8 @@ def failure_summary(run: GradeRun, root: Path | None = None) -> str:
             first = result.failures[0]
             why = (f"{_short_path(first.file, root)}:{first.line}: " if first.file else "") + first.headline()
         lines.append(f"  lesson{result.lesson}: {result.name}\n      {why.splitlines()[0] if why else ''}")
-    if not lines:
-        return ""
-    return f"{len(lines)} test(s) failed; the first failing check of each (details above):\n" + "\n".join(lines)
+    return f"{len(lines)} test(s) failed; the first failing check of each (details above):\n" + "\n".join(lines) \
+        if lines else ""
 
 
 def _truncate(text: str, limit: int = MAX_OUTPUT_CHARS) -> str:
