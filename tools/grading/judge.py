@@ -229,12 +229,10 @@ def judge_test(witness: list[dict], observed: list[dict], stopped: str = "", hid
     else:
         if len(observed) > len(witness):
             extra = observed[len(witness)]
-            failures.append(Failure(kind="judged", file=_site(extra)[0], line=_site(extra)[1],
-                                    message=f"your run made {len(observed) - len(witness)} more check(s) than the "
-                                            f"reference's, the first at {_where(extra)}"))
+            failures.append(Failure("judged", f"your run made {len(observed) - len(witness)} more check(s) than the "
+                                              f"reference's, the first at {_where(extra)}", *_site(extra)))
         elif stopped:
-            failures.append(Failure(kind="judged", message=f"after its last check the test did not end normally: "
-                                                           f"{stopped}",
+            failures.append(Failure("judged", f"after its last check the test did not end normally: {stopped}",
                                     not_implemented=stopped.startswith(NOT_IMPLEMENTED), exception=stopped))
     return Verdict(passed=not failures, failures=failures)
 
