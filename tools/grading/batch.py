@@ -82,13 +82,11 @@ def outcome_of(ident: str, data: dict | None) -> Outcome:
     outcome.max_score = sum(float(v.get("max_score", 0)) for v in outcome.lessons.values())
     outcome.status = ("not gradable" if not gradable else "graded" if len(gradable) == len(outcome.lessons)
                       else "partly gradable")
-    if gradable:
-        outcome.total = sum(float(outcome.lessons[nn].get("score", 0)) for nn in gradable)
+    outcome.total = sum(float(outcome.lessons[nn].get("score", 0)) for nn in gradable) if gradable else None
     shared = list(info.get("not_gradable", []))
     if "none of your files is an exercise file" in data.get("output", ""):
         shared.append("no exercise file in the submission")
-    outcome.notes.extend(shared)
-    outcome.student_notes.extend(shared)
+    outcome.notes, outcome.student_notes = list(shared), shared
     if info.get("review"):
         outcome.notes.append(f"{len(info['review'])} note(s) for review in results.json")
     return outcome

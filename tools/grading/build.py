@@ -161,10 +161,10 @@ def linker_blames(output: str, units: dict[str, str], symbol_units: dict[str, st
     student's, else on the unit whose stub defines the symbol (``symbol_units``, demangled name -> path)."""
     blamed: set[str] = set()
     lines = output.splitlines()
-    for number, line in enumerate(lines):
+    for before, line in zip(["", *lines], lines):
         # The line names the second definition or the reference; the line before ("in function") or the
         # same one the first definition or the object that makes the reference.
-        context = line + " " + (lines[number - 1] if number else "")
+        context = line + " " + before
         members = [units[name] for m in _MEMBER.findall(context) if (name := m[0] or m[1]) in units]
         if "multiple definition of" in line:
             blamed.update(members)
@@ -174,9 +174,7 @@ def linker_blames(output: str, units: dict[str, str], symbol_units: dict[str, st
                 blamed.update(mine)
             elif symbol_units:
                 symbol = undefined.group(1)
-                owner = symbol_units.get(symbol) or symbol_units.get(symbol.split("(", 1)[0])
-                if owner:
-                    blamed.add(owner)
+                blamed.update(filter(None, [symbol_units.get(symbol) or symbol_units.get(symbol.split("(", 1)[0])]))
     return sorted(blamed)
 
 

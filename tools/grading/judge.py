@@ -150,8 +150,8 @@ def check_passes(witness: dict, lhs: Any) -> bool:
         if kind.endswith("NOTHROW"):
             return not lhs["threw"]
         if kind.endswith("THROWS_CONTAINING"):
-            rhs = witness.get("rhs") or {}
-            return bool(lhs.get("as")) and str(rhs.get("contains", "")) in str(lhs.get("message", ""))
+            contains = str((witness.get("rhs") or {}).get("contains", ""))
+            return bool(lhs.get("as")) and contains in str(lhs.get("message", ""))
         if kind.endswith("THROWS_AS"):
             return bool(lhs.get("as"))
         return bool(lhs["threw"])

@@ -72,8 +72,6 @@ class Failure:
 
 @dataclass
 class TestResult:
-    """The outcome of one grading test case."""
-
     suite: str
     name: str
     file: str = ""
