@@ -3,6 +3,7 @@ Gradescope, then grades each submission (a folder or a zip per student) in a fre
 user, with Gradescope's limits; grades.csv and the gradebooks' files (gradebook.py) go to --out."""
 from __future__ import annotations
 
+import itertools
 import json
 import os
 import pwd
@@ -348,19 +349,18 @@ class Batch:
         if prepared[0][0] == 0 and self.jobs > 1:
             with ThreadPoolExecutor(max_workers=self.jobs - 1) as pool:
                 prepared += list(pool.map(slots.prepare, range(1, self.jobs)))
-        setup_log = self.out / "setup.log"
-        write_text(setup_log, prepared[0][1], mode=0o600)
-        for k, (status, log) in enumerate(prepared):
-            if status != 0:
-                why = explain_setup_failure(log, env)
-                say(f"setup.sh failed in worker {k + 1} (its log: {setup_log}):\n{log[-3000:]}"
-                    + (f"\ntools/grade --batch: {why}" if why else ""))
-                write_text(setup_log, log + (f"\n{why}\n" if why else ""), mode=0o600)
-                return None
+        # setup.log: the first worker's log, or the first failed one's with the limit it hit
+        k, (status, log) = next(((k, p) for k, p in enumerate(prepared) if p[0] != 0), (0, prepared[0]))
+        why = explain_setup_failure(log, env) if status != 0 else ""
+        write_text(setup_log := self.out / "setup.log", log + (f"\n{why}\n" if why else ""), mode=0o600)
+        if status != 0:
+            say(f"setup.sh failed in worker {k + 1} (its log: {setup_log}):\n{log[-3000:]}"
+                + (f"\ntools/grade --batch: {why}" if why else ""))
+            return None
         return slots
 
     def _grade_all(self, slots: Slots) -> list[Outcome]:
-        done, lock = [0], threading.Lock()
+        done, lock = itertools.count(1), threading.Lock()
 
         def work_on(submission: Submission) -> Outcome:
             k = slots.free.get()
@@ -371,8 +371,7 @@ class Batch:
             finally:
                 slots.free.put(k)
             with lock:
-                done[0] += 1
-                say(f"[{done[0]}/{len(self.submissions)}] {submission.ident}: {outcome.describe()}"
+                say(f"[{next(done)}/{len(self.submissions)}] {submission.ident}: {outcome.describe()}"
                     + (f" ({'; '.join(outcome.notes)})" if outcome.notes and outcome.status != "graded" else "")
                     + f", {outcome.seconds:.0f} s")
             return outcome
