@@ -117,11 +117,9 @@ class Roster:
         return full, full
 
     def match(self, submissions: list) -> tuple[dict[int, object], list]:
-        """Row index -> its submission (anything with ``.ident``), and the submissions no row matches.
-
-        A folder name is compared, ignoring case, with each id, user name and e-mail of the roster,
-        and with an e-mail's part before the @. Refused (RosterError): a name that matches two rows,
-        two submissions that match one row; either would lose a grade without a word."""
+        """Row index -> its submission (anything with ``.ident``), and the submissions no row matches: a folder
+        name is compared, ignoring case, with each id, user name and e-mail (whole or up to the @). Refused
+        (RosterError): a name that matches two rows, two submissions that match one row (a grade lost)."""
         by_value: dict[str, set[int]] = defaultdict(set)
         for index, row in enumerate(self.rows):
             for key in self.keys:
@@ -272,9 +270,8 @@ def _looks(idents: list[str]) -> str:
 
 
 def moodle_rows(outcomes: list[Outcome], roster: Roster | None, assignment: str) -> tuple[list[list[str]], list[str]]:
-    """Moodle's grade import (Grades > Import > CSV file): the user column (map it to the field its header
-    names), the full name (ignored by the import), the grade and the feedback (map them to the grade item
-    and its feedback). Returns the rows and what was left out, and why."""
+    """Moodle's grade import (Grades > Import > CSV file), columns as docs/grading.md says: the rows, and what
+    was left out and why."""
     if roster is None:
         role = _looks([o.ident for o in outcomes])
     else:  # the identity the roster fills on the most rows; on a tie e-mail, then ID number, then user name
@@ -293,8 +290,7 @@ def moodle_rows(outcomes: list[Outcome], roster: Roster | None, assignment: str)
 
 
 def canvas_rows(outcomes: list[Outcome], roster: Roster | None, assignment: str) -> tuple[list[list[str]], list[str]]:
-    """Canvas's gradebook import: Student, ID, SIS User ID, SIS Login ID, Section, then the assignment, after
-    a "Points Possible" row. Returns the rows and what was left out, and why."""
+    """Canvas's gradebook import, after a "Points Possible" row: the rows, and what was left out and why."""
     rows = [["Student", "ID", "SIS User ID", "SIS Login ID", "Section", assignment],
             ["Points Possible", "", "", "", "", number(max((o.max_score for o in outcomes), default=0.0))]]
     left_out: list[str] = []

@@ -222,10 +222,9 @@ def _test_entries(run: GradeRun, root: Path | None) -> list[dict[str, Any]]:
 
 
 def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any]:
-    """Gradescope's results.json: one entry per test, hidden tests marked hidden. Students read it, so it
-    says what was graded, keeps the hidden tests' row and the total out of the summary while hidden tests
-    exist, and holds each compiler output once (in its build entry). A failed build scores 0, its single
-    entry carrying the compiler's output."""
+    """Gradescope's results.json, which students read: what was graded, one entry per test (hidden ones marked
+    hidden, and with the total out of the summary while they exist), each compiler output once (in its build
+    entry); a failed build scores 0, its single entry carrying the compiler's output."""
     summary = submission_summary(run)
     common = {"output_format": "md", "test_output_format": "text", "visibility": "visible",
               "stdout_visibility": "hidden", "execution_time": round(run.seconds, 1),
