@@ -1,9 +1,9 @@
-"""`tools/grade --batch DIR`: a folder of submissions (a folder or a zip per student) graded as the
-autograder grades one, written to --out (docs/grading.md, "Batch grading"): each worker prepares the
-autograder as on Gradescope, then grades each submission in a fresh copy of it as its own user, with
-Gradescope's limits; grades.csv (and the gradebooks' files, tools/grading/gradebook.py) at the end."""
+"""`tools/grade --batch DIR` (docs/grading.md, "Batch grading"): each worker prepares the autograder as on
+Gradescope, then grades each submission (a folder or a zip per student) in a fresh copy of it as its own
+user, with Gradescope's limits; grades.csv and the gradebooks' files (gradebook.py) go to --out."""
 from __future__ import annotations
 
+import itertools
 import json
 import os
 import pwd
@@ -16,6 +16,7 @@ import threading
 import time
 import zipfile
 from concurrent.futures import ThreadPoolExecutor
+from contextlib import suppress
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -45,8 +46,7 @@ def say(text: str) -> None:
 
 def discover(folder: Path) -> tuple[list[Submission], list[str]]:
     """The submissions of `folder` and the entries that are not one (with why)."""
-    found: dict[str, Submission] = {}
-    skipped: list[str] = []
+    found, skipped = {}, []
     for entry in sorted(folder.iterdir()):
         if entry.name.startswith(".") or entry.name == "__MACOSX":
             continue
@@ -67,32 +67,27 @@ def discover(folder: Path) -> tuple[list[Submission], list[str]]:
 def outcome_of(ident: str, data: dict | None) -> Outcome:
     """A student's row, read from their results.json (its extra_data, written by tools/grade)."""
     outcome = Outcome(ident)
-    info = (data or {}).get("extra_data", {}).get("illum") if isinstance(data, dict) else None
+    info = data.get("extra_data", {}).get("illum") if isinstance(data, dict) else None
     if not info or info.get("grader_error"):
         outcome.status = "grader error"
         outcome.notes.append("the grader could not build the tree (see grader.log)" if info else
                              "no results from the grader" if data is None else "the grader itself failed")
         return outcome
-    outcome.lessons = info.get("lessons", {})
-    outcome.tests = {t["name"]: float(t["score"]) for t in info.get("tests", [])}
-    for test in info.get("tests", []):
-        if test.get("hidden"):
-            outcome.has_hidden = True
-        else:  # what the student may see: the visible tests' scores
-            score, top = outcome.visible.get(test.get("lesson", ""), (0.0, 0.0))
-            outcome.visible[test.get("lesson", "")] = (score + float(test["score"]),
-                                                       top + float(test.get("max_score", 0)))
+    tests = info.get("tests", [])
+    outcome.lessons, outcome.tests = info.get("lessons", {}), {t["name"]: float(t["score"]) for t in tests}
+    outcome.has_hidden = any(t.get("hidden") for t in tests)
+    for test in (t for t in tests if not t.get("hidden")):  # what the student may see: the visible tests' scores
+        score, top = outcome.visible.get(lesson := test.get("lesson", ""), (0.0, 0.0))
+        outcome.visible[lesson] = (score + float(test["score"]), top + float(test.get("max_score", 0)))
     gradable = [nn for nn, v in outcome.lessons.items() if v.get("status") != "not gradable"]
     outcome.max_score = sum(float(v.get("max_score", 0)) for v in outcome.lessons.values())
     outcome.status = ("not gradable" if not gradable else "graded" if len(gradable) == len(outcome.lessons)
                       else "partly gradable")
-    if gradable:
-        outcome.total = sum(float(outcome.lessons[nn].get("score", 0)) for nn in gradable)
+    outcome.total = sum(float(outcome.lessons[nn].get("score", 0)) for nn in gradable) if gradable else None
     shared = list(info.get("not_gradable", []))
-    if "none of your files is an exercise file" in (data or {}).get("output", ""):
+    if "none of your files is an exercise file" in data.get("output", ""):
         shared.append("no exercise file in the submission")
-    outcome.notes.extend(shared)
-    outcome.student_notes.extend(shared)
+    outcome.notes, outcome.student_notes = list(shared), shared
     if info.get("review"):
         outcome.notes.append(f"{len(info['review'])} note(s) for review in results.json")
     return outcome
@@ -105,10 +100,8 @@ def _hand_back(path: Path) -> None:
         return
     for item in [path, *path.rglob("*")]:
         if ".work" not in item.relative_to(path).parts[:1]:
-            try:
+            with suppress(OSError):
                 os.chown(item, int(uid), int(gid), follow_symlinks=False)
-            except OSError:
-                pass
 
 
 def run_environment(base: dict[str, str]) -> dict[str, str]:
@@ -117,9 +110,8 @@ def run_environment(base: dict[str, str]) -> dict[str, str]:
 
 
 def setup_environment(base: dict[str, str]) -> dict[str, str]:
-    """setup.sh's, as on Gradescope: without a student run's limits; its builds (the whole library, cold)
-    get ILLUM_GRADE_SETUP_BUILD_TIMEOUT seconds if set, else none (ILLUM_GRADE_BUILD_TIMEOUT, 300 s, is
-    the limit of a student's rebuild)."""
+    """setup.sh's, as on Gradescope: without a student run's limits; its builds (the library, cold) get
+    ILLUM_GRADE_SETUP_BUILD_TIMEOUT seconds if set, else none (not a student rebuild's limit)."""
     env = {k: v for k, v in base.items() if k != "ILLUM_GRADE_BUILD_TIMEOUT"}
     if limit := base.get("ILLUM_GRADE_SETUP_BUILD_TIMEOUT", "").strip():
         env["ILLUM_GRADE_BUILD_TIMEOUT"] = limit
@@ -143,7 +135,7 @@ class Slots:
     """Prepared trees, one per worker, each at the path where it grades (a CMake build tree cannot move)."""
 
     def __init__(self, work: Path, count: int, zip_path: Path, env: dict[str, str]) -> None:
-        self.work, self.zip_path, self.env = work, zip_path, env
+        self.zip_path, self.env = zip_path, env
         self.folders = [work / f"slot-{k}" for k in range(1, count + 1)]
         base = os.environ.get("ILLUM_GRADE_USER") or "illum-student"
         self.users = [base] + [f"{base}-{k}" for k in range(2, count + 1)]
@@ -219,10 +211,8 @@ def grade_one(slots: Slots, k: int, submission: Submission, out: Path, timeout: 
     if results.is_file():
         text = results.read_text(encoding="utf-8", errors="replace")
         write_text(target / "results.json", text)
-        try:
+        with suppress(ValueError):
             data = json.loads(text)
-        except ValueError:
-            pass
     write_text(target / "grader.log", log[-2_000_000:])
     outcome = outcome_of(submission.ident, data)
     outcome.notes += [stopped] if stopped else []
@@ -257,10 +247,9 @@ def _seconds(name: str, default: float | None) -> float | None:
     text = os.environ.get(name, "").strip()
     if not text:
         return default
-    try:
+    value = 0.0
+    with suppress(ValueError):
         value = float(text)
-    except ValueError:
-        value = 0.0
     if not value > 0 or value == float("inf"):
         raise BatchError(f"{name}={text}: not a number of seconds above 0 (unset it for the default)")
     return value
@@ -272,17 +261,14 @@ def _roster_rows(roster: Roster, outcomes: list[Outcome], matched: dict, unmatch
     by_ident = {o.ident: o for o in outcomes}
     rows = []
     for index, row in enumerate(roster.rows):
-        if index in matched:
-            outcome = by_ident[matched[index].ident]
-        else:
-            outcome = Outcome(next((v for r in ("username", "email", "idnumber", "id") if (v := roster.value(row, r))),
-                                   f"line {roster.lines[index]}"), status="missing")
+        outcome = by_ident[matched[index].ident] if index in matched else Outcome(next(
+            (v for r in ("username", "email", "idnumber", "id") if (v := roster.value(row, r))),
+            f"line {roster.lines[index]}"), status="missing")
         outcome.roster, outcome.line = row, roster.lines[index]
         rows.append(outcome)
     for submission in unmatched:
         by_ident[submission.ident].notes.append("not in the roster")
-        rows.append(by_ident[submission.ident])
-    return rows
+    return rows + [by_ident[s.ident] for s in unmatched]
 
 
 class Batch:
@@ -306,8 +292,7 @@ class Batch:
             raise BatchError(f"--batch {self.submissions_dir}: no submission (a folder or a .zip per student)")
         # Matched now, not after an hour of grading: a roster that would lose a grade stops the command here.
         self.matched, self.unmatched = self.roster.match(self.submissions) if self.roster else ({}, [])
-        cores = os.cpu_count() or 1
-        self.jobs = max(1, min(args.jobs or max(1, cores // 2), max(len(self.submissions), 1)))
+        self.jobs = max(1, min(args.jobs or max(1, (os.cpu_count() or 1) // 2), len(self.submissions)))
 
     def run(self) -> int:
         self._announce()
@@ -364,20 +349,18 @@ class Batch:
         if prepared[0][0] == 0 and self.jobs > 1:
             with ThreadPoolExecutor(max_workers=self.jobs - 1) as pool:
                 prepared += list(pool.map(slots.prepare, range(1, self.jobs)))
-        setup_log = self.out / "setup.log"
-        write_text(setup_log, prepared[0][1])
-        setup_log.chmod(0o600)
-        for k, (status, log) in enumerate(prepared):
-            if status != 0:
-                why = explain_setup_failure(log, env)
-                say(f"setup.sh failed in worker {k + 1} (its log: {setup_log}):\n{log[-3000:]}"
-                    + (f"\ntools/grade --batch: {why}" if why else ""))
-                write_text(setup_log, log + (f"\n{why}\n" if why else ""))
-                return None
+        # setup.log: the first worker's log, or the first failed one's with the limit it hit
+        k, (status, log) = next(((k, p) for k, p in enumerate(prepared) if p[0] != 0), (0, prepared[0]))
+        why = explain_setup_failure(log, env) if status != 0 else ""
+        write_text(setup_log := self.out / "setup.log", log + (f"\n{why}\n" if why else ""), mode=0o600)
+        if status != 0:
+            say(f"setup.sh failed in worker {k + 1} (its log: {setup_log}):\n{log[-3000:]}"
+                + (f"\ntools/grade --batch: {why}" if why else ""))
+            return None
         return slots
 
     def _grade_all(self, slots: Slots) -> list[Outcome]:
-        done, lock = [0], threading.Lock()
+        done, lock = itertools.count(1), threading.Lock()
 
         def work_on(submission: Submission) -> Outcome:
             k = slots.free.get()
@@ -388,8 +371,7 @@ class Batch:
             finally:
                 slots.free.put(k)
             with lock:
-                done[0] += 1
-                say(f"[{done[0]}/{len(self.submissions)}] {submission.ident}: {outcome.describe()}"
+                say(f"[{next(done)}/{len(self.submissions)}] {submission.ident}: {outcome.describe()}"
                     + (f" ({'; '.join(outcome.notes)})" if outcome.notes and outcome.status != "graded" else "")
                     + f", {outcome.seconds:.0f} s")
             return outcome
@@ -405,8 +387,7 @@ class Batch:
             make = moodle_rows if self.args.format == "moodle" else canvas_rows
             files[f"grades-{self.args.format}.csv"], left_out = make(rows, self.roster, self.args.assignment)
         for name, table in files.items():
-            write_text(self.out / name, csv_text(table))
-            (self.out / name).chmod(0o600)
+            write_text(self.out / name, csv_text(table), mode=0o600)
         for line in left_out:
             say(f"left out of grades-{self.args.format}.csv: {line}")
         _hand_back(self.out)

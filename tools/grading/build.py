@@ -1,8 +1,6 @@
 """Configuring and building a grading tree with CMake, and blaming a failed build on the student's files.
-
-The reference is graded in its own tree (build/grade-reference), a student's code in the student's
-(build/student, as the preset configures it), the autograder's in build/grade-student; only the test
-programs graded are built."""
+The reference is graded in build/grade-reference, a student's code in build/student (the preset's), the
+autograder's in build/grade-student; only the test programs graded are built."""
 from __future__ import annotations
 
 import os
@@ -16,11 +14,18 @@ from typing import Sequence
 
 from .sandbox import kill_group
 
-# A build's output is kept up to HEAD_BYTES from its start (the first error
-# is what matters) and TAIL_BYTES from its end; a student's file can make a
-# compiler print without end.
+# A build's output is kept up to HEAD_BYTES from its start (the first error is what matters) and
+# TAIL_BYTES from its end; a student's file can make a compiler print without end.
 HEAD_BYTES = 256 * 1024
 TAIL_BYTES = 64 * 1024
+# A compiler or make error line that names an exercise unit, e.g.
+#   /…/exercises/01_ray_sphere/sphere.cpp:12:5: error: expected ';'
+#   make[2]: *** [… CMakeFiles/illum.dir/exercises/01_ray_sphere/sphere.cpp.o] Error 1
+_EXERCISE_FILE = re.compile(r"(exercises/\d\d_[^/\s:]+/[^/\s:\]]+\.cpp)")
+_ERROR_LINE = re.compile(r"\berror\b|\bError \d+|undefined reference", re.I)
+# The linker names an archive member as libillum.a(sphere.cpp.o), an object by its path.
+_MEMBER = re.compile(r"\(([^()\s]+\.cpp)\.o\)|/([^/\s:()]+\.cpp)\.o\b")
+_UNDEFINED = re.compile(r"undefined reference to [`'‘]([^'’]+)['’]")
 
 
 @dataclass
@@ -32,8 +37,8 @@ class StepResult:
 
 @dataclass
 class Runner:
-    """How build commands run: as the grader (default), or in the sandbox's
-    user with its limits (``sandbox.Sandbox.build_preexec``), with a time limit."""
+    """How build commands run: as the grader (default), or in the sandbox's user with its limits
+    (``sandbox.Sandbox.build_preexec``), with a time limit."""
 
     preexec: object = None
     env: dict | None = None
@@ -54,8 +59,7 @@ def _head_and_tail(stream, echo: bool) -> tuple[bytearray, bytearray, int]:
             room = HEAD_BYTES - len(head)
             head += chunk[:room]
             if echo:
-                sys.stderr.write(chunk[:room].decode("utf-8", errors="replace"))
-                sys.stderr.flush()
+                print(chunk[:room].decode("utf-8", errors="replace"), end="", file=sys.stderr, flush=True)
             chunk = chunk[room:]
         tail += chunk
         del tail[:max(0, len(tail) - TAIL_BYTES)]
@@ -98,22 +102,14 @@ def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = 
 
 def configure(source: Path, build_dir: Path, exercises: Sequence[str], hidden: Path | None,
               echo: bool = True, extra: Sequence[str] = (), runner: Runner | None = None) -> StepResult:
-    """Configures a Release tree; warnings never fail a student's build.
-
-    The reference build leaves ILLUM_WERROR as the tree has it, so that
-    grading an existing preset tree (CI grades build/release) reuses its
-    objects instead of rebuilding everything for a changed flag.
-    """
-    command = [
-        "cmake", "-S", str(source), "-B", str(build_dir),
-        "-DCMAKE_BUILD_TYPE=Release",
-        *(["-DILLUM_WERROR=OFF"] if exercises else []),
-        "-DILLUM_BUILD_TESTS=ON",
-        f"-DILLUM_EXERCISES={','.join(exercises)}",
-        # Always set, so that a tree configured earlier with --hidden forgets it.
-        f"-DILLUM_HIDDEN_TESTS={hidden.resolve() if hidden else ''}",
-        *(extra or hidden_objects_arguments([])),
-    ]
+    """Configures a Release tree; warnings never fail a student's build. The reference build leaves
+    ILLUM_WERROR as the tree has it, so that grading an existing preset tree (CI grades build/release)
+    reuses its objects instead of rebuilding everything for a changed flag."""
+    command = ["cmake", "-S", str(source), "-B", str(build_dir), "-DCMAKE_BUILD_TYPE=Release",
+               *(["-DILLUM_WERROR=OFF"] if exercises else []), "-DILLUM_BUILD_TESTS=ON",
+               f"-DILLUM_EXERCISES={','.join(exercises)}",
+               # Always set, so that a tree configured earlier with --hidden forgets it.
+               f"-DILLUM_HIDDEN_TESTS={hidden.resolve() if hidden else ''}", *(extra or hidden_objects_arguments([]))]
     if already_configured(build_dir, source, command):
         # The same options as last time: make re-runs CMake itself if a CMakeLists.txt changed, so
         # configuring again would only cost time (each submission of an autograder run starts here).
@@ -126,22 +122,15 @@ def already_configured(build_dir: Path, source: Path, command: Sequence[str]) ->
     cache = build_dir / "CMakeCache.txt"
     if not (build_dir / "Makefile").is_file() or not cache.is_file():
         return False
-    values: dict[str, str] = {}
     try:
-        for line in cache.read_text(encoding="utf-8", errors="replace").splitlines():
-            match = re.match(r"^([A-Za-z_][A-Za-z0-9_]*):[A-Z]+=(.*)$", line)
-            if match:
-                values[match.group(1)] = match.group(2)
+        text = cache.read_text(encoding="utf-8", errors="replace")
     except OSError:
         return False
-    if values.get("CMAKE_HOME_DIRECTORY") != str(source.resolve()):
-        return False
-    for argument in command:
-        if argument.startswith("-D"):
-            name, _, value = argument[2:].partition("=")
-            if values.get(name.split(":", 1)[0]) != value:
-                return False
-    return True
+    values = dict(re.findall(r"^([A-Za-z_][A-Za-z0-9_]*):[A-Z]+=(.*)$", text, re.M))
+    wanted = [(name.partition(":")[0], value) for name, _, value in (a[2:].partition("=") for a in command
+                                                                       if a.startswith("-D"))]
+    return values.get("CMAKE_HOME_DIRECTORY") == str(source.resolve()) and all(
+        values.get(name) == value for name, value in wanted)
 
 
 def hidden_objects_arguments(objects: Sequence[Path]) -> list[str]:
@@ -156,76 +145,43 @@ def build(build_dir: Path, targets: Sequence[str], echo: bool = True, runner: Ru
                          echo, runner=runner)
 
 
-# A compiler or make error line that names an exercise unit, e.g.
-#   /…/exercises/01_ray_sphere/sphere.cpp:12:5: error: expected ';'
-#   make[2]: *** [… CMakeFiles/illum.dir/exercises/01_ray_sphere/sphere.cpp.o] Error 1
-_EXERCISE_FILE = re.compile(r"(exercises/\d\d_[^/\s:]+/[^/\s:\]]+\.cpp)")
-_ERROR_LINE = re.compile(r"\berror\b|\bError \d+|undefined reference", re.I)
-
-
 def failed_exercise_files(output: str) -> list[str]:
-    """The exercise units (``exercises/NN_topic/name.cpp``) a failed build blames.
-
-    Read from the lines that report an error; a unit named only in an
-    "In file included from" line counts too (its include broke). Empty when
-    the failure names no exercise unit (then the tree itself is broken).
-    """
-    blamed: set[str] = set()
-    for line in output.splitlines():
-        if _ERROR_LINE.search(line) or line.lstrip().startswith("In file included from"):
-            blamed.update(_EXERCISE_FILE.findall(line))
-    return sorted(blamed)
-
-
-# The linker names an archive member as libillum.a(sphere.cpp.o), an object by its path.
-_MEMBER = re.compile(r"\(([^()\s]+\.cpp)\.o\)|/([^/\s:()]+\.cpp)\.o\b")
-_UNDEFINED = re.compile(r"undefined reference to [`'‘]([^'’]+)['’]")
+    """The exercise units (``exercises/NN_topic/name.cpp``) a failed build blames, read from the lines that
+    report an error; a unit named only in an "In file included from" line counts too (its include broke).
+    Empty when the failure names no exercise unit (then the tree itself is broken)."""
+    return sorted({unit for line in output.splitlines()
+                   if _ERROR_LINE.search(line) or line.lstrip().startswith("In file included from")
+                   for unit in _EXERCISE_FILE.findall(line)})
 
 
 def linker_blames(output: str, units: dict[str, str], symbol_units: dict[str, str] | None = None) -> list[str]:
-    """The exercise units (``exercises/NN_topic/name.cpp``) a failed link blames.
-
-    ``units``: file name -> exercise path of the units that hold the
-    student's code. A "multiple definition" names the objects that define
-    the symbol twice; an "undefined reference" is blamed on the object that
-    makes it when that is a student's, else on the unit whose stub defines
-    the symbol (``symbol_units``, demangled name -> exercise path).
-    """
+    """The exercise units (``exercises/NN_topic/name.cpp``) a failed link blames. ``units``: file name ->
+    exercise path of the units that hold the student's code. A "multiple definition" names the objects that
+    define the symbol twice; an "undefined reference" is blamed on the object that makes it when that is a
+    student's, else on the unit whose stub defines the symbol (``symbol_units``, demangled name -> path)."""
     blamed: set[str] = set()
     lines = output.splitlines()
-    for number, line in enumerate(lines):
+    for before, line in zip(["", *lines], lines):
+        # The line names the second definition or the reference; the line before ("in function") or the
+        # same one the first definition or the object that makes the reference.
+        context = line + " " + before
+        members = [units[name] for m in _MEMBER.findall(context) if (name := m[0] or m[1]) in units]
         if "multiple definition of" in line:
-            # The line names the second definition; the line before ("in function") or the same one the first.
-            context = line + " " + (lines[number - 1] if number else "")
-            for member in _MEMBER.findall(context):
-                name = member[0] or member[1]
-                if name in units:
-                    blamed.add(units[name])
-        undefined = _UNDEFINED.search(line)
-        if undefined:
-            context = line + " " + (lines[number - 1] if number else "")
-            makers = [m[0] or m[1] for m in _MEMBER.findall(context)]
-            makers += re.findall(r"^([^\s:()]+\.cpp):\(", line)
-            mine = [units[m] for m in makers if m in units]
+            blamed.update(members)
+        if undefined := _UNDEFINED.search(line):
+            mine = members + [units[m] for m in re.findall(r"^([^\s:()]+\.cpp):\(", line) if m in units]
             if mine:
                 blamed.update(mine)
             elif symbol_units:
                 symbol = undefined.group(1)
-                owner = symbol_units.get(symbol) or symbol_units.get(symbol.split("(", 1)[0])
-                if owner:
-                    blamed.add(owner)
+                blamed.update(filter(None, [symbol_units.get(symbol) or symbol_units.get(symbol.split("(", 1)[0])]))
     return sorted(blamed)
 
 
 def error_lines_outside(output: str, files: list[str]) -> bool:
-    """True when an error is reported in a source file (.cpp) other than ``files``.
-
-    An error in a header counts as the includer's (a student's call can fail
-    inside a template of a header); an error in another .cpp means the tree
-    itself does not build, and then no stub can help.
-    """
-    for line in output.splitlines():
-        match = re.match(r"\s*(\S+\.(?:cpp|cc|cxx)):\d+(?::\d+)?: (?:fatal )?error\b", line)
-        if match and not any(match.group(1).endswith(f) for f in files):
-            return True
-    return False
+    """True when an error is reported in a source file (.cpp) other than ``files``. An error in a header
+    counts as the includer's (a student's call can fail inside a template of a header); an error in another
+    .cpp means the tree itself does not build, and then no stub can help."""
+    errors = (re.match(r"\s*(\S+\.(?:cpp|cc|cxx)):\d+(?::\d+)?: (?:fatal )?error\b", line)
+              for line in output.splitlines())
+    return any(match and not any(match.group(1).endswith(f) for f in files) for match in errors)

@@ -1,16 +1,13 @@
-"""Class lists in, gradebook files out: the CSV side of `tools/grade --batch` (docs/grading.md, "Grading
-a class"). A roster is read as a spreadsheet or Moodle or Canvas saves it (commas, semicolons or tabs,
-with or without a BOM); grades.csv, grades-moodle.csv and grades-canvas.csv are written as RFC 4180 text
-with a BOM and CRLF. What goes in the gradebooks' files follows what their importers do with a row (read
-in Moodle's grade/import/csv/classes/load_data.php and Canvas's app/models/gradebook_importer.rb): every
-Moodle row has a user value from the roster (an empty one would give its grade to the row before), and
-Canvas's own ID is filled only from a Canvas roster (a student number there could be another student's)."""
+"""Class lists in, gradebook files out: the CSV side of `tools/grade --batch` (docs/grading.md, "Batch
+grading"). What goes in the gradebooks' files follows what their importers do with a row (Moodle's
+grade/import/csv/classes/load_data.php, Canvas's app/models/gradebook_importer.rb), as that section says."""
 from __future__ import annotations
 
 import csv
 import io
 import re
 import unicodedata
+from collections import defaultdict
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -39,23 +36,20 @@ ROLES: dict[str, set[str]] = {
     "section": {"section", "group", "grupo", "seccion"},
 }
 KEY_ROLES = ("email", "username", "idnumber", "id")  # a submission's folder name is matched against these
+MOODLE_HEADERS = {"email": "Email address", "username": "Username", "idnumber": "ID number"}
 
 
 def _delimiter(text: str) -> str:
     """Comma, semicolon or tab: the one that splits the header into the most fields (a header holds
     none of the others); on a tie, one no row has more fields than the header with."""
-    best, best_key = ",", (0, False)
-    for delimiter in (",", ";", "\t"):
+    def key(delimiter: str) -> tuple[int, bool]:
         try:
             rows = [r for r in csv.reader(io.StringIO(text, newline=""), delimiter=delimiter) if r]
         except csv.Error:
-            continue
-        if not rows:
-            continue
-        key = (len(rows[0]), all(len(r) <= len(rows[0]) for r in rows))
-        if key > best_key:
-            best, best_key = delimiter, key
-    return best
+            return 0, False
+        return (len(rows[0]), all(len(r) <= len(rows[0]) for r in rows)) if rows else (0, False)
+
+    return max((",", ";", "\t"), key=key)
 
 
 def read_csv(path: Path, option: str) -> list[tuple[int, list[str]]]:
@@ -68,8 +62,7 @@ def read_csv(path: Path, option: str) -> list[tuple[int, list[str]]]:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as error:
         line = raw[:error.start].count(b"\n") + 1
-        raise RosterError(f"{option} {path}: line {line} is not UTF-8 text: save the "
-                          "file as \"CSV UTF-8\"") from None
+        raise RosterError(f"{option} {path}: line {line} is not UTF-8 text: save the file as \"CSV UTF-8\"") from None
     reader = csv.reader(io.StringIO(text, newline=""), delimiter=_delimiter(text), strict=True)
     records, start = [], 1
     try:
@@ -109,11 +102,8 @@ class Roster:
 
     def value(self, row: dict[str, str], role: str) -> str:
         """The first filled column of ``role`` in ``row`` ("" if none)."""
-        if role == "idnumber" and not self.from_canvas:
-            headers = self.columns.get("idnumber", []) + self.columns.get("id", [])
-        else:
-            headers = self.columns.get(role, [])
-        return next((row[h] for h in headers if row.get(h)), "")
+        extra = self.columns.get("id", []) if role == "idnumber" and not self.from_canvas else []
+        return next((row[h] for h in self.columns.get(role, []) + extra if row.get(h)), "")
 
     def names(self, row: dict[str, str]) -> tuple[str, str]:
         """(full name as "First Last", sortable name as "Last, First"), from whichever name columns exist."""
@@ -127,19 +117,16 @@ class Roster:
         return full, full
 
     def match(self, submissions: list) -> tuple[dict[int, object], list]:
-        """Row index -> its submission (anything with ``.ident``), and the submissions no row matches.
-
-        A folder name is compared, ignoring case, with each id, user name and e-mail of the roster,
-        and with an e-mail's part before the @. Refused (RosterError): a name that matches two rows,
-        two submissions that match one row; either would lose a grade without a word."""
-        by_value: dict[str, set[int]] = {}
+        """Row index -> its submission (anything with ``.ident``), and the submissions no row matches: a folder
+        name is compared, ignoring case, with each id, user name and e-mail (whole or up to the @). Refused
+        (RosterError): a name that matches two rows, two submissions that match one row (a grade lost)."""
+        by_value: dict[str, set[int]] = defaultdict(set)
         for index, row in enumerate(self.rows):
             for key in self.keys:
-                value = row.get(key, "").strip().casefold()
-                if value:
-                    by_value.setdefault(value, set()).add(index)
+                if value := row.get(key, "").strip().casefold():
+                    by_value[value].add(index)
                     if key in self.columns.get("email", []) and "@" in value:
-                        by_value.setdefault(value.split("@", 1)[0], set()).add(index)
+                        by_value[value.split("@", 1)[0]].add(index)
         matched: dict[int, object] = {}
         unmatched, problems = [], []
         for submission in submissions:
@@ -174,13 +161,9 @@ def read_roster(path: Path) -> Roster:
     records = read_csv(path, "--roster")
     if not records:
         raise RosterError(f"--roster {path}: the file is empty")
-    header_line, header_fields = records[0]
-    headers = [h.strip() for h in header_fields]
-    columns: dict[str, list[str]] = {}
-    for h in headers:
-        for role, names in ROLES.items():
-            if normal(h) in names and h not in columns.get(role, []):
-                columns.setdefault(role, []).append(h)
+    header_line, headers = records[0][0], [h.strip() for h in records[0][1]]
+    columns = {role: found for role, names in ROLES.items()
+               if (found := list(dict.fromkeys(h for h in headers if normal(h) in names)))}
     roster = Roster(path, headers, [], [], columns)
     if not roster.keys:
         raise RosterError(f"--roster {path}: no id or e-mail column (looked for headers such as id, student id, "
@@ -196,13 +179,9 @@ def read_roster(path: Path) -> Roster:
         for h, value in zip(headers, fields):
             row.setdefault(h, value.strip())
         for key in roster.keys:  # (a row without any stays: a student listed as missing, never dropped)
-            value = row.get(key, "").casefold()
-            if not value:
-                continue
-            if (key, value) in seen:
-                raise RosterError(f"--roster {path}: lines {seen[key, value]} and {line} have the same {key} "
+            if (value := row.get(key, "").casefold()) and (first := seen.setdefault((key, value), line)) != line:
+                raise RosterError(f"--roster {path}: lines {first} and {line} have the same {key} "
                                   f"'{row[key]}'; each student must be one row (one of the two would get no grade)")
-            seen[key, value] = line
         roster.rows.append(row)
         roster.lines.append(line)
     return roster
@@ -229,11 +208,11 @@ class Outcome:
         return self.status in ("graded", "partly gradable") and self.total is not None
 
     def describe(self) -> str:
-        if self.graded:
-            percent = 100.0 * self.total / self.max_score if self.max_score else 0.0
-            text = f"{number(self.total)}/{number(self.max_score)} ({percent:.0f}%)"
-            return text + (f", {self.status}" if self.status != "graded" else "")
-        return self.status
+        if not self.graded:
+            return self.status
+        percent = 100.0 * self.total / self.max_score if self.max_score else 0.0
+        return f"{number(self.total)}/{number(self.max_score)} ({percent:.0f}%)" + (
+            f", {self.status}" if self.status != "graded" else "")
 
 
 def number(x: float | None) -> str:
@@ -250,21 +229,20 @@ def feedback(o: Outcome) -> str:
         return "not graded yet: the grader failed (not your work's fault); your instructor will grade it again"
     if o.status == "not gradable":
         return "not gradable: " + ("; ".join(o.student_notes) or "none of your files compiled")
-    lessons = []
-    for nn in sorted(o.lessons):
-        if o.lessons[nn].get("status") == "not gradable":
-            lessons.append(f"lesson {nn}: not gradable")
-        else:
-            score, top = o.visible.get(nn, (0.0, 0.0))
-            lessons.append(f"lesson {nn}: {number(score)}/{number(top)}")
+    lessons = ", ".join(f"lesson {nn}: not gradable" if _not_gradable(o.lessons[nn]) else
+                        "lesson {}: {}/{}".format(nn, *map(number, o.visible.get(nn, (0.0, 0.0))))
+                        for nn in sorted(o.lessons))
     if o.has_hidden:
-        score = sum(s for s, _ in o.visible.values())
-        top = sum(t for _, t in o.visible.values())
-        head = [f"visible tests {number(score)}/{number(top)} (" + ", ".join(lessons) + "); hidden tests are "
-                "graded too and count in the grade"]
+        score, top = (sum(pair[i] for pair in o.visible.values()) for i in (0, 1))
+        head = f"visible tests {number(score)}/{number(top)} ({lessons}); hidden tests are graded too and count in " \
+               "the grade"
     else:
-        head = [f"{number(o.total)}/{number(o.max_score)} (" + ", ".join(lessons) + ")"]
-    return "; ".join(head + o.student_notes)
+        head = f"{number(o.total)}/{number(o.max_score)} ({lessons})"
+    return "; ".join([head, *o.student_notes])
+
+
+def _not_gradable(lesson: dict) -> bool:
+    return lesson.get("status") == "not gradable"
 
 
 def grades_rows(outcomes: list[Outcome], lessons: list[str], roster: Roster | None) -> list[list[str]]:
@@ -274,20 +252,11 @@ def grades_rows(outcomes: list[Outcome], lessons: list[str], roster: Roster | No
     rows = [["id", *[f"roster: {h}" for h in extra], "status", "total", "max", *[f"lesson{nn}" for nn in lessons],
              *tests, "notes"]]
     for o in outcomes:
-        lesson_cells = []
-        for nn in lessons:
-            info = o.lessons.get(nn)
-            if info is None:
-                lesson_cells.append("")
-            elif info.get("status") == "not gradable":
-                lesson_cells.append("not gradable")
-            else:
-                lesson_cells.append(number(float(info.get("score", 0))))
-        test_cells = []
-        for name in tests:
-            lesson = re.match(r"lesson(\d\d)", name)
-            gone = lesson and o.lessons.get(lesson.group(1), {}).get("status") == "not gradable"
-            test_cells.append("" if gone or name not in o.tests else number(o.tests[name]))
+        lesson_cells = ["" if (info := o.lessons.get(nn)) is None else "not gradable" if _not_gradable(info)
+                        else number(float(info.get("score", 0))) for nn in lessons]
+        test_cells = ["" if name not in o.tests or ((lesson := re.match(r"lesson(\d\d)", name))
+                                                    and _not_gradable(o.lessons.get(lesson.group(1), {})))
+                      else number(o.tests[name]) for name in tests]
         rows.append([o.ident, *[o.roster.get(h, "") for h in extra], o.status, number(o.total),
                      number(o.max_score) if o.lessons else "", *lesson_cells, *test_cells, "; ".join(o.notes)])
     return rows
@@ -297,51 +266,39 @@ def _looks(idents: list[str]) -> str:
     """What folder names are, without a roster: e-mails, numbers (ID numbers), else user names."""
     if idents and all("@" in i for i in idents):
         return "email"
-    if idents and all(i.isdigit() for i in idents):
-        return "idnumber"
-    return "username"
-
-
-MOODLE_HEADERS = {"email": "Email address", "username": "Username", "idnumber": "ID number"}
+    return "idnumber" if idents and all(i.isdigit() for i in idents) else "username"
 
 
 def moodle_rows(outcomes: list[Outcome], roster: Roster | None, assignment: str) -> tuple[list[list[str]], list[str]]:
-    """Moodle's grade import (Grades > Import > CSV file): the user column (map it to the field its header
-    names), the full name (ignored by the import), the grade and the feedback (map them to the grade item
-    and its feedback). Returns the rows and what was left out, and why."""
-    left_out: list[str] = []
+    """Moodle's grade import (Grades > Import > CSV file), columns as docs/grading.md says: the rows, and what
+    was left out and why."""
     if roster is None:
         role = _looks([o.ident for o in outcomes])
-        who = {id(o): o.ident for o in outcomes}
-    else:
-        # The identity the roster fills on the most rows; on a tie e-mail, then ID number, then user name.
-        counts = {r: sum(bool(roster.value(o.roster, r)) for o in outcomes if o.line is not None)
-                  for r in ("email", "idnumber", "username")}
-        role = max(counts, key=lambda r: counts[r])
-        who = {id(o): roster.value(o.roster, role) for o in outcomes if o.line is not None}
-    rows = [[MOODLE_HEADERS[role], "Full name", assignment, f"{assignment} (feedback)"]]
+    else:  # the identity the roster fills on the most rows; on a tie e-mail, then ID number, then user name
+        rows = [o.roster for o in outcomes if o.line is not None]
+        role = max(("email", "idnumber", "username"), key=lambda r: sum(bool(roster.value(row, r)) for row in rows))
+    rows, left_out = [[MOODLE_HEADERS[role], "Full name", assignment, f"{assignment} (feedback)"]], []
     for o in outcomes:
-        if not who.get(id(o)):
+        user = o.ident if roster is None else roster.value(o.roster, role) if o.line is not None else ""
+        if user:
+            rows.append([user, roster.names(o.roster)[0] if roster else "", number(o.total) if o.graded else "",
+                         feedback(o)])
+        else:
             left_out.append(f"{o.ident}: " + ("no row of the roster matches this submission" if o.line is None else
                                               f"the roster's line {o.line} has no {MOODLE_HEADERS[role].lower()}"))
-            continue
-        name = roster.names(o.roster)[0] if roster else ""
-        rows.append([who[id(o)], name, number(o.total) if o.graded else "", feedback(o)])
     return rows, left_out
 
 
 def canvas_rows(outcomes: list[Outcome], roster: Roster | None, assignment: str) -> tuple[list[list[str]], list[str]]:
-    """Canvas's gradebook import: Student, ID, SIS User ID, SIS Login ID, Section, then the assignment, after
-    a "Points Possible" row. Returns the rows and what was left out, and why."""
+    """Canvas's gradebook import, after a "Points Possible" row: the rows, and what was left out and why."""
     rows = [["Student", "ID", "SIS User ID", "SIS Login ID", "Section", assignment],
             ["Points Possible", "", "", "", "", number(max((o.max_score for o in outcomes), default=0.0))]]
     left_out: list[str] = []
-    looks = _looks([o.ident for o in outcomes])
+    numbers = _looks([o.ident for o in outcomes]) == "idnumber"  # without a roster: SIS User IDs, else logins
     for o in outcomes:
         grade = number(o.total) if o.graded else ""
         if roster is None:  # the folder names are all there is
-            rows.append([o.ident, "", o.ident if looks == "idnumber" else "", "" if looks == "idnumber" else o.ident,
-                         "", grade])
+            rows.append([o.ident, "", o.ident if numbers else "", "" if numbers else o.ident, "", grade])
             continue
         if o.line is None:
             left_out.append(f"{o.ident}: no row of the roster matches this submission")

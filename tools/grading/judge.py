@@ -1,20 +1,9 @@
-"""The judge: a test's verdict from the values the student's program observed.
-
-It runs in the grader's own process, which never runs student code (docs/grading.md, "How a
-test is judged"). For each graded test it has two lists of check records (checks.cpp):
-
-* the **witness's**, from a trusted build of the reference: where each check stands, its kind,
-  the comparison, the expected side (a value, or an Approx with its tolerance), the test's
-  explanation;
-* the **observer's**, from the student's program built from sources with every expected side
-  cut away: where each check stands, its kind and the left side it saw (or the exception that
-  the left side threw).
-
-The test passes when the observer reached the witness's checks in the same order and each left
-side satisfies the witness's comparison; a missing, extra, reordered or wrongly kinded record
-fails the test it belongs to, and nothing else. What the student's program says of its own
-verdict is never read.
-"""
+"""The judge: a test's verdict from the witness's check records (a trusted build of the reference) and
+the observer's (the student's program, every expected side cut away), in the grader's own process, which
+never runs student code (docs/grading-defences.md, "How a test is judged"). A test passes when the
+observer reached the witness's checks in the same order and each left side satisfies the witness's
+comparison; a missing, extra, reordered or wrongly kinded record fails its test and nothing else. What
+the student's program says of its own verdict is never read."""
 from __future__ import annotations
 
 import math
@@ -41,32 +30,20 @@ class Verdict:
         return not self.passed and bool(self.failures) and all(f.not_implemented for f in self.failures)
 
 
-# --- values ------------------------------------------------------------------------------------
-
 def _number(value: Any) -> float | int | None:
     """A JSON value as the number it stands for (non-finite doubles are {"double": "nan"})."""
-    if isinstance(value, bool):
-        return None
-    if isinstance(value, (int, float)):
+    if isinstance(value, (int, float)) and not isinstance(value, bool):
         return value
     if isinstance(value, dict) and set(value) == {"double"}:
         return {"nan": math.nan, "inf": math.inf, "-inf": -math.inf}.get(value["double"])
     return None
 
 
-def _approx_equal(actual: float, approx: dict) -> bool:
-    """doctest's Approx: |a − v| < ε·(scale + max(|a|, |v|)), in the same double arithmetic."""
-    value, epsilon, scale = float(approx["approx"]), float(approx["epsilon"]), float(approx["scale"])
-    return abs(actual - value) < epsilon * (scale + max(abs(actual), abs(value)))
-
-
 def _equal(a: Any, b: Any) -> bool:
     """C++'s == on the two values as written (numbers compared as the program compares them)."""
     x, y = _number(a), _number(b)
     if x is not None and y is not None:
-        if isinstance(x, float) or isinstance(y, float):
-            return float(x) == float(y)
-        return x == y
+        return float(x) == float(y) if isinstance(x, float) or isinstance(y, float) else x == y
     if isinstance(a, list) and isinstance(b, list):
         return len(a) == len(b) and all(_equal(p, q) for p, q in zip(a, b))
     if isinstance(a, dict) and isinstance(b, dict) and "pointer" in a and "pointer" in b:
@@ -95,12 +72,11 @@ def holds(op: str, lhs: Any, rhs: Any) -> bool:
     if op not in ("==", "!=", "<", "<=", ">", ">="):
         raise JudgeError(f"an unknown comparison {op!r}")
     if isinstance(rhs, dict) and "approx" in rhs:
-        x = _number(lhs)
-        if x is None:
+        if (number := _number(lhs)) is None:
             return False
-        x = float(x)
-        value = float(rhs["approx"])
-        equal = _approx_equal(x, rhs)
+        # doctest's Approx: |x − v| < ε·(scale + max(|x|, |v|)), in the same double arithmetic
+        x, value, epsilon, scale = float(number), float(rhs["approx"]), float(rhs["epsilon"]), float(rhs["scale"])
+        equal = abs(x - value) < epsilon * (scale + max(abs(x), abs(value)))
         return {"==": equal, "!=": not equal, "<": x < value and not equal, "<=": x < value or equal,
                 ">": x > value and not equal, ">=": x > value or equal}[op]
     if op in ("==", "!="):
@@ -116,8 +92,6 @@ def describe(value: Any) -> str:
         return "true" if value else "false"
     if isinstance(value, float):
         return f"{value:.17g}"
-    if isinstance(value, int):
-        return str(value)
     if isinstance(value, str):
         return '"' + value + '"'
     if value is None:
@@ -152,17 +126,17 @@ def first_difference(lhs: Any, rhs: Any) -> str:
     return ""
 
 
-# --- one check -----------------------------------------------------------------------------------
-
 def _site(record: dict) -> tuple[str, int]:
     return normal_file(str(record.get("file", ""))), int(record.get("line", 0) or 0)
 
 
+def _where(record: dict) -> str:
+    return "{}:{}".format(*_site(record))
+
+
 def _threw(lhs: Any) -> str | None:
     """The exception text of an observation whose left side threw, else None."""
-    if isinstance(lhs, dict) and set(lhs) == {"threw"}:
-        return str(lhs["threw"])
-    return None
+    return str(lhs["threw"]) if isinstance(lhs, dict) and set(lhs) == {"threw"} else None
 
 
 def check_passes(witness: dict, lhs: Any) -> bool:
@@ -171,22 +145,19 @@ def check_passes(witness: dict, lhs: Any) -> bool:
     if _threw(lhs) is not None:
         return False
     if "THROWS" in kind or "NOTHROW" in kind:
-        if not isinstance(lhs, dict) or "threw" not in lhs:
+        if not (isinstance(lhs, dict) and "threw" in lhs):
             return False
         if kind.endswith("NOTHROW"):
             return not lhs["threw"]
         if kind.endswith("THROWS_CONTAINING"):
-            rhs = witness.get("rhs") or {}
-            return bool(lhs.get("as")) and str(rhs.get("contains", "")) in str(lhs.get("message", ""))
+            contains = str((witness.get("rhs") or {}).get("contains", ""))
+            return bool(lhs.get("as")) and contains in str(lhs.get("message", ""))
         if kind.endswith("THROWS_AS"):
             return bool(lhs.get("as"))
         return bool(lhs["threw"])
     op = witness.get("op")
-    value = bool(lhs) if op is None and isinstance(lhs, bool) else None
     if op is None:
-        if value is None:
-            return False
-        return value != kind.endswith("FALSE")
+        return isinstance(lhs, bool) and lhs != kind.endswith("FALSE")
     return holds(str(op), lhs, witness.get("rhs")) != kind.endswith("FALSE")
 
 
@@ -219,21 +190,16 @@ def _explain(witness: dict, lhs: Any) -> str:
     return text + (f"\n  {difference}" if difference else "")
 
 
-# --- one test ------------------------------------------------------------------------------------
-
 def judge_test(witness: list[dict], observed: list[dict], stopped: str = "", hidden: bool = False) -> Verdict:
-    """The verdict of one test.
-
-    ``witness``: the trusted run's check records of the test, in order (every one passed there);
-    ``observed``: the observer's check records of the test, in order; ``stopped``: why the
-    observer's run of the test ended early ('' when it ended normally): an exception that left
-    the test (its text), a crash, a time-out."""
+    """The verdict of one test. ``witness``: the trusted run's check records of the test, in order (every one
+    passed there); ``observed``: the observer's, in order; ``stopped``: why the observer's run of the test
+    ended early ('' when it ended normally): an exception that left the test (its text), a crash, a time-out."""
     if not witness:
         raise JudgeError("the reference's run of this test made no check")
     failures: list[Failure] = []
     for index, expected in enumerate(witness):
         if expected.get("passed") is not True:
-            raise JudgeError(f"the reference fails its own check at {_site(expected)[0]}:{_site(expected)[1]}")
+            raise JudgeError(f"the reference fails its own check at {_where(expected)}")
         if index >= len(observed):
             failures.append(_stopped_before(expected, stopped, hidden))
             break
@@ -245,33 +211,28 @@ def judge_test(witness: list[dict], observed: list[dict], stopped: str = "", hid
             failures.append(_stopped_before(expected, threw, hidden))
             break
         if _site(got) != _site(expected) or got.get("kind") != expected.get("kind"):
-            where = "{}:{}".format(*_site(got))
             failures.append(_failure(expected, f"the test took another path than the reference's run: its next check "
-                                     f"is this one, your run's was {got.get('kind')} at {where} (a REQUIRE, a "
+                                     f"is this one, your run's was {got.get('kind')} at {_where(got)} (a REQUIRE, a "
                                      "loop or a branch that depends on your results)", hidden))
             break
         lhs = got.get("lhs")
         if check_passes(expected, lhs):
             continue
         if threw is not None:
-            failures.append(_failure(expected, f"{expected.get('kind')}( {expected.get('expr', '')} ) threw: {threw}",
-                                     hidden, threw.startswith(NOT_IMPLEMENTED), threw))
+            message, text = threw, f"{expected.get('kind')}( {expected.get('expr', '')} ) threw: {threw}"
         else:
             message = str(lhs.get("message", "")) if isinstance(lhs, dict) and lhs.get("threw") is True else ""
-            failures.append(_failure(expected, _explain(expected, lhs), hidden, message.startswith(NOT_IMPLEMENTED),
-                                     message))
+            text = _explain(expected, lhs)
+        failures.append(_failure(expected, text, hidden, message.startswith(NOT_IMPLEMENTED), message))
         if str(expected.get("kind", "")).startswith("REQUIRE") or len(failures) >= MAX_FAILURES:
             break  # the test stops at a failed REQUIRE, in the reference's terms too
     else:
         if len(observed) > len(witness):
             extra = observed[len(witness)]
-            where = "{}:{}".format(*_site(extra))
-            failures.append(Failure(kind="judged", file=_site(extra)[0], line=_site(extra)[1],
-                                    message=f"your run made {len(observed) - len(witness)} more check(s) than the "
-                                            f"reference's, the first at {where}"))
+            failures.append(Failure("judged", f"your run made {len(observed) - len(witness)} more check(s) than the "
+                                              f"reference's, the first at {_where(extra)}", *_site(extra)))
         elif stopped:
-            failures.append(Failure(kind="judged", message=f"after its last check the test did not end normally: "
-                                                           f"{stopped}",
+            failures.append(Failure("judged", f"after its last check the test did not end normally: {stopped}",
                                     not_implemented=stopped.startswith(NOT_IMPLEMENTED), exception=stopped))
     return Verdict(passed=not failures, failures=failures)
 

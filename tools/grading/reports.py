@@ -17,12 +17,9 @@ from .results import TestResult, _short_path
 EXIT_PASSED = 0
 EXIT_FAILED = 1
 EXIT_NOT_BUILT = 2
-
-# Gradescope visibility of an instructor's hidden tests: never shown to students.
-HIDDEN_VISIBILITY = "hidden"
-
-# Gradescope shows outputs in a browser; a full compiler log can be huge.
-MAX_OUTPUT_CHARS = 30_000
+HIDDEN_VISIBILITY = "hidden"  # Gradescope's visibility of an instructor's hidden tests: never shown to students
+MAX_OUTPUT_CHARS = 30_000  # Gradescope shows outputs in a browser; a full compiler log can be huge
+_XML_INVALID = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")  # XML 1.0 cannot hold these
 
 
 @dataclass
@@ -35,32 +32,23 @@ class GradeRun:
     build_output: str = ""
     problems: list[str] = field(default_factory=list)  # crashes, timeouts, missing programs
     seconds: float = 0.0
-    # Attributed build failure: only the student's files named here failed;
-    # each was replaced by its stub and the rest was graded (file -> compiler output).
+    # The student's files that alone failed to build, each graded as its stub (file -> compiler output).
     fallbacks: dict[str, str] = field(default_factory=dict)
     link_failures: set[str] = field(default_factory=set)  # the fallbacks that compiled but did not link
-    # The instructor's hidden tests did not build: the grader is misconfigured.
-    hidden_build_failed: bool = False
+    hidden_build_failed: bool = False  # the instructor's hidden tests did not build: a misconfigured grader
     hidden_build_output: str = ""
-    # What the autograder did with the upload (autograder.install_submission).
-    submission: dict[str, Any] | None = None
-    # False when the build failure is not the student's (a broken tree).
-    blame_student: bool = True
-    # For instructors only: what the suspicious-code checks noticed (they advise, they never
-    # decide), tampering the runner saw, processes killed, the grader's own problems.
+    submission: dict[str, Any] | None = None  # what the autograder did with the upload (install_submission)
+    blame_student: bool = True  # False when the build failure is not the student's (a broken tree)
+    # For instructors only: what the suspicious-code checks noticed (they advise, never decide),
+    # tampering the runner saw, processes killed, the grader's own problems.
     review: list[str] = field(default_factory=list)
-
-    def lesson_of(self, file: str) -> str:
-        match = re.search(r"exercises/(\d\d)_", file)
-        return match.group(1) if match else ""
 
     def lesson_status(self, lesson: str) -> str:
         """"graded", "not gradable" (a file of the lesson did not compile or link) or "grader error"."""
         if self.build_failed:
             return "not gradable" if self.blame_student else "grader error"
-        if any(self.lesson_of(f) == lesson for f in self.fallbacks):
-            return "not gradable"
-        return "graded"
+        lessons = {match.group(1) for f in self.fallbacks if (match := re.search(r"exercises/(\d\d)_", f))}
+        return "not gradable" if lesson in lessons else "graded"
 
     @property
     def score(self) -> float:
@@ -76,26 +64,13 @@ def exit_code(run: GradeRun) -> int:
     report success); 2: no build."""
     if run.build_failed or run.hidden_build_failed:
         return EXIT_NOT_BUILT
-    if not run.results:
-        return EXIT_FAILED
-    return EXIT_PASSED if all(r.passed for r in run.results) else EXIT_FAILED
+    return EXIT_PASSED if run.results and all(r.passed for r in run.results) else EXIT_FAILED
 
 
 def _cells(group: list[TestResult]) -> tuple[str, str]:
     """A row's "tests passed" and "points": 3/4 and 3/5."""
-    points = f"{sum(r.score for r in group):g}/{sum(r.points for r in group):g}"
-    return f"{sum(r.passed for r in group)}/{len(group)}", points
-
-
-def _rows(run: GradeRun, with_hidden: bool = True) -> list[tuple[str, str, str]]:
-    """(label, tests passed, points) per lesson, visible then hidden."""
-    rows = []
-    for lesson in run.lessons:
-        for hidden in (False, True) if with_hidden else (False,):
-            group = [r for r in run.results if r.lesson == lesson and r.hidden == hidden]
-            if group or not hidden:
-                rows.append((f"{lesson} (hidden)" if hidden else lesson, *_cells(group)))
-    return rows
+    return (f"{sum(r.passed for r in group)}/{len(group)}",
+            f"{sum(r.score for r in group):g}/{sum(r.points for r in group):g}")
 
 
 def score_table(run: GradeRun, for_students: bool = False) -> str:
@@ -106,19 +81,16 @@ def score_table(run: GradeRun, for_students: bool = False) -> str:
     # Any entry hidden from students (a hidden test, or the hidden tests' failed build) hides the total.
     hide = for_students and (run.hidden_build_failed or any(r.hidden for r in run.results))
     header = ("lesson", "tests passed", "points")
-    body = _rows(run, with_hidden=not hide)
-    shown = [r for r in run.results if not (hide and r.hidden)]
-    score, max_score = sum(r.score for r in shown), sum(r.points for r in shown)
-    passed, points = _cells(shown)
-    footer = ("total", passed, f"{points}  ({100.0 * score / max_score if max_score else 0.0:.0f}%)")
-    rows = [header, *body] + ([] if hide else [footer])
-    widths = [max(len(row[i]) for row in rows) for i in range(3)]
-
-    def line(row: tuple[str, str, str]) -> str:
-        return "  ".join(cell.ljust(width) for cell, width in zip(row, widths)).rstrip()
-
-    rule = "  ".join("-" * w for w in widths)
-    lines = [line(header), rule, *map(line, body)] + ([] if hide else [rule, line(footer)])
+    # (label, tests passed, points) per lesson, visible then hidden
+    body = [(f"{lesson} (hidden)" if hidden else lesson, *_cells(group)) for lesson in run.lessons
+            for hidden in ((False,) if hide else (False, True))
+            if (group := [r for r in run.results if r.lesson == lesson and r.hidden == hidden]) or not hidden]
+    passed, points = _cells(run.results)  # (only shown when nothing is hidden)
+    footer = ("total", passed, f"{points}  ({100.0 * run.score / run.max_score if run.max_score else 0.0:.0f}%)")
+    widths = [max(len(row[i]) for row in [header, *body] + ([] if hide else [footer])) for i in range(3)]
+    rule = tuple("-" * w for w in widths)
+    lines = ["  ".join(cell.ljust(width) for cell, width in zip(row, widths)).rstrip()
+             for row in [header, rule, *body] + ([] if hide else [rule, footer])]
     if hide:
         lines.append("Hidden tests are graded too; your total appears when your instructor publishes the scores.")
     if not run.results:
@@ -128,8 +100,8 @@ def score_table(run: GradeRun, for_students: bool = False) -> str:
 
 
 def _visible_problems(run: GradeRun) -> list[str]:
-    """Problems a student may read: none about the hidden tests' program, and
-    the ones of a single test only counted (each test's entry says why)."""
+    """Problems a student may read: none about the hidden tests' program, and the ones of a single test
+    only counted (each test's entry says why)."""
     hidden_names = [r.name for r in run.results if r.hidden and r.name]
     problems = [p for p in run.problems if "tests_hidden" not in p and not any(n in p for n in hidden_names)]
     per_test = sum(part.count(': test "') for part in problems)
@@ -151,16 +123,13 @@ def failure_summary(run: GradeRun, root: Path | None = None) -> str:
     for result in run.results:
         if result.passed or result.hidden or result.skipped:
             continue
-        first = next((f for f in result.failures), None)
-        if first is not None:
-            where = f"{_short_path(first.file, root)}:{first.line}: " if first.file else ""
-            why = where + first.headline()
-        else:
-            why = result.note or "failed"
+        why = result.note or "failed"
+        if result.failures:
+            first = result.failures[0]
+            why = (f"{_short_path(first.file, root)}:{first.line}: " if first.file else "") + first.headline()
         lines.append(f"  lesson{result.lesson}: {result.name}\n      {why.splitlines()[0] if why else ''}")
-    if not lines:
-        return ""
-    return f"{len(lines)} test(s) failed; the first failing check of each (details above):\n" + "\n".join(lines)
+    return f"{len(lines)} test(s) failed; the first failing check of each (details above):\n" + "\n".join(lines) \
+        if lines else ""
 
 
 def _truncate(text: str, limit: int = MAX_OUTPUT_CHARS) -> str:
@@ -174,9 +143,7 @@ def test_name(result: TestResult) -> str:
 
 def _fence(text: str) -> str:
     """A Markdown code block that keeps a table's columns and a compiler's <T>."""
-    fence = "```"
-    while fence in text:
-        fence += "`"
+    fence = "`" * max(3, 1 + max(map(len, re.findall("`+", text)), default=0))
     return f"{fence}text\n{text.rstrip()}\n{fence}"
 
 
@@ -185,14 +152,11 @@ def submission_summary(run: GradeRun) -> str:
     info = run.submission
     if not info:
         return ""
-    lines = ["**What was graded**", ""]
-    for used in info.get("installed", []):
-        lines.append(f"- used `{used['file']}` as `{used['target']}`"
-                     + (f" ({used['note']})" if used.get("note") else ""))
-    for ignored in info.get("ignored", []):
-        lines.append(f"- ignored `{ignored['file']}`: {ignored['reason']}")
-    for note in info.get("notes", []):
-        lines.append(f"- {note}")
+    lines = ["**What was graded**", "",
+             *(f"- used `{u['file']}` as `{u['target']}`" + (f" ({u['note']})" if u.get("note") else "")
+               for u in info.get("installed", [])),
+             *(f"- ignored `{i['file']}`: {i['reason']}" for i in info.get("ignored", [])),
+             *(f"- {note}" for note in info.get("notes", []))]
     used = {Path(item["target"]).name for item in info.get("installed", [])}
     missing = [name for name in info.get("expected", []) if name not in used]
     if info.get("installed") and missing:
@@ -207,13 +171,10 @@ def submission_summary(run: GradeRun) -> str:
 
 def machine_summary(run: GradeRun) -> dict[str, Any]:
     """results.json's ``extra_data``: what tools/grade --batch reads back (per lesson, flags, build problems)."""
-    lessons = {}
-    for lesson in run.lessons:
-        group = [r for r in run.results if r.lesson == lesson]
-        lessons[lesson] = {"status": run.lesson_status(lesson), "score": sum(r.score for r in group),
-                           "max_score": sum(r.points for r in group)}
+    groups = {lesson: [r for r in run.results if r.lesson == lesson] for lesson in run.lessons}
     return {"illum": {
-        "lessons": lessons,
+        "lessons": {lesson: {"status": run.lesson_status(lesson), "score": sum(r.score for r in group),
+                             "max_score": sum(r.points for r in group)} for lesson, group in groups.items()},
         "tests": [{"name": test_name(r), "lesson": r.lesson, "hidden": r.hidden, "score": r.score,
                    "max_score": r.points} for r in run.results],
         "not_gradable": ([f"{f} did not {'link' if f in run.link_failures else 'compile'}" for f in run.fallbacks]
@@ -223,15 +184,15 @@ def machine_summary(run: GradeRun) -> dict[str, Any]:
     }}
 
 
-def _compiler_messages(output: str) -> str:
-    """A build log without make's progress lines, which say nothing about the error."""
-    return "\n".join(line for line in output.splitlines()
-                     if not re.match(r"\[\s*\d+%\]|gmake\[\d+\]: (Entering|Leaving)", line))
-
-
 def _build_entry(name: str, output: str, visibility: str = "visible") -> dict[str, Any]:
-    output = _compiler_messages(output)
-    return {"name": name, "score": 0, "max_score": 0, "status": "failed", "output": _truncate(output),
+    """A failed build's entry: its log without make's progress lines, which say nothing about the error."""
+    output = "\n".join(line for line in output.splitlines()
+                       if not re.match(r"\[\s*\d+%\]|gmake\[\d+\]: (Entering|Leaving)", line))
+    return _entry(name, output, "failed", visibility)
+
+
+def _entry(name: str, output: str, status: str, visibility: str, score: float = 0, max_score: float = 0) -> dict:
+    return {"name": name, "score": score, "max_score": max_score, "status": status, "output": _truncate(output),
             "output_format": "text", "visibility": visibility}
 
 
@@ -254,17 +215,16 @@ def _test_entries(run: GradeRun, root: Path | None) -> list[dict[str, Any]]:
     if run.hidden_build_failed:  # not the student's fault, and the hidden tests' source must not reach students
         tests.append(_build_entry("hidden tests: build (instructors only)", "The instructor's hidden tests did not "
                                   "build; they were not graded.\n\n" + run.hidden_build_output, HIDDEN_VISIBILITY))
-    return tests + [{"name": test_name(r), "number": str(number), "score": r.score, "max_score": r.points,
-                     "status": "passed" if r.passed else "failed", "output": _truncate(r.output(root)),
-                     "output_format": "text", "visibility": HIDDEN_VISIBILITY if r.hidden else "visible"}
+    return tests + [{"name": test_name(r), "number": str(number)}
+                    | _entry(test_name(r), r.output(root), "passed" if r.passed else "failed",
+                             HIDDEN_VISIBILITY if r.hidden else "visible", r.score, r.points)
                     for number, r in enumerate(run.results, start=1)] + _review_entries(run)
 
 
 def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any]:
-    """Gradescope's results.json: one entry per test, hidden tests marked hidden. Students read it, so it
-    says what was graded, keeps the hidden tests' row and the total out of the summary while hidden tests
-    exist, and holds each compiler output once (in its build entry). A failed build scores 0, its single
-    entry carrying the compiler's output."""
+    """Gradescope's results.json, which students read: what was graded, one entry per test (hidden ones marked
+    hidden, and with the total out of the summary while they exist), each compiler output once (in its build
+    entry); a failed build scores 0, its single entry carrying the compiler's output."""
     summary = submission_summary(run)
     common = {"output_format": "md", "test_output_format": "text", "visibility": "visible",
               "stdout_visibility": "hidden", "execution_time": round(run.seconds, 1),
@@ -275,29 +235,26 @@ def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any
                     "fault: tell your instructor). Nothing was graded.")
         return {"score": 0, "output": "\n\n".join(part for part in (summary, headline) if part), **common,
                 "tests": [_build_entry("build", run.build_output)] + _review_entries(run)}
-    parts = [summary, _fallback_summary(run) if run.fallbacks else ""]
-    if run.hidden_build_failed:
-        parts.append("The grader is misconfigured: some of the instructor's tests could not be built. This is not "
-                     "your code's fault; your visible tests were graded, and your instructor has been shown why.")
-    parts.append(_fence(score_table(run, for_students=True)))
+    parts = [summary, _fallback_summary(run) if run.fallbacks else "",
+             "The grader is misconfigured: some of the instructor's tests could not be built. This is not your code's "
+             "fault; your visible tests were graded, and your instructor has been shown why." if run.hidden_build_failed
+             else "", _fence(score_table(run, for_students=True))]
     return {"score": run.score, "max_score": run.max_score, "output": "\n\n".join(part for part in parts if part),
             **common, "tests": _test_entries(run, root)}
 
 
 def _review_entries(run: GradeRun) -> list[dict[str, Any]]:
     """One entry hidden from students: what an instructor may want to look at (nothing fails for it)."""
-    if not run.review:
-        return []
-    return [{"name": "review (instructors only)", "score": 0, "max_score": 0, "status": "passed",
-             "output": _truncate("\n".join(run.review)), "output_format": "text", "visibility": HIDDEN_VISIBILITY}]
-
-
-# Characters XML 1.0 cannot hold; a student's output may contain them.
-_XML_INVALID = re.compile("[\x00-\x08\x0b\x0c\x0e-\x1f\ud800-\udfff\ufffe\uffff]")
+    review = "\n".join(run.review)
+    return [_entry("review (instructors only)", review, "passed", HIDDEN_VISIBILITY)] if run.review else []
 
 
 def _xml_text(text: str) -> str:
     return _XML_INVALID.sub("?", text)
+
+
+def _failed(group: list[TestResult]) -> int:
+    return sum(not r.passed and not r.skipped for r in group)
 
 
 def junit_xml(run: GradeRun, root: Path | None = None) -> str:
@@ -311,30 +268,24 @@ def junit_xml(run: GradeRun, root: Path | None = None) -> str:
     groups: dict[str, list[TestResult]] = {}
     for result in run.results:
         groups.setdefault(f"lesson{result.lesson}{'.hidden' if result.hidden else ''}", []).append(result)
-    total = failures = skipped = 0
     for name, group in groups.items():
-        n_failed = sum(not r.passed and not r.skipped for r in group)
-        n_skipped = sum(r.skipped for r in group)
-        total, failures, skipped = total + len(group), failures + n_failed, skipped + n_skipped
-        suite = ET.SubElement(suites, "testsuite", name=name, tests=str(len(group)), failures=str(n_failed),
-                              errors="0", skipped=str(n_skipped), time=f"{sum(r.seconds for r in group):.6f}")
+        suite = ET.SubElement(suites, "testsuite", name=name, tests=str(len(group)), failures=str(_failed(group)),
+                              errors="0", skipped=str(sum(r.skipped for r in group)),
+                              time=f"{sum(r.seconds for r in group):.6f}")
         for result in group:
-            attributes = {"classname": name, "name": _xml_text(result.name), "time": f"{result.seconds:.6f}"}
-            if result.file:
-                attributes.update(file=_xml_text(result.file), line=str(result.line))
-            case = ET.SubElement(suite, "testcase", attributes)
+            case = ET.SubElement(suite, "testcase", classname=name, name=_xml_text(result.name),
+                                 time=f"{result.seconds:.6f}",
+                                 **({"file": _xml_text(result.file), "line": str(result.line)} if result.file else {}))
             if result.skipped:
                 ET.SubElement(case, "skipped")
             elif not result.passed:
-                kind = "NotImplemented" if result.not_implemented_only else "AssertionFailure"
                 first = result.failures[0].describe(root).splitlines()[0] if result.failures else result.note
-                failure = ET.SubElement(case, "failure", message=_xml_text(first), type=kind)
+                failure = ET.SubElement(case, "failure", message=_xml_text(first),
+                                        type="NotImplemented" if result.not_implemented_only else "AssertionFailure")
                 failure.text = _xml_text(result.output(root))
-    suites.set("tests", str(total + (1 if run.build_failed else 0)))
-    suites.set("failures", str(failures))
-    suites.set("errors", "1" if run.build_failed else "0")
-    suites.set("skipped", str(skipped))
-    suites.set("time", f"{run.seconds:.3f}")
+    suites.attrib.update(tests=str(len(run.results) + run.build_failed), failures=str(_failed(run.results)),
+                         errors=str(int(run.build_failed)), skipped=str(sum(r.skipped for r in run.results)),
+                         time=f"{run.seconds:.3f}")
     ET.indent(suites)
     return '<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(suites, encoding="unicode") + "\n"
 
@@ -343,10 +294,10 @@ class OutputError(Exception):
     """An output file could not be written (its message names the file and why)."""
 
 
-def write_text(path: Path, text: str) -> None:
+def write_text(path: Path, text: str, mode: int = 0o644) -> None:
     """Writes atomically (never half a file, nor a temporary left behind); OutputError says why not."""
     try:
-        atomic_write_text(path, text)
+        atomic_write_text(path, text, mode)
     except OSError as error:
         reason = "No space left on device (the disk is full)" if error.errno == errno.ENOSPC else \
             error.strerror or str(error)

@@ -1,16 +1,15 @@
-"""Test results as the `illum-grade` doctest reporter (tests/support/grade_reporter.cpp) writes them: one
-JSON object a line, `"event": "test_case"` for a test that ran and `"listed"` for each test of
---list-test-cases. The listing (or the trusted list the autograder's setup kept) says which tests should
-have run, so a program that crashes or hangs half-way still yields a result for every test."""
+"""Test results as tests/support/grade_reporter.cpp writes them: one JSON object a line, `"event": "test_case"`
+for a test that ran and `"listed"` for each test of --list-test-cases. The listing (or the trusted list the
+autograder's setup kept) says which tests should have run, so a crash or a hang still yields every result."""
 from __future__ import annotations
 
+import itertools
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-# "points=3" in a doctest description decorator gives a test more weight:
-#   TEST_CASE("..." * doctest::description("points=3"))
+# TEST_CASE("..." * doctest::description("points=3")) gives a test more weight.
 _POINTS = re.compile(r"\bpoints\s*=\s*([0-9]+(?:\.[0-9]+)?)")
 
 
@@ -37,49 +36,33 @@ class Failure:
 
     @staticmethod
     def from_json(data: dict[str, Any]) -> "Failure":
-        return Failure(
-            kind=str(data.get("kind", "")),
-            message=str(data.get("message", "")),
-            file=str(data.get("file", "")),
-            line=int(data.get("line", 0) or 0),
-            context=str(data.get("context", "")),
-            exception=str(data.get("exception", "")),
-            subcases=[str(s) for s in data.get("subcases", []) or []],
-            not_implemented=bool(data.get("not_implemented", False)),
-            expression=str(data.get("expression", "") or ""),
-            expansion=str(data.get("expansion", "") or ""),
-        )
+        return Failure(**{k: str(data.get(k, "")) for k in ("kind", "message", "file", "context", "exception")},
+                       **{k: str(data.get(k, "") or "") for k in ("expression", "expansion")},
+                       line=int(data.get("line", 0) or 0), subcases=[str(s) for s in data.get("subcases", []) or []],
+                       not_implemented=bool(data.get("not_implemented", False)))
 
     def got_expected(self) -> tuple[str, str] | None:
         """(got, expected) of a failed ``CHECK(actual == expected)``: the tests write the value computed
         on the left and the expected one on the right. None for any other kind of check."""
-        if self.kind != "assert" or self.exception or " == " not in self.expression:
-            return None
-        if self.expansion.count(" == ") != 1:
+        if self.kind != "assert" or self.exception or " == " not in self.expression or \
+                self.expansion.count(" == ") != 1:
             return None
         got, expected = self.expansion.split(" == ")
         return got.strip(), expected.strip()
 
-    def headline(self) -> str:
-        """One line: which check, and the values it saw."""
+    def headline(self, lines: bool = False) -> str:
+        """One line (with ``lines``, the values on lines of their own): which check, and the values it saw."""
         if self.not_implemented:
             return f"not implemented yet: {self.exception}"
-        pair = self.got_expected()
-        if pair:
-            return f"{self.message.split(' is NOT correct')[0]} failed: got {pair[0]}, expected {pair[1]}"
+        if pair := self.got_expected():
+            check = self.message.split(" is NOT correct")[0]
+            return (f"{check} failed\n  got:      {pair[0]}\n  expected: {pair[1]}" if lines else
+                    f"{check} failed: got {pair[0]}, expected {pair[1]}")
         return self.message
 
     def describe(self, root: Path | None = None) -> str:
         """A few lines a student can act on: where, what, and the test's explanation."""
-        where = f"{_short_path(self.file, root)}:{self.line}: " if self.file else ""
-        if self.not_implemented:
-            text = f"{where}not implemented yet: {self.exception}"
-        elif self.got_expected():
-            got, expected = self.got_expected() or ("", "")
-            text = (f"{where}{self.message.split(' is NOT correct')[0]} failed\n  got:      {got}\n"
-                    f"  expected: {expected}")
-        else:
-            text = f"{where}{self.message}"
+        text = (f"{_short_path(self.file, root)}:{self.line}: " if self.file else "") + self.headline(lines=True)
         if self.subcases:
             text += "\n  in subcase: " + " / ".join(self.subcases)
         if self.context:
@@ -89,8 +72,6 @@ class Failure:
 
 @dataclass
 class TestResult:
-    """The outcome of one grading test case."""
-
     suite: str
     name: str
     file: str = ""
@@ -122,83 +103,51 @@ class TestResult:
 
     @property
     def status(self) -> str:
-        if self.passed:
-            return "passed"
-        if self.skipped:
-            return "skipped"
-        if not self.ran:
-            return "not run"
-        return "failed"
+        return "passed" if self.passed else "skipped" if self.skipped else "not run" if not self.ran else "failed"
 
     def output(self, root: Path | None = None) -> str:
         """What the student reads about this test: empty when it passed."""
         if self.passed:
             return ""
-        lines = [f"{_short_path(self.file, root)}:{self.line}: test case \"{self.name}\""] if self.file else []
-        if self.skipped:
-            lines.append("skipped by a doctest::skip() decorator")
-        if self.note:
-            lines.append(self.note)
-        lines.extend(f.describe(root) for f in self.failures)
-        return "\n".join(lines)
+        head = [f"{_short_path(self.file, root)}:{self.line}: test case \"{self.name}\"" if self.file else "",
+                "skipped by a doctest::skip() decorator" if self.skipped else "", self.note]
+        return "\n".join([*filter(None, head), *(f.describe(root) for f in self.failures)])
 
     @staticmethod
     def from_json(data: dict[str, Any], hidden: bool = False) -> "TestResult":
-        return TestResult(
-            suite=str(data.get("suite", "")),
-            name=str(data.get("name", "")),
-            file=str(data.get("file", "")),
-            line=int(data.get("line", 0) or 0),
-            passed=bool(data.get("passed", False)),
-            skipped=bool(data.get("skipped", False)),
-            ran=data.get("event") == "test_case",
-            hidden=hidden,
-            points=points_of(str(data.get("description", ""))),
-            seconds=float(data.get("seconds", 0.0) or 0.0),
-            failures=[Failure.from_json(f) for f in data.get("failures", []) or []],
-            not_implemented_only=bool(data.get("not_implemented_only", False)),
-        )
+        return TestResult(**{k: str(data.get(k, "")) for k in ("suite", "name", "file")},
+                          **{k: bool(data.get(k, False)) for k in ("passed", "skipped", "not_implemented_only")},
+                          line=int(data.get("line", 0) or 0), ran=data.get("event") == "test_case", hidden=hidden,
+                          points=points_of(str(data.get("description", ""))),
+                          seconds=float(data.get("seconds", 0.0) or 0.0),
+                          failures=[Failure.from_json(f) for f in data.get("failures", []) or []])
 
 
 def merge(listed: list[dict[str, Any]], ran: list[dict[str, Any]], hidden: bool = False,
           why_missing: str = "") -> list[TestResult]:
-    """One result per listed test, in listing order.
-
-    A listed test without a run record did not run: the program crashed, hung
-    or was killed first. It fails with ``why_missing`` as its explanation.
-    Run records that were not listed (should not happen) are kept too.
-    """
-    by_key = {}
-    for record in ran:
-        if record.get("event") == "test_case":
-            result = TestResult.from_json(record, hidden)
-            by_key.setdefault(result.key, result)
-    results: list[TestResult] = []
-    seen: set[tuple[str, str, str, int]] = set()
-    for record in listed:
-        if record.get("event") != "listed":
+    """One result per listed test, in listing order. A listed test without a run record did not run (the
+    program crashed, hung or was killed first): it fails with ``why_missing`` as its explanation. Run
+    records that were not listed (should not happen) are kept too."""
+    by_key: dict[tuple[str, str, str, int], TestResult] = {}
+    for result in (TestResult.from_json(r, hidden) for r in ran if r.get("event") == "test_case"):
+        by_key.setdefault(result.key, result)
+    results: dict[tuple[str, str, str, int], TestResult] = {}
+    for expected in (TestResult.from_json(r, hidden) for r in listed if r.get("event") == "listed"):
+        if expected.key in results:
             continue
-        expected = TestResult.from_json(record, hidden)
-        if expected.key in seen:
-            continue
-        seen.add(expected.key)
         if expected.key in by_key:
-            actual = by_key[expected.key]
-            actual.points = expected.points
-            results.append(actual)
+            results[expected.key] = by_key[expected.key]
+            results[expected.key].points = expected.points
         else:
-            expected.passed = False
-            expected.ran = False
+            expected.passed = expected.ran = False
             expected.note = f"did not run: {why_missing}" if why_missing else "did not run"
-            results.append(expected)
-    results.extend(r for k, r in by_key.items() if k not in seen)
-    return results
+            results[expected.key] = expected
+    return list(results.values()) + [r for k, r in by_key.items() if k not in results]
 
 
 def normal_file(file: str) -> str:
-    """A test's source path as the same key whether the compiler saw it
-    absolute or relative to the build folder (ccache's base_dir makes it
-    ``../../../tests/x.cpp``): from its ``tests/`` folder on."""
+    """A test's source path as the same key whether the compiler saw it absolute or relative to the build
+    folder (ccache's base_dir makes it ``../../../tests/x.cpp``): from its ``tests/`` folder on."""
     text = file.replace("\\", "/")
     if "/tests/" in text:
         return "tests/" + text.rsplit("/tests/", 1)[1]
@@ -214,9 +163,7 @@ def _short_path(file: str, root: Path | None) -> str:
     if root is None or not file:
         return file
     if not Path(file).is_absolute():  # relative to the build folder: ../../../tests/x.cpp
-        parts = Path(file).parts
-        while parts and parts[0] == "..":
-            parts = parts[1:]
+        parts = list(itertools.dropwhile(lambda part: part == "..", Path(file).parts))
         return str(Path(*parts)) if parts else file
     try:
         return str(Path(file).resolve().relative_to(root.resolve()))
