@@ -118,7 +118,6 @@ class Mutant:
     mutated_line: str = ""  # the line after the change (stripped)
     status: str = ""        # killed / survived / timed out / did not build
     status_without: str = ""  # the same against the suite without the --compare-without files
-    seconds: float = 0.0
     failed_test: str = ""   # the first grading test that failed (a killed mutant)
     source: str = field(default="", repr=False)  # the unit's text the offsets refer to
 

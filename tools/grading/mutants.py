@@ -1,12 +1,7 @@
-"""`tools/grade --mutants`: how many plausible student bugs do the grading tests catch? (docs/grading.md,
-"Grading power")
-
-Each mutant of a lesson's exercise units (cpp_mutants.py), or each hand-written student bug
-(tests/mutants/student_bugs/*.bug), is built and the lesson's grading suite run on it: killed or timed out
-(caught), survived (full marks for wrong code) or did not build (not scored). Mutants listed in
-tests/mutants/equivalent.txt are left out. Each worker keeps a copy of the tree and a build tree under
-build/mutants/wK/ (laid out as build/release, so that ccache shares objects), refreshed at every run.
-"""
+"""`tools/grade --mutants`: how many plausible student bugs do the grading tests catch? (docs/grading-reference.md,
+"Grading power: measuring it with mutants"). Each mutant (cpp_mutants.py) or hand-written student bug
+(tests/mutants/student_bugs/*.bug) is built in a worker's copy of the tree, build/mutants/wK/, and the lesson's
+grading suite run on it."""
 from __future__ import annotations
 
 import argparse
@@ -30,24 +25,13 @@ EQUIVALENT_FILE = Path("tests") / "mutants" / "equivalent.txt"
 WORK_DIR = Path("build") / "mutants"
 
 
-def lesson_units(root: Path, lesson: str) -> list[tuple[Path, Path]]:
-    """(reference unit, stub) pairs of one lesson, relative to root."""
-    units = []
-    lib = root / "lib"
-    for stub in sorted((root / "exercises").glob(f"{lesson}_*/*.cpp")):
-        found = sorted(lib.rglob(stub.name))
-        if found:
-            units.append((found[0].relative_to(root), stub.relative_to(root)))
-    return units
-
-
 def all_mutants(root: Path, lesson: str) -> list[Mutant]:
+    """The mutants of every reference unit under lib/ of the lesson's stubs, on the lines not in the stub."""
     mutants = []
-    for unit, stub in lesson_units(root, lesson):
-        stub_lines = {line.strip() for line in (root / stub).read_text(encoding="utf-8").splitlines()}
-        stub_lines.discard("")
-        source = (root / unit).read_text(encoding="utf-8")
-        mutants += generate(lesson, unit, source, stub_lines)
+    for stub in sorted((root / "exercises").glob(f"{lesson}_*/*.cpp")):
+        if found := sorted((root / "lib").rglob(stub.name)):
+            stub_lines = {line.strip() for line in stub.read_text(encoding="utf-8").splitlines()} - {""}
+            mutants += generate(lesson, found[0].relative_to(root), found[0].read_text(encoding="utf-8"), stub_lines)
     return mutants
 
 
@@ -156,31 +140,27 @@ def sync_tree(source: Path, destination: Path) -> None:
     seen: set[Path] = set()
     for folder, dirs, files in os.walk(source):
         here = Path(folder)
-        relative = here.relative_to(source)
-        dirs[:] = [d for d in dirs if not (relative == Path(".") and d in _COPY_IGNORE) and d != "__pycache__"]
-        (destination / relative).mkdir(parents=True, exist_ok=True)
-        seen.add(destination / relative)
+        target = destination / here.relative_to(source)
+        dirs[:] = [d for d in dirs if d not in (_COPY_IGNORE if here == source else {"__pycache__"})]
+        target.mkdir(parents=True, exist_ok=True)
+        seen.add(target)
         for name in files:
-            if relative == Path(".") and name in _COPY_IGNORE:
+            if here == source and name in _COPY_IGNORE:
                 continue  # e.g. a node_modules symlink
-            src, dst = here / name, destination / relative / name
+            src, dst = here / name, target / name
             seen.add(dst)
             if src.is_symlink():  # copied as a link, never followed (it may point anywhere, or nowhere)
-                target = os.readlink(src)
-                if not dst.is_symlink() or os.readlink(dst) != target:
-                    if dst.exists() or dst.is_symlink():
-                        dst.unlink()
-                    os.symlink(target, dst)
+                if not dst.is_symlink() or os.readlink(dst) != os.readlink(src):
+                    dst.unlink(missing_ok=True)
+                    os.symlink(os.readlink(src), dst)
                 continue
             if dst.is_symlink():
                 dst.unlink()
-            data = src.read_bytes()
-            if not dst.exists() or dst.read_bytes() != data:
-                dst.write_bytes(data)
-                shutil.copymode(src, dst)
-    for folder, dirs, files in os.walk(destination, topdown=False):
+            if not dst.exists() or dst.read_bytes() != src.read_bytes():
+                shutil.copy(src, dst)  # the content and the mode
+    for folder, _, files in os.walk(destination, topdown=False):
         here = Path(folder)
-        if here == destination / "build" or destination / "build" in here.parents:
+        if here.is_relative_to(destination / "build"):
             continue
         for name in files:
             if here / name not in seen:
@@ -200,14 +180,12 @@ def _run(command: list[str], timeout: float | None = None) -> tuple[bool, str]:
 
 
 class Workspace:
-    """One worker's copy of the tree (``build/mutants/wK``) and its build tree."""
+    """One worker's copy of the tree (``build/mutants/wK``) and its build tree, at the depth of build/release
+    so that ccache's base_dir makes paths identical."""
 
     def __init__(self, root: Path, base: Path, number: int):
-        self.root = root
-        self.src = base / f"w{number}"
-        # Same depth as build/release, so ccache's base_dir makes paths identical.
+        self.root, self.src = root, base / f"w{number}"
         self.build = self.src / "build" / "release"
-        self.number = number
         self.current: Path | None = None  # the unit rewritten now, if any
 
     def prepare(self) -> tuple[bool, str]:
@@ -223,16 +201,14 @@ class Workspace:
         # One mutant at a time: a worker that moves on to another unit puts the
         # previous one back first, or every later mutant would also carry the
         # last mutation of that unit (and be killed by it, not by its own).
-        if self.current is not None and self.current != unit:
+        if self.current != unit:
             self.restore()
-        path = self.src / unit
-        path.write_text(text, encoding="utf-8")
+        (self.src / unit).write_text(text, encoding="utf-8")
         self.current = unit
 
     def restore(self) -> None:
         if self.current is not None:
-            original = (self.root / self.current).read_bytes()
-            (self.src / self.current).write_bytes(original)
+            shutil.copyfile(self.root / self.current, self.src / self.current)
             self.current = None
 
 
@@ -255,11 +231,7 @@ def run_grading(workspace: Workspace, lesson: str, timeout: float, extra: tuple[
     doctest's --abort-after=1: a wrong program stops at its first failed
     assertion instead of failing thousands of them (which can take minutes),
     and a time-out then really means a program that does not finish."""
-    bin_dir = workspace.build / "bin"
-    programs = [bin_dir / f"tests_lesson{lesson}"]
-    if "tests_hidden" in lesson_targets(workspace.root, lesson):
-        programs.append(bin_dir / "tests_hidden")
-    for program in programs:
+    for program in (workspace.build / "bin" / target for target in lesson_targets(workspace.root, lesson)):
         command = [str(program), f"-ts=lesson{lesson}", "--abort-after=1", "--no-version", "--no-colors", *extra]
         try:
             # One process: a mutant that crashes a test is killed there; the tests after it need not run.
@@ -272,9 +244,7 @@ def run_grading(workspace: Workspace, lesson: str, timeout: float, extra: tuple[
             return "timed out", ""  # the test program's own per-test limit (tests/support/test_main.cpp)
         if done.returncode != 0:
             found = _TEST_CASE_LINE.search(done.stdout)
-            if found:
-                return "killed", found.group(1).strip()
-            return "killed", f"{program.name} exited with status {done.returncode}"
+            return "killed", found.group(1).strip() if found else f"{program.name} exited with status {done.returncode}"
         if not extra and ("test cases:" not in done.stdout or re.search(r"test cases:\s+0 \|", done.stdout)):
             return "killed", f"{program.name} ran no lesson{lesson} test"
     return "survived", ""
@@ -291,7 +261,7 @@ class LessonReport:
     problem: str = ""
 
     def count(self, status: str, without: bool = False) -> int:
-        return sum(1 for m in self.mutants if (m.status_without if without else m.status) == status)
+        return sum((m.status_without if without else m.status) == status for m in self.mutants)
 
     def detected(self, without: bool = False) -> int:
         return self.count("killed", without) + self.count("timed out", without)
@@ -437,11 +407,10 @@ def run_lesson(report: LessonReport, workspaces: list[Workspace], timeout_arg: f
                 mutant = work.get_nowait()
             except queue.Empty:
                 break
-            t = time.monotonic()
             workspace.write_unit(mutant.unit, mutant.apply())
             ok, _ = workspace.build_targets(targets, timeout=max(300.0, timeout))
             if not ok:
-                mutant.status = "did not build"
+                mutant.status = mutant.status_without = "did not build"
             else:
                 mutant.status, mutant.failed_test = run_grading(workspace, report.lesson, timeout)
                 mutant.status_without = mutant.status
@@ -449,18 +418,14 @@ def run_lesson(report: LessonReport, workspaces: list[Workspace], timeout_arg: f
                     # Fewer tests cannot kill what the whole suite lets through: run only if it matters.
                     mutant.status_without, _ = run_grading(workspace, report.lesson, timeout,
                                                            (f"--source-file-exclude={compare_without}",))
-            if mutant.status == "did not build":
-                mutant.status_without = mutant.status
-            mutant.seconds = time.monotonic() - t
             progress.report(mutant)
-        workspace.restore()
 
     threads = [threading.Thread(target=worker, args=(w,)) for w in workspaces]
     for thread in threads:
         thread.start()
     for thread in threads:
         thread.join()
-    # Leave every tree built from the unmutated sources.
+    # Leave every tree with the unmutated sources (a worker that stopped on an error did not restore its own).
     for workspace in workspaces:
         workspace.restore()
     report.seconds = time.monotonic() - start

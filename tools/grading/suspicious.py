@@ -80,16 +80,12 @@ def _include_problem(argument: str) -> str:
     parts = PurePosixPath(name).parts
     if ".." in parts or name.startswith("/"):
         return f"includes \"{name}\" by a path that leaves the include folders"
-    if parts and parts[0] == "illum":
-        if not name.endswith((".hpp", ".h")):
-            return f"includes {name}, a source file: include only headers"
+    if parts[:1] == ("illum",):
+        return "" if name.endswith((".hpp", ".h")) else f"includes {name}, a source file: include only headers"
+    if parts[:1] == ("glm",) or (bracket == "<" and name in STANDARD_HEADERS - OUTSIDE_HEADERS):
         return ""
-    if parts and parts[0] == "glm":
-        return ""
-    if bracket == "<" and name in STANDARD_HEADERS:
-        if name in OUTSIDE_HEADERS:
-            return f"includes <{name}>: exercise code may not touch files, signals or jumps"
-        return ""
+    if bracket == "<" and name in OUTSIDE_HEADERS:
+        return f"includes <{name}>: exercise code may not touch files, signals or jumps"
     shown = f"<{name}>" if bracket == "<" else f"\"{name}\""
     return f"includes {shown}, which is outside illum/, the C++ standard library and GLM"
 
@@ -202,8 +198,7 @@ def _demangle(names: list[str]) -> list[str]:
     if not names or not cxxfilt:
         return names
     done = subprocess.run([cxxfilt], input="\n".join(names) + "\n", capture_output=True, text=True, check=False)
-    out = done.stdout.splitlines()
-    return out if len(out) == len(names) else names
+    return out if len(out := done.stdout.splitlines()) == len(names) else names
 
 
 def object_symbols(path: Path) -> tuple[list[tuple[str, str, str]], list[tuple[str, str]]]:
@@ -225,9 +220,7 @@ def object_symbols(path: Path) -> tuple[list[tuple[str, str, str]], list[tuple[s
         elif kind in "TDBRWVGSCui":  # defined and global
             defined.append((kind, name))
     demangled = _demangle([n for _, n in defined] + used)
-    defined_out = [(k, n, d) for (k, n), d in zip(defined, demangled[:len(defined)])]
-    used_out = list(zip(used, demangled[len(defined):]))
-    return defined_out, used_out
+    return [(k, n, d) for (k, n), d in zip(defined, demangled)], list(zip(used, demangled[len(defined):]))
 
 
 @functools.cache
@@ -237,11 +230,8 @@ def runtime_symbols() -> set[str]:
     found: set[str] = set()
     nm, compiler = shutil.which("nm"), shutil.which("c++") or shutil.which("g++")
     for library in ("libc.so.6", "libm.so.6", "libstdc++.so.6", "libgcc_s.so.1", "libgomp.so.1"):
-        path = ""
-        if compiler:
-            done = subprocess.run([compiler, f"-print-file-name={library}"], capture_output=True, text=True,
-                                  check=False)
-            path = done.stdout.strip()
+        path = subprocess.run([compiler, f"-print-file-name={library}"], capture_output=True, text=True,
+                              check=False).stdout.strip() if compiler else ""
         if nm and path and Path(path).is_file():
             done = subprocess.run([nm, "-D", "-P", "--defined-only", path], capture_output=True, text=True,
                                   check=False)
@@ -249,6 +239,9 @@ def runtime_symbols() -> set[str]:
     # Whatever the libraries found, these are never an exercise's to define.
     return found | set(_FORBIDDEN_BY_NAME) | {"main", "malloc", "free", "calloc", "realloc", "stdout", "stderr",
                                               "stdin"}
+
+
+_NM_MEMBER = re.compile(r"^.*\[([^\]]+)\]:\s+(\S+)\s+([A-Za-z])")
 
 
 def library_definitions(archive: Path, skip_members: set[str]) -> dict[str, str]:
@@ -259,14 +252,9 @@ def library_definitions(archive: Path, skip_members: set[str]) -> dict[str, str]
     done = subprocess.run([nm, "-P", "--defined-only", "--extern-only", "-A", str(archive)], capture_output=True,
                           text=True, check=False)
     found: dict[str, str] = {}
-    for line in done.stdout.splitlines():
-        match = re.match(r"^.*\[([^\]]+)\]:\s+(\S+)\s+([A-Za-z])", line)
-        if not match:
-            continue
-        member, name, kind = match.groups()
-        if member in skip_members or kind not in "TDBR":
-            continue
-        found.setdefault(name, member)
+    for line in done.stdout.splitlines():  # archive[member]: name type ...
+        if (match := _NM_MEMBER.match(line)) and match[1] not in skip_members and match[3] in "TDBR":
+            found.setdefault(match[2], match[1])
     return found
 
 
@@ -306,10 +294,8 @@ def scan_object(path: Path, file: str, library: dict[str, str] | None = None) ->
                 "not replace the library's functions")
     for name, shown in used:
         if name.startswith("_Z"):
-            for prefix, why in _FORBIDDEN_CXX:
-                if prefix in shown:
-                    add(f"{why} ({shown[:100]})")
-                    break
+            if why := next((why for prefix, why in _FORBIDDEN_CXX if prefix in shown), None):
+                add(f"{why} ({shown[:100]})")
             continue
         base = name.split("@", 1)[0]
         kind = _FORBIDDEN_BY_NAME.get(base)
@@ -323,7 +309,6 @@ def scan_object(path: Path, file: str, library: dict[str, str] | None = None) ->
 
 def object_of(build_dir: Path, relative: str) -> Path | None:
     """The object file CMake compiled ``exercises/NN_topic/name.cpp`` into, in ``build_dir``."""
-    name = PurePosixPath(relative).name
-    lesson_dir = PurePosixPath(relative).parent.name
-    candidates = sorted(p for p in build_dir.glob(f"CMakeFiles/*/**/{lesson_dir}/{name}.o") if p.is_file())
-    return candidates[0] if candidates else None
+    unit = PurePosixPath(relative)
+    return next(iter(sorted(p for p in build_dir.glob(f"CMakeFiles/*/**/{unit.parent.name}/{unit.name}.o")
+                            if p.is_file())), None)
