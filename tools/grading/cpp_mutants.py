@@ -32,6 +32,7 @@ class Token:
     end: int
     line: int
     template: bool = False  # an angle bracket of a template argument list
+    close: int = -1  # a template argument list's '<': the index of its closing '>' (or '>>')
 
 
 def tokenize(source: str) -> list[Token]:
@@ -84,7 +85,7 @@ def _mark_templates(tokens: list[Token]) -> None:
                 depth -= 1 if t.text == ">" else 2
                 closing.append(t)
                 if depth <= 0:
-                    token.template = True
+                    token.template, token.close = True, j
                     for c in closing:
                         c.template = True
                     break
@@ -123,8 +124,7 @@ class Mutant:
 
     @property
     def ident(self) -> str:
-        digest = hashlib.sha1(f"{self.unit}:{self.start}:{self.operator}:{self.replacement}".encode()).hexdigest()
-        return digest[:8]
+        return hashlib.sha1(f"{self.unit}:{self.start}:{self.operator}:{self.replacement}".encode()).hexdigest()[:8]
 
     def apply(self, source: str | None = None) -> str:
         source = self.source if source is None else source
@@ -134,10 +134,9 @@ class Mutant:
         return f"{self.unit.as_posix()}: {code_only(self.source_line)} => {code_only(self.mutated_line)}"
 
     def diff(self) -> str:
-        source = self.source
-        lines = difflib.unified_diff(source.splitlines(keepends=True), self.apply(source).splitlines(keepends=True),
-                                     fromfile=f"a/{self.unit.as_posix()}", tofile=f"b/{self.unit.as_posix()}", n=1)
-        return "".join(lines)
+        unit = self.unit.as_posix()
+        return "".join(difflib.unified_diff(self.source.splitlines(keepends=True),
+                                            self.apply().splitlines(keepends=True), f"a/{unit}", f"b/{unit}", n=1))
 
 
 def code_only(line: str) -> str:
@@ -218,18 +217,7 @@ def _operand_after(tokens: list[Token], index: int) -> int:
                 return -1
             j = close
         elif after.text == "<" and after.template:
-            depth, k = 0, j + 1
-            while k < len(tokens):
-                if tokens[k].text == "<" and tokens[k].template:
-                    depth += 1
-                elif tokens[k].text in (">", ">>") and tokens[k].template:
-                    depth -= 1 if tokens[k].text == ">" else 2
-                    if depth <= 0:
-                        break
-                k += 1
-            if k >= len(tokens):
-                return -1
-            j = k
+            j = after.close
         else:
             break
     return j
@@ -286,8 +274,8 @@ def _nudged_constants(text: str) -> list[str]:
     except ValueError:
         return []
     is_float = any(c in core for c in ".eE") and not core.lower().startswith("0x")
-    targets = {0.0: [1.0], 1.0: [0.0], 2.0: [1.0]}.get(value, [])
-    return [("1.0" if t == 1.0 else "0.0") + suffix if is_float else str(int(t)) + suffix for t in targets]
+    target = {0.0: 1, 1.0: 0, 2.0: 1}.get(value)
+    return [] if target is None else [f"{target}.0{suffix}" if is_float else f"{target}{suffix}"]
 
 
 def generate(lesson: str, unit: Path, source: str, stub_lines: set[str]) -> list[Mutant]:
@@ -315,11 +303,8 @@ class _Generator:
         if line not in self.mutable:
             return
         m = Mutant(self.lesson, self.unit, line, operator, start, end, self.source[start:end], replacement,
-                   source=self.source)
-        mutated, first = m.apply(), self.line_starts[line - 1]
-        end_of_line = mutated.find("\n", first)
-        m.source_line = self.lines[line - 1].strip()
-        m.mutated_line = mutated[first:end_of_line if end_of_line >= 0 else len(mutated)].strip()
+                   source_line=self.lines[line - 1].strip(), source=self.source)
+        m.mutated_line = m.apply()[self.line_starts[line - 1]:].split("\n", 1)[0].strip()
         self.mutants.append(m)
 
     def text(self, first: int, last: int) -> str:

@@ -96,22 +96,17 @@ def _walk_files(source: Path) -> list[str]:
     files: list[str] = []
     ignores_of: dict[str, list[tuple]] = {}
     for folder, subfolders, names in os.walk(source):
-        relative = Path(folder).relative_to(source).as_posix().removeprefix(".")
-        parent = relative.rsplit("/", 1)[0] if "/" in relative else ""
-        ignores = ignores_of[relative] = (ignores_of.get(parent, []) if relative else []) + _read_ignores(
+        relative = "" if Path(folder) == source else Path(folder).relative_to(source).as_posix()
+        prefix = f"{relative}/" if relative else ""
+        ignores = ignores_of[relative] = ignores_of.get(relative.rpartition("/")[0], []) + _read_ignores(
             Path(folder), relative)
-        path = (lambda name: f"{relative}/{name}") if relative else (lambda name: name)
-        kept = []
-        for name in sorted(subfolders):
-            if name == ".git" or (not relative and name in GENERATED):
-                continue
-            if os.path.islink(os.path.join(folder, name)):  # git keeps a link as a file
-                files += [] if _ignored(ignores, path(name), False) else [path(name)]
-            elif not _ignored(ignores, path(name), True):
-                kept.append(name)
-        subfolders[:] = kept
+        subfolders[:] = [name for name in sorted(subfolders) if name != ".git" and (relative or name not in GENERATED)]
+        links = [name for name in subfolders if os.path.islink(os.path.join(folder, name))]  # git keeps them as files
         # A worktree's .git is a file naming the repository.
-        files.extend(path(name) for name in names if name != ".git" and not _ignored(ignores, path(name), False))
+        files += [prefix + name for name in links + names
+                  if name != ".git" and not _ignored(ignores, prefix + name, False)]
+        subfolders[:] = [name for name in subfolders
+                         if name not in links and not _ignored(ignores, prefix + name, True)]
     return sorted(files)
 
 
