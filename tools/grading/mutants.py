@@ -113,8 +113,7 @@ def bug_mutant(root: Path, bug: BugFile) -> Mutant:
             raise ValueError(f"{bug.path.name}: the text to find occurs {count} times in {bug.unit} "
                              f"(expected once):\n{find}")
         edited = edited.replace(find, replace)
-    first = next(i for i, (a, b) in enumerate(zip(source, edited + "\0")) if a != b)
-    line = source.count("\n", 0, first) + 1
+    line = source.count("\n", 0, len(os.path.commonprefix([source, edited]))) + 1
     return Mutant(bug.lesson, bug.unit, line, f"student bug {bug.path.stem}", 0, len(source), source, edited,
                   source_line=bug.title, mutated_line=bug.caught_by, source=source)
 
@@ -475,14 +474,12 @@ def markdown_report(reports: list[LessonReport], command: str, compare_without: 
         parts[-1:-1] = ["", f"*score without `{compare_without}`*: the same mutants against the suite without "
                         f"the test files matching `{compare_without}` (what the score was before those tests)."]
     for r in reports:
-        parts.append(f"## Lesson {r.lesson}")
-        parts.append("")
+        parts += [f"## Lesson {r.lesson}", ""]
         if r.problem:
             parts += ["Not run: " + r.problem.splitlines()[0], ""]
             continue
-        parts.append(f"{len(r.mutants)} mutant(s) run of {r.generated} ({r.equivalent} equivalent left out); "
-                     f"unmutated suite {r.baseline_seconds:.1f} s.")
-        parts.append("")
+        parts += [f"{len(r.mutants)} mutant(s) run of {r.generated} ({r.equivalent} equivalent left out); "
+                  f"unmutated suite {r.baseline_seconds:.1f} s.", ""]
         survivors = [m for m in r.mutants if m.status == "survived"]
         if not survivors:
             parts += ["No survivor.", ""]
@@ -569,10 +566,9 @@ def main(argv: list[str]) -> int:
         print(text)
     else:
         print(summary_table(reports, args.compare_without))
-        for r in reports:
-            for m in (m for m in r.mutants if m.status == "survived"):
-                print(f"survived: {m.ident} {m.unit.as_posix()}:{m.line} {m.operator}: {m.source_line}  =>  "
-                      f"{m.mutated_line}")
+        for m in (m for r in reports for m in r.mutants if m.status == "survived"):
+            print(f"survived: {m.ident} {m.unit.as_posix()}:{m.line} {m.operator}: {m.source_line}  =>  "
+                  f"{m.mutated_line}")
         text = markdown_report(reports, command, args.compare_without)
     if args.report:
         args.report.parent.mkdir(parents=True, exist_ok=True)

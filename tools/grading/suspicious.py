@@ -108,19 +108,16 @@ def scan_source(text: str, file: str) -> list[Finding]:
 def _scan_lines(text: str, file: str) -> list[Finding]:
     code, plain = blank_comments(text), blank_comments(text, strings=False)
     findings = []
-    code_lines, plain_lines = code.splitlines(), plain.splitlines()
-    for number, line in enumerate(code_lines, start=1):
-        include = _INCLUDE.match(line)
-        if include:
+    for number, (line, plain_line) in enumerate(zip(code.splitlines(), plain.splitlines()), start=1):
+        if _INCLUDE.match(line):
             # The header's name is a string to the scanner: read it from the uncommented text.
-            problem = _include_problem(_INCLUDE.match(plain_lines[number - 1]).group(1))
-            if problem:
+            if problem := _include_problem(_INCLUDE.match(plain_line).group(1)):
                 findings.append(Finding(file, number, problem))
             continue
         for pattern, why in _SOURCE_RULES:
-            if pattern.search(plain_lines[number - 1] if "extern" in pattern.pattern else line):
+            if pattern.search(plain_line if "extern" in pattern.pattern else line):
                 findings.append(Finding(file, number, why))
-        if _PROC.search(plain_lines[number - 1]):
+        if _PROC.search(plain_line):
             findings.append(Finding(file, number, "names /proc or a descriptor's device (/dev/fd): exercise "
                                                   "code may not look into the running program"))
     # "doctest" split over a line ("doc\\\n test") or hidden in a macro is still found on the joined text.
