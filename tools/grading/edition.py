@@ -40,27 +40,20 @@ def tracked_files(source: Path) -> list[str]:
     return sorted(p for p in listed.split("\0") if p) if listed is not None else _walk_files(source)
 
 
+_GLOB_PART = re.compile(r"/\*\*\Z|\*\*/|\*\*|\*|\?|\[.[^]]*\]|\\.|.", re.S)
+_GLOB_REGEX = {"/**": "/.*", "**/": "(?:.*/)?", "**": ".*", "*": "[^/]*", "?": "[^/]"}
+
+
+def _glob_part(match: re.Match) -> str:
+    part = match.group()
+    if part[0] == "[" and len(part) > 1:  # a class, `[!...]` negated
+        return "[" + ("^" + part[2:-1] if part[1] == "!" else part[1:-1]) + "]"
+    return _GLOB_REGEX.get(part) or re.escape(part[-1])  # `\x`: x itself
+
+
 def _glob_regex(glob: str) -> re.Pattern:
     """gitignore(5)'s glob: `*` and `?` stop at a slash, `**` crosses folders, `[...]` a class."""
-    out, i = [], 0
-    rules = (("**/", "(?:.*/)?"), ("**", ".*"), ("*", "[^/]*"), ("?", "[^/]"))
-    while i < len(glob):
-        if glob.startswith("/**", i) and i + 3 == len(glob):
-            out.append("/.*")
-            i += 3
-        elif rule := next((r for r in rules if glob.startswith(r[0], i)), None):
-            out.append(rule[1])
-            i += len(rule[0])
-        elif glob[i] == "[" and "]" in glob[i + 2:]:
-            end = glob.index("]", i + 2)
-            body = glob[i + 1:end]
-            out.append("[" + ("^" + body[1:] if body[:1] == "!" else body) + "]")
-            i = end + 1
-        else:
-            escaped = glob[i] == "\\" and i + 1 < len(glob)
-            out.append(re.escape(glob[i + escaped]))
-            i += 1 + escaped
-    return re.compile("".join(out))
+    return re.compile(_GLOB_PART.sub(_glob_part, glob))
 
 
 def _read_ignores(folder: Path, base: str) -> list[tuple]:

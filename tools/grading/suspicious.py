@@ -154,24 +154,20 @@ _HARMLESS_C_PREFIXES = ("GOMP_", "omp_", "__atomic_", "__sync_", "DW.ref.", "__i
                         "__fpclassify", "__signbit")
 # C functions that reach outside the computation: a file using one is flagged.
 _FORBIDDEN_C = {
-    "process": {"fork", "vfork", "clone", "clone3", "execl", "execle", "execlp", "execv", "execve", "execvp",
-                "execvpe", "fexecve", "posix_spawn", "posix_spawnp", "system", "popen", "pclose", "wait",
-                "waitpid", "kill", "killpg", "raise", "ptrace", "prctl", "setsid", "setpgid", "unshare",
-                "daemon", "pthread_atfork"},
-    "exit": {"exit", "_exit", "_Exit", "quick_exit", "atexit", "at_quick_exit", "on_exit"},
-    "system call": {"syscall"},
-    "file": {"open", "open64", "openat", "openat64", "creat", "creat64", "fopen", "fopen64", "freopen", "fdopen",
-             "write", "writev", "pwrite", "pwrite64", "read", "pread", "readv", "dprintf", "vdprintf", "close",
-             "dup", "dup2", "dup3", "pipe", "pipe2", "mkfifo", "unlink", "rename", "remove", "truncate",
-             "ftruncate", "sendfile", "splice", "tee", "socket", "connect", "send", "sendto", "sendmsg", "fcntl",
-             "ioctl", "mmap", "mmap64", "munmap", "mprotect", "chdir", "chmod", "chown", "symlink", "link",
-             "opendir", "readdir"},
-    "environment": {"getenv", "secure_getenv", "setenv", "putenv", "unsetenv", "environ", "__environ"},
-    "signal": {"signal", "sigaction", "sigprocmask", "setjmp", "_setjmp", "__sigsetjmp", "longjmp", "siglongjmp",
-               "__longjmp_chk", "alarm", "setitimer"},
-    "dynamic loading": {"dlopen", "dlsym", "dlvsym", "dlmopen", "dladdr"},
+    "process": """fork vfork clone clone3 execl execle execlp execv execve execvp execvpe fexecve posix_spawn
+        posix_spawnp system popen pclose wait waitpid kill killpg raise ptrace prctl setsid setpgid unshare daemon
+        pthread_atfork""",
+    "exit": "exit _exit _Exit quick_exit atexit at_quick_exit on_exit",
+    "system call": "syscall",
+    "file": """open open64 openat openat64 creat creat64 fopen fopen64 freopen fdopen write writev pwrite pwrite64
+        read pread readv dprintf vdprintf close dup dup2 dup3 pipe pipe2 mkfifo unlink rename remove truncate
+        ftruncate sendfile splice tee socket connect send sendto sendmsg fcntl ioctl mmap mmap64 munmap mprotect
+        chdir chmod chown symlink link opendir readdir""",
+    "environment": "getenv secure_getenv setenv putenv unsetenv environ __environ",
+    "signal": "signal sigaction sigprocmask setjmp _setjmp __sigsetjmp longjmp siglongjmp __longjmp_chk alarm setitimer",
+    "dynamic loading": "dlopen dlsym dlvsym dlmopen dladdr",
 }
-_FORBIDDEN_BY_NAME = {name: kind for kind, names in _FORBIDDEN_C.items() for name in names}
+_FORBIDDEN_BY_NAME = {name: kind for kind, names in _FORBIDDEN_C.items() for name in names.split()}
 # C++ library parts that reach outside the computation (demangled prefixes).
 _FORBIDDEN_CXX = [
     ("doctest::", "uses doctest, the test framework"),
