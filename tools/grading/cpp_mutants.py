@@ -234,10 +234,8 @@ def _operand_before(tokens: list[Token], index: int) -> int:
         if opening < 0:
             return -1
         name = tokens[opening - 1]  # the called or subscripted name, if there is one
-        if token.text == ")" and (opening == 0 or name.kind != "ident" or name.text in _CONTROL):
-            return opening  # a parenthesised expression
-        if name.text in _TYPE_WORDS or name.text in _CONTROL:
-            return opening
+        if (token.text == ")" and (opening == 0 or name.kind != "ident")) or name.text in _TYPE_WORDS | _CONTROL:
+            return opening  # a parenthesised expression, a cast, a condition
         j = opening - 1
     elif token.kind == "number":
         return index
