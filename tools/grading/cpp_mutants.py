@@ -64,8 +64,8 @@ _TEMPLATE_ARGUMENT_TOKENS = {"::", ",", "*", "&", "<", ">", ">>"}
 
 
 def _mark_templates(tokens: list[Token]) -> None:
-    """Marks ``<`` and ``>`` of template argument lists: a ``<`` after a name
-    whose tokens up to a matching ``>`` can only be template arguments."""
+    """Marks ``<`` and ``>`` of template argument lists: a ``<`` after a name whose tokens up to a matching ``>``
+    can only be template arguments."""
     for index, token in enumerate(tokens):
         if token.text != "<" or token.template or index == 0:
             continue
@@ -92,8 +92,7 @@ def _mark_templates(tokens: list[Token]) -> None:
 
 
 def body_tokens(tokens: list[Token]) -> list[bool]:
-    """For each token: does it lie inside a function (or class) body, i.e. inside
-    braces other than a namespace's?"""
+    """For each token: does it lie inside a function (or class) body, i.e. inside braces other than a namespace's?"""
     inside: list[bool] = []
     stack: list[bool] = []  # True for a brace that is a body
     for index, token in enumerate(tokens):
@@ -194,9 +193,8 @@ def _top_level_commas(tokens: list[Token], open_index: int, close_index: int) ->
 
 
 def _operand_after(tokens: list[Token], index: int) -> int:
-    """The index of the last token of the operand that starts at tokens[index]
-    (a name with its calls, subscripts and members, a number, a parenthesised
-    expression), or -1 when it is not one of those."""
+    """The index of the last token of the operand that starts at tokens[index] (a name with its calls, subscripts
+    and members, a number, a parenthesised expression), or -1 when it is not one of those."""
     if index >= len(tokens):
         return -1
     token = tokens[index]
@@ -468,8 +466,8 @@ class _Generator:
 
 
 def _index_partner(name: str, names: list[str]) -> str:
-    """The index a student could confuse with `name`: i <-> j, k <-> l, else the
-    most used other single-name subscript of the file."""
+    """The index a student could confuse with `name`: i <-> j, k <-> l, else the most used other single-name
+    subscript of the file."""
     pairs = {"i": "j", "j": "i", "k": "l", "l": "k", "u": "v", "v": "u", "a": "b", "b": "a"}
     if name in pairs and pairs[name] in names:
         return pairs[name]

@@ -134,8 +134,7 @@ _COPY_IGNORE = {"build", ".git", "node_modules", "out", "__pycache__"}
 
 
 def sync_tree(source: Path, destination: Path) -> None:
-    """Mirrors the source tree into destination, rewriting only files whose
-    content changed (unchanged files keep their time stamps: no rebuild)."""
+    """Mirrors source into destination, rewriting only changed files (the others keep their time stamps: no rebuild)."""
     seen: set[Path] = set()
     for folder, dirs, files in os.walk(source):
         here = Path(folder)
@@ -197,9 +196,8 @@ class Workspace:
         return _run(["cmake", "--build", str(self.build), "-j", str(jobs), "--target", *targets], timeout)
 
     def write_unit(self, unit: Path, text: str) -> None:
-        # One mutant at a time: a worker that moves on to another unit puts the
-        # previous one back first, or every later mutant would also carry the
-        # last mutation of that unit (and be killed by it, not by its own).
+        # One mutant at a time: a worker that moves on to another unit puts the previous one back first, or every
+        # later mutant would also carry the last mutation of that unit (and be killed by it, not by its own).
         if self.current != unit:
             self.restore()
         (self.src / unit).write_text(text, encoding="utf-8")
@@ -226,9 +224,8 @@ _TEST_CASE_LINE = re.compile(r"^TEST CASE:\s+(.*)$", re.M)
 def run_grading(workspace: Workspace, lesson: str, timeout: float, extra: tuple[str, ...] = ()) -> tuple[str, str]:
     """('killed' | 'survived' | 'timed out', first failing test) for the built tree.
 
-    A mutant only needs one failing test to be killed, so the suite runs with
-    doctest's --abort-after=1: a wrong program stops at its first failed
-    assertion instead of failing thousands of them (which can take minutes),
+    A mutant only needs one failing test to be killed, so the suite runs with doctest's --abort-after=1: a wrong
+    program stops at its first failed assertion instead of failing thousands of them (which can take minutes),
     and a time-out then really means a program that does not finish."""
     for program in (workspace.build / "bin" / target for target in lesson_targets(workspace.root, lesson)):
         command = [str(program), f"-ts=lesson{lesson}", "--abort-after=1", "--no-version", "--no-colors", *extra]

@@ -91,8 +91,8 @@ def _include_problem(argument: str) -> str:
 
 
 def scan_source(text: str, file: str) -> list[Finding]:
-    """The serious findings of one exercise file's text (module doc), one per
-    kind, at its first line, naming the other lines where it comes back."""
+    """The serious findings of one exercise file's text (module doc), one per kind, at its first line, naming the
+    other lines where it comes back."""
     grouped: dict[str, list[Finding]] = {}
     for finding in _scan_lines(text, file):
         grouped.setdefault(finding.what, []).append(finding)
@@ -164,7 +164,8 @@ _FORBIDDEN_C = {
         ftruncate sendfile splice tee socket connect send sendto sendmsg fcntl ioctl mmap mmap64 munmap mprotect
         chdir chmod chown symlink link opendir readdir""",
     "environment": "getenv secure_getenv setenv putenv unsetenv environ __environ",
-    "signal": "signal sigaction sigprocmask setjmp _setjmp __sigsetjmp longjmp siglongjmp __longjmp_chk alarm setitimer",
+    "signal": """signal sigaction sigprocmask setjmp _setjmp __sigsetjmp longjmp siglongjmp __longjmp_chk alarm
+        setitimer""",
     "dynamic loading": "dlopen dlsym dlvsym dlmopen dladdr",
 }
 _FORBIDDEN_BY_NAME = {name: kind for kind, names in _FORBIDDEN_C.items() for name in names.split()}
@@ -218,8 +219,8 @@ def object_symbols(path: Path) -> tuple[list[tuple[str, str, str]], list[tuple[s
 
 @functools.cache
 def runtime_symbols() -> set[str]:
-    """The names the C, maths, C++, GCC and OpenMP runtime libraries export: a
-    program that defines one of them replaces it for every caller (interposition)."""
+    """The names the C, maths, C++, GCC and OpenMP runtime libraries export: a program that defines one of them
+    replaces it for every caller (interposition)."""
     found: set[str] = set()
     nm, compiler = shutil.which("nm"), shutil.which("c++") or shutil.which("g++")
     for library in ("libc.so.6", "libm.so.6", "libstdc++.so.6", "libgcc_s.so.1", "libgomp.so.1"):
