@@ -362,7 +362,7 @@ class Progress:
             self.done += 1
             elapsed = time.monotonic() - self.start
             left = elapsed / self.done * (self.total - self.done)
-            what = (f"{mutant.source_line}" if mutant.operator.startswith("student bug") else
+            what = (mutant.source_line if mutant.operator.startswith("student bug") else
                     f"{mutant.original!r} -> {mutant.replacement!r}")
             print(f"[{self.done}/{self.total} {elapsed:5.0f} s, ~{left:4.0f} s left] {mutant.status:13} "
                   f"{mutant.unit.name}:{mutant.line} {mutant.operator}: {what}"
@@ -432,12 +432,8 @@ def summary_table(reports: list[LessonReport], compare_without: str | None = Non
     lines = ["| lesson | mutants (equivalent) | run | killed | timed out | survived | did not build | score |"
              + extra + " time |",
              "|---|---|---|---|---|---|---|---|" + ("---|" if compare_without else "") + "---|"]
-
-    def percent(value: float | None) -> str:
-        return "n/a" if value is None else f"**{value:.1f}%**"
-
     for r in reports:
-        score = "error" if r.problem else percent(r.score)
+        score = "error" if r.problem else "n/a" if r.score is None else f"**{r.score:.1f}%**"
         row = (f"| {r.lesson} | {r.generated} ({r.equivalent}) | {len(r.mutants)} | {r.count('killed')} | "
                f"{r.count('timed out')} | {r.count('survived')} | {r.count('did not build')} | {score} |")
         if compare_without:
