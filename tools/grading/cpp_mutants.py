@@ -32,6 +32,7 @@ class Token:
     end: int
     line: int
     template: bool = False  # an angle bracket of a template argument list
+    close: int = -1  # a template argument list's '<': the index of its closing '>' (or '>>')
 
 
 def tokenize(source: str) -> list[Token]:
@@ -63,8 +64,8 @@ _TEMPLATE_ARGUMENT_TOKENS = {"::", ",", "*", "&", "<", ">", ">>"}
 
 
 def _mark_templates(tokens: list[Token]) -> None:
-    """Marks ``<`` and ``>`` of template argument lists: a ``<`` after a name
-    whose tokens up to a matching ``>`` can only be template arguments."""
+    """Marks ``<`` and ``>`` of template argument lists: a ``<`` after a name whose tokens up to a matching ``>``
+    can only be template arguments."""
     for index, token in enumerate(tokens):
         if token.text != "<" or token.template or index == 0:
             continue
@@ -84,15 +85,14 @@ def _mark_templates(tokens: list[Token]) -> None:
                 depth -= 1 if t.text == ">" else 2
                 closing.append(t)
                 if depth <= 0:
-                    token.template = True
+                    token.template, token.close = True, j
                     for c in closing:
                         c.template = True
                     break
 
 
 def body_tokens(tokens: list[Token]) -> list[bool]:
-    """For each token: does it lie inside a function (or class) body, i.e. inside
-    braces other than a namespace's?"""
+    """For each token: does it lie inside a function (or class) body, i.e. inside braces other than a namespace's?"""
     inside: list[bool] = []
     stack: list[bool] = []  # True for a brace that is a body
     for index, token in enumerate(tokens):
@@ -118,14 +118,12 @@ class Mutant:
     mutated_line: str = ""  # the line after the change (stripped)
     status: str = ""        # killed / survived / timed out / did not build
     status_without: str = ""  # the same against the suite without the --compare-without files
-    seconds: float = 0.0
     failed_test: str = ""   # the first grading test that failed (a killed mutant)
     source: str = field(default="", repr=False)  # the unit's text the offsets refer to
 
     @property
     def ident(self) -> str:
-        digest = hashlib.sha1(f"{self.unit}:{self.start}:{self.operator}:{self.replacement}".encode()).hexdigest()
-        return digest[:8]
+        return hashlib.sha1(f"{self.unit}:{self.start}:{self.operator}:{self.replacement}".encode()).hexdigest()[:8]
 
     def apply(self, source: str | None = None) -> str:
         source = self.source if source is None else source
@@ -135,10 +133,9 @@ class Mutant:
         return f"{self.unit.as_posix()}: {code_only(self.source_line)} => {code_only(self.mutated_line)}"
 
     def diff(self) -> str:
-        source = self.source
-        lines = difflib.unified_diff(source.splitlines(keepends=True), self.apply(source).splitlines(keepends=True),
-                                     fromfile=f"a/{self.unit.as_posix()}", tofile=f"b/{self.unit.as_posix()}", n=1)
-        return "".join(lines)
+        unit = self.unit.as_posix()
+        return "".join(difflib.unified_diff(self.source.splitlines(keepends=True),
+                                            self.apply().splitlines(keepends=True), f"a/{unit}", f"b/{unit}", n=1))
 
 
 def code_only(line: str) -> str:
@@ -196,9 +193,8 @@ def _top_level_commas(tokens: list[Token], open_index: int, close_index: int) ->
 
 
 def _operand_after(tokens: list[Token], index: int) -> int:
-    """The index of the last token of the operand that starts at tokens[index]
-    (a name with its calls, subscripts and members, a number, a parenthesised
-    expression), or -1 when it is not one of those."""
+    """The index of the last token of the operand that starts at tokens[index] (a name with its calls, subscripts
+    and members, a number, a parenthesised expression), or -1 when it is not one of those."""
     if index >= len(tokens):
         return -1
     token = tokens[index]
@@ -219,18 +215,7 @@ def _operand_after(tokens: list[Token], index: int) -> int:
                 return -1
             j = close
         elif after.text == "<" and after.template:
-            depth, k = 0, j + 1
-            while k < len(tokens):
-                if tokens[k].text == "<" and tokens[k].template:
-                    depth += 1
-                elif tokens[k].text in (">", ">>") and tokens[k].template:
-                    depth -= 1 if tokens[k].text == ">" else 2
-                    if depth <= 0:
-                        break
-                k += 1
-            if k >= len(tokens):
-                return -1
-            j = k
+            j = after.close
         else:
             break
     return j
@@ -247,10 +232,8 @@ def _operand_before(tokens: list[Token], index: int) -> int:
         if opening < 0:
             return -1
         name = tokens[opening - 1]  # the called or subscripted name, if there is one
-        if token.text == ")" and (opening == 0 or name.kind != "ident" or name.text in _CONTROL):
-            return opening  # a parenthesised expression
-        if name.text in _TYPE_WORDS or name.text in _CONTROL:
-            return opening
+        if (token.text == ")" and (opening == 0 or name.kind != "ident")) or name.text in _TYPE_WORDS | _CONTROL:
+            return opening  # a parenthesised expression, a cast, a condition
         j = opening - 1
     elif token.kind == "number":
         return index
@@ -287,8 +270,8 @@ def _nudged_constants(text: str) -> list[str]:
     except ValueError:
         return []
     is_float = any(c in core for c in ".eE") and not core.lower().startswith("0x")
-    targets = {0.0: [1.0], 1.0: [0.0], 2.0: [1.0]}.get(value, [])
-    return [("1.0" if t == 1.0 else "0.0") + suffix if is_float else str(int(t)) + suffix for t in targets]
+    target = {0.0: 1, 1.0: 0, 2.0: 1}.get(value)
+    return [] if target is None else [f"{target}.0{suffix}" if is_float else f"{target}{suffix}"]
 
 
 def generate(lesson: str, unit: Path, source: str, stub_lines: set[str]) -> list[Mutant]:
@@ -316,11 +299,8 @@ class _Generator:
         if line not in self.mutable:
             return
         m = Mutant(self.lesson, self.unit, line, operator, start, end, self.source[start:end], replacement,
-                   source=self.source)
-        mutated, first = m.apply(), self.line_starts[line - 1]
-        end_of_line = mutated.find("\n", first)
-        m.source_line = self.lines[line - 1].strip()
-        m.mutated_line = mutated[first:end_of_line if end_of_line >= 0 else len(mutated)].strip()
+                   source_line=self.lines[line - 1].strip(), source=self.source)
+        m.mutated_line = m.apply()[self.line_starts[line - 1]:].split("\n", 1)[0].strip()
         self.mutants.append(m)
 
     def text(self, first: int, last: int) -> str:
@@ -486,8 +466,8 @@ class _Generator:
 
 
 def _index_partner(name: str, names: list[str]) -> str:
-    """The index a student could confuse with `name`: i <-> j, k <-> l, else the
-    most used other single-name subscript of the file."""
+    """The index a student could confuse with `name`: i <-> j, k <-> l, else the most used other single-name
+    subscript of the file."""
     pairs = {"i": "j", "j": "i", "k": "l", "l": "k", "u": "v", "v": "u", "a": "b", "b": "a"}
     if name in pairs and pairs[name] in names:
         return pairs[name]

@@ -40,27 +40,20 @@ def tracked_files(source: Path) -> list[str]:
     return sorted(p for p in listed.split("\0") if p) if listed is not None else _walk_files(source)
 
 
+_GLOB_PART = re.compile(r"/\*\*\Z|\*\*/|\*\*|\*|\?|\[.[^]]*\]|\\.|.", re.S)
+_GLOB_REGEX = {"/**": "/.*", "**/": "(?:.*/)?", "**": ".*", "*": "[^/]*", "?": "[^/]"}
+
+
+def _glob_part(match: re.Match) -> str:
+    part = match.group()
+    if part[0] == "[" and len(part) > 1:  # a class, `[!...]` negated
+        return "[" + ("^" + part[2:-1] if part[1] == "!" else part[1:-1]) + "]"
+    return _GLOB_REGEX.get(part) or re.escape(part[-1])  # `\x`: x itself
+
+
 def _glob_regex(glob: str) -> re.Pattern:
     """gitignore(5)'s glob: `*` and `?` stop at a slash, `**` crosses folders, `[...]` a class."""
-    out, i = [], 0
-    rules = (("**/", "(?:.*/)?"), ("**", ".*"), ("*", "[^/]*"), ("?", "[^/]"))
-    while i < len(glob):
-        if glob.startswith("/**", i) and i + 3 == len(glob):
-            out.append("/.*")
-            i += 3
-        elif rule := next((r for r in rules if glob.startswith(r[0], i)), None):
-            out.append(rule[1])
-            i += len(rule[0])
-        elif glob[i] == "[" and "]" in glob[i + 2:]:
-            end = glob.index("]", i + 2)
-            body = glob[i + 1:end]
-            out.append("[" + ("^" + body[1:] if body[:1] == "!" else body) + "]")
-            i = end + 1
-        else:
-            escaped = glob[i] == "\\" and i + 1 < len(glob)
-            out.append(re.escape(glob[i + escaped]))
-            i += 1 + escaped
-    return re.compile("".join(out))
+    return re.compile(_GLOB_PART.sub(_glob_part, glob))
 
 
 def _read_ignores(folder: Path, base: str) -> list[tuple]:
@@ -96,22 +89,17 @@ def _walk_files(source: Path) -> list[str]:
     files: list[str] = []
     ignores_of: dict[str, list[tuple]] = {}
     for folder, subfolders, names in os.walk(source):
-        relative = Path(folder).relative_to(source).as_posix().removeprefix(".")
-        parent = relative.rsplit("/", 1)[0] if "/" in relative else ""
-        ignores = ignores_of[relative] = (ignores_of.get(parent, []) if relative else []) + _read_ignores(
+        relative = "" if Path(folder) == source else Path(folder).relative_to(source).as_posix()
+        prefix = f"{relative}/" if relative else ""
+        ignores = ignores_of[relative] = ignores_of.get(relative.rpartition("/")[0], []) + _read_ignores(
             Path(folder), relative)
-        path = (lambda name: f"{relative}/{name}") if relative else (lambda name: name)
-        kept = []
-        for name in sorted(subfolders):
-            if name == ".git" or (not relative and name in GENERATED):
-                continue
-            if os.path.islink(os.path.join(folder, name)):  # git keeps a link as a file
-                files += [] if _ignored(ignores, path(name), False) else [path(name)]
-            elif not _ignored(ignores, path(name), True):
-                kept.append(name)
-        subfolders[:] = kept
+        subfolders[:] = [name for name in sorted(subfolders) if name != ".git" and (relative or name not in GENERATED)]
+        links = [name for name in subfolders if os.path.islink(os.path.join(folder, name))]  # git keeps them as files
         # A worktree's .git is a file naming the repository.
-        files.extend(path(name) for name in names if name != ".git" and not _ignored(ignores, path(name), False))
+        files += [prefix + name for name in links + names
+                  if name != ".git" and not _ignored(ignores, prefix + name, False)]
+        subfolders[:] = [name for name in subfolders
+                         if name not in links and not _ignored(ignores, prefix + name, True)]
     return sorted(files)
 
 

@@ -1,25 +1,8 @@
-"""The grading integrity check: grading tests are tested, not assumed.
-
-For every ``tests_lessonNN`` of an already-built tree, suite ``lessonNN``:
-
-* has at least one test;
-* passes entirely on the reference (``tests_lessonNN``);
-* fails entirely on the stubs (``tests_lessonNN_stubs``), and every failure
-  is a ``NotImplemented`` -- a test that fails on the stubs for another
-  reason (a wrong expectation that happens to fail, a crash) would also fail
-  a correct student for that reason, or pass a wrong one;
-* lives in its own lesson's program (a test in suite lesson02 placed in
-  tests/01_*/ would never be graded).
-
-The instructor's hidden tests (``tests_hidden`` / ``tests_hidden_stubs``)
-are held to the same rules, suite by suite.
-
-Where the tree has the observer builds (``tests_lessonNN_observer`` and
-``_observer_stubs``: a reference tree), the same rules hold again for the
-verdicts of the judge (docs/grading-defences.md): every test passes when the
-reference's observations are judged against its witness, and fails with
-``NotImplemented`` when the stubs' are.
-"""
+"""The grading integrity check (docs/grading.md, "Integrity"): grading tests are tested, not assumed. Each
+suite lessonNN of a built tree's tests_lessonNN (and of tests_hidden) has a test, passes on the reference,
+fails on the `_stubs` build with NotImplemented only (a test failing there for another reason would also
+fail a correct student, or pass a wrong one), and lives in its own lesson's program. Where the tree has the
+observer builds, the same holds for the judge's verdicts (docs/grading-defences.md)."""
 from __future__ import annotations
 
 import re
@@ -44,13 +27,8 @@ class IntegrityReport:
 
 def grading_programs(bin_dir: Path) -> dict[str, Path]:
     """lesson -> tests_lessonNN program found in a build's bin/."""
-    programs = {}
-    if bin_dir.is_dir():
-        for path in sorted(bin_dir.iterdir()):
-            match = _PROGRAM.fullmatch(path.name)
-            if match and path.is_file():
-                programs[match.group(1)] = path
-    return programs
+    return {match.group(1): path for path in (sorted(bin_dir.iterdir()) if bin_dir.is_dir() else [])
+            if (match := _PROGRAM.fullmatch(path.name)) and path.is_file()}
 
 
 def check_pair(label: str, reference: list[TestResult], stubs: list[TestResult],
@@ -59,12 +37,12 @@ def check_pair(label: str, reference: list[TestResult], stubs: list[TestResult],
     problems = []
     if require_tests and not reference:
         problems.append(f"{label}: the suite has no test; every lesson needs at least one grading test")
+    stub_by_key = {t.key: t for t in stubs}
     for test in reference:
         if not test.passed:
             reason = test.output().splitlines()[1:2] or [test.status]
             problems.append(f"{label}: \"{test.name}\" ({test.file}:{test.line}) does not pass on the reference: "
                             f"{reason[0].strip()}")
-    stub_by_key = {t.key: t for t in stubs}
     for test in reference:
         stub = stub_by_key.get(test.key)
         if stub is None:

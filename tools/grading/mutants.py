@@ -1,12 +1,7 @@
-"""`tools/grade --mutants`: how many plausible student bugs do the grading tests catch? (docs/grading.md,
-"Grading power")
-
-Each mutant of a lesson's exercise units (cpp_mutants.py), or each hand-written student bug
-(tests/mutants/student_bugs/*.bug), is built and the lesson's grading suite run on it: killed or timed out
-(caught), survived (full marks for wrong code) or did not build (not scored). Mutants listed in
-tests/mutants/equivalent.txt are left out. Each worker keeps a copy of the tree and a build tree under
-build/mutants/wK/ (laid out as build/release, so that ccache shares objects), refreshed at every run.
-"""
+"""`tools/grade --mutants`: how many plausible student bugs do the grading tests catch? (docs/grading-reference.md,
+"Grading power: measuring it with mutants"). Each mutant (cpp_mutants.py) or hand-written student bug
+(tests/mutants/student_bugs/*.bug) is built in a worker's copy of the tree, build/mutants/wK/, and the lesson's
+grading suite run on it."""
 from __future__ import annotations
 
 import argparse
@@ -30,24 +25,13 @@ EQUIVALENT_FILE = Path("tests") / "mutants" / "equivalent.txt"
 WORK_DIR = Path("build") / "mutants"
 
 
-def lesson_units(root: Path, lesson: str) -> list[tuple[Path, Path]]:
-    """(reference unit, stub) pairs of one lesson, relative to root."""
-    units = []
-    lib = root / "lib"
-    for stub in sorted((root / "exercises").glob(f"{lesson}_*/*.cpp")):
-        found = sorted(lib.rglob(stub.name))
-        if found:
-            units.append((found[0].relative_to(root), stub.relative_to(root)))
-    return units
-
-
 def all_mutants(root: Path, lesson: str) -> list[Mutant]:
+    """The mutants of every reference unit under lib/ of the lesson's stubs, on the lines not in the stub."""
     mutants = []
-    for unit, stub in lesson_units(root, lesson):
-        stub_lines = {line.strip() for line in (root / stub).read_text(encoding="utf-8").splitlines()}
-        stub_lines.discard("")
-        source = (root / unit).read_text(encoding="utf-8")
-        mutants += generate(lesson, unit, source, stub_lines)
+    for stub in sorted((root / "exercises").glob(f"{lesson}_*/*.cpp")):
+        if found := sorted((root / "lib").rglob(stub.name)):
+            stub_lines = {line.strip() for line in stub.read_text(encoding="utf-8").splitlines()} - {""}
+            mutants += generate(lesson, found[0].relative_to(root), found[0].read_text(encoding="utf-8"), stub_lines)
     return mutants
 
 
@@ -129,8 +113,7 @@ def bug_mutant(root: Path, bug: BugFile) -> Mutant:
             raise ValueError(f"{bug.path.name}: the text to find occurs {count} times in {bug.unit} "
                              f"(expected once):\n{find}")
         edited = edited.replace(find, replace)
-    first = next(i for i, (a, b) in enumerate(zip(source, edited + "\0")) if a != b)
-    line = source.count("\n", 0, first) + 1
+    line = source.count("\n", 0, len(os.path.commonprefix([source, edited]))) + 1
     return Mutant(bug.lesson, bug.unit, line, f"student bug {bug.path.stem}", 0, len(source), source, edited,
                   source_line=bug.title, mutated_line=bug.caught_by, source=source)
 
@@ -151,36 +134,31 @@ _COPY_IGNORE = {"build", ".git", "node_modules", "out", "__pycache__"}
 
 
 def sync_tree(source: Path, destination: Path) -> None:
-    """Mirrors the source tree into destination, rewriting only files whose
-    content changed (unchanged files keep their time stamps: no rebuild)."""
+    """Mirrors source into destination, rewriting only changed files (the others keep their time stamps: no rebuild)."""
     seen: set[Path] = set()
     for folder, dirs, files in os.walk(source):
         here = Path(folder)
-        relative = here.relative_to(source)
-        dirs[:] = [d for d in dirs if not (relative == Path(".") and d in _COPY_IGNORE) and d != "__pycache__"]
-        (destination / relative).mkdir(parents=True, exist_ok=True)
-        seen.add(destination / relative)
+        target = destination / here.relative_to(source)
+        dirs[:] = [d for d in dirs if d not in (_COPY_IGNORE if here == source else {"__pycache__"})]
+        target.mkdir(parents=True, exist_ok=True)
+        seen.add(target)
         for name in files:
-            if relative == Path(".") and name in _COPY_IGNORE:
+            if here == source and name in _COPY_IGNORE:
                 continue  # e.g. a node_modules symlink
-            src, dst = here / name, destination / relative / name
+            src, dst = here / name, target / name
             seen.add(dst)
             if src.is_symlink():  # copied as a link, never followed (it may point anywhere, or nowhere)
-                target = os.readlink(src)
-                if not dst.is_symlink() or os.readlink(dst) != target:
-                    if dst.exists() or dst.is_symlink():
-                        dst.unlink()
-                    os.symlink(target, dst)
+                if not dst.is_symlink() or os.readlink(dst) != os.readlink(src):
+                    dst.unlink(missing_ok=True)
+                    os.symlink(os.readlink(src), dst)
                 continue
             if dst.is_symlink():
                 dst.unlink()
-            data = src.read_bytes()
-            if not dst.exists() or dst.read_bytes() != data:
-                dst.write_bytes(data)
-                shutil.copymode(src, dst)
-    for folder, dirs, files in os.walk(destination, topdown=False):
+            if not dst.exists() or dst.read_bytes() != src.read_bytes():
+                shutil.copy(src, dst)  # the content and the mode
+    for folder, _, files in os.walk(destination, topdown=False):
         here = Path(folder)
-        if here == destination / "build" or destination / "build" in here.parents:
+        if here.is_relative_to(destination / "build"):
             continue
         for name in files:
             if here / name not in seen:
@@ -200,14 +178,12 @@ def _run(command: list[str], timeout: float | None = None) -> tuple[bool, str]:
 
 
 class Workspace:
-    """One worker's copy of the tree (``build/mutants/wK``) and its build tree."""
+    """One worker's copy of the tree (``build/mutants/wK``) and its build tree, at the depth of build/release
+    so that ccache's base_dir makes paths identical."""
 
     def __init__(self, root: Path, base: Path, number: int):
-        self.root = root
-        self.src = base / f"w{number}"
-        # Same depth as build/release, so ccache's base_dir makes paths identical.
+        self.root, self.src = root, base / f"w{number}"
         self.build = self.src / "build" / "release"
-        self.number = number
         self.current: Path | None = None  # the unit rewritten now, if any
 
     def prepare(self) -> tuple[bool, str]:
@@ -220,19 +196,16 @@ class Workspace:
         return _run(["cmake", "--build", str(self.build), "-j", str(jobs), "--target", *targets], timeout)
 
     def write_unit(self, unit: Path, text: str) -> None:
-        # One mutant at a time: a worker that moves on to another unit puts the
-        # previous one back first, or every later mutant would also carry the
-        # last mutation of that unit (and be killed by it, not by its own).
-        if self.current is not None and self.current != unit:
+        # One mutant at a time: a worker that moves on to another unit puts the previous one back first, or every
+        # later mutant would also carry the last mutation of that unit (and be killed by it, not by its own).
+        if self.current != unit:
             self.restore()
-        path = self.src / unit
-        path.write_text(text, encoding="utf-8")
+        (self.src / unit).write_text(text, encoding="utf-8")
         self.current = unit
 
     def restore(self) -> None:
         if self.current is not None:
-            original = (self.root / self.current).read_bytes()
-            (self.src / self.current).write_bytes(original)
+            shutil.copyfile(self.root / self.current, self.src / self.current)
             self.current = None
 
 
@@ -251,15 +224,10 @@ _TEST_CASE_LINE = re.compile(r"^TEST CASE:\s+(.*)$", re.M)
 def run_grading(workspace: Workspace, lesson: str, timeout: float, extra: tuple[str, ...] = ()) -> tuple[str, str]:
     """('killed' | 'survived' | 'timed out', first failing test) for the built tree.
 
-    A mutant only needs one failing test to be killed, so the suite runs with
-    doctest's --abort-after=1: a wrong program stops at its first failed
-    assertion instead of failing thousands of them (which can take minutes),
+    A mutant only needs one failing test to be killed, so the suite runs with doctest's --abort-after=1: a wrong
+    program stops at its first failed assertion instead of failing thousands of them (which can take minutes),
     and a time-out then really means a program that does not finish."""
-    bin_dir = workspace.build / "bin"
-    programs = [bin_dir / f"tests_lesson{lesson}"]
-    if "tests_hidden" in lesson_targets(workspace.root, lesson):
-        programs.append(bin_dir / "tests_hidden")
-    for program in programs:
+    for program in (workspace.build / "bin" / target for target in lesson_targets(workspace.root, lesson)):
         command = [str(program), f"-ts=lesson{lesson}", "--abort-after=1", "--no-version", "--no-colors", *extra]
         try:
             # One process: a mutant that crashes a test is killed there; the tests after it need not run.
@@ -272,9 +240,7 @@ def run_grading(workspace: Workspace, lesson: str, timeout: float, extra: tuple[
             return "timed out", ""  # the test program's own per-test limit (tests/support/test_main.cpp)
         if done.returncode != 0:
             found = _TEST_CASE_LINE.search(done.stdout)
-            if found:
-                return "killed", found.group(1).strip()
-            return "killed", f"{program.name} exited with status {done.returncode}"
+            return "killed", found.group(1).strip() if found else f"{program.name} exited with status {done.returncode}"
         if not extra and ("test cases:" not in done.stdout or re.search(r"test cases:\s+0 \|", done.stdout)):
             return "killed", f"{program.name} ran no lesson{lesson} test"
     return "survived", ""
@@ -291,7 +257,7 @@ class LessonReport:
     problem: str = ""
 
     def count(self, status: str, without: bool = False) -> int:
-        return sum(1 for m in self.mutants if (m.status_without if without else m.status) == status)
+        return sum((m.status_without if without else m.status) == status for m in self.mutants)
 
     def detected(self, without: bool = False) -> int:
         return self.count("killed", without) + self.count("timed out", without)
@@ -396,7 +362,7 @@ class Progress:
             self.done += 1
             elapsed = time.monotonic() - self.start
             left = elapsed / self.done * (self.total - self.done)
-            what = (f"{mutant.source_line}" if mutant.operator.startswith("student bug") else
+            what = (mutant.source_line if mutant.operator.startswith("student bug") else
                     f"{mutant.original!r} -> {mutant.replacement!r}")
             print(f"[{self.done}/{self.total} {elapsed:5.0f} s, ~{left:4.0f} s left] {mutant.status:13} "
                   f"{mutant.unit.name}:{mutant.line} {mutant.operator}: {what}"
@@ -437,11 +403,10 @@ def run_lesson(report: LessonReport, workspaces: list[Workspace], timeout_arg: f
                 mutant = work.get_nowait()
             except queue.Empty:
                 break
-            t = time.monotonic()
             workspace.write_unit(mutant.unit, mutant.apply())
             ok, _ = workspace.build_targets(targets, timeout=max(300.0, timeout))
             if not ok:
-                mutant.status = "did not build"
+                mutant.status = mutant.status_without = "did not build"
             else:
                 mutant.status, mutant.failed_test = run_grading(workspace, report.lesson, timeout)
                 mutant.status_without = mutant.status
@@ -449,18 +414,14 @@ def run_lesson(report: LessonReport, workspaces: list[Workspace], timeout_arg: f
                     # Fewer tests cannot kill what the whole suite lets through: run only if it matters.
                     mutant.status_without, _ = run_grading(workspace, report.lesson, timeout,
                                                            (f"--source-file-exclude={compare_without}",))
-            if mutant.status == "did not build":
-                mutant.status_without = mutant.status
-            mutant.seconds = time.monotonic() - t
             progress.report(mutant)
-        workspace.restore()
 
     threads = [threading.Thread(target=worker, args=(w,)) for w in workspaces]
     for thread in threads:
         thread.start()
     for thread in threads:
         thread.join()
-    # Leave every tree built from the unmutated sources.
+    # Leave every tree with the unmutated sources (a worker that stopped on an error did not restore its own).
     for workspace in workspaces:
         workspace.restore()
     report.seconds = time.monotonic() - start
@@ -471,12 +432,8 @@ def summary_table(reports: list[LessonReport], compare_without: str | None = Non
     lines = ["| lesson | mutants (equivalent) | run | killed | timed out | survived | did not build | score |"
              + extra + " time |",
              "|---|---|---|---|---|---|---|---|" + ("---|" if compare_without else "") + "---|"]
-
-    def percent(value: float | None) -> str:
-        return "n/a" if value is None else f"**{value:.1f}%**"
-
     for r in reports:
-        score = "error" if r.problem else percent(r.score)
+        score = "error" if r.problem else "n/a" if r.score is None else f"**{r.score:.1f}%**"
         row = (f"| {r.lesson} | {r.generated} ({r.equivalent}) | {len(r.mutants)} | {r.count('killed')} | "
                f"{r.count('timed out')} | {r.count('survived')} | {r.count('did not build')} | {score} |")
         if compare_without:
@@ -510,14 +467,12 @@ def markdown_report(reports: list[LessonReport], command: str, compare_without: 
         parts[-1:-1] = ["", f"*score without `{compare_without}`*: the same mutants against the suite without "
                         f"the test files matching `{compare_without}` (what the score was before those tests)."]
     for r in reports:
-        parts.append(f"## Lesson {r.lesson}")
-        parts.append("")
+        parts += [f"## Lesson {r.lesson}", ""]
         if r.problem:
             parts += ["Not run: " + r.problem.splitlines()[0], ""]
             continue
-        parts.append(f"{len(r.mutants)} mutant(s) run of {r.generated} ({r.equivalent} equivalent left out); "
-                     f"unmutated suite {r.baseline_seconds:.1f} s.")
-        parts.append("")
+        parts += [f"{len(r.mutants)} mutant(s) run of {r.generated} ({r.equivalent} equivalent left out); "
+                  f"unmutated suite {r.baseline_seconds:.1f} s.", ""]
         survivors = [m for m in r.mutants if m.status == "survived"]
         if not survivors:
             parts += ["No survivor.", ""]
@@ -604,10 +559,9 @@ def main(argv: list[str]) -> int:
         print(text)
     else:
         print(summary_table(reports, args.compare_without))
-        for r in reports:
-            for m in (m for m in r.mutants if m.status == "survived"):
-                print(f"survived: {m.ident} {m.unit.as_posix()}:{m.line} {m.operator}: {m.source_line}  =>  "
-                      f"{m.mutated_line}")
+        for m in (m for r in reports for m in r.mutants if m.status == "survived"):
+            print(f"survived: {m.ident} {m.unit.as_posix()}:{m.line} {m.operator}: {m.source_line}  =>  "
+                  f"{m.mutated_line}")
         text = markdown_report(reports, command, args.compare_without)
     if args.report:
         args.report.parent.mkdir(parents=True, exist_ok=True)

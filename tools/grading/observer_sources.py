@@ -1,8 +1,6 @@
-"""The observer's sources: each test file with the expected side of every check cut away.
-
-The grader's observer build (docs/grading.md, "How a test is judged") runs the student's code
-and reports, for every check, only the value it observed. So that the expected values and their
-tolerances are not in that program at all, its sources are the test files rewritten by this tool:
+"""The observer's sources: each test file with the expected side of every check cut away, so that the
+expected values and their tolerances are not in the program that runs the student's code at all
+(docs/grading-defences.md, "How a test is judged").
 
     CHECK(got == doctest::Approx(want).epsilon(1e-12))   ->  ILLUM_OBSERVE_VALUE(CHECK, (got))
     CHECK(hit)                                           ->  ILLUM_OBSERVE_CHECK(CHECK, (hit))
@@ -45,6 +43,7 @@ _NAMES = (_VALUE | _WHOLE | _THROWS | _CUT | _APPROX
           | {f"{level}_{name}" for level in ("CHECK", "REQUIRE", "WARN") for name in _BINARY}
           | {"FAIL", "FAIL_CHECK", "ILLUM_CHECK_THROWS_CONTAINING"})
 _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z_0-9]*")
+_OPENING = re.compile(r"[ \t]*\(")
 
 
 def _skip_literal(text: str, i: int) -> int:
@@ -69,50 +68,42 @@ def _skip_literal(text: str, i: int) -> int:
     return i
 
 
+def _code(text: str, i: int = 0):
+    """(index, character) of every character of ``text`` from ``i`` on outside literals and comments."""
+    while i < len(text):
+        if (skipped := _skip_literal(text, i)) != i:
+            i = skipped
+        else:
+            yield i, text[i]
+            i += 1
+
+
 def _arguments(text: str, open_paren: int) -> tuple[list[str], int]:
     """The macro arguments after ``(`` at ``open_paren`` split as the preprocessor splits them
     (at commas outside parentheses), and the index after the closing ``)``."""
-    depth, start, i, parts = 0, open_paren + 1, open_paren, []
-    while i < len(text):
-        skipped = _skip_literal(text, i)
-        if skipped != i:
-            i = skipped
-            continue
-        c = text[i]
-        if c == "(":
-            depth += 1
-        elif c == ")":
-            depth -= 1
+    depth, start, parts = 0, open_paren + 1, []
+    for i, c in _code(text, open_paren):
+        if c in "()":
+            depth += 1 if c == "(" else -1
             if depth == 0:
-                parts.append(text[start:i])
-                return parts, i + 1
+                return parts + [text[start:i]], i + 1
         elif c == "," and depth == 1:
             parts.append(text[start:i])
             start = i + 1
-        i += 1
     raise SourceError("no closing parenthesis")
+
+
+# A bracket weighs more than any nesting of angle brackets inside it.
+_TEMPLATE_DEPTH = {"(": 100, "[": 100, "{": 100, ")": -100, "]": -100, "}": -100, "<": 1, ">": -1}
 
 
 def _template_end(text: str, i: int) -> int:
     """``text[i]`` is the ``<`` of a template argument list: the index after its ``>``."""
-    depth, j = 0, i
-    while j < len(text):
-        skipped = _skip_literal(text, j)
-        if skipped != j:
-            j = skipped
-            continue
-        c = text[j]
-        if c in "([{":
-            depth += 100
-        elif c in ")]}":
-            depth -= 100
-        elif c == "<":
-            depth += 1
-        elif c == ">":
-            depth -= 1
-            if depth == 0:
-                return j + 1
-        j += 1
+    depth = 0
+    for j, c in _code(text, i):
+        depth += _TEMPLATE_DEPTH.get(c, 0)
+        if c == ">" and depth == 0:
+            return j + 1
     raise SourceError("a '<' written against a name, which this tool reads as template arguments, does not close: "
                       "write a comparison with spaces around it (a < b), as clang-format does")
 
@@ -124,13 +115,11 @@ def split_comparison(condition: str) -> tuple[str, str, str] | None:
     written against a name (``static_cast<int>``, ``std::vector<double>``) opens template
     arguments, which is how clang-format writes them and how the tests are formatted."""
     found: list[tuple[int, str]] = []
-    depth, i = 0, 0
-    while i < len(condition):
-        skipped = _skip_literal(condition, i)
-        if skipped != i:
-            i = skipped
+    depth, resume = 0, 0  # resume: after a two- or three-character operator, or template arguments
+    for i, c in _code(condition):
+        two = condition[i:i + 2]
+        if i < resume:
             continue
-        c, two = condition[i], condition[i:i + 2]
         if c in "([{":
             depth += 1
         elif c in ")]}":
@@ -140,18 +129,14 @@ def split_comparison(condition: str) -> tuple[str, str, str] | None:
         elif depth == 0 and c == "?":
             raise SourceError("'?' at the top of a check: put the condition in parentheses")
         elif two in ("<<", ">>", "->") or condition[i:i + 3] == "<=>":
-            i += 3 if condition[i:i + 3] == "<=>" else 2
-            continue
+            resume = i + (3 if condition[i:i + 3] == "<=>" else 2)
         elif c == "<" and i > 0 and (condition[i - 1].isalnum() or condition[i - 1] in "_:"):
-            i = _template_end(condition, i)
-            continue
+            resume = _template_end(condition, i)
         elif depth == 0 and two in ("==", "!=", "<=", ">="):
             found.append((i, two))
-            i += 2
-            continue
+            resume = i + 2
         elif depth == 0 and c in "<>":
             found.append((i, c))
-        i += 1
     if not found:
         return None
     if len(found) > 1:
@@ -201,37 +186,27 @@ def _rewrite(name: str, args: list[str]) -> str:
 def rewrite(text: str, origin: str) -> str:
     """The observer's version of one source file (``origin``: the path its records name)."""
     out: list[str] = [f'#line 1 "{origin}"\n']
-    i, copied = 0, 0
-    while i < len(text):
-        skipped = _skip_literal(text, i)
-        if skipped != i:
-            i = skipped
+    copied = resume = 0  # resume: after the name or the macro invocation just read
+    for i, _ in _code(text):
+        if i < resume or not (match := _IDENTIFIER.match(text, i)):
             continue
-        match = _IDENTIFIER.match(text, i)
-        if not match:
-            i += 1
-            continue
-        name, after = match.group(0), match.end()
+        name, resume = match.group(0), match.end()
         preceded = text[text.rfind("\n", 0, i) + 1:i].rstrip()[-2:]  # on its line: a member, not a macro
         if (name.removeprefix("DOCTEST_") not in _NAMES or preceded.endswith((".", "->", "::"))
                 or (i > 0 and (text[i - 1].isalnum() or text[i - 1] == "_"))):
-            i = after
             continue
-        j = after
-        while j < len(text) and text[j] in " \t":
-            j += 1
-        if j >= len(text) or text[j] != "(" or _in_directive(text, i):
-            i = after
+        opening = _OPENING.match(text, resume)
+        if not opening or _in_directive(text, i):
             continue
         line = text.count("\n", 0, i) + 1
         try:
-            args, end = _arguments(text, j)
+            args, end = _arguments(text, opening.end() - 1)
             replacement = _rewrite(name, args)
         except SourceError as error:
             raise SourceError(f"{origin}:{line}: {name}: {error}") from None
         out.append(text[copied:i])
         out.append(replacement + "\n" * (text.count("\n", i, end) - replacement.count("\n")))
-        copied = i = end
+        copied = resume = end
     out.append(text[copied:])
     return "".join(out)
 

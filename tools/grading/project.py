@@ -12,24 +12,18 @@ _LESSON_DIR = re.compile(r"(\d\d)_.+")
 
 def lesson_folders(root: Path, kind: str) -> dict[str, Path]:
     """NN -> root/kind/NN_topic for every lesson folder of `kind` (lessons, exercises, tests)."""
-    base = root / kind
-    return {m.group(1): child for child in (sorted(base.iterdir()) if base.is_dir() else [])
+    return {m.group(1): child for child in (sorted((root / kind).iterdir()) if (root / kind).is_dir() else [])
             if (m := _LESSON_DIR.fullmatch(child.name)) and child.is_dir()}
-
-
-def lessons_with_sources(folder: Path, pattern: str = "*.cpp") -> list[str]:
-    """The NN of every folder/NN_topic/ that holds at least one matching file."""
-    return sorted(nn for nn, child in lesson_folders(folder.parent, folder.name).items() if any(child.glob(pattern)))
 
 
 def test_lessons(root: Path = ROOT) -> list[str]:
     """Lessons with a folder of tests (built as tests_lessonNN)."""
-    return lessons_with_sources(root / "tests")
+    return sorted(nn for nn, child in lesson_folders(root, "tests").items() if any(child.glob("*.cpp")))
 
 
 def exercise_lessons(root: Path = ROOT) -> list[str]:
     """Lessons with exercise stubs: the ones a student can be graded on."""
-    return lessons_with_sources(root / "exercises")
+    return sorted(nn for nn, child in lesson_folders(root, "exercises").items() if any(child.glob("*.cpp")))
 
 
 def exercise_stubs(root: Path = ROOT, lessons: list[str] | None = None) -> dict[str, Path]:

@@ -80,23 +80,19 @@ def _include_problem(argument: str) -> str:
     parts = PurePosixPath(name).parts
     if ".." in parts or name.startswith("/"):
         return f"includes \"{name}\" by a path that leaves the include folders"
-    if parts and parts[0] == "illum":
-        if not name.endswith((".hpp", ".h")):
-            return f"includes {name}, a source file: include only headers"
+    if parts[:1] == ("illum",):
+        return "" if name.endswith((".hpp", ".h")) else f"includes {name}, a source file: include only headers"
+    if parts[:1] == ("glm",) or (bracket == "<" and name in STANDARD_HEADERS - OUTSIDE_HEADERS):
         return ""
-    if parts and parts[0] == "glm":
-        return ""
-    if bracket == "<" and name in STANDARD_HEADERS:
-        if name in OUTSIDE_HEADERS:
-            return f"includes <{name}>: exercise code may not touch files, signals or jumps"
-        return ""
+    if bracket == "<" and name in OUTSIDE_HEADERS:
+        return f"includes <{name}>: exercise code may not touch files, signals or jumps"
     shown = f"<{name}>" if bracket == "<" else f"\"{name}\""
     return f"includes {shown}, which is outside illum/, the C++ standard library and GLM"
 
 
 def scan_source(text: str, file: str) -> list[Finding]:
-    """The serious findings of one exercise file's text (module doc), one per
-    kind, at its first line, naming the other lines where it comes back."""
+    """The serious findings of one exercise file's text (module doc), one per kind, at its first line, naming the
+    other lines where it comes back."""
     grouped: dict[str, list[Finding]] = {}
     for finding in _scan_lines(text, file):
         grouped.setdefault(finding.what, []).append(finding)
@@ -112,19 +108,16 @@ def scan_source(text: str, file: str) -> list[Finding]:
 def _scan_lines(text: str, file: str) -> list[Finding]:
     code, plain = blank_comments(text), blank_comments(text, strings=False)
     findings = []
-    code_lines, plain_lines = code.splitlines(), plain.splitlines()
-    for number, line in enumerate(code_lines, start=1):
-        include = _INCLUDE.match(line)
-        if include:
+    for number, (line, plain_line) in enumerate(zip(code.splitlines(), plain.splitlines()), start=1):
+        if _INCLUDE.match(line):
             # The header's name is a string to the scanner: read it from the uncommented text.
-            problem = _include_problem(_INCLUDE.match(plain_lines[number - 1]).group(1))
-            if problem:
+            if problem := _include_problem(_INCLUDE.match(plain_line).group(1)):
                 findings.append(Finding(file, number, problem))
             continue
         for pattern, why in _SOURCE_RULES:
-            if pattern.search(plain_lines[number - 1] if "extern" in pattern.pattern else line):
+            if pattern.search(plain_line if "extern" in pattern.pattern else line):
                 findings.append(Finding(file, number, why))
-        if _PROC.search(plain_lines[number - 1]):
+        if _PROC.search(plain_line):
             findings.append(Finding(file, number, "names /proc or a descriptor's device (/dev/fd): exercise "
                                                   "code may not look into the running program"))
     # "doctest" split over a line ("doc\\\n test") or hidden in a macro is still found on the joined text.
@@ -161,24 +154,21 @@ _HARMLESS_C_PREFIXES = ("GOMP_", "omp_", "__atomic_", "__sync_", "DW.ref.", "__i
                         "__fpclassify", "__signbit")
 # C functions that reach outside the computation: a file using one is flagged.
 _FORBIDDEN_C = {
-    "process": {"fork", "vfork", "clone", "clone3", "execl", "execle", "execlp", "execv", "execve", "execvp",
-                "execvpe", "fexecve", "posix_spawn", "posix_spawnp", "system", "popen", "pclose", "wait",
-                "waitpid", "kill", "killpg", "raise", "ptrace", "prctl", "setsid", "setpgid", "unshare",
-                "daemon", "pthread_atfork"},
-    "exit": {"exit", "_exit", "_Exit", "quick_exit", "atexit", "at_quick_exit", "on_exit"},
-    "system call": {"syscall"},
-    "file": {"open", "open64", "openat", "openat64", "creat", "creat64", "fopen", "fopen64", "freopen", "fdopen",
-             "write", "writev", "pwrite", "pwrite64", "read", "pread", "readv", "dprintf", "vdprintf", "close",
-             "dup", "dup2", "dup3", "pipe", "pipe2", "mkfifo", "unlink", "rename", "remove", "truncate",
-             "ftruncate", "sendfile", "splice", "tee", "socket", "connect", "send", "sendto", "sendmsg", "fcntl",
-             "ioctl", "mmap", "mmap64", "munmap", "mprotect", "chdir", "chmod", "chown", "symlink", "link",
-             "opendir", "readdir"},
-    "environment": {"getenv", "secure_getenv", "setenv", "putenv", "unsetenv", "environ", "__environ"},
-    "signal": {"signal", "sigaction", "sigprocmask", "setjmp", "_setjmp", "__sigsetjmp", "longjmp", "siglongjmp",
-               "__longjmp_chk", "alarm", "setitimer"},
-    "dynamic loading": {"dlopen", "dlsym", "dlvsym", "dlmopen", "dladdr"},
+    "process": """fork vfork clone clone3 execl execle execlp execv execve execvp execvpe fexecve posix_spawn
+        posix_spawnp system popen pclose wait waitpid kill killpg raise ptrace prctl setsid setpgid unshare daemon
+        pthread_atfork""",
+    "exit": "exit _exit _Exit quick_exit atexit at_quick_exit on_exit",
+    "system call": "syscall",
+    "file": """open open64 openat openat64 creat creat64 fopen fopen64 freopen fdopen write writev pwrite pwrite64
+        read pread readv dprintf vdprintf close dup dup2 dup3 pipe pipe2 mkfifo unlink rename remove truncate
+        ftruncate sendfile splice tee socket connect send sendto sendmsg fcntl ioctl mmap mmap64 munmap mprotect
+        chdir chmod chown symlink link opendir readdir""",
+    "environment": "getenv secure_getenv setenv putenv unsetenv environ __environ",
+    "signal": """signal sigaction sigprocmask setjmp _setjmp __sigsetjmp longjmp siglongjmp __longjmp_chk alarm
+        setitimer""",
+    "dynamic loading": "dlopen dlsym dlvsym dlmopen dladdr",
 }
-_FORBIDDEN_BY_NAME = {name: kind for kind, names in _FORBIDDEN_C.items() for name in names}
+_FORBIDDEN_BY_NAME = {name: kind for kind, names in _FORBIDDEN_C.items() for name in names.split()}
 # C++ library parts that reach outside the computation (demangled prefixes).
 _FORBIDDEN_CXX = [
     ("doctest::", "uses doctest, the test framework"),
@@ -202,8 +192,7 @@ def _demangle(names: list[str]) -> list[str]:
     if not names or not cxxfilt:
         return names
     done = subprocess.run([cxxfilt], input="\n".join(names) + "\n", capture_output=True, text=True, check=False)
-    out = done.stdout.splitlines()
-    return out if len(out) == len(names) else names
+    return out if len(out := done.stdout.splitlines()) == len(names) else names
 
 
 def object_symbols(path: Path) -> tuple[list[tuple[str, str, str]], list[tuple[str, str]]]:
@@ -225,23 +214,18 @@ def object_symbols(path: Path) -> tuple[list[tuple[str, str, str]], list[tuple[s
         elif kind in "TDBRWVGSCui":  # defined and global
             defined.append((kind, name))
     demangled = _demangle([n for _, n in defined] + used)
-    defined_out = [(k, n, d) for (k, n), d in zip(defined, demangled[:len(defined)])]
-    used_out = list(zip(used, demangled[len(defined):]))
-    return defined_out, used_out
+    return [(k, n, d) for (k, n), d in zip(defined, demangled)], list(zip(used, demangled[len(defined):]))
 
 
 @functools.cache
 def runtime_symbols() -> set[str]:
-    """The names the C, maths, C++, GCC and OpenMP runtime libraries export: a
-    program that defines one of them replaces it for every caller (interposition)."""
+    """The names the C, maths, C++, GCC and OpenMP runtime libraries export: a program that defines one of them
+    replaces it for every caller (interposition)."""
     found: set[str] = set()
     nm, compiler = shutil.which("nm"), shutil.which("c++") or shutil.which("g++")
     for library in ("libc.so.6", "libm.so.6", "libstdc++.so.6", "libgcc_s.so.1", "libgomp.so.1"):
-        path = ""
-        if compiler:
-            done = subprocess.run([compiler, f"-print-file-name={library}"], capture_output=True, text=True,
-                                  check=False)
-            path = done.stdout.strip()
+        path = subprocess.run([compiler, f"-print-file-name={library}"], capture_output=True, text=True,
+                              check=False).stdout.strip() if compiler else ""
         if nm and path and Path(path).is_file():
             done = subprocess.run([nm, "-D", "-P", "--defined-only", path], capture_output=True, text=True,
                                   check=False)
@@ -249,6 +233,9 @@ def runtime_symbols() -> set[str]:
     # Whatever the libraries found, these are never an exercise's to define.
     return found | set(_FORBIDDEN_BY_NAME) | {"main", "malloc", "free", "calloc", "realloc", "stdout", "stderr",
                                               "stdin"}
+
+
+_NM_MEMBER = re.compile(r"^.*\[([^\]]+)\]:\s+(\S+)\s+([A-Za-z])")
 
 
 def library_definitions(archive: Path, skip_members: set[str]) -> dict[str, str]:
@@ -259,14 +246,9 @@ def library_definitions(archive: Path, skip_members: set[str]) -> dict[str, str]
     done = subprocess.run([nm, "-P", "--defined-only", "--extern-only", "-A", str(archive)], capture_output=True,
                           text=True, check=False)
     found: dict[str, str] = {}
-    for line in done.stdout.splitlines():
-        match = re.match(r"^.*\[([^\]]+)\]:\s+(\S+)\s+([A-Za-z])", line)
-        if not match:
-            continue
-        member, name, kind = match.groups()
-        if member in skip_members or kind not in "TDBR":
-            continue
-        found.setdefault(name, member)
+    for line in done.stdout.splitlines():  # archive[member]: name type ...
+        if (match := _NM_MEMBER.match(line)) and match[1] not in skip_members and match[3] in "TDBR":
+            found.setdefault(match[2], match[1])
     return found
 
 
@@ -306,10 +288,8 @@ def scan_object(path: Path, file: str, library: dict[str, str] | None = None) ->
                 "not replace the library's functions")
     for name, shown in used:
         if name.startswith("_Z"):
-            for prefix, why in _FORBIDDEN_CXX:
-                if prefix in shown:
-                    add(f"{why} ({shown[:100]})")
-                    break
+            if why := next((why for prefix, why in _FORBIDDEN_CXX if prefix in shown), None):
+                add(f"{why} ({shown[:100]})")
             continue
         base = name.split("@", 1)[0]
         kind = _FORBIDDEN_BY_NAME.get(base)
@@ -323,7 +303,6 @@ def scan_object(path: Path, file: str, library: dict[str, str] | None = None) ->
 
 def object_of(build_dir: Path, relative: str) -> Path | None:
     """The object file CMake compiled ``exercises/NN_topic/name.cpp`` into, in ``build_dir``."""
-    name = PurePosixPath(relative).name
-    lesson_dir = PurePosixPath(relative).parent.name
-    candidates = sorted(p for p in build_dir.glob(f"CMakeFiles/*/**/{lesson_dir}/{name}.o") if p.is_file())
-    return candidates[0] if candidates else None
+    unit = PurePosixPath(relative)
+    return next(iter(sorted(p for p in build_dir.glob(f"CMakeFiles/*/**/{unit.parent.name}/{unit.name}.o")
+                            if p.is_file())), None)
