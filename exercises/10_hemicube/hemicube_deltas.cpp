@@ -48,7 +48,7 @@ HemicubeDeltas make_hemicube_deltas(int resolution, DeltaRule rule) {
 // Task 5. F_ij = Σ ΔF over the pixels whose item is j.
 void accumulate_face(std::span<const std::int32_t> items, std::span<const double> deltas,
                      std::span<double> row) {
-  throw NotImplemented("accumulate_face", "skip negative items; add, do not overwrite (lesson 10, §5)");
+  throw NotImplemented("accumulate_face", "skip negative items; add, do not overwrite (lesson 10, §4)");
 }
 
 }  // namespace illum
