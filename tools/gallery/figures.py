@@ -2,7 +2,6 @@
 programs' tables, checked cell by cell but for timings (CONTRIBUTING.md, "Figures")."""
 from __future__ import annotations
 
-import json
 import os
 import re
 from dataclasses import dataclass, field
@@ -12,6 +11,7 @@ from common.files import atomic_write_text, remove_dead_temporaries
 from common.markdown import link_problems, outside_fences
 
 from . import kept_images, values
+from .lesson_runs import read_log
 from .plots import PlotCheckError, check_plots
 from .tables import FigureError, Spec, Table, markdown_tables, parse_spec, read_table, select
 
@@ -35,10 +35,7 @@ def run_label(out: Path, spec: Spec, table: Table) -> str:
     head = f"{LABEL_PREFIX}`{spec.path}`, written by `{program}`"
     if not table.has_timings():
         return head + ".*"
-    try:
-        run = json.loads((out / "run_log.json").read_text(encoding="utf-8")).get(program)
-    except (OSError, ValueError, AttributeError):
-        run = None
+    run = read_log(out / "run_log.json").get(program)
     if isinstance(run, dict) and "started" in run:
         machine = (f"{run.get('cores', '?')} cores, load average {run.get('load_before', ['?'])[0]} at the start of "
                    f"the run and {run.get('load_after', ['?'])[0]} at its end")
