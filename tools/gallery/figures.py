@@ -156,9 +156,8 @@ class Run:
         return self.mode != "check"
 
 
-def _figures_of(run: Run, rel: Path, lines: list[str], blocks: list[Block]) -> bool:
+def _figures_of(run: Run, rel: Path, lines: list[str], blocks: list[Block]) -> None:
     """Checks or rewrites the figures of one text, bottom up (earlier line numbers stay valid)."""
-    changed = False
     for block in reversed(blocks):
         run.figures += 1
         try:
@@ -166,15 +165,13 @@ def _figures_of(run: Run, rel: Path, lines: list[str], blocks: list[Block]) -> b
         except FigureError as e:
             run.problems.append(f"{rel}:{block.open_line + 1}: {e}")
             continue
-        if run.may_rewrite(compare(block, lines, table)) and lines[block.open_line + 1:block.close_line] != new_lines:
+        if run.may_rewrite(compare(block, lines, table)):
             lines[block.open_line + 1:block.close_line] = new_lines
-            changed = True
-    return changed
 
 
 def _text(run: Run, path: Path) -> None:
-    rel = path.relative_to(run.source)
-    lines = path.read_text(encoding="utf-8").splitlines()
+    rel, text = path.relative_to(run.source), path.read_text(encoding="utf-8")
+    lines = text.splitlines()
     try:
         blocks = find_blocks(rel, lines)
     except FigureError as e:
@@ -186,9 +183,9 @@ def _text(run: Run, path: Path) -> None:
             run.problems += hand_timings(rel, lines, blocks)
         run.problems += unlinked_errata(rel, lines)
     # Values first: they change text within lines, the figures change the number of lines.
-    changed, found = values.process_values(run, rel, lines, inside_blocks(blocks))
-    run.values += found
-    if _figures_of(run, rel, lines, blocks) or changed:
+    run.values += values.process_values(run, rel, lines, inside_blocks(blocks))
+    _figures_of(run, rel, lines, blocks)
+    if lines != text.splitlines():
         atomic_write_text(path, "\n".join(lines) + "\n", tag=kept_images.TAG)
         run.written += 1
         run.log(f"figures: refreshed {rel}")
