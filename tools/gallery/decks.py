@@ -12,12 +12,14 @@ from pathlib import Path
 
 from common.files import atomic_copy
 
+from . import JobError
+
 DECK_NAME = re.compile(r"^\d\d_[A-Za-z0-9_\-]+\.md$")
 FONT_FOLDER = "katex-fonts"
 INSTALL_HINT = "run tools/install-deps (it runs `npm ci` in the repository root)"
 
 
-class DeckError(Exception):
+class DeckError(JobError):
     """Marp is missing or a deck did not build."""
 
 

@@ -3,6 +3,7 @@ OUT/run_log.json (its date, seconds, processor seconds, cores, load average and 
 by side, and how a "mixed" one gets the whole machine: docs/build.md, "How the main job runs the lessons"."""
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 from collections import defaultdict
@@ -17,11 +18,9 @@ from pathlib import Path
 
 from common.files import atomic_write_text
 
+from . import JobError
+
 PROGRAM = re.compile(r"^lesson(\d\d)$")
-
-
-class JobError(Exception):
-    pass
 
 
 def say(message: str) -> None:
@@ -159,9 +158,8 @@ class SideBySide:
         self.cond = threading.Condition()
         self.todo: list[Path] = []
         self.state: dict[Path, str] = {}  # each running program: "one", "waiting" or "holding"
-        self.waiting: list[Path] = []     # in the order they asked
         self.grant_fds: dict[Path, int] = {}
-        self.asked: dict[Path, float] = {}
+        self.asked: dict[Path, float] = {}  # when a program asked for the machine, or got it
         self.waited: dict[Path, float] = defaultdict(float)
         self.held: dict[Path, float] = defaultdict(float)
         self.spans: dict[Path, tuple[float, float]] = {}
@@ -198,17 +196,15 @@ class SideBySide:
             say(f"{self.numbers[program]} {' '.join(lesson_command(program, self.out, self.quick))} "
                 "(side by side; its output when it ends)")
             threading.Thread(target=self._run_one, args=(program,)).start()
-        if self.waiting and not holder and busy == 0 and (not self.todo or self.failures):
-            program = self.waiting.pop(0)
-            now = time.monotonic()
+        waiting = [program for program, state in self.state.items() if state == "waiting"]
+        if waiting and not holder and busy == 0 and (not self.todo or self.failures):
+            program, now = min(waiting, key=self.asked.get), time.monotonic()  # the first to ask
             self.waited[program] += now - self.asked[program]
             self.asked[program] = now
             self.state[program] = "holding"
             say(f"{program.name} has the whole machine (no other program runs until it gives it back)")
-            try:
+            with contextlib.suppress(OSError):  # it ended meanwhile: _run_one records that
                 os.write(self.grant_fds[program], b"go\n")
-            except OSError:
-                pass  # it ended meanwhile: _run_one records that
         return bool(self.state) or bool(self.todo and not self.failures)
 
     def _listen(self, program: Path, requests_fd: int) -> None:
@@ -220,7 +216,6 @@ class SideBySide:
                     now, current = time.monotonic(), self.state.get(program)
                     if word == "machine" and current == "one":
                         self.state[program] = "waiting"
-                        self.waiting.append(program)
                         self.asked[program] = now
                     elif word == "release" and current == "holding":
                         self.state[program] = "one"
@@ -270,8 +265,6 @@ class SideBySide:
         with self.cond:
             if self.state.pop(program, None) == "holding":
                 self.held[program] += end - self.asked.pop(program)
-            if program in self.waiting:
-                self.waiting.remove(program)
             if program in self.grant_fds:
                 os.close(self.grant_fds.pop(program))
             sys.stdout.write(text)

@@ -6,11 +6,13 @@ import shutil
 import subprocess
 from pathlib import Path
 
+from . import JobError
+
 RENDERER = Path(__file__).resolve().parent / "render_texts.mjs"
 INSTALL_HINT = "run tools/install-deps (it installs Node.js and runs `npm ci` in the repository root)"
 
 
-class TextsError(Exception):
+class TextsError(JobError):
     """Node.js or the renderer's packages are missing, or a text did not render cleanly."""
 
 
