@@ -3,11 +3,9 @@
 
     tools/measurements.py [--out out] [--page docs/measurements.md]
 
-Reads OUT/run_log.json (one record per lesson program, written by tools/main_job.py) and
-replaces the block between the page's `measurements` markers with a table of every program's
-start, wall and processor seconds, the programs it ran beside and, for a `mixed` program, the
-seconds it waited for the machine and held it. Nothing in the block is typed by hand. Exit 0,
-or 2 when the log or the markers are missing.
+Replaces the block between the page's `measurements` markers with a table of every program's record in
+OUT/run_log.json (written by tools/main_job.py; docs/measurements.md, "The latest main job"). Exit 0, or 2
+when the log or the markers are missing.
 """
 import argparse
 import json
@@ -25,12 +23,9 @@ def table(log: dict) -> str:
     """The Markdown table of the runs in `log`, in lesson order."""
     rows = ["| program | started (UTC) | cores | seconds | processor seconds | ran beside | waited, held the machine (s) |",
             "|---|---|---|---|---|---|---|"]
-    for name in sorted(log):
-        run = log[name]
+    for name, run in sorted(log.items()):
         beside = ", ".join(b.removeprefix("lesson") for b in run.get("beside", [])) or "alone"
-        machine = ""
-        if "waited_seconds" in run:
-            machine = f"{run['waited_seconds']}, {run.get('whole_machine_seconds', '')}"
+        machine = f"{run['waited_seconds']}, {run.get('whole_machine_seconds', '')}" if "waited_seconds" in run else ""
         quick = " (`--quick`)" if run.get("quick") else ""
         rows.append(f"| {name}{quick} | {run.get('started', '')} | {run.get('cores', '')} | {run.get('seconds', '')} "
                     f"| {run.get('cpu_seconds', '')} | {beside} | {machine} |")

@@ -19,7 +19,6 @@ from .tables import FigureError, Spec, Table, markdown_tables, parse_spec, read_
 TEXT_GLOBS = ("lessons/*/README.md", "slides/*.md", "exercises/*/README.md", "docs/*.md")
 OPEN = re.compile(r"^\s*<!--\s*figure:\s*(?P<spec>.*?)\s*-->\s*$")
 CLOSE = re.compile(r"^\s*<!--\s*/figure\s*-->\s*$")
-LABEL_PREFIX = "*Table "
 # Hand-typed timings outside figures: "16 ns", "0.58 ms", "2 seconds", "3.3 s on", "about 15 s".
 HAND_TIMING = re.compile(
     r"(?<![\w.])\d[\d.,]*(?:\s*[–-]\s*\d[\d.,]*)?\s*(?:ns|µs|μs|ms|seconds?|minutes?)\b"
@@ -32,7 +31,7 @@ def run_label(out: Path, spec: Spec, table: Table) -> str:
     """The caption under a figure: its table, its program and, for timings, the machine they were
     measured on (no date: the run's own log, OUT/run_log.json, keeps that)."""
     program = spec.path.split("/")[1] if spec.path.count("/") >= 2 else ""
-    head = f"{LABEL_PREFIX}`{spec.path}`, written by `{program}`"
+    head = f"*Table `{spec.path}`, written by `{program}`"
     if not table.has_timings():
         return head + ".*"
     run = read_log(out / "run_log.json").get(program)
@@ -80,11 +79,6 @@ def find_blocks(path: Path, lines: list[str]) -> list[Block]:
 
 def inside_blocks(blocks: list[Block]) -> set[int]:
     return {i for b in blocks for i in range(b.open_line, b.close_line + 1)}
-
-
-def render(out: Path, spec: Spec) -> tuple[Table, list[str]]:
-    table = select(read_table(out / Path(spec.path).relative_to("out"), spec.table), spec, spec.path)
-    return table, table.markdown() + ["", run_label(out, spec, table)]
 
 
 def compare(block: Block, lines: list[str], new: Table) -> list[str]:
@@ -161,12 +155,13 @@ def _figures_of(run: Run, rel: Path, lines: list[str], blocks: list[Block]) -> N
     for block in reversed(blocks):
         run.figures += 1
         try:
-            table, new_lines = render(run.out, parse_spec(block.spec_text))
+            spec = parse_spec(block.spec_text)
+            table = select(read_table(run.out / Path(spec.path).relative_to("out"), spec.table), spec, spec.path)
         except FigureError as e:
             run.problems.append(f"{rel}:{block.open_line + 1}: {e}")
             continue
         if run.may_rewrite(compare(block, lines, table)):
-            lines[block.open_line + 1:block.close_line] = new_lines
+            lines[block.open_line + 1:block.close_line] = table.markdown() + ["", run_label(run.out, spec, table)]
 
 
 def _text(run: Run, path: Path) -> None:

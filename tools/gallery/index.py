@@ -69,13 +69,11 @@ def discover_lessons(source: Path, out: Path, slides_dir: Path | None = None) ->
             lesson.deck_html = built
     for folder in out.glob("lesson[0-9][0-9]"):
         if (folder / "manifest.json").exists():
-            lessons.setdefault(folder.name[-2:], Lesson(folder.name[-2:]))
+            lessons.setdefault(folder.name[-2:], Lesson(folder.name[-2:])).output_dir = folder
     for nn, lesson in lessons.items():
-        folder = out / f"lesson{nn}"
-        if (folder / "manifest.json").exists():
-            lesson.output_dir = folder
+        if lesson.output_dir:
             try:
-                lesson.manifest = load_manifest(folder)
+                lesson.manifest = load_manifest(lesson.output_dir)
             except ManifestError as e:
                 lesson.manifest_error = str(e)
         words = lesson.slug[3:].replace("_", " ").replace("-", " ").strip()
@@ -311,37 +309,31 @@ def write_index(source: Path, out: Path, slides_dir: Path | None = None, note: s
 
 
 class _Links(HTMLParser):
+    """Every href and src of a page, as (tag, attribute, value), and the ids of its elements."""
+
     def __init__(self) -> None:
         super().__init__(convert_charrefs=True)
-        self.refs: list[tuple[str, str, str]] = []  # (tag, attribute, value)
+        self.refs: list[tuple[str, str, str]] = []
         self.ids: set[str] = set()
 
     def handle_starttag(self, tag, attrs):
-        for name, value in attrs:
-            if name == "id" and value:
-                self.ids.add(value)
-            if name in ("href", "src") and value is not None:
-                self.refs.append((tag, name, value))
+        self.ids.update(value for name, value in attrs if name == "id" and value)
+        self.refs += [(tag, name, value) for name, value in attrs if name in ("href", "src") and value is not None]
 
 
 def check_links(page: Path) -> list[str]:
     """Problems with a page's links: local href/src that do not resolve, and
     external assets (the page must be self-contained)."""
-    page = Path(page)
-    parser = _Links()
+    page, parser, problems = Path(page), _Links(), []
     parser.feed(page.read_text(encoding="utf-8"))
-    problems = []
     for tag, attr, value in parser.refs:
-        parts = urlsplit(value)
+        parts, where = urlsplit(value), f"<{tag} {attr}={value!r}>"
         if parts.scheme or value.startswith("//"):
             if attr == "src" or tag == "link":
-                problems.append(f"<{tag} {attr}={value!r}>: an external asset; the page must be self-contained")
-            continue
-        if not parts.path:
+                problems.append(f"{where}: an external asset; the page must be self-contained")
+        elif not parts.path:
             if parts.fragment and parts.fragment not in parser.ids:
-                problems.append(f"<{tag} {attr}={value!r}>: no element with id {parts.fragment!r} in the page")
-            continue
-        target = (page.parent / unquote(parts.path)).resolve()
-        if not target.exists():
-            problems.append(f"<{tag} {attr}={value!r}>: {target} does not exist")
+                problems.append(f"{where}: no element with id {parts.fragment!r} in the page")
+        elif not (target := (page.parent / unquote(parts.path)).resolve()).exists():
+            problems.append(f"{where}: {target} does not exist")
     return problems

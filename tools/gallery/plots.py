@@ -138,15 +138,11 @@ def check_plot(gp: Path, gnuplot: str | None = None) -> list[str]:
     return problems
 
 
-def plot_scripts(out: Path) -> list[Path]:
-    """Every plot script the lesson programs wrote into OUT (a .gp beside a .png)."""
-    return sorted(gp for gp in Path(out).glob("*/*.gp") if gp.with_suffix(".png").is_file())
-
-
 def check_plots(out: Path, scripts: list[Path] | None = None) -> tuple[list[str], int]:
     """Problems with every plot in OUT (or the given scripts) and how many were checked."""
     gnuplot = _gnuplot()
-    scripts = plot_scripts(out) if scripts is None else scripts
+    if scripts is None:  # every plot script the lesson programs wrote into OUT (a .gp beside a .png)
+        scripts = sorted(gp for gp in Path(out).glob("*/*.gp") if gp.with_suffix(".png").is_file())
     problems = []
     for gp in scripts:
         try:
