@@ -17,12 +17,13 @@ from code_map import replace_between  # noqa: E402
 
 BEGIN = "<!-- measurements: begin (written by tools/measurements.py from out/run_log.json) -->"
 END = "<!-- measurements: end -->"
+PAGE = Path(__file__).resolve().parent.parent / "docs" / "measurements.md"
 
 
 def table(log: dict) -> str:
     """The Markdown table of the runs in `log`, in lesson order."""
-    rows = ["| program | started (UTC) | cores | seconds | processor seconds | ran beside | waited, held the machine (s) |",
-            "|---|---|---|---|---|---|---|"]
+    rows = ["| program | started (UTC) | cores | seconds | processor seconds | ran beside "
+            "| waited, held the machine (s) |", "|---|---|---|---|---|---|---|"]
     for name, run in sorted(log.items()):
         beside = ", ".join(b.removeprefix("lesson") for b in run.get("beside", [])) or "alone"
         machine = f"{run['waited_seconds']}, {run.get('whole_machine_seconds', '')}" if "waited_seconds" in run else ""
@@ -37,7 +38,7 @@ def table(log: dict) -> str:
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=Path("out"), help="the main job's output folder")
-    parser.add_argument("--page", type=Path, default=Path(__file__).resolve().parent.parent / "docs" / "measurements.md")
+    parser.add_argument("--page", type=Path, default=PAGE)
     args = parser.parse_args(argv)
     log_path = args.out / "run_log.json"
     try:

@@ -61,7 +61,8 @@ def load_manifest(folder: Path | str) -> Manifest:
             problems.append(f"outputs[{i}] must be an object")
             continue
         kind, file, caption = entry.get("kind"), entry.get("file"), entry.get("caption", "")
-        problem = (f'unknown kind {kind!r} (expected one of {", ".join(KIND_EXTENSIONS)})' if kind not in KIND_EXTENSIONS else
+        problem = (f'unknown kind {kind!r} (expected one of {", ".join(KIND_EXTENSIONS)})'
+                   if kind not in KIND_EXTENSIONS else
                    '"file" must be a non-empty string' if not isinstance(file, str) or not file else
                    '"caption" must be a string' if not isinstance(caption, str) else
                    f"file {file!r} must be a plain name inside the output folder"
