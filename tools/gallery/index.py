@@ -35,10 +35,6 @@ class Lesson:
     deck_source: Path | None = None
     deck_html: Path | None = None  # OUT/slides/NN_topic.html when it was built
 
-    @property
-    def id(self) -> str:
-        return f"lesson{self.number}"
-
 
 def _read(path: Path) -> str:
     try:
@@ -268,10 +264,10 @@ def render_index(lessons: list[Lesson], out: Path, source: Path, note: str = "")
     """The whole page, for a file written at out/index.html."""
     out, source = Path(out), Path(source)
     lab = _lab_section(out)
-    toc = " ".join(f'<a href="#{l.id}">{l.number} · {_e(l.title)}</a>' for l in lessons)
+    toc = " ".join(f'<a href="#lesson{l.number}">{l.number} · {_e(l.title)}</a>' for l in lessons)
     if lab:
         toc += ' <a href="#lab">the lab</a>'
-    sections = ["\n".join([f'<section class="lesson" id="{lesson.id}">',
+    sections = ["\n".join([f'<section class="lesson" id="lesson{lesson.number}">',
                            f'<h2><span class="num">{lesson.number}</span>{_e(lesson.title)}</h2>',
                            _lesson_links(lesson, out, source), _lesson_outputs(lesson, out), "</section>"])
                 for lesson in lessons] or ['<p class="note">No lessons found.</p>']
