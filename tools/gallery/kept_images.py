@@ -103,9 +103,10 @@ def check_images(source: Path, out: Path) -> tuple[list[str], int]:
             problem, was_compared = _kept_problem(source, out, rel, link)
             compared += was_compared
             problems += [problem] if problem else []
+        linked = {link.name for link in links if link.kept}
         for orphan in sorted((path.parent / FIGURES_FOLDER).glob("*")):
             total += orphan.stat().st_size
-            if orphan.name not in {link.name for link in links if link.kept}:
+            if orphan.name not in linked:
                 problems.append(f"{orphan.relative_to(source)} is not shown by {rel}: delete it "
                                 "(tools/figures.py --update-images does)")
     if total > KEPT_BUDGET_BYTES:
