@@ -92,11 +92,10 @@ def speed_factors(first: Path, other: Path) -> list[float]:
 
 
 def missing_folder(*folders: Path) -> bool:
-    for folder in folders:
-        if not folder.is_dir():
-            print(f"compare_runs: {folder} is not a folder", file=sys.stderr)
-            return True
-    return False
+    missing = [folder for folder in folders if not folder.is_dir()]
+    if missing:
+        print(f"compare_runs: {missing[0]} is not a folder", file=sys.stderr)
+    return bool(missing)
 
 
 def speed_main(first: Path, other: Path) -> int:

@@ -27,11 +27,11 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from common.files import lock_folder  # noqa: E402
 from common.path_options import folder_problem, path_argument  # noqa: E402
-from gallery.decks import DeckError, build_decks, find_decks  # noqa: E402
+from gallery.decks import build_decks, find_decks  # noqa: E402
 from gallery.figures import process as refresh_figures, remove_stale_temporaries  # noqa: E402
 from gallery.index import check_links, write_index  # noqa: E402
 from gallery.lesson_runs import PROGRAM, JobError, find_programs, run_lessons, say  # noqa: E402
-from gallery.texts import TextsError, build_texts  # noqa: E402
+from gallery.texts import build_texts  # noqa: E402
 
 SOURCE = Path(__file__).resolve().parent.parent
 STEPS = ("lessons", "lab", "figures", "slides", "texts", "index")
@@ -70,11 +70,7 @@ def run_slides(source: Path, slides_dir: Path, out: Path) -> None:
         return
     say(f"building {len(decks)} deck(s) from {slides_dir} into {out / 'slides'}")
     start = time.monotonic()
-    try:
-        built = build_decks(source, decks, out / "slides")
-    except DeckError as e:
-        raise JobError(str(e)) from None
-    for path in built:
+    for path in build_decks(source, decks, out / "slides"):  # a DeckError is a JobError
         say(f"  {path}")
     say(f"slides done in {time.monotonic() - start:.1f} s")
 
@@ -90,11 +86,8 @@ def side_by_side(*steps: list) -> None:
 def run_texts(source: Path, out: Path) -> None:
     say("texts: rendering the lesson texts, exercises and documents into " + str(out / "pages"))
     start = time.monotonic()
-    try:
-        for line in build_texts(source, out):
-            say(f"  {line}")
-    except TextsError as e:
-        raise JobError(str(e)) from None
+    for line in build_texts(source, out):  # a TextsError is a JobError
+        say(f"  {line}")
     say(f"texts done in {time.monotonic() - start:.1f} s")
 
 

@@ -3,11 +3,9 @@
 
     tools/measurements.py [--out out] [--page docs/measurements.md]
 
-Reads OUT/run_log.json (one record per lesson program, written by tools/main_job.py) and
-replaces the block between the page's `measurements` markers with a table of every program's
-start, wall and processor seconds, the programs it ran beside and, for a `mixed` program, the
-seconds it waited for the machine and held it. Nothing in the block is typed by hand. Exit 0,
-or 2 when the log or the markers are missing.
+Replaces the block between the page's `measurements` markers with a table of every program's record in
+OUT/run_log.json (written by tools/main_job.py; docs/measurements.md, "The latest main job"). Exit 0, or 2
+when the log or the markers are missing.
 """
 import argparse
 import json
@@ -19,18 +17,16 @@ from code_map import replace_between  # noqa: E402
 
 BEGIN = "<!-- measurements: begin (written by tools/measurements.py from out/run_log.json) -->"
 END = "<!-- measurements: end -->"
+PAGE = Path(__file__).resolve().parent.parent / "docs" / "measurements.md"
 
 
 def table(log: dict) -> str:
     """The Markdown table of the runs in `log`, in lesson order."""
-    rows = ["| program | started (UTC) | cores | seconds | processor seconds | ran beside | waited, held the machine (s) |",
-            "|---|---|---|---|---|---|---|"]
-    for name in sorted(log):
-        run = log[name]
+    rows = ["| program | started (UTC) | cores | seconds | processor seconds | ran beside "
+            "| waited, held the machine (s) |", "|---|---|---|---|---|---|---|"]
+    for name, run in sorted(log.items()):
         beside = ", ".join(b.removeprefix("lesson") for b in run.get("beside", [])) or "alone"
-        machine = ""
-        if "waited_seconds" in run:
-            machine = f"{run['waited_seconds']}, {run.get('whole_machine_seconds', '')}"
+        machine = f"{run['waited_seconds']}, {run.get('whole_machine_seconds', '')}" if "waited_seconds" in run else ""
         quick = " (`--quick`)" if run.get("quick") else ""
         rows.append(f"| {name}{quick} | {run.get('started', '')} | {run.get('cores', '')} | {run.get('seconds', '')} "
                     f"| {run.get('cpu_seconds', '')} | {beside} | {machine} |")
@@ -42,7 +38,7 @@ def table(log: dict) -> str:
 def main(argv: list[str]) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--out", type=Path, default=Path("out"), help="the main job's output folder")
-    parser.add_argument("--page", type=Path, default=Path(__file__).resolve().parent.parent / "docs" / "measurements.md")
+    parser.add_argument("--page", type=Path, default=PAGE)
     args = parser.parse_args(argv)
     log_path = args.out / "run_log.json"
     try:

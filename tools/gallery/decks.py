@@ -12,59 +12,21 @@ from pathlib import Path
 
 from common.files import atomic_copy
 
+from . import JobError
+
 DECK_NAME = re.compile(r"^\d\d_[A-Za-z0-9_\-]+\.md$")
 FONT_FOLDER = "katex-fonts"
 INSTALL_HINT = "run tools/install-deps (it runs `npm ci` in the repository root)"
 
 
-class DeckError(Exception):
+class DeckError(JobError):
     """Marp is missing or a deck did not build."""
 
 
 def find_decks(slides_dir: Path) -> list[Path]:
     slides_dir = Path(slides_dir)
-    if not slides_dir.is_dir():
-        return []
-    return sorted(p for p in slides_dir.iterdir() if p.is_file() and DECK_NAME.match(p.name))
-
-
-def marp_executable(source: Path) -> Path:
-    marp = Path(source) / "node_modules" / ".bin" / "marp"
-    if not os.access(marp, os.X_OK):
-        raise DeckError(f"Marp is not installed ({marp} is missing): {INSTALL_HINT}")
-    return marp
-
-
-def copy_katex_fonts(source: Path, out_slides: Path) -> int:
-    """Copies KaTeX's fonts beside the decks; returns how many files were (re)copied."""
-    fonts = Path(source) / "node_modules" / "katex" / "dist" / "fonts"
-    if not fonts.is_dir():
-        raise DeckError(f"KaTeX's fonts are missing ({fonts}): {INSTALL_HINT}")
-    target = Path(out_slides) / FONT_FOLDER
-    target.mkdir(parents=True, exist_ok=True)
-    copied = 0
-    for f in sorted(fonts.iterdir()):
-        dest = target / f.name
-        if not dest.is_file() or dest.stat().st_size != f.stat().st_size:
-            atomic_copy(f, dest)
-            copied += 1
-    return copied
-
-
-def marp_command(source: Path, input_dir: Path, output: Path) -> list[str]:
-    """Marp on every .md of `input_dir`, its pages written into the folder `output`."""
-    source = Path(source)
-    return [str(marp_executable(source)), "--no-stdin", "--html",
-            "--config-file", str(source / "slides" / "marp.config.cjs"),
-            "--theme-set", str(source / "slides" / "theme"),
-            "--input-dir", str(input_dir), "--output", str(output)]
-
-
-def build_deck(source: Path, deck: Path, out_slides: Path) -> Path:
-    """Builds one deck, its page replaced atomically; DeckError with Marp's messages when it fails."""
-    if problem := _marp(source, [deck], Path(out_slides)):
-        raise DeckError(problem)
-    return Path(out_slides) / (Path(deck).stem + ".html")
+    decks = slides_dir.iterdir() if slides_dir.is_dir() else []
+    return sorted(p for p in decks if p.is_file() and DECK_NAME.match(p.name))
 
 
 def _marp(source: Path, decks: list[Path], out_slides: Path) -> str:
@@ -78,9 +40,12 @@ def _marp(source: Path, decks: list[Path], out_slides: Path) -> str:
         (work / "in").mkdir()
         for deck in decks:
             shutil.copyfile(deck, work / "in" / Path(deck).name)
-        result = subprocess.run(marp_command(source, work / "in", work / "out"), cwd=source,
-                                stdin=subprocess.DEVNULL, capture_output=True, text=True, errors="replace",
-                                timeout=600)
+        result = subprocess.run([str(source / "node_modules" / ".bin" / "marp"), "--no-stdin", "--html",
+                                 "--config-file", str(source / "slides" / "marp.config.cjs"),
+                                 "--theme-set", str(source / "slides" / "theme"),
+                                 "--input-dir", str(work / "in"), "--output", str(work / "out")],
+                                cwd=source, stdin=subprocess.DEVNULL, capture_output=True, text=True,
+                                errors="replace", timeout=600)
         pages = [work / "out" / (Path(deck).stem + ".html") for deck in decks]
         if result.returncode != 0 or not all(page.is_file() for page in pages):
             return (f"marp failed on {names} (exit {result.returncode}):\n"
@@ -95,25 +60,25 @@ def _marp(source: Path, decks: list[Path], out_slides: Path) -> str:
 
 
 def build_decks(source: Path, decks: list[Path], out_slides: Path, jobs: int = 2) -> list[Path]:
-    """Builds every deck; raises DeckError naming each deck that failed.
+    """Builds every deck, KaTeX's fonts copied beside them; raises DeckError naming each deck that failed.
 
     One Marp run builds them all (Node and Marp start once: 13 decks took 2.8 s so, against 1.3 s
     for each deck alone). If that run fails, each deck is built alone, in `jobs` at once, so that
     the error names every deck that failed."""
-    marp_executable(source)  # fail early, with the install hint
-    out_slides = Path(out_slides)
-    out_slides.mkdir(parents=True, exist_ok=True)
-    copy_katex_fonts(source, out_slides)
-    if not _marp(source, decks, out_slides):
-        return [out_slides / (Path(deck).stem + ".html") for deck in decks]
-    built, errors = [], []
-    with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
-        futures = [(deck, pool.submit(build_deck, source, deck, out_slides)) for deck in decks]
-        for deck, future in futures:
-            try:
-                built.append(future.result())
-            except DeckError as e:
-                errors.append(str(e))
-    if errors:
-        raise DeckError("\n".join(errors))
-    return built
+    source, out_slides = Path(source), Path(out_slides)
+    marp, fonts = source / "node_modules" / ".bin" / "marp", source / "node_modules" / "katex" / "dist" / "fonts"
+    if not os.access(marp, os.X_OK):
+        raise DeckError(f"Marp is not installed ({marp} is missing): {INSTALL_HINT}")
+    (out_slides / FONT_FOLDER).mkdir(parents=True, exist_ok=True)
+    if not fonts.is_dir():
+        raise DeckError(f"KaTeX's fonts are missing ({fonts}): {INSTALL_HINT}")
+    for font in sorted(fonts.iterdir()):
+        copy = out_slides / FONT_FOLDER / font.name
+        if not copy.is_file() or copy.stat().st_size != font.stat().st_size:
+            atomic_copy(font, copy)
+    if _marp(source, decks, out_slides):
+        with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+            errors = [e for e in pool.map(lambda deck: _marp(source, [deck], out_slides), decks) if e]
+        if errors:
+            raise DeckError("\n".join(errors))
+    return [out_slides / (Path(deck).stem + ".html") for deck in decks]

@@ -2,7 +2,6 @@
 programs' tables, checked cell by cell but for timings (CONTRIBUTING.md, "Figures")."""
 from __future__ import annotations
 
-import json
 import os
 import re
 from dataclasses import dataclass, field
@@ -12,6 +11,7 @@ from common.files import atomic_write_text, remove_dead_temporaries
 from common.markdown import link_problems, outside_fences
 
 from . import kept_images, values
+from .lesson_runs import read_log
 from .plots import PlotCheckError, check_plots
 from .tables import FigureError, Spec, Table, markdown_tables, parse_spec, read_table, select
 
@@ -19,7 +19,6 @@ from .tables import FigureError, Spec, Table, markdown_tables, parse_spec, read_
 TEXT_GLOBS = ("lessons/*/README.md", "slides/*.md", "exercises/*/README.md", "docs/*.md")
 OPEN = re.compile(r"^\s*<!--\s*figure:\s*(?P<spec>.*?)\s*-->\s*$")
 CLOSE = re.compile(r"^\s*<!--\s*/figure\s*-->\s*$")
-LABEL_PREFIX = "*Table "
 # Hand-typed timings outside figures: "16 ns", "0.58 ms", "2 seconds", "3.3 s on", "about 15 s".
 HAND_TIMING = re.compile(
     r"(?<![\w.])\d[\d.,]*(?:\s*[–-]\s*\d[\d.,]*)?\s*(?:ns|µs|μs|ms|seconds?|minutes?)\b"
@@ -32,13 +31,10 @@ def run_label(out: Path, spec: Spec, table: Table) -> str:
     """The caption under a figure: its table, its program and, for timings, the machine they were
     measured on (no date: the run's own log, OUT/run_log.json, keeps that)."""
     program = spec.path.split("/")[1] if spec.path.count("/") >= 2 else ""
-    head = f"{LABEL_PREFIX}`{spec.path}`, written by `{program}`"
+    head = f"*Table `{spec.path}`, written by `{program}`"
     if not table.has_timings():
         return head + ".*"
-    try:
-        run = json.loads((out / "run_log.json").read_text(encoding="utf-8")).get(program)
-    except (OSError, ValueError, AttributeError):
-        run = None
+    run = read_log(out / "run_log.json").get(program)
     if isinstance(run, dict) and "started" in run:
         machine = (f"{run.get('cores', '?')} cores, load average {run.get('load_before', ['?'])[0]} at the start of "
                    f"the run and {run.get('load_after', ['?'])[0]} at its end")
@@ -83,11 +79,6 @@ def find_blocks(path: Path, lines: list[str]) -> list[Block]:
 
 def inside_blocks(blocks: list[Block]) -> set[int]:
     return {i for b in blocks for i in range(b.open_line, b.close_line + 1)}
-
-
-def render(out: Path, spec: Spec) -> tuple[Table, list[str]]:
-    table = select(read_table(out / Path(spec.path).relative_to("out"), spec.table), spec, spec.path)
-    return table, table.markdown() + ["", run_label(out, spec, table)]
 
 
 def compare(block: Block, lines: list[str], new: Table) -> list[str]:
@@ -159,25 +150,23 @@ class Run:
         return self.mode != "check"
 
 
-def _figures_of(run: Run, rel: Path, lines: list[str], blocks: list[Block]) -> bool:
+def _figures_of(run: Run, rel: Path, lines: list[str], blocks: list[Block]) -> None:
     """Checks or rewrites the figures of one text, bottom up (earlier line numbers stay valid)."""
-    changed = False
     for block in reversed(blocks):
         run.figures += 1
         try:
-            table, new_lines = render(run.out, parse_spec(block.spec_text))
+            spec = parse_spec(block.spec_text)
+            table = select(read_table(run.out / Path(spec.path).relative_to("out"), spec.table), spec, spec.path)
         except FigureError as e:
             run.problems.append(f"{rel}:{block.open_line + 1}: {e}")
             continue
-        if run.may_rewrite(compare(block, lines, table)) and lines[block.open_line + 1:block.close_line] != new_lines:
-            lines[block.open_line + 1:block.close_line] = new_lines
-            changed = True
-    return changed
+        if run.may_rewrite(compare(block, lines, table)):
+            lines[block.open_line + 1:block.close_line] = table.markdown() + ["", run_label(run.out, spec, table)]
 
 
 def _text(run: Run, path: Path) -> None:
-    rel = path.relative_to(run.source)
-    lines = path.read_text(encoding="utf-8").splitlines()
+    rel, text = path.relative_to(run.source), path.read_text(encoding="utf-8")
+    lines = text.splitlines()
     try:
         blocks = find_blocks(rel, lines)
     except FigureError as e:
@@ -189,9 +178,9 @@ def _text(run: Run, path: Path) -> None:
             run.problems += hand_timings(rel, lines, blocks)
         run.problems += unlinked_errata(rel, lines)
     # Values first: they change text within lines, the figures change the number of lines.
-    changed, found = values.process_values(run, rel, lines, inside_blocks(blocks))
-    run.values += found
-    if _figures_of(run, rel, lines, blocks) or changed:
+    run.values += values.process_values(run, rel, lines, inside_blocks(blocks))
+    _figures_of(run, rel, lines, blocks)
+    if lines != text.splitlines():
         atomic_write_text(path, "\n".join(lines) + "\n", tag=kept_images.TAG)
         run.written += 1
         run.log(f"figures: refreshed {rel}")

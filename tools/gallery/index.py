@@ -7,7 +7,6 @@ import csv
 import html
 import io
 import os
-import re
 from dataclasses import dataclass
 from html.parser import HTMLParser
 from pathlib import Path
@@ -36,19 +35,16 @@ class Lesson:
     deck_source: Path | None = None
     deck_html: Path | None = None  # OUT/slides/NN_topic.html when it was built
 
-    @property
-    def id(self) -> str:
-        return f"lesson{self.number}"
+
+def _read(path: Path) -> str:
+    try:
+        return path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError):
+        return ""
 
 
 def _first_heading(readme: Path) -> str:
-    try:
-        for line in readme.read_text(encoding="utf-8").splitlines():
-            if line.startswith("# "):
-                return line[2:].strip()
-    except (OSError, UnicodeDecodeError):
-        pass
-    return ""
+    return next((line[2:].strip() for line in _read(readme).splitlines() if line.startswith("# ")), "")
 
 
 def discover_lessons(source: Path, out: Path, slides_dir: Path | None = None) -> list[Lesson]:
@@ -67,15 +63,13 @@ def discover_lessons(source: Path, out: Path, slides_dir: Path | None = None) ->
         lesson.deck_source, lesson.slug = deck, lesson.slug or deck.stem
         if (built := out / "slides" / (deck.stem + ".html")).is_file():
             lesson.deck_html = built
-    for folder in sorted(out.glob("lesson[0-9][0-9]")):
-        if re.fullmatch(r"lesson\d\d", folder.name) and (folder / "manifest.json").exists():
-            lessons.setdefault(folder.name[-2:], Lesson(folder.name[-2:]))
-    for nn, lesson in lessons.items():
-        folder = out / f"lesson{nn}"
+    for folder in out.glob("lesson[0-9][0-9]"):
         if (folder / "manifest.json").exists():
-            lesson.output_dir = folder
+            lessons.setdefault(folder.name[-2:], Lesson(folder.name[-2:])).output_dir = folder
+    for nn, lesson in lessons.items():
+        if lesson.output_dir:
             try:
-                lesson.manifest = load_manifest(folder)
+                lesson.manifest = load_manifest(lesson.output_dir)
             except ManifestError as e:
                 lesson.manifest_error = str(e)
         words = lesson.slug[3:].replace("_", " ").replace("-", " ").strip()
@@ -97,8 +91,7 @@ def href(target: Path, base: Path) -> str:
     return "/".join(quote(part) for part in Path(rel).parts)
 
 
-def _e(text: str) -> str:
-    return html.escape(text, quote=True)
+_e = html.escape  # quotes too
 
 
 def _html_table(header: list[str], rows: list[list[str]], align: list[str], more: str = "") -> str:
@@ -129,13 +122,6 @@ def csv_table_html(text: str, max_rows: int = 40) -> str:
     return _html_table(rows[0], rows[1:max_rows + 1], [], more)
 
 
-def _read(path: Path) -> str:
-    try:
-        return path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError):
-        return ""
-
-
 def rendered_page(source: Path, out: Path, text: Path) -> Path | None:
     """OUT/pages/<text>.html when the main job rendered the text (tools/gallery/texts.py), else None."""
     try:
@@ -147,44 +133,30 @@ def rendered_page(source: Path, out: Path, text: Path) -> Path | None:
 
 def _documents(source: Path, out: Path) -> str:
     """Links to the rendered README, CONTRIBUTING and docs/*.md, when the pages exist."""
-    texts = [Path(source) / "README.md", Path(source) / "CONTRIBUTING.md"]
-    texts += sorted((Path(source) / "docs").glob("*.md"))
-    items = []
-    for text in texts:
-        page = rendered_page(source, out, text)
-        if page is not None:
-            items.append(f'<a href="{href(page, out)}">{_e(_first_heading(text) or text.name)}</a>')
+    texts = [source / "README.md", source / "CONTRIBUTING.md", *sorted((source / "docs").glob("*.md"))]
+    items = [f'<a href="{href(page, out)}">{_e(_first_heading(text) or text.name)}</a>'
+             for text in texts if (page := rendered_page(source, out, text))]
     return ('<nav class="toc docs"><span class="note">Documents:</span> ' + " ".join(items) + "</nav>") if items else ""
 
 
 def _lesson_links(lesson: Lesson, out: Path, source: Path) -> str:
-    items = []
-
-    def link(path: Path | None, label: str, missing: str) -> None:
+    def link(path: Path | None, label: str, missing: str, text: bool = False) -> str:
+        """A link to `path`, or to the rendered page of a text (main job step "texts") with its Markdown beside it."""
+        page = rendered_page(source, out, path) if text and path is not None else None
+        if page is not None:
+            return (f'<li><a href="{href(page, out)}">{_e(label)}</a> '
+                    f'<a class="raw" href="{href(path, out)}">(Markdown)</a></li>')
         if path is not None and path.exists():
-            items.append(f'<li><a href="{href(path, out)}">{_e(label)}</a></li>')
-        else:
-            items.append(f'<li class="missing">{_e(missing)}</li>')
+            return f'<li><a href="{href(path, out)}">{_e(label)}</a></li>'
+        return f'<li class="missing">{_e(missing)}</li>'
 
-    def text_link(text: Path | None, label: str, missing: str) -> None:
-        """The rendered page of a text (main job step "texts"), with its Markdown beside it."""
-        page = rendered_page(source, out, text) if text is not None else None
-        if page is None:
-            link(text, label, missing)
-            return
-        items.append(f'<li><a href="{href(page, out)}">{_e(label)}</a> '
-                     f'<a class="raw" href="{href(text, out)}">(Markdown)</a></li>')
-
-    if lesson.deck_html:
-        link(lesson.deck_html, "Slides", "")
-    elif lesson.deck_source:
-        link(lesson.deck_source, "Slides (Markdown source; deck not built)", "")
-    else:
-        items.append('<li class="missing">no slides yet</li>')
-    text_link(lesson.lesson_readme, "Lesson text", "no lesson text yet")
-    text_link(lesson.exercise_readme, "Exercise", "no exercise text yet")
+    items = [link(lesson.deck_html, "Slides", "") if lesson.deck_html else
+             link(lesson.deck_source, "Slides (Markdown source; deck not built)", "") if lesson.deck_source else
+             '<li class="missing">no slides yet</li>',
+             link(lesson.lesson_readme, "Lesson text", "no lesson text yet", text=True),
+             link(lesson.exercise_readme, "Exercise", "no exercise text yet", text=True)]
     if lesson.output_dir is not None:
-        link(lesson.output_dir / "manifest.json", "manifest.json", "")
+        items.append(link(lesson.output_dir / "manifest.json", "manifest.json", ""))
     return '<ul class="links">' + "".join(items) + "</ul>"
 
 
@@ -279,31 +251,27 @@ def _lab_section(out: Path) -> str:
             + _Outputs(lab, out).html() + "</section>")
 
 
+def _lesson_outputs(lesson: Lesson, out: Path) -> str:
+    if lesson.manifest_error:
+        return f'<div class="error">{_e(lesson.manifest_error)}</div>'
+    if lesson.manifest:
+        return _Outputs(lesson, out).html()
+    return (f'<p class="note">No outputs yet: build and run <code>bin/lesson{lesson.number}</code> '
+            "(the main job, <code>cmake --build --preset release --target gallery</code>, runs them all).</p>")
+
+
 def render_index(lessons: list[Lesson], out: Path, source: Path, note: str = "") -> str:
     """The whole page, for a file written at out/index.html."""
     out, source = Path(out), Path(source)
     lab = _lab_section(out)
-    toc = " ".join(f'<a href="#{l.id}">{l.number} · {_e(l.title)}</a>' for l in lessons)
+    toc = " ".join(f'<a href="#lesson{l.number}">{l.number} · {_e(l.title)}</a>' for l in lessons)
     if lab:
         toc += ' <a href="#lab">the lab</a>'
-    sections = []
-    for lesson in lessons:
-        body = [f'<section class="lesson" id="{lesson.id}">',
-                f'<h2><span class="num">{lesson.number}</span>{_e(lesson.title)}</h2>',
-                _lesson_links(lesson, out, source)]
-        if lesson.manifest_error:
-            body.append(f'<div class="error">{_e(lesson.manifest_error)}</div>')
-        elif lesson.manifest:
-            body.append(_Outputs(lesson, out).html())
-        else:
-            body.append(f'<p class="note">No outputs yet: build and run <code>bin/lesson{lesson.number}</code> '
-                        "(the main job, <code>cmake --build --preset release --target gallery</code>, runs them all).</p>")
-        body.append("</section>")
-        sections.append("\n".join(body))
-    if not sections:
-        sections.append('<p class="note">No lessons found.</p>')
-    if lab:
-        sections.append(lab)
+    sections = ["\n".join([f'<section class="lesson" id="lesson{lesson.number}">',
+                           f'<h2><span class="num">{lesson.number}</span>{_e(lesson.title)}</h2>',
+                           _lesson_links(lesson, out, source), _lesson_outputs(lesson, out), "</section>"])
+                for lesson in lessons] or ['<p class="note">No lessons found.</p>']
+    sections += [lab] if lab else []
     readme = source / "README.md"
     readme_link = f' · <a href="{href(readme, out)}">README</a>' if readme.is_file() else ""
     return f"""<!DOCTYPE html>
@@ -331,45 +299,37 @@ def render_index(lessons: list[Lesson], out: Path, source: Path, note: str = "")
 
 
 def write_index(source: Path, out: Path, slides_dir: Path | None = None, note: str = "") -> Path:
-    out = Path(out)
-    lessons = discover_lessons(source, out, slides_dir)
-    target = out / "index.html"
-    atomic_write_text(target, render_index(lessons, out, Path(source), note))
+    target = Path(out) / "index.html"
+    atomic_write_text(target, render_index(discover_lessons(source, out, slides_dir), Path(out), Path(source), note))
     return target
 
 
 class _Links(HTMLParser):
+    """Every href and src of a page, as (tag, attribute, value), and the ids of its elements."""
+
     def __init__(self) -> None:
         super().__init__(convert_charrefs=True)
-        self.refs: list[tuple[str, str, str]] = []  # (tag, attribute, value)
+        self.refs: list[tuple[str, str, str]] = []
         self.ids: set[str] = set()
 
     def handle_starttag(self, tag, attrs):
-        for name, value in attrs:
-            if name == "id" and value:
-                self.ids.add(value)
-            if name in ("href", "src") and value is not None:
-                self.refs.append((tag, name, value))
+        self.ids.update(value for name, value in attrs if name == "id" and value)
+        self.refs += [(tag, name, value) for name, value in attrs if name in ("href", "src") and value is not None]
 
 
 def check_links(page: Path) -> list[str]:
     """Problems with a page's links: local href/src that do not resolve, and
     external assets (the page must be self-contained)."""
-    page = Path(page)
-    parser = _Links()
+    page, parser, problems = Path(page), _Links(), []
     parser.feed(page.read_text(encoding="utf-8"))
-    problems = []
     for tag, attr, value in parser.refs:
-        parts = urlsplit(value)
+        parts, where = urlsplit(value), f"<{tag} {attr}={value!r}>"
         if parts.scheme or value.startswith("//"):
             if attr == "src" or tag == "link":
-                problems.append(f"<{tag} {attr}={value!r}>: an external asset; the page must be self-contained")
-            continue
-        if not parts.path:
+                problems.append(f"{where}: an external asset; the page must be self-contained")
+        elif not parts.path:
             if parts.fragment and parts.fragment not in parser.ids:
-                problems.append(f"<{tag} {attr}={value!r}>: no element with id {parts.fragment!r} in the page")
-            continue
-        target = (page.parent / unquote(parts.path)).resolve()
-        if not target.exists():
-            problems.append(f"<{tag} {attr}={value!r}>: {target} does not exist")
+                problems.append(f"{where}: no element with id {parts.fragment!r} in the page")
+        elif not (target := (page.parent / unquote(parts.path)).resolve()).exists():
+            problems.append(f"{where}: {target} does not exist")
     return problems

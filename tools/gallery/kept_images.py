@@ -99,13 +99,12 @@ def check_images(source: Path, out: Path) -> tuple[list[str], int]:
         rel = path.relative_to(source)
         links, found = image_links(rel, path.read_text(encoding="utf-8").splitlines())
         problems += found
-        folder = path.parent / FIGURES_FOLDER
         for link in links:
             problem, was_compared = _kept_problem(source, out, rel, link)
             compared += was_compared
             problems += [problem] if problem else []
         linked = {link.name for link in links if link.kept}
-        for orphan in sorted(folder.glob("*")) if folder.is_dir() else []:
+        for orphan in sorted((path.parent / FIGURES_FOLDER).glob("*")):
             total += orphan.stat().st_size
             if orphan.name not in linked:
                 problems.append(f"{orphan.relative_to(source)} is not shown by {rel}: delete it "
@@ -139,9 +138,9 @@ def _kept_problem(source: Path, out: Path, rel: Path, link: ImageLink) -> tuple[
     return None, True
 
 
-def _keep(out: Path, rel: Path, lines: list[str], links: list[ImageLink], folder: Path) -> tuple[set, int, bool, list]:
-    """Copies the drawn images of one text into `folder` and relinks them: (kept names, copies, relinked, problems)."""
-    keep, copied, changed, problems = set(), 0, False, []
+def _keep(out: Path, rel: Path, lines: list[str], links: list[ImageLink], folder: Path) -> tuple[set, int, list]:
+    """Copies the drawn images of one text into `folder` and relinks them in `lines`: (kept names, copies, problems)."""
+    keep, copied, problems = set(), 0, []
     for link in reversed(links):  # right to left: earlier spans on a line stay valid
         drawn = drawn_path(out, link)
         if not drawn.is_file():
@@ -156,31 +155,29 @@ def _keep(out: Path, rel: Path, lines: list[str], links: list[ImageLink], folder
             folder.mkdir(exist_ok=True)
             atomic_write_bytes(kept, data, tag=TAG)
             copied += 1
-        target, line = f"{FIGURES_FOLDER}/{link.name}", lines[link.line]
-        if line[link.start:link.end] != target:
-            lines[link.line] = line[:link.start] + target + line[link.end:]
-            changed = True
-    return keep, copied, changed, problems
+        line = lines[link.line]
+        lines[link.line] = line[:link.start] + f"{FIGURES_FOLDER}/{link.name}" + line[link.end:]
+    return keep, copied, problems
 
 
 def update_images(source: Path, out: Path, log=print) -> int:
     """Keeps a copy of every image the lesson texts show, links the texts to it, drops the rest."""
     problems, copied, relinked, kept_total = [], 0, 0, 0
     for path in lesson_texts(source):
-        rel, lines = path.relative_to(source), path.read_text(encoding="utf-8").splitlines()
+        rel, text = path.relative_to(source), path.read_text(encoding="utf-8")
+        lines, folder = text.splitlines(), path.parent / FIGURES_FOLDER
         links, found = image_links(rel, lines)
-        folder = path.parent / FIGURES_FOLDER
-        keep, count, changed, missing = _keep(out, rel, lines, links, folder)
+        keep, count, missing = _keep(out, rel, lines, links, folder)
         problems += found + missing
         copied += count
-        for orphan in sorted(folder.glob("*")) if folder.is_dir() else []:
+        for orphan in sorted(folder.glob("*")):
             if orphan.name not in keep:
                 orphan.unlink()
                 log(f"figures: removed {orphan.relative_to(source)} (no longer shown)")
         if folder.is_dir() and not any(folder.iterdir()):
             folder.rmdir()
         kept_total += len(keep)
-        if changed:
+        if lines != text.splitlines():
             atomic_write_text(path, "\n".join(lines) + "\n", tag=TAG)
             relinked += 1
             log(f"figures: relinked the images of {rel}")

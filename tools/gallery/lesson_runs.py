@@ -1,14 +1,12 @@
 """The main job's step "lessons": every BIN/lessonNN run into OUT/lessonNN, each run recorded in
-OUT/run_log.json (its date, seconds, processor seconds, cores, load average and neighbours).
-
-A program whose timings all use one thread (`lessonNN --timed-cores` says "one") runs side by side with the
-others like it, as many at once as there are cores, longest first; a "mixed" one, whose timings on more
-threads each ask for the whole machine first (lib/illum/io/whole_machine.hpp), gets it through a pipe once
-no one-thread work is left. The others run alone, in order."""
+OUT/run_log.json (its date, seconds, processor seconds, cores, load average and neighbours). Which run side
+by side, and how a "mixed" one gets the whole machine: docs/build.md, "How the main job runs the lessons"."""
 from __future__ import annotations
 
+import contextlib
 import json
 import os
+from collections import defaultdict
 import re
 import resource
 import subprocess
@@ -20,11 +18,9 @@ from pathlib import Path
 
 from common.files import atomic_write_text
 
+from . import JobError
+
 PROGRAM = re.compile(r"^lesson(\d\d)$")
-
-
-class JobError(Exception):
-    pass
 
 
 def say(message: str) -> None:
@@ -32,9 +28,8 @@ def say(message: str) -> None:
 
 
 def find_programs(bin_dir: Path) -> list[Path]:
-    if not bin_dir.is_dir():
-        return []
-    return sorted(p for p in bin_dir.iterdir() if PROGRAM.match(p.name) and p.is_file() and os.access(p, os.X_OK))
+    programs = bin_dir.iterdir() if bin_dir.is_dir() else []
+    return sorted(p for p in programs if PROGRAM.match(p.name) and p.is_file() and os.access(p, os.X_OK))
 
 
 def lesson_command(program: Path, out: Path, quick: bool) -> list[str]:
@@ -72,6 +67,10 @@ def record_run(log_path: Path, name: str, run: dict) -> None:
     log = read_log(log_path)
     log[name] = run
     atomic_write_text(log_path, json.dumps(log, indent=2, sort_keys=True) + "\n")
+
+
+def now_utc() -> str:
+    return time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
 
 
 def new_record(started: str, seconds: float, cpu: float, load_before: list[float], quick: bool) -> dict:
@@ -138,8 +137,7 @@ def run_lessons(bin_dir: Path, out: Path, quick: bool, alone: bool = False) -> N
 def run_alone(program: Path, number: str, out: Path, quick: bool, log_path: Path) -> None:
     cmd = lesson_command(program, out, quick)
     say(f"{number} {' '.join(cmd)}")
-    start, started = time.monotonic(), time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime())
-    load_before, cpu_before = load_average(), children_cpu_seconds()
+    start, started, load_before, cpu_before = time.monotonic(), now_utc(), load_average(), children_cpu_seconds()
     code = subprocess.call(cmd, cwd=out, stdin=subprocess.DEVNULL)  # its output passes straight through
     if code != 0:
         raise JobError(failure(program, code, cmd))
@@ -149,26 +147,21 @@ def run_alone(program: Path, number: str, out: Path, quick: bool, log_path: Path
 
 
 class SideBySide:
-    """Runs programs `width` at a time, each as soon as a place is free, its output kept in a file of its
-    own and printed whole when it ends (two programs' lines never mix), and records each run with the
-    programs it overlapped.
-
-    A "mixed" program gets a pair of pipes named in ILLUM_MAIN_JOB_FDS. When it asks for the whole
-    machine it waits and stops taking a place; the first to ask gets it once no program is left to start
-    and none runs on one thread; while it holds the machine nothing starts; after "release" it runs on as
-    a one-thread program. After a failure nothing new starts, the running ones finish, the runs that
-    succeeded are recorded and the first failure (in lesson order) is raised."""
+    """Runs programs `width` at a time, each one's output kept in a file and printed whole when it ends (two
+    programs' lines never mix), and records each run with the programs it overlapped. A "mixed" program asks
+    for the whole machine through the pipes named in ILLUM_MAIN_JOB_FDS (docs/build.md). After a failure
+    nothing new starts, the running ones finish, the runs that succeeded are recorded and the first failure
+    (in lesson order) is raised."""
 
     def __init__(self, answers: dict[Path, str], numbers: dict[Path, str], out: Path, quick: bool):
         self.answers, self.numbers, self.out, self.quick = answers, numbers, out, quick
         self.cond = threading.Condition()
         self.todo: list[Path] = []
         self.state: dict[Path, str] = {}  # each running program: "one", "waiting" or "holding"
-        self.waiting: list[Path] = []     # in the order they asked
         self.grant_fds: dict[Path, int] = {}
-        self.asked: dict[Path, float] = {}
-        self.waited: dict[Path, float] = {}
-        self.held: dict[Path, float] = {}
+        self.asked: dict[Path, float] = {}  # when a program asked for the machine, or got it
+        self.waited: dict[Path, float] = defaultdict(float)
+        self.held: dict[Path, float] = defaultdict(float)
         self.spans: dict[Path, tuple[float, float]] = {}
         self.runs: dict[Path, dict] = {}
         self.failures: list[tuple[Path, int, list[str]]] = []
@@ -203,17 +196,15 @@ class SideBySide:
             say(f"{self.numbers[program]} {' '.join(lesson_command(program, self.out, self.quick))} "
                 "(side by side; its output when it ends)")
             threading.Thread(target=self._run_one, args=(program,)).start()
-        if self.waiting and not holder and busy == 0 and (not self.todo or self.failures):
-            program = self.waiting.pop(0)
-            now = time.monotonic()
-            self.waited[program] = self.waited.get(program, 0.0) + now - self.asked[program]
+        waiting = [program for program, state in self.state.items() if state == "waiting"]
+        if waiting and not holder and busy == 0 and (not self.todo or self.failures):
+            program, now = min(waiting, key=self.asked.get), time.monotonic()  # the first to ask
+            self.waited[program] += now - self.asked[program]
             self.asked[program] = now
             self.state[program] = "holding"
             say(f"{program.name} has the whole machine (no other program runs until it gives it back)")
-            try:
+            with contextlib.suppress(OSError):  # it ended meanwhile: _run_one records that
                 os.write(self.grant_fds[program], b"go\n")
-            except OSError:
-                pass  # it ended meanwhile: _run_one records that
         return bool(self.state) or bool(self.todo and not self.failures)
 
     def _listen(self, program: Path, requests_fd: int) -> None:
@@ -225,17 +216,16 @@ class SideBySide:
                     now, current = time.monotonic(), self.state.get(program)
                     if word == "machine" and current == "one":
                         self.state[program] = "waiting"
-                        self.waiting.append(program)
                         self.asked[program] = now
                     elif word == "release" and current == "holding":
                         self.state[program] = "one"
-                        self.held[program] = self.held.get(program, 0.0) + now - self.asked.pop(program)
+                        self.held[program] += now - self.asked.pop(program)
                     else:
                         say(f"warning: {program.name} sent {word[:40]!r} while {current or 'ended'}; ignored")
                     self.cond.notify_all()
 
-    def _start(self, program: Path, cmd: list[str], log) -> tuple[subprocess.Popen | None, int]:
-        """Starts the program (a mixed one with its pipes and their listener): (process or None, 127 or 0)."""
+    def _start(self, program: Path, cmd: list[str], log) -> subprocess.Popen | None:
+        """Starts the program (a mixed one with its pipes and their listener); None when it cannot start."""
         env, pass_fds = None, ()
         if self.answers[program] == "mixed":
             from_job_r, from_job_w = os.pipe()  # the job's answers
@@ -258,15 +248,14 @@ class SideBySide:
             with self.cond:
                 self.grant_fds[program] = from_job_w
             threading.Thread(target=self._listen, args=(program, requests_fd), daemon=True).start()
-        return proc, 0 if proc else 127
+        return proc
 
     def _run_one(self, program: Path) -> None:
+        """Runs one program, then records it (the lock held) and prints its output whole."""
         cmd = lesson_command(program, self.out, self.quick)
+        start, started, load_before = time.monotonic(), now_utc(), load_average()
         with tempfile.TemporaryFile(mode="w+b") as log:
-            start, started, load_before = time.monotonic(), time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), \
-                load_average()
-            proc, code = self._start(program, cmd, log)
-            usage = None
+            proc, code = self._start(program, cmd, log), 127
             if proc is not None:  # wait4, not wait: this child's own processor time, whatever its neighbours use
                 _, status, usage = os.wait4(proc.pid, 0)
                 proc.returncode = code = os.waitstatus_to_exitcode(status)
@@ -274,29 +263,22 @@ class SideBySide:
             log.seek(0)
             text = log.read().decode("utf-8", errors="replace")
         with self.cond:
-            self._finished(program, cmd, code, usage, text, start, end, started, load_before)
+            if self.state.pop(program, None) == "holding":
+                self.held[program] += end - self.asked.pop(program)
+            if program in self.grant_fds:
+                os.close(self.grant_fds.pop(program))
+            sys.stdout.write(text)
+            sys.stdout.flush()
+            self.spans[program] = (start, end)
             self.cond.notify_all()
-
-    def _finished(self, program, cmd, code, usage, text, start, end, started, load_before) -> None:
-        """Records an ended run (the lock held) and prints its output whole."""
-        if self.state.get(program) == "holding":
-            self.held[program] = self.held.get(program, 0.0) + end - self.asked.pop(program)
-        if program in self.waiting:
-            self.waiting.remove(program)
-        self.state.pop(program, None)
-        if program in self.grant_fds:
-            os.close(self.grant_fds.pop(program))
-        sys.stdout.write(text)
-        sys.stdout.flush()
-        self.spans[program] = (start, end)
-        if code != 0:
-            self.failures.append((program, code, cmd))
-            return
-        cpu = usage.ru_utime + usage.ru_stime
-        self.runs[program] = new_record(started, end - start, cpu, load_before, self.quick)
-        extra = ""
-        if self.answers[program] == "mixed":
-            waited, held = self.waited.get(program, 0.0), self.held.get(program, 0.0)
-            self.runs[program].update(waited_seconds=round(waited, 1), whole_machine_seconds=round(held, 1))
-            extra = f"; it waited {waited:.1f} s for the whole machine and held it {held:.1f} s"
-        say(f"{program.name} done in {end - start:.1f} s ({cpu:.1f} s of processor time, all its threads{extra})")
+            if code != 0:
+                self.failures.append((program, code, cmd))
+                return
+            cpu = usage.ru_utime + usage.ru_stime
+            self.runs[program] = new_record(started, end - start, cpu, load_before, self.quick)
+            extra = ""
+            if self.answers[program] == "mixed":
+                waited, held = self.waited[program], self.held[program]
+                self.runs[program].update(waited_seconds=round(waited, 1), whole_machine_seconds=round(held, 1))
+                extra = f"; it waited {waited:.1f} s for the whole machine and held it {held:.1f} s"
+            say(f"{program.name} done in {end - start:.1f} s ({cpu:.1f} s of processor time, all its threads{extra})")

@@ -10,7 +10,6 @@ from pathlib import Path
 # Each kind of output and the extensions its file must have (None: any).
 KIND_EXTENSIONS = {"image": (".png",), "hdr": (".hdr",), "table": (".csv",), "markdown": (".md",), "plot": (".png",),
                    "script": None, "text": None, "mesh": (".ply", ".obj")}
-KINDS = tuple(KIND_EXTENSIONS)
 
 
 class ManifestError(Exception):
@@ -50,34 +49,28 @@ def load_manifest(folder: Path | str) -> Manifest:
         raise ManifestError(f"{path}: not valid JSON: {e}") from None
     if not isinstance(data, dict):
         raise ManifestError(f"{path}: the top level must be an object, found {type(data).__name__}")
-    problems = []
-    for key in ("id", "title"):
-        if not isinstance(data.get(key), str) or not data.get(key).strip():
-            problems.append(f'"{key}" must be a non-empty string, found {data.get(key)!r}')
+    problems = [f'"{key}" must be a non-empty string, found {data.get(key)!r}' for key in ("id", "title")
+                if not isinstance(data.get(key), str) or not data.get(key).strip()]
     outputs = data.get("outputs")
     if not isinstance(outputs, list):
         problems.append(f'"outputs" must be a list, found {type(outputs).__name__}')
         outputs = []
     parsed = []
     for i, entry in enumerate(outputs):
-        where = f"outputs[{i}]"
         if not isinstance(entry, dict):
-            problems.append(f"{where} must be an object")
+            problems.append(f"outputs[{i}] must be an object")
             continue
         kind, file, caption = entry.get("kind"), entry.get("file"), entry.get("caption", "")
-        if kind not in KINDS:
-            problems.append(f'{where}: unknown kind {kind!r} (expected one of {", ".join(KINDS)})')
-            continue
-        if not isinstance(file, str) or not file:
-            problems.append(f'{where}: "file" must be a non-empty string')
-            continue
-        if not isinstance(caption, str):
-            problems.append(f'{where}: "caption" must be a string')
-            continue
-        if Path(file).is_absolute() or ".." in Path(file).parts or "\\" in file:
-            problems.append(f"{where}: file {file!r} must be a plain name inside the output folder")
-            continue
-        parsed.append(Output(kind, file, caption))
+        problem = (f'unknown kind {kind!r} (expected one of {", ".join(KIND_EXTENSIONS)})'
+                   if kind not in KIND_EXTENSIONS else
+                   '"file" must be a non-empty string' if not isinstance(file, str) or not file else
+                   '"caption" must be a string' if not isinstance(caption, str) else
+                   f"file {file!r} must be a plain name inside the output folder"
+                   if Path(file).is_absolute() or ".." in Path(file).parts or "\\" in file else "")
+        if problem:
+            problems.append(f"outputs[{i}]: {problem}")
+        else:
+            parsed.append(Output(kind, file, caption))
     if problems:
         raise ManifestError(f"{path}:\n  " + "\n  ".join(problems))
     return Manifest(data["id"], data["title"], parsed)

@@ -54,16 +54,14 @@ def _plot_clauses(script: str) -> list[str]:
 def evaluate(gp: Path, gnuplot: str) -> tuple[list[Curve], dict[str, float], dict[str, bool]]:
     """gnuplot's own reading of a plot script: its curves' points and the frame's ranges."""
     script = gp.read_text(encoding="utf-8")
-    kept = [line for line in script.splitlines()
-            if not line.startswith(("set terminal", "if (ARGC", "set output"))]
     with tempfile.TemporaryDirectory(prefix="illum-plots-") as tmp:
-        table = Path(tmp) / "points.txt"
-        body = []
-        for line in kept:
+        table, body = Path(tmp) / "points.txt", []
+        for line in script.splitlines():
             if line.startswith("plot "):
                 # The table is written in the axes' formats: full precision, not the tic labels'.
                 body += ["set format x '%.17g'", "set format y '%.17g'", f"set table '{table}'"]
-            body.append(line)
+            if not line.startswith(("set terminal", "if (ARGC", "set output")):
+                body.append(line)
         body += ["unset table",
                  'print sprintf("RANGE %.17g %.17g %.17g %.17g", GPVAL_X_MIN, GPVAL_X_MAX, GPVAL_Y_MIN, GPVAL_Y_MAX)']
         run = subprocess.run([gnuplot], input="\n".join(body) + "\n", cwd=gp.parent, capture_output=True,
@@ -74,32 +72,25 @@ def evaluate(gp: Path, gnuplot: str) -> tuple[list[Curve], dict[str, float], dic
         text = table.read_text(encoding="utf-8", errors="replace")
     styles = [m.group("style") if (m := _CLAUSE_STYLE.search(c)) else "" for c in _plot_clauses(script)]
     curves: list[Curve] = []
-    pending_blank = False
+    pending_blank = False  # a blank line after a point: the line breaks there if another point follows
     for line in text.splitlines():
-        if m := _CURVE.match(line):
+        parts = line.split()
+        if _CURVE.match(line):
             curves.append(Curve(style=styles[len(curves)] if len(curves) < len(styles) else ""))
             pending_blank = False
-        elif m := _TITLE.match(line):
-            if curves:
-                curves[-1].title = m.group("title")
-        elif line.startswith("#"):
-            continue
-        elif not line.strip():
+        elif (m := _TITLE.match(line)) and curves:
+            curves[-1].title = m.group("title")
+        elif not parts:
             pending_blank = bool(curves and curves[-1].points)
-        elif curves:
-            parts = line.split()
-            if len(parts) >= 3:
-                if pending_blank:
-                    curves[-1].breaks += 1
-                    pending_blank = False
-                try:
-                    curves[-1].points.append((float(parts[0]), float(parts[1]), parts[-1]))
-                except ValueError:
-                    curves[-1].points.append((math.nan, math.nan, "u"))
+        elif curves and len(parts) >= 3 and not line.startswith("#"):
+            curves[-1].breaks += pending_blank
+            pending_blank = False
+            try:
+                curves[-1].points.append((float(parts[0]), float(parts[1]), parts[-1]))
+            except ValueError:
+                curves[-1].points.append((math.nan, math.nan, "u"))
     frame = dict(zip(("xmin", "xmax", "ymin", "ymax"), (float(v) for v in ranges.groups())))
-    logs = {"x": bool(re.search(r"^set logscale [^\n]*x", script, re.M)),
-            "y": bool(re.search(r"^set logscale [^\n]*y", script, re.M))}
-    return curves, frame, logs
+    return curves, frame, {axis: bool(re.search(rf"^set logscale [^\n]*{axis}", script, re.M)) for axis in "xy"}
 
 
 def _position(value: float, lo: float, hi: float, log: bool) -> float:
@@ -147,15 +138,11 @@ def check_plot(gp: Path, gnuplot: str | None = None) -> list[str]:
     return problems
 
 
-def plot_scripts(out: Path) -> list[Path]:
-    """Every plot script the lesson programs wrote into OUT (a .gp beside a .png)."""
-    return sorted(gp for gp in Path(out).glob("*/*.gp") if gp.with_suffix(".png").is_file())
-
-
 def check_plots(out: Path, scripts: list[Path] | None = None) -> tuple[list[str], int]:
     """Problems with every plot in OUT (or the given scripts) and how many were checked."""
     gnuplot = _gnuplot()
-    scripts = plot_scripts(out) if scripts is None else scripts
+    if scripts is None:  # every plot script the lesson programs wrote into OUT (a .gp beside a .png)
+        scripts = sorted(gp for gp in Path(out).glob("*/*.gp") if gp.with_suffix(".png").is_file())
     problems = []
     for gp in scripts:
         try:

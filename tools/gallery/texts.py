@@ -6,11 +6,13 @@ import shutil
 import subprocess
 from pathlib import Path
 
+from . import JobError
+
 RENDERER = Path(__file__).resolve().parent / "render_texts.mjs"
 INSTALL_HINT = "run tools/install-deps (it installs Node.js and runs `npm ci` in the repository root)"
 
 
-class TextsError(Exception):
+class TextsError(JobError):
     """Node.js or the renderer's packages are missing, or a text did not render cleanly."""
 
 
@@ -31,8 +33,7 @@ def build_texts(source: Path, out: Path) -> list[str]:
         raise TextsError(f"Node.js is not installed: {INSTALL_HINT}")
     if not (Path(source) / "node_modules" / "markdown-it").is_dir():
         raise TextsError(f"markdown-it is not installed in {Path(source) / 'node_modules'}: {INSTALL_HINT}")
-    out = Path(out)
-    fresh, old = out / "pages.new", out / "pages.old"
+    fresh, old, pages = Path(out) / "pages.new", Path(out) / "pages.old", Path(out) / "pages"
     for folder in (fresh, old):
         shutil.rmtree(folder, ignore_errors=True)
     try:
@@ -42,7 +43,6 @@ def build_texts(source: Path, out: Path) -> list[str]:
         lines = [line for line in (result.stdout + result.stderr).splitlines() if line.strip()]
         if result.returncode != 0:
             raise TextsError("the texts did not render cleanly:\n  " + "\n  ".join(lines))
-        pages = out / "pages"
         if pages.exists():
             pages.rename(old)
         fresh.rename(pages)

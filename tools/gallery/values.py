@@ -218,18 +218,17 @@ def find_values(path: Path, lines: list[str], inside: set[int]) -> tuple[dict[st
     return defs, uses
 
 
-def process_values(run, path: Path, lines: list[str], inside: set[int]) -> tuple[bool, int]:
-    """Checks (run.mode 'check') or rewrites the values of one text, as run.may_rewrite says (run: a
-    gallery.figures.Run): (whether `lines` changed, values seen)."""
+def process_values(run, path: Path, lines: list[str], inside: set[int]) -> int:
+    """Checks (run.mode 'check') or rewrites in `lines` the values of one text, as run.may_rewrite says (run: a
+    gallery.figures.Run); returns how many it saw."""
     try:
         defs, uses = find_values(path, lines, inside)
         if not defs:
-            return False, 0
+            return 0
         resolved = resolve_values(run.out, defs, run.source)
     except FigureError as e:
         run.problems.append(str(e) if str(e).startswith(str(path)) else f"{path}: {e}")
-        return False, 0
-    changed = False
+        return 0
     for u in reversed(uses):  # right to left: earlier spans on a line stay valid
         line = lines[u.line]
         written = line[u.start:u.end]
@@ -240,5 +239,4 @@ def process_values(run, path: Path, lines: list[str], inside: set[int]) -> tuple
         difference = f"{path}:{u.line + 1}: value {u.name}: the text says {shown}, the program wrote {value}"
         if run.may_rewrite([] if timing else [difference]):
             lines[u.line] = line[:u.start] + (f"`{value}`" if written.startswith("`") else value) + line[u.end:]
-            changed = True
-    return changed, len(uses)
+    return len(uses)
