@@ -3,11 +3,12 @@
 // and Aupperle 1991). Every input patch is the root of a tree; an element is
 // split into four children when the link oracle asks for it (a quad through
 // its edge midpoints, a triangle through the midpoints of its sides), so
-// every level tiles its parent exactly and the elements of a level have a
-// quarter of their parent's area. Links join two elements of any levels:
-// the receiver gathers radiosity from the source through the link's form
-// factor. Lesson 14's exercise (hierarchical_radiosity.hpp) builds the links
-// and solves on them; this file holds the data and the tree's plumbing.
+// the children tile their parent exactly (a parallelogram's or a triangle's
+// four children have a quarter of its area each; a trapezoid's differ).
+// Links join two elements of any levels: the receiver gathers radiosity from
+// the source through the link's form factor. Lesson 14's exercise
+// (hierarchical_radiosity.hpp) builds the links and solves on them; this file
+// holds the data and the tree's plumbing.
 #include <cstddef>
 #include <vector>
 

@@ -27,7 +27,7 @@ struct HierarchicalSolution {
   std::size_t leaves = 0;                                     // elements without children
   std::size_t iterations = 0;                                 // gather + push-pull sweeps, over every solve
   std::size_t refinement_passes = 0;                          // refine_links calls that replaced a link
-  std::uint64_t segments = 0;                                 // visibility segments asked (link_visibility)
+  std::uint64_t segments = 0;                                 // segments asked of `visible`
   bool converged = false;                                     // the last solve_links converged
   double refine_seconds = 0, solve_seconds = 0, seconds = 0;  // the whole run: refine + solve
 };
