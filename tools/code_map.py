@@ -1,14 +1,10 @@
-"""The lesson layout and its "Where the code is" blocks (docs/architecture.md, "Lesson programs").
-
-A lesson program is lessons/NN_topic/main.cpp and studies/sMM[x]_<name>.cpp, MM the README section that
-quotes the study. Each lesson text opens with a hand-written "**Read in this order:**" list (the library
-pairs, main.cpp, the studies), and every lesson text and exercise README holds a generated block,
-between BEGIN and END, linking the lesson's text, program, library pairs, exercise, tests and deck; each
-deck ends with the same block as a slide (deck_slide). tools/task_tables.py --update writes the blocks;
---check fails on a stale or missing one and on layout_problems.
+"""The lesson layout and its "Where the code is" blocks (docs/architecture.md, "Lesson programs"): the
+generated block of every lesson text and exercise README, the same block as the last slide of every deck
+(deck_slide), and layout_problems. tools/task_tables.py --update writes the blocks; --check checks them.
 """
 from __future__ import annotations
 
+import itertools
 import os
 import re
 from pathlib import Path
@@ -75,34 +71,27 @@ def reading_list(readme_text: str) -> tuple[int, list[str]] | None:
         if line.startswith("## "):
             return None
         if line.strip() == READ_IN_ORDER:
-            j = k + 1
-            while j < len(lines) and not lines[j].strip():
-                j += 1
-            targets = []
-            while j < len(lines) and lines[j].strip() and not lines[j].startswith("#"):
-                targets += _LINK.findall(lines[j])
-                j += 1
-            return k, targets
+            after = itertools.dropwhile(lambda text: not text.strip(), lines[k + 1:])
+            paragraph = itertools.takewhile(lambda text: text.strip() and not text.startswith("#"), after)
+            return k, [target for text in paragraph for target in _LINK.findall(text)]
     return None
+
+
+def _folders(root: Path, lesson_nn: str) -> tuple[Path | None, Path | None]:
+    """(lessons/NN_topic, exercises/NN_topic), either None when missing."""
+    return lesson_folders(root, "lessons").get(lesson_nn), lesson_folders(root, "exercises").get(lesson_nn)
 
 
 def library_pairs(root: Path, lesson_nn: str) -> list[Path]:
     """The lib/ headers of a lesson's code map: those its reading list links, then its exercise units'."""
-    lesson = lesson_folders(root, "lessons").get(lesson_nn)
-    pairs: list[Path] = []
+    lesson, exercise = _folders(root, lesson_nn)
     found = reading_list((lesson / "README.md").read_text(encoding="utf-8")) \
         if lesson is not None and (lesson / "README.md").is_file() else None
-    for target in found[1] if found else []:
-        header = (lesson / target).resolve().with_suffix(".hpp")
-        if Path(target).suffix in (".hpp", ".cpp") and (root / "lib").resolve() in header.parents \
-                and header.is_file() and header not in pairs:
-            pairs.append(header)
-    exercise = lesson_folders(root, "exercises").get(lesson_nn)
-    for stub in sorted(exercise.glob("*.cpp")) if exercise else []:
-        header = unit_header(root, stub.stem)
-        if header is not None and header.resolve() not in pairs:
-            pairs.append(header.resolve())
-    return pairs
+    linked = [(lesson / t).resolve().with_suffix(".hpp") for t in (found[1] if found else [])
+              if Path(t).suffix in (".hpp", ".cpp")]
+    units = [unit_header(root, stub.stem) for stub in sorted(exercise.glob("*.cpp"))] if exercise else []
+    return list(dict.fromkeys([h for h in linked if (root / "lib").resolve() in h.parents and h.is_file()]
+                              + [h.resolve() for h in units if h is not None]))
 
 
 def test_files(root: Path, lesson_nn: str, pairs: list[Path]) -> tuple[list[Path], list[Path]]:
@@ -146,8 +135,7 @@ def code_map(root: Path, lesson_nn: str, readme: Path) -> str:
     root, readme = root.resolve(), readme.resolve()
     link = lambda path, text=None: f"[`{text or path.name}`]({_rel(path, readme.parent)})"  # noqa: E731
     rows: list[tuple[str, str]] = []
-    lesson = lesson_folders(root, "lessons").get(lesson_nn)
-    exercise = lesson_folders(root, "exercises").get(lesson_nn)
+    lesson, exercise = _folders(root, lesson_nn)
     if lesson is not None and (lesson / "README.md").is_file() and (lesson / "README.md").resolve() != readme:
         rows.append(("lesson text", link(lesson / "README.md", f"lessons/{lesson.name}/README.md")))
     if lesson is not None and (lesson / "main.cpp").is_file():
@@ -177,8 +165,7 @@ def deck_slide(root: Path, lesson_nn: str) -> str:
     root = root.resolve()
     link = lambda path, text: f"[{text}]({_rel(path, root / 'out' / 'slides')})"  # noqa: E731
     lines = []
-    lesson = lesson_folders(root, "lessons").get(lesson_nn)
-    exercise = lesson_folders(root, "exercises").get(lesson_nn)
+    lesson, exercise = _folders(root, lesson_nn)
     if lesson is not None and (lesson / "README.md").is_file():
         lines.append(f"- **Text:** {link(lesson / 'README.md', f'`lessons/{lesson.name}/README.md`')}")
     if exercise is not None:
@@ -196,20 +183,6 @@ def deck_slide(root: Path, lesson_nn: str) -> str:
         lines.append(f"- **Tests:** {link(tests, f'`tests/{tests.name}/`')} (suite `lesson{lesson_nn}`): "
                      f"`tools/grade --student {lesson_nn}`")
     return f"{BEGIN}\n## Where the code is\n\n" + "\n".join(lines) + f"\n{END}"
-
-
-def _deck_problems(root: Path, write: bool) -> list[str]:
-    """Rewrites (write=True) or checks the "Where the code is" slide that ends every deck."""
-    problems = []
-    for deck in sorted((root / "slides").glob("[0-9][0-9]_*.md")) if (root / "slides").is_dir() else []:
-        text, block = deck.read_text(encoding="utf-8"), deck_slide(root, deck.name[:2])
-        new = replace_between(text, BEGIN, END, block)
-        if new is None and write:  # the first time: the deck's last slide
-            new = text.rstrip("\n") + "\n\n---\n\n" + block + "\n"
-        problems += refresh(deck, root, text, new, write, "\"Where the code is\" slide", f"at its end ({BEGIN} … {END})")
-        if new == text and not text.rstrip().endswith(END):
-            problems.append(f"{_rel(deck, root)}: the \"Where the code is\" slide must be the deck's last")
-    return problems
 
 
 def replace_between(text: str, begin: str, end: str, block: str) -> str | None:
@@ -235,7 +208,16 @@ def refresh(path: Path, root: Path, text: str, new: str | None, write: bool, blo
 def update(root: Path, write: bool) -> list[str]:
     """Rewrites (write=True) or checks the code map of every lesson text and exercise README, and the
     slide that ends every deck; returns the problems (stale or missing blocks)."""
-    problems = _deck_problems(root, write)
+    problems = []
+    for deck in sorted((root / "slides").glob("[0-9][0-9]_*.md")) if (root / "slides").is_dir() else []:
+        text, block = deck.read_text(encoding="utf-8"), deck_slide(root, deck.name[:2])
+        new = replace_between(text, BEGIN, END, block)
+        if new is None and write:  # the first time: the deck's last slide
+            new = text.rstrip("\n") + "\n\n---\n\n" + block + "\n"
+        problems += refresh(deck, root, text, new, write, "\"Where the code is\" slide",
+                            f"at its end ({BEGIN} … {END})")
+        if new == text and not text.rstrip().endswith(END):
+            problems.append(f"{_rel(deck, root)}: the \"Where the code is\" slide must be the deck's last")
     for kind in ("lessons", "exercises"):
         for nn, folder in lesson_folders(root, kind).items():
             readme = folder / "README.md"

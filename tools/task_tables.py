@@ -19,6 +19,7 @@ is a `// Task N.` comment of a stub. A lesson without exercises or tests is skip
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import os
 import re
@@ -150,16 +151,15 @@ def table(lesson: str, tasks: dict[str, list[str]], tests: list[TestCase], root:
 
 def student_commands(lesson: str, has_program: bool = True) -> str:
     """The one set of build commands a student types, for lesson `lesson` ("NN" in the top README)."""
+    program = f" lesson{lesson}" if has_program else ""
     rows = [("cmake --preset student", "once: configure build/student with your exercises"),
-            (f"cmake --build --preset student --target tests_lesson{lesson}" + (f" lesson{lesson}" if has_program
-                                                                                else ""),
+            (f"cmake --build --preset student --target tests_lesson{lesson}{program}",
              "build your code, its tests" + (" and the lesson program" if has_program else "")),
             (f"build/student/bin/tests_lesson{lesson} -ts=lesson{lesson}",
-             "the grading tests, with their explanations")]
-    if has_program:
-        rows.append((f"build/student/bin/lesson{lesson} --out out/lesson{lesson}",
-                     "the lesson's pictures, drawn by your code"))
-    rows.append((f"tools/grade --student {lesson}", "your score, as the autograder computes it"))
+             "the grading tests, with their explanations"),
+            (f"build/student/bin/lesson{lesson} --out out/lesson{lesson}", "the lesson's pictures, drawn by your code"),
+            (f"tools/grade --student {lesson}", "your score, as the autograder computes it")]
+    rows = [(command, why) for command, why in rows if has_program or " --out " not in command]
     width = max(len(command) for command, _ in rows) + 2
     body = "\n".join(f"{command.ljust(width)}# {why}" for command, why in rows)
     return f"{COMMANDS_BEGIN}\n```sh\n{body}\n```\n{COMMANDS_END}"
@@ -227,9 +227,7 @@ def _readme_problems(root: Path, lesson: str) -> list[str]:
     if builds_on is None:
         return problems + [f"{where}: no \"**Builds on:**\" line naming the earlier exercises"]
     return problems + [f"{where}: \"Builds on\" does not name exercise {needed}, which depends.txt declares"
-                       for needed in declared_dependencies(lesson, root)
-                       if f"exercise {needed}" not in builds_on.lower() and f"exercises {needed}" not in
-                       builds_on.lower() and not re.search(rf"\b{needed}\b", builds_on)]
+                       for needed in declared_dependencies(lesson, root) if not re.search(rf"\b{needed}\b", builds_on)]
 
 
 def source_problems(root: Path, lesson: str) -> list[str]:
@@ -340,12 +338,9 @@ def derive(root: Path, lesson: str, build_dir: Path, write: bool) -> int:
 
 
 def _write_tags(root: Path, lesson: str, found: dict[str, list[str]]) -> None:
-    by_file: dict[Path, list[TestCase]] = {}
-    for test in grading_tests(root, lesson):
-        by_file.setdefault(test.file, []).append(test)
-    for source, tests in by_file.items():
+    for source, tests in itertools.groupby(grading_tests(root, lesson), key=lambda t: t.file):
         text = source.read_text(encoding="utf-8")
-        for test in sorted(tests, key=lambda t: t.start, reverse=True):
+        for test in reversed(list(tests)):  # from the end, so that the earlier offsets hold
             if not (tasks := found.get(test.name)):
                 continue
             head, tag = text[test.start:test.end], "task=" + ",".join(tasks)
