@@ -20,11 +20,6 @@ _STUDY = re.compile(r"s(\d\d)([a-z]?)_([a-z0-9_]+)\.cpp")
 _SECTION_LABEL = re.compile(r'"§(\d+) ([^"]*)"')
 
 
-def lesson_programs(root: Path) -> dict[str, Path]:
-    """NN -> lessons/NN_topic for every lesson with a main.cpp."""
-    return {nn: folder for nn, folder in lesson_folders(root, "lessons").items() if (folder / "main.cpp").is_file()}
-
-
 def _rel(path: Path, start: Path) -> str:
     return Path(os.path.relpath(path, start)).as_posix()
 
@@ -94,16 +89,6 @@ def library_pairs(root: Path, lesson_nn: str) -> list[Path]:
                               + [h.resolve() for h in units if h is not None]))
 
 
-def test_files(root: Path, lesson_nn: str, pairs: list[Path]) -> tuple[list[Path], list[Path]]:
-    """(the lesson's own test files, tests elsewhere named after one of its library pairs)."""
-    own_folder = lesson_folders(root, "tests").get(lesson_nn)
-    stems, lessons = {p.stem for p in pairs}, set(lesson_folders(root, "tests").values())
-    others = [f for folder in (sorted((root / "tests").iterdir()) if (root / "tests").is_dir() else [])
-              if folder.is_dir() and folder not in lessons and folder.name != "hidden"
-              for f in sorted(folder.glob("*.cpp")) if f.stem in stems]
-    return (sorted(own_folder.glob("*.cpp")) if own_folder else []), others
-
-
 def _program_row(lesson: Path, lesson_nn: str, link) -> tuple[str, str]:
     program = [link(lesson / "main.cpp", "main.cpp") + " (the demonstration)"]
     program += [link(s, "studies/" + s.name) + f" (§{int(_STUDY.fullmatch(s.name).group(1))})"
@@ -122,12 +107,17 @@ def _library_row(root: Path, pairs: list[Path], link) -> tuple[str, str]:
     return "library", "<br>".join(cells)
 
 
-def _tests_row(own: list[Path], others: list[Path], lesson_nn: str, link) -> tuple[str, str]:
+def _tests_cell(root: Path, lesson_nn: str, pairs: list[Path], link) -> str:
+    """The lesson's own test files, then tests elsewhere named after one of its library pairs ('' if none)."""
+    lessons = lesson_folders(root, "tests")
+    own = sorted(lessons[lesson_nn].glob("*.cpp")) if lesson_nn in lessons else []
+    others = [f for f in sorted((root / "tests").glob("*/*.cpp")) if f.stem in {p.stem for p in pairs}
+              and f.parent not in lessons.values() and f.parent.name != "hidden"]
     name = lambda t: link(t, f"tests/{t.parent.name}/{t.name}")  # noqa: E731
     cell = " · ".join(name(t) for t in own) + (f" (suite `lesson{lesson_nn}` and its hard cases)" if own else "")
     if others:
         cell += ("; " if own else "") + "also " + " · ".join(name(t) for t in others)
-    return "tests", cell
+    return cell
 
 
 def code_map(root: Path, lesson_nn: str, readme: Path) -> str:
@@ -148,9 +138,8 @@ def code_map(root: Path, lesson_nn: str, readme: Path) -> str:
         rows.append(("exercise", " · ".join(
             ([] if own_readme else [link(exercise / "README.md", f"exercises/{exercise.name}/README.md")])
             + [link(stub, stub.name) for stub in sorted(exercise.glob("*.cpp"))])))
-    own, others = test_files(root, lesson_nn, pairs)
-    if own or others:
-        rows.append(_tests_row(own, others, lesson_nn, link))
+    if tests := _tests_cell(root, lesson_nn, pairs, link):
+        rows.append(("tests", tests))
     decks = sorted((root / "slides").glob(f"{lesson_nn}_*.md")) if (root / "slides").is_dir() else []
     if decks:
         rows.append(("slides", " · ".join(link(d, f"slides/{d.name}") for d in decks)
@@ -248,12 +237,12 @@ def _study_problems(root: Path, lesson: Path, heads: dict[int, str]) -> list[str
     for source in [lesson / "main.cpp", *studies(lesson)]:  # run_section's banners and timing labels
         for number_line, line in enumerate(source.read_text(encoding="utf-8").splitlines(), start=1):
             for match in _SECTION_LABEL.finditer(line):
-                label, number = f"label \"§{match.group(1)} {match.group(2)}\"", int(match.group(1))
+                number = int(match[1])
+                where = f"{_rel(source, root)}:{number_line}: label \"§{match[1]} {match[2]}\""
                 if number not in heads:
-                    problems.append(f"{_rel(source, root)}:{number_line}: {label} names no section of README.md")
+                    problems.append(f"{where} names no section of README.md")
                 elif not _agrees(match.group(2), heads[number]):
-                    problems.append(f"{_rel(source, root)}:{number_line}: {label} does not agree with README.md's "
-                                    f"\"## {number}. {heads[number]}\"")
+                    problems.append(f"{where} does not agree with README.md's \"## {number}. {heads[number]}\"")
     return problems
 
 
@@ -264,8 +253,7 @@ def _reading_list_problems(root: Path, lesson: Path, text: str, units: list[str]
     if (found := reading_list(text)) is None:
         return [f"{where}: the text must open (before its first section) with \"{READ_IN_ORDER}\" and a list: "
                 "the library pairs, main.cpp, the studies"]
-    where = f"{where}:{found[0] + 1}"
-    targets = found[1]
+    where, targets = f"{where}:{found[0] + 1}", found[1]
     resolved = [(lesson / t).resolve() for t in targets if not re.match(r"^[a-z]+:", t)]
     problems = [f"{where}: the reading list links {t}, which does not exist" for t, p in zip(targets, resolved)
                 if not p.exists()]
@@ -275,11 +263,9 @@ def _reading_list_problems(root: Path, lesson: Path, text: str, units: list[str]
     if [p for p in resolved if p.parent == (lesson / "studies").resolve()] != wanted:
         problems.append(f"{where}: the reading list must link the studies in file-name order: "
                         + ", ".join(_rel(s, lesson) for s in wanted))
-    for unit in units:
-        header = unit_header(root, unit)
-        if header is not None and header.resolve() not in resolved:
-            problems.append(f"{where}: the reading list does not link {_rel(header, root)}, the header of an "
-                            "exercise unit of this lesson")
+    problems += [f"{where}: the reading list does not link {_rel(header, root)}, the header of an exercise unit of "
+                 "this lesson" for header in (unit_header(root, unit) for unit in units)
+                 if header is not None and header.resolve() not in resolved]
     every_unit = exercise_units(root)
     return problems + [f"{where}: the reading list links {t}, a reference unit that the student edition leaves "
                        "out; link its header" for t, p in zip(targets, resolved)
@@ -290,7 +276,9 @@ def layout_problems(root: Path) -> list[str]:
     """Every rule of the lesson layout a lesson breaks, one line each (file:line where there is one)."""
     problems = []
     units = {nn: [s.stem for s in sorted(f.glob("*.cpp"))] for nn, f in lesson_folders(root, "exercises").items()}
-    for nn, lesson in lesson_programs(root).items():
+    for nn, lesson in lesson_folders(root, "lessons").items():
+        if not (lesson / "main.cpp").is_file():
+            continue
         if not (lesson / "README.md").is_file():
             problems.append(f"{_rel(lesson, root)}: no README.md")
             continue
