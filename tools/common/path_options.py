@@ -11,7 +11,6 @@ from __future__ import annotations
 import argparse
 import errno
 import os
-import stat
 from pathlib import Path
 
 
@@ -21,15 +20,11 @@ def path_problem(text: str) -> str:
         return "the path is empty (name a file or folder; '.' is the current folder)"
     step = ""
     for part in Path(text).parts:  # each step in turn, so that the message names the link that is wrong
-        step = os.path.join(step, part) if step else part
-        try:
-            if not stat.S_ISLNK(os.lstat(step).st_mode):
-                continue
-        except OSError:
-            return ""  # missing from here on: the tool says what it needs
+        step = os.path.join(step, part)
+        if not os.path.islink(step):  # a plain step, or missing from here on: the tool says what it needs
+            continue
         try:
             os.stat(step)
-            continue
         except OSError as error:
             what = f"'{step}' is a symbolic link"
             if error.errno == errno.ELOOP:

@@ -79,22 +79,18 @@ def cpp(assets: list[tuple[str, str, bytes]], have_three: bool) -> str:
     lines = ["// Written by tools/lab/embed_assets.py at build time: do not edit.",
              '#include "lab/lab_assets.hpp"', "", "namespace illum::lab {", "", "namespace {", ""]
     for i, (_, _, data) in enumerate(assets):
-        d = delimiter(data)
-        lines.append(f"const char* const asset_{i}[] = {{")
-        for piece in chunks(data):
-            lines.append(f'R"{d}(' + piece.decode("utf-8", errors="surrogateescape") + f'){d}",')
-        lines.append("};")
-        lines.append(f"const std::size_t asset_{i}_sizes[] = {{{', '.join(str(len(p)) for p in chunks(data)) or '0'}}};")
-        lines.append("")
+        d, pieces = delimiter(data), chunks(data)
+        lines += [f"const char* const asset_{i}[] = {{",
+                  *(f'R"{d}(' + piece.decode("utf-8", errors="surrogateescape") + f'){d}",' for piece in pieces), "};",
+                  f"const std::size_t asset_{i}_sizes[] = {{{', '.join(str(len(p)) for p in pieces) or '0'}}};", ""]
     lines += ["std::string join(const char* const* pieces, const std::size_t* sizes, std::size_t count) {",
               "  std::string out;",
               "  for (std::size_t i = 0; i < count; ++i) out.append(pieces[i], sizes[i]);",
               "  return out;", "}", "", "}  // namespace", "",
               "const std::vector<LabAsset>& lab_assets() {",
               "  static const std::vector<LabAsset> assets = {"]
-    for i, (url, kind, data) in enumerate(assets):
-        n = len(chunks(data))
-        lines.append(f'      {{"{url}", "{kind}", join(asset_{i}, asset_{i}_sizes, {n})}},')
+    lines += [f'      {{"{url}", "{kind}", join(asset_{i}, asset_{i}_sizes, {len(chunks(data))})}},'
+              for i, (url, kind, data) in enumerate(assets)]
     lines += ["  };", "  return assets;", "}", "",
               f"bool lab_has_three() {{ return {'true' if have_three else 'false'}; }}", "",
               "}  // namespace illum::lab", ""]
