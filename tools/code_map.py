@@ -9,7 +9,7 @@ import os
 import re
 from pathlib import Path
 
-from grading.project import lesson_folders
+from grading.project import exercise_stubs, lesson_folders
 
 BEGIN = "<!-- code-map: begin (written by tools/task_tables.py --update) -->"
 END = "<!-- code-map: end -->"
@@ -22,11 +22,6 @@ _SECTION_LABEL = re.compile(r'"§(\d+) ([^"]*)"')
 
 def _rel(path: Path, start: Path) -> str:
     return Path(os.path.relpath(path, start)).as_posix()
-
-
-def exercise_units(root: Path) -> set[str]:
-    """The file names of every exercise unit (a lib/ source with a stub in exercises/)."""
-    return {stub.name for folder in lesson_folders(root, "exercises").values() for stub in folder.glob("*.cpp")}
 
 
 def unit_header(root: Path, stem: str) -> Path | None:
@@ -98,7 +93,7 @@ def _program_row(lesson: Path, lesson_nn: str, link) -> tuple[str, str]:
 
 
 def _library_row(root: Path, pairs: list[Path], link) -> tuple[str, str]:
-    units, cells = exercise_units(root), []
+    units, cells = exercise_stubs(root), []
     for header in pairs:
         source = header.with_suffix(".cpp")
         cells.append(link(header, _rel(header, root / "lib" / "illum"))
@@ -266,7 +261,7 @@ def _reading_list_problems(root: Path, lesson: Path, text: str, units: list[str]
     problems += [f"{where}: the reading list does not link {_rel(header, root)}, the header of an exercise unit of "
                  "this lesson" for header in (unit_header(root, unit) for unit in units)
                  if header is not None and header.resolve() not in resolved]
-    every_unit = exercise_units(root)
+    every_unit = exercise_stubs(root)
     return problems + [f"{where}: the reading list links {t}, a reference unit that the student edition leaves "
                        "out; link its header" for t, p in zip(targets, resolved)
                        if p.suffix == ".cpp" and p.name in every_unit and (root / "lib").resolve() in p.parents]

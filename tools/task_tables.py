@@ -37,7 +37,8 @@ import code_map  # noqa: E402
 from code_map import refresh, replace_between  # noqa: E402
 from common.cpp_text import blank_comments  # noqa: E402
 from grading.alone import declared_dependencies  # noqa: E402
-from grading.project import lesson_folders  # noqa: E402
+from grading.project import exercise_lessons, lesson_folders  # noqa: E402
+from grading.results import points_of  # noqa: E402
 
 BEGIN = "<!-- task-table: begin (written by tools/task_tables.py --update) -->"
 END = "<!-- task-table: end -->"
@@ -82,6 +83,10 @@ class TestCase:
     def tasks(self) -> list[str]:
         match = _TAG.search(self.description)
         return [t for t in match.group(1).split(",") if t] if match else []
+
+    @property
+    def points(self) -> float:
+        return points_of(self.description)
 
 
 def _literals(text: str) -> str:
@@ -130,11 +135,6 @@ def grading_tests(root: Path, lesson: str) -> list[TestCase]:
             if t.suite == f"lesson{lesson}"] if folder else []
 
 
-def _points(test: TestCase) -> float:
-    match = re.search(r"\bpoints\s*=\s*([0-9.]+)", test.description)
-    return float(match.group(1)) if match else 1.0
-
-
 def table(lesson: str, tasks: dict[str, list[str]], tests: list[TestCase], root: Path) -> str:
     """The Markdown of the task table: one row per test, the tasks it needs, its points (each "erratum N"
     of a test's name linked, as every text that names one)."""
@@ -144,8 +144,8 @@ def table(lesson: str, tasks: dict[str, list[str]], tests: list[TestCase], root:
                             t.name.replace("|", "\\|"))
     per_task = "; ".join(f"Task {task}: {sum(task in t.tasks for t in tests)}" for task in tasks)
     return "\n".join([BEGIN, f"| test (suite `lesson{lesson}`) | tasks it needs | points |", "|---|---|---|"]
-                     + [f"| {name(t)} | {', '.join(t.tasks)} | {_points(t):g} |" for t in ordered]
-                     + ["", f"{len(tests)} tests, {sum(_points(t) for t in tests):g} points. A test passes only when "
+                     + [f"| {name(t)} | {', '.join(t.tasks)} | {t.points:g} |" for t in ordered]
+                     + ["", f"{len(tests)} tests, {sum(t.points for t in tests):g} points. A test passes only when "
                         f"every task it needs is written. Tests per task — {per_task}.", END])
 
 
@@ -177,8 +177,7 @@ def updated_readme(root: Path, lesson: str) -> tuple[Path, str, str | None]:
 
 
 def lessons_to_check(root: Path) -> list[str]:
-    exercises, tests = lesson_folders(root, "exercises"), lesson_folders(root, "tests")
-    return [nn for nn in exercises if nn in tests and any(exercises[nn].glob("*.cpp")) and grading_tests(root, nn)]
+    return [nn for nn in exercise_lessons(root) if grading_tests(root, nn)]
 
 
 def _tag_problems(root: Path, lesson: str, exercise: Path) -> list[str]:
