@@ -84,24 +84,6 @@ def library_pairs(root: Path, lesson_nn: str) -> list[Path]:
                               + [h.resolve() for h in units if h is not None]))
 
 
-def _program_row(lesson: Path, lesson_nn: str, link) -> tuple[str, str]:
-    program = [link(lesson / "main.cpp", "main.cpp") + " (the demonstration)"]
-    program += [link(s, "studies/" + s.name) + f" (§{int(_STUDY.fullmatch(s.name).group(1))})"
-                for s in studies(lesson)]
-    program += [link(h, _rel(h, lesson)) + " (helpers)" for h in helpers(lesson)]
-    return f"program `lesson{lesson_nn}`", " · ".join(program)
-
-
-def _library_row(root: Path, pairs: list[Path], link) -> tuple[str, str]:
-    units, cells = exercise_stubs(root), []
-    for header in pairs:
-        source = header.with_suffix(".cpp")
-        cells.append(link(header, _rel(header, root / "lib" / "illum"))
-                     + (" (exercise unit)" if source.name in units else
-                        " · " + link(source, ".cpp") if source.is_file() else ""))
-    return "library", "<br>".join(cells)
-
-
 def _tests_cell(root: Path, lesson_nn: str, pairs: list[Path], link) -> str:
     """The lesson's own test files, then tests elsewhere named after one of its library pairs ('' if none)."""
     lessons = lesson_folders(root, "tests")
@@ -124,10 +106,18 @@ def code_map(root: Path, lesson_nn: str, readme: Path) -> str:
     if lesson is not None and (lesson / "README.md").is_file() and (lesson / "README.md").resolve() != readme:
         rows.append(("lesson text", link(lesson / "README.md", f"lessons/{lesson.name}/README.md")))
     if lesson is not None and (lesson / "main.cpp").is_file():
-        rows.append(_program_row(lesson, lesson_nn, link))
-    pairs = library_pairs(root, lesson_nn)
-    if pairs:
-        rows.append(_library_row(root, pairs, link))
+        rows.append((f"program `lesson{lesson_nn}`", " · ".join(
+            [link(lesson / "main.cpp", "main.cpp") + " (the demonstration)"]
+            + [link(s, "studies/" + s.name) + f" (§{int(_STUDY.fullmatch(s.name).group(1))})" for s in studies(lesson)]
+            + [link(h, _rel(h, lesson)) + " (helpers)" for h in helpers(lesson)])))
+    units, cells = exercise_stubs(root), []
+    for header in (pairs := library_pairs(root, lesson_nn)):
+        source = header.with_suffix(".cpp")
+        cells.append(link(header, _rel(header, root / "lib" / "illum"))
+                     + (" (exercise unit)" if source.name in units else
+                        " · " + link(source, ".cpp") if source.is_file() else ""))
+    if cells:
+        rows.append(("library", "<br>".join(cells)))
     if exercise is not None:
         own_readme = (exercise / "README.md").resolve() == readme
         rows.append(("exercise", " · ".join(

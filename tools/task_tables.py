@@ -39,6 +39,7 @@ from common.cpp_text import blank_comments  # noqa: E402
 from grading.alone import declared_dependencies  # noqa: E402
 from grading.project import exercise_lessons, lesson_folders  # noqa: E402
 from grading.results import points_of  # noqa: E402
+from grading.runner import list_suites, run_suite  # noqa: E402
 
 BEGIN = "<!-- task-table: begin (written by tools/task_tables.py --update) -->"
 END = "<!-- task-table: end -->"
@@ -171,9 +172,8 @@ def updated_readme(root: Path, lesson: str) -> tuple[Path, str, str | None]:
     readme = exercise / "README.md"
     text = readme.read_text(encoding="utf-8") if readme.is_file() else ""
     new = replace_between(text, BEGIN, END, table(lesson, stub_tasks(exercise), grading_tests(root, lesson), root))
-    has_program = lesson in lesson_folders(root, "lessons")
-    return readme, text, new and replace_between(new, COMMANDS_BEGIN, COMMANDS_END,
-                                                 student_commands(lesson, has_program))
+    commands = student_commands(lesson, has_program=lesson in lesson_folders(root, "lessons"))
+    return readme, text, new and replace_between(new, COMMANDS_BEGIN, COMMANDS_END, commands)
 
 
 def _tag_problems(root: Path, lesson: str, exercise: Path) -> list[str]:
@@ -227,8 +227,6 @@ def _readme_problems(root: Path, lesson: str, exercise: Path) -> list[str]:
 def stub_problems(root: Path, lesson: str, build_dir: Path) -> list[str]:
     """On the stubs, a test first stops in the function of one of the tasks it names (or of an earlier
     lesson this one declares it needs, depends.txt)."""
-    from grading.runner import run_suite
-
     program = build_dir / "bin" / f"tests_lesson{lesson}_stubs"
     if not program.is_file():
         return [f"{program} is missing; build it (or run without --build-dir)"]
@@ -301,8 +299,6 @@ def _probed_program(root: Path, lesson: str, build_dir: Path, commands: dict[Pat
 
 
 def derive(root: Path, lesson: str, build_dir: Path, write: bool) -> int:
-    from grading.runner import list_suites
-
     commands = {Path(e["file"]).resolve(): e for e in json.loads((build_dir / "compile_commands.json").read_text())}
     found: dict[str, list[str]] = {}
     with tempfile.TemporaryDirectory(prefix=f"illum-tasks-{lesson}-") as folder:

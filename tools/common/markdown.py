@@ -31,10 +31,6 @@ def split_table_row(line: str) -> list[str]:
     return [cell.replace("\\|", "|").strip() for cell in re.split(r"(?<!\\)\|", body)]
 
 
-def is_separator_cells(cells: list[str]) -> bool:
-    return bool(cells) and all(_SEPARATOR_CELL.match(c.replace(" ", "")) for c in cells)
-
-
 def alignment(cell: str) -> str:
     """'left', 'right', 'center' or '' for one separator cell."""
     c = cell.replace(" ", "")
@@ -65,7 +61,7 @@ def _block_table(block: list[str], start: int) -> tuple[Table | None, list[str]]
     if len(block) < 2:
         return None, [f"line {start + 1}: a table row with no separator line ('|---|---|') after it"]
     header, separator = split_table_row(block[0]), split_table_row(block[1])
-    if not is_separator_cells(separator):
+    if not all(_SEPARATOR_CELL.match(c.replace(" ", "")) for c in separator):  # never empty: split gives one
         return None, [f"line {start + 2}: expected the separator line ('|---|---|'), found {block[1].strip()!r}"]
     if len(separator) != len(header):
         return None, [f"line {start + 2}: the separator has {len(separator)} columns, the header has {len(header)}"]
