@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Writes and checks the READMEs' generated blocks: each exercise's task table (which grading test
-grades which task) and student commands, every lesson text's and exercise's "Where the code is" map
-(tools/code_map.py), and the top README's student commands (docs/grading.md, "Task tables").
+"""Writes and checks the READMEs' generated blocks: each exercise's task table (which grading test grades
+which task) and student commands, every lesson text's and exercise's "Where the code is" map
+(tools/code_map.py), and the top README's student commands (docs/grading-reference.md, "Task tables").
 
     tools/task_tables.py --update          rewrite every table, command block and code map
     tools/task_tables.py --check           CI: every grading test tagged with tasks of its lesson, every
@@ -13,8 +13,8 @@ grades which task) and student commands, every lesson text's and exercise's "Whe
                                            find the tags: run each test on the reference with the lesson's
                                            units compiled -finstrument-functions (tools/task_probe.c)
 
-A grading test names its tasks in its description, `* doctest::description("points=2 task=1,2")`; a task
-is a `// Task N.` comment of a stub. A lesson without exercises or tests is skipped.
+A test's tags: `* doctest::description("points=2 task=1,2")`; a task: a stub's `// Task N.` comment. A
+lesson without exercises or tests is skipped.
 """
 from __future__ import annotations
 

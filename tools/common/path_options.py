@@ -1,10 +1,7 @@
-"""The checks a tool makes of a path one of its options names, before it writes anything
-(docs/bad-input.md, "Options"): the same classes as the programs' path_problem
-(lib/illum/io/program.hpp) - an empty path, which would quietly mean the current folder, a
-symbolic link on the way that loops or leads nowhere - and a folder that is a file.
-
-    parser.add_argument("--out", type=path_argument)    # "argument --out: the path is empty ..."
-    problem = folder_problem(args.out)                  # "afile is a file, not a folder"
+"""The checks a tool makes of a path one of its options names, before it writes anything (docs/bad-input.md,
+"Options"): the classes of the programs' path_problem (lib/illum/io/program.hpp) - an empty path, which would
+quietly mean the current folder, a symbolic link on the way that loops or leads nowhere - and a folder that is
+a file. `type=path_argument` in argparse ("argument --out: the path is empty ..."); folder_problem before writing.
 """
 from __future__ import annotations
 
