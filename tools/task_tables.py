@@ -337,16 +337,6 @@ def _write_tags(root: Path, lesson: str, found: dict[str, list[str]]) -> None:
         source.write_text(text, encoding="utf-8")
 
 
-def _top_readme(root: Path, update: bool) -> list[str]:
-    """The top README's student commands (NN for the lesson)."""
-    top = root / "README.md"
-    if not top.is_file():
-        return []
-    text = top.read_text(encoding="utf-8")
-    return refresh(top, root, text, replace_between(text, COMMANDS_BEGIN, COMMANDS_END, student_commands("NN")),
-                   update, "student commands", f"({COMMANDS_BEGIN} … {COMMANDS_END})")
-
-
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], epilog=__doc__.split("\n\n", 1)[1],
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -376,7 +366,11 @@ def main() -> int:
             problems += stub_problems(root, lesson, args.build_dir) if args.build_dir else []
     problems += code_map.update(root, write=args.update and not args.check)
     problems += code_map.layout_problems(root) if args.check else []
-    problems += _top_readme(root, args.update)
+    if (top := root / "README.md").is_file():  # its commands say NN for the lesson
+        text = top.read_text(encoding="utf-8")
+        new = replace_between(text, COMMANDS_BEGIN, COMMANDS_END, student_commands("NN"))
+        problems += refresh(top, root, text, new, args.update, "student commands",
+                            f"({COMMANDS_BEGIN} … {COMMANDS_END})")
     for problem in problems:
         print(f"PROBLEM {problem}")
     if args.check:
