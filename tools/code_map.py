@@ -144,9 +144,9 @@ def deck_slide(root: Path, lesson_nn: str) -> str:
         lines.append(f"- **Text:** {link(lesson / 'README.md', f'`lessons/{lesson.name}/README.md`')}")
     if exercise is not None:
         stubs = sorted(exercise.glob("*.cpp"))
-        units = [unit_header(root, s.stem) for s in stubs]
         you_write = ", ".join(link(s, f"`{s.name}`") for s in stubs)
-        contracts = ", ".join(link(h, f"`{_rel(h, root / 'lib' / 'illum')}`") for h in units if h is not None)
+        contracts = ", ".join(link(h, f"`{_rel(h, root / 'lib' / 'illum')}`")
+                              for h in (unit_header(root, s.stem) for s in stubs) if h is not None)
         lines.append(f"- **Exercise:** {link(exercise / 'README.md', f'`exercises/{exercise.name}/`')}: "
                      f"you write {you_write}; the contracts are in {contracts}")
     if lesson is not None and (lesson / "main.cpp").is_file():

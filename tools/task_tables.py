@@ -240,13 +240,10 @@ def stub_problems(root: Path, lesson: str, build_dir: Path) -> list[str]:
     for result in run_suite(program, f"lesson{lesson}").results:
         test = tagged.get(result.name)
         message = next((f.describe() for f in result.failures if f.not_implemented), "")
-        match = re.search(r"NotImplemented: (.+?) — ", message)
-        if test is None or not match or lesson_of.get(match.group(1)) in depends:
-            continue
-        if task_of.get(match.group(1)) not in test.tasks:
+        label = match.group(1) if (match := re.search(r"NotImplemented: (.+?) — ", message)) else None
+        if test and label and lesson_of.get(label) not in depends and task_of.get(label) not in test.tasks:
             problems.append(f"{test.file.relative_to(root)}:{test.line}: \"{test.name}\" is tagged task="
-                            f"{','.join(test.tasks)} but first calls {match.group(1)} "
-                            f"(Task {task_of.get(match.group(1), '?')})")
+                            f"{','.join(test.tasks)} but first calls {label} (Task {task_of.get(label, '?')})")
     return problems
 
 
