@@ -26,7 +26,7 @@ def _rel(path: Path, start: Path) -> str:
 
 def unit_header(root: Path, stem: str) -> Path | None:
     """lib/illum/<area>/STEM.hpp: the header of the unit STEM.cpp (the first by path if several), or None."""
-    return next(iter(sorted((root / "lib" / "illum").rglob(stem + ".hpp"))), None)
+    return min((root / "lib" / "illum").rglob(stem + ".hpp"), default=None)
 
 
 def studies(lesson: Path) -> list[Path]:
