@@ -1,19 +1,15 @@
-"""The lesson layout and its "Where the code is" blocks (docs/architecture.md, "Lesson programs").
-
-A lesson program is lessons/NN_topic/main.cpp and studies/sMM[x]_<name>.cpp, MM the README section that
-quotes the study. Each lesson text opens with a hand-written "**Read in this order:**" list (the library
-pairs, main.cpp, the studies), and every lesson text and exercise README holds a generated block,
-between BEGIN and END, linking the lesson's text, program, library pairs, exercise, tests and deck; each
-deck ends with the same block as a slide (deck_slide). tools/task_tables.py --update writes the blocks;
---check fails on a stale or missing one and on layout_problems.
+"""The lesson layout and its "Where the code is" blocks (docs/architecture.md, "Lesson programs"): the
+generated block of every lesson text and exercise README, the same block as the last slide of every deck
+(deck_slide), and layout_problems. tools/task_tables.py --update writes the blocks; --check checks them.
 """
 from __future__ import annotations
 
+import itertools
 import os
 import re
 from pathlib import Path
 
-from grading.project import lesson_folders
+from grading.project import exercise_stubs, lesson_folders
 
 BEGIN = "<!-- code-map: begin (written by tools/task_tables.py --update) -->"
 END = "<!-- code-map: end -->"
@@ -24,23 +20,13 @@ _STUDY = re.compile(r"s(\d\d)([a-z]?)_([a-z0-9_]+)\.cpp")
 _SECTION_LABEL = re.compile(r'"§(\d+) ([^"]*)"')
 
 
-def lesson_programs(root: Path) -> dict[str, Path]:
-    """NN -> lessons/NN_topic for every lesson with a main.cpp."""
-    return {nn: folder for nn, folder in lesson_folders(root, "lessons").items() if (folder / "main.cpp").is_file()}
-
-
 def _rel(path: Path, start: Path) -> str:
     return Path(os.path.relpath(path, start)).as_posix()
 
 
-def exercise_units(root: Path) -> set[str]:
-    """The file names of every exercise unit (a lib/ source with a stub in exercises/)."""
-    return {stub.name for folder in lesson_folders(root, "exercises").values() for stub in folder.glob("*.cpp")}
-
-
 def unit_header(root: Path, stem: str) -> Path | None:
     """lib/illum/<area>/STEM.hpp: the header of the unit STEM.cpp (the first by path if several), or None."""
-    return next(iter(sorted((root / "lib" / "illum").rglob(stem + ".hpp"))), None)
+    return min((root / "lib" / "illum").rglob(stem + ".hpp"), default=None)
 
 
 def studies(lesson: Path) -> list[Path]:
@@ -75,70 +61,40 @@ def reading_list(readme_text: str) -> tuple[int, list[str]] | None:
         if line.startswith("## "):
             return None
         if line.strip() == READ_IN_ORDER:
-            j = k + 1
-            while j < len(lines) and not lines[j].strip():
-                j += 1
-            targets = []
-            while j < len(lines) and lines[j].strip() and not lines[j].startswith("#"):
-                targets += _LINK.findall(lines[j])
-                j += 1
-            return k, targets
+            after = itertools.dropwhile(lambda text: not text.strip(), lines[k + 1:])
+            paragraph = itertools.takewhile(lambda text: text.strip() and not text.startswith("#"), after)
+            return k, [target for text in paragraph for target in _LINK.findall(text)]
     return None
+
+
+def _folders(root: Path, lesson_nn: str) -> tuple[Path | None, Path | None]:
+    """(lessons/NN_topic, exercises/NN_topic), either None when missing."""
+    return lesson_folders(root, "lessons").get(lesson_nn), lesson_folders(root, "exercises").get(lesson_nn)
 
 
 def library_pairs(root: Path, lesson_nn: str) -> list[Path]:
     """The lib/ headers of a lesson's code map: those its reading list links, then its exercise units'."""
-    lesson = lesson_folders(root, "lessons").get(lesson_nn)
-    pairs: list[Path] = []
+    lesson, exercise = _folders(root, lesson_nn)
     found = reading_list((lesson / "README.md").read_text(encoding="utf-8")) \
         if lesson is not None and (lesson / "README.md").is_file() else None
-    for target in found[1] if found else []:
-        header = (lesson / target).resolve().with_suffix(".hpp")
-        if Path(target).suffix in (".hpp", ".cpp") and (root / "lib").resolve() in header.parents \
-                and header.is_file() and header not in pairs:
-            pairs.append(header)
-    exercise = lesson_folders(root, "exercises").get(lesson_nn)
-    for stub in sorted(exercise.glob("*.cpp")) if exercise else []:
-        header = unit_header(root, stub.stem)
-        if header is not None and header.resolve() not in pairs:
-            pairs.append(header.resolve())
-    return pairs
+    linked = [(lesson / t).resolve().with_suffix(".hpp") for t in (found[1] if found else [])
+              if Path(t).suffix in (".hpp", ".cpp")]
+    units = [unit_header(root, stub.stem) for stub in sorted(exercise.glob("*.cpp"))] if exercise else []
+    return list(dict.fromkeys([h for h in linked if (root / "lib").resolve() in h.parents and h.is_file()]
+                              + [h.resolve() for h in units if h is not None]))
 
 
-def test_files(root: Path, lesson_nn: str, pairs: list[Path]) -> tuple[list[Path], list[Path]]:
-    """(the lesson's own test files, tests elsewhere named after one of its library pairs)."""
-    own_folder = lesson_folders(root, "tests").get(lesson_nn)
-    stems, lessons = {p.stem for p in pairs}, set(lesson_folders(root, "tests").values())
-    others = [f for folder in (sorted((root / "tests").iterdir()) if (root / "tests").is_dir() else [])
-              if folder.is_dir() and folder not in lessons and folder.name != "hidden"
-              for f in sorted(folder.glob("*.cpp")) if f.stem in stems]
-    return (sorted(own_folder.glob("*.cpp")) if own_folder else []), others
-
-
-def _program_row(lesson: Path, lesson_nn: str, link) -> tuple[str, str]:
-    program = [link(lesson / "main.cpp", "main.cpp") + " (the demonstration)"]
-    program += [link(s, "studies/" + s.name) + f" (§{int(_STUDY.fullmatch(s.name).group(1))})"
-                for s in studies(lesson)]
-    program += [link(h, _rel(h, lesson)) + " (helpers)" for h in helpers(lesson)]
-    return f"program `lesson{lesson_nn}`", " · ".join(program)
-
-
-def _library_row(root: Path, pairs: list[Path], link) -> tuple[str, str]:
-    units, cells = exercise_units(root), []
-    for header in pairs:
-        source = header.with_suffix(".cpp")
-        cells.append(link(header, _rel(header, root / "lib" / "illum"))
-                     + (" (exercise unit)" if source.name in units else
-                        " · " + link(source, ".cpp") if source.is_file() else ""))
-    return "library", "<br>".join(cells)
-
-
-def _tests_row(own: list[Path], others: list[Path], lesson_nn: str, link) -> tuple[str, str]:
+def _tests_cell(root: Path, lesson_nn: str, pairs: list[Path], link) -> str:
+    """The lesson's own test files, then tests elsewhere named after one of its library pairs ('' if none)."""
+    lessons = lesson_folders(root, "tests")
+    own = sorted(lessons[lesson_nn].glob("*.cpp")) if lesson_nn in lessons else []
+    others = [f for f in sorted((root / "tests").glob("*/*.cpp")) if f.stem in {p.stem for p in pairs}
+              and f.parent not in lessons.values() and f.parent.name != "hidden"]
     name = lambda t: link(t, f"tests/{t.parent.name}/{t.name}")  # noqa: E731
     cell = " · ".join(name(t) for t in own) + (f" (suite `lesson{lesson_nn}` and its hard cases)" if own else "")
     if others:
         cell += ("; " if own else "") + "also " + " · ".join(name(t) for t in others)
-    return "tests", cell
+    return cell
 
 
 def code_map(root: Path, lesson_nn: str, readme: Path) -> str:
@@ -146,23 +102,29 @@ def code_map(root: Path, lesson_nn: str, readme: Path) -> str:
     root, readme = root.resolve(), readme.resolve()
     link = lambda path, text=None: f"[`{text or path.name}`]({_rel(path, readme.parent)})"  # noqa: E731
     rows: list[tuple[str, str]] = []
-    lesson = lesson_folders(root, "lessons").get(lesson_nn)
-    exercise = lesson_folders(root, "exercises").get(lesson_nn)
+    lesson, exercise = _folders(root, lesson_nn)
     if lesson is not None and (lesson / "README.md").is_file() and (lesson / "README.md").resolve() != readme:
         rows.append(("lesson text", link(lesson / "README.md", f"lessons/{lesson.name}/README.md")))
     if lesson is not None and (lesson / "main.cpp").is_file():
-        rows.append(_program_row(lesson, lesson_nn, link))
-    pairs = library_pairs(root, lesson_nn)
-    if pairs:
-        rows.append(_library_row(root, pairs, link))
+        rows.append((f"program `lesson{lesson_nn}`", " · ".join(
+            [link(lesson / "main.cpp", "main.cpp") + " (the demonstration)"]
+            + [link(s, "studies/" + s.name) + f" (§{int(_STUDY.fullmatch(s.name).group(1))})" for s in studies(lesson)]
+            + [link(h, _rel(h, lesson)) + " (helpers)" for h in helpers(lesson)])))
+    units, cells = exercise_stubs(root), []
+    for header in (pairs := library_pairs(root, lesson_nn)):
+        source = header.with_suffix(".cpp")
+        cells.append(link(header, _rel(header, root / "lib" / "illum"))
+                     + (" (exercise unit)" if source.name in units else
+                        " · " + link(source, ".cpp") if source.is_file() else ""))
+    if cells:
+        rows.append(("library", "<br>".join(cells)))
     if exercise is not None:
         own_readme = (exercise / "README.md").resolve() == readme
         rows.append(("exercise", " · ".join(
             ([] if own_readme else [link(exercise / "README.md", f"exercises/{exercise.name}/README.md")])
             + [link(stub, stub.name) for stub in sorted(exercise.glob("*.cpp"))])))
-    own, others = test_files(root, lesson_nn, pairs)
-    if own or others:
-        rows.append(_tests_row(own, others, lesson_nn, link))
+    if tests := _tests_cell(root, lesson_nn, pairs, link):
+        rows.append(("tests", tests))
     decks = sorted((root / "slides").glob(f"{lesson_nn}_*.md")) if (root / "slides").is_dir() else []
     if decks:
         rows.append(("slides", " · ".join(link(d, f"slides/{d.name}") for d in decks)
@@ -177,15 +139,14 @@ def deck_slide(root: Path, lesson_nn: str) -> str:
     root = root.resolve()
     link = lambda path, text: f"[{text}]({_rel(path, root / 'out' / 'slides')})"  # noqa: E731
     lines = []
-    lesson = lesson_folders(root, "lessons").get(lesson_nn)
-    exercise = lesson_folders(root, "exercises").get(lesson_nn)
+    lesson, exercise = _folders(root, lesson_nn)
     if lesson is not None and (lesson / "README.md").is_file():
         lines.append(f"- **Text:** {link(lesson / 'README.md', f'`lessons/{lesson.name}/README.md`')}")
     if exercise is not None:
         stubs = sorted(exercise.glob("*.cpp"))
-        units = [unit_header(root, s.stem) for s in stubs]
         you_write = ", ".join(link(s, f"`{s.name}`") for s in stubs)
-        contracts = ", ".join(link(h, f"`{_rel(h, root / 'lib' / 'illum')}`") for h in units if h is not None)
+        contracts = ", ".join(link(h, f"`{_rel(h, root / 'lib' / 'illum')}`")
+                              for h in (unit_header(root, s.stem) for s in stubs) if h is not None)
         lines.append(f"- **Exercise:** {link(exercise / 'README.md', f'`exercises/{exercise.name}/`')}: "
                      f"you write {you_write}; the contracts are in {contracts}")
     if lesson is not None and (lesson / "main.cpp").is_file():
@@ -196,20 +157,6 @@ def deck_slide(root: Path, lesson_nn: str) -> str:
         lines.append(f"- **Tests:** {link(tests, f'`tests/{tests.name}/`')} (suite `lesson{lesson_nn}`): "
                      f"`tools/grade --student {lesson_nn}`")
     return f"{BEGIN}\n## Where the code is\n\n" + "\n".join(lines) + f"\n{END}"
-
-
-def _deck_problems(root: Path, write: bool) -> list[str]:
-    """Rewrites (write=True) or checks the "Where the code is" slide that ends every deck."""
-    problems = []
-    for deck in sorted((root / "slides").glob("[0-9][0-9]_*.md")) if (root / "slides").is_dir() else []:
-        text, block = deck.read_text(encoding="utf-8"), deck_slide(root, deck.name[:2])
-        new = replace_between(text, BEGIN, END, block)
-        if new is None and write:  # the first time: the deck's last slide
-            new = text.rstrip("\n") + "\n\n---\n\n" + block + "\n"
-        problems += refresh(deck, root, text, new, write, "\"Where the code is\" slide", f"at its end ({BEGIN} … {END})")
-        if new == text and not text.rstrip().endswith(END):
-            problems.append(f"{_rel(deck, root)}: the \"Where the code is\" slide must be the deck's last")
-    return problems
 
 
 def replace_between(text: str, begin: str, end: str, block: str) -> str | None:
@@ -235,7 +182,16 @@ def refresh(path: Path, root: Path, text: str, new: str | None, write: bool, blo
 def update(root: Path, write: bool) -> list[str]:
     """Rewrites (write=True) or checks the code map of every lesson text and exercise README, and the
     slide that ends every deck; returns the problems (stale or missing blocks)."""
-    problems = _deck_problems(root, write)
+    problems = []
+    for deck in sorted((root / "slides").glob("[0-9][0-9]_*.md")) if (root / "slides").is_dir() else []:
+        text, block = deck.read_text(encoding="utf-8"), deck_slide(root, deck.name[:2])
+        new = replace_between(text, BEGIN, END, block)
+        if new is None and write:  # the first time: the deck's last slide
+            new = text.rstrip("\n") + "\n\n---\n\n" + block + "\n"
+        problems += refresh(deck, root, text, new, write, "\"Where the code is\" slide",
+                            f"at its end ({BEGIN} … {END})")
+        if new == text and not text.rstrip().endswith(END):
+            problems.append(f"{_rel(deck, root)}: the \"Where the code is\" slide must be the deck's last")
     for kind in ("lessons", "exercises"):
         for nn, folder in lesson_folders(root, kind).items():
             readme = folder / "README.md"
@@ -266,12 +222,12 @@ def _study_problems(root: Path, lesson: Path, heads: dict[int, str]) -> list[str
     for source in [lesson / "main.cpp", *studies(lesson)]:  # run_section's banners and timing labels
         for number_line, line in enumerate(source.read_text(encoding="utf-8").splitlines(), start=1):
             for match in _SECTION_LABEL.finditer(line):
-                label, number = f"label \"§{match.group(1)} {match.group(2)}\"", int(match.group(1))
+                number = int(match[1])
+                where = f"{_rel(source, root)}:{number_line}: label \"§{match[1]} {match[2]}\""
                 if number not in heads:
-                    problems.append(f"{_rel(source, root)}:{number_line}: {label} names no section of README.md")
+                    problems.append(f"{where} names no section of README.md")
                 elif not _agrees(match.group(2), heads[number]):
-                    problems.append(f"{_rel(source, root)}:{number_line}: {label} does not agree with README.md's "
-                                    f"\"## {number}. {heads[number]}\"")
+                    problems.append(f"{where} does not agree with README.md's \"## {number}. {heads[number]}\"")
     return problems
 
 
@@ -282,8 +238,7 @@ def _reading_list_problems(root: Path, lesson: Path, text: str, units: list[str]
     if (found := reading_list(text)) is None:
         return [f"{where}: the text must open (before its first section) with \"{READ_IN_ORDER}\" and a list: "
                 "the library pairs, main.cpp, the studies"]
-    where = f"{where}:{found[0] + 1}"
-    targets = found[1]
+    where, targets = f"{where}:{found[0] + 1}", found[1]
     resolved = [(lesson / t).resolve() for t in targets if not re.match(r"^[a-z]+:", t)]
     problems = [f"{where}: the reading list links {t}, which does not exist" for t, p in zip(targets, resolved)
                 if not p.exists()]
@@ -293,12 +248,10 @@ def _reading_list_problems(root: Path, lesson: Path, text: str, units: list[str]
     if [p for p in resolved if p.parent == (lesson / "studies").resolve()] != wanted:
         problems.append(f"{where}: the reading list must link the studies in file-name order: "
                         + ", ".join(_rel(s, lesson) for s in wanted))
-    for unit in units:
-        header = unit_header(root, unit)
-        if header is not None and header.resolve() not in resolved:
-            problems.append(f"{where}: the reading list does not link {_rel(header, root)}, the header of an "
-                            "exercise unit of this lesson")
-    every_unit = exercise_units(root)
+    problems += [f"{where}: the reading list does not link {_rel(header, root)}, the header of an exercise unit of "
+                 "this lesson" for header in (unit_header(root, unit) for unit in units)
+                 if header is not None and header.resolve() not in resolved]
+    every_unit = exercise_stubs(root)
     return problems + [f"{where}: the reading list links {t}, a reference unit that the student edition leaves "
                        "out; link its header" for t, p in zip(targets, resolved)
                        if p.suffix == ".cpp" and p.name in every_unit and (root / "lib").resolve() in p.parents]
@@ -308,7 +261,9 @@ def layout_problems(root: Path) -> list[str]:
     """Every rule of the lesson layout a lesson breaks, one line each (file:line where there is one)."""
     problems = []
     units = {nn: [s.stem for s in sorted(f.glob("*.cpp"))] for nn, f in lesson_folders(root, "exercises").items()}
-    for nn, lesson in lesson_programs(root).items():
+    for nn, lesson in lesson_folders(root, "lessons").items():
+        if not (lesson / "main.cpp").is_file():
+            continue
         if not (lesson / "README.md").is_file():
             problems.append(f"{_rel(lesson, root)}: no README.md")
             continue

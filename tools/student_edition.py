@@ -29,13 +29,11 @@ def hold_and_clean(out: Path) -> tuple[int | None, list[str]]:
     (SIGKILL, a power cut) left: its new edition half written (.OUT.new.XXXXXXXX), or the earlier
     edition it had moved aside (.OUT.old.XXXXXXXX), which goes back to OUT if OUT is missing.
     Returns the descriptor (None when the folder does not exist yet) and one note per thing done."""
-    if out.is_symlink():  # refused by make_student_edition; nothing beside its target is this run's
+    # A link is refused by make_student_edition (nothing beside its target is this run's); the parent is
+    # where make_student_edition places its staging.
+    if out.is_symlink() or not (parent := out.resolve().parent).is_dir():
         return None, []
-    parent = out.resolve().parent  # as make_student_edition places its staging
-    if not parent.is_dir():
-        return None, []
-    fd = lock_folder(parent)
-    if fd is None:
+    if (fd := lock_folder(parent)) is None:
         raise ValueError(f"--out {out}: another student_edition.py run is writing in {parent}; wait for it "
                          "to end")
     notes = []
@@ -63,17 +61,14 @@ def main() -> int:
     parser.add_argument("--lessons", nargs="*", metavar="NN",
                         help="the lessons whose exercises to hand out (default: every lesson with exercises)")
     args = parser.parse_args()
-    if args.out is None:
-        args.out = args.source / "build" / "student-edition"
+    args.out = args.out or args.source / "build" / "student-edition"
     # Before anything is written: an --out under a file (afile/edition) would end in a traceback.
     for option, path in (("--out", args.out), ("--source", args.source)):
-        problem = folder_problem(path)
-        if problem:
+        if problem := folder_problem(path):
             parser.error(f"{option} {path}: {problem}")
     try:
-        lessons = None
-        if args.lessons:  # "03 11", "03,11", "3"
-            lessons = [normalize_lesson(t) for text in args.lessons for t in text.split(",") if t.strip()]
+        lessons = [normalize_lesson(t) for text in args.lessons for t in text.split(",") if t.strip()] \
+            if args.lessons else None  # "03 11", "03,11", "3"
         _, notes = hold_and_clean(args.out)
         for note in notes:
             print(f"student_edition.py: note: {note}", file=sys.stderr)

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
-"""Writes and checks the READMEs' generated blocks: each exercise's task table (which grading test
-grades which task) and student commands, every lesson text's and exercise's "Where the code is" map
-(tools/code_map.py), and the top README's student commands (docs/grading.md, "Task tables").
+"""Writes and checks the READMEs' generated blocks: each exercise's task table (which grading test grades
+which task) and student commands, every lesson text's and exercise's "Where the code is" map
+(tools/code_map.py), and the top README's student commands (docs/grading-reference.md, "Task tables").
 
     tools/task_tables.py --update          rewrite every table, command block and code map
     tools/task_tables.py --check           CI: every grading test tagged with tasks of its lesson, every
@@ -13,12 +13,13 @@ grades which task) and student commands, every lesson text's and exercise's "Whe
                                            find the tags: run each test on the reference with the lesson's
                                            units compiled -finstrument-functions (tools/task_probe.c)
 
-A grading test names its tasks in its description, `* doctest::description("points=2 task=1,2")`; a task
-is a `// Task N.` comment of a stub. A lesson without exercises or tests is skipped.
+A test's tags: `* doctest::description("points=2 task=1,2")`; a task: a stub's `// Task N.` comment. A
+lesson without exercises or tests is skipped.
 """
 from __future__ import annotations
 
 import argparse
+import itertools
 import json
 import os
 import re
@@ -36,7 +37,9 @@ import code_map  # noqa: E402
 from code_map import refresh, replace_between  # noqa: E402
 from common.cpp_text import blank_comments  # noqa: E402
 from grading.alone import declared_dependencies  # noqa: E402
-from grading.project import lesson_folders  # noqa: E402
+from grading.project import exercise_lessons, lesson_folders  # noqa: E402
+from grading.results import points_of  # noqa: E402
+from grading.runner import list_suites, run_suite  # noqa: E402
 
 BEGIN = "<!-- task-table: begin (written by tools/task_tables.py --update) -->"
 END = "<!-- task-table: end -->"
@@ -81,6 +84,10 @@ class TestCase:
     def tasks(self) -> list[str]:
         match = _TAG.search(self.description)
         return [t for t in match.group(1).split(",") if t] if match else []
+
+    @property
+    def points(self) -> float:
+        return points_of(self.description)
 
 
 def _literals(text: str) -> str:
@@ -129,11 +136,6 @@ def grading_tests(root: Path, lesson: str) -> list[TestCase]:
             if t.suite == f"lesson{lesson}"] if folder else []
 
 
-def _points(test: TestCase) -> float:
-    match = re.search(r"\bpoints\s*=\s*([0-9.]+)", test.description)
-    return float(match.group(1)) if match else 1.0
-
-
 def table(lesson: str, tasks: dict[str, list[str]], tests: list[TestCase], root: Path) -> str:
     """The Markdown of the task table: one row per test, the tasks it needs, its points (each "erratum N"
     of a test's name linked, as every text that names one)."""
@@ -143,23 +145,22 @@ def table(lesson: str, tasks: dict[str, list[str]], tests: list[TestCase], root:
                             t.name.replace("|", "\\|"))
     per_task = "; ".join(f"Task {task}: {sum(task in t.tasks for t in tests)}" for task in tasks)
     return "\n".join([BEGIN, f"| test (suite `lesson{lesson}`) | tasks it needs | points |", "|---|---|---|"]
-                     + [f"| {name(t)} | {', '.join(t.tasks)} | {_points(t):g} |" for t in ordered]
-                     + ["", f"{len(tests)} tests, {sum(_points(t) for t in tests):g} points. A test passes only when "
+                     + [f"| {name(t)} | {', '.join(t.tasks)} | {t.points:g} |" for t in ordered]
+                     + ["", f"{len(tests)} tests, {sum(t.points for t in tests):g} points. A test passes only when "
                         f"every task it needs is written. Tests per task — {per_task}.", END])
 
 
 def student_commands(lesson: str, has_program: bool = True) -> str:
     """The one set of build commands a student types, for lesson `lesson` ("NN" in the top README)."""
+    program = f" lesson{lesson}" if has_program else ""
     rows = [("cmake --preset student", "once: configure build/student with your exercises"),
-            (f"cmake --build --preset student --target tests_lesson{lesson}" + (f" lesson{lesson}" if has_program
-                                                                                else ""),
+            (f"cmake --build --preset student --target tests_lesson{lesson}{program}",
              "build your code, its tests" + (" and the lesson program" if has_program else "")),
             (f"build/student/bin/tests_lesson{lesson} -ts=lesson{lesson}",
-             "the grading tests, with their explanations")]
-    if has_program:
-        rows.append((f"build/student/bin/lesson{lesson} --out out/lesson{lesson}",
-                     "the lesson's pictures, drawn by your code"))
-    rows.append((f"tools/grade --student {lesson}", "your score, as the autograder computes it"))
+             "the grading tests, with their explanations"),
+            (f"build/student/bin/lesson{lesson} --out out/lesson{lesson}", "the lesson's pictures, drawn by your code"),
+            (f"tools/grade --student {lesson}", "your score, as the autograder computes it")]
+    rows = [(command, why) for command, why in rows if has_program or " --out " not in command]
     width = max(len(command) for command, _ in rows) + 2
     body = "\n".join(f"{command.ljust(width)}# {why}" for command, why in rows)
     return f"{COMMANDS_BEGIN}\n```sh\n{body}\n```\n{COMMANDS_END}"
@@ -171,14 +172,8 @@ def updated_readme(root: Path, lesson: str) -> tuple[Path, str, str | None]:
     readme = exercise / "README.md"
     text = readme.read_text(encoding="utf-8") if readme.is_file() else ""
     new = replace_between(text, BEGIN, END, table(lesson, stub_tasks(exercise), grading_tests(root, lesson), root))
-    has_program = lesson in lesson_folders(root, "lessons")
-    return readme, text, new and replace_between(new, COMMANDS_BEGIN, COMMANDS_END,
-                                                 student_commands(lesson, has_program))
-
-
-def lessons_to_check(root: Path) -> list[str]:
-    exercises, tests = lesson_folders(root, "exercises"), lesson_folders(root, "tests")
-    return [nn for nn in exercises if nn in tests and any(exercises[nn].glob("*.cpp")) and grading_tests(root, nn)]
+    commands = student_commands(lesson, has_program=lesson in lesson_folders(root, "lessons"))
+    return readme, text, new and replace_between(new, COMMANDS_BEGIN, COMMANDS_END, commands)
 
 
 def _tag_problems(root: Path, lesson: str, exercise: Path) -> list[str]:
@@ -201,9 +196,8 @@ def _stub_file_problems(root: Path, lesson: str, exercise: Path) -> list[str]:
     problems = []
     banner = [f"// Lesson {lesson} exercise: ", *STUB_BANNER]
     for stub in sorted(exercise.glob("*.cpp")):
-        lines = stub.read_text(encoding="utf-8").splitlines()[:3]
-        if len(lines) < 3 or not lines[0].startswith(banner[0]) or lines[1] != banner[1] \
-                or not lines[2].startswith(banner[2]):
+        lines = stub.read_text(encoding="utf-8").splitlines()[:3] + ["", "", ""]  # too short: fails below
+        if not lines[0].startswith(banner[0]) or lines[1] != banner[1] or not lines[2].startswith(banner[2]):
             problems.append(f"{stub.relative_to(root)}: the banner must be \"{banner[0]}<what>.\" then "
                             f"\"{banner[1]}\" then \"{banner[2]}…\"")
         header = code_map.unit_header(root, stub.stem)
@@ -213,9 +207,9 @@ def _stub_file_problems(root: Path, lesson: str, exercise: Path) -> list[str]:
     return problems
 
 
-def _readme_problems(root: Path, lesson: str) -> list[str]:
+def _readme_problems(root: Path, lesson: str, exercise: Path) -> list[str]:
     """The README's sections in order, its "Builds on" naming what depends.txt declares."""
-    readme = lesson_folders(root, "exercises")[lesson] / "README.md"
+    readme = exercise / "README.md"
     text = readme.read_text(encoding="utf-8") if readme.is_file() else ""
     where = readme.relative_to(root)
     problems = []
@@ -227,22 +221,12 @@ def _readme_problems(root: Path, lesson: str) -> list[str]:
     if builds_on is None:
         return problems + [f"{where}: no \"**Builds on:**\" line naming the earlier exercises"]
     return problems + [f"{where}: \"Builds on\" does not name exercise {needed}, which depends.txt declares"
-                       for needed in declared_dependencies(lesson, root)
-                       if f"exercise {needed}" not in builds_on.lower() and f"exercises {needed}" not in
-                       builds_on.lower() and not re.search(rf"\b{needed}\b", builds_on)]
-
-
-def source_problems(root: Path, lesson: str) -> list[str]:
-    exercise = lesson_folders(root, "exercises")[lesson]
-    return (_tag_problems(root, lesson, exercise) + _stub_file_problems(root, lesson, exercise)
-            + _readme_problems(root, lesson))
+                       for needed in declared_dependencies(lesson, root) if not re.search(rf"\b{needed}\b", builds_on)]
 
 
 def stub_problems(root: Path, lesson: str, build_dir: Path) -> list[str]:
     """On the stubs, a test first stops in the function of one of the tasks it names (or of an earlier
     lesson this one declares it needs, depends.txt)."""
-    from grading.runner import run_suite
-
     program = build_dir / "bin" / f"tests_lesson{lesson}_stubs"
     if not program.is_file():
         return [f"{program} is missing; build it (or run without --build-dir)"]
@@ -256,13 +240,10 @@ def stub_problems(root: Path, lesson: str, build_dir: Path) -> list[str]:
     for result in run_suite(program, f"lesson{lesson}").results:
         test = tagged.get(result.name)
         message = next((f.describe() for f in result.failures if f.not_implemented), "")
-        match = re.search(r"NotImplemented: (.+?) — ", message)
-        if test is None or not match or lesson_of.get(match.group(1)) in depends:
-            continue
-        if task_of.get(match.group(1)) not in test.tasks:
+        label = match.group(1) if (match := re.search(r"NotImplemented: (.+?) — ", message)) else None
+        if test and label and lesson_of.get(label) not in depends and task_of.get(label) not in test.tasks:
             problems.append(f"{test.file.relative_to(root)}:{test.line}: \"{test.name}\" is tagged task="
-                            f"{','.join(test.tasks)} but first calls {match.group(1)} "
-                            f"(Task {task_of.get(match.group(1), '?')})")
+                            f"{','.join(test.tasks)} but first calls {label} (Task {task_of.get(label, '?')})")
     return problems
 
 
@@ -315,8 +296,6 @@ def _probed_program(root: Path, lesson: str, build_dir: Path, commands: dict[Pat
 
 
 def derive(root: Path, lesson: str, build_dir: Path, write: bool) -> int:
-    from grading.runner import list_suites
-
     commands = {Path(e["file"]).resolve(): e for e in json.loads((build_dir / "compile_commands.json").read_text())}
     found: dict[str, list[str]] = {}
     with tempfile.TemporaryDirectory(prefix=f"illum-tasks-{lesson}-") as folder:
@@ -340,12 +319,9 @@ def derive(root: Path, lesson: str, build_dir: Path, write: bool) -> int:
 
 
 def _write_tags(root: Path, lesson: str, found: dict[str, list[str]]) -> None:
-    by_file: dict[Path, list[TestCase]] = {}
-    for test in grading_tests(root, lesson):
-        by_file.setdefault(test.file, []).append(test)
-    for source, tests in by_file.items():
+    for source, tests in itertools.groupby(grading_tests(root, lesson), key=lambda t: t.file):
         text = source.read_text(encoding="utf-8")
-        for test in sorted(tests, key=lambda t: t.start, reverse=True):
+        for test in reversed(list(tests)):  # from the end, so that the earlier offsets hold
             if not (tasks := found.get(test.name)):
                 continue
             head, tag = text[test.start:test.end], "task=" + ",".join(tasks)
@@ -356,16 +332,6 @@ def _write_tags(root: Path, lesson: str, found: dict[str, list[str]]) -> None:
                 head = head[:-1] + f' * doctest::description("{tag}"))'
             text = text[:test.start] + head + text[test.end:]
         source.write_text(text, encoding="utf-8")
-
-
-def _top_readme(root: Path, update: bool) -> list[str]:
-    """The top README's student commands (NN for the lesson)."""
-    top = root / "README.md"
-    if not top.is_file():
-        return []
-    text = top.read_text(encoding="utf-8")
-    return refresh(top, root, text, replace_between(text, COMMANDS_BEGIN, COMMANDS_END, student_commands("NN")),
-                   update, "student commands", f"({COMMANDS_BEGIN} … {COMMANDS_END})")
 
 
 def main() -> int:
@@ -386,16 +352,22 @@ def main() -> int:
     if not (args.update or args.check):
         parser.error("say --update, --check or --derive NN")
     problems = []
-    for lesson in lessons_to_check(root):
+    for lesson in (nn for nn in exercise_lessons(root) if grading_tests(root, nn)):
         readme, text, updated = updated_readme(root, lesson)
         problems += refresh(readme, root, text, updated, args.update, "task table and student commands",
                             f"({BEGIN} … {END}, {COMMANDS_BEGIN} … {COMMANDS_END})")
         if args.check:
-            problems += source_problems(root, lesson)
+            exercise = readme.parent
+            problems += [*_tag_problems(root, lesson, exercise), *_stub_file_problems(root, lesson, exercise),
+                         *_readme_problems(root, lesson, exercise)]
             problems += stub_problems(root, lesson, args.build_dir) if args.build_dir else []
     problems += code_map.update(root, write=args.update and not args.check)
     problems += code_map.layout_problems(root) if args.check else []
-    problems += _top_readme(root, args.update)
+    if (top := root / "README.md").is_file():  # its commands say NN for the lesson
+        text = top.read_text(encoding="utf-8")
+        new = replace_between(text, COMMANDS_BEGIN, COMMANDS_END, student_commands("NN"))
+        problems += refresh(top, root, text, new, args.update, "student commands",
+                            f"({COMMANDS_BEGIN} … {COMMANDS_END})")
     for problem in problems:
         print(f"PROBLEM {problem}")
     if args.check:

@@ -55,7 +55,7 @@ class ParseTest(unittest.TestCase):
                           ("lesson07", "a long name that clang-format splits", ["2", "3a"]),
                           ("lesson07", "untagged", []),
                           ("stability", "not graded", [])])
-        self.assertEqual(task_tables._points(tests[1]), 2.0)
+        self.assertEqual(tests[1].points, 2.0)
 
     def test_stub_tasks_and_table(self) -> None:
         with tempfile.TemporaryDirectory() as folder:

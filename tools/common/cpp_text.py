@@ -3,7 +3,11 @@ from __future__ import annotations
 
 import re
 
-_RAW_OPEN = re.compile(r'"([^(\s]{0,16})\(')
+# At each place in turn: a // or /* comment (an unclosed one runs to the end), a raw string R"d(…)d", or a
+# string or character literal (a ' after a letter or digit is a digit separator, 1'000), which ends at its
+# quote or at the end of its line (a backslash escapes the next character, a line break too).
+_TOKEN = re.compile(r"//[^\n]*|/\*.*?(?:\*/|\Z)|(?<=R)\"([^(\s]{0,16})\((?:.*?\)\1\"|.*\Z)"
+                    r"|(\"|(?<![^\W_])')(?:(?!\2)[^\\\n]|\\(?:.|\Z))*(?:\2|\n|\Z)", re.S)
 
 
 def _blank(text: str) -> str:
@@ -13,31 +17,10 @@ def _blank(text: str) -> str:
 def blank_comments(text: str, strings: bool = True) -> str:
     """`text` with every comment replaced by spaces, and every string or character literal's contents
     too unless `strings` is False (its quotes stay; `#include <…>` is code and stays)."""
-    out, i, n = [], 0, len(text)
-    while i < n:
-        c = text[i]
-        if text.startswith("//", i) or text.startswith("/*", i):
-            block = text[i + 1] == "*"
-            end = text.find("*/" if block else "\n", i + 2)
-            end = n if end < 0 else end + (2 if block else 0)
-        elif c == '"' and i > 0 and text[i - 1] == "R" and (raw := _RAW_OPEN.match(text, i)):
-            end = text.find(")" + raw.group(1) + '"', i)
-            end = n if end < 0 else end + len(raw.group(1)) + 2
-        elif c in "\"'" and not (c == "'" and i > 0 and text[i - 1].isalnum()):  # not a digit separator 1'000
-            end = i + 1
-            while end < n and text[end] != c and text[end] != "\n":
-                end += 2 if text[end] == "\\" else 1
-            end = min(end + 1, n)
-        else:
-            out.append(c)
-            i += 1
-            continue
-        piece = text[i:end]
-        if c in "\"'" and not strings:
-            out.append(piece)
-        elif c in "\"'":
-            out.append(c + _blank(piece[1:-1]) + (c if len(piece) > 1 else ""))
-        else:
-            out.append(_blank(piece))
-        i = end
-    return "".join(out)
+    def blanked(match: re.Match) -> str:
+        piece, quote = match.group(), match.group()[0]
+        if quote not in "\"'":
+            return _blank(piece)
+        return quote + _blank(piece[1:-1]) + (quote if len(piece) > 1 else "") if strings else piece
+
+    return _TOKEN.sub(blanked, text)

@@ -1,6 +1,8 @@
 """Reading Markdown: pipe tables, links and GitHub's heading anchors (the one home of each rule)."""
 from __future__ import annotations
 
+import functools
+import itertools
 import posixpath
 import re
 import unicodedata
@@ -29,15 +31,10 @@ def split_table_row(line: str) -> list[str]:
     return [cell.replace("\\|", "|").strip() for cell in re.split(r"(?<!\\)\|", body)]
 
 
-def is_separator_cells(cells: list[str]) -> bool:
-    return bool(cells) and all(_SEPARATOR_CELL.match(c.replace(" ", "")) for c in cells)
-
-
 def alignment(cell: str) -> str:
     """'left', 'right', 'center' or '' for one separator cell."""
     c = cell.replace(" ", "")
-    return {(True, True): "center", (False, True): "right", (True, False): "left"}.get(
-        (c.startswith(":"), c.endswith(":")), "")
+    return ("", "left", "right", "center")[c.startswith(":") + 2 * c.endswith(":")]
 
 
 @dataclass
@@ -50,18 +47,13 @@ class Table:
 
 def parse_tables(lines: list[str]) -> tuple[list[Table], list[str]]:
     """Every pipe table of `lines` and the problems of the malformed ones (1-based line numbers)."""
-    tables, problems, i = [], [], 0
-    while i < len(lines):
-        if not lines[i].lstrip().startswith("|"):
-            i += 1
-            continue
-        start = i
-        while i < len(lines) and lines[i].lstrip().startswith("|"):
-            i += 1
-        table, found = _block_table(lines[start:i], start)
-        problems += found
-        if table is not None:
-            tables.append(table)
+    tables, problems = [], []
+    for is_table, run in itertools.groupby(enumerate(lines), key=lambda item: item[1].lstrip().startswith("|")):
+        if is_table:
+            block = list(run)
+            table, found = _block_table([line for _, line in block], block[0][0])
+            problems += found
+            tables += [table] if table is not None else []
     return tables, problems
 
 
@@ -69,7 +61,7 @@ def _block_table(block: list[str], start: int) -> tuple[Table | None, list[str]]
     if len(block) < 2:
         return None, [f"line {start + 1}: a table row with no separator line ('|---|---|') after it"]
     header, separator = split_table_row(block[0]), split_table_row(block[1])
-    if not is_separator_cells(separator):
+    if not all(_SEPARATOR_CELL.match(c.replace(" ", "")) for c in separator):  # never empty: split gives one
         return None, [f"line {start + 2}: expected the separator line ('|---|---|'), found {block[1].strip()!r}"]
     if len(separator) != len(header):
         return None, [f"line {start + 2}: the separator has {len(separator)} columns, the header has {len(header)}"]
@@ -166,12 +158,11 @@ def link_problems(tree: Path, files: list[Path], generated_ok: bool) -> tuple[li
     """`file:line: …` for every link of `files` that does not resolve in `tree` (a missing file or
     heading, a target outside the tree, or in out/ unless `generated_ok`), and how many were checked."""
     tree = tree.resolve()
-    problems, checked, cache = [], 0, {}
+    problems, checked = [], 0
 
+    @functools.cache
     def ids(path: Path) -> set[str]:
-        if path not in cache:
-            cache[path] = anchors(path.read_text(encoding="utf-8", errors="replace"))
-        return cache[path]
+        return anchors(path.read_text(encoding="utf-8", errors="replace"))
 
     for file in files:
         for link in links(file.read_text(encoding="utf-8", errors="replace")):

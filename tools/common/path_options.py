@@ -1,17 +1,13 @@
-"""The checks a tool makes of a path one of its options names, before it writes anything
-(docs/bad-input.md, "Options"): the same classes as the programs' path_problem
-(lib/illum/io/program.hpp) - an empty path, which would quietly mean the current folder, a
-symbolic link on the way that loops or leads nowhere - and a folder that is a file.
-
-    parser.add_argument("--out", type=path_argument)    # "argument --out: the path is empty ..."
-    problem = folder_problem(args.out)                  # "afile is a file, not a folder"
+"""The checks a tool makes of a path one of its options names, before it writes anything (docs/bad-input.md,
+"Options"): the classes of the programs' path_problem (lib/illum/io/program.hpp) - an empty path, which would
+quietly mean the current folder, a symbolic link on the way that loops or leads nowhere - and a folder that is
+a file. `type=path_argument` in argparse ("argument --out: the path is empty ..."); folder_problem before writing.
 """
 from __future__ import annotations
 
 import argparse
 import errno
 import os
-import stat
 from pathlib import Path
 
 
@@ -21,15 +17,11 @@ def path_problem(text: str) -> str:
         return "the path is empty (name a file or folder; '.' is the current folder)"
     step = ""
     for part in Path(text).parts:  # each step in turn, so that the message names the link that is wrong
-        step = os.path.join(step, part) if step else part
-        try:
-            if not stat.S_ISLNK(os.lstat(step).st_mode):
-                continue
-        except OSError:
-            return ""  # missing from here on: the tool says what it needs
+        step = os.path.join(step, part)
+        if not os.path.islink(step):  # a plain step, or missing from here on: the tool says what it needs
+            continue
         try:
             os.stat(step)
-            continue
         except OSError as error:
             what = f"'{step}' is a symbolic link"
             if error.errno == errno.ELOOP:

@@ -1,6 +1,7 @@
 """Reading PNG files (8-bit, non-interlaced grey, grey+alpha, RGB or RGBA: what the programs write)."""
 from __future__ import annotations
 
+import contextlib
 import struct
 import zlib
 
@@ -27,12 +28,9 @@ def size(data: bytes) -> tuple[int, int]:
 
 def size_of(path) -> tuple[int, int] | None:
     """(width, height) of a PNG file, or None if the file is not a PNG."""
-    with open(path, "rb") as f:
-        head = f.read(33)
-    try:
-        return size(head)
-    except PngError:
-        return None
+    with open(path, "rb") as f, contextlib.suppress(PngError):
+        return size(f.read(33))
+    return None
 
 
 def problems(data: bytes) -> list[str]:

@@ -1,13 +1,9 @@
 #!/usr/bin/env python3
-"""The lab's benchmark (a measurement, not a test; docs/lab.md, "How fast"): in headless Chromium, the time
-from a click to the ray tree drawn on every shipped scene, and radiosity shots a second on the Cornell box
-("1 step", then "run"), as a Markdown table with the machine's cores and load.
+"""The lab's benchmark (a measurement, not a test; docs/lab.md, "How fast", gives the targets): in headless
+Chromium, the time from a click to the ray tree drawn on every shipped scene, and radiosity shots a second on
+the Cornell box ("1 step", then "run"), as a Markdown table with the machine's cores and load.
 
     tools/lab/bench.py --bin build/release/bin [--clicks 20] [--single 100] [--shots 2000]
-
-Times each click as the page does, from the click event to the frame that shows its tree; divides the shots
-by their wall time. The targets (docs/lab.md): a tree on the screen within 100 ms of the click (median; 200 ms
-for nine clicks in ten), and at least 20 shots a second pressing "1 step".
 """
 from __future__ import annotations
 
@@ -42,27 +38,23 @@ def main() -> int:
         # source tree's out/ may not exist yet).
         with running_lab(args.bin.resolve() / "illum", Path(work)) as (process, port):
             options, results = Path(work) / "options.json", Path(work) / "results.json"
-            options.write_text(json.dumps({"scenes": SCENES, "clicks": args.clicks, "shots": args.shots, "single": args.single,
-                                           "labPid": process.pid}), encoding="utf-8")
+            options.write_text(json.dumps({"scenes": SCENES, "clicks": args.clicks, "shots": args.shots,
+                                           "single": args.single, "labPid": process.pid}), encoding="utf-8")
             if browser("bench", port, options, results, timeout=1800) != 0:
                 return 1
             data = json.loads(results.read_text(encoding="utf-8"))
-    load_after = os.getloadavg()
     print(f"\nillum lab benchmark: {os.cpu_count()} cores, load average {load_before[0]:.2f} before, "
-          f"{load_after[0]:.2f} after\n")
-    print("| scene | clicks | nodes (median, largest) | ms from the click to the tree on the screen: median | 90th percentile | largest |")
-    print("|---|---|---|---|---|---|")
+          f"{os.getloadavg()[0]:.2f} after\n")
+    print("| scene | clicks | nodes (median, largest) | ms from the click to the tree on the screen: median "
+          "| 90th percentile | largest |\n|---|---|---|---|---|---|")
     for scene in SCENES + ["all"]:
         clicks = [c for c in data["clicks"] if c["scene"] == scene or scene == "all"]
-        ms = sorted(c["ms"] for c in clicks)
-        if not ms:
-            continue
-        p90 = ms[min(len(ms) - 1, int(0.9 * len(ms)))]
-        nodes = [c["nodes"] for c in clicks]
-        print(f"| {scene} | {len(ms)} | {statistics.median(nodes):.0f}, {max(nodes)} | "
-              f"{statistics.median(ms):.0f} | {p90:.0f} | {ms[-1]:.0f} |")
-    print(f"\nCPU time of Chromium's processes and the lab: {1000 * data['clickCpu'] / len(data['clicks']):.0f} ms a click "
-          f"(the wall times above share {os.cpu_count()} cores with the machine's load)")
+        ms, nodes = sorted(c["ms"] for c in clicks), [c["nodes"] for c in clicks]
+        if ms:
+            print(f"| {scene} | {len(ms)} | {statistics.median(nodes):.0f}, {max(nodes)} | {statistics.median(ms):.0f} "
+                  f"| {ms[min(len(ms) - 1, int(0.9 * len(ms)))]:.0f} | {ms[-1]:.0f} |")
+    print(f"\nCPU time of Chromium's processes and the lab: {1000 * data['clickCpu'] / len(data['clicks']):.0f} ms "
+          f"a click (the wall times above share {os.cpu_count()} cores with the machine's load)")
     for key, what in (("single", "one shot per press of \"1 step\" (the request, the repaint and the chart each time)"),
                       ("run", "\"run\" (as many shots per request as keep about seven pictures a second)")):
         s = data[key]

@@ -9,22 +9,18 @@ lab_has_three() is false and the page says how to get it). Rewritten only when i
 from __future__ import annotations
 
 import argparse
+import contextlib
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from common.files import atomic_write_bytes  # noqa: E402
 
-THREE_FILES = [  # (path under node_modules/three, name under /assets/three/)
-    ("build/three.module.js", "three.module.js"),
-    ("build/three.core.js", "three.core.js"),
-    ("examples/jsm/controls/OrbitControls.js", "OrbitControls.js"),
-    # Lines wider than one pixel (WebGL draws plain lines 1 pixel wide).
-    ("examples/jsm/lines/LineSegments2.js", "LineSegments2.js"),
-    ("examples/jsm/lines/LineSegmentsGeometry.js", "LineSegmentsGeometry.js"),
-    ("examples/jsm/lines/LineMaterial.js", "LineMaterial.js"),
-    ("LICENSE", "LICENSE.txt"),
-]
+# Under node_modules/three; served as /assets/three/NAME, a name without a suffix (LICENSE) with .txt.
+THREE_FILES = ["build/three.module.js", "build/three.core.js", "examples/jsm/controls/OrbitControls.js",
+               # Lines wider than one pixel (WebGL draws plain lines 1 pixel wide).
+               "examples/jsm/lines/LineSegments2.js", "examples/jsm/lines/LineSegmentsGeometry.js",
+               "examples/jsm/lines/LineMaterial.js", "LICENSE"]
 # JavaScript as application/javascript with a charset: cpp-httplib compresses text/* (and the bare
 # application/javascript) on the fly, with brotli when the browser offers it, which takes seconds for
 # three.js; on 127.0.0.1 the bytes cost nothing.
@@ -55,18 +51,16 @@ def delimiter(data: bytes) -> str:
 
 
 def collect(source: Path) -> tuple[list[tuple[str, str, bytes]], bool]:
-    web = source / "tools" / "lab" / "web"
-    assets = []
-    for path in sorted(web.iterdir()):
-        if not path.is_file() or path.name.startswith("."):
-            continue
-        url = "/" if path.name == "index.html" else f"/assets/{path.name}"
-        assets.append((url, TYPES.get(path.suffix, "application/octet-stream"), path.read_bytes()))
+    assets = [("/" if path.name == "index.html" else f"/assets/{path.name}",
+               TYPES.get(path.suffix, "application/octet-stream"), path.read_bytes())
+              for path in sorted((source / "tools" / "lab" / "web").iterdir())
+              if path.is_file() and not path.name.startswith(".")]
     three = source / "node_modules" / "three"
-    have_three = all((three / f).is_file() for f, _ in THREE_FILES)
+    have_three = all((three / f).is_file() for f in THREE_FILES)
     if have_three:
-        for relative, name in THREE_FILES:
-            data = (three / relative).read_bytes()
+        for relative in THREE_FILES:
+            data, name = (three / relative).read_bytes(), Path(relative).name
+            name += "" if Path(name).suffix else ".txt"
             if name.endswith(".js") and not name.startswith("three."):  # an add-on: it imports 'three'
                 data = data.replace(b"from 'three';", b"from './three.module.js';")
                 if b"from 'three'" in data or b'from "three"' in data:
@@ -79,22 +73,18 @@ def cpp(assets: list[tuple[str, str, bytes]], have_three: bool) -> str:
     lines = ["// Written by tools/lab/embed_assets.py at build time: do not edit.",
              '#include "lab/lab_assets.hpp"', "", "namespace illum::lab {", "", "namespace {", ""]
     for i, (_, _, data) in enumerate(assets):
-        d = delimiter(data)
-        lines.append(f"const char* const asset_{i}[] = {{")
-        for piece in chunks(data):
-            lines.append(f'R"{d}(' + piece.decode("utf-8", errors="surrogateescape") + f'){d}",')
-        lines.append("};")
-        lines.append(f"const std::size_t asset_{i}_sizes[] = {{{', '.join(str(len(p)) for p in chunks(data)) or '0'}}};")
-        lines.append("")
+        d, pieces = delimiter(data), chunks(data)
+        lines += [f"const char* const asset_{i}[] = {{",
+                  *(f'R"{d}(' + piece.decode("utf-8", errors="surrogateescape") + f'){d}",' for piece in pieces), "};",
+                  f"const std::size_t asset_{i}_sizes[] = {{{', '.join(str(len(p)) for p in pieces) or '0'}}};", ""]
     lines += ["std::string join(const char* const* pieces, const std::size_t* sizes, std::size_t count) {",
               "  std::string out;",
               "  for (std::size_t i = 0; i < count; ++i) out.append(pieces[i], sizes[i]);",
               "  return out;", "}", "", "}  // namespace", "",
               "const std::vector<LabAsset>& lab_assets() {",
               "  static const std::vector<LabAsset> assets = {"]
-    for i, (url, kind, data) in enumerate(assets):
-        n = len(chunks(data))
-        lines.append(f'      {{"{url}", "{kind}", join(asset_{i}, asset_{i}_sizes, {n})}},')
+    lines += [f'      {{"{url}", "{kind}", join(asset_{i}, asset_{i}_sizes, {len(chunks(data))})}},'
+              for i, (url, kind, data) in enumerate(assets)]
     lines += ["  };", "  return assets;", "}", "",
               f"bool lab_has_three() {{ return {'true' if have_three else 'false'}; }}", "",
               "}  // namespace illum::lab", ""]
@@ -108,11 +98,9 @@ def main() -> int:
     args = parser.parse_args()
     assets, have_three = collect(args.source.resolve())
     text = cpp(assets, have_three)
-    try:
+    with contextlib.suppress(OSError):  # no file yet, or one that cannot be read: write it
         if args.out.read_text(encoding="utf-8", errors="surrogateescape") == text:
             return 0
-    except OSError:
-        pass
     atomic_write_bytes(args.out, text.encode("utf-8", errors="surrogateescape"))
     if not have_three:
         print("embed_assets.py: node_modules/three is missing (run tools/install-deps): the lab's 3D views "

@@ -45,9 +45,20 @@ SHOTS = {
 def running_lab(illum: Path, out: Path):
     """`ILLUM lab whitted --out OUT` on a free port of 127.0.0.1: (its process, its port), stopped on leaving
     (SIGINT, then killed after 10 s); RuntimeError when it does not start within a minute."""
-    process, port = _start_lab(illum, out)
+    process = subprocess.Popen([str(illum), "lab", "whitted", "--port", "0", "--out", str(out)], stdout=subprocess.PIPE,
+                               stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True)
+    deadline, match = time.monotonic() + 60, None
+    while time.monotonic() < deadline:
+        if select.select([process.stdout], [], [], 0.2)[0]:  # its first line names the port
+            match = re.search(r"http://127\.0\.0\.1:(\d+)/", process.stdout.readline())
+            break
+        if process.poll() is not None:
+            break
+    if not match:
+        process.kill()
+        raise RuntimeError(f"illum lab did not start: {process.stderr.read()}")
     try:
-        yield process, port
+        yield process, int(match.group(1))
     finally:
         process.send_signal(signal.SIGINT)
         try:
@@ -61,22 +72,6 @@ def browser(mode: str, port: int, options: Path, target: Path, timeout: int) -> 
     return subprocess.run([shutil.which("node") or "node", str(SOURCE / "tools" / "lab" / "browser.mjs"), mode,
                            f"http://127.0.0.1:{port}/", str(options), str(target)], cwd=SOURCE,
                           stdin=subprocess.DEVNULL, timeout=timeout).returncode
-
-
-def _start_lab(illum: Path, out: Path) -> tuple[subprocess.Popen, int]:
-    process = subprocess.Popen([str(illum), "lab", "whitted", "--port", "0", "--out", str(out)], stdout=subprocess.PIPE,
-                               stderr=subprocess.PIPE, stdin=subprocess.DEVNULL, text=True)
-    deadline = time.monotonic() + 60
-    while time.monotonic() < deadline:
-        if select.select([process.stdout], [], [], 0.2)[0]:
-            match = re.search(r"http://127\.0\.0\.1:(\d+)/", process.stdout.readline())
-            if match:
-                return process, int(match.group(1))
-            break
-        if process.poll() is not None:
-            break
-    process.kill()
-    raise RuntimeError(f"illum lab did not start: {process.stderr.read()}")
 
 
 def main(argv: list[str] | None = None) -> int:
