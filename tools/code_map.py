@@ -91,7 +91,11 @@ def _tests_cell(root: Path, lesson_nn: str, pairs: list[Path], link) -> str:
     others = [f for f in sorted((root / "tests").glob("*/*.cpp")) if f.stem in {p.stem for p in pairs}
               and f.parent not in lessons.values() and f.parent.name != "hidden"]
     name = lambda t: link(t, f"tests/{t.parent.name}/{t.name}")  # noqa: E731
-    cell = " · ".join(name(t) for t in own) + (f" (suite `lesson{lesson_nn}` and its hard cases)" if own else "")
+    suites = dict.fromkeys(s for t in own for s in re.findall(r'TEST_SUITE\("([^"]+)"\)', t.read_text()))
+    cell = " · ".join(name(t) for t in own)
+    if suites:
+        graded_first = sorted(suites, key=lambda s: not s.startswith(f"lesson{lesson_nn}"))
+        cell += f" (suite{'s' if len(suites) > 1 else ''} " + ", ".join(f"`{s}`" for s in graded_first) + ")"
     if others:
         cell += ("; " if own else "") + "also " + " · ".join(name(t) for t in others)
     return cell
@@ -154,7 +158,7 @@ def deck_slide(root: Path, lesson_nn: str) -> str:
         main = link(lesson / "main.cpp", f"`lessons/{lesson.name}/main.cpp`")
         lines.append(f"- **Program** `lesson{lesson_nn}`: {main}{studies_note}")
     if (tests := lesson_folders(root, "tests").get(lesson_nn)) is not None:
-        lines.append(f"- **Tests:** {link(tests, f'`tests/{tests.name}/`')} (suite `lesson{lesson_nn}`): "
+        lines.append(f"- **Tests:** {link(tests, f'`tests/{tests.name}/`')} (graded: suite `lesson{lesson_nn}`): "
                      f"`tools/grade --student {lesson_nn}`")
     return f"{BEGIN}\n## Where the code is\n\n" + "\n".join(lines) + f"\n{END}"
 
