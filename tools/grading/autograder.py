@@ -1,25 +1,11 @@
-"""Gradescope's autograder zip, its setup check, and grading one submission.
+"""Gradescope's autograder zip, its setup check, and grading one submission (docs/grading.md, "Gradescope").
 
-The zip unpacks to ``$ROOT/source/`` (``ROOT`` is ``/autograder`` on
-Gradescope; ``ILLUM_AUTOGRADER_ROOT`` moves it, for tests) as:
-
-    setup.sh          installs the build packages, then ``setup`` below
-    run_autograder    ``run`` below, once per submission
-    illum/            the student edition of the tree (no reference units)
-    reference/        the reference exercise units of the graded lessons,
-                      used only by setup.sh to prove the grader works
-    hidden-tests/     tests/hidden/ plus the --hidden folder given when packing
-
-``python3 -m grading.autograder setup ROOT NN…`` (from setup.sh) checks the
-toolchain and library versions, builds the reference and grades it (it must
-score full marks, hidden tests included), then builds the stubs so that a
-submission recompiles only the student's files. Any failure exits non-zero
-with a message an instructor can act on: a grader that cannot build the
-reference must never tell a student that their code did not compile.
-
-``python3 -m grading.autograder run ROOT NN…`` (from run_autograder) puts the
-stubs back, installs the upload (``install_submission``), runs tools/grade
-with Gradescope's limits, and makes sure results.json exists.
+The zip unpacks to ``$ROOT/source/`` (``/autograder`` on Gradescope; ``ILLUM_AUTOGRADER_ROOT`` moves it).
+``python3 -m grading.autograder setup ROOT NN…`` (setup.sh) checks the toolchain, proves the grader on the
+reference (full marks) and the stubs (0) and keeps the trusted data; any failure exits non-zero with a
+message an instructor can act on, since a grader that cannot build the reference must never tell a student
+that their code did not compile. ``… run ROOT NN…`` (run_autograder) installs the upload over the stubs
+(``install_submission``), runs tools/grade with Gradescope's limits, and makes sure results.json exists.
 """
 from __future__ import annotations
 
@@ -35,11 +21,15 @@ import subprocess
 import sys
 import tempfile
 import zipfile
+from collections import Counter
 from dataclasses import asdict, dataclass, field
 from pathlib import Path, PurePosixPath
 
+from . import build
 from .edition import make_student_edition
 from .project import exercise_stubs
+from .sandbox import Account, Sandbox, SandboxError, chown_tree, create_account, user_lock
+from .suspicious import object_of, object_symbols
 
 DEFAULT_ROOT = "/autograder"
 DEFAULT_USER = "illum-student"  # the unprivileged user setup.sh creates (ILLUM_GRADE_USER changes it)
@@ -97,12 +87,9 @@ def _add_script(archive: zipfile.ZipFile, name: str, text: str) -> None:
 def hidden_test_files(root: Path, extra: Path | None) -> list[Path]:
     """The instructor's hidden test files: tests/hidden/ and --hidden DIR (READMEs left out)."""
     folders = [root / "tests" / "hidden"] + ([extra] if extra else [])
-    files = []
-    for folder in folders:
-        if folder.is_dir():
-            files.extend(p for p in sorted(folder.iterdir()) if p.is_file() and p.suffix != ".md")
-    names = [p.name for p in files]
-    clashes = sorted({n for n in names if names.count(n) > 1})
+    files = [p for folder in folders if folder.is_dir() for p in sorted(folder.iterdir())
+             if p.is_file() and p.suffix != ".md"]
+    clashes = sorted(name for name, count in Counter(p.name for p in files).items() if count > 1)
     if clashes:
         raise ValueError(f"hidden test files with the same name in tests/hidden/ and {extra}: {', '.join(clashes)}")
     return files
@@ -181,9 +168,8 @@ def _unpack_zips(submission: Path, into: Path, report: Submission) -> list[tuple
     found: list[tuple[Path, str]] = []
     for number, archive_path in enumerate(sorted(submission.rglob("*.zip"))):
         shown = archive_path.relative_to(submission).as_posix()
-        if any(_skipped_part(p) for p in archive_path.relative_to(submission).parts):
-            continue
-        if _through_link(submission, archive_path):  # install_submission reports the link itself
+        # A link is not followed: install_submission reports it.
+        if any(_skipped_part(p) for p in PurePosixPath(shown).parts) or _through_link(submission, archive_path):
             continue
         try:
             with zipfile.ZipFile(archive_path) as archive:
@@ -231,14 +217,10 @@ def install_submission(submission: Path, tree: Path, lessons: list[str]) -> Subm
             if path.is_file() and path.suffix.lower() != ".zip":  # a zip's files are taken from inside it
                 candidates.append((path, relative.as_posix()))
         candidates += _unpack_zips(submission, Path(folder), report)
-
-        def rank(item: tuple[Path, str]) -> tuple[int, int, str]:
-            _, shown = item
-            name = PurePosixPath(shown).name
-            return (0 if name in stubs else 1, len(PurePosixPath(shown).parts), shown)
-
         done: dict[str, str] = {}
-        for path, shown in sorted(candidates, key=rank):
+        # An exact name first, then the file nearest the top of the upload.
+        for path, shown in sorted(candidates, key=lambda item: (PurePosixPath(item[1]).name not in stubs,
+                                                                 len(PurePosixPath(item[1]).parts), item[1])):
             name = PurePosixPath(shown).name
             match = _RENAMED.match(name)
             wanted = name if name in stubs else lowered.get(f"{match.group('stem')}.cpp".lower()) if match else None
@@ -301,8 +283,7 @@ def check_toolchain() -> list[str]:
         "cmake": _command_version(["cmake", "--version"]),
         "python3": (sys.version_info[:3], sys.version.split()[0]),
     }
-    for name, version in library_versions().items():
-        found[name] = (version, ".".join(map(str, version)))
+    found.update((name, (version, ".".join(map(str, version)))) for name, version in library_versions().items())
     lines, problems = [], []
     for name, minimum in MINIMUM_VERSIONS.items():
         version, text = found.get(name, ((), "not found"))
@@ -318,7 +299,7 @@ def check_toolchain() -> list[str]:
 
 
 def _grade(tree: Path, lessons: list[str], hidden: Path | None, results: Path,
-           extra: list[str] | None = None, quiet: bool = False, env: dict[str, str] | None = None) -> int:
+           extra: list[str] | None = None, env: dict[str, str] | None = None) -> int:
     # The autograder's own tree, configured for the graded lessons alone (not the student preset's).
     command = [sys.executable, str(tree / "tools" / "grade"), "--student",
                "--build-dir", str(tree / "build" / "grade-student"), *(extra or [])]
@@ -326,8 +307,7 @@ def _grade(tree: Path, lessons: list[str], hidden: Path | None, results: Path,
         command += ["--hidden", str(hidden)]
     command += [*lessons, "--results", str(results)]
     print("$ " + " ".join(shlex.quote(c) for c in command), flush=True)
-    return subprocess.run(command, check=False, stdout=subprocess.DEVNULL if quiet else None,
-                          stderr=subprocess.STDOUT if quiet else None, env=env).returncode
+    return subprocess.run(command, check=False, env=env).returncode
 
 
 def _paths(root: Path) -> tuple[Path, Path, Path | None, Path, Path]:
@@ -362,8 +342,6 @@ def build_jobs() -> int:
 
 def _student_user(name: str) -> str | None:
     """Creates the unprivileged user; None (and a loud warning) where that is impossible."""
-    from .sandbox import SandboxError, create_account
-
     if os.geteuid() != 0:
         print(f"setup: WARNING: not running as root, so there is no separate user for students' code: it will "
               f"run as {pwd.getpwuid(os.geteuid()).pw_name}, without privilege separation "
@@ -389,9 +367,8 @@ def _read_results(path: Path) -> dict:
 def reference_environment() -> dict[str, str]:
     """ccache off for the builds of the reference: no cache may keep an object of it after setup.
     ILLUM_GRADE_REFERENCE_CCACHE=1 keeps it on, for the grader's own tests (a scratch machine)."""
-    if os.environ.get("ILLUM_GRADE_REFERENCE_CCACHE") == "1":
-        return dict(os.environ)
-    return dict(os.environ, CCACHE_DISABLE="1")
+    keep = os.environ.get("ILLUM_GRADE_REFERENCE_CCACHE") == "1"
+    return dict(os.environ, **({} if keep else {"CCACHE_DISABLE": "1"}))
 
 
 def _build_witness(tree: Path, grader: Path, lessons: list[str], hidden: Path | None) -> None:
@@ -399,8 +376,6 @@ def _build_witness(tree: Path, grader: Path, lessons: list[str], hidden: Path | 
     root reads; its programs are kept in ``grader/witness``, and the hidden tests' observer objects
     (their expected sides cut away) in ``grader/hidden-objects``, for every run to link with the
     student's code. Nothing of it stays in the tree the student's user builds in."""
-    from . import build
-
     work = grader / "witness-build"
     programs = [f"tests_lesson{nn}" for nn in lessons if any((tree / "tests").glob(f"{nn}_*"))]
     targets = programs + (["tests_hidden", "tests_hidden_observer"] if hidden else [])
@@ -428,8 +403,6 @@ def _build_witness(tree: Path, grader: Path, lessons: list[str], hidden: Path | 
 def _stub_symbols(tree: Path, build_dir: Path, lessons: list[str]) -> dict[str, str]:
     """Demangled function name (with and without its parameters) -> the exercise unit whose stub
     defines it, so that an undefined reference at link time is blamed on the right file."""
-    from .suspicious import object_of, object_symbols
-
     owners: dict[str, str] = {}
     for _name, stub in sorted(exercise_stubs(tree, lessons).items()):
         relative = stub.relative_to(tree).as_posix()
@@ -448,8 +421,6 @@ def setup(root: Path, lessons: list[str]) -> None:
     """setup.sh's checks: versions; the stubs built and graded (0); the hidden tests' objects kept and
     their sources removed; the reference graded (full marks) and then removed; the stubs built again
     as every run will find them; the trusted data kept where only root reads it."""
-    from .sandbox import SandboxError, chown_tree, user_lock
-
     source, tree, hidden, pristine, grader = _paths(root)
     check_toolchain()
     jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(build_jobs())
@@ -495,8 +466,6 @@ def setup(root: Path, lessons: list[str]) -> None:
 
 def _check_reach(user: str | None, paths: tuple[Path, ...]) -> None:
     """The student's user must be able to reach the build tree (every folder above it searchable)."""
-    from .sandbox import Account, Sandbox
-
     if user is None:
         return
     sandbox = Sandbox(Account.lookup(user))
@@ -571,8 +540,6 @@ def _fallback_results(results: Path, message: str) -> None:
 def run(root: Path, lessons: list[str]) -> int:
     """run_autograder: stubs back, the upload installed, tools/grade with Gradescope's limits, as the
     student's user; results.json only once nothing of theirs is alive."""
-    from .sandbox import Account, Sandbox, SandboxError, user_lock
-
     source, tree, hidden, pristine, grader = _paths(root)
     results_dir = root / "results"
     results_dir.mkdir(parents=True, exist_ok=True)
@@ -599,8 +566,6 @@ def run(root: Path, lessons: list[str]) -> int:
     if user:
         if user != config.get("user") and os.geteuid() == 0:
             # Several submissions graded at once (tools/grade --batch --jobs) each get a user of their own.
-            from .sandbox import create_account
-
             create_account(user)
         extra += ["--as-user", user]
     try:

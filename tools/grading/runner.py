@@ -1,50 +1,23 @@
-"""Running the ``lessonNN`` suite of one test program through our reporter.
+"""Running the ``lessonNN`` suite of one test program through our reporter, in the sandbox (sandbox.py).
 
-The test program runs in the sandbox (sandbox.py: its own process group or
-pid namespace, the student's user when there is one, resource limits). Its
-reporter sends one JSON record per event over an inherited pipe, and its
-output goes through another pipe of which only the last 64 KB are kept, so
-that a program printing a gigabyte costs the grader nothing.
+The reporter sends one JSON record per event over an inherited pipe; of the program's output only the
+last 64 KB are kept. A program runs in one of three roles (``role``): ``None``, its own verdicts are
+read (a student's own machine, the integrity checks, the mutants); ``"witness"``, a trusted build of the
+reference that also sends every check's comparison and expected side; ``"observer"``, the student's
+program built without expected sides, sending each check's left side, from which judge.py forms the
+verdicts (docs/grading-defences.md, "How a test is judged").
 
-A program runs in one of three roles (``role``):
+The tests that should run come from ``expected`` (a trusted listing) or else ``--list-test-cases``. The
+records must follow the reporter's order: ``started``, its checks, ``test_case`` of the same test, the
+tests in listed order and each once, ``run_end`` last; a record out of order fails the running test as
+tampering, and nothing after it is believed.
 
-* ``None``: its own verdicts are read (a student's own machine, the
-  integrity checks, the mutants);
-* ``"witness"``: a trusted build of the reference, which also sends every
-  check's comparison and expected side (checks.cpp);
-* ``"observer"``: the student's program built without any expected side,
-  which sends the left side of every check; judge.py forms each test's
-  verdict from those values and the witness's, and the program's own
-  verdicts are never read.
-
-Which tests should run comes from ``expected`` when the caller has it (the
-witness's run, or what setup kept), else from the program's own
-``--list-test-cases``. The records of one run must follow the reporter's
-order (``started``, its checks, ``test_case`` of the same test, tests in the
-listed order, each once, ``run_end`` last); a record out of that order, or a
-second record for a test, fails the test that was running as tampering,
-and the records after it are not believed.
-
-Limits (Gradescope gives a whole run 10 minutes):
-
-* each test case may use ``ILLUM_GRADE_TEST_TIMEOUT`` seconds of processor
-  time (default 60), and WALL_FACTOR times that of wall time, without
-  finishing; then the program is killed. Processor time does not grow when
-  the machine is loaded, so load does not change a grade;
-* each run of a program may use ``ILLUM_GRADE_TIMEOUT`` seconds of processor
-  time (default 600), WALL_FACTOR times that of wall time;
-* all the tests of one ``tools/grade`` run may take ``ILLUM_GRADE_DEADLINE``
-  seconds from its start (default: no limit; run_autograder sets one inside
-  Gradescope's 10 minutes); the tests left when it runs out fail with
-  "did not run", so that results.json is still written in time.
-
-After a crash, a time-out or an exit() inside a test, the test that was
-running fails with the reason, and the program is run again from the next
-test on (doctest's ``--first=N`` counts the listed tests), so that one bad
-function costs the tests that call it, not every test of the lesson. Each
-run must get further than the last: a program that dies again before the
-test it was restarted at (a crash at start-up, a forged record) fails the
-tests that are left, once, with that reason.
+Limits (docs/grading-reference.md): processor time per test case (``ILLUM_GRADE_TEST_TIMEOUT``) and per
+run of a program (``ILLUM_GRADE_TIMEOUT``), WALL_FACTOR times that of wall time (load does not change a
+grade), and a deadline for the whole run (``ILLUM_GRADE_DEADLINE``) after which the tests left fail with
+"did not run". After a crash, a time-out or an exit() inside a test, that test fails with the reason and
+the program runs again from the next test (``--first=N``); each run must get further than the last, or
+the tests left fail, once, with the reason.
 """
 from __future__ import annotations
 
@@ -195,7 +168,6 @@ def _describe_signal(number: int) -> str:
         name = signal.Signals(number).name
     except ValueError:
         name = f"signal {number}"
-    sandbox = current_sandbox()
     why = {
         "SIGSEGV": " (a crash: an invalid memory access, e.g. a null pointer or an index out of range)",
         "SIGABRT": " (an abort: a failed assert(), std::terminate, or a corrupted heap)",
@@ -203,7 +175,7 @@ def _describe_signal(number: int) -> str:
         "SIGFPE": " (an arithmetic fault, e.g. an integer division by zero)",
         "SIGKILL": " (killed from outside: out of memory, or too many processes)",
         "SIGXCPU": " (it used up its CPU time)",
-        "SIGXFSZ": f" (it wrote a file larger than {sandbox.limits.file_mb} MB)",
+        "SIGXFSZ": f" (it wrote a file larger than {current_sandbox().limits.file_mb} MB)",
     }.get(name, "")
     return f"the test program was killed by {name}{why}"
 
@@ -220,7 +192,6 @@ class _Watch:
     progress_cpu: float = 0.0
     cpu: float = 0.0
     sampled: float = 0.0
-
     shared: int = 0
     shared_limit: int = 0
     end: float = float("inf")  # the deadline of the whole run (ILLUM_GRADE_DEADLINE), in wall time
@@ -268,7 +239,7 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
                    end=float("inf") if listing else time.monotonic() + _remaining())
     problem, stopping = "", False
     while True:
-        if _drain(selector, streams, launched.records_fd, 0.05):
+        if _drain(selector, streams, 0.05):
             watch.moved(time.monotonic())
         for record in status.records:
             if "pid" in record and not sandbox.namespace and launched.program_pid is None:
@@ -289,7 +260,7 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
     # them open: a short, bounded drain, then the sandbox kills it).
     until = time.monotonic() + 0.5
     while selector.get_map() and time.monotonic() < until:
-        _drain(selector, streams, launched.records_fd, 0.05)
+        _drain(selector, streams, 0.05)
     selector.close()
     survivors = sandbox.finish(launched)
     invocation = _Invocation(records.records, problem, tail.text(), garbage=records.garbage, survivors=survivors)
@@ -297,8 +268,8 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
     return invocation
 
 
-def _drain(selector: selectors.BaseSelector, streams: dict, records_fd: int | None, wait: float) -> bool:
-    """Reads what the pipes hold; True when a test started or finished."""
+def _drain(selector: selectors.BaseSelector, streams: dict, wait: float) -> bool:
+    """Reads what the pipes hold; True when a test started or finished (only the records' feed says so)."""
     progress = False
     for key, _ in selector.select(timeout=wait):
         try:
@@ -307,11 +278,10 @@ def _drain(selector: selectors.BaseSelector, streams: dict, records_fd: int | No
             continue
         except OSError:
             chunk = b""
-        if not chunk:
+        if chunk:
+            progress = streams[key.fd](chunk) or progress
+        else:
             selector.unregister(key.fd)
-            continue
-        if streams[key.fd](chunk) and key.fd == records_fd:
-            progress = True
     return progress
 
 
@@ -376,35 +346,25 @@ def check_records(records: list[dict], order: dict[Key, int], first: int, garbag
                 return broken(f"\"{key[1]}\" reported out of order", key)
             position, running, last = order[key], key, key
             seen.add(key)
-            accepted.append(record)
+        elif event == "test_case" and record.get("skipped") and running is None and key in order and key not in seen:
+            seen.add(key)
+            last, position = key, max(position, order[key])
         elif event == "test_case":
-            if record.get("skipped") and running is None and key in order and key not in seen:
-                seen.add(key)
-                last = key
-                position = max(position, order[key])
-                accepted.append(record)
-                continue
             if key != running:
                 what = f"a result for \"{key[1]}\"" if key else "a result"
                 return broken(f"{what} that was not running" if key not in seen else
                               f"a second result for \"{key[1]}\"", key)
             running = None
-            accepted.append(record)
-        elif event == "check":  # a check of the running test (witness and observer)
-            if running is None:
-                return broken("a check outside any test")
-            accepted.append(record)
-        elif event == "run_end":
-            if running is not None:
-                return broken("the run ended while a test was still running")
-            ended = True
-            accepted.append(record)
-        else:
+        elif event == "check" and running is None:  # a check belongs to the running test (witness, observer)
+            return broken("a check outside any test")
+        elif event == "run_end" and running is not None:
+            return broken("the run ended while a test was still running")
+        elif event not in ("check", "run_end"):
             return broken(f"a record of an unknown kind ({str(event)[:40]!r})", key)
-    if garbage:
-        return _Checked(accepted, running, last, f"{garbage} line(s) on the results pipe that are not records",
-                        running or last)
-    return _Checked(accepted, running, last)
+        ended = event == "run_end"
+        accepted.append(record)
+    why = f"{garbage} line(s) on the results pipe that are not records" if garbage else ""
+    return _Checked(accepted, running, last, why, (running or last) if garbage else None)
 
 
 @dataclass

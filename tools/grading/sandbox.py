@@ -1,28 +1,10 @@
-"""Running a student's code apart from the grader (docs/grading-defences.md, "Threat model").
+"""Running a student's code apart from the grader (docs/grading-defences.md, "Isolation" and "Threat model").
 
-A student's exercise files are hostile input. Whatever they compile into is
-run here:
-
-* as an **unprivileged user** (``--as-user``, created by the autograder's
-  setup.sh), with a private HOME and TMPDIR, a clean environment, and no
-  write access to the sources, the build tree while tests run, or the
-  results;
-* in a **process group of its own**, inside a **pid namespace** where the
-  platform allows one (root, and ``unshare`` permitted), whose first process
-  (``sandbox_init.py``) reports how the program ended over a pipe the
-  program never holds; the group is killed after a normal exit too, and
-  with a user, every process of that user is killed before the grader goes
-  on (``reap``);
-* under **resource limits**: memory per test program (``RLIMIT_DATA``, so
-  an allocation beyond it fails with ``std::bad_alloc``, which the results
-  call "out of memory"), processes per user (``RLIMIT_NPROC``), the size of
-  any file written, CPU time, no core files; the program's output is read
-  through a pipe and only its last ``output_bytes`` are kept.
-
-Without root there is no second user: the code runs as whoever runs the
-grader, in its own process group (and pid namespace if one can be made).
-That is the student's own machine (``tools/grade --student``), where there
-is nothing to defend; ``tools/grade --batch`` says so on stderr.
+The code runs as an unprivileged user (``--as-user``; setup.sh creates it) with a private HOME and TMPDIR
+and a clean environment, in a process group and, where root may ``unshare``, pid (and mount and IPC)
+namespaces of its own whose first process is sandbox_init.py, under resource limits (``Limits``); every
+process of the user is killed after each program (``reap``). Without root there is no second user: the
+code runs as whoever runs the grader, which is the student's own machine (``tools/grade --student``).
 """
 from __future__ import annotations
 
@@ -32,6 +14,7 @@ import functools
 import json
 import os
 import pwd
+import resource
 import shutil
 import signal
 import stat
@@ -236,9 +219,8 @@ class Sandbox:
 
     def launch(self, argv: list[str], records: bool = True, cpu_seconds: float | None = None,
                extra_env: dict[str, str] | None = None) -> Launched:
-        """Starts ``argv`` in the sandbox. Its stdout and stderr go to one pipe
-        (``output_fd``), the reporter's records to another (``records_fd``),
-        whose write end the program finds in ILLUM_GRADE_RECORDS_FD."""
+        """Starts ``argv`` in the sandbox. Its stdout and stderr go to one pipe (``output_fd``), the
+        reporter's records to another (``records_fd``), whose write end it finds in ILLUM_GRADE_RECORDS_FD."""
         argv = [os.path.abspath(argv[0]) if os.sep in str(argv[0]) else str(argv[0]), *argv[1:]]
         scratch = self.make_scratch()
         status_r, status_w = os.pipe()
@@ -271,14 +253,10 @@ class Sandbox:
             process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=output_w, stderr=output_w,
                                        pass_fds=[status_w, *keep], start_new_session=True, close_fds=True)
         except OSError:
-            for fd in (status_r, status_w, output_r, output_w, records_r, records_w):
-                if fd is not None:
-                    os.close(fd)
+            _close(status_r, status_w, output_r, output_w, records_r, records_w)
             shutil.rmtree(scratch, ignore_errors=True)
             raise
-        for fd in (status_w, output_w, records_w):  # only the sandbox holds the write ends now
-            if fd is not None:
-                os.close(fd)
+        _close(status_w, output_w, records_w)  # only the sandbox holds the write ends now
         return Launched(process, status_r, output_r, records_r, scratch)
 
     def stop(self, launched: Launched) -> None:
@@ -301,10 +279,7 @@ class Sandbox:
             launched.process.wait()
         survivors = self.reap()
         self.clean_shared_folders()  # nothing of one program's reaches the next
-        for fd in (launched.status_fd, launched.output_fd, launched.records_fd):
-            if fd is not None:
-                with contextlib.suppress(OSError):
-                    os.close(fd)
+        _close(launched.status_fd, launched.output_fd, launched.records_fd)
         shutil.rmtree(launched.scratch, ignore_errors=True)
         return survivors
 
@@ -332,15 +307,8 @@ class Sandbox:
         (the memory limit of a process does not count it)."""
         if self.account is None or self.private:
             return 0
-        total = sum(size for _, size in _shm_segments(self.account.uid))
-        try:
-            for entry in os.scandir("/dev/shm"):
-                info = entry.stat(follow_symlinks=False)
-                if info.st_uid == self.account.uid:
-                    total += info.st_blocks * 512
-        except OSError:
-            pass
-        return total
+        return (sum(size for _, size in _shm_segments(self.account.uid))
+                + sum(info.st_blocks * 512 for _, info in _owned("/dev/shm", self.account.uid)))
 
     def clean_shared_folders(self) -> None:
         """Removes what the account left in the world-writable folders and its shared memory
@@ -351,20 +319,12 @@ class Sandbox:
         for shmid, _ in _shm_segments(self.account.uid):  # System V segments; POSIX ones are files
             subprocess.run([ipcrm, "-m", shmid], capture_output=True, check=False)
         for folder in ("/tmp", "/var/tmp", "/dev/shm", "/run/lock"):
-            try:
-                entries = list(os.scandir(folder))
-            except OSError:
-                continue
-            for entry in entries:
-                try:
-                    if entry.stat(follow_symlinks=False).st_uid != self.account.uid:
-                        continue
-                    if entry.is_dir(follow_symlinks=False):
-                        shutil.rmtree(entry.path, ignore_errors=True)
-                    else:
+            for entry, info in _owned(folder, self.account.uid):
+                if stat.S_ISDIR(info.st_mode):
+                    shutil.rmtree(entry.path, ignore_errors=True)
+                else:
+                    with contextlib.suppress(OSError):
                         os.unlink(entry.path)
-                except OSError:
-                    pass
 
     def can_reach(self, path: Path) -> bool:
         """Whether the account can list and enter ``path`` (every folder above it searchable)."""
@@ -375,8 +335,6 @@ class Sandbox:
     def build_preexec(self):
         """For subprocess.Popen(preexec_fn=...): a build step as the account,
         with the build's limits (a compiler fed /dev/zero stops at the memory limit)."""
-        import resource
-
         memory = self.limits.build_memory_mb * 1024 * 1024
         account = self.account
 
@@ -466,7 +424,7 @@ def descendants_cpu_seconds(root_pid: int) -> float:
     """utime + stime of ``root_pid`` and every process below it, from /proc (children that ended
     and were waited for count in their parent's cutime + cstime): what the per-test limits count,
     every thread's processor time, so that a loaded machine does not fail a test."""
-    parents: dict[int, int] = {}
+    children: dict[int, list[int]] = {}
     times: dict[int, float] = {}
     for entry in os.listdir("/proc"):
         if not entry.isdigit():
@@ -476,17 +434,15 @@ def descendants_cpu_seconds(root_pid: int) -> float:
                 fields = stat_file.read().rsplit(b")", 1)[1].split()
         except (OSError, IndexError):
             continue
-        pid = int(entry)
-        parents[pid] = int(fields[1])
-        times[pid] = sum(int(f) for f in fields[11:15]) / _TICKS  # utime stime cutime cstime
-    below = {root_pid}
-    changed = True
-    while changed:
-        changed = False
-        for pid, parent in parents.items():
-            if parent in below and pid not in below:
-                below.add(pid)
-                changed = True
+        children.setdefault(int(fields[1]), []).append(int(entry))
+        times[int(entry)] = sum(int(f) for f in fields[11:15]) / _TICKS  # utime stime cutime cstime
+    below: set[int] = set()
+    todo = [root_pid]
+    while todo:  # a set, not a walk: a pid reused while /proc is read can make a loop
+        pid = todo.pop()
+        if pid not in below:
+            below.add(pid)
+            todo += children.get(pid, [])
     return sum(times.get(pid, 0.0) for pid in below)
 
 
@@ -516,6 +472,13 @@ def kill_all_of(account: Account) -> None:
     _as_account(account, lambda: os.kill(-1, signal.SIGKILL))
 
 
+def _close(*fds: int | None) -> None:
+    for fd in fds:
+        if fd is not None:
+            with contextlib.suppress(OSError):
+                os.close(fd)
+
+
 def kill_group(pid: int | None) -> None:
     """SIGKILL to the process group ``pid`` leads, if there is one still."""
     if pid:
@@ -542,6 +505,18 @@ def _as_account(account: Account, action) -> bool:
             os._exit(2)
     _, status = os.waitpid(pid, 0)
     return os.waitstatus_to_exitcode(status) == 0
+
+
+def _owned(folder: str, uid: int) -> list[tuple[os.DirEntry, os.stat_result]]:
+    """The entries of ``folder`` that ``uid`` owns, with their lstat (none where it cannot be read)."""
+    found = []
+    with contextlib.suppress(OSError):
+        for entry in os.scandir(folder):
+            with contextlib.suppress(OSError):
+                info = entry.stat(follow_symlinks=False)
+                if info.st_uid == uid:
+                    found.append((entry, info))
+    return found
 
 
 def _shm_segments(uid: int) -> list[tuple[str, int]]:
