@@ -119,13 +119,11 @@ def pack_autograder(root: Path, zip_path: Path, lessons: list[str], extra_hidden
             with zipfile.ZipFile(temporary, "w") as archive:
                 _add_script(archive, "setup.sh", setup_script(debian_packages(root), lessons))
                 _add_script(archive, "run_autograder", run_script(lessons))
-                for path in sorted(edition.out.rglob("*")):
-                    if path.is_file():
-                        archive.write(path, "illum/" + path.relative_to(edition.out).as_posix(), zipfile.ZIP_DEFLATED)
-                for path in references:
-                    archive.write(path, "reference/" + path.name, zipfile.ZIP_DEFLATED)
-                for path in hidden_files:
-                    archive.write(path, "hidden-tests/" + path.name, zipfile.ZIP_DEFLATED)
+                files = [(p, "illum/" + p.relative_to(edition.out).as_posix())
+                         for p in sorted(edition.out.rglob("*")) if p.is_file()]
+                files += [(p, "reference/" + p.name) for p in references]
+                for path, name in files + [(p, "hidden-tests/" + p.name) for p in hidden_files]:
+                    archive.write(path, name, zipfile.ZIP_DEFLATED)
                 names = archive.namelist()
         temporary.replace(zip_path)
     finally:
@@ -193,15 +191,9 @@ def _unpack_zips(submission: Path, into: Path, report: Submission) -> list[tuple
 
 
 def install_submission(submission: Path, tree: Path, lessons: list[str]) -> Submission:
-    """Copies the uploaded exercise files over the stubs of the graded lessons.
-
-    Files are matched by name (exercise units have unique names), wherever the
-    student put them, inside a zip of the upload too. A name a browser or a
-    file manager changed ("sphere (1).cpp", "Sphere.cpp") is recognised and
-    said so; an exact name wins over such a name, and a file nearer the top of
-    the upload over a deeper copy. The copy gets a fresh modification time so
-    that make recompiles it even if it is older than the warm build.
-    """
+    """Copies the uploaded exercise files over the stubs of the graded lessons, matched by name wherever they
+    are, in a zip too (the rules: docs/grading.md, "Gradescope"). A copy gets a fresh modification time, so
+    that make recompiles it even if it is older than the warm build."""
     stubs = exercise_stubs(tree, lessons or None)
     report = Submission(expected=sorted(stubs))
     lowered = {name.lower(): name for name in stubs}
@@ -259,24 +251,21 @@ def _command_version(command: list[str]) -> tuple[tuple[int, ...], str]:
     return tuple(int(g) for g in match.groups() if g is not None) if match else (), first
 
 
-def library_versions(compiler: str = "c++") -> dict[str, tuple[int, ...]]:
+def library_versions() -> dict[str, tuple[int, ...]]:
     """doctest and nlohmann-json as the compiler finds them (their version macros)."""
     probe = "#include <doctest/doctest.h>\n#include <nlohmann/json.hpp>\n"
-    completed = subprocess.run([compiler, "-std=c++20", "-E", "-dM", "-x", "c++", "-"], input=probe,
+    completed = subprocess.run(["c++", "-std=c++20", "-E", "-dM", "-x", "c++", "-"], input=probe,
                                capture_output=True, text=True, check=False)
     if completed.returncode != 0:
         raise SetupError("the compiler cannot include <doctest/doctest.h> and <nlohmann/json.hpp>: install "
                          "doctest-dev and nlohmann-json3-dev\n" + completed.stderr[-2000:])
     macros = dict(re.findall(r"^#define (\w+) (\d+)\s*$", completed.stdout, re.M))
-    found = {}
-    for library, prefix in (("doctest", "DOCTEST_VERSION_"), ("nlohmann-json", "NLOHMANN_JSON_VERSION_")):
-        parts = [macros.get(prefix + part) for part in ("MAJOR", "MINOR", "PATCH")]
-        if all(parts):
-            found[library] = tuple(int(p) for p in parts)
-    return found
+    found = {library: [macros.get(prefix + part) for part in ("MAJOR", "MINOR", "PATCH")]
+             for library, prefix in (("doctest", "DOCTEST_VERSION_"), ("nlohmann-json", "NLOHMANN_JSON_VERSION_"))}
+    return {library: tuple(map(int, parts)) for library, parts in found.items() if all(parts)}
 
 
-def check_toolchain() -> list[str]:
+def check_toolchain() -> None:
     """Prints the versions found; raises SetupError if one is missing or too old."""
     found: dict[str, tuple[tuple[int, ...], str]] = {
         "g++": _command_version(["c++", "-dumpfullversion"]),
@@ -295,7 +284,6 @@ def check_toolchain() -> list[str]:
     print("setup: toolchain and libraries found:\n" + "\n".join(lines), flush=True)
     if problems:
         raise SetupError("; ".join(problems) + ". Choose an Ubuntu 22.04 (or newer) or Debian 12 base image.")
-    return lines
 
 
 def _grade(tree: Path, lessons: list[str], hidden: Path | None, results: Path,
@@ -312,8 +300,7 @@ def _grade(tree: Path, lessons: list[str], hidden: Path | None, results: Path,
 
 def _paths(root: Path) -> tuple[Path, Path, Path | None, Path, Path]:
     """The unpacked autograder's source/, its tree, the hidden tests (None when there are none), the pristine
-    stubs, and the grader's folder: what setup keeps for the runs, readable by root only (the trusted list
-    of tests, the hidden tests' objects, which stub defines which function, the student's user)."""
+    stubs, and the grader's folder (what setup keeps for the runs, readable by root only)."""
     source = root / "source"
     tree, hidden = source / "illum", source / "hidden-tests"
     return (source, tree, hidden if any(hidden.glob("*.cpp")) else None, tree / "build" / "pristine-stubs",
@@ -418,9 +405,8 @@ def _stub_symbols(tree: Path, build_dir: Path, lessons: list[str]) -> dict[str, 
 
 
 def setup(root: Path, lessons: list[str]) -> None:
-    """setup.sh's checks: versions; the stubs built and graded (0); the hidden tests' objects kept and
-    their sources removed; the reference graded (full marks) and then removed; the stubs built again
-    as every run will find them; the trusted data kept where only root reads it."""
+    """setup.sh's work (docs/grading.md, "Gradescope"): versions checked, the witness built, the reference
+    graded (full marks) and the stubs (0), the sources nothing may read deleted, the trusted data kept."""
     source, tree, hidden, pristine, grader = _paths(root)
     check_toolchain()
     jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(build_jobs())

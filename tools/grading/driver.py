@@ -230,25 +230,6 @@ def _student_units(root: Path, lessons: list[str]) -> dict[str, str]:
     return {name: path.relative_to(root).as_posix() for name, path in project.exercise_stubs(root, lessons).items()}
 
 
-def _fall_back(args: argparse.Namespace, root: Path, relative: str, compiled: bool = True) -> bool:
-    """Replaces a student's file by its pristine stub (only the autograder has them). True if done.
-
-    ``compiled``: whether the student's file was compiled in this tree; if not (flagged by its text),
-    the stub keeps its own date, so that make reuses the stub's object of the warm build."""
-    if not (args.student and args.fallback_stubs):
-        return False
-    stub = args.fallback_stubs / Path(relative).relative_to("exercises")
-    if not stub.is_file():
-        return False
-    target = root / relative
-    if compiled:
-        shutil.copyfile(stub, target)
-        target.touch()
-    else:
-        shutil.copy2(stub, target)
-    return True
-
-
 def _build_with_fallback(args: argparse.Namespace, run: GradeRun, build_dir: Path, root: Path,
                          targets: list[str], data: GraderData | None = None,
                          runner: build.Runner | None = None) -> build.StepResult:
@@ -264,8 +245,11 @@ def _build_with_fallback(args: argparse.Namespace, run: GradeRun, build_dir: Pat
         if not blamed or (compiled and build.error_lines_outside(step.output, compiled)):
             break
         for relative in blamed:
-            if not _fall_back(args, root, relative):
+            stub = args.fallback_stubs / Path(relative).relative_to("exercises")  # pristine: only setup's
+            if not stub.is_file():
                 return step
+            shutil.copyfile(stub, root / relative)
+            (root / relative).touch()
             run.fallbacks[relative] = step.output
             what = "did not link" if relative in linked and relative not in compiled else "did not compile"
             if what == "did not link":
@@ -291,9 +275,8 @@ def _make_sandbox(args: argparse.Namespace, root: Path) -> Sandbox:
 
 
 def _save_tests(path: Path, suites: list[tuple[str, runner.SuiteRun, dict | None]]) -> None:
-    """The trusted list of tests (from the reference, in setup): program -> suite -> the tests in
-    doctest's order, each with the checks the witness made in it (visible tests only: the hidden
-    ones are witnessed again in every run, with that run's seed)."""
+    """The trusted list of tests (setup's reference run): program -> suite -> the tests in doctest's order,
+    each with the witness's checks (visible tests only: hidden ones are witnessed in every run, new seed)."""
     saved: dict[str, dict[str, list[dict]]] = {}
     for _lesson, suite, witness in suites:
         tests = []

@@ -102,11 +102,6 @@ class _Invocation:
     garbage: int = 0      # complete lines that were not records
     survivors: list[str] = field(default_factory=list)
 
-    @property
-    def ended_normally(self) -> bool:
-        return (not self.problem and self.exit_code in (0, 1)
-                and any(r.get("event") == "run_end" for r in self.records))
-
 
 class _Tail:
     """The last ``limit`` bytes of a stream, and how many came before them."""
@@ -182,8 +177,7 @@ def _describe_signal(number: int) -> str:
 
 @dataclass
 class _Watch:
-    """The limits of one invocation, checked while it runs: processor time per test and per run,
-    wall time WALL_FACTOR times larger."""
+    """The limits of one invocation: processor time per test and per run, wall time WALL_FACTOR times that."""
 
     test_cpu: float
     run_cpu: float
@@ -220,8 +214,7 @@ class _Watch:
 
 def _run_reporter(program: Path, arguments: list[str], timeout: float, test_timeout: float,
                   env: dict[str, str] | None = None, sandbox: Sandbox | None = None) -> _Invocation:
-    """One invocation with --reporters=illum-grade, killed when a test case uses too much time
-    (``_Watch``)."""
+    """One invocation with --reporters=illum-grade, killed when it goes beyond a limit (``_Watch``)."""
     sandbox = sandbox or current_sandbox()
     command = [str(program), *arguments, "--reporters=illum-grade", "--no-version"]
     try:
@@ -415,7 +408,8 @@ def _next_first(run: SuiteRun, progress: _Progress, checked: _Checked, invocatio
                                            "per test, in order, from the test program's reporter only)")
         progress.problems.append(f"{program}: test \"{checked.culprit[1]}\": tampering: {checked.violation}")
         return progress.position[checked.culprit] + 1
-    if invocation.exit_code in (0, 1) and not invocation.problem:
+    exited = invocation.exit_code in (0, 1) and not invocation.problem
+    if exited:
         how = f"exit({invocation.exit_code})"
         reason = (f"your code ended the program with {how} (or a similar call) during this test: "
                   "the tests after it were run again in a new program")
@@ -435,8 +429,7 @@ def _next_first(run: SuiteRun, progress: _Progress, checked: _Checked, invocatio
     if checked.last_recorded is not None and progress.position[checked.last_recorded] >= first:
         progress.problems.append(f"{program} -ts={run.suite}: after test \"{checked.last_recorded[1]}\": {how}")
         return progress.position[checked.last_recorded] + 1
-    progress.why_missing = f"{program} -ts={run.suite}: {how}" + (
-        " before running a test" if invocation.exit_code in (0, 1) and not invocation.problem else "")
+    progress.why_missing = f"{program} -ts={run.suite}: {how}" + (" before running a test" if exited else "")
     progress.problems.append(progress.why_missing)
     return None
 
@@ -455,11 +448,9 @@ def _listing(run: SuiteRun, expected: list[dict] | None, timeout: float, env: di
 def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | None = None,
               test_timeout: float | None = None, expected: list[dict] | None = None, role: str | None = None,
               env: dict[str, str] | None = None, sandbox: Sandbox | None = None) -> SuiteRun:
-    """Runs ``program -ts=suite`` and returns one result per test of the suite.
-
-    ``expected``: the tests that must report (records of kind "listed", in doctest's order), from a
-    trusted listing; None lists them from the program. ``role``: None, "witness" or "observer"
-    (module doc); an observer's results are judged by ``judge_suite`` afterwards."""
+    """One result per test of ``program -ts=suite``. ``expected``: the tests that must report ("listed" records,
+    in doctest's order) from a trusted listing, or None to list them from the program. ``role``: None,
+    "witness" or "observer" (module doc); an observer's results are judged by ``judge_suite`` afterwards."""
     timeout = timeout_seconds() if timeout is None else timeout
     if test_timeout is None:
         test_timeout = float(os.environ.get("ILLUM_GRADE_TEST_TIMEOUT", DEFAULT_TEST_TIMEOUT))
@@ -490,8 +481,9 @@ def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | 
         run.survivors.extend(invocation.survivors)
         checked = check_records(invocation.records, progress.position, first, invocation.garbage)
         _take(run, progress, checked)
-        if not checked.violation and invocation.ended_normally:
-            break
+        if not (checked.violation or invocation.problem) and invocation.exit_code in (0, 1) \
+                and any(r.get("event") == "run_end" for r in invocation.records):
+            break  # it ended normally
         after = _next_first(run, progress, checked, invocation, first)
         if after is not None and after <= first:  # no progress: the program dies before the test it starts at
             progress.why_missing = (f"{program.name} -ts={suite}: run again from test {first}, the program ended "
@@ -566,8 +558,7 @@ def witness_checks(run: SuiteRun) -> dict[Key, list[dict]]:
     return {r.key: run.checks.get(r.key, []) for r in run.results if r.passed}
 
 
-def list_suites(program: Path, timeout: float | None = None) -> list[TestResult]:
+def list_suites(program: Path) -> list[TestResult]:
     """Every test case of a program, whatever its suite (for misplaced-suite checks)."""
-    timeout = timeout_seconds() if timeout is None else timeout
-    listing = _run_reporter(program, ["--list-test-cases"], timeout, timeout)
+    listing = _run_reporter(program, ["--list-test-cases"], timeout_seconds(), timeout_seconds())
     return [TestResult.from_json(r) for r in listing.records if r.get("event") == "listed"]

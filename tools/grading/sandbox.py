@@ -267,9 +267,8 @@ class Sandbox:
             launched.process.kill()
 
     def finish(self, launched: Launched) -> list[str]:
-        """After a run: the launcher waited for, the program's group and (with a
-        user) every process of the user killed, the scratch folder removed.
-        Returns a description of each process that was still alive."""
+        """After a run: the launcher waited for, the program's group and (with a user) every process of the
+        user killed, the scratch folder removed. Returns a description of each process still alive."""
         if not self.namespace:
             kill_group(launched.program_pid)
         try:
@@ -333,8 +332,8 @@ class Sandbox:
     # --- builds ----------------------------------------------------------------------------
 
     def build_preexec(self):
-        """For subprocess.Popen(preexec_fn=...): a build step as the account,
-        with the build's limits (a compiler fed /dev/zero stops at the memory limit)."""
+        """For Popen(preexec_fn=...): a build step as the account, with the build's limits (a compiler fed
+        /dev/zero stops at the memory limit)."""
         memory = self.limits.build_memory_mb * 1024 * 1024
         account = self.account
 
@@ -349,9 +348,8 @@ class Sandbox:
         return preexec
 
     def build_environment(self, home: Path) -> dict[str, str]:
-        """The environment of a build: the grader's, minus what the student's
-        user must not see; ccache is off (a shared cache could carry one
-        student's objects into another's build)."""
+        """The environment of a build: the grader's, minus what the student's user must not see; ccache is
+        off (a shared cache could carry one student's objects into another's build)."""
         env = dict(os.environ)
         if self.account is not None:
             env = self.environment(home)
@@ -377,11 +375,9 @@ LOCK_FOLDER = Path("/run/illum-grade")  # root's, 0700: a student's process can 
 
 @contextlib.contextmanager
 def user_lock(name: str):
-    """Holds the grading lock of the user ``name`` for the block (as root; without root, where there is no
-    second user, it does nothing). A run kills every process of its user after each program, so two runs
-    that share a user on one machine (two batches, two CI jobs) would kill each other's builds and tests:
-    the second waits, saying so, until the first ends. The lock is an flock, released when its holder
-    exits however it ends; its descriptor is not inherited by the programs the block starts."""
+    """Holds the grading lock of the user ``name`` for the block (as root; without root, nothing). A run kills
+    every process of its user after each program, so a second run sharing the user (two batches, two CI jobs)
+    waits, saying so. An flock: released when its holder exits however it ends, and not inherited."""
     if os.geteuid() != 0:
         yield
         return
@@ -405,8 +401,7 @@ def user_lock(name: str):
 
 
 def chown_tree(folder: Path, uid: int, gid: int, strip_write: bool = False) -> None:
-    """chown -R without following links; ``strip_write`` also removes group
-    and other write permission (and set-id bits)."""
+    """chown -R without following links; ``strip_write`` also removes group and other write and set-id bits."""
     for path in [folder, *folder.rglob("*")]:
         try:
             info = path.lstat()
@@ -466,9 +461,8 @@ def user_processes(uid: int) -> list[tuple[int, str]]:
 
 
 def kill_all_of(account: Account) -> None:
-    """kill(-1, SIGKILL) as the account: the kernel sends it to every process
-    of that user at once, so a process that forks or changes its group
-    cannot slip through between a listing and a kill."""
+    """kill(-1, SIGKILL) as the account: the kernel sends it to every process of that user at once, so a
+    process that forks or changes its group cannot slip through between a listing and a kill."""
     _as_account(account, lambda: os.kill(-1, signal.SIGKILL))
 
 
