@@ -35,16 +35,15 @@ DEFAULT_ROOT = "/autograder"
 DEFAULT_USER = "illum-student"  # the unprivileged user setup.sh creates (ILLUM_GRADE_USER changes it)
 
 # Packages of tools/debian-packages.txt that grading does not need.
-NOT_FOR_GRADING = {"chromium", "nodejs", "npm", "gnuplot-nox", "zip", "libbenchmark-dev", "libcpp-httplib-dev", "pkgconf"}
+NOT_FOR_GRADING = {"chromium", "nodejs", "npm", "gnuplot-nox", "zip", "libbenchmark-dev", "libcpp-httplib-dev",
+                   "pkgconf"}
 
-# The oldest versions the grading build is checked against (docs/grading.md):
-# Ubuntu 22.04, Gradescope's default image.
+# The oldest versions the grading build is checked against: Ubuntu 22.04's, Gradescope's default image.
 MINIMUM_VERSIONS = {"g++": (11, 0), "cmake": (3, 22), "python3": (3, 10), "doctest": (2, 4, 8),
                     "nlohmann-json": (3, 10, 5)}
 
-# Gradescope's default container: 0.5 vCPU, 768 MB, 10 minutes for the whole run.
-# The tests stop starting 8 minutes into tools/grade, so that results.json is written in time.
-# A test program may use 512 MB (bad_alloc beyond: "out of memory"), a build 300 s.
+# Within Gradescope's default container (0.5 vCPU, 768 MB, 10 minutes a run; docs/grading.md, "Gradescope"):
+# no test starts after 8 minutes, so that results.json is written in time.
 RUN_LIMITS = {"CMAKE_BUILD_PARALLEL_LEVEL": "2", "ILLUM_GRADE_TEST_TIMEOUT": "30", "ILLUM_GRADE_TIMEOUT": "240",
               "ILLUM_GRADE_DEADLINE": "480", "ILLUM_GRADE_MEMORY_MB": "512", "ILLUM_GRADE_BUILD_TIMEOUT": "300"}
 

@@ -304,19 +304,6 @@ def build_tree(args: argparse.Namespace, root: Path, lessons: list[str]) -> tupl
     return build_dir, list(lessons)
 
 
-def _judged(args: argparse.Namespace, data: GraderData) -> bool:
-    """Whether verdicts come from the judge (a witness exists: the reference is in this tree, or setup
-    kept its records) rather than from the student's own program (their own machine only)."""
-    return not args.student or bool(data.tests) or data.witness_dir is not None
-
-
-def _targets(lessons: list[str], tested: set[str], judged: bool, witness_here: bool) -> list[str]:
-    programs = [f"tests_lesson{nn}" for nn in lessons if nn in tested]
-    if not judged:
-        return ["illum"] + programs
-    return ["illum"] + [f"{p}_observer" for p in programs] + (programs if witness_here else [])
-
-
 def _build_student_code(args: argparse.Namespace, run: GradeRun, root: Path, build_dir: Path, exercises: list[str],
                         targets: list[str], sandbox: Sandbox, data: GraderData) -> build.StepResult:
     """Configures and builds; a student's build runs as the student's user (the tree is theirs while it
@@ -329,9 +316,8 @@ def _build_student_code(args: argparse.Namespace, run: GradeRun, root: Path, bui
         runner = build.Runner(preexec=sandbox.build_preexec(), env=sandbox.build_environment(build_home / "home"),
                               timeout=runner.timeout)
     try:
-        hidden_objects = data.hidden_objects
-        step = build.configure(root, build_dir, exercises, None if hidden_objects else args.hidden,
-                               extra=build.hidden_objects_arguments(hidden_objects), runner=runner)
+        step = build.configure(root, build_dir, exercises, None if data.hidden_objects else args.hidden,
+                               extra=build.hidden_objects_arguments(data.hidden_objects), runner=runner)
         if step.ok:
             # The visible tests first: an instructor's hidden tests that do not
             # build must not cost the student the visible ones (nor blame them).
@@ -444,13 +430,17 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     except SandboxError as error:
         raise UsageError(str(error)) from error
     runner.set_sandbox(sandbox)
-    judged = _judged(args, data)
+    # Verdicts come from the judge where a witness exists (the reference is in this tree, or setup kept its
+    # records), from the student's own program only on their own machine.
+    judged = not args.student or bool(data.tests) or data.witness_dir is not None
     witness_here = judged and data.witness_dir is None  # the reference is this tree's own library
     _announce(sandbox, judged)
     tested = set(project.test_lessons(root))
     has_hidden = bool(data.hidden_objects) or bool(project.hidden_sources(root, args.hidden))
     _advise(args, run, root)
-    targets = _targets(lessons, tested, judged, witness_here)
+    programs = [f"tests_lesson{nn}" for nn in lessons if nn in tested]
+    targets = ["illum"] + ([f"{p}_observer" for p in programs] + (programs if witness_here else []) if judged
+                           else programs)
     step = _build_student_code(args, run, root, build_dir, exercises, targets, sandbox, data)
     if step.ok:
         _advise(args, run, root, build_dir=build_dir)

@@ -64,8 +64,7 @@ def set_sandbox(sandbox: Sandbox | None) -> None:
 
 def current_sandbox() -> Sandbox:
     global _sandbox
-    if _sandbox is None:
-        _sandbox = Sandbox()
+    _sandbox = _sandbox or Sandbox()
     return _sandbox
 
 
@@ -544,9 +543,8 @@ def judge_suite(run: SuiteRun, witness: dict[Key, list[dict]], hidden: bool) -> 
             problems.append(f"{run.program.name}: \"{result.name}\": {error}")
             result.passed, result.note = False, f"the grader cannot judge this test: {error} (not your fault)"
             continue
-        crashes = [f for f in result.failures if f.kind == "crash"]
-        result.passed = verdict.passed
-        result.failures = verdict.failures + ([] if verdict.passed else crashes)
+        crashes = [] if verdict.passed else [f for f in result.failures if f.kind == "crash"]
+        result.passed, result.failures = verdict.passed, verdict.failures + crashes
         result.not_implemented_only = verdict.not_implemented_only
         if verdict.passed:
             result.note = ""

@@ -109,7 +109,10 @@ class Limits:
                       build_memory_mb=_megabytes("ILLUM_GRADE_BUILD_MEMORY_MB", 4096))
 
 
+@functools.cache
 def _unshare_works(*flags: str) -> bool:
+    """Whether ``unshare FLAGS --fork`` works here: root, and not forbidden by a container (Docker's default
+    profile forbids mount and IPC namespaces) or by ILLUM_GRADE_NO_PID_NAMESPACE=1."""
     unshare = shutil.which("unshare")
     if not unshare or os.geteuid() != 0 or os.environ.get("ILLUM_GRADE_NO_PID_NAMESPACE") == "1":
         return False
@@ -119,18 +122,6 @@ def _unshare_works(*flags: str) -> bool:
     except (OSError, subprocess.TimeoutExpired):
         return False
     return done.returncode == 0
-
-
-@functools.cache
-def pid_namespace_available() -> bool:
-    """Whether ``unshare --pid --fork`` works here (root, and not forbidden by a container)."""
-    return _unshare_works("--pid")
-
-
-@functools.cache
-def private_namespaces_available() -> bool:
-    """Whether mount and IPC namespaces can be made too (not under Docker's default profile)."""
-    return pid_namespace_available() and _unshare_works("--pid", "--mount", "--ipc")
 
 
 @dataclass
@@ -157,9 +148,9 @@ class Sandbox:
         if self.account is not None and os.geteuid() != 0:
             raise SandboxError(f"running code as the user {self.account.name} needs root")
         if self.namespace is None:
-            self.namespace = pid_namespace_available()
+            self.namespace = _unshare_works("--pid")
         if self.private is None:
-            self.private = bool(self.namespace) and private_namespaces_available()
+            self.private = bool(self.namespace) and _unshare_works("--pid", "--mount", "--ipc")
 
     # --- what the student's code sees -------------------------------------------------------
 
