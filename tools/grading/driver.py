@@ -18,6 +18,9 @@ import traceback
 from pathlib import Path
 
 from . import build, project, reports, runner, suspicious
+from .alone import check_alone
+from .autograder import pack_autograder
+from .batch import grade_batch
 from .integrity import check_build
 from .reports import GradeRun, OutputError
 from .results import TestResult
@@ -529,8 +532,6 @@ def _needs_reference(root: Path, why: str) -> None:
 
 def check_tree(args: argparse.Namespace, root: Path) -> int:
     """--check-integrity (integrity.py) or --check-alone (alone.py) on an already-built tree."""
-    from .alone import check_alone
-
     option, title = ("--check-integrity", "grading integrity") if args.check_integrity else \
         ("--check-alone", "each lesson alone")
     _needs_reference(root, f"{option} needs the reference solutions, which the student edition does not have")
@@ -547,8 +548,6 @@ def check_tree(args: argparse.Namespace, root: Path) -> int:
 
 
 def pack(args: argparse.Namespace, root: Path) -> int:
-    from .autograder import pack_autograder
-
     _needs_reference(root, "pack the autograder from the instructors' tree, not the student edition")
     lessons = choose_lessons(args, root)
     try:
@@ -562,8 +561,6 @@ def pack(args: argparse.Namespace, root: Path) -> int:
 
 
 def batch(args: argparse.Namespace, root: Path) -> int:
-    from .batch import grade_batch
-
     _needs_reference(root, "--batch packs the autograder from the instructors' tree, not the student edition")
     return grade_batch(root, args, choose_lessons(args, root))
 

@@ -433,17 +433,6 @@ def _next_first(run: SuiteRun, progress: _Progress, checked: _Checked, invocatio
     return None
 
 
-def _listing(run: SuiteRun, expected: list[dict] | None, timeout: float, env: dict | None,
-             sandbox: Sandbox | None) -> list[dict] | None:
-    if expected is not None:
-        return [dict(r, event="listed") for r in expected]
-    listing = _run_reporter(run.program, [f"-ts={run.suite}", "--list-test-cases"], timeout, timeout, env, sandbox)
-    if listing.problem:
-        run.problem, run.output = f"listing {run.program.name}: {listing.problem}", listing.output
-        return None
-    return [r for r in listing.records if r.get("event") == "listed" and r.get("suite") == run.suite]
-
-
 def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | None = None,
               test_timeout: float | None = None, expected: list[dict] | None = None, role: str | None = None,
               env: dict[str, str] | None = None, sandbox: Sandbox | None = None) -> SuiteRun:
@@ -458,9 +447,14 @@ def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | 
     if not program.exists():
         run.problem = f"{program} does not exist"
         return run
-    listed = _listing(run, expected, timeout, env, sandbox)
-    if listed is None:
-        return run
+    if expected is not None:
+        listed = [dict(r, event="listed") for r in expected]
+    else:
+        listing = _run_reporter(program, [f"-ts={suite}", "--list-test-cases"], timeout, timeout, env, sandbox)
+        if listing.problem:
+            run.problem, run.output = f"listing {program.name}: {listing.problem}", listing.output
+            return run
+        listed = [r for r in listing.records if r.get("event") == "listed" and r.get("suite") == suite]
     run.listed = listed
     progress = _Progress({})
     for number, record in enumerate(listed, start=1):

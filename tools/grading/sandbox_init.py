@@ -112,8 +112,6 @@ def main():
             os.write(2, f"illum sandbox: cannot make the run's private folders: {error}\n".encode())
             _say(status_fd, {"exited": 125})
             os._exit(0)
-    for fd in config.get("keep_fds", []):
-        os.set_inheritable(int(fd), True)
     pid = os.fork()
     if pid == 0:
         try:
