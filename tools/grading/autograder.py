@@ -1,25 +1,11 @@
-"""Gradescope's autograder zip, its setup check, and grading one submission.
+"""Gradescope's autograder zip, its setup check, and grading one submission (docs/grading.md, "Gradescope").
 
-The zip unpacks to ``$ROOT/source/`` (``ROOT`` is ``/autograder`` on
-Gradescope; ``ILLUM_AUTOGRADER_ROOT`` moves it, for tests) as:
-
-    setup.sh          installs the build packages, then ``setup`` below
-    run_autograder    ``run`` below, once per submission
-    illum/            the student edition of the tree (no reference units)
-    reference/        the reference exercise units of the graded lessons,
-                      used only by setup.sh to prove the grader works
-    hidden-tests/     tests/hidden/ plus the --hidden folder given when packing
-
-``python3 -m grading.autograder setup ROOT NN…`` (from setup.sh) checks the
-toolchain and library versions, builds the reference and grades it (it must
-score full marks, hidden tests included), then builds the stubs so that a
-submission recompiles only the student's files. Any failure exits non-zero
-with a message an instructor can act on: a grader that cannot build the
-reference must never tell a student that their code did not compile.
-
-``python3 -m grading.autograder run ROOT NN…`` (from run_autograder) puts the
-stubs back, installs the upload (``install_submission``), runs tools/grade
-with Gradescope's limits, and makes sure results.json exists.
+The zip unpacks to ``$ROOT/source/`` (``/autograder`` on Gradescope; ``ILLUM_AUTOGRADER_ROOT`` moves it).
+``python3 -m grading.autograder setup ROOT NN…`` (setup.sh) checks the toolchain, proves the grader on the
+reference (full marks) and the stubs (0) and keeps the trusted data; any failure exits non-zero with a
+message an instructor can act on, since a grader that cannot build the reference must never tell a student
+that their code did not compile. ``… run ROOT NN…`` (run_autograder) installs the upload over the stubs
+(``install_submission``), runs tools/grade with Gradescope's limits, and makes sure results.json exists.
 """
 from __future__ import annotations
 
@@ -35,26 +21,29 @@ import subprocess
 import sys
 import tempfile
 import zipfile
+from collections import Counter
 from dataclasses import asdict, dataclass, field
 from pathlib import Path, PurePosixPath
 
+from . import build
 from .edition import make_student_edition
 from .project import exercise_stubs
+from .sandbox import Account, Sandbox, SandboxError, chown_tree, create_account, user_lock
+from .suspicious import object_of, object_symbols
 
 DEFAULT_ROOT = "/autograder"
 DEFAULT_USER = "illum-student"  # the unprivileged user setup.sh creates (ILLUM_GRADE_USER changes it)
 
 # Packages of tools/debian-packages.txt that grading does not need.
-NOT_FOR_GRADING = {"chromium", "nodejs", "npm", "gnuplot-nox", "zip", "libbenchmark-dev", "libcpp-httplib-dev", "pkgconf"}
+NOT_FOR_GRADING = {"chromium", "nodejs", "npm", "gnuplot-nox", "zip", "libbenchmark-dev", "libcpp-httplib-dev",
+                   "pkgconf"}
 
-# The oldest versions the grading build is checked against (docs/grading.md):
-# Ubuntu 22.04, Gradescope's default image.
+# The oldest versions the grading build is checked against: Ubuntu 22.04's, Gradescope's default image.
 MINIMUM_VERSIONS = {"g++": (11, 0), "cmake": (3, 22), "python3": (3, 10), "doctest": (2, 4, 8),
                     "nlohmann-json": (3, 10, 5)}
 
-# Gradescope's default container: 0.5 vCPU, 768 MB, 10 minutes for the whole run.
-# The tests stop starting 8 minutes into tools/grade, so that results.json is written in time.
-# A test program may use 512 MB (bad_alloc beyond: "out of memory"), a build 300 s.
+# Within Gradescope's default container (0.5 vCPU, 768 MB, 10 minutes a run; docs/grading.md, "Gradescope"):
+# no test starts after 8 minutes, so that results.json is written in time.
 RUN_LIMITS = {"CMAKE_BUILD_PARALLEL_LEVEL": "2", "ILLUM_GRADE_TEST_TIMEOUT": "30", "ILLUM_GRADE_TIMEOUT": "240",
               "ILLUM_GRADE_DEADLINE": "480", "ILLUM_GRADE_MEMORY_MB": "512", "ILLUM_GRADE_BUILD_TIMEOUT": "300"}
 
@@ -97,12 +86,9 @@ def _add_script(archive: zipfile.ZipFile, name: str, text: str) -> None:
 def hidden_test_files(root: Path, extra: Path | None) -> list[Path]:
     """The instructor's hidden test files: tests/hidden/ and --hidden DIR (READMEs left out)."""
     folders = [root / "tests" / "hidden"] + ([extra] if extra else [])
-    files = []
-    for folder in folders:
-        if folder.is_dir():
-            files.extend(p for p in sorted(folder.iterdir()) if p.is_file() and p.suffix != ".md")
-    names = [p.name for p in files]
-    clashes = sorted({n for n in names if names.count(n) > 1})
+    files = [p for folder in folders if folder.is_dir() for p in sorted(folder.iterdir())
+             if p.is_file() and p.suffix != ".md"]
+    clashes = sorted(name for name, count in Counter(p.name for p in files).items() if count > 1)
     if clashes:
         raise ValueError(f"hidden test files with the same name in tests/hidden/ and {extra}: {', '.join(clashes)}")
     return files
@@ -132,13 +118,11 @@ def pack_autograder(root: Path, zip_path: Path, lessons: list[str], extra_hidden
             with zipfile.ZipFile(temporary, "w") as archive:
                 _add_script(archive, "setup.sh", setup_script(debian_packages(root), lessons))
                 _add_script(archive, "run_autograder", run_script(lessons))
-                for path in sorted(edition.out.rglob("*")):
-                    if path.is_file():
-                        archive.write(path, "illum/" + path.relative_to(edition.out).as_posix(), zipfile.ZIP_DEFLATED)
-                for path in references:
-                    archive.write(path, "reference/" + path.name, zipfile.ZIP_DEFLATED)
-                for path in hidden_files:
-                    archive.write(path, "hidden-tests/" + path.name, zipfile.ZIP_DEFLATED)
+                files = [(p, "illum/" + p.relative_to(edition.out).as_posix())
+                         for p in sorted(edition.out.rglob("*")) if p.is_file()]
+                files += [(p, "reference/" + p.name) for p in references]
+                for path, name in files + [(p, "hidden-tests/" + p.name) for p in hidden_files]:
+                    archive.write(path, name, zipfile.ZIP_DEFLATED)
                 names = archive.namelist()
         temporary.replace(zip_path)
     finally:
@@ -181,9 +165,8 @@ def _unpack_zips(submission: Path, into: Path, report: Submission) -> list[tuple
     found: list[tuple[Path, str]] = []
     for number, archive_path in enumerate(sorted(submission.rglob("*.zip"))):
         shown = archive_path.relative_to(submission).as_posix()
-        if any(_skipped_part(p) for p in archive_path.relative_to(submission).parts):
-            continue
-        if _through_link(submission, archive_path):  # install_submission reports the link itself
+        # A link is not followed: install_submission reports it.
+        if any(_skipped_part(p) for p in PurePosixPath(shown).parts) or _through_link(submission, archive_path):
             continue
         try:
             with zipfile.ZipFile(archive_path) as archive:
@@ -207,15 +190,9 @@ def _unpack_zips(submission: Path, into: Path, report: Submission) -> list[tuple
 
 
 def install_submission(submission: Path, tree: Path, lessons: list[str]) -> Submission:
-    """Copies the uploaded exercise files over the stubs of the graded lessons.
-
-    Files are matched by name (exercise units have unique names), wherever the
-    student put them, inside a zip of the upload too. A name a browser or a
-    file manager changed ("sphere (1).cpp", "Sphere.cpp") is recognised and
-    said so; an exact name wins over such a name, and a file nearer the top of
-    the upload over a deeper copy. The copy gets a fresh modification time so
-    that make recompiles it even if it is older than the warm build.
-    """
+    """Copies the uploaded exercise files over the stubs of the graded lessons, matched by name wherever they
+    are, in a zip too (the rules: docs/grading.md, "Gradescope"). A copy gets a fresh modification time, so
+    that make recompiles it even if it is older than the warm build."""
     stubs = exercise_stubs(tree, lessons or None)
     report = Submission(expected=sorted(stubs))
     lowered = {name.lower(): name for name in stubs}
@@ -231,14 +208,10 @@ def install_submission(submission: Path, tree: Path, lessons: list[str]) -> Subm
             if path.is_file() and path.suffix.lower() != ".zip":  # a zip's files are taken from inside it
                 candidates.append((path, relative.as_posix()))
         candidates += _unpack_zips(submission, Path(folder), report)
-
-        def rank(item: tuple[Path, str]) -> tuple[int, int, str]:
-            _, shown = item
-            name = PurePosixPath(shown).name
-            return (0 if name in stubs else 1, len(PurePosixPath(shown).parts), shown)
-
         done: dict[str, str] = {}
-        for path, shown in sorted(candidates, key=rank):
+        # An exact name first, then the file nearest the top of the upload.
+        for path, shown in sorted(candidates, key=lambda item: (PurePosixPath(item[1]).name not in stubs,
+                                                                 len(PurePosixPath(item[1]).parts), item[1])):
             name = PurePosixPath(shown).name
             match = _RENAMED.match(name)
             wanted = name if name in stubs else lowered.get(f"{match.group('stem')}.cpp".lower()) if match else None
@@ -277,32 +250,28 @@ def _command_version(command: list[str]) -> tuple[tuple[int, ...], str]:
     return tuple(int(g) for g in match.groups() if g is not None) if match else (), first
 
 
-def library_versions(compiler: str = "c++") -> dict[str, tuple[int, ...]]:
+def library_versions() -> dict[str, tuple[int, ...]]:
     """doctest and nlohmann-json as the compiler finds them (their version macros)."""
     probe = "#include <doctest/doctest.h>\n#include <nlohmann/json.hpp>\n"
-    completed = subprocess.run([compiler, "-std=c++20", "-E", "-dM", "-x", "c++", "-"], input=probe,
+    completed = subprocess.run(["c++", "-std=c++20", "-E", "-dM", "-x", "c++", "-"], input=probe,
                                capture_output=True, text=True, check=False)
     if completed.returncode != 0:
         raise SetupError("the compiler cannot include <doctest/doctest.h> and <nlohmann/json.hpp>: install "
                          "doctest-dev and nlohmann-json3-dev\n" + completed.stderr[-2000:])
     macros = dict(re.findall(r"^#define (\w+) (\d+)\s*$", completed.stdout, re.M))
-    found = {}
-    for library, prefix in (("doctest", "DOCTEST_VERSION_"), ("nlohmann-json", "NLOHMANN_JSON_VERSION_")):
-        parts = [macros.get(prefix + part) for part in ("MAJOR", "MINOR", "PATCH")]
-        if all(parts):
-            found[library] = tuple(int(p) for p in parts)
-    return found
+    found = {library: [macros.get(prefix + part) for part in ("MAJOR", "MINOR", "PATCH")]
+             for library, prefix in (("doctest", "DOCTEST_VERSION_"), ("nlohmann-json", "NLOHMANN_JSON_VERSION_"))}
+    return {library: tuple(map(int, parts)) for library, parts in found.items() if all(parts)}
 
 
-def check_toolchain() -> list[str]:
+def check_toolchain() -> None:
     """Prints the versions found; raises SetupError if one is missing or too old."""
     found: dict[str, tuple[tuple[int, ...], str]] = {
         "g++": _command_version(["c++", "-dumpfullversion"]),
         "cmake": _command_version(["cmake", "--version"]),
         "python3": (sys.version_info[:3], sys.version.split()[0]),
     }
-    for name, version in library_versions().items():
-        found[name] = (version, ".".join(map(str, version)))
+    found.update((name, (version, ".".join(map(str, version)))) for name, version in library_versions().items())
     lines, problems = [], []
     for name, minimum in MINIMUM_VERSIONS.items():
         version, text = found.get(name, ((), "not found"))
@@ -314,11 +283,10 @@ def check_toolchain() -> list[str]:
     print("setup: toolchain and libraries found:\n" + "\n".join(lines), flush=True)
     if problems:
         raise SetupError("; ".join(problems) + ". Choose an Ubuntu 22.04 (or newer) or Debian 12 base image.")
-    return lines
 
 
 def _grade(tree: Path, lessons: list[str], hidden: Path | None, results: Path,
-           extra: list[str] | None = None, quiet: bool = False, env: dict[str, str] | None = None) -> int:
+           extra: list[str] | None = None, env: dict[str, str] | None = None) -> int:
     # The autograder's own tree, configured for the graded lessons alone (not the student preset's).
     command = [sys.executable, str(tree / "tools" / "grade"), "--student",
                "--build-dir", str(tree / "build" / "grade-student"), *(extra or [])]
@@ -326,14 +294,12 @@ def _grade(tree: Path, lessons: list[str], hidden: Path | None, results: Path,
         command += ["--hidden", str(hidden)]
     command += [*lessons, "--results", str(results)]
     print("$ " + " ".join(shlex.quote(c) for c in command), flush=True)
-    return subprocess.run(command, check=False, stdout=subprocess.DEVNULL if quiet else None,
-                          stderr=subprocess.STDOUT if quiet else None, env=env).returncode
+    return subprocess.run(command, check=False, env=env).returncode
 
 
 def _paths(root: Path) -> tuple[Path, Path, Path | None, Path, Path]:
     """The unpacked autograder's source/, its tree, the hidden tests (None when there are none), the pristine
-    stubs, and the grader's folder: what setup keeps for the runs, readable by root only (the trusted list
-    of tests, the hidden tests' objects, which stub defines which function, the student's user)."""
+    stubs, and the grader's folder (what setup keeps for the runs, readable by root only)."""
     source = root / "source"
     tree, hidden = source / "illum", source / "hidden-tests"
     return (source, tree, hidden if any(hidden.glob("*.cpp")) else None, tree / "build" / "pristine-stubs",
@@ -362,8 +328,6 @@ def build_jobs() -> int:
 
 def _student_user(name: str) -> str | None:
     """Creates the unprivileged user; None (and a loud warning) where that is impossible."""
-    from .sandbox import SandboxError, create_account
-
     if os.geteuid() != 0:
         print(f"setup: WARNING: not running as root, so there is no separate user for students' code: it will "
               f"run as {pwd.getpwuid(os.geteuid()).pw_name}, without privilege separation "
@@ -389,9 +353,8 @@ def _read_results(path: Path) -> dict:
 def reference_environment() -> dict[str, str]:
     """ccache off for the builds of the reference: no cache may keep an object of it after setup.
     ILLUM_GRADE_REFERENCE_CCACHE=1 keeps it on, for the grader's own tests (a scratch machine)."""
-    if os.environ.get("ILLUM_GRADE_REFERENCE_CCACHE") == "1":
-        return dict(os.environ)
-    return dict(os.environ, CCACHE_DISABLE="1")
+    keep = os.environ.get("ILLUM_GRADE_REFERENCE_CCACHE") == "1"
+    return dict(os.environ, **({} if keep else {"CCACHE_DISABLE": "1"}))
 
 
 def _build_witness(tree: Path, grader: Path, lessons: list[str], hidden: Path | None) -> None:
@@ -399,8 +362,6 @@ def _build_witness(tree: Path, grader: Path, lessons: list[str], hidden: Path | 
     root reads; its programs are kept in ``grader/witness``, and the hidden tests' observer objects
     (their expected sides cut away) in ``grader/hidden-objects``, for every run to link with the
     student's code. Nothing of it stays in the tree the student's user builds in."""
-    from . import build
-
     work = grader / "witness-build"
     programs = [f"tests_lesson{nn}" for nn in lessons if any((tree / "tests").glob(f"{nn}_*"))]
     targets = programs + (["tests_hidden", "tests_hidden_observer"] if hidden else [])
@@ -428,8 +389,6 @@ def _build_witness(tree: Path, grader: Path, lessons: list[str], hidden: Path | 
 def _stub_symbols(tree: Path, build_dir: Path, lessons: list[str]) -> dict[str, str]:
     """Demangled function name (with and without its parameters) -> the exercise unit whose stub
     defines it, so that an undefined reference at link time is blamed on the right file."""
-    from .suspicious import object_of, object_symbols
-
     owners: dict[str, str] = {}
     for _name, stub in sorted(exercise_stubs(tree, lessons).items()):
         relative = stub.relative_to(tree).as_posix()
@@ -445,11 +404,8 @@ def _stub_symbols(tree: Path, build_dir: Path, lessons: list[str]) -> dict[str, 
 
 
 def setup(root: Path, lessons: list[str]) -> None:
-    """setup.sh's checks: versions; the stubs built and graded (0); the hidden tests' objects kept and
-    their sources removed; the reference graded (full marks) and then removed; the stubs built again
-    as every run will find them; the trusted data kept where only root reads it."""
-    from .sandbox import SandboxError, chown_tree, user_lock
-
+    """setup.sh's work (docs/grading.md, "Gradescope"): versions checked, the witness built, the reference
+    graded (full marks) and the stubs (0), the sources nothing may read deleted, the trusted data kept."""
     source, tree, hidden, pristine, grader = _paths(root)
     check_toolchain()
     jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(build_jobs())
@@ -495,8 +451,6 @@ def setup(root: Path, lessons: list[str]) -> None:
 
 def _check_reach(user: str | None, paths: tuple[Path, ...]) -> None:
     """The student's user must be able to reach the build tree (every folder above it searchable)."""
-    from .sandbox import Account, Sandbox
-
     if user is None:
         return
     sandbox = Sandbox(Account.lookup(user))
@@ -571,8 +525,6 @@ def _fallback_results(results: Path, message: str) -> None:
 def run(root: Path, lessons: list[str]) -> int:
     """run_autograder: stubs back, the upload installed, tools/grade with Gradescope's limits, as the
     student's user; results.json only once nothing of theirs is alive."""
-    from .sandbox import Account, Sandbox, SandboxError, user_lock
-
     source, tree, hidden, pristine, grader = _paths(root)
     results_dir = root / "results"
     results_dir.mkdir(parents=True, exist_ok=True)
@@ -599,8 +551,6 @@ def run(root: Path, lessons: list[str]) -> int:
     if user:
         if user != config.get("user") and os.geteuid() == 0:
             # Several submissions graded at once (tools/grade --batch --jobs) each get a user of their own.
-            from .sandbox import create_account
-
             create_account(user)
         extra += ["--as-user", user]
     try:

@@ -1,23 +1,10 @@
-"""The command line of ``tools/grade`` (see docs/grading.md).
+"""The command line of ``tools/grade``: its options, files and exit status are in docs/grading-reference.md.
 
-    tools/grade [--student] [--results FILE] [--junit FILE] [--hidden DIR]
-                [--build-dir DIR] [NN ...]
-    tools/grade --check-integrity --build-dir DIR
-    tools/grade --check-alone --build-dir DIR
-    tools/grade --pack-autograder FILE.zip [--hidden DIR] [NN ...]
-    tools/grade --batch DIR [--out DIR] [--jobs J] [--roster FILE.csv] [--format moodle|canvas] [NN ...]
-    tools/grade --mutants [NN ...] [--sample N --seed S] [--jobs J] [--report FILE]
-
-The autograder (run_autograder) adds --submission-info FILE (what was
-installed from the upload), --fallback-stubs DIR (pristine stubs: a
-student file that does not compile or link is replaced by its stub, so
-that it costs only its own lesson; the suspicious-code checks only advise),
---as-user NAME (the unprivileged user that builds and runs the student's
-code) and --grader-data DIR (what setup.sh kept: the trusted list of
-tests, the hidden tests' objects, which stub defines which function).
-
-Exit status: 0 every test passed, 1 some failed, 2 the code could not be
-built, an output could not be written, or the command was wrong.
+The autograder (run_autograder) adds hidden options: --submission-info FILE (what was installed from the
+upload), --fallback-stubs DIR (pristine stubs: a student file that does not compile or link is replaced by
+its stub, so that it costs only its own lesson), --as-user NAME (the unprivileged user that builds and runs
+the student's code) and --grader-data DIR (what setup.sh kept: the trusted list of tests, the hidden tests'
+objects, which stub defines which function).
 """
 from __future__ import annotations
 
@@ -31,6 +18,9 @@ import traceback
 from pathlib import Path
 
 from . import build, project, reports, runner, suspicious
+from .alone import check_alone
+from .autograder import pack_autograder
+from .batch import grade_batch
 from .integrity import check_build
 from .reports import GradeRun, OutputError
 from .results import TestResult
@@ -106,10 +96,9 @@ def _check_commands(parser: argparse.ArgumentParser, args: argparse.Namespace) -
             parser.error(f"{option} {path}: {problem}")
     if args.check_integrity and args.pack_autograder:
         parser.error("--check-integrity and --pack-autograder are separate commands")
-    if args.check_integrity and not args.build_dir:
-        parser.error("--check-integrity needs --build-dir DIR (an already-built tree)")
-    if args.check_alone and not args.build_dir:
-        parser.error("--check-alone needs --build-dir DIR (an already-built tree)")
+    for option in ("check_integrity", "check_alone"):
+        if getattr(args, option) and not args.build_dir:
+            parser.error(f"--{option.replace('_', '-')} needs --build-dir DIR (an already-built tree)")
     if args.build_dir is not None:
         if args.build_dir.exists() and not args.build_dir.is_dir():
             parser.error(f"--build-dir {args.build_dir}: is a file, not a folder")
@@ -142,17 +131,15 @@ def _check_batch(parser: argparse.ArgumentParser, args: argparse.Namespace) -> N
 
 def _check_inputs(parser: argparse.ArgumentParser, args: argparse.Namespace) -> None:
     """The submission description, the lessons' names and the hidden tests' folder, read and checked."""
+    args.submission = None
     if args.submission_info is not None:
         try:
-            info = json.loads(args.submission_info.read_text(encoding="utf-8"))
-            if not isinstance(info, dict):
+            args.submission = json.loads(args.submission_info.read_text(encoding="utf-8"))
+            if not isinstance(args.submission, dict):
                 raise ValueError("not a JSON object")
-            args.submission = info
         except (OSError, UnicodeDecodeError, ValueError) as error:
             parser.error(f"--submission-info {args.submission_info}: not a submission description "
                          f"(JSON from the autograder): {error}")
-    else:
-        args.submission = None
     try:
         args.lessons = sorted(set(project.normalize_lesson(text) for text in args.lessons))
     except ValueError as error:
@@ -171,11 +158,9 @@ def output_path_problem(path: Path | None) -> str:
         return ""
     if path.is_dir():
         return "is a folder; give the name of a file inside it"
-    for parent in [path.parent, *path.parent.parents]:
-        if parent.exists() and not parent.is_dir():
-            return f"{parent} is a file, not a folder"
-        if parent.exists():
-            break
+    existing = next(parent for parent in path.parents if parent.exists())  # '.' or '/' at the latest
+    if not existing.is_dir():
+        return f"{existing} is a file, not a folder"
     if not path.parent.is_dir():
         return f"the folder {path.parent} does not exist; create it first"
     if not os.access(path.parent, os.W_OK):
@@ -189,17 +174,14 @@ class UsageError(Exception):
     """A command that cannot be carried out as asked (exit status 2)."""
 
 
-def check_lessons_exist(args: argparse.Namespace, root: Path) -> None:
-    """Refuses a lesson that does not exist, before anything is built."""
-    known = sorted(set(project.test_lessons(root)) | set(project.exercise_lessons(root)))
+def choose_lessons(args: argparse.Namespace, root: Path) -> list[str]:
+    """The lessons to grade, a lesson that does not exist refused before anything is built; a student can
+    only be graded on lessons with exercises."""
+    exercises = project.exercise_lessons(root)
+    known = sorted(set(project.test_lessons(root)) | set(exercises))
     unknown = [nn for nn in args.lessons if nn not in known]
     if unknown:
         raise UsageError(f"lesson {', '.join(unknown)} does not exist; the lessons are {', '.join(known)}")
-
-
-def choose_lessons(args: argparse.Namespace, root: Path) -> list[str]:
-    """The lessons to grade; a student can only be graded on lessons with exercises."""
-    exercises = project.exercise_lessons(root)
     if args.student or args.pack_autograder or args.batch:
         if not exercises:
             raise UsageError("no lesson has exercises in exercises/NN_*/")
@@ -208,7 +190,7 @@ def choose_lessons(args: argparse.Namespace, root: Path) -> list[str]:
             raise UsageError(f"lesson(s) {', '.join(unknown)} have no exercises; "
                              f"lessons with exercises: {', '.join(exercises)}")
         return args.lessons or exercises
-    return args.lessons or sorted(set(project.test_lessons(root)) | set(exercises))
+    return args.lessons or known
 
 
 # --- what setup.sh kept (--grader-data) ----------------------------------------------------------
@@ -217,29 +199,24 @@ class GraderData:
     """The autograder's trusted data (autograder.py writes it in setup, readable by root only)."""
 
     def __init__(self, folder: Path | None) -> None:
-        folder = folder.resolve() if folder is not None else None  # CMake is given its objects' full paths
-        self.folder = folder
         self.tests: dict[str, dict[str, list[dict]]] = {}
         self.stub_symbols: dict[str, str] = {}
         self.hidden_objects: list[Path] = []
         self.witness_dir: Path | None = None
         if folder is None:
             return
+        folder = folder.resolve()  # CMake is given its objects' full paths
         if not folder.is_dir():
             raise UsageError(f"--grader-data {folder}: " + ("not a folder" if folder.exists() else
                                                            "no such folder (run setup.sh first)"))
-        tests, symbols = folder / "tests.json", folder / "stub-symbols.json"
-        if tests.is_file():
-            self.tests = json.loads(tests.read_text(encoding="utf-8"))
-        if symbols.is_file():
-            self.stub_symbols = json.loads(symbols.read_text(encoding="utf-8"))
+        for name, file in (("tests", "tests.json"), ("stub_symbols", "stub-symbols.json")):
+            if (folder / file).is_file():
+                setattr(self, name, json.loads((folder / file).read_text(encoding="utf-8")))
         self.hidden_objects = sorted((folder / "hidden-objects").glob("*.o"))
         self.witness_dir = folder / "witness" if (folder / "witness").is_dir() else None
 
     def expected(self, program: str, suite: str) -> list[dict] | None:
-        if not self.tests:
-            return None
-        return self.tests.get(program, {}).get(suite, [])
+        return self.tests.get(program, {}).get(suite, []) if self.tests else None
 
     def witness(self, program: str, suite: str) -> dict[runner.Key, list[dict]] | None:
         """The checks the reference's trusted run made in each test (kept by setup), or None."""
@@ -256,33 +233,12 @@ def _student_units(root: Path, lessons: list[str]) -> dict[str, str]:
     return {name: path.relative_to(root).as_posix() for name, path in project.exercise_stubs(root, lessons).items()}
 
 
-def _fall_back(args: argparse.Namespace, root: Path, relative: str, compiled: bool = True) -> bool:
-    """Replaces a student's file by its pristine stub (only the autograder has them). True if done.
-
-    ``compiled``: whether the student's file was compiled in this tree; if not (flagged by its text),
-    the stub keeps its own date, so that make reuses the stub's object of the warm build."""
-    if not (args.student and args.fallback_stubs):
-        return False
-    stub = args.fallback_stubs / Path(relative).relative_to("exercises")
-    if not stub.is_file():
-        return False
-    target = root / relative
-    if compiled:
-        shutil.copyfile(stub, target)
-        target.touch()
-    else:
-        shutil.copy2(stub, target)
-    return True
-
-
 def _build_with_fallback(args: argparse.Namespace, run: GradeRun, build_dir: Path, root: Path,
                          targets: list[str], data: GraderData | None = None,
                          runner: build.Runner | None = None) -> build.StepResult:
-    """Builds ``targets``; with --fallback-stubs, a student file that does not
-    compile, or that breaks the link (a helper defined in two files), is
-    replaced by its stub and the build tried again, so that one broken file
-    costs only its lesson (GradeRun.fallbacks says which, with the compiler's
-    or the linker's words)."""
+    """Builds ``targets``; with --fallback-stubs, a student file that does not compile, or that breaks the
+    link (a helper defined in two files), is replaced by its stub and the build tried again, so that it
+    costs only its lesson (GradeRun.fallbacks says which, with the compiler's or the linker's words)."""
     units = _student_units(root, run.lessons) if args.student else {}
     step = build.build(build_dir, targets, runner=runner)
     while not step.ok and args.student and args.fallback_stubs and not step.timed_out:
@@ -292,8 +248,11 @@ def _build_with_fallback(args: argparse.Namespace, run: GradeRun, build_dir: Pat
         if not blamed or (compiled and build.error_lines_outside(step.output, compiled)):
             break
         for relative in blamed:
-            if not _fall_back(args, root, relative):
+            stub = args.fallback_stubs / Path(relative).relative_to("exercises")  # pristine: only setup's
+            if not stub.is_file():
                 return step
+            shutil.copyfile(stub, root / relative)
+            (root / relative).touch()
             run.fallbacks[relative] = step.output
             what = "did not link" if relative in linked and relative not in compiled else "did not compile"
             if what == "did not link":
@@ -301,29 +260,6 @@ def _build_with_fallback(args: argparse.Namespace, run: GradeRun, build_dir: Pat
             print(f"tools/grade: {relative} {what}; grading its lesson with the stub", file=sys.stderr)
         step = build.build(build_dir, targets, runner=runner)
     return step
-
-
-def _scan_sources(root: Path, run: GradeRun) -> list[str]:
-    """The suspicious-code check of the student's files' text (suspicious.py)."""
-    files = [(root / relative, relative) for relative in _student_units(root, run.lessons).values()]
-    return [finding.describe() for path, relative in files if path.is_file()
-            for finding in suspicious.scan_source(path.read_text(encoding="utf-8", errors="replace"), relative)]
-
-
-def _scan_objects(root: Path, run: GradeRun, build_dir: Path) -> list[str]:
-    """The suspicious-code check of the student's compiled files."""
-    units = _student_units(root, run.lessons)
-    library = suspicious.library_definitions(build_dir / "libillum.a", {f"{n}.o" for n in units})
-    findings = []
-    for relative in units.values():
-        obj = None if relative in run.fallbacks else suspicious.object_of(build_dir, relative)
-        if obj is None:
-            continue
-        try:
-            findings += [f.describe() for f in suspicious.scan_object(obj, relative, library)]
-        except OSError as error:
-            findings.append(f"{relative}: the object file could not be checked: {error}")
-    return findings
 
 
 def _make_sandbox(args: argparse.Namespace, root: Path) -> Sandbox:
@@ -342,9 +278,8 @@ def _make_sandbox(args: argparse.Namespace, root: Path) -> Sandbox:
 
 
 def _save_tests(path: Path, suites: list[tuple[str, runner.SuiteRun, dict | None]]) -> None:
-    """The trusted list of tests (from the reference, in setup): program -> suite -> the tests in
-    doctest's order, each with the checks the witness made in it (visible tests only: the hidden
-    ones are witnessed again in every run, with that run's seed)."""
+    """The trusted list of tests (setup's reference run): program -> suite -> the tests in doctest's order,
+    each with the witness's checks (visible tests only: hidden ones are witnessed in every run, new seed)."""
     saved: dict[str, dict[str, list[dict]]] = {}
     for _lesson, suite, witness in suites:
         tests = []
@@ -360,13 +295,9 @@ def _save_tests(path: Path, suites: list[tuple[str, runner.SuiteRun, dict | None
 
 
 def build_tree(args: argparse.Namespace, root: Path, lessons: list[str]) -> tuple[Path, list[str]]:
-    """The tree to build in and the ILLUM_EXERCISES it is configured with.
-
-    A student's code is built in the student's own tree, build/student (the `student` preset's),
-    configured as the preset does (every exercise from exercises/), so that grading reuses the
-    student's build and their next `cmake --build --preset student` finds the tree as they left it:
-    one cold build, not two. Any other --build-dir (the autograder's build/grade-student) builds the
-    graded lessons from exercises/ and the rest from the library; the reference, nothing."""
+    """The tree to build in and the ILLUM_EXERCISES it is configured with: a student's own tree,
+    build/student, as the `student` preset configures it (one cold build, not two); any other --build-dir
+    (the autograder's) with the graded lessons from exercises/; the reference with none."""
     student_tree = root / "build" / "student"
     build_dir = args.build_dir or (student_tree if args.student else root / "build" / "grade-reference")
     if not args.student:
@@ -374,19 +305,6 @@ def build_tree(args: argparse.Namespace, root: Path, lessons: list[str]) -> tupl
     if build_dir.resolve() == student_tree.resolve():
         return build_dir, ["all"]
     return build_dir, list(lessons)
-
-
-def _judged(args: argparse.Namespace, data: GraderData) -> bool:
-    """Whether verdicts come from the judge (a witness exists: the reference is in this tree, or setup
-    kept its records) rather than from the student's own program (their own machine only)."""
-    return not args.student or bool(data.tests) or data.witness_dir is not None
-
-
-def _targets(lessons: list[str], tested: set[str], judged: bool, witness_here: bool) -> list[str]:
-    programs = [f"tests_lesson{nn}" for nn in lessons if nn in tested]
-    if not judged:
-        return ["illum"] + programs
-    return ["illum"] + [f"{p}_observer" for p in programs] + (programs if witness_here else [])
 
 
 def _build_student_code(args: argparse.Namespace, run: GradeRun, root: Path, build_dir: Path, exercises: list[str],
@@ -401,9 +319,8 @@ def _build_student_code(args: argparse.Namespace, run: GradeRun, root: Path, bui
         runner = build.Runner(preexec=sandbox.build_preexec(), env=sandbox.build_environment(build_home / "home"),
                               timeout=runner.timeout)
     try:
-        hidden_objects = data.hidden_objects
-        step = build.configure(root, build_dir, exercises, None if hidden_objects else args.hidden,
-                               extra=build.hidden_objects_arguments(hidden_objects), runner=runner)
+        step = build.configure(root, build_dir, exercises, None if data.hidden_objects else args.hidden,
+                               extra=build.hidden_objects_arguments(data.hidden_objects), runner=runner)
         if step.ok:
             # The visible tests first: an instructor's hidden tests that do not
             # build must not cost the student the visible ones (nor blame them).
@@ -503,7 +420,6 @@ def _announce(sandbox: Sandbox, judged: bool) -> None:
 
 def grade(args: argparse.Namespace, root: Path) -> int:
     start = time.monotonic()
-    check_lessons_exist(args, root)
     lessons = choose_lessons(args, root)
     data = GraderData(args.grader_data)  # a wrong folder is refused before the build writes anything
     build_dir, exercises = build_tree(args, root, lessons)
@@ -517,13 +433,17 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     except SandboxError as error:
         raise UsageError(str(error)) from error
     runner.set_sandbox(sandbox)
-    judged = _judged(args, data)
+    # Verdicts come from the judge where a witness exists (the reference is in this tree, or setup kept its
+    # records), from the student's own program only on their own machine.
+    judged = not args.student or bool(data.tests) or data.witness_dir is not None
     witness_here = judged and data.witness_dir is None  # the reference is this tree's own library
     _announce(sandbox, judged)
     tested = set(project.test_lessons(root))
     has_hidden = bool(data.hidden_objects) or bool(project.hidden_sources(root, args.hidden))
-    _advise(args, run, root, before_build=True)
-    targets = _targets(lessons, tested, judged, witness_here)
+    _advise(args, run, root)
+    programs = [f"tests_lesson{nn}" for nn in lessons if nn in tested]
+    targets = ["illum"] + ([f"{p}_observer" for p in programs] + (programs if witness_here else []) if judged
+                           else programs)
     step = _build_student_code(args, run, root, build_dir, exercises, targets, sandbox, data)
     if step.ok:
         _advise(args, run, root, build_dir=build_dir)
@@ -560,13 +480,26 @@ def _build_failed(args: argparse.Namespace, run: GradeRun, root: Path, lessons: 
                                                or step.timed_out))
 
 
-def _advise(args: argparse.Namespace, run: GradeRun, root: Path, before_build: bool = False,
-            build_dir: Path | None = None) -> None:
-    """The suspicious-code checks (suspicious.py): advice for the instructor's review, never a verdict.
-    ILLUM_GRADE_NO_SCAN=1 switches them off."""
+def _advise(args: argparse.Namespace, run: GradeRun, root: Path, build_dir: Path | None = None) -> None:
+    """The suspicious-code checks (suspicious.py) of the student's files' text, or with ``build_dir`` of their
+    objects: advice for the instructor's review, never a verdict. ILLUM_GRADE_NO_SCAN=1 switches them off."""
     if not args.student or os.environ.get("ILLUM_GRADE_NO_SCAN") == "1":
         return
-    findings = _scan_sources(root, run) if before_build else _scan_objects(root, run, build_dir)
+    units = _student_units(root, run.lessons)
+    findings = []
+    if build_dir is None:
+        for relative in units.values():
+            if (root / relative).is_file():
+                text = (root / relative).read_text(encoding="utf-8", errors="replace")
+                findings += [finding.describe() for finding in suspicious.scan_source(text, relative)]
+    else:
+        library = suspicious.library_definitions(build_dir / "libillum.a", {f"{n}.o" for n in units})
+        for relative in units.values():
+            obj = None if relative in run.fallbacks else suspicious.object_of(build_dir, relative)
+            try:
+                findings += [f.describe() for f in suspicious.scan_object(obj, relative, library)] if obj else []
+            except OSError as error:
+                findings.append(f"{relative}: the object file could not be checked: {error}")
     run.review.extend(findings)
     if findings and not args.grader_data:  # the student's own machine: worth knowing before submitting
         print("tools/grade: worth a second look (the autograder shows these to your instructor; they change no "
@@ -599,8 +532,6 @@ def _needs_reference(root: Path, why: str) -> None:
 
 def check_tree(args: argparse.Namespace, root: Path) -> int:
     """--check-integrity (integrity.py) or --check-alone (alone.py) on an already-built tree."""
-    from .alone import check_alone
-
     option, title = ("--check-integrity", "grading integrity") if args.check_integrity else \
         ("--check-alone", "each lesson alone")
     _needs_reference(root, f"{option} needs the reference solutions, which the student edition does not have")
@@ -617,10 +548,7 @@ def check_tree(args: argparse.Namespace, root: Path) -> int:
 
 
 def pack(args: argparse.Namespace, root: Path) -> int:
-    from .autograder import pack_autograder
-
     _needs_reference(root, "pack the autograder from the instructors' tree, not the student edition")
-    check_lessons_exist(args, root)
     lessons = choose_lessons(args, root)
     try:
         names = pack_autograder(root, args.pack_autograder, lessons, args.hidden)
@@ -633,12 +561,8 @@ def pack(args: argparse.Namespace, root: Path) -> int:
 
 
 def batch(args: argparse.Namespace, root: Path) -> int:
-    from .batch import grade_batch
-
     _needs_reference(root, "--batch packs the autograder from the instructors' tree, not the student edition")
-    check_lessons_exist(args, root)
-    lessons = choose_lessons(args, root)
-    return grade_batch(root, args, lessons)
+    return grade_batch(root, args, choose_lessons(args, root))
 
 
 def main(argv: list[str] | None = None) -> int:

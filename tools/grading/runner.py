@@ -1,50 +1,23 @@
-"""Running the ``lessonNN`` suite of one test program through our reporter.
+"""Running the ``lessonNN`` suite of one test program through our reporter, in the sandbox (sandbox.py).
 
-The test program runs in the sandbox (sandbox.py: its own process group or
-pid namespace, the student's user when there is one, resource limits). Its
-reporter sends one JSON record per event over an inherited pipe, and its
-output goes through another pipe of which only the last 64 KB are kept, so
-that a program printing a gigabyte costs the grader nothing.
+The reporter sends one JSON record per event over an inherited pipe; of the program's output only the
+last 64 KB are kept. A program runs in one of three roles (``role``): ``None``, its own verdicts are
+read (a student's own machine, the integrity checks, the mutants); ``"witness"``, a trusted build of the
+reference that also sends every check's comparison and expected side; ``"observer"``, the student's
+program built without expected sides, sending each check's left side, from which judge.py forms the
+verdicts (docs/grading-defences.md, "How a test is judged").
 
-A program runs in one of three roles (``role``):
+The tests that should run come from ``expected`` (a trusted listing) or else ``--list-test-cases``. The
+records must follow the reporter's order: ``started``, its checks, ``test_case`` of the same test, the
+tests in listed order and each once, ``run_end`` last; a record out of order fails the running test as
+tampering, and nothing after it is believed.
 
-* ``None``: its own verdicts are read (a student's own machine, the
-  integrity checks, the mutants);
-* ``"witness"``: a trusted build of the reference, which also sends every
-  check's comparison and expected side (checks.cpp);
-* ``"observer"``: the student's program built without any expected side,
-  which sends the left side of every check; judge.py forms each test's
-  verdict from those values and the witness's, and the program's own
-  verdicts are never read.
-
-Which tests should run comes from ``expected`` when the caller has it (the
-witness's run, or what setup kept), else from the program's own
-``--list-test-cases``. The records of one run must follow the reporter's
-order (``started``, its checks, ``test_case`` of the same test, tests in the
-listed order, each once, ``run_end`` last); a record out of that order, or a
-second record for a test, fails the test that was running as tampering,
-and the records after it are not believed.
-
-Limits (Gradescope gives a whole run 10 minutes):
-
-* each test case may use ``ILLUM_GRADE_TEST_TIMEOUT`` seconds of processor
-  time (default 60), and WALL_FACTOR times that of wall time, without
-  finishing; then the program is killed. Processor time does not grow when
-  the machine is loaded, so load does not change a grade;
-* each run of a program may use ``ILLUM_GRADE_TIMEOUT`` seconds of processor
-  time (default 600), WALL_FACTOR times that of wall time;
-* all the tests of one ``tools/grade`` run may take ``ILLUM_GRADE_DEADLINE``
-  seconds from its start (default: no limit; run_autograder sets one inside
-  Gradescope's 10 minutes); the tests left when it runs out fail with
-  "did not run", so that results.json is still written in time.
-
-After a crash, a time-out or an exit() inside a test, the test that was
-running fails with the reason, and the program is run again from the next
-test on (doctest's ``--first=N`` counts the listed tests), so that one bad
-function costs the tests that call it, not every test of the lesson. Each
-run must get further than the last: a program that dies again before the
-test it was restarted at (a crash at start-up, a forged record) fails the
-tests that are left, once, with that reason.
+Limits (docs/grading-reference.md): processor time per test case (``ILLUM_GRADE_TEST_TIMEOUT``) and per
+run of a program (``ILLUM_GRADE_TIMEOUT``), WALL_FACTOR times that of wall time (load does not change a
+grade), and a deadline for the whole run (``ILLUM_GRADE_DEADLINE``) after which the tests left fail with
+"did not run". After a crash, a time-out or an exit() inside a test, that test fails with the reason and
+the program runs again from the next test (``--first=N``); each run must get further than the last, or
+the tests left fail, once, with the reason.
 """
 from __future__ import annotations
 
@@ -91,8 +64,7 @@ def set_sandbox(sandbox: Sandbox | None) -> None:
 
 def current_sandbox() -> Sandbox:
     global _sandbox
-    if _sandbox is None:
-        _sandbox = Sandbox()
+    _sandbox = _sandbox or Sandbox()
     return _sandbox
 
 
@@ -128,11 +100,6 @@ class _Invocation:
     exit_code: int | None = None
     garbage: int = 0      # complete lines that were not records
     survivors: list[str] = field(default_factory=list)
-
-    @property
-    def ended_normally(self) -> bool:
-        return (not self.problem and self.exit_code in (0, 1)
-                and any(r.get("event") == "run_end" for r in self.records))
 
 
 class _Tail:
@@ -195,7 +162,6 @@ def _describe_signal(number: int) -> str:
         name = signal.Signals(number).name
     except ValueError:
         name = f"signal {number}"
-    sandbox = current_sandbox()
     why = {
         "SIGSEGV": " (a crash: an invalid memory access, e.g. a null pointer or an index out of range)",
         "SIGABRT": " (an abort: a failed assert(), std::terminate, or a corrupted heap)",
@@ -203,15 +169,14 @@ def _describe_signal(number: int) -> str:
         "SIGFPE": " (an arithmetic fault, e.g. an integer division by zero)",
         "SIGKILL": " (killed from outside: out of memory, or too many processes)",
         "SIGXCPU": " (it used up its CPU time)",
-        "SIGXFSZ": f" (it wrote a file larger than {sandbox.limits.file_mb} MB)",
+        "SIGXFSZ": f" (it wrote a file larger than {current_sandbox().limits.file_mb} MB)",
     }.get(name, "")
     return f"the test program was killed by {name}{why}"
 
 
 @dataclass
 class _Watch:
-    """The limits of one invocation, checked while it runs: processor time per test and per run,
-    wall time WALL_FACTOR times larger."""
+    """The limits of one invocation: processor time per test and per run, wall time WALL_FACTOR times that."""
 
     test_cpu: float
     run_cpu: float
@@ -220,7 +185,6 @@ class _Watch:
     progress_cpu: float = 0.0
     cpu: float = 0.0
     sampled: float = 0.0
-
     shared: int = 0
     shared_limit: int = 0
     end: float = float("inf")  # the deadline of the whole run (ILLUM_GRADE_DEADLINE), in wall time
@@ -249,8 +213,7 @@ class _Watch:
 
 def _run_reporter(program: Path, arguments: list[str], timeout: float, test_timeout: float,
                   env: dict[str, str] | None = None, sandbox: Sandbox | None = None) -> _Invocation:
-    """One invocation with --reporters=illum-grade, killed when a test case uses too much time
-    (``_Watch``)."""
+    """One invocation with --reporters=illum-grade, killed when it goes beyond a limit (``_Watch``)."""
     sandbox = sandbox or current_sandbox()
     command = [str(program), *arguments, "--reporters=illum-grade", "--no-version"]
     try:
@@ -268,7 +231,7 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
                    end=float("inf") if listing else time.monotonic() + _remaining())
     problem, stopping = "", False
     while True:
-        if _drain(selector, streams, launched.records_fd, 0.05):
+        if _drain(selector, streams, 0.05):
             watch.moved(time.monotonic())
         for record in status.records:
             if "pid" in record and not sandbox.namespace and launched.program_pid is None:
@@ -289,7 +252,7 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
     # them open: a short, bounded drain, then the sandbox kills it).
     until = time.monotonic() + 0.5
     while selector.get_map() and time.monotonic() < until:
-        _drain(selector, streams, launched.records_fd, 0.05)
+        _drain(selector, streams, 0.05)
     selector.close()
     survivors = sandbox.finish(launched)
     invocation = _Invocation(records.records, problem, tail.text(), garbage=records.garbage, survivors=survivors)
@@ -297,8 +260,8 @@ def _run_reporter(program: Path, arguments: list[str], timeout: float, test_time
     return invocation
 
 
-def _drain(selector: selectors.BaseSelector, streams: dict, records_fd: int | None, wait: float) -> bool:
-    """Reads what the pipes hold; True when a test started or finished."""
+def _drain(selector: selectors.BaseSelector, streams: dict, wait: float) -> bool:
+    """Reads what the pipes hold; True when a test started or finished (only the records' feed says so)."""
     progress = False
     for key, _ in selector.select(timeout=wait):
         try:
@@ -307,11 +270,10 @@ def _drain(selector: selectors.BaseSelector, streams: dict, records_fd: int | No
             continue
         except OSError:
             chunk = b""
-        if not chunk:
+        if chunk:
+            progress = streams[key.fd](chunk) or progress
+        else:
             selector.unregister(key.fd)
-            continue
-        if streams[key.fd](chunk) and key.fd == records_fd:
-            progress = True
     return progress
 
 
@@ -376,35 +338,25 @@ def check_records(records: list[dict], order: dict[Key, int], first: int, garbag
                 return broken(f"\"{key[1]}\" reported out of order", key)
             position, running, last = order[key], key, key
             seen.add(key)
-            accepted.append(record)
+        elif event == "test_case" and record.get("skipped") and running is None and key in order and key not in seen:
+            seen.add(key)
+            last, position = key, max(position, order[key])
         elif event == "test_case":
-            if record.get("skipped") and running is None and key in order and key not in seen:
-                seen.add(key)
-                last = key
-                position = max(position, order[key])
-                accepted.append(record)
-                continue
             if key != running:
                 what = f"a result for \"{key[1]}\"" if key else "a result"
                 return broken(f"{what} that was not running" if key not in seen else
                               f"a second result for \"{key[1]}\"", key)
             running = None
-            accepted.append(record)
-        elif event == "check":  # a check of the running test (witness and observer)
-            if running is None:
-                return broken("a check outside any test")
-            accepted.append(record)
-        elif event == "run_end":
-            if running is not None:
-                return broken("the run ended while a test was still running")
-            ended = True
-            accepted.append(record)
-        else:
+        elif event == "check" and running is None:  # a check belongs to the running test (witness, observer)
+            return broken("a check outside any test")
+        elif event == "run_end" and running is not None:
+            return broken("the run ended while a test was still running")
+        elif event not in ("check", "run_end"):
             return broken(f"a record of an unknown kind ({str(event)[:40]!r})", key)
-    if garbage:
-        return _Checked(accepted, running, last, f"{garbage} line(s) on the results pipe that are not records",
-                        running or last)
-    return _Checked(accepted, running, last)
+        ended = event == "run_end"
+        accepted.append(record)
+    why = f"{garbage} line(s) on the results pipe that are not records" if garbage else ""
+    return _Checked(accepted, running, last, why, (running or last) if garbage else None)
 
 
 @dataclass
@@ -455,7 +407,8 @@ def _next_first(run: SuiteRun, progress: _Progress, checked: _Checked, invocatio
                                            "per test, in order, from the test program's reporter only)")
         progress.problems.append(f"{program}: test \"{checked.culprit[1]}\": tampering: {checked.violation}")
         return progress.position[checked.culprit] + 1
-    if invocation.exit_code in (0, 1) and not invocation.problem:
+    exited = invocation.exit_code in (0, 1) and not invocation.problem
+    if exited:
         how = f"exit({invocation.exit_code})"
         reason = (f"your code ended the program with {how} (or a similar call) during this test: "
                   "the tests after it were run again in a new program")
@@ -475,31 +428,17 @@ def _next_first(run: SuiteRun, progress: _Progress, checked: _Checked, invocatio
     if checked.last_recorded is not None and progress.position[checked.last_recorded] >= first:
         progress.problems.append(f"{program} -ts={run.suite}: after test \"{checked.last_recorded[1]}\": {how}")
         return progress.position[checked.last_recorded] + 1
-    progress.why_missing = f"{program} -ts={run.suite}: {how}" + (
-        " before running a test" if invocation.exit_code in (0, 1) and not invocation.problem else "")
+    progress.why_missing = f"{program} -ts={run.suite}: {how}" + (" before running a test" if exited else "")
     progress.problems.append(progress.why_missing)
     return None
-
-
-def _listing(run: SuiteRun, expected: list[dict] | None, timeout: float, env: dict | None,
-             sandbox: Sandbox | None) -> list[dict] | None:
-    if expected is not None:
-        return [dict(r, event="listed") for r in expected]
-    listing = _run_reporter(run.program, [f"-ts={run.suite}", "--list-test-cases"], timeout, timeout, env, sandbox)
-    if listing.problem:
-        run.problem, run.output = f"listing {run.program.name}: {listing.problem}", listing.output
-        return None
-    return [r for r in listing.records if r.get("event") == "listed" and r.get("suite") == run.suite]
 
 
 def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | None = None,
               test_timeout: float | None = None, expected: list[dict] | None = None, role: str | None = None,
               env: dict[str, str] | None = None, sandbox: Sandbox | None = None) -> SuiteRun:
-    """Runs ``program -ts=suite`` and returns one result per test of the suite.
-
-    ``expected``: the tests that must report (records of kind "listed", in doctest's order), from a
-    trusted listing; None lists them from the program. ``role``: None, "witness" or "observer"
-    (module doc); an observer's results are judged by ``judge_suite`` afterwards."""
+    """One result per test of ``program -ts=suite``. ``expected``: the tests that must report ("listed" records,
+    in doctest's order) from a trusted listing, or None to list them from the program. ``role``: None,
+    "witness" or "observer" (module doc); an observer's results are judged by ``judge_suite`` afterwards."""
     timeout = timeout_seconds() if timeout is None else timeout
     if test_timeout is None:
         test_timeout = float(os.environ.get("ILLUM_GRADE_TEST_TIMEOUT", DEFAULT_TEST_TIMEOUT))
@@ -508,9 +447,14 @@ def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | 
     if not program.exists():
         run.problem = f"{program} does not exist"
         return run
-    listed = _listing(run, expected, timeout, env, sandbox)
-    if listed is None:
-        return run
+    if expected is not None:
+        listed = [dict(r, event="listed") for r in expected]
+    else:
+        listing = _run_reporter(program, [f"-ts={suite}", "--list-test-cases"], timeout, timeout, env, sandbox)
+        if listing.problem:
+            run.problem, run.output = f"listing {program.name}: {listing.problem}", listing.output
+            return run
+        listed = [r for r in listing.records if r.get("event") == "listed" and r.get("suite") == suite]
     run.listed = listed
     progress = _Progress({})
     for number, record in enumerate(listed, start=1):
@@ -530,8 +474,9 @@ def run_suite(program: Path, suite: str, hidden: bool = False, timeout: float | 
         run.survivors.extend(invocation.survivors)
         checked = check_records(invocation.records, progress.position, first, invocation.garbage)
         _take(run, progress, checked)
-        if not checked.violation and invocation.ended_normally:
-            break
+        if not (checked.violation or invocation.problem) and invocation.exit_code in (0, 1) \
+                and any(r.get("event") == "run_end" for r in invocation.records):
+            break  # it ended normally
         after = _next_first(run, progress, checked, invocation, first)
         if after is not None and after <= first:  # no progress: the program dies before the test it starts at
             progress.why_missing = (f"{program.name} -ts={suite}: run again from test {first}, the program ended "
@@ -592,9 +537,8 @@ def judge_suite(run: SuiteRun, witness: dict[Key, list[dict]], hidden: bool) -> 
             problems.append(f"{run.program.name}: \"{result.name}\": {error}")
             result.passed, result.note = False, f"the grader cannot judge this test: {error} (not your fault)"
             continue
-        crashes = [f for f in result.failures if f.kind == "crash"]
-        result.passed = verdict.passed
-        result.failures = verdict.failures + ([] if verdict.passed else crashes)
+        crashes = [] if verdict.passed else [f for f in result.failures if f.kind == "crash"]
+        result.passed, result.failures = verdict.passed, verdict.failures + crashes
         result.not_implemented_only = verdict.not_implemented_only
         if verdict.passed:
             result.note = ""
@@ -606,8 +550,7 @@ def witness_checks(run: SuiteRun) -> dict[Key, list[dict]]:
     return {r.key: run.checks.get(r.key, []) for r in run.results if r.passed}
 
 
-def list_suites(program: Path, timeout: float | None = None) -> list[TestResult]:
+def list_suites(program: Path) -> list[TestResult]:
     """Every test case of a program, whatever its suite (for misplaced-suite checks)."""
-    timeout = timeout_seconds() if timeout is None else timeout
-    listing = _run_reporter(program, ["--list-test-cases"], timeout, timeout)
+    listing = _run_reporter(program, ["--list-test-cases"], timeout_seconds(), timeout_seconds())
     return [TestResult.from_json(r) for r in listing.records if r.get("event") == "listed"]

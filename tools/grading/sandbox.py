@@ -1,28 +1,10 @@
-"""Running a student's code apart from the grader (docs/grading-defences.md, "Threat model").
+"""Running a student's code apart from the grader (docs/grading-defences.md, "Isolation" and "Threat model").
 
-A student's exercise files are hostile input. Whatever they compile into is
-run here:
-
-* as an **unprivileged user** (``--as-user``, created by the autograder's
-  setup.sh), with a private HOME and TMPDIR, a clean environment, and no
-  write access to the sources, the build tree while tests run, or the
-  results;
-* in a **process group of its own**, inside a **pid namespace** where the
-  platform allows one (root, and ``unshare`` permitted), whose first process
-  (``sandbox_init.py``) reports how the program ended over a pipe the
-  program never holds; the group is killed after a normal exit too, and
-  with a user, every process of that user is killed before the grader goes
-  on (``reap``);
-* under **resource limits**: memory per test program (``RLIMIT_DATA``, so
-  an allocation beyond it fails with ``std::bad_alloc``, which the results
-  call "out of memory"), processes per user (``RLIMIT_NPROC``), the size of
-  any file written, CPU time, no core files; the program's output is read
-  through a pipe and only its last ``output_bytes`` are kept.
-
-Without root there is no second user: the code runs as whoever runs the
-grader, in its own process group (and pid namespace if one can be made).
-That is the student's own machine (``tools/grade --student``), where there
-is nothing to defend; ``tools/grade --batch`` says so on stderr.
+The code runs as an unprivileged user (``--as-user``; setup.sh creates it) with a private HOME and TMPDIR
+and a clean environment, in a process group and, where root may ``unshare``, pid (and mount and IPC)
+namespaces of its own whose first process is sandbox_init.py, under resource limits (``Limits``); every
+process of the user is killed after each program (``reap``). Without root there is no second user: the
+code runs as whoever runs the grader, which is the student's own machine (``tools/grade --student``).
 """
 from __future__ import annotations
 
@@ -32,6 +14,7 @@ import functools
 import json
 import os
 import pwd
+import resource
 import shutil
 import signal
 import stat
@@ -126,7 +109,10 @@ class Limits:
                       build_memory_mb=_megabytes("ILLUM_GRADE_BUILD_MEMORY_MB", 4096))
 
 
+@functools.cache
 def _unshare_works(*flags: str) -> bool:
+    """Whether ``unshare FLAGS --fork`` works here: root, and not forbidden by a container (Docker's default
+    profile forbids mount and IPC namespaces) or by ILLUM_GRADE_NO_PID_NAMESPACE=1."""
     unshare = shutil.which("unshare")
     if not unshare or os.geteuid() != 0 or os.environ.get("ILLUM_GRADE_NO_PID_NAMESPACE") == "1":
         return False
@@ -136,18 +122,6 @@ def _unshare_works(*flags: str) -> bool:
     except (OSError, subprocess.TimeoutExpired):
         return False
     return done.returncode == 0
-
-
-@functools.cache
-def pid_namespace_available() -> bool:
-    """Whether ``unshare --pid --fork`` works here (root, and not forbidden by a container)."""
-    return _unshare_works("--pid")
-
-
-@functools.cache
-def private_namespaces_available() -> bool:
-    """Whether mount and IPC namespaces can be made too (not under Docker's default profile)."""
-    return pid_namespace_available() and _unshare_works("--pid", "--mount", "--ipc")
 
 
 @dataclass
@@ -174,9 +148,9 @@ class Sandbox:
         if self.account is not None and os.geteuid() != 0:
             raise SandboxError(f"running code as the user {self.account.name} needs root")
         if self.namespace is None:
-            self.namespace = pid_namespace_available()
+            self.namespace = _unshare_works("--pid")
         if self.private is None:
-            self.private = bool(self.namespace) and private_namespaces_available()
+            self.private = bool(self.namespace) and _unshare_works("--pid", "--mount", "--ipc")
 
     # --- what the student's code sees -------------------------------------------------------
 
@@ -236,9 +210,8 @@ class Sandbox:
 
     def launch(self, argv: list[str], records: bool = True, cpu_seconds: float | None = None,
                extra_env: dict[str, str] | None = None) -> Launched:
-        """Starts ``argv`` in the sandbox. Its stdout and stderr go to one pipe
-        (``output_fd``), the reporter's records to another (``records_fd``),
-        whose write end the program finds in ILLUM_GRADE_RECORDS_FD."""
+        """Starts ``argv`` in the sandbox. Its stdout and stderr go to one pipe (``output_fd``), the
+        reporter's records to another (``records_fd``), whose write end it finds in ILLUM_GRADE_RECORDS_FD."""
         argv = [os.path.abspath(argv[0]) if os.sep in str(argv[0]) else str(argv[0]), *argv[1:]]
         scratch = self.make_scratch()
         status_r, status_w = os.pipe()
@@ -271,14 +244,10 @@ class Sandbox:
             process = subprocess.Popen(command, stdin=subprocess.DEVNULL, stdout=output_w, stderr=output_w,
                                        pass_fds=[status_w, *keep], start_new_session=True, close_fds=True)
         except OSError:
-            for fd in (status_r, status_w, output_r, output_w, records_r, records_w):
-                if fd is not None:
-                    os.close(fd)
+            _close(status_r, status_w, output_r, output_w, records_r, records_w)
             shutil.rmtree(scratch, ignore_errors=True)
             raise
-        for fd in (status_w, output_w, records_w):  # only the sandbox holds the write ends now
-            if fd is not None:
-                os.close(fd)
+        _close(status_w, output_w, records_w)  # only the sandbox holds the write ends now
         return Launched(process, status_r, output_r, records_r, scratch)
 
     def stop(self, launched: Launched) -> None:
@@ -289,9 +258,8 @@ class Sandbox:
             launched.process.kill()
 
     def finish(self, launched: Launched) -> list[str]:
-        """After a run: the launcher waited for, the program's group and (with a
-        user) every process of the user killed, the scratch folder removed.
-        Returns a description of each process that was still alive."""
+        """After a run: the launcher waited for, the program's group and (with a user) every process of the
+        user killed, the scratch folder removed. Returns a description of each process still alive."""
         if not self.namespace:
             kill_group(launched.program_pid)
         try:
@@ -301,10 +269,7 @@ class Sandbox:
             launched.process.wait()
         survivors = self.reap()
         self.clean_shared_folders()  # nothing of one program's reaches the next
-        for fd in (launched.status_fd, launched.output_fd, launched.records_fd):
-            if fd is not None:
-                with contextlib.suppress(OSError):
-                    os.close(fd)
+        _close(launched.status_fd, launched.output_fd, launched.records_fd)
         shutil.rmtree(launched.scratch, ignore_errors=True)
         return survivors
 
@@ -332,15 +297,8 @@ class Sandbox:
         (the memory limit of a process does not count it)."""
         if self.account is None or self.private:
             return 0
-        total = sum(size for _, size in _shm_segments(self.account.uid))
-        try:
-            for entry in os.scandir("/dev/shm"):
-                info = entry.stat(follow_symlinks=False)
-                if info.st_uid == self.account.uid:
-                    total += info.st_blocks * 512
-        except OSError:
-            pass
-        return total
+        return (sum(size for _, size in _shm_segments(self.account.uid))
+                + sum(info.st_blocks * 512 for _, info in _owned("/dev/shm", self.account.uid)))
 
     def clean_shared_folders(self) -> None:
         """Removes what the account left in the world-writable folders and its shared memory
@@ -351,20 +309,12 @@ class Sandbox:
         for shmid, _ in _shm_segments(self.account.uid):  # System V segments; POSIX ones are files
             subprocess.run([ipcrm, "-m", shmid], capture_output=True, check=False)
         for folder in ("/tmp", "/var/tmp", "/dev/shm", "/run/lock"):
-            try:
-                entries = list(os.scandir(folder))
-            except OSError:
-                continue
-            for entry in entries:
-                try:
-                    if entry.stat(follow_symlinks=False).st_uid != self.account.uid:
-                        continue
-                    if entry.is_dir(follow_symlinks=False):
-                        shutil.rmtree(entry.path, ignore_errors=True)
-                    else:
+            for entry, info in _owned(folder, self.account.uid):
+                if stat.S_ISDIR(info.st_mode):
+                    shutil.rmtree(entry.path, ignore_errors=True)
+                else:
+                    with contextlib.suppress(OSError):
                         os.unlink(entry.path)
-                except OSError:
-                    pass
 
     def can_reach(self, path: Path) -> bool:
         """Whether the account can list and enter ``path`` (every folder above it searchable)."""
@@ -373,10 +323,8 @@ class Sandbox:
     # --- builds ----------------------------------------------------------------------------
 
     def build_preexec(self):
-        """For subprocess.Popen(preexec_fn=...): a build step as the account,
-        with the build's limits (a compiler fed /dev/zero stops at the memory limit)."""
-        import resource
-
+        """For Popen(preexec_fn=...): a build step as the account, with the build's limits (a compiler fed
+        /dev/zero stops at the memory limit)."""
         memory = self.limits.build_memory_mb * 1024 * 1024
         account = self.account
 
@@ -391,9 +339,8 @@ class Sandbox:
         return preexec
 
     def build_environment(self, home: Path) -> dict[str, str]:
-        """The environment of a build: the grader's, minus what the student's
-        user must not see; ccache is off (a shared cache could carry one
-        student's objects into another's build)."""
+        """The environment of a build: the grader's, minus what the student's user must not see; ccache is
+        off (a shared cache could carry one student's objects into another's build)."""
         env = dict(os.environ)
         if self.account is not None:
             env = self.environment(home)
@@ -419,11 +366,9 @@ LOCK_FOLDER = Path("/run/illum-grade")  # root's, 0700: a student's process can 
 
 @contextlib.contextmanager
 def user_lock(name: str):
-    """Holds the grading lock of the user ``name`` for the block (as root; without root, where there is no
-    second user, it does nothing). A run kills every process of its user after each program, so two runs
-    that share a user on one machine (two batches, two CI jobs) would kill each other's builds and tests:
-    the second waits, saying so, until the first ends. The lock is an flock, released when its holder
-    exits however it ends; its descriptor is not inherited by the programs the block starts."""
+    """Holds the grading lock of the user ``name`` for the block (as root; without root, nothing). A run kills
+    every process of its user after each program, so a second run sharing the user (two batches, two CI jobs)
+    waits, saying so. An flock: released when its holder exits however it ends, and not inherited."""
     if os.geteuid() != 0:
         yield
         return
@@ -447,8 +392,7 @@ def user_lock(name: str):
 
 
 def chown_tree(folder: Path, uid: int, gid: int, strip_write: bool = False) -> None:
-    """chown -R without following links; ``strip_write`` also removes group
-    and other write permission (and set-id bits)."""
+    """chown -R without following links; ``strip_write`` also removes group and other write and set-id bits."""
     for path in [folder, *folder.rglob("*")]:
         try:
             info = path.lstat()
@@ -466,7 +410,7 @@ def descendants_cpu_seconds(root_pid: int) -> float:
     """utime + stime of ``root_pid`` and every process below it, from /proc (children that ended
     and were waited for count in their parent's cutime + cstime): what the per-test limits count,
     every thread's processor time, so that a loaded machine does not fail a test."""
-    parents: dict[int, int] = {}
+    children: dict[int, list[int]] = {}
     times: dict[int, float] = {}
     for entry in os.listdir("/proc"):
         if not entry.isdigit():
@@ -476,17 +420,15 @@ def descendants_cpu_seconds(root_pid: int) -> float:
                 fields = stat_file.read().rsplit(b")", 1)[1].split()
         except (OSError, IndexError):
             continue
-        pid = int(entry)
-        parents[pid] = int(fields[1])
-        times[pid] = sum(int(f) for f in fields[11:15]) / _TICKS  # utime stime cutime cstime
-    below = {root_pid}
-    changed = True
-    while changed:
-        changed = False
-        for pid, parent in parents.items():
-            if parent in below and pid not in below:
-                below.add(pid)
-                changed = True
+        children.setdefault(int(fields[1]), []).append(int(entry))
+        times[int(entry)] = sum(int(f) for f in fields[11:15]) / _TICKS  # utime stime cutime cstime
+    below: set[int] = set()
+    todo = [root_pid]
+    while todo:  # a set, not a walk: a pid reused while /proc is read can make a loop
+        pid = todo.pop()
+        if pid not in below:
+            below.add(pid)
+            todo += children.get(pid, [])
     return sum(times.get(pid, 0.0) for pid in below)
 
 
@@ -510,10 +452,16 @@ def user_processes(uid: int) -> list[tuple[int, str]]:
 
 
 def kill_all_of(account: Account) -> None:
-    """kill(-1, SIGKILL) as the account: the kernel sends it to every process
-    of that user at once, so a process that forks or changes its group
-    cannot slip through between a listing and a kill."""
+    """kill(-1, SIGKILL) as the account: the kernel sends it to every process of that user at once, so a
+    process that forks or changes its group cannot slip through between a listing and a kill."""
     _as_account(account, lambda: os.kill(-1, signal.SIGKILL))
+
+
+def _close(*fds: int | None) -> None:
+    for fd in fds:
+        if fd is not None:
+            with contextlib.suppress(OSError):
+                os.close(fd)
 
 
 def kill_group(pid: int | None) -> None:
@@ -542,6 +490,18 @@ def _as_account(account: Account, action) -> bool:
             os._exit(2)
     _, status = os.waitpid(pid, 0)
     return os.waitstatus_to_exitcode(status) == 0
+
+
+def _owned(folder: str, uid: int) -> list[tuple[os.DirEntry, os.stat_result]]:
+    """The entries of ``folder`` that ``uid`` owns, with their lstat (none where it cannot be read)."""
+    found = []
+    with contextlib.suppress(OSError):
+        for entry in os.scandir(folder):
+            with contextlib.suppress(OSError):
+                info = entry.stat(follow_symlinks=False)
+                if info.st_uid == uid:
+                    found.append((entry, info))
+    return found
 
 
 def _shm_segments(uid: int) -> list[tuple[str, int]]:

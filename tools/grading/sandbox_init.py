@@ -1,35 +1,16 @@
-"""The first process of a sandboxed run (tools/grading/sandbox.py starts it).
+"""The first process of a sandboxed run: ``python3 -I -S sandbox_init.py CONFIG_JSON`` (sandbox.py starts it).
 
-    python3 -I -S sandbox_init.py CONFIG_JSON
+It runs as the grader, as pid 1 of a fresh pid namespace where the platform allows one, and forks the
+test program, which before exec gets a process group of its own, only the descriptors the grader handed
+it, the config's resource limits, the unprivileged user (when there is one) and its private HOME with a
+clean environment. With ``"private": true`` (mount and IPC namespaces) it first mounts private,
+size-limited ``/tmp``, ``/var/tmp``, ``/dev/shm`` and ``/run/lock``, hides the grader's folders under
+empty read-only mounts and caps System V shared memory, which the memory limit does not count
+(docs/grading-defences.md, "Isolation").
 
-It runs as the grader (root on an autograder), inside a fresh pid namespace
-when the platform allows one (then it is pid 1 there). It forks the test
-program, which in the child, before exec:
-
-* gets a process group of its own (the grader kills the whole group);
-* drops every file descriptor the grader did not hand it;
-* gets the resource limits of the config (memory, processes, file size,
-  CPU time, no core files);
-* becomes the unprivileged user of the config, when there is one;
-* moves to its private HOME with a clean environment.
-
-Where the grader made mount and IPC namespaces for it (``"private": true``
-in the config), it first gives the run private, size-limited ``/tmp``,
-``/var/tmp``, ``/dev/shm`` and ``/run/lock`` (gone with the namespace, so
-nothing a program leaves there reaches the next), hides the grader's own
-folders under empty read-only mounts, and caps System V shared memory in
-its IPC namespace (``shmall``; ``shm_rmid_forced``: a segment goes with its
-last user), which the memory limit of the process does not count.
-
-The parent waits for the program, reaping whatever else dies in the
-namespace, then kills the program's group and writes one JSON line to the
-status descriptor: ``{"pid": N}`` at the start, ``{"exited": CODE}`` or
-``{"signal": NUMBER}`` at the end. The test program never holds the status
-descriptor, so it cannot forge how it ended. When this process exits, the
-kernel kills every process left in the namespace.
-
-Standard library only, no package imports: it must start in a few
-milliseconds and trust nothing on the path (``-I -S``).
+Over the status descriptor, which the program never holds and so cannot forge, it writes one JSON line
+``{"pid": N}`` at the start and ``{"exited": CODE}`` or ``{"signal": NUMBER}`` once the program ended and
+its group was killed. Standard library only: it must start in milliseconds and trust nothing on the path.
 """
 import json
 import os
@@ -39,18 +20,23 @@ import sys
 
 _LIMITS = {
     "memory_bytes": resource.RLIMIT_DATA,
-    "address_space_bytes": resource.RLIMIT_AS,
     "processes": resource.RLIMIT_NPROC,
     "file_bytes": resource.RLIMIT_FSIZE,
     "cpu_seconds": resource.RLIMIT_CPU,
     "core_bytes": resource.RLIMIT_CORE,
-    "open_files": resource.RLIMIT_NOFILE,
 }
 
 
 def _say(fd, record):
     try:
         os.write(fd, (json.dumps(record) + "\n").encode())
+    except OSError:
+        pass
+
+
+def _kill_group(pid):
+    try:
+        os.killpg(pid, signal.SIGKILL)
     except OSError:
         pass
 
@@ -126,8 +112,6 @@ def main():
             os.write(2, f"illum sandbox: cannot make the run's private folders: {error}\n".encode())
             _say(status_fd, {"exited": 125})
             os._exit(0)
-    for fd in config.get("keep_fds", []):
-        os.set_inheritable(int(fd), True)
     pid = os.fork()
     if pid == 0:
         try:
@@ -144,14 +128,8 @@ def main():
             pass
     _say(status_fd, {"pid": pid})
 
-    def stop(signum, frame):  # the grader's time-out: the program's whole group goes
-        try:
-            os.killpg(pid, signal.SIGKILL)
-        except OSError:
-            pass
-
-    signal.signal(signal.SIGTERM, stop)
-    signal.signal(signal.SIGINT, stop)
+    for signum in (signal.SIGTERM, signal.SIGINT):  # the grader's time-out: the program's whole group goes
+        signal.signal(signum, lambda *_: _kill_group(pid))
     status = None
     while True:
         try:
@@ -163,10 +141,7 @@ def main():
         if waited == pid:
             status = raw
             break
-    try:
-        os.killpg(pid, signal.SIGKILL)  # after a normal exit too: nothing it started may outlive it
-    except OSError:
-        pass
+    _kill_group(pid)  # after a normal exit too: nothing it started may outlive it
     if status is None:
         _say(status_fd, {"lost": True})
     elif os.WIFSIGNALED(status):
