@@ -247,9 +247,14 @@ def stub_problems(root: Path, lesson: str, build_dir: Path) -> list[str]:
     return problems
 
 
-def _compile(entry: dict, obj: Path, flag: str) -> None:
-    """A compile_commands.json entry run again with its object renamed and one more flag."""
-    args = shlex.split(entry["command"])
+def _compile(commands: dict[Path, dict], source: Path, obj: Path, flag: str) -> None:
+    """SOURCE compiled as compile_commands.json compiles it, its object renamed and one more flag. A source the
+    build compiles inside a unity unit (CMakeLists.txt, illum_unity_build) takes that unit's command."""
+    source = source.resolve()
+    entry = commands.get(source) or next(
+        e for file, e in commands.items() if "unity" in file.parts
+        and f'#include "{source.relative_to(ROOT).as_posix()}"' in file.read_text(encoding="utf-8"))
+    args = [str(source) if a == entry["file"] else a for a in shlex.split(entry["command"])]
     args[args.index("-o") + 1] = str(obj)
     subprocess.run(args + [flag], cwd=entry["directory"], check=True)
 
@@ -264,7 +269,7 @@ def _task_symbols(exercise: Path, commands: dict[Path, dict], work: Path) -> dic
     result = {}
     for stub in sorted(exercise.glob("*.cpp")):
         obj = work / (stub.name + ".stub.o")
-        _compile(commands[stub.resolve()], obj, "-g")
+        _compile(commands, stub, obj, "-g")
         marks = [(k + 1, m.group(1)) for k, line in enumerate(stub.read_text(encoding="utf-8").splitlines())
                  if (m := _TASK_COMMENT.match(line))]
         for line in _nm("-l", str(obj)).splitlines():
@@ -281,7 +286,7 @@ def _probed_program(root: Path, lesson: str, build_dir: Path, commands: dict[Pat
     objects = []
     for stub in sorted(lesson_folders(root, "exercises")[lesson].glob("*.cpp")):
         obj = work / (stub.name + ".ref.o")
-        _compile(commands[next((root / "lib" / "illum").rglob(stub.name)).resolve()], obj, "-finstrument-functions")
+        _compile(commands, next((root / "lib" / "illum").rglob(stub.name)), obj, "-finstrument-functions")
         objects.append(str(obj))
     subprocess.run(["cc", "-O2", "-c", str(ROOT / "tools" / "task_probe.c"), "-o", str(work / "probe.o")], check=True)
     link_dir = build_dir / "tests"
@@ -308,7 +313,8 @@ def derive(root: Path, lesson: str, build_dir: Path, write: bool) -> int:
         for k, test in enumerate((t for t in list_suites(program) if t.suite == f"lesson{lesson}"), start=1):
             out.unlink(missing_ok=True)
             subprocess.run([str(program), f"-ts=lesson{lesson}", f"--first={k}", f"--last={k}"],
-                           env={**os.environ, "ILLUM_TASK_PROBE": str(out), "OMP_NUM_THREADS": "1"},
+                           env={**os.environ, "ILLUM_TASK_PROBE": str(out), "OMP_NUM_THREADS": "1",
+                                "ILLUM_TEST_ONE_PROCESS": "1"},  # the probe records in this process
                            capture_output=True, check=False)
             entered = {symbols.get(int(a, 16), "") for a in out.read_text().split()} if out.exists() else set()
             found[test.name] = sorted({task_of_symbol[s] for s in entered if s in task_of_symbol}, key=_task_key)
