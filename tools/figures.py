@@ -10,8 +10,8 @@
 A figure is the table between `<!-- figure: out/lessonNN/x.md [options] -->` and `<!-- /figure -->`;
 a value in a sentence is `43.6<!--=name-->` with its `<!-- value name: … -->`. Every cell but the
 timings must match the program's table; --check also compares the kept images with what the programs
-drew, and checks the texts' links and the plots. CONTRIBUTING.md ("Figures", "Values in sentences",
-"Images show where students read") says how to write them.
+drew, and checks the texts' links and the plots. CONTRIBUTING.md ("Figures come from the run", "Numbers in
+sentences come from the run too", "Images show where students read") says how to write them.
 """
 from __future__ import annotations
 

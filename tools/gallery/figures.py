@@ -1,5 +1,5 @@
 """The texts' figures: tables between `<!-- figure: out/… -->` and `<!-- /figure -->`, filled from the
-programs' tables, checked cell by cell but for timings (CONTRIBUTING.md, "Figures")."""
+programs' tables, checked cell by cell but for timings (CONTRIBUTING.md, "Figures come from the run")."""
 from __future__ import annotations
 
 import os

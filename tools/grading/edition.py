@@ -1,5 +1,5 @@
-"""The student edition: the tracked tree without what students must not see (docs/grading.md, "The
-student edition"): the reference units of the lessons handed out, the exercises of the others (their
+"""The student edition: the tracked tree without what students must not see (docs/grading.md,
+"Student edition"): the reference units of the lessons handed out, the exercises of the others (their
 units ship as working code), tests/hidden/, tests/attacks/, build/ and out/. It has a README of its own
 (student_readme.md.in) and every link to a file it leaves out is rewritten: to the stub for a reference
 unit handed out, else to plain text."""
