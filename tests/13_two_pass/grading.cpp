@@ -34,7 +34,7 @@ const std::array<Point3, 4> cornell_floor{Point3(552.8, 0, 0), Point3(0, 0, 0), 
 
 SceneInventory cornell_box() {
   // 5 walls (the red one as two triangles) and the light, which reflects too: 7 reflecting
-  // surfaces, 21 pairs less the two coplanar red triangles = 20 facing pairs.
+  // surfaces, 21 pairs less the ceiling and the light (parallel, both facing down) = 20 facing pairs.
   return SceneInventory{.diffuse_surfaces = 7, .facing_pairs = 20, .emitters = 1};
 }
 

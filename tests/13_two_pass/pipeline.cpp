@@ -47,7 +47,7 @@ TEST_SUITE("two_pass") {
   TEST_CASE("the inventory of the Cornell box with two spheres") {
     const SceneInventory inv = scene_inventory(load_scene("cornell_spheres"));
     CHECK(inv.diffuse_surfaces == 7);  // floor, ceiling, back, green, two red triangles, the light (ρ = 0.78)
-    CHECK(inv.facing_pairs == 20);     // 21 pairs less the coplanar red triangles
+    CHECK(inv.facing_pairs == 20);     // 21 pairs less the ceiling and the light (both face down)
     CHECK(inv.emitters == 1);
     CHECK(inv.mirrors == 1);
     CHECK(inv.glass == 1);

@@ -7,8 +7,8 @@
 //     mirrors and glass are occluders that absorb (classic two-pass);
 //   [caustic pass, optional, before pass one]: light rays from the emitters
 //     through the specular surfaces, their power deposited on the patches
-//     they reach, as extra emission (Wallace, Cohen and Greenberg 1987;
-//     Sillion and Puech 1989);
+//     they reach, as extra emission (after Arvo 1986, Heckbert 1990 and Chen
+//     et al. 1991; lesson 13, §4);
 //   pass two (view dependent): rays from the eye; at a meshed surface read
 //     B(x) from pass one, at a mirror or glass follow lesson 06's ray tree.
 //
