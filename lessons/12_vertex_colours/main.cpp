@@ -77,8 +77,10 @@ void vertex_colours(OutputFolder& out, const Settings& settings) {
     for (std::size_t v = 0; v < s.shared.positions.size(); ++v) {
       const Color& value = rule == VertexColourRule::extrapolate ? extrapolated[v] : average[v];
       smallest = std::min({smallest, value.r, value.g, value.b});
+      bool any_clamped = false;  // a vertex counts once, however many channels were clamped
       if (rule == VertexColourRule::extrapolate)
-        for (int c = 0; c < 3; ++c) clamped += value[c] == 0 && average[v][c] > 0 ? 1 : 0;
+        for (int c = 0; c < 3; ++c) any_clamped |= value[c] == 0 && average[v][c] > 0;
+      clamped += any_clamped ? 1 : 0;
     }
     table.add_row({name, static_cast<std::int64_t>(s.shared.positions.size()), clamped, smallest});
   }

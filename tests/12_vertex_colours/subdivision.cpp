@@ -105,7 +105,10 @@ TEST_SUITE("lesson12") {
       ILLUM_CHECK_THROWS_CONTAINING(elements_to_split({{0, 1}}, b, edge, bad, 0.1), "threshold",
                                     std::invalid_argument);
     }
-    CHECK_THROWS_AS(elements_to_split({{0, 1}}, b, edge, 1.0, -0.5), std::invalid_argument);
+    for (double bad_min_edge : {-0.5, double(NAN), double(INFINITY)}) {
+      INFO("contract of elements_to_split: min_edge " << bad_min_edge << " is negative or not finite");
+      CHECK_THROWS_AS(elements_to_split({{0, 1}}, b, edge, 1.0, bad_min_edge), std::invalid_argument);
+    }
     // Two elements: valid indices are 0 and 1. Each end of a pair is checked on both sides of the range.
     INFO(
         "contract of elements_to_split: a pair naming an element below 0 or at least radiosity.size() (2) "
