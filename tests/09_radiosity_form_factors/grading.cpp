@@ -453,7 +453,7 @@ TEST_SUITE("lesson09") {
     CHECK(parallel.evaluations > 1);
     const HierarchicalResult shared =
         form_factor_hierarchical(floor_rect(0, 1, 0, 1, 0), wall_x(0, 0, 1, 0, 1, true), 1e-5);
-    INFO("near the shared edge F_{dA→A_j} varies like a logarithm: more levels there");
+    INFO("at the shared edge's two ends F_{dA→A_j} has no limit: more levels there");
     CHECK(std::abs(shared.value - perpendicular_rectangles_common_edge(1, 1, 1)) < 1e-4);
     CHECK(shared.deepest_level > 1);
     CHECK_THROWS_AS(form_factor_hierarchical(floor_rect(0, 1, 0, 1, 0), ceiling_rect(0, 1, 0, 1, 1), 0.0),

@@ -164,8 +164,8 @@ void s10_form_factor_study(OutputFolder& out, const Settings& settings) {
                              {"point: Nusselt projected area", "point: area sampling",
                               "point: hemisphere uniform", "point: hemisphere cosine"})};
   out.plot(by_time, "study_error_vs_time",
-           "Error vs time, log-log: Monte Carlo falls as N^-1/2, quadrature and hierarchical faster; the "
-           "shared edge slows plain Gauss-Legendre to an algebraic rate");
+           "Error vs time, log-log: Monte Carlo falls as N^-1/2 (slower at the shared edge), quadrature and "
+           "hierarchical faster; the shared edge slows plain Gauss-Legendre to an algebraic rate");
   const PlotSpec by_knob{
       .title = "Form factors: error vs accuracy knob",
       .x_label = "knob (points, samples, segments)",

@@ -2,9 +2,11 @@
 // Exercise unit of lesson 09: students write form_factor_sampling.cpp.
 // Form factors by sampling (lesson 09, "Montecarlo", "Muestreo de
 // áreas", "Muestreo de semiesferas", "Analogía de Nusselt"). Each estimator below is unbiased (the Nusselt
-// one is deterministic); its standard deviation falls as N^-1/2 with the number of samples N. Every function
-// below throws std::invalid_argument for a number of samples (or segments_per_edge) below 1, and the
-// point-based ones (Tasks 6–9) also for a point x that is not finite or a `normal` that is not unit length.
+// one is deterministic); where its score's variance is finite, its standard deviation falls as N^-1/2 with
+// the number of samples N (across a shared edge it is infinite and the error falls more slowly: lesson 09,
+// §8). Every function below throws std::invalid_argument for a number of samples (or segments_per_edge) below
+// 1, and the point-based ones (Tasks 6–9) also for a point x that is not finite or a `normal` that is not
+// unit length.
 #include <vector>
 
 #include "illum/core/random.hpp"
