@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Checks that the grading code still fits Ubuntu 22.04, Gradescope's default image (GCC 11, CMake 3.22,
-Python 3.10, doctest 2.4.8, nlohmann-json 3.10.5; docs/grading.md, "Supported images"):
+Python 3.10, doctest 2.4.8, nlohmann-json 3.10.5; docs/grading-reference.md, "Supported images"):
 
 1. the grading reporter and the check macros compile against tools/compat/doctest-2.4.8/, the interface
    they use as doctest 2.4.8 declares it;

@@ -1626,6 +1626,7 @@ class CommandLineTest(unittest.TestCase):
             self.assert_refused(["--batch", str(subs), "--roster", str(subs)], "not a regular file")
             self.assert_refused(["--batch", str(subs), "--student"], "does not take --student")
             self.assert_refused(["--format", "canvas", "01"], "--format belongs with --batch")
+            self.assert_refused(["--assignment", "hw3", "01"], "--assignment belongs with --batch")
             self.assert_refused(["--batch", str(subs), "--out", str(subs / "out")], "inside the submissions folder")
             self.assert_refused(["--batch", str(subs)], "no submission")
             roster = Path(folder) / "roster.csv"

@@ -331,13 +331,13 @@ def _student_user(name: str) -> str | None:
     if os.geteuid() != 0:
         print(f"setup: WARNING: not running as root, so there is no separate user for students' code: it will "
               f"run as {pwd.getpwuid(os.geteuid()).pw_name}, without privilege separation "
-              "(docs/grading-defences.md, \"Threat model\")", flush=True)
+              "(docs/grading-defences.md, \"What is left\")", flush=True)
         return None
     try:
         account = create_account(name)
     except SandboxError as error:
         print(f"setup: WARNING: {error}; students' code will run as root, without privilege separation "
-              "(docs/grading-defences.md, \"Threat model\")", flush=True)
+              "(docs/grading-defences.md, \"What is left\")", flush=True)
         return None
     print(f"setup: students' code is compiled and run as the user {account.name} (uid {account.uid})", flush=True)
     return account.name

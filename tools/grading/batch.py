@@ -325,7 +325,7 @@ class Batch:
         if os.geteuid() != 0:
             say("WARNING: not running as root, so each submission runs as you, not as a user of its own: a hostile "
                 "submission could read or change your files. Grade untrusted work with sudo "
-                "(docs/grading-defences.md, \"Threat model\").")
+                "(docs/grading-defences.md, \"What is left\").")
 
     def _prepare(self, work: Path) -> Slots | None:
         """Packs the autograder and runs its setup in every worker's slot; None (setup.log says why) on a failure."""
@@ -385,7 +385,7 @@ class Batch:
         files, left_out = {"grades.csv": grades_rows(rows, self.lessons, self.roster)}, []
         if self.args.format:
             make = moodle_rows if self.args.format == "moodle" else canvas_rows
-            files[f"grades-{self.args.format}.csv"], left_out = make(rows, self.roster, self.args.assignment)
+            files[f"grades-{self.args.format}.csv"], left_out = make(rows, self.roster, self.args.assignment or "illum")
         for name, table in files.items():
             write_text(self.out / name, csv_text(table), mode=0o600)
         for line in left_out:

@@ -77,7 +77,7 @@ def _parser() -> argparse.ArgumentParser:
                             "submission are listed as missing")
     batch.add_argument("--format", choices=("moodle", "canvas"),
                        help="with --batch: also write the gradebook import file of Moodle or Canvas")
-    batch.add_argument("--assignment", metavar="NAME", default="illum",
+    batch.add_argument("--assignment", metavar="NAME",
                        help="with --batch --format: the assignment's name in the gradebook (default: illum)")
     batch.add_argument("--work-dir", type=path_argument, metavar="DIR", help=argparse.SUPPRESS)
     for option in ("--submission-info", "--fallback-stubs", "--grader-data", "--save-tests"):  # the autograder's
@@ -124,7 +124,7 @@ def _check_batch(parser: argparse.ArgumentParser, args: argparse.Namespace) -> N
             parser.error(f"--roster {args.roster}: " + ("not a regular file (a roster is a CSV file)"
                                                          if args.roster.exists() else "no such file"))
     else:
-        for option in ("out", "jobs", "roster", "format", "work_dir"):
+        for option in ("out", "jobs", "roster", "format", "assignment", "work_dir"):
             if getattr(args, option) is not None:
                 parser.error(f"--{option.replace('_', '-')} belongs with --batch DIR")
 

@@ -278,7 +278,7 @@ def parse_arguments(argv: list[str]) -> argparse.Namespace:
     parser = argparse.ArgumentParser(
         prog="tools/grade --mutants",
         description="Mutation report: build small plausible bugs of the lessons' exercise units and count how "
-                    "many the grading tests catch (see docs/grading.md).")
+                    "many the grading tests catch (see docs/grading-reference.md).")
     parser.add_argument("--mutants", action="store_true", help=argparse.SUPPRESS)
     parser.add_argument("lessons", nargs="*", metavar="NN", help="lessons (default: every lesson with exercises)")
     parser.add_argument("--sample", type=int, metavar="N",
@@ -486,7 +486,7 @@ def markdown_report(reports: list[LessonReport], command: str, compare_without: 
 def bugs_report(reports: list[LessonReport], command: str) -> str:
     """Markdown: every hand-written student bug, whether the grading suite catches it, and by which test."""
     lines = ["# Student bugs: does the grading suite catch them?", "",
-             "Produced by `tools/grade --mutants --bugs` (docs/grading.md). Regenerate with:", "", "```sh",
+             "Produced by `tools/grade --mutants --bugs` (docs/grading-power.md). Regenerate with:", "", "```sh",
              command, "```", "",
              "Each bug is a mistake written by hand into a copy of a reference exercise unit "
              "(`tests/mutants/student_bugs/*.bug`), built and graded like a mutant.", "",

@@ -94,7 +94,7 @@ def _megabytes(name: str, default: int) -> int:
 
 @dataclass
 class Limits:
-    """What one test program, or one build, may use (environment variables in docs/grading.md)."""
+    """What one test program, or one build, may use (environment variables in docs/grading-reference.md, "Options")."""
 
     memory_mb: int = 1024        # ILLUM_GRADE_MEMORY_MB: data memory of one test program
     processes: int = 256         # ILLUM_GRADE_PROCESSES: processes and threads of the user at once
