@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <tuple>
@@ -458,6 +459,11 @@ TEST_SUITE("lesson09") {
     CHECK(shared.deepest_level > 1);
     CHECK_THROWS_AS(form_factor_hierarchical(floor_rect(0, 1, 0, 1, 0), ceiling_rect(0, 1, 0, 1, 1), 0.0),
                     std::invalid_argument);
+    INFO("contract (form_factor_hierarchical.hpp): max_depth outside 0 … 20 is refused");
+    for (const int bad_depth : {-1, 21})
+      CHECK_THROWS_AS(
+          form_factor_hierarchical(floor_rect(0, 1, 0, 1, 0), ceiling_rect(0, 1, 0, 1, 1), 1e-3, bad_depth),
+          std::invalid_argument);
   }
 
   // -------------------------------------------------------------- Nusselt
@@ -571,5 +577,33 @@ TEST_SUITE("lesson09") {
     INFO("contract (form_factor_sampling.hpp): a normal that is not unit length is refused");
     CHECK_THROWS_AS(form_factor_hemisphere_cosine({0, 0, 0}, Vec3(0, 0, 3), s.target, {}, 10, rng),
                     std::invalid_argument);
+  }
+
+  TEST_CASE(
+      "the point estimators refuse no samples, a point that is not finite and a normal not of unit length" *
+      doctest::description("task=6,7,8,9")) {
+    // Contract (form_factor_sampling.hpp): Tasks 6–9 throw std::invalid_argument for a sample count (or
+    // segments_per_edge) below 1, a point x that is not finite and a normal that is not unit length.
+    const Patch target = ceiling_rect(0, 1, 0, 1, 1);
+    const Point3 origin(0, 0, 0), far_away(std::numeric_limits<double>::infinity(), 0, 0),
+        undefined(0, std::nan(""), 0);
+    const Vec3 long_normal(0, 0, 2), tilted_short(0.6, 0, 0.7);  // lengths 2 and 0.92
+    Rng rng(9);
+    using Estimator =
+        double (*)(const Point3&, const Vec3&, const Patch&, const std::vector<Patch>&, int, Rng&);
+    const Estimator estimators[] = {form_factor_area_sampling, form_factor_hemisphere_uniform,
+                                    form_factor_hemisphere_cosine};
+    for (const Estimator estimate : estimators) {
+      CHECK_THROWS_AS(estimate(origin, up, target, {}, 0, rng), std::invalid_argument);
+      CHECK_THROWS_AS(estimate(origin, up, target, {}, -3, rng), std::invalid_argument);
+      CHECK_THROWS_AS(estimate(far_away, up, target, {}, 10, rng), std::invalid_argument);
+      CHECK_THROWS_AS(estimate(undefined, up, target, {}, 10, rng), std::invalid_argument);
+      CHECK_THROWS_AS(estimate(origin, long_normal, target, {}, 10, rng), std::invalid_argument);
+      CHECK_THROWS_AS(estimate(origin, tilted_short, target, {}, 10, rng), std::invalid_argument);
+    }
+    CHECK_THROWS_AS(form_factor_nusselt(far_away, up, target, 8), std::invalid_argument);
+    CHECK_THROWS_AS(form_factor_nusselt(undefined, up, target, 8), std::invalid_argument);
+    CHECK_THROWS_AS(form_factor_nusselt(origin, tilted_short, target, 8), std::invalid_argument);
+    CHECK_THROWS_AS(form_factor_nusselt(origin, up, target, -1), std::invalid_argument);
   }
 }
