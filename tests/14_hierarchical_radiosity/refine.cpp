@@ -252,4 +252,45 @@ TEST_SUITE("lesson14") {
     CHECK(to_children == 4);
     CHECK(kept == 1);
   }
+  TEST_CASE(
+      "refine visits the children in order and asks for F only to link; refine_links replaces in place" *
+      doctest::description("task=1,2,3a,3b,4,8")) {
+    // Contracts (hierarchical_radiosity.hpp): refine computes a link's F "only when [the ε_F oracle] says
+    // link" and refines the children "in order"; refine_links refines the children "where the link was"
+    // and keeps the other links "in their order". With one sample point a link asks one segment.
+    int asked = 0;
+    const SegmentVisible counting = [&](const Point3&, const Point3&) {
+      ++asked;
+      return true;
+    };
+    const RefineSettings once{.epsilon_f = 0.1, .epsilon_bf = off, .min_area = 0.01, .sample_points = 1};
+    // The source splits (as in "refine splits the larger element once"): its children 2 … 5, in order.
+    ElementHierarchy h = make_hierarchy({square(-0.5, -0.5, 0.5, 0.5, 0), square(-2, -2, 2, 2, 4, false)});
+    refine(h, 0, 1, once, counting);
+    REQUIRE(h.links.size() == 4);
+    for (int k = 0; k < 4; ++k) CHECK(h.links[static_cast<std::size_t>(k)].source == 2 + k);
+    CHECK_MESSAGE(asked == 4, "one segment for each of the four links, none for the root pair that splits");
+    // The receiver splits: its children 2 … 5 receive, in order.
+    ElementHierarchy g = make_hierarchy({square(-2, -2, 2, 2, 4, false), square(-0.5, -0.5, 0.5, 0.5, 0)});
+    refine(g, 0, 1, once, always);
+    REQUIRE(g.links.size() == 4);
+    for (int k = 0; k < 4; ++k) CHECK(g.links[static_cast<std::size_t>(k)].receiver == 2 + k);
+    // refine_links (as in "refine_links replaces a link whose source has become bright"): link 0 is
+    // replaced by four links to element 1's children 4 … 7 at positions 0 … 3; link (2, 3) moves to 4.
+    Patch receiver = square(-0.5, -0.5, 0.5, 0.5, 0);
+    receiver.reflectance = Color(0.5);
+    ElementHierarchy r = make_hierarchy({receiver, square(-1, -1, 1, 1, 5, false),
+                                         square(-0.5, -0.5, 0.5, 0.5, 0, false), square(-1, -1, 1, 1, -5)});
+    const RefineSettings bright{.epsilon_f = 0.1, .epsilon_bf = 0.01, .min_area = 0.01, .sample_points = 1};
+    refine(r, 0, 1, bright, always);
+    refine(r, 2, 3, bright, always);
+    r.elements[1].radiosity = Color(1);
+    REQUIRE(refine_links(r, bright, always) == 1);
+    REQUIRE(r.links.size() == 5);
+    for (int k = 0; k < 4; ++k) {
+      CHECK(r.links[static_cast<std::size_t>(k)].receiver == 0);
+      CHECK(r.links[static_cast<std::size_t>(k)].source == 4 + k);
+    }
+    CHECK((r.links[4].receiver == 2 && r.links[4].source == 3));
+  }
 }
