@@ -29,7 +29,8 @@ Color refine_square(LatticeRow& row, int x, int y, int size, int level, const Ad
 }
 
 // Task 3. Pixel i of the row: refuse a threshold that is negative or not
-// finite, a settings.max_depth other than row.max_depth(), and a min_depth
+// finite, a settings.max_depth other than row.max_depth() (the message naming
+// max_depth), and a min_depth
 // outside [0, max_depth], with
 // std::invalid_argument (illum::require); then refine the whole pixel, whose
 // top-left lattice point is (i · row.spacing(), 0).
