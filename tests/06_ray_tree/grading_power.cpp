@@ -8,6 +8,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "06_ray_tree/test_scenes.hpp"
@@ -182,6 +183,9 @@ TEST_SUITE("lesson06") {
                                   std::invalid_argument);
     ILLUM_CHECK_THROWS_CONTAINING(refract(Vec3(0, 0, -1), Vec3(0, 0, 1), -1.5), "refract",
                                   std::invalid_argument);
+    for (const double not_finite : {std::numeric_limits<double>::infinity(), std::nan("")})
+      ILLUM_CHECK_THROWS_CONTAINING(refract(Vec3(0, 0, -1), Vec3(0, 0, 1), not_finite), "refract",
+                                    std::invalid_argument);
   }
 
   TEST_CASE("hard case: R·V = 0 exactly gives no highlight, even with exponent 0" *
