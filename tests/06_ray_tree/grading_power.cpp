@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 
 #include "06_ray_tree/test_scenes.hpp"
@@ -223,6 +224,29 @@ TEST_SUITE("lesson06") {
     // I_own = I_1·k_d·1·S_1 + I_2·k_d·(1/√2)·0 = 2·0.5·(0.64, 0.25, 0.81) = (0.64, 0.25, 0.81).
     INFO("I_own = Σ_l S_l·I_l·k_d(N·L): the glass light weighs S = k_t², the blocked light 0");
     check_vec(own_intensity(tracer, at_origin, Vec3(0, 0, 1)), Color(0.64, 0.25, 0.81));
+  }
+
+  TEST_CASE("own intensity: an area light counts like a point light, with I_l = E·A·cos θ_l/(π r²)" *
+            doctest::description("task=3,4,5")) {
+    // Contract (ray_tree.hpp, light_sample.hpp): I_own sums over every light, point lights first, then
+    // area lights; an area light is its centroid, sending I_l = E·A·cos θ_l/(π r²). A unit square emitting
+    // E = (3, 1.5, 0.75) downwards, centred 2 above the point: A = 1, cos θ_l = 1, r = 2, so
+    // I_l = E/(4π); N·L = 1 and k_d = 0.5 give I_own = E/(8π). The light is not a primitive here, so
+    // nothing blocks its shadow ray (S = 1). A sum over the point lights alone gives 0.
+    Scene scene;
+    Material m = material("matte");
+    m.diffuse = Color(0.5);
+    const auto matte = add_material(scene, m);
+    const Color e(3.0, 1.5, 0.75);
+    scene.area_lights.push_back(AreaLight{
+        .name = "panel",
+        .polygon = {Point3(-0.5, -0.5, 2), Point3(-0.5, 0.5, 2), Point3(0.5, 0.5, 2), Point3(0.5, -0.5, 2)},
+        .emission = e});
+    const SurfaceHit at_origin = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), matte);
+    TraceStats stats;
+    const Tracer tracer{.scene = scene, .plan = full_effects(0), .stats = &stats};
+    INFO("I_own = k_d·(N·L)·E·A·cos θ_l/(π r²) = 0.5·1·E/(4π)");
+    check_vec(own_intensity(tracer, at_origin, Vec3(0, 0, 1)), e / (8.0 * std::numbers::pi));
   }
 
   TEST_CASE("shadow test: a coloured glass that stops two channels still lets the third through" *
