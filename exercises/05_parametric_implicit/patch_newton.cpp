@@ -14,7 +14,7 @@ namespace illum {
 // Task 5. Two unit normals N₁, N₂ perpendicular to ω and to each other
 // (N₁ × N₂ = ω), and d_i = −N_i·P0 so that both planes contain the ray.
 RayPlanes ray_planes(const Ray& ray) {
-  throw NotImplemented("ray_planes", "cross ω with the axis least aligned with it (lesson 05, §7)");
+  throw NotImplemented("ray_planes", "cross ω with the axis least aligned with it (lesson 05, §8)");
 }
 
 // Task 6. Newton in (u, v) on F = (N₁·S + d₁, N₂·S + d₂): solve J Δ = −F;
@@ -34,7 +34,7 @@ std::optional<PatchHit> patch_newton(const BezierPatch& patch, const Ray& ray, c
 std::optional<PatchHit> intersect_patch(const Ray& ray, const BezierPatch& patch, const PatchOptions& options,
                                         PatchStats* stats) {
   throw NotImplemented("intersect_patch",
-                       "convex hull property: a ray that misses the box misses the patch (lesson 05, §9)");
+                       "convex hull property: a ray that misses the box misses the patch (lesson 05, §8)");
 }
 
 }  // namespace illum

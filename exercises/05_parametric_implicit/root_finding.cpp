@@ -11,14 +11,16 @@
 namespace illum {
 
 // Task 1. Bisection: refuse a bad bracket or tolerance (std::invalid_argument),
-// report no_sign_change when f(a) and f(b) agree in sign, then halve the
-// bracket until its half width is ≤ tolerance.
+// return an endpoint where f is exactly 0 at once, report no_sign_change when
+// f(a) and f(b) agree in sign, then halve the bracket until its half width is
+// ≤ tolerance or the midpoint can no longer move.
 RootResult bisection(const RealFunction& f, Interval bracket, double tolerance, int max_iterations) {
   throw NotImplemented("bisection", "keep the half whose ends differ in sign (lesson 05, §3 'Bisection')");
 }
 
-// Task 2. Newton: s ← s − f(s)/f'(s), stopping when the step is ≤ tolerance;
-// f' = 0 is flat_derivative, a non-finite iterate is diverged.
+// Task 2. Newton: s ← s − f(s)/f'(s), stopping when the step is ≤ tolerance
+// or f(s) is exactly 0; f' = 0 (or not finite) is flat_derivative, a
+// non-finite iterate is diverged.
 RootResult newton(const RealFunction& f, double s0, double tolerance, int max_iterations) {
   throw NotImplemented("newton", "follow the tangent to zero, eq. (5.4); watch for f' = 0 (lesson 05, §4)");
 }

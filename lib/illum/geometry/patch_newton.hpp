@@ -48,7 +48,7 @@ struct PatchStats {
   long newton_iterations = 0;  // PatchHit::iterations, summed over the starts that hit
 };
 
-// The planes π₁, π₂ through the ray (lesson 05, §7): N₁ ⟂ ω built from the
+// The planes π₁, π₂ through the ray (lesson 05, §8): N₁ ⟂ ω built from the
 // coordinate axis least aligned with ω, N₂ = ω × N₁, and d_i = −N_i·P0.
 RayPlanes ray_planes(const Ray& ray);
 
