@@ -51,7 +51,7 @@ template SphereRoots<double> sphere_roots_stable(const glm::dvec3&, const glm::d
 // origin is strictly inside (|P0 − Pc| < r).
 std::optional<SphereHit> intersect(const Ray& ray, const Sphere& sphere) {
   throw NotImplemented("intersect(Ray, Sphere)",
-                       "take the nearest root inside ray.range; the normal is (P − Pc)/r (lesson 01, §5)");
+                       "take the nearest root inside ray.range; the normal is (P − Pc)/r (lesson 01, §2)");
 }
 
 }  // namespace illum

@@ -190,7 +190,7 @@ TEST_SUITE("lesson01") {
     CHECK_THROWS_AS(illum::intersect(ray, Sphere(Point3(0, 0, 5), 1.0)), std::invalid_argument);
   }
 
-  TEST_CASE("hard case: a huge sphere seen from close by (the ground of lesson 01's scene)" *
+  TEST_CASE("hard case: a huge sphere seen from close by (a ground sphere of radius 10⁶)" *
             doctest::description("task=1,3,4")) {
     // Radius 1e6 centred 1e6 + 1 below the origin: the top of the sphere is 1 below.
     const Ray down(Point3(0, 0, 0), Vec3(0, -1, 0));

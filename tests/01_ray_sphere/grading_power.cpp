@@ -176,10 +176,10 @@ TEST_SUITE("lesson01") {
 
   TEST_CASE("hard case: stable form keeps the small root of a ray leaving a huge sphere's surface" *
             doctest::description("task=3")) {
-    // The ground sphere of lesson 01 (radius 1e6), centre (1, 0, 1e6), ray from the origin along +z.
-    // ΔP = (1, 0, 1e6): C = |ΔP|² − r² = 1e12 + 1 − 1e12 = 1 exactly, b = ω·ΔP = 1e6, d² = 1, and the
-    // discriminant over four is 1e12 − 1 (exact). Vieta: s_near = C / (b + √(b² − C)) = 1 / (1e6 + √(1e12 −
-    // 1))
+    // A ground sphere of radius 1e6 (lesson 01's scene has one of radius 100), centre (1, 0, 1e6), ray from
+    // the origin along +z. ΔP = (1, 0, 1e6): C = |ΔP|² − r² = 1e12 + 1 − 1e12 = 1 exactly, b = ω·ΔP = 1e6, d²
+    // = 1, and the discriminant over four is 1e12 − 1 (exact). Vieta: s_near = C / (b + √(b² − C)) = 1 / (1e6
+    // + √(1e12 − 1))
     //   = 1e-6 / (1 + √(1 − 1e-12)) = 5e-7 (1 + 2.5e-13 + O(1e-25)), the far root 1e6 + √(1e12 − 1) ≈ 2e6.
     // b − √(…) instead subtracts two numbers near 1e6 whose last bit is 1.2e-10: s_near wrong in the
     // fourth digit.

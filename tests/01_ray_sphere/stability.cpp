@@ -1,5 +1,5 @@
 // Stability and property tests of lesson 01 (not graded): the notes' form is
-// shown losing digits where the stable one does not, against the binary128
+// shown losing digits where the stable one does not, against the double-double
 // reference, and random rays check the hit's invariants.
 #include <doctest/doctest.h>
 

@@ -144,7 +144,7 @@ TEST_SUITE("lesson02") {
     CHECK(count_crossings(u.loop_2d(0), Vec2(-1, 2)) == 4);
   }
 
-  TEST_CASE("hard case: a vertex on the test ray is counted once, or not at all, never twice" *
+  TEST_CASE("hard case: a vertex on the test ray counts with each edge rising from it: the parity holds" *
             doctest::description("task=3")) {
     // Diamond with vertices (0,1), (1,0), (2,1), (1,2). From q = (−1, 1) the ray
     // v = 1 passes through the vertices (0,1) and (2,1). Geometrically it

@@ -313,7 +313,7 @@ TEST_SUITE("lesson03") {
                         "s = 5 lies just above the range [0, 5 − 10⁻⁹]");
   }
 
-  TEST_CASE("hard case: points 10⁻⁶ from a slanted edge 2600 long fall on the side exact arithmetic says" *
+  TEST_CASE("hard case: points 10⁻⁶ from a slanted edge 2387 long fall on the side exact arithmetic says" *
             doctest::description("task=7")) {
     // Two triangles of z = 0.3 share the long edge P = (−1000.1, −600.7) → Q = (1000.3, 700.9): A (P, Q, R)
     // with R = (−1000.1, 700.9) above it (counter-clockwise), B (Q, P, S) with S = (1000.3, −600.7) below it,

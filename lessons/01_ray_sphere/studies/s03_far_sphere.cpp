@@ -2,7 +2,7 @@
 //
 // A sphere of radius 1 at distance 3000, seen in single precision through a
 // narrow pinhole and shaded by its normal. With the notes' formula the
-// discriminant B² − 4C cancels catastrophically and the disc breaks up; the
+// discriminant B² − 4C cancels catastrophically and the disc is drawn as a blob of false hits; the
 // stable form (§4) draws it whole.
 #include <algorithm>
 

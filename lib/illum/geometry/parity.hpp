@@ -12,7 +12,8 @@
 // * a vertex exactly on the test ray (v == q.v) counts as lying below it;
 //   an edge crosses the ray only when one end is strictly above q.v and the
 //   other is not. An edge lying along the ray therefore never counts, and a
-//   vertex on the ray is counted once or not at all, never twice.
+//   vertex on the ray is counted once for each of its edges that rises above
+//   the ray (0, 1 or 2), so touching the ray never changes the parity.
 // * a crossing counts only when q lies strictly to the left of the edge.
 //   The side is the sign of the determinant (hi − lo) × (q − lo) with the
 //   edge taken lower end first, so two polygons sharing an edge compute the
