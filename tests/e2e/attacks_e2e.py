@@ -183,6 +183,15 @@ def processes_under(folder: Path, uids: set[int]) -> list[tuple[int, str]]:
     return found
 
 
+def _owner(entry: os.DirEntry) -> int | None:
+    """The entry's owner, None when it is gone: other processes (a compiler's temporary files) come and go
+    in the shared folders while they are listed."""
+    try:
+        return entry.stat(follow_symlinks=False).st_uid
+    except FileNotFoundError:
+        return None
+
+
 def leftovers(uid: int) -> list[str]:
     """Files of ``uid`` in the shared folders and System V shared memory segments it still owns."""
     found = []
@@ -191,7 +200,7 @@ def leftovers(uid: int) -> list[str]:
             entries = list(os.scandir(folder))
         except OSError:
             continue
-        found += [entry.path for entry in entries if entry.stat(follow_symlinks=False).st_uid == uid]
+        found += [entry.path for entry in entries if _owner(entry) == uid]
     try:
         with open("/proc/sysvipc/shm", encoding="ascii") as table:
             next(table, None)
