@@ -300,6 +300,9 @@ def _probed_program(root: Path, lesson: str, build_dir: Path, commands: dict[Pat
     return program
 
 
+PROBE_SECONDS = 600  # one probed test; the slowest grading test takes a few seconds
+
+
 def derive(root: Path, lesson: str, build_dir: Path, write: bool) -> int:
     commands = {Path(e["file"]).resolve(): e for e in json.loads((build_dir / "compile_commands.json").read_text())}
     found: dict[str, list[str]] = {}
@@ -312,10 +315,13 @@ def derive(root: Path, lesson: str, build_dir: Path, write: bool) -> int:
         out = work / "probe.txt"
         for k, test in enumerate((t for t in list_suites(program) if t.suite == f"lesson{lesson}"), start=1):
             out.unlink(missing_ok=True)
-            subprocess.run([str(program), f"-ts=lesson{lesson}", f"--first={k}", f"--last={k}"],
-                           env={**os.environ, "ILLUM_TASK_PROBE": str(out), "OMP_NUM_THREADS": "1",
-                                "ILLUM_TEST_ONE_PROCESS": "1"},  # the probe records in this process
-                           capture_output=True, check=False)
+            try:  # one process (the probe records in it), at most PROBE_SECONDS a test; nothing written yet
+                subprocess.run([str(program), f"-ts=lesson{lesson}", f"--first={k}", f"--last={k}"],
+                               env={**os.environ, "ILLUM_TASK_PROBE": str(out), "OMP_NUM_THREADS": "1",
+                                    "ILLUM_TEST_ONE_PROCESS": "1"},
+                               capture_output=True, check=False, timeout=PROBE_SECONDS)
+            except subprocess.TimeoutExpired:
+                sys.exit(f"task_tables.py --derive: test '{test.name}' ran over {PROBE_SECONDS} s; no tag written")
             entered = {symbols.get(int(a, 16), "") for a in out.read_text().split()} if out.exists() else set()
             found[test.name] = sorted({task_of_symbol[s] for s in entered if s in task_of_symbol}, key=_task_key)
             print(f"{','.join(found[test.name]) or '-':10} {test.name}")

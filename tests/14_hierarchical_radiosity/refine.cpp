@@ -128,11 +128,20 @@ TEST_SUITE("lesson14") {
     // Receiver 1 × 1, source 4 × 4 (area 16), 4 apart: 16/(16π + 16) = 0.2415 > 0.1, so the
     // source splits; each child (area 4) is at least 4 away: 4/(16π + 4) = 0.0737 < 0.1 and
     // 1/(π r² + 1) < 0.02: four links, no more splits.
+    // Contracts: F is computed "only when [the ε_F oracle] says link" (one sample point: one segment a
+    // link, none for the root pair that splits), and the children are refined "in order".
     ElementHierarchy h = make_hierarchy({square(-0.5, -0.5, 0.5, 0.5, 0), square(-2, -2, 2, 2, 4, false)});
-    refine(h, 0, 1, {.epsilon_f = 0.1, .epsilon_bf = off, .min_area = 0.01, .sample_points = 1}, always);
+    int asked = 0;
+    const SegmentVisible counting = [&](const Point3&, const Point3&) {
+      ++asked;
+      return true;
+    };
+    refine(h, 0, 1, {.epsilon_f = 0.1, .epsilon_bf = off, .min_area = 0.01, .sample_points = 1}, counting);
     CHECK(h.elements.size() == 6);
     CHECK(h.elements[1].first_child == 2);
     REQUIRE(h.links.size() == 4);
+    CHECK_MESSAGE(asked == 4, "one segment for each of the four links, none for the root pair that splits");
+    for (int k = 0; k < 4; ++k) CHECK(h.links[static_cast<std::size_t>(k)].source == 2 + k);
     double total = 0;
     for (const Link& l : h.links) {
       CHECK(l.receiver == 0);
@@ -157,9 +166,8 @@ TEST_SUITE("lesson14") {
       CHECK(l.source == 1);
       receivers.push_back(l.receiver);
     }
-    std::sort(receivers.begin(), receivers.end());
     const std::vector<int> children = {2, 3, 4, 5};
-    CHECK_MESSAGE(receivers == children, "each of the four children gets its own link");
+    CHECK_MESSAGE(receivers == children, "each of the four children gets its own link, in order");
   }
 
   TEST_CASE("refine: a pair facing away gets no link and no split; the same element twice is refused" *
@@ -251,46 +259,9 @@ TEST_SUITE("lesson14") {
     }
     CHECK(to_children == 4);
     CHECK(kept == 1);
-  }
-  TEST_CASE(
-      "refine visits the children in order and asks for F only to link; refine_links replaces in place" *
-      doctest::description("task=1,2,3a,3b,4,8")) {
-    // Contracts (hierarchical_radiosity.hpp): refine computes a link's F "only when [the ε_F oracle] says
-    // link" and refines the children "in order"; refine_links refines the children "where the link was"
-    // and keeps the other links "in their order". With one sample point a link asks one segment.
-    int asked = 0;
-    const SegmentVisible counting = [&](const Point3&, const Point3&) {
-      ++asked;
-      return true;
-    };
-    const RefineSettings once{.epsilon_f = 0.1, .epsilon_bf = off, .min_area = 0.01, .sample_points = 1};
-    // The source splits (as in "refine splits the larger element once"): its children 2 … 5, in order.
-    ElementHierarchy h = make_hierarchy({square(-0.5, -0.5, 0.5, 0.5, 0), square(-2, -2, 2, 2, 4, false)});
-    refine(h, 0, 1, once, counting);
-    REQUIRE(h.links.size() == 4);
-    for (int k = 0; k < 4; ++k) CHECK(h.links[static_cast<std::size_t>(k)].source == 2 + k);
-    CHECK_MESSAGE(asked == 4, "one segment for each of the four links, none for the root pair that splits");
-    // The receiver splits: its children 2 … 5 receive, in order.
-    ElementHierarchy g = make_hierarchy({square(-2, -2, 2, 2, 4, false), square(-0.5, -0.5, 0.5, 0.5, 0)});
-    refine(g, 0, 1, once, always);
-    REQUIRE(g.links.size() == 4);
-    for (int k = 0; k < 4; ++k) CHECK(g.links[static_cast<std::size_t>(k)].receiver == 2 + k);
-    // refine_links (as in "refine_links replaces a link whose source has become bright"): link 0 is
-    // replaced by four links to element 1's children 4 … 7 at positions 0 … 3; link (2, 3) moves to 4.
-    Patch receiver = square(-0.5, -0.5, 0.5, 0.5, 0);
-    receiver.reflectance = Color(0.5);
-    ElementHierarchy r = make_hierarchy({receiver, square(-1, -1, 1, 1, 5, false),
-                                         square(-0.5, -0.5, 0.5, 0.5, 0, false), square(-1, -1, 1, 1, -5)});
-    const RefineSettings bright{.epsilon_f = 0.1, .epsilon_bf = 0.01, .min_area = 0.01, .sample_points = 1};
-    refine(r, 0, 1, bright, always);
-    refine(r, 2, 3, bright, always);
-    r.elements[1].radiosity = Color(1);
-    REQUIRE(refine_links(r, bright, always) == 1);
-    REQUIRE(r.links.size() == 5);
-    for (int k = 0; k < 4; ++k) {
-      CHECK(r.links[static_cast<std::size_t>(k)].receiver == 0);
-      CHECK(r.links[static_cast<std::size_t>(k)].source == 4 + k);
-    }
-    CHECK((r.links[4].receiver == 2 && r.links[4].source == 3));
+    // Contract: the children are refined "where the link was" (positions 0 … 3, element 1's children
+    // 4 … 7 in order) and the other links keep their order (link (2, 3) moves to 4).
+    for (int k = 0; k < 4; ++k) CHECK(h.links[static_cast<std::size_t>(k)].source == 4 + k);
+    CHECK((h.links[4].receiver == 2 && h.links[4].source == 3));
   }
 }
