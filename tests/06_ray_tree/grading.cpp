@@ -353,10 +353,36 @@ TEST_SUITE("lesson06") {
     // N·I = −√0.19, R = I − 2(N·I)N = (1 − 2·0.19, −1.8√0.19, 0) = (0.62, −1.8√0.19, 0).
     const double root = std::sqrt(0.19);
     require_reflect(Vec3(1, 0, 0), Vec3(-root, -0.9, 0), Vec3(0.62, -1.8 * root, 0));
-    const Run r = run(scene, Ray(Point3(0, 0.9, 0), Vec3(1, 0, 0)), 1);
+    const Ray inside(Point3(0, 0.9, 0), Vec3(1, 0, 0));
+    const Run r = run(scene, inside, 1);
     check_vec(r.color, Color(0.19));
     CHECK_MESSAGE(r.stats.rays.reflection == 1, "total internal reflection spawns the reflected ray");
     CHECK(r.stats.rays.refraction == 0);
+    // The same ray recorded, and then with plan.refraction off. Contract of evaluate (ray_tree.hpp):
+    // total internal reflection is recorded on the ray's node (record_total_internal_reflection);
+    // with refraction off there is no refracted child and no total internal reflection either, so
+    // k_t is not moved to k_r: k_r = 0 casts no reflected ray (skip_zero_weights) and the colour is
+    // I_own = 0.1. Moving k_t to k_r before looking at the switch gives 0.1 + 0.9·0.1 = 0.19 again.
+    for (const bool refraction : {true, false}) {
+      EffectsPlan plan = plan_effects(scene, 1);
+      plan.refraction = refraction;
+      TraceStats stats;
+      RayTree tree;
+      const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats, .tree = &tree};
+      const Color c = evaluate(tracer, inside);
+      INFO("plan.refraction ", refraction ? "on" : "off");
+      REQUIRE_MESSAGE(!tree.nodes.empty(), "contract of evaluate: record_ray gives the primary ray node 0");
+      CHECK_MESSAGE(tree.nodes[0].total_internal_reflection == refraction,
+                    "contract of evaluate: record_total_internal_reflection(tracer.tree, node) when total "
+                    "internal reflection leaves no refracted ray, and only then (refraction off: none)");
+      if (refraction) continue;
+      check_vec(c, Color(0.1));
+      CHECK_MESSAGE(stats.rays.reflection == 0,
+                    "contract of evaluate: plan.refraction off means no total internal reflection either "
+                    "(k_t is not moved to k_r), so k_r = 0 and no reflected ray; got "
+                        << stats.rays.reflection);
+      CHECK(stats.rays.refraction == 0);
+    }
   }
 
   TEST_CASE("hard case: a ray tangent to a mirror ball goes on past it" *

@@ -2,7 +2,8 @@
 // (`tools/grade --mutants 06`, docs/grading.md): the exact critical angle,
 // a highlight that faces away from the viewer, a light on the tangent plane,
 // the zero-weight rule of the effects plan, and an oblique entry into glass
-// through evaluate (where η_i/η_t = 1/η and η differ).
+// through evaluate (where η_i/η_t = 1/η and η differ); and the shadows switch
+// of own_intensity (off: no light is used, not every light unblocked).
 //
 // As in grading.cpp, every expected value is worked out by hand in the test.
 #include <doctest/doctest.h>
@@ -224,6 +225,29 @@ TEST_SUITE("lesson06") {
     // I_own = I_1·k_d·1·S_1 + I_2·k_d·(1/√2)·0 = 2·0.5·(0.64, 0.25, 0.81) = (0.64, 0.25, 0.81).
     INFO("I_own = Σ_l S_l·I_l·k_d(N·L): the glass light weighs S = k_t², the blocked light 0");
     check_vec(own_intensity(tracer, at_origin, Vec3(0, 0, 1)), Color(0.64, 0.25, 0.81));
+    // Contract of own_intensity: with plan.shadows off, no light is used. A lit point (k_a = 0.25,
+    // emission (0.1, 0, 0.05), the same k_d = 0.5 under the same two lights) under I_a = (0.4, 0.8, 1):
+    // I_own = k_a·I_a + emission = (0.1, 0.2, 0.25) + (0.1, 0, 0.05) = (0.2, 0.2, 0.3), no shadow ray,
+    // no intersection test. The lights taken as unblocked (S = 1) would add 2·0.5·(1 + 1/√2) ≈ 1.71.
+    Material lit = m;
+    lit.ambient = Color(0.25);
+    lit.emission = Color(0.1, 0.0, 0.05);
+    const SurfaceHit lit_point = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), add_material(scene, lit));
+    scene.ambient_light = Color(0.4, 0.8, 1.0);
+    EffectsPlan no_shadows = full_effects(0);
+    no_shadows.shadows = false;
+    TraceStats dark_stats;
+    const Tracer dark{.scene = scene, .plan = no_shadows, .stats = &dark_stats};
+    {
+      INFO("plan.shadows off: I_own = k_a·I_a + emission, no light is used (contract of own_intensity)");
+      check_vec(own_intensity(dark, lit_point, Vec3(0, 0, 1)), Color(0.2, 0.2, 0.3));
+    }
+    CHECK_MESSAGE(dark_stats.rays.shadow == 0,
+                  "contract of own_intensity: with plan.shadows off no light is used, so no shadow ray; got "
+                      << dark_stats.rays.shadow);
+    CHECK_MESSAGE(dark_stats.work.intersection_tests == 0,
+                  "plan.shadows off: nothing is traced, no intersection test; got "
+                      << dark_stats.work.intersection_tests);
   }
 
   TEST_CASE("own intensity: an area light counts like a point light, with I_l = E·A·cos θ_l/(π r²)" *

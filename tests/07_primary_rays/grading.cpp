@@ -118,6 +118,10 @@ TEST_SUITE("lesson07") {
                     std::invalid_argument);
     CHECK_THROWS_AS(adaptive_pixel(row, 0, {.threshold = 0.1, .max_depth = 2, .min_depth = -1}),
                     std::invalid_argument);
+    CHECK_MESSAGE(row.traced() == 0,
+                  "contract of adaptive_pixel: a refused call traces nothing (it checks min_depth before it "
+                  "samples); got "
+                      << row.traced() << " rays");
   }
 
   TEST_CASE("adaptive: threshold 0 refines to the maximum depth and no further" *
@@ -410,6 +414,12 @@ TEST_SUITE("lesson07") {
     CHECK_MESSAGE(statistical_pixel(flat, 0, 0, rng, {.min_samples = 3, .z = 0.5}).samples == 3,
                   "any z > 0 is a confidence level (z = 0.5: about 38 %)");
     CHECK_THROWS_AS(statistical_pixel(flat, 0, 0, rng, {.z = nan}), std::invalid_argument);
+    // Contract of statistical_pixel: tolerance and z must be finite too. A test `tolerance ≥ 0` alone
+    // lets +∞ through (it stops at min_samples), `z > 0` alone lets z = +∞ through (∞·0 = NaN).
+    const double inf = std::numeric_limits<double>::infinity();
+    INFO("contract of statistical_pixel: throws unless tolerance ≥ 0 and finite, z > 0 and finite");
+    CHECK_THROWS_AS(statistical_pixel(flat, 0, 0, rng, {.tolerance = inf}), std::invalid_argument);
+    CHECK_THROWS_AS(statistical_pixel(flat, 0, 0, rng, {.z = inf}), std::invalid_argument);
   }
 
   TEST_CASE("pruning: a branch contributes when its largest channel reaches the threshold" *
@@ -423,6 +433,11 @@ TEST_SUITE("lesson07") {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     CHECK_THROWS_AS(branch_contributes(Color(1.0), nan), std::invalid_argument);
     CHECK_THROWS_AS(branch_contributes(Color(1.0), -0.01), std::invalid_argument);
+    INFO(
+        "contract of branch_contributes: a threshold that is not finite is refused, +∞ included "
+        "(a test threshold ≥ 0 alone lets it through)");
+    CHECK_THROWS_AS(branch_contributes(Color(1.0), std::numeric_limits<double>::infinity()),
+                    std::invalid_argument);
   }
 
   TEST_CASE("adaptive: a square is cut when only one corner differs, whichever corner it is" *

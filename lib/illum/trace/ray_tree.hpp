@@ -84,7 +84,8 @@ Color shadow_transmission(const Tracer& tracer, const SurfaceHit& hit, const Poi
 // a light whose phong_term is black (k_d = k_s = 0, or k_d = 0 and no
 // highlight towards the viewer). Without
 // plan.skip_zero_weights every light above the tangent plane gets its shadow
-// ray, whatever the material. With plan.shadows off, no light is used.
+// ray, whatever the material. With plan.shadows off, no light is used:
+// I_own = k_a·I_a + emission, and no shadow ray is cast.
 Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_viewer, int node = no_node);
 
 // The notes' evaluar(rayo). Counts the ray once in tracer.stats->rays under
@@ -115,7 +116,8 @@ Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_
 // node, Color(0), background), and nothing else; on a hit, own_intensity with
 // that node (its shadow rays become the node's children), then each child
 // evaluated with `node` as its parent, record_total_internal_reflection(
-// tracer.tree, node) when the refracted ray does not exist, and last
+// tracer.tree, node) when total internal reflection leaves no refracted ray
+// (not when plan.refraction is off: then there is none), and last
 // record_result(tracer.tree, node, I_own, the colour returned).
 Color evaluate(const Tracer& tracer, const Ray& ray, int depth = 0, RayKind kind = RayKind::primary,
                const Color& weight = Color(1.0), int parent = no_node);
