@@ -53,6 +53,12 @@ TEST_SUITE("lesson01") {
     CHECK_MESSAGE(r.count == 2, "disc = B² − 4C = 4 > 0: the ray crosses the sphere twice");
     ILLUM_CHECK_APPROX(r.s_near, 4.0, 1e-15);  // also judged by the grader outside the program
     ILLUM_CHECK_APPROX(r.s_far, 6.0, 1e-15);
+    // The same in float (T = float): ΔP, B, C, the discriminant and the roots are small integers, exact
+    // in float too.
+    const auto single = illum::sphere_roots_notes(glm::vec3(0), glm::vec3(0, 0, 1), glm::vec3(0, 0, 5), 1.0f);
+    CHECK_MESSAGE(single.count == 2, "contract of sphere_roots_notes: T is float or double");
+    CHECK(single.s_near == 4.0f);
+    CHECK(single.s_far == 6.0f);
   }
 
   TEST_CASE("notes' form uses ΔP = Pc − P0 (erratum 1), not P − P0" * doctest::description("task=2")) {
@@ -72,6 +78,20 @@ TEST_SUITE("lesson01") {
     CHECK_MESSAGE(touch.count == 1, "B² − 4C = 0: one double root, the ray is tangent");
     CHECK(touch.s_near == doctest::Approx(5.0));
     CHECK(touch.s_far == doctest::Approx(5.0));
+    // A unit sphere 10⁴ ahead: B = −2·10⁴, C = 10⁸ − 1. In double C is exact, B² − 4C = 4 and the roots
+    // are (2·10⁴ ∓ 2)/2 = 9999 and 10001. Float (24-bit significand, spacing 8 near 10⁸) cannot hold
+    // 10⁸ − 1: C rounds to 10⁸, B² − 4C = 4·10⁸ − 4·10⁸ = 0, and the crossing line is reported tangent
+    // at s = 10⁴. That loss is what the lesson's precision study shows; arithmetic in double hides it.
+    const auto far = illum::sphere_roots_notes(Vec3(0), plus_z, Vec3(0, 0, 1e4), 1.0);
+    REQUIRE(far.count == 2);
+    CHECK(far.s_near == 9999.0);
+    CHECK(far.s_far == 10001.0);
+    const auto far_single =
+        illum::sphere_roots_notes(glm::vec3(0), glm::vec3(0, 0, 1), glm::vec3(0, 0, 1e4f), 1.0f);
+    CHECK_MESSAGE(far_single.count == 1,
+                  "contract of sphere_roots_notes: computed in T; in float C = 10⁸ − 1 rounds to 10⁸ and "
+                  "B² − 4C = 0");
+    CHECK(far_single.s_near == 1e4f);
   }
 
   TEST_CASE("stable form: the roots t ± √(r² − h²) of an oblique ray" * doctest::description("task=3")) {

@@ -1,5 +1,6 @@
 // Grading tests of lesson 03: winding number, convexity and the convex test,
-// watertight ray–triangle intersection, on top of the robust orientation.
+// watertight ray–triangle intersection, on top of the robust orientation;
+// triangles and polygons 10⁻⁸ across are judged as at size 1 (no tolerance).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -131,6 +132,16 @@ TEST_SUITE("lesson03") {
     CHECK_MESSAGE(!is_convex(Polygon({{0, 0, 0}, {4, 0, 0}, {4, 4, 0}, {0, 4, 0}},
                                      {{{1, 1, 0}, {1, 2, 0}, {2, 2, 0}, {2, 1, 0}}})),
                   "a polygon with a hole is not convex");
+    // The triangle and the L scaled by k = 10⁻⁸: every coordinate is 0, k or 2k, an exact multiple of the
+    // double k, so each turn's exact sign is the unscaled one (the cross products are k² times ±1 or ±2,
+    // about 10⁻¹⁶). A tolerance on the turns calls every one of them straight, and the triangle's, whose
+    // edges point more than 90° apart, then look like U-turns. The L stays concave at this size too.
+    const double k = 1e-8;
+    CHECK_MESSAGE(is_convex(flat({{0, 0}, {k, 0}, {0, k}})),
+                  "contract of is_convex: no tolerance, a triangle 1e-8 across is judged as one of size 1");
+    CHECK_FALSE_MESSAGE(
+        is_convex(flat({{0, 0}, {2 * k, 0}, {2 * k, k}, {k, k}, {k, 2 * k}, {0, 2 * k}})),
+        "contract of is_convex: no tolerance, an L 2e-8 across turns right once, as at size 2");
   }
 
   TEST_CASE("convexity: ConvexPolygon refuses concave input and input with holes" *
@@ -226,6 +237,29 @@ TEST_SUITE("lesson03") {
     CHECK(oblique->s == doctest::Approx(std::sqrt(57.0)));
     CHECK(oblique->barycentric.x == doctest::Approx(0.25));
     CHECK(oblique->barycentric.z == doctest::Approx(0.5));
+    // The same triangle and rays scaled by k = 10⁻⁸ (not exact in binary, so every coordinate is
+    // rounded): lengths scale by k, ratios do not, so the hits are at s = 5k and √57·k with the same
+    // barycentrics (to rounding, ~10⁻¹⁶ relative). The edge functions U, V, W are of order k² = 10⁻¹⁶:
+    // only U + V + W = 0 exactly means edge-on, so a tolerance on them loses this triangle.
+    const double k = 1e-8;
+    const Triangle tiny(Point3(0, 0, 5 * k), Point3(4 * k, 0, 5 * k), Point3(0, 4 * k, 5 * k));
+    const auto tiny_hit = intersect(Ray(Point3(k, k, 0), Vec3(0, 0, 1)), tiny);
+    REQUIRE_MESSAGE(tiny_hit.has_value(),
+                    "contract of intersect: no tolerance anywhere, a triangle 1e-8 "
+                    "across is hit as one of size 1");
+    CHECK(tiny_hit->s / k == doctest::Approx(5.0).epsilon(1e-12));
+    CHECK(tiny_hit->barycentric.x == doctest::Approx(0.5).epsilon(1e-12));
+    CHECK(tiny_hit->barycentric.y == doctest::Approx(0.25).epsilon(1e-12));
+    CHECK(tiny_hit->barycentric.z == doctest::Approx(0.25).epsilon(1e-12));
+    const auto tiny_oblique =
+        intersect(Ray::toward(Point3(-3 * k, -3 * k, k), Vec3(4 * k, 5 * k, 4 * k)), tiny);
+    REQUIRE_MESSAGE(tiny_oblique.has_value(),
+                    "contract of intersect: no tolerance anywhere, a triangle 1e-8 "
+                    "across is hit as one of size 1");
+    CHECK(tiny_oblique->s / k == doctest::Approx(std::sqrt(57.0)).epsilon(1e-12));
+    CHECK(tiny_oblique->barycentric.x == doctest::Approx(0.25).epsilon(1e-12));
+    CHECK(tiny_oblique->barycentric.y == doctest::Approx(0.25).epsilon(1e-12));
+    CHECK(tiny_oblique->barycentric.z == doctest::Approx(0.5).epsilon(1e-12));
   }
 
   TEST_CASE("ray-triangle: hit from the back side too, and misses" * doctest::description("task=7")) {

@@ -2,7 +2,8 @@
 // intersection: rays through the edges and a corner of the parameter square
 // (closed), a hit from the back (det J < 0), patches far smaller and larger
 // than 1 (the singularity test is relative to |S_u||S_v|), the exact Newton
-// step count where F is linear in (u, v), and max_iterations at its bounds.
+// step count where F is linear in (u, v), and max_iterations at its bounds
+// (one step too few for a bilinear F: no hit).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -295,6 +296,27 @@ TEST_SUITE("lesson05") {
     CHECK_MESSAGE(at_start->iterations == 0, "a start already on the ray needs no step");
     const std::optional<PatchHit> one = patch_newton(patch, ray, planes, Vec2(0.9, 0.1), 1e-13, 1);
     CHECK_MESSAGE(one.has_value(), "max_iterations = 1 allows the one step this linear F needs");
+    // Where F is not linear one step is not enough. The ray from (2, 0.25, 0.1) along −x meets the
+    // saddle S = (u, v, uv) where v = 0.25 and uv = 0.1: (u, v) = (0.4, 0.25), s = 2 − 0.4 = 1.6. Its
+    // planes, built here: N₁ = (0, 0, −1), N₂ = (0, −1, 0) (N₁ × N₂ = (−1, 0, 0) = ω), d_i = −N_i·P0, so
+    // F₁ = 0.1 − uv and F₂ = 0.25 − v. From (0.5, 0.5) Newton's step (J = [−v −u; 0 −1]) gives
+    // Δv = −0.25, Δu = −0.05, landing on (0.45, 0.25) where F₁ = 0.1 − 0.1125 = −0.0125 (= −Δu·Δv, the
+    // bilinear term): not converged. The second step (Δv = 0, Δu = −0.05) lands on (0.4, 0.25).
+    const Ray along_x(Point3(2, 0.25, 0.1), Vec3(-1, 0, 0));
+    RayPlanes by_hand;
+    by_hand.n1 = Vec3(0, 0, -1);
+    by_hand.d1 = 0.1;
+    by_hand.n2 = Vec3(0, -1, 0);
+    by_hand.d2 = 0.25;
+    CHECK_FALSE_MESSAGE(patch_newton(patch, along_x, by_hand, Vec2(0.5, 0.5), 1e-13, 1),
+                        "contract of patch_newton: nothing when it does not converge within max_iterations "
+                        "(after 1 step |F₁| = 0.0125)");
+    const std::optional<PatchHit> two = patch_newton(patch, along_x, by_hand, Vec2(0.5, 0.5), 1e-13, 2);
+    REQUIRE_MESSAGE(two.has_value(), "two Newton steps reach (0.4, 0.25)");
+    CHECK(two->iterations == 2);
+    CHECK(std::abs(two->u - 0.4) <= 1e-14);
+    CHECK(std::abs(two->v - 0.25) <= 1e-14);
+    CHECK(std::abs(two->s - 1.6) <= 1e-14);
     CHECK_THROWS_AS(patch_newton(patch, ray, planes, Vec2(0.5, 0.5), 1e-13, 0), std::invalid_argument);
   }
 }

@@ -71,6 +71,15 @@ TEST_SUITE("lesson05") {
     CHECK_THROWS_AS(sphere_trace(f, {not_a_number, 5.0}, 1.0, 1e-9, 50), std::invalid_argument);
     CHECK_THROWS_AS(sphere_trace(f, {0.0, 5.0}, 0.0, 1e-9, 50), std::invalid_argument);  // L = 0
     CHECK_THROWS_AS(sphere_trace(f, {0.0, 5.0}, not_a_number, 1e-9, 50), std::invalid_argument);
+    {
+      INFO(
+          "contract of sphere_trace: throws std::invalid_argument when the range is empty, the tolerance "
+          "is not positive, or max_iterations < 1");
+      CHECK_THROWS_AS(sphere_trace(f, {5.0, 0.0}, 1.0, 1e-9, 50), std::invalid_argument);  // lo > hi: empty
+      CHECK_THROWS_AS(sphere_trace(f, {0.0, 5.0}, 1.0, 0.0, 50), std::invalid_argument);   // tolerance 0
+      CHECK_THROWS_AS(sphere_trace(f, {0.0, 5.0}, 1.0, -1e-9, 50), std::invalid_argument);
+      CHECK_THROWS_AS(sphere_trace(f, {0.0, 5.0}, 1.0, 1e-9, 0), std::invalid_argument);  // no evaluation
+    }
   }
 
   TEST_CASE("Newton converges quadratically to √2" * doctest::description("task=2")) {
@@ -125,6 +134,16 @@ TEST_SUITE("lesson05") {
     const RootResult plain = newton(f, -20.0, 1e-12, 60);
     CHECK_MESSAGE(!(plain.converged() && std::abs(plain.s - 1.0) < 1e-6),
                   "|s0 − 1| > 1.39: plain Newton on atan diverges");
+    // f = eˢ − 1 (root 0) from s0 = −710: f(s0) rounds to −1 and f'(s0) = e⁻⁷¹⁰ ≈ 4.5·10⁻³⁰⁹ (subnormal,
+    // not 0, so the tangent is not flat), and the step f/f' = −e⁷¹⁰ ≈ −2.2·10³⁰⁸ is beyond the largest
+    // double (1.8·10³⁰⁸ = e^709.78): the first iterate s0 − f/f' is +∞, not finite.
+    const Function exp_minus_one([](double s) { return std::exp(s) - 1.0; },
+                                 [](double s) { return std::exp(s); });
+    const RootResult runaway = newton(exp_minus_one, -710.0, 1e-12, 50);
+    CHECK_MESSAGE(runaway.status == RootStatus::diverged,
+                  "contract of newton: diverged when the iterate is not finite (e⁷¹⁰ overflows a double)");
+    CHECK_MESSAGE(runaway.iterations == 1, "the one step that overflowed was taken: iterations = 1");
+    CHECK_MESSAGE(!std::isfinite(runaway.s), "s is the last iterate, +∞");
     const RootResult safe = safeguarded_newton(f, {-20.0, 4.0}, 1e-12, 200);
     REQUIRE(safe.converged());
     CHECK_MESSAGE(std::abs(safe.s - 1.0) <= 1e-12, "atan(s − 1) = 0 at s = 1");
@@ -144,6 +163,11 @@ TEST_SUITE("lesson05") {
     const double cos_theta = std::abs(dot(ray.direction, normalize(ray.at(exact) - Vec3(0, 0, 5))));
     CHECK_MESSAGE(r.s <= exact + 1e-14, "steps of d/L never pass the surface (Lipschitz bound, L = 1)");
     CHECK_MESSAGE(exact - r.s <= 1e-12 / cos_theta + 1e-14, "stopped within tolerance/cos θ of the true hit");
+    // The whole ray ahead, [0, +∞): the same march, the same closed-form hit.
+    const RootResult ahead = sphere_trace(g, Interval::ahead(), 1.0, 1e-12, 1000);
+    REQUIRE_MESSAGE(ahead.converged(), "contract of sphere_trace: range.hi may be +∞");
+    CHECK(ahead.s <= exact + 1e-14);
+    CHECK(exact - ahead.s <= 1e-12 / cos_theta + 1e-14);
   }
 
   TEST_CASE("sphere tracing reports a miss when the ray passes by" * doctest::description("task=4")) {

@@ -59,8 +59,9 @@ RayPlanes ray_planes(const Ray& ray);
 // ran off the patch, even if later steps would come back), when J is singular
 // (|det J| = |ω·(S_u × S_v)| ≤ 1e-12·|S_u||S_v|: the ray runs along the
 // surface, the patch is seen edge-on, or the edge there is collapsed), or
-// when it does not converge. Where S_u × S_v nearly vanishes (|S_u × S_v| ≤
-// 10⁻⁹|S_u||S_v|: a collapsed edge, or a fold where S_u ∥ S_v) the normal is
+// when it does not converge within max_iterations steps. Where S_u × S_v
+// nearly vanishes (|S_u × S_v| ≤ 10⁻⁹|S_u||S_v|: a collapsed edge, or a
+// fold where S_u ∥ S_v) the normal is
 // S_u × S_v taken a little way (10⁻⁶ of the way) from (u, v) towards the
 // centre (½, ½) of the square, in both parameters: next to a fold that stays
 // on the hit's side. Throws

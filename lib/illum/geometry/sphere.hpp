@@ -43,7 +43,8 @@ struct SphereRoots {
 };
 
 // The notes' quadratic formula, with erratum 1 of docs/errata.md applied. `direction` must be
-// a unit vector (A = 1); T is float or double, to compare precisions.
+// a unit vector (A = 1); T is float or double, to compare precisions: every operation is done
+// in T (a float instantiation rounds as float does, never in double).
 template <class T>
 SphereRoots<T> sphere_roots_notes(const glm::vec<3, T>& origin, const glm::vec<3, T>& direction,
                                   const glm::vec<3, T>& center, T radius);
