@@ -26,9 +26,9 @@ DdaWalk dda_start(const GridFrame& frame, const Ray& ray) {
 }
 
 // Task 2b. Step across the smallest s_next: if it is at or past s_end the walk
-// is done; otherwise every axis whose s_next equals it steps (an edge or a
-// corner), leaving the grid ends the walk, and its s_next is recomputed from
-// frame.boundary().
+// is done; otherwise s_enter becomes it (the new cell is entered there), every
+// axis whose s_next equals it steps (an edge or a corner), leaving the grid
+// ends the walk, and its s_next is recomputed from frame.boundary().
 void dda_step(const GridFrame& frame, const Ray& ray, DdaWalk& walk) {
   throw NotImplemented("dda_step",
                        "advance across the nearest boundary; step all tied axes at once "

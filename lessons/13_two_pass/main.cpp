@@ -110,7 +110,7 @@ void apply_quick(Settings& s, const Option& edge, const Option& photons, const O
 int main(int argc, char** argv) {
   const illum::ProgramInfo info{
       "lesson13", "Lesson 13: two-pass global illumination",
-      "Plans the passes of every shipped scene, renders the Cornell box with two "
+      "Plans the passes of five shipped scenes, renders the Cornell box with two "
       "spheres by radiosity, by ray tracing and by both, adds caustics with a pass of "
       "light rays, and studies each pass's cost and error against a path-traced "
       "reference."};

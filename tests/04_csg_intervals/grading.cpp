@@ -223,7 +223,9 @@ TEST_SUITE("lesson04") {
                     std::invalid_argument);
     SpanList aliased = list({span(1, 2)});
     CHECK_THROWS_AS(combine_spans(CsgOperation::unite, aliased, good, 0.0, aliased), std::invalid_argument);
+    CHECK_THROWS_AS(combine_spans(CsgOperation::unite, good, aliased, 0.0, aliased), std::invalid_argument);
     CHECK_THROWS_AS(nearest_crossing(good, Interval(std::nan(""), 1.0)), std::invalid_argument);
+    CHECK_THROWS_AS(nearest_crossing(good, Interval(0.0, std::nan(""))), std::invalid_argument);
   }
 
   TEST_CASE("a lens: the intersection of two spheres, hit by closed form" *

@@ -93,8 +93,10 @@ TEST_SUITE("lesson06") {
                   "N·L = 0: the light is on the tangent plane, so no shadow ray is cast");
   }
 
-  TEST_CASE("effects plan: a surface with k_d = k_s = 0 casts no shadow ray when zero weights are skipped" *
-            doctest::description("task=3,4,5")) {
+  TEST_CASE(
+      "effects plan: a black Phong term (k_d = k_s = 0, or k_d = 0 and R·V < 0) casts no shadow ray when "
+      "zero weights are skipped" *
+      doctest::description("task=3,4,5")) {
     Scene scene;
     Material m = material("black mirror");
     m.ambient = Color(0.2, 0.3, 0.4);
@@ -119,6 +121,25 @@ TEST_SUITE("lesson06") {
     const Tracer literal_tracer{.scene = scene, .plan = literal, .stats = &literal_stats};
     check_vec(own_intensity(literal_tracer, at_origin, Vec3(0, 0, 1)), Color(0.3, 0.3, 0.45));
     CHECK_MESSAGE(literal_stats.rays.shadow == 1, "without the zero-weight rule, one shadow ray per light");
+
+    // k_d = 0 but k_s = 0.5, the light at 45° (L = (1, 0, 1)/√2, R = 2(N·L)N − L = (−1, 0, 1)/√2) and the
+    // viewer at V = (2, 0, 1)/√5: R·V = −1/√10 < 0, no highlight towards the viewer, so the Phong term is
+    // black again and I_own is k_a·I_a + emission = (0.3, 0.3, 0.45) with no shadow ray.
+    Scene glossy_scene;
+    Material glossy = m;
+    glossy.specular = Color(0.5);
+    glossy.phong_exponent = 3;
+    const auto glossy_id = add_material(glossy_scene, glossy);
+    glossy_scene.ambient_light = Color(1.0);
+    add_light(glossy_scene, Point3(4, 0, 4), Color(3.0));
+    const SurfaceHit glossy_hit = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), glossy_id);
+    TraceStats glossy_stats;
+    const Tracer glossy_tracer{.scene = glossy_scene, .plan = plan, .stats = &glossy_stats};
+    check_vec(own_intensity(glossy_tracer, glossy_hit, normalize(Vec3(2, 0, 1))), Color(0.3, 0.3, 0.45));
+    CHECK_MESSAGE(
+        glossy_stats.rays.shadow == 0,
+        "contract of own_intensity: with skip_zero_weights a light whose phong_term is black (k_d = 0 "
+        "and R·V ≤ 0) casts no shadow ray");
   }
 
   TEST_CASE("effects plan: an opaque mirror casts no refracted ray when zero weights are skipped" *

@@ -57,8 +57,8 @@ void check_same_hit(const std::optional<SurfaceHit>& a, const std::optional<Surf
 
 TEST_SUITE("stability") {
   TEST_CASE("a scene with a structure finds the same hits as brute force, bit for bit, for every kind") {
-    for (const AccelKind kind :
-         {AccelKind::compact_bvh, AccelKind::grid, AccelKind::octree, AccelKind::brute_force}) {
+    for (const AccelKind kind : {AccelKind::compact_bvh, AccelKind::bvh, AccelKind::grid, AccelKind::octree,
+                                 AccelKind::brute_force}) {
       CAPTURE(to_string(kind));
       Scene brute = flake_scene();
       Scene fast = brute;

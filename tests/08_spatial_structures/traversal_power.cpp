@@ -141,6 +141,14 @@ TEST_SUITE("lesson08") {
                   "any hit: the only triangle of the view lies beside the ray, the segment is not blocked");
     CHECK_MESSAGE(shadow.triangle_tests == 1, "any hit: exactly the leaf's 1 triangle is tested");
     CHECK_MESSAGE(shadow.nodes_visited == 1, "any hit: the root leaf is the only node");
+    // The leaf holding both, the blocking triangle second: a leaf's triangles are tested in order,
+    // so any hit finds the block at its second test (a loop run backwards would stop at the first).
+    const std::vector<BvhNode> both{leaf(box(Point3(-1, -1, 0), Point3(1, 1, 3)), 0, 2)};
+    TraversalCounters ordered;
+    CHECK(bvh_any_hit(BvhView{both, storage, id_storage}, ray, ordered));
+    CHECK_MESSAGE(ordered.triangle_tests == 2,
+                  "contract of bvh_any_hit: a leaf's triangles in order, the blocker (second) at the second "
+                  "test");
   }
 
   TEST_CASE("hard case: a tree as deep as bvh_max_depth is walked to its last pending leaf" *

@@ -178,6 +178,13 @@ TEST_SUITE("lesson09") {
     }
     CHECK_THROWS_AS(point_polygon_form_factor({0, 0, 0}, Vec3(0, 0, 2), ceiling_rect(0, 1, 0, 1, 1)),
                     std::invalid_argument);
+    // The header refuses an x that is not finite too (a NaN would otherwise give NaN or, through the
+    // "x on or behind the plane" test, a silent 0).
+    CHECK_THROWS_AS(point_polygon_form_factor({0, std::nan(""), 0}, up, ceiling_rect(0, 1, 0, 1, 1)),
+                    std::invalid_argument);
+    CHECK_THROWS_AS(point_polygon_form_factor({0, 0, -std::numeric_limits<double>::infinity()}, up,
+                                              ceiling_rect(0, 1, 0, 1, 1)),
+                    std::invalid_argument);
   }
 
   TEST_CASE("point to polygon: a regular 60-gon is bracketed by the discs inside and outside it" *

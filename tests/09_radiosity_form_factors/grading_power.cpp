@@ -355,7 +355,7 @@ TEST_SUITE("lesson09") {
   }
 
   TEST_CASE("hierarchical: levels count from 0 at the root, as max_depth does" *
-            doctest::description("task=4")) {
+            doctest::description("task=1,2,4")) {
     // The unit square z = 0 under the ceiling [0, 1]² at c = 1. The header: max_depth = 0 is one
     // split, so the root is level 0 and a piece split at level L has children at level L + 1;
     // deepest_level is the deepest level split, never above max_depth. By hand:
@@ -401,7 +401,7 @@ TEST_SUITE("lesson09") {
 TEST_SUITE("lesson09") {
   TEST_CASE(
       "Nusselt with one and two chords per edge: the projected polygon of the vertices (and midpoints)" *
-      doctest::description("task=9")) {
+      doctest::description("task=1,9")) {
     // The square [−a, a]² at height h above x = (0.1, 0.2, 0.3) (a = 0.6, h = 0.9), facing down, x facing
     // up. The header: each edge is split into segments_per_edge chords, whose ends go to the hemisphere
     // and down to the disc. One chord per edge: the corners go to (±a, ±a)/R₁, R₁ = √(2a² + h²), a square

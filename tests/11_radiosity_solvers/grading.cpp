@@ -147,17 +147,34 @@ TEST_SUITE("lesson11") {
     CHECK_THROWS_AS(solve_direct(s.patches, s.f), std::invalid_argument);
   }
 
-  TEST_CASE("the matrix solvers refuse a bad system before any work" * doctest::description("task=2,3,4,5")) {
+  TEST_CASE("the matrix solvers refuse a bad system before any work" *
+            doctest::description("task=2,3,4,5,6a")) {
     // Contracts (radiosity_solvers.hpp): solve_direct refuses a negative emission and an F_ij that is
     // negative or not finite (rows that still sum to at most 1, so only that check can catch them);
     // jacobi_sweep and gauss_seidel_sweep refuse a b without one value per patch, and gauss_seidel_sweep
-    // a reflectance of 1 in one channel; southwell_step refuses a b or a residual of the wrong size.
-    // Every refusal is std::invalid_argument and changes nothing.
+    // a reflectance of 1 in one channel; solve_direct, jacobi_sweep, gauss_seidel_sweep and
+    // progressive_start refuse a negative emission, and the three matrix solvers an F without one row per
+    // patch (what check_radiosity_system refuses); southwell_step refuses a b or a residual of the wrong
+    // size. Every refusal is std::invalid_argument and changes nothing.
     const TwoPatchEnclosure s(0.5);
     {
       std::vector<Patch> p = s.patches;
       p[1].emission = Color(0.0, -0.125, 0.0);
       CHECK_THROWS_AS(solve_direct(p, s.f), std::invalid_argument);
+      std::vector<Color> next, b{Color(0.25), Color(0.75)};
+      CHECK_THROWS_AS(jacobi_sweep(p, s.f, b, next), std::invalid_argument);
+      CHECK_THROWS_AS(gauss_seidel_sweep(p, s.f, b), std::invalid_argument);
+      CHECK((b[0] == Color(0.25) && b[1] == Color(0.75)));
+      CHECK_THROWS_AS(progressive_start(p), std::invalid_argument);
+    }
+    {
+      INFO("an F of one row for two patches: the solvers would read past its end");
+      const FormFactorMatrix small(1);
+      std::vector<Color> next, b{Color(0.25), Color(0.75)};
+      CHECK_THROWS_AS(solve_direct(s.patches, small), std::invalid_argument);
+      CHECK_THROWS_AS(jacobi_sweep(s.patches, small, b, next), std::invalid_argument);
+      CHECK_THROWS_AS(gauss_seidel_sweep(s.patches, small, b), std::invalid_argument);
+      CHECK((b[0] == Color(0.25) && b[1] == Color(0.75)));
     }
     {
       FormFactorMatrix f = s.f;

@@ -89,6 +89,18 @@ TEST_SUITE("lesson13") {
     const Vec2 past_edge = surface_coordinates(square, Point3(4 + 1e-9, 2, 0));
     CHECK_MESSAGE(past_edge.x == 1.0, "u = 1 + 2.5e-10 on the quad must be clamped to 1");
     CHECK(past_edge.y == doctest::Approx(0.5).epsilon(1e-12));
+    // Neither root in [0, 1]: the quad (0,0,0), (2,0,0), (2,3,0), (−1,½,0) and the point of its
+    // bilinear map at (u, v) = (¼, 1 + 10⁻⁶), x = (−¼ − 7.5·10⁻⁷, 9/8 + 1.125·10⁻⁶, 0). By hand, with
+    // e = (2, 0), f = (−1, ½), g = (1, 2½), h = x: k2 = cross(g, f) = 3, k1 = cross(e, f) + cross(h, g)
+    // = 1 + cross(h, g), k0 = cross(h, e) = −2h.y, and the two roots are v = 1 + 10⁻⁶ and
+    // v = k0/(k2·(1 + 10⁻⁶)) = −¾. The one nearer ½ is 1 + 10⁻⁶: clamped, v = 1 and u ≈ ¼. Taking
+    // the other (−¾, clamped to 0) puts the point on the far edge.
+    const std::array<Point3, 4> kite{Point3(0, 0, 0), Point3(2, 0, 0), Point3(2, 3, 0), Point3(-1, 0.5, 0)};
+    const Vec2 outside = surface_coordinates(kite, Point3(-0.25 - 7.5e-7, 1.125 + 1.125e-6, 0));
+    CHECK_MESSAGE(outside.y == 1.0,
+                  "contract of surface_coordinates: when neither root is in [0, 1], the one nearer ½ "
+                  "(1 + 10⁻⁶, not −¾), clamped to 1");
+    CHECK(outside.x == doctest::Approx(0.25).epsilon(1e-5));
   }
 
   TEST_CASE(

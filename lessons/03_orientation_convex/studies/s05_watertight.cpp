@@ -99,8 +99,10 @@ void s05_watertight(OutputFolder& out, const Settings& settings, Rng& rng) {
     water.add_row({std::string(method == 0 ? "Möller–Trumbore" : "watertight (exact, tie-broken)"),
                    std::int64_t{ray_count}, cracks, doubles, ns});
   }
-  out.table(water, "watertight",
-            "Rays aimed exactly at a mesh's interior edges and vertices: cracks and double hits");
+  out.table(
+      water, "watertight",
+      "Rays aimed at a mesh's interior vertices (exactly) and edges (rounded points): cracks and double "
+      "hits");
 }
 
 }  // namespace illum::lesson03

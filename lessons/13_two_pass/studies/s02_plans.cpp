@@ -1,4 +1,4 @@
-// §2 The plan grows to the whole pipeline: every shipped scene's plan.
+// §2 The plan grows to the whole pipeline: the plans of five shipped scenes.
 //
 // For each scene of scenes/, the two-pass plan (radiosity/two_pass_plan.hpp,
 // the exercise): whether a caustic pass and a radiosity pass run, which rays
@@ -29,7 +29,7 @@ void s02_plans(OutputFolder& out, const Settings& s) {
                count(rays.refraction), count(rays.shadow)});
   }
   out.table(t, "plans",
-            "The plan of every shipped scene and the counts of each pass (pass one at 100 mm patches, 1% "
+            "The plans of five shipped scenes and the counts of each pass (pass one at 100 mm patches, 1% "
             "unshot; pass two 48 pixels wide)");
 }
 

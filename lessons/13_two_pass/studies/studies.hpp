@@ -13,7 +13,7 @@ namespace illum::lesson13 {
 
 inline constexpr const char* id = "lesson13";
 
-// §2: the plan of every shipped scene, and what each pass cast (studies/s02_plans.cpp).
+// §2: the plans of five shipped scenes, and what each pass cast (studies/s02_plans.cpp).
 void s02_plans(OutputFolder& out, const Settings& settings);
 
 // §4: the caustic pass, light rays through the spheres before pass one

@@ -76,7 +76,9 @@ struct DdaWalk {
 // to the cell the ray moves into.
 DdaWalk dda_start(const GridFrame& frame, const Ray& ray);
 
-// Moves to the next cell along the ray, or sets done.
+// Moves to the next cell along the ray: the smallest s_next becomes s_enter and every axis whose
+// s_next equals it steps. Sets done instead when that s_next is at or past s_end, or the step leaves
+// the grid.
 void dda_step(const GridFrame& frame, const Ray& ray, DdaWalk& walk);
 
 // The cells the segment visits, in order (for tests and figures).

@@ -31,7 +31,9 @@ struct AccelHit {
 
 struct TraversalCounters {
   std::uint64_t rays = 0;
-  std::uint64_t nodes_visited = 0;   // BVH/octree nodes or grid cells whose contents were examined
+  // Box tests (BVH, octree: the root's and one per child box clipped, missed ones included; compact_bvh
+  // eight per node it opens) or grid cells walked (uniform grid).
+  std::uint64_t nodes_visited = 0;
   std::uint64_t triangle_tests = 0;  // calls of the ray–triangle test
 
   TraversalCounters& operator+=(const TraversalCounters& o) {
@@ -47,7 +49,8 @@ class TriangleAccel {
   virtual ~TriangleAccel() = default;
   virtual std::optional<AccelHit> intersect(const Ray& ray, TraversalCounters& counters) const = 0;
   virtual bool occluded(const Ray& ray, TraversalCounters& counters) const = 0;
-  // Bytes of the structure itself (nodes, cells, index lists), not counting the triangles.
+  // Bytes of the structure itself (nodes, cells, index lists), not counting the set's triangles;
+  // compact_bvh counts its float copies of them (the filter's packs), not its double ones.
   virtual std::size_t memory_bytes() const = 0;
   virtual std::string_view name() const = 0;
 };

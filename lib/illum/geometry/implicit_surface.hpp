@@ -73,9 +73,9 @@ class Torus final : public ImplicitSurface {
   double major_, minor_;
 };
 
-// Blinn's blob ("metaball"): F(P) = T − Σ a_i exp(−b_i |P − C_i|²). Each
-// ball adds a Gaussian bump of height a_i and sharpness b_i; the surface is
-// where their sum reaches the threshold T, so nearby balls melt together.
+// Blinn's blob (the later "metaballs" use a piecewise-polynomial field): F(P) = T − Σ a_i exp(−b_i |P −
+// C_i|²). Each ball adds a Gaussian bump of height a_i and sharpness b_i; the surface is where their sum
+// reaches the threshold T, so nearby balls melt together.
 struct BlobBall {
   Point3 center;
   double weight = 1;     // a_i > 0

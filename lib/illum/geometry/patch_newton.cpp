@@ -50,7 +50,7 @@ std::optional<PatchHit> patch_newton(const BezierPatch& patch, const Ray& ray, c
       if (!ray.range.contains(hit.s)) return std::nullopt;
       Vec3 n = cross(e.du, e.dv);
       if (!(length(n) > 1e-9 * scale)) {
-        // A collapsed edge (S_u or S_v vanishes) or a fold (S_u ∥ S_v): take
+        // A fold (S_u ∥ S_v; a collapsed edge, S_u or S_v zero, was singular above): take
         // the normal a little way towards the patch's centre, in both
         // parameters, which next to a fold stays on the hit's side of it.
         const PatchPoint inside = patch.evaluate(hit.u + 1e-6 * (0.5 - hit.u), hit.v + 1e-6 * (0.5 - hit.v));

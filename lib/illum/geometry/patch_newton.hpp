@@ -60,8 +60,8 @@ RayPlanes ray_planes(const Ray& ray);
 // (|det J| = |ω·(S_u × S_v)| ≤ 1e-12·|S_u||S_v|: the ray runs along the
 // surface, the patch is seen edge-on, or the edge there is collapsed), or
 // when it does not converge within max_iterations steps. Where S_u × S_v
-// nearly vanishes (|S_u × S_v| ≤ 10⁻⁹|S_u||S_v|: a collapsed edge, or a
-// fold where S_u ∥ S_v) the normal is
+// nearly vanishes at a hit (|S_u × S_v| ≤ 10⁻⁹|S_u||S_v|: a fold where
+// S_u ∥ S_v; a collapsed edge, S_u or S_v zero, is singular above) the normal is
 // S_u × S_v taken a little way (10⁻⁶ of the way) from (u, v) towards the
 // centre (½, ½) of the square, in both parameters: next to a fold that stays
 // on the hit's side. Throws

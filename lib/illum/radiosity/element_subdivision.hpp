@@ -27,7 +27,8 @@ double radiosity_gap(const Color& a, const Color& b);
 // `threshold` is a gap in the radiosity's own units, compared as it is: this
 // function does not scale it. Eq. 12.7 of the lesson, gap > τ·max B, is the
 // caller's choice of threshold: the lesson program passes τ times the
-// brightest non-emitting element's largest channel, τ being its --threshold.
+// brightest non-emitting element's largest channel (τ is its --threshold in
+// a --quick run; the full run sweeps τ from 0.2 to 0.0125).
 // Returns one flag per element (radiosity.size()). Throws
 // std::invalid_argument when threshold is not positive and finite (its
 // message contains "threshold"),

@@ -43,7 +43,8 @@ double form_factor_hemisphere_cosine(const Point3& x, const Vec3& normal, const 
 // straight down onto the base disc, and divide the area of that projection
 // by the disc's area π. Each edge is split into `segments_per_edge` chords
 // (the projected edges are arcs of ellipses), so the error falls as
-// segments_per_edge^-2. No occlusion.
+// segments_per_edge^-2. No occlusion. `to` is one-sided, as in Tasks 5–8: 0 when
+// x lies on the plane of `to` or behind it (sees its back).
 double form_factor_nusselt(const Point3& x, const Vec3& normal, const Patch& to, int segments_per_edge);
 
 }  // namespace illum

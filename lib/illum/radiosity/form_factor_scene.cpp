@@ -162,8 +162,8 @@ constexpr double contour_cost_per_edge_pair = 32.0;
 
 // What the tolerance-driven builder knows about every patch before the pairs:
 // its radius, half its longest edge, 1/A and 1/(πA) (the pair loop divides by
-// nothing it can compute once), and its area rule's points at every order
-// (mapped once, not once per pair).
+// nothing it can compute once), and its area rule's points at each order
+// (mapped once, the first time a pair needs that order, not once per pair).
 struct PreparedPatches {
   explicit PreparedPatches(const std::vector<Patch>& patches)
       : points(patches),

@@ -1,6 +1,6 @@
 #pragma once
-// Two-pass global illumination (lesson 13): the course's last step, where
-// the two halves meet.
+// Two-pass global illumination (lesson 13): where the course's two halves
+// meet.
 //
 //   pass one (view independent): radiosity over the scene's diffuse
 //     polygons, by progressive shooting with hemicube rows (lessons 10–11);

@@ -46,8 +46,8 @@ struct EffectsPlan {
   bool shadow_attenuation = true;  // shadow rays cross transmissive surfaces, attenuated by k_t
   int max_depth = 5;               // depth of the deepest secondary ray (0: primary rays only)
   // Per hit: a child or shadow ray whose factor is zero there (k_r = 0,
-  // k_t = 0, k_d = k_s = 0) is not cast. Off, the tree is the notes' literal
-  // algorithm: both children at every hit below the depth limit.
+  // k_t = 0, a black phong_term: k_d = k_s = 0, or k_d = 0 and R·V ≤ 0) is not cast. Off, the tree is the
+  // notes' literal algorithm: both children at every hit below the depth limit.
   bool skip_zero_weights = true;
   bool analysed = false;  // false: everything switched on, nothing analysed
 
