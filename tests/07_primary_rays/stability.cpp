@@ -81,6 +81,8 @@ TEST_SUITE("stability") {
     const double nan = std::numeric_limits<double>::quiet_NaN();
     CHECK_THROWS_AS(render_sampled(scene, rs, {}, nan), std::invalid_argument);
     CHECK_THROWS_AS(render_sampled(scene, rs, {}, -0.5), std::invalid_argument);
+    CHECK_THROWS_AS(render_sampled(scene, rs, {}, std::numeric_limits<double>::infinity()),
+                    std::invalid_argument);
     CHECK_THROWS_AS(render_sampled(scene, rs, {.samples = 0}), std::invalid_argument);
     CHECK_THROWS_AS(render_sampled(scene, rs, {.method = SamplingMethod::uniform, .samples = 8}),
                     std::invalid_argument);
@@ -92,6 +94,33 @@ TEST_SUITE("stability") {
                                     .statistical = {.min_samples = 5, .max_samples = 4}}),
                     std::invalid_argument);
     CHECK_THROWS_AS(SampleLattice(4, 4, max_adaptive_depth + 1), std::invalid_argument);
+  }
+
+  TEST_CASE(
+      "check_sampling refuses infinite settings; the lattice refuses empty sizes and points outside a row") {
+    // pixel_sampler.hpp: "negative or not finite" (threshold, tolerance), z positive and finite;
+    // sample_lattice.hpp: width, height ≥ 1, and LatticeRow::sample throws outside the row.
+    const double inf = std::numeric_limits<double>::infinity();
+    CHECK_THROWS_AS(check_sampling({.method = SamplingMethod::adaptive, .adaptive = {.threshold = inf}}),
+                    std::invalid_argument);
+    CHECK_THROWS_AS(
+        check_sampling({.method = SamplingMethod::statistical, .statistical = {.tolerance = inf}}),
+        std::invalid_argument);
+    CHECK_THROWS_AS(check_sampling({.method = SamplingMethod::statistical, .statistical = {.z = inf}}),
+                    std::invalid_argument);
+    CHECK_THROWS_AS(check_sampling({.method = SamplingMethod::statistical, .statistical = {.z = 0.0}}),
+                    std::invalid_argument);
+    CHECK_NOTHROW(check_sampling({.method = SamplingMethod::adaptive}));
+    CHECK_THROWS_AS(SampleLattice(0, 4, 1), std::invalid_argument);
+    CHECK_THROWS_AS(SampleLattice(4, 0, 1), std::invalid_argument);
+    // Two pixels, depth 1: lattice points x ∈ [0, 4] across, y ∈ [0, 2] down the row.
+    SampleLattice lattice(2, 1, 1);
+    const ImageFunction f = [](double x, double y) { return Color(x, y, 0.0); };  // the row keeps a reference
+    LatticeRow row(lattice, 0, f);
+    CHECK_NOTHROW(row.sample(4, 2));
+    CHECK_THROWS_AS(row.sample(5, 0), std::invalid_argument);
+    CHECK_THROWS_AS(row.sample(-1, 0), std::invalid_argument);
+    CHECK_THROWS_AS(row.sample(0, 3), std::invalid_argument);
   }
 
   TEST_CASE("uniform supersampling is exact on a linear image") {

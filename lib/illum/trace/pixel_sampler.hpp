@@ -26,7 +26,8 @@ struct SamplingSettings {
 // Throws std::invalid_argument naming the setting when it is out of range:
 // samples < 1 or (uniform, stratified) not a square; an adaptive threshold
 // negative or not finite, a depth outside [0, max_adaptive_depth]; a
-// statistical tolerance negative or not finite, counts not 1 ≤ min ≤ max.
+// statistical tolerance negative or not finite, counts not 1 ≤ min ≤ max, a z
+// not positive and finite.
 void check_sampling(const SamplingSettings& settings);
 
 // The pixel's n × n cell centres (i + (a + ½)/n, j + (b + ½)/n), weights 1/n²;

@@ -38,7 +38,8 @@ class SampleLattice {
   std::vector<unsigned char> edge_done_;
 };
 
-// The lattice points of pixel row `row`, sampled through `f`.
+// The lattice points of pixel row `row`, sampled through `f`. The row keeps references to
+// `lattice` and `f`: both must outlive it (a lambda passed directly would not).
 class LatticeRow {
  public:
   LatticeRow(SampleLattice& lattice, int row, const ImageFunction& f);
