@@ -8,6 +8,10 @@ set(quick_start_budget 200)  # README.md's "Quick start" section
 set(over_budget_pages "")
 
 function(count_words text out)
+  # A CMake list is not split inside square brackets ("[0," and "1]" would count once): make them
+  # round first, which leaves the runs of non-space characters as they are.
+  string(REPLACE "[" "(" text "${text}")
+  string(REPLACE "]" ")" text "${text}")
   string(REGEX MATCHALL "[^ \t\r\n]+" words "${text}")
   list(LENGTH words n)
   set(${out} ${n} PARENT_SCOPE)
