@@ -135,6 +135,11 @@ TEST_SUITE("lesson06") {
     // Viewer overhead: R·V = 0.8, and 0.8^10 = 0.1073741824.
     const Color overhead = phong_term(n, l, Vec3(0, 0, 1), kd, ks, 10.0);
     check_vec(overhead, kd * 0.8 + ks * 0.1073741824);
+    // The exponent n is a real number (Material::phong_exponent): 0.8^2.5 = 0.64·√0.8 ≈ 0.5724, not
+    // 0.8² = 0.64 (n truncated to an integer).
+    const Color fractional = phong_term(n, l, Vec3(0, 0, 1), kd, ks, 2.5);
+    INFO("(R·V)^n with R·V = 0.8 and n = 2.5: 0.64·√0.8, the exponent is not rounded to an integer");
+    check_vec(fractional, kd * 0.8 + ks * (0.64 * std::sqrt(0.8)));
   }
 
   TEST_CASE("hard case: a light exactly on the tangent plane gives nothing, not even a highlight" *
@@ -181,11 +186,17 @@ TEST_SUITE("lesson06") {
     glass.index_of_refraction = 1.5;
     const auto g = add_material(scene, glass);
     add_sphere(scene, "glass ball", Point3(0, 0, 2), 0.5, g);
+    // An opaque ball beyond the light (z = 5.5 to 6.5): the walk goes on from the glass towards the light
+    // with spawn_ray_to again, so its range still ends before the light and this ball blocks nothing.
+    add_sphere(scene, "opaque ball beyond the light", Point3(0, 0, 6), 0.5, floor);
     const SurfaceHit p = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), floor);
     TraceStats stats;
     EffectsPlan plan = full_effects(0);
     const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
     // In at z = 1.5 and out at z = 2.5: (k_t)² = (0.64, 0.25, 0.81).
+    INFO(
+        "contract of shadow_transmission: after each glass surface the walk goes on with spawn_ray_to, and "
+        "nothing at or beyond the light blocks it (an unbounded ray would stop on the ball at z = 5.5: 0)");
     check_vec(shadow_transmission(tracer, p, Point3(0, 0, 4)), Color(0.64, 0.25, 0.81), 1e-12);
     plan.shadow_attenuation = false;  // the opaque-scene rule: any surface blocks
     check_vec(shadow_transmission(tracer, p, Point3(0, 0, 4)), Color(0.0));
@@ -214,6 +225,20 @@ TEST_SUITE("lesson06") {
                   "one shadow ray per pane up to the 20th, where the walk ends: 20 rays, "
                   "got "
                       << stats.rays.shadow);
+    // The same walk recorded. Contract (ray_tree.hpp): the last segment ends with
+    // record_result(tracer.tree, segment, the transmission returned, Color(0)), the cut-off's
+    // included: its record holds 0, not the 0.5²⁰ its blocker left.
+    {
+      RayTree tree;
+      TraceStats tree_stats;
+      const Tracer recording{.scene = scene, .plan = plan, .stats = &tree_stats, .tree = &tree};
+      const int surface = tree.add(RayTreeNode{});  // the node the shadow segments hang from
+      shadow_transmission(recording, p, Point3(0, 0, 40), surface, 0);
+      REQUIRE_MESSAGE(tree.nodes.size() == 21, "the surface's node and 20 shadow segments");
+      INFO("the cut-off's segment: record_result with the transmission returned, 0");
+      check_vec(tree.nodes.back().local, Color(0.0));
+      CHECK(tree.nodes.back().hit);
+    }
     // One channel still bright keeps the walk going: k_t = (0.5, 0.5, 1) loses red and green
     // at pane 20 but blue stays 1, through all 30 panes: 31 rays, (0, 0, 1)·… = 0.5³⁰ in red.
     scene.materials[g].transmittance = Color(0.5, 0.5, 1.0);
@@ -375,11 +400,40 @@ TEST_SUITE("lesson06") {
       CHECK_MESSAGE(tree.nodes[0].total_internal_reflection == refraction,
                     "contract of evaluate: record_total_internal_reflection(tracer.tree, node) when total "
                     "internal reflection leaves no refracted ray, and only then (refraction off: none)");
-      if (refraction) continue;
+      if (refraction) {
+        // The reflected child carries k_r + k_t = 0 + 0.9: its path weight is 1·0.9, taken after total
+        // internal reflection moved k_t to k_r (not the material's k_r = 0).
+        const RayTreeNode* reflected = nullptr;
+        for (const RayTreeNode& node : tree.nodes)
+          if (node.kind == RayKind::reflection) reflected = &node;
+        REQUIRE(reflected != nullptr);
+        INFO("the reflected ray's path weight under total internal reflection is 1·(k_r + k_t) = 0.9");
+        check_vec(reflected->weight, Color(0.9));
+        continue;
+      }
       check_vec(c, Color(0.1));
       CHECK_MESSAGE(stats.rays.reflection == 0,
                     "contract of evaluate: plan.refraction off means no total internal reflection either "
                     "(k_t is not moved to k_r), so k_r = 0 and no reflected ray; got "
+                        << stats.rays.reflection);
+      CHECK(stats.rays.refraction == 0);
+    }
+    // Glass that reflects too (k_r = 0.1, k_t = 0.8, ambient 0.1), the same ray: total internal reflection
+    // adds k_t to k_r, so there is still exactly ONE reflected ray, weighed 0.9 (contract of evaluate), not
+    // one for k_r and a second for k_t. Its colour is again 0.1 + 0.9·0.1 = 0.19.
+    Material reflecting = glass;
+    reflecting.reflectance = Color(0.1);
+    reflecting.transmittance = Color(0.8);
+    scene.materials[0] = reflecting;
+    for (const bool literal : {false, true}) {
+      const EffectsPlan plan = literal ? full_effects(1) : plan_effects(scene, 1);
+      TraceStats stats;
+      const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+      INFO((literal ? "full_effects(1)" : "plan_effects(scene, 1)"),
+           ": k_r = 0.1, k_t = 0.8, total internal reflection");
+      check_vec(evaluate(tracer, inside), Color(0.19));
+      CHECK_MESSAGE(stats.rays.reflection == 1,
+                    "total internal reflection adds k_t to k_r: one reflected ray, not two; got "
                         << stats.rays.reflection);
       CHECK(stats.rays.refraction == 0);
     }

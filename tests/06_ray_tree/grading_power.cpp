@@ -3,7 +3,11 @@
 // a highlight that faces away from the viewer, a light on the tangent plane,
 // the zero-weight rule of the effects plan, and an oblique entry into glass
 // through evaluate (where η_i/η_t = 1/η and η differ); and the shadows switch
-// of own_intensity (off: no light is used, not every light unblocked).
+// of own_intensity (off: no light is used, not every light unblocked). Later, for
+// hand-written student bugs: the ambient term once, not per light; a k_d = 0
+// surface's highlight still lit; a refracted child weighs its parent's weight
+// times k_t; N is the hit's shading normal (own_intensity, and evaluate through
+// a smooth-shaded mesh of lesson 03).
 //
 // As in grading.cpp, every expected value is worked out by hand in the test.
 #include <doctest/doctest.h>
@@ -140,6 +144,19 @@ TEST_SUITE("lesson06") {
         glossy_stats.rays.shadow == 0,
         "contract of own_intensity: with skip_zero_weights a light whose phong_term is black (k_d = 0 "
         "and R·V ≤ 0) casts no shadow ray");
+    // The same glossy surface seen from the mirror direction V = R = (−1, 0, 1)/√2: R·V = 1, so the Phong
+    // term is k_s·1 = 0.5, not black although k_d = 0. The light's shadow ray is cast and
+    // I_own = (0.3, 0.3, 0.45) + 3·0.5 = (1.8, 1.8, 1.95). Skipping every light of a k_d = 0 surface
+    // loses the highlight.
+    TraceStats shiny_stats;
+    const Tracer shiny_tracer{.scene = glossy_scene, .plan = plan, .stats = &shiny_stats};
+    {
+      INFO("k_d = 0 but R·V = 1: the Phong term is k_s = 0.5, not black (contract of own_intensity)");
+      check_vec(own_intensity(shiny_tracer, glossy_hit, normalize(Vec3(-1, 0, 1))), Color(1.8, 1.8, 1.95));
+    }
+    CHECK_MESSAGE(shiny_stats.rays.shadow == 1,
+                  "a light whose Phong term is not black gets its shadow ray, whatever k_d; got "
+                      << shiny_stats.rays.shadow);
   }
 
   TEST_CASE("effects plan: an opaque mirror casts no refracted ray when zero weights are skipped" *
@@ -269,6 +286,14 @@ TEST_SUITE("lesson06") {
     CHECK_MESSAGE(dark_stats.work.intersection_tests == 0,
                   "plan.shadows off: nothing is traced, no intersection test; got "
                       << dark_stats.work.intersection_tests);
+    // The lit point with its shadows on: k_a·I_a + emission once (eq. 6.7: the ambient term is not part of
+    // the sum over the lights), plus the two lights as above:
+    // (0.2, 0.2, 0.3) + (0.64, 0.25, 0.81) = (0.84, 0.45, 1.11). Adding k_a·I_a once per light gives
+    // (0.1, 0.2, 0.25) more.
+    TraceStats lit_stats;
+    const Tracer lit_tracer{.scene = scene, .plan = plan, .stats = &lit_stats};
+    INFO("I_own = k_a·I_a + emission + Σ_l S_l·I_l·phong_term: the ambient term once, not once per light");
+    check_vec(own_intensity(lit_tracer, lit_point, Vec3(0, 0, 1)), Color(0.84, 0.45, 1.11));
   }
 
   TEST_CASE("own intensity: an area light counts like a point light, with I_l = E·A·cos θ_l/(π r²)" *
@@ -627,8 +652,9 @@ TEST_SUITE("lesson06") {
     CHECK_MESSAGE(stats.rays.shadow == 1, "one channel above 0 is not black: the light's shadow ray is cast");
   }
 
-  TEST_CASE("ray tree record: a second bounce weighs the product of both mirrors' k_r" *
-            doctest::description("task=3,5,6")) {
+  TEST_CASE(
+      "ray tree record: a second bounce weighs the product of both mirrors' k_r, a second crossing both k_t" *
+      doctest::description("task=1,2,5,6")) {
     // Two facing mirrors, a floor z = 0 (normal +z) and a ceiling z = 3 (normal −z), both with
     // k_r = (0.5, 0.25, 0.125) and nothing else. A primary ray from (0, 0, 2) straight down, depth
     // limit 2: the floor's reflected ray (depth 1) weighs 1·k_r; it meets the ceiling, whose reflected
@@ -656,6 +682,27 @@ TEST_SUITE("lesson06") {
       if (node.depth == 2) check_vec(node.weight, Color(0.25, 0.0625, 0.015625)), ++found;
     }
     CHECK_MESSAGE(found == 2, "one reflected ray at depth 1 and one at depth 2");
+
+    // The same for refraction: straight down through a glass ball (normal incidence, no bending) with
+    // k_t = (0.5, 0.25, 0.75): the refracted ray into the ball (depth 1) weighs 1·k_t, the one out of it
+    // (depth 2) k_t·k_t = (0.25, 0.0625, 0.5625), all exact in binary.
+    Scene glass_scene;
+    Material glass = material("glass");
+    glass.transmittance = Color(0.5, 0.25, 0.75);
+    glass.index_of_refraction = 1.5;
+    add_sphere(glass_scene, "ball", Point3(0, 0, 0), 1.0, add_material(glass_scene, glass));
+    RayTree glass_tree;
+    const Tracer glass_tracer{
+        .scene = glass_scene, .plan = plan, .background = Color(0.0), .stats = &stats, .tree = &glass_tree};
+    evaluate(glass_tracer, Ray(Point3(0, 0, 5), Vec3(0, 0, -1)));
+    int refracted = 0;
+    for (const RayTreeNode& node : glass_tree.nodes) {
+      if (node.kind != RayKind::refraction) continue;
+      INFO("the refracted ray at depth ", node.depth, ": its weight is its parent's times k_t");
+      if (node.depth == 1) check_vec(node.weight, Color(0.5, 0.25, 0.75)), ++refracted;
+      if (node.depth == 2) check_vec(node.weight, Color(0.25, 0.0625, 0.5625)), ++refracted;
+    }
+    CHECK_MESSAGE(refracted == 2, "one refracted ray into the ball (depth 1) and one out of it (depth 2)");
   }
 }
 
@@ -688,5 +735,72 @@ TEST_SUITE("lesson06") {
                     "the light lies on the lamp's polygon: the shadow ray's range ends before it "
                     "(spawn_ray_to), so the lamp itself does not block it");
     }
+  }
+}
+
+// A smooth-shaded surface (a mesh with corner normals, lesson 03) has a shading normal that is not its
+// geometric one. Contracts of own_intensity and evaluate (ray_tree.hpp): the local model, the reflected
+// and the refracted directions use N = hit.shading_normal.
+TEST_SUITE("lesson06") {
+  TEST_CASE("own intensity: N is the hit's shading normal, not its geometric normal" *
+            doctest::description("task=3,4,5")) {
+    // The point is the origin of the plane z = 0 (geometric normal +z) with the shading normal
+    // N = (0, 0.6, 0.8). Light 1 overhead at (0, 0, 4): L = (0, 0, 1), N·L = 0.8. Light 2 at (0, −3.2, 2.4),
+    // 4 away: L = (0, −0.8, 0.6), N·L = −0.48 + 0.48 = 0 exactly: on the shading tangent plane, nothing
+    // and no shadow ray. k_d = 0.5, both lights of intensity 1: I_own = 0.5·0.8 = 0.4. With the
+    // geometric normal (N·L = 1 and 0.6) it would be 0.5 + 0.3 = 0.8 and cast two shadow rays.
+    Scene scene;
+    Material m = material("matte");
+    m.diffuse = Color(0.5);
+    const auto matte = add_material(scene, m);
+    add_light(scene, Point3(0, 0, 4), Color(1.0));
+    add_light(scene, Point3(0, -3.2, 2.4), Color(1.0));
+    SurfaceHit hit = hand_hit(Point3(0, 0, 0), Vec3(0, 0, 1), matte);
+    hit.shading_normal = Vec3(0, 0.6, 0.8);
+    const EffectsPlan plan = full_effects(0);
+    TraceStats stats;
+    const Tracer tracer{.scene = scene, .plan = plan, .stats = &stats};
+    INFO(
+        "N = hit.shading_normal = (0, 0.6, 0.8): k_d·(N·L) = 0.5·0.8 for the light overhead, 0 for the "
+        "other");
+    check_vec(own_intensity(tracer, hit, Vec3(0, 0, 1)), Color(0.4));
+    CHECK_MESSAGE(stats.rays.shadow == 1,
+                  "the second light lies on the shading normal's tangent plane (N·L = 0): no shadow ray; got "
+                      << stats.rays.shadow);
+  }
+
+  TEST_CASE("evaluate: a smooth-shaded mirror reflects about its shading normal" *
+            doctest::description("task=1,5,6")) {
+    // A mirror triangle in the plane z = 0 (counter-clockwise from above: geometric normal +z) whose three
+    // corner normals are N = (0, 0.6, 0.8), so the shading normal is N everywhere. The ray straight down
+    // from (0, 0, 2) meets it at the origin: N·I = −0.8, R = I − 2(N·I)N = (0, 0.96, 0.28). A red lamp sits
+    // on R, 5 away: I = k_r·(1, 0, 0) = (0.5, 0, 0). Reflected about the geometric normal the ray would go
+    // straight up to the background b: 0.5·b.
+    Scene scene;
+    Material mirror = material("mirror");
+    mirror.reflectance = Color(0.5);
+    Material lamp = material("red lamp");
+    lamp.emission = Color(1, 0, 0);
+    TriangleMesh mesh;
+    mesh.positions = {Point3(-10, -10, 0), Point3(10, -10, 0), Point3(0, 10, 0)};
+    mesh.triangles = {{0, 1, 2}};
+    mesh.corner_normals = {Vec3(0, 0.6, 0.8), Vec3(0, 0.6, 0.8), Vec3(0, 0.6, 0.8)};
+    scene.primitives.push_back(
+        Primitive{.name = "smooth mirror", .shape = mesh, .material = add_material(scene, mirror)});
+    add_sphere(scene, "lamp", Point3(0, 4.8, 1.4), 0.5, add_material(scene, lamp));
+    require_reflect(Vec3(0, 0, -1), Vec3(0, 0.6, 0.8), Vec3(0, 0.96, 0.28));
+    const Ray ray(Point3(0, 0, 2), Vec3(0, 0, -1));
+    const std::optional<SurfaceHit> hit = scene.intersect(ray);
+    REQUIRE_MESSAGE(hit.has_value(),
+                    "the ray meets the mirror triangle at the origin (this needs exercise 03's "
+                    "intersect(Ray, Triangle))");
+    REQUIRE_MESSAGE(glm::length(hit->shading_normal - Vec3(0, 0.6, 0.8)) < 1e-12,
+                    "the hit's shading normal is the corners' (0, 0.6, 0.8)");
+    const EffectsPlan plan = plan_effects(scene, 1);
+    TraceStats stats;
+    const Color background(0.1, 0.2, 0.4);
+    const Tracer tracer{.scene = scene, .plan = plan, .background = background, .stats = &stats};
+    INFO("R = reflect(I, hit.shading_normal) = (0, 0.96, 0.28) meets the red lamp: k_r·(1, 0, 0)");
+    check_vec(evaluate(tracer, ray), Color(0.5, 0, 0));
   }
 }

@@ -32,8 +32,12 @@ enum class CsgOperation { unite, intersect, subtract };
 // union A ∨ B, intersection A ∧ B, difference A ∧ ¬B.
 bool inside_result(CsgOperation op, bool inside_a, bool inside_b);
 
-// out = a op b. Both inputs must be sorted and disjoint (is_sorted_and_disjoint)
-// and `out` must be a third list; `sliver_tolerance` must be >= 0. Each
+// out = a op b. Both inputs must be sorted and disjoint (is_sorted_and_disjoint,
+// which admits a span of zero length, [s, s]: its two crossings, like any
+// crossings at one s, are one group) and `out` must be a third list, whose
+// previous contents are replaced; `sliver_tolerance` must be >= 0, and every
+// span of the result no longer than it is dropped, whatever the operands (an
+// operand's own sliver too, even when the other operand is empty). Each
 // crossing of the result keeps the surface and the normal of the crossing
 // that made it, except that crossings of B in a difference get their normal
 // reversed (the surface of the hole faces into B). Within a group of

@@ -38,7 +38,9 @@ Refraction refract(const Vec3& incident, const Vec3& normal, double eta_ratio);
 // (lesson 06, eq. 6.8): k_d (N·L) + k_s (R·V)^n, with R = reflect(−L, N)
 // the light's mirror direction; zero when the light is behind the surface or
 // on its tangent plane (N·L ≤ 0); the specular part is zero when R·V ≤ 0.
-// `to_light` and `to_viewer` are unit vectors leaving the point.
+// `to_light` and `to_viewer` are unit vectors leaving the point. The exponent
+// n is a real number (Material::phong_exponent), used as it is: 0.8^2.5 is
+// 0.64·√0.8, not 0.8² (n is not rounded to an integer).
 // Multiply by the light's intensity to get its contribution to I_own.
 Color phong_term(const Vec3& normal, const Vec3& to_light, const Vec3& to_viewer, const Color& diffuse,
                  const Color& specular, double exponent);

@@ -78,7 +78,9 @@ Color shadow_transmission(const Tracer& tracer, const SurfaceHit& hit, const Poi
 // I_own of the notes: the surface's own intensity at the hit seen from
 // `to_viewer` (unit): k_a·I_a + emission + Σ_l S_l·I_l·phong_term(...), with
 // the lights light_sample(scene, l, hit.point) for l < light_count(scene) and
-// S_l = shadow_transmission(tracer, hit, light position, node, l).
+// S_l = shadow_transmission(tracer, hit, light position, node, l). The
+// ambient term is added once, not once per light. N is hit.shading_normal
+// (a smooth-shaded mesh's interpolated normal), for N·L and for phong_term.
 // A light behind the surface or on its tangent plane (N·L ≤ 0) contributes
 // nothing and casts no shadow ray; with plan.skip_zero_weights, neither does
 // a light whose phong_term is black (k_d = k_s = 0, or k_d = 0 and no
@@ -103,11 +105,14 @@ Color own_intensity(const Tracer& tracer, const SurfaceHit& hit, const Vec3& to_
 //   every channel at this hit; off (the notes' literal algorithm,
 //   full_effects): both children at every hit below the depth limit, each
 //   multiplied by its k even when that is zero.
-// The refracted direction uses η_i/η_t = 1/η entering (hit.front_face) and
-// η leaving; total internal reflection adds k_t to k_r. The colour returned
+// Both directions are taken about hit.shading_normal (reflect, refract). The
+// refracted direction uses η_i/η_t = 1/η entering (hit.front_face) and
+// η leaving; total internal reflection adds k_t to k_r (still one reflected
+// ray, weighed k_r + k_t). The colour returned
 // is I_own + k_r·I_r + k_t·I_t (the background on a miss).
-// `weight` is the product of the k_r and k_t on the way from the eye and
-// `parent` the node that spawned this ray; both are for the record only,
+// `weight` is the product of the k_r and k_t on the way from the eye (a
+// child's is weight·k_t or weight·k_r, the k_r after total internal
+// reflection added k_t to it) and `parent` the node that spawned this ray; both are for the record only,
 // except that with tracer.min_contribution > 0 a child whose weight fails
 // branch_contributes (lesson 07) is not spawned.
 // Records (when tracer.tree is set), in this order: record_ray(tracer.tree,
