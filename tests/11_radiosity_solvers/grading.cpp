@@ -262,9 +262,12 @@ TEST_SUITE("lesson11") {
       CHECK(max_difference(b, s.exact) < 1e-10);
     }
     std::vector<Color> b(s.patches.size(), Color(0.0));
-    INFO("contract of gauss_seidel_sweep: ω must lie in the open interval (0, 2); 0 and 2 are refused");
+    INFO(
+        "contract of gauss_seidel_sweep: ω must lie in the open interval (0, 2); 0 and 2 are refused, "
+        "before b is changed");
     CHECK_THROWS_AS(gauss_seidel_sweep(s.patches, s.f, b, 2.0), std::invalid_argument);
     CHECK_THROWS_AS(gauss_seidel_sweep(s.patches, s.f, b, 0.0), std::invalid_argument);
+    CHECK(max_difference(b, std::vector<Color>(s.patches.size(), Color(0.0))) == 0.0);
   }
 
   TEST_CASE("Southwell relaxes the largest residual first: two steps by hand" *
@@ -338,7 +341,8 @@ TEST_SUITE("lesson11") {
 
   TEST_CASE("shoot refuses a form-factor row without one value per patch" * doctest::description("task=6c")) {
     // Contract of shoot (radiosity_solvers.hpp): the row is a span of one F_ij
-    // per patch; a shorter one is refused (std::invalid_argument), never read past.
+    // per patch; a shorter one is refused (std::invalid_argument), never read past,
+    // before the state is changed (the shooter's Δ is not zeroed).
     const ThreePatchExample ex = three_patch_example();
     ProgressiveState state{.radiosity = {Color(1.0), Color(0.0), Color(0.0)},
                            .unshot = {Color(1.0), Color(0.0), Color(0.0)}};
@@ -346,6 +350,9 @@ TEST_SUITE("lesson11") {
     CHECK_THROWS_AS(shoot(ex.patches, 0, short_row, state), std::invalid_argument);
     CHECK_THROWS_AS(shoot(ex.patches, 3, ex.form_factors.row(0), state), std::invalid_argument);
     CHECK(state.shots == 0);
+    INFO("contract of shoot: a refused row leaves B and Δ as they were");
+    CHECK((state.unshot[0] == Color(1.0) && state.radiosity[0] == Color(1.0)));
+    CHECK((state.unshot[1] == Color(0.0) && state.radiosity[1] == Color(0.0)));
   }
 
   TEST_CASE("choose_shooter and shoot refuse states of the wrong size" * doctest::description("task=6b,6c")) {

@@ -349,6 +349,10 @@ TEST_SUITE("lesson11") {
     CHECK(x[0] == doctest::Approx(3.0).epsilon(1e-15));
     INFO("contract of gaussian_elimination: n = b.size() > 0 and A has n × n entries");
     CHECK_THROWS_AS(gaussian_elimination({}, {}), std::invalid_argument);
+    // Exactly n × n: 3 entries (too few) and 5 entries (too many) for n = 2 are both refused, though
+    // the first 4 of the 5 are a regular 2 × 2 matrix.
+    CHECK_THROWS_AS(gaussian_elimination({1.0, 0.0, 0.0}, {1.0, 2.0}), std::invalid_argument);
+    CHECK_THROWS_AS(gaussian_elimination({1.0, 0.0, 0.0, 1.0, 9.0}, {1.0, 2.0}), std::invalid_argument);
   }
 }
 

@@ -127,6 +127,16 @@ TEST_SUITE("lesson14") {
     const double seen = link_form_factor(receiver, square(0, 0, 1, 1, 1, false), 2, counting);
     CHECK(seen > 0.0);
     CHECK_MESSAGE(asked == 16, "k = 2: each of the 4 receiver points asks about the 4 source points, once");
+    // Contract: visible(x_i, y_j) with x_i on the receiver (z = 0) and y_j on the source (z = 1).
+    int receiver_first = 0, other_order = 0;
+    const SegmentVisible ordered = [&](const Point3& from, const Point3& to) {
+      (from.z == 0.0 && to.z == 1.0 ? receiver_first : other_order) += 1;
+      return true;
+    };
+    link_form_factor(receiver, square(0, 0, 1, 1, 1, false), 2, ordered);
+    CHECK_MESSAGE((receiver_first == 16 && other_order == 0),
+                  "visible is asked from the receiver's point to the source's, visible(x_i, y_j): got "
+                      << receiver_first << " in that order and " << other_order << " the other way");
     CHECK_THROWS_AS(link_form_factor(receiver, receiver, 0, always), std::invalid_argument);
     CHECK_THROWS_AS(link_form_factor(receiver, receiver, 9, always), std::invalid_argument);
   }

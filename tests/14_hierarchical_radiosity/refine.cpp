@@ -56,6 +56,10 @@ TEST_SUITE("lesson14") {
     CHECK(
         form_factor_oracle(a, b, {.epsilon_f = estimate * (1 + 1e-9), .epsilon_bf = off, .min_area = 0.1}) ==
         LinkAction::link);
+    // r² = 1 and A_s = 1 exactly, so the estimate is the double 1/(π + 1) itself: ε_F equal to it.
+    CHECK_MESSAGE(form_factor_oracle(a, b, {.epsilon_f = estimate, .epsilon_bf = off, .min_area = 0.1}) ==
+                      LinkAction::link,
+                  "an estimate equal to ε_F does not split: only an estimate above ε_F does");
   }
 
   TEST_CASE("brightness_oracle: BF refinement on max_c ρ_r,c B_s,c F, and drop when F is 0" *
@@ -121,6 +125,23 @@ TEST_SUITE("lesson14") {
           doctest::Approx(lambert(Point3(0.5, 0.5, 0), Vec3(0, 0, 1), h.elements[1].patch.vertices))
               .epsilon(1e-12));
     CHECK(h.elements.size() == 2);
+    // Contract of refine: brightness_oracle is asked with the *source's* radiosity. A 2 × 2 source 10 above
+    // the unit receiver: F ≈ 4/(100π) = 0.0127 (estimates 0.0126 and 0.0032 < ε_F = 0.05), ρ_r = 0.5. A
+    // source of B = 10 brings 0.5 · 10 · 0.0127 = 0.064 > ε_BF = 0.03: the source (the larger, area 4 >
+    // min_area 1) splits; each child (area 1, F ≈ 0.0032) brings at most 0.016 and is linked: four links.
+    const RefineSettings bf{.epsilon_f = 0.05, .epsilon_bf = 0.03, .min_area = 1, .sample_points = 1};
+    const std::vector<Patch> pair = {square(0, 0, 1, 1, 0), square(-0.5, -0.5, 1.5, 1.5, 10, false)};
+    ElementHierarchy bright_source = make_hierarchy(pair);
+    bright_source.elements[1].radiosity = Color(10);
+    refine(bright_source, 0, 1, bf, always);
+    CHECK_MESSAGE(bright_source.links.size() == 4,
+                  "a bright source (B_s = 10) brings 0.5 · 10 · 0.0127 = 0.064 > ε_BF: the source splits");
+    // A bright receiver beside a dark source brings nothing over the link: one link at the roots.
+    ElementHierarchy bright_receiver = make_hierarchy(pair);
+    bright_receiver.elements[0].radiosity = Color(10);
+    refine(bright_receiver, 0, 1, bf, always);
+    CHECK_MESSAGE(bright_receiver.links.size() == 1,
+                  "the receiver's own B does not count: a dark source (B_s = 0) brings 0 ≤ ε_BF, one link");
   }
 
   TEST_CASE("refine splits the larger element once, then links the receiver to each child" *

@@ -126,6 +126,28 @@ TEST_SUITE("lesson14") {
     CHECK(none.change == 0.0);
     const SolveReport one = solve_links(dark, 1e-9, 1);
     CHECK_MESSAGE(one.iterations == 1, "max_iterations = 1 is allowed: one sweep");
+    // Contract: `change` is d_k of the last sweep, and the first sweep stops only when d_1 = 0 (q needs
+    // two sweeps). a (E = 1, ρ = 0.5) and b (ρ = 0.5) see each other through F = 0.5: the solution is
+    // B_a = 1/(1 − 0.25²) = 16/15, B_b = 0.25 B_a = 4/15. Start at it, B_a raised by 1/1024. Sweep 1:
+    // B_a = 1 + 0.25 · 4/15 = 16/15 (changed by 1/1024), B_b = 4/15 + 1/4096: d_1 = 1/1024. Sweep 2:
+    // B_a = 16/15 + 1/16384, B_b = 4/15: d_2 = 1/4096, q = 1/4, d_2 q/(1 − q) = 1/12288 ≤ 10⁻² · 16/15.
+    const auto near_solution = [] {
+      ElementHierarchy h = pair(Color(0.5), Color(1), Color(0.5), 0.5, 0.5);
+      h.elements[0].radiosity = Color(16.0 / 15 + 1.0 / 1024);
+      h.elements[1].radiosity = Color(4.0 / 15);
+      return h;
+    };
+    ElementHierarchy first = near_solution();
+    const SolveReport sweep_1 = solve_links(first, 1e-2, 1);
+    CHECK_MESSAGE(sweep_1.change == doctest::Approx(1.0 / 1024).epsilon(1e-9),
+                  "the report's change is d_1 = max |B_1 − B_0| = 1/1024");
+    ElementHierarchy near = near_solution();
+    const SolveReport two = solve_links(near, 1e-2, 100);
+    CHECK_MESSAGE(two.iterations == 2,
+                  "d_1 = 1/1024 is below 10⁻² · B but not 0: one sweep cannot estimate q, so a second runs, "
+                  "and its bound 1/12288 stops it");
+    CHECK(two.converged);
+    CHECK(two.change == doctest::Approx(1.0 / 4096).epsilon(1e-9));
     CHECK_THROWS_AS(solve_links(dark, 0.0, 10), std::invalid_argument);
     CHECK_THROWS_AS(solve_links(dark, 1e-6, 0), std::invalid_argument);
   }

@@ -43,9 +43,9 @@ void jacobi_sweep(const std::vector<Patch>& patches, const FormFactorMatrix& f, 
 // Task 4. One Gauss–Seidel sweep in place, i = 0 … n−1, each row using the
 // values already updated in this sweep, with over-relaxation ω ∈ (0, 2):
 //   b_i ← (1 − ω) b_i + ω (E_i + ρ_i Σ_{j≠i} F_ij b_j) / (1 − ρ_i F_ii).
-// ω = 1 is plain Gauss–Seidel. Throws std::invalid_argument for ω ∉ (0, 2)
-// (ω = 0 and ω = 2 included), for what check_radiosity_system refuses, and for
-// a `b` without one value per patch.
+// ω = 1 is plain Gauss–Seidel. Throws std::invalid_argument, before changing
+// `b`, for ω ∉ (0, 2) (ω = 0 and ω = 2 included), for what
+// check_radiosity_system refuses, and for a `b` without one value per patch.
 void gauss_seidel_sweep(const std::vector<Patch>& patches, const FormFactorMatrix& f, std::vector<Color>& b,
                         double omega = 1.0);
 
