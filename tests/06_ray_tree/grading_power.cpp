@@ -551,7 +551,7 @@ TEST_SUITE("lesson06") {
   }
 
   TEST_CASE("ray tree record: one record per shadow segment, in order, with the side of each surface it met" *
-            doctest::description("task=4,5,6")) {
+            doctest::description("task=3,4,5,6")) {
     // The primary ray goes from (0, 0, 0.5) straight down onto the floor's point (0, 0, 0), under
     // the glass ball and the light (0, 0, 4), at depth 0. The records
     // (ray_tree.hpp): node 0 the primary ray; then its shadow walk, one record per segment, each a
