@@ -209,36 +209,31 @@ TEST_SUITE("lesson03") {
     // kz = y instead gives the frame (p.z, p.x − p.y), where the shared edge is
     // horizontal and the perturbation moves the ray up, to p.x − p.y > 0:
     // triangle B, a different but still watertight answer.
-    const Triangle a(Point3(1, 1, -1), Point3(1, 1, 1), Point3(0.5, 1.5, 0));
-    const Triangle b(Point3(1, 1, 1), Point3(1, 1, -1), Point3(1.5, 0.5, 0));
-    const Ray ray = Ray::toward(Point3(0, 0, 0), Vec3(1, 1, 0));
-    const auto hit_a = intersect(ray, a);
-    const auto hit_b = intersect(ray, b);
-    CHECK_MESSAGE(int(hit_a.has_value()) + int(hit_b.has_value()) == 1,
-                  "watertight: exactly one triangle of a shared edge");
-    REQUIRE_MESSAGE(
-        hit_a.has_value(),
-        "ties of |ω_k| go to x (header: kz is the largest |ω_k|, ties to x, then y): in the frame "
-        "(p.y − p.x, p.z) the perturbed ray lies at X > 0, inside triangle A");
-    CHECK(hit_a->s == doctest::Approx(std::sqrt(2.0)).epsilon(1e-12));
+    // Triangle a owns the edge under the rule; the ray meets it at s = √2.
+    const auto check_tie = [](const Triangle& a, const Triangle& b, const Ray& ray, const char* rule) {
+      const auto hit_a = intersect(ray, a);
+      const auto hit_b = intersect(ray, b);
+      CHECK_MESSAGE(int(hit_a.has_value()) + int(hit_b.has_value()) == 1,
+                    "watertight: exactly one triangle of a shared edge");
+      REQUIRE_MESSAGE(hit_a.has_value(), rule);
+      CHECK(hit_a->s == doctest::Approx(std::sqrt(2.0)).epsilon(1e-12));
+    };
+    check_tie(Triangle(Point3(1, 1, -1), Point3(1, 1, 1), Point3(0.5, 1.5, 0)),
+              Triangle(Point3(1, 1, 1), Point3(1, 1, -1), Point3(1.5, 0.5, 0)),
+              Ray::toward(Point3(0, 0, 0), Vec3(1, 1, 0)),
+              "ties of |ω_k| go to x (header: kz is the largest |ω_k|, ties to x, then y): in the frame "
+              "(p.y − p.x, p.z) the perturbed ray lies at X > 0, inside triangle A");
     // The same scene with the coordinates turned cyclically, (x, y, z) → (z, x, y): ω = (0, 1, 1)/√2, so
     // |ω.y| = |ω.z| > |ω.x| and the rule gives kz = y, kx = z, ky = x: a vertex goes to (p.z − p.y, p.x),
     // the same numbers as above. The shared edge (−1, 1, 1)–(1, 1, 1) is X = 0, and the perturbed ray
     // lies at X > 0, triangle A's side (its third vertex (0, 0.5, 1.5) has X = 1). Taking kz = z instead
     // gives the frame (p.x, p.y − p.z), where the edge is horizontal and the ray moves to p.y − p.z > 0:
     // triangle B.
-    const Triangle turned_a(Point3(-1, 1, 1), Point3(1, 1, 1), Point3(0, 0.5, 1.5));
-    const Triangle turned_b(Point3(1, 1, 1), Point3(-1, 1, 1), Point3(0, 1.5, 0.5));
-    const Ray turned_ray = Ray::toward(Point3(0, 0, 0), Vec3(0, 1, 1));
-    const auto turned_hit_a = intersect(turned_ray, turned_a);
-    const auto turned_hit_b = intersect(turned_ray, turned_b);
-    CHECK_MESSAGE(int(turned_hit_a.has_value()) + int(turned_hit_b.has_value()) == 1,
-                  "watertight: exactly one triangle of a shared edge");
-    REQUIRE_MESSAGE(
-        turned_hit_a.has_value(),
-        "ties of |ω_y| and |ω_z| go to y (header: kz is the largest |ω_k|, ties to x, then y): in the frame "
-        "(p.z − p.y, p.x) the perturbed ray lies at X > 0, inside triangle A");
-    CHECK(turned_hit_a->s == doctest::Approx(std::sqrt(2.0)).epsilon(1e-12));
+    check_tie(Triangle(Point3(-1, 1, 1), Point3(1, 1, 1), Point3(0, 0.5, 1.5)),
+              Triangle(Point3(1, 1, 1), Point3(-1, 1, 1), Point3(0, 1.5, 0.5)),
+              Ray::toward(Point3(0, 0, 0), Vec3(0, 1, 1)),
+              "ties of |ω_y| and |ω_z| go to y (header: kz is the largest |ω_k|, ties to x, then y): in the "
+              "frame (p.z − p.y, p.x) the perturbed ray lies at X > 0, inside triangle A");
   }
 
   TEST_CASE(
