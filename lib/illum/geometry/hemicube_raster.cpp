@@ -96,18 +96,22 @@ int rasterize_polygon(const Vec3* vertices, int count, const Vec3& plane_normal,
 
   // 2. Project to pixel coordinates (into clip_a, which `polygon` may alias:
   // each vertex is read before it is written).
-  const double half_w = 0.5 * t.width;
-  const double y_offset = t.side ? 0.0 : 1.0;
-  // Each vertex's first row at or above it, ⌈Y − ½⌉, is rounded once here and
-  // shared by its two edges and the polygon's row range (rounding is monotone,
-  // so the lowest of these is the row range's start).
   if (s.vertex_row.size() < s.clip_a.size()) s.vertex_row.resize(s.clip_a.size());
   for (int v = 0; v < n; ++v) {
     const Vec3 p = polygon[v];
-    s.clip_a[v] = Vec3((p.x / p.z + 1.0) * half_w, (p.y / p.z + y_offset) * half_w, 0.0);
-    s.vertex_row[v] = ceil_to_int(s.clip_a[v].y - 0.5);
+    s.vertex_row[v] = project_to_pixel(p, t, s.clip_a[v]);
   }
+  return scan_projected(n, plane_normal, plane_d, item, t, s);
+}
 
+int project_to_pixel(const Vec3& p, const FaceTarget& t, Vec3& pixel) {
+  const double half_w = 0.5 * t.width;
+  pixel = Vec3((p.x / p.z + 1.0) * half_w, (p.y / p.z + (t.side ? 0.0 : 1.0)) * half_w, 0.0);
+  return ceil_to_int(pixel.y - 0.5);
+}
+
+int scan_projected(int n, const Vec3& plane_normal, double plane_d, std::int32_t item, const FaceTarget& t,
+                   RasterScratch& s) {
   // 3. Spans: for each row whose centre Y = r + ½ lies in [Y_low, Y_high) of
   // an edge, the edge's X there. A convex polygon has a left and a right edge.
   if (static_cast<int>(s.span_left.size()) < t.height) {
@@ -115,11 +119,18 @@ int rasterize_polygon(const Vec3* vertices, int count, const Vec3& plane_normal,
     s.span_right.resize(t.height);
   }
   int row_low = s.vertex_row[0], row_high = row_low;
-  for (int v = 1; v < n; ++v)
+  double x_low = s.clip_a[0].x, x_high = x_low;
+  for (int v = 1; v < n; ++v) {
     row_low = std::min(row_low, s.vertex_row[v]), row_high = std::max(row_high, s.vertex_row[v]);
+    x_low = std::min(x_low, s.clip_a[v].x), x_high = std::max(x_high, s.clip_a[v].x);
+  }
   const int row_begin = std::max(0, row_low);
   const int row_end = std::min(t.height, row_high);
   if (row_begin >= row_end) return 0;
+  // No column centre between the lowest and the highest X: no span can hold one either (a span's
+  // ends are points of edges, between their vertices' X). Most polygons of a fine mesh stop here
+  // or above, smaller than a pixel.
+  if (std::max(0, ceil_to_int(x_low - 0.5)) >= std::min(t.width, ceil_to_int(x_high - 0.5))) return 0;
   std::fill(s.span_left.begin() + row_begin, s.span_left.begin() + row_end,
             std::numeric_limits<double>::infinity());
   std::fill(s.span_right.begin() + row_begin, s.span_right.begin() + row_end,
@@ -133,6 +144,7 @@ int rasterize_polygon(const Vec3* vertices, int count, const Vec3& plane_normal,
       std::swap(p0, p1), std::swap(q0, q1);  // walk every edge upwards, whichever polygon it belongs to
     const int r0 = std::max(row_begin, q0);
     const int r1 = std::min(row_end, q1);
+    if (r0 >= r1) continue;  // no row centre on this edge: no slope to divide for
     const double slope = (p1.x - p0.x) / (p1.y - p0.y);
     for (int r = r0; r < r1; ++r) {
       const double x = p0.x + (r + 0.5 - p0.y) * slope;

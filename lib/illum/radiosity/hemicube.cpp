@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <numbers>
+#include <unordered_map>
 
 #include "illum/core/error.hpp"
 #include "illum/core/frame.hpp"
@@ -67,6 +69,30 @@ std::optional<HemicubePixel> hemicube_pixel(const Vec3& d, int resolution) {
       std::clamp(static_cast<int>((f.y / f.z + (face == HemicubeFace::top ? 1.0 : 0.0)) * 0.5 * resolution),
                  0, height - 1);
   return HemicubePixel{face, col, row};
+}
+
+PatchCorners::PatchCorners(const std::vector<Patch>& patches) {
+  // Equal points, bit for bit (a mesh's grid computes each once): one number.
+  struct Bits {
+    std::size_t operator()(const Point3& p) const {
+      const auto h = [](double x) { return std::hash<double>{}(x); };
+      return h(p.x) ^ (h(p.y) * 0x9e3779b97f4a7c15ull) ^ (h(p.z) * 0xc2b2ae3d27d4eb4full);
+    }
+  };
+  struct SameBits {  // not ==, which takes −0 for +0
+    bool operator()(const Point3& a, const Point3& b) const { return std::memcmp(&a, &b, sizeof a) == 0; }
+  };
+  std::unordered_map<Point3, std::uint32_t, Bits, SameBits> number;
+  first.reserve(patches.size() + 1);
+  first.push_back(0);
+  for (const Patch& p : patches) {
+    for (const Point3& v : p.vertices) {
+      const auto [at, added] = number.try_emplace(v, static_cast<std::uint32_t>(points.size()));
+      if (added) points.push_back(v);
+      index.push_back(at->second);
+    }
+    first.push_back(static_cast<std::uint32_t>(index.size()));
+  }
 }
 
 Hemicube::Hemicube(int resolution, DeltaRule rule) : deltas_(make_hemicube_deltas(resolution, rule)) {}
@@ -191,6 +217,92 @@ void draw_patches(const std::vector<Patch>& patches, std::size_t i, const Hemicu
   }
 }
 
+// draw_patches over all patches, each corner's view computed once (PatchCorners): the same sums on
+// the same numbers, so the same pixels, bit for bit. A patch whose corners all lie inside one face's
+// frustum, and are projected onto it (the usual case: most patches are smaller than a face) skips
+// the rasteriser's clipping and projection; any other goes through rasterize_polygon as before.
+void draw_patches_shared(const std::vector<Patch>& patches, const PatchCorners& corners, std::size_t i,
+                         const HemicubeFrame& frame, HemicubeBuffers& buffers) {
+  const int res = buffers.resolution;
+  FaceTarget targets[5];
+  for (int k = 0; k < 5; ++k)
+    targets[k] = face_target(buffers, res, static_cast<HemicubeFace>(k), patches[i]);
+  if (buffers.corners.size() != corners.points.size()) {
+    buffers.corners.resize(corners.points.size());
+    buffers.seen.assign(corners.points.size(), 0);
+    buffers.stamp = 0;
+  }
+  if (++buffers.stamp == 0) std::fill(buffers.seen.begin(), buffers.seen.end(), 0), buffers.stamp = 1;
+  const auto view_of = [&](std::uint32_t c) -> const HemicubeBuffers::CornerView& {
+    HemicubeBuffers::CornerView& v = buffers.corners[c];
+    if (buffers.seen[c] == buffers.stamp) return v;
+    buffers.seen[c] = buffers.stamp;
+    const Vec3 d = corners.points[c] - frame.eye;
+    v.local = Vec3(dot(d, frame.x), dot(d, frame.y), dot(d, frame.z));
+    v.outside = planes_outside(v.local);
+    // Inside face k's whole frustum: the rasteriser's outcode (frustum_outcode) is 0. Its side
+    // planes are planes_outside's (the same sums); add its near plane, w ≥ near, and for a side
+    // face the base plane b = z ≥ 0.
+    const double near = targets[0].near, w[5] = {v.local.z, v.local.x, -v.local.x, v.local.y, -v.local.y};
+    v.face = -1;
+    for (int k = 4; k >= 0; --k)
+      if (((v.outside >> (4 * k)) & 0xfu) == 0 && !(w[k] - near < 0) && (k == 0 || !(v.local.z < 0)))
+        v.face = k;
+    if (v.face >= 0)
+      v.pixel_row =
+          project_to_pixel(to_face(static_cast<HemicubeFace>(v.face), v.local), targets[v.face], v.pixel);
+    return v;
+  };
+  RasterScratch& raster = buffers.raster;
+  const HemicubeBuffers::CornerView* view[8];
+  for (std::size_t j = 0; j < patches.size(); ++j) {
+    if (j == i) continue;
+    const Patch& p = patches[j];
+    const std::uint32_t* index = corners.index.data() + corners.first[j];
+    const std::size_t nv = corners.first[j + 1] - corners.first[j];
+    if (nv > 8) {  // a polygon of many corners (none in a mesh): the plain way
+      draw_patches(patches, i, frame, j, j + 1, 0x1f, buffers, buffers);
+      continue;
+    }
+    bool above = false;
+    for (std::size_t k = 0; k < nv; ++k) {
+      view[k] = &view_of(index[k]);
+      above |= view[k]->local.z > 0;
+    }
+    if (!above) continue;
+    double reach = 0;
+    unsigned outside = ~0u;
+    for (std::size_t k = 0; k < nv; ++k) {
+      const Vec3& q = view[k]->local;
+      reach = std::max(reach, std::abs(q.z) + std::abs(q.x) + std::abs(q.y));
+      outside &= view[k]->outside;
+    }
+    const Vec3 n_local(dot(p.normal, frame.x), dot(p.normal, frame.y), dot(p.normal, frame.z));
+    const double d = dot(p.normal, p.vertices[0] - frame.eye);
+    if (std::abs(d) <= 1e-12 * reach) continue;
+    const std::int32_t item = d < 0 ? static_cast<std::int32_t>(j) : back_face_pixel;
+    const double plane_d = d < 0 ? d : d * (1.0 + 1e-9);
+    if (buffers.face.size() < nv) buffers.local.resize(nv), buffers.face.resize(nv);
+    if (raster.clip_a.size() < nv + 6) raster.clip_a.resize(nv + 6), raster.clip_b.resize(nv + 6);
+    if (raster.vertex_row.size() < raster.clip_a.size()) raster.vertex_row.resize(raster.clip_a.size());
+    for (int k = 0; k < 5; ++k) {
+      if ((outside >> (4 * k)) & 0xfu) continue;
+      const auto f = static_cast<HemicubeFace>(k);
+      bool projected = true;  // every corner inside face k's frustum and projected onto it
+      for (std::size_t v = 0; v < nv; ++v) projected &= view[v]->face == k;
+      if (projected) {
+        for (std::size_t v = 0; v < nv; ++v)
+          raster.clip_a[v] = view[v]->pixel, raster.vertex_row[v] = view[v]->pixel_row;
+        scan_projected(static_cast<int>(nv), to_face(f, n_local), plane_d, item, targets[k], raster);
+      } else {
+        for (std::size_t v = 0; v < nv; ++v) buffers.face[v] = to_face(f, view[v]->local);
+        rasterize_polygon(buffers.face.data(), static_cast<int>(nv), to_face(f, n_local), plane_d, item,
+                          targets[k], raster);
+      }
+    }
+  }
+}
+
 // F_ij = Σ ΔF over the pixels showing j, in two halves of the hemicube with
 // the same number of pixels each: half 0 is the top face and the +x face
 // (res² + res²/2 pixels, the first half of the buffer), half 1 the other three
@@ -267,6 +379,21 @@ void Hemicube::form_factor_row(const std::vector<Patch>& patches, std::size_t i,
   clear_faces(buffers, resolution(), all_faces);
   draw_patches(patches, i, frame_of(patches[i], rotation_angle), 0, patches.size(), all_faces, buffers,
                buffers);
+  const std::size_t n = patches.size();
+  const std::span<double> halves = partial_rows(buffers, n);
+  for (int half = 0; half < 2; ++half)
+    accumulate_half(deltas_, buffers, half, halves.subspan(static_cast<std::size_t>(half) * n, n));
+  combine_halves(halves, i, row);
+}
+
+void Hemicube::form_factor_row(const std::vector<Patch>& patches, const PatchCorners& corners, std::size_t i,
+                               std::span<double> row, HemicubeBuffers& buffers) const {
+  require(i < patches.size(), "Hemicube::form_factor_row: patch index i is out of range");
+  require(row.size() == patches.size(), "Hemicube::form_factor_row: the row must hold one value per patch");
+  require(corners.first.size() == patches.size() + 1,
+          "Hemicube::form_factor_row: the corners were numbered for another set of patches");
+  clear_faces(buffers, resolution(), 0x1f);
+  draw_patches_shared(patches, corners, i, frame_of(patches[i], 0.0), buffers);
   const std::size_t n = patches.size();
   const std::span<double> halves = partial_rows(buffers, n);
   for (int half = 0; half < 2; ++half)

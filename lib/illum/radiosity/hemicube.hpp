@@ -33,6 +33,16 @@ enum class HemicubeFace { top = 0, pos_x = 1, neg_x = 2, pos_y = 3, neg_y = 4 };
 inline constexpr std::int32_t empty_pixel = -1;      // nothing seen: the ray escapes
 inline constexpr std::int32_t back_face_pixel = -2;  // the back of a patch: it occludes, receives nothing
 
+// The patches' corners numbered once, points equal bit for bit under one number: with it the
+// hemicube transforms and projects a corner that four patches of a meshed wall share once, not
+// four times (production: progressive_on_demand's rows). Patch j's corners, in order, are
+// points[index[k]] for k in [first[j], first[j + 1]).
+struct PatchCorners {
+  explicit PatchCorners(const std::vector<Patch>& patches);
+  std::vector<Point3> points;
+  std::vector<std::uint32_t> first, index;
+};
+
 // Per-thread scratch of the hemicube: the item and depth buffers of the five
 // faces, one after the other (top: res × res, then each side: res × res/2,
 // rows from the patch's plane upwards), and the rasteriser's scratch. Sized
@@ -46,6 +56,18 @@ struct HemicubeBuffers {
   std::vector<double> halves;  // two partial rows (see accumulate_half in hemicube.cpp), 2n values
   std::vector<double> cost;    // the estimated drawing cost of patches 0 … j (form_factor_row_parallel)
   RasterScratch raster;
+  // With PatchCorners: each corner's view in this row (computed at its first use: `seen` holds the
+  // row's stamp), so that the patches sharing it reuse it.
+  struct CornerView {
+    Vec3 local;            // in the hemicube's frame
+    Vec3 pixel;            // projected onto face `face`
+    int pixel_row = 0;     // its first row centre at or above it
+    unsigned outside = 0;  // the frustum side planes it lies outside of (4 bits a face)
+    int face = -1;         // the first face whose whole frustum holds it (outcode 0); −1: none
+  };
+  std::vector<CornerView> corners;
+  std::vector<std::uint32_t> seen;
+  std::uint32_t stamp = 0;
 
   // The item buffer of one face (after form_factor_row): face_width × face_height
   // items, row by row. Throws std::invalid_argument before the first form_factor_row.
@@ -83,6 +105,11 @@ class Hemicube {
   // std::invalid_argument when i is out of range or row has not one entry per patch.
   void form_factor_row(const std::vector<Patch>& patches, std::size_t i, std::span<double> row,
                        HemicubeBuffers& buffers, double rotation_angle = 0.0) const;
+  // The same row, bit for bit, with each corner shared by several patches transformed and
+  // projected once (`corners` built from `patches`). Throws as form_factor_row does, and
+  // std::invalid_argument when `corners` holds another number of patches.
+  void form_factor_row(const std::vector<Patch>& patches, const PatchCorners& corners, std::size_t i,
+                       std::span<double> row, HemicubeBuffers& buffers) const;
 
   // The same row computed by every OpenMP thread, for progressive refinement
   // where rows come one at a time: the patches are split into one range per
