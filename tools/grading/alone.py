@@ -30,15 +30,7 @@ def declared_dependencies(lesson: str, root: Path = ROOT, program: bool = True) 
     return found
 
 
-def _alone(lesson: str, root: Path, program: bool) -> str:
-    depends = declared_dependencies(lesson, root, program)
-    return "with only its own units" + (f" (and lesson {', '.join(depends)}'s, declared)" if depends else "")
-
-
 def _tests_alone(report: AloneReport, lesson: str, tests: Path, alone: str) -> None:
-    if not tests.is_file():
-        report.offenders.append(f"{tests} is missing; build the tree first")
-        return
     run = run_suite(tests, f"lesson{lesson}")
     if run.problem:
         report.offenders.append(f"lesson{lesson}: {run.problem}")
@@ -52,9 +44,6 @@ def _tests_alone(report: AloneReport, lesson: str, tests: Path, alone: str) -> N
 
 
 def _program_alone(report: AloneReport, lesson: str, program: Path, alone: str) -> None:
-    if not program.is_file():
-        report.offenders.append(f"{program} is missing; build the tree first")
-        return
     with tempfile.TemporaryDirectory(prefix=f"illum-alone-{lesson}-") as out:
         completed = subprocess.run([str(program), "--quick", "--out", out], capture_output=True, text=True,
                                    errors="replace", check=False,
@@ -69,8 +58,14 @@ def _program_alone(report: AloneReport, lesson: str, program: Path, alone: str) 
 def check_alone(build_dir: Path, root: Path = ROOT) -> AloneReport:
     report = AloneReport()
     for lesson in exercise_lessons(root):
-        if any((root / "tests").glob(f"{lesson}_*/*.cpp")):
-            _tests_alone(report, lesson, build_dir / "bin" / f"tests_lesson{lesson}_alone", _alone(lesson, root, False))
-        if any((root / "lessons").glob(f"{lesson}_*/*.cpp")):
-            _program_alone(report, lesson, build_dir / "bin" / f"lesson{lesson}_alone", _alone(lesson, root, True))
+        for folder, check, program in (("tests", _tests_alone, False), ("lessons", _program_alone, True)):
+            if not any((root / folder).glob(f"{lesson}_*/*.cpp")):
+                continue
+            path = build_dir / "bin" / f"{'' if program else 'tests_'}lesson{lesson}_alone"
+            depends = declared_dependencies(lesson, root, program)
+            alone = "with only its own units" + (f" (and lesson {', '.join(depends)}'s, declared)" if depends else "")
+            if path.is_file():
+                check(report, lesson, path, alone)
+            else:
+                report.offenders.append(f"{path} is missing; build the tree first")
     return report

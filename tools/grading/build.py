@@ -110,27 +110,20 @@ def configure(source: Path, build_dir: Path, exercises: Sequence[str], hidden: P
                f"-DILLUM_EXERCISES={','.join(exercises)}",
                # Always set, so that a tree configured earlier with --hidden forgets it.
                f"-DILLUM_HIDDEN_TESTS={hidden.resolve() if hidden else ''}", *(extra or hidden_objects_arguments([]))]
-    if already_configured(build_dir, source, command):
-        # The same options as last time: make re-runs CMake itself if a CMakeLists.txt changed, so
-        # configuring again would only cost time (each submission of an autograder run starts here).
-        return StepResult(True, "")
-    return run_streaming(command, echo, runner=runner)
-
-
-def already_configured(build_dir: Path, source: Path, command: Sequence[str]) -> bool:
-    """Whether ``build_dir``'s CMakeCache.txt was made from ``source`` with every -D value of ``command``."""
-    cache = build_dir / "CMakeCache.txt"
-    if not (build_dir / "Makefile").is_file() or not cache.is_file():
-        return False
+    # Already configured from `source` with every -D value of `command` (its CMakeCache.txt says so): make re-runs
+    # CMake itself if a CMakeLists.txt changed, so configuring again would only cost time (each submission of an
+    # autograder run starts here).
     try:
-        text = cache.read_text(encoding="utf-8", errors="replace")
+        cache = (build_dir / "CMakeCache.txt").read_text(encoding="utf-8", errors="replace")
     except OSError:
-        return False
-    values = dict(re.findall(r"^([A-Za-z_][A-Za-z0-9_]*):[A-Z]+=(.*)$", text, re.M))
+        cache = ""
+    values = dict(re.findall(r"^([A-Za-z_][A-Za-z0-9_]*):[A-Z]+=(.*)$", cache, re.M))
     wanted = [(name.partition(":")[0], value) for name, _, value in (a[2:].partition("=") for a in command
                                                                        if a.startswith("-D"))]
-    return values.get("CMAKE_HOME_DIRECTORY") == str(source.resolve()) and all(
-        values.get(name) == value for name, value in wanted)
+    if (build_dir / "Makefile").is_file() and values.get("CMAKE_HOME_DIRECTORY") == str(source.resolve()) and all(
+            values.get(name) == value for name, value in wanted):
+        return StepResult(True, "")
+    return run_streaming(command, echo, runner=runner)
 
 
 def hidden_objects_arguments(objects: Sequence[Path]) -> list[str]:

@@ -37,9 +37,7 @@ class Token:
 
 def tokenize(source: str) -> list[Token]:
     tokens: list[Token] = []
-    line = 1
-    at_line_start = True
-    in_preprocessor = False
+    line, at_line_start, in_preprocessor = 1, True, False
     for match in _TOKEN.finditer(source):
         kind, text = match.lastgroup or "other", match.group()
         if kind == "space":
@@ -67,10 +65,7 @@ def _mark_templates(tokens: list[Token]) -> None:
     """Marks ``<`` and ``>`` of template argument lists: a ``<`` after a name whose tokens up to a matching ``>``
     can only be template arguments."""
     for index, token in enumerate(tokens):
-        if token.text != "<" or token.template or index == 0:
-            continue
-        before = tokens[index - 1]
-        if before.kind != "ident":
+        if token.text != "<" or token.template or index == 0 or tokens[index - 1].kind != "ident":
             continue
         depth, closing = 1, []
         for j in range(index + 1, min(len(tokens), index + 40)):
@@ -79,29 +74,14 @@ def _mark_templates(tokens: list[Token]) -> None:
                 continue
             if t.text not in _TEMPLATE_ARGUMENT_TOKENS:
                 break
-            if t.text == "<":
-                depth += 1
-            elif t.text in (">", ">>"):
-                depth -= 1 if t.text == ">" else 2
+            depth += {"<": 1, ">": -1, ">>": -2}.get(t.text, 0)
+            if t.text in (">", ">>"):
                 closing.append(t)
                 if depth <= 0:
                     token.template, token.close = True, j
                     for c in closing:
                         c.template = True
                     break
-
-
-def body_tokens(tokens: list[Token]) -> list[bool]:
-    """For each token: does it lie inside a function (or class) body, i.e. inside braces other than a namespace's?"""
-    inside: list[bool] = []
-    stack: list[bool] = []  # True for a brace that is a body
-    for index, token in enumerate(tokens):
-        if token.text == "{":  # a namespace's brace follows `namespace` or `namespace name`
-            stack.append("namespace" not in [t.text for t in tokens[max(0, index - 2):index]])
-        inside.append(any(stack))
-        if token.text == "}" and stack:
-            stack.pop()
-    return inside
 
 
 @dataclass
@@ -261,19 +241,6 @@ def _simple_argument(tokens: list[Token], first: int, last: int) -> bool:
     return all(t.kind in ("ident", "number") or t.text in (".", "->", "::", "[", "]") for t in tokens[first:last + 1])
 
 
-def _nudged_constants(text: str) -> list[str]:
-    """0 <-> 1 and 2 -> 1 on integer and floating literals."""
-    core = text.rstrip("fFlLuU")
-    suffix = text[len(core):]
-    try:
-        value = float(core.replace("'", ""))
-    except ValueError:
-        return []
-    is_float = any(c in core for c in ".eE") and not core.lower().startswith("0x")
-    target = {0.0: 1, 1.0: 0, 2.0: 1}.get(value)
-    return [] if target is None else [f"{target}.0{suffix}" if is_float else f"{target}{suffix}"]
-
-
 def generate(lesson: str, unit: Path, source: str, stub_lines: set[str]) -> list[Mutant]:
     """Every mutant of one exercise unit (in source order)."""
     return _Generator(lesson, unit, source, stub_lines).run()
@@ -315,11 +282,17 @@ class _Generator:
         return _matching(t, index + 1)
 
     def run(self) -> list[Mutant]:
-        for index, in_body in enumerate(body_tokens(self.tokens)):
-            if in_body:
+        """The operators on every token inside a function (or class) body: inside braces other than a namespace's."""
+        braces: list[bool] = []  # True for a brace that is a body
+        for index, token in enumerate(self.tokens):
+            if token.text == "{":  # a namespace's brace follows `namespace` or `namespace name`
+                braces.append("namespace" not in [t.text for t in self.tokens[max(0, index - 2):index]])
+            if any(braces):
                 for operator in (self.classic, self.dropped_factor, self.dropped_clamp, self.argument_neighbour,
                                  self.float_for_double, self.swapped_arguments):
-                    operator(index, self.tokens[index])
+                    operator(index, token)
+            if token.text == "}" and braces:
+                braces.pop()
         # One mutant per resulting program: `a * pi * b` loses pi as ' * pi' or as 'pi * ', the same text.
         unique: dict[tuple[int, str], Mutant] = {}
         for m in sorted(self.mutants, key=lambda m: (m.start, m.operator)):
@@ -337,9 +310,15 @@ class _Generator:
         elif token.kind == "op" and text == "-" and index + 1 < len(t) and not _is_binary(t, index):
             if t[index + 1].kind in ("ident", "number") or t[index + 1].text == "(":  # a unary minus dropped
                 self.add("sign", token.start, t[index + 1].start, "", token.line)
-        elif token.kind == "number":
-            for replacement in _nudged_constants(text):
-                self.add("constant", token.start, token.end, replacement, token.line)
+        elif token.kind == "number":  # 0 <-> 1 and 2 -> 1, on integer and floating literals
+            core = text.rstrip("fFlLuU")
+            try:
+                target = {0.0: 1, 1.0: 0, 2.0: 1}.get(float(core.replace("'", "")))
+            except ValueError:
+                return
+            if target is not None:
+                point = ".0" if any(c in core for c in ".eE") and not core.lower().startswith("0x") else ""
+                self.add("constant", token.start, token.end, f"{target}{point}{text[len(core):]}", token.line)
         elif self.call_at(index, _MIN_MAX) >= -1:
             self.add("min/max", token.start, token.end, _MIN_MAX[text], token.line)
         elif (close := self.call_at(index, _REMOVABLE_CALLS)) >= -1:

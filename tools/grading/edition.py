@@ -1,8 +1,6 @@
-"""The student edition: the tracked tree without what students must not see (docs/grading.md,
-"Student edition"): the reference units of the lessons handed out, the exercises of the others (their
-units ship as working code), tests/hidden/, tests/attacks/, build/ and out/. It has a README of its own
-(student_readme.md.in) and every link to a file it leaves out is rewritten: to the stub for a reference
-unit handed out, else to plain text."""
+"""The student edition (docs/grading.md, "Student edition"): the tracked tree without what students must not
+see (excluded_files says what and why). It has a README of its own (student_readme.md.in) and every link to a
+file it leaves out is rewritten: to the stub for a reference unit handed out, else to plain text."""
 from __future__ import annotations
 
 import os
@@ -45,15 +43,11 @@ _GLOB_REGEX = {"/**": "/.*", "**/": "(?:.*/)?", "**": ".*", "*": "[^/]*", "?": "
 
 
 def _glob_part(match: re.Match) -> str:
+    """A piece of a gitignore(5) glob as a regex: `*` and `?` stop at a slash, `**` crosses folders, `[...]` a class."""
     part = match.group()
     if part[0] == "[" and len(part) > 1:  # a class, `[!...]` negated
         return "[" + ("^" + part[2:-1] if part[1] == "!" else part[1:-1]) + "]"
     return _GLOB_REGEX.get(part) or re.escape(part[-1])  # `\x`: x itself
-
-
-def _glob_regex(glob: str) -> re.Pattern:
-    """gitignore(5)'s glob: `*` and `?` stop at a slash, `**` crosses folders, `[...]` a class."""
-    return re.compile(_GLOB_PART.sub(_glob_part, glob))
 
 
 def _read_ignores(folder: Path, base: str) -> list[tuple]:
@@ -68,7 +62,8 @@ def _read_ignores(folder: Path, base: str) -> list[tuple]:
             negated = line.startswith("!")
             line = line[1:] if negated or line.startswith("\\") else line
             body = line.rstrip("/")
-            ignores.append((base, _glob_regex(body.lstrip("/")), negated, line.endswith("/"), "/" in body))
+            pattern = re.compile(_GLOB_PART.sub(_glob_part, body.lstrip("/")))
+            ignores.append((base, pattern, negated, line.endswith("/"), "/" in body))
     return ignores
 
 
@@ -145,29 +140,23 @@ class Edition:
     notes: list[str] = field(default_factory=list)  # dependencies among the lessons handed out
 
 
-def _refusal(source: Path, out: Path) -> str:
-    """Why the edition may not be written to `out` ('' when it may): checked before anything is removed."""
-    if not (source / "lessons").is_dir():  # it would walk all of it (/tmp, or /)
-        return f"{source} is not an illum source tree (it has no lessons/ folder)"
-    # Inside the source tree only the generated folders are safe: elsewhere the edition would copy itself.
-    in_generated = any(out == source / g or source / g in out.parents for g in GENERATED)
-    if out == source or (source in out.parents and not in_generated):
-        return f"{out} lies inside the source tree; write the edition under build/ or elsewhere"
-    if out.exists() and not out.is_dir():
-        return f"{out} exists and is not a folder; refusing to replace it"
-    if out.exists() and any(out.iterdir()) and not (out / STUDENT_EDITION_MARKER).exists():
-        return f"{out} exists and is not a student edition; refusing to replace it"
-    return ""
-
-
 def make_student_edition(source: Path, out: Path, handed_out: list[str] | None = None) -> Edition:
     """Writes the edition of `source` to `out` (replacing an earlier one), handing out the exercises of
-    `handed_out` (None: every lesson with exercises)."""
+    `handed_out` (None: every lesson with exercises). Refused (ValueError) before anything is removed: an `out`
+    that is a link, lies in the source tree or is something else than an earlier edition."""
     if out.is_symlink():  # its target would be replaced, or written, through the link
         raise ValueError(f"{out} is a symbolic link; refusing to write through it (give the folder itself)")
     source, out = source.resolve(), out.resolve()
-    if refusal := _refusal(source, out):
-        raise ValueError(refusal)
+    if not (source / "lessons").is_dir():  # it would walk all of it (/tmp, or /)
+        raise ValueError(f"{source} is not an illum source tree (it has no lessons/ folder)")
+    # Inside the source tree only the generated folders are safe: elsewhere the edition would copy itself.
+    in_generated = any(out == source / g or source / g in out.parents for g in GENERATED)
+    if out == source or (source in out.parents and not in_generated):
+        raise ValueError(f"{out} lies inside the source tree; write the edition under build/ or elsewhere")
+    if out.exists() and not out.is_dir():
+        raise ValueError(f"{out} exists and is not a folder; refusing to replace it")
+    if out.exists() and any(out.iterdir()) and not (out / STUDENT_EDITION_MARKER).exists():
+        raise ValueError(f"{out} exists and is not a student edition; refusing to replace it")
     files = tracked_files(source)
     lessons = exercise_lessons_of(files)
     unknown = sorted(set(handed_out or []) - set(lessons))

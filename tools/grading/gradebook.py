@@ -148,13 +148,6 @@ class Roster:
         return matched, unmatched
 
 
-def _skipped_row(fields: list[str]) -> bool:
-    """The rows of a Canvas export that are not students: "Points Possible", "Muted"/"Manual Posting"."""
-    cells = [f.strip() for f in fields]
-    return "points possible" in cells[0].lower() or all(
-        re.fullmatch(r"(muted|manual posting.*)?", c, re.I) for c in cells)
-
-
 def read_roster(path: Path) -> Roster:
     """The class list, checked before anything is graded: an id or e-mail column, every row no wider
     than the header, and no id, user name or e-mail on two rows (naming both lines)."""
@@ -173,7 +166,9 @@ def read_roster(path: Path) -> Roster:
         if len(fields) > len(headers):
             raise RosterError(f"--roster {path}: line {line} has {len(fields)} fields, the header (line "
                               f"{header_line}) {len(headers)}: a field holding the separator must be quoted")
-        if _skipped_row(fields):
+        cells = [f.strip() for f in fields]  # a Canvas export's rows that are not students: skipped
+        if "points possible" in cells[0].lower() or all(re.fullmatch(r"(muted|manual posting.*)?", c, re.I)
+                                                          for c in cells):  # "Muted" or "Manual Posting"
             continue
         row: dict[str, str] = {}
         for h, value in zip(headers, fields):

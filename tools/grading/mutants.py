@@ -22,7 +22,10 @@ from . import project
 from .cpp_mutants import Mutant, code_only, generate
 
 EQUIVALENT_FILE = Path("tests") / "mutants" / "equivalent.txt"
+BUGS_FOLDER = Path("tests") / "mutants" / "student_bugs"
 WORK_DIR = Path("build") / "mutants"
+_COPY_IGNORE = {"build", ".git", "node_modules", "out", "__pycache__"}
+_TEST_CASE_LINE = re.compile(r"^TEST CASE:\s+(.*)$", re.M)
 
 
 def all_mutants(root: Path, lesson: str) -> list[Mutant]:
@@ -61,9 +64,6 @@ def read_equivalents(path: Path) -> Equivalents:
         original, _, mutated = lines.partition(" => ")
         result.reasons[f"{unit.strip()}: {code_only(original)} => {code_only(mutated)}"] = reason.strip()
     return result
-
-
-BUGS_FOLDER = Path("tests") / "mutants" / "student_bugs"
 
 
 @dataclass
@@ -128,9 +128,6 @@ def read_bugs(root: Path, folder: Path) -> tuple[list[tuple[BugFile, Mutant]], l
         except (ValueError, OSError) as error:
             problems.append(str(error))
     return found, problems
-
-
-_COPY_IGNORE = {"build", ".git", "node_modules", "out", "__pycache__"}
 
 
 def sync_tree(source: Path, destination: Path) -> None:
@@ -218,15 +215,10 @@ def lesson_targets(root: Path, lesson: str) -> list[str]:
     return targets
 
 
-_TEST_CASE_LINE = re.compile(r"^TEST CASE:\s+(.*)$", re.M)
-
-
 def run_grading(workspace: Workspace, lesson: str, timeout: float, extra: tuple[str, ...] = ()) -> tuple[str, str]:
-    """('killed' | 'survived' | 'timed out', first failing test) for the built tree.
-
-    A mutant only needs one failing test to be killed, so the suite runs with doctest's --abort-after=1: a wrong
-    program stops at its first failed assertion instead of failing thousands of them (which can take minutes),
-    and a time-out then really means a program that does not finish."""
+    """('killed' | 'survived' | 'timed out', first failing test) for the built tree. One failing test kills a
+    mutant, so the suite runs with --abort-after=1: a wrong program stops at its first failed assertion instead
+    of failing thousands (minutes), and a time-out then really means a program that does not finish."""
     for program in (workspace.build / "bin" / target for target in lesson_targets(workspace.root, lesson)):
         command = [str(program), f"-ts=lesson{lesson}", "--abort-after=1", "--no-version", "--no-colors", *extra]
         try:
@@ -339,13 +331,12 @@ def choose(root: Path, args: argparse.Namespace, equivalents: Equivalents) -> li
         return _bug_reports(root, args, args.lessons or exercises)
     reports = []
     for lesson in args.lessons or exercises:
-        every = all_mutants(root, lesson)
-        chosen = every
+        chosen = every = all_mutants(root, lesson)
         if args.sample is not None and args.sample < len(every):
             # Drawn from every mutant, equivalent or not, so that listing an equivalent mutant later leaves
             # the rest of a seed's sample as it was (fair before/after runs).
-            rng = random.Random(f"{args.seed}:{lesson}")
-            chosen = sorted(rng.sample(every, args.sample), key=lambda m: (str(m.unit), m.start))
+            chosen = sorted(random.Random(f"{args.seed}:{lesson}").sample(every, args.sample),
+                            key=lambda m: (str(m.unit), m.start))
         reports.append(LessonReport(lesson, len(every), sum(equivalents.reason(m) is not None for m in every),
                                     [m for m in chosen if equivalents.reason(m) is None
                                      and (not args.only or m.ident in args.only)]))
@@ -446,22 +437,14 @@ def summary_table(reports: list[LessonReport], compare_without: str | None = Non
 
 def markdown_report(reports: list[LessonReport], command: str, compare_without: str | None = None) -> str:
     parts = [
-        "# Grading power: the mutation report",
-        "",
+        "# Grading power: the mutation report", "",
         "Produced by `tools/grade --mutants` (docs/grading-reference.md explains how to read it). Regenerate with:",
-        "",
-        "```sh",
-        command,
-        "```",
-        "",
+        "", "```sh", command, "```", "",
         "A *mutant* is a reference exercise unit with one plausible student mistake. **score** = "
         "(killed + timed out) / (killed + timed out + survived): the share of those mistakes the lesson's "
         "grading suite catches. Mutants listed in `tests/mutants/equivalent.txt` (no test could detect them) "
         "are left out; *did not build* mutants do not compile and are not scored. *time* is the whole "
-        "lesson's run on this machine (two cores, shared).",
-        "",
-        summary_table(reports, compare_without),
-        "",
+        "lesson's run on this machine (two cores, shared).", "", summary_table(reports, compare_without), "",
     ]
     if compare_without:
         parts[-1:-1] = ["", f"*score without `{compare_without}`*: the same mutants against the suite without "
@@ -503,16 +486,6 @@ def bugs_report(reports: list[LessonReport], command: str) -> str:
     return "\n".join(lines)
 
 
-def _list(reports: list[LessonReport], bugs: bool) -> None:
-    for r in reports:
-        for m in r.mutants:
-            where = f"{m.unit.as_posix()}:{m.line}"
-            if bugs:
-                print(f"{m.ident} lesson{r.lesson} {m.operator.removeprefix('student bug ')} {where}: {m.source_line}")
-            else:
-                print(f"{m.ident} lesson{r.lesson} {where} {m.operator}: {m.source_line}  =>  {m.mutated_line}")
-
-
 def _prepared_workspaces(root: Path, args: argparse.Namespace, reports: list[LessonReport]) -> list[Workspace] | None:
     """One configured tree per worker (as many as the largest lesson has mutants, at most --jobs)."""
     base = (args.work_dir or root / WORK_DIR).resolve()
@@ -542,7 +515,11 @@ def main(argv: list[str]) -> int:
         return 2
     reports = choose(root, args, equivalents)
     if args.list:
-        _list(reports, bool(args.bugs))
+        for r, m in ((r, m) for r in reports for m in r.mutants):
+            where = f"{m.unit.as_posix()}:{m.line}"
+            print(f"{m.ident} lesson{r.lesson} {m.operator.removeprefix('student bug ')} {where}: {m.source_line}"
+                  if args.bugs else f"{m.ident} lesson{r.lesson} {where} {m.operator}: {m.source_line}  =>  "
+                  f"{m.mutated_line}")
         return 0
     workspaces = _prepared_workspaces(root, args, reports)
     if workspaces is None:
@@ -555,8 +532,7 @@ def main(argv: list[str]) -> int:
             print(f"tools/grade --mutants: lesson {report.lesson}: {report.problem}", file=sys.stderr)
     command = "tools/grade " + shlex.join(argv if "--mutants" in argv else ["--mutants", *argv])
     if args.bugs:
-        text = bugs_report(reports, command)
-        print(text)
+        print(text := bugs_report(reports, command))
     else:
         print(summary_table(reports, args.compare_without))
         for m in (m for r in reports for m in r.mutants if m.status == "survived"):
@@ -567,7 +543,5 @@ def main(argv: list[str]) -> int:
         args.report.parent.mkdir(parents=True, exist_ok=True)
         args.report.write_text(text, encoding="utf-8")
         print(f"wrote {args.report}", file=sys.stderr)
-    if any(r.problem for r in reports):
-        return 2
-    return 1 if args.fail_under is not None and any(r.score is not None and r.score < args.fail_under
-                                                     for r in reports) else 0
+    return 2 if any(r.problem for r in reports) else 1 if args.fail_under is not None and any(
+        r.score is not None and r.score < args.fail_under for r in reports) else 0

@@ -2,17 +2,13 @@
 expected values and their tolerances are not in the program that runs the student's code at all
 (docs/grading-defences.md, "How a test is judged").
 
-    CHECK(got == doctest::Approx(want).epsilon(1e-12))   ->  ILLUM_OBSERVE_VALUE(CHECK, (got))
-    CHECK(hit)                                           ->  ILLUM_OBSERVE_CHECK(CHECK, (hit))
-    REQUIRE(hits.size() == 2)                            ->  ILLUM_OBSERVE_CHECK(REQUIRE, hits.size() == 2)
-    CHECK_THROWS_AS(Sphere(c, -1), std::invalid_argument) -> ILLUM_OBSERVE_THROWS(CHECK_THROWS_AS, ...)
-    INFO(...), CAPTURE(...), MESSAGE(...), a CHECK_MESSAGE's message  ->  cut
-
-A REQUIRE keeps its right side: the observer must stop a test where the reference's run would
-(the judge still decides on the left side it reports). Every line keeps its number, and a
-``#line`` directive names the original file, so records and compiler messages point at the
-test as written. A check this tool cannot split unambiguously is an error naming its file and
-line: the build stops instead of keeping an expected value.
+`CHECK(got == doctest::Approx(want))` becomes `ILLUM_OBSERVE_VALUE(CHECK, (got))`, `CHECK(hit)`
+`ILLUM_OBSERVE_CHECK(CHECK, (hit))`, a CHECK_THROWS* an ILLUM_OBSERVE_THROWS; INFO, CAPTURE, MESSAGE and a
+CHECK_MESSAGE's message are cut. A REQUIRE keeps its right side: the observer must stop a test where the
+reference's run would (the judge still decides on the left side it reports). Lines keep their numbers and
+a ``#line`` names the original file, so records and compiler messages point at the test as written. A
+check this tool cannot split unambiguously is an error naming its file and line: the build stops instead
+of keeping an expected value.
 
     python3 tools/grading/observer_sources.py --out DIR FILE...   (each FILE into DIR/<its folder>/<its name>,
     so that both "support.hpp" and "13_two_pass/support.hpp" find the rewritten header first)
@@ -46,33 +42,18 @@ _IDENTIFIER = re.compile(r"[A-Za-z_][A-Za-z_0-9]*")
 _OPENING = re.compile(r"[ \t]*\(")
 
 
-def _skip_literal(text: str, i: int) -> int:
-    """The index after the string or character literal, or comment, starting at ``i`` (else ``i``)."""
-    if text.startswith("//", i):
-        end = text.find("\n", i)
-        return len(text) if end < 0 else end
-    if text.startswith("/*", i):
-        end = text.find("*/", i + 2)
-        return len(text) if end < 0 else end + 2
-    raw = re.match(r'(?:u8|u|U|L)?R"([^()\\ ]{0,16})\(', text[i:i + 24])
-    if raw and (i == 0 or not (text[i - 1].isalnum() or text[i - 1] == "_")):
-        end = text.find(")" + raw.group(1) + '"', i + raw.end())
-        return len(text) if end < 0 else end + len(raw.group(1)) + 2
-    if text[i] in "\"'":
-        if text[i] == "'" and i > 0 and text[i - 1].isalnum():
-            return i  # a digit separator, 1'000
-        quote, j = text[i], i + 1
-        while j < len(text) and text[j] != quote:
-            j += 2 if text[j] == "\\" else 1
-        return j + 1
-    return i
+# A comment, a raw string R"d(…)d" or a string or character literal, each to its end (or the text's). A raw
+# string's prefix right after a name's character is part of the name, a ' right after a digit or letter a digit
+# separator (1'000): code, both.
+_LITERAL = re.compile(r'''//[^\n]*|/\*.*?(?:\*/|\Z)|(?<![\w])(?:u8|u|U|L)?R"([^()\\ ]{0,16})\((?:.*?\)\1"|.*\Z)
+                          |(?<![^\W_])'(?:\\.?|[^'\\])*(?:'|\Z)|"(?:\\.?|[^"\\])*(?:"|\Z)''', re.S | re.X)
 
 
 def _code(text: str, i: int = 0):
     """(index, character) of every character of ``text`` from ``i`` on outside literals and comments."""
     while i < len(text):
-        if (skipped := _skip_literal(text, i)) != i:
-            i = skipped
+        if literal := _LITERAL.match(text, i):
+            i = literal.end()
         else:
             yield i, text[i]
             i += 1
@@ -191,12 +172,12 @@ def rewrite(text: str, origin: str) -> str:
         if i < resume or not (match := _IDENTIFIER.match(text, i)):
             continue
         name, resume = match.group(0), match.end()
-        preceded = text[text.rfind("\n", 0, i) + 1:i].rstrip()[-2:]  # on its line: a member, not a macro
-        if (name.removeprefix("DOCTEST_") not in _NAMES or preceded.endswith((".", "->", "::"))
+        before = text[text.rfind("\n", 0, i) + 1:i]  # its line up to it: `x.` or `x->` names a member, not a macro
+        if (name.removeprefix("DOCTEST_") not in _NAMES or before.rstrip().endswith((".", "->", "::"))
                 or (i > 0 and (text[i - 1].isalnum() or text[i - 1] == "_"))):
             continue
         opening = _OPENING.match(text, resume)
-        if not opening or _in_directive(text, i):
+        if not opening or before.lstrip().startswith("#"):  # a preprocessor line (#define CHECK ..., #undef CHECK)
             continue
         line = text.count("\n", 0, i) + 1
         try:
@@ -209,12 +190,6 @@ def rewrite(text: str, origin: str) -> str:
         copied = resume = end
     out.append(text[copied:])
     return "".join(out)
-
-
-def _in_directive(text: str, i: int) -> bool:
-    """Whether position ``i`` is inside a preprocessor line (#define CHECK ..., #undef CHECK)."""
-    start = text.rfind("\n", 0, i) + 1
-    return text[start:i].lstrip().startswith("#")
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -141,12 +141,6 @@ def test_name(result: TestResult) -> str:
     return f"lesson{result.lesson}{' (hidden)' if result.hidden else ''}: {result.name}"
 
 
-def _fence(text: str) -> str:
-    """A Markdown code block that keeps a table's columns and a compiler's <T>."""
-    fence = "`" * max(3, 1 + max(map(len, re.findall("`+", text)), default=0))
-    return f"{fence}text\n{text.rstrip()}\n{fence}"
-
-
 def submission_summary(run: GradeRun) -> str:
     """Markdown: which uploaded files were graded, which were ignored, what was expected."""
     info = run.submission
@@ -235,10 +229,12 @@ def gradescope_results(run: GradeRun, root: Path | None = None) -> dict[str, Any
                     "fault: tell your instructor). Nothing was graded.")
         return {"score": 0, "output": "\n\n".join(part for part in (summary, headline) if part), **common,
                 "tests": [_build_entry("build", run.build_output)] + _review_entries(run)}
+    table = score_table(run, for_students=True)  # in a code block, which keeps its columns and a compiler's <T>
+    fence = "`" * max(3, 1 + max(map(len, re.findall("`+", table)), default=0))
     parts = [summary, _fallback_summary(run) if run.fallbacks else "",
              "The grader is misconfigured: some of the instructor's tests could not be built. This is not your code's "
              "fault; your visible tests were graded, and your instructor has been shown why." if run.hidden_build_failed
-             else "", _fence(score_table(run, for_students=True))]
+             else "", f"{fence}text\n{table.rstrip()}\n{fence}"]
     return {"score": run.score, "max_score": run.max_score, "output": "\n\n".join(part for part in parts if part),
             **common, "tests": _test_entries(run, root)}
 

@@ -93,15 +93,15 @@ def _include_problem(argument: str) -> str:
 def scan_source(text: str, file: str) -> list[Finding]:
     """The serious findings of one exercise file's text (module doc), one per kind, at its first line, naming the
     other lines where it comes back."""
-    grouped: dict[str, list[Finding]] = {}
+    grouped: dict[str, list[int]] = {}
     for finding in _scan_lines(text, file):
-        grouped.setdefault(finding.what, []).append(finding)
+        grouped.setdefault(finding.what, []).append(finding.line)
     out = []
-    for what, group in grouped.items():
-        lines = sorted({f.line for f in group if f.line})
+    for what, found in grouped.items():
+        lines = sorted(set(filter(None, found)))
         extra = f" (also line{'s' if len(lines) > 2 else ''} {', '.join(map(str, lines[1:8]))}" \
                 f"{', …' if len(lines) > 8 else ''})" if len(lines) > 1 else ""
-        out.append(Finding(file, group[0].line, what + extra))
+        out.append(Finding(file, found[0], what + extra))
     return sorted(out, key=lambda f: f.line)
 
 
@@ -187,14 +187,6 @@ _ILLUM_DEFINED = ("illum::", "vtable for illum::", "typeinfo for illum::", "type
                   "reference temporary #", "TLS init function for illum::", "TLS wrapper function for illum::")
 
 
-def _demangle(names: list[str]) -> list[str]:
-    cxxfilt = shutil.which("c++filt")
-    if not names or not cxxfilt:
-        return names
-    done = subprocess.run([cxxfilt], input="\n".join(names) + "\n", capture_output=True, text=True, check=False)
-    return out if len(out := done.stdout.splitlines()) == len(names) else names
-
-
 def object_symbols(path: Path) -> tuple[list[tuple[str, str, str]], list[tuple[str, str]]]:
     """([(type, mangled, demangled) defined globally], [(mangled, demangled) used]) of an object file."""
     nm = shutil.which("nm")
@@ -213,7 +205,10 @@ def object_symbols(path: Path) -> tuple[list[tuple[str, str, str]], list[tuple[s
             used.append(name)
         elif kind in "TDBRWVGSCui":  # defined and global
             defined.append((kind, name))
-    demangled = _demangle([n for _, n in defined] + used)
+    demangled = names = [n for _, n in defined] + used
+    if names and (cxxfilt := shutil.which("c++filt")):  # without c++filt, or if it answers oddly: the raw names
+        done = subprocess.run([cxxfilt], input="\n".join(names) + "\n", capture_output=True, text=True, check=False)
+        demangled = out if len(out := done.stdout.splitlines()) == len(names) else names
     return [(k, n, d) for (k, n), d in zip(defined, demangled)], list(zip(used, demangled[len(defined):]))
 
 
@@ -255,13 +250,10 @@ def library_definitions(archive: Path, skip_members: set[str]) -> dict[str, str]
 def scan_object(path: Path, file: str, library: dict[str, str] | None = None) -> list[Finding]:
     """The findings of one exercise unit's compiled object (module doc)."""
     defined, used = object_symbols(path)
-    findings: list[Finding] = []
-    seen: set[str] = set()
+    findings: dict[str, Finding] = {}  # each finding once, in the order found
 
     def add(what: str, serious: bool = True) -> None:
-        if what not in seen:
-            seen.add(what)
-            findings.append(Finding(file, 0, what, serious))
+        findings.setdefault(what, Finding(file, 0, what, serious))
 
     for kind, name, shown in defined:
         if name.startswith("DW.ref."):
@@ -298,7 +290,7 @@ def scan_object(path: Path, file: str, library: dict[str, str] | None = None) ->
         elif base not in _HARMLESS_C and not base.startswith(_HARMLESS_C_PREFIXES) and not base.endswith("_finite"):
             add(f"calls the C function {base}(), unusual in an exercise (not failed; for the instructor to review)",
                 serious=False)
-    return findings
+    return list(findings.values())
 
 
 def object_of(build_dir: Path, relative: str) -> Path | None:
