@@ -2,7 +2,6 @@
 generated block of every lesson text and exercise README, the same block as the last slide of every deck
 (deck_slide), and layout_problems. tools/task_tables.py --update writes the blocks; --check checks them.
 """
-from __future__ import annotations
 
 import itertools
 import os

@@ -14,7 +14,6 @@ How much faster the other run was, over the timing cells of the tables both hold
 time, OTHER/FIRST for a rate (a speed-up column is left out): the number of cells, their median and their
 10th and 90th percentiles (docs/measurements.md). Exit 0, or 2 when a folder or every timing cell is missing.
 """
-from __future__ import annotations
 
 import csv
 import re

@@ -13,7 +13,6 @@ timings must match the program's table; --check also compares the kept images wi
 drew, and checks the texts' links and the plots. CONTRIBUTING.md ("Figures come from the run", "Numbers in
 sentences come from the run too", "Images show where students read") says how to write them.
 """
-from __future__ import annotations
 
 import argparse
 import sys

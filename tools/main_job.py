@@ -12,7 +12,6 @@ Steps, in this order (`cmake --build --preset release --target gallery` runs the
   texts    every text rendered to OUT/pages/ (tools/gallery/render_texts.mjs), their links checked;
   index    OUT/index.html, linking every lesson's outputs, deck, text and exercise.
 """
-from __future__ import annotations
 
 import argparse
 import importlib.util

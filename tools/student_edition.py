@@ -6,7 +6,6 @@ rules are in tools/grading/edition.py).
     tools/student_edition.py --lessons 03 11                  lessons 03 and 11 only
     tools/student_edition.py --source . --out /tmp/edition    another source tree or folder
 """
-from __future__ import annotations
 
 import argparse
 import os

@@ -16,7 +16,6 @@ which task) and student commands, every lesson text's and exercise's "Where the 
 A test's tags: `* doctest::description("points=2 task=1,2")`; a task: a stub's `// Task N.` comment. A
 lesson without exercises or tests is skipped.
 """
-from __future__ import annotations
 
 import argparse
 import itertools
@@ -207,10 +206,8 @@ def _stub_file_problems(root: Path, lesson: str, exercise: Path) -> list[str]:
     return problems
 
 
-def _readme_problems(root: Path, lesson: str, exercise: Path) -> list[str]:
+def _readme_problems(root: Path, lesson: str, readme: Path, text: str) -> list[str]:
     """The README's sections in order, its "Builds on" naming what depends.txt declares."""
-    readme = exercise / "README.md"
-    text = readme.read_text(encoding="utf-8") if readme.is_file() else ""
     where = readme.relative_to(root)
     problems = []
     headings = re.findall(r"^## (.+)$", text, re.M)
@@ -369,9 +366,8 @@ def main() -> int:
         problems += refresh(readme, root, text, updated, args.update, "task table and student commands",
                             f"({BEGIN} … {END}, {COMMANDS_BEGIN} … {COMMANDS_END})")
         if args.check:
-            exercise = readme.parent
-            problems += [*_tag_problems(root, lesson, exercise), *_stub_file_problems(root, lesson, exercise),
-                         *_readme_problems(root, lesson, exercise)]
+            problems += [*_tag_problems(root, lesson, readme.parent), *_stub_file_problems(root, lesson, readme.parent),
+                         *_readme_problems(root, lesson, readme, text)]
             problems += stub_problems(root, lesson, args.build_dir) if args.build_dir else []
     problems += code_map.update(root, write=args.update and not args.check)
     problems += code_map.layout_problems(root) if args.check else []

@@ -1,5 +1,4 @@
 """C++ source as text: comments and string literals blanked, line breaks kept (so line numbers hold)."""
-from __future__ import annotations
 
 import re
 

@@ -1,7 +1,6 @@
 """Atomic file writes: a temporary beside the target, then a rename; never half a file. A temporary is named
 NAME.tmp-XXXXXXXX (mkstemp: the repository's `*.tmp-*` ignore), or NAME.tmp-TAG-PID when the writer tags it,
 so that a later run can tell the temporary of a run killed without warning by its PID (remove_dead_temporaries)."""
-from __future__ import annotations
 
 import fcntl
 import os

@@ -1,5 +1,4 @@
 """Reading Markdown: pipe tables, links and GitHub's heading anchors (the one home of each rule)."""
-from __future__ import annotations
 
 import functools
 import itertools

@@ -3,7 +3,6 @@
 quietly mean the current folder, a symbolic link on the way that loops or leads nowhere - and a folder that is
 a file. `type=path_argument` in argparse ("argument --out: the path is empty ..."); folder_problem before writing.
 """
-from __future__ import annotations
 
 import argparse
 import errno

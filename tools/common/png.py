@@ -1,5 +1,4 @@
 """Reading PNG files (8-bit, non-interlaced grey, grey+alpha, RGB or RGBA: what the programs write)."""
-from __future__ import annotations
 
 import contextlib
 import struct

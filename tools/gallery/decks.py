@@ -1,6 +1,5 @@
 """Slide decks: slides/NN_topic.md -> OUT/slides/NN_topic.html with Marp from the repository's node_modules,
 KaTeX's fonts copied beside them (OUT/slides/katex-fonts/): a deck needs no network."""
-from __future__ import annotations
 
 import os
 import re

@@ -1,6 +1,5 @@
 """The texts' figures: tables between `<!-- figure: out/… -->` and `<!-- /figure -->`, filled from the
 programs' tables, checked cell by cell but for timings (CONTRIBUTING.md, "Figures come from the run")."""
-from __future__ import annotations
 
 import os
 import re
@@ -87,7 +86,7 @@ def compare(block: Block, lines: list[str], new: Table) -> list[str]:
     tables = markdown_tables(lines[block.open_line + 1:block.close_line])
     if len(tables) != 1:
         return [f"{where}: the figure holds {len(tables)} tables, expected one (run tools/figures.py --update)"]
-    start, old = tables[0]
+    old = tables[0]
     if old.header != new.header:
         return [f"{where}: columns differ: text has {old.header}, the program writes {new.header}"]
     if len(old.rows) != len(new.rows):
@@ -97,7 +96,7 @@ def compare(block: Block, lines: list[str], new: Table) -> list[str]:
         if len(a) != len(b):
             problems.append(f"{where}: row {r + 1} has {len(a)} cells, the program's {len(b)}")
             continue
-        line = block.open_line + start + r + 4
+        line = block.open_line + old.start + r + 4
         problems += [f"{block.text}:{line}: row '{b[0]}', column '{new.header[c]}': the text says {x}, the program "
                      f"wrote {y}" for c, (x, y) in enumerate(zip(a, b)) if not mask[r][c] and x != y]
     return problems
@@ -105,9 +104,9 @@ def compare(block: Block, lines: list[str], new: Table) -> list[str]:
 
 def hand_timings(path: Path, lines: list[str], blocks: list[Block]) -> list[str]:
     inside = inside_blocks(blocks)
-    problems = [f"{path}:{start + 1}: a table with timings typed by hand: include it with a figure comment naming "
-                "the program's table" for start, table in markdown_tables(lines)
-                if start not in inside and table.has_timings()]
+    problems = [f"{path}:{table.start + 1}: a table with timings typed by hand: include it with a figure comment naming "
+                "the program's table" for table in markdown_tables(lines)
+                if table.start not in inside and table.has_timings()]
     for i, line in enumerate(lines):
         if i not in inside:
             problems += [f"{path}:{i + 1}: hand-typed timing '{m.group(0).strip()}': include the table with a "

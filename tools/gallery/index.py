@@ -1,7 +1,6 @@
 """out/index.html: one self-contained page (inline CSS, no external asset) showing every lesson found in
 the source tree or OUT: its outputs (images as thumbnails, tables rendered, other files as links), its deck,
 its text and its exercise (their rendered pages in OUT/pages/ when the main job's step "texts" wrote them)."""
-from __future__ import annotations
 
 import csv
 import html
@@ -176,9 +175,8 @@ def _table_figure(caption_html: str, table_html: str, rows: int) -> str:
 class _Outputs:
     """A lesson's outputs as HTML: images and plots as thumbnails, tables rendered, other files as links."""
 
-    def __init__(self, lesson: Lesson, out: Path):
-        self.folder, self.out = lesson.output_dir, out
-        self.outputs = lesson.manifest.outputs
+    def __init__(self, folder: Path, manifest: Manifest, out: Path):
+        self.folder, self.out, self.outputs = folder, out, manifest.outputs
         self.by_file = {o.file: o for o in self.outputs}
         self.used: set[str] = set()
 
@@ -239,23 +237,22 @@ def _lab_section(out: Path) -> str:
     folder = out / "lab"
     if not (folder / "manifest.json").is_file():
         return ""
-    lab = Lesson("lab", output_dir=folder)
     try:
-        lab.manifest = load_manifest(folder)
+        outputs = _Outputs(folder, load_manifest(folder), out).html()
     except ManifestError as e:
         return f'<section class="lesson" id="lab"><h2>The lab</h2><div class="error">{_e(str(e))}</div></section>'
     return ('<section class="lesson" id="lab"><h2>The lab: <code>illum lab</code></h2>'
             '<p>Run <code>build/release/bin/illum lab whitted</code> (or your build\'s) and open the address it '
             'prints: a pixel\'s ray tree, radiosity shot by shot, the hemicube, and your pictures against the '
             'reference, computed by the build it is part of (docs/lab.md).</p>'
-            + _Outputs(lab, out).html() + "</section>")
+            + outputs + "</section>")
 
 
 def _lesson_outputs(lesson: Lesson, out: Path) -> str:
     if lesson.manifest_error:
         return f'<div class="error">{_e(lesson.manifest_error)}</div>'
     if lesson.manifest:
-        return _Outputs(lesson, out).html()
+        return _Outputs(lesson.output_dir, lesson.manifest, out).html()
     return (f'<p class="note">No outputs yet: build and run <code>bin/lesson{lesson.number}</code> '
             "(the main job, <code>cmake --build --preset release --target gallery</code>, runs them all).</p>")
 

@@ -2,7 +2,6 @@
 out/lessonNN/, so that they show before anything has run (CONTRIBUTING.md, "Images show where students
 read"). A timing plot (a label of its gnuplot script names a time or a throughput) or a screenshot of the
 lab (lab_*.png, drawn into out/lab/) differs on every run: its kept copy is compared by size only."""
-from __future__ import annotations
 
 import re
 from dataclasses import dataclass

@@ -1,12 +1,10 @@
 """The main job's step "lessons": every BIN/lessonNN run into OUT/lessonNN, each run recorded in
 OUT/run_log.json (its date, seconds, processor seconds, cores, load average and neighbours). Which run side
 by side, and how a "mixed" one gets the whole machine: docs/build.md, "How the main job runs the lessons"."""
-from __future__ import annotations
 
 import contextlib
 import json
 import os
-from collections import defaultdict
 import re
 import resource
 import subprocess
@@ -14,6 +12,7 @@ import sys
 import tempfile
 import threading
 import time
+from collections import defaultdict
 from pathlib import Path
 
 from common.files import atomic_write_text
@@ -41,8 +40,7 @@ def failure(program: Path, code: int, cmd: list[str]) -> str:
 
 
 def children_cpu_seconds() -> float:
-    """Processor seconds of every finished child so far (all their threads, gnuplot included): what a
-    program cost, whatever else the machine ran."""
+    """Processor seconds of every finished child so far (all their threads, gnuplot included)."""
     usage = resource.getrusage(resource.RUSAGE_CHILDREN)
     return usage.ru_utime + usage.ru_stime
 

@@ -1,7 +1,6 @@
 """A lesson program's output folder: its manifest.json (`{"id": "lesson01", "title": …, "outputs": [{"kind":
 "image", "file": "x.png", "caption": …}, …]}`), read and validated (each file's check for its kind:
 tests/checks/check_outputs.py)."""
-from __future__ import annotations
 
 import json
 from dataclasses import dataclass, field

@@ -2,7 +2,6 @@
 script beside NAME.png) into a table of its curves' points and its ranges; a plot fails on a line broken by
 an undefined point, a curve with no point (or a line of one), or a point outside the frame or within EDGE
 of it (where the border hides it)."""
-from __future__ import annotations
 
 import math
 import re

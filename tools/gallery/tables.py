@@ -1,5 +1,4 @@
 """The programs' tables as the texts quote them: read, narrowed by a figure's options, timings told apart."""
-from __future__ import annotations
 
 import csv
 import io
@@ -8,7 +7,7 @@ import shlex
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from common.markdown import parse_tables
+from common import markdown
 
 # Header words that make a column (or a row, by its first cell) a timing.
 TIMING_WORDS = frozenset({"ns", "us", "µs", "ms", "sec", "secs", "second", "seconds", "nanoseconds", "microseconds",
@@ -27,10 +26,8 @@ def is_timing_name(text: str) -> bool:
     return bool(words(text) & TIMING_WORDS)
 
 
-@dataclass
-class Table:
-    header: list[str]
-    rows: list[list[str]]
+class Table(markdown.Table):
+    """A pipe table, or a CSV's rows (start 0), as a figure quotes it."""
 
     def timing_mask(self) -> list[list[bool]]:
         columns = [is_timing_name(h) for h in self.header]
@@ -45,9 +42,8 @@ class Table:
         return [line(self.header), "|" + "---|" * len(self.header)] + [line(r) for r in self.rows]
 
 
-def markdown_tables(lines: list[str]) -> list[tuple[int, Table]]:
-    """Every pipe table of `lines`: (index of its header line, table)."""
-    return [(t.start, Table(t.header, t.rows)) for t in parse_tables(lines)[0]]
+def markdown_tables(lines: list[str]) -> list[Table]:
+    return [Table(t.header, t.rows, t.start) for t in markdown.parse_tables(lines)[0]]
 
 
 def read_table(path: Path, number: int) -> Table:
@@ -62,7 +58,7 @@ def read_table(path: Path, number: int) -> Table:
     tables = markdown_tables(text.splitlines())
     if len(tables) < number:
         raise FigureError(f"{path} holds {len(tables)} table(s); the figure asks for table {number}")
-    return tables[number - 1][1]
+    return tables[number - 1]
 
 
 @dataclass

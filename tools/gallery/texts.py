@@ -1,6 +1,5 @@
 """The texts as pages: OUT/pages/X.html for each Markdown text X.md, rendered by render_texts.mjs with the
 repository's node_modules (markdown-it, KaTeX, highlight.js; `npm ci`): nothing fetched, no script needed."""
-from __future__ import annotations
 
 import shutil
 import subprocess

@@ -1,7 +1,6 @@
 """Values in sentences: `43.6<!--=name-->`, defined once in the same text by
 `<!-- value name: out/lessonNN/table.md row="…" column="…" [format=F] -->` or by arithmetic over
 other values (CONTRIBUTING.md, "Numbers in sentences come from the run too")."""
-from __future__ import annotations
 
 import ast
 import math

@@ -5,7 +5,6 @@ the Cornell box ("1 step", then "run"), as a Markdown table with the machine's c
 
     tools/lab/bench.py --bin build/release/bin [--clicks 20] [--single 100] [--shots 2000]
 """
-from __future__ import annotations
 
 import argparse
 import json

@@ -6,7 +6,6 @@ lab_has_three() is false and the page says how to get it). Rewritten only when i
 
     embed_assets.py --source SOURCE_TREE --out BUILD/generated/lab_assets.cpp
 """
-from __future__ import annotations
 
 import argparse
 import contextlib

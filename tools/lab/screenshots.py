@@ -5,7 +5,6 @@ tools/lab/browser.mjs, writes OUT/lab/lab_*.png and a manifest.json. Exit 0 when
 
     tools/lab/screenshots.py --bin build/release/bin --out out
 """
-from __future__ import annotations
 
 import argparse
 import contextlib
