@@ -128,8 +128,7 @@ def code_map(root: Path, lesson_nn: str, readme: Path) -> str:
             + [link(stub, stub.name) for stub in sorted(exercise.glob("*.cpp"))])))
     if tests := _tests_cell(root, lesson_nn, pairs, link):
         rows.append(("tests", tests))
-    decks = sorted((root / "slides").glob(f"{lesson_nn}_*.md")) if (root / "slides").is_dir() else []
-    if decks:
+    if decks := sorted((root / "slides").glob(f"{lesson_nn}_*.md")):
         rows.append(("slides", " · ".join(link(d, f"slides/{d.name}") for d in decks)
                      + f" (built to `out/slides/{decks[0].stem}.html`)"))
     body = "\n".join(f"| {what} | {where} |" for what, where in rows)
@@ -186,7 +185,7 @@ def update(root: Path, write: bool) -> list[str]:
     """Rewrites (write=True) or checks the code map of every lesson text and exercise README, and the
     slide that ends every deck; returns the problems (stale or missing blocks)."""
     problems = []
-    for deck in sorted((root / "slides").glob("[0-9][0-9]_*.md")) if (root / "slides").is_dir() else []:
+    for deck in sorted((root / "slides").glob("[0-9][0-9]_*.md")):
         text, block = deck.read_text(encoding="utf-8"), deck_slide(root, deck.name[:2])
         new = replace_between(text, BEGIN, END, block)
         if new is None and write:  # the first time: the deck's last slide

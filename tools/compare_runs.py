@@ -91,8 +91,7 @@ def speed_factors(first: Path, other: Path) -> list[float]:
 
 
 def missing_folder(*folders: Path) -> bool:
-    missing = [folder for folder in folders if not folder.is_dir()]
-    if missing:
+    if missing := [folder for folder in folders if not folder.is_dir()]:
         print(f"compare_runs: {missing[0]} is not a folder", file=sys.stderr)
     return bool(missing)
 

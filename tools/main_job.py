@@ -92,8 +92,7 @@ def run_texts(source: Path, out: Path) -> None:
 
 def run_index(source: Path, out: Path, slides_dir: Path, quick: bool, strict: bool) -> None:
     index = write_index(source, out, slides_dir, "(Quick run: small sizes.)" if quick else "")
-    problems = check_links(index)
-    if problems:
+    if problems := check_links(index):
         message = f"{index} has {len(problems)} broken link(s):\n  " + "\n  ".join(problems)
         if strict:
             raise JobError(message)
@@ -153,8 +152,7 @@ def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
                         help="after writing index.html, fail if any local link or image in it does not resolve")
     args = parser.parse_args(argv)
     args.steps = [s.strip() for s in args.only.split(",") if s.strip()]
-    unknown = [s for s in args.steps if s not in STEPS]
-    if unknown:
+    if unknown := [s for s in args.steps if s not in STEPS]:
         parser.error(f"unknown step(s) {', '.join(unknown)}; choose from {', '.join(STEPS)}")
     if ("lessons" in args.steps or "lab" in args.steps) and args.bin is None:
         parser.error("--bin is needed to run the lessons and the lab (or leave them out with --only slides,index)")

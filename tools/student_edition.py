@@ -23,13 +23,10 @@ from grading.project import normalize_lesson  # noqa: E402
 
 
 def hold_and_clean(out: Path) -> tuple[int | None, list[str]]:
-    """Locks the folder OUT is written in (an flock on the folder itself, held until this process
-    ends: a second run beside it is refused) and removes what a run killed there without warning
-    (SIGKILL, a power cut) left: its new edition half written (.OUT.new.XXXXXXXX), or the earlier
-    edition it had moved aside (.OUT.old.XXXXXXXX), which goes back to OUT if OUT is missing.
-    Returns the descriptor (None when the folder does not exist yet) and one note per thing done."""
-    # A link is refused by make_student_edition (nothing beside its target is this run's); the parent is
-    # where make_student_edition places its staging.
+    """Locks the folder OUT is written in (lock_folder: a second run beside it is refused) and removes what a
+    run killed there left: its half-written edition (.OUT.new.XXXXXXXX), or the earlier edition it had moved
+    aside (.OUT.old.XXXXXXXX), which goes back to OUT if OUT is missing. Returns the descriptor (None when the
+    folder does not exist yet, or OUT is a link, which make_student_edition refuses) and one note per thing done."""
     if out.is_symlink() or not (parent := out.resolve().parent).is_dir():
         return None, []
     if (fd := lock_folder(parent)) is None:
@@ -52,8 +49,7 @@ def hold_and_clean(out: Path) -> tuple[int | None, list[str]]:
 
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    root = Path(__file__).resolve().parent.parent
-    parser.add_argument("--source", type=path_argument, default=root,
+    parser.add_argument("--source", type=path_argument, default=Path(__file__).resolve().parent.parent,
                         help="the instructors' tree (default: the one this tool is in)")
     parser.add_argument("--out", type=path_argument,
                         help="where to write the student edition (default: SOURCE/build/student-edition)")

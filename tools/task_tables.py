@@ -56,11 +56,9 @@ def stub_tasks(exercise: Path) -> dict[str, list[str]]:
     """Task id -> the functions (NotImplemented labels) of its stub block, in the order of the stubs."""
     tasks: dict[str, list[str]] = {}
     for stub in sorted(exercise.glob("*.cpp")):
-        text = stub.read_text(encoding="utf-8")
-        marks = list(_TASK_COMMENT.finditer(text))
-        for mark, after in zip(marks, marks[1:] + [None]):
-            block = text[mark.start():after.start() if after else len(text)]
-            tasks.setdefault(mark.group(1), []).extend(re.findall(r'NotImplemented\(\s*"([^"]+)"', block))
+        parts = _TASK_COMMENT.split(stub.read_text(encoding="utf-8"))  # text, then each task and its block
+        for task, block in zip(parts[1::2], parts[2::2]):
+            tasks.setdefault(task, []).extend(re.findall(r'NotImplemented\(\s*"([^"]+)"', block))
     return dict(sorted(tasks.items(), key=lambda item: _task_key(item[0])))
 
 

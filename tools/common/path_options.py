@@ -33,8 +33,7 @@ def path_problem(text: str) -> str:
 
 def path_argument(text: str) -> Path:
     """An argparse type: the path, or the option's error ("argument --out: the path is empty ...")."""
-    problem = path_problem(text)
-    if problem:
+    if problem := path_problem(text):
         raise argparse.ArgumentTypeError(problem)
     return Path(text)
 

@@ -23,9 +23,7 @@ class DeckError(JobError):
 
 
 def find_decks(slides_dir: Path) -> list[Path]:
-    slides_dir = Path(slides_dir)
-    decks = slides_dir.iterdir() if slides_dir.is_dir() else []
-    return sorted(p for p in decks if p.is_file() and DECK_NAME.match(p.name))
+    return sorted(p for p in Path(slides_dir).glob("*.md") if p.is_file() and DECK_NAME.match(p.name))
 
 
 def _marp(source: Path, decks: list[Path], out_slides: Path) -> str:

@@ -104,8 +104,8 @@ def compare(block: Block, lines: list[str], new: Table) -> list[str]:
 
 def hand_timings(path: Path, lines: list[str], blocks: list[Block]) -> list[str]:
     inside = inside_blocks(blocks)
-    problems = [f"{path}:{table.start + 1}: a table with timings typed by hand: include it with a figure comment naming "
-                "the program's table" for table in markdown_tables(lines)
+    problems = [f"{path}:{table.start + 1}: a table with timings typed by hand: include it with a figure comment "
+                "naming the program's table" for table in markdown_tables(lines)
                 if table.start not in inside and table.has_timings()]
     for i, line in enumerate(lines):
         if i not in inside:

@@ -208,8 +208,8 @@ class _Outputs:
             text = _read(self.folder / o.file)
             if table := markdown_table_html(text):
                 self.used.add(o.file)
-                return _table_figure(f"{_e(o.caption)} <code>{_e(o.stem)}</code> · " + " · ".join(links), table,
-                                     text.count("\n") - 2)
+                return _table_figure(f"{_e(o.caption)} <code>{_e(Path(o.file).stem)}</code> · " + " · ".join(links),
+                                     table, text.count("\n") - 2)
         elif o.kind == "table" and self.sibling(o, ".md", ("markdown",)) is None:
             if table := csv_table_html(_read(self.folder / o.file)):
                 self.used.add(o.file)

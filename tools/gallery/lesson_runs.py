@@ -27,8 +27,7 @@ def say(message: str) -> None:
 
 
 def find_programs(bin_dir: Path) -> list[Path]:
-    programs = bin_dir.iterdir() if bin_dir.is_dir() else []
-    return sorted(p for p in programs if PROGRAM.match(p.name) and p.is_file() and os.access(p, os.X_OK))
+    return sorted(p for p in bin_dir.glob("lesson*") if PROGRAM.match(p.name) and p.is_file() and os.access(p, os.X_OK))
 
 
 def lesson_command(program: Path, out: Path, quick: bool) -> list[str]:

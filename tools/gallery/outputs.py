@@ -22,10 +22,6 @@ class Output:
     caption: str = ""
 
     @property
-    def stem(self) -> str:
-        return Path(self.file).stem
-
-    @property
     def suffix(self) -> str:
         return Path(self.file).suffix.lower()
 

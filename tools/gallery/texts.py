@@ -17,8 +17,7 @@ class TextsError(JobError):
 
 def page_of(source: Path, out: Path, text: Path) -> Path:
     """OUT/pages/<text's path in the tree, .md replaced by .html>."""
-    rel = Path(text).resolve().relative_to(Path(source).resolve())
-    return Path(out) / "pages" / rel.with_suffix(".html")
+    return Path(out) / "pages" / Path(text).resolve().relative_to(Path(source).resolve()).with_suffix(".html")
 
 
 def build_texts(source: Path, out: Path) -> list[str]:

@@ -55,8 +55,7 @@ def collect(source: Path) -> tuple[list[tuple[str, str, bytes]], bool]:
               for path in sorted((source / "tools" / "lab" / "web").iterdir())
               if path.is_file() and not path.name.startswith(".")]
     three = source / "node_modules" / "three"
-    have_three = all((three / f).is_file() for f in THREE_FILES)
-    if have_three:
+    if have_three := all((three / f).is_file() for f in THREE_FILES):
         for relative in THREE_FILES:
             data, name = (three / relative).read_bytes(), Path(relative).name
             name += "" if Path(name).suffix else ".txt"
