@@ -21,7 +21,6 @@ PAGE = Path(__file__).resolve().parent.parent / "docs" / "measurements.md"
 
 
 def table(log: dict) -> str:
-    """The Markdown table of the runs in `log`, in lesson order."""
     rows = ["| program | started (UTC) | cores | seconds | processor seconds | ran beside "
             "| waited, held the machine (s) |", "|---|---|---|---|---|---|---|"]
     for name, run in sorted(log.items()):

@@ -258,7 +258,6 @@ def _lesson_outputs(lesson: Lesson, out: Path) -> str:
 
 
 def render_index(lessons: list[Lesson], out: Path, source: Path, note: str = "") -> str:
-    """The whole page, for a file written at out/index.html."""
     out, source = Path(out), Path(source)
     lab = _lab_section(out)
     toc = " ".join(f'<a href="#lesson{l.number}">{l.number} · {_e(l.title)}</a>' for l in lessons)

@@ -27,8 +27,6 @@ def is_timing_name(text: str) -> bool:
 
 
 class Table(markdown.Table):
-    """A pipe table, or a CSV's rows (start 0), as a figure quotes it."""
-
     def timing_mask(self) -> list[list[bool]]:
         columns = [is_timing_name(h) for h in self.header]
         return [[columns[c] or is_timing_name(row[0]) for c in range(len(row))] for row in self.rows]
