@@ -233,12 +233,21 @@ void draw_patches_shared(const std::vector<Patch>& patches, const PatchCorners& 
     buffers.stamp = 0;
   }
   if (++buffers.stamp == 0) std::fill(buffers.seen.begin(), buffers.seen.end(), 0), buffers.stamp = 1;
-  const auto view_of = [&](std::uint32_t c) -> const HemicubeBuffers::CornerView& {
+  // A corner's view in two steps, each done once a row: its position in the hemicube's frame at
+  // its first use, and the rest (its planes, face and pixel) when a patch using it is drawn; most
+  // corners of patches behind the shooter or edge-on to it (its own wall) never need the second.
+  constexpr int unplaced = -2;
+  const auto local_of = [&](std::uint32_t c) -> HemicubeBuffers::CornerView& {
     HemicubeBuffers::CornerView& v = buffers.corners[c];
     if (buffers.seen[c] == buffers.stamp) return v;
     buffers.seen[c] = buffers.stamp;
     const Vec3 d = corners.points[c] - frame.eye;
     v.local = Vec3(dot(d, frame.x), dot(d, frame.y), dot(d, frame.z));
+    v.face = unplaced;
+    return v;
+  };
+  const auto place = [&](HemicubeBuffers::CornerView& v) {
+    if (v.face != unplaced) return;
     v.outside = planes_outside(v.local);
     // Inside face k's whole frustum: the rasteriser's outcode (frustum_outcode) is 0. Its side
     // planes are planes_outside's (the same sums); add its near plane, w ≥ near, and for a side
@@ -251,40 +260,45 @@ void draw_patches_shared(const std::vector<Patch>& patches, const PatchCorners& 
     if (v.face >= 0)
       v.pixel_row =
           project_to_pixel(to_face(static_cast<HemicubeFace>(v.face), v.local), targets[v.face], v.pixel);
-    return v;
   };
   RasterScratch& raster = buffers.raster;
-  const HemicubeBuffers::CornerView* view[8];
+  constexpr std::size_t most_corners = 8;  // a patch with more is drawn the plain way (none in a mesh)
+  HemicubeBuffers::CornerView* view[most_corners];
+  if (buffers.face.size() < most_corners)
+    buffers.local.resize(most_corners), buffers.face.resize(most_corners);
+  if (raster.clip_a.size() < most_corners + 6)  // rasterize_polygon's size: count + 6
+    raster.clip_a.resize(most_corners + 6), raster.clip_b.resize(most_corners + 6);
+  if (raster.vertex_row.size() < raster.clip_a.size()) raster.vertex_row.resize(raster.clip_a.size());
   for (std::size_t j = 0; j < patches.size(); ++j) {
     if (j == i) continue;
     const Patch& p = patches[j];
     const std::uint32_t* index = corners.index.data() + corners.first[j];
     const std::size_t nv = corners.first[j + 1] - corners.first[j];
-    if (nv > 8) {  // a polygon of many corners (none in a mesh): the plain way
+    if (nv > most_corners) {
       draw_patches(patches, i, frame, j, j + 1, 0x1f, buffers, buffers);
       continue;
     }
     bool above = false;
     for (std::size_t k = 0; k < nv; ++k) {
-      view[k] = &view_of(index[k]);
+      view[k] = &local_of(index[k]);
       above |= view[k]->local.z > 0;
     }
     if (!above) continue;
     double reach = 0;
-    unsigned outside = ~0u;
     for (std::size_t k = 0; k < nv; ++k) {
       const Vec3& q = view[k]->local;
       reach = std::max(reach, std::abs(q.z) + std::abs(q.x) + std::abs(q.y));
-      outside &= view[k]->outside;
     }
     const Vec3 n_local(dot(p.normal, frame.x), dot(p.normal, frame.y), dot(p.normal, frame.z));
-    const double d = dot(p.normal, p.vertices[0] - frame.eye);
+    const double d = dot(p.normal, corners.points[index[0]] - frame.eye);  // p.vertices[0], bit for bit
     if (std::abs(d) <= 1e-12 * reach) continue;
+    unsigned outside = ~0u;
+    for (std::size_t k = 0; k < nv; ++k) {
+      place(*view[k]);
+      outside &= view[k]->outside;
+    }
     const std::int32_t item = d < 0 ? static_cast<std::int32_t>(j) : back_face_pixel;
     const double plane_d = d < 0 ? d : d * (1.0 + 1e-9);
-    if (buffers.face.size() < nv) buffers.local.resize(nv), buffers.face.resize(nv);
-    if (raster.clip_a.size() < nv + 6) raster.clip_a.resize(nv + 6), raster.clip_b.resize(nv + 6);
-    if (raster.vertex_row.size() < raster.clip_a.size()) raster.vertex_row.resize(raster.clip_a.size());
     for (int k = 0; k < 5; ++k) {
       if ((outside >> (4 * k)) & 0xfu) continue;
       const auto f = static_cast<HemicubeFace>(k);

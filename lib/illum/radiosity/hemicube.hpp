@@ -63,7 +63,7 @@ struct HemicubeBuffers {
     Vec3 pixel;            // projected onto face `face`
     int pixel_row = 0;     // its first row centre at or above it
     unsigned outside = 0;  // the frustum side planes it lies outside of (4 bits a face)
-    int face = -1;         // the first face whose whole frustum holds it (outcode 0); −1: none
+    int face = -1;  // the first face whose whole frustum holds it (outcode 0); −1: none, −2: not placed yet
   };
   std::vector<CornerView> corners;
   std::vector<std::uint32_t> seen;
