@@ -21,7 +21,8 @@ using namespace illum;
 namespace {
 
 // Rows `rows` of `patches` by both paths: every row and every face's items equal bit for bit.
-void check_same_rows(const std::vector<Patch>& patches, const std::vector<std::size_t>& rows, int resolution) {
+void check_same_rows(const std::vector<Patch>& patches, const std::vector<std::size_t>& rows,
+                     int resolution) {
   const Hemicube hemicube(resolution);
   const PatchCorners corners(patches);
   HemicubeBuffers plain_buffers, shared_buffers;
@@ -71,8 +72,11 @@ TEST_SUITE("stability") {
     // base plane z = 0 (half of it below), a square 10⁻³ above the eye (clipped by every face), a
     // square facing away (back face), a mesh of triangles at non-exact coordinates, an octagon and a
     // nonagon (more corners than the shared path's fast branch takes), and a corner before the near plane.
-    std::vector<Patch> patches = {make_patch({{-0.05, -0.05, 0}, {0.05, -0.05, 0}, {0.05, 0.05, 0}, {-0.05, 0.05, 0}})};
-    const auto add = [&](const std::vector<Patch>& more) { patches.insert(patches.end(), more.begin(), more.end()); };
+    std::vector<Patch> patches = {
+        make_patch({{-0.05, -0.05, 0}, {0.05, -0.05, 0}, {0.05, 0.05, 0}, {-0.05, 0.05, 0}})};
+    const auto add = [&](const std::vector<Patch>& more) {
+      patches.insert(patches.end(), more.begin(), more.end());
+    };
     add(mesh_quad({0.3, -1, 1.7}, {1.7, -1, 0.3}, {1.7, 1, 0.3}, {0.3, 1, 1.7}, 7, 9, Color(0.5)));
     add(mesh_quad({-2, 1.3, -0.9}, {-2, 1.3, 1.1}, {2, 1.3, 1.1}, {2, 1.3, -0.9}, 6, 5, Color(0.5)));
     add({make_patch({{-0.3, -0.3, 1e-3}, {0.3, -0.3, 1e-3}, {0.3, 0.3, 1e-3}, {-0.3, 0.3, 1e-3}})});
@@ -89,9 +93,9 @@ TEST_SUITE("stability") {
       nonagon.push_back({0.4 * std::cos(a) + 1.5, 0.4 * std::sin(a) - 1.5, 2.0});
     }
     add({make_patch(octagon), make_patch(nonagon)});
-  // A triangle with a corner 5·10⁻¹¹ above the eye, inside every side plane of the top face but
-  // nearer than its near plane (10⁻⁹·√A = 10⁻¹⁰): clipped, not projected as it is.
-  add({make_patch({{0, 0, 5e-11}, {0.2, 0.1, 0.3}, {-0.1, 0.2, 0.3}})});
+    // A triangle with a corner 5·10⁻¹¹ above the eye, inside every side plane of the top face but
+    // nearer than its near plane (10⁻⁹·√A = 10⁻¹⁰): clipped, not projected as it is.
+    add({make_patch({{0, 0, 5e-11}, {0.2, 0.1, 0.3}, {-0.1, 0.2, 0.3}})});
     // Every row: the receiver's and those of the others (each a shooter looking at the rest).
     std::vector<std::size_t> rows(patches.size());
     for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = i;
