@@ -217,6 +217,7 @@ void draw_patches(const std::vector<Patch>& patches, std::size_t i, const Hemicu
   }
 }
 
+// Production, not course material (lesson 10's drawing is draw_patches above).
 // draw_patches over all patches, each corner's view computed once (PatchCorners): the same sums on
 // the same numbers, so the same pixels, bit for bit. A patch whose corners all lie inside one face's
 // frustum, and are projected onto it (the usual case: most patches are smaller than a face) skips

@@ -35,7 +35,8 @@ inline constexpr std::int32_t back_face_pixel = -2;  // the back of a patch: it 
 
 // The patches' corners numbered once, points equal bit for bit under one number: with it the
 // hemicube transforms and projects a corner that four patches of a meshed wall share once, not
-// four times (production: progressive_on_demand's rows). Patch j's corners, in order, are
+// four times (production, not course material: progressive_on_demand's rows; lesson 10's drawing
+// is the plain form_factor_row). Patch j's corners, in order, are
 // points[index[k]] for k in [first[j], first[j + 1]).
 struct PatchCorners {
   explicit PatchCorners(const std::vector<Patch>& patches);
