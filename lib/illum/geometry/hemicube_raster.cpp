@@ -104,6 +104,8 @@ int rasterize_polygon(const Vec3* vertices, int count, const Vec3& plane_normal,
   return scan_projected(n, plane_normal, plane_d, item, t, s);
 }
 
+// A vertex's first row at or above it, ⌈Y − ½⌉, is rounded once here and shared by its two edges
+// and the polygon's row range (rounding is monotone, so the lowest is the row range's start).
 int project_to_pixel(const Vec3& p, const FaceTarget& t, Vec3& pixel) {
   const double half_w = 0.5 * t.width;
   pixel = Vec3((p.x / p.z + 1.0) * half_w, (p.y / p.z + (t.side ? 0.0 : 1.0)) * half_w, 0.0);

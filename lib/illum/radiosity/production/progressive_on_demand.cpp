@@ -152,7 +152,7 @@ struct RowSlots {
   // and 4 KiB faults over gigabytes of rows cost a sixth of a large run's time).
   struct FreeRows {
     std::size_t bytes;
-    void operator()(double* rows) const { free_huge_pages(rows, bytes, alignof(double)); }
+    void operator()(double* block) const { free_huge_pages(block, bytes, alignof(double)); }
   };
   std::size_t n, count;
   std::unique_ptr<double[], FreeRows> rows;  // slot s: rows[s·n … (s + 1)·n), uninitialised until drawn
