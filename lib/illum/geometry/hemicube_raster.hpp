@@ -63,7 +63,7 @@ int rasterize_polygon(const Vec3* vertices, int count, const Vec3& plane_normal,
 // rasterize_polygon's steps 2 and 3–4 apart, for a caller that projects a vertex shared by several
 // polygons once (the production hemicube, PatchCorners): project_to_pixel gives the face-space point
 // p's pixel coordinates (X, Y, 0) in `pixel` and returns its first row, ⌈Y − ½⌉; scan_projected
-// scan-converts the polygon whose n projected vertices and rows are in scratch.clip_a and
+// scan-converts the polygon whose n (≥ 3) projected vertices and rows are in scratch.clip_a and
 // scratch.vertex_row. The same operations as rasterize_polygon's on an unclipped polygon: the same
 // pixels, bit for bit.
 int project_to_pixel(const Vec3& p, const FaceTarget& target, Vec3& pixel);

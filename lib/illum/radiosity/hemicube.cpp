@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <numbers>
+#include <optional>
 #include <unordered_map>
 
 #include "illum/core/error.hpp"
@@ -91,6 +93,8 @@ PatchCorners::PatchCorners(const std::vector<Patch>& patches) {
       if (added) points.push_back(v);
       index.push_back(at->second);
     }
+    require(index.size() < std::numeric_limits<std::uint32_t>::max(),
+            "PatchCorners: more corners than 32-bit numbers can hold");
     first.push_back(static_cast<std::uint32_t>(index.size()));
   }
 }
@@ -164,6 +168,26 @@ unsigned planes_outside(const Vec3& p) {
          out(-p.y + p.x, 16) | out(-p.y - p.x, 17) | out(-p.y - p.z, 18);
 }
 
+// Patch j's plane n·q = d in the hemicube's frame (eye at the origin; `corner` is one of its
+// corners, `reach` the largest |x| + |y| + |z| of its corners there) and the item it draws; none
+// when it is seen exactly edge-on (it projects to a line). d < 0: the eye is in front of the
+// patch. Otherwise we see its back, which still hides what lies behind it but receives nothing.
+struct SeenPlane {
+  Vec3 normal;
+  double d;
+  std::int32_t item;
+};
+std::optional<SeenPlane> seen_plane(const Patch& p, std::size_t j, const Point3& corner,
+                                    const HemicubeFrame& frame, double reach) {
+  const double d = dot(p.normal, corner - frame.eye);
+  if (std::abs(d) <= 1e-12 * reach) return std::nullopt;
+  // A back face meets a front face at a silhouette edge, where both project onto the
+  // same side of the edge with the same depth: a ray exactly through the edge would
+  // tie. Pushing back faces a relative 1e-9 further makes the front face win the tie.
+  return SeenPlane{Vec3(dot(p.normal, frame.x), dot(p.normal, frame.y), dot(p.normal, frame.z)),
+                   d < 0 ? d : d * (1.0 + 1e-9), d < 0 ? static_cast<std::int32_t>(j) : back_face_pixel};
+}
+
 // `scratch` holds the per-patch work space (it may be `buffers` itself).
 void draw_patches(const std::vector<Patch>& patches, std::size_t i, const HemicubeFrame& frame,
                   std::size_t begin, std::size_t end, unsigned faces, HemicubeBuffers& buffers,
@@ -196,23 +220,14 @@ void draw_patches(const std::vector<Patch>& patches, std::size_t i, const Hemicu
           reach, std::abs(scratch.local[k].z) + std::abs(scratch.local[k].x) + std::abs(scratch.local[k].y));
       outside &= planes_outside(scratch.local[k]);
     }
-    // The patch's plane n·q = d in the hemicube's frame (eye at the origin).
-    const Vec3 n_local(dot(p.normal, frame.x), dot(p.normal, frame.y), dot(p.normal, frame.z));
-    const double d = dot(p.normal, p.vertices[0] - frame.eye);
-    if (std::abs(d) <= 1e-12 * reach) continue;  // seen exactly edge-on: projects to a line
-    // d < 0: the eye is in front of the patch. Otherwise we see its back,
-    // which still hides what lies behind it but receives nothing.
-    const std::int32_t item = d < 0 ? static_cast<std::int32_t>(j) : back_face_pixel;
-    // A back face meets a front face at a silhouette edge, where both project onto the
-    // same side of the edge with the same depth: a ray exactly through the edge would
-    // tie. Pushing back faces a relative 1e-9 further makes the front face win the tie.
-    const double plane_d = d < 0 ? d : d * (1.0 + 1e-9);
+    const std::optional<SeenPlane> plane = seen_plane(p, j, p.vertices[0], frame, reach);
+    if (!plane) continue;
     for (int k = 0; k < 5; ++k) {
       if (!(faces & (1u << k)) || (outside >> (4 * k)) & 0xfu) continue;  // outside face k's frustum
       const auto f = static_cast<HemicubeFace>(k);
       for (std::size_t v = 0; v < nv; ++v) scratch.face[v] = to_face(f, scratch.local[v]);
-      rasterize_polygon(scratch.face.data(), static_cast<int>(nv), to_face(f, n_local), plane_d, item,
-                        targets[k], scratch.raster);
+      rasterize_polygon(scratch.face.data(), static_cast<int>(nv), to_face(f, plane->normal), plane->d,
+                        plane->item, targets[k], scratch.raster);
     }
   }
 }
@@ -290,16 +305,14 @@ void draw_patches_shared(const std::vector<Patch>& patches, const PatchCorners& 
       const Vec3& q = view[k]->local;
       reach = std::max(reach, std::abs(q.z) + std::abs(q.x) + std::abs(q.y));
     }
-    const Vec3 n_local(dot(p.normal, frame.x), dot(p.normal, frame.y), dot(p.normal, frame.z));
-    const double d = dot(p.normal, corners.points[index[0]] - frame.eye);  // p.vertices[0], bit for bit
-    if (std::abs(d) <= 1e-12 * reach) continue;
+    // corners.points[index[0]] is p.vertices[0], bit for bit, without a trip through the patch's list.
+    const std::optional<SeenPlane> plane = seen_plane(p, j, corners.points[index[0]], frame, reach);
+    if (!plane) continue;
     unsigned outside = ~0u;
     for (std::size_t k = 0; k < nv; ++k) {
       place(*view[k]);
       outside &= view[k]->outside;
     }
-    const std::int32_t item = d < 0 ? static_cast<std::int32_t>(j) : back_face_pixel;
-    const double plane_d = d < 0 ? d : d * (1.0 + 1e-9);
     for (int k = 0; k < 5; ++k) {
       if ((outside >> (4 * k)) & 0xfu) continue;
       const auto f = static_cast<HemicubeFace>(k);
@@ -308,11 +321,12 @@ void draw_patches_shared(const std::vector<Patch>& patches, const PatchCorners& 
       if (projected) {
         for (std::size_t v = 0; v < nv; ++v)
           raster.clip_a[v] = view[v]->pixel, raster.vertex_row[v] = view[v]->pixel_row;
-        scan_projected(static_cast<int>(nv), to_face(f, n_local), plane_d, item, targets[k], raster);
+        scan_projected(static_cast<int>(nv), to_face(f, plane->normal), plane->d, plane->item, targets[k],
+                       raster);
       } else {
         for (std::size_t v = 0; v < nv; ++v) buffers.face[v] = to_face(f, view[v]->local);
-        rasterize_polygon(buffers.face.data(), static_cast<int>(nv), to_face(f, n_local), plane_d, item,
-                          targets[k], raster);
+        rasterize_polygon(buffers.face.data(), static_cast<int>(nv), to_face(f, plane->normal), plane->d,
+                          plane->item, targets[k], raster);
       }
     }
   }
