@@ -1,9 +1,10 @@
 // The hemicube with shared corners (PatchCorners, the production path of progressive_on_demand)
 // against the plain form_factor_row, which transforms and projects every patch's own corners: the
 // rows and the five faces' item buffers must be the same, bit for bit (suite "stability", not
-// graded). The plain path is the independent reference; each scene below puts patches where the
-// shared path takes its other branch: across two faces, across the base plane, beside the eye
-// (clipped), seen from the back, with more than eight corners, and with corners at −0.
+// graded). The plain path is the independent reference; the scenes below put patches where the
+// shared path takes its other branches: across two faces, across the base plane, beside the eye
+// (clipped), before the near plane, seen from the back, with more than eight corners. The numbering
+// itself is checked by hand: a shared edge's ends numbered once, −0 and +0 two points.
 #include <doctest/doctest.h>
 
 #include <cmath>
