@@ -11,6 +11,7 @@
 #include <limits>
 #include <new>
 #include <type_traits>
+#include <utility>
 
 #include <glm/gtc/type_ptr.hpp>
 #if defined(__SSE2__)
@@ -709,23 +710,74 @@ std::uint32_t pack_leaf(const std::vector<Triangle>& tree_triangles,
   return start;
 }
 
-// Lays out Bvh inner node `i` as nodes[at], its inner descendants after it.
-void lay_out(const std::vector<BvhNode>& tree, std::uint32_t i, std::uint32_t at,
-             HugePageVector<CompactBvhNode>& nodes) {
-  // Open the largest inner child until there are eight children or only leaves.
-  std::uint32_t kids[compact_bvh_width] = {i + 1, tree[i].first};
-  int n = 2;
-  while (n < compact_bvh_width) {
-    int widest = -1;
-    for (int k = 0; k < n; ++k)
-      if (!tree[kids[k]].leaf() &&
-          (widest < 0 || tree[kids[k]].box.surface_area() > tree[kids[widest]].box.surface_area()))
-        widest = k;
-    if (widest < 0) break;
-    const std::uint32_t opened = kids[widest];
-    kids[widest] = opened + 1;
-    kids[n++] = tree[opened].first;
+// Which binary nodes become eight-child nodes: the choice with the least total surface area of
+// eight-child nodes (the surface area heuristic's count of node visits; the leaves are the same in
+// every choice), by dynamic programming over the binary tree (Ylitie, Karras and Laine, "Efficient
+// incoherent ray traversal on GPUs through compressed wide BVHs", HPG 2017, section 4.1, without its leaf
+// term). Opening the widest child first, as a greedy collapse does, leaves many nodes of two leaves
+// at the fringe: more nodes, and more of them on a ray's path.
+class WidePlan {
+ public:
+  explicit WidePlan(const std::vector<BvhNode>& tree) : tree_(tree), cost_(tree.size()), split_(tree.size()) {
+    // cost_[n][j]: the least area of the eight-child nodes below and at n when n's subtree takes at
+    // most j slots of its parent (j = 1: n is a slot, a leaf or an eight-child node of its own).
+    // Children follow their parent, so a backward sweep sees them first.
+    for (std::size_t n = tree.size(); n-- > 0;) {
+      if (tree[n].leaf()) {
+        cost_[n].fill(0.0);
+        continue;
+      }
+      const std::size_t left = n + 1, right = tree[n].first;
+      const auto [open8, k8] = best_split(left, right, compact_bvh_width);
+      cost_[n][1] = tree[n].box.surface_area() + open8;
+      split_[n][1] = static_cast<std::uint8_t>(k8);  // the children's share of n's own eight slots
+      for (int j = 2; j <= compact_bvh_width; ++j) {
+        const auto [open, k] = best_split(left, right, j);
+        const bool opens = open < cost_[n][j - 1];
+        cost_[n][j] = opens ? open : cost_[n][j - 1];
+        split_[n][j] = static_cast<std::uint8_t>(opens ? k : 0);  // 0: as with j − 1 slots
+      }
+    }
   }
+
+  // The (up to eight) binary nodes that are the slots of eight-child node n: leaves, or nodes that
+  // are eight-child nodes of their own.
+  int slots(std::uint32_t n, std::uint32_t out[compact_bvh_width]) const {
+    int count = 0;
+    const int k = split_[n][1];
+    gather(n + 1, k, out, count);
+    gather(tree_[n].first, compact_bvh_width - k, out, count);
+    return count;
+  }
+
+ private:
+  std::pair<double, int> best_split(std::size_t left, std::size_t right, int j) const {
+    std::pair<double, int> best{std::numeric_limits<double>::infinity(), 0};
+    for (int k = 1; k < j; ++k)
+      if (const double c = cost_[left][k] + cost_[right][j - k]; c < best.first) best = {c, k};
+    return best;
+  }
+  void gather(std::uint32_t n, int j, std::uint32_t out[], int& count) const {
+    while (j > 1 && !tree_[n].leaf() && split_[n][j] == 0) --j;
+    if (j == 1 || tree_[n].leaf()) {
+      out[count++] = n;
+      return;
+    }
+    const int k = split_[n][j];
+    gather(n + 1, k, out, count);
+    gather(tree_[n].first, j - k, out, count);
+  }
+
+  const std::vector<BvhNode>& tree_;
+  std::vector<std::array<double, compact_bvh_width + 1>> cost_;
+  std::vector<std::array<std::uint8_t, compact_bvh_width + 1>> split_;
+};
+
+// Lays out Bvh inner node `i` as nodes[at], its inner descendants after it.
+void lay_out(const std::vector<BvhNode>& tree, const WidePlan& plan, std::uint32_t i, std::uint32_t at,
+             HugePageVector<CompactBvhNode>& nodes) {
+  std::uint32_t kids[compact_bvh_width];
+  const int n = plan.slots(i, kids);
   for (int k = 0; k < compact_bvh_width; ++k) {
     CompactBvhNode& node = nodes[at];
     if (k >= n) {  // an empty slot
@@ -749,7 +801,7 @@ void lay_out(const std::vector<BvhNode>& tree, std::uint32_t i, std::uint32_t at
       require(index < 1u << compact_bvh_index_bits, "CompactBvh: more than 2^24 nodes");
       nodes.emplace_back();
       nodes[at].child[k] = compact_bvh_ref(index, 0);
-      lay_out(tree, kids[k], index, nodes);
+      lay_out(tree, plan, kids[k], index, nodes);
     }
   }
 }
@@ -814,7 +866,7 @@ CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
         root.unused[k] = k == 0 ? tree[0].first : 0;
       }
   } else {
-    lay_out(tree, 0, 0, nodes_);
+    lay_out(tree, WidePlan(tree), 0, 0, nodes_);
   }
   // Each leaf slot (an empty slot has lo = +∞) now points at its packs.
   packs_.reserve(bvh.triangles().size() / 3 + 1);

@@ -7,8 +7,8 @@
 // lesson's program on the exercise's traversal instead.
 //
 // The production BVH, lesson 08 (§5): the same binned-SAH tree as Bvh, its
-// levels collapsed (about three at a time) into eight-child nodes and laid
-// out for speed.
+// nodes grouped into eight-child nodes (about three levels at a time; the
+// grouping with the least total box area, see WidePlan) and laid out for speed.
 // Bvh's traversal (bvh_traversal.cpp) is the teaching version, the
 // exercise; this is the one the scene, the radiosity visibility and the
 // Embree comparison use ("compact_bvh"; the teaching one is "bvh").
