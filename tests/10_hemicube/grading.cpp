@@ -12,7 +12,8 @@
 // * Lambert's contour formula for a polygon above the element's tangent plane:
 //     F = 1/(2π) Σ_k γ_k n·(R_k × R_{k+1})/|R_k × R_{k+1}|
 // Each closed form is itself checked against Gauss–Legendre quadrature of
-// cos θ_i cos θ_j / (π r²).
+// cos θ_i cos θ_j / (π r²). The corner integrals G and H are signed (odd in
+// x and y; odd in y and even in z), as their header states.
 #include <doctest/doctest.h>
 
 #include <array>
@@ -140,6 +141,14 @@ TEST_SUITE("lesson10") {
     // The grading part: the student's corner functions must agree with the same integrals.
     CHECK(top_face_corner(0.7, 1.3) == doctest::Approx(b3).epsilon(1e-12));
     CHECK(side_face_corner(0.9 / 2, 1.7 / 2) == doctest::Approx(b4).epsilon(1e-12));
+    // Signed integrals from 0, as make_hemicube_deltas needs them for the pixels left of and below the
+    // centre: the integrand of G is even in s and t, so G is odd in x and in y; H's is even in s and odd
+    // in t, so H is odd in y and even in z (a mirrored quadrant, G(|x|, |y|), fails here).
+    CHECK(top_face_corner(-0.7, 1.3) == doctest::Approx(-b3).epsilon(1e-12));
+    CHECK(top_face_corner(0.7, -1.3) == doctest::Approx(-b3).epsilon(1e-12));
+    CHECK(top_face_corner(-0.7, -1.3) == doctest::Approx(b3).epsilon(1e-12));
+    CHECK(side_face_corner(-0.9 / 2, 1.7 / 2) == doctest::Approx(-b4).epsilon(1e-12));
+    CHECK(side_face_corner(0.9 / 2, -1.7 / 2) == doctest::Approx(b4).epsilon(1e-12));
   }
 
   TEST_CASE("top-face delta is cos φ_i cos φ_p / (π r²) ΔA (eq. 10.2)" * doctest::description("task=1")) {
