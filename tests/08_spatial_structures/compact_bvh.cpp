@@ -3,13 +3,18 @@
 // rays of every kind, axis-parallel rays through vertices included, for every
 // leaf size and for a tree that is a single leaf; with every kernel (SSE2, AVX, AVX2 with fused
 // multiply-adds; each where the processor has it).
+// Its grouping of the binary tree into eight-child nodes (eight_child_nodes) against every
+// grouping, enumerated: at most eight slots a node, and the least total area of all.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
 #include "illum/accel/brute_force.hpp"
+#include "illum/accel/bvh.hpp"
 #include "illum/accel/production/compact_bvh.hpp"
 #include "illum/accel/sphereflake.hpp"
 #include "scenes.hpp"
@@ -49,9 +54,83 @@ int mismatches_every_kernel(CompactBvh& fast, const TriangleSet& set, const std:
   return wrong;
 }
 
+// The eight-child nodes' slot counts (leaves and eight-child nodes met first below each) and their
+// total surface area, for a choice of nodes `wide` (the root among them).
+struct Grouping {
+  int most_slots = 0;
+  double area = 0;
+};
+Grouping grouping(const std::vector<BvhNode>& tree, const std::vector<bool>& wide) {
+  Grouping g;
+  for (std::size_t n = 0; n < tree.size(); ++n) {
+    if (!wide[n]) continue;
+    g.area += tree[n].box.surface_area();
+    int slots = 0;
+    std::vector<std::size_t> open{n + 1, tree[n].first};
+    while (!open.empty()) {
+      const std::size_t c = open.back();
+      open.pop_back();
+      if (tree[c].leaf() || wide[c]) {
+        ++slots;
+      } else {
+        open.push_back(c + 1);
+        open.push_back(tree[c].first);
+      }
+    }
+    g.most_slots = std::max(g.most_slots, slots);
+  }
+  return g;
+}
+
+// The least total area over every choice of eight-child nodes that gives none more than eight
+// slots: each inner node but the root either is one or is opened into its parent's slots (2^(m − 1)
+// choices for m inner nodes).
+double least_area_by_enumeration(const std::vector<BvhNode>& tree) {
+  std::vector<std::size_t> inner;
+  for (std::size_t n = 1; n < tree.size(); ++n)
+    if (!tree[n].leaf()) inner.push_back(n);
+  double least = std::numeric_limits<double>::infinity();
+  for (std::uint32_t choice = 0; choice < 1u << inner.size(); ++choice) {
+    std::vector<bool> wide(tree.size(), false);
+    wide[0] = true;
+    for (std::size_t k = 0; k < inner.size(); ++k) wide[inner[k]] = (choice >> k & 1) != 0;
+    const Grouping g = grouping(tree, wide);
+    if (g.most_slots <= compact_bvh_width) least = std::min(least, g.area);
+  }
+  return least;
+}
+
 }  // namespace
 
 TEST_SUITE("stability") {
+  TEST_CASE("the production BVH's eight-child nodes: at most eight slots each, the least total area") {
+    // Leaf size 1: a soup of n triangles is a binary tree of n leaves and n − 1 inner nodes.
+    for (const int count : {9, 12, 14, 16}) {
+      for (const std::uint64_t seed : {3u, 8u, 21u}) {
+        CAPTURE(count);
+        CAPTURE(seed);
+        const Bvh bvh(test08::triangle_soup(count, seed), {.leaf_size = 1});
+        const Grouping g = grouping(bvh.nodes(), eight_child_nodes(bvh.nodes()));
+        CHECK(g.most_slots <= compact_bvh_width);
+        CHECK(g.area == doctest::Approx(least_area_by_enumeration(bvh.nodes())).epsilon(1e-12));
+      }
+    }
+  }
+
+  TEST_CASE("hard case: eight leaves or fewer are one eight-child node; one leaf is none") {
+    for (const int count : {2, 5, 8}) {
+      CAPTURE(count);
+      const Bvh bvh(test08::triangle_soup(count, 11), {.leaf_size = 1});
+      const std::vector<bool> wide = eight_child_nodes(bvh.nodes());
+      CHECK(std::count(wide.begin(), wide.end(), true) == 1);
+      CHECK(wide[0]);
+    }
+    const Bvh one(test08::triangle_soup(3, 5), {.leaf_size = 4});
+    REQUIRE(one.nodes()[0].leaf());
+    const std::vector<bool> none = eight_child_nodes(one.nodes());
+    CHECK(std::count(none.begin(), none.end(), true) == 0);
+  }
+
   TEST_CASE("the production BVH answers as brute force does, for every leaf size") {
     const TriangleSet soup = test08::triangle_soup(600, 41);
     const std::vector<Ray> rays = test08::mixed_rays(soup, 3000, 42);

@@ -884,6 +884,22 @@ CompactBvh::CompactBvh(const TriangleSet& set, const BvhSettings& settings) {
   packs_.emplace_back();  // the AVX traversal reads a leaf's packs two at a time, and masks this one
 }
 
+std::vector<bool> eight_child_nodes(const std::vector<BvhNode>& tree) {
+  std::vector<bool> wide(tree.size(), false);
+  if (tree.empty() || tree[0].leaf()) return wide;
+  const WidePlan plan(tree);
+  std::vector<std::uint32_t> todo{0};
+  while (!todo.empty()) {  // each inner node is pushed once, by the eight-child node above it
+    const std::uint32_t n = todo.back();
+    todo.pop_back();
+    wide[n] = true;
+    std::uint32_t kids[compact_bvh_width];
+    for (int k = 0, count = plan.slots(n, kids); k < count; ++k)
+      if (!tree[kids[k]].leaf()) todo.push_back(kids[k]);
+  }
+  return wide;
+}
+
 CompactBvh::Kernel CompactBvh::use_kernel(Kernel wanted) {
   kernel_ = Kernel::sse2;
 #if defined(ILLUM_COMPACT_BVH_AVX)

@@ -137,4 +137,11 @@ class CompactBvh final : public TriangleAccel {
 // "sse2", "avx", "avx2_fma".
 const char* to_string(CompactBvh::Kernel kernel);
 
+// The inner nodes of a Bvh's tree (Bvh::nodes(): children follow their parent, the second at `first`)
+// that CompactBvh makes its eight-child nodes: of the choices that leave every eight-child node at most
+// eight slots (the leaves and eight-child nodes met first below it), the one with the least total
+// surface area of eight-child nodes, found by dynamic programming. wide[n] for each node; the root is
+// one unless it is a leaf.
+std::vector<bool> eight_child_nodes(const std::vector<BvhNode>& tree);
+
 }  // namespace illum
