@@ -18,7 +18,6 @@ from grading.project import lesson_folders
 
 from .decks import find_decks
 from .outputs import Manifest, ManifestError, Output, load_manifest
-from .texts import page_of
 
 
 @dataclass
@@ -64,13 +63,13 @@ def discover_lessons(source: Path, out: Path, slides_dir: Path | None = None) ->
             lesson.deck_html = built
     for folder in out.glob("lesson[0-9][0-9]"):
         if (folder / "manifest.json").exists():
-            lessons.setdefault(folder.name[-2:], Lesson(folder.name[-2:])).output_dir = folder
-    for nn, lesson in lessons.items():
-        if lesson.output_dir:
+            lesson = lessons.setdefault(folder.name[-2:], Lesson(folder.name[-2:]))
+            lesson.output_dir = folder
             try:
-                lesson.manifest = load_manifest(lesson.output_dir)
+                lesson.manifest = load_manifest(folder)
             except ManifestError as e:
                 lesson.manifest_error = str(e)
+    for nn, lesson in lessons.items():
         words = lesson.slug[3:].replace("_", " ").replace("-", " ").strip()
         lesson.title = ((lesson.manifest.title if lesson.manifest else "")
                         or (_first_heading(lesson.lesson_readme) if lesson.lesson_readme else "")
@@ -122,9 +121,10 @@ def csv_table_html(text: str, max_rows: int = 40) -> str:
 
 
 def rendered_page(source: Path, out: Path, text: Path) -> Path | None:
-    """OUT/pages/<text>.html when the main job rendered the text (tools/gallery/texts.py), else None."""
+    """OUT/pages/<text's path in the tree, .md replaced by .html> when the main job rendered the text
+    (tools/gallery/texts.py), else None."""
     try:
-        page = page_of(source, out, text)
+        page = Path(out) / "pages" / Path(text).resolve().relative_to(Path(source).resolve()).with_suffix(".html")
     except ValueError:
         return None
     return page if page.is_file() else None

@@ -15,11 +15,6 @@ class TextsError(JobError):
     """Node.js or the renderer's packages are missing, or a text did not render cleanly."""
 
 
-def page_of(source: Path, out: Path, text: Path) -> Path:
-    """OUT/pages/<text's path in the tree, .md replaced by .html>."""
-    return Path(out) / "pages" / Path(text).resolve().relative_to(Path(source).resolve()).with_suffix(".html")
-
-
 def build_texts(source: Path, out: Path) -> list[str]:
     """Renders every text into OUT/pages; returns the renderer's report (one line per note).
 
