@@ -76,10 +76,6 @@ def find_blocks(path: Path, lines: list[str]) -> list[Block]:
     return blocks
 
 
-def inside_blocks(blocks: list[Block]) -> set[int]:
-    return {i for b in blocks for i in range(b.open_line, b.close_line + 1)}
-
-
 def compare(block: Block, lines: list[str], new: Table) -> list[str]:
     """Differences in non-timing cells between the text's table and the program's."""
     where = f"{block.text}:{block.open_line + 1}"
@@ -102,8 +98,8 @@ def compare(block: Block, lines: list[str], new: Table) -> list[str]:
     return problems
 
 
-def hand_timings(path: Path, lines: list[str], blocks: list[Block]) -> list[str]:
-    inside = inside_blocks(blocks)
+def hand_timings(path: Path, lines: list[str], inside: set[int]) -> list[str]:
+    """Timings typed outside the figures (the lines `inside` them)."""
     problems = [f"{path}:{table.start + 1}: a table with timings typed by hand: include it with a figure comment "
                 "naming the program's table" for table in markdown_tables(lines)
                 if table.start not in inside and table.has_timings()]
@@ -171,13 +167,14 @@ def _text(run: Run, path: Path) -> None:
     except FigureError as e:
         run.problems.append(str(e))
         return
+    inside = {i for b in blocks for i in range(b.open_line, b.close_line + 1)}
     if run.mode == "check":
         # Measured timings live in the lesson texts and decks; docs/ states settings and tool-written reports.
         if rel.parts[0] in ("lessons", "slides"):
-            run.problems += hand_timings(rel, lines, blocks)
+            run.problems += hand_timings(rel, lines, inside)
         run.problems += unlinked_errata(rel, lines)
     # Values first: they change text within lines, the figures change the number of lines.
-    run.values += values.process_values(run, rel, lines, inside_blocks(blocks))
+    run.values += values.process_values(run, rel, lines, inside)
     _figures_of(run, rel, lines, blocks)
     if lines != text.splitlines():
         atomic_write_text(path, "\n".join(lines) + "\n", tag=kept_images.TAG)
