@@ -56,11 +56,11 @@ def _marp(source: Path, decks: list[Path], out_slides: Path) -> str:
         shutil.rmtree(work, ignore_errors=True)
 
 
-def build_decks(source: Path, decks: list[Path], out_slides: Path, jobs: int = 2) -> list[Path]:
+def build_decks(source: Path, decks: list[Path], out_slides: Path) -> list[Path]:
     """Builds every deck, KaTeX's fonts copied beside them; raises DeckError naming each deck that failed.
 
     One Marp run builds them all (Node and Marp start once: 13 decks took 2.8 s so, against 1.3 s
-    for each deck alone). If that run fails, each deck is built alone, in `jobs` at once, so that
+    for each deck alone). If that run fails, each deck is built alone, two at once, so that
     the error names every deck that failed."""
     source, out_slides = Path(source), Path(out_slides)
     marp, fonts = source / "node_modules" / ".bin" / "marp", source / "node_modules" / "katex" / "dist" / "fonts"
@@ -74,7 +74,7 @@ def build_decks(source: Path, decks: list[Path], out_slides: Path, jobs: int = 2
         if not copy.is_file() or copy.stat().st_size != font.stat().st_size:
             atomic_copy(font, copy)
     if _marp(source, decks, out_slides):
-        with ThreadPoolExecutor(max_workers=max(1, jobs)) as pool:
+        with ThreadPoolExecutor(max_workers=2) as pool:
             errors = [e for e in pool.map(lambda deck: _marp(source, [deck], out_slides), decks) if e]
         if errors:
             raise DeckError("\n".join(errors))
