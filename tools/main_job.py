@@ -14,7 +14,6 @@ Steps, in this order (`cmake --build --preset release --target gallery` runs the
 """
 
 import argparse
-import importlib.util
 import os
 import re
 import shutil
@@ -42,9 +41,7 @@ STALE_FOLDER = re.compile(r"\.decks-[a-z0-9_]{8}")
 
 
 def run_lab(bin_dir: Path, out: Path) -> None:
-    spec = importlib.util.spec_from_file_location("lab_screenshots", SOURCE / "tools" / "lab" / "screenshots.py")
-    screenshots = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(screenshots)
+    from lab import screenshots  # only when the step runs
     say("lab: screenshots of illum lab's five views")
     start = time.monotonic()
     if screenshots.main(["--bin", str(bin_dir), "--out", str(out)]) != 0:
@@ -114,11 +111,10 @@ def check_pages(out: Path, index_written: bool) -> None:
     say("every local link and image of the rendered texts resolves")
 
 
-def hold_and_clean(out: Path) -> tuple[int, list[str]]:
+def hold_and_clean(out: Path) -> list[str]:
     """Locks OUT for this job (an flock on the folder, held until the process ends: a second job on it is
     refused) and removes what a job killed there left; one note per thing removed."""
-    fd = lock_folder(out)
-    if fd is None:
+    if lock_folder(out) is None:  # its descriptor stays open, and the lock held, until the process ends
         raise JobError(f"--out {out} is in use by another main job; wait for it to end, or give this one "
                        "another --out")
     notes, left = [], "left by a main job that was killed before it finished"
@@ -133,7 +129,7 @@ def hold_and_clean(out: Path) -> tuple[int, list[str]]:
             if STALE_FILE.fullmatch(name) and os.lstat(here / name).st_uid == os.geteuid():
                 (here / name).unlink()
                 notes.append(f"removed {here / name}, {left}")
-    return fd, notes
+    return notes
 
 
 def parse_arguments(argv: list[str] | None) -> argparse.Namespace:
@@ -181,7 +177,7 @@ def main(argv: list[str] | None = None) -> int:
     out.mkdir(parents=True, exist_ok=True)
     start = time.monotonic()
     try:
-        for note in hold_and_clean(out)[1]:
+        for note in hold_and_clean(out):
             say(f"note: {note}")
         if "lessons" in steps:
             run_lessons(args.bin.resolve(), out, args.quick, args.alone)
