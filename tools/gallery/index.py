@@ -121,8 +121,7 @@ def csv_table_html(text: str, max_rows: int = 40) -> str:
 
 
 def rendered_page(source: Path, out: Path, text: Path) -> Path | None:
-    """OUT/pages/<text's path in the tree, .md replaced by .html> when the main job rendered the text
-    (tools/gallery/texts.py), else None."""
+    """OUT/pages/<text's path in the tree>.html when the main job rendered the text (gallery/texts.py), else None."""
     try:
         page = Path(out) / "pages" / Path(text).resolve().relative_to(Path(source).resolve()).with_suffix(".html")
     except ValueError:
