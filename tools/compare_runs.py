@@ -24,7 +24,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from gallery.tables import TIMING_WORDS, is_timing_name, words  # noqa: E402
 
-RATE_WORDS = {"mrays", "throughput", "rays_per_s", "per_s"}
+RATE_WORDS = {"mrays", "throughput"}  # words() splits at "_" and "/": Mrays/s is {"mrays", "s"}
 PER_SECOND = re.compile(r"\bper\s+(s|sec|second)\b|/s\b", re.I)
 
 
@@ -65,7 +65,7 @@ def speed_kind(name: str) -> str | None:
     w = words(name)
     if "speedup" in w or {"speed", "up"} <= w:
         return None
-    if w & {"mrays", "throughput"} or PER_SECOND.search(name):
+    if w & RATE_WORDS or PER_SECOND.search(name):
         return "rate"
     return "time" if w & (TIMING_WORDS - {"timing", "speedup", "speed"}) else None
 
