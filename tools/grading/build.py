@@ -103,8 +103,7 @@ def configure(source: Path, build_dir: Path, exercises: Sequence[str], hidden: P
               hidden_objects: Sequence[Path] = (), runner: Runner | None = None) -> StepResult:
     """Configures a Release tree; warnings never fail a student's build. The reference build leaves
     ILLUM_WERROR as the tree has it, so that grading an existing preset tree (CI grades build/release)
-    reuses its objects instead of rebuilding everything for a changed flag. tests_hidden is linked from
-    ``hidden_objects`` (compiled by the autograder's setup) when there are any."""
+    reuses its objects instead of rebuilding everything for a changed flag."""
     command = ["cmake", "-S", str(source), "-B", str(build_dir), "-DCMAKE_BUILD_TYPE=Release",
                *(["-DILLUM_WERROR=OFF"] if exercises else []), "-DILLUM_BUILD_TESTS=ON",
                f"-DILLUM_EXERCISES={','.join(exercises)}",
