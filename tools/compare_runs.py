@@ -24,7 +24,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from gallery.tables import TIMING_WORDS, is_timing_name, words  # noqa: E402
 
-RATE_WORDS = {"mrays", "throughput", "rays_per_s", "per_s"}
+RATE_WORDS = {"mrays", "throughput"}  # words() splits at "_" and "/": Mrays/s is {"mrays", "s"}
 PER_SECOND = re.compile(r"\bper\s+(s|sec|second)\b|/s\b", re.I)
 
 
@@ -65,7 +65,7 @@ def speed_kind(name: str) -> str | None:
     w = words(name)
     if "speedup" in w or {"speed", "up"} <= w:
         return None
-    if w & {"mrays", "throughput"} or PER_SECOND.search(name):
+    if w & RATE_WORDS or PER_SECOND.search(name):
         return "rate"
     return "time" if w & (TIMING_WORDS - {"timing", "speedup", "speed"}) else None
 
@@ -90,15 +90,7 @@ def speed_factors(first: Path, other: Path) -> list[float]:
     return factors
 
 
-def missing_folder(*folders: Path) -> bool:
-    if missing := [folder for folder in folders if not folder.is_dir()]:
-        print(f"compare_runs: {missing[0]} is not a folder", file=sys.stderr)
-    return bool(missing)
-
-
 def speed_main(first: Path, other: Path) -> int:
-    if missing_folder(first, other):
-        return 2
     factors = speed_factors(first, other)
     if len(factors) < 2:
         print(f"compare_runs: --speed: {len(factors)} timing cell(s) in the tables {first} and {other} share; "
@@ -111,14 +103,16 @@ def speed_main(first: Path, other: Path) -> int:
 
 
 def main(argv: list[str]) -> int:
-    if argv[:1] == ["--speed"] and len(argv) == 3:
-        return speed_main(Path(argv[1]), Path(argv[2]))
-    if argv[:1] == ["--speed"] or len(argv) != 2 or argv[0] in ("-h", "--help"):
-        print(__doc__.strip(), file=sys.stdout if len(argv) == 1 and argv[0] != "--speed" else sys.stderr)
-        return 0 if argv[:1] in (["-h"], ["--help"]) else 2
-    first, second = (Path(a) for a in argv)
-    if missing_folder(first, second):
+    speed, asked = argv[:1] == ["--speed"], argv[:1] in (["-h"], ["--help"])
+    if asked or len(argv) != 2 + speed:
+        print(__doc__.strip(), file=sys.stdout if asked else sys.stderr)
+        return 0 if asked else 2
+    first, second = (Path(a) for a in argv[speed:])
+    if missing := [folder for folder in (first, second) if not folder.is_dir()]:
+        print(f"compare_runs: {missing[0]} is not a folder", file=sys.stderr)
         return 2
+    if speed:
+        return speed_main(first, second)
     tables = sorted(p.name for p in first.glob("*.csv"))
     if not tables:
         print(f"compare_runs: {first} holds no table (*.csv)", file=sys.stderr)

@@ -133,7 +133,7 @@ def grading_tests(root: Path, lesson: str) -> list[TestCase]:
             if t.suite == f"lesson{lesson}"] if folder else []
 
 
-def table(lesson: str, tasks: dict[str, list[str]], tests: list[TestCase], root: Path) -> str:
+def table(lesson: str, tasks: dict[str, list[str]], tests: list[TestCase]) -> str:
     """The Markdown of the task table: one row per test, the tasks it needs, its points (each "erratum N"
     of a test's name linked, as every text that names one)."""
     ordered = sorted(tests, key=lambda t: (min((_task_key(x) for x in t.tasks), default=(10**6, "")),
@@ -168,7 +168,7 @@ def updated_readme(root: Path, lesson: str) -> tuple[Path, str, str | None]:
     exercise = lesson_folders(root, "exercises")[lesson]
     readme = exercise / "README.md"
     text = readme.read_text(encoding="utf-8") if readme.is_file() else ""
-    new = replace_between(text, BEGIN, END, table(lesson, stub_tasks(exercise), grading_tests(root, lesson), root))
+    new = replace_between(text, BEGIN, END, table(lesson, stub_tasks(exercise), grading_tests(root, lesson)))
     commands = student_commands(lesson, has_program=lesson in lesson_folders(root, "lessons"))
     return readme, text, new and replace_between(new, COMMANDS_BEGIN, COMMANDS_END, commands)
 

@@ -119,7 +119,7 @@ class ScoreTest(unittest.TestCase):
             m.status = status
             report.mutants.append(m)
         self.assertEqual(report.scored(), 4)
-        self.assertAlmostEqual(report.score, 75.0)
+        self.assertAlmostEqual(report.score(), 75.0)
 
 
 class SyncTest(unittest.TestCase):

@@ -67,7 +67,7 @@ class ParseTest(unittest.TestCase):
             source = Path(folder) / "grading.cpp"
             source.write_text(SOURCE, encoding="utf-8")
             tests = [t for t in task_tables.parse_tests(source) if t.tasks]
-            text = task_tables.table("07", tasks, tests, Path(folder))
+            text = task_tables.table("07", tasks, tests)
         self.assertIn("| a long name that clang-format splits | 2, 3a | 2 |", text)
         self.assertIn("2 tests, 3 points", text)
         self.assertIn("Task 3a: 1", text)

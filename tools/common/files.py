@@ -4,13 +4,12 @@ so that a later run can tell the temporary of a run killed without warning by it
 
 import fcntl
 import os
-import shutil
 import tempfile
 from pathlib import Path
 
 
-def _replace(target: Path | str, fill, mode: int, tag: str = "") -> None:
-    """Writes `target` through a temporary beside it: fill(temporary), its mode set, then a rename."""
+def atomic_write_bytes(target: Path | str, data: bytes, mode: int = 0o644, tag: str = "") -> None:
+    """Writes `target` through a temporary beside it: the data, synced to disk, its mode set, then a rename."""
     target = Path(target)
     if tag:
         tmp = target.with_name(f"{target.name}.tmp-{tag}-{os.getpid()}")
@@ -20,7 +19,10 @@ def _replace(target: Path | str, fill, mode: int, tag: str = "") -> None:
         os.close(fd)
         tmp = Path(name)
     try:
-        fill(tmp)
+        with open(tmp, "wb") as f:
+            f.write(data)
+            f.flush()
+            os.fsync(f.fileno())
         os.chmod(tmp, mode)
         os.replace(tmp, target)
     except BaseException:
@@ -28,22 +30,12 @@ def _replace(target: Path | str, fill, mode: int, tag: str = "") -> None:
         raise
 
 
-def atomic_write_bytes(target: Path | str, data: bytes, mode: int = 0o644, tag: str = "") -> None:
-    def fill(tmp: Path) -> None:
-        with open(tmp, "wb") as f:
-            f.write(data)
-            f.flush()
-            os.fsync(f.fileno())
-
-    _replace(target, fill, mode, tag)
-
-
 def atomic_write_text(target: Path | str, text: str, mode: int = 0o644, tag: str = "") -> None:
     atomic_write_bytes(target, text.encode("utf-8"), mode, tag)
 
 
 def atomic_copy(source: Path | str, target: Path | str) -> None:
-    _replace(target, lambda tmp: shutil.copyfile(source, tmp), 0o644)
+    atomic_write_bytes(target, Path(source).read_bytes())
 
 
 def lock_folder(folder: Path) -> int | None:

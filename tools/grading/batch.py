@@ -180,8 +180,7 @@ def unpack(zip_path: Path, ag: Path) -> None:
 
 
 def fresh_copy(snapshot: Path, ag: Path, submission: Path | None = None) -> None:
-    """The prepared autograder copied to `ag` (an earlier one removed), with `submission` (a folder, or a
-    file such as a zip) as its upload."""
+    """The prepared autograder copied afresh to `ag`, `submission` (a folder, or a file such as a zip) its upload."""
     if ag.exists():
         shutil.rmtree(ag)
     subprocess.run(["cp", "-a", "--reflink=auto", str(snapshot), str(ag)], check=True)
@@ -256,8 +255,7 @@ def _seconds(name: str, default: float | None) -> float | None:
 
 
 def _roster_rows(roster: Roster, outcomes: list[Outcome], matched: dict, unmatched: list[Submission]) -> list[Outcome]:
-    """The roster's rows in its order (a student without a submission is `missing`), then the submissions
-    no row matches."""
+    """The roster's rows in its order (without a submission: `missing`), then the submissions no row matches."""
     by_ident = {o.ident: o for o in outcomes}
     rows = []
     for index, row in enumerate(roster.rows):

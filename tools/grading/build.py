@@ -37,8 +37,7 @@ class StepResult:
 
 @dataclass
 class Runner:
-    """How build commands run: as the grader (default), or in the sandbox's user with its limits
-    (``sandbox.Sandbox.build_preexec``), with a time limit."""
+    """How build commands run: as the grader (default), or as the sandbox's user, with a time limit."""
 
     preexec: object = None
     env: dict | None = None
@@ -101,7 +100,7 @@ def run_streaming(command: Sequence[str], echo: bool = True, cwd: Path | None = 
 
 
 def configure(source: Path, build_dir: Path, exercises: Sequence[str], hidden: Path | None,
-              echo: bool = True, extra: Sequence[str] = (), runner: Runner | None = None) -> StepResult:
+              hidden_objects: Sequence[Path] = (), runner: Runner | None = None) -> StepResult:
     """Configures a Release tree; warnings never fail a student's build. The reference build leaves
     ILLUM_WERROR as the tree has it, so that grading an existing preset tree (CI grades build/release)
     reuses its objects instead of rebuilding everything for a changed flag."""
@@ -109,7 +108,8 @@ def configure(source: Path, build_dir: Path, exercises: Sequence[str], hidden: P
                *(["-DILLUM_WERROR=OFF"] if exercises else []), "-DILLUM_BUILD_TESTS=ON",
                f"-DILLUM_EXERCISES={','.join(exercises)}",
                # Always set, so that a tree configured earlier with --hidden forgets it.
-               f"-DILLUM_HIDDEN_TESTS={hidden.resolve() if hidden else ''}", *(extra or hidden_objects_arguments([]))]
+               f"-DILLUM_HIDDEN_TESTS={hidden.resolve() if hidden else ''}",
+               f"-DILLUM_HIDDEN_OBJECTS={';'.join(str(p) for p in hidden_objects)}"]
     # Already configured from `source` with every -D value of `command` (its CMakeCache.txt says so): make re-runs
     # CMake itself if a CMakeLists.txt changed, so configuring again would only cost time (each submission of an
     # autograder run starts here).
@@ -123,19 +123,14 @@ def configure(source: Path, build_dir: Path, exercises: Sequence[str], hidden: P
     if (build_dir / "Makefile").is_file() and values.get("CMAKE_HOME_DIRECTORY") == str(source.resolve()) and all(
             values.get(name) == value for name, value in wanted):
         return StepResult(True, "")
-    return run_streaming(command, echo, runner=runner)
+    return run_streaming(command, runner=runner)
 
 
-def hidden_objects_arguments(objects: Sequence[Path]) -> list[str]:
-    """-D options that link tests_hidden from objects compiled by the autograder's setup."""
-    return [f"-DILLUM_HIDDEN_OBJECTS={';'.join(str(p) for p in objects)}"]
-
-
-def build(build_dir: Path, targets: Sequence[str], echo: bool = True, runner: Runner | None = None) -> StepResult:
+def build(build_dir: Path, targets: Sequence[str], runner: Runner | None = None) -> StepResult:
     """Builds ``targets`` (all when empty) with CMAKE_BUILD_PARALLEL_LEVEL jobs if set, else one per core."""
     jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(os.cpu_count() or 1)
     return run_streaming(["cmake", "--build", str(build_dir), "-j", jobs, *(["--target", *targets] if targets else [])],
-                         echo, runner=runner)
+                         runner=runner)
 
 
 def failed_exercise_files(output: str) -> list[str]:

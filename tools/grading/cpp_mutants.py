@@ -236,9 +236,8 @@ def _operand_before(tokens: list[Token], index: int) -> int:
 
 def _simple_argument(tokens: list[Token], first: int, last: int) -> bool:
     """An argument a student could write in the neighbour's place: a name, a member, a subscript, a number."""
-    if last < first or last - first > 8:
-        return False
-    return all(t.kind in ("ident", "number") or t.text in (".", "->", "::", "[", "]") for t in tokens[first:last + 1])
+    return first <= last <= first + 8 and all(t.kind in ("ident", "number") or t.text in (".", "->", "::", "[", "]")
+                                              for t in tokens[first:last + 1])
 
 
 def generate(lesson: str, unit: Path, source: str, stub_lines: set[str]) -> list[Mutant]:
@@ -451,6 +450,4 @@ def _index_partner(name: str, names: list[str]) -> str:
     if name in pairs and pairs[name] in names:
         return pairs[name]
     others = [n for n in names if n != name and len(n) <= 2]
-    if not others:
-        return ""
-    return max(sorted(set(others)), key=others.count)
+    return max(sorted(set(others)), key=others.count, default="")

@@ -175,8 +175,7 @@ class UsageError(Exception):
 
 
 def choose_lessons(args: argparse.Namespace, root: Path) -> list[str]:
-    """The lessons to grade, a lesson that does not exist refused before anything is built; a student can
-    only be graded on lessons with exercises."""
+    """The lessons to grade; one that does not exist, or has no exercises for a student, is refused first."""
     exercises = project.exercise_lessons(root)
     known = sorted(set(project.test_lessons(root)) | set(exercises))
     unknown = [nn for nn in args.lessons if nn not in known]
@@ -320,7 +319,7 @@ def _build_student_code(args: argparse.Namespace, run: GradeRun, root: Path, bui
                               timeout=runner.timeout)
     try:
         step = build.configure(root, build_dir, exercises, None if data.hidden_objects else args.hidden,
-                               extra=build.hidden_objects_arguments(data.hidden_objects), runner=runner)
+                               data.hidden_objects, runner=runner)
         if step.ok:
             # The visible tests first: an instructor's hidden tests that do not
             # build must not cost the student the visible ones (nor blame them).
@@ -356,7 +355,7 @@ def _witness_run(data: GraderData, bin_dir: Path, program: str, suite: str, seed
     folder = data.witness_dir or bin_dir
     trusted = Sandbox(None, Limits.from_environment(), private=False)
     run = run_suite(folder / program, suite, hidden=hidden, role="witness", env=seed_env, sandbox=trusted,
-                    expected=data.expected(program, suite) if data.tests else None)
+                    expected=data.expected(program, suite))
     failed = [r.name for r in run.results if not r.passed]
     if run.problem or failed:
         return run, None, (f"the reference's run of {program} -ts={suite} failed (the grader's fault): "
@@ -445,13 +444,11 @@ def grade(args: argparse.Namespace, root: Path) -> int:
     targets = ["illum"] + ([f"{p}_observer" for p in programs] + (programs if witness_here else []) if judged
                            else programs)
     step = _build_student_code(args, run, root, build_dir, exercises, targets, sandbox, data)
-    if step.ok:
-        _advise(args, run, root, build_dir=build_dir)
-    if step.ok and has_hidden:
-        has_hidden = _build_hidden(run, build_dir, judged, witness_here, sandbox)
     if not step.ok:
         _build_failed(args, run, root, lessons, step, data)
     else:
+        _advise(args, run, root, build_dir=build_dir)
+        has_hidden = has_hidden and _build_hidden(run, build_dir, judged, witness_here, sandbox)
         deadline_from_environment(start)
         planned = [(lesson, f"tests_lesson{lesson}", False) for lesson in lessons if lesson in tested]
         # The hidden tests last: nothing a student's code learns while they run can reach a visible result.

@@ -159,8 +159,7 @@ def make_student_edition(source: Path, out: Path, handed_out: list[str] | None =
         raise ValueError(f"{out} exists and is not a student edition; refusing to replace it")
     files = tracked_files(source)
     lessons = exercise_lessons_of(files)
-    unknown = sorted(set(handed_out or []) - set(lessons))
-    if unknown:
+    if unknown := sorted(set(handed_out or []) - set(lessons)):
         raise ValueError(f"lesson(s) {', '.join(unknown)} have no exercises; lessons with exercises: "
                          f"{', '.join(lessons)}")
     chosen = lessons if handed_out is None else sorted(set(handed_out))

@@ -265,8 +265,7 @@ def _looks(idents: list[str]) -> str:
 
 
 def moodle_rows(outcomes: list[Outcome], roster: Roster | None, assignment: str) -> tuple[list[list[str]], list[str]]:
-    """Moodle's grade import (Grades > Import > CSV file), columns as docs/grading.md says: the rows, and what
-    was left out and why."""
+    """Moodle's grade import (Grades > Import > CSV file; docs/grading.md): the rows, and what was left out and why."""
     if roster is None:
         role = _looks([o.ident for o in outcomes])
     else:  # the identity the roster fills on the most rows; on a tie e-mail, then ID number, then user name

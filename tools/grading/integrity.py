@@ -31,11 +31,10 @@ def grading_programs(bin_dir: Path) -> dict[str, Path]:
             if (match := _PROGRAM.fullmatch(path.name)) and path.is_file()}
 
 
-def check_pair(label: str, reference: list[TestResult], stubs: list[TestResult],
-               require_tests: bool = True) -> list[str]:
+def check_pair(label: str, reference: list[TestResult], stubs: list[TestResult]) -> list[str]:
     """The problems of one suite, given its results on the reference and on the stubs."""
     problems = []
-    if require_tests and not reference:
+    if not reference:
         problems.append(f"{label}: the suite has no test; every lesson needs at least one grading test")
     stub_by_key = {t.key: t for t in stubs}
     for test in reference:

@@ -257,13 +257,9 @@ class LessonReport:
     def scored(self, without: bool = False) -> int:
         return self.detected(without) + self.count("survived", without)
 
-    def score_of(self, without: bool = False) -> float | None:
+    def score(self, without: bool = False) -> float | None:
         scored = self.scored(without)
         return 100.0 * self.detected(without) / scored if scored else None
-
-    @property
-    def score(self) -> float | None:
-        return self.score_of()
 
 
 def parse_arguments(argv: list[str]) -> argparse.Namespace:
@@ -424,11 +420,11 @@ def summary_table(reports: list[LessonReport], compare_without: str | None = Non
              + extra + " time |",
              "|---|---|---|---|---|---|---|---|" + ("---|" if compare_without else "") + "---|"]
     for r in reports:
-        score = "error" if r.problem else "n/a" if r.score is None else f"**{r.score:.1f}%**"
+        score = "error" if r.problem else "n/a" if r.score() is None else f"**{r.score():.1f}%**"
         row = (f"| {r.lesson} | {r.generated} ({r.equivalent}) | {len(r.mutants)} | {r.count('killed')} | "
                f"{r.count('timed out')} | {r.count('survived')} | {r.count('did not build')} | {score} |")
         if compare_without:
-            before = r.score_of(without=True)
+            before = r.score(without=True)
             row += (" n/a |" if before is None or r.problem else
                     f" {before:.1f}% ({r.count('survived', True)} survived) |")
         lines.append(row + f" {r.seconds:.0f} s |")
@@ -544,4 +540,4 @@ def main(argv: list[str]) -> int:
         args.report.write_text(text, encoding="utf-8")
         print(f"wrote {args.report}", file=sys.stderr)
     return 2 if any(r.problem for r in reports) else 1 if args.fail_under is not None and any(
-        r.score is not None and r.score < args.fail_under for r in reports) else 0
+        r.score() is not None and r.score() < args.fail_under for r in reports) else 0

@@ -200,8 +200,7 @@ def main(argv: list[str] | None = None) -> int:
     args.out.mkdir(parents=True, exist_ok=True)
     for source in args.files:
         try:
-            text = source.read_text(encoding="utf-8")
-            rewritten = rewrite(text, str(source.resolve()))
+            rewritten = rewrite(source.read_text(encoding="utf-8"), str(source.resolve()))
         except (OSError, UnicodeDecodeError, SourceError) as error:
             print(f"observer_sources: {error}", file=sys.stderr)
             return 1

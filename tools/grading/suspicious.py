@@ -284,8 +284,7 @@ def scan_object(path: Path, file: str, library: dict[str, str] | None = None) ->
                 add(f"{why} ({shown[:100]})")
             continue
         base = name.split("@", 1)[0]
-        kind = _FORBIDDEN_BY_NAME.get(base)
-        if kind:
+        if kind := _FORBIDDEN_BY_NAME.get(base):
             add(f"calls {base}() ({kind}): exercise code may only compute")
         elif base not in _HARMLESS_C and not base.startswith(_HARMLESS_C_PREFIXES) and not base.endswith("_finite"):
             add(f"calls the C function {base}(), unusual in an exercise (not failed; for the instructor to review)",
