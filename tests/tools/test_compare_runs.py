@@ -75,6 +75,20 @@ class CompareRuns(unittest.TestCase):
     def test_no_table_at_all_cannot_be_compared(self):
         self.assertEqual(self.run_on({"notes.txt": "x"}, {"notes.txt": "x"}), 2)
 
+    def test_bad_arguments_are_refused_and_help_is_not(self):
+        # The usage goes to stderr with exit 2 for a wrong call, to stdout with exit 0 when asked for.
+        for argv, code, stream in ((["only_one"], 2, "err"), (["a", "b", "c"], 2, "err"), ([], 2, "err"),
+                                   (["-h"], 0, "out"), (["--help", "x"], 0, "out")):
+            with contextlib.redirect_stdout(io.StringIO()) as out, contextlib.redirect_stderr(io.StringIO()) as err:
+                self.assertEqual(compare_runs.main(argv), code, argv)
+            said = {"out": out, "err": err}
+            self.assertIn("--speed FIRST_FOLDER OTHER_FOLDER", said[stream].getvalue(), argv)
+            self.assertEqual(said["err" if stream == "out" else "out"].getvalue(), "", argv)
+        with tempfile.TemporaryDirectory() as temporary:
+            with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()) as err:
+                self.assertEqual(compare_runs.main([temporary, "/nonexistent/b"]), 2)
+            self.assertIn("/nonexistent/b is not a folder", err.getvalue())
+
 
 class Speed(unittest.TestCase):
     """compare_runs.py --speed: each timing cell's speed of the second run against the first (a time
